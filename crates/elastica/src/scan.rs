@@ -1,0 +1,3 @@
+pub struct ClosedFormScan;
+pub struct ScanPoint;
+pub enum Phase0End {}
