@@ -1,0 +1,137 @@
+//! Error and termination status.
+
+use crate::Stats;
+
+/// How a solve terminated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Status {
+    /// Converged to the requested tolerances.
+    Converged,
+    /// Newton made no progress (damping reached its minimum without decrease of the residual).
+    Stalled,
+    /// The Newton iteration limit was reached.
+    MaxIterations,
+    /// The Newton matrix was singular (or numerically so).
+    SingularJacobian,
+    /// The right-hand side, the boundary conditions or a Jacobian produced NaN or infinity.
+    NonFinite,
+    /// Collocation needed more nodes than allowed.
+    MeshLimit,
+    /// The adaptive integrator could not meet its tolerance (step size underflow).
+    StepSizeTooSmall,
+    /// Options or problem dimensions were invalid.
+    InvalidInput,
+}
+
+/// Why a solve failed. Every variant that comes from a solve carries the [`Stats`] gathered so far.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum BvpError {
+    /// An option is outside its valid range.
+    #[error("invalid option {name} = {value}: {reason}")]
+    InvalidOption {
+        /// Option name.
+        name: &'static str,
+        /// Offending value, formatted.
+        value: String,
+        /// The valid range or rule.
+        reason: &'static str,
+    },
+    /// A guess, mesh or problem has the wrong size or is malformed.
+    #[error("invalid input: {what} has {got}, expected {expected}")]
+    Dimension {
+        /// What was malformed.
+        what: &'static str,
+        /// What it had.
+        got: usize,
+        /// What was expected.
+        expected: usize,
+    },
+    /// The Newton matrix is singular.
+    #[error("singular Jacobian at Newton iteration {iteration} ({stats})")]
+    SingularJacobian {
+        /// Newton iteration at which factorization failed.
+        iteration: usize,
+        /// Statistics so far.
+        stats: Stats,
+    },
+    /// Damped Newton could not reduce the residual.
+    #[error("Newton stalled at iteration {iteration} with residual {residual:.3e} ({stats})")]
+    Stalled {
+        /// Newton iteration.
+        iteration: usize,
+        /// Residual max-norm when it stalled.
+        residual: f64,
+        /// Statistics so far.
+        stats: Stats,
+    },
+    /// Iteration limit reached.
+    #[error("no convergence in {max_iter} Newton iterations, residual {residual:.3e} ({stats})")]
+    MaxIterations {
+        /// The limit.
+        max_iter: usize,
+        /// Residual max-norm at the end.
+        residual: f64,
+        /// Statistics so far.
+        stats: Stats,
+    },
+    /// NaN or infinity appeared.
+    #[error("non-finite value in {location} at s = {s} ({stats})")]
+    NonFinite {
+        /// Where: "rhs", "bc", "jacobian", "newton step".
+        location: &'static str,
+        /// Abscissa where it appeared (NaN if not applicable).
+        s: f64,
+        /// Statistics so far.
+        stats: Stats,
+    },
+    /// Collocation mesh would exceed `max_nodes`.
+    #[error("mesh limit: {needed} nodes needed but max_nodes = {max_nodes}; residual {residual:.3e} ({stats})")]
+    MeshLimit {
+        /// The cap.
+        max_nodes: usize,
+        /// Nodes the next refinement asked for.
+        needed: usize,
+        /// Max scaled collocation residual at the last mesh.
+        residual: f64,
+        /// Statistics so far.
+        stats: Stats,
+    },
+    /// Adaptive integration failed.
+    #[error("integration failed at s = {s}: step size {h:.3e} too small ({stats})")]
+    StepSizeTooSmall {
+        /// Where.
+        s: f64,
+        /// The step size.
+        h: f64,
+        /// Statistics so far.
+        stats: Stats,
+    },
+}
+
+impl BvpError {
+    /// The termination status this error stands for.
+    pub fn status(&self) -> Status {
+        match self {
+            BvpError::InvalidOption { .. } | BvpError::Dimension { .. } => Status::InvalidInput,
+            BvpError::SingularJacobian { .. } => Status::SingularJacobian,
+            BvpError::Stalled { .. } => Status::Stalled,
+            BvpError::MaxIterations { .. } => Status::MaxIterations,
+            BvpError::NonFinite { .. } => Status::NonFinite,
+            BvpError::MeshLimit { .. } => Status::MeshLimit,
+            BvpError::StepSizeTooSmall { .. } => Status::StepSizeTooSmall,
+        }
+    }
+
+    /// Statistics of the failed solve, if it got that far.
+    pub fn stats(&self) -> Option<&Stats> {
+        match self {
+            BvpError::InvalidOption { .. } | BvpError::Dimension { .. } => None,
+            BvpError::SingularJacobian { stats, .. }
+            | BvpError::Stalled { stats, .. }
+            | BvpError::MaxIterations { stats, .. }
+            | BvpError::NonFinite { stats, .. }
+            | BvpError::MeshLimit { stats, .. }
+            | BvpError::StepSizeTooSmall { stats, .. } => Some(stats),
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Finite-difference Jacobians (the default when a problem has no analytic ones).

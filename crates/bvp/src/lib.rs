@@ -1,0 +1,62 @@
+//! Two-point boundary-value problems: shooting, multiple shooting, collocation and continuation.
+//!
+//! # The problem
+//!
+//! Find `z: [a, b] → Rⁿ` and unknown parameters `p ∈ Rᵏ` with
+//!
+//! ```text
+//!     z'(s) = F(s, z(s), p)          s ∈ [a, b]
+//!     g(z(a), z(b), p) = 0           n + k conditions (two-point, non-separated allowed)
+//! ```
+//!
+//! A problem is a type implementing [`Bvp`]; it knows nothing of solvers. Analytic Jacobians
+//! (`∂F/∂z`, `∂F/∂p`, and those of `g`) are optional: without them the solvers use finite differences.
+//!
+//! # Solvers
+//!
+//! Each solver takes a problem, an initial [`Guess`] and its own options struct (with `Default`,
+//! documented defaults, and `validate()` called by the constructor):
+//!
+//! - [`Shooting`]: single (`segments = 1`) and multiple shooting; Jacobians from the variational
+//!   equations; fixed-step RK4 or an adaptive embedded pair.
+//! - [`Collocation`]: Lobatto IIIA collocation of order 4 (the `bvp4c` / `solve_bvp` scheme) and 6,
+//!   residual control, mesh refinement and coarsening, sparse Newton systems (faer).
+//! - [`continuation`]: natural-parameter and pseudo-arclength continuation of a [`ParamBvp`] family,
+//!   with fold detection and location.
+//!
+//! All solvers return a [`Solution`] (mesh values, dense evaluation, parameters, [`Stats`]) or a
+//! [`BvpError`] that says why the solve failed and carries the statistics gathered so far.
+//!
+//! [`samples`] holds problems with known answers, shared by tests, benches and examples.
+#![warn(missing_docs)]
+
+mod error;
+mod problem;
+mod solution;
+mod stats;
+
+pub mod collocation;
+pub mod continuation;
+pub mod fd;
+pub mod linalg;
+pub mod newton;
+pub mod samples;
+pub mod shooting;
+
+pub use collocation::{Collocation, CollocationOptions, Scheme};
+pub use continuation::ParamBvp;
+pub use error::{BvpError, Status};
+pub use newton::NewtonOptions;
+pub use problem::{Bvp, Dims};
+pub use shooting::{Integrator, Shooting, ShootingOptions};
+pub use solution::{Guess, Solution};
+pub use stats::Stats;
+
+/// A BVP solver: takes a problem and an initial guess, returns a converged solution or says why not.
+///
+/// Implementations keep their work buffers between calls, so repeated solves (continuation) do not
+/// allocate in their inner loops.
+pub trait BvpSolver {
+    /// Solves `problem` starting from `guess`.
+    fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError>;
+}
