@@ -163,7 +163,7 @@ impl Elastica {
             branch,
             x1: -a1 * sa + b1 * ca,
             y1: a1 * ca + b1 * sa,
-            m_base: sign * 2.0 * g * k * md.c_top,
+            m_base: sign * 2.0 * g * k * md.c_top + 0.0, // + 0.0: no -0 at the turning point
             phi_b,
             s_b,
             md: Some(md),

@@ -101,6 +101,36 @@ pub fn e_mc(mc: f64) -> Result<f64, ElasticaError> {
     Ok(carlson_rf(0.0, mc, 1.0)? - m / 3.0 * carlson_rd(0.0, mc, 1.0)?)
 }
 
+/// `F(phi|m)` and `E(phi|m)` for `|phi| <= pi/2` from the complementary parameter `mc = 1 - m`.
+///
+/// The mend for `m -> 1`: `ellip` forms `1 - m sin^2(phi)` directly, which cancels
+/// catastrophically when both `m` and `sin^2(phi)` are near 1 (measured: 4e-10 relative error at
+/// `m = 1 - 2^-52`, `phi = 1.5707963267948966`); here it is `cos^2(phi) + mc sin^2(phi)`, a sum of
+/// positive terms, and the integrals come from Carlson's `R_F`, `R_D` (DLMF 19.25.5, 19.25.9).
+pub fn legendre_f_e_mc(phi: f64, mc: f64) -> Result<(f64, f64), ElasticaError> {
+    finite("phi", phi)?;
+    finite("mc", mc)?;
+    if phi.abs() > FRAC_PI_2 {
+        return Err(ElasticaError::OutOfRange {
+            name: "phi",
+            value: phi,
+            min: -FRAC_PI_2,
+            max: FRAC_PI_2,
+        });
+    }
+    if !(0.0..=1.0).contains(&mc) {
+        return Err(ElasticaError::OutOfRange {
+            name: "mc",
+            value: mc,
+            min: 0.0,
+            max: 1.0,
+        });
+    }
+    let (s, c) = phi.sin_cos();
+    let c2 = c * c;
+    f_e_sc(s, c2, c2 + mc * s * s, 1.0 - mc)
+}
+
 /// `F(phi|m)` and `E(phi|m)` for `|phi| <= pi/2` from `s = sin(phi)`, `c2 = cos^2(phi)` and
 /// `dn2 = 1 - m sin^2(phi)`, all supplied by the caller (DLMF 19.25.5, 19.25.9):
 /// `F = s R_F(c2, dn2, 1)`, `E = F - (m/3) s^3 R_D(c2, dn2, 1)`.
@@ -385,7 +415,7 @@ fn appendix_theta(x: f64, u: f64) -> Result<(f64, f64, f64, f64), ElasticaError>
     if k == 0.0 {
         return Ok((0.0, 1.0, 0.0, 0.0));
     }
-    let s = ((half_pi_plus(-0.5, &[x]) * 0.5).sin() / k).clamp(-1.0, 1.0);
+    let s = ((half_pi_plus(-1.0, &[x]) * 0.5).sin() / k).clamp(-1.0, 1.0);
     // cos^2 theta = sin((x - u)/2) sin((pi - u - x)/2) / k^2
     let c2 = ((0.5 * (x - u)).sin() * (0.5 * half_pi_plus(2.0, &[-u, -x])).sin() / m).max(0.0);
     let r2 = s * s + c2;
