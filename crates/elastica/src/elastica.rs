@@ -154,7 +154,7 @@ impl Elastica {
         let (sa, ca) = md.alpha.sin_cos();
         let (phi_b, s_b) = match branch {
             Branch::Convex => (None, None),
-            Branch::OneFlex => (Some(md.phi_b()), Some((md.kk - md.f_top) / g)),
+            Branch::OneFlex => (Some(md.phi_b()), Some(md.k_minus_f_top() / g)),
         };
         Elastica {
             f: g * g,

@@ -294,6 +294,23 @@ impl Modulus {
         })
     }
 
+    /// `K(m) - F(theta_top|m)` without cancellation near the turning point (`theta_top -> pi/2`):
+    /// by the addition theorem `F(theta) + F(psi) = K` when `tan(theta) tan(psi) = 1/k'`
+    /// (Byrd and Friedman 1971, 117.01), so it equals `F(psi)` with
+    /// `sin^2 psi = c^2/(c^2 + mc s^2)`, `cos^2 psi = mc s^2/(c^2 + mc s^2)`,
+    /// `1 - m sin^2 psi = mc/(c^2 + mc s^2)` (`s, c` of `theta_top`).
+    pub fn k_minus_f_top(&self) -> f64 {
+        let (s, c) = (self.s_top, self.c_top);
+        let d = c * c + self.mc * s * s;
+        if c == 0.0 {
+            return 0.0;
+        }
+        match f_e_sc(c / d.sqrt(), self.mc * s * s / d, self.mc / d, self.m) {
+            Ok((f, _)) => f,
+            Err(_) => self.kk - self.f_top,
+        }
+    }
+
     /// `phi_b = pi + 2 alpha - phi1`, the other zero of the bracket (2.12).
     pub fn phi_b(&self) -> f64 {
         half_pi_plus(1.0, &[self.alpha, self.h])
