@@ -106,6 +106,22 @@ pub enum BvpError {
         /// Statistics so far.
         stats: Stats,
     },
+    /// Continuation could not take a step even at the minimum step length (or locate a fold);
+    /// `source` is the last solver error, `hint` a likely cause (e.g. a fold for natural continuation).
+    #[error("continuation step {step} from lambda = {lambda} failed at ds = {ds:.3e}{hint}: {source}")]
+    Continuation {
+        /// Index of the branch point that could not be computed.
+        step: usize,
+        /// Parameter value of the last accepted point.
+        lambda: f64,
+        /// Step length of the last attempt.
+        ds: f64,
+        /// Likely cause, or empty.
+        hint: &'static str,
+        /// The solver's error at the last attempt.
+        #[source]
+        source: Box<BvpError>,
+    },
 }
 
 impl BvpError {
@@ -119,6 +135,7 @@ impl BvpError {
             BvpError::NonFinite { .. } => Status::NonFinite,
             BvpError::MeshLimit { .. } => Status::MeshLimit,
             BvpError::StepSizeTooSmall { .. } => Status::StepSizeTooSmall,
+            BvpError::Continuation { source, .. } => source.status(),
         }
     }
 
@@ -132,6 +149,7 @@ impl BvpError {
             | BvpError::NonFinite { stats, .. }
             | BvpError::MeshLimit { stats, .. }
             | BvpError::StepSizeTooSmall { stats, .. } => Some(stats),
+            BvpError::Continuation { source, .. } => source.stats(),
         }
     }
 }
