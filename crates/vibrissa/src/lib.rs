@@ -1,9 +1,15 @@
 //! The vibrissa model: an elastic rod with optional taper, pre-curvature and compliant support,
 //! pressed with its tip on a surface, and the quasi-static stiction scan.
-//!
-//! (skeleton: to be implemented — see issue #4)
 #![warn(missing_docs)]
 
+mod error;
+pub mod model;
+pub mod scan;
 pub mod scene;
+pub mod solve;
 
+pub use error::VibrissaError;
+pub use model::{Model, Units};
+pub use scan::{infer, scan, Inference, ScanOptions, ScanPoint, ScanResult, StopReason};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};
+pub use solve::{solve, BranchChoice, Method, Shape, ShapePoint, SolverConfig, Target};

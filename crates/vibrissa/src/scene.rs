@@ -93,3 +93,130 @@ impl Default for Scene {
         }
     }
 }
+
+use crate::VibrissaError;
+
+fn finite(name: &str, v: f64) -> Result<(), VibrissaError> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(VibrissaError::range(name, v, "(finite numbers)"))
+    }
+}
+
+/// Checks a piecewise-linear table: equal lengths >= 2, finite, `s` strictly increasing from 0 to 1.
+fn check_table(name: &str, s: &[f64], v: &[f64], positive: bool) -> Result<(), VibrissaError> {
+    let bad = |reason: String| VibrissaError::InvalidTable {
+        name: name.to_string(),
+        reason,
+    };
+    if s.len() != v.len() {
+        return Err(bad(format!(
+            "s has {} entries but the values have {}; they must have the same length",
+            s.len(),
+            v.len()
+        )));
+    }
+    if s.len() < 2 {
+        return Err(bad(format!(
+            "{} entries; at least 2 are needed to cover [0, 1]",
+            s.len()
+        )));
+    }
+    for (i, (&si, &vi)) in s.iter().zip(v).enumerate() {
+        if !si.is_finite() || !vi.is_finite() {
+            return Err(bad(format!(
+                "entry {i} (s = {si}, value = {vi}) is not finite"
+            )));
+        }
+        if positive && vi <= 0.0 {
+            return Err(bad(format!(
+                "value {vi} at s = {si} (entry {i}) must be > 0 (valid range (0, inf))"
+            )));
+        }
+        if i > 0 && si <= s[i - 1] {
+            return Err(bad(format!(
+                "s must be strictly increasing: s[{i}] = {si} <= s[{}] = {}",
+                i - 1,
+                s[i - 1]
+            )));
+        }
+    }
+    let (s0, s1) = (s[0], s[s.len() - 1]);
+    if s0 > 0.0 || s1 < 1.0 {
+        return Err(bad(format!(
+            "s covers [{s0}, {s1}] but must cover [0, 1] (first entry <= 0, last >= 1)"
+        )));
+    }
+    Ok(())
+}
+
+impl Scene {
+    /// Checks every value; the error names the value and its valid range.
+    pub fn validate(&self) -> Result<(), VibrissaError> {
+        let (_, eta_low) = elastica::lower_limit();
+        if !(self.eta > eta_low && self.eta < 1.0) {
+            return Err(VibrissaError::range(
+                "eta",
+                self.eta,
+                format!("({eta_low:.6}, 1) = (eta_, 1)"),
+            ));
+        }
+        match &self.stiffness {
+            Stiffness::Uniform => {}
+            Stiffness::Taper { ratio } => {
+                if !(*ratio > 0.0 && *ratio <= 1.0) {
+                    return Err(VibrissaError::range("stiffness.ratio", *ratio, "(0, 1]"));
+                }
+            }
+            Stiffness::Table { s, b } => check_table("stiffness", s, b, true)?,
+        }
+        match &self.precurvature {
+            Precurvature::None => {}
+            Precurvature::Linear { k0, k1 } => {
+                finite("precurvature.k0", *k0)?;
+                finite("precurvature.k1", *k1)?;
+            }
+            Precurvature::Table { s, k } => check_table("precurvature", s, k, false)?,
+        }
+        let c = self.support_compliance;
+        if !(c.is_finite() && c >= 0.0) {
+            return Err(VibrissaError::range("support_compliance", c, "[0, inf)"));
+        }
+        let beta = self.surface_angle;
+        if !(beta.is_finite() && beta.abs() < std::f64::consts::FRAC_PI_4) {
+            return Err(VibrissaError::range(
+                "surface_angle",
+                beta,
+                "(-pi/4, pi/4) radians",
+            ));
+        }
+        if let Some(p) = &self.physical {
+            for (name, v) in [
+                ("physical.length_mm", p.length_mm),
+                ("physical.youngs_modulus_gpa", p.youngs_modulus_gpa),
+                ("physical.base_diameter_um", p.base_diameter_um),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(VibrissaError::range(name, v, "(0, inf)"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// True for the paper's scene: uniform, straight, clamped rod, horizontal surface.
+    pub fn is_paper_scene(&self) -> bool {
+        let uniform = match &self.stiffness {
+            Stiffness::Uniform => true,
+            Stiffness::Taper { ratio } => *ratio == 1.0,
+            Stiffness::Table { .. } => false,
+        };
+        let straight = match &self.precurvature {
+            Precurvature::None => true,
+            Precurvature::Linear { k0, k1 } => *k0 == 0.0 && *k1 == 0.0,
+            Precurvature::Table { .. } => false,
+        };
+        uniform && straight && self.support_compliance == 0.0 && self.surface_angle == 0.0
+    }
+}

@@ -1,0 +1,110 @@
+//! The crate's error type.
+
+/// Everything that can go wrong in this crate. Variants carry the offending value and, where
+/// there is one, the valid range, so the message alone says what to fix.
+#[derive(thiserror::Error, Debug, Clone, PartialEq)]
+pub enum VibrissaError {
+    /// A scalar input is outside its valid range (or NaN).
+    #[error("{name} = {value} is outside the valid range {range}")]
+    OutOfRange {
+        /// Name of the value (e.g. `eta`, `stiffness.ratio`).
+        name: String,
+        /// Offending value.
+        value: f64,
+        /// The valid range, in words (e.g. `(0.45695, 1)`).
+        range: String,
+    },
+    /// A table (`s`, values) is malformed.
+    #[error("invalid table {name}: {reason}")]
+    InvalidTable {
+        /// Which table.
+        name: String,
+        /// What is wrong, with the offending entry.
+        reason: String,
+    },
+    /// The method is not available for this scene (e.g. `analytic` off the paper's scene).
+    #[error("method {method} is not available here: {reason}")]
+    MethodUnavailable {
+        /// The method asked for.
+        method: String,
+        /// Why not.
+        reason: String,
+    },
+    /// The solve converged, but to another branch than the one asked for.
+    #[error("wrong branch: requested {requested}, the solver converged to {found}")]
+    WrongBranch {
+        /// Branch asked for.
+        requested: String,
+        /// What the solution is.
+        found: String,
+    },
+    /// The BVP solver failed.
+    #[error("{context}: {source}")]
+    Solver {
+        /// Which solve (target, d, homotopy step, ...).
+        context: String,
+        /// The solver's error.
+        source: bvp::BvpError,
+    },
+    /// The closed forms failed (analytic method, or the initial guess).
+    #[error("{context}: {source}")]
+    Elastica {
+        /// Which computation.
+        context: String,
+        /// The closed-form error.
+        source: elastica::ElasticaError,
+    },
+    /// `infer`: the displacement is outside the measurable range.
+    #[error("d0 = {d0} is outside the measurable range [{min}, {max}] = [0, d at mu_max]")]
+    NotMeasurable {
+        /// Offending displacement.
+        d0: f64,
+        /// Lower end (0).
+        min: f64,
+        /// Upper end (the d at mu_max).
+        max: f64,
+    },
+    /// A computation did not reach its goal (continuation stalled, homotopy failed, ...).
+    #[error("{what} failed: {reason}")]
+    NoConvergence {
+        /// What was computed.
+        what: String,
+        /// Why it stopped.
+        reason: String,
+    },
+    /// A name (method, branch, ...) that is not one of the valid ones.
+    #[error("invalid {name} '{value}': valid values are {valid}")]
+    InvalidName {
+        /// What was named.
+        name: &'static str,
+        /// The name given.
+        value: String,
+        /// The valid names.
+        valid: &'static str,
+    },
+    /// Not implemented yet.
+    #[error("not implemented: {0}")]
+    NotImplemented(&'static str),
+}
+
+impl VibrissaError {
+    pub(crate) fn range(name: impl Into<String>, value: f64, range: impl Into<String>) -> Self {
+        VibrissaError::OutOfRange {
+            name: name.into(),
+            value,
+            range: range.into(),
+        }
+    }
+    pub(crate) fn solver(context: impl Into<String>, source: bvp::BvpError) -> Self {
+        VibrissaError::Solver {
+            context: context.into(),
+            source,
+        }
+    }
+    pub(crate) fn elastica(context: impl Into<String>, source: elastica::ElasticaError) -> Self {
+        VibrissaError::Elastica {
+            context: context.into(),
+            source,
+        }
+    }
+}
