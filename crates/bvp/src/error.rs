@@ -108,7 +108,9 @@ pub enum BvpError {
     },
     /// Continuation could not take a step even at the minimum step length (or locate a fold);
     /// `source` is the last solver error, `hint` a likely cause (e.g. a fold for natural continuation).
-    #[error("continuation step {step} from lambda = {lambda} failed at ds = {ds:.3e}{hint}: {source}")]
+    #[error(
+        "continuation step {step} from lambda = {lambda} failed at ds = {ds:.3e}{hint}: {source}"
+    )]
     Continuation {
         /// Index of the branch point that could not be computed.
         step: usize,

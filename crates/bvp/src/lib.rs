@@ -44,7 +44,7 @@ pub mod samples;
 pub mod shooting;
 
 pub use collocation::{Collocation, CollocationOptions, Scheme};
-pub use continuation::ParamBvp;
+pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Status};
 pub use newton::NewtonOptions;
 pub use problem::{Bvp, Dims};
