@@ -171,6 +171,7 @@ impl Engine {
                         bc_tol: cfg.tol,
                         max_nodes: 20_000,
                         newton,
+                        ..CollocationOptions::default()
                     })
                     .map_err(wrap)?,
                 )
