@@ -1,6 +1,43 @@
 //! Damped Newton iteration shared by the solvers.
 //!
-//! (skeleton: to be implemented — see issue #3)
+//! # Method
+//!
+//! Solve `R(u) = 0` for `u ∈ Rᴺ`. Each iteration solves the linearized system `J(u) Δu = −R(u)`
+//! (the linear algebra is the caller's: [`NewtonSystem::solve_linearized`], dense LU for shooting,
+//! sparse for collocation) and takes `u ← u + λ Δu` with a backtracking line search on the merit
+//! function `φ(u) = ½ ‖R(u)‖₂²` (Armijo rule):
+//!
+//! ```text
+//!     accept λ if  φ(u + λΔu) ≤ (1 − 2σλ) φ(u),        σ = 1e-4
+//! ```
+//!
+//! which is the Armijo condition `φ(u+λΔu) ≤ φ(u) + σλ φ'(u)[Δu]` with `φ'(u)[Δu] = −2φ(u)` for an
+//! exact Newton direction. Trial `λ` starts at 1 every iteration (so the full step, and quadratic
+//! convergence, is always tried); on failure the next trial minimizes the quadratic model of
+//! `φ(λ)` through `φ(0)`, `φ'(0)` and the failed value, safeguarded to `[0.1 λ, 0.5 λ]`. A trial
+//! whose residual is NaN/∞ (e.g. the step left the domain of the right-hand side) is treated as a
+//! failed trial and `λ` is quartered. This is the plain residual-based (not Deuflhard's
+//! affine-invariant) damping: it is cheap and adequate when the unknowns are reasonably scaled.
+//!
+//! # Termination
+//!
+//! - converged: `‖R(u)‖∞ ≤ tol` (checked at the start too, so an exact guess costs no iteration);
+//! - converged at the precision floor: the Newton step satisfies
+//!   `‖Δu‖∞ ≤ step_tol · (1 + ‖u‖∞)` and `‖R(u)‖∞ ≤ step_residual_tol`;
+//! - [`BvpError::Stalled`]: `λ` fell below `min_damping` without an acceptable decrease;
+//! - [`BvpError::MaxIterations`]: `max_iter` linearizations without convergence;
+//! - [`BvpError::SingularJacobian`], [`BvpError::NonFinite`]: reported by the system (or a
+//!   non-finite Newton step / initial residual, detected here).
+//!
+//! Statistics: `newton_iters` (linearizations) and `residual` (final `‖R‖∞`) are updated here; the
+//! system updates the evaluation counters and `factorizations` through the `&mut Stats` it gets.
+//! Errors returned by the system may carry placeholder statistics: the driver replaces them (and
+//! the iteration number) with the current ones, see [`attach`].
+
+use crate::{BvpError, Stats};
+
+/// Armijo constant `σ` of the sufficient-decrease test.
+const ARMIJO: f64 = 1e-4;
 
 /// Options of the damped Newton iteration.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -13,6 +50,9 @@ pub struct NewtonOptions {
     pub step_tol: f64,
     /// Smallest damping factor of the line search before declaring a stall. Default 1e-6.
     pub min_damping: f64,
+    /// The step criterion only counts as convergence when the residual max-norm is at most this
+    /// (guards against tiny steps of a hugely ill-conditioned system). Default 1e-8.
+    pub step_residual_tol: f64,
 }
 
 impl Default for NewtonOptions {
@@ -22,6 +62,390 @@ impl Default for NewtonOptions {
             tol: 1e-10,
             step_tol: 1e-12,
             min_damping: 1e-6,
+            step_residual_tol: 1e-8,
         }
+    }
+}
+
+impl NewtonOptions {
+    /// Checks the ranges: `max_iter ≥ 1`, `tol > 0`, `step_tol ≥ 0`, `0 < min_damping ≤ 1`,
+    /// `step_residual_tol ≥ 0` (all finite).
+    pub fn validate(&self) -> Result<(), BvpError> {
+        if self.max_iter < 1 {
+            return Err(invalid("newton.max_iter", self.max_iter, "must be >= 1"));
+        }
+        if !(self.tol > 0.0 && self.tol.is_finite()) {
+            return Err(invalid("newton.tol", self.tol, "must be finite and > 0"));
+        }
+        if !(self.step_tol >= 0.0 && self.step_tol.is_finite()) {
+            return Err(invalid(
+                "newton.step_tol",
+                self.step_tol,
+                "must be finite and >= 0",
+            ));
+        }
+        if !(self.min_damping > 0.0 && self.min_damping <= 1.0) {
+            return Err(invalid(
+                "newton.min_damping",
+                self.min_damping,
+                "must be in (0, 1]",
+            ));
+        }
+        if !(self.step_residual_tol >= 0.0 && self.step_residual_tol.is_finite()) {
+            return Err(invalid(
+                "newton.step_residual_tol",
+                self.step_residual_tol,
+                "must be finite and >= 0",
+            ));
+        }
+        Ok(())
+    }
+}
+
+fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static str) -> BvpError {
+    BvpError::InvalidOption {
+        name,
+        value: value.to_string(),
+        reason,
+    }
+}
+
+/// A nonlinear system `R(u) = 0` as seen by [`Newton`].
+///
+/// Implementations own the Jacobian and its factorization; they may cache work between the calls
+/// (e.g. shooting integrates the variational equations during `residual` and reuses them in
+/// `solve_linearized` when `u` is unchanged).
+pub trait NewtonSystem {
+    /// Writes `R(u)` into `r`; counts evaluations in `stats`. Return
+    /// [`BvpError::NonFinite`] if a NaN/∞ appears where its location is known (else the driver
+    /// detects non-finite `r` itself).
+    fn residual(&mut self, u: &[f64], r: &mut [f64], stats: &mut Stats) -> Result<(), BvpError>;
+
+    /// Forms `J(u)` (`r = R(u)` was the last residual evaluated at this `u`), factorizes it and
+    /// writes the Newton step `du = −J⁻¹ r`. Counts `factorizations`. Return
+    /// [`BvpError::SingularJacobian`] (see [`singular`]) when the matrix is singular.
+    fn solve_linearized(
+        &mut self,
+        u: &[f64],
+        r: &[f64],
+        du: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<(), BvpError>;
+}
+
+/// A [`BvpError::SingularJacobian`] with placeholder statistics (filled in by the driver).
+pub fn singular() -> BvpError {
+    BvpError::SingularJacobian {
+        iteration: 0,
+        stats: Stats::default(),
+    }
+}
+
+/// A [`BvpError::NonFinite`] with placeholder statistics (filled in by the driver).
+pub fn non_finite(location: &'static str, s: f64) -> BvpError {
+    BvpError::NonFinite {
+        location,
+        s,
+        stats: Stats::default(),
+    }
+}
+
+/// Replaces the statistics carried by `err` with `stats` and, for iteration-numbered variants,
+/// the iteration with `iteration`.
+pub fn attach(mut err: BvpError, iteration: usize, stats: &Stats) -> BvpError {
+    match &mut err {
+        BvpError::SingularJacobian {
+            iteration: it,
+            stats: st,
+        }
+        | BvpError::Stalled {
+            iteration: it,
+            stats: st,
+            ..
+        } => {
+            *it = iteration;
+            *st = stats.clone();
+        }
+        BvpError::MaxIterations { stats: st, .. }
+        | BvpError::NonFinite { stats: st, .. }
+        | BvpError::MeshLimit { stats: st, .. }
+        | BvpError::StepSizeTooSmall { stats: st, .. } => *st = stats.clone(),
+        // Input errors carry no statistics; wrapped errors (continuation) keep their own.
+        _ => {}
+    }
+    err
+}
+
+/// Damped Newton driver with its work vectors (reuse it to avoid allocation between solves).
+#[derive(Clone, Debug, Default)]
+pub struct Newton {
+    r: Vec<f64>,
+    du: Vec<f64>,
+    ut: Vec<f64>,
+    rt: Vec<f64>,
+    iterations: usize,
+}
+
+fn max_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+fn all_finite(x: &[f64]) -> bool {
+    x.iter().all(|v| v.is_finite())
+}
+
+impl Newton {
+    /// A driver with empty buffers (sized on first use).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The residual at the returned `u` (valid after [`Newton::solve`] returned `Ok`, and after
+    /// most failures: it is the last accepted iterate's residual).
+    pub fn residual(&self) -> &[f64] {
+        &self.r
+    }
+
+    /// Newton iterations of the last solve.
+    pub fn iterations(&self) -> usize {
+        self.iterations
+    }
+
+    /// Runs damped Newton on `sys` from `u` (overwritten by the solution, or by the last accepted
+    /// iterate on failure). The residual vector has the length of `u` (square systems).
+    pub fn solve<S: NewtonSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        u: &mut [f64],
+        opts: &NewtonOptions,
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        let m = u.len();
+        for v in [&mut self.r, &mut self.du, &mut self.ut, &mut self.rt] {
+            v.clear();
+            v.resize(m, 0.0);
+        }
+        self.iterations = 0;
+
+        sys.residual(u, &mut self.r, stats)
+            .map_err(|e| attach(e, 0, stats))?;
+        if !all_finite(&self.r) {
+            return Err(attach(non_finite("residual", f64::NAN), 0, stats));
+        }
+        let mut f = max_norm(&self.r);
+        let mut phi = 0.5 * self.r.iter().map(|v| v * v).sum::<f64>();
+        stats.residual = f;
+        if f <= opts.tol {
+            return Ok(());
+        }
+
+        for it in 1..=opts.max_iter {
+            self.iterations = it;
+            stats.newton_iters += 1;
+            sys.solve_linearized(u, &self.r, &mut self.du, stats)
+                .map_err(|e| attach(e, it, stats))?;
+            if !all_finite(&self.du) {
+                return Err(attach(non_finite("newton step", f64::NAN), it, stats));
+            }
+            let small_step = max_norm(&self.du) <= opts.step_tol * (1.0 + max_norm(u));
+
+            // Backtracking line search.
+            let mut lambda = 1.0_f64;
+            let mut last_err: Option<BvpError> = None;
+            let (ft, phit) = loop {
+                for ((t, &x), &d) in self.ut.iter_mut().zip(u.iter()).zip(&self.du) {
+                    *t = x + lambda * d;
+                }
+                let trial = sys.residual(&self.ut, &mut self.rt, stats);
+                let ok = match trial {
+                    Ok(()) if all_finite(&self.rt) => true,
+                    Ok(()) => {
+                        last_err = Some(non_finite("residual", f64::NAN));
+                        false
+                    }
+                    Err(e @ BvpError::NonFinite { .. })
+                    | Err(e @ BvpError::StepSizeTooSmall { .. }) => {
+                        last_err = Some(e);
+                        false
+                    }
+                    Err(e) => return Err(attach(e, it, stats)),
+                };
+                let next = if ok {
+                    let phit = 0.5 * self.rt.iter().map(|v| v * v).sum::<f64>();
+                    if phit <= (1.0 - 2.0 * ARMIJO * lambda) * phi {
+                        break (max_norm(&self.rt), phit);
+                    }
+                    if small_step && f <= opts.step_residual_tol {
+                        // At the rounding floor: the step is negligible and cannot decrease φ.
+                        return Ok(());
+                    }
+                    let denom = phit - phi + 2.0 * phi * lambda;
+                    let lq = if denom > 0.0 {
+                        phi * lambda * lambda / denom
+                    } else {
+                        0.5 * lambda
+                    };
+                    lq.clamp(0.1 * lambda, 0.5 * lambda)
+                } else {
+                    0.25 * lambda
+                };
+                if next < opts.min_damping {
+                    return Err(match last_err.take() {
+                        Some(e) if !ok => attach(e, it, stats),
+                        _ => attach(
+                            BvpError::Stalled {
+                                iteration: it,
+                                residual: f,
+                                stats: Stats::default(),
+                            },
+                            it,
+                            stats,
+                        ),
+                    });
+                }
+                lambda = next;
+            };
+
+            u.copy_from_slice(&self.ut);
+            std::mem::swap(&mut self.r, &mut self.rt);
+            f = ft;
+            phi = phit;
+            stats.residual = f;
+            if f <= opts.tol || (small_step && f <= opts.step_residual_tol) {
+                return Ok(());
+            }
+        }
+        Err(BvpError::MaxIterations {
+            max_iter: opts.max_iter,
+            residual: f,
+            stats: stats.clone(),
+        })
+    }
+}
+
+/// Convenience: damped Newton with a temporary [`Newton`] (allocates its work vectors).
+pub fn newton<S: NewtonSystem + ?Sized>(
+    sys: &mut S,
+    u: &mut [f64],
+    opts: &NewtonOptions,
+    stats: &mut Stats,
+) -> Result<(), BvpError> {
+    Newton::new().solve(sys, u, opts, stats)
+}
+
+/// A [`NewtonSystem`] from two closures with a dense Jacobian and [`crate::linalg`] LU; handy for
+/// small algebraic systems (and tests). `jac(u, j)` writes the row-major `N × N` Jacobian.
+pub struct DenseSystem<R, J> {
+    /// Residual closure `res(u, r)`.
+    pub res: R,
+    /// Jacobian closure `jac(u, j)`.
+    pub jac: J,
+    lu: crate::linalg::DenseLu,
+}
+
+impl<R, J> DenseSystem<R, J>
+where
+    R: FnMut(&[f64], &mut [f64]),
+    J: FnMut(&[f64], &mut [f64]),
+{
+    /// Wraps the closures for systems of size `n`.
+    pub fn new(n: usize, res: R, jac: J) -> Self {
+        DenseSystem {
+            res,
+            jac,
+            lu: crate::linalg::DenseLu::new(n),
+        }
+    }
+}
+
+impl<R, J> NewtonSystem for DenseSystem<R, J>
+where
+    R: FnMut(&[f64], &mut [f64]),
+    J: FnMut(&[f64], &mut [f64]),
+{
+    fn residual(&mut self, u: &[f64], r: &mut [f64], _stats: &mut Stats) -> Result<(), BvpError> {
+        (self.res)(u, r);
+        Ok(())
+    }
+
+    fn solve_linearized(
+        &mut self,
+        u: &[f64],
+        r: &[f64],
+        du: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        if self.lu.n() != u.len() {
+            self.lu.resize(u.len());
+        }
+        (self.jac)(u, self.lu.matrix_mut());
+        stats.factorizations += 1;
+        self.lu.factor().map_err(|_| singular())?;
+        for (d, v) in du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        self.lu.solve(du);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rosenbrock_like_system_converges() {
+        // R(u) = (10 (u1 − u0²), 1 − u0): root (1, 1); full steps overshoot from far away.
+        let mut sys = DenseSystem::new(
+            2,
+            |u: &[f64], r: &mut [f64]| {
+                r[0] = 10.0 * (u[1] - u[0] * u[0]);
+                r[1] = 1.0 - u[0];
+            },
+            |u: &[f64], j: &mut [f64]| {
+                j.copy_from_slice(&[-20.0 * u[0], 10.0, -1.0, 0.0]);
+            },
+        );
+        let mut u = [-1.2, 1.0];
+        let mut stats = Stats::default();
+        newton(&mut sys, &mut u, &NewtonOptions::default(), &mut stats).unwrap();
+        assert!((u[0] - 1.0).abs() < 1e-12 && (u[1] - 1.0).abs() < 1e-12);
+        assert!(stats.newton_iters <= 25, "{stats}");
+        assert!(stats.residual <= 1e-10);
+    }
+
+    #[test]
+    fn no_root_stalls_or_singular() {
+        // u² + 1 = 0 has no real root.
+        let mut sys = DenseSystem::new(
+            1,
+            |u: &[f64], r: &mut [f64]| r[0] = u[0] * u[0] + 1.0,
+            |u: &[f64], j: &mut [f64]| j[0] = 2.0 * u[0],
+        );
+        let mut u = [0.7];
+        let mut stats = Stats::default();
+        let e = newton(&mut sys, &mut u, &NewtonOptions::default(), &mut stats).unwrap_err();
+        assert!(matches!(
+            e,
+            BvpError::Stalled { .. }
+                | BvpError::SingularJacobian { .. }
+                | BvpError::MaxIterations { .. }
+        ));
+        assert!(e.stats().unwrap().newton_iters >= 1);
+    }
+
+    #[test]
+    fn validate_rejects_bad_options() {
+        let o = NewtonOptions {
+            tol: 0.0,
+            ..Default::default()
+        };
+        assert!(matches!(
+            o.validate(),
+            Err(BvpError::InvalidOption {
+                name: "newton.tol",
+                ..
+            })
+        ));
     }
 }
