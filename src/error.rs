@@ -1,0 +1,89 @@
+//! One error type for the program: a one-line message and an exit code.
+
+use std::fmt;
+
+/// A failure of the program: `Usage` (exit 2: bad flags, bad scene, input outside the model's
+/// domain) or `Solve` (exit 1: the solver did not converge, I/O failure, ...).
+#[derive(Debug)]
+pub enum Fail {
+    /// bad input: exit code 2
+    Usage(String),
+    /// the computation or the output failed: exit code 1
+    Solve(String),
+}
+
+impl Fail {
+    /// Exit code of the process.
+    pub fn code(&self) -> i32 {
+        match self {
+            Fail::Usage(_) => 2,
+            Fail::Solve(_) => 1,
+        }
+    }
+
+    /// The message, flattened to one line.
+    pub fn message(&self) -> String {
+        let m = match self {
+            Fail::Usage(m) | Fail::Solve(m) => m,
+        };
+        one_line(m)
+    }
+}
+
+impl fmt::Display for Fail {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message())
+    }
+}
+
+/// Collapse whitespace runs (including newlines) to single spaces.
+pub fn one_line(s: &str) -> String {
+    s.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Shorthand for a usage error.
+pub fn usage(msg: impl Into<String>) -> Fail {
+    Fail::Usage(msg.into())
+}
+
+/// Shorthand for a solve error.
+pub fn solve_fail(msg: impl Into<String>) -> Fail {
+    Fail::Solve(msg.into())
+}
+
+impl From<elastica::ElasticaError> for Fail {
+    fn from(e: elastica::ElasticaError) -> Fail {
+        use elastica::ElasticaError as E;
+        let msg = e.to_string();
+        match e {
+            E::AlphaOutOfRange { .. }
+            | E::Phi1OutOfRange { .. }
+            | E::EtaOutOfRange { .. }
+            | E::NotFinite { .. }
+            | E::OutOfRange { .. }
+            | E::NoFlexPhase { .. } => Fail::Usage(msg),
+            _ => Fail::Solve(msg),
+        }
+    }
+}
+
+impl From<std::io::Error> for Fail {
+    fn from(e: std::io::Error) -> Fail {
+        Fail::Solve(e.to_string())
+    }
+}
+
+impl From<csv::Error> for Fail {
+    fn from(e: csv::Error) -> Fail {
+        Fail::Solve(e.to_string())
+    }
+}
+
+impl From<serde_json::Error> for Fail {
+    fn from(e: serde_json::Error) -> Fail {
+        Fail::Solve(e.to_string())
+    }
+}
+
+/// Result alias of the program.
+pub type Res<T> = Result<T, Fail>;

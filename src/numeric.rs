@@ -1,0 +1,98 @@
+//! Numerical back end: the `vibrissa` model crate (shooting, collocation, continuation).
+
+use crate::cli::{BranchArg, MethodArg, SolveArgs};
+use crate::error::{Fail, Res};
+use crate::solve::{branch_name, ShapeRow, SolveOut};
+use vibrissa::{BranchChoice, Method, Model, Scene, SolverConfig, Target, VibrissaError};
+
+impl From<VibrissaError> for Fail {
+    fn from(e: VibrissaError) -> Fail {
+        let msg = e.to_string();
+        match e {
+            VibrissaError::OutOfRange { .. }
+            | VibrissaError::InvalidTable { .. }
+            | VibrissaError::MethodUnavailable { .. }
+            | VibrissaError::NotMeasurable { .. }
+            | VibrissaError::InvalidName { .. } => Fail::Usage(msg),
+            VibrissaError::Elastica { source, .. } => match Fail::from(source) {
+                Fail::Usage(_) => Fail::Usage(msg),
+                Fail::Solve(_) => Fail::Solve(msg),
+            },
+            _ => Fail::Solve(msg),
+        }
+    }
+}
+
+/// The library's method for a CLI method.
+pub fn method(m: MethodArg) -> Method {
+    match m {
+        MethodArg::Shooting => Method::Shooting,
+        MethodArg::MultipleShooting => Method::MultipleShooting,
+        MethodArg::Collocation => Method::Collocation4,
+        MethodArg::Collocation6 => Method::Collocation6,
+        MethodArg::Analytic => Method::Analytic,
+    }
+}
+
+/// Solver configuration from the CLI flags.
+pub fn config(m: MethodArg, tol: f64) -> SolverConfig {
+    SolverConfig {
+        method: method(m),
+        tol,
+        ..SolverConfig::default()
+    }
+}
+
+/// Validated model of a scene.
+pub fn model(scene: &Scene) -> Res<Model> {
+    Ok(Model::new(scene)?)
+}
+
+/// Numerical solve of one rod.
+pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
+    let model = model(scene)?;
+    let target = match (a.phi1, a.eta) {
+        (Some(p), _) => Target::Phi1(p),
+        (None, Some(h)) => Target::Eta(h),
+        (None, None) => return Err(crate::error::usage("give --phi1 or --eta")),
+    };
+    let branch = match a.branch {
+        BranchArg::Convex => BranchChoice::Convex,
+        BranchArg::Flex => BranchChoice::Flex,
+    };
+    let cfg = config(a.solver.method, a.solver.tol);
+    let sh = vibrissa::solve(&model, a.alpha, target, &branch, &cfg)?;
+    let shape = if npts >= 2 {
+        sh.samples(npts)
+            .into_iter()
+            .map(|p| ShapeRow {
+                s: p.s,
+                x: p.x,
+                y: p.y,
+                phi: p.phi,
+                kappa: p.kappa,
+                m: p.m,
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    Ok(SolveOut {
+        method: a.solver.method.name(),
+        branch: branch_name(a.branch),
+        alpha: sh.alpha,
+        phi1: sh.phi1,
+        f: sh.f,
+        fx: sh.fx,
+        fy: sh.fy,
+        x1: sh.x1,
+        y1: sh.y1,
+        m_base: sh.m_base,
+        flex: sh.flex,
+        s_flex: sh.s_flex,
+        y_max: sh.y_max,
+        residual: sh.residual,
+        physical: None,
+        shape,
+    })
+}

@@ -1,0 +1,254 @@
+//! `vibrissa solve`: one rod, one load.
+
+use crate::cli::{BranchArg, MethodArg, SolveArgs};
+use crate::error::{Fail, Res};
+use crate::numeric;
+use crate::output::{csv_line, num, opt, AtomicFile};
+use crate::scene_args::{build_scene, is_paper_rod, not_analytic, units_of, Units};
+use elastica::{Branch, Elastica};
+use serde::Serialize;
+use std::io::Write;
+
+/// One point of a rod shape.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ShapeRow {
+    /// arc length
+    pub s: f64,
+    /// position
+    pub x: f64,
+    /// position
+    pub y: f64,
+    /// slope angle
+    pub phi: f64,
+    /// curvature phi'
+    pub kappa: f64,
+    /// internal moment
+    pub m: f64,
+}
+
+/// Result of one solve.
+#[derive(Clone, Debug, Serialize)]
+pub struct SolveOut {
+    /// method used
+    pub method: &'static str,
+    /// requested branch
+    pub branch: &'static str,
+    /// force angle
+    pub alpha: f64,
+    /// tip slope
+    pub phi1: f64,
+    /// force magnitude
+    pub f: f64,
+    /// f sin(alpha)
+    pub fx: f64,
+    /// -f cos(alpha)
+    pub fy: f64,
+    /// tip x
+    pub x1: f64,
+    /// tip y
+    pub y1: f64,
+    /// m(0)
+    pub m_base: f64,
+    /// number of flex points
+    pub flex: usize,
+    /// arc length of the (first) flex point
+    pub s_flex: Option<f64>,
+    /// max over s of y(s)
+    pub y_max: f64,
+    /// residual of the solve (see README)
+    pub residual: f64,
+    /// physical-unit values, when the scene has dimensions
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub physical: Option<PhysicalOut>,
+    /// shape (not serialized into the row)
+    #[serde(skip)]
+    pub shape: Vec<ShapeRow>,
+}
+
+/// Physical-unit columns.
+#[derive(Clone, Debug, Serialize)]
+pub struct PhysicalOut {
+    /// force in N
+    pub f_n: f64,
+    /// x force in N
+    pub fx_n: f64,
+    /// y force in N
+    pub fy_n: f64,
+    /// m(0) in N*m
+    pub m_base_nm: f64,
+    /// tip x in mm
+    pub x1_mm: f64,
+    /// tip y in mm
+    pub y1_mm: f64,
+}
+
+/// Closed-form solve on the uniform rod.
+pub fn analytic(
+    branch: BranchArg,
+    alpha: f64,
+    phi1: Option<f64>,
+    eta: Option<f64>,
+    shape_points: usize,
+) -> Res<SolveOut> {
+    let br = match branch {
+        BranchArg::Convex => Branch::Convex,
+        BranchArg::Flex => Branch::OneFlex,
+    };
+    let e = match (phi1, eta) {
+        (Some(p), _) => Elastica::new(br, alpha, p)?,
+        (None, Some(h)) => elastica::solve_eta(br, alpha, h).map_err(|err| match err {
+            elastica::ElasticaError::NoRoot { a, b, .. } => Fail::Usage(format!(
+                "no {} rod with alpha = {alpha} has its tip at height eta = {h} (tip slope searched over [{a}, {b}] = [0, pi/2 + 2 alpha])",
+                branch_name(branch)
+            )),
+            other => other.into(),
+        })?,
+        (None, None) => return Err(crate::error::usage("give --phi1 or --eta")),
+    };
+    // first integral at the clamp (phi = pi/2): m(0)^2 / 2 = f [cos(alpha) - sin(phi1 - alpha)]
+    let fi = 0.5 * e.m_base * e.m_base - e.f * (e.alpha.cos() - (e.phi1 - e.alpha).sin());
+    let mut residual = fi.abs() / e.f.max(1.0);
+    if let Some(h) = eta {
+        residual = residual.max((e.y1 - h).abs());
+    }
+    let shape = if shape_points >= 2 {
+        e.shape(shape_points)?
+            .into_iter()
+            .map(|p| ShapeRow {
+                s: p.s,
+                x: p.x,
+                y: p.y,
+                phi: p.phi,
+                kappa: p.kappa,
+                m: p.kappa,
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    Ok(SolveOut {
+        method: "analytic",
+        branch: branch_name(branch),
+        alpha: e.alpha,
+        phi1: e.phi1,
+        f: e.f,
+        fx: e.fx(),
+        fy: e.fy(),
+        x1: e.x1,
+        y1: e.y1,
+        m_base: e.m_base,
+        flex: e.flex_count(),
+        s_flex: if e.flex_count() > 0 { e.s_b } else { None },
+        y_max: e.y_max(),
+        residual,
+        physical: None,
+        shape,
+    })
+}
+
+/// CLI name of a branch.
+pub fn branch_name(b: BranchArg) -> &'static str {
+    match b {
+        BranchArg::Convex => "convex",
+        BranchArg::Flex => "flex",
+    }
+}
+
+/// Fill the physical-unit columns.
+pub fn add_units(o: &mut SolveOut, u: Option<Units>) {
+    o.physical = u.map(|u| PhysicalOut {
+        f_n: o.f * u.force_n,
+        fx_n: o.fx * u.force_n,
+        fy_n: o.fy * u.force_n,
+        m_base_nm: o.m_base * u.moment_nm,
+        x1_mm: o.x1 * u.length_mm,
+        y1_mm: o.y1 * u.length_mm,
+    });
+}
+
+/// Header of the solve CSV.
+pub fn header(physical: bool) -> Vec<&'static str> {
+    let mut h = vec![
+        "method", "branch", "alpha", "phi1", "f", "fx", "fy", "x1", "y1", "m_base", "flex",
+        "s_flex", "y_max", "residual",
+    ];
+    if physical {
+        h.extend(["f_N", "fx_N", "fy_N", "m_base_Nm", "x1_mm", "y1_mm"]);
+    }
+    h
+}
+
+/// Fields of the solve CSV row.
+pub fn row(o: &SolveOut) -> Vec<String> {
+    let mut r = vec![
+        o.method.to_string(),
+        o.branch.to_string(),
+        num(o.alpha),
+        num(o.phi1),
+        num(o.f),
+        num(o.fx),
+        num(o.fy),
+        num(o.x1),
+        num(o.y1),
+        num(o.m_base),
+        o.flex.to_string(),
+        opt(o.s_flex),
+        num(o.y_max),
+        num(o.residual),
+    ];
+    if let Some(p) = &o.physical {
+        r.extend(
+            [p.f_n, p.fx_n, p.fy_n, p.m_base_nm, p.x1_mm, p.y1_mm]
+                .into_iter()
+                .map(num),
+        );
+    }
+    r
+}
+
+/// Write a shape CSV atomically.
+pub fn write_shape(path: &std::path::Path, shape: &[ShapeRow]) -> Res<()> {
+    let mut f = AtomicFile::create(path)?;
+    csv_line(&mut f, &["s", "x", "y", "phi", "kappa", "m"])?;
+    for p in shape {
+        csv_line(&mut f, &[p.s, p.x, p.y, p.phi, p.kappa, p.m].map(num))?;
+    }
+    f.commit()
+}
+
+/// Run `vibrissa solve`.
+pub fn run(a: &SolveArgs) -> Res<()> {
+    let scene = build_scene(&a.scene, None)?;
+    let npts = if a.shape_out.is_some() {
+        a.shape_points as usize
+    } else {
+        0
+    };
+    let mut out = if a.solver.method == MethodArg::Analytic {
+        if !is_paper_rod(&scene, false) {
+            return Err(not_analytic());
+        }
+        analytic(a.branch, a.alpha, a.phi1, a.eta, npts)?
+    } else {
+        numeric::solve(&scene, a, npts)?
+    };
+    if out.residual.is_nan() || !out.f.is_finite() {
+        return Err(crate::error::solve_fail(
+            "the solver returned a non-finite result",
+        ));
+    }
+    add_units(&mut out, units_of(&scene));
+    if let Some(p) = &a.shape_out {
+        write_shape(p, &out.shape)?;
+    }
+    let stdout = std::io::stdout();
+    let mut w = stdout.lock();
+    if a.json {
+        serde_json::to_writer_pretty(&mut w, &out)?;
+        writeln!(w)?;
+    } else {
+        csv_line(&mut w, &header(out.physical.is_some()))?;
+        csv_line(&mut w, &row(&out))?;
+    }
+    Ok(())
+}
