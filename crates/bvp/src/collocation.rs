@@ -1,8 +1,81 @@
 //! Lobatto IIIA collocation with residual control and mesh adaptation.
 //!
-//! (skeleton: to be implemented — see issue #3)
+//! # Discretization
+//!
+//! On a mesh `a = s_0 < … < s_N = b` (`h_i = s_{i+1} − s_i`) the solution is approximated by a C¹
+//! piecewise polynomial `S` that satisfies the ODE exactly at the Lobatto points
+//! `s_i + c_j h_i` of each interval (collocation), and the boundary conditions:
+//!
+//! ```text
+//!     Lobatto4 (bvp4c / solve_bvp):  c = 0, 1/2, 1                S cubic   on each interval
+//!     Lobatto6 (Lobatto IIIA s = 4): c = 0, (5 − √5)/10, (5 + √5)/10, 1   S quartic on each interval
+//! ```
+//!
+//! Writing `Y_j ≈ S(s_i + c_j h_i)` and `f_j = F(s_i + c_j h_i, Y_j, p)`, the collocation equations
+//! are the Lobatto IIIA Runge–Kutta equations, with `a_rj = ∫_0^{c_r} L_j` (`L_j` the Lagrange
+//! basis on the `c`):
+//!
+//! ```text
+//!     (Y_r − Y_0) / h_i − Σ_j a_rj f_j = 0,      r = 1 … q,    Y_0 = z_i,  Y_q = z_{i+1}.
+//! ```
+//!
+//! Lobatto4: the midpoint is eliminated explicitly (Hermite–Simpson),
+//! `Y_1 = (z_i + z_{i+1})/2 − h_i (f_2 − f_0)/8`, leaving one block of `n` equations per interval:
+//! `(z_{i+1} − z_i)/h_i − (f_0 + 4 f_1 + f_2)/6 = 0`. Unknowns: `z` at the nodes and `p`.
+//! Lobatto6: the two internal stages are unknowns of the global system (`3n` equations and
+//! unknowns per interval), so every equation stays local to one interval.
+//! The `n + k` boundary conditions `g(z_0, z_N, p) = 0` close the square system. Its Jacobian
+//! (from [`Bvp::rhs_jacobian`] or finite differences, [`crate::fd`]) is block-sparse: each interval
+//! couples only its own unknowns, the right node and `p`; it is factorized by faer's sparse LU
+//! (COLAMD ordering; the symbolic analysis is kept and reused while the mesh size is unchanged).
+//! Damped Newton is [`crate::newton::Newton`].
+//!
+//! Orders at the nodes: 4 (Lobatto4) and 6 (Lobatto6, superconvergence of Gauss–Lobatto
+//! collocation); `S` itself is accurate to `O(h⁴)` resp. `O(h⁵)` between nodes.
+//!
+//! # Error control (Kierzenka & Shampine, as in bvp4c / solve_bvp)
+//!
+//! The residual `r(s) = S'(s) − F(s, S(s), p)` is scaled componentwise by `1 + |F(s, S(s), p)|`
+//! and its RMS over each interval is estimated by 5-point Lobatto quadrature (`r` vanishes at the
+//! interval ends, so three evaluations per interval):
+//!
+//! ```text
+//!     ρ_i = sqrt( Σ_q w_q ‖r(s_i + t_q h_i) / (1 + |F|)‖₂² ),  t = ½ ∓ ½√(3/7), ½;  w = 49/180, 16/45, 49/180
+//! ```
+//!
+//! A solve is accepted when `max ρ_i ≤ tol` and `max |g| ≤ bc_tol`. Otherwise the mesh is
+//! adapted: an interval with `ρ_i > tol` gets one node (`ρ_i < 100 tol`) or two (else); two
+//! adjacent intervals with `ρ < tol/100` are merged (the residual grows by `2³` resp. `2⁴`, still
+//! far below `tol`); the current `S` interpolates the new starting values. After acceptance the
+//! mesh is also coarsened (up to twice) when that removes at least 10 % of the nodes, and the
+//! coarse solution is kept only if it still meets `tol`. A Newton failure on the first mesh is
+//! retried (twice) on the bisected mesh before it is reported.
+//!
+//! # Dense output
+//!
+//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there, so for
+//! Lobatto4 [`Solution::eval`] (cubic Hermite) reproduces `S` exactly. For Lobatto6 the nodal
+//! values keep their 6th order, but `eval` between nodes is the cubic Hermite interpolant of
+//! them: 4th order (error `≈ h⁴ |z⁗| / 384`, of the size of `tol`).
+//!
+//! # Newton thresholds
+//!
+//! Collocation rows are divided by `h_i` (units of `z'`), boundary rows are as given; Newton stops
+//! when the max-norm is at most `min(newton.tol, tol / 20, bc_tol)` (or at the rounding floor, see
+//! [`NewtonOptions`]), so that the algebraic error is negligible against the residual control.
 
-use crate::{Bvp, BvpError, BvpSolver, Guess, NewtonOptions, Solution};
+// Index loops mirror the formulas (several arrays indexed alike).
+#![allow(clippy::needless_range_loop)]
+
+mod sparse;
+mod tableau;
+
+use crate::fd::{bc_jacobian_or_fd, rhs_jacobian_or_fd, FdScheme, FdScratch};
+use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
+use crate::solution::locate;
+use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, NewtonOptions, Solution, Stats, Status};
+use sparse::{Layout, SparseSystem};
+use tableau::{Tableau, EST_T, EST_W, MAXC};
 
 /// Collocation scheme.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -13,44 +86,947 @@ pub enum Scheme {
     Lobatto6,
 }
 
+impl Scheme {
+    /// Order of convergence at the mesh nodes (4 or 6).
+    pub fn order(self) -> usize {
+        match self {
+            Scheme::Lobatto4 => 4,
+            Scheme::Lobatto6 => 6,
+        }
+    }
+}
+
 /// Options of [`Collocation`].
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct CollocationOptions {
     /// Scheme. Default `Lobatto4`.
     pub scheme: Scheme,
-    /// Tolerance on the scaled ODE residual between nodes. Default 1e-6.
+    /// Tolerance on the scaled RMS ODE residual per interval (see the module docs). Default 1e-6.
+    /// Valid: `0 < tol < 1`.
     pub tol: f64,
-    /// Tolerance on the boundary conditions. Default 1e-10.
+    /// Tolerance on the boundary conditions (max-norm). Default 1e-10. Valid: `> 0`.
     pub bc_tol: f64,
-    /// Cap on mesh nodes. Default 10 000.
+    /// Cap on mesh nodes. Default 10 000. Valid: `>= 3`.
     pub max_nodes: usize,
-    /// Newton options.
+    /// Cap on mesh passes (Newton solves on successive meshes). Default 50. Valid: `>= 1`.
+    pub max_mesh_passes: usize,
+    /// Adapt the mesh. Default `true`. With `false` the problem is solved once on the guess mesh
+    /// (or the default 11-node mesh) and returned without checking `tol` — for convergence
+    /// studies; the residual estimate is still reported in `stats.error_estimate`.
+    pub adapt: bool,
+    /// Merge intervals whose residual is below `tol / 100` (also after acceptance). Default `true`.
+    pub coarsen: bool,
+    /// Newton options. `max_iter`, `step_tol`, `min_damping`, `step_residual_tol` apply as given;
+    /// the residual threshold is `min(newton.tol, tol / 20, bc_tol)`.
     pub newton: NewtonOptions,
 }
 
-/// Collocation solver.
+impl Default for CollocationOptions {
+    fn default() -> Self {
+        CollocationOptions {
+            scheme: Scheme::Lobatto4,
+            tol: 1e-6,
+            bc_tol: 1e-10,
+            max_nodes: 10_000,
+            max_mesh_passes: 50,
+            adapt: true,
+            coarsen: true,
+            newton: NewtonOptions::default(),
+        }
+    }
+}
+
+fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static str) -> BvpError {
+    BvpError::InvalidOption {
+        name,
+        value: value.to_string(),
+        reason,
+    }
+}
+
+impl CollocationOptions {
+    /// Checks the ranges documented on the fields (and [`NewtonOptions::validate`]).
+    pub fn validate(&self) -> Result<(), BvpError> {
+        if !(self.tol > 0.0 && self.tol < 1.0) {
+            return Err(invalid("tol", self.tol, "must be in (0, 1)"));
+        }
+        if !(self.bc_tol > 0.0 && self.bc_tol.is_finite()) {
+            return Err(invalid("bc_tol", self.bc_tol, "must be finite and > 0"));
+        }
+        if self.max_nodes < 3 {
+            return Err(invalid("max_nodes", self.max_nodes, "must be >= 3"));
+        }
+        if self.max_mesh_passes < 1 {
+            return Err(invalid(
+                "max_mesh_passes",
+                self.max_mesh_passes,
+                "must be >= 1",
+            ));
+        }
+        self.newton.validate()
+    }
+}
+
+/// Nodes of the default mesh when the guess has fewer than 3.
+const DEFAULT_NODES: usize = 11;
+/// Newton-failure retries on a bisected mesh.
+const MAX_RETRIES: usize = 2;
+/// Coarsening attempts after acceptance.
+const MAX_COARSEN: usize = 2;
+
+/// Collocation solver (keeps its work buffers, including the symbolic LU, between solves).
 #[derive(Clone, Debug)]
 pub struct Collocation {
     opts: CollocationOptions,
+    tab: Tableau,
+    work: Work,
+    newton: Newton,
 }
 
 impl Collocation {
     /// Creates a solver; validates the options.
     pub fn new(opts: CollocationOptions) -> Result<Self, BvpError> {
-        Ok(Collocation { opts })
+        opts.validate()?;
+        Ok(Collocation {
+            tab: Tableau::new(opts.scheme),
+            opts,
+            work: Work::default(),
+            newton: Newton::new(),
+        })
     }
+
     /// The options.
     pub fn options(&self) -> &CollocationOptions {
         &self.opts
     }
+
+    /// Symbolic sparse factorizations computed so far by this solver (they are reused while the
+    /// mesh size, `n`, `k` stay the same).
+    pub fn symbolic_factorizations(&self) -> usize {
+        self.work.sys.symbolic_count
+    }
+}
+
+/// Work buffers of one solver.
+#[derive(Clone, Debug)]
+struct Work {
+    sys: SparseSystem,
+    fd: FdScratch,
+    /// `u` at which `ypts`/`fpts` were computed.
+    u_at: Vec<f64>,
+    ypts: Vec<f64>,
+    fpts: Vec<f64>,
+    jz: Vec<f64>,
+    jp: Vec<f64>,
+    ga: Vec<f64>,
+    gb: Vec<f64>,
+    gp: Vec<f64>,
+    g: Vec<f64>,
+    tmp: Vec<f64>,
+    tmp2: Vec<f64>,
+    fe: Vec<f64>,
+}
+
+impl Default for Work {
+    fn default() -> Self {
+        Work {
+            sys: SparseSystem::new(),
+            fd: FdScratch::with_scheme(Dims { n: 0, k: 0 }, FdScheme::Forward),
+            u_at: Vec::new(),
+            ypts: Vec::new(),
+            fpts: Vec::new(),
+            jz: Vec::new(),
+            jp: Vec::new(),
+            ga: Vec::new(),
+            gb: Vec::new(),
+            gp: Vec::new(),
+            g: Vec::new(),
+            tmp: Vec::new(),
+            tmp2: Vec::new(),
+            fe: Vec::new(),
+        }
+    }
+}
+
+fn resize(v: &mut Vec<f64>, len: usize) {
+    v.clear();
+    v.resize(len, 0.0);
+}
+
+/// The discretized problem on one mesh, as a [`NewtonSystem`].
+struct Disc<'a, P: ?Sized> {
+    prob: &'a P,
+    tab: &'a Tableau,
+    mesh: &'a [f64],
+    lay: Layout,
+    w: &'a mut Work,
+    /// Last NaN/∞ met in a residual evaluation (also in rejected Newton trials).
+    non_finite: Option<(&'static str, f64)>,
+}
+
+impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
+    fn new(prob: &'a P, tab: &'a Tableau, mesh: &'a [f64], w: &'a mut Work) -> Self {
+        let Dims { n, k } = prob.dims();
+        let stride = if tab.internal { tab.q * n } else { n };
+        let lay = Layout {
+            nodes: mesh.len(),
+            n,
+            k,
+            stride,
+        };
+        let npts = tab.q * (mesh.len() - 1) + 1;
+        resize(&mut w.ypts, npts * n);
+        resize(&mut w.fpts, npts * n);
+        resize(&mut w.jz, npts * n * n);
+        resize(&mut w.jp, npts * n * k);
+        resize(&mut w.ga, (n + k) * n);
+        resize(&mut w.gb, (n + k) * n);
+        resize(&mut w.gp, (n + k) * k);
+        resize(&mut w.g, n + k);
+        resize(&mut w.tmp, n);
+        resize(&mut w.tmp2, n);
+        resize(&mut w.fe, n);
+        w.fd.resize(Dims { n, k });
+        w.u_at.clear();
+        Disc {
+            prob,
+            tab,
+            mesh,
+            lay,
+            w,
+            non_finite: None,
+        }
+    }
+
+    fn npts(&self) -> usize {
+        self.tab.q * self.lay.intervals() + 1
+    }
+
+    /// Interval and abscissa index of point `pt` (the last point is the right end of the last interval).
+    fn point(&self, pt: usize) -> (usize, usize) {
+        let q = self.tab.q;
+        if pt == self.npts() - 1 {
+            (self.lay.intervals() - 1, q)
+        } else {
+            (pt / q, pt % q)
+        }
+    }
+
+    fn abscissa(&self, i: usize, j: usize) -> f64 {
+        let h = self.mesh[i + 1] - self.mesh[i];
+        if j == self.tab.q {
+            self.mesh[i + 1]
+        } else {
+            self.mesh[i] + self.tab.c[j] * h
+        }
+    }
+
+    /// Offset in `u` of the unknowns of point `pt`, if it is stored there.
+    fn stored(&self, pt: usize) -> Option<usize> {
+        let q = self.tab.q;
+        let n = self.lay.n;
+        if self.tab.internal {
+            Some(pt * n)
+        } else if pt % q == 0 {
+            Some(pt / q * n)
+        } else {
+            None
+        }
+    }
+
+    /// Values and right-hand sides at all points for the unknowns `u`.
+    fn eval_points(&mut self, u: &[f64], stats: &mut Stats) -> Result<(), BvpError> {
+        let (n, k) = (self.lay.n, self.lay.k);
+        let p = &u[self.lay.pcol()..self.lay.pcol() + k];
+        for pt in 0..self.npts() {
+            if let Some(off) = self.stored(pt) {
+                let (i, j) = self.point(pt);
+                let s = self.abscissa(i, j);
+                self.w.ypts[pt * n..(pt + 1) * n].copy_from_slice(&u[off..off + n]);
+                self.rhs_at(pt, s, p, stats)?;
+            }
+        }
+        if !self.tab.internal {
+            // Hermite–Simpson midpoint from the node values and slopes.
+            for i in 0..self.lay.intervals() {
+                let h = self.mesh[i + 1] - self.mesh[i];
+                let (p0, pm, p1) = (2 * i, 2 * i + 1, 2 * i + 2);
+                for c in 0..n {
+                    self.w.ypts[pm * n + c] = 0.5
+                        * (self.w.ypts[p0 * n + c] + self.w.ypts[p1 * n + c])
+                        - h / 8.0 * (self.w.fpts[p1 * n + c] - self.w.fpts[p0 * n + c]);
+                }
+                let s = self.abscissa(i, 1);
+                self.rhs_at(pm, s, p, stats)?;
+            }
+        }
+        self.w.u_at.clear();
+        self.w.u_at.extend_from_slice(u);
+        Ok(())
+    }
+
+    fn rhs_at(&mut self, pt: usize, s: f64, p: &[f64], stats: &mut Stats) -> Result<(), BvpError> {
+        let n = self.lay.n;
+        let (y, f) = (
+            &self.w.ypts[pt * n..(pt + 1) * n],
+            &mut self.w.fpts[pt * n..(pt + 1) * n],
+        );
+        self.prob.rhs(s, y, p, f);
+        stats.rhs_evals += 1;
+        if f.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            self.non_finite = Some(("rhs", s));
+            Err(non_finite("rhs", s))
+        }
+    }
+
+    fn ensure_points(&mut self, u: &[f64], stats: &mut Stats) -> Result<(), BvpError> {
+        if self.w.u_at.as_slice() != u {
+            self.eval_points(u, stats)?;
+        }
+        Ok(())
+    }
+
+    /// Rows of interval `i` use abscissae `r ∈ rows()`; row block `r - first`.
+    fn row_range(&self) -> std::ops::RangeInclusive<usize> {
+        if self.tab.internal {
+            1..=self.tab.q
+        } else {
+            self.tab.q..=self.tab.q
+        }
+    }
+
+    /// Max |BC residual| and max scaled RMS residual per interval (into `rms`).
+    fn estimate(
+        &mut self,
+        u: &[f64],
+        rms: &mut Vec<f64>,
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        self.ensure_points(u, stats)?;
+        let (n, k, q) = (self.lay.n, self.lay.k, self.tab.q);
+        let p = &u[self.lay.pcol()..self.lay.pcol() + k];
+        rms.clear();
+        let mut wi = [[0.0; MAXC]; 3];
+        let mut wd = [[0.0; MAXC]; 3];
+        for t in 0..3 {
+            self.tab.weights(EST_T[t], &mut wi[t], &mut wd[t]);
+        }
+        for i in 0..self.lay.intervals() {
+            let h = self.mesh[i + 1] - self.mesh[i];
+            let mut sum = 0.0;
+            for t in 0..3 {
+                let (sv, dv) = (&mut self.w.tmp, &mut self.w.tmp2);
+                for c in 0..n {
+                    let mut si = self.w.ypts[q * i * n + c];
+                    let mut di = 0.0;
+                    for j in 0..=q {
+                        let fj = self.w.fpts[(q * i + j) * n + c];
+                        si += h * wi[t][j] * fj;
+                        di += wd[t][j] * fj;
+                    }
+                    sv[c] = si;
+                    dv[c] = di;
+                }
+                let s = self.mesh[i] + EST_T[t] * h;
+                let f = &mut self.w.fe;
+                self.prob.rhs(s, sv, p, f);
+                stats.rhs_evals += 1;
+                let mut ss = 0.0;
+                for c in 0..n {
+                    let r = (dv[c] - f[c]) / (1.0 + f[c].abs());
+                    ss += r * r;
+                }
+                if !ss.is_finite() {
+                    return Err(non_finite("rhs", s));
+                }
+                sum += EST_W[t] * ss;
+            }
+            rms.push(sum.sqrt());
+        }
+        Ok(())
+    }
+
+    /// Max |g| at `u` (points must be current).
+    fn bc_residual(&mut self, u: &[f64], stats: &mut Stats) -> f64 {
+        let (n, k) = (self.lay.n, self.lay.k);
+        let last = self.npts() - 1;
+        let p = &u[self.lay.pcol()..self.lay.pcol() + k];
+        self.prob.bc(
+            &self.w.ypts[..n],
+            &self.w.ypts[last * n..(last + 1) * n],
+            p,
+            &mut self.w.g[..n + k],
+        );
+        stats.bc_evals += 1;
+        self.w.g[..n + k]
+            .iter()
+            .fold(0.0, |m: f64, v| m.max(v.abs()))
+    }
+
+    /// Nodal values and slopes (node-major) of the current points.
+    fn nodal(&self) -> (Vec<f64>, Vec<f64>) {
+        let (n, q) = (self.lay.n, self.tab.q);
+        let mut z = Vec::with_capacity(self.lay.nodes * n);
+        let mut dz = Vec::with_capacity(self.lay.nodes * n);
+        for i in 0..self.lay.nodes {
+            z.extend_from_slice(&self.w.ypts[q * i * n..(q * i + 1) * n]);
+            dz.extend_from_slice(&self.w.fpts[q * i * n..(q * i + 1) * n]);
+        }
+        (z, dz)
+    }
+}
+
+impl<P: Bvp + ?Sized> NewtonSystem for Disc<'_, P> {
+    fn residual(&mut self, u: &[f64], r: &mut [f64], stats: &mut Stats) -> Result<(), BvpError> {
+        self.eval_points(u, stats)?;
+        let (n, k, q) = (self.lay.n, self.lay.k, self.tab.q);
+        let first = *self.row_range().start();
+        for i in 0..self.lay.intervals() {
+            let h = self.mesh[i + 1] - self.mesh[i];
+            let y0 = q * i * n;
+            for rr in self.row_range() {
+                let row0 = i * self.lay.stride + (rr - first) * n;
+                let yr = (q * i + rr) * n;
+                for c in 0..n {
+                    let mut v = (self.w.ypts[yr + c] - self.w.ypts[y0 + c]) / h;
+                    for j in 0..=q {
+                        v -= self.tab.a[rr][j] * self.w.fpts[(q * i + j) * n + c];
+                    }
+                    r[row0 + c] = v;
+                }
+            }
+        }
+        let b = self.lay.bcrow();
+        let last = self.npts() - 1;
+        let p = &u[self.lay.pcol()..self.lay.pcol() + k];
+        self.prob.bc(
+            &self.w.ypts[..n],
+            &self.w.ypts[last * n..(last + 1) * n],
+            p,
+            &mut r[b..b + n + k],
+        );
+        stats.bc_evals += 1;
+        if r[b..b + n + k].iter().any(|v| !v.is_finite()) {
+            self.non_finite = Some(("bc", f64::NAN));
+            return Err(non_finite("bc", f64::NAN));
+        }
+        Ok(())
+    }
+
+    fn solve_linearized(
+        &mut self,
+        u: &[f64],
+        r: &[f64],
+        du: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        self.ensure_points(u, stats)?;
+        let (n, k, q) = (self.lay.n, self.lay.k, self.tab.q);
+        let pc = self.lay.pcol();
+        let p = &u[pc..pc + k];
+        let (nn, nk) = (n * n, n * k);
+        // Jacobians of F at every point.
+        for pt in 0..self.npts() {
+            let (i, j) = self.point(pt);
+            let s = self.abscissa(i, j);
+            let w = &mut *self.w;
+            rhs_jacobian_or_fd(
+                self.prob,
+                s,
+                &w.ypts[pt * n..(pt + 1) * n],
+                p,
+                Some(&w.fpts[pt * n..(pt + 1) * n]),
+                &mut w.jz[pt * nn..(pt + 1) * nn],
+                &mut w.jp[pt * nk..(pt + 1) * nk],
+                &mut w.fd,
+                stats,
+            )?;
+        }
+        self.w.sys.prepare(self.lay).map_err(|_| singular())?;
+        let width = self.lay.width();
+        let rows = self.row_range();
+        let first = *rows.start();
+        let last = self.npts() - 1;
+        let internal = self.tab.internal;
+        let a = self.tab.a;
+        let lay = self.lay;
+        let w = &mut *self.w;
+        let blocks = &mut w.sys.blocks;
+        for i in 0..lay.intervals() {
+            let h = self.mesh[i + 1] - self.mesh[i];
+            let base = i * lay.stride * width;
+            for rr in rows.clone() {
+                for c in 0..n {
+                    let row = base + ((rr - first) * n + c) * width;
+                    let out = &mut blocks[row..row + width];
+                    out.fill(0.0);
+                    if internal {
+                        // ∂/∂Y_j = (δ_rj − δ_0j) I / h − a_rj J_j; ∂/∂p = −Σ a_rj Jp_j.
+                        for j in 0..=q {
+                            let jz =
+                                &w.jz[(q * i + j) * nn + c * n..(q * i + j) * nn + (c + 1) * n];
+                            for (d, v) in jz.iter().enumerate() {
+                                out[j * n + d] -= a[rr][j] * v;
+                            }
+                            let jp =
+                                &w.jp[(q * i + j) * nk + c * k..(q * i + j) * nk + (c + 1) * k];
+                            for (e, v) in jp.iter().enumerate() {
+                                out[lay.stride + n + e] -= a[rr][j] * v;
+                            }
+                        }
+                        out[c] -= 1.0 / h;
+                        out[rr * n + c] += 1.0 / h;
+                    } else {
+                        // Condensed midpoint: Y_1 = (z0 + z1)/2 − h (f2 − f0)/8.
+                        let (p0, pm, p1) = (2 * i, 2 * i + 1, 2 * i + 2);
+                        let jm = &w.jz[pm * nn + c * n..pm * nn + (c + 1) * n];
+                        let (b0, b1, b2) = (a[2][0], a[2][1], a[2][2]);
+                        for d in 0..n {
+                            // (Jm · (I/2 ± h/8 J_{0,2}))[c][d]
+                            let mut m0 = 0.5 * jm[d];
+                            let mut m1 = 0.5 * jm[d];
+                            for (e, jme) in jm.iter().enumerate() {
+                                m0 += jme * h / 8.0 * w.jz[p0 * nn + e * n + d];
+                                m1 -= jme * h / 8.0 * w.jz[p1 * nn + e * n + d];
+                            }
+                            out[d] = -b0 * w.jz[p0 * nn + c * n + d] - b1 * m0;
+                            out[n + d] = -b2 * w.jz[p1 * nn + c * n + d] - b1 * m1;
+                        }
+                        out[c] -= 1.0 / h;
+                        out[n + c] += 1.0 / h;
+                        for e in 0..k {
+                            let mut dm = w.jp[pm * nk + c * k + e];
+                            for (d, jmd) in jm.iter().enumerate() {
+                                dm -= jmd * h / 8.0
+                                    * (w.jp[p1 * nk + d * k + e] - w.jp[p0 * nk + d * k + e]);
+                            }
+                            out[2 * n + e] = -b0 * w.jp[p0 * nk + c * k + e]
+                                - b2 * w.jp[p1 * nk + c * k + e]
+                                - b1 * dm;
+                        }
+                    }
+                }
+            }
+        }
+        // Boundary block.
+        let m = n + k;
+        w.g[..m].copy_from_slice(&r[lay.bcrow()..lay.bcrow() + m]);
+        bc_jacobian_or_fd(
+            self.prob,
+            &w.ypts[..n],
+            &w.ypts[last * n..(last + 1) * n],
+            p,
+            Some(&w.g[..m]),
+            &mut w.ga,
+            &mut w.gb,
+            &mut w.gp,
+            &mut w.fd,
+            stats,
+        )?;
+        let bw = 2 * n + k;
+        let off = lay.bc_offset();
+        for rb in 0..m {
+            let row = &mut blocks[off + rb * bw..off + (rb + 1) * bw];
+            row[..n].copy_from_slice(&w.ga[rb * n..(rb + 1) * n]);
+            row[n..2 * n].copy_from_slice(&w.gb[rb * n..(rb + 1) * n]);
+            row[2 * n..].copy_from_slice(&w.gp[rb * k..(rb + 1) * k]);
+        }
+        stats.factorizations += 1;
+        w.sys.factor().map_err(|_| singular())?;
+        for (d, v) in du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        w.sys.solve(du).map_err(|_| singular())
+    }
+}
+
+/// A converged discrete solution kept to interpolate starting values on a new mesh.
+struct Snapshot {
+    mesh: Vec<f64>,
+    ypts: Vec<f64>,
+    fpts: Vec<f64>,
+    params: Vec<f64>,
+}
+
+impl Snapshot {
+    /// Evaluates the collocation polynomial `S` at `s`.
+    fn eval(&self, tab: &Tableau, n: usize, s: f64, out: &mut [f64]) {
+        let q = tab.q;
+        let last = self.mesh.len() - 1;
+        if s >= self.mesh[last] {
+            out.copy_from_slice(&self.ypts[q * last * n..(q * last + 1) * n]);
+            return;
+        }
+        let i = locate(&self.mesh, s);
+        let h = self.mesh[i + 1] - self.mesh[i];
+        let t = ((s - self.mesh[i]) / h).clamp(0.0, 1.0);
+        let mut wi = [0.0; MAXC];
+        tab.weights(t, &mut wi, &mut [0.0; MAXC]);
+        for c in 0..n {
+            let mut v = self.ypts[q * i * n + c];
+            for (j, wj) in wi.iter().enumerate().take(q + 1) {
+                v += h * wj * self.fpts[(q * i + j) * n + c];
+            }
+            out[c] = v;
+        }
+    }
+}
+
+/// Fills the unknowns for `mesh` from `src(s, out)` and the parameters.
+fn fill_unknowns(
+    tab: &Tableau,
+    mesh: &[f64],
+    dims: Dims,
+    params: &[f64],
+    mut src: impl FnMut(f64, &mut [f64]),
+    u: &mut Vec<f64>,
+) {
+    let n = dims.n;
+    let per = if tab.internal { tab.q } else { 1 };
+    let nint = mesh.len() - 1;
+    u.clear();
+    u.resize(nint * per * n + n + dims.k, 0.0);
+    for i in 0..nint {
+        let h = mesh[i + 1] - mesh[i];
+        for j in 0..per {
+            let off = (i * per + j) * n;
+            src(mesh[i] + tab.c[j] * h, &mut u[off..off + n]);
+        }
+    }
+    let off = nint * per * n;
+    src(mesh[nint], &mut u[off..off + n]);
+    u[off + n..].copy_from_slice(params);
+}
+
+fn uniform(a: f64, b: f64, nodes: usize) -> Vec<f64> {
+    (0..nodes)
+        .map(|i| {
+            if i == nodes - 1 {
+                b
+            } else {
+                a + (b - a) * i as f64 / (nodes - 1) as f64
+            }
+        })
+        .collect()
+}
+
+fn bisect(mesh: &[f64]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(2 * mesh.len() - 1);
+    for w in mesh.windows(2) {
+        out.push(w[0]);
+        out.push(0.5 * (w[0] + w[1]));
+    }
+    out.push(mesh[mesh.len() - 1]);
+    out
+}
+
+/// New mesh from the interval residuals: split where `rms > tol`, merge pairs below `tol/100`
+/// (if `merge`), keep the rest.
+fn adapt_mesh(mesh: &[f64], rms: &[f64], tol: f64, refine: bool, merge: bool) -> Vec<f64> {
+    let low = tol / 100.0;
+    let mut out = Vec::with_capacity(mesh.len() + 8);
+    let nint = rms.len();
+    let mut i = 0;
+    while i < nint {
+        let (s0, s1) = (mesh[i], mesh[i + 1]);
+        out.push(s0);
+        if merge && i + 1 < nint && rms[i] < low && rms[i + 1] < low {
+            i += 2; // drop node i + 1
+            continue;
+        }
+        if refine && rms[i] > tol {
+            if rms[i] < 100.0 * tol {
+                out.push(0.5 * (s0 + s1));
+            } else {
+                out.push(s0 + (s1 - s0) / 3.0);
+                out.push(s0 + 2.0 * (s1 - s0) / 3.0);
+            }
+        }
+        i += 1;
+    }
+    out.push(mesh[nint]);
+    if out.len() < 3 {
+        out = vec![mesh[0], 0.5 * (mesh[0] + mesh[nint]), mesh[nint]];
+    }
+    out
+}
+
+impl Collocation {
+    fn check_input<P: Bvp + ?Sized>(&self, problem: &P, guess: &Guess) -> Result<(), BvpError> {
+        let Dims { n, k } = problem.dims();
+        if n == 0 {
+            return Err(BvpError::Dimension {
+                what: "problem states n",
+                got: 0,
+                expected: 1,
+            });
+        }
+        if guess.n != n {
+            return Err(BvpError::Dimension {
+                what: "guess states",
+                got: guess.n,
+                expected: n,
+            });
+        }
+        if guess.mesh.is_empty() {
+            return Err(BvpError::Dimension {
+                what: "guess mesh nodes",
+                got: 0,
+                expected: 1,
+            });
+        }
+        if guess.z.len() != n * guess.mesh.len() {
+            return Err(BvpError::Dimension {
+                what: "guess values",
+                got: guess.z.len(),
+                expected: n * guess.mesh.len(),
+            });
+        }
+        if let Some(dz) = &guess.dz {
+            if dz.len() != guess.z.len() {
+                return Err(BvpError::Dimension {
+                    what: "guess derivatives",
+                    got: dz.len(),
+                    expected: guess.z.len(),
+                });
+            }
+        }
+        if guess.params.len() != k {
+            return Err(BvpError::Dimension {
+                what: "guess parameters",
+                got: guess.params.len(),
+                expected: k,
+            });
+        }
+        let (a, b) = problem.interval();
+        if !(a < b && a.is_finite() && b.is_finite()) {
+            return Err(invalid(
+                "interval",
+                format!("[{a}, {b}]"),
+                "must be finite with a < b",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The starting mesh: the guess mesh if it has ≥ 3 strictly increasing nodes spanning `[a, b]`,
+    /// else the uniform default.
+    fn initial_mesh(&self, guess: &Guess, a: f64, b: f64) -> Vec<f64> {
+        let m = &guess.mesh;
+        let tol = 1e-12 * (b - a);
+        let ok = m.len() >= 3
+            && (m[0] - a).abs() <= tol
+            && (m[m.len() - 1] - b).abs() <= tol
+            && m.windows(2).all(|w| w[1] > w[0]);
+        if ok {
+            let mut mesh = m.clone();
+            mesh[0] = a;
+            let last = mesh.len() - 1;
+            mesh[last] = b;
+            mesh
+        } else {
+            uniform(a, b, DEFAULT_NODES)
+        }
+    }
 }
 
 impl BvpSolver for Collocation {
-    fn solve<P: Bvp + ?Sized>(
-        &mut self,
-        _problem: &P,
-        _guess: &Guess,
-    ) -> Result<Solution, BvpError> {
-        todo!("collocation")
+    fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
+        self.check_input(problem, guess)?;
+        let dims = problem.dims();
+        let n = dims.n;
+        let (a, b) = problem.interval();
+        let opts = self.opts.clone();
+        let mut nopts = opts.newton.clone();
+        nopts.tol = nopts.tol.min(opts.tol / 20.0).min(opts.bc_tol);
+
+        let mut stats = Stats::default();
+        let mut mesh = self.initial_mesh(guess, a, b);
+        if mesh.len() > opts.max_nodes {
+            return Err(BvpError::MeshLimit {
+                max_nodes: opts.max_nodes,
+                needed: mesh.len(),
+                residual: f64::NAN,
+                stats,
+            });
+        }
+        let mut u = Vec::new();
+        fill_unknowns(
+            &self.tab,
+            &mesh,
+            dims,
+            &guess.params,
+            |s, o| guess.eval(s, o),
+            &mut u,
+        );
+        let mut source: Option<Snapshot> = None;
+        let mut best: Option<Solution> = None;
+        let mut retries = 0;
+        let mut coarsenings = 0;
+        let mut rms = Vec::new();
+
+        loop {
+            if stats.mesh_passes >= opts.max_mesh_passes {
+                if let Some(sol) = best {
+                    return Ok(sol);
+                }
+                stats.nodes = mesh.len();
+                return Err(BvpError::MeshLimit {
+                    max_nodes: opts.max_nodes,
+                    needed: mesh.len(),
+                    residual: stats.error_estimate.unwrap_or(f64::NAN),
+                    stats,
+                });
+            }
+            stats.mesh_passes += 1;
+            stats.nodes = mesh.len();
+            let mut disc = Disc::new(problem, &self.tab, &mesh, &mut self.work);
+            let res = self.newton.solve(&mut disc, &mut u, &nopts, &mut stats);
+            if let Err(mut e) = res {
+                let failed = matches!(e, BvpError::Stalled { .. } | BvpError::MaxIterations { .. });
+                if let (true, Some((location, s))) = (failed, disc.non_finite) {
+                    // Newton was blocked by NaN/∞ of the problem: report that, it is the cause.
+                    e = BvpError::NonFinite {
+                        location,
+                        s,
+                        stats: stats.clone(),
+                    };
+                }
+                let retry = failed && disc.non_finite.is_none();
+                if let Some(sol) = best {
+                    return Ok(sol); // a coarsening attempt failed: keep the accepted solution
+                }
+                if retry
+                    && opts.adapt
+                    && retries < MAX_RETRIES
+                    && 2 * mesh.len() - 1 <= opts.max_nodes
+                {
+                    retries += 1;
+                    mesh = bisect(&mesh);
+                    match &source {
+                        Some(snap) => fill_unknowns(
+                            &self.tab,
+                            &mesh,
+                            dims,
+                            &snap.params,
+                            |s, o| snap.eval(&self.tab, n, s, o),
+                            &mut u,
+                        ),
+                        None => fill_unknowns(
+                            &self.tab,
+                            &mesh,
+                            dims,
+                            &guess.params,
+                            |s, o| guess.eval(s, o),
+                            &mut u,
+                        ),
+                    }
+                    continue;
+                }
+                return Err(attach_stats(e, &stats));
+            }
+            let est = disc.estimate(&u, &mut rms, &mut stats);
+            if let Err(e) = est {
+                return Err(attach(e, stats.newton_iters, &stats));
+            }
+            let bcres = disc.bc_residual(&u, &mut stats);
+            let max_rms = rms.iter().fold(0.0_f64, |m, v| m.max(*v));
+            stats.error_estimate = Some(max_rms);
+            let converged = max_rms <= opts.tol && bcres <= opts.bc_tol;
+            if !opts.adapt || converged {
+                let (z, dz) = disc.nodal();
+                let params = u[disc.lay.pcol()..].to_vec();
+                let sol = Solution {
+                    n,
+                    mesh: mesh.clone(),
+                    z,
+                    dz,
+                    params,
+                    status: Status::Converged,
+                    stats: stats.clone(),
+                };
+                if !opts.adapt {
+                    return Ok(sol);
+                }
+                if opts.coarsen && coarsenings < MAX_COARSEN {
+                    let coarse = adapt_mesh(&mesh, &rms, opts.tol, false, true);
+                    if coarse.len() * 10 <= mesh.len() * 9 {
+                        coarsenings += 1;
+                        let snap = snapshot(&disc, &mesh, &u);
+                        fill_unknowns(
+                            &self.tab,
+                            &coarse,
+                            dims,
+                            &snap.params,
+                            |s, o| snap.eval(&self.tab, n, s, o),
+                            &mut u,
+                        );
+                        source = Some(snap);
+                        mesh = coarse;
+                        best = Some(sol);
+                        continue;
+                    }
+                }
+                return Ok(sol);
+            }
+            if let Some(mut sol) = best {
+                // The coarsened mesh missed the tolerance: keep the accepted solution.
+                let mut total = stats.clone();
+                total.nodes = sol.mesh.len();
+                total.error_estimate = sol.stats.error_estimate;
+                total.residual = sol.stats.residual;
+                sol.stats = total;
+                return Ok(sol);
+            }
+            let new_mesh = adapt_mesh(&mesh, &rms, opts.tol, true, opts.coarsen);
+            if new_mesh == mesh {
+                // Residual met but the boundary conditions are not: Newton is at its floor.
+                return Err(BvpError::Stalled {
+                    iteration: stats.newton_iters,
+                    residual: bcres,
+                    stats,
+                });
+            }
+            if new_mesh.len() > opts.max_nodes {
+                return Err(BvpError::MeshLimit {
+                    max_nodes: opts.max_nodes,
+                    needed: new_mesh.len(),
+                    residual: max_rms,
+                    stats,
+                });
+            }
+            let snap = snapshot(&disc, &mesh, &u);
+            fill_unknowns(
+                &self.tab,
+                &new_mesh,
+                dims,
+                &snap.params,
+                |s, o| snap.eval(&self.tab, n, s, o),
+                &mut u,
+            );
+            source = Some(snap);
+            mesh = new_mesh;
+        }
     }
+}
+
+fn snapshot<P: Bvp + ?Sized>(disc: &Disc<'_, P>, mesh: &[f64], u: &[f64]) -> Snapshot {
+    Snapshot {
+        mesh: mesh.to_vec(),
+        ypts: disc.w.ypts.clone(),
+        fpts: disc.w.fpts.clone(),
+        params: u[disc.lay.pcol()..].to_vec(),
+    }
+}
+
+fn attach_stats(e: BvpError, stats: &Stats) -> BvpError {
+    let it = match &e {
+        BvpError::SingularJacobian { iteration, .. } | BvpError::Stalled { iteration, .. } => {
+            *iteration
+        }
+        _ => stats.newton_iters,
+    };
+    attach(e, it, stats)
 }

@@ -1,0 +1,336 @@
+//! Collocation solver: accuracy against closed forms and published tables, observed orders,
+//! failure reporting.
+//!
+//! Error bound used for the tolerance tests: the global error `e = z − S` satisfies
+//! `e' = J e + r` with the collocation residual `r`, so `‖e‖∞ ≤ K ‖r‖` where `K` is the stability
+//! constant of the BVP (norm of its Green's function; ≤ 1.5 for the linear problems on [0, 1]
+//! used here). The solver controls the RMS over each interval of `r / (1 + |F|)` (≤ tol); the
+//! pointwise maximum of a cubic/quartic residual is at most ~2× its RMS and `1 + |F| ≤ 3` here,
+//! so `‖e‖∞ ≲ 1.5 · 2 · 3 · tol ≈ 10 tol`. The tests assert `max error ≤ 10 tol`.
+
+use bvp::samples::{Bratu, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution};
+use bvp::{Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Scheme, Solution};
+
+const SCHEMES: [Scheme; 2] = [Scheme::Lobatto4, Scheme::Lobatto6];
+
+fn solver(scheme: Scheme, tol: f64) -> Collocation {
+    Collocation::new(CollocationOptions {
+        scheme,
+        tol,
+        ..Default::default()
+    })
+    .unwrap()
+}
+
+/// Max over the nodes and over midpoints (dense output) of `|z − exact|`.
+fn max_errors(sol: &Solution, exact: impl Fn(f64) -> [f64; 2]) -> (f64, f64) {
+    let mut nodal: f64 = 0.0;
+    for (i, &s) in sol.mesh.iter().enumerate() {
+        let e = exact(s);
+        for j in 0..2 {
+            nodal = nodal.max((sol.node(i)[j] - e[j]).abs());
+        }
+    }
+    let mut dense: f64 = 0.0;
+    for w in sol.mesh.windows(2) {
+        let s = 0.5 * (w[0] + w[1]);
+        let (z, e) = (sol.at(s), exact(s));
+        for j in 0..2 {
+            dense = dense.max((z[j] - e[j]).abs());
+        }
+    }
+    (nodal, dense)
+}
+
+fn max_step(sol: &Solution) -> f64 {
+    sol.mesh.windows(2).fold(0.0, |m, w| m.max(w[1] - w[0]))
+}
+
+#[test]
+fn options_are_validated() {
+    let bad = [
+        CollocationOptions {
+            tol: 0.0,
+            ..Default::default()
+        },
+        CollocationOptions {
+            tol: f64::NAN,
+            ..Default::default()
+        },
+        CollocationOptions {
+            bc_tol: -1.0,
+            ..Default::default()
+        },
+        CollocationOptions {
+            max_nodes: 2,
+            ..Default::default()
+        },
+        CollocationOptions {
+            max_mesh_passes: 0,
+            ..Default::default()
+        },
+    ];
+    let names = ["tol", "tol", "bc_tol", "max_nodes", "max_mesh_passes"];
+    for (o, name) in bad.into_iter().zip(names) {
+        match Collocation::new(o) {
+            Err(BvpError::InvalidOption { name: got, .. }) => assert_eq!(got, name),
+            other => panic!("expected InvalidOption for {name}, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn linear_problems_meet_tolerance() {
+    for scheme in SCHEMES {
+        for tol in [1e-6, 1e-10] {
+            let mut c = solver(scheme, tol);
+            let sol = c.solve(&LinearSinh, &LinearSinh::guess()).unwrap();
+            let (nodal, dense) = max_errors(&sol, LinearSinh::exact);
+            println!(
+                "{scheme:?} tol {tol:e} sinh: {} nodes, nodal {nodal:.2e}, dense {dense:.2e}, {}",
+                sol.len(),
+                sol.stats
+            );
+            assert!(nodal <= 10.0 * tol, "{scheme:?} {tol}");
+            // Lobatto4: eval is the collocation cubic itself. Lobatto6: eval is the cubic Hermite
+            // interpolant of the nodal data, whose error is at most h⁴/384 · max|z⁗| (z⁗ = z here,
+            // |z| ≤ cosh 1 / sinh 1 < 1.32) on top of the nodal error.
+            let dense_bound = match scheme {
+                Scheme::Lobatto4 => 10.0 * tol,
+                Scheme::Lobatto6 => 10.0 * tol + max_step(&sol).powi(4) / 384.0 * 1.32,
+            };
+            assert!(
+                dense <= dense_bound,
+                "{scheme:?} {tol}: dense {dense:e} > {dense_bound:e}"
+            );
+            assert!(sol.stats.error_estimate.unwrap() <= tol);
+
+            let sol = c
+                .solve(&LinearNonSeparated, &LinearNonSeparated::guess())
+                .unwrap();
+            let (nodal, dense) = max_errors(&sol, LinearNonSeparated::exact);
+            println!("{scheme:?} tol {tol:e} non-separated: {} nodes, nodal {nodal:.2e}, dense {dense:.2e}", sol.len());
+            assert!(nodal <= 10.0 * tol, "{scheme:?} {tol}");
+            if scheme == Scheme::Lobatto4 {
+                assert!(dense <= 10.0 * tol, "{scheme:?} {tol}");
+            }
+        }
+    }
+}
+
+/// Max nodal error of the lower Bratu solution (λ = 1) on a uniform mesh without adaptation.
+fn bratu_fixed_mesh_error(scheme: Scheme, intervals: usize) -> f64 {
+    let bratu = Bratu { lambda: 1.0 };
+    let mut opts = CollocationOptions {
+        scheme,
+        adapt: false,
+        ..Default::default()
+    };
+    opts.newton.tol = 1e-14;
+    let mut c = Collocation::new(opts).unwrap();
+    let mesh: Vec<f64> = (0..=intervals)
+        .map(|i| i as f64 / intervals as f64)
+        .collect();
+    let guess = Guess::from_fn(2, mesh, vec![], |s, z| {
+        z[0] = 0.5 * s * (1.0 - s);
+        z[1] = 0.5 - s;
+    });
+    let sol = c.solve(&bratu, &guess).unwrap();
+    assert_eq!(sol.len(), intervals + 1, "fixed mesh must not be adapted");
+    max_errors(&sol, |s| bratu.exact(0, s)).0
+}
+
+#[test]
+fn observed_order_on_uniform_meshes() {
+    // Mesh halving; errors well above rounding (≥ 1e-12) so the ratios are clean.
+    for (scheme, meshes) in [
+        (Scheme::Lobatto4, [4, 8, 16, 32]),
+        (Scheme::Lobatto6, [2, 4, 8, 16]),
+    ] {
+        let errs: Vec<f64> = meshes
+            .iter()
+            .map(|&m| bratu_fixed_mesh_error(scheme, m))
+            .collect();
+        let orders: Vec<f64> = errs.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
+        println!("{scheme:?}: errors {errs:?}, observed orders {orders:.3?}");
+        let p = *orders.last().unwrap();
+        assert!(
+            (p - scheme.order() as f64).abs() <= 0.2,
+            "{scheme:?}: order {p}"
+        );
+    }
+}
+
+#[test]
+fn eigenvalues() {
+    for scheme in SCHEMES {
+        for mode in [1, 2] {
+            let tol = 1e-8;
+            let mut c = solver(scheme, tol);
+            let sol = c.solve(&Eigen, &Eigen::guess_mode(mode)).unwrap();
+            let want = Eigen::eigenvalue(mode);
+            let rel = (sol.params[0] - want).abs() / want;
+            let (nodal, _) = max_errors(&sol, |s| Eigen::exact(mode, s));
+            println!(
+                "{scheme:?} mode {mode}: λ = {} (rel err {rel:.2e}), nodal {nodal:.2e}, {} nodes",
+                sol.params[0],
+                sol.len()
+            );
+            // λ is a functional of the solution: its relative error is bounded like the solution error.
+            assert!(
+                rel <= 10.0 * tol,
+                "{scheme:?} mode {mode}: {}",
+                sol.params[0]
+            );
+            assert!(nodal <= 10.0 * tol);
+        }
+    }
+}
+
+#[test]
+fn bratu_both_solutions() {
+    let bratu = Bratu { lambda: 1.0 };
+    for scheme in SCHEMES {
+        let tol = 1e-8;
+        let mut c = solver(scheme, tol);
+        for (branch, guess) in [(0, bratu.guess()), (1, bratu.guess_upper())] {
+            let sol = c.solve(&bratu, &guess).unwrap();
+            let (nodal, dense) = max_errors(&sol, |s| bratu.exact(branch, s));
+            println!("{scheme:?} Bratu branch {branch}: u(1/2) = {:.10}, nodal {nodal:.2e}, dense {dense:.2e}, {} nodes", sol.at(0.5)[0], sol.len());
+            // Upper branch: |u'| up to ≈ 10 and a larger stability constant; allow 10 tol · (1 + max|F|).
+            let bound = if branch == 0 { 10.0 * tol } else { 100.0 * tol };
+            assert!(nodal <= bound, "{scheme:?} branch {branch}");
+            if scheme == Scheme::Lobatto4 {
+                assert!(dense <= bound, "{scheme:?} branch {branch}");
+            }
+        }
+    }
+}
+
+#[test]
+fn cantilever_matches_mattiasson() {
+    for scheme in SCHEMES {
+        let mut c = solver(scheme, 1e-8);
+        for (load, want) in Cantilever::MATTIASSON {
+            let prob = Cantilever { load };
+            let sol = c.solve(&prob, &prob.guess()).unwrap();
+            let got = Cantilever::quantities(sol.left(), sol.right());
+            println!(
+                "{scheme:?} P = {load}: {got:.6?} ({} nodes, {} passes)",
+                sol.len(),
+                sol.stats.mesh_passes
+            );
+            for j in 0..4 {
+                // Table printed to 5 decimals: half a unit (5e-6) plus the solve's 1e-6 margin.
+                assert!(
+                    (got[j] - want[j]).abs() <= 6e-6,
+                    "{scheme:?} P = {load}, quantity {j}: {} vs {}",
+                    got[j],
+                    want[j]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn warm_start_reuses_mesh_and_symbolic_factorization() {
+    let bratu = Bratu { lambda: 1.0 };
+    for scheme in SCHEMES {
+        let mut c = solver(scheme, 1e-8);
+        let sol = c.solve(&bratu, &bratu.guess()).unwrap();
+        let sym = c.symbolic_factorizations();
+        let again = c.solve(&bratu, &Guess::from(&sol)).unwrap();
+        assert_eq!(again.mesh, sol.mesh);
+        assert_eq!(again.stats.mesh_passes, 1);
+        assert!(again.stats.newton_iters <= 1, "{}", again.stats);
+        assert_eq!(
+            c.symbolic_factorizations(),
+            sym,
+            "symbolic LU must be reused"
+        );
+        // Nearby problem (continuation step) from the previous solution.
+        let near = Bratu { lambda: 1.05 };
+        let sol2 = c.solve(&near, &Guess::from(&sol)).unwrap();
+        let (nodal, _) = max_errors(&sol2, |s| near.exact(0, s));
+        assert!(nodal <= 1e-7);
+    }
+}
+
+#[test]
+fn short_guess_mesh_uses_default_mesh() {
+    let guess = Guess::constant(0.0, 1.0, 2, &[0.0, 0.0], vec![]);
+    for scheme in SCHEMES {
+        let sol = solver(scheme, 1e-6).solve(&LinearSinh, &guess).unwrap();
+        let (nodal, _) = max_errors(&sol, LinearSinh::exact);
+        assert!(nodal <= 1e-5);
+    }
+}
+
+#[test]
+fn node_cap_reports_mesh_limit() {
+    let prob = Cantilever { load: 10.0 };
+    for scheme in SCHEMES {
+        let mut c = Collocation::new(CollocationOptions {
+            scheme,
+            tol: 1e-10,
+            max_nodes: 12,
+            ..Default::default()
+        })
+        .unwrap();
+        match c.solve(&prob, &prob.guess()) {
+            Err(BvpError::MeshLimit {
+                max_nodes,
+                needed,
+                residual,
+                stats,
+            }) => {
+                assert_eq!(max_nodes, 12);
+                assert!(needed > 12 && residual > 1e-10);
+                assert!(stats.newton_iters > 0 && stats.nodes > 0 && stats.mesh_passes > 0);
+            }
+            other => panic!("{scheme:?}: expected MeshLimit, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn nan_rhs_is_reported() {
+    for scheme in SCHEMES {
+        let r = solver(scheme, 1e-6).solve(&NanRhs, &NanRhs::guess());
+        match r {
+            Err(BvpError::NonFinite { s, .. }) => {
+                assert!(s.is_nan() || (s > 1.0 && s <= 4.0), "s = {s}")
+            }
+            other => panic!("{scheme:?}: expected NonFinite, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn no_solution_is_reported() {
+    for scheme in SCHEMES {
+        let r = solver(scheme, 1e-6).solve(&NoSolution, &NoSolution::guess());
+        match r {
+            Err(
+                e @ (BvpError::Stalled { .. }
+                | BvpError::MaxIterations { .. }
+                | BvpError::SingularJacobian { .. }),
+            ) => {
+                assert!(e.stats().is_some());
+            }
+            other => panic!("{scheme:?}: expected a Newton failure, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn bad_guess_dimensions_are_rejected() {
+    let guess = Guess::constant(0.0, 1.0, 5, &[0.0], vec![]);
+    let r = solver(Scheme::Lobatto4, 1e-6).solve(&LinearSinh, &guess);
+    assert!(matches!(r, Err(BvpError::Dimension { .. })), "{r:?}");
+    let guess = Guess::constant(0.0, 1.0, 5, &[0.0, 0.0], vec![1.0]);
+    let r = solver(Scheme::Lobatto4, 1e-6).solve(&LinearSinh, &guess);
+    assert!(matches!(r, Err(BvpError::Dimension { .. })), "{r:?}");
+    let _ = LinearSinh.dims();
+}
