@@ -32,6 +32,7 @@
 
 mod error;
 mod problem;
+mod rk;
 mod solution;
 mod stats;
 

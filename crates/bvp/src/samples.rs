@@ -477,6 +477,10 @@ impl Cantilever {
     }
 
     /// Guess: the straight rod with the small-deflection moment `m = P (1 − s)`.
+    ///
+    /// Good for multiple shooting at every tabulated load, and for single shooting up to `P ≈ 2`:
+    /// for larger `P` the guessed `m(0) = P` exceeds the separatrix `√(2P)` of the pendulum
+    /// `φ'' = −P sin φ` and single shooting stalls; step the load from a previous solution.
     pub fn guess(&self) -> Guess {
         let p = self.load;
         Guess::from_fn(4, uniform(0.0, 1.0, 11), vec![], |s, z| {

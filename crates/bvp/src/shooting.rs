@@ -1,8 +1,62 @@
 //! Single and multiple shooting.
 //!
-//! (skeleton: to be implemented — see issue #3)
+//! # Method
+//!
+//! Split `[a, b]` into `M` equal segments `a = t_0 < t_1 < … < t_M = b` (`M = segments`; `M = 1` is
+//! single shooting). The unknowns are the states at the segment starts and the parameters,
+//!
+//! ```text
+//!     u = (z_0, z_1, …, z_{M−1}, p)            N = M n + k unknowns,
+//! ```
+//!
+//! and `Z_j(t; z_j, p)` is the numerical solution on segment `j` started from `z_j` at `t_j`. The
+//! residual stacks the boundary conditions and the continuity conditions
+//!
+//! ```text
+//!     R(u) = ( g(z_0, Z_{M−1}(b), p),   Z_0(t_1) − z_1,  …,  Z_{M−2}(t_{M−1}) − z_{M−1} ).
+//! ```
+//!
+//! Its Jacobian is assembled from `Φ_j = ∂Z_j/∂z_j` and `Ψ_j = ∂Z_j/∂p`, integrated with the
+//! variational equations by the same Runge–Kutta stages (see below), and the boundary Jacobians
+//! `G_a, G_b, G_p` (analytic or finite differences, [`crate::fd`]):
+//!
+//! ```text
+//!     BC rows:          G_a at z_0,   G_b Φ_{M−1} at z_{M−1},   G_p + G_b Ψ_{M−1} at p
+//!     continuity j:     Φ_j at z_j,   −I at z_{j+1},            Ψ_j at p
+//! ```
+//!
+//! The `N × N` system is solved by dense LU with partial pivoting ([`crate::linalg`]; `N` is small)
+//! inside the damped Newton iteration of [`crate::newton`].
+//!
+//! # Integrators
+//!
+//! - [`Integrator::Rk4`]: classical RK4 with `steps` equal steps in total (split as evenly as
+//!   possible over the segments). The variational equations are integrated with the same stages,
+//!   so the Newton matrix is the exact Jacobian of the discrete residual: quadratic convergence.
+//!   Global error `O(h⁴)`.
+//! - [`Integrator::Adaptive`]: Dormand–Prince 8(5,3) (DOP853) with Hairer's error norm on `z`,
+//!   tolerance `atol + rtol·|z|` per component, I controller. The variational equations use the
+//!   same stages and accepted steps, so the Jacobian is exact for the frozen step sequence; the
+//!   dependence of the step sizes on `u` is ignored (it is of the size of the local tolerance).
+//!   Each integration starts from Hairer's initial step estimate, so the discrete map depends on
+//!   `u` only.
+//!
+//! # Output
+//!
+//! The returned [`Solution`] has every accepted step node as its mesh (segment ends coincide with
+//! the next segment's start; the start value is kept), `dz = F(s_i, z_i, p)`, and statistics:
+//! `rhs_evals`, `jac_evals` (`∂F` evaluations, one per stage when linearizing), `bc_evals`,
+//! `steps`, `rejected_steps`, `newton_iters`, `factorizations`, `nodes` (= `M + 1` segment nodes)
+//! and `residual` (final max-norm of `R`).
+//!
+//! The solver owns its work buffers: repeated solves of problems of the same size do not allocate
+//! except for the returned [`Solution`].
 
-use crate::{Bvp, BvpError, BvpSolver, Guess, NewtonOptions, Solution};
+use crate::fd::{bc_jacobian_or_fd, FdScratch};
+use crate::linalg::{DenseLu, DEFAULT_PIVOT_TOL};
+use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
+use crate::rk::{Mode, Recorder, RkWork};
+use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, NewtonOptions, Solution, Stats, Status};
 
 /// Integrator used for shooting.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -12,7 +66,7 @@ pub enum Integrator {
         /// Total number of steps over `[a, b]`.
         steps: usize,
     },
-    /// Adaptive embedded Runge–Kutta pair with error control.
+    /// Adaptive embedded Runge–Kutta pair with error control (DOP853).
     Adaptive {
         /// Relative tolerance.
         rtol: f64,
@@ -28,20 +82,153 @@ pub struct ShootingOptions {
     pub integrator: Integrator,
     /// Number of shooting segments; 1 is single shooting. Default 1.
     pub segments: usize,
-    /// Newton options.
+    /// Newton options. Default [`NewtonOptions::default`].
     pub newton: NewtonOptions,
+    /// Cap on the steps of one adaptive integration of one segment (exceeding it is reported as
+    /// [`BvpError::StepSizeTooSmall`]). Default 100 000.
+    pub max_steps: usize,
+    /// Relative pivot threshold of the dense LU (see [`crate::linalg`]): the Newton matrix counts
+    /// as singular when a pivot is below `pivot_tol · max|J_ij|`. Default 1e-14.
+    pub pivot_tol: f64,
+}
+
+impl Default for ShootingOptions {
+    fn default() -> Self {
+        ShootingOptions {
+            integrator: Integrator::Adaptive {
+                rtol: 1e-10,
+                atol: 1e-12,
+            },
+            segments: 1,
+            newton: NewtonOptions::default(),
+            max_steps: 100_000,
+            pivot_tol: DEFAULT_PIVOT_TOL,
+        }
+    }
+}
+
+fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static str) -> BvpError {
+    BvpError::InvalidOption {
+        name,
+        value: value.to_string(),
+        reason,
+    }
+}
+
+impl ShootingOptions {
+    /// Checks the ranges: `segments ≥ 1`; RK4: `steps ≥ 1` and `segments ≤ steps`; adaptive:
+    /// `0 < rtol < 1`, `atol ≥ 0` (finite); `max_steps ≥ 1`; `0 ≤ pivot_tol < 1`; Newton options
+    /// ([`NewtonOptions::validate`]).
+    pub fn validate(&self) -> Result<(), BvpError> {
+        if self.segments < 1 {
+            return Err(invalid("segments", self.segments, "must be >= 1"));
+        }
+        match self.integrator {
+            Integrator::Rk4 { steps } => {
+                if steps < 1 {
+                    return Err(invalid("integrator.steps", steps, "must be >= 1"));
+                }
+                if self.segments > steps {
+                    return Err(invalid(
+                        "segments",
+                        self.segments,
+                        "must be <= integrator.steps (each segment needs an RK4 step)",
+                    ));
+                }
+            }
+            Integrator::Adaptive { rtol, atol } => {
+                if !(rtol > 0.0 && rtol < 1.0) {
+                    return Err(invalid("integrator.rtol", rtol, "must be in (0, 1)"));
+                }
+                if !(atol >= 0.0 && atol.is_finite()) {
+                    return Err(invalid("integrator.atol", atol, "must be finite and >= 0"));
+                }
+            }
+        }
+        if self.max_steps < 1 {
+            return Err(invalid("max_steps", self.max_steps, "must be >= 1"));
+        }
+        if !(self.pivot_tol >= 0.0 && self.pivot_tol < 1.0) {
+            return Err(invalid("pivot_tol", self.pivot_tol, "must be in [0, 1)"));
+        }
+        self.newton.validate()
+    }
+}
+
+/// Work buffers (sized on each solve, reused between solves).
+#[derive(Clone, Debug, Default)]
+struct Work {
+    dims: Option<Dims>,
+    segments: usize,
+    /// Segment nodes `t_0..t_M`.
+    nodes: Vec<f64>,
+    rk: RkWork,
+    /// End states `Z_j(t_{j+1})`, `M × n`.
+    zend: Vec<f64>,
+    /// End sensitivities `W_j = [Φ_j | Ψ_j]`, `M × n × (n + k)`.
+    wend: Vec<f64>,
+    /// `u` at which `zend`, `wend` were computed (valid if `cached`).
+    cache_u: Vec<f64>,
+    cached: bool,
+    r_scratch: Vec<f64>,
+    dga: Vec<f64>,
+    dgb: Vec<f64>,
+    dgp: Vec<f64>,
+    fd: FdScratch,
+    lu: DenseLu,
+}
+
+impl Work {
+    fn resize(&mut self, dims: Dims, segments: usize, a: f64, b: f64) {
+        let (n, k) = (dims.n, dims.k);
+        let m = n + k;
+        let big_n = segments * n + k;
+        if self.dims != Some(dims) || self.segments != segments {
+            self.rk.resize(dims);
+            self.fd.resize(dims);
+            for (v, len) in [
+                (&mut self.zend, segments * n),
+                (&mut self.wend, segments * n * m),
+                (&mut self.cache_u, big_n),
+                (&mut self.r_scratch, big_n),
+                (&mut self.dga, m * n),
+                (&mut self.dgb, m * n),
+                (&mut self.dgp, m * k),
+            ] {
+                v.clear();
+                v.resize(len, 0.0);
+            }
+            self.lu.resize(big_n);
+            self.dims = Some(dims);
+            self.segments = segments;
+        }
+        self.nodes.clear();
+        self.nodes
+            .extend((0..=segments).map(|j| a + (b - a) * j as f64 / segments as f64));
+        self.nodes[segments] = b;
+        self.cached = false;
+    }
 }
 
 /// Single / multiple shooting solver.
 #[derive(Clone, Debug)]
 pub struct Shooting {
     opts: ShootingOptions,
+    work: Work,
+    newton: Newton,
+    u: Vec<f64>,
 }
 
 impl Shooting {
     /// Creates a solver; validates the options.
     pub fn new(opts: ShootingOptions) -> Result<Self, BvpError> {
-        Ok(Shooting { opts })
+        opts.validate()?;
+        Ok(Shooting {
+            opts,
+            work: Work::default(),
+            newton: Newton::new(),
+            u: Vec::new(),
+        })
     }
     /// The options.
     pub fn options(&self) -> &ShootingOptions {
@@ -49,12 +236,264 @@ impl Shooting {
     }
 }
 
-impl BvpSolver for Shooting {
-    fn solve<P: Bvp + ?Sized>(
+/// Steps of RK4 on segment `j` of `segments` (total `steps`, remainder to the first segments).
+fn rk4_steps(steps: usize, segments: usize, j: usize) -> usize {
+    steps / segments + usize::from(j < steps % segments)
+}
+
+/// The Newton system of (multiple) shooting.
+struct System<'a, P: ?Sized> {
+    problem: &'a P,
+    opts: &'a ShootingOptions,
+    w: &'a mut Work,
+}
+
+impl<P: Bvp + ?Sized> System<'_, P> {
+    fn mode(&self, j: usize) -> Mode {
+        match self.opts.integrator {
+            Integrator::Rk4 { steps } => Mode::Fixed {
+                steps: rk4_steps(steps, self.opts.segments, j),
+            },
+            Integrator::Adaptive { rtol, atol } => Mode::Adaptive {
+                rtol,
+                atol,
+                max_steps: self.opts.max_steps,
+            },
+        }
+    }
+
+    /// Integrates all segments (with sensitivities) from `u` and writes `R(u)` into `r`.
+    fn evaluate(&mut self, u: &[f64], r: &mut [f64], stats: &mut Stats) -> Result<(), BvpError> {
+        let Dims { n, k } = self.problem.dims();
+        let m = n + k;
+        let segs = self.opts.segments;
+        let p = &u[segs * n..];
+        self.w.cached = false;
+        for j in 0..segs {
+            let mode = self.mode(j);
+            let w = &mut *self.w;
+            w.rk.integrate(
+                self.problem,
+                p,
+                w.nodes[j],
+                w.nodes[j + 1],
+                &u[j * n..(j + 1) * n],
+                true,
+                mode,
+                None,
+                stats,
+            )?;
+            w.zend[j * n..(j + 1) * n].copy_from_slice(w.rk.z());
+            w.wend[j * n * m..(j + 1) * n * m].copy_from_slice(w.rk.w());
+        }
+        let w = &mut *self.w;
+        let zb = &w.zend[(segs - 1) * n..segs * n];
+        self.problem.bc(&u[..n], zb, p, &mut r[..m]);
+        stats.bc_evals += 1;
+        if !r[..m].iter().all(|v| v.is_finite()) {
+            return Err(non_finite("bc", f64::NAN));
+        }
+        for j in 0..segs - 1 {
+            for i in 0..n {
+                r[m + j * n + i] = w.zend[j * n + i] - u[(j + 1) * n + i];
+            }
+        }
+        w.cache_u.copy_from_slice(u);
+        w.cached = true;
+        Ok(())
+    }
+}
+
+impl<P: Bvp + ?Sized> NewtonSystem for System<'_, P> {
+    fn residual(&mut self, u: &[f64], r: &mut [f64], stats: &mut Stats) -> Result<(), BvpError> {
+        self.evaluate(u, r, stats)
+    }
+
+    fn solve_linearized(
         &mut self,
-        _problem: &P,
-        _guess: &Guess,
-    ) -> Result<Solution, BvpError> {
-        todo!("shooting")
+        u: &[f64],
+        r: &[f64],
+        du: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        if !(self.w.cached && self.w.cache_u == u) {
+            let mut rs = std::mem::take(&mut self.w.r_scratch);
+            let res = self.evaluate(u, &mut rs, stats);
+            self.w.r_scratch = rs;
+            res?;
+        }
+        let Dims { n, k } = self.problem.dims();
+        let m = n + k;
+        let segs = self.opts.segments;
+        let big_n = segs * n + k;
+        let w = &mut *self.w;
+        let p = &u[segs * n..];
+        let zb = &w.zend[(segs - 1) * n..segs * n];
+        bc_jacobian_or_fd(
+            self.problem,
+            &u[..n],
+            zb,
+            p,
+            Some(&r[..m]),
+            &mut w.dga,
+            &mut w.dgb,
+            &mut w.dgp,
+            &mut w.fd,
+            stats,
+        )?;
+
+        w.lu.pivot_tol = self.opts.pivot_tol;
+        let a = w.lu.matrix_mut();
+        a.fill(0.0);
+        let last = segs - 1;
+        let wl = &w.wend[last * n * m..(last + 1) * n * m];
+        // Boundary rows.
+        for i in 0..m {
+            let row = &mut a[i * big_n..(i + 1) * big_n];
+            for (x, &g) in row[..n].iter_mut().zip(&w.dga[i * n..(i + 1) * n]) {
+                *x += g;
+            }
+            // G_b W_{M−1} into the columns of z_{M−1} and p.
+            for l in 0..n {
+                let g = w.dgb[i * n + l];
+                if g != 0.0 {
+                    for c in 0..n {
+                        row[last * n + c] += g * wl[l * m + c];
+                    }
+                    for c in 0..k {
+                        row[segs * n + c] += g * wl[l * m + n + c];
+                    }
+                }
+            }
+            for c in 0..k {
+                row[segs * n + c] += w.dgp[i * k + c];
+            }
+        }
+        // Continuity rows.
+        for j in 0..last {
+            let wj = &w.wend[j * n * m..(j + 1) * n * m];
+            for i in 0..n {
+                let row = &mut a[(m + j * n + i) * big_n..(m + j * n + i + 1) * big_n];
+                row[j * n..(j + 1) * n].copy_from_slice(&wj[i * m..i * m + n]);
+                row[(j + 1) * n + i] = -1.0;
+                row[segs * n..].copy_from_slice(&wj[i * m + n..(i + 1) * m]);
+            }
+        }
+        stats.factorizations += 1;
+        w.lu.factor().map_err(|_| singular())?;
+        for (d, v) in du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        w.lu.solve(du);
+        Ok(())
+    }
+}
+
+impl BvpSolver for Shooting {
+    fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
+        let dims = problem.dims();
+        let Dims { n, k } = dims;
+        let (a, b) = problem.interval();
+        if guess.n != n {
+            return Err(BvpError::Dimension {
+                what: "guess states",
+                got: guess.n,
+                expected: n,
+            });
+        }
+        if guess.params.len() != k {
+            return Err(BvpError::Dimension {
+                what: "guess parameters",
+                got: guess.params.len(),
+                expected: k,
+            });
+        }
+        if guess.mesh.is_empty() || guess.z.len() != n * guess.mesh.len() {
+            return Err(BvpError::Dimension {
+                what: "guess values",
+                got: guess.z.len(),
+                expected: n * guess.mesh.len().max(1),
+            });
+        }
+        if !(a < b && a.is_finite() && b.is_finite()) {
+            return Err(invalid(
+                "interval",
+                format!("[{a}, {b}]"),
+                "need finite a < b",
+            ));
+        }
+        let segs = self.opts.segments;
+        self.work.resize(dims, segs, a, b);
+
+        // Warm start: guess values at the segment starts, guess parameters.
+        self.u.clear();
+        self.u.resize(segs * n + k, 0.0);
+        for j in 0..segs {
+            guess.eval(self.work.nodes[j], &mut self.u[j * n..(j + 1) * n]);
+        }
+        self.u[segs * n..].copy_from_slice(&guess.params);
+
+        let mut stats = Stats {
+            nodes: segs + 1,
+            ..Stats::default()
+        };
+        {
+            let mut sys = System {
+                problem,
+                opts: &self.opts,
+                w: &mut self.work,
+            };
+            self.newton
+                .solve(&mut sys, &mut self.u, &self.opts.newton, &mut stats)?;
+        }
+
+        // Output pass: integrate z only from the solution, recording every accepted step.
+        let u = &self.u;
+        let p = &u[segs * n..];
+        let mut mesh = Vec::new();
+        let mut z = Vec::new();
+        let mut dz = Vec::new();
+        let sys = System {
+            problem,
+            opts: &self.opts,
+            w: &mut self.work,
+        };
+        for j in 0..segs {
+            let mode = sys.mode(j);
+            let w = &mut *sys.w;
+            let mut rec = Recorder {
+                mesh: &mut mesh,
+                z: &mut z,
+                dz: &mut dz,
+            };
+            w.rk.integrate(
+                problem,
+                p,
+                w.nodes[j],
+                w.nodes[j + 1],
+                &u[j * n..(j + 1) * n],
+                false,
+                mode,
+                Some(&mut rec),
+                &mut stats,
+            )
+            .map_err(|e| attach(e, stats.newton_iters, &stats))?;
+        }
+        let zb = sys.w.rk.z().to_vec();
+        let mut fb = vec![0.0; n];
+        problem.rhs(b, &zb, p, &mut fb);
+        stats.rhs_evals += 1;
+        mesh.push(b);
+        z.extend_from_slice(&zb);
+        dz.extend_from_slice(&fb);
+        Ok(Solution {
+            n,
+            mesh,
+            z,
+            dz,
+            params: p.to_vec(),
+            status: Status::Converged,
+            stats,
+        })
     }
 }

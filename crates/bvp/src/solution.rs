@@ -188,8 +188,12 @@ impl Guess {
         let i = locate(&self.mesh, s);
         let (s0, s1) = (self.mesh[i], self.mesh[i + 1]);
         let t = ((s - s0) / (s1 - s0)).clamp(0.0, 1.0);
-        for j in 0..n {
-            out[j] = (1.0 - t) * self.z[i * n + j] + t * self.z[(i + 1) * n + j];
+        let (z0, z1) = (
+            &self.z[i * n..(i + 1) * n],
+            &self.z[(i + 1) * n..(i + 2) * n],
+        );
+        for ((o, &a), &b) in out[..n].iter_mut().zip(z0).zip(z1) {
+            *o = (1.0 - t) * a + t * b;
         }
     }
 }

@@ -1,0 +1,618 @@
+//! Explicit Runge–Kutta integration of `z' = F(s, z, p)` together with its variational equations.
+//!
+//! The augmented state is `Y = (z, W)` with `W = [Φ | Ψ]` (row-major `n × (n + k)`),
+//!
+//! ```text
+//!     z' = F(s, z, p),    W' = F_z W + [0 | F_p],    z(t0) = z0,  W(t0) = [I | 0],
+//! ```
+//!
+//! so that at the end `Φ = ∂z(t1)/∂z0` and `Ψ = ∂z(t1)/∂p`. Integrating the augmented system with
+//! the *same* Runge–Kutta stages makes `W` the exact derivative of the discrete map `z0 ↦ z1` for a
+//! fixed step sequence (RK methods commute with linearization). For fixed-step RK4 that is the
+//! exact Jacobian of the shooting residual, hence quadratic Newton convergence. For the adaptive
+//! pair the step sequence itself depends (piecewise constantly, through the controller) on `z0`
+//! and `p`; `W` ignores that dependence ("internal numerical differentiation", Bock 1981), which is
+//! of the order of the local tolerance and only slows Newton near convergence in the last digits.
+//!
+//! Tableaus: classical RK4, and Dormand & Prince's DOP853 (order 8 with 5th- and 3rd-order
+//! embedded error estimates, 12 stages; Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.10). The
+//! error norm and I step-size controller follow Hairer's DOP853 (error exponent 1/8, safety 0.9,
+//! step ratio in `[1/3, 6]`, no growth right after a rejection); only `z` (not `W`) enters the
+//! error norm.
+
+// The coefficient tables keep their published digits.
+#![allow(clippy::excessive_precision)]
+
+use crate::fd::{rhs_jacobian_or_fd, FdScratch};
+use crate::newton::non_finite;
+use crate::{Bvp, BvpError, Dims, Stats};
+
+/// A Butcher tableau with an optional DOP853-style error estimator.
+pub(crate) struct Tableau {
+    stages: usize,
+    c: &'static [f64],
+    /// Row-major `stages × stages`, strictly lower triangular.
+    a: &'static [f64],
+    b: &'static [f64],
+    /// 5th-order error weights (DOP853 `er`), empty for fixed-step tableaus.
+    e5: &'static [f64],
+    /// 3rd-order error weights (`b − b̂₃`).
+    e3: &'static [f64],
+}
+
+const RK4_A: [f64; 16] = [
+    0.0, 0.0, 0.0, 0.0, //
+    0.5, 0.0, 0.0, 0.0, //
+    0.0, 0.5, 0.0, 0.0, //
+    0.0, 0.0, 1.0, 0.0,
+];
+
+pub(crate) static RK4: Tableau = Tableau {
+    stages: 4,
+    c: &[0.0, 0.5, 0.5, 1.0],
+    a: &RK4_A,
+    b: &[1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+    e5: &[],
+    e3: &[],
+};
+
+// DOP853 coefficients (Hairer–Nørsett–Wanner; 12 stages, c12 = 1).
+const D_C: [f64; 12] = [
+    0.0,
+    0.526001519587677318785587544488e-01,
+    0.789002279381515978178381316732e-01,
+    0.118350341907227396726757197510e+00,
+    0.281649658092772603273242802490e+00,
+    0.333333333333333333333333333333e+00,
+    0.25e+00,
+    0.307692307692307692307692307692e+00,
+    0.651282051282051282051282051282e+00,
+    0.6e+00,
+    0.857142857142857142857142857142e+00,
+    1.0,
+];
+
+#[rustfmt::skip]
+const D_A: [f64; 144] = [
+    // row 1
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 2
+    5.26001519587677318785587544488e-2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 3
+    1.97250569845378994544595329183e-2, 5.91751709536136983633785987549e-2,
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 4
+    2.95875854768068491816892993775e-2, 0.0, 8.87627564304205475450678981324e-2,
+    0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 5
+    2.41365134159266685502369798665e-1, 0.0, -8.84549479328286085344864962717e-1,
+    9.24834003261792003115737966543e-1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 6
+    3.7037037037037037037037037037e-2, 0.0, 0.0, 1.70828608729473871279604482173e-1,
+    1.25467687566822425016691814123e-1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 7
+    3.7109375e-2, 0.0, 0.0, 1.70252211019544039314978060272e-1,
+    6.02165389804559606850219397283e-2, -1.7578125e-2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 8
+    3.70920001185047927108779319836e-2, 0.0, 0.0, 1.70383925712239993810214054705e-1,
+    1.07262030446373284651809199168e-1, -1.53194377486244017527936158236e-2,
+    8.27378916381402288758473766002e-3, 0.0, 0.0, 0.0, 0.0, 0.0,
+    // row 9
+    6.24110958716075717114429577812e-1, 0.0, 0.0, -3.36089262944694129406857109825e0,
+    -8.68219346841726006818189891453e-1, 2.75920996994467083049415600797e1,
+    2.01540675504778934086186788979e1, -4.34898841810699588477366255144e1,
+    0.0, 0.0, 0.0, 0.0,
+    // row 10
+    4.77662536438264365890433908527e-1, 0.0, 0.0, -2.48811461997166764192642586468e0,
+    -5.90290826836842996371446475743e-1, 2.12300514481811942347288949897e1,
+    1.52792336328824235832596922938e1, -3.32882109689848629194453265587e1,
+    -2.03312017085086261358222928593e-2, 0.0, 0.0, 0.0,
+    // row 11
+    -9.3714243008598732571704021658e-1, 0.0, 0.0, 5.18637242884406370830023853209e0,
+    1.09143734899672957818500254654e0, -8.14978701074692612513997267357e0,
+    -1.85200656599969598641566180701e1, 2.27394870993505042818970056734e1,
+    2.49360555267965238987089396762e0, -3.0467644718982195003823669022e0, 0.0, 0.0,
+    // row 12
+    2.27331014751653820792359768449e0, 0.0, 0.0, -1.05344954667372501984066689879e1,
+    -2.00087205822486249909675718444e0, -1.79589318631187989172765950534e1,
+    2.79488845294199600508499808837e1, -2.85899827713502369474065508674e0,
+    -8.87285693353062954433549289258e0, 1.23605671757943030647266201528e1,
+    6.43392746015763530355970484046e-1, 0.0,
+];
+
+const D_B: [f64; 12] = [
+    5.42937341165687622380535766363e-2,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    4.45031289275240888144113950566e0,
+    1.89151789931450038304281599044e0,
+    -5.8012039600105847814672114227e0,
+    3.1116436695781989440891606237e-1,
+    -1.52160949662516078556178806805e-1,
+    2.01365400804030348374776537501e-1,
+    4.47106157277725905176885569043e-2,
+];
+
+const D_BHH1: f64 = 0.244094488188976377952755905512e+00;
+const D_BHH2: f64 = 0.733846688281611857341361741547e+00;
+const D_BHH3: f64 = 0.220588235294117647058823529412e-01;
+
+const D_E3: [f64; 12] = [
+    D_B[0] - D_BHH1,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    D_B[5],
+    D_B[6],
+    D_B[7],
+    D_B[8] - D_BHH2,
+    D_B[9],
+    D_B[10],
+    D_B[11] - D_BHH3,
+];
+
+const D_E5: [f64; 12] = [
+    0.1312004499419488073250102996e-01,
+    0.0,
+    0.0,
+    0.0,
+    0.0,
+    -0.1225156446376204440720569753e+01,
+    -0.4957589496572501915214079952e+00,
+    0.1664377182454986536961530415e+01,
+    -0.3503288487499736816886487290e+00,
+    0.3341791187130174790297318841e+00,
+    0.8192320648511571246570742613e-01,
+    -0.2235530786388629525884427845e-01,
+];
+
+pub(crate) static DOP853: Tableau = Tableau {
+    stages: 12,
+    c: &D_C,
+    a: &D_A,
+    b: &D_B,
+    e5: &D_E5,
+    e3: &D_E3,
+};
+
+/// How to integrate one segment.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Mode {
+    /// RK4 with this many equal steps.
+    Fixed { steps: usize },
+    /// DOP853 with error control.
+    Adaptive {
+        rtol: f64,
+        atol: f64,
+        max_steps: usize,
+    },
+}
+
+/// Where accepted step nodes are appended (values and derivatives of `z`, node-major).
+pub(crate) struct Recorder<'a> {
+    pub mesh: &'a mut Vec<f64>,
+    pub z: &'a mut Vec<f64>,
+    pub dz: &'a mut Vec<f64>,
+}
+
+/// Work buffers of the integrator (sized once per problem, reused across integrations).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct RkWork {
+    n: usize,
+    k: usize,
+    y: Vec<f64>,
+    ytmp: Vec<f64>,
+    ynew: Vec<f64>,
+    stages: Vec<f64>,
+    dfdz: Vec<f64>,
+    dfdp: Vec<f64>,
+    fd: FdScratch,
+}
+
+/// Evaluates the augmented right-hand side `(F, F_z W + [0 | F_p])` at `(s, y)`.
+#[allow(clippy::too_many_arguments)]
+fn aug_rhs<P: Bvp + ?Sized>(
+    problem: &P,
+    s: f64,
+    y: &[f64],
+    p: &[f64],
+    out: &mut [f64],
+    var: bool,
+    n: usize,
+    k: usize,
+    dfdz: &mut [f64],
+    dfdp: &mut [f64],
+    fd: &mut FdScratch,
+    stats: &mut Stats,
+) -> Result<(), BvpError> {
+    let (z, w) = y.split_at(n);
+    let (dz, dw) = out.split_at_mut(n);
+    problem.rhs(s, z, p, dz);
+    stats.rhs_evals += 1;
+    if !dz.iter().all(|v| v.is_finite()) {
+        return Err(non_finite("rhs", s));
+    }
+    if var {
+        rhs_jacobian_or_fd(problem, s, z, p, Some(dz), dfdz, dfdp, fd, stats)?;
+        let m = n + k;
+        for i in 0..n {
+            let row = &mut dw[i * m..(i + 1) * m];
+            row.fill(0.0);
+            for l in 0..n {
+                let a = dfdz[i * n + l];
+                if a != 0.0 {
+                    let wl = &w[l * m..(l + 1) * m];
+                    for (r, &x) in row.iter_mut().zip(wl) {
+                        *r += a * x;
+                    }
+                }
+            }
+            for j in 0..k {
+                row[n + j] += dfdp[i * k + j];
+            }
+        }
+    }
+    Ok(())
+}
+
+impl RkWork {
+    /// Sizes the buffers for `dims` (variational part included).
+    pub fn resize(&mut self, dims: Dims) {
+        let (n, k) = (dims.n, dims.k);
+        self.n = n;
+        self.k = k;
+        let dim = n * (1 + n + k);
+        for (v, len) in [
+            (&mut self.y, dim),
+            (&mut self.ytmp, dim),
+            (&mut self.ynew, dim),
+            (&mut self.stages, 12 * dim),
+            (&mut self.dfdz, n * n),
+            (&mut self.dfdp, n * k),
+        ] {
+            v.clear();
+            v.resize(len, 0.0);
+        }
+        self.fd.resize(dims);
+    }
+
+    /// The final `z` of the last integration.
+    pub fn z(&self) -> &[f64] {
+        &self.y[..self.n]
+    }
+
+    /// The final `W = [Φ | Ψ]` (row-major `n × (n + k)`) of the last integration with `var`.
+    pub fn w(&self) -> &[f64] {
+        &self.y[self.n..self.n * (1 + self.n + self.k)]
+    }
+
+    /// Integrates from `(t0, z0)` to `t1 > t0`. With `var`, also the variational equations from
+    /// `W = [I | 0]`. Accepted step starts are appended to `rec` (the end point is not).
+    #[allow(clippy::too_many_arguments)]
+    pub fn integrate<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        p: &[f64],
+        t0: f64,
+        t1: f64,
+        z0: &[f64],
+        var: bool,
+        mode: Mode,
+        mut rec: Option<&mut Recorder<'_>>,
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        let (n, k) = (self.n, self.k);
+        let m = n + k;
+        let dim = if var { n * (1 + m) } else { n };
+        let RkWork {
+            y,
+            ytmp,
+            ynew,
+            stages,
+            dfdz,
+            dfdp,
+            fd,
+            ..
+        } = self;
+        let (y, ytmp, ynew) = (&mut y[..dim], &mut ytmp[..dim], &mut ynew[..dim]);
+        y[..n].copy_from_slice(z0);
+        if var {
+            let w = &mut y[n..];
+            w.fill(0.0);
+            for i in 0..n {
+                w[i * m + i] = 1.0;
+            }
+        }
+        let mut f = |s: f64, yy: &[f64], out: &mut [f64], stats: &mut Stats| {
+            aug_rhs(problem, s, yy, p, out, var, n, k, dfdz, dfdp, fd, stats)
+        };
+
+        // k1 = f(t0, y0); after each accepted step it is re-evaluated at the new point.
+        f(t0, y, &mut stages[..dim], stats)?;
+
+        match mode {
+            Mode::Fixed { steps } => {
+                let tab = &RK4;
+                let span = t1 - t0;
+                for i in 0..steps {
+                    let s = t0 + span * i as f64 / steps as f64;
+                    let s_next = if i + 1 == steps {
+                        t1
+                    } else {
+                        t0 + span * (i + 1) as f64 / steps as f64
+                    };
+                    let h = s_next - s;
+                    rk_step(tab, s, h, y, ytmp, ynew, stages, dim, &mut f, stats)?;
+                    stats.steps += 1;
+                    if let Some(r) = rec.as_deref_mut() {
+                        record(r, s, &y[..n], &stages[..n]);
+                    }
+                    y.copy_from_slice(ynew);
+                    f(s_next, y, &mut stages[..dim], stats)?;
+                }
+            }
+            Mode::Adaptive {
+                rtol,
+                atol,
+                max_steps,
+            } => {
+                let tab = &DOP853;
+                let mut h = initial_step(
+                    problem,
+                    p,
+                    t0,
+                    t1,
+                    &y[..n],
+                    &stages[..n],
+                    rtol,
+                    atol,
+                    ytmp,
+                    ynew,
+                    stats,
+                )?;
+                let mut s = t0;
+                let mut taken = 0usize;
+                let mut rejected_last = false;
+                while s < t1 {
+                    if taken >= max_steps {
+                        return Err(BvpError::StepSizeTooSmall {
+                            s,
+                            h,
+                            stats: Stats::default(),
+                        });
+                    }
+                    // Hit t1 exactly; avoid a sliver of a last step.
+                    let last = s + 1.01 * h >= t1;
+                    if last {
+                        h = t1 - s;
+                    }
+                    rk_step(tab, s, h, y, ytmp, ynew, stages, dim, &mut f, stats)?;
+                    taken += 1;
+                    stats.steps += 1;
+                    let err = error_norm(tab, h, &y[..n], &ynew[..n], stages, dim, n, rtol, atol);
+                    if err <= 1.0 {
+                        if let Some(r) = rec.as_deref_mut() {
+                            record(r, s, &y[..n], &stages[..n]);
+                        }
+                        let s_new = if last { t1 } else { s + h };
+                        y.copy_from_slice(ynew);
+                        f(s_new, y, &mut stages[..dim], stats)?;
+                        let mut fac = if err == 0.0 {
+                            6.0
+                        } else {
+                            (0.9 * err.powf(-1.0 / 8.0)).clamp(1.0 / 3.0, 6.0)
+                        };
+                        if rejected_last {
+                            fac = fac.min(1.0);
+                        }
+                        rejected_last = false;
+                        s = s_new;
+                        h *= fac;
+                    } else {
+                        stats.rejected_steps += 1;
+                        rejected_last = true;
+                        let fac = if err.is_finite() {
+                            (0.9 * err.powf(-1.0 / 8.0)).max(1.0 / 3.0)
+                        } else {
+                            0.1
+                        };
+                        h *= fac;
+                        if h <= 16.0 * f64::EPSILON * s.abs().max(t1.abs()).max(1.0) {
+                            return Err(BvpError::StepSizeTooSmall {
+                                s,
+                                h,
+                                stats: Stats::default(),
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+fn record(r: &mut Recorder<'_>, s: f64, z: &[f64], dz: &[f64]) {
+    r.mesh.push(s);
+    r.z.extend_from_slice(z);
+    r.dz.extend_from_slice(dz);
+}
+
+/// One explicit RK step from `(s, y)` with `k1` already in `stages[..dim]`; writes `ynew`.
+#[allow(clippy::too_many_arguments)]
+fn rk_step<F>(
+    tab: &Tableau,
+    s: f64,
+    h: f64,
+    y: &[f64],
+    ytmp: &mut [f64],
+    ynew: &mut [f64],
+    stages: &mut [f64],
+    dim: usize,
+    f: &mut F,
+    stats: &mut Stats,
+) -> Result<(), BvpError>
+where
+    F: FnMut(f64, &[f64], &mut [f64], &mut Stats) -> Result<(), BvpError>,
+{
+    let ns = tab.stages;
+    for i in 1..ns {
+        ytmp.copy_from_slice(y);
+        for j in 0..i {
+            let a = tab.a[i * ns + j];
+            if a != 0.0 {
+                let ha = h * a;
+                let kj = &stages[j * dim..(j + 1) * dim];
+                for (t, &x) in ytmp.iter_mut().zip(kj) {
+                    *t += ha * x;
+                }
+            }
+        }
+        f(
+            s + tab.c[i] * h,
+            ytmp,
+            &mut stages[i * dim..(i + 1) * dim],
+            stats,
+        )?;
+    }
+    ynew.copy_from_slice(y);
+    for j in 0..ns {
+        let b = tab.b[j];
+        if b != 0.0 {
+            let hb = h * b;
+            let kj = &stages[j * dim..(j + 1) * dim];
+            for (t, &x) in ynew.iter_mut().zip(kj) {
+                *t += hb * x;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// DOP853 error norm (≤ 1: accept) over the `n` state components.
+#[allow(clippy::too_many_arguments)]
+fn error_norm(
+    tab: &Tableau,
+    h: f64,
+    y: &[f64],
+    ynew: &[f64],
+    stages: &[f64],
+    dim: usize,
+    n: usize,
+    rtol: f64,
+    atol: f64,
+) -> f64 {
+    let (mut e5, mut e3) = (0.0, 0.0);
+    for i in 0..n {
+        let sk = atol + rtol * y[i].abs().max(ynew[i].abs());
+        let (mut a5, mut a3) = (0.0, 0.0);
+        for j in 0..tab.stages {
+            let kij = stages[j * dim + i];
+            a5 += tab.e5[j] * kij;
+            a3 += tab.e3[j] * kij;
+        }
+        e5 += (a5 / sk).powi(2);
+        e3 += (a3 / sk).powi(2);
+    }
+    let mut deno = e5 + 0.01 * e3;
+    if deno <= 0.0 {
+        deno = 1.0;
+    }
+    let err = h.abs() * e5 / (n as f64 * deno).sqrt();
+    if err.is_nan() {
+        f64::INFINITY
+    } else {
+        err
+    }
+}
+
+/// Hairer's starting step for an order-8 method (one extra evaluation of `F`).
+#[allow(clippy::too_many_arguments)]
+fn initial_step<P: Bvp + ?Sized>(
+    problem: &P,
+    p: &[f64],
+    t0: f64,
+    t1: f64,
+    z0: &[f64],
+    f0: &[f64],
+    rtol: f64,
+    atol: f64,
+    zt: &mut [f64],
+    ft: &mut [f64],
+    stats: &mut Stats,
+) -> Result<f64, BvpError> {
+    let n = z0.len();
+    let span = t1 - t0;
+    let (mut dnf, mut dny) = (0.0, 0.0);
+    for i in 0..n {
+        let sk = atol + rtol * z0[i].abs();
+        dnf += (f0[i] / sk).powi(2);
+        dny += (z0[i] / sk).powi(2);
+    }
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+        1e-6
+    } else {
+        0.01 * (dny / dnf).sqrt()
+    };
+    h = h.min(span);
+    let (zt, ft) = (&mut zt[..n], &mut ft[..n]);
+    for i in 0..n {
+        zt[i] = z0[i] + h * f0[i];
+    }
+    problem.rhs(t0 + h, zt, p, ft);
+    stats.rhs_evals += 1;
+    if !ft.iter().all(|v| v.is_finite()) {
+        return Err(non_finite("rhs", t0 + h));
+    }
+    let mut der2 = 0.0;
+    for i in 0..n {
+        let sk = atol + rtol * z0[i].abs();
+        der2 += ((ft[i] - f0[i]) / sk).powi(2);
+    }
+    let der2 = der2.sqrt() / h;
+    let der12 = der2.max(dnf.sqrt());
+    let h1 = if der12 <= 1e-15 {
+        (h * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / 8.0)
+    };
+    Ok((100.0 * h).min(h1).min(span))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check_order_conditions(tab: &Tableau, order: usize) {
+        let s = tab.stages;
+        // Row sums equal c.
+        for i in 0..s {
+            let r: f64 = (0..s).map(|j| tab.a[i * s + j]).sum();
+            assert!((r - tab.c[i]).abs() < 1e-14, "row {i}");
+        }
+        // Bushy-tree conditions Σ b c^q = 1/(q+1) up to the order.
+        for q in 0..order {
+            let v: f64 = (0..s).map(|i| tab.b[i] * tab.c[i].powi(q as i32)).sum();
+            assert!((v - 1.0 / (q + 1) as f64).abs() < 1e-13, "q = {q}: {v}");
+        }
+        // Σ b_i a_ij c_j = 1/6.
+        let v: f64 = (0..s)
+            .map(|i| tab.b[i] * (0..s).map(|j| tab.a[i * s + j] * tab.c[j]).sum::<f64>())
+            .sum();
+        assert!((v - 1.0 / 6.0).abs() < 1e-13);
+        // Error weights of a consistent estimator sum to 0.
+        if !tab.e5.is_empty() {
+            assert!(tab.e5.iter().sum::<f64>().abs() < 1e-13);
+            assert!(tab.e3.iter().sum::<f64>().abs() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn tableaus_satisfy_order_conditions() {
+        check_order_conditions(&RK4, 4);
+        check_order_conditions(&DOP853, 8);
+    }
+}
