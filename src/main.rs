@@ -7,6 +7,7 @@ mod output;
 mod scan;
 mod scene_args;
 mod solve;
+mod sweep;
 
 use clap::error::ErrorKind;
 use clap::Parser;
@@ -36,7 +37,8 @@ fn run(cli: Cli) -> Result<(), Fail> {
         Command::Solve(a) => solve::run(&a),
         Command::Scan(a) => scan::run(&a),
         Command::Infer(a) => scan::run_infer(&a),
-        Command::Sweep(_) | Command::Figures(_) => Err(error::solve_fail("not implemented yet")),
+        Command::Sweep(a) => sweep::run(&a),
+        Command::Figures(_) => Err(error::solve_fail("not implemented yet")),
     }
 }
 
@@ -64,6 +66,9 @@ fn main() {
     };
     // a panic would be a bug; still, report it as one line, not a backtrace
     std::panic::set_hook(Box::new(|info| {
+        if sweep::QUIET_PANICS.load(std::sync::atomic::Ordering::SeqCst) {
+            return;
+        }
         let msg = info
             .payload()
             .downcast_ref::<&str>()

@@ -279,7 +279,7 @@ impl ClosedCurve {
             (cf.phase1_upper_at_phi1(phi1)?, Branch::OneFlex)
         };
         let br = if p.flex == 0 { Branch::Convex } else { br };
-        let e = if t == 1.0 && br == Branch::Convex {
+        let e = if t == 1.0 && br == Branch::Convex && cf.phase0_end == Phase0End::TurningPoint {
             Elastica::turning(Branch::Convex, p.alpha)?
         } else {
             Elastica::new(br, p.alpha, p.phi1)?
