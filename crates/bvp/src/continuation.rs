@@ -570,7 +570,6 @@ enum State {
 ///
 /// The first item is the start solution corrected at `λ0`. The iterator ends after an error
 /// (yielded once), after the point on a `λ` bound, or after `max_steps` steps.
-#[derive(Debug)]
 pub struct Continuation<'a, P: ParamBvp + ?Sized, S: BvpSolver> {
     family: &'a P,
     solver: S,
@@ -581,6 +580,19 @@ pub struct Continuation<'a, P: ParamBvp + ?Sized, S: BvpSolver> {
     history: VecDeque<Node>,
     ds: f64,
     step: usize,
+}
+
+impl<P: ParamBvp + ?Sized, S: BvpSolver> std::fmt::Debug for Continuation<'_, P, S> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Continuation")
+            .field("opts", &self.opts)
+            .field("lambda0", &self.lambda0)
+            .field("state", &self.state)
+            .field("step", &self.step)
+            .field("ds", &self.ds)
+            .field("kept_points", &self.history.len())
+            .finish_non_exhaustive()
+    }
 }
 
 /// Unknowns and step length of one corrector attempt.
