@@ -44,7 +44,7 @@ pub enum VibrissaError {
         /// Which solve (target, d, homotopy step, ...).
         context: String,
         /// The solver's error.
-        source: bvp::BvpError,
+        source: Box<bvp::BvpError>,
     },
     /// The closed forms failed (analytic method, or the initial guess).
     #[error("{context}: {source}")]
@@ -98,7 +98,7 @@ impl VibrissaError {
     pub(crate) fn solver(context: impl Into<String>, source: bvp::BvpError) -> Self {
         VibrissaError::Solver {
             context: context.into(),
-            source,
+            source: Box::new(source),
         }
     }
     pub(crate) fn elastica(context: impl Into<String>, source: elastica::ElasticaError) -> Self {

@@ -2,6 +2,7 @@
 //! pressed with its tip on a surface, and the quasi-static stiction scan.
 #![warn(missing_docs)]
 
+mod analytic;
 mod error;
 pub mod model;
 pub mod scan;
@@ -10,6 +11,6 @@ pub mod solve;
 
 pub use error::VibrissaError;
 pub use model::{Model, Units};
-pub use scan::{infer, scan, Inference, ScanOptions, ScanPoint, ScanResult, StopReason};
+pub use scan::{infer, scan, scan_at, Inference, ScanOptions, ScanPoint, ScanResult, StopReason};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};
 pub use solve::{solve, BranchChoice, Method, Shape, ShapePoint, SolverConfig, Target};

@@ -6,7 +6,7 @@
 
 use crate::scene::{Precurvature, Scene, Stiffness};
 use crate::VibrissaError;
-use bvp::{Bvp, Dims};
+use bvp::{Bvp, Dims, ParamBvp};
 use std::f64::consts::FRAC_PI_2;
 
 /// Reciprocal bending stiffness `b(s)` and pre-curvature `κ0(s)` of a rod.
@@ -66,22 +66,63 @@ pub struct General {
     stiffness: Stiffness,
     precurvature: Precurvature,
     t: f64,
-    /// `1 − ρ_t` of the taper (0 when not tapered).
-    taper: f64,
 }
 
 impl General {
     /// The profile of `scene` at homotopy amplitude `t`.
     pub fn new(scene: &Scene, t: f64) -> Self {
-        let taper = match scene.stiffness {
-            Stiffness::Taper { ratio } => t * (1.0 - ratio),
-            _ => 0.0,
-        };
         General {
             stiffness: scene.stiffness.clone(),
             precurvature: scene.precurvature.clone(),
             t,
-            taper,
+        }
+    }
+    /// The same profile at amplitude `t`.
+    pub fn with_t(mut self, t: f64) -> Self {
+        self.t = t;
+        self
+    }
+    /// `b(s)` at amplitude `t`.
+    #[inline]
+    pub fn b_at(&self, s: f64, t: f64) -> f64 {
+        match &self.stiffness {
+            Stiffness::Uniform => 1.0,
+            Stiffness::Taper { ratio } => {
+                let r = 1.0 - t * (1.0 - ratio) * s;
+                let r2 = r * r;
+                1.0 / (r2 * r2)
+            }
+            Stiffness::Table { s: st, b } => {
+                let v = interp(st, b, s);
+                if t == 1.0 {
+                    v
+                } else {
+                    v.powf(t)
+                }
+            }
+        }
+    }
+    /// `κ0(s)` at amplitude `t`.
+    #[inline]
+    pub fn k0_at(&self, s: f64, t: f64) -> f64 {
+        match &self.precurvature {
+            Precurvature::None => 0.0,
+            Precurvature::Linear { k0, k1 } => t * (k0 + k1 * s),
+            Precurvature::Table { s: st, k } => t * interp(st, k, s),
+        }
+    }
+    /// `∂b/∂t` at `s` and `t`.
+    fn db_dt(&self, s: f64, t: f64) -> f64 {
+        match &self.stiffness {
+            Stiffness::Uniform => 0.0,
+            Stiffness::Taper { ratio } => {
+                let r = 1.0 - t * (1.0 - ratio) * s;
+                4.0 * (1.0 - ratio) * s / (r * r * r * r * r)
+            }
+            Stiffness::Table { s: st, b } => {
+                let v = interp(st, b, s);
+                v.powf(t) * v.ln()
+            }
         }
     }
 }
@@ -90,36 +131,17 @@ impl Profile for General {
     const UNIFORM: bool = false;
     #[inline]
     fn b(&self, s: f64) -> f64 {
-        match &self.stiffness {
-            Stiffness::Uniform => 1.0,
-            Stiffness::Taper { .. } => {
-                let r = 1.0 - self.taper * s;
-                let r2 = r * r;
-                1.0 / (r2 * r2)
-            }
-            Stiffness::Table { s: st, b } => {
-                let v = interp(st, b, s);
-                if self.t == 1.0 {
-                    v
-                } else {
-                    v.powf(self.t)
-                }
-            }
-        }
+        self.b_at(s, self.t)
     }
     #[inline]
     fn k0(&self, s: f64) -> f64 {
-        match &self.precurvature {
-            Precurvature::None => 0.0,
-            Precurvature::Linear { k0, k1 } => self.t * (k0 + k1 * s),
-            Precurvature::Table { s: st, k } => self.t * interp(st, k, s),
-        }
+        self.k0_at(s, self.t)
     }
 }
 
 /// Boundary conditions besides the support (`x(0) = y(0) = 0`, `φ(0) = π/2 + c·m(0)`, `m(1) = 0`).
 ///
-/// Parameters are ordered `p = [f]`, `[f, α]` or `[f, α, d]`.
+/// Parameters are ordered `p = [f]` or `[f, α]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Ends {
     /// Tip slope `φ(1) = phi1`, α fixed; `p = [f]`.
@@ -138,20 +160,6 @@ pub enum Ends {
         x1: f64,
         /// Tip y.
         y1: f64,
-    },
-    /// Pseudo-arclength step of the scan: `y(1) = eta`, `x(1) = x_star − d`, and
-    /// `τ·(u − u0) = ds` with `u = (m(0), f, α, d)`; `p = [f, α, d]`.
-    Arclength {
-        /// Tip height.
-        eta: f64,
-        /// Tip x at d = 0.
-        x_star: f64,
-        /// Unit tangent (predictor direction) in `u`.
-        tangent: [f64; 4],
-        /// Last point on the curve.
-        u0: [f64; 4],
-        /// Step length.
-        ds: f64,
     },
 }
 
@@ -174,7 +182,6 @@ impl<P: Profile> RodBvp<P> {
         match self.ends {
             Ends::Phi1 { .. } | Ends::Eta { .. } => 1,
             Ends::Tip { .. } => 2,
-            Ends::Arclength { .. } => 3,
         }
     }
     #[inline(always)]
@@ -213,47 +220,13 @@ impl<P: Profile> Bvp for RodBvp<P> {
         dfdp: &mut [f64],
     ) -> bool {
         let (f, alpha) = self.f_alpha(p);
-        let (sp, cp) = z[2].sin_cos();
-        let (sd, cd) = (z[2] - alpha).sin_cos();
-        dfdz.fill(0.0);
-        dfdz[2] = -sp; // ∂x'/∂φ
-        dfdz[4 + 2] = cp; // ∂y'/∂φ
-        dfdz[8 + 3] = if P::UNIFORM { 1.0 } else { self.profile.b(s) };
-        dfdz[12 + 2] = -f * sd;
-        dfdp.fill(0.0);
-        let k = p.len();
-        // only m' depends on the parameters: ∂/∂f, ∂/∂α (d enters the boundary conditions only)
-        dfdp[3 * k] = cd;
-        if k >= 2 {
-            dfdp[3 * k + 1] = f * sd;
-        }
+        let b = if P::UNIFORM { 1.0 } else { self.profile.b(s) };
+        rod_jacobian(f, alpha, b, z, p.len(), dfdz, dfdp);
         true
     }
-    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
-        res[0] = za[0];
-        res[1] = za[1];
-        res[2] = za[2] - FRAC_PI_2 - self.compliance * za[3];
-        res[3] = zb[3];
-        match self.ends {
-            Ends::Phi1 { phi1 } => res[4] = zb[2] - phi1,
-            Ends::Eta { eta } => res[4] = zb[1] - eta,
-            Ends::Tip { x1, y1 } => {
-                res[4] = zb[0] - x1;
-                res[5] = zb[1] - y1;
-            }
-            Ends::Arclength {
-                eta,
-                x_star,
-                tangent,
-                u0,
-                ds,
-            } => {
-                res[4] = zb[1] - eta;
-                res[5] = zb[0] - (x_star - p[2]);
-                let u = [za[3], p[0], p[1], p[2]];
-                res[6] = (0..4).map(|i| tangent[i] * (u[i] - u0[i])).sum::<f64>() - ds;
-            }
-        }
+    fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+        support_bc(self.compliance, za, zb, res);
+        ends_bc(self.ends, zb, res);
     }
     fn bc_jacobian(
         &self,
@@ -264,33 +237,78 @@ impl<P: Profile> Bvp for RodBvp<P> {
         dgb: &mut [f64],
         dgp: &mut [f64],
     ) -> bool {
-        let k = self.k();
-        dga.fill(0.0);
-        dgb.fill(0.0);
-        dgp.fill(0.0);
-        dga[0] = 1.0;
-        dga[4 + 1] = 1.0;
-        dga[8 + 2] = 1.0;
-        dga[8 + 3] = -self.compliance;
-        dgb[12 + 3] = 1.0;
-        match self.ends {
-            Ends::Phi1 { .. } => dgb[16 + 2] = 1.0,
-            Ends::Eta { .. } => dgb[16 + 1] = 1.0,
-            Ends::Tip { .. } => {
-                dgb[16] = 1.0;
-                dgb[20 + 1] = 1.0;
-            }
-            Ends::Arclength { tangent, .. } => {
-                dgb[16 + 1] = 1.0;
-                dgb[20] = 1.0;
-                dgp[5 * k + 2] = 1.0;
-                dga[24 + 3] = tangent[0];
-                dgp[6 * k] = tangent[1];
-                dgp[6 * k + 1] = tangent[2];
-                dgp[6 * k + 2] = tangent[3];
-            }
-        }
+        support_bc_jacobian(self.compliance, dga, dgb, dgp);
+        ends_bc_jacobian(self.ends, dgb);
         true
+    }
+}
+
+/// `x(0) = 0`, `y(0) = 0`, `φ(0) − π/2 − c·m(0) = 0`, `m(1) = 0` into `res[0..4]`.
+#[inline]
+fn support_bc(c: f64, za: &[f64], zb: &[f64], res: &mut [f64]) {
+    res[0] = za[0];
+    res[1] = za[1];
+    res[2] = za[2] - FRAC_PI_2 - c * za[3];
+    res[3] = zb[3];
+}
+
+fn support_bc_jacobian(c: f64, dga: &mut [f64], dgb: &mut [f64], dgp: &mut [f64]) {
+    dga.fill(0.0);
+    dgb.fill(0.0);
+    dgp.fill(0.0);
+    dga[0] = 1.0;
+    dga[4 + 1] = 1.0;
+    dga[8 + 2] = 1.0;
+    dga[8 + 3] = -c;
+    dgb[12 + 3] = 1.0;
+}
+
+#[inline]
+fn ends_bc(ends: Ends, zb: &[f64], res: &mut [f64]) {
+    match ends {
+        Ends::Phi1 { phi1 } => res[4] = zb[2] - phi1,
+        Ends::Eta { eta } => res[4] = zb[1] - eta,
+        Ends::Tip { x1, y1 } => {
+            res[4] = zb[0] - x1;
+            res[5] = zb[1] - y1;
+        }
+    }
+}
+
+fn ends_bc_jacobian(ends: Ends, dgb: &mut [f64]) {
+    match ends {
+        Ends::Phi1 { .. } => dgb[16 + 2] = 1.0,
+        Ends::Eta { .. } => dgb[16 + 1] = 1.0,
+        Ends::Tip { .. } => {
+            dgb[16] = 1.0;
+            dgb[20 + 1] = 1.0;
+        }
+    }
+}
+
+/// `∂F/∂z` and `∂F/∂p` of the rod equations (`p = [f]` or `[f, α]`, `k = p.len()`).
+#[inline]
+fn rod_jacobian(
+    f: f64,
+    alpha: f64,
+    b: f64,
+    z: &[f64],
+    k: usize,
+    dfdz: &mut [f64],
+    dfdp: &mut [f64],
+) {
+    let (sp, cp) = z[2].sin_cos();
+    let (sd, cd) = (z[2] - alpha).sin_cos();
+    dfdz.fill(0.0);
+    dfdz[2] = -sp; // ∂x'/∂φ
+    dfdz[4 + 2] = cp; // ∂y'/∂φ
+    dfdz[8 + 3] = b; // ∂φ'/∂m
+    dfdz[12 + 2] = -f * sd; // ∂m'/∂φ
+    dfdp.fill(0.0);
+    // only m' depends on the parameters
+    dfdp[3 * k] = cd;
+    if k >= 2 {
+        dfdp[3 * k + 1] = f * sd;
     }
 }
 
@@ -369,5 +387,164 @@ impl General {
             Precurvature::Table { .. } => false,
         };
         b1 && k0
+    }
+}
+
+/// The scan family in `λ = d`: `y(1) = η`, `x(1) = x* − d`; `p = [f, α]`.
+#[derive(Clone, Debug)]
+pub struct ScanFamily<P: Profile> {
+    /// The rod (its `ends` are ignored).
+    pub rod: RodBvp<P>,
+    /// Surface height.
+    pub eta: f64,
+    /// Tip x at `d = 0`.
+    pub x_star: f64,
+}
+
+impl<P: Profile> ParamBvp for ScanFamily<P> {
+    fn dims(&self) -> Dims {
+        Dims { n: 4, k: 2 }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    #[inline]
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], _d: f64, dz: &mut [f64]) {
+        self.rod.rhs(s, z, p, dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], d: f64, res: &mut [f64]) {
+        support_bc(self.rod.compliance, za, zb, res);
+        res[4] = zb[0] - (self.x_star - d);
+        res[5] = zb[1] - self.eta;
+        let _ = p;
+    }
+    #[inline]
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        p: &[f64],
+        _d: f64,
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+        dfdl: &mut [f64],
+    ) -> bool {
+        dfdl.fill(0.0);
+        self.rod.rhs_jacobian(s, z, p, dfdz, dfdp)
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64],
+        _zb: &[f64],
+        _p: &[f64],
+        _d: f64,
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+        dgl: &mut [f64],
+    ) -> bool {
+        support_bc_jacobian(self.rod.compliance, dga, dgb, dgp);
+        dgb[16] = 1.0;
+        dgb[20 + 1] = 1.0;
+        dgl.fill(0.0);
+        dgl[4] = 1.0;
+        true
+    }
+}
+
+/// The homotopy family in `λ = t`: profile amplitude `t`, compliance `t·c`, fixed `ends`.
+#[derive(Clone, Debug)]
+pub struct HomotopyFamily {
+    /// The scene's profile (its own `t` is ignored).
+    pub profile: General,
+    /// Full compliance `c`.
+    pub compliance: f64,
+    /// Fixed force angle (when not an unknown).
+    pub alpha: f64,
+    /// End conditions.
+    pub ends: Ends,
+}
+
+impl HomotopyFamily {
+    fn k(&self) -> usize {
+        match self.ends {
+            Ends::Tip { .. } => 2,
+            _ => 1,
+        }
+    }
+    /// The member at `t` as an ordinary rod.
+    pub fn at(&self, t: f64) -> RodBvp<General> {
+        RodBvp {
+            profile: self.profile.clone().with_t(t),
+            compliance: t * self.compliance,
+            alpha: self.alpha,
+            ends: self.ends,
+        }
+    }
+}
+
+impl ParamBvp for HomotopyFamily {
+    fn dims(&self) -> Dims {
+        Dims { n: 4, k: self.k() }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    #[inline]
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], t: f64, dz: &mut [f64]) {
+        let (f, alpha) = if p.len() >= 2 {
+            (p[0], p[1])
+        } else {
+            (p[0], self.alpha)
+        };
+        let (sp, cp) = z[2].sin_cos();
+        dz[0] = cp;
+        dz[1] = sp;
+        dz[2] = self.profile.k0_at(s, t) + self.profile.b_at(s, t) * z[3];
+        dz[3] = f * (z[2] - alpha).cos();
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], t: f64, res: &mut [f64]) {
+        support_bc(t * self.compliance, za, zb, res);
+        ends_bc(self.ends, zb, res);
+        let _ = p;
+    }
+    #[inline]
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        p: &[f64],
+        t: f64,
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+        dfdl: &mut [f64],
+    ) -> bool {
+        let (f, alpha) = if p.len() >= 2 {
+            (p[0], p[1])
+        } else {
+            (p[0], self.alpha)
+        };
+        rod_jacobian(f, alpha, self.profile.b_at(s, t), z, p.len(), dfdz, dfdp);
+        dfdl.fill(0.0);
+        // κ0_t = t·κ0 is linear in t
+        dfdl[2] = self.profile.k0_at(s, 1.0) + self.profile.db_dt(s, t) * z[3];
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64],
+        _zb: &[f64],
+        _p: &[f64],
+        t: f64,
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+        dgl: &mut [f64],
+    ) -> bool {
+        support_bc_jacobian(t * self.compliance, dga, dgb, dgp);
+        ends_bc_jacobian(self.ends, dgb);
+        dgl.fill(0.0);
+        dgl[2] = -self.compliance * za[3];
+        true
     }
 }

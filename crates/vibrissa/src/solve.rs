@@ -1,8 +1,9 @@
 //! Single solves: the rod shape for a given force angle and tip condition.
 
-use crate::model::{Ends, General, Profile, RodBvp, Uniform};
+use crate::model::{Ends, General, HomotopyFamily, Profile, RodBvp, Uniform};
 use crate::{Model, VibrissaError};
 use bvp::{
+    continuation::{Continuation, ContinuationOptions},
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Integrator, NewtonOptions,
     Scheme, Shooting, ShootingOptions, Solution, Stats,
 };
@@ -121,6 +122,7 @@ impl SolverConfig {
 
 /// A BVP solver built from a [`SolverConfig`]; keeps its work buffers across solves.
 #[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)] // one per solve or scan, never in bulk
 pub(crate) enum Engine {
     Shoot(Shooting),
     Coll(Collocation),
@@ -154,6 +156,7 @@ impl Engine {
                         integrator,
                         segments,
                         newton,
+                        ..ShootingOptions::default()
                     })
                     .map_err(wrap)?,
                 )
@@ -178,12 +181,20 @@ impl Engine {
             }
         })
     }
+}
 
-    pub(crate) fn solve<B: Bvp>(&mut self, p: &B, g: &Guess) -> Result<Solution, BvpError> {
+impl BvpSolver for Engine {
+    fn solve<B: Bvp + ?Sized>(&mut self, p: &B, g: &Guess) -> Result<Solution, BvpError> {
         match self {
             Engine::Shoot(s) => s.solve(p, g),
             Engine::Coll(c) => c.solve(p, g),
         }
+    }
+}
+
+impl BvpSolver for &mut Engine {
+    fn solve<B: Bvp + ?Sized>(&mut self, p: &B, g: &Guess) -> Result<Solution, BvpError> {
+        (**self).solve(p, g)
     }
 }
 
@@ -431,56 +442,72 @@ fn flex_points(sol: &Solution, profile: &General, uniform: bool) -> (usize, Opti
     (count, first)
 }
 
-/// Maximum of the cubic Hermite interpolant of `y` on the mesh, and the interior local maxima.
-pub(crate) fn y_extrema(sol: &Solution) -> (f64, f64) {
-    // returns (max over [0,1], max over interior local maxima with s < 1, or -inf)
+/// Extrema of `h(s) = cx·x(s) + cy·y(s)` along a solution (cubic Hermite between nodes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Extrema {
+    /// Maximum over `[0, 1]`.
+    pub max: f64,
+    /// Largest interior local maximum (`s < 1`), `-inf` if none.
+    pub interior: f64,
+    /// Its arc length.
+    pub s_interior: f64,
+}
+
+pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
     let n = sol.n;
-    let mut ymax = f64::NEG_INFINITY;
-    let mut interior = f64::NEG_INFINITY;
     let len = sol.mesh.len();
+    let h = |i: usize| cx * sol.z[i * n] + cy * sol.z[i * n + 1];
+    let dh = |i: usize| cx * sol.dz[i * n] + cy * sol.dz[i * n + 1];
+    let mut out = Extrema {
+        max: f64::NEG_INFINITY,
+        interior: f64::NEG_INFINITY,
+        s_interior: f64::NAN,
+    };
     for i in 0..len {
-        ymax = ymax.max(sol.z[i * n + 1]);
+        out.max = out.max.max(h(i));
     }
     for i in 0..len.saturating_sub(1) {
         let (s0, s1) = (sol.mesh[i], sol.mesh[i + 1]);
-        let h = s1 - s0;
-        let (y0, y1) = (sol.z[i * n + 1], sol.z[(i + 1) * n + 1]);
-        let (d0, d1) = (sol.dz[i * n + 1] * h, sol.dz[(i + 1) * n + 1] * h);
-        // interior node maxima
-        if i + 1 < len - 1 && d0 > 0.0 && d1 <= 0.0 && sol.dz[(i + 2) * n + 1] < 0.0 {
-            interior = interior.max(y1);
+        let w = s1 - s0;
+        let (y0, y1) = (h(i), h(i + 1));
+        let (d0, d1) = (dh(i) * w, dh(i + 1) * w);
+        if !(d0 > 0.0 && d1 <= 0.0) {
+            continue;
         }
-        if d0 > 0.0 && d1 < 0.0 {
-            // p(t) = h00 y0 + h10 d0 + h01 y1 + h11 d1; p'(t) = a t² + b t + c
-            let a = 6.0 * y0 + 3.0 * d0 - 6.0 * y1 + 3.0 * d1;
-            let b = -6.0 * y0 - 4.0 * d0 + 6.0 * y1 - 2.0 * d1;
-            let c = d0;
-            let t = if a.abs() < 1e-14 * (b.abs() + c.abs()) {
-                -c / b
+        // Hermite cubic p(t); p'(t) = a t² + b t + c
+        let a = 6.0 * y0 + 3.0 * d0 - 6.0 * y1 + 3.0 * d1;
+        let b = -6.0 * y0 - 4.0 * d0 + 6.0 * y1 - 2.0 * d1;
+        let c = d0;
+        let t = if d1 == 0.0 {
+            1.0
+        } else if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
+            -c / b
+        } else {
+            let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
+            let q = -0.5 * (b + b.signum() * disc);
+            let (r1, r2) = (q / a, c / q);
+            if (0.0..=1.0).contains(&r1) {
+                r1
             } else {
-                let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
-                let q = -0.5 * (b + b.signum() * disc);
-                let (r1, r2) = (q / a, c / q);
-                if (0.0..=1.0).contains(&r1) {
-                    r1
-                } else {
-                    r2
-                }
-            };
-            if (0.0..=1.0).contains(&t) {
-                let (t2, t3) = (t * t, t * t * t);
-                let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
-                    + (t3 - 2.0 * t2 + t) * d0
-                    + (-2.0 * t3 + 3.0 * t2) * y1
-                    + (t3 - t2) * d1;
-                ymax = ymax.max(y);
-                if s0 + t * h < 1.0 - 1e-12 {
-                    interior = interior.max(y);
-                }
+                r2
             }
+        };
+        if !(0.0..=1.0).contains(&t) {
+            continue;
+        }
+        let (t2, t3) = (t * t, t * t * t);
+        let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
+            + (t3 - 2.0 * t2 + t) * d0
+            + (-2.0 * t3 + 3.0 * t2) * y1
+            + (t3 - t2) * d1;
+        out.max = out.max.max(y);
+        let s = s0 + t * w;
+        if s < 1.0 - 1e-9 && y > out.interior {
+            out.interior = y;
+            out.s_interior = s;
         }
     }
-    (ymax, interior)
+    out
 }
 
 /// Builds a [`Shape`] from a converged solution.
@@ -493,7 +520,7 @@ pub(crate) fn shape_from<Pr: Profile>(sol: Solution, rod: &RodBvp<Pr>, profile: 
     let za = sol.left().to_vec();
     let zb = sol.right().to_vec();
     let (flex, s_flex) = flex_points(&sol, &profile, Pr::UNIFORM);
-    let (y_max, _) = y_extrema(&sol);
+    let y_max = extrema(&sol, 0.0, 1.0).max;
     Shape {
         alpha,
         f,
@@ -631,7 +658,7 @@ fn unreachable_tip() -> Result<Elastica, elastica::ElasticaError> {
 }
 
 /// Solves `rod` from `guess`, wrapping the error with `context`.
-pub(crate) fn run<B: Bvp>(
+pub(crate) fn run<B: Bvp + ?Sized>(
     engine: &mut Engine,
     rod: &B,
     guess: &Guess,
@@ -743,66 +770,79 @@ pub(crate) fn solve_with<Pr: Profile>(
         })?;
         return Ok(shape_from(sol, &rod, model.profile(1.0)));
     }
-    let sol = homotopy(model, engine, guess, |t| RodBvp {
-        profile: model.profile(t),
-        compliance: t * c,
+    let family = HomotopyFamily {
+        profile: model.profile(1.0),
+        compliance: c,
         alpha,
         ends: ends_of(target),
-    })?;
+    };
+    let sol = homotopy(engine, &family, &guess)?;
     Ok(shape_from(sol, &rod, model.profile(1.0)))
 }
 
-/// Natural continuation in the homotopy amplitude `t` from 0 (uniform clamped rod, guess from the
-/// closed form) to 1 (the scene), with step halving on failure.
-pub(crate) fn homotopy<F>(
-    _model: &Model,
+/// A rough "solution" made of a guess (for continuation starts, which correct it first).
+pub(crate) fn guess_as_solution(g: &Guess) -> Solution {
+    let dz = g.dz.clone().unwrap_or_else(|| vec![0.0; g.z.len()]);
+    Solution {
+        n: g.n,
+        mesh: g.mesh.clone(),
+        z: g.z.clone(),
+        dz,
+        params: g.params.clone(),
+        status: bvp::Status::Converged,
+        stats: Stats::default(),
+    }
+}
+
+/// Pseudo-arclength continuation (crate `bvp`) in the homotopy amplitude `t` from 0 (uniform
+/// clamped rod, started from the closed form) to 1 (the scene).
+pub(crate) fn homotopy(
     engine: &mut Engine,
-    guess: Guess,
-    rod_at: F,
-) -> Result<Solution, VibrissaError>
-where
-    F: Fn(f64) -> RodBvp<General>,
-{
-    let mut sol = run(engine, &rod_at(0.0), &guess, || {
-        "homotopy start (uniform clamped rod)".to_string()
-    })?;
-    let mut stats = sol.stats.clone();
-    let (mut t, mut dt) = (0.0_f64, 0.25_f64);
-    let mut prev: Option<Solution> = None;
-    while t < 1.0 {
-        let tn = (t + dt).min(1.0);
-        let mut g = Guess::from(&sol);
-        // secant predictor on the parameters
-        if let Some(p) = &prev {
-            for (i, gp) in g.params.iter_mut().enumerate() {
-                *gp += (sol.params[i] - p.params[i]) * (tn - t) / dt.max(1e-300);
-            }
+    family: &HomotopyFamily,
+    guess: &Guess,
+) -> Result<Solution, VibrissaError> {
+    let opts = ContinuationOptions {
+        ds: 0.25,
+        ds_min: 1e-6,
+        ds_max: 2.0,
+        max_steps: 400,
+        lambda_min: -0.5,
+        lambda_max: 1.0,
+        detect_folds: false,
+        ..ContinuationOptions::default()
+    };
+    let wrap = |e: BvpError, t: f64| {
+        VibrissaError::solver(
+            format!("homotopy from the uniform clamped rod (t = {t:.6} of 1)"),
+            e,
+        )
+    };
+    let mut cont = Continuation::new(family, engine, guess_as_solution(guess), 0.0, opts)
+        .map_err(|e| wrap(e, 0.0))?;
+    let mut stats = Stats::default();
+    let mut t = 0.0;
+    for item in cont.by_ref() {
+        let bp = item.map_err(|e| wrap(e, t))?;
+        stats.accumulate(&bp.stats);
+        t = bp.lambda;
+        if bp.on_bound && bp.lambda >= 1.0 {
+            let mut sol = bp.solution;
+            sol.stats = Stats {
+                residual: sol.stats.residual,
+                nodes: sol.stats.nodes,
+                error_estimate: sol.stats.error_estimate,
+                ..stats
+            };
+            return Ok(sol);
         }
-        match engine.solve(&rod_at(tn), &g) {
-            Ok(s) => {
-                stats.accumulate(&s.stats);
-                let iters = s.stats.newton_iters;
-                prev = Some(std::mem::replace(&mut sol, s));
-                t = tn;
-                if iters <= 4 {
-                    dt = (dt * 2.0).min(0.5);
-                }
-            }
-            Err(e) => {
-                prev = None;
-                dt *= 0.5;
-                if dt < 1e-4 {
-                    return Err(VibrissaError::solver(
-                        format!("homotopy from the uniform rod stalled at t = {t} (step {dt})"),
-                        e,
-                    ));
-                }
-            }
+        if bp.lambda < -0.25 {
+            break;
         }
     }
-    let residual = sol.stats.residual;
-    sol.stats = Stats { residual, ..stats };
-    Ok(sol)
+    Err(VibrissaError::NoConvergence {
+        what: "homotopy from the uniform clamped rod".into(),
+        reason: format!("the branch did not reach t = 1 (last t = {t})"),
+    })
 }
 
 /// Tip target: solve for `y(1) = y1` at the given `alpha`, then continue the tip x to `x1` with

@@ -1,0 +1,18 @@
+//! The scan by the closed forms (paper's scene only).
+
+use crate::scan::{ScanOptions, ScanResult};
+use crate::{Model, VibrissaError};
+
+pub(crate) fn scan_analytic(
+    model: &Model,
+    _opts: &ScanOptions,
+    _grid: &[f64],
+) -> Result<ScanResult, VibrissaError> {
+    if !model.is_paper_scene() {
+        return Err(VibrissaError::MethodUnavailable {
+            method: "analytic".into(),
+            reason: "closed forms exist only for the paper's scene (uniform, straight, clamped rod, horizontal surface)".into(),
+        });
+    }
+    Err(VibrissaError::NotImplemented("analytic scan"))
+}

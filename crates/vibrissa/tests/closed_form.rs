@@ -1,0 +1,174 @@
+//! The numerical scan of the uniform clamped rod against the closed forms of crate `elastica`
+//! (paper §3, Remark 3.1): μ and f at the closed-form points' displacements, both phases.
+
+use elastica::{ClosedFormScan, Phase0End};
+use vibrissa::{scan_at, Method, Model, ScanOptions, Scene, SolverConfig, StopReason};
+
+fn opts(method: Method, tol: f64) -> ScanOptions {
+    ScanOptions {
+        d_max: 0.5,
+        solver: SolverConfig {
+            method,
+            tol,
+            ..SolverConfig::default()
+        },
+        ..ScanOptions::default()
+    }
+}
+
+/// Compares at the closed-form points (phase 0 in α, phase 1 in φ1) and returns how many.
+fn compare(eta: f64, method: Method, tol: f64, err: f64) -> (usize, StopReason) {
+    let cf = ClosedFormScan::new(eta).unwrap();
+    let pts = cf.points(14, 14).unwrap();
+    let mut ds: Vec<f64> = pts.iter().map(|p| p.d).collect();
+    // beyond the fold in φ1 (the upper sheet of phase 1)
+    if let Some(fold) = cf.fold {
+        for i in 1..=6 {
+            let phi1 = fold.phi1 + (cf.phi1_t - fold.phi1) * 0.05 * i as f64;
+            let p = cf.phase1_upper_at_phi1(phi1).unwrap();
+            if p.d < 0.5 {
+                ds.push(p.d);
+            }
+        }
+    }
+    let mut all: Vec<_> = pts.clone();
+    if let Some(fold) = cf.fold {
+        for i in 1..=6 {
+            let phi1 = fold.phi1 + (cf.phi1_t - fold.phi1) * 0.05 * i as f64;
+            let p = cf.phase1_upper_at_phi1(phi1).unwrap();
+            if p.d < 0.5 {
+                all.push(p);
+            }
+        }
+    }
+    let mut order: Vec<usize> = (0..ds.len()).collect();
+    order.sort_by(|&a, &b| ds[a].partial_cmp(&ds[b]).unwrap());
+    // the last phase-0 point at η = 0.6 is where the scan stops (penetration): leave it out
+    let d_limit = if cf.phase0_end == Phase0End::TipHorizontal {
+        cf.turning.d - 1e-6
+    } else {
+        0.5
+    };
+    let order: Vec<usize> = order.into_iter().filter(|&i| ds[i] <= d_limit).collect();
+    let d_sorted: Vec<f64> = order.iter().map(|&i| ds[i].max(0.0)).collect();
+    let model = Model::new(&Scene {
+        eta,
+        ..Scene::default()
+    })
+    .unwrap();
+    let r = scan_at(&model, &opts(method, tol), &d_sorted).unwrap();
+    assert_eq!(r.points.len(), d_sorted.len(), "stop: {}", r.stop);
+    let (mut n0, mut n1) = (0, 0);
+    for (k, &i) in order.iter().enumerate() {
+        let (c, p) = (&all[i], &r.points[k]);
+        assert!(
+            (c.mu - p.mu).abs() <= err && (c.f - p.f).abs() <= err * c.f.max(1.0),
+            "eta {eta} d {}: mu {} vs {} ({:.2e}), f {} vs {} ({:.2e})",
+            c.d,
+            p.mu,
+            c.mu,
+            p.mu - c.mu,
+            p.f,
+            c.f,
+            p.f - c.f
+        );
+        if c.flex == 0 {
+            n0 += 1
+        } else {
+            n1 += 1
+        }
+    }
+    assert!(n0 >= 10, "phase 0 points: {n0}");
+    if cf.phase0_end == Phase0End::TurningPoint {
+        assert!(n1 >= 10, "phase 1 points: {n1}");
+    }
+    (n0 + n1, r.stop)
+}
+
+#[test]
+fn eta_075_matches_closed_form() {
+    let (n, stop) = compare(0.75, Method::Shooting, 1e-12, 1e-9);
+    assert!(n >= 20);
+    assert_eq!(stop, StopReason::DMax);
+}
+
+#[test]
+fn eta_06_matches_closed_form() {
+    let (n, stop) = compare(0.6, Method::Shooting, 1e-12, 1e-9);
+    assert!(n >= 13);
+    assert!(matches!(stop, StopReason::Penetration { .. }), "{stop}");
+}
+
+#[test]
+fn eta_075_passes_mu_max_and_phi1_fold() {
+    let cf = ClosedFormScan::new(0.75).unwrap();
+    let model = Model::new(&Scene::default()).unwrap();
+    let r = vibrissa::scan(&model, &opts(Method::Shooting, 1e-12)).unwrap();
+    assert_eq!(r.stop, StopReason::DMax);
+    assert_eq!(r.points.len(), 201);
+    assert!((r.points.last().unwrap().d - 0.5).abs() < 1e-15);
+    // exact maximum of μ (closed form: Brent on the phase-1 sheet)
+    let m = cf.mu_max().unwrap();
+    assert!((r.mu_max - m.mu).abs() < 1e-9, "{} vs {}", r.mu_max, m.mu);
+    assert!(
+        (r.d_at_mu_max - m.d).abs() < 1e-5,
+        "{} vs {}",
+        r.d_at_mu_max,
+        m.d
+    );
+    // the fold in φ1 lies inside the scan, and the scan went past it (φ1 rises again)
+    let fold = cf.fold.expect("eta = 0.75 has a fold in phi1");
+    assert!(fold.d < 0.5);
+    let last = r.points.last().unwrap();
+    assert!(last.phi1 > fold.phi1 + 1e-3);
+    let min_phi1 = r
+        .points
+        .iter()
+        .map(|p| p.phi1)
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        (min_phi1 - fold.phi1).abs() < 1e-4,
+        "{min_phi1} vs {}",
+        fold.phi1
+    );
+    // d strictly increasing on the grid, μ continuous (grid spacing 0.0025; the steepest slope,
+    // at d = 0, is about 50 by the closed form)
+    for w in r.points.windows(2) {
+        assert!(w[1].d > w[0].d);
+        assert!((w[1].mu - w[0].mu).abs() < 0.15, "{:?} {:?}", w[0], w[1]);
+    }
+    // flex point born on the way
+    assert_eq!(r.points[0].flex, 0);
+    assert_eq!(last.flex, 1);
+}
+
+#[test]
+fn eta_06_stops_by_penetration_near_horizontal_tip() {
+    // paper, text under Figs. 9-11: phase 0 ends close to alpha = -pi/4, phi1 = 0; the run ends there
+    let cf = ClosedFormScan::new(0.6).unwrap();
+    assert_eq!(cf.phase0_end, Phase0End::TipHorizontal);
+    let model = Model::new(&Scene {
+        eta: 0.6,
+        ..Scene::default()
+    })
+    .unwrap();
+    let r = vibrissa::scan(&model, &opts(Method::Shooting, 1e-12)).unwrap();
+    match r.stop {
+        StopReason::Penetration { d, s, y } => {
+            assert!((d - cf.turning.d).abs() < 1e-8, "{d} vs {}", cf.turning.d);
+            assert!((s - 1.0).abs() < 1e-12);
+            assert!((y - 0.6).abs() < 1e-9);
+        }
+        other => panic!("expected penetration, got {other}"),
+    }
+    let last = r.points.last().unwrap();
+    assert!(last.d <= cf.turning.d);
+    assert!((cf.alpha_t + std::f64::consts::FRAC_PI_4).abs() < 0.05);
+    // μ is largest at the end: the measurable range is the whole run
+    assert!(
+        (r.mu_max - cf.turning.mu).abs() < 1e-8,
+        "{} vs {}",
+        r.mu_max,
+        cf.turning.mu
+    );
+}
