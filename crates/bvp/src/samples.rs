@@ -430,6 +430,39 @@ impl ParamBvp for BratuFamily {
         res[0] = za[0];
         res[1] = zb[0];
     }
+    fn rhs_jacobian(
+        &self,
+        _s: f64,
+        z: &[f64],
+        _p: &[f64],
+        lambda: f64,
+        dfdz: &mut [f64],
+        _dfdp: &mut [f64],
+        dfdl: &mut [f64],
+    ) -> bool {
+        let e = z[0].exp();
+        dfdz.copy_from_slice(&[0.0, 1.0, -lambda * e, 0.0]);
+        dfdl[0] = 0.0;
+        dfdl[1] = -e;
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64],
+        _zb: &[f64],
+        _p: &[f64],
+        _lambda: f64,
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+        dgl: &mut [f64],
+    ) -> bool {
+        zero([dga, dgb, dgp]);
+        dga[0] = 1.0;
+        dgb[2] = 1.0;
+        dgl.fill(0.0);
+        true
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
