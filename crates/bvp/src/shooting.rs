@@ -49,6 +49,15 @@
 //! `steps`, `rejected_steps`, `newton_iters`, `factorizations`, `nodes` (= `M + 1` segment nodes)
 //! and `residual` (final max-norm of `R`).
 //!
+//! [`Solution::eval`] interpolates between nodes with cubic Hermite polynomials (`O(h⁴)`): with
+//! RK4's many small steps that matches the node accuracy, but DOP853 takes few large steps, so
+//! between its nodes the interpolant is less accurate than the nodes themselves (≈ 1e-7 for steps
+//! of 0.1 on O(1) solutions). Solve with RK4 or a tighter tolerance if dense values matter.
+//!
+//! Globalization is local: damped Newton only finds the solution the guess is attracted to. Single
+//! shooting can fail where the initial-value problem is sensitive (see
+//! [`crate::samples::Cantilever::guess`]); more segments, a better guess or continuation help.
+//!
 //! The solver owns its work buffers: repeated solves of problems of the same size do not allocate
 //! except for the returned [`Solution`].
 
