@@ -71,6 +71,17 @@
 //! `λ(t) ≈ λ* − K (t − t*)²`, so the search stops when `K δt² ≤ fold_tol / 4`, with `K` from the
 //! parabola through `A, B, C`. The fold is reported with the point `C` (it lies between `A` and
 //! `C`; its `sigma` says where), and continuation goes on past it.
+//!
+//! # Choices and limitations
+//!
+//! - The start must be a regular point (not a fold): the first pseudo-arclength step is natural.
+//! - `σ` and `ds` are measured in `(z(a), z(b), p, √θ·λ)`; rescale with `θ` when `λ` and the
+//!   boundary values have very different magnitudes.
+//! - Branch points (bifurcations) are not detected; the secant predictor usually continues
+//!   straight through a simple branch point.
+//! - A fold is located only if the three points around it are on a smooth, gently curved piece of
+//!   the branch (the angle limit sees to that); otherwise it is reported with `located = false`.
+//! - The last `history` points (solutions included) are kept for [`Continuation::point_at`].
 
 use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, Solution, Stats};
 use std::cell::RefCell;
@@ -537,7 +548,8 @@ pub struct BranchPoint {
     pub solution: Solution,
     /// Arclength from the start (sum of chords in the `θ`-norm).
     pub sigma: f64,
-    /// Length of the step that led here (0 for the start).
+    /// Step length that led here: the arclength target `ds` (for natural continuation and the
+    /// first pseudo-arclength step, `|Δλ|`); 0 for the start.
     pub ds: f64,
     /// Estimated `dλ/dσ` here (derivative of the parabola through the last three points, or the
     /// secant after the first step; NaN at the start).

@@ -190,6 +190,20 @@ fn bratu_through_fold<S: BvpSolver>(mut solver: S, jacobians: bool, tol_lambda: 
             folds.push(f.clone());
         }
         let t = check_bratu(p.lambda, &p.solution, tol_lambda, tol_mid);
+        // λ grows along the lower branch (θ < θ_c) and falls along the upper one; the estimate
+        // of dλ/dσ may be off only next to the fold.
+        if p.step > 0 && (t - tc).abs() > 0.5 {
+            assert_eq!(
+                p.dlambda_dsigma > 0.0,
+                t < tc,
+                "dλ/dσ = {} at λ = {} (θ = {t})",
+                p.dlambda_dsigma,
+                p.lambda
+            );
+        }
+        if p.step > 0 {
+            assert!(p.stats.newton_iters > 0 && p.ds > 0.0);
+        }
         // Lower branch (θ < θ_c) first, then the upper one, never back.
         if t > tc {
             upper = true;
@@ -303,6 +317,7 @@ fn natural_continuation_stops_at_fold() {
         }
     }
     let err = err.expect("natural continuation must fail at the fold");
+    eprintln!("natural continuation stopped after λ = {last_lambda}: {err}");
     assert!(matches!(err, BvpError::Continuation { .. }), "{err}");
     assert!(err.to_string().contains("fold?"), "{err}");
     assert!(
@@ -672,4 +687,58 @@ fn invalid_options_are_rejected() {
         Continuation::new(&family, shooting(), bad_sol, 0.1, Default::default()),
         Err(BvpError::Dimension { .. })
     ));
+}
+
+/// Bratu with λ → −λ: `u'' − λ eᵘ = 0`; the fold is a minimum of λ at −λ_c. Traced downwards
+/// (direction −1) with collocation and no analytic Jacobians.
+struct NegBratu;
+
+impl ParamBvp for NegBratu {
+    fn dims(&self) -> Dims {
+        Dims { n: 2, k: 0 }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn rhs(&self, _s: f64, z: &[f64], _p: &[f64], l: f64, dz: &mut [f64]) {
+        dz[0] = z[1];
+        dz[1] = l * z[0].exp();
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], _l: f64, r: &mut [f64]) {
+        r[0] = za[0];
+        r[1] = zb[0];
+    }
+}
+
+#[test]
+fn fold_minimum_downwards() {
+    let mut solver = collocation();
+    let s0 = start(&NegBratu, &mut solver, -0.5);
+    let opts = ContinuationOptions {
+        direction: -1.0,
+        lambda_min: -10.0,
+        lambda_max: -0.5,
+        ds: 0.1,
+        ..Default::default()
+    };
+    let cont = Continuation::new(&NegBratu, solver, s0, -0.5, opts).unwrap();
+    let mut folds = vec![];
+    let mut last = None;
+    for p in cont {
+        let p = p.unwrap();
+        check_bratu(-p.lambda, &p.solution, 1e-9, 1e-6);
+        if let Some(f) = p.fold.clone() {
+            folds.push(f);
+        }
+        last = Some(p);
+    }
+    assert_eq!(folds.len(), 1);
+    assert_eq!(folds[0].kind, FoldKind::Min);
+    assert!(
+        (folds[0].lambda + LAMBDA_C).abs() <= 1e-8,
+        "fold at {}",
+        folds[0].lambda
+    );
+    let last = last.unwrap();
+    assert!(last.on_bound && last.lambda == -0.5);
 }
