@@ -72,6 +72,37 @@
 //! parabola through `A, B, C`. The fold is reported with the point `C` (it lies between `A` and
 //! `C`; its `sigma` says where), and continuation goes on past it.
 //!
+//! # Example
+//!
+//! Trace Bratu `u'' + λeᵘ = 0`, `u(0) = u(1) = 0` from λ = 0.1 through its fold, stopping on a
+//! caller's condition (here `u(½) > 4.5`, on the upper branch below λ = 1), and sample the branch
+//! at λ = 1:
+//!
+//! ```
+//! use bvp::continuation::{Continuation, ContinuationOptions, Fixed};
+//! use bvp::{samples::BratuFamily, BvpSolver, Guess, Shooting, ShootingOptions};
+//!
+//! let mut solver = Shooting::new(ShootingOptions::default())?;
+//! let guess = Guess::constant(0.0, 1.0, 11, &[0.0, 0.0], vec![]);
+//! let start = solver.solve(&Fixed::new(&BratuFamily, 0.1), &guess)?;
+//! let opts = ContinuationOptions { lambda_min: 0.1, ..Default::default() };
+//! let mut cont = Continuation::new(&BratuFamily, solver, start, 0.1, opts)?;
+//! let mut fold = None;
+//! while let Some(point) = cont.next() {
+//!     let point = point?;
+//!     if let Some(f) = point.fold {
+//!         fold = Some(f.lambda);
+//!     }
+//!     if point.solution.at(0.5)[0] > 4.5 {
+//!         break;
+//!     }
+//! }
+//! assert!((fold.unwrap() - 3.513830719125).abs() < 1e-8);
+//! let upper = cont.point_at(1.0)?; // warm-started from the latest points: upper branch
+//! assert!(upper.left()[1] > 10.0);
+//! # Ok::<(), bvp::BvpError>(())
+//! ```
+//!
 //! # Choices and limitations
 //!
 //! - The start must be a regular point (not a fold): the first pseudo-arclength step is natural.

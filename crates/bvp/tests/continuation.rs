@@ -282,6 +282,20 @@ fn bratu_fold_shooting_fd_jacobians() {
 }
 
 #[test]
+fn bratu_fold_multiple_shooting() {
+    let solver = Shooting::new(ShootingOptions {
+        integrator: Integrator::Adaptive {
+            rtol: 1e-12,
+            atol: 1e-13,
+        },
+        segments: 4,
+        ..ShootingOptions::default()
+    })
+    .unwrap();
+    bratu_through_fold(solver, true, 1e-10, 1e-6);
+}
+
+#[test]
 fn bratu_fold_collocation() {
     bratu_through_fold(collocation(), true, 1e-9, 1e-6);
 }
