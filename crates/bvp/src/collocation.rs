@@ -47,7 +47,7 @@
 //! adapted: an interval with `ρ_i > tol` gets one node (`ρ_i < 100 tol`) or two (else); two
 //! adjacent intervals with `ρ < tol/100` are merged (the residual grows by `2³` resp. `2⁴`, still
 //! far below `tol`); the current `S` interpolates the new starting values. After acceptance the
-//! mesh is also coarsened (up to twice) when that removes at least 10 % of the nodes, and the
+//! mesh is also coarsened (up to 8 times) while that removes at least 10 % of the nodes, and the
 //! coarse solution is kept only if it still meets `tol`. A Newton failure on the first mesh is
 //! retried (twice) on the bisected mesh before it is reported.
 //!
@@ -109,6 +109,7 @@ pub struct CollocationOptions {
     /// Cap on mesh nodes. Default 10 000. Valid: `>= 3`.
     pub max_nodes: usize,
     /// Cap on mesh passes (Newton solves on successive meshes). Default 50. Valid: `>= 1`.
+    /// Exceeding it is reported as [`BvpError::MeshLimit`] with `needed` = the current node count.
     pub max_mesh_passes: usize,
     /// Adapt the mesh. Default `true`. With `false` the problem is solved once on the guess mesh
     /// (or the default 11-node mesh) and returned without checking `tol` — for convergence
@@ -172,7 +173,7 @@ const DEFAULT_NODES: usize = 11;
 /// Newton-failure retries on a bisected mesh.
 const MAX_RETRIES: usize = 2;
 /// Coarsening attempts after acceptance.
-const MAX_COARSEN: usize = 2;
+const MAX_COARSEN: usize = 8;
 
 /// Collocation solver (keeps its work buffers, including the symbolic LU, between solves).
 #[derive(Clone, Debug)]
@@ -870,7 +871,7 @@ impl BvpSolver for Collocation {
         loop {
             if stats.mesh_passes >= opts.max_mesh_passes {
                 if let Some(sol) = best {
-                    return Ok(sol);
+                    return Ok(with_total_stats(sol, &stats));
                 }
                 stats.nodes = mesh.len();
                 return Err(BvpError::MeshLimit {
@@ -896,7 +897,8 @@ impl BvpSolver for Collocation {
                 }
                 let retry = failed && disc.non_finite.is_none();
                 if let Some(sol) = best {
-                    return Ok(sol); // a coarsening attempt failed: keep the accepted solution
+                    // A coarsening attempt failed: keep the accepted solution.
+                    return Ok(with_total_stats(sol, &stats));
                 }
                 if retry
                     && opts.adapt
@@ -971,14 +973,9 @@ impl BvpSolver for Collocation {
                 }
                 return Ok(sol);
             }
-            if let Some(mut sol) = best {
+            if let Some(sol) = best {
                 // The coarsened mesh missed the tolerance: keep the accepted solution.
-                let mut total = stats.clone();
-                total.nodes = sol.mesh.len();
-                total.error_estimate = sol.stats.error_estimate;
-                total.residual = sol.stats.residual;
-                sol.stats = total;
-                return Ok(sol);
+                return Ok(with_total_stats(sol, &stats));
             }
             let new_mesh = adapt_mesh(&mesh, &rms, opts.tol, true, opts.coarsen);
             if new_mesh == mesh {
@@ -1019,6 +1016,16 @@ fn snapshot<P: Bvp + ?Sized>(disc: &Disc<'_, P>, mesh: &[f64], u: &[f64]) -> Sna
         fpts: disc.w.fpts.clone(),
         params: u[disc.lay.pcol()..].to_vec(),
     }
+}
+
+/// `sol` with the work counters of the whole solve (its own accuracy figures kept).
+fn with_total_stats(mut sol: Solution, stats: &Stats) -> Solution {
+    let mut total = stats.clone();
+    total.nodes = sol.mesh.len();
+    total.error_estimate = sol.stats.error_estimate;
+    total.residual = sol.stats.residual;
+    sol.stats = total;
+    sol
 }
 
 fn attach_stats(e: BvpError, stats: &Stats) -> BvpError {

@@ -334,3 +334,90 @@ fn bad_guess_dimensions_are_rejected() {
     assert!(matches!(r, Err(BvpError::Dimension { .. })), "{r:?}");
     let _ = LinearSinh.dims();
 }
+
+/// Hides the analytic Jacobians of a problem, so the solver must use finite differences.
+struct NoJac<P>(P);
+
+impl<P: Bvp> Bvp for NoJac<P> {
+    fn dims(&self) -> bvp::Dims {
+        self.0.dims()
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.0.interval()
+    }
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
+        self.0.rhs(s, z, p, dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
+        self.0.bc(za, zb, p, res)
+    }
+}
+
+#[test]
+fn finite_difference_jacobians_give_the_same_answer() {
+    // Eigen has an unknown parameter, so ∂F/∂p and ∂g/∂p are differenced too.
+    for scheme in SCHEMES {
+        let tol = 1e-8;
+        let analytic = solver(scheme, tol).solve(&Eigen, &Eigen::guess()).unwrap();
+        let fd = solver(scheme, tol)
+            .solve(&NoJac(Eigen), &Eigen::guess())
+            .unwrap();
+        let want = Eigen::eigenvalue(1);
+        assert!(
+            (fd.params[0] - want).abs() <= 10.0 * tol * want,
+            "{}",
+            fd.params[0]
+        );
+        assert!((fd.params[0] - analytic.params[0]).abs() <= 10.0 * tol * want);
+        // Forward differences: n + k extra rhs evaluations per Jacobian evaluation.
+        assert!(fd.stats.rhs_evals > analytic.stats.rhs_evals);
+        assert!(fd.stats.jac_evals > 0 && fd.stats.bc_evals > analytic.stats.bc_evals);
+    }
+}
+
+#[test]
+fn overly_fine_guess_mesh_is_coarsened() {
+    let fine = Guess::from_fn(
+        2,
+        (0..=2000).map(|i| i as f64 / 2000.0).collect(),
+        vec![],
+        |s, z| z.copy_from_slice(&LinearSinh::exact(s)),
+    );
+    for scheme in SCHEMES {
+        let tol = 1e-6;
+        let sol = solver(scheme, tol).solve(&LinearSinh, &fine).unwrap();
+        let (nodal, _) = max_errors(&sol, LinearSinh::exact);
+        println!(
+            "{scheme:?}: 2001 guess nodes -> {} nodes, {} passes",
+            sol.len(),
+            sol.stats.mesh_passes
+        );
+        assert!(sol.len() <= 200, "{} nodes", sol.len());
+        assert!(nodal <= 10.0 * tol);
+        assert!(sol.stats.error_estimate.unwrap() <= tol);
+    }
+}
+
+#[test]
+fn statistics_are_filled_in() {
+    let prob = Cantilever { load: 2.0 };
+    let sol = solver(Scheme::Lobatto4, 1e-6)
+        .solve(&prob, &prob.guess())
+        .unwrap();
+    let st = &sol.stats;
+    assert_eq!(st.nodes, sol.len());
+    assert!(
+        st.mesh_passes >= 2,
+        "the 11-node guess mesh is too coarse for 1e-6"
+    );
+    assert!(st.newton_iters >= st.mesh_passes - 1 && st.factorizations >= st.newton_iters);
+    assert!(st.rhs_evals > 0 && st.jac_evals > 0 && st.bc_evals > 0);
+    assert!(st.residual <= 1e-10);
+    let est = st.error_estimate.unwrap();
+    assert!(est > 0.0 && est <= 1e-6);
+    assert_eq!(sol.dz.len(), sol.z.len());
+    // dz holds F at the nodes.
+    let mut f = [0.0; 4];
+    prob.rhs(sol.mesh[3], sol.node(3), &[], &mut f);
+    assert_eq!(&sol.dz[12..16], &f);
+}
