@@ -940,18 +940,34 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
                     let v_new = self.v_of(&att.sol, att.lambda);
                     let d: Vec<f64> = v_new.iter().zip(&cur.v).map(|(a, b)| a - b).collect();
                     let len = wnorm(&d, theta);
-                    let mut ok = len > 0.0;
-                    if ok && h.len() >= 2 && ds > self.opts.ds_min {
+                    let mut cos = 1.0;
+                    if len > 0.0 && h.len() >= 2 {
                         let prev = &h[h.len() - 2];
                         let dp: Vec<f64> = cur.v.iter().zip(&prev.v).map(|(a, b)| a - b).collect();
                         let lp = wnorm(&dp, theta);
                         if lp > 0.0 {
-                            let cos = wdot(&d, &dp, theta) / (len * lp);
-                            ok = cos >= cos_max;
+                            cos = wdot(&d, &dp, theta) / (len * lp);
                         }
                     }
-                    if ok || ds <= self.opts.ds_min {
+                    let at_min = ds <= self.opts.ds_min;
+                    // At ds_min the angle limit is waived, but never a reversal.
+                    if len > 0.0 && (cos >= cos_max || (at_min && cos > 0.0)) {
                         break (att, (v_new, len));
+                    }
+                    if at_min {
+                        let source = BvpError::Stalled {
+                            iteration: att.iters,
+                            residual: att.sol.stats.residual,
+                            stats: stats.clone(),
+                        };
+                        return Err(BvpError::Continuation {
+                            step: self.step + 1,
+                            lambda: cur.lambda,
+                            ds,
+                            hint:
+                                " (the corrector went backwards along the branch or did not move)",
+                            source: Box::new(source),
+                        });
                     }
                 }
                 Ok(att) => stats.accumulate(&att.sol.stats),
