@@ -26,17 +26,15 @@ fn solver(scheme: Scheme, tol: f64) -> Collocation {
 fn max_errors(sol: &Solution, exact: impl Fn(f64) -> [f64; 2]) -> (f64, f64) {
     let mut nodal: f64 = 0.0;
     for (i, &s) in sol.mesh.iter().enumerate() {
-        let e = exact(s);
-        for j in 0..2 {
-            nodal = nodal.max((sol.node(i)[j] - e[j]).abs());
+        for (z, e) in sol.node(i).iter().zip(exact(s)) {
+            nodal = nodal.max((z - e).abs());
         }
     }
     let mut dense: f64 = 0.0;
     for w in sol.mesh.windows(2) {
         let s = 0.5 * (w[0] + w[1]);
-        let (z, e) = (sol.at(s), exact(s));
-        for j in 0..2 {
-            dense = dense.max((z[j] - e[j]).abs());
+        for (z, e) in sol.at(s).iter().zip(exact(s)) {
+            dense = dense.max((z - e).abs());
         }
     }
     (nodal, dense)

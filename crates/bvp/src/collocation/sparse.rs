@@ -1,13 +1,17 @@
 //! Block-sparse Newton matrix of the collocation system and its faer LU.
 //!
 //! The pattern depends only on the layout (nodes, n, k, scheme), so it is built once per layout
-//! together with the symbolic factorization (column ordering, elimination tree); Newton iterations
-//! and repeated solves on a mesh of the same size only redo the numeric factorization.
+//! together with the symbolic factorization (column ordering, elimination tree) and cached (the
+//! last few layouts); Newton iterations and repeated solves on a mesh of the same size only redo
+//! the numeric factorization. The matrix is assembled by writing the dense blocks in a fixed
+//! order and scattering them through a precomputed position map — no triplets are sorted per
+//! iteration.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::sparse::linalg::lu::{
     factorize_symbolic_lu, LuRef, LuSymbolicParams, NumericLu, SymbolicLu,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par};
 
@@ -55,19 +59,29 @@ impl Layout {
     }
 }
 
-/// Pattern, values and LU of the Newton matrix.
-pub(crate) struct SparseSystem {
-    layout: Option<Layout>,
+/// Number of layouts whose pattern and symbolic LU are kept (mesh passes alternate between a
+/// few sizes, e.g. a benchmark or continuation restarting from the same coarse guess).
+const CACHE: usize = 4;
+
+/// The pattern of one layout with its symbolic and numeric LU storage.
+struct Pattern {
+    layout: Layout,
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     /// Position in the CSC value array of each block entry.
     pos: Vec<usize>,
-    /// Block values, in the layout order (see [`Layout`]); the assembly writes here.
-    pub blocks: Vec<f64>,
     vals: Vec<f64>,
-    symbolic: Option<SymbolicLu<usize>>,
+    symbolic: SymbolicLu<usize>,
     numeric: NumericLu<usize, f64>,
     mem: MemBuffer,
+}
+
+/// Pattern, values and LU of the Newton matrix.
+pub(crate) struct SparseSystem {
+    /// Most recently used last; the current layout is the last entry.
+    cache: Vec<Pattern>,
+    /// Block values, in the layout order (see [`Layout`]); the assembly writes here.
+    pub blocks: Vec<f64>,
     factored: bool,
     /// Symbolic factorizations computed (for tests of buffer reuse).
     pub symbolic_count: usize,
@@ -76,8 +90,10 @@ pub(crate) struct SparseSystem {
 impl std::fmt::Debug for SparseSystem {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("SparseSystem")
-            .field("layout", &self.layout)
-            .field("nnz", &self.row_idx.len())
+            .field(
+                "layouts",
+                &self.cache.iter().map(|p| p.layout).collect::<Vec<_>>(),
+            )
             .finish()
     }
 }
@@ -95,33 +111,8 @@ pub(crate) enum LinError {
     Singular,
 }
 
-impl SparseSystem {
-    pub fn new() -> Self {
-        SparseSystem {
-            layout: None,
-            col_ptr: Vec::new(),
-            row_idx: Vec::new(),
-            pos: Vec::new(),
-            blocks: Vec::new(),
-            vals: Vec::new(),
-            symbolic: None,
-            numeric: NumericLu::new(),
-            mem: MemBuffer::new(StackReq::EMPTY),
-            factored: false,
-            symbolic_count: 0,
-        }
-    }
-
-    /// Prepares pattern and symbolic factorization for `layout` (no-op when unchanged).
-    pub fn prepare(&mut self, layout: Layout) -> Result<(), LinError> {
-        self.factored = false;
-        if self.layout == Some(layout) {
-            return Ok(());
-        }
-        self.layout = None;
-        // faer's numeric LU does not shrink its column pointers when reused for a smaller matrix.
-        self.numeric = NumericLu::new();
-        let l = layout;
+impl Pattern {
+    fn build(l: Layout) -> Result<Self, LinError> {
         let dim = l.dim();
         let w = l.width();
         // Entries in block order: (row, col).
@@ -153,73 +144,98 @@ impl SparseSystem {
             }
         }
         // Counting sort by column; within a column the block order is already by row.
-        self.col_ptr.clear();
-        self.col_ptr.resize(dim + 1, 0);
+        let mut col_ptr = vec![0; dim + 1];
         for &(_, c) in &entries {
-            self.col_ptr[c + 1] += 1;
+            col_ptr[c + 1] += 1;
         }
         for c in 0..dim {
-            self.col_ptr[c + 1] += self.col_ptr[c];
+            col_ptr[c + 1] += col_ptr[c];
         }
-        let mut next = self.col_ptr[..dim].to_vec();
-        self.row_idx.clear();
-        self.row_idx.resize(entries.len(), 0);
-        self.pos.clear();
-        self.pos.resize(entries.len(), 0);
+        let mut next = col_ptr[..dim].to_vec();
+        let mut row_idx = vec![0; entries.len()];
+        let mut pos = vec![0; entries.len()];
         for (e, &(r, c)) in entries.iter().enumerate() {
             let p = next[c];
             next[c] += 1;
-            self.row_idx[p] = r;
-            self.pos[e] = p;
+            row_idx[p] = r;
+            pos[e] = p;
         }
-        self.blocks.clear();
-        self.blocks.resize(entries.len(), 0.0);
-        self.vals.clear();
-        self.vals.resize(entries.len(), 0.0);
-        let sym =
-            SymbolicSparseColMatRef::new_checked(dim, dim, &self.col_ptr, None, &self.row_idx);
-        let symbolic = factorize_symbolic_lu(
-            sym,
-            LuSymbolicParams {
-                supernodal_flop_ratio_threshold:
-                    faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            },
-        )
-        .map_err(|_| LinError::Singular)?;
+        let sym = SymbolicSparseColMatRef::new_checked(dim, dim, &col_ptr, None, &row_idx);
+        // Supernodal LU measured faster than simplicial here for all sizes (dense blocks).
+        let params = LuSymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        let symbolic = factorize_symbolic_lu(sym, params).map_err(|_| LinError::Singular)?;
         let req = StackReq::any_of(&[
             symbolic.factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default()),
             symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
         ]);
-        self.mem = MemBuffer::new(req);
-        self.symbolic = Some(symbolic);
-        self.symbolic_count += 1;
-        self.layout = Some(layout);
+        Ok(Pattern {
+            layout: l,
+            vals: vec![0.0; entries.len()],
+            col_ptr,
+            row_idx,
+            pos,
+            symbolic,
+            numeric: NumericLu::new(),
+            mem: MemBuffer::new(req),
+        })
+    }
+}
+
+impl SparseSystem {
+    pub fn new() -> Self {
+        SparseSystem {
+            cache: Vec::new(),
+            blocks: Vec::new(),
+            factored: false,
+            symbolic_count: 0,
+        }
+    }
+
+    /// Makes `layout` current: pattern and symbolic factorization from the cache or new.
+    pub fn prepare(&mut self, layout: Layout) -> Result<(), LinError> {
+        self.factored = false;
+        if self.cache.last().map(|p| p.layout) != Some(layout) {
+            if let Some(i) = self.cache.iter().position(|p| p.layout == layout) {
+                let p = self.cache.remove(i);
+                self.cache.push(p);
+            } else {
+                let p = Pattern::build(layout)?;
+                self.symbolic_count += 1;
+                if self.cache.len() == CACHE {
+                    self.cache.remove(0);
+                }
+                self.cache.push(p);
+            }
+        }
+        self.blocks.clear();
+        self.blocks.resize(layout.block_len(), 0.0);
         Ok(())
     }
 
     /// Numeric LU of the matrix whose block values are in `self.blocks`.
     pub fn factor(&mut self) -> Result<(), LinError> {
         self.factored = false;
-        let (Some(l), Some(symbolic)) = (self.layout, self.symbolic.as_ref()) else {
+        let Some(p) = self.cache.last_mut() else {
             return Err(LinError::Singular);
         };
-        if self.blocks.iter().any(|v| !v.is_finite()) {
+        if self.blocks.len() != p.pos.len() || self.blocks.iter().any(|v| !v.is_finite()) {
             return Err(LinError::Singular);
         }
-        for (e, &p) in self.pos.iter().enumerate() {
-            self.vals[p] = self.blocks[e];
+        for (e, &q) in p.pos.iter().enumerate() {
+            p.vals[q] = self.blocks[e];
         }
-        let dim = l.dim();
-        let sym =
-            SymbolicSparseColMatRef::new_checked(dim, dim, &self.col_ptr, None, &self.row_idx);
-        let a = SparseColMatRef::new(sym, &self.vals);
-        symbolic
+        let dim = p.layout.dim();
+        let sym = SymbolicSparseColMatRef::new_checked(dim, dim, &p.col_ptr, None, &p.row_idx);
+        let a = SparseColMatRef::new(sym, &p.vals);
+        p.symbolic
             .factorize_numeric_lu(
-                &mut self.numeric,
+                &mut p.numeric,
                 a,
                 Par::Seq,
-                MemStack::new(&mut self.mem),
+                MemStack::new(&mut p.mem),
                 Default::default(),
             )
             .map_err(|_| LinError::Singular)?;
@@ -229,16 +245,19 @@ impl SparseSystem {
 
     /// Solves `A x = rhs` in place with the last factorization; non-finite output means singular.
     pub fn solve(&mut self, rhs: &mut [f64]) -> Result<(), LinError> {
-        let Some(symbolic) = self.symbolic.as_ref().filter(|_| self.factored) else {
+        let Some(p) = self.cache.last_mut().filter(|_| self.factored) else {
             return Err(LinError::Singular);
         };
-        let lu = LuRef::new_unchecked(symbolic, &self.numeric);
         let nrows = rhs.len();
+        if nrows != p.layout.dim() {
+            return Err(LinError::Singular);
+        }
+        let lu = LuRef::new_unchecked(&p.symbolic, &p.numeric);
         lu.solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(rhs, nrows, 1),
             Par::Seq,
-            MemStack::new(&mut self.mem),
+            MemStack::new(&mut p.mem),
         );
         if rhs.iter().all(|v| v.is_finite()) {
             Ok(())
