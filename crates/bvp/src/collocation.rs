@@ -102,11 +102,13 @@ pub struct CollocationOptions {
     /// Scheme. Default `Lobatto4`.
     pub scheme: Scheme,
     /// Tolerance on the scaled RMS ODE residual per interval (see the module docs). Default 1e-6.
-    /// Valid: `0 < tol < 1`.
+    /// Valid: `0 < tol < 1`; below about 1e-12 rounding in the residual estimate can make it
+    /// unattainable (the mesh then grows to `max_nodes`).
     pub tol: f64,
     /// Tolerance on the boundary conditions (max-norm). Default 1e-10. Valid: `> 0`.
     pub bc_tol: f64,
-    /// Cap on mesh nodes. Default 10 000. Valid: `>= 3`.
+    /// Cap on mesh nodes. Default 10 000. Valid: `>= 3`. A refinement beyond it, or a guess mesh
+    /// with more nodes, is reported as [`BvpError::MeshLimit`].
     pub max_nodes: usize,
     /// Cap on mesh passes (Newton solves on successive meshes). Default 50. Valid: `>= 1`.
     /// Exceeding it is reported as [`BvpError::MeshLimit`] with `needed` = the current node count.

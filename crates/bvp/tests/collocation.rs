@@ -419,3 +419,40 @@ fn statistics_are_filled_in() {
     prob.rhs(sol.mesh[3], sol.node(3), &[], &mut f);
     assert_eq!(&sol.dz[12..16], &f);
 }
+
+#[test]
+fn higher_order_needs_fewer_nodes() {
+    let bratu = Bratu { lambda: 1.0 };
+    let nodes = |scheme| {
+        solver(scheme, 1e-10)
+            .solve(&bratu, &bratu.guess())
+            .unwrap()
+            .len()
+    };
+    let (n4, n6) = (nodes(Scheme::Lobatto4), nodes(Scheme::Lobatto6));
+    println!("Bratu tol 1e-10: Lobatto4 {n4} nodes, Lobatto6 {n6} nodes");
+    // Residual O(h³) vs O(h⁴): h ∝ tol^(1/3) vs tol^(1/4), i.e. ≈ 5× fewer intervals at 1e-10.
+    assert!(2 * n6 < n4, "{n6} vs {n4}");
+}
+
+#[test]
+fn malformed_input_is_an_error_not_a_panic() {
+    // NaN in the guess.
+    let guess = Guess::constant(0.0, 1.0, 5, &[f64::NAN, 0.0], vec![]);
+    let r = solver(Scheme::Lobatto6, 1e-6).solve(&LinearSinh, &guess);
+    assert!(matches!(r, Err(BvpError::NonFinite { .. })), "{r:?}");
+    // Non-increasing guess mesh: ignored in favour of the default mesh (values interpolated).
+    let guess = Guess::from_fn(2, vec![0.0, 0.7, 0.3, 1.0], vec![], |s, z| {
+        z[0] = s;
+        z[1] = 1.0;
+    });
+    let sol = solver(Scheme::Lobatto4, 1e-6)
+        .solve(&LinearSinh, &guess)
+        .unwrap();
+    assert!(max_errors(&sol, LinearSinh::exact).0 <= 1e-5);
+    // Wrong parameter count for a problem with an unknown parameter.
+    let mut g = Eigen::guess();
+    g.params.clear();
+    let r = solver(Scheme::Lobatto4, 1e-6).solve(&Eigen, &g);
+    assert!(matches!(r, Err(BvpError::Dimension { .. })), "{r:?}");
+}
