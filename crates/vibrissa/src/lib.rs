@@ -4,6 +4,7 @@
 
 mod analytic;
 mod error;
+mod fast;
 pub mod model;
 pub mod scan;
 pub mod scene;

@@ -234,23 +234,23 @@ fn scan_impl(model: &Model, opts: &ScanOptions, grid: &[f64]) -> Result<ScanResu
 
 /// Per-solution quantities the scan watches.
 #[derive(Clone, Copy, Debug)]
-struct Watch {
+pub(crate) struct Watch {
     d: f64,
-    mu: f64,
+    pub(crate) mu: f64,
     /// > 0: the rod is above the surface somewhere with s < 1.
-    pen: f64,
+    pub(crate) pen: f64,
     pen_s: f64,
     pen_y: f64,
 }
 
-struct Scanner<'m, Pr: Profile> {
+pub(crate) struct Scanner<'m, Pr: Profile> {
     model: &'m Model,
-    family: ScanFamily<Pr>,
-    beta: f64,
+    pub(crate) family: ScanFamily<Pr>,
+    pub(crate) beta: f64,
 }
 
 impl<'m, Pr: Profile> Scanner<'m, Pr> {
-    fn watch(&self, sol: &Solution, d: f64) -> Watch {
+    pub(crate) fn watch(&self, sol: &Solution, d: f64) -> Watch {
         let (sb, cb) = self.beta.sin_cos();
         let alpha = sol.params[1];
         let mu = (self.beta - alpha).tan();
@@ -278,7 +278,7 @@ impl<'m, Pr: Profile> Scanner<'m, Pr> {
         }
     }
 
-    fn point(&self, sol: &Solution, d: f64) -> (ScanPoint, Shape) {
+    pub(crate) fn point(&self, sol: &Solution, d: f64) -> (ScanPoint, Shape) {
         let shape = shape_from(sol.clone(), &self.family.rod, self.model.profile(1.0));
         let w = self.watch(sol, d);
         (
@@ -340,6 +340,12 @@ impl<'m, Pr: Profile> Scanner<'m, Pr> {
             },
             beta,
         };
+        // uniform clamped rod, single shooting: the specialized path (falls back to this one)
+        if opts.solver.method == Method::Shooting && opts.solver.rk4_steps.is_none() {
+            if let Some(r) = crate::fast::scan_uniform(&scanner, &start_sol, opts, grid) {
+                return Ok(r);
+            }
+        }
         scanner.continue_scan(engine, start_sol, opts, grid)
     }
 

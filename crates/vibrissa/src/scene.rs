@@ -159,7 +159,7 @@ impl Scene {
             return Err(VibrissaError::range(
                 "eta",
                 self.eta,
-                format!("({eta_low:.6}, 1) = (eta_, 1)"),
+                format!("({eta_low:.8}, 1) = (eta_, 1)"),
             ));
         }
         match &self.stiffness {

@@ -156,6 +156,9 @@ impl Engine {
                         integrator,
                         segments,
                         newton,
+                        // a smooth rod needs a few hundred steps at most; more means a Newton
+                        // iterate far off (huge f), better rejected fast
+                        max_steps: 1500,
                         ..ShootingOptions::default()
                     })
                     .map_err(wrap)?,
@@ -394,6 +397,39 @@ pub(crate) fn elastica_guess(e: &Elastica, params: Vec<f64>) -> Guess {
     }
 }
 
+/// A circular-arc guess (used where the closed form has no solution, e.g. `α < −π/4`): the slope
+/// goes linearly from π/2 to the target tip slope (or 0.5 for a height target), `m` decreases
+/// linearly to 0, and `f` balances the base moment with a lever of half the rod.
+fn arc_guess(alpha: f64, target: &Target) -> Option<Guess> {
+    let phi1 = match *target {
+        Target::Phi1(p) => p,
+        Target::Eta(_) => 0.5,
+        Target::Tip { .. } => return None,
+    };
+    let turn = phi1 - FRAC_PI_2;
+    let m0 = 2.0 * turn;
+    let f = (m0.abs() / 0.5).max(0.5);
+    let nodes = 41;
+    let mesh: Vec<f64> = (0..nodes).map(|i| i as f64 / (nodes - 1) as f64).collect();
+    let mut g = Guess::from_fn(4, mesh, vec![f], |s, z| {
+        // φ(s) = π/2 + turn·(2s − s²) has φ' = 2 turn (1 − s) = m(s)
+        let phi = FRAC_PI_2 + turn * (2.0 * s - s * s);
+        // positions by the midpoint rule on 64 sub-steps
+        let (mut x, mut y) = (0.0, 0.0);
+        let k = 64;
+        for j in 0..k {
+            let t = s * (j as f64 + 0.5) / k as f64;
+            let p = FRAC_PI_2 + turn * (2.0 * t - t * t);
+            x += p.cos() * s / k as f64;
+            y += p.sin() * s / k as f64;
+        }
+        z.copy_from_slice(&[x, y, phi, m0 * (1.0 - s)]);
+    });
+    let _ = alpha;
+    g.dz = None;
+    Some(g)
+}
+
 /// Number of sign changes of `κ` on `[0, 1)` and the first one's arc length.
 fn flex_points(sol: &Solution, profile: &General, uniform: bool) -> (usize, Option<f64>) {
     let kap = |s: f64| -> f64 {
@@ -583,8 +619,13 @@ pub(crate) fn check_branch(shape: &Shape, branch: &BranchChoice) -> Result<(), V
             (n, _) => format!("{n} flex points"),
         }
     };
+    // The paper's convex family is right-handed for α ∈ [−π/4, 0]; below −π/4 the load bends the
+    // rod to the left (e.g. the horizontal tip load), and a left-handed convex rod is the answer.
+    let mirrored_ok = shape.alpha < -std::f64::consts::FRAC_PI_4 - 1e-12;
     let ok = match branch {
-        BranchChoice::Convex => found == "convex",
+        BranchChoice::Convex => {
+            found == "convex" || (mirrored_ok && found == "convex, mirrored (left-handed)")
+        }
         BranchChoice::Flex => found == "one flex",
         BranchChoice::Guess(_) => !found.starts_with("a ") || found.starts_with("a looping"),
     };
@@ -762,8 +803,14 @@ pub(crate) fn solve_with<Pr: Profile>(
         })?;
         return Ok(shape_from(sol, &rod, model.profile(1.0)));
     }
-    let e = closed_form(alpha, &target, elastica_branch(branch))?;
-    let guess = elastica_guess(&e, vec![e.f]);
+    // the closed form of the uniform clamped rod where it exists, else a circular arc
+    let guess = match closed_form(alpha, &target, elastica_branch(branch)) {
+        Ok(e) => elastica_guess(&e, vec![e.f]),
+        Err(err) => match arc_guess(alpha, &target) {
+            Some(g) => g,
+            None => return Err(err),
+        },
+    };
     if Pr::UNIFORM && c == 0.0 {
         let sol = run(engine, &rod, &guess, || {
             format!("solve at alpha = {alpha}, {target:?}")

@@ -1,0 +1,254 @@
+//! Bad input returns an error naming the value and its valid range; the analytic Jacobians agree
+//! with finite differences.
+
+use bvp::Bvp;
+use proptest::prelude::*;
+use vibrissa::model::{Ends, RodBvp};
+use vibrissa::{
+    infer, scan, solve, BranchChoice, Method, Model, Precurvature, ScanOptions, Scene,
+    SolverConfig, Stiffness, Target, VibrissaError,
+};
+
+fn err_of(scene: Scene) -> String {
+    Model::new(&scene).unwrap_err().to_string()
+}
+
+#[test]
+fn bad_scenes_name_value_and_range() {
+    let e = err_of(Scene {
+        eta: 1.2,
+        ..Scene::default()
+    });
+    assert!(
+        e.contains("eta") && e.contains("1.2") && e.contains("0.45694"),
+        "{e}"
+    );
+    let e = err_of(Scene {
+        eta: 0.3,
+        ..Scene::default()
+    });
+    assert!(e.contains("eta = 0.3") && e.contains("(0.456"), "{e}");
+    let e = err_of(Scene {
+        eta: f64::NAN,
+        ..Scene::default()
+    });
+    assert!(e.contains("eta = NaN"), "{e}");
+    for ratio in [0.0, -0.5, 1.5, f64::NAN] {
+        let e = err_of(Scene {
+            stiffness: Stiffness::Taper { ratio },
+            ..Scene::default()
+        });
+        assert!(e.contains("ratio") && e.contains("(0, 1]"), "{e}");
+    }
+    let e = err_of(Scene {
+        support_compliance: -1.0,
+        ..Scene::default()
+    });
+    assert!(
+        e.contains("support_compliance = -1") && e.contains("[0, inf)"),
+        "{e}"
+    );
+    let e = err_of(Scene {
+        precurvature: Precurvature::Linear {
+            k0: f64::NAN,
+            k1: 0.0,
+        },
+        ..Scene::default()
+    });
+    assert!(e.contains("k0 = NaN"), "{e}");
+    let e = err_of(Scene {
+        stiffness: Stiffness::Table {
+            s: vec![0.0, 0.6, 0.5, 1.0],
+            b: vec![1.0; 4],
+        },
+        ..Scene::default()
+    });
+    assert!(
+        e.contains("strictly increasing") && e.contains("0.5"),
+        "{e}"
+    );
+    let e = err_of(Scene {
+        stiffness: Stiffness::Table {
+            s: vec![0.0, 0.5],
+            b: vec![1.0, 1.0],
+        },
+        ..Scene::default()
+    });
+    assert!(e.contains("[0, 1]"), "{e}");
+    let e = err_of(Scene {
+        stiffness: Stiffness::Table {
+            s: vec![0.0, 1.0],
+            b: vec![1.0, 0.0],
+        },
+        ..Scene::default()
+    });
+    assert!(e.contains("> 0"), "{e}");
+    let e = err_of(Scene {
+        precurvature: Precurvature::Table {
+            s: vec![0.0, 1.0],
+            k: vec![1.0],
+        },
+        ..Scene::default()
+    });
+    assert!(e.contains("same length"), "{e}");
+    let e = err_of(Scene {
+        physical: Some(vibrissa::Physical {
+            length_mm: -3.0,
+            youngs_modulus_gpa: 3.0,
+            base_diameter_um: 100.0,
+        }),
+        ..Scene::default()
+    });
+    assert!(
+        e.contains("length_mm = -3") && e.contains("(0, inf)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn bad_scan_options() {
+    let model = Model::new(&Scene::default()).unwrap();
+    let bad = [
+        (
+            ScanOptions {
+                mu0: Some(-0.1),
+                ..ScanOptions::default()
+            },
+            "mu0",
+        ),
+        (
+            ScanOptions {
+                d_max: -1.0,
+                ..ScanOptions::default()
+            },
+            "d_max",
+        ),
+        (
+            ScanOptions {
+                d_max: f64::NAN,
+                ..ScanOptions::default()
+            },
+            "d_max",
+        ),
+        (
+            ScanOptions {
+                points: 1,
+                ..ScanOptions::default()
+            },
+            "points",
+        ),
+    ];
+    for (o, name) in bad {
+        let e = scan(&model, &o).unwrap_err().to_string();
+        assert!(e.contains(name) && e.contains("valid range"), "{e}");
+    }
+    let e = infer(&model, -0.1, &ScanOptions::default()).unwrap_err();
+    assert!(matches!(e, VibrissaError::NotMeasurable { .. }), "{e}");
+}
+
+#[test]
+fn analytic_only_on_paper_scene() {
+    let model = Model::new(&Scene {
+        stiffness: Stiffness::Taper { ratio: 0.5 },
+        ..Scene::default()
+    })
+    .unwrap();
+    let cfg = SolverConfig {
+        method: Method::Analytic,
+        ..SolverConfig::default()
+    };
+    let e = solve(&model, -0.1, Target::Eta(0.7), &BranchChoice::Convex, &cfg).unwrap_err();
+    assert!(matches!(e, VibrissaError::MethodUnavailable { .. }), "{e}");
+    let e = "bogus".parse::<Method>().unwrap_err().to_string();
+    assert!(e.contains("bogus") && e.contains("collocation6"), "{e}");
+    for m in Method::ALL {
+        assert_eq!(m.to_string().parse::<Method>().unwrap(), m);
+    }
+}
+
+fn fd_check<B: Bvp>(rod: &B, s: f64, z: &[f64], p: &[f64]) {
+    let k = p.len();
+    let (mut jz, mut jp) = (vec![0.0; 16], vec![0.0; 4 * k]);
+    assert!(rod.rhs_jacobian(s, z, p, &mut jz, &mut jp));
+    let h = 1e-6;
+    let (mut fp, mut fm) = ([0.0; 4], [0.0; 4]);
+    for j in 0..4 {
+        let (mut zp, mut zm) = (z.to_vec(), z.to_vec());
+        zp[j] += h;
+        zm[j] -= h;
+        rod.rhs(s, &zp, p, &mut fp);
+        rod.rhs(s, &zm, p, &mut fm);
+        for i in 0..4 {
+            let fd = (fp[i] - fm[i]) / (2.0 * h);
+            assert!(
+                (fd - jz[i * 4 + j]).abs() < 1e-6 * (1.0 + fd.abs()),
+                "dF{i}/dz{j}"
+            );
+        }
+    }
+    for j in 0..k {
+        let (mut pp, mut pm) = (p.to_vec(), p.to_vec());
+        pp[j] += h;
+        pm[j] -= h;
+        rod.rhs(s, z, &pp, &mut fp);
+        rod.rhs(s, z, &pm, &mut fm);
+        for i in 0..4 {
+            let fd = (fp[i] - fm[i]) / (2.0 * h);
+            assert!(
+                (fd - jp[i * k + j]).abs() < 1e-6 * (1.0 + fd.abs()),
+                "dF{i}/dp{j}"
+            );
+        }
+    }
+    // boundary conditions are affine in z(a), z(b), p
+    let m = 4 + k;
+    let (mut ga, mut gb, mut gp) = (vec![0.0; m * 4], vec![0.0; m * 4], vec![0.0; m * k]);
+    assert!(rod.bc_jacobian(z, z, p, &mut ga, &mut gb, &mut gp));
+    let (mut r0, mut r1) = (vec![0.0; m], vec![0.0; m]);
+    rod.bc(z, z, p, &mut r0);
+    for j in 0..4 {
+        let mut za = z.to_vec();
+        za[j] += 1.0;
+        rod.bc(&za, z, p, &mut r1);
+        for i in 0..m {
+            assert!(
+                (r1[i] - r0[i] - ga[i * 4 + j]).abs() < 1e-12,
+                "dg{i}/dza{j}"
+            );
+        }
+        rod.bc(z, &za, p, &mut r1);
+        for i in 0..m {
+            assert!(
+                (r1[i] - r0[i] - gb[i * 4 + j]).abs() < 1e-12,
+                "dg{i}/dzb{j}"
+            );
+        }
+    }
+}
+
+proptest! {
+    #[test]
+    fn analytic_jacobians_match_finite_differences(
+        s in 0.0..1.0f64, x in -1.0..1.0f64, y in -1.0..1.0f64, phi in -3.0..3.0f64,
+        m in -5.0..5.0f64, f in 0.0..30.0f64, alpha in -1.5..0.5f64, ratio in 0.05..1.0f64,
+        k0 in -3.0..3.0f64, c in 0.0..10.0f64, with_alpha in proptest::bool::ANY,
+    ) {
+        let scene = Scene {
+            stiffness: Stiffness::Taper { ratio },
+            precurvature: Precurvature::Linear { k0, k1: 0.5 },
+            support_compliance: c,
+            ..Scene::default()
+        };
+        let model = Model::new(&scene).unwrap();
+        let z = [x, y, phi, m];
+        let (ends, p) = if with_alpha {
+            (Ends::Tip { x1: 0.3, y1: 0.7 }, vec![f, alpha])
+        } else {
+            (Ends::Eta { eta: 0.7 }, vec![f])
+        };
+        let rod = RodBvp { profile: model.profile(1.0), compliance: c, alpha, ends };
+        fd_check(&rod, s, &z, &p);
+        let uni = RodBvp { profile: vibrissa::model::Uniform, compliance: c, alpha, ends: Ends::Phi1 { phi1: 0.2 } };
+        fd_check(&uni, s, &z, &p[..1]);
+    }
+}
