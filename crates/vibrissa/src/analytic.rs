@@ -14,5 +14,8 @@ pub(crate) fn scan_analytic(
             reason: "closed forms exist only for the paper's scene (uniform, straight, clamped rod, horizontal surface)".into(),
         });
     }
-    Err(VibrissaError::NotImplemented("analytic scan"))
+    Err(VibrissaError::MethodUnavailable {
+        method: "analytic".into(),
+        reason: "the closed-form scan is elastica::ClosedFormScan (parametrised by alpha and phi1, not d); vibrissa::scan needs a numerical method".into(),
+    })
 }
