@@ -1,0 +1,597 @@
+//! Work-precision study (issue #6): error against run time, one line per method, for
+//!
+//! 1. one shape, α = −π/8, φ1 = π/8, convex and one-flex branch (the paper's Fig. 3); error in `f`
+//!    relative to the closed form (crate `elastica`);
+//! 2. the stiction scan at η = 0.75, d ∈ [0, 0.5], 201 points; max error in μ against the closed
+//!    form (`elastica::ClosedFormScan`), compared at the closed-form points' `d`;
+//! 3. the tapered rod (ρ = 0.1) scan at η = 0.75, 201 points; max error in μ against a very tight
+//!    solve of single shooting (cross-checked against collocation of order 6).
+//!
+//! Run from the workspace root (writes `data/work_precision/work_precision.{csv,svg}` and
+//! `machine.txt`):
+//!
+//! ```sh
+//! cargo run --release --example work_precision
+//! ```
+//!
+//! Environment: `WP_CAP_S` (default 8): a method's tolerance sweep on one problem stops after a
+//! run slower than this many seconds; `WP_QUICK=1`: fewer tolerances (smoke test).
+//!
+//! Times are wall-clock, single thread, the minimum over batches (each batch repeats a fast run
+//! until it lasts ≥ 0.1 s), so they are comparable within one run of this program.
+
+use anyhow::{anyhow, bail, Context, Result};
+use elastica::{Branch, ClosedFormScan, Elastica, ScanPoint as CfPoint};
+use plotters::prelude::*;
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::{Duration, Instant};
+use vibrissa::{
+    scan_at, solve, BranchChoice, Method, Model, ScanOptions, Scene, SolverConfig, Target,
+};
+
+/// One measured configuration.
+#[derive(Clone, Debug)]
+struct Row {
+    problem: &'static str,
+    method: String,
+    /// The knob: solver tolerance, or the RK4 step count.
+    tol: f64,
+    rk4_steps: Option<usize>,
+    error: f64,
+    time_s: f64,
+    reps: usize,
+    rhs_evals: usize,
+    newton_iters: usize,
+    note: String,
+}
+
+/// Minimum over 3 batches of the mean time of `f` (a batch repeats `f` for ≥ 0.1 s); slow runs
+/// (> 1 s) are measured once.
+fn time_it<T>(mut f: impl FnMut() -> Result<T>) -> Result<(T, f64, usize)> {
+    let t0 = Instant::now();
+    let first = f()?;
+    let once = t0.elapsed();
+    if once > Duration::from_secs(1) {
+        return Ok((first, once.as_secs_f64(), 1));
+    }
+    let per_batch = ((0.1 / once.as_secs_f64().max(1e-7)).ceil() as usize).clamp(1, 100_000);
+    let mut best = f64::INFINITY;
+    for _ in 0..3 {
+        let t = Instant::now();
+        for _ in 0..per_batch {
+            std::hint::black_box(f()?);
+        }
+        best = best.min(t.elapsed().as_secs_f64() / per_batch as f64);
+    }
+    Ok((first, best, 1 + 3 * per_batch))
+}
+
+/// The numerical methods of the study: (name, config for a given tolerance).
+#[derive(Clone, Copy, Debug)]
+enum Knob {
+    Tol(f64),
+    Steps(usize),
+}
+
+fn configs(quick: bool) -> Vec<(String, Vec<(Knob, SolverConfig)>)> {
+    let tols: Vec<f64> = if quick {
+        vec![1e-4, 1e-8]
+    } else {
+        (3..=12).map(|e| 10f64.powi(-e)).collect()
+    };
+    let steps: Vec<usize> = if quick {
+        vec![32, 256]
+    } else {
+        vec![16, 32, 64, 128, 256, 512, 1024, 2048]
+    };
+    let base = SolverConfig::default();
+    let by_tol = |method: Method, segments: usize| -> Vec<(Knob, SolverConfig)> {
+        tols.iter()
+            .map(|&tol| {
+                (
+                    Knob::Tol(tol),
+                    SolverConfig {
+                        method,
+                        tol,
+                        segments,
+                        rk4_steps: None,
+                    },
+                )
+            })
+            .collect()
+    };
+    let rk4: Vec<(Knob, SolverConfig)> = steps
+        .iter()
+        .map(|&n| {
+            (
+                Knob::Steps(n),
+                SolverConfig {
+                    method: Method::Shooting,
+                    tol: 1e-12,
+                    rk4_steps: Some(n),
+                    ..base.clone()
+                },
+            )
+        })
+        .collect();
+    vec![
+        ("shooting-rk4".to_string(), rk4),
+        ("shooting-dop853".to_string(), by_tol(Method::Shooting, 1)),
+        (
+            "multiple-shooting-8".to_string(),
+            by_tol(Method::MultipleShooting, 8),
+        ),
+        ("collocation4".to_string(), by_tol(Method::Collocation4, 1)),
+        ("collocation6".to_string(), by_tol(Method::Collocation6, 1)),
+    ]
+}
+
+fn knob_parts(k: Knob) -> (f64, Option<usize>) {
+    match k {
+        Knob::Tol(t) => (t, None),
+        Knob::Steps(n) => (1e-12, Some(n)),
+    }
+}
+
+/// Problem 1: one shape per branch; error = max over the two branches of |f − f_cf| / f_cf.
+///
+/// The closed form would be an exact start (Newton stops at once), so every method starts from
+/// the same warm start of a neighbouring rod instead: the RK4 (20 steps) shape at
+/// `(0.9 α, 0.9 φ1)` — 10–20 % off in `f`, mesh of 21 uniform nodes.
+fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
+    let alpha = -PI / 8.0;
+    let phi1 = PI / 8.0;
+    let model = Model::new(&Scene::default())?;
+    let near = |b: BranchChoice| -> Result<BranchChoice> {
+        let cfg = SolverConfig {
+            rk4_steps: Some(20),
+            ..SolverConfig::default()
+        };
+        let s = solve(&model, 0.9 * alpha, Target::Phi1(0.9 * phi1), &b, &cfg)?;
+        Ok(BranchChoice::Guess(Box::new(s)))
+    };
+    let branches = [
+        (Branch::Convex, near(BranchChoice::Convex)?),
+        (Branch::OneFlex, near(BranchChoice::Flex)?),
+    ];
+    let f_ref: Vec<f64> = branches
+        .iter()
+        .map(|(b, _)| Elastica::new(*b, alpha, phi1).map(|e| e.f))
+        .collect::<Result<_, _>>()?;
+    for (name, cfgs) in configs(quick) {
+        for (knob, cfg) in cfgs {
+            let mut err: f64 = 0.0;
+            let mut time = 0.0;
+            let mut reps = 0;
+            let mut rhs = 0;
+            let mut newton = 0;
+            let mut note = String::new();
+            for ((_, choice), &fr) in branches.iter().zip(&f_ref) {
+                let r = time_it(|| {
+                    solve(&model, alpha, Target::Phi1(phi1), choice, &cfg).map_err(Into::into)
+                });
+                match r {
+                    Ok((shape, t, n)) => {
+                        err = err.max((shape.f - fr).abs() / fr);
+                        time += t;
+                        reps = n;
+                        rhs += shape.stats.rhs_evals;
+                        newton += shape.stats.newton_iters;
+                    }
+                    Err(e) => {
+                        note = format!("failed: {e}");
+                        err = f64::NAN;
+                    }
+                }
+            }
+            let (tol, rk4_steps) = knob_parts(knob);
+            eprintln!("shape  {name:20} {knob:?}: err {err:.2e} time {time:.3e} s");
+            rows.push(Row {
+                problem: "shape",
+                method: name.clone(),
+                tol,
+                rk4_steps,
+                error: err,
+                time_s: time,
+                reps,
+                rhs_evals: rhs,
+                newton_iters: newton,
+                note,
+            });
+            if time > cap {
+                break;
+            }
+        }
+    }
+    // The closed form itself, against the mpmath values of data/elastica/special_values.csv.
+    let mp = [4.718_125_860_964_310_5, 19.028_967_652_434_935];
+    let mut err: f64 = 0.0;
+    let mut time = 0.0;
+    let mut reps = 0;
+    for (choice, &fm) in [BranchChoice::Convex, BranchChoice::Flex].iter().zip(&mp) {
+        let cfg = SolverConfig {
+            method: Method::Analytic,
+            ..SolverConfig::default()
+        };
+        let (shape, t, n) =
+            time_it(|| solve(&model, alpha, Target::Phi1(phi1), choice, &cfg).map_err(Into::into))?;
+        err = err.max((shape.f - fm).abs() / fm);
+        time += t;
+        reps = n;
+    }
+    rows.push(Row {
+        problem: "shape",
+        method: "analytic".into(),
+        tol: f64::NAN,
+        rk4_steps: None,
+        error: err,
+        time_s: time,
+        reps,
+        rhs_evals: 0,
+        newton_iters: 0,
+        note: "error against mpmath (data/elastica/special_values.csv)".into(),
+    });
+    Ok(())
+}
+
+/// The closed-form scan as one curve in a parameter `t ∈ [0, 3]`: phase 0 in α (t ∈ [0, 1]),
+/// phase 1 in φ1 down to the fold (t ∈ [1, 2]), the other sheet in φ1 back up (t ∈ [2, 3]).
+struct CfCurve {
+    cf: ClosedFormScan,
+}
+
+impl CfCurve {
+    fn at(&self, t: f64) -> Result<CfPoint> {
+        let cf = &self.cf;
+        let lo = cf.phi1_min();
+        Ok(if t <= 1.0 {
+            cf.phase0_at_alpha(cf.alpha_t * t)?
+        } else if t <= 2.0 {
+            let p = cf.phi1_t + (lo - cf.phi1_t) * (t - 1.0);
+            cf.phase1_at_phi1(p.clamp(lo, cf.phi1_t))?
+        } else {
+            let p = lo + (cf.phi1_t - lo) * (t - 2.0);
+            cf.phase1_upper_at_phi1(p.clamp(lo, cf.phi1_t))?
+        })
+    }
+
+    /// Closed-form points whose `d` are close to `targets` (increasing): `d(t)` is tabulated,
+    /// checked monotone, and inverted by Brent's method; the returned points are exact.
+    fn points_near(&self, targets: &[f64]) -> Result<Vec<CfPoint>> {
+        let n = 3000;
+        let tab: Vec<(f64, f64)> = (0..=n)
+            .map(|i| {
+                let t = 3.0 * i as f64 / n as f64;
+                self.at(t).map(|p| (t, p.d))
+            })
+            .collect::<Result<_>>()?;
+        if tab.windows(2).any(|w| w[1].1 <= w[0].1) {
+            bail!("closed-form d(t) is not increasing: cannot invert");
+        }
+        let mut out = Vec::with_capacity(targets.len());
+        for &d in targets {
+            if d <= 0.0 {
+                out.push(self.at(0.0)?);
+                continue;
+            }
+            let j = tab
+                .windows(2)
+                .position(|w| w[0].1 <= d && d <= w[1].1)
+                .ok_or_else(|| anyhow!("d = {d} beyond the closed-form curve"))?;
+            let (a, b) = (tab[j].0, tab[j + 1].0);
+            let t = elastica::roots::try_brent_root(
+                |t| {
+                    Ok(self
+                        .at(t)
+                        .map_err(|_| elastica::ElasticaError::NotFinite {
+                            name: "closed form",
+                            value: t,
+                        })?
+                        .d
+                        - d)
+                },
+                a,
+                b,
+                1e-14,
+                200,
+            )?;
+            out.push(self.at(t)?);
+        }
+        Ok(out)
+    }
+}
+
+/// The scan problems: (problem name, model, reference points `(d, μ)`).
+fn scan_problem(
+    rows: &mut Vec<Row>,
+    problem: &'static str,
+    model: &Model,
+    reference: &[(f64, f64)],
+    quick: bool,
+    cap: f64,
+) -> Result<()> {
+    let d: Vec<f64> = reference.iter().map(|p| p.0).collect();
+    for (name, cfgs) in configs(quick) {
+        for (knob, cfg) in cfgs {
+            let opts = ScanOptions {
+                d_max: 0.5,
+                solver: cfg,
+                ..ScanOptions::default()
+            };
+            let (tol, rk4_steps) = knob_parts(knob);
+            let r = time_it(|| scan_at(model, &opts, &d).map_err(Into::into));
+            let (err, time, reps, rhs, newton, note) = match r {
+                Ok((res, t, n)) => {
+                    let mut err: f64 = 0.0;
+                    for (p, &(dr, mr)) in res.points.iter().zip(reference) {
+                        debug_assert_eq!(p.d, dr);
+                        err = err.max((p.mu - mr).abs());
+                    }
+                    let note = if res.points.len() < reference.len() {
+                        err = f64::NAN;
+                        format!("stopped early: {}", res.stop)
+                    } else {
+                        String::new()
+                    };
+                    (err, t, n, res.stats.rhs_evals, res.stats.newton_iters, note)
+                }
+                Err(e) => (f64::NAN, f64::NAN, 0, 0, 0, format!("failed: {e}")),
+            };
+            eprintln!("{problem:6} {name:20} {knob:?}: err {err:.2e} time {time:.3e} s {note}");
+            rows.push(Row {
+                problem,
+                method: name.clone(),
+                tol,
+                rk4_steps,
+                error: err,
+                time_s: time,
+                reps,
+                rhs_evals: rhs,
+                newton_iters: newton,
+                note,
+            });
+            if !(time <= cap) {
+                break;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn uniform_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
+    let eta = 0.75;
+    let curve = CfCurve {
+        cf: ClosedFormScan::new(eta)?,
+    };
+    let targets: Vec<f64> = (0..201)
+        .map(|i| {
+            if i == 200 {
+                0.5 - 1e-9
+            } else {
+                0.5 * i as f64 / 200.0
+            }
+        })
+        .collect();
+    let (pts, t_cf, reps) = time_it(|| curve.points_near(&targets))?;
+    let reference: Vec<(f64, f64)> = pts.iter().map(|p| (p.d, p.mu)).collect();
+    rows.push(Row {
+        problem: "scan",
+        method: "analytic".into(),
+        tol: f64::NAN,
+        rk4_steps: None,
+        error: f64::NAN,
+        time_s: t_cf,
+        reps,
+        rhs_evals: 0,
+        newton_iters: 0,
+        note: "the reference itself (201 closed-form points, d found by Brent)".into(),
+    });
+    let model = Model::new(&Scene {
+        eta,
+        ..Scene::default()
+    })?;
+    scan_problem(rows, "scan", &model, &reference, quick, cap)
+}
+
+fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
+    let scene = Scene {
+        eta: 0.75,
+        stiffness: vibrissa::Stiffness::Taper { ratio: 0.1 },
+        ..Scene::default()
+    };
+    let model = Model::new(&scene)?;
+    let grid: Vec<f64> = (0..201).map(|i| 0.5 * i as f64 / 200.0).collect();
+    let tight = |method, tol| -> Result<Vec<(f64, f64)>> {
+        let opts = ScanOptions {
+            d_max: 0.5,
+            solver: SolverConfig {
+                method,
+                tol,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let r = scan_at(&model, &opts, &grid)?;
+        if r.points.len() != grid.len() {
+            bail!("reference scan stopped early: {}", r.stop);
+        }
+        Ok(r.points.iter().map(|p| (p.d, p.mu)).collect())
+    };
+    let reference = tight(Method::Shooting, 1e-13).context("tapered reference (shooting)")?;
+    // Cross-check of the reference by another method.
+    let check = if quick {
+        f64::NAN
+    } else {
+        let c = tight(Method::Collocation6, 1e-11).context("tapered cross-check")?;
+        reference
+            .iter()
+            .zip(&c)
+            .map(|(a, b)| (a.1 - b.1).abs())
+            .fold(0.0, f64::max)
+    };
+    eprintln!("taper reference: shooting 1e-13 vs collocation6 1e-11: max |dmu| = {check:.2e}");
+    rows.push(Row {
+        problem: "taper",
+        method: "reference-check".into(),
+        tol: 1e-13,
+        rk4_steps: None,
+        error: check,
+        time_s: f64::NAN,
+        reps: 0,
+        rhs_evals: 0,
+        newton_iters: 0,
+        note: "reference (shooting-dop853 tol 1e-13) vs collocation6 tol 1e-11".into(),
+    });
+    scan_problem(rows, "taper", &model, &reference, quick, cap)
+}
+
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    format!(
+        "cpu: {cpu}\nlogical cores (nproc): {cores}\nos: {}\nbuild: release, single thread\n",
+        std::env::consts::OS
+    )
+}
+
+fn write_csv(path: &Path, rows: &[Row]) -> Result<()> {
+    let mut s = String::from(
+        "problem,method,tol,rk4_steps,error,time_s,reps,rhs_evals,newton_iters,note\n",
+    );
+    for r in rows {
+        let f = |v: f64| {
+            if v.is_nan() {
+                String::new()
+            } else {
+                format!("{v:.6e}")
+            }
+        };
+        writeln!(
+            s,
+            "{},{},{},{},{},{},{},{},{},\"{}\"",
+            r.problem,
+            r.method,
+            f(r.tol),
+            r.rk4_steps.map_or(String::new(), |n| n.to_string()),
+            f(r.error),
+            f(r.time_s),
+            r.reps,
+            r.rhs_evals,
+            r.newton_iters,
+            r.note.replace('"', "'")
+        )?;
+    }
+    std::fs::write(path, s)?;
+    Ok(())
+}
+
+const PROBLEMS: [(&str, &str); 3] = [
+    ("shape", "1. one shape (Fig. 3): rel. error in f"),
+    ("scan", "2. scan eta = 0.75: max error in mu"),
+    ("taper", "3. tapered rho = 0.1 scan: max error in mu"),
+];
+
+fn plot(path: &Path, rows: &[Row]) -> Result<()> {
+    let root = SVGBackend::new(path, (1500, 520)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let panels = root.split_evenly((1, 3));
+    let methods = [
+        "shooting-rk4",
+        "shooting-dop853",
+        "multiple-shooting-8",
+        "collocation4",
+        "collocation6",
+        "analytic",
+    ];
+    let colors = [
+        RGBColor(31, 119, 180),
+        RGBColor(255, 127, 14),
+        RGBColor(44, 160, 44),
+        RGBColor(214, 39, 40),
+        RGBColor(148, 103, 189),
+        RGBColor(0, 0, 0),
+    ];
+    const FLOOR: f64 = 1e-16;
+    for (panel, (prob, title)) in panels.iter().zip(PROBLEMS) {
+        let pts: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.problem == prob && r.time_s.is_finite() && r.time_s > 0.0)
+            .collect();
+        let tmin = pts.iter().map(|r| r.time_s).fold(f64::INFINITY, f64::min);
+        let tmax = pts.iter().map(|r| r.time_s).fold(0.0, f64::max);
+        let mut chart = ChartBuilder::on(panel)
+            .caption(title, ("sans-serif", 17))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(
+                (1e-16f64..1e-1f64).log_scale(),
+                (tmin / 2.0..tmax * 2.0).log_scale(),
+            )?;
+        chart
+            .configure_mesh()
+            .x_desc("error (analytic: error floor 1e-16 if unknown)")
+            .y_desc("time per solve / scan [s]")
+            .x_label_formatter(&|v| format!("{v:.0e}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .draw()?;
+        for (m, c) in methods.iter().zip(colors) {
+            let line: Vec<(f64, f64)> = pts
+                .iter()
+                .filter(|r| r.method == *m)
+                .map(|r| {
+                    let e = if r.error.is_finite() { r.error } else { FLOOR };
+                    (e.max(FLOOR), r.time_s)
+                })
+                .collect();
+            if line.is_empty() {
+                continue;
+            }
+            chart
+                .draw_series(LineSeries::new(line.clone(), c.stroke_width(2)))?
+                .label(*m)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2))
+                });
+            chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 12))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+fn main() -> Result<()> {
+    let quick = std::env::var("WP_QUICK").is_ok_and(|v| v == "1");
+    let cap: f64 = std::env::var("WP_CAP_S")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(8.0);
+    let dir = Path::new("data/work_precision");
+    std::fs::create_dir_all(dir)?;
+    let mut rows = Vec::new();
+    single_shape(&mut rows, quick, cap)?;
+    uniform_scan(&mut rows, quick, cap)?;
+    tapered_scan(&mut rows, quick, cap)?;
+    write_csv(&dir.join("work_precision.csv"), &rows)?;
+    plot(&dir.join("work_precision.svg"), &rows)?;
+    std::fs::write(dir.join("machine.txt"), machine())?;
+    eprintln!("wrote {}", dir.display());
+    Ok(())
+}
