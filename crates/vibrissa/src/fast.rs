@@ -459,8 +459,9 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
             let (shot, jac) = conv?;
             if shot.err > 1.0 {
                 // too few steps for the tolerance: ~order-8 rule with a margin
-                let fac = (shot.err.powf(1.0 / 8.0) * 1.2).clamp(1.1, 4.0);
-                self.int.steps = ((self.int.steps as f64 * fac).ceil() as usize).min(100_000);
+                let fac = (shot.err.powf(1.0 / 8.0) * 1.05).clamp(1.05, 4.0);
+                let n = self.int.steps;
+                self.int.steps = ((n as f64 * fac).ceil() as usize).clamp(n + 1, 100_000);
                 u = u_start;
                 continue;
             }
@@ -497,24 +498,38 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
         }
     }
 
-    /// Predictor from the last points (`hist` newest last) to `d`.
+    /// Predictor from the last points (`hist`, newest last) to `d`: the Hermite polynomial through
+    /// their values and tangents (degree 5 with three points), extrapolated.
     fn predict(hist: &[Point], d: f64) -> [f64; 3] {
-        let p = &hist[hist.len() - 1];
-        let h = d - p.d;
+        let m = hist.len().min(3);
+        let pts = &hist[hist.len() - m..];
         let mut u = [0.0; 3];
-        for i in 0..3 {
-            // tangent only, or the cubic Hermite through the last two points and their tangents
-            u[i] = p.u[i] + h * p.du[i];
-            if hist.len() >= 2 {
-                let q = &hist[hist.len() - 2];
-                let hq = p.d - q.d;
-                if hq > 0.0 {
-                    let s = (p.u[i] - q.u[i]) / hq;
-                    let c2 = (2.0 * p.du[i] + q.du[i] - 3.0 * s) / hq;
-                    let c3 = (p.du[i] + q.du[i] - 2.0 * s) / (hq * hq);
-                    u[i] += h * h * (c2 + c3 * h);
+        for (i, ui) in u.iter_mut().enumerate() {
+            // confluent divided differences, nodes newest first: z = d_m, d_m, d_{m-1}, …
+            let mut z = [0.0; 6];
+            let mut q = [[0.0; 6]; 6];
+            for (j, p) in pts.iter().rev().enumerate() {
+                z[2 * j] = p.d;
+                z[2 * j + 1] = p.d;
+                q[2 * j][0] = p.u[i];
+                q[2 * j + 1][0] = p.u[i];
+                q[2 * j + 1][1] = p.du[i];
+                if j > 0 {
+                    q[2 * j][1] = (q[2 * j][0] - q[2 * j - 1][0]) / (z[2 * j] - z[2 * j - 1]);
                 }
             }
+            let len = 2 * m;
+            for k in 2..len {
+                for j in k..len {
+                    q[j][k] = (q[j][k - 1] - q[j - 1][k - 1]) / (z[j] - z[j - k]);
+                }
+            }
+            let (mut v, mut w) = (0.0, 1.0);
+            for k in 0..len {
+                v += q[k][k] * w;
+                w *= d - z[k];
+            }
+            *ui = v;
         }
         u
     }
