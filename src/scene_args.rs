@@ -15,7 +15,7 @@ pub fn read_scene_file(path: &Path) -> Res<Scene> {
     toml::from_str::<Scene>(&text).map_err(|e| {
         let line = e
             .span()
-            .map(|sp| text[..sp.start.min(text.len())].lines().count().max(1))
+            .map(|sp| text[..sp.start.min(text.len())].matches('\n').count() + 1)
             .map(|l| format!(" (line {l})"))
             .unwrap_or_default();
         usage(format!(

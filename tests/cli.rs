@@ -1,0 +1,593 @@
+//! End-to-end tests of the `vibrissa` program: run the built binary, check values against the
+//! closed forms (crate `elastica`) and the paper's printed numbers, and check the error contract.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+struct Out {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+fn run(args: &[&str]) -> Out {
+    let o = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
+        .args(args)
+        .output()
+        .expect("run vibrissa");
+    Out {
+        code: o.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
+    }
+}
+
+fn ok(args: &[&str]) -> Out {
+    let o = run(args);
+    assert_eq!(
+        o.code, 0,
+        "vibrissa {args:?} failed: {}\n{}",
+        o.stderr, o.stdout
+    );
+    o
+}
+
+/// A bad invocation: non-zero exit, exactly one line on stderr starting with `error:`, no panic.
+fn bad(args: &[&str], code: i32) -> String {
+    let o = run(args);
+    assert_eq!(o.code, code, "vibrissa {args:?}: stderr {:?}", o.stderr);
+    let lines: Vec<&str> = o.stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "vibrissa {args:?}: stderr {:?}", o.stderr);
+    assert!(lines[0].starts_with("error: "), "{:?}", lines[0]);
+    assert!(!o.stderr.contains("panicked"), "{:?}", o.stderr);
+    assert!(!o.stdout.contains("NaN"), "{:?}", o.stdout);
+    lines[0].to_string()
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("vibrissa-cli-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Parse a CSV with a header into (header, rows).
+fn csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(text.as_bytes());
+    let h = r.headers().unwrap().iter().map(String::from).collect();
+    let rows = r
+        .records()
+        .map(|x| x.unwrap().iter().map(String::from).collect())
+        .collect();
+    (h, rows)
+}
+
+fn col(h: &[String], row: &[String], name: &str) -> f64 {
+    let i = h
+        .iter()
+        .position(|c| c == name)
+        .unwrap_or_else(|| panic!("no column {name} in {h:?}"));
+    row[i]
+        .parse()
+        .unwrap_or_else(|_| panic!("column {name}: {:?}", row[i]))
+}
+
+fn json(text: &str) -> serde_json::Value {
+    serde_json::from_str(text).unwrap_or_else(|e| panic!("bad JSON {e}: {text}"))
+}
+
+fn close(a: f64, b: f64, tol: f64, what: &str) {
+    assert!(
+        (a - b).abs() <= tol,
+        "{what}: {a} vs {b} (|diff| = {:e} > {tol:e})",
+        (a - b).abs()
+    );
+}
+
+const A8: &str = "-0.39269908169872414"; // -pi/8
+const P8: &str = "0.39269908169872414"; // (pi/2 + 2(-pi/8))/2 = pi/8
+
+#[test]
+fn solve_analytic_matches_closed_forms_and_paper() {
+    let o = ok(&["solve", "--alpha", A8, "--phi1", P8, "--method", "analytic"]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(rows.len(), 1);
+    for c in [
+        "f", "alpha", "phi1", "x1", "y1", "m_base", "flex", "s_flex", "residual", "fx", "fy",
+        "y_max", "method",
+    ] {
+        assert!(h.iter().any(|x| x == c), "missing column {c}");
+    }
+    let r = &rows[0];
+    let e = elastica::Elastica::new(
+        elastica::Branch::Convex,
+        -std::f64::consts::FRAC_PI_8,
+        std::f64::consts::FRAC_PI_8,
+    )
+    .unwrap();
+    close(col(&h, r, "f"), e.f, 1e-13 * e.f, "f");
+    close(col(&h, r, "x1"), e.x1, 1e-14, "x1");
+    close(col(&h, r, "y1"), e.y1, 1e-14, "y1");
+    close(col(&h, r, "m_base"), e.m_base, 1e-13, "m_base");
+    // the paper's Fig. 3 prints f = 4.72 (convex) and 19.0 (one flex)
+    close(col(&h, r, "f"), 4.72, 0.005, "paper Fig. 3 convex force");
+    // sign conventions: fx = f sin(alpha), fy = -f cos(alpha)
+    let (f, a) = (col(&h, r, "f"), col(&h, r, "alpha"));
+    close(col(&h, r, "fx"), f * a.sin(), 1e-13, "fx");
+    close(col(&h, r, "fy"), -f * a.cos(), 1e-13, "fy");
+    assert!(col(&h, r, "residual") < 1e-12);
+
+    let o = ok(&[
+        "solve", "--alpha", A8, "--phi1", P8, "--branch", "flex", "--method", "analytic", "--json",
+    ]);
+    let v = json(&o.stdout);
+    close(
+        v["f"].as_f64().unwrap(),
+        19.0,
+        0.05,
+        "paper Fig. 3 one-flex force",
+    );
+    assert_eq!(v["flex"].as_u64(), Some(1));
+    // Remark 2.1: the flex point bisects the arc between the two points of slope pi/2, and the
+    // second one is at s = 2 s_b < 1 here
+    let sb = v["s_flex"].as_f64().unwrap();
+    assert!(sb > 0.0 && 2.0 * sb < 1.0, "s_flex = {sb}");
+
+    // buckling: alpha = 0, phi1 -> pi/2 gives f -> pi^2/4 (first critical load); near the corner
+    // f = pi^2/4 (1 + (pi/2 - phi1)^2 / 8 + ...) so 1e-4 off pi/2 is within 1e-8 relative
+    let o = ok(&[
+        "solve",
+        "--alpha",
+        "0",
+        "--phi1",
+        "1.5706963267948966",
+        "--method",
+        "analytic",
+        "--json",
+    ]);
+    let f = json(&o.stdout)["f"].as_f64().unwrap();
+    close(
+        f,
+        std::f64::consts::PI.powi(2) / 4.0,
+        1e-7,
+        "first buckling load",
+    );
+}
+
+#[test]
+fn solve_eta_and_shape_out() {
+    let d = tmpdir("shape");
+    let shape = d.join("shape.csv");
+    let o = ok(&[
+        "solve",
+        "--alpha",
+        "0",
+        "--eta",
+        "0.75",
+        "--method",
+        "analytic",
+        "--shape-out",
+        shape.to_str().unwrap(),
+        "--shape-points",
+        "11",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    close(col(&h, &rows[0], "y1"), 0.75, 1e-13, "tip height");
+    let (sh, srows) = csv(&std::fs::read_to_string(&shape).unwrap());
+    assert_eq!(srows.len(), 11);
+    assert_eq!(sh, ["s", "x", "y", "phi", "kappa", "m"]);
+    close(col(&sh, &srows[10], "y"), 0.75, 1e-13, "shape tip");
+    close(
+        col(&sh, &srows[0], "phi"),
+        std::f64::consts::FRAC_PI_2,
+        1e-15,
+        "clamp slope",
+    );
+}
+
+#[test]
+fn solve_numerical_matches_analytic() {
+    let a = ok(&[
+        "solve", "--alpha", A8, "--phi1", P8, "--method", "analytic", "--json",
+    ]);
+    let a = json(&a.stdout);
+    for m in ["shooting", "multiple-shooting"] {
+        let n = ok(&[
+            "solve", "--alpha", A8, "--phi1", P8, "--method", m, "--json",
+        ]);
+        let n = json(&n.stdout);
+        for k in ["f", "x1", "y1", "m_base"] {
+            close(
+                n[k].as_f64().unwrap(),
+                a[k].as_f64().unwrap(),
+                1e-7,
+                &format!("{m} {k}"),
+            );
+        }
+        assert!(n["residual"].as_f64().unwrap() < 1e-8);
+    }
+    // tip-height target on the flex branch
+    let n = ok(&[
+        "solve", "--alpha", "-0.6", "--eta", "0.75", "--branch", "flex", "--json",
+    ]);
+    let n = json(&n.stdout);
+    close(
+        n["y1"].as_f64().unwrap(),
+        0.75,
+        1e-8,
+        "numerical tip height",
+    );
+    let e = elastica::Elastica::new(elastica::Branch::OneFlex, -0.6, n["phi1"].as_f64().unwrap())
+        .unwrap();
+    close(n["f"].as_f64().unwrap(), e.f, 1e-6 * e.f, "flex f at eta");
+}
+
+#[test]
+fn scan_matches_closed_form_scan() {
+    let cf = elastica::ClosedFormScan::new(0.75).unwrap();
+    let best = cf.mu_max().unwrap();
+    let d = tmpdir("scan");
+    let out = d.join("scan.csv");
+    let o = ok(&[
+        "scan",
+        "--points",
+        "11",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    let v = json(&o.stdout);
+    for k in ["mu_max", "d_at_mu_max", "points", "stop_reason"] {
+        assert!(!v[k].is_null(), "missing {k} in {v}");
+    }
+    assert_eq!(v["stop_reason"], "d_max");
+    close(v["mu_max"].as_f64().unwrap(), best.mu, 1e-7, "mu_max");
+    close(
+        v["d_at_mu_max"].as_f64().unwrap(),
+        best.d,
+        1e-4,
+        "d at mu_max",
+    );
+    let (h, rows) = csv(&std::fs::read_to_string(&out).unwrap());
+    for c in [
+        "d", "mu", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "y_max",
+    ] {
+        assert!(h.iter().any(|x| x == c), "missing column {c}");
+    }
+    assert_eq!(rows.len(), 11);
+    // each row against the closed form at the same d: mu = tan(-alpha) and the curve
+    for r in &rows {
+        let (dd, mu, a) = (col(&h, r, "d"), col(&h, r, "mu"), col(&h, r, "alpha"));
+        close(mu, (-a).tan(), 1e-12, "mu = tan(-alpha)");
+        assert!(col(&h, r, "y_max") <= 0.75 + 1e-8);
+        assert!(dd >= 0.0);
+    }
+    // start: alpha = 0 rod with tip at 0.75
+    close(col(&h, &rows[0], "f"), cf.start.f, 1e-8, "f0");
+    close(col(&h, &rows[0], "phi1"), cf.start.phi1, 1e-8, "phi1_0");
+    // the analytic scan agrees with the numerical one row by row
+    let a = ok(&["scan", "--points", "11", "--method", "analytic"]);
+    let (ha, ra) = csv(&a.stdout);
+    assert_eq!(ra.len(), rows.len());
+    for (x, y) in rows.iter().zip(&ra) {
+        for c in ["d", "mu", "f", "phi1", "m_base"] {
+            close(col(&h, x, c), col(&ha, y, c), 1e-7, c);
+        }
+    }
+    assert!(
+        a.stderr.contains("mu_max"),
+        "summary on stderr: {}",
+        a.stderr
+    );
+}
+
+#[test]
+fn scan_low_surface_stops_with_penetration_and_slip() {
+    let o = ok(&["scan", "--eta", "0.6", "--points", "11", "--json"]);
+    let v = json(&o.stdout);
+    assert_eq!(v["stop_reason"], "penetration");
+    // the paper: at eta = 0.6 the convex phase ends close to alpha = -pi/4, phi1 = 0
+    let cf = elastica::ClosedFormScan::new(0.6).unwrap();
+    close(
+        v["stop"]["d"].as_f64().unwrap(),
+        cf.turning.d,
+        1e-6,
+        "penetration d",
+    );
+    assert!(o.stderr.contains("stopped early"));
+    // slip threshold
+    let o = ok(&[
+        "scan", "--points", "21", "--mu0", "0.5", "--json", "--method", "analytic",
+    ]);
+    let v = json(&o.stdout);
+    assert_eq!(v["stop_reason"], "slip");
+    close(v["mu_max"].as_f64().unwrap(), 0.5, 1e-10, "slip mu");
+}
+
+#[test]
+fn infer_reads_mu0_off_the_scan() {
+    let cf = elastica::ClosedFormScan::new(0.75).unwrap();
+    let p = cf.phase0_at_alpha(-0.5).unwrap();
+    let d0 = p.d.to_string();
+    for m in ["analytic", "shooting"] {
+        let o = ok(&[
+            "infer", "--d0", &d0, "--method", m, "--points", "21", "--json",
+        ]);
+        let v = json(&o.stdout);
+        close(v["mu0"].as_f64().unwrap(), p.mu, 1e-6, &format!("{m} mu0"));
+    }
+    let best = cf.mu_max().unwrap();
+    let msg = bad(&["infer", "--d0", "0.3", "--method", "analytic"], 2);
+    assert!(msg.contains("measurable range"), "{msg}");
+    assert!(
+        msg.contains(&format!("{}", best.d)) || msg.contains("0.130"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn sweep_shards_concatenate_to_the_full_file() {
+    let d = tmpdir("sweep");
+    let full = d.join("full.csv");
+    let base = [
+        "sweep",
+        "--eta",
+        "0.7,0.75,0.8,0.9",
+        "--taper",
+        "1,2",
+        "--method",
+        "analytic,shooting",
+        "--points",
+        "6",
+    ];
+    let mut args: Vec<&str> = base.to_vec();
+    let fs = full.to_str().unwrap().to_string();
+    args.extend(["--out", &fs, "--jobs", "2"]);
+    ok(&args);
+    let text = std::fs::read_to_string(&full).unwrap();
+    let (h, rows) = csv(&text);
+    assert_eq!(rows.len(), 16);
+    // grid order: eta slowest, method fastest; failing scenes are rows with an error
+    let ie = h.iter().position(|c| c == "error").unwrap();
+    let im = h.iter().position(|c| c == "method").unwrap();
+    assert_eq!(rows[0][im], "analytic");
+    assert_eq!(rows[1][im], "shooting");
+    assert!(rows[2][ie].contains("ratio"), "taper 2: {:?}", rows[2]);
+    assert!(rows[3][ie].contains("ratio"), "taper 2: {:?}", rows[3]);
+    assert!(rows[0][ie].is_empty());
+    // the uniform-rod rows: numerical and closed form agree
+    for k in [0, 4, 8, 12] {
+        let (a, n) = (&rows[k], &rows[k + 1]);
+        close(col(&h, a, "f0"), col(&h, n, "f0"), 1e-7, "f0");
+        close(col(&h, a, "mu_max"), col(&h, n, "mu_max"), 1e-5, "mu_max");
+    }
+    assert!(!text.contains("NaN"));
+    // shards: header only in shard 1, concatenation byte-equal
+    let mut cat = Vec::new();
+    for (k, jobs) in [("1/3", "1"), ("2/3", "2"), ("3/3", "1")] {
+        let mut a: Vec<&str> = base.to_vec();
+        a.extend(["--shard", k, "--jobs", jobs]);
+        cat.extend(ok(&a).stdout.into_bytes());
+    }
+    assert_eq!(String::from_utf8(cat).unwrap(), text);
+    // more shards than scenes: empty shards are fine (shard 1 still writes the header)
+    let mut a: Vec<&str> = base.to_vec();
+    a.extend(["--shard", "1/20"]);
+    assert_eq!(ok(&a).stdout.lines().count(), 1);
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+#[test]
+fn scene_files_and_flags() {
+    let d = tmpdir("scene");
+    // the flag overrides the file
+    let f = write(&d, "s.toml", "eta = 0.7\nsupport_compliance = 0.5\n");
+    let o = ok(&[
+        "scan",
+        "--scene",
+        &f,
+        "--support-compliance",
+        "0",
+        "--method",
+        "analytic",
+        "--points",
+        "3",
+        "--json",
+    ]);
+    let v = json(&o.stdout);
+    close(v["eta"].as_f64().unwrap(), 0.7, 0.0, "eta from file");
+    // physical units add columns
+    let o = ok(&[
+        "solve",
+        "--alpha",
+        "-0.3",
+        "--phi1",
+        "0.5",
+        "--method",
+        "analytic",
+        "--scene",
+        "data/scenes/paper.toml",
+        "--length-mm",
+        "30",
+        "--youngs-modulus-gpa",
+        "3.3",
+        "--base-diameter-um",
+        "100",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    let ei = 3.3e9 * std::f64::consts::PI * 1e-4f64.powi(4) / 64.0;
+    close(
+        col(&h, &rows[0], "f_N"),
+        col(&h, &rows[0], "f") * ei / 0.03f64.powi(2),
+        1e-15,
+        "f in N",
+    );
+    close(
+        col(&h, &rows[0], "x1_mm"),
+        col(&h, &rows[0], "x1") * 30.0,
+        1e-12,
+        "x1 mm",
+    );
+    // presets parse
+    for e in std::fs::read_dir("data/scenes").unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "toml") {
+            let text = std::fs::read_to_string(&p).unwrap();
+            toml::from_str::<vibrissa::Scene>(&text)
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        }
+    }
+}
+
+#[test]
+fn bad_input_is_one_line_and_nonzero() {
+    let d = tmpdir("bad");
+    let out = d.join("never.csv");
+    let outs = out.to_str().unwrap();
+    // unknown flag, missing flags, non-numeric, NaN
+    bad(
+        &["solve", "--alpha", "0", "--phi1", "0.3", "--frobnicate"],
+        2,
+    );
+    bad(&["solve", "--phi1", "0.3"], 2);
+    bad(&["solve", "--alpha", "abc", "--phi1", "0.3"], 2);
+    bad(&["solve", "--alpha", "NaN", "--phi1", "0.3"], 2);
+    bad(&["frobnicate"], 2);
+    // out-of-domain values name the valid range
+    let m = bad(
+        &[
+            "solve", "--alpha", "-1", "--phi1", "0.3", "--method", "analytic",
+        ],
+        2,
+    );
+    assert!(m.contains("valid range"), "{m}");
+    let m = bad(
+        &[
+            "solve", "--alpha", "-0.2", "--phi1", "1.4", "--method", "analytic",
+        ],
+        2,
+    );
+    assert!(m.contains("phi1") && m.contains("valid range"), "{m}");
+    let m = bad(&["scan", "--eta", "0.3", "--out", outs], 2);
+    assert!(m.contains("eta") && m.contains("valid range"), "{m}");
+    let m = bad(
+        &[
+            "scan",
+            "--taper",
+            "1",
+            "--precurvature",
+            "0.3",
+            "--method",
+            "analytic",
+            "--out",
+            outs,
+        ],
+        2,
+    );
+    assert!(m.contains("analytic"), "{m}");
+    // scene files: typo'd key, missing file, non-numeric field
+    let typo = write(&d, "typo.toml", "eta = 0.7\nsuport_compliance = 0.1\n");
+    let m = bad(&["scan", "--scene", &typo, "--out", outs], 2);
+    assert!(
+        m.contains("suport_compliance") && m.contains("line 2"),
+        "{m}"
+    );
+    let m = bad(
+        &["scan", "--scene", "/nonexistent/scene.toml", "--out", outs],
+        2,
+    );
+    assert!(m.contains("/nonexistent/scene.toml"), "{m}");
+    let nonnum = write(&d, "nonnum.toml", "eta = \"high\"\n");
+    bad(&["scan", "--scene", &nonnum, "--out", outs], 2);
+    let badtaper = write(
+        &d,
+        "taper.toml",
+        "stiffness = { kind = \"taper\", ratio = 2.0 }\n",
+    );
+    let m = bad(
+        &[
+            "solve", "--alpha", "0", "--phi1", "0.3", "--scene", &badtaper,
+        ],
+        2,
+    );
+    assert!(m.contains("ratio"), "{m}");
+    // sweep grid syntax, shard syntax
+    bad(&["sweep", "--eta", "0.5:0.9", "--out", outs], 2);
+    bad(&["sweep", "--shard", "4/3", "--out", outs], 2);
+    bad(&["sweep", "--method", "newton", "--out", outs], 2);
+    // no partial CSV was left behind
+    assert!(!out.exists());
+    assert_eq!(
+        std::fs::read_dir(&d).unwrap().count(),
+        3,
+        "only the scene files"
+    );
+}
+
+#[test]
+fn help_documents_every_flag() {
+    for (cmd, flags) in [
+        (
+            "solve",
+            &[
+                "--alpha",
+                "--phi1",
+                "--eta",
+                "--branch",
+                "--method",
+                "--tol",
+                "--json",
+                "--shape-out",
+                "--shape-points",
+                "--taper",
+                "--precurvature",
+                "--precurvature-slope",
+                "--support-compliance",
+                "--surface-angle",
+                "--scene",
+            ][..],
+        ),
+        (
+            "scan",
+            &[
+                "--eta", "--d-max", "--points", "--mu0", "--method", "--tol", "--out", "--shapes",
+                "--json", "--taper",
+            ][..],
+        ),
+        (
+            "sweep",
+            &[
+                "--eta",
+                "--taper",
+                "--precurvature",
+                "--precurvature-slope",
+                "--support-compliance",
+                "--method",
+                "--tol",
+                "--jobs",
+                "--shard",
+                "--no-header",
+                "--timing",
+                "--out",
+            ][..],
+        ),
+        ("infer", &["--eta", "--d0", "--json", "--method"][..]),
+        ("figures", &["--out-dir"][..]),
+    ] {
+        let o = ok(&[cmd, "--help"]);
+        for f in flags {
+            assert!(o.stdout.contains(f), "{cmd} --help lacks {f}");
+        }
+        assert!(
+            o.stdout.contains("default"),
+            "{cmd} --help shows no defaults"
+        );
+    }
+}
