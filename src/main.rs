@@ -2,6 +2,7 @@
 
 mod cli;
 mod error;
+mod figures;
 mod numeric;
 mod output;
 mod scan;
@@ -38,7 +39,7 @@ fn run(cli: Cli) -> Result<(), Fail> {
         Command::Scan(a) => scan::run(&a),
         Command::Infer(a) => scan::run_infer(&a),
         Command::Sweep(a) => sweep::run(&a),
-        Command::Figures(_) => Err(error::solve_fail("not implemented yet")),
+        Command::Figures(a) => figures::run(&a),
     }
 }
 

@@ -1,6 +1,7 @@
 //! End-to-end tests of the `vibrissa` program: run the built binary, check values against the
 //! closed forms (crate `elastica`) and the paper's printed numbers, and check the error contract.
 
+use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -590,4 +591,70 @@ fn help_documents_every_flag() {
             "{cmd} --help shows no defaults"
         );
     }
+}
+
+#[test]
+fn figures_are_valid_svg_with_data() {
+    let d = tmpdir("figs");
+    let ds = d.to_str().unwrap();
+    let o = ok(&["figures", "--out-dir", ds]);
+    assert!(o.stdout.contains(ds));
+    // (figure, minimum number of drawn lines, minimum number of dots)
+    for (n, lines, dots) in [
+        (2, 23, 40),
+        (3, 4, 42),
+        (4, 2, 20),
+        (5, 4, 42),
+        (6, 1, 101),
+        (7, 11, 5),
+        (8, 1, 101),
+        (9, 1, 5),
+        (10, 8, 0),
+        (11, 1, 5),
+    ] {
+        let svg = std::fs::read_to_string(d.join(format!("fig{n:02}.svg"))).unwrap();
+        assert!(svg.trim_start().starts_with("<svg"), "fig {n}");
+        assert!(svg.trim_end().ends_with("</svg>"), "fig {n}");
+        assert!(svg.contains("<text"), "fig {n}: no labels");
+        let polylines = svg.matches("<polyline").count() + svg.matches("<path").count();
+        // the axes and grid add polylines too; series are on top of those
+        assert!(polylines >= lines, "fig {n}: {polylines} lines");
+        let circles = svg.matches("<circle").count();
+        assert!(circles >= dots, "fig {n}: {circles} dots");
+        assert!(!svg.contains("NaN"), "fig {n}");
+        let text = std::fs::read_to_string(d.join(format!("fig{n:02}.csv"))).unwrap();
+        let (h, rows) = csv(&text);
+        assert_eq!(h, ["panel", "series", "x", "y"]);
+        assert!(!rows.is_empty());
+    }
+    // Fig. 8: the numerical mu(d) points (101) match the closed-form mu_max
+    let (h, rows) = csv(&std::fs::read_to_string(d.join("fig08.csv")).unwrap());
+    let num: Vec<&Vec<String>> = rows
+        .iter()
+        .filter(|r| r[1].starts_with("numerical"))
+        .collect();
+    assert_eq!(num.len(), 101);
+    let best = elastica::ClosedFormScan::new(0.75)
+        .unwrap()
+        .mu_max()
+        .unwrap();
+    let m = num.iter().map(|r| col(&h, r, "y")).fold(f64::MIN, f64::max);
+    assert!(
+        m <= best.mu + 1e-8 && m > best.mu - 1e-3,
+        "grid max {m} vs {}",
+        best.mu
+    );
+    // Fig. 2: the turning-point locus is f = 4 K^2(sin(alpha/2)); at alpha -> 0 it tends to pi^2
+    let (h, rows) = csv(&std::fs::read_to_string(d.join("fig02.csv")).unwrap());
+    let locus: Vec<&Vec<String>> = rows
+        .iter()
+        .filter(|r| r[1].starts_with("turning"))
+        .collect();
+    let last = locus.last().unwrap();
+    close(
+        col(&h, last, "y"),
+        PI * PI,
+        1e-4,
+        "turning point at alpha -> 0",
+    );
 }
