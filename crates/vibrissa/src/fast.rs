@@ -240,7 +240,7 @@ type Y = [f64; NV];
 
 /// Rod right-hand side with the variational equations in `u = (m0, f, α)`.
 #[inline(always)]
-fn rhs(y: &Y, f: f64, ca: f64, sa: f64) -> Y {
+fn rhs<const VAR: bool>(y: &Y, f: f64, ca: f64, sa: f64) -> Y {
     let (sp, cp) = y[2].sin_cos();
     // sin/cos(φ − α) from those of φ and α: one sin_cos per evaluation
     let cd = cp * ca + sp * sa;
@@ -251,6 +251,9 @@ fn rhs(y: &Y, f: f64, ca: f64, sa: f64) -> Y {
     d[1] = sp;
     d[2] = y[3];
     d[3] = f * cd;
+    if !VAR {
+        return d;
+    }
     for q in 0..3 {
         let (dphi, dm) = (y[4 + 4 * q + 2], y[4 + 4 * q + 3]);
         d[4 + 4 * q] = -sp * dphi;
@@ -282,7 +285,9 @@ struct Integrator {
 }
 
 impl Integrator {
-    fn shoot(&mut self, u: &[f64; 3]) -> Shot {
+    /// Integrates from `u`; with `VAR` also the sensitivities (else only `z`: 4× less work).
+    fn shoot<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
+        let nv = if VAR { NV } else { 4 };
         let (m0, f, alpha) = (u[0], u[1], u[2]);
         let (sa, ca) = alpha.sin_cos();
         let n = self.steps;
@@ -294,7 +299,7 @@ impl Integrator {
         self.path_z.clear();
         self.path_dz.clear();
         let mut k = [[0.0; NV]; 12];
-        k[0] = rhs(&y, f, ca, sa);
+        k[0] = rhs::<VAR>(&y, f, ca, sa);
         let mut err_max: f64 = 0.0;
         for _ in 0..n {
             self.path_z.extend_from_slice(&y[..4]);
@@ -305,19 +310,19 @@ impl Integrator {
                     let a = tab::A[i][j];
                     if a != 0.0 {
                         let ha = h * a;
-                        for c in 0..NV {
+                        for c in 0..nv {
                             t[c] += ha * kj[c];
                         }
                     }
                 }
-                k[i] = rhs(&t, f, ca, sa);
+                k[i] = rhs::<VAR>(&t, f, ca, sa);
             }
             let mut ynew = y;
             for (j, kj) in k.iter().enumerate() {
                 let b = tab::B[j];
                 if b != 0.0 {
                     let hb = h * b;
-                    for c in 0..NV {
+                    for c in 0..nv {
                         ynew[c] += hb * kj[c];
                     }
                 }
@@ -342,13 +347,15 @@ impl Integrator {
             };
             err_max = err_max.max(if err.is_nan() { f64::INFINITY } else { err });
             y = ynew;
-            k[0] = rhs(&y, f, ca, sa);
+            k[0] = rhs::<VAR>(&y, f, ca, sa);
         }
         self.path_z.extend_from_slice(&y[..4]);
         self.path_dz.extend_from_slice(&k[0][..4]);
         self.stats.steps += n;
         self.stats.rhs_evals += 12 * n + 1;
-        self.stats.jac_evals += 12 * n + 1;
+        if VAR {
+            self.stats.jac_evals += 12 * n + 1;
+        }
         self.stats.bc_evals += 1;
         Shot {
             y1: y,
@@ -357,13 +364,14 @@ impl Integrator {
     }
 }
 
+#[allow(clippy::needless_range_loop)] // index loops mirror the elimination formulas
 /// 3×3 solve `J x = b` by Gaussian elimination with partial pivoting; `None` if singular.
 fn solve3(j: &[[f64; 3]; 3], b: &[f64; 3]) -> Option<[f64; 3]> {
     let mut a = *j;
     let mut x = *b;
     for c in 0..3 {
         let p = (c..3).max_by(|&r, &s| a[r][c].abs().total_cmp(&a[s][c].abs()))?;
-        if !(a[p][c].abs() > 0.0) {
+        if a[p][c] == 0.0 || a[p][c].is_nan() {
             return None;
         }
         a.swap(c, p);
@@ -430,52 +438,78 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
 
     /// Newton from `u` at `d`; on success also checks the integration error (raising the step
     /// count and starting over when it is too large).
+    ///
+    /// Chord iterations: the Jacobian (a shot with sensitivities) is taken at the first iterate
+    /// only and refreshed when the residual does not drop by 10×; the other shots integrate the
+    /// rod alone. From a good predictor the first step lands within `O(|Δu|²)`, so the usual cost
+    /// is one shot with and one without sensitivities. The tangent uses the first Jacobian (its
+    /// `O(|Δu|)` error only enters the next prediction).
     fn correct(&mut self, mut u: [f64; 3], d: f64) -> Option<Point> {
         let u_start = u;
-        for _pass in 0..6 {
-            let mut conv = None;
+        'pass: for _pass in 0..6 {
+            let mut jac: Option<[[f64; 3]; 3]> = None;
+            let mut jac0 = None;
+            let mut rn_prev = f64::INFINITY;
             for it in 0..=MAX_ITER {
-                let shot = self.int.shoot(&u);
+                let shot = if jac.is_none() {
+                    let sh = self.int.shoot::<true>(&u);
+                    jac = Some(Self::jac(&sh.y1));
+                    if jac0.is_none() {
+                        jac0 = jac;
+                    }
+                    sh
+                } else {
+                    self.int.shoot::<false>(&u)
+                };
                 let r = self.residual(&shot.y1, d);
                 let rn = r.iter().fold(0.0f64, |a, v| a.max(v.abs()));
                 if !rn.is_finite() {
                     return None;
                 }
-                let jac = Self::jac(&shot.y1);
                 if rn <= self.newton_tol {
-                    conv = Some((shot, jac));
-                    break;
+                    if shot.err > 1.0 {
+                        // too few steps for the tolerance: ~order-8 rule with a margin
+                        let fac = (shot.err.powf(1.0 / 8.0) * 1.05).clamp(1.05, 4.0);
+                        let n = self.int.steps;
+                        self.int.steps = ((n as f64 * fac).ceil() as usize).clamp(n + 1, 100_000);
+                        u = u_start;
+                        continue 'pass;
+                    }
+                    self.int.stats.residual = rn;
+                    let moved = u
+                        .iter()
+                        .zip(&u_start)
+                        .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+                    if moved > 1e-6 {
+                        // far from the prediction: the first Jacobian is too rough for a tangent
+                        let sh = self.int.shoot::<true>(&u);
+                        jac0 = Some(Self::jac(&sh.y1));
+                    }
+                    let j0 = jac0?;
+                    let du = solve3(&j0, &[0.0, -1.0, 0.0])?;
+                    return Some(Point {
+                        d,
+                        u,
+                        du,
+                        det: det3(&j0),
+                    });
                 }
                 if it == MAX_ITER {
                     return None;
                 }
-                let du = solve3(&jac, &[-r[0], -r[1], -r[2]])?;
+                if rn > 0.1 * rn_prev {
+                    // slow chord convergence: fresh Jacobian here
+                    let sh = self.int.shoot::<true>(&u);
+                    jac = Some(Self::jac(&sh.y1));
+                }
+                rn_prev = rn;
+                let du = solve3(&jac?, &[-r[0], -r[1], -r[2]])?;
                 self.int.stats.newton_iters += 1;
                 self.int.stats.factorizations += 1;
                 for (a, b) in u.iter_mut().zip(du) {
                     *a += b;
                 }
             }
-            let (shot, jac) = conv?;
-            if shot.err > 1.0 {
-                // too few steps for the tolerance: ~order-8 rule with a margin
-                let fac = (shot.err.powf(1.0 / 8.0) * 1.05).clamp(1.05, 4.0);
-                let n = self.int.steps;
-                self.int.steps = ((n as f64 * fac).ceil() as usize).clamp(n + 1, 100_000);
-                u = u_start;
-                continue;
-            }
-            self.int.stats.residual = self
-                .residual(&shot.y1, d)
-                .iter()
-                .fold(0.0, |a, v| a.max(v.abs()));
-            let du = solve3(&jac, &[0.0, -1.0, 0.0])?;
-            return Some(Point {
-                d,
-                u,
-                du,
-                det: det3(&jac),
-            });
         }
         None
     }
@@ -532,6 +566,93 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
             *ui = v;
         }
         u
+    }
+}
+
+/// `m(s)` of a solution on the uniform mesh `i / n` by the cubic Hermite interpolant of
+/// [`Solution::eval`] (same interval choice and formula), without the search and the other states.
+#[inline]
+fn m_at(sol: &Solution, s: f64) -> f64 {
+    let n = sol.mesh.len() - 1;
+    let s = s.clamp(0.0, 1.0);
+    let node = |i: usize| i as f64 / n as f64;
+    let mut i = ((s * n as f64) as usize).min(n - 1);
+    while i + 1 < n && node(i + 1) <= s {
+        i += 1;
+    }
+    while i > 0 && node(i) > s {
+        i -= 1;
+    }
+    let (s0, s1) = (sol.mesh[i], sol.mesh[i + 1]);
+    let h = s1 - s0;
+    let t = ((s - s0) / h).clamp(0.0, 1.0);
+    let t2 = t * t;
+    let t3 = t2 * t;
+    (2.0 * t3 - 3.0 * t2 + 1.0) * sol.z[4 * i + 3]
+        + (t3 - 2.0 * t2 + t) * h * sol.dz[4 * i + 3]
+        + (-2.0 * t3 + 3.0 * t2) * sol.z[4 * (i + 1) + 3]
+        + (t3 - t2) * h * sol.dz[4 * (i + 1) + 3]
+}
+
+/// `crate::solve::flex_points` for the uniform rod (κ = m) on a uniform mesh: the same samples,
+/// threshold and bisection, with the cheap [`m_at`].
+fn flex_uniform(sol: &Solution) -> (usize, Option<f64>) {
+    const N: usize = 128;
+    let kap = |s: f64| m_at(sol, s);
+    // the samples are reused by the scale and the sign scan (same values as evaluating twice)
+    let mut vals = [0.0; N + 1];
+    for (i, v) in vals.iter_mut().enumerate() {
+        *v = kap(i as f64 / N as f64);
+    }
+    let scale = vals.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let eps = 1e-9 * scale.max(1e-300);
+    let mut count = 0;
+    let mut first = None;
+    let mut prev: Option<(f64, f64)> = None;
+    for (i, &k) in vals.iter().enumerate().take(N) {
+        let s = i as f64 / N as f64;
+        if k.abs() <= eps {
+            continue;
+        }
+        if let Some((sp, kp)) = prev {
+            if kp.signum() != k.signum() {
+                count += 1;
+                if first.is_none() {
+                    let (mut a, mut b, ka) = (sp, s, kp);
+                    for _ in 0..60 {
+                        let c = 0.5 * (a + b);
+                        if (kap(c) > 0.0) == (ka > 0.0) {
+                            a = c;
+                        } else {
+                            b = c;
+                        }
+                    }
+                    first = Some(0.5 * (a + b));
+                }
+            }
+        }
+        prev = Some((s, k));
+    }
+    (count, first)
+}
+
+/// The output point of a solution (as `Scanner::point` for the uniform rod, without building a
+/// [`crate::Shape`]).
+fn fast_point(sol: &Solution, d: f64, mu: f64) -> ScanPoint {
+    let (f, alpha) = (sol.params[0], sol.params[1]);
+    let (flex, s_flex) = flex_uniform(sol);
+    ScanPoint {
+        d,
+        mu,
+        alpha,
+        phi1: sol.right()[2],
+        f,
+        fx: f * alpha.sin(),
+        fy: -f * alpha.cos(),
+        m_base: sol.left()[3],
+        flex,
+        s_flex,
+        y_max: crate::solve::extrema(sol, 0.0, 1.0).max,
     }
 }
 
@@ -630,14 +751,14 @@ pub(crate) fn scan_uniform<Pr: Profile>(
             }
         }
         if gi < grid.len() && grid[gi] == d {
-            let (pt, sh) = sc.point(&sol, d);
-            points.push(pt);
-            keep(&mut shapes, &sh);
-            gi += 1;
-            // repeated grid values
+            let pt = fast_point(&sol, d, w.mu);
+            let sh = opts.keep_shapes.map(|_| sc.point(&sol, d).1);
+            // repeated grid values too
             while gi < grid.len() && grid[gi] == d {
                 points.push(pt);
-                keep(&mut shapes, &sh);
+                if let Some(sh) = &sh {
+                    keep(&mut shapes, sh);
+                }
                 gi += 1;
             }
         }
@@ -663,4 +784,62 @@ pub(crate) fn scan_uniform<Pr: Profile>(
         stats,
         shapes,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Ends, RodBvp, Uniform};
+    use crate::Model;
+
+    /// The fast point equals the generic `shape_from` + `watch` one on the same solution (convex
+    /// and one-flex rods), so the fast scan reports what the generic scan would.
+    #[test]
+    fn fast_point_matches_generic() {
+        let model = Model::new(&crate::Scene::default()).unwrap();
+        let rod = RodBvp {
+            profile: Uniform,
+            compliance: 0.0,
+            alpha: 0.0,
+            ends: Ends::Tip { x1: 0.5, y1: 0.75 },
+        };
+        for (branch, a, p) in [
+            (elastica::Branch::Convex, -0.2, 0.4),
+            (elastica::Branch::OneFlex, -0.3, 0.2),
+        ] {
+            let e = elastica::Elastica::new(branch, a, p).unwrap();
+            let mut int = Integrator {
+                steps: 13,
+                tol: 1e-10,
+                path_z: Vec::new(),
+                path_dz: Vec::new(),
+                stats: Stats::default(),
+            };
+            int.shoot::<true>(&[e.m_base, e.f, a]);
+            let n = int.steps;
+            let sol = Solution {
+                n: 4,
+                mesh: (0..=n).map(|i| i as f64 / n as f64).collect(),
+                z: int.path_z.clone(),
+                dz: int.path_dz.clone(),
+                params: vec![e.f, a],
+                status: Status::Converged,
+                stats: Stats::default(),
+            };
+            let fast = fast_point(&sol, 0.1, 0.3);
+            let shape = crate::solve::shape_from(sol.clone(), &rod, model.profile(1.0));
+            assert_eq!(fast.flex, shape.flex);
+            assert_eq!(fast.flex, e.flex_count());
+            match (fast.s_flex, shape.s_flex) {
+                (Some(x), Some(y)) => assert!((x - y).abs() < 1e-15, "{x} {y}"),
+                (None, None) => {}
+                other => panic!("flex points differ: {other:?}"),
+            }
+            assert_eq!(fast.y_max, shape.y_max);
+            assert_eq!(fast.phi1, shape.phi1);
+            assert_eq!(fast.m_base, shape.m_base);
+            // the 13-step path is an accurate rod: the tip slope against the closed form
+            assert!((fast.phi1 - p).abs() < 1e-9, "{} {p}", fast.phi1);
+        }
+    }
 }
