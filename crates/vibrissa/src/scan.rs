@@ -4,8 +4,9 @@
 use crate::model::{Ends, Profile, RodBvp, ScanFamily, Uniform};
 use crate::solve::{check_branch, extrema, shape_from, solve_with, Engine, SolverConfig};
 use crate::{BranchChoice, Method, Model, Shape, ShapePoint, Target, VibrissaError};
+use bvp::continuation::Fixed;
 use bvp::continuation::{Continuation, ContinuationOptions, FoldKind};
-use bvp::Solution;
+use bvp::{BvpSolver, Guess, ParamBvp, Solution};
 use serde::Serialize;
 use std::fmt;
 
@@ -349,6 +350,12 @@ impl<'m, Pr: Profile> Scanner<'m, Pr> {
         scanner.continue_scan(engine, start_sol, opts, grid)
     }
 
+    /// The generic scan: natural continuation in `d` from grid point to grid point (with
+    /// intermediate steps where the grid is coarse), warm-started by quadratic extrapolation of
+    /// the last three points, so every output point is a continuation point and needs one or two
+    /// Newton iterations. Pseudo-arclength continuation (crate `bvp`) takes over only where the
+    /// natural step fails, to pass or locate a fold in `d`. Every point, the start included, is
+    /// watched for penetration and slip; crossings are located by Brent's method.
     fn continue_scan(
         &self,
         mut engine: Engine,
@@ -357,180 +364,478 @@ impl<'m, Pr: Profile> Scanner<'m, Pr> {
         grid: &[f64],
     ) -> Result<ScanResult, VibrissaError> {
         let d_end = opts.d_max;
-        let copts = ContinuationOptions {
-            ds: 0.05,
-            ds_min: 1e-7,
-            ds_max: 0.5,
-            max_steps: 5000,
-            lambda_min: -0.25,
-            lambda_max: d_end,
-            detect_folds: true,
-            fold_tol: 1e-10,
-            history: 8,
-            ..ContinuationOptions::default()
+        let mut m = March {
+            sc: self,
+            engine: &mut engine,
+            hist: Vec::with_capacity(4),
+            stats: start_sol.stats.clone(),
         };
-        let (start_point, start_shape) = self.point(&start_sol, 0.0);
-        let mut stats = start_sol.stats.clone();
-        let mut points = Vec::with_capacity(grid.len());
-        let mut shapes = Vec::new();
-        let keep = |shapes: &mut Vec<Vec<ShapePoint>>, sh: &Shape| {
-            if let Some(ns) = opts.keep_shapes {
-                shapes.push(sh.samples(ns));
-            }
+        let sol0 = m
+            .solve(0.0, &Guess::from(&start_sol))
+            .map_err(|e| VibrissaError::solver("scan start (correction at d = 0)", e))?;
+        let (start_point, _) = self.point(&sol0, 0.0);
+        let mut out = Output {
+            points: Vec::with_capacity(grid.len()),
+            shapes: Vec::new(),
+            keep: opts.keep_shapes,
+            gi: 0,
         };
-        let mut gi = 0;
-        while gi < grid.len() && grid[gi] <= 0.0 {
-            points.push(start_point);
-            keep(&mut shapes, &start_shape);
-            gi += 1;
-        }
-        let w0 = self.watch(&start_sol, 0.0);
+        let w0 = self.watch(&sol0, 0.0);
+        m.push(0.0, sol0);
         let mut best = (w0.mu, 0.0);
-        let mut hist: Vec<Watch> = vec![w0];
-        let mut stop = StopReason::DMax;
-        let mut cont = Continuation::new(&self.family, &mut engine, start_sol, 0.0, copts)
-            .map_err(|e| VibrissaError::solver("scan continuation set-up", e))?;
-        let _ = cont.next(); // the corrected start (already converged)
-        let mut last_d = 0.0;
-        let mut finished = false;
-        while !finished {
-            let bp = match cont.next() {
-                None => break,
-                Some(Err(e)) => {
-                    stop = StopReason::SolverFailure {
-                        d: last_d,
-                        message: e.to_string(),
-                    };
-                    break;
-                }
-                Some(Ok(bp)) => bp,
+        // the start itself may already be through the surface
+        if w0.pen > 0.0 {
+            let stop = StopReason::Penetration {
+                d: 0.0,
+                s: w0.pen_s,
+                y: w0.pen_y,
             };
-            stats.accumulate(&bp.stats);
-            let d = bp.lambda;
-            if let Some(fold) = &bp.fold {
-                if fold.kind == FoldKind::Max {
-                    stop = StopReason::FoldInD { d: fold.lambda };
-                    break;
+            let stop = out.emit(&mut m, grid, 0.0).err().unwrap_or(stop);
+            return Ok(m.finish(start_point, out, best, stop));
+        }
+        if let Some(mu0) = opts.mu0 {
+            if w0.mu >= mu0 {
+                let stop = StopReason::Slip { d: 0.0, mu: w0.mu };
+                let stop = out.emit(&mut m, grid, 0.0).err().unwrap_or(stop);
+                return Ok(m.finish(start_point, out, best, stop));
+            }
+        }
+        let mut prev = w0;
+        let mut pprev: Option<Watch> = None;
+        let mut h: f64 = 0.01_f64.min(d_end);
+        let h_max = 0.05_f64.min(d_end);
+        let h_min = 1e-7;
+        let mut solves = 0usize;
+        let stop = loop {
+            let d = prev.d;
+            if d >= d_end {
+                if let Err(fail) = out.emit(&mut m, grid, d_end) {
+                    break fail;
+                }
+                break StopReason::DMax;
+            }
+            solves += 1;
+            if solves > 100_000 {
+                break StopReason::SolverFailure {
+                    d,
+                    message: "more than 100000 continuation steps".into(),
+                };
+            }
+            // next target: at most h ahead, never past the next grid point
+            let mut target = (d + h).min(d_end);
+            if let Some(&g) = grid.get(out.gi) {
+                if g > d && g < target {
+                    target = g;
                 }
             }
-            if d <= last_d {
-                stop = StopReason::FoldInD { d: last_d };
-                break;
+            if d_end - target < 1e-3 * h {
+                target = d_end;
             }
-            let w = self.watch(&bp.solution, d);
-            let prev = *hist.last().unwrap_or(&w0);
-            let mut d_stop = d;
-            // penetration
-            if w.pen > 0.0 && prev.pen <= 0.0 {
-                match locate_root(&mut cont, self, prev.d, d, |w| w.pen) {
-                    Ok((dp, wp)) => {
-                        d_stop = dp;
-                        if wp.mu > best.0 {
-                            best = (wp.mu, dp);
+            let step = m.step_to(target);
+            let (dn, sol) = match step {
+                Ok((sol, iters)) => {
+                    h = if iters <= 2 {
+                        (2.0 * h).min(h_max)
+                    } else if iters <= 4 {
+                        (1.25 * h).min(h_max)
+                    } else {
+                        0.5 * h
+                    };
+                    (target, sol)
+                }
+                Err(_) if h > h_min => {
+                    h *= 0.25;
+                    continue;
+                }
+                Err(e) => {
+                    // the natural step failed for tiny steps: a fold, or a hard point; pass it
+                    // (or locate the fold) by pseudo-arclength continuation
+                    match m.arclength_past(d, target, d_end) {
+                        Passed::Beyond(dn, sol) => (dn, sol),
+                        Passed::Fold(df) => break StopReason::FoldInD { d: df },
+                        Passed::Failed(msg) => {
+                            break StopReason::SolverFailure {
+                                d,
+                                message: format!("natural step to d = {target}: {e}; {msg}"),
+                            }
                         }
-                        stop = StopReason::Penetration {
+                    }
+                }
+            };
+            let w = self.watch(&sol, dn);
+            m.push(dn, sol);
+            // events between d and dn, each located by Brent's method
+            let mut event: Option<(f64, StopReason)> = None;
+            if w.pen > 0.0 {
+                event = Some(match m.locate_root(d, dn, |w| w.pen) {
+                    Ok((dp, wp)) => (
+                        dp,
+                        StopReason::Penetration {
                             d: dp,
                             s: wp.pen_s,
                             y: wp.pen_y,
-                        };
-                        finished = true;
-                    }
-                    Err(msg) => {
-                        stop = StopReason::SolverFailure {
-                            d: last_d,
-                            message: msg,
-                        };
-                        break;
-                    }
-                }
+                        },
+                    ),
+                    Err(msg) => (
+                        d,
+                        StopReason::SolverFailure {
+                            d,
+                            message: format!("locating the penetration: {msg}"),
+                        },
+                    ),
+                });
             }
-            // slip
             if let Some(mu0) = opts.mu0 {
-                if w.mu >= mu0 && prev.mu < mu0 {
-                    match locate_root(&mut cont, self, prev.d, d, |w| w.mu - mu0) {
-                        Ok((ds, _)) => {
-                            if ds <= d_stop {
-                                d_stop = ds;
-                                stop = StopReason::Slip { d: ds, mu: mu0 };
-                                best = if mu0 > best.0 { (mu0, ds) } else { best };
-                                finished = true;
-                            }
-                        }
-                        Err(msg) => {
-                            stop = StopReason::SolverFailure {
-                                d: last_d,
-                                message: msg,
-                            };
-                            break;
-                        }
+                if w.mu >= mu0 {
+                    let e = match m.locate_root(d, dn, |w| w.mu - mu0) {
+                        Ok((ds, _)) => (ds, StopReason::Slip { d: ds, mu: mu0 }),
+                        Err(msg) => (
+                            d,
+                            StopReason::SolverFailure {
+                                d,
+                                message: format!("locating the slip: {msg}"),
+                            },
+                        ),
+                    };
+                    if event.as_ref().is_none_or(|(de, _)| e.0 < *de) {
+                        event = Some(e);
                     }
                 }
             }
-            // local maximum of μ at the previous point
-            if hist.len() >= 2 {
-                let pp = hist[hist.len() - 2];
+            let d_stop = event.as_ref().map_or(dn, |e| e.0);
+            // μ at the stop point counts (it is often the largest, e.g. at penetration)
+            if event.is_some() && d_stop > d {
+                if let Ok(sol) = m.solve_within(d_stop) {
+                    let mu = self.watch(&sol, d_stop).mu;
+                    if mu > best.0 {
+                        best = (mu, d_stop);
+                    }
+                }
+            }
+            // a local maximum of μ at the previous point
+            if let Some(pp) = pprev {
                 if prev.mu > pp.mu && prev.mu >= w.mu {
-                    let hi = d.min(d_stop);
-                    if let Ok((dm, mm)) = locate_max(&mut cont, self, pp.d, hi) {
+                    if let Ok((dm, mm)) = m.locate_max(pp.d, dn.min(d_stop)) {
                         if mm > best.0 {
                             best = (mm, dm);
                         }
                     }
                 }
             }
-            // output on the grid
-            while gi < grid.len() && grid[gi] <= d_stop {
-                let dg = grid[gi];
-                let sol = if dg == d {
-                    Ok(bp.solution.clone())
-                } else {
-                    cont.point_at(dg)
-                };
-                match sol {
-                    Ok(sol) => {
-                        stats.accumulate(&sol.stats);
-                        let (p, sh) = self.point(&sol, dg);
-                        points.push(p);
-                        keep(&mut shapes, &sh);
-                    }
-                    Err(e) => {
-                        stop = StopReason::SolverFailure {
-                            d: dg,
-                            message: format!("output point at d = {dg}: {e}"),
-                        };
-                        finished = true;
-                        break;
-                    }
+            if w.mu > best.0 && dn <= d_stop {
+                best = (w.mu, dn);
+            }
+            if let Err(fail) = out.emit(&mut m, grid, d_stop) {
+                break fail;
+            }
+            if let Some((_, reason)) = event {
+                break reason;
+            }
+            pprev = Some(prev);
+            prev = w;
+        };
+        Ok(m.finish(start_point, out, best, stop))
+    }
+}
+
+/// Output points on the grid, filled as the scan passes them.
+struct Output {
+    points: Vec<ScanPoint>,
+    shapes: Vec<Vec<ShapePoint>>,
+    keep: Option<usize>,
+    gi: usize,
+}
+
+impl Output {
+    /// Emits the grid points up to `upto` (the exact continuation point where one is at the grid
+    /// value, else a solve warm-started from the branch). A point that cannot be solved ends the
+    /// scan with [`StopReason::SolverFailure`] at that `d`.
+    fn emit<Pr: Profile>(
+        &mut self,
+        m: &mut March<'_, '_, '_, Pr>,
+        grid: &[f64],
+        upto: f64,
+    ) -> Result<(), StopReason> {
+        while let Some(&dg) = grid.get(self.gi) {
+            if dg > upto {
+                break;
+            }
+            let sol = match m.hist.iter().rev().find(|(d, _)| *d == dg) {
+                Some((_, s)) => Ok(s.clone()),
+                None => m.solve_within(dg),
+            };
+            let sol = sol.map_err(|e| StopReason::SolverFailure {
+                d: dg,
+                message: format!("output point at d = {dg}: {e}"),
+            })?;
+            let (p, sh) = m.sc.point(&sol, dg);
+            self.points.push(p);
+            if let Some(ns) = self.keep {
+                self.shapes.push(sh.samples(ns));
+            }
+            self.gi += 1;
+        }
+        Ok(())
+    }
+}
+
+/// Result of the pseudo-arclength fallback.
+enum Passed {
+    /// The branch continues beyond the failed step: a point on it.
+    Beyond(f64, Solution),
+    /// `d` has a maximum along the branch here.
+    Fold(f64),
+    /// Neither.
+    Failed(String),
+}
+
+/// The marching state: solver, the last points of the branch.
+struct March<'s, 'm, 'e, Pr: Profile> {
+    sc: &'s Scanner<'m, Pr>,
+    engine: &'e mut Engine,
+    hist: Vec<(f64, Solution)>,
+    stats: bvp::Stats,
+}
+
+// the solver's own error, passed through unboxed as crate `bvp` returns it
+#[allow(clippy::result_large_err)]
+impl<Pr: Profile> March<'_, '_, '_, Pr> {
+    fn solve(&mut self, d: f64, guess: &Guess) -> Result<Solution, bvp::BvpError> {
+        let r = self.engine.solve(&Fixed::new(&self.sc.family, d), guess);
+        match &r {
+            Ok(s) => self.stats.accumulate(&s.stats),
+            Err(e) => {
+                if let Some(st) = e.stats() {
+                    self.stats.accumulate(st);
                 }
-                gi += 1;
-            }
-            if finished {
-                break;
-            }
-            let wl = Watch { d, ..w };
-            if wl.mu > best.0 {
-                best = (wl.mu, d);
-            }
-            hist.push(wl);
-            if hist.len() > 3 {
-                hist.remove(0);
-            }
-            last_d = d;
-            if bp.on_bound {
-                stop = StopReason::DMax;
-                break;
             }
         }
-        Ok(ScanResult {
-            eta: self.family.eta,
-            start: start_point,
-            points,
+        r
+    }
+
+    fn push(&mut self, d: f64, sol: Solution) {
+        if self.hist.len() == 3 {
+            self.hist.remove(0);
+        }
+        self.hist.push((d, sol));
+    }
+
+    /// Lagrange inter-/extrapolation in `d` of the kept points (at most the `k` nearest in `d`),
+    /// on the mesh of the newest one.
+    fn guess_at(&self, d: f64, k: usize) -> Guess {
+        let mut idx: Vec<usize> = (0..self.hist.len()).collect();
+        idx.sort_by(|&a, &b| {
+            (self.hist[a].0 - d)
+                .abs()
+                .total_cmp(&(self.hist[b].0 - d).abs())
+        });
+        idx.truncate(k.max(1));
+        let newest = &self.hist[self.hist.len() - 1].1;
+        let w: Vec<f64> = idx
+            .iter()
+            .map(|&i| {
+                idx.iter()
+                    .filter(|&&j| j != i)
+                    .map(|&j| (d - self.hist[j].0) / (self.hist[i].0 - self.hist[j].0))
+                    .product()
+            })
+            .collect();
+        let n = newest.n;
+        let mesh = newest.mesh.clone();
+        let mut z = vec![0.0; n * mesh.len()];
+        let mut buf = vec![0.0; n];
+        for (&i, &wi) in idx.iter().zip(&w) {
+            let sol = &self.hist[i].1;
+            for (node, &s) in mesh.iter().enumerate() {
+                sol.eval(s, &mut buf);
+                for j in 0..n {
+                    z[node * n + j] += wi * buf[j];
+                }
+            }
+        }
+        let mut params = vec![0.0; newest.params.len()];
+        for (&i, &wi) in idx.iter().zip(&w) {
+            for (p, &q) in params.iter_mut().zip(&self.hist[i].1.params) {
+                *p += wi * q;
+            }
+        }
+        let mut dz = vec![0.0; z.len()];
+        for (node, &s) in mesh.iter().enumerate() {
+            self.sc.family.rhs(
+                s,
+                &z[node * n..(node + 1) * n],
+                &params,
+                d,
+                &mut dz[node * n..(node + 1) * n],
+            );
+        }
+        Guess {
+            n,
+            mesh,
+            z,
+            dz: Some(dz),
+            params,
+        }
+    }
+
+    /// A natural step to `d` from the extrapolated guess; rejected when the corrector lands far
+    /// from the prediction (another branch across a fold) relative to the last step.
+    fn step_to(&mut self, d: f64) -> Result<(Solution, usize), bvp::BvpError> {
+        let g = self.guess_at(d, 3);
+        let sol = self.solve(d, &g)?;
+        let (dl, last) = {
+            let (dl, s) = &self.hist[self.hist.len() - 1];
+            (*dl, s)
+        };
+        let u = |s: &Solution| [s.left()[3], s.params[0], s.params[1]];
+        let (un, ul, ug) = (u(&sol), u(last), [g.z[3], g.params[0], g.params[1]]);
+        // the correction must be small against the change over the step
+        let mut corr: f64 = 0.0;
+        let mut change: f64 = 0.0;
+        for i in 0..3 {
+            corr = corr.max((un[i] - ug[i]).abs());
+            change = change.max((un[i] - ul[i]).abs());
+        }
+        let scale = 1.0 + un.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        if !(corr <= 0.5 * change.max(1e-3 * scale * (d - dl).abs().min(1.0))
+            || corr < 1e-9 * scale)
+        {
+            return Err(bvp::BvpError::Stalled {
+                iteration: sol.stats.newton_iters,
+                residual: corr,
+                stats: bvp::Stats::default(),
+            });
+        }
+        let it = sol.stats.newton_iters;
+        Ok((sol, it))
+    }
+
+    /// A solve at `d` inside the span of the kept points (interpolated guess).
+    fn solve_within(&mut self, d: f64) -> Result<Solution, bvp::BvpError> {
+        let g = self.guess_at(d, 3);
+        self.solve(d, &g)
+    }
+
+    /// First `d` in `[a, b]` where `g(watch(d))` crosses 0 (g(a) <= 0 < g(b)), by Brent's method.
+    fn locate_root(
+        &mut self,
+        a: f64,
+        b: f64,
+        g: impl Fn(&Watch) -> f64,
+    ) -> Result<(f64, Watch), String> {
+        let mut failure = None;
+        let r = elastica::roots::try_brent_root(
+            |d| match self.solve_within(d) {
+                Ok(sol) => Ok(g(&self.sc.watch(&sol, d))),
+                Err(e) => {
+                    failure = Some(format!("solve at d = {d}: {e}"));
+                    Err(elastica::ElasticaError::NotFinite {
+                        name: "scan solve",
+                        value: d,
+                    })
+                }
+            },
+            a,
+            b,
+            1e-13,
+            200,
+        );
+        match r {
+            Ok(d) => {
+                let sol = self.solve_within(d).map_err(|e| e.to_string())?;
+                Ok((d, self.sc.watch(&sol, d)))
+            }
+            Err(e) => Err(failure.unwrap_or_else(|| e.to_string())),
+        }
+    }
+
+    /// Maximum of μ(d) on `[a, b]` by Brent's method: `(d, μ)`.
+    fn locate_max(&mut self, a: f64, b: f64) -> Result<(f64, f64), String> {
+        elastica::roots::try_brent_max(
+            |d| match self.solve_within(d) {
+                Ok(sol) => Ok(self.sc.watch(&sol, d).mu),
+                Err(_) => Err(elastica::ElasticaError::NotFinite {
+                    name: "scan solve",
+                    value: d,
+                }),
+            },
+            a,
+            b,
+            1e-10,
+            200,
+        )
+        .map_err(|e| e.to_string())
+    }
+
+    /// Pseudo-arclength continuation from the last point (at `d`) until the branch passes
+    /// `target` (natural steps resume there) or turns back in `d` (a fold).
+    fn arclength_past(&mut self, d: f64, target: f64, d_end: f64) -> Passed {
+        let copts = ContinuationOptions {
+            ds: 1e-3,
+            ds_min: 1e-9,
+            ds_max: 0.05,
+            max_steps: 2000,
+            lambda_min: -0.25,
+            lambda_max: d_end,
+            detect_folds: true,
+            fold_tol: 1e-10,
+            history: 4,
+            ..ContinuationOptions::default()
+        };
+        let start = self.hist[self.hist.len() - 1].1.clone();
+        let mut stats = bvp::Stats::default();
+        let result = (|| {
+            let mut cont =
+                match Continuation::new(&self.sc.family, &mut *self.engine, start, d, copts) {
+                    Ok(c) => c,
+                    Err(e) => return Passed::Failed(e.to_string()),
+                };
+            let _ = cont.next(); // the start, already converged
+            let mut last = d;
+            for item in cont.by_ref() {
+                let bp = match item {
+                    Ok(bp) => bp,
+                    Err(e) => return Passed::Failed(format!("pseudo-arclength: {e}")),
+                };
+                stats.accumulate(&bp.stats);
+                if let Some(f) = &bp.fold {
+                    if f.kind == FoldKind::Max {
+                        return Passed::Fold(f.lambda);
+                    }
+                }
+                if bp.lambda < last {
+                    return Passed::Fold(last);
+                }
+                last = bp.lambda;
+                if bp.lambda > target || bp.on_bound {
+                    return Passed::Beyond(bp.lambda, bp.solution);
+                }
+            }
+            Passed::Failed(format!(
+                "pseudo-arclength continuation did not pass d = {target} (last d = {last})"
+            ))
+        })();
+        self.stats.accumulate(&stats);
+        result
+    }
+
+    fn finish(
+        self,
+        start: ScanPoint,
+        out: Output,
+        best: (f64, f64),
+        stop: StopReason,
+    ) -> ScanResult {
+        ScanResult {
+            eta: self.sc.family.eta,
+            start,
+            points: out.points,
             mu_max: best.0,
             d_at_mu_max: best.1,
             stop,
-            stats,
-            shapes,
-        })
+            stats: self.stats,
+            shapes: out.shapes,
+        }
     }
 }
 
@@ -542,58 +847,6 @@ fn context(e: VibrissaError, what: &str) -> VibrissaError {
         },
         other => other,
     }
-}
-
-type Cont<'a, Pr> = Continuation<'a, ScanFamily<Pr>, &'a mut Engine>;
-
-/// First `d` in `[a, b]` where `g(watch(d))` crosses 0 (g(a) <= 0 < g(b)), by Brent's method.
-fn locate_root<Pr: Profile>(
-    cont: &mut Cont<'_, Pr>,
-    sc: &Scanner<'_, Pr>,
-    a: f64,
-    b: f64,
-    g: impl Fn(&Watch) -> f64,
-) -> Result<(f64, Watch), String> {
-    let mut failure = None;
-    let mut eval = |d: f64| -> Result<f64, elastica::ElasticaError> {
-        match cont.point_at(d) {
-            Ok(sol) => Ok(g(&sc.watch(&sol, d))),
-            Err(e) => {
-                failure = Some(format!("solve at d = {d}: {e}"));
-                Err(elastica::ElasticaError::NotFinite {
-                    name: "scan solve",
-                    value: d,
-                })
-            }
-        }
-    };
-    let r = elastica::roots::try_brent_root(&mut eval, a, b, 1e-13, 200);
-    match r {
-        Ok(d) => {
-            let sol = cont.point_at(d).map_err(|e| e.to_string())?;
-            Ok((d, sc.watch(&sol, d)))
-        }
-        Err(e) => Err(failure.unwrap_or_else(|| e.to_string())),
-    }
-}
-
-/// Maximum of μ(d) on `[a, b]` by Brent's method: `(d, μ)`.
-fn locate_max<Pr: Profile>(
-    cont: &mut Cont<'_, Pr>,
-    sc: &Scanner<'_, Pr>,
-    a: f64,
-    b: f64,
-) -> Result<(f64, f64), String> {
-    let mut eval = |d: f64| -> Result<f64, elastica::ElasticaError> {
-        match cont.point_at(d) {
-            Ok(sol) => Ok(sc.watch(&sol, d).mu),
-            Err(_) => Err(elastica::ElasticaError::NotFinite {
-                name: "scan solve",
-                value: d,
-            }),
-        }
-    };
-    elastica::roots::try_brent_max(&mut eval, a, b, 1e-10, 200).map_err(|e| e.to_string())
 }
 
 /// Infers μ0 from the displacement `d0` at which the tip slipped: μ0 = μ(d0) for `d0` in the

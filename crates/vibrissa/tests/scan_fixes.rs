@@ -1,0 +1,245 @@
+//! Regression tests of the scan: cost of the general profile, penetration at the start, every
+//! grid point present when d_max is reported, and the fold in d (snap-through).
+
+use bvp::continuation::{Continuation, ContinuationOptions};
+use bvp::{Integrator, NewtonOptions, Shooting, ShootingOptions};
+use vibrissa::model::{Ends, RodBvp, ScanFamily, Uniform};
+use vibrissa::{
+    scan, solve, BranchChoice, Model, ScanOptions, ScanResult, Scene, SolverConfig, Stiffness,
+    StopReason, Target,
+};
+
+fn grid_len(o: &ScanOptions, upto: f64) -> usize {
+    (0..o.points)
+        .filter(|&i| o.d_max * i as f64 / (o.points - 1) as f64 <= upto)
+        .count()
+}
+
+/// The contract of the output: d_max means every grid point; any other stop at d means every
+/// grid point up to d (and none beyond).
+fn check_points(r: &ScanResult, o: &ScanOptions) {
+    let upto = match &r.stop {
+        StopReason::DMax => o.d_max,
+        StopReason::Slip { d, .. }
+        | StopReason::Penetration { d, .. }
+        | StopReason::FoldInD { d } => *d,
+        StopReason::SolverFailure { d, .. } => *d - 1e-300,
+    };
+    assert_eq!(r.points.len(), grid_len(o, upto), "stop {}", r.stop);
+}
+
+#[test]
+fn table_profile_costs_about_as_much_as_the_uniform_branch() {
+    // b ≡ 1 written as a table: the same rod as the paper's. One natural step per grid point
+    // from a quadratic predictor needs at most 2 Newton iterations per point on this smooth
+    // branch (it took 620 = 3.1 per point with output solves off pseudo-arclength points).
+    let table = Scene {
+        stiffness: Stiffness::Table {
+            s: vec![0.0, 0.25, 0.5, 0.75, 1.0],
+            b: vec![1.0; 5],
+        },
+        ..Scene::default()
+    };
+    let o = ScanOptions::default();
+    let rt = scan(&Model::new(&table).unwrap(), &o).unwrap();
+    let ru = scan(&Model::new(&Scene::default()).unwrap(), &o).unwrap();
+    assert_eq!(rt.stop, StopReason::DMax);
+    check_points(&rt, &o);
+    assert!(
+        rt.stats.newton_iters <= 2 * o.points,
+        "{} Newton iterations for {} points",
+        rt.stats.newton_iters,
+        o.points
+    );
+    // same physics: same answers (to the solver tolerance 1e-10, amplified by conditioning)
+    assert!((rt.mu_max - ru.mu_max).abs() < 1e-8);
+    assert!((rt.d_at_mu_max - ru.d_at_mu_max).abs() < 1e-6);
+    for (a, b) in rt.points.iter().zip(&ru.points) {
+        assert!((a.alpha - b.alpha).abs() < 1e-8 && (a.f - b.f).abs() < 1e-8);
+    }
+}
+
+#[test]
+fn start_below_the_surface_stops_at_d0() {
+    // taper 0.5, η = 0.6: the starting rod's tip points down (φ1 < 0), so y(s) > η just before
+    // the tip — the start already penetrates.
+    let scene = Scene {
+        eta: 0.6,
+        stiffness: Stiffness::Taper { ratio: 0.5 },
+        ..Scene::default()
+    };
+    let model = Model::new(&scene).unwrap();
+    let start = solve(
+        &model,
+        0.0,
+        Target::Eta(0.6),
+        &BranchChoice::Convex,
+        &SolverConfig::default(),
+    )
+    .unwrap();
+    assert!(start.phi1 < -0.1, "phi1 = {}", start.phi1);
+    assert!(start.point_at(0.99).y > 0.6);
+    let o = ScanOptions {
+        points: 21,
+        ..ScanOptions::default()
+    };
+    let r = scan(&model, &o).unwrap();
+    match r.stop {
+        StopReason::Penetration { d, s, y } => {
+            assert_eq!(d, 0.0);
+            assert_eq!(s, 1.0);
+            assert!((y - 0.6).abs() < 1e-9);
+        }
+        ref other => panic!("expected penetration at d = 0, got {other}"),
+    }
+    check_points(&r, &o);
+}
+
+#[test]
+fn penetration_between_grid_points_is_located() {
+    // paper rod at η = 0.6 on a coarse grid (spacing 0.1): the tip turns horizontal at
+    // d ≈ 0.0937 (closed form in tests/closed_form.rs), between the grid points 0 and 0.1
+    let model = Model::new(&Scene {
+        eta: 0.6,
+        ..Scene::default()
+    })
+    .unwrap();
+    let o = ScanOptions {
+        points: 6,
+        ..ScanOptions::default()
+    };
+    let r = scan(&model, &o).unwrap();
+    let cf = elastica::ClosedFormScan::new(0.6).unwrap();
+    match r.stop {
+        StopReason::Penetration { d, .. } => assert!((d - cf.turning.d).abs() < 1e-7),
+        ref other => panic!("expected penetration, got {other}"),
+    }
+    check_points(&r, &o);
+}
+
+#[test]
+fn coarse_grids_keep_every_point() {
+    // taper 0.05 used to end "d_max" with 3-5 of 6 points (the continuation's step cap ended
+    // the scan silently); its start penetrates (tip curled down). Compliant and inclined scenes
+    // run to d_max with all points.
+    let scenes = [
+        Scene {
+            stiffness: Stiffness::Taper { ratio: 0.05 },
+            ..Scene::default()
+        },
+        Scene {
+            support_compliance: 0.5,
+            ..Scene::default()
+        },
+        Scene {
+            eta: 0.9,
+            surface_angle: -0.3,
+            ..Scene::default()
+        },
+    ];
+    let o = ScanOptions {
+        points: 6,
+        ..ScanOptions::default()
+    };
+    for (i, scene) in scenes.iter().enumerate() {
+        let r = scan(&Model::new(scene).unwrap(), &o).unwrap();
+        check_points(&r, &o);
+        if i == 0 {
+            assert!(matches!(r.stop, StopReason::Penetration { d, .. } if d == 0.0));
+        } else {
+            assert_eq!(r.stop, StopReason::DMax);
+        }
+    }
+}
+
+#[test]
+fn fold_in_d_is_found_where_d_is_largest_on_the_branch() {
+    // paper rod at η = 0.95 pushed to d = 0.6: d has a maximum along the branch (snap-through)
+    let eta = 0.95;
+    let model = Model::new(&Scene {
+        eta,
+        ..Scene::default()
+    })
+    .unwrap();
+    let o = ScanOptions {
+        d_max: 0.6,
+        points: 7,
+        ..ScanOptions::default()
+    };
+    let r = scan(&model, &o).unwrap();
+    let d_fold = match r.stop {
+        StopReason::FoldInD { d } => d,
+        ref other => panic!("expected a fold in d, got {other}"),
+    };
+    check_points(&r, &o);
+    // reference: a separate pseudo-arclength run with small fixed steps, no fold detection;
+    // the maximum of d from the parabola through the three points around the largest d
+    let start = solve(
+        &model,
+        0.0,
+        Target::Eta(eta),
+        &BranchChoice::Convex,
+        &SolverConfig::default(),
+    )
+    .unwrap();
+    let mut sol = start.solution().unwrap().clone();
+    sol.params = vec![start.f, 0.0];
+    let family = ScanFamily {
+        rod: RodBvp {
+            profile: Uniform,
+            compliance: 0.0,
+            alpha: 0.0,
+            ends: Ends::Tip {
+                x1: start.x1,
+                y1: eta,
+            },
+        },
+        eta,
+        x_star: start.x1,
+    };
+    let shooting = Shooting::new(ShootingOptions {
+        integrator: Integrator::Adaptive {
+            rtol: 1e-11,
+            atol: 1e-11,
+        },
+        newton: NewtonOptions {
+            tol: 1e-11,
+            ..NewtonOptions::default()
+        },
+        ..ShootingOptions::default()
+    })
+    .unwrap();
+    let ds = 2e-3;
+    let copts = ContinuationOptions {
+        ds,
+        ds_min: ds,
+        ds_max: ds,
+        max_steps: 20_000,
+        lambda_min: -0.5,
+        lambda_max: 1.0,
+        detect_folds: false,
+        ..ContinuationOptions::default()
+    };
+    let mut lam: Vec<f64> = Vec::new();
+    for bp in Continuation::new(&family, shooting, sol, 0.0, copts).unwrap() {
+        let bp = bp.unwrap();
+        lam.push(bp.lambda);
+        let n = lam.len();
+        if n >= 3 && lam[n - 1] < lam[n - 2] {
+            break;
+        }
+    }
+    let n = lam.len();
+    assert!(
+        n >= 3 && lam[n - 1] < lam[n - 2],
+        "no fold in the reference run"
+    );
+    // equally spaced in arclength: vertex of the parabola through (−1, a), (0, b), (1, c)
+    let (a, b, c) = (lam[n - 3], lam[n - 2], lam[n - 1]);
+    let t = 0.5 * (a - c) / (a - 2.0 * b + c);
+    let d_ref = b - 0.25 * (a - c) * t;
+    assert!(
+        (d_fold - d_ref).abs() < 1e-6,
+        "scan fold at d = {d_fold}, reference {d_ref}"
+    );
+}
