@@ -238,10 +238,57 @@ mod tab {
 const NV: usize = 16;
 type Y = [f64; NV];
 
+/// `(sin x, cos x)` for moderate `|x|` (here slopes within a few turns): Cody–Waite reduction by
+/// π/2 and fdlibm's kernel polynomials on `[−π/4, π/4]` (error ≲ 1 ulp there). About a third of
+/// the instructions of libm's general `sincos`, which is the largest single cost of a shot.
+#[inline(always)]
+#[allow(clippy::excessive_precision)]
+fn sin_cos(x: f64) -> (f64, f64) {
+    const PIO2_HI: f64 = 1.570_796_326_734_125_614_17; // first 33 bits of π/2
+    const PIO2_LO: f64 = 6.077_100_506_506_192_249_99e-11; // π/2 − PIO2_HI
+    const S: [f64; 6] = [
+        -1.666_666_666_666_663_243_48e-01,
+        8.333_333_333_322_489_461_24e-03,
+        -1.984_126_982_985_794_931_34e-04,
+        2.755_731_370_707_006_767_89e-06,
+        -2.505_076_025_340_686_341_95e-08,
+        1.589_690_995_211_550_102_21e-10,
+    ];
+    const C: [f64; 6] = [
+        4.166_666_666_666_660_190_37e-02,
+        -1.388_888_888_887_410_957_49e-03,
+        2.480_158_728_947_672_941_78e-05,
+        -2.755_731_435_139_066_330_35e-07,
+        2.087_572_321_298_174_827_90e-09,
+        -1.135_964_755_778_819_482_65e-11,
+    ];
+    if x.is_nan() || x.abs() >= 1e5 {
+        return x.sin_cos();
+    }
+    let k = (x * std::f64::consts::FRAC_2_PI).round();
+    let r = (x - k * PIO2_HI) - k * PIO2_LO;
+    let z = r * r;
+    let sp = S[1] + z * (S[2] + z * (S[3] + z * (S[4] + z * S[5])));
+    let sr = r + r * z * (S[0] + z * sp);
+    let cp = C[0] + z * (C[1] + z * (C[2] + z * (C[3] + z * (C[4] + z * C[5]))));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    // fdlibm's split keeps 1 − z/2 exact to the last bit
+    let cr = w + (((1.0 - w) - hz) + z * z * cp);
+    // quadrant by selects rather than a jump table
+    let q = k as i64;
+    let (s1, c1) = if q & 1 == 0 { (sr, cr) } else { (cr, -sr) };
+    if q & 2 == 0 {
+        (s1, c1)
+    } else {
+        (-s1, -c1)
+    }
+}
+
 /// Rod right-hand side with the variational equations in `u = (m0, f, α)`.
 #[inline(always)]
 fn rhs<const VAR: bool>(y: &Y, f: f64, ca: f64, sa: f64) -> Y {
-    let (sp, cp) = y[2].sin_cos();
+    let (sp, cp) = sin_cos(y[2]);
     // sin/cos(φ − α) from those of φ and α: one sin_cos per evaluation
     let cd = cp * ca + sp * sa;
     let sd = sp * ca - cp * sa;
@@ -287,6 +334,27 @@ struct Integrator {
 impl Integrator {
     /// Integrates from `u`; with `VAR` also the sensitivities (else only `z`: 4× less work).
     fn shoot<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2 (checked just above), the only requirement of
+                // `shoot_avx2`.
+                return unsafe { self.shoot_avx2::<VAR>(u) };
+            }
+        }
+        self.shoot_impl::<VAR>(u)
+    }
+
+    /// [`Self::shoot_impl`] compiled for AVX2: the 16 components are four 256-bit lanes, which
+    /// halves the instructions of the stage sums (the baseline x86-64 target has only SSE2).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn shoot_avx2<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
+        self.shoot_impl::<VAR>(u)
+    }
+
+    #[inline(always)]
+    fn shoot_impl<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
         let nv = if VAR { NV } else { 4 };
         let (m0, f, alpha) = (u[0], u[1], u[2]);
         let (sa, ca) = alpha.sin_cos();
@@ -304,27 +372,36 @@ impl Integrator {
         for _ in 0..n {
             self.path_z.extend_from_slice(&y[..4]);
             self.path_dz.extend_from_slice(&k[0][..4]);
-            for i in 1..12 {
-                let mut t = y;
-                for (j, kj) in k.iter().enumerate().take(i) {
-                    let a = tab::A[i][j];
-                    if a != 0.0 {
-                        let ha = h * a;
+            // stage sums over the nonzero coefficients only, unrolled
+            macro_rules! stage {
+                ($i:literal, [$($j:literal),*]) => {{
+                    let mut t = y;
+                    $(
+                        let ha = h * tab::A[$i][$j];
                         for c in 0..nv {
-                            t[c] += ha * kj[c];
+                            t[c] += ha * k[$j][c];
                         }
-                    }
-                }
-                k[i] = rhs::<VAR>(&t, f, ca, sa);
+                    )*
+                    k[$i] = rhs::<VAR>(&t, f, ca, sa);
+                }};
             }
+            stage!(1, [0]);
+            stage!(2, [0, 1]);
+            stage!(3, [0, 2]);
+            stage!(4, [0, 2, 3]);
+            stage!(5, [0, 3, 4]);
+            stage!(6, [0, 3, 4, 5]);
+            stage!(7, [0, 3, 4, 5, 6]);
+            stage!(8, [0, 3, 4, 5, 6, 7]);
+            stage!(9, [0, 3, 4, 5, 6, 7, 8]);
+            stage!(10, [0, 3, 4, 5, 6, 7, 8, 9]);
+            stage!(11, [0, 3, 4, 5, 6, 7, 8, 9, 10]);
+            const NZB: [usize; 8] = [0, 5, 6, 7, 8, 9, 10, 11];
             let mut ynew = y;
-            for (j, kj) in k.iter().enumerate() {
-                let b = tab::B[j];
-                if b != 0.0 {
-                    let hb = h * b;
-                    for c in 0..nv {
-                        ynew[c] += hb * kj[c];
-                    }
+            for j in NZB {
+                let hb = h * tab::B[j];
+                for c in 0..nv {
+                    ynew[c] += hb * k[j][c];
                 }
             }
             // Hairer's DOP853 error norm over z
@@ -332,9 +409,9 @@ impl Integrator {
             for c in 0..4 {
                 let sk = self.tol * (1.0 + y[c].abs().max(ynew[c].abs()));
                 let (mut a5, mut a3) = (0.0, 0.0);
-                for (j, kj) in k.iter().enumerate() {
-                    a5 += tab::E5[j] * kj[c];
-                    a3 += tab::E3[j] * kj[c];
+                for j in NZB {
+                    a5 += tab::E5[j] * k[j][c];
+                    a3 += tab::E3[j] * k[j][c];
                 }
                 e5 += (a5 / sk) * (a5 / sk);
                 e3 += (a3 / sk) * (a3 / sk);
@@ -407,6 +484,8 @@ struct Point {
     u: [f64; 3],
     du: [f64; 3],
     det: f64,
+    /// The Jacobian behind `det` (possibly from an earlier point, see [`Fast::correct`]).
+    jac: [[f64; 3]; 3],
 }
 
 struct Fast<'s, 'm, Pr: Profile> {
@@ -439,24 +518,24 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
     /// Newton from `u` at `d`; on success also checks the integration error (raising the step
     /// count and starting over when it is too large).
     ///
-    /// Chord iterations: the Jacobian (a shot with sensitivities) is taken at the first iterate
-    /// only and refreshed when the residual does not drop by 10×; the other shots integrate the
-    /// rod alone. From a good predictor the first step lands within `O(|Δu|²)`, so the usual cost
-    /// is one shot with and one without sensitivities. The tangent uses the first Jacobian (its
-    /// `O(|Δu|)` error only enters the next prediction).
-    fn correct(&mut self, mut u: [f64; 3], d: f64) -> Option<Point> {
+    /// Chord iterations. Without `hint` the Jacobian (a shot with sensitivities) is taken at the
+    /// first iterate, so from a good predictor the usual cost is one shot with and one without
+    /// sensitivities, and the tangent comes from that Jacobian (its `O(|Δu|)` error only enters
+    /// the next prediction; after a large correction it is recomputed at the solution). With
+    /// `hint` (the Jacobian of a nearby point, `O(Δd)` off) every shot is a plain one and the
+    /// tangent is left to the caller. Either way the Jacobian is refreshed when the residual
+    /// does not drop by 10× per iteration.
+    fn correct(&mut self, mut u: [f64; 3], d: f64, hint: Option<&[[f64; 3]; 3]>) -> Option<Point> {
         let u_start = u;
         'pass: for _pass in 0..6 {
-            let mut jac: Option<[[f64; 3]; 3]> = None;
-            let mut jac0 = None;
+            let mut jac: Option<[[f64; 3]; 3]> = hint.copied();
+            let mut fresh = false;
             let mut rn_prev = f64::INFINITY;
             for it in 0..=MAX_ITER {
                 let shot = if jac.is_none() {
                     let sh = self.int.shoot::<true>(&u);
                     jac = Some(Self::jac(&sh.y1));
-                    if jac0.is_none() {
-                        jac0 = jac;
-                    }
+                    fresh = true;
                     sh
                 } else {
                     self.int.shoot::<false>(&u)
@@ -480,18 +559,23 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
                         .iter()
                         .zip(&u_start)
                         .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
-                    if moved > 1e-6 {
+                    if fresh && moved > 1e-6 {
                         // far from the prediction: the first Jacobian is too rough for a tangent
                         let sh = self.int.shoot::<true>(&u);
-                        jac0 = Some(Self::jac(&sh.y1));
+                        jac = Some(Self::jac(&sh.y1));
                     }
-                    let j0 = jac0?;
-                    let du = solve3(&j0, &[0.0, -1.0, 0.0])?;
+                    let j = jac?;
+                    let du = if fresh {
+                        solve3(&j, &[0.0, -1.0, 0.0])?
+                    } else {
+                        [f64::NAN; 3]
+                    };
                     return Some(Point {
                         d,
                         u,
                         du,
-                        det: det3(&j0),
+                        det: det3(&j),
+                        jac: j,
                     });
                 }
                 if it == MAX_ITER {
@@ -501,6 +585,7 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
                     // slow chord convergence: fresh Jacobian here
                     let sh = self.int.shoot::<true>(&u);
                     jac = Some(Self::jac(&sh.y1));
+                    fresh = true;
                 }
                 rn_prev = rn;
                 let du = solve3(&jac?, &[-r[0], -r[1], -r[2]])?;
@@ -569,40 +654,110 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
     }
 }
 
-/// `m(s)` of a solution on the uniform mesh `i / n` by the cubic Hermite interpolant of
-/// [`Solution::eval`] (same interval choice and formula), without the search and the other states.
-#[inline]
-fn m_at(sol: &Solution, s: f64) -> f64 {
-    let n = sol.mesh.len() - 1;
-    let s = s.clamp(0.0, 1.0);
-    let node = |i: usize| i as f64 / n as f64;
-    let mut i = ((s * n as f64) as usize).min(n - 1);
-    while i + 1 < n && node(i + 1) <= s {
-        i += 1;
+#[allow(clippy::needless_range_loop)] // index loops mirror the product formulas
+/// Value and derivative at `x` of the polynomial through `(xs[i], ys[i])` (Lagrange form; a few
+/// points, distinct abscissae).
+fn lagrange(xs: &[f64], ys: &[f64], x: f64) -> (f64, f64) {
+    let n = xs.len();
+    let (mut v, mut dv) = (0.0, 0.0);
+    for i in 0..n {
+        let mut den = 1.0;
+        let mut l = 1.0;
+        for j in 0..n {
+            if j != i {
+                den *= xs[i] - xs[j];
+                l *= x - xs[j];
+            }
+        }
+        // derivative of Π_{j≠i}(x − x_j), without dividing by a possibly zero factor
+        let mut dl = 0.0;
+        for m in 0..n {
+            if m == i {
+                continue;
+            }
+            let mut pr = 1.0;
+            for j in 0..n {
+                if j != i && j != m {
+                    pr *= x - xs[j];
+                }
+            }
+            dl += pr;
+        }
+        v += ys[i] * l / den;
+        dv += ys[i] * dl / den;
     }
-    while i > 0 && node(i) > s {
-        i -= 1;
+    (v, dv)
+}
+
+/// Abscissae and the three unknowns' values of points, as columns.
+fn columns(pts: &[Point]) -> (Vec<f64>, [Vec<f64>; 3]) {
+    let xs = pts.iter().map(|p| p.d).collect();
+    let us = [0, 1, 2].map(|i| pts.iter().map(|p| p.u[i]).collect());
+    (xs, us)
+}
+
+/// Points of the interpolant that locates the maximum of μ (degree 5).
+const POLY: usize = 6;
+
+/// `m(s)` of a solution on the uniform mesh `i / n`: the cubic Hermite interpolant of
+/// [`Solution::eval`] (same interval choice), as per-interval polynomial coefficients so that an
+/// evaluation is a few operations (equal to `eval` up to rounding).
+struct MCubic<'a> {
+    mesh: &'a [f64],
+    coef: Vec<[f64; 4]>,
+}
+
+impl<'a> MCubic<'a> {
+    fn new(sol: &'a Solution) -> Self {
+        let n = sol.mesh.len() - 1;
+        let coef = (0..n)
+            .map(|i| {
+                let h = sol.mesh[i + 1] - sol.mesh[i];
+                let (z0, z1) = (sol.z[4 * i + 3], sol.z[4 * (i + 1) + 3]);
+                let (d0, d1) = (h * sol.dz[4 * i + 3], h * sol.dz[4 * (i + 1) + 3]);
+                [
+                    z0,
+                    d0,
+                    -3.0 * z0 - 2.0 * d0 + 3.0 * z1 - d1,
+                    2.0 * z0 + d0 - 2.0 * z1 + d1,
+                ]
+            })
+            .collect();
+        MCubic {
+            mesh: &sol.mesh,
+            coef,
+        }
     }
-    let (s0, s1) = (sol.mesh[i], sol.mesh[i + 1]);
-    let h = s1 - s0;
-    let t = ((s - s0) / h).clamp(0.0, 1.0);
-    let t2 = t * t;
-    let t3 = t2 * t;
-    (2.0 * t3 - 3.0 * t2 + 1.0) * sol.z[4 * i + 3]
-        + (t3 - 2.0 * t2 + t) * h * sol.dz[4 * i + 3]
-        + (-2.0 * t3 + 3.0 * t2) * sol.z[4 * (i + 1) + 3]
-        + (t3 - t2) * h * sol.dz[4 * (i + 1) + 3]
+
+    /// `m(s)`, searching the interval from the guess `i` (cheap when `s` is near it); also
+    /// returns the interval, the guess for a nearby next point.
+    #[inline]
+    fn at(&self, s: f64, mut i: usize) -> (f64, usize) {
+        let n = self.coef.len();
+        let mesh = self.mesh;
+        i = i.min(n - 1);
+        while i + 1 < n && mesh[i + 1] <= s {
+            i += 1;
+        }
+        while i > 0 && mesh[i] > s {
+            i -= 1;
+        }
+        let t = ((s - mesh[i]) / (mesh[i + 1] - mesh[i])).clamp(0.0, 1.0);
+        let c = &self.coef[i];
+        (((c[3] * t + c[2]) * t + c[1]) * t + c[0], i)
+    }
 }
 
 /// `crate::solve::flex_points` for the uniform rod (κ = m) on a uniform mesh: the same samples,
-/// threshold and bisection, with the cheap [`m_at`].
+/// threshold and bisection, with the cheap [`MCubic`].
 fn flex_uniform(sol: &Solution) -> (usize, Option<f64>) {
     const N: usize = 128;
-    let kap = |s: f64| m_at(sol, s);
+    let mc = MCubic::new(sol);
     // the samples are reused by the scale and the sign scan (same values as evaluating twice)
     let mut vals = [0.0; N + 1];
+    let mut hint = 0;
     for (i, v) in vals.iter_mut().enumerate() {
-        *v = kap(i as f64 / N as f64);
+        (*v, hint) = mc.at(i as f64 / N as f64, hint);
     }
     let scale = vals.iter().map(|v| v.abs()).fold(0.0, f64::max);
     let eps = 1e-9 * scale.max(1e-300);
@@ -619,9 +774,12 @@ fn flex_uniform(sol: &Solution) -> (usize, Option<f64>) {
                 count += 1;
                 if first.is_none() {
                     let (mut a, mut b, ka) = (sp, s, kp);
+                    let mut hint = mc.at(a, 0).1;
                     for _ in 0..60 {
                         let c = 0.5 * (a + b);
-                        if (kap(c) > 0.0) == (ka > 0.0) {
+                        let (kc, ic) = mc.at(c, hint);
+                        hint = ic;
+                        if (kc > 0.0) == (ka > 0.0) {
                             a = c;
                         } else {
                             b = c;
@@ -683,7 +841,7 @@ pub(crate) fn scan_uniform<Pr: Profile>(
         start_sol.params[0],
         start_sol.params[1],
     ];
-    let p0 = fast.correct(u0, 0.0)?;
+    let p0 = fast.correct(u0, 0.0, None)?;
     let (start_point, start_shape) = sc.point(&fast.solution(&p0), 0.0);
     let mut points: Vec<ScanPoint> = Vec::with_capacity(grid.len());
     let mut shapes: Vec<Vec<ShapePoint>> = Vec::new();
@@ -716,8 +874,7 @@ pub(crate) fn scan_uniform<Pr: Profile>(
         } else {
             target
         };
-        let u = Fast::<Pr>::predict(&hist, d);
-        let p = fast.correct(u, d)?;
+        let p = fast.correct(Fast::<Pr>::predict(&hist, d), d, None)?;
         // a fold in d between the points: leave it to pseudo-arclength continuation
         if p.det.signum() != last.det.signum() {
             return None;
@@ -732,23 +889,25 @@ pub(crate) fn scan_uniform<Pr: Profile>(
                 return None;
             }
         }
-        // local maximum of μ between the last point and this one: μ' ∝ −α'
+        // local maximum of μ between the last point and this one (μ' ∝ −α'): the root of α' of
+        // the interpolant, then one corrected solve there
         if last.du[2] < 0.0 && p.du[2] >= 0.0 {
-            let mut eval = |dd: f64| -> Result<f64, elastica::ElasticaError> {
-                let u = Fast::<Pr>::predict(&hist, dd);
-                fast.correct(u, dd)
-                    .map(|q| q.du[2])
-                    .ok_or(elastica::ElasticaError::NotFinite {
-                        name: "fast scan solve",
-                        value: dd,
-                    })
-            };
-            let dm = elastica::roots::try_brent_root(&mut eval, last.d, d, 1e-13, 100).ok()?;
-            let q = fast.correct(Fast::<Pr>::predict(&hist, dm), dm)?;
+            let mut h2 = hist[hist.len() + 1 - POLY.min(hist.len() + 1)..].to_vec();
+            h2.push(p.clone());
+            let (xs, us) = columns(&h2);
+            let da =
+                |x: f64| -> Result<f64, elastica::ElasticaError> { Ok(lagrange(&xs, &us[2], x).1) };
+            let dm = elastica::roots::try_brent_root(da, last.d, d, 1e-15, 200).ok()?;
+            let mut u = [0.0; 3];
+            for (i, ui) in u.iter_mut().enumerate() {
+                *ui = lagrange(&xs, &us[i], dm).0;
+            }
+            let q = fast.correct(u, dm, Some(&p.jac))?;
             let mm = mu_of(&q.u);
             if mm > best.0 {
                 best = (mm, dm);
             }
+            // the path buffers hold the maximum's rod now; `sol` was built before
         }
         if gi < grid.len() && grid[gi] == d {
             let pt = fast_point(&sol, d, w.mu);
@@ -766,7 +925,7 @@ pub(crate) fn scan_uniform<Pr: Profile>(
             best = (w.mu, d);
         }
         hist.push(p);
-        if hist.len() > 3 {
+        if hist.len() > POLY {
             hist.remove(0);
         }
     }
@@ -840,6 +999,21 @@ mod tests {
             assert_eq!(fast.m_base, shape.m_base);
             // the 13-step path is an accurate rod: the tip slope against the closed form
             assert!((fast.phi1 - p).abs() < 1e-9, "{} {p}", fast.phi1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod sincos_tests {
+    /// The fast `sin_cos` against libm over several turns (a few ulp).
+    #[test]
+    fn sin_cos_matches_libm() {
+        for i in -20_000..=20_000 {
+            let x = i as f64 * 1.234_567e-3;
+            let (s, c) = super::sin_cos(x);
+            let (s0, c0) = x.sin_cos();
+            assert!((s - s0).abs() <= 4.0 * f64::EPSILON, "sin {x}: {s} {s0}");
+            assert!((c - c0).abs() <= 4.0 * f64::EPSILON, "cos {x}: {c} {c0}");
         }
     }
 }
