@@ -46,7 +46,9 @@ fn bad(args: &[&str], code: i32) -> String {
 }
 
 fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("vibrissa-cli-test-{}-{name}", std::process::id()));
+    // Under target/ (not /tmp), so repeated runs leave nothing behind outside the build directory.
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cli-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
