@@ -9,12 +9,14 @@
 //!   parallel speed-up is the ratio of the two, measured in the same run).
 //!
 //! Run: `cargo bench --bench speed` (add `-- --quick` for a fast pass).
+use bvp::{BvpSolver, Guess, Integrator, NewtonOptions, Shooting, ShootingOptions};
 use criterion::{criterion_group, criterion_main, Criterion};
 use elastica::{Branch, Elastica};
 use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::Duration;
+use vibrissa::model::{Ends, RodBvp, Uniform};
 use vibrissa::{
     scan, solve, BranchChoice, Method, Model, ScanOptions, Scene, SolverConfig, Target,
 };
@@ -80,6 +82,45 @@ fn bench_shape(c: &mut Criterion) {
         );
         group.bench_function(name, |b| {
             b.iter(|| solve(&model, alpha, Target::Phi1(phi1), &choice, &cf).unwrap())
+        });
+    }
+    // The bare BVP solve (crate bvp on the rod model), without the closed-form start, branch
+    // check and shape post-processing of `vibrissa::solve`.
+    let rod = RodBvp {
+        profile: Uniform,
+        compliance: 0.0,
+        alpha,
+        ends: Ends::Phi1 { phi1 },
+    };
+    let guess = {
+        let BranchChoice::Guess(w) = &start else {
+            unreachable!()
+        };
+        let mut g = Guess::from(w.solution().unwrap());
+        g.params = vec![w.f];
+        g
+    };
+    for tol in [1e-10, 1e-12] {
+        let mut solver = Shooting::new(ShootingOptions {
+            integrator: Integrator::Adaptive {
+                rtol: tol,
+                atol: tol,
+            },
+            newton: NewtonOptions {
+                tol,
+                ..NewtonOptions::default()
+            },
+            ..ShootingOptions::default()
+        })
+        .unwrap();
+        let sol = solver.solve(&rod, &guess).unwrap();
+        eprintln!(
+            "shape/bvp-dop853-{tol:e}: rel. error in f {:.2e} ({})",
+            (sol.params[0] - f_ref).abs() / f_ref,
+            sol.stats
+        );
+        group.bench_function(format!("bvp-dop853-{tol:e}"), |b| {
+            b.iter(|| solver.solve(&rod, &guess).unwrap())
         });
     }
     group.finish();
