@@ -945,6 +945,123 @@ pub(crate) fn scan_uniform<Pr: Profile>(
     })
 }
 
+/// The single-shooting tolerance of `engine` when it is plain single shooting with the adaptive
+/// integrator (the configuration the fast paths replace), else `None`.
+pub(crate) fn single_shooting_tol(engine: &crate::solve::Engine) -> Option<f64> {
+    match engine {
+        crate::solve::Engine::Shoot(s) => {
+            let o = s.options();
+            match o.integrator {
+                bvp::Integrator::Adaptive { rtol, atol } if o.segments == 1 && rtol == atol => {
+                    Some(o.newton.tol.min(rtol))
+                }
+                _ => None,
+            }
+        }
+        crate::solve::Engine::Coll(_) => None,
+    }
+}
+
+/// One shape of the uniform clamped rod with a tip-slope or tip-height condition and fixed α,
+/// by the shot of the fast scan: unknowns `(m(0), f)`, residual `(m(1), φ(1) − φ1)` or
+/// `(m(1), y(1) − η)`, damped Newton (halving on a residual increase) with the same tolerance
+/// contract as single shooting (`|R| ≤ tol`, step error estimates within `tol`). `None` when it
+/// does not apply or does not converge: the caller then runs the generic solver.
+pub(crate) fn solve_rod<Pr: Profile>(
+    rod: &crate::model::RodBvp<Pr>,
+    guess: &bvp::Guess,
+    tol: f64,
+) -> Option<Solution> {
+    use crate::model::Ends;
+    if !Pr::UNIFORM || rod.compliance != 0.0 || guess.params.len() != 1 {
+        return None;
+    }
+    // component of z(1) that the end condition fixes, and its value
+    let (comp, target) = match rod.ends {
+        Ends::Phi1 { phi1 } => (2, phi1),
+        Ends::Eta { eta } => (1, eta),
+        Ends::Tip { .. } => return None,
+    };
+    let mut z0 = [0.0; 4];
+    guess.eval(0.0, &mut z0);
+    let alpha = rod.alpha;
+    let mut u = [z0[3], guess.params[0], alpha];
+    let mut int = Integrator {
+        steps: 8,
+        tol,
+        path_z: Vec::new(),
+        path_dz: Vec::new(),
+        stats: Stats::default(),
+    };
+    let res = |y: &Y| [y[3], y[comp] - target];
+    let norm = |r: &[f64; 2]| r[0].abs().max(r[1].abs());
+    // last accepted point, its Newton step, residual and the damping tried
+    let mut prev: Option<([f64; 3], [f64; 2], f64, f64)> = None;
+    for _ in 0..60 {
+        let shot = int.shoot::<true>(&u);
+        let r = res(&shot.y1);
+        let rn = norm(&r);
+        let y = &shot.y1;
+        let (a, b) = (y[4 + 3], y[4 + 4 + 3]);
+        let (c, d) = (y[4 + comp], y[4 + 4 + comp]);
+        let det = a * d - b * c;
+        if rn <= tol {
+            if shot.err > 1.0 {
+                let fac = (shot.err.powf(1.0 / 8.0) * 1.05).clamp(1.05, 4.0);
+                let n = int.steps;
+                int.steps = ((n as f64 * fac).ceil() as usize).clamp(n + 1, 100_000);
+                prev = None;
+                continue;
+            }
+            // near a turning point the residual says little about the unknowns (square-root
+            // dependence): leave such rods to the generic solver
+            let cond = (a.abs() + b.abs()).max(c.abs() + d.abs())
+                * (d.abs() + b.abs()).max(c.abs() + a.abs())
+                / det.abs();
+            if cond.is_nan() || cond >= 1e6 {
+                return None;
+            }
+            let n = int.steps;
+            int.stats.residual = rn;
+            int.stats.nodes = n + 1;
+            return Some(Solution {
+                n: 4,
+                mesh: (0..=n).map(|i| i as f64 / n as f64).collect(),
+                z: std::mem::take(&mut int.path_z),
+                dz: std::mem::take(&mut int.path_dz),
+                params: vec![u[1]],
+                status: Status::Converged,
+                stats: int.stats,
+            });
+        }
+        if let Some((uo, du, rno, lam)) = prev {
+            // no decrease (or a non-finite residual): halve the last step
+            if rn.is_nan() || rn >= rno {
+                if lam < 1e-3 {
+                    return None;
+                }
+                let lam = 0.5 * lam;
+                u = [uo[0] + lam * du[0], uo[1] + lam * du[1], alpha];
+                prev = Some((uo, du, rno, lam));
+                continue;
+            }
+        }
+        if !rn.is_finite() {
+            return None;
+        }
+        // 2×2 Newton step in (m0, f)
+        if det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        let du = [(-r[0] * d + r[1] * b) / det, (-r[1] * a + r[0] * c) / det];
+        int.stats.newton_iters += 1;
+        int.stats.factorizations += 1;
+        prev = Some((u, du, rn, 1.0));
+        u = [u[0] + du[0], u[1] + du[1], alpha];
+    }
+    None
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -999,6 +1116,47 @@ mod tests {
             assert_eq!(fast.m_base, shape.m_base);
             // the 13-step path is an accurate rod: the tip slope against the closed form
             assert!((fast.phi1 - p).abs() < 1e-9, "{} {p}", fast.phi1);
+        }
+    }
+}
+
+#[cfg(test)]
+mod shape_tests {
+    use super::*;
+    use crate::model::{Ends, RodBvp, Uniform};
+
+    // mpmath digits as printed in the data file
+    #[allow(clippy::excessive_precision)]
+    /// The fast single shape against the closed form (paper's Fig. 3 rods, mpmath values in
+    /// data/elastica/special_values.csv), from a start 10 % off in `m(0)` and `f`.
+    #[test]
+    fn solve_rod_matches_closed_form() {
+        let (alpha, phi1) = (-std::f64::consts::PI / 8.0, std::f64::consts::PI / 8.0);
+        for (branch, f_mp) in [
+            (elastica::Branch::Convex, 4.718_125_860_964_310_5),
+            (elastica::Branch::OneFlex, 19.028_967_652_434_935),
+        ] {
+            let e = elastica::Elastica::new(branch, alpha, phi1).unwrap();
+            let rod = RodBvp {
+                profile: Uniform,
+                compliance: 0.0,
+                alpha,
+                ends: Ends::Phi1 { phi1 },
+            };
+            let guess = bvp::Guess::constant(
+                0.0,
+                1.0,
+                2,
+                &[0.0, 0.0, FRAC_PI_2, 0.9 * e.m_base],
+                vec![0.9 * e.f],
+            );
+            let sol = solve_rod(&rod, &guess, 1e-11).expect("converges");
+            let f = sol.params[0];
+            assert!(
+                (f - f_mp).abs() < 1e-10 * f_mp,
+                "{branch:?}: f = {f}, mpmath {f_mp}"
+            );
+            assert!((sol.right()[2] - phi1).abs() < 1e-11);
         }
     }
 }

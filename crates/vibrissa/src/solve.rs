@@ -710,6 +710,22 @@ pub(crate) fn run<B: Bvp + ?Sized>(
         .map_err(|e| VibrissaError::solver(context(), e))
 }
 
+/// [`run`] for a rod, through the fast single-shape path (uniform clamped rod, single shooting;
+/// `crate::fast::solve_rod`) when it applies and converges.
+fn run_rod<Pr: Profile>(
+    engine: &mut Engine,
+    rod: &RodBvp<Pr>,
+    guess: &Guess,
+    context: impl FnOnce() -> String,
+) -> Result<Solution, VibrissaError> {
+    if let Some(tol) = crate::fast::single_shooting_tol(engine) {
+        if let Some(sol) = crate::fast::solve_rod(rod, guess, tol) {
+            return Ok(sol);
+        }
+    }
+    run(engine, rod, guess, context)
+}
+
 /// Solves for the rod with force angle `alpha` (fixed for φ1 / η targets, the start for a tip
 /// target) and the tip condition `target`, on the requested branch.
 ///
@@ -798,7 +814,7 @@ pub(crate) fn solve_with<Pr: Profile>(
     };
     if let BranchChoice::Guess(g) = branch {
         let guess = g.guess(vec![g.f]);
-        let sol = run(engine, &rod, &guess, || {
+        let sol = run_rod(engine, &rod, &guess, || {
             format!("solve at alpha = {alpha}, {target:?} from the given shape")
         })?;
         return Ok(shape_from(sol, &rod, model.profile(1.0)));
@@ -812,7 +828,7 @@ pub(crate) fn solve_with<Pr: Profile>(
         },
     };
     if Pr::UNIFORM && c == 0.0 {
-        let sol = run(engine, &rod, &guess, || {
+        let sol = run_rod(engine, &rod, &guess, || {
             format!("solve at alpha = {alpha}, {target:?}")
         })?;
         return Ok(shape_from(sol, &rod, model.profile(1.0)));
