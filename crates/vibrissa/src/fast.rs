@@ -484,8 +484,6 @@ struct Point {
     u: [f64; 3],
     du: [f64; 3],
     det: f64,
-    /// The Jacobian behind `det` (possibly from an earlier point, see [`Fast::correct`]).
-    jac: [[f64; 3]; 3],
 }
 
 struct Fast<'s, 'm, Pr: Profile> {
@@ -518,17 +516,15 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
     /// Newton from `u` at `d`; on success also checks the integration error (raising the step
     /// count and starting over when it is too large).
     ///
-    /// Chord iterations. Without `hint` the Jacobian (a shot with sensitivities) is taken at the
-    /// first iterate, so from a good predictor the usual cost is one shot with and one without
-    /// sensitivities, and the tangent comes from that Jacobian (its `O(|Δu|)` error only enters
-    /// the next prediction; after a large correction it is recomputed at the solution). With
-    /// `hint` (the Jacobian of a nearby point, `O(Δd)` off) every shot is a plain one and the
-    /// tangent is left to the caller. Either way the Jacobian is refreshed when the residual
-    /// does not drop by 10× per iteration.
-    fn correct(&mut self, mut u: [f64; 3], d: f64, hint: Option<&[[f64; 3]; 3]>) -> Option<Point> {
+    /// Chord iterations: the Jacobian (a shot with sensitivities) is taken at the first iterate,
+    /// so from a good predictor the usual cost is one shot with and one without sensitivities,
+    /// and the tangent comes from that Jacobian (its `O(|Δu|)` error only enters the next
+    /// prediction; after a large correction it is recomputed at the solution). The Jacobian is
+    /// refreshed when the residual does not drop by 10× per iteration.
+    fn correct(&mut self, mut u: [f64; 3], d: f64) -> Option<Point> {
         let u_start = u;
         'pass: for _pass in 0..6 {
-            let mut jac: Option<[[f64; 3]; 3]> = hint.copied();
+            let mut jac: Option<[[f64; 3]; 3]> = None;
             let mut fresh = false;
             let mut rn_prev = f64::INFINITY;
             for it in 0..=MAX_ITER {
@@ -575,7 +571,6 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
                         u,
                         du,
                         det: det3(&j),
-                        jac: j,
                     });
                 }
                 if it == MAX_ITER {
@@ -597,6 +592,13 @@ impl<Pr: Profile> Fast<'_, '_, Pr> {
             }
         }
         None
+    }
+
+    /// The exact tangent `du/dd` at `u` (one shot with sensitivities at `u`; overwrites the
+    /// recorded path).
+    fn tangent_at(&mut self, u: &[f64; 3]) -> Option<[f64; 3]> {
+        let sh = self.int.shoot::<true>(u);
+        solve3(&Self::jac(&sh.y1), &[0.0, -1.0, 0.0])
     }
 
     /// The last integration's path as a [`Solution`] with `params = [f, α]`.
@@ -841,7 +843,7 @@ pub(crate) fn scan_uniform<Pr: Profile>(
         start_sol.params[0],
         start_sol.params[1],
     ];
-    let p0 = fast.correct(u0, 0.0, None)?;
+    let p0 = fast.correct(u0, 0.0)?;
     let (start_point, start_shape) = sc.point(&fast.solution(&p0), 0.0);
     let mut points: Vec<ScanPoint> = Vec::with_capacity(grid.len());
     let mut shapes: Vec<Vec<ShapePoint>> = Vec::new();
@@ -874,7 +876,7 @@ pub(crate) fn scan_uniform<Pr: Profile>(
         } else {
             target
         };
-        let p = fast.correct(Fast::<Pr>::predict(&hist, d), d, None)?;
+        let p = fast.correct(Fast::<Pr>::predict(&hist, d), d)?;
         // a fold in d between the points: leave it to pseudo-arclength continuation
         if p.det.signum() != last.det.signum() {
             return None;
@@ -890,20 +892,31 @@ pub(crate) fn scan_uniform<Pr: Profile>(
             }
         }
         // local maximum of μ between the last point and this one (μ' ∝ −α'): the root of α' of
-        // the interpolant, then one corrected solve there
+        // the interpolant, refined by Newton steps with solves
         if last.du[2] < 0.0 && p.du[2] >= 0.0 {
             let mut h2 = hist[hist.len() + 1 - POLY.min(hist.len() + 1)..].to_vec();
             h2.push(p.clone());
             let (xs, us) = columns(&h2);
             let da =
                 |x: f64| -> Result<f64, elastica::ElasticaError> { Ok(lagrange(&xs, &us[2], x).1) };
-            let dm = elastica::roots::try_brent_root(da, last.d, d, 1e-15, 200).ok()?;
-            let mut u = [0.0; 3];
-            for (i, ui) in u.iter_mut().enumerate() {
-                *ui = lagrange(&xs, &us[i], dm).0;
+            let mut dm = elastica::roots::try_brent_root(da, last.d, d, 1e-15, 200).ok()?;
+            // refine with solves: Newton on α'(d) = 0, α' from the exact tangent at each solve,
+            // α'' from the interpolant (the interpolant alone is O(h⁵) off in d on coarse grids)
+            let mut at = None;
+            for _ in 0..4 {
+                let q = fast.correct(Fast::<Pr>::predict(&hist, dm), dm)?;
+                let g = fast.tangent_at(&q.u)?[2];
+                at = Some((mu_of(&q.u), dm));
+                let e = 1e-4 * (d - last.d);
+                let a2 =
+                    (lagrange(&xs, &us[2], dm + e).1 - lagrange(&xs, &us[2], dm - e).1) / (2.0 * e);
+                let step = if a2 != 0.0 { -g / a2 } else { 0.0 };
+                if step.is_nan() || step.abs() <= 1e-13 {
+                    break;
+                }
+                dm = (dm + step).clamp(last.d, d);
             }
-            let q = fast.correct(u, dm, Some(&p.jac))?;
-            let mm = mu_of(&q.u);
+            let (mm, dm) = at?;
             if mm > best.0 {
                 best = (mm, dm);
             }
@@ -1157,6 +1170,42 @@ mod shape_tests {
                 "{branch:?}: f = {f}, mpmath {f_mp}"
             );
             assert!((sol.right()[2] - phi1).abs() < 1e-11);
+        }
+    }
+}
+
+#[cfg(test)]
+mod scan_tests {
+    use crate::{scan, Model, ScanOptions, Scene};
+
+    /// μ_max and where it occurs against the closed form, also on a coarse grid (where the
+    /// maximum lies far from the grid points and must be located by solves).
+    #[test]
+    fn mu_max_located_on_coarse_grids() {
+        let cf = elastica::ClosedFormScan::new(0.75)
+            .unwrap()
+            .mu_max()
+            .unwrap();
+        let model = Model::new(&Scene::default()).unwrap();
+        for points in [11, 201] {
+            let o = ScanOptions {
+                points,
+                ..ScanOptions::default()
+            };
+            let r = scan(&model, &o).unwrap();
+            assert!(
+                (r.mu_max - cf.mu).abs() < 1e-9,
+                "{points}: {} {}",
+                r.mu_max,
+                cf.mu
+            );
+            // μ is flat at its maximum: d is determined to ~sqrt(tol)
+            assert!(
+                (r.d_at_mu_max - cf.d).abs() < 1e-6,
+                "{points}: {} {}",
+                r.d_at_mu_max,
+                cf.d
+            );
         }
     }
 }
