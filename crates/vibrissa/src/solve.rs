@@ -821,7 +821,19 @@ pub(crate) fn solve_with<Pr: Profile>(
     }
     // the closed form of the uniform clamped rod where it exists, else a circular arc
     let guess = match closed_form(alpha, &target, elastica_branch(branch)) {
-        Ok(e) => elastica_guess(&e, vec![e.f]),
+        Ok(e) => {
+            // the fast single-shape path needs only (m(0), f) of the closed form, not its samples
+            if let (true, Some(tol)) = (
+                Pr::UNIFORM && c == 0.0,
+                crate::fast::single_shooting_tol(engine),
+            ) {
+                let g = Guess::constant(0.0, 1.0, 2, &[0.0, 0.0, FRAC_PI_2, e.m_base], vec![e.f]);
+                if let Some(sol) = crate::fast::solve_rod(&rod, &g, tol) {
+                    return Ok(shape_from(sol, &rod, model.profile(1.0)));
+                }
+            }
+            elastica_guess(&e, vec![e.f])
+        }
         Err(err) => match arc_guess(alpha, &target) {
             Some(g) => g,
             None => return Err(err),
