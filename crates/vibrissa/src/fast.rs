@@ -1,25 +1,29 @@
-//! Fast path of the stiction scan for the uniform clamped rod with single shooting.
+//! Fast paths for the uniform clamped rod with single shooting: the stiction scan and single
+//! shapes with a tip-slope or tip-height condition.
 //!
-//! The generic scan (pseudo-arclength continuation through crate `bvp`, output by extra solves at
-//! the grid points) is method-agnostic and handles every scene. For the paper's rod with single
-//! shooting most of its work is not needed: `d` itself parametrizes the branch up to a fold in `d`
-//! (folds in α or φ1 are regular points here), so the scan can step from grid point to grid point.
+//! The generic scan (continuation through crate `bvp`) is method-agnostic and handles every
+//! scene. For the paper's rod with single shooting most of its work is not needed: `d` itself
+//! parametrizes the branch up to a fold in `d` (folds in α or φ1 are regular points here), so the
+//! scan can step from grid point to grid point.
 //!
 //! - Unknowns `u = (m(0), f, α)`; residual `R = (m(1), x(1) − (x* − d), y(1) − η)`.
 //! - One integration of the rod and its variational equations in `u` only (16 components instead
-//!   of the generic 28), monomorphized and allocation-free, with the 8th-order DOP853 weights on
-//!   `N` equal steps. Fixed steps make the sensitivities the exact Jacobian of the discrete
-//!   residual (quadratic Newton); the embedded error estimate of each step is checked against
-//!   `tol` (`rtol = atol = tol`, Hairer's norm, as the adaptive integrator) and `N` is raised when
-//!   it is exceeded, so the accuracy contract is the generic one.
-//! - Predictor: the tangent `u' = −J⁻¹ ∂R/∂d` from the Jacobian of the last converged point, plus
-//!   curvature and third-order terms from the previous points, so most points need one or two
-//!   integrations.
+//!   of the generic 28; 4 when no Jacobian is needed), monomorphized and allocation-free, with
+//!   the 8th-order DOP853 weights on `N` equal steps, an inline `sin_cos` and an AVX2 build chosen
+//!   at run time. Fixed steps make the sensitivities the exact Jacobian of the discrete residual
+//!   (quadratic Newton); the embedded error estimate of each step is checked against `tol`
+//!   (`rtol = atol = tol`, Hairer's norm, as the adaptive integrator) and `N` is raised when it is
+//!   exceeded, so the accuracy contract is the generic one.
+//! - Predictor: the quintic Hermite extrapolant through the last three points and their tangents
+//!   `u' = −J⁻¹ ∂R/∂d`; chord Newton, so most points cost one shot with and one without
+//!   sensitivities.
 //! - Events are watched at every point as in the generic scan. Anything it does not handle itself
 //!   (penetration, slip, a fold in `d` — a sign change of `det J` — or a Newton failure) makes it
 //!   give up and leave the scan to the generic path, which redoes it from the start.
-//! - μ_max between grid points: the root of `α'(d)` (from the tangent) by Brent's method, each
-//!   evaluation a corrected point.
+//! - μ_max between grid points: the root of `α'(d)` of the interpolant through the last points,
+//!   refined by Newton steps on `α'(d) = 0` with solves and exact tangents.
+//! - Single shapes ([`solve_rod`]): unknowns `(m(0), f)`, damped Newton on the same shot; rods
+//!   near a turning point (ill-conditioned Jacobian) are left to the generic solver.
 
 use crate::model::Profile;
 use crate::scan::{ScanOptions, ScanPoint, ScanResult, Scanner, StopReason};
