@@ -248,17 +248,7 @@ struct CfCurve {
 
 impl CfCurve {
     fn at(&self, t: f64) -> Result<CfPoint> {
-        let cf = &self.cf;
-        let lo = cf.phi1_min();
-        Ok(if t <= 1.0 {
-            cf.phase0_at_alpha(cf.alpha_t * t)?
-        } else if t <= 2.0 {
-            let p = cf.phi1_t + (lo - cf.phi1_t) * (t - 1.0);
-            cf.phase1_at_phi1(p.clamp(lo, cf.phi1_t))?
-        } else {
-            let p = lo + (cf.phi1_t - lo) * (t - 2.0);
-            cf.phase1_upper_at_phi1(p.clamp(lo, cf.phi1_t))?
-        })
+        Ok(self.cf.curve_at(t)?)
     }
 
     /// Closed-form points whose `d` are close to `targets` (increasing): `d(t)` is tabulated,

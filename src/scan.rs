@@ -252,33 +252,19 @@ impl ClosedCurve {
     /// Set up at height `eta`.
     pub fn new(eta: f64) -> Res<ClosedCurve> {
         let cf = ClosedFormScan::new(eta)?;
-        let t_end = match (cf.phase0_end, cf.fold) {
-            (Phase0End::TipHorizontal, _) => 1.0,
-            (Phase0End::TurningPoint, None) => 2.0,
-            (Phase0End::TurningPoint, Some(_)) => 3.0,
-        };
+        let t_end = cf.curve_end();
         Ok(ClosedCurve { cf, t_end })
     }
 
     /// The rod at curve parameter `t`.
     pub fn at(&self, t: f64) -> Result<(Elastica, f64), ElasticaError> {
         let cf = &self.cf;
-        let (p, br) = if t <= 1.0 {
-            (cf.phase0_at_alpha(cf.alpha_t * t)?, Branch::Convex)
-        } else if t <= 2.0 {
-            let lo = cf.phi1_min();
-            let phi1 = if t == 2.0 {
-                lo
-            } else {
-                cf.phi1_t + (lo - cf.phi1_t) * (t - 1.0)
-            };
-            (cf.phase1_at_phi1(phi1)?, Branch::OneFlex)
+        let p = cf.curve_at(t)?;
+        let br = if t <= 1.0 || p.flex == 0 {
+            Branch::Convex
         } else {
-            let lo = cf.phi1_min();
-            let phi1 = lo + (cf.phi1_t - lo) * (t - 2.0);
-            (cf.phase1_upper_at_phi1(phi1)?, Branch::OneFlex)
+            Branch::OneFlex
         };
-        let br = if p.flex == 0 { Branch::Convex } else { br };
         let e = if t == 1.0 && br == Branch::Convex && cf.phase0_end == Phase0End::TurningPoint {
             Elastica::turning(Branch::Convex, p.alpha)?
         } else {

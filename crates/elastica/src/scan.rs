@@ -237,6 +237,43 @@ impl ClosedFormScan {
         ))
     }
 
+    /// End of the curve parameter of [`ClosedFormScan::curve_at`]: 1 when phase 0 ends with a
+    /// horizontal tip, 2 when phase 1 has no fold, 3 when it has one.
+    pub fn curve_end(&self) -> f64 {
+        match (self.phase0_end, self.fold) {
+            (Phase0End::TipHorizontal, _) => 1.0,
+            (Phase0End::TurningPoint, None) => 2.0,
+            (Phase0End::TurningPoint, Some(_)) => 3.0,
+        }
+    }
+
+    /// The whole scan as one curve in `t ∈ [0, curve_end()]`, so that callers can pass the fold
+    /// in `phi1`: `t ∈ [0, 1]` phase 0 (`alpha = alpha_t·t`), `t ∈ [1, 2]` phase 1 (`phi1` from
+    /// `phi1_t` down to `phi1_min`), `t ∈ [2, 3]` the other sheet beyond the fold (`phi1` back up).
+    /// `d` increases along it up to a fold in `d`, if any.
+    pub fn curve_at(&self, t: f64) -> Result<ScanPoint, ElasticaError> {
+        finite("t", t)?;
+        let end = self.curve_end();
+        if !(0.0..=end).contains(&t) {
+            return Err(ElasticaError::OutOfRange {
+                name: "t",
+                value: t,
+                min: 0.0,
+                max: end,
+            });
+        }
+        let lo = self.phi1_min();
+        if t <= 1.0 {
+            self.phase0_at_alpha(self.alpha_t * t)
+        } else if t <= 2.0 {
+            let p = self.phi1_t + (lo - self.phi1_t) * (t - 1.0);
+            self.phase1_at_phi1(p.clamp(lo, self.phi1_t))
+        } else {
+            let p = lo + (self.phi1_t - lo) * (t - 2.0);
+            self.phase1_upper_at_phi1(p.clamp(lo, self.phi1_t))
+        }
+    }
+
     /// Both phases in scan order: `n0 >= 2` points of phase 0 uniformly in `alpha` from 0 to
     /// `alpha_t` (both included), then `n1` points of phase 1 uniformly in `phi1` from `phi1_t`
     /// (excluded: it is the last phase-0 point) down to `phi1_min` (included). Phase 1 is empty
