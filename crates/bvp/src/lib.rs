@@ -43,6 +43,7 @@ pub mod linalg;
 pub mod newton;
 pub mod samples;
 pub mod shooting;
+pub mod tableau;
 
 pub use collocation::{Collocation, CollocationOptions, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
