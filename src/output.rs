@@ -90,8 +90,8 @@ impl Drop for AtomicFile {
 
 /// Where a table goes: a file (atomic) or stdout.
 pub enum Sink {
-    /// standard output
-    Stdout(io::StdoutLock<'static>),
+    /// standard output, block-buffered (stdout alone is line-buffered: one system call per row)
+    Stdout(BufWriter<io::StdoutLock<'static>>),
     /// a file renamed into place on [`Sink::finish`]
     File(AtomicFile),
 }
@@ -101,7 +101,7 @@ impl Sink {
     pub fn open(path: Option<&Path>) -> Res<Sink> {
         Ok(match path {
             Some(p) => Sink::File(AtomicFile::create(p)?),
-            None => Sink::Stdout(io::stdout().lock()),
+            None => Sink::Stdout(BufWriter::new(io::stdout().lock())),
         })
     }
 
