@@ -14,68 +14,18 @@ use std::io::Write;
 use std::time::Instant;
 use vibrissa::{ScanOptions, Scene, StopReason};
 
-/// One scan point (the columns of the scan CSV).
-#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
-pub struct Pt {
-    /// foot displacement
-    pub d: f64,
-    /// tan(-alpha) (tan(beta - alpha) on an inclined surface)
-    pub mu: f64,
-    /// force angle
-    pub alpha: f64,
-    /// tip slope
-    pub phi1: f64,
-    /// force magnitude
-    pub f: f64,
-    /// f sin(alpha)
-    pub fx: f64,
-    /// -f cos(alpha)
-    pub fy: f64,
-    /// m(0)
-    pub m_base: f64,
-    /// number of flex points
-    pub flex: usize,
-    /// arc length of the first flex point
-    pub s_flex: Option<f64>,
-    /// max of y(s)
-    pub y_max: f64,
-}
+/// One scan point (the columns of the scan CSV): the library's point, also built from the closed
+/// forms for `--method analytic`.
+pub type Pt = vibrissa::ScanPoint;
 
-impl From<&vibrissa::ScanPoint> for Pt {
-    fn from(p: &vibrissa::ScanPoint) -> Pt {
-        Pt {
-            d: p.d,
-            mu: p.mu,
-            alpha: p.alpha,
-            phi1: p.phi1,
-            f: p.f,
-            fx: p.fx,
-            fy: p.fy,
-            m_base: p.m_base,
-            flex: p.flex,
-            s_flex: p.s_flex,
-            y_max: p.y_max,
-        }
-    }
-}
-
-impl Pt {
-    fn finite(&self) -> bool {
-        [
-            self.d,
-            self.mu,
-            self.alpha,
-            self.phi1,
-            self.f,
-            self.fx,
-            self.fy,
-            self.m_base,
-            self.y_max,
-        ]
-        .iter()
-        .all(|v| v.is_finite())
-            && self.s_flex.is_none_or(f64::is_finite)
-    }
+/// True when every value of the point is finite (a result row may be printed).
+fn finite(p: &Pt) -> bool {
+    [
+        p.d, p.mu, p.alpha, p.phi1, p.f, p.fx, p.fy, p.m_base, p.y_max,
+    ]
+    .iter()
+    .all(|v| v.is_finite())
+        && p.s_flex.is_none_or(f64::is_finite)
 }
 
 /// Why the scan stopped, flattened for CSV / JSON.
@@ -175,7 +125,7 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
         numeric_scan(scene, spec)?
     };
     // never present non-finite rows
-    if let Some(bad) = out.pts.iter().position(|p| !p.finite()) {
+    if let Some(bad) = out.pts.iter().position(|p| !finite(p)) {
         let d = out.pts[bad].d;
         out.pts.truncate(bad);
         out.shapes.truncate(bad);
@@ -185,7 +135,7 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
             detail: format!("non-finite values at d = {d}"),
         };
     }
-    if !out.start.finite() || !out.mu_max.is_finite() || !out.d_at_mu_max.is_finite() {
+    if !finite(&out.start) || !out.mu_max.is_finite() || !out.d_at_mu_max.is_finite() {
         return Err(solve_fail(
             "the scan produced non-finite start or maximum values",
         ));
@@ -208,7 +158,7 @@ fn numeric_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
     Ok(ScanOut {
         method: spec.method.name(),
         eta: r.eta,
-        start: Pt::from(&r.start),
+        start: r.start,
         mu_max: r.mu_max,
         d_at_mu_max: r.d_at_mu_max,
         stop: Stop::from(&r.stop),
@@ -219,7 +169,7 @@ fn numeric_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
             factorizations: r.stats.factorizations,
         },
         time_ms: 0.0,
-        pts: r.points.iter().map(Pt::from).collect(),
+        pts: r.points.clone(),
         shapes: r
             .shapes
             .iter()
