@@ -55,11 +55,16 @@
 //!
 //! Start: α = β, `y(1) = η`, convex; its tip `x1*`. The foot moves right by `d`; the tip sticks at
 //! `(x1* − d, η)` relative to the foot. The family in `λ = d` ([`model::ScanFamily`], unknowns
-//! f, α) is followed by pseudo-arclength continuation (crate `bvp`), which passes the birth of
-//! the flex point (κ(0) changes sign), the maximum of μ and the folds in φ1 and α without special
-//! cases. Output at the requested `d` by `point_at` solves; μ_max by Brent's maximizer on μ(d)
-//! (solver accuracy, not the grid maximum); slip (μ = μ0) and penetration located by Brent's root
-//! finder; a fold in d (snap-through) and solver failures end the scan with a [`StopReason`].
+//! f, α) is stepped from output point to output point in d, each step warm-started by a quadratic
+//! extrapolation of the last three points; where a natural step fails (near a fold in d) the
+//! pseudo-arclength continuation of crate `bvp` takes over, so the birth of the flex point (κ(0)
+//! changes sign), the maximum of μ and the folds in φ1 and α need no special cases. μ_max by
+//! Brent's maximizer on μ(d) (solver accuracy, not the grid maximum); slip (μ = μ0) and penetration
+//! (checked at the start, at every point and between points) located by Brent's root finder; a
+//! fold in d (snap-through) and solver failures end the scan with a [`StopReason`]. The paper's
+//! scene with single shooting runs a specialized fixed-size path (module `fast`: unknowns
+//! (m(0), f, α), DOP853 steps on a 16-component system with sensitivities, tangent predictor) that
+//! hands over to the generic scan on anything unusual; both are tested against the closed forms.
 //! [`infer`] maps a slip displacement `d0 ∈ [0, d at μ_max]` back to μ0.
 //!
 //! # Main items
