@@ -24,6 +24,9 @@
 //! - [`continuation`]: natural-parameter and pseudo-arclength continuation of a [`ParamBvp`] family,
 //!   with fold detection and location.
 //!
+//! Problems with a handful of states can be written with arrays instead of slices
+//! ([`fixed::FixedBvp`], wrapped in [`fixed::Fixed`]).
+//!
 //! All solvers return a [`Solution`] (mesh values, dense evaluation, parameters, [`Stats`]) or a
 //! [`BvpError`] that says why the solve failed and carries the statistics gathered so far.
 //!
@@ -39,6 +42,7 @@ mod stats;
 pub mod collocation;
 pub mod continuation;
 pub mod fd;
+pub mod fixed;
 pub mod linalg;
 pub mod newton;
 pub mod samples;

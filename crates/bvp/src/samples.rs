@@ -12,6 +12,7 @@
 //! | [`Cantilever`] | planar elastica, horizontal tip force `P` | Mattiasson (1981) table |
 //! | [`NoSolution`] | `y'' = −y` on `[0, π]`, `y(0) = 0`, `y(π) = 1` | none (resonance) |
 //! | [`NanRhs`] | `y' = −√y`, `y(0) = 1` on `[0, 4]` | rhs is NaN once `y < 0` |
+//! | [`SingularNeumann`] | `y'' = 0`, `y'(0) = 0`, `y'(1) = 0` | a line of solutions: singular Jacobian |
 //!
 //! State layouts are given on each type; second-order equations use `z = (y, y')`.
 
@@ -685,6 +686,65 @@ impl Bvp for NanRhs {
     ) -> bool {
         dga[0] = 1.0;
         dgb[0] = 0.0;
+        true
+    }
+}
+
+/// `y'' = 0` on `[0, 1]`, `y'(0) = 0`, `y'(1) = 0`; `z = (y, y')`. Every constant solves it, so the
+/// Newton matrix of every discretization is exactly singular (the constant is in its kernel):
+/// solvers must report [`crate::BvpError::SingularJacobian`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SingularNeumann;
+
+impl SingularNeumann {
+    /// Guess: `y = s + s²/2`, whose boundary residual `(1, 2)` is not zero (so Newton has to
+    /// factor; shooting from `z(0) = (0, 1)` gives the residual `(1, 1)`).
+    pub fn guess() -> Guess {
+        Guess::from_fn(2, uniform(0.0, 1.0, 5), vec![], |s, z| {
+            z[0] = s + 0.5 * s * s;
+            z[1] = 1.0 + s;
+        })
+    }
+}
+
+impl Bvp for SingularNeumann {
+    fn dims(&self) -> Dims {
+        Dims { n: 2, k: 0 }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn rhs(&self, _s: f64, z: &[f64], _p: &[f64], dz: &mut [f64]) {
+        dz[0] = z[1];
+        dz[1] = 0.0;
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+        res[0] = za[1];
+        res[1] = zb[1];
+    }
+    fn rhs_jacobian(
+        &self,
+        _s: f64,
+        _z: &[f64],
+        _p: &[f64],
+        dfdz: &mut [f64],
+        _: &mut [f64],
+    ) -> bool {
+        dfdz.copy_from_slice(&[0.0, 1.0, 0.0, 0.0]);
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64],
+        _zb: &[f64],
+        _p: &[f64],
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+    ) -> bool {
+        zero([dga, dgb, dgp]);
+        dga[1] = 1.0;
+        dgb[3] = 1.0;
         true
     }
 }

@@ -459,9 +459,14 @@ impl BvpSolver for Shooting {
         // Output pass: integrate z only from the solution, recording every accepted step.
         let u = &self.u;
         let p = &u[segs * n..];
-        let mut mesh = Vec::new();
-        let mut z = Vec::new();
-        let mut dz = Vec::new();
+        // RK4 knows its node count: one allocation per output vector.
+        let nodes = match self.opts.integrator {
+            Integrator::Rk4 { steps } => steps + 1,
+            Integrator::Adaptive { .. } => 0,
+        };
+        let mut mesh = Vec::with_capacity(nodes);
+        let mut z = Vec::with_capacity(nodes * n);
+        let mut dz = Vec::with_capacity(nodes * n);
         let sys = System {
             problem,
             opts: &self.opts,

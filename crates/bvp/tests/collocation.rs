@@ -8,8 +8,12 @@
 //! pointwise maximum of a cubic/quartic residual is at most ~2× its RMS and `1 + |F| ≤ 3` here,
 //! so `‖e‖∞ ≲ 1.5 · 2 · 3 · tol ≈ 10 tol`. The tests assert `max error ≤ 10 tol`.
 
-use bvp::samples::{Bratu, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution};
-use bvp::{Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Scheme, Solution};
+use bvp::samples::{
+    Bratu, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution, SingularNeumann,
+};
+use bvp::{
+    Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Scheme, Solution, Status,
+};
 
 const SCHEMES: [Scheme; 2] = [Scheme::Lobatto4, Scheme::Lobatto6];
 
@@ -318,6 +322,21 @@ fn no_solution_is_reported() {
                 assert!(e.stats().is_some());
             }
             other => panic!("{scheme:?}: expected a Newton failure, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn singular_jacobian_is_reported() {
+    for scheme in SCHEMES {
+        let r = solver(scheme, 1e-6).solve(&SingularNeumann, &SingularNeumann::guess());
+        match r {
+            Err(e @ BvpError::SingularJacobian { .. }) => {
+                eprintln!("{scheme:?}: {e}");
+                assert_eq!(e.status(), Status::SingularJacobian);
+                assert!(e.stats().is_some_and(|st| st.rhs_evals > 0 && st.nodes > 0));
+            }
+            other => panic!("{scheme:?}: expected SingularJacobian, got {other:?}"),
         }
     }
 }

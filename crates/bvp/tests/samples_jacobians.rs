@@ -5,6 +5,7 @@ use bvp::continuation::ParamBvp;
 use bvp::fd::{self, FdScheme, FdScratch};
 use bvp::samples::{
     Bratu, BratuFamily, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution,
+    SingularNeumann,
 };
 use bvp::Bvp;
 use proptest::prelude::*;
@@ -65,6 +66,7 @@ proptest! {
         check(&LinearSinh, t, &za, &zb, &[])?;
         check(&LinearNonSeparated, t, &za, &zb, &[])?;
         check(&NoSolution, t, &za, &zb, &[])?;
+        check(&SingularNeumann, t, &za, &zb, &[])?;
         check(&Eigen, t, &za, &zb, &[lambda])?;
         check(&Bratu { lambda: lambda / 10.0 }, t, &za, &zb, &[])?;
     }

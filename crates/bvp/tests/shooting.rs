@@ -4,7 +4,9 @@
 //! linear problem, eigenvalues `(jπ)²`, Bratu's `θ` equation) and Mattiasson (1981) for the
 //! cantilever (5 printed digits, so ±6e-6 absolute).
 
-use bvp::samples::{Bratu, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution};
+use bvp::samples::{
+    Bratu, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution, SingularNeumann,
+};
 use bvp::{
     Bvp, BvpError, BvpSolver, Guess, Integrator, NewtonOptions, Shooting, ShootingOptions,
     Solution, Status,
@@ -263,6 +265,25 @@ fn no_solution_fails_cleanly() {
         );
         let st = e.stats().expect("stats");
         assert!(st.rhs_evals > 0 && st.steps > 0);
+    }
+}
+
+#[test]
+fn singular_jacobian_is_reported_with_statistics() {
+    for opts in all_configs() {
+        let mut s = Shooting::new(opts.clone()).unwrap();
+        let e = s
+            .solve(&SingularNeumann, &SingularNeumann::guess())
+            .unwrap_err();
+        eprintln!("singular {opts:?}: {e}");
+        match &e {
+            BvpError::SingularJacobian { iteration, stats } => {
+                assert_eq!(*iteration, 1, "{e}");
+                assert!(stats.rhs_evals > 0 && stats.steps > 0, "{stats}");
+            }
+            other => panic!("{opts:?}: expected SingularJacobian, got {other}"),
+        }
+        assert_eq!(e.status(), Status::SingularJacobian);
     }
 }
 
