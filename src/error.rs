@@ -10,6 +10,9 @@ pub enum Fail {
     Usage(String),
     /// the computation or the output failed: exit code 1
     Solve(String),
+    /// the reader of stdout went away (`vibrissa scan | head`): not an error of the program;
+    /// exits quietly with code 0, as `rg`, `fd` and other Rust command-line tools do
+    Closed,
 }
 
 impl Fail {
@@ -18,6 +21,7 @@ impl Fail {
         match self {
             Fail::Usage(_) => 2,
             Fail::Solve(_) => 1,
+            Fail::Closed => 0,
         }
     }
 
@@ -25,6 +29,7 @@ impl Fail {
     pub fn message(&self) -> String {
         let m = match self {
             Fail::Usage(m) | Fail::Solve(m) => m,
+            Fail::Closed => "output closed by its reader",
         };
         one_line(m)
     }
@@ -69,19 +74,30 @@ impl From<elastica::ElasticaError> for Fail {
 
 impl From<std::io::Error> for Fail {
     fn from(e: std::io::Error) -> Fail {
-        Fail::Solve(e.to_string())
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            Fail::Closed
+        } else {
+            Fail::Solve(e.to_string())
+        }
     }
 }
 
 impl From<csv::Error> for Fail {
     fn from(e: csv::Error) -> Fail {
-        Fail::Solve(e.to_string())
+        match e.kind() {
+            csv::ErrorKind::Io(io) if io.kind() == std::io::ErrorKind::BrokenPipe => Fail::Closed,
+            _ => Fail::Solve(e.to_string()),
+        }
     }
 }
 
 impl From<serde_json::Error> for Fail {
     fn from(e: serde_json::Error) -> Fail {
-        Fail::Solve(e.to_string())
+        if e.io_error_kind() == Some(std::io::ErrorKind::BrokenPipe) {
+            Fail::Closed
+        } else {
+            Fail::Solve(e.to_string())
+        }
     }
 }
 

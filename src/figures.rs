@@ -9,6 +9,7 @@ use crate::scan::{run_scan, ClosedCurve, ScanOut, ScanSpec};
 use elastica::{Branch, Elastica};
 use plotters::prelude::*;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+use std::io::Write;
 use std::path::Path;
 use vibrissa::{BranchChoice, Model, Scene, SolverConfig, Target};
 
@@ -686,6 +687,10 @@ pub fn run(a: &FiguresArgs) -> Res<()> {
     if want(9) || want(10) || want(11) {
         scan_figs(dir, &cx, 0.6, 9)?;
     }
-    println!("figures written to {}", a.out_dir.display());
+    writeln!(
+        std::io::stdout(),
+        "figures written to {}",
+        a.out_dir.display()
+    )?;
     Ok(())
 }

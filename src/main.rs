@@ -80,6 +80,7 @@ fn main() {
     }));
     match run(cli) {
         Ok(()) => {}
+        Err(Fail::Closed) => {}
         Err(e) => {
             eprintln!("error: {}", e.message());
             std::process::exit(e.code());

@@ -16,7 +16,7 @@ impl From<VibrissaError> for Fail {
             | VibrissaError::InvalidName { .. } => Fail::Usage(msg),
             VibrissaError::Elastica { source, .. } => match Fail::from(source) {
                 Fail::Usage(_) => Fail::Usage(msg),
-                Fail::Solve(_) => Fail::Solve(msg),
+                Fail::Solve(_) | Fail::Closed => Fail::Solve(msg),
             },
             _ => Fail::Solve(msg),
         }

@@ -10,7 +10,7 @@ use crate::solve::ShapeRow;
 use elastica::roots::try_brent_root;
 use elastica::{Branch, ClosedFormScan, Elastica, ElasticaError, Phase0End};
 use serde::Serialize;
-use std::io::Write;
+use std::io::{self, Write};
 use std::time::Instant;
 use vibrissa::{ScanOptions, Scene, StopReason};
 
@@ -575,9 +575,9 @@ pub fn run(a: &ScanArgs) -> Res<()> {
     }
     if a.json {
         let v = json_summary(&out, a.out.as_deref());
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        writeln!(io::stdout(), "{}", serde_json::to_string_pretty(&v)?)?;
     } else if a.out.is_some() {
-        println!("{}", summary(&out, a.out.as_deref()));
+        writeln!(io::stdout(), "{}", summary(&out, a.out.as_deref()))?;
     } else {
         eprintln!("{}", summary(&out, None));
     }
@@ -656,7 +656,7 @@ pub fn run_infer(a: &InferArgs) -> Res<()> {
         return Err(solve_fail("the inference produced non-finite values"));
     }
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        writeln!(io::stdout(), "{}", serde_json::to_string_pretty(&out)?)?;
     } else {
         let mut w = std::io::stdout().lock();
         csv_line(

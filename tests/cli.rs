@@ -660,3 +660,28 @@ fn figures_are_valid_svg_with_data() {
         "turning point at alpha -> 0",
     );
 }
+
+/// `vibrissa scan | head`: when the reader closes stdout early the program stops quietly with
+/// exit code 0 (as `rg` does), with no error line and no panic. The output (5000 rows, ≈ 1 MB) is
+/// far larger than a pipe buffer, so the program is still writing when the pipe closes.
+#[test]
+fn closed_stdout_is_not_an_error() {
+    use std::io::{BufRead, BufReader};
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
+        .args(["scan", "--points", "5000"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("run vibrissa");
+    let mut header = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut header)
+        .unwrap();
+    assert!(header.starts_with("d,mu,alpha"), "{header:?}");
+    // the reader (and the pipe's read end) is dropped here
+    let o = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "stderr {stderr:?}");
+    assert!(stderr.is_empty(), "stderr {stderr:?}");
+}
