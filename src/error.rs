@@ -72,32 +72,34 @@ impl From<elastica::ElasticaError> for Fail {
     }
 }
 
+/// An output failure: [`Fail::Closed`] when its I/O cause is a broken pipe, else [`Fail::Solve`].
+fn output_fail(io_kind: Option<std::io::ErrorKind>, e: impl fmt::Display) -> Fail {
+    if io_kind == Some(std::io::ErrorKind::BrokenPipe) {
+        Fail::Closed
+    } else {
+        Fail::Solve(e.to_string())
+    }
+}
+
 impl From<std::io::Error> for Fail {
     fn from(e: std::io::Error) -> Fail {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            Fail::Closed
-        } else {
-            Fail::Solve(e.to_string())
-        }
+        output_fail(Some(e.kind()), e)
     }
 }
 
 impl From<csv::Error> for Fail {
     fn from(e: csv::Error) -> Fail {
-        match e.kind() {
-            csv::ErrorKind::Io(io) if io.kind() == std::io::ErrorKind::BrokenPipe => Fail::Closed,
-            _ => Fail::Solve(e.to_string()),
-        }
+        let kind = match e.kind() {
+            csv::ErrorKind::Io(io) => Some(io.kind()),
+            _ => None,
+        };
+        output_fail(kind, e)
     }
 }
 
 impl From<serde_json::Error> for Fail {
     fn from(e: serde_json::Error) -> Fail {
-        if e.io_error_kind() == Some(std::io::ErrorKind::BrokenPipe) {
-            Fail::Closed
-        } else {
-            Fail::Solve(e.to_string())
-        }
+        output_fail(e.io_error_kind(), e)
     }
 }
 

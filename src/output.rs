@@ -5,11 +5,12 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-/// Shortest round-trip representation (`1e-10`, `0.5`, `1.0`); non-finite values become an empty field
-/// (never `NaN` in a result file).
+/// Shortest round-trip representation (`1e-10`, `0.5`, `1.0`); non-finite values become an empty
+/// field (never `NaN` in a result file).
 pub fn num(v: f64) -> String {
     if v.is_finite() {
-        // + 0.0 turns -0 into 0; zmij is ~5× cheaper than `{:?}` (same round-trip guarantee)
+        // + 0.0 turns -0 into 0; zmij: ~8× fewer instructions than `{:?}` (measured on a scan's
+        // CSV, docs/dependencies.md), same round-trip guarantee
         zmij::Buffer::new().format_finite(v + 0.0).to_owned()
     } else {
         String::new()
