@@ -16,7 +16,8 @@ use rayon::prelude::*;
 use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::Duration;
-use vibrissa::model::{Ends, RodBvp, Uniform};
+use vibrissa::equations::{Ends, RodBvp};
+use vibrissa::profile::Uniform;
 use vibrissa::{
     scan, solve, BranchChoice, Method, Model, ScanOptions, Scene, SolverConfig, Target,
 };

@@ -44,6 +44,7 @@ impl From<&StopReason> for Stop {
         let (reason, d) = match s {
             StopReason::DMax => ("d_max", None),
             StopReason::Slip { d, .. } => ("slip", Some(*d)),
+            StopReason::LiftOff { d } => ("lift_off", Some(*d)),
             StopReason::Penetration { d, .. } => ("penetration", Some(*d)),
             StopReason::FoldInD { d } => ("fold_in_d", Some(*d)),
             StopReason::SolverFailure { d, .. } => ("solver_failure", Some(*d)),
@@ -234,6 +235,7 @@ fn pt_of(e: &Elastica, d: f64) -> Pt {
     Pt {
         d,
         mu: (-e.alpha).tan(),
+        normal: e.f * e.alpha.cos(),
         alpha: e.alpha,
         phi1: e.phi1,
         f: e.f,
@@ -243,6 +245,7 @@ fn pt_of(e: &Elastica, d: f64) -> Pt {
         flex: e.flex_count(),
         s_flex: if e.flex_count() > 0 { e.s_b } else { None },
         y_max: e.y_max(),
+        event: None,
     }
 }
 

@@ -1,6 +1,6 @@
 //! The scan by the closed forms (paper's scene only).
 
-use crate::scan::{ScanOptions, ScanResult};
+use crate::report::{ScanOptions, ScanResult};
 use crate::{Model, VibrissaError};
 
 pub(crate) fn scan_analytic(

@@ -36,7 +36,7 @@ pub enum VibrissaError {
         /// Branch asked for.
         requested: String,
         /// What the solution is.
-        found: String,
+        found: crate::shape::ShapeKind,
     },
     /// The BVP solver failed.
     #[error("{context}: {source}")]
@@ -55,14 +55,23 @@ pub enum VibrissaError {
         source: elastica::ElasticaError,
     },
     /// `infer`: the displacement is outside the measurable range.
-    #[error("d0 = {d0} is outside the measurable range [{min}, {max}] = [0, d at mu_max]")]
+    #[error("d0 = {d0} is outside the measurable range [0, {max}], which ends at {end}")]
     NotMeasurable {
         /// Offending displacement.
         d0: f64,
-        /// Lower end (0).
-        min: f64,
-        /// Upper end (the d at mu_max).
+        /// Upper end of the range.
         max: f64,
+        /// What ends the range.
+        end: String,
+    },
+    /// `infer`: the scan reached `d_max` while `|μ|` still rose, so the measurable range is not
+    /// known.
+    #[error("d_max = {d_max} cuts the measurable range short (|mu| = {mu} is still rising there); raise d_max")]
+    RangeCutShort {
+        /// The scan's end.
+        d_max: f64,
+        /// `|μ|` there.
+        mu: f64,
     },
     /// A computation did not reach its goal (continuation stalled, homotopy failed, ...).
     #[error("{what} failed: {reason}")]

@@ -74,16 +74,28 @@
 //! [`ScanPoint`]s; [`SolverConfig`], [`ScanOptions`]; errors: [`VibrissaError`].
 #![warn(missing_docs)]
 
+// Modules import downward only: scene, profile → equations → shooter → rodsolve → shape →
+// model → solve → stepper/march (report) → scan → analytic.
 mod analytic;
+pub mod equations;
 mod error;
-mod fast;
+mod march;
 pub mod model;
+pub mod profile;
+pub mod report;
+mod rodsolve;
 pub mod scan;
 pub mod scene;
+mod search;
+mod shape;
+mod shooter;
 pub mod solve;
+mod stepper;
 
 pub use error::VibrissaError;
 pub use model::{Model, Units};
-pub use scan::{infer, scan, scan_at, Inference, ScanOptions, ScanPoint, ScanResult, StopReason};
+pub use report::{Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason};
+pub use scan::{infer, scan, scan_at};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};
-pub use solve::{solve, BranchChoice, Method, Shape, ShapePoint, SolverConfig, Target};
+pub use shape::{BranchChoice, Shape, ShapeKind, ShapePoint};
+pub use solve::{solve, Method, SolverConfig, Target};

@@ -207,16 +207,8 @@ impl Scene {
 
     /// True for the paper's scene: uniform, straight, clamped rod, horizontal surface.
     pub fn is_paper_scene(&self) -> bool {
-        let uniform = match &self.stiffness {
-            Stiffness::Uniform => true,
-            Stiffness::Taper { ratio } => *ratio == 1.0,
-            Stiffness::Table { .. } => false,
-        };
-        let straight = match &self.precurvature {
-            Precurvature::None => true,
-            Precurvature::Linear { k0, k1 } => *k0 == 0.0 && *k1 == 0.0,
-            Precurvature::Table { .. } => false,
-        };
-        uniform && straight && self.support_compliance == 0.0 && self.surface_angle == 0.0
+        crate::profile::is_uniform(&self.stiffness, &self.precurvature)
+            && self.support_compliance == 0.0
+            && self.surface_angle == 0.0
     }
 }

@@ -1,6 +1,10 @@
 //! Single solves: the rod shape for a given force angle and tip condition.
 
-use crate::model::{Ends, General, HomotopyFamily, Profile, RodBvp, Uniform};
+use crate::equations::{Ends, HomotopyFamily, RodBvp};
+use crate::profile::{Profile, Uniform};
+use crate::rodsolve::{self, TipCond};
+use crate::shape::{elastica_guess, shape_from, shape_from_elastica, BranchChoice, Shape};
+use crate::shooter::Shooter;
 use crate::{Model, VibrissaError};
 use bvp::{
     continuation::{Continuation, ContinuationOptions},
@@ -99,6 +103,11 @@ impl Default for SolverConfig {
 }
 
 impl SolverConfig {
+    /// The tolerance of the rod's own shooter when this configuration is plain single shooting
+    /// with the adaptive integrator (which the shooter replaces), else `None`.
+    pub(crate) fn own_shooter_tol(&self) -> Option<f64> {
+        (self.method == Method::Shooting && self.rk4_steps.is_none()).then_some(self.tol)
+    }
     /// Checks the values: `tol ∈ [1e-15, 1e-2]`, `segments ∈ [1, 10000]`, `rk4_steps ≥ 1`.
     pub fn validate(&self) -> Result<(), VibrissaError> {
         if !(self.tol >= 1e-15 && self.tol <= 1e-2) {
@@ -218,185 +227,6 @@ pub enum Target {
     },
 }
 
-/// Which solution family to look for.
-#[derive(Clone, Debug, PartialEq, Default)]
-pub enum BranchChoice {
-    /// No flex point, right-handed (`κ ≤ 0`): the paper's section 2.1.1.
-    #[default]
-    Convex,
-    /// One flex point (`κ > 0` before it): the paper's section 2.1.2.
-    Flex,
-    /// Start from this shape (no branch check).
-    Guess(Box<Shape>),
-}
-
-impl BranchChoice {
-    fn name(&self) -> &'static str {
-        match self {
-            BranchChoice::Convex => "convex",
-            BranchChoice::Flex => "one flex",
-            BranchChoice::Guess(_) => "guess",
-        }
-    }
-}
-
-/// One sample of a shape.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct ShapePoint {
-    /// Arc length.
-    pub s: f64,
-    /// x.
-    pub x: f64,
-    /// y.
-    pub y: f64,
-    /// Slope φ.
-    pub phi: f64,
-    /// Curvature `κ = κ0 + b·m`.
-    pub kappa: f64,
-    /// Internal moment `m`.
-    pub m: f64,
-}
-
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) enum ShapeData {
-    Numeric { sol: Solution, profile: General },
-    Analytic(Elastica),
-}
-
-/// A solved rod.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Shape {
-    /// Force angle α.
-    pub alpha: f64,
-    /// Force magnitude f.
-    pub f: f64,
-    /// `f·sin α`.
-    pub fx: f64,
-    /// `−f·cos α`.
-    pub fy: f64,
-    /// Tip slope φ(1).
-    pub phi1: f64,
-    /// Tip x.
-    pub x1: f64,
-    /// Tip y.
-    pub y1: f64,
-    /// `m(0)`, the internal moment at the foot (the paper's clamp moment is `m0 = −m(0)`).
-    pub m_base: f64,
-    /// Slope at the foot φ(0) (π/2 unless the support is compliant).
-    pub phi0: f64,
-    /// Number of flex points (sign changes of κ on `[0, 1)`).
-    pub flex: usize,
-    /// Arc length of the first flex point.
-    pub s_flex: Option<f64>,
-    /// Maximum of `y(s)` over the rod.
-    pub y_max: f64,
-    /// Max-norm of the final residual.
-    pub residual: f64,
-    /// Solver statistics.
-    pub stats: Stats,
-    #[serde(skip)]
-    pub(crate) data: ShapeData,
-}
-
-impl Shape {
-    /// `n ≥ 2` samples uniformly in `s ∈ [0, 1]` (fewer than 2 are taken as 2).
-    pub fn samples(&self, n: usize) -> Vec<ShapePoint> {
-        let n = n.max(2);
-        (0..n)
-            .map(|i| self.point_at(i as f64 / (n - 1) as f64))
-            .collect()
-    }
-
-    /// The point at arc length `s` (clamped to `[0, 1]`).
-    pub fn point_at(&self, s: f64) -> ShapePoint {
-        let s = s.clamp(0.0, 1.0);
-        match &self.data {
-            ShapeData::Numeric { sol, profile } => {
-                let mut z = [0.0; 4];
-                sol.eval(s, &mut z);
-                ShapePoint {
-                    s,
-                    x: z[0],
-                    y: z[1],
-                    phi: z[2],
-                    kappa: profile.kappa(s, z[3]),
-                    m: z[3],
-                }
-            }
-            ShapeData::Analytic(e) => match e.point_at(s) {
-                Ok(p) => ShapePoint {
-                    s,
-                    x: p.x,
-                    y: p.y,
-                    phi: p.phi,
-                    kappa: p.kappa,
-                    m: p.kappa,
-                },
-                Err(_) => ShapePoint {
-                    s,
-                    x: f64::NAN,
-                    y: f64::NAN,
-                    phi: f64::NAN,
-                    kappa: f64::NAN,
-                    m: f64::NAN,
-                },
-            },
-        }
-    }
-
-    /// The underlying BVP solution (numerical methods only).
-    pub fn solution(&self) -> Option<&Solution> {
-        match &self.data {
-            ShapeData::Numeric { sol, .. } => Some(sol),
-            ShapeData::Analytic(_) => None,
-        }
-    }
-
-    /// A BVP guess from this shape with parameters `params`.
-    pub(crate) fn guess(&self, params: Vec<f64>) -> Guess {
-        match &self.data {
-            ShapeData::Numeric { sol, .. } => {
-                let mut g = Guess::from(sol);
-                g.params = params;
-                g
-            }
-            ShapeData::Analytic(e) => elastica_guess(e, params),
-        }
-    }
-}
-
-/// Samples of the closed-form rod as a BVP guess (with derivatives, so interpolation is Hermite).
-pub(crate) fn elastica_guess(e: &Elastica, params: Vec<f64>) -> Guess {
-    let nodes = 41;
-    let mesh: Vec<f64> = (0..nodes).map(|i| i as f64 / (nodes - 1) as f64).collect();
-    let mut z = Vec::with_capacity(4 * nodes);
-    let mut dz = Vec::with_capacity(4 * nodes);
-    for &s in &mesh {
-        // point_at only fails for s outside [0, 1]
-        let p = e.point_at(s).unwrap_or(elastica::ShapePoint {
-            s,
-            x: 0.0,
-            y: s,
-            phi: FRAC_PI_2,
-            kappa: 0.0,
-        });
-        z.extend_from_slice(&[p.x, p.y, p.phi, p.kappa]);
-        dz.extend_from_slice(&[
-            p.phi.cos(),
-            p.phi.sin(),
-            p.kappa,
-            e.f * (p.phi - e.alpha).cos(),
-        ]);
-    }
-    Guess {
-        n: 4,
-        mesh,
-        z,
-        dz: Some(dz),
-        params,
-    }
-}
-
 /// A circular-arc guess (used where the closed form has no solution, e.g. `α < −π/4`): the slope
 /// goes linearly from π/2 to the target tip slope (or 0.5 for a height target), `m` decreases
 /// linearly to 0, and `f` balances the base moment with a lever of half the rod.
@@ -430,211 +260,14 @@ fn arc_guess(alpha: f64, target: &Target) -> Option<Guess> {
     Some(g)
 }
 
-/// Number of sign changes of `κ` on `[0, 1)` and the first one's arc length.
-fn flex_points(sol: &Solution, profile: &General, uniform: bool) -> (usize, Option<f64>) {
-    let kap = |s: f64| -> f64 {
-        let mut z = [0.0; 4];
-        sol.eval(s, &mut z);
-        if uniform {
-            z[3]
-        } else {
-            profile.kappa(s, z[3])
-        }
-    };
-    const N: usize = 128;
-    // the tip moment vanishes, so κ(1) = κ0(1); stop short of the tip
-    let scale = (0..=N)
-        .map(|i| kap(i as f64 / N as f64).abs())
-        .fold(0.0, f64::max);
-    let eps = 1e-9 * scale.max(1e-300);
-    let mut count = 0;
-    let mut first = None;
-    let mut prev: Option<(f64, f64)> = None;
-    for i in 0..N {
-        let s = i as f64 / N as f64;
-        let k = kap(s);
-        if k.abs() <= eps {
-            continue;
-        }
-        if let Some((sp, kp)) = prev {
-            if kp.signum() != k.signum() {
-                count += 1;
-                if first.is_none() {
-                    let (mut a, mut b, ka) = (sp, s, kp);
-                    for _ in 0..60 {
-                        let c = 0.5 * (a + b);
-                        if (kap(c) > 0.0) == (ka > 0.0) {
-                            a = c;
-                        } else {
-                            b = c;
-                        }
-                    }
-                    first = Some(0.5 * (a + b));
-                }
-            }
-        }
-        prev = Some((s, k));
-    }
-    (count, first)
-}
-
-/// Extrema of `h(s) = cx·x(s) + cy·y(s)` along a solution (cubic Hermite between nodes).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Extrema {
-    /// Maximum over `[0, 1]`.
-    pub max: f64,
-    /// Largest interior local maximum (`s < 1`), `-inf` if none.
-    pub interior: f64,
-    /// Its arc length.
-    pub s_interior: f64,
-}
-
-pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
-    let n = sol.n;
-    let len = sol.mesh.len();
-    let h = |i: usize| cx * sol.z[i * n] + cy * sol.z[i * n + 1];
-    let dh = |i: usize| cx * sol.dz[i * n] + cy * sol.dz[i * n + 1];
-    let mut out = Extrema {
-        max: f64::NEG_INFINITY,
-        interior: f64::NEG_INFINITY,
-        s_interior: f64::NAN,
-    };
-    for i in 0..len {
-        out.max = out.max.max(h(i));
-    }
-    for i in 0..len.saturating_sub(1) {
-        let (s0, s1) = (sol.mesh[i], sol.mesh[i + 1]);
-        let w = s1 - s0;
-        let (y0, y1) = (h(i), h(i + 1));
-        let (d0, d1) = (dh(i) * w, dh(i + 1) * w);
-        if !(d0 > 0.0 && d1 <= 0.0) {
-            continue;
-        }
-        // Hermite cubic p(t); p'(t) = a t² + b t + c
-        let a = 6.0 * y0 + 3.0 * d0 - 6.0 * y1 + 3.0 * d1;
-        let b = -6.0 * y0 - 4.0 * d0 + 6.0 * y1 - 2.0 * d1;
-        let c = d0;
-        let t = if d1 == 0.0 {
-            1.0
-        } else if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
-            -c / b
-        } else {
-            let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
-            let q = -0.5 * (b + b.signum() * disc);
-            let (r1, r2) = (q / a, c / q);
-            if (0.0..=1.0).contains(&r1) {
-                r1
-            } else {
-                r2
-            }
-        };
-        if !(0.0..=1.0).contains(&t) {
-            continue;
-        }
-        let (t2, t3) = (t * t, t * t * t);
-        let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
-            + (t3 - 2.0 * t2 + t) * d0
-            + (-2.0 * t3 + 3.0 * t2) * y1
-            + (t3 - t2) * d1;
-        out.max = out.max.max(y);
-        let s = s0 + t * w;
-        if s < 1.0 - 1e-9 && y > out.interior {
-            out.interior = y;
-            out.s_interior = s;
-        }
-    }
-    out
-}
-
-/// Builds a [`Shape`] from a converged solution.
-pub(crate) fn shape_from<Pr: Profile>(sol: Solution, rod: &RodBvp<Pr>, profile: General) -> Shape {
-    let (f, alpha) = if sol.params.len() >= 2 {
-        (sol.params[0], sol.params[1])
-    } else {
-        (sol.params[0], rod.alpha)
-    };
-    let za = sol.left().to_vec();
-    let zb = sol.right().to_vec();
-    let (flex, s_flex) = flex_points(&sol, &profile, Pr::UNIFORM);
-    let y_max = extrema(&sol, 0.0, 1.0).max;
-    Shape {
-        alpha,
-        f,
-        fx: f * alpha.sin(),
-        fy: -f * alpha.cos(),
-        phi1: zb[2],
-        x1: zb[0],
-        y1: zb[1],
-        m_base: za[3],
-        phi0: za[2],
-        flex,
-        s_flex,
-        y_max,
-        residual: sol.stats.residual,
-        stats: sol.stats.clone(),
-        data: ShapeData::Numeric { sol, profile },
-    }
-}
-
-fn shape_from_elastica(e: Elastica) -> Shape {
-    let flex = e.flex_count();
-    Shape {
-        alpha: e.alpha,
-        f: e.f,
-        fx: e.fx(),
-        fy: e.fy(),
-        phi1: e.phi1,
-        x1: e.x1,
-        y1: e.y1,
-        m_base: e.m_base,
-        phi0: FRAC_PI_2,
-        flex,
-        s_flex: if flex > 0 { e.s_b } else { None },
-        y_max: e.y_max(),
-        residual: 0.0,
-        stats: Stats::default(),
-        data: ShapeData::Analytic(e),
-    }
-}
-
 /// Checks that a shape is on the requested branch.
 pub(crate) fn check_branch(shape: &Shape, branch: &BranchChoice) -> Result<(), VibrissaError> {
-    let (phi_min, phi_max) = shape
-        .samples(129)
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.phi), b.max(p.phi))
-        });
-    let found = if !(shape.f.is_finite() && shape.alpha.is_finite()) {
-        "a non-finite solution".to_string()
-    } else if phi_max - phi_min > 2.0 * PI {
-        format!("a looping rod (slope range {:.3} rad)", phi_max - phi_min)
-    } else if shape.f < 0.0 {
-        format!("a rod pulled at the tip (f = {:.6} < 0)", shape.f)
-    } else {
-        match (shape.flex, shape.phi1 > shape.phi0) {
-            (0, false) => "convex".to_string(),
-            (0, true) => "convex, mirrored (left-handed)".to_string(),
-            (1, _) => "one flex".to_string(),
-            (n, _) => format!("{n} flex points"),
-        }
-    };
-    // The paper's convex family is right-handed for α ∈ [−π/4, 0]; below −π/4 the load bends the
-    // rod to the left (e.g. the horizontal tip load), and a left-handed convex rod is the answer.
-    let mirrored_ok = shape.alpha < -std::f64::consts::FRAC_PI_4 - 1e-12;
-    let ok = match branch {
-        BranchChoice::Convex => {
-            found == "convex" || (mirrored_ok && found == "convex, mirrored (left-handed)")
-        }
-        BranchChoice::Flex => found == "one flex",
-        BranchChoice::Guess(_) => !found.starts_with("a ") || found.starts_with("a looping"),
-    };
-    if ok {
+    if shape.is_on(branch) {
         Ok(())
     } else {
         Err(VibrissaError::WrongBranch {
-            requested: branch.name().to_string(),
-            found,
+            requested: branch.to_string(),
+            found: shape.kind(),
         })
     }
 }
@@ -710,29 +343,16 @@ pub(crate) fn run<B: Bvp + ?Sized>(
         .map_err(|e| VibrissaError::solver(context(), e))
 }
 
-/// [`run`] for a rod, through the fast single-shape path (uniform clamped rod, single shooting;
-/// `crate::fast::solve_rod`) when it applies and converges.
-fn run_rod<Pr: Profile>(
-    engine: &mut Engine,
-    rod: &RodBvp<Pr>,
-    guess: &Guess,
-    context: impl FnOnce() -> String,
-) -> Result<Solution, VibrissaError> {
-    if let Some(tol) = crate::fast::single_shooting_tol(engine) {
-        if let Some(sol) = crate::fast::solve_rod(rod, guess, tol) {
-            return Ok(sol);
-        }
-    }
-    run(engine, rod, guess, context)
-}
-
 /// Solves for the rod with force angle `alpha` (fixed for φ1 / η targets, the start for a tip
 /// target) and the tip condition `target`, on the requested branch.
 ///
-/// Start guesses: the closed form (crate `elastica`) of the uniform clamped rod; for other scenes
-/// a homotopy from it in the amplitude `t ∈ [0, 1]` of taper, pre-curvature and compliance (see
-/// the crate docs). A converged solution on another branch is an error
-/// ([`VibrissaError::WrongBranch`]), never an answer.
+/// Start: the closed form (crate `elastica`) of the uniform clamped rod on the requested branch
+/// (a circular arc where it has none); any other rod follows the homotopy from it in the
+/// amplitude `t ∈ [0, 1]` of taper, pre-curvature and compliance, so the answer is the solution
+/// continuously connected to the uniform rod's branch. Single shooting runs on the rod's own
+/// shooter ([`crate::rodsolve`]) for every profile; the other methods through crate `bvp`. A
+/// converged solution on another branch is an error ([`VibrissaError::WrongBranch`]) unless
+/// [`BranchChoice::Any`] is asked for.
 pub fn solve(
     model: &Model,
     alpha: f64,
@@ -746,21 +366,141 @@ pub fn solve(
     if cfg.method == Method::Analytic {
         return solve_analytic(model, alpha, target, branch);
     }
-    let mut engine = Engine::new(cfg)?;
-    let shape = if model.has_uniform_profile() && model.scene().support_compliance == 0.0 {
-        solve_with(model, Uniform, &mut engine, alpha, target, branch)?
-    } else {
-        solve_with(
-            model,
-            model.profile(1.0),
-            &mut engine,
-            alpha,
-            target,
-            branch,
-        )?
+    let fast = cfg.own_shooter_tol().and_then(|tol| {
+        if model.has_uniform_profile() {
+            let c = model.scene().support_compliance;
+            solve_fast(model, |t| (Uniform, t * c), alpha, target, branch, tol)
+        } else {
+            let (p, c) = (model.profile(1.0), model.scene().support_compliance);
+            solve_fast(
+                model,
+                |t| (p.clone().with_t(t), t * c),
+                alpha,
+                target,
+                branch,
+                tol,
+            )
+        }
+    });
+    let shape = match fast {
+        Some(s) => s,
+        None => {
+            let mut engine = Engine::new(cfg)?;
+            if model.has_uniform_profile() && model.scene().support_compliance == 0.0 {
+                solve_with(model, Uniform, &mut engine, alpha, target, branch)?
+            } else {
+                solve_with(
+                    model,
+                    model.profile(1.0),
+                    &mut engine,
+                    alpha,
+                    target,
+                    branch,
+                )?
+            }
+        }
     };
     check_branch(&shape, branch)?;
     Ok(shape)
+}
+
+/// The start `u = (m(0), f, α)` on the uniform clamped rod: the closed form where it exists,
+/// else a circular arc (slope from π/2 to the target slope, `m` linear, `f` balancing `m(0)` with
+/// half the rod as lever).
+fn uniform_start(alpha: f64, target: &Target, branch: &BranchChoice) -> [f64; 3] {
+    let closed = match *target {
+        Target::Phi1(p) => Elastica::new(elastica_branch(branch), alpha, p).ok(),
+        Target::Eta(e) | Target::Tip { y1: e, .. } => {
+            elastica::solve_eta(elastica_branch(branch), alpha, e).ok()
+        }
+    };
+    match closed {
+        Some(e) => [e.m_base, e.f, alpha],
+        None => {
+            let phi1 = match *target {
+                Target::Phi1(p) => p,
+                _ => 0.5,
+            };
+            let m0 = 2.0 * (phi1 - FRAC_PI_2);
+            [m0, (m0.abs() / 0.5).max(0.5), alpha]
+        }
+    }
+}
+
+/// [`solve`] on the rod's own shooter: `member(t)` is the rod at homotopy amplitude `t`. `None`
+/// when it does not converge (the caller then runs the generic solver).
+fn solve_fast<P: Profile>(
+    model: &Model,
+    member: impl Fn(f64) -> (P, f64),
+    alpha: f64,
+    target: Target,
+    branch: &BranchChoice,
+    tol: f64,
+) -> Option<Shape> {
+    let (p1, c1) = member(1.0);
+    let mut sh = Shooter::new(p1.clone(), c1, tol, 8);
+    let height = |t: &Target| match *t {
+        Target::Phi1(phi1) => TipCond::Phi1 { phi1, alpha },
+        Target::Eta(eta) | Target::Tip { y1: eta, .. } => TipCond::Eta { eta, alpha },
+    };
+    let cv = if let BranchChoice::Guess(g) = branch {
+        let cond = match target {
+            Target::Tip { x1, y1 } => TipCond::Pos { x1, y1 },
+            t => height(&t),
+        };
+        let a = if matches!(target, Target::Tip { .. }) {
+            g.alpha
+        } else {
+            alpha
+        };
+        rodsolve::solve_damped(&mut sh, &cond, [g.m_base, g.f, a], tol, 40).ok()?
+    } else {
+        let u0 = uniform_start(alpha, &target, branch);
+        let cond = height(&target);
+        let cv = rodsolve::continuation(
+            &mut sh,
+            |t| {
+                let (p, c) = member(t);
+                (p, c, cond)
+            },
+            u0,
+            tol,
+        )
+        .ok()?;
+        match target {
+            Target::Tip { x1, y1 } => {
+                // move the tip from where the height solve put it to x1, α free
+                let x0 = sh.shoot::<false>(&cv.u).y1[0];
+                rodsolve::continuation(
+                    &mut sh,
+                    |t| {
+                        let x = x0 + t * (x1 - x0);
+                        (p1.clone(), c1, TipCond::Pos { x1: x, y1 })
+                    },
+                    cv.u,
+                    tol,
+                )
+                .ok()?
+            }
+            _ => cv,
+        }
+    };
+    // near a turning point the residual says little about the unknowns (square-root
+    // dependence): leave such rods to the generic solver
+    if !(cv.cond() < 1e6) {
+        return None;
+    }
+    let params = match target {
+        Target::Tip { .. } => vec![cv.u[1], cv.u[2]],
+        _ => vec![cv.u[1]],
+    };
+    let mut sol = sh.solution(params, cv.residual);
+    sol.stats = Stats {
+        nodes: sol.stats.nodes,
+        residual: cv.residual,
+        ..sh.stats.clone()
+    };
+    Some(shape_from(sol, alpha, model.profile(1.0)))
 }
 
 fn solve_analytic(
@@ -814,36 +554,24 @@ pub(crate) fn solve_with<Pr: Profile>(
     };
     if let BranchChoice::Guess(g) = branch {
         let guess = g.guess(vec![g.f]);
-        let sol = run_rod(engine, &rod, &guess, || {
+        let sol = run(engine, &rod, &guess, || {
             format!("solve at alpha = {alpha}, {target:?} from the given shape")
         })?;
-        return Ok(shape_from(sol, &rod, model.profile(1.0)));
+        return Ok(shape_from(sol, alpha, model.profile(1.0)));
     }
     // the closed form of the uniform clamped rod where it exists, else a circular arc
     let guess = match closed_form(alpha, &target, elastica_branch(branch)) {
-        Ok(e) => {
-            // the fast single-shape path needs only (m(0), f) of the closed form, not its samples
-            if let (true, Some(tol)) = (
-                Pr::UNIFORM && c == 0.0,
-                crate::fast::single_shooting_tol(engine),
-            ) {
-                let g = Guess::constant(0.0, 1.0, 2, &[0.0, 0.0, FRAC_PI_2, e.m_base], vec![e.f]);
-                if let Some(sol) = crate::fast::solve_rod(&rod, &g, tol) {
-                    return Ok(shape_from(sol, &rod, model.profile(1.0)));
-                }
-            }
-            elastica_guess(&e, vec![e.f])
-        }
+        Ok(e) => elastica_guess(&e, vec![e.f]),
         Err(err) => match arc_guess(alpha, &target) {
             Some(g) => g,
             None => return Err(err),
         },
     };
     if Pr::UNIFORM && c == 0.0 {
-        let sol = run_rod(engine, &rod, &guess, || {
+        let sol = run(engine, &rod, &guess, || {
             format!("solve at alpha = {alpha}, {target:?}")
         })?;
-        return Ok(shape_from(sol, &rod, model.profile(1.0)));
+        return Ok(shape_from(sol, alpha, model.profile(1.0)));
     }
     let family = HomotopyFamily {
         profile: model.profile(1.0),
@@ -852,7 +580,7 @@ pub(crate) fn solve_with<Pr: Profile>(
         ends: ends_of(target),
     };
     let sol = homotopy(engine, &family, &guess)?;
-    Ok(shape_from(sol, &rod, model.profile(1.0)))
+    Ok(shape_from(sol, alpha, model.profile(1.0)))
 }
 
 /// A rough "solution" made of a guess (for continuation starts, which correct it first).
@@ -943,7 +671,7 @@ fn solve_tip<Pr: Profile>(
             let sol = run(engine, &rod, &g.guess(vec![g.f, g.alpha]), || {
                 format!("tip ({x1}, {y1}) from the given shape")
             })?;
-            return Ok(shape_from(sol, &rod, model.profile(1.0)));
+            return Ok(shape_from(sol, alpha, model.profile(1.0)));
         }
         _ => solve_with(
             model,
@@ -994,5 +722,5 @@ fn solve_tip<Pr: Profile>(
     }
     let residual = sol.stats.residual;
     sol.stats = Stats { residual, ..stats };
-    Ok(shape_from(sol, &rod, model.profile(1.0)))
+    Ok(shape_from(sol, alpha, model.profile(1.0)))
 }

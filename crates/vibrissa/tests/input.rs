@@ -3,7 +3,7 @@
 
 use bvp::Bvp;
 use proptest::prelude::*;
-use vibrissa::model::{Ends, RodBvp};
+use vibrissa::equations::{Ends, RodBvp};
 use vibrissa::{
     infer, scan, solve, BranchChoice, Method, Model, Precurvature, ScanOptions, Scene,
     SolverConfig, Stiffness, Target, VibrissaError,
@@ -142,8 +142,21 @@ fn bad_scan_options() {
         let e = scan(&model, &o).unwrap_err().to_string();
         assert!(e.contains(name) && e.contains("valid range"), "{e}");
     }
+    // a negative d0 is bad input, named with its range and no NaN in it
     let e = infer(&model, -0.1, &ScanOptions::default()).unwrap_err();
+    assert!(matches!(e, VibrissaError::OutOfRange { .. }), "{e}");
+    assert!(!e.to_string().contains("NaN"), "{e}");
+    // beyond the first maximum of |μ| (d ≈ 0.130): not measurable, the message says why
+    let e = infer(&model, 0.2, &ScanOptions::default()).unwrap_err();
     assert!(matches!(e, VibrissaError::NotMeasurable { .. }), "{e}");
+    assert!(e.to_string().contains("first maximum"), "{e}");
+    // a d_max before the first maximum cuts the range short: an error that says so
+    let short = ScanOptions {
+        d_max: 0.05,
+        ..ScanOptions::default()
+    };
+    let e = infer(&model, 0.04, &short).unwrap_err();
+    assert!(matches!(e, VibrissaError::RangeCutShort { .. }), "{e}");
 }
 
 #[test]
@@ -248,7 +261,7 @@ proptest! {
         };
         let rod = RodBvp { profile: model.profile(1.0), compliance: c, alpha, ends };
         fd_check(&rod, s, &z, &p);
-        let uni = RodBvp { profile: vibrissa::model::Uniform, compliance: c, alpha, ends: Ends::Phi1 { phi1: 0.2 } };
+        let uni = RodBvp { profile: vibrissa::profile::Uniform, compliance: c, alpha, ends: Ends::Phi1 { phi1: 0.2 } };
         fd_check(&uni, s, &z, &p[..1]);
     }
 }

@@ -3,10 +3,11 @@
 
 use bvp::continuation::{Continuation, ContinuationOptions};
 use bvp::{Integrator, NewtonOptions, Shooting, ShootingOptions};
-use vibrissa::model::{Ends, RodBvp, ScanFamily, Uniform};
+use vibrissa::equations::{Ends, RodBvp, ScanFamily};
+use vibrissa::profile::Uniform;
 use vibrissa::{
-    scan, solve, BranchChoice, Model, ScanOptions, ScanResult, Scene, SolverConfig, Stiffness,
-    StopReason, Target,
+    scan, solve, BranchChoice, Event, Model, ScanOptions, ScanResult, Scene, SolverConfig,
+    Stiffness, StopReason, Target,
 };
 
 fn grid_len(o: &ScanOptions, upto: f64) -> usize {
@@ -16,16 +17,23 @@ fn grid_len(o: &ScanOptions, upto: f64) -> usize {
 }
 
 /// The contract of the output: d_max means every grid point; any other stop at d means every
-/// grid point up to d (and none beyond).
+/// grid point up to d (and none beyond), then the event point at d (except a solver failure).
 fn check_points(r: &ScanResult, o: &ScanOptions) {
-    let upto = match &r.stop {
-        StopReason::DMax => o.d_max,
-        StopReason::Slip { d, .. }
-        | StopReason::Penetration { d, .. }
-        | StopReason::FoldInD { d } => *d,
-        StopReason::SolverFailure { d, .. } => *d - 1e-300,
+    let (upto, event) = match &r.stop {
+        StopReason::DMax => (o.d_max, None),
+        StopReason::Slip { d, .. } => (*d, Some(Event::Slip)),
+        StopReason::LiftOff { d } => (*d, Some(Event::LiftOff)),
+        StopReason::Penetration { d, .. } => (*d, Some(Event::Penetration)),
+        StopReason::FoldInD { d } => (*d, Some(Event::FoldInD)),
+        StopReason::SolverFailure { d, .. } => (*d - 1e-300, None),
     };
-    assert_eq!(r.points.len(), grid_len(o, upto), "stop {}", r.stop);
+    let grid_points = r.points.iter().filter(|p| p.event.is_none()).count();
+    assert_eq!(grid_points, grid_len(o, upto), "stop {}", r.stop);
+    if let Some(ev) = event {
+        let last = r.points.last().expect("the event point");
+        assert_eq!(last.event, Some(ev));
+        assert_eq!(last.d, upto);
+    }
 }
 
 #[test]

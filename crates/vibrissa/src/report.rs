@@ -1,0 +1,260 @@
+//! What a scan returns: options, points, events, stop reasons, the measurable range.
+//!
+//! # Contact and the friction ratio
+//!
+//! The surface line through the contact point has the unit tangent `t = −(cos β, sin β)`
+//! (pointing back, against the drag of the foot) and the upward unit normal `n = (−sin β, cos β)`.
+//! The tip force on the rod is `F = (f sin α, −f cos α)`. The contact is unilateral and
+//! frictional:
+//!
+//! ```text
+//!     N = −F·n = f cos(α − β) ≥ 0          (the surface pushes; N = 0 is lift-off)
+//!     μ = F·t / N = tan(β − α)             (signed friction ratio; |μ| ≤ μ0 while it sticks)
+//! ```
+//!
+//! `μ > 0`: the surface holds the tip back against the drag (the usual case); `μ < 0`: it pushes
+//! the tip forward. The tip slips where `|μ|` reaches μ0 (either sign) and lifts off where `N`
+//! reaches 0 (where `|μ|` grows without bound).
+
+use crate::shape::ShapePoint;
+use crate::solve::SolverConfig;
+use crate::VibrissaError;
+use serde::Serialize;
+use std::fmt;
+
+/// Options of [`crate::scan`].
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ScanOptions {
+    /// Largest foot displacement. Default 0.5.
+    pub d_max: f64,
+    /// Output points, uniformly on `[0, d_max]` (both included). Default 201.
+    pub points: usize,
+    /// Slip threshold μ0: the scan stops where μ reaches it. Default none.
+    pub mu0: Option<f64>,
+    /// Solver settings.
+    pub solver: SolverConfig,
+    /// `Some(n)`: keep each output point's shape sampled at `n` points.
+    pub keep_shapes: Option<usize>,
+}
+
+impl Default for ScanOptions {
+    fn default() -> Self {
+        ScanOptions {
+            d_max: 0.5,
+            points: 201,
+            mu0: None,
+            solver: SolverConfig::default(),
+            keep_shapes: None,
+        }
+    }
+}
+
+impl ScanOptions {
+    /// Checks: `d_max ∈ (0, 2)`, `points ∈ [2, 1e6]`, `mu0 ≥ 0` finite, `keep_shapes ≥ 2`.
+    pub fn validate(&self) -> Result<(), VibrissaError> {
+        if !(self.d_max > 0.0 && self.d_max < 2.0) {
+            return Err(VibrissaError::range("d_max", self.d_max, "(0, 2)"));
+        }
+        if !(2..=1_000_000).contains(&self.points) {
+            return Err(VibrissaError::range(
+                "points",
+                self.points as f64,
+                "[2, 1000000]",
+            ));
+        }
+        if let Some(mu0) = self.mu0 {
+            if !(mu0.is_finite() && mu0 >= 0.0) {
+                return Err(VibrissaError::range("mu0", mu0, "[0, inf)"));
+            }
+        }
+        if let Some(n) = self.keep_shapes {
+            if !(2..=100_000).contains(&n) {
+                return Err(VibrissaError::range("keep_shapes", n as f64, "[2, 100000]"));
+            }
+        }
+        self.solver.validate()
+    }
+}
+
+/// One point of the scan.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ScanPoint {
+    /// Foot displacement.
+    pub d: f64,
+    /// Signed friction ratio the contact must supply, `μ = F·t/N = tan(β − α)` (β: surface
+    /// angle; `tan(−α)` on the flat surface); see the module docs.
+    pub mu: f64,
+    /// Normal force `N = −F·n = f cos(α − β)` (≥ 0 while the tip touches).
+    pub normal: f64,
+    /// Force angle.
+    pub alpha: f64,
+    /// Tip slope.
+    pub phi1: f64,
+    /// Force magnitude.
+    pub f: f64,
+    /// `f·sin α`.
+    pub fx: f64,
+    /// `−f·cos α`.
+    pub fy: f64,
+    /// `m(0)` (the paper's clamp moment is `−m(0)`).
+    pub m_base: f64,
+    /// Number of flex points.
+    pub flex: usize,
+    /// Arc length of the first flex point.
+    pub s_flex: Option<f64>,
+    /// Maximum of `y(s)`.
+    pub y_max: f64,
+    /// The event at this point, if it is the point where the scan stopped (not a grid point).
+    pub event: Option<Event>,
+}
+
+/// An event that ends a scan, located to solver accuracy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Event {
+    /// `|μ|` reached μ0: the tip slips (either direction).
+    Slip,
+    /// The normal force reached zero: the tip leaves the surface.
+    LiftOff,
+    /// The rod touches the surface elsewhere, or its tip turns into it.
+    Penetration,
+    /// `d` has a maximum along the branch: snap-through.
+    FoldInD,
+}
+
+impl Event {
+    /// The name used in CSV and JSON (`slip`, `lift_off`, `penetration`, `fold_in_d`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Event::Slip => "slip",
+            Event::LiftOff => "lift_off",
+            Event::Penetration => "penetration",
+            Event::FoldInD => "fold_in_d",
+        }
+    }
+}
+
+/// Why a scan stopped.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "reason", rename_all = "snake_case")]
+pub enum StopReason {
+    /// `d_max` reached.
+    DMax,
+    /// `|μ|` reached μ0 at `d`: the tip slips (backwards for μ = μ0, forwards for μ = −μ0).
+    Slip {
+        /// Displacement.
+        d: f64,
+        /// Signed μ there (±μ0).
+        mu: f64,
+    },
+    /// The normal force reached zero at `d`: the tip lifts off the surface.
+    LiftOff {
+        /// Displacement.
+        d: f64,
+    },
+    /// The rod crosses the surface at arc length `s` (`y(s) = η` with `s < 1`, or the tip
+    /// slope turns downwards at `s = 1`).
+    Penetration {
+        /// Displacement.
+        d: f64,
+        /// Arc length of the touching point.
+        s: f64,
+        /// Its height.
+        y: f64,
+    },
+    /// `d` has a maximum along the solution curve: snap-through.
+    FoldInD {
+        /// Displacement at the fold.
+        d: f64,
+    },
+    /// The solver failed.
+    SolverFailure {
+        /// Last displacement reached.
+        d: f64,
+        /// Diagnostics.
+        message: String,
+    },
+}
+
+impl fmt::Display for StopReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StopReason::DMax => write!(f, "d_max reached"),
+            StopReason::Slip { d, mu } => write!(f, "slip at d = {d} (mu = {mu})"),
+            StopReason::LiftOff { d } => write!(f, "lift-off at d = {d} (normal force 0)"),
+            StopReason::Penetration { d, s, y } => {
+                write!(f, "penetration at d = {d} (s = {s}, y = {y})")
+            }
+            StopReason::FoldInD { d } => write!(f, "fold in d (snap-through) at d = {d}"),
+            StopReason::SolverFailure { d, message } => {
+                write!(f, "solver failure after d = {d}: {message}")
+            }
+        }
+    }
+}
+
+/// Result of [`crate::scan`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ScanResult {
+    /// Surface height.
+    pub eta: f64,
+    /// The starting rod (d = 0).
+    pub start: ScanPoint,
+    /// Points at the requested displacements, up to where the scan stopped.
+    pub points: Vec<ScanPoint>,
+    /// Largest `|μ|` over the measurable range (located by a 1-D search, not the grid maximum).
+    pub mu_max: f64,
+    /// The signed μ there.
+    pub mu_at_max: f64,
+    /// The d where it occurs: the upper end of the measurable range.
+    pub d_at_mu_max: f64,
+    /// What ends the measurable range (the first monotone stretch of `|μ(d)|` from d = 0).
+    pub range_end: RangeEnd,
+    /// Why the scan stopped.
+    pub stop: StopReason,
+    /// Accumulated solver statistics.
+    pub stats: bvp::Stats,
+    /// Shapes of the output points (if `keep_shapes`).
+    pub shapes: Vec<Vec<ShapePoint>>,
+}
+
+/// What ends the measurable range `[0, d_at_mu_max]`: the first monotone stretch of `|μ(d)|`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RangeEnd {
+    /// The first maximum of `|μ|`.
+    FirstMaximum,
+    /// The scan stopped at an event (slip, lift-off, penetration, fold) while `|μ|` still rose.
+    Event,
+    /// `d_max` was reached while `|μ|` still rose: the range is cut short.
+    DMax,
+    /// The solver failed while `|μ|` still rose.
+    SolverFailure,
+}
+
+impl fmt::Display for RangeEnd {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            RangeEnd::FirstMaximum => "the first maximum of |mu|",
+            RangeEnd::Event => "the event that stopped the scan",
+            RangeEnd::DMax => "d_max (|mu| still rising: the range is cut short)",
+            RangeEnd::SolverFailure => "a solver failure (|mu| still rising)",
+        })
+    }
+}
+
+/// Result of [`crate::infer`].
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Inference {
+    /// The stiction coefficient μ0 = |μ(d0)|.
+    pub mu0: f64,
+    /// The displacement at which the tip slipped.
+    pub d0: f64,
+    /// The measurable range `[0, d at μ_max]`.
+    pub measurable_d: (f64, f64),
+    /// μ_max (of `|μ|`).
+    pub mu_max: f64,
+    /// What ends the measurable range.
+    pub range_end: RangeEnd,
+}

@@ -1,0 +1,516 @@
+//! A solved rod ([`Shape`]): its summary numbers, samples, and the branch it is on.
+//!
+//! Sampling works on the cubic Hermite interpolant of the solution's nodes (positions, slope and
+//! moment with their derivatives), as per-interval polynomials searched from a hint, so that the
+//! 129-sample scans for flex points, load reversals and the highest point cost a few hundred
+//! operations per rod whatever its profile.
+
+use crate::profile::{General, Profile};
+use bvp::{Guess, Solution, Stats};
+use elastica::Elastica;
+use serde::Serialize;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::fmt;
+
+/// One sample of a shape.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ShapePoint {
+    /// Arc length.
+    pub s: f64,
+    /// x.
+    pub x: f64,
+    /// y.
+    pub y: f64,
+    /// Slope φ.
+    pub phi: f64,
+    /// Curvature `κ = κ0 + b·m`.
+    pub kappa: f64,
+    /// Internal moment `m`.
+    pub m: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum ShapeData {
+    Numeric { sol: Solution, profile: General },
+    Analytic(Elastica),
+}
+
+/// A solved rod.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Shape {
+    /// Force angle α.
+    pub alpha: f64,
+    /// Force magnitude f.
+    pub f: f64,
+    /// `f·sin α`.
+    pub fx: f64,
+    /// `−f·cos α`.
+    pub fy: f64,
+    /// Tip slope φ(1).
+    pub phi1: f64,
+    /// Tip x.
+    pub x1: f64,
+    /// Tip y.
+    pub y1: f64,
+    /// `m(0)`, the internal moment at the foot (the paper's clamp moment is `m0 = −m(0)`).
+    pub m_base: f64,
+    /// Slope at the foot φ(0) (π/2 unless the support is compliant).
+    pub phi0: f64,
+    /// Number of flex points (sign changes of the curvature κ on `[0, 1)`).
+    pub flex: usize,
+    /// Number of sign changes of the bending moment `m(s)` on `[0, 1)` (load reversals): the
+    /// branch of the rod. Equals `flex` for the straight uniform rod (κ = m).
+    pub load_reversals: usize,
+    /// Arc length of the first flex point.
+    pub s_flex: Option<f64>,
+    /// Maximum of `y(s)` over the rod.
+    pub y_max: f64,
+    /// Max-norm of the final residual.
+    pub residual: f64,
+    /// Solver statistics.
+    pub stats: Stats,
+    #[serde(skip)]
+    pub(crate) data: ShapeData,
+}
+
+impl Shape {
+    /// `n ≥ 2` samples uniformly in `s ∈ [0, 1]` (fewer than 2 are taken as 2).
+    pub fn samples(&self, n: usize) -> Vec<ShapePoint> {
+        let n = n.max(2);
+        (0..n)
+            .map(|i| self.point_at(i as f64 / (n - 1) as f64))
+            .collect()
+    }
+
+    /// The point at arc length `s` (clamped to `[0, 1]`).
+    pub fn point_at(&self, s: f64) -> ShapePoint {
+        let s = s.clamp(0.0, 1.0);
+        match &self.data {
+            ShapeData::Numeric { sol, profile } => {
+                let mut z = [0.0; 4];
+                sol.eval(s, &mut z);
+                ShapePoint {
+                    s,
+                    x: z[0],
+                    y: z[1],
+                    phi: z[2],
+                    kappa: profile.kappa(s, z[3]),
+                    m: z[3],
+                }
+            }
+            ShapeData::Analytic(e) => match e.point_at(s) {
+                Ok(p) => ShapePoint {
+                    s,
+                    x: p.x,
+                    y: p.y,
+                    phi: p.phi,
+                    kappa: p.kappa,
+                    m: p.kappa,
+                },
+                Err(_) => ShapePoint {
+                    s,
+                    x: f64::NAN,
+                    y: f64::NAN,
+                    phi: f64::NAN,
+                    kappa: f64::NAN,
+                    m: f64::NAN,
+                },
+            },
+        }
+    }
+
+    /// The underlying BVP solution (numerical methods only).
+    pub fn solution(&self) -> Option<&Solution> {
+        match &self.data {
+            ShapeData::Numeric { sol, .. } => Some(sol),
+            ShapeData::Analytic(_) => None,
+        }
+    }
+
+    /// A BVP guess from this shape with parameters `params`.
+    pub(crate) fn guess(&self, params: Vec<f64>) -> Guess {
+        match &self.data {
+            ShapeData::Numeric { sol, .. } => {
+                let mut g = Guess::from(sol);
+                g.params = params;
+                g
+            }
+            ShapeData::Analytic(e) => elastica_guess(e, params),
+        }
+    }
+}
+
+/// Samples of the closed-form rod as a BVP guess (with derivatives, so interpolation is Hermite).
+pub(crate) fn elastica_guess(e: &Elastica, params: Vec<f64>) -> Guess {
+    let nodes = 41;
+    let mesh: Vec<f64> = (0..nodes).map(|i| i as f64 / (nodes - 1) as f64).collect();
+    let mut z = Vec::with_capacity(4 * nodes);
+    let mut dz = Vec::with_capacity(4 * nodes);
+    for &s in &mesh {
+        // point_at only fails for s outside [0, 1]
+        let p = e.point_at(s).unwrap_or(elastica::ShapePoint {
+            s,
+            x: 0.0,
+            y: s,
+            phi: FRAC_PI_2,
+            kappa: 0.0,
+        });
+        z.extend_from_slice(&[p.x, p.y, p.phi, p.kappa]);
+        dz.extend_from_slice(&[
+            p.phi.cos(),
+            p.phi.sin(),
+            p.kappa,
+            e.f * (p.phi - e.alpha).cos(),
+        ]);
+    }
+    Guess {
+        n: 4,
+        mesh,
+        z,
+        dz: Some(dz),
+        params,
+    }
+}
+
+/// Which solution family a solve asks for. Branches are told apart by the sign changes of the
+/// bending moment `m(s)` (the load), which for the straight uniform rod is the paper's flex count
+/// (κ = m) and for any other rod does not depend on its rest curvature or stiffness.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub enum BranchChoice {
+    /// No load reversal: the paper's convex family (§2.1.1) and, for any other rod, the solution
+    /// continuously connected to it through the homotopy from the uniform straight rod.
+    #[default]
+    Convex,
+    /// One load reversal: the paper's one-flex family (§2.1.2) and its homotopy continuation.
+    Flex,
+    /// Whatever the solver converges to from the convex start; [`Shape::kind`] says what it is.
+    Any,
+    /// Start from this shape (no branch check).
+    Guess(Box<Shape>),
+}
+
+impl BranchChoice {
+    /// Load reversals the branch must have (`None`: no requirement).
+    pub fn load_reversals(&self) -> Option<usize> {
+        match self {
+            BranchChoice::Convex => Some(0),
+            BranchChoice::Flex => Some(1),
+            BranchChoice::Any | BranchChoice::Guess(_) => None,
+        }
+    }
+}
+
+impl fmt::Display for BranchChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            BranchChoice::Convex => "convex (no load reversal)",
+            BranchChoice::Flex => "flex (one load reversal)",
+            BranchChoice::Any => "any",
+            BranchChoice::Guess(_) => "the given shape",
+        })
+    }
+}
+
+/// What a solved rod is, in the terms of [`BranchChoice`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum ShapeKind {
+    /// `load_reversals` sign changes of the moment, a proper tip load (f ≥ 0), no loop.
+    Regular {
+        /// Sign changes of `m(s)` on `[0, 1)`.
+        load_reversals: usize,
+    },
+    /// The slope turns through more than a full turn.
+    Looping,
+    /// The tip is pulled (f < 0).
+    Pulled,
+    /// The solution is not finite.
+    NonFinite,
+}
+
+impl fmt::Display for ShapeKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ShapeKind::Regular { load_reversals: 0 } => f.write_str("convex (no load reversal)"),
+            ShapeKind::Regular { load_reversals: 1 } => f.write_str("flex (one load reversal)"),
+            ShapeKind::Regular { load_reversals: n } => write!(f, "{n} load reversals"),
+            ShapeKind::Looping => f.write_str("a looping rod (slope range over 2 pi)"),
+            ShapeKind::Pulled => f.write_str("a rod pulled at the tip (f < 0)"),
+            ShapeKind::NonFinite => f.write_str("a non-finite solution"),
+        }
+    }
+}
+
+impl Shape {
+    /// What this rod is (see [`ShapeKind`]).
+    pub fn kind(&self) -> ShapeKind {
+        if !(self.f.is_finite() && self.alpha.is_finite()) {
+            return ShapeKind::NonFinite;
+        }
+        let (lo, hi) = self
+            .samples(129)
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p.phi), b.max(p.phi))
+            });
+        if hi - lo > 2.0 * PI {
+            ShapeKind::Looping
+        } else if self.f < 0.0 {
+            ShapeKind::Pulled
+        } else {
+            ShapeKind::Regular {
+                load_reversals: self.load_reversals,
+            }
+        }
+    }
+
+    /// True when this rod is on `branch`.
+    pub fn is_on(&self, branch: &BranchChoice) -> bool {
+        match (branch.load_reversals(), self.kind()) {
+            (Some(n), ShapeKind::Regular { load_reversals }) => n == load_reversals,
+            (Some(_), _) => false,
+            (None, _) => true,
+        }
+    }
+}
+
+/// Per-interval cubic Hermite polynomials of the components of a solution on its mesh (the
+/// interpolant of [`Solution::eval`]'s default form), evaluated from an interval hint.
+pub(crate) struct Sampler<'a> {
+    mesh: &'a [f64],
+    /// `coef[4 * i + c]`: the cubic of component `c` on interval `i`, in `t ∈ [0, 1]`.
+    coef: Vec<[f64; 4]>,
+}
+
+impl<'a> Sampler<'a> {
+    /// The interpolant of components 0..4 of `sol`.
+    pub fn new(sol: &'a Solution) -> Self {
+        let n = sol.mesh.len() - 1;
+        let w = sol.n;
+        let mut coef = Vec::with_capacity(4 * n);
+        for i in 0..n {
+            let h = sol.mesh[i + 1] - sol.mesh[i];
+            for c in 0..4 {
+                let (z0, z1) = (sol.z[w * i + c], sol.z[w * (i + 1) + c]);
+                let (d0, d1) = (h * sol.dz[w * i + c], h * sol.dz[w * (i + 1) + c]);
+                coef.push([
+                    z0,
+                    d0,
+                    -3.0 * z0 - 2.0 * d0 + 3.0 * z1 - d1,
+                    2.0 * z0 + d0 - 2.0 * z1 + d1,
+                ]);
+            }
+        }
+        Sampler {
+            mesh: &sol.mesh,
+            coef,
+        }
+    }
+
+    /// Component `c` at `s`, searching the interval from the hint `i`; also returns the interval.
+    #[inline]
+    pub fn at(&self, c: usize, s: f64, mut i: usize) -> (f64, usize) {
+        let n = self.mesh.len() - 1;
+        let mesh = self.mesh;
+        i = i.min(n - 1);
+        while i + 1 < n && mesh[i + 1] <= s {
+            i += 1;
+        }
+        while i > 0 && mesh[i] > s {
+            i -= 1;
+        }
+        let t = ((s - mesh[i]) / (mesh[i + 1] - mesh[i])).clamp(0.0, 1.0);
+        let k = &self.coef[4 * i + c];
+        (((k[3] * t + k[2]) * t + k[1]) * t + k[0], i)
+    }
+
+    /// Sign changes of `g(s, m(s))` on `[0, 1)` (129 samples, values within `1e-9` of the largest
+    /// treated as zero, the tip excluded where `m(1) = 0`) and the first one's arc length
+    /// (bisection to rounding).
+    pub fn sign_changes(&self, g: impl Fn(f64, f64) -> f64) -> (usize, Option<f64>) {
+        const N: usize = 128;
+        let val = |s: f64, hint: usize| {
+            let (m, i) = self.at(3, s, hint);
+            (g(s, m), i)
+        };
+        let mut vals = [0.0; N + 1];
+        let mut hint = 0;
+        for (i, v) in vals.iter_mut().enumerate() {
+            (*v, hint) = val(i as f64 / N as f64, hint);
+        }
+        let scale = vals.iter().map(|v| v.abs()).fold(0.0, f64::max);
+        let eps = 1e-9 * scale.max(1e-300);
+        let mut count = 0;
+        let mut first = None;
+        let mut prev: Option<(f64, f64)> = None;
+        for (i, &k) in vals.iter().enumerate().take(N) {
+            let s = i as f64 / N as f64;
+            if k.abs() <= eps {
+                continue;
+            }
+            if let Some((sp, kp)) = prev {
+                if kp.signum() != k.signum() {
+                    count += 1;
+                    if first.is_none() {
+                        let (mut a, mut b) = (sp, s);
+                        let mut hint = self.at(3, a, 0).1;
+                        for _ in 0..60 {
+                            let c = 0.5 * (a + b);
+                            let (kc, ic) = val(c, hint);
+                            hint = ic;
+                            if (kc > 0.0) == (kp > 0.0) {
+                                a = c;
+                            } else {
+                                b = c;
+                            }
+                        }
+                        first = Some(0.5 * (a + b));
+                    }
+                }
+            }
+            prev = Some((s, k));
+        }
+        (count, first)
+    }
+}
+
+/// Flex points (sign changes of `κ = κ0 + b·m`, the first one's `s`) and load reversals (sign
+/// changes of `m`) of a solution.
+pub(crate) fn flex_and_reversals<P: Profile>(
+    sol: &Solution,
+    profile: &P,
+) -> (usize, Option<f64>, usize) {
+    let smp = Sampler::new(sol);
+    let (rev, s_rev) = smp.sign_changes(|_, m| m);
+    if P::UNIFORM {
+        return (rev, s_rev, rev);
+    }
+    let (flex, s_flex) = smp.sign_changes(|s, m| profile.kappa(s, m));
+    (flex, s_flex, rev)
+}
+
+/// Extrema of `h(s) = cx·x(s) + cy·y(s)` along a solution (cubic Hermite between nodes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Extrema {
+    /// Maximum over `[0, 1]`.
+    pub max: f64,
+    /// Largest interior local maximum (`s < 1`), `-inf` if none.
+    pub interior: f64,
+    /// Its arc length.
+    pub s_interior: f64,
+}
+
+pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
+    let n = sol.n;
+    let len = sol.mesh.len();
+    let h = |i: usize| cx * sol.z[i * n] + cy * sol.z[i * n + 1];
+    let dh = |i: usize| cx * sol.dz[i * n] + cy * sol.dz[i * n + 1];
+    let mut out = Extrema {
+        max: f64::NEG_INFINITY,
+        interior: f64::NEG_INFINITY,
+        s_interior: f64::NAN,
+    };
+    for i in 0..len {
+        out.max = out.max.max(h(i));
+    }
+    for i in 0..len.saturating_sub(1) {
+        let (s0, s1) = (sol.mesh[i], sol.mesh[i + 1]);
+        let w = s1 - s0;
+        let (y0, y1) = (h(i), h(i + 1));
+        let (d0, d1) = (dh(i) * w, dh(i + 1) * w);
+        if !(d0 > 0.0 && d1 <= 0.0) {
+            continue;
+        }
+        // Hermite cubic p(t); p'(t) = a t² + b t + c
+        let a = 6.0 * y0 + 3.0 * d0 - 6.0 * y1 + 3.0 * d1;
+        let b = -6.0 * y0 - 4.0 * d0 + 6.0 * y1 - 2.0 * d1;
+        let c = d0;
+        let t = if d1 == 0.0 {
+            1.0
+        } else if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
+            -c / b
+        } else {
+            let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
+            let q = -0.5 * (b + b.signum() * disc);
+            let (r1, r2) = (q / a, c / q);
+            if (0.0..=1.0).contains(&r1) {
+                r1
+            } else {
+                r2
+            }
+        };
+        if !(0.0..=1.0).contains(&t) {
+            continue;
+        }
+        let (t2, t3) = (t * t, t * t * t);
+        let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
+            + (t3 - 2.0 * t2 + t) * d0
+            + (-2.0 * t3 + 3.0 * t2) * y1
+            + (t3 - t2) * d1;
+        out.max = out.max.max(y);
+        let s = s0 + t * w;
+        if s < 1.0 - 1e-9 && y > out.interior {
+            out.interior = y;
+            out.s_interior = s;
+        }
+    }
+    out
+}
+
+/// Builds a [`Shape`] from a converged solution with `params = [f]` (α given) or `[f, α]`.
+pub(crate) fn shape_from(sol: Solution, alpha: f64, profile: General) -> Shape {
+    let (f, alpha) = if sol.params.len() >= 2 {
+        (sol.params[0], sol.params[1])
+    } else {
+        (sol.params[0], alpha)
+    };
+    let (za, zb) = (sol.left(), sol.right());
+    let (m_base, phi0, phi1, x1, y1) = (za[3], za[2], zb[2], zb[0], zb[1]);
+    let (flex, s_flex, load_reversals) = if profile.is_uniform() {
+        flex_and_reversals(&sol, &crate::profile::Uniform)
+    } else {
+        flex_and_reversals(&sol, &profile)
+    };
+    let y_max = extrema(&sol, 0.0, 1.0).max;
+    Shape {
+        alpha,
+        f,
+        fx: f * alpha.sin(),
+        fy: -f * alpha.cos(),
+        phi1,
+        x1,
+        y1,
+        m_base,
+        phi0,
+        flex,
+        s_flex,
+        load_reversals,
+        y_max,
+        residual: sol.stats.residual,
+        stats: sol.stats.clone(),
+        data: ShapeData::Numeric { sol, profile },
+    }
+}
+
+/// The closed-form rod as a [`Shape`].
+pub(crate) fn shape_from_elastica(e: Elastica) -> Shape {
+    let flex = e.flex_count();
+    Shape {
+        alpha: e.alpha,
+        f: e.f,
+        fx: e.fx(),
+        fy: e.fy(),
+        phi1: e.phi1,
+        x1: e.x1,
+        y1: e.y1,
+        m_base: e.m_base,
+        phi0: FRAC_PI_2,
+        flex,
+        s_flex: if flex > 0 { e.s_b } else { None },
+        load_reversals: flex,
+        y_max: e.y_max(),
+        residual: 0.0,
+        stats: Stats::default(),
+        data: ShapeData::Analytic(e),
+    }
+}

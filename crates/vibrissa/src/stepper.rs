@@ -1,0 +1,331 @@
+//! The two [`Stepper`]s of the scan march.
+//!
+//! - [`OwnStepper`]: the rod's own shooter ([`crate::shooter`]) for every profile: unknowns
+//!   `u = (m(0), f, α)`, residual `(m(1), x(1) − (x* − d), y(1) − η)`, quintic Hermite predictor
+//!   through the last three points and their exact tangents `u' = −J⁻¹ ∂R/∂d`, chord Newton. A
+//!   sign change of `det J` between neighbours means the corrector crossed a fold: rejected.
+//! - [`GenericStepper`]: any method of crate `bvp` (multiple shooting, collocation) on the
+//!   [`ScanFamily`] problem, predicted by Lagrange extrapolation of the last solutions.
+//!
+//! Both pass folds in `d` by the pseudo-arclength continuation of crate `bvp`.
+
+use crate::equations::ScanFamily;
+use crate::march::{Passed, Pt, Stepper};
+use crate::profile::Profile;
+use crate::rodsolve::{correct_chord, TipCond};
+use crate::shooter::Shooter;
+use crate::solve::Engine;
+use bvp::continuation::{Continuation, ContinuationOptions, FoldKind};
+use bvp::{BvpSolver, Guess, ParamBvp, Solution, Stats};
+
+/// Newton iterations per point before a natural step is given up.
+const MAX_ITER: usize = 12;
+
+/// The stepper on the rod's own shooter.
+pub(crate) struct OwnStepper<P: Profile> {
+    pub shooter: Shooter<P>,
+    pub eta: f64,
+    pub x_star: f64,
+    /// For folds in `d` only.
+    pub fallback: GenericStepper<P>,
+}
+
+impl<P: Profile> OwnStepper<P> {
+    /// The point at `d` from the prediction `u`.
+    pub(crate) fn correct_from(
+        &mut self,
+        d: f64,
+        u: [f64; 3],
+        newest: Option<&Pt>,
+    ) -> Result<Pt, String> {
+        let tol = self.shooter.tol;
+        let cond = TipCond::Pos {
+            x1: self.x_star - d,
+            y1: self.eta,
+        };
+        let cv =
+            correct_chord(&mut self.shooter, &cond, u, tol, MAX_ITER).map_err(|e| e.to_string())?;
+        let du = cv
+            .solve([0.0, -1.0, 0.0])
+            .ok_or("singular Jacobian at the solution")?;
+        let det = cv.det();
+        if let Some(last) = newest {
+            // the corrector crossed a fold in d when det J changes sign
+            if let Some(det0) = last.det {
+                if det0.signum() != det.signum() {
+                    return Err("the corrector crossed a fold in d".into());
+                }
+            }
+            let corr = max_diff(&cv.u, &u);
+            let change = max_diff(&cv.u, &last.u);
+            let scale = 1.0 + cv.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if !(corr <= 0.5 * change.max(1e-3 * scale * (d - last.d).abs().min(1.0))
+                || corr < 1e-9 * scale)
+            {
+                return Err(format!(
+                    "the corrector moved {corr:.3e} from the prediction (another branch?)"
+                ));
+            }
+        }
+        Ok(Pt {
+            d,
+            u: cv.u,
+            du: Some(du),
+            det: Some(det),
+            iters: cv.iterations,
+            sol: self.shooter.solution(vec![cv.u[1], cv.u[2]], cv.residual),
+        })
+    }
+}
+
+fn max_diff(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+impl<P: Profile> Stepper for OwnStepper<P> {
+    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, String> {
+        self.correct_from(d, predict(hist, d), hist.last())
+    }
+
+    fn pass_fold(&mut self, hist: &[Pt], target: f64, d_end: f64) -> Passed {
+        match self.fallback.pass_fold(hist, target, d_end) {
+            Passed::Beyond(q) => match self.correct_from(q.d, q.u, None) {
+                Ok(p) => Passed::Beyond(p),
+                Err(e) => Passed::Failed(format!("after the pseudo-arclength step: {e}")),
+            },
+            other => other,
+        }
+    }
+
+    fn stats(&self) -> Stats {
+        let mut s = self.shooter.stats.clone();
+        s.accumulate(&self.fallback.stats);
+        s
+    }
+
+    fn h_max(&self) -> f64 {
+        0.01
+    }
+}
+
+/// Predictor from the last (at most three) points to `d`: the Hermite polynomial through their
+/// values and tangents (degree 5 with three points) where all have tangents, else Lagrange.
+pub(crate) fn predict(hist: &[Pt], d: f64) -> [f64; 3] {
+    let m = hist.len().min(3);
+    let pts = &hist[hist.len() - m..];
+    let hermite = pts.iter().all(|p| p.du.is_some());
+    let mut u = [0.0; 3];
+    for (i, ui) in u.iter_mut().enumerate() {
+        // divided differences, nodes newest first (confluent pairs with tangents)
+        let mut z = [0.0; 6];
+        let mut q = [[0.0; 6]; 6];
+        let mut len = 0;
+        for p in pts.iter().rev() {
+            let reps = if hermite { 2 } else { 1 };
+            for r in 0..reps {
+                z[len] = p.d;
+                q[len][0] = p.u[i];
+                if r == 1 {
+                    q[len][1] = p.du.map_or(0.0, |du| du[i]);
+                } else if len > 0 {
+                    q[len][1] = (q[len][0] - q[len - 1][0]) / (z[len] - z[len - 1]);
+                }
+                len += 1;
+            }
+        }
+        for k in 2..len {
+            for j in k..len {
+                q[j][k] = (q[j][k - 1] - q[j - 1][k - 1]) / (z[j] - z[j - k]);
+            }
+        }
+        let (mut v, mut w) = (0.0, 1.0);
+        for k in 0..len {
+            v += q[k][k] * w;
+            w *= d - z[k];
+        }
+        *ui = v;
+    }
+    u
+}
+
+/// The stepper on a generic method of crate `bvp`.
+pub(crate) struct GenericStepper<P: Profile> {
+    pub family: ScanFamily<P>,
+    pub engine: Engine,
+    pub stats: Stats,
+}
+
+// the solver's own error, passed through unboxed as crate `bvp` returns it
+#[allow(clippy::result_large_err)]
+impl<P: Profile> GenericStepper<P> {
+    fn solve(&mut self, d: f64, guess: &Guess) -> Result<Solution, bvp::BvpError> {
+        let r = self
+            .engine
+            .solve(&bvp::continuation::Fixed::new(&self.family, d), guess);
+        match &r {
+            Ok(s) => self.stats.accumulate(&s.stats),
+            Err(e) => {
+                if let Some(st) = e.stats() {
+                    self.stats.accumulate(st);
+                }
+            }
+        }
+        r
+    }
+
+    /// The point at `d` from `guess`.
+    pub fn point(&mut self, d: f64, guess: &Guess) -> Result<Pt, String> {
+        let sol = self.solve(d, guess).map_err(|e| e.to_string())?;
+        Ok(Pt {
+            d,
+            u: [sol.left()[3], sol.params[0], sol.params[1]],
+            du: None,
+            det: None,
+            iters: sol.stats.newton_iters,
+            sol,
+        })
+    }
+
+    /// Lagrange inter-/extrapolation in `d` of the (at most three) nearest points, on the mesh of
+    /// the newest one.
+    fn guess_at(&self, hist: &[Pt], d: f64) -> Guess {
+        let mut idx: Vec<usize> = (0..hist.len()).collect();
+        idx.sort_by(|&a, &b| (hist[a].d - d).abs().total_cmp(&(hist[b].d - d).abs()));
+        idx.truncate(3);
+        let newest = &hist[hist.len() - 1].sol;
+        let w: Vec<f64> = idx
+            .iter()
+            .map(|&i| {
+                idx.iter()
+                    .filter(|&&j| j != i)
+                    .map(|&j| (d - hist[j].d) / (hist[i].d - hist[j].d))
+                    .product()
+            })
+            .collect();
+        let n = newest.n;
+        let mesh = newest.mesh.clone();
+        let mut z = vec![0.0; n * mesh.len()];
+        let mut buf = vec![0.0; n];
+        for (&i, &wi) in idx.iter().zip(&w) {
+            for (node, &s) in mesh.iter().enumerate() {
+                hist[i].sol.eval(s, &mut buf);
+                for j in 0..n {
+                    z[node * n + j] += wi * buf[j];
+                }
+            }
+        }
+        let mut params = vec![0.0; newest.params.len()];
+        for (&i, &wi) in idx.iter().zip(&w) {
+            for (p, &q) in params.iter_mut().zip(&hist[i].sol.params) {
+                *p += wi * q;
+            }
+        }
+        let mut dz = vec![0.0; z.len()];
+        for (node, &s) in mesh.iter().enumerate() {
+            self.family.rhs(
+                s,
+                &z[node * n..(node + 1) * n],
+                &params,
+                d,
+                &mut dz[node * n..(node + 1) * n],
+            );
+        }
+        Guess {
+            n,
+            mesh,
+            z,
+            dz: Some(dz),
+            params,
+        }
+    }
+}
+
+impl<P: Profile> Stepper for GenericStepper<P> {
+    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, String> {
+        let g = self.guess_at(hist, d);
+        let p = self.point(d, &g)?;
+        let last = &hist[hist.len() - 1];
+        // the correction must be small against the change over the step
+        let ug = [g.z[3], g.params[0], g.params[1]];
+        let (corr, change) = (max_diff(&p.u, &ug), max_diff(&p.u, &last.u));
+        let scale = 1.0 + p.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        if !(corr <= 0.5 * change.max(1e-3 * scale * (d - last.d).abs().min(1.0))
+            || corr < 1e-9 * scale)
+        {
+            return Err(format!(
+                "the corrector moved {corr:.3e} from the prediction (another branch?)"
+            ));
+        }
+        Ok(p)
+    }
+
+    fn pass_fold(&mut self, hist: &[Pt], target: f64, d_end: f64) -> Passed {
+        let last = &hist[hist.len() - 1];
+        let d = last.d;
+        let copts = ContinuationOptions {
+            ds: 1e-3,
+            ds_min: 1e-9,
+            ds_max: 0.05,
+            max_steps: 2000,
+            lambda_min: -0.25,
+            lambda_max: d_end,
+            detect_folds: true,
+            fold_tol: 1e-10,
+            history: 4,
+            ..ContinuationOptions::default()
+        };
+        let mut stats = Stats::default();
+        let result = (|| {
+            let mut cont =
+                match Continuation::new(&self.family, &mut self.engine, last.sol.clone(), d, copts)
+                {
+                    Ok(c) => c,
+                    Err(e) => return Passed::Failed(e.to_string()),
+                };
+            let _ = cont.next(); // the start, already converged
+            let mut prev = d;
+            for item in cont.by_ref() {
+                let bp = match item {
+                    Ok(bp) => bp,
+                    Err(e) => return Passed::Failed(format!("pseudo-arclength: {e}")),
+                };
+                stats.accumulate(&bp.stats);
+                if let Some(f) = bp.fold {
+                    if f.kind == FoldKind::Max {
+                        return Passed::Fold(f.lambda, Some(f.solution));
+                    }
+                }
+                if bp.lambda < prev {
+                    return Passed::Fold(prev, None);
+                }
+                prev = bp.lambda;
+                if bp.lambda > target || bp.on_bound {
+                    let sol = bp.solution;
+                    return Passed::Beyond(Pt {
+                        d: bp.lambda,
+                        u: [sol.left()[3], sol.params[0], sol.params[1]],
+                        du: None,
+                        det: None,
+                        iters: sol.stats.newton_iters,
+                        sol,
+                    });
+                }
+            }
+            Passed::Failed(format!(
+                "pseudo-arclength continuation did not pass d = {target} (last d = {prev})"
+            ))
+        })();
+        self.stats.accumulate(&stats);
+        result
+    }
+
+    fn stats(&self) -> Stats {
+        self.stats.clone()
+    }
+
+    fn h_max(&self) -> f64 {
+        0.05
+    }
+}
