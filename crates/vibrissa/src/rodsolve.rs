@@ -139,15 +139,18 @@ pub(crate) fn solve_damped<P: Profile>(
     // last accepted iterate, its step, residual and the damping tried
     let mut prev: Option<([f64; 3], [f64; 3], f64, f64)> = None;
     let mut iter = 0;
-    for _ in 0..4 * max_iter {
+    for _ in 0..16 * max_iter {
         let shot = sh.shoot::<true>(&u);
         let r = cond.residual(&shot.y1, &u);
         let rn = max_abs(&r);
         if rn <= tol {
             let jac = cond.jacobian(&shot.y1);
             if shot.err > 1.0 {
+                // a coarse mesh can have spurious solutions: start over from the guess
                 refine(sh)?;
                 prev = None;
+                u = u0;
+                iter = 0;
                 continue;
             }
             return Ok(Converged {
@@ -217,7 +220,7 @@ pub(crate) fn correct_chord<P: Profile>(
     tol: f64,
     max_iter: usize,
 ) -> Result<Converged, ShotFailure> {
-    let mut u_start = u0;
+    let u_start = u0;
     for _pass in 0..16 {
         let mut u = u_start;
         let mut jac: Option<Matrix3<f64>> = None;
@@ -245,8 +248,8 @@ pub(crate) fn correct_chord<P: Profile>(
             }
             if rn <= tol {
                 if shot.err > 1.0 {
+                    // a coarse mesh can have spurious solutions: start over from the prediction
                     refine(sh)?;
-                    u_start = u;
                     break;
                 }
                 let moved = u
@@ -341,12 +344,12 @@ pub(crate) fn continuation<P: Profile>(
                     change = change.max((cv.u[i] - ul[i]).abs());
                 }
                 let scale = 1.0 + cv.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-                if hist.len() > 1 && corr > 0.5 * change.max(1e-3 * scale * dt) && corr > 1e-8 {
+                if hist.len() > 1 && corr > 0.25 * change.max(1e-3 * scale * dt) && corr > 1e-8 {
                     dt *= 0.5;
                     continue;
                 }
                 if cv.iterations <= 3 {
-                    dt = (dt * 1.5).min(0.5);
+                    dt = (dt * 1.5).min(0.25);
                 }
                 hist.push((t, cv.u));
                 if hist.len() > 3 {

@@ -125,7 +125,10 @@ fn run_with<P: Profile>(
             stats: Default::default(),
         };
         let mut st = OwnStepper {
-            shooter: Shooter::new(profile.clone(), c, tol, 8),
+            shooter: match start.solution() {
+                Some(sol) => Shooter::on_mesh(profile.clone(), c, tol, sol.mesh.clone()),
+                None => Shooter::new(profile.clone(), c, tol, 8),
+            },
             eta: contact.eta,
             x_star: contact.x_star,
             fallback,

@@ -71,6 +71,13 @@ impl<P: Profile> Shooter<P> {
         s
     }
 
+    /// A shooter on the mesh `nodes` (`0 = s_0 < … < s_N = 1`), e.g. the one a solve ended on.
+    pub fn on_mesh(profile: P, compliance: f64, tol: f64, nodes: Vec<f64>) -> Self {
+        let mut s = Shooter::new(profile, compliance, tol, 1);
+        s.set_mesh(nodes);
+        s
+    }
+
     /// Number of steps.
     pub fn steps(&self) -> usize {
         self.nodes.len() - 1

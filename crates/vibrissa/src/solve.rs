@@ -443,6 +443,7 @@ fn solve_fast<P: Profile>(
         Target::Phi1(phi1) => TipCond::Phi1 { phi1, alpha },
         Target::Eta(eta) | Target::Tip { y1: eta, .. } => TipCond::Eta { eta, alpha },
     };
+    let mut u_start = [0.0; 3];
     let cv = if let BranchChoice::Guess(g) = branch {
         let cond = match target {
             Target::Tip { x1, y1 } => TipCond::Pos { x1, y1 },
@@ -456,6 +457,7 @@ fn solve_fast<P: Profile>(
         rodsolve::solve_damped(&mut sh, &cond, [g.m_base, g.f, a], tol, 40).ok()?
     } else {
         let u0 = uniform_start(alpha, &target, branch);
+        u_start = u0;
         let cond = height(&target);
         let cv = rodsolve::continuation(
             &mut sh,
@@ -488,6 +490,11 @@ fn solve_fast<P: Profile>(
     // near a turning point the residual says little about the unknowns (square-root
     // dependence): leave such rods to the generic solver
     if !(cv.cond() < 1e6) {
+        return None;
+    }
+    // a homotopy step that landed on the mirror image (the load bending the other way at the
+    // foot) left the branch: leave it to the generic pseudo-arclength homotopy
+    if branch.load_reversals().is_some() && cv.u[0] * u_start[0] < 0.0 {
         return None;
     }
     let params = match target {

@@ -1,0 +1,337 @@
+//! The one rod engine on every scene class: the rod's own shooter (single shooting) against an
+//! independent computation — crate `bvp`'s generic multiple shooting (adaptive DOP853 on 4
+//! segments, its own Newton and Lagrange predictor) at tolerance 1e-12 — and the contact events.
+
+use approx::assert_abs_diff_eq;
+use vibrissa::{
+    infer, scan, solve, BranchChoice, Event, Method, Model, Precurvature, ScanOptions, ScanResult,
+    Scene, SolverConfig, Stiffness, StopReason, Target,
+};
+
+fn scene(f: impl Fn(&mut Scene)) -> Scene {
+    let mut s = Scene::default();
+    f(&mut s);
+    s
+}
+
+fn run(s: &Scene, o: &ScanOptions) -> ScanResult {
+    scan(&Model::new(s).unwrap(), o).unwrap()
+}
+
+fn with_method(o: &ScanOptions, method: Method, tol: f64) -> ScanOptions {
+    ScanOptions {
+        solver: SolverConfig {
+            method,
+            tol,
+            segments: 4,
+            ..SolverConfig::default()
+        },
+        ..o.clone()
+    }
+}
+
+/// μ at every common grid point to 1e-8, μ_max to 1e-9, the same stop.
+fn agrees_with_reference(name: &str, s: &Scene, o: &ScanOptions) {
+    let own = run(s, &with_method(o, Method::Shooting, 1e-12));
+    let reference = run(s, &with_method(o, Method::MultipleShooting, 1e-12));
+    assert_eq!(
+        std::mem::discriminant(&own.stop),
+        std::mem::discriminant(&reference.stop),
+        "{name}: {} vs {}",
+        own.stop,
+        reference.stop
+    );
+    let (a, b): (Vec<_>, Vec<_>) = (
+        own.points.iter().filter(|p| p.event.is_none()).collect(),
+        reference
+            .points
+            .iter()
+            .filter(|p| p.event.is_none())
+            .collect(),
+    );
+    assert_eq!(
+        a.len(),
+        b.len(),
+        "{name}: {} vs {}",
+        own.stop,
+        reference.stop
+    );
+    assert!(
+        a.len() >= 3,
+        "{name}: only {} points ({})",
+        a.len(),
+        own.stop
+    );
+    for (p, q) in a.iter().zip(&b) {
+        assert_eq!(p.d, q.d);
+        assert_abs_diff_eq!(p.mu, q.mu, epsilon = 1e-8);
+        assert_eq!(p.flex, q.flex, "{name} d {}", p.d);
+    }
+    if own.mu_max.is_finite() {
+        assert_abs_diff_eq!(own.mu_max, reference.mu_max, epsilon = 1e-9);
+    } else {
+        assert!(reference.mu_max.is_infinite(), "{name}");
+    }
+    assert_eq!(own.range_end, reference.range_end, "{name}");
+}
+
+fn coarse(d_max: f64) -> ScanOptions {
+    ScanOptions {
+        points: 11,
+        d_max,
+        ..ScanOptions::default()
+    }
+}
+
+#[test]
+fn every_scene_class_agrees_with_generic_multiple_shooting() {
+    let linear = |k0: f64, k1: f64| Precurvature::Linear { k0, k1 };
+    let cases: Vec<(&str, Scene, f64)> = vec![
+        ("uniform", Scene::default(), 0.5),
+        (
+            "taper 0.7",
+            scene(|s| s.stiffness = Stiffness::Taper { ratio: 0.7 }),
+            0.5,
+        ),
+        (
+            "taper 0.3, eta 0.9",
+            scene(|s| {
+                s.stiffness = Stiffness::Taper { ratio: 0.3 };
+                s.eta = 0.9
+            }),
+            0.5,
+        ),
+        (
+            "taper 0.1, eta 0.97",
+            scene(|s| {
+                s.stiffness = Stiffness::Taper { ratio: 0.1 };
+                s.eta = 0.97
+            }),
+            0.05,
+        ),
+        ("k0 = 1", scene(|s| s.precurvature = linear(1.0, 0.0)), 0.5),
+        (
+            "k0 = -1",
+            scene(|s| s.precurvature = linear(-1.0, 0.0)),
+            0.5,
+        ),
+        (
+            "k0 = 0.5 - s",
+            scene(|s| s.precurvature = linear(0.5, -1.0)),
+            0.5,
+        ),
+        ("compliance 1", scene(|s| s.support_compliance = 1.0), 0.5),
+        ("surface 0.3", scene(|s| s.surface_angle = 0.3), 0.5),
+        ("surface -0.3", scene(|s| s.surface_angle = -0.3), 0.5),
+    ];
+    for (name, s, d_max) in cases {
+        agrees_with_reference(name, &s, &coarse(d_max));
+    }
+}
+
+#[test]
+fn rat_presets_agree_with_generic_multiple_shooting() {
+    for f in ["rat_mystacial_long.toml", "rat_mystacial_short.toml"] {
+        let path = format!("{}/../../data/scenes/{f}", env!("CARGO_MANIFEST_DIR"));
+        let s: Scene = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+        agrees_with_reference(f, &s, &coarse(0.04));
+    }
+}
+
+/// Issue case: a pre-curved, compliantly held rod whose normal force goes through zero near
+/// d ≈ 1.112. The scan stops there with lift-off; every grid row is pressed (N > 0, fy < 0 on the
+/// flat surface); at lift-off the force is along the surface, α = β − π/2 exactly (N = f cos(α − β)),
+/// and the generic method finds the same d.
+#[test]
+fn lift_off_is_located() {
+    let s = scene(|s| {
+        s.eta = 0.8;
+        s.precurvature = Precurvature::Linear { k0: -1.0, k1: 0.0 };
+        s.support_compliance = 0.5
+    });
+    let o = ScanOptions {
+        d_max: 1.115,
+        points: 224,
+        ..ScanOptions::default()
+    };
+    let r = run(&s, &o);
+    let d_lift = match r.stop {
+        StopReason::LiftOff { d } => d,
+        ref other => panic!("expected lift-off, got {other}"),
+    };
+    assert!(d_lift < 1.115);
+    let (event, grid) = r.points.split_last().unwrap();
+    assert_eq!(event.event, Some(Event::LiftOff));
+    assert!(grid.iter().all(|p| p.normal > 0.0 && p.fy < 0.0));
+    assert_abs_diff_eq!(
+        event.alpha,
+        s.surface_angle - std::f64::consts::FRAC_PI_2,
+        epsilon = 1e-9
+    );
+    // the measurable range ends at the first maximum of |μ| (≈ 0.665 near d ≈ 0.04), not at the
+    // unbounded μ of the lift-off
+    assert_eq!(r.range_end, vibrissa::RangeEnd::FirstMaximum);
+    assert!(
+        r.mu_max < 1.0 && r.d_at_mu_max < 0.1,
+        "{} at {}",
+        r.mu_max,
+        r.d_at_mu_max
+    );
+    let reference = run(
+        &s,
+        &with_method(
+            &ScanOptions {
+                points: 12,
+                ..o.clone()
+            },
+            Method::MultipleShooting,
+            1e-12,
+        ),
+    );
+    match reference.stop {
+        StopReason::LiftOff { d } => assert_abs_diff_eq!(d, d_lift, epsilon = 1e-7),
+        ref other => panic!("reference: {other}"),
+    }
+    // slipping for μ0 = 5 happens before the lift-off, not at it
+    let slip = run(
+        &s,
+        &ScanOptions {
+            mu0: Some(5.0),
+            ..o.clone()
+        },
+    );
+    match slip.stop {
+        StopReason::Slip { d, mu } => {
+            assert!(d < d_lift && d > 1.0, "{d}");
+            assert_abs_diff_eq!(mu.abs(), 5.0, epsilon = 1e-9);
+        }
+        ref other => panic!("{other}"),
+    }
+}
+
+/// Issue case: on the surface inclined by −0.3 the friction ratio turns negative and passes −0.5
+/// between d = 0.875 and 0.9: a slip forwards.
+#[test]
+fn slip_in_either_direction() {
+    let s = scene(|s| s.surface_angle = -0.3);
+    let o = ScanOptions {
+        d_max: 1.5,
+        points: 61,
+        mu0: Some(0.5),
+        ..ScanOptions::default()
+    };
+    let r = run(&s, &o);
+    match r.stop {
+        StopReason::Slip { d, mu } => {
+            assert!(d > 0.875 && d < 0.9, "{d}");
+            assert_abs_diff_eq!(mu, -0.5, epsilon = 1e-9);
+        }
+        ref other => panic!("{other}"),
+    }
+    let last = r.points.last().unwrap();
+    assert_eq!(last.event, Some(Event::Slip));
+    assert_abs_diff_eq!(last.mu, -0.5, epsilon = 1e-9);
+    assert!(r.points.iter().all(|p| p.mu.abs() <= 0.5 + 1e-9));
+}
+
+/// The slip point is the last row, also on a coarse grid where no grid point lies past d = 0,
+/// and a scan stopped by slip costs about what the full scan spends on the same stretch.
+#[test]
+fn slip_row_and_cost() {
+    let s = Scene::default();
+    let o = ScanOptions {
+        mu0: Some(0.5),
+        points: 11,
+        ..ScanOptions::default()
+    };
+    let r = run(&s, &o);
+    assert_eq!(r.points.len(), 2, "{:?}", r.points);
+    let ev = &r.points[1];
+    assert_eq!(ev.event, Some(Event::Slip));
+    assert_abs_diff_eq!(ev.mu, 0.5, epsilon = 1e-10);
+    let d_slip = ev.d;
+    // the full scan up to the slip, same grid spacing
+    let part = run(
+        &s,
+        &ScanOptions {
+            mu0: None,
+            d_max: d_slip,
+            points: 2,
+            ..ScanOptions::default()
+        },
+    );
+    assert!(
+        r.stats.rhs_evals <= 2 * part.stats.rhs_evals,
+        "slip scan {} rhs evaluations, the same stretch {}",
+        r.stats.rhs_evals,
+        part.stats.rhs_evals
+    );
+}
+
+/// Rods with a rest curvature bending against the load have moment and curvature signs that
+/// differ: the branch is told by the moment (load reversals), so both branches solve and scan.
+#[test]
+fn precurved_rods_solve_on_both_branches() {
+    for k0 in [0.1, 0.3, 0.5, -0.3, 1.0] {
+        let s = scene(|s| s.precurvature = Precurvature::Linear { k0, k1: 0.0 });
+        let m = Model::new(&s).unwrap();
+        let cfg = SolverConfig::default();
+        let c = solve(&m, -0.2, Target::Eta(0.75), &BranchChoice::Convex, &cfg).unwrap();
+        assert_eq!(c.load_reversals, 0, "k0 {k0}");
+        let f = solve(&m, -0.3, Target::Phi1(0.2), &BranchChoice::Flex, &cfg).unwrap();
+        assert_eq!(f.load_reversals, 1, "k0 {k0}");
+        let any = solve(&m, -0.2, Target::Eta(0.75), &BranchChoice::Any, &cfg).unwrap();
+        assert_abs_diff_eq!(any.f, c.f, epsilon = 1e-9 * c.f);
+        let r = run(&s, &ScanOptions::default());
+        assert!(r.points.len() > 10, "k0 {k0}: {}", r.stop);
+    }
+}
+
+/// μ_max against the closed form (mpmath-checked crate `elastica`), on coarse and fine grids
+/// (on coarse grids the maximum lies far from the grid points and is located by solves).
+#[test]
+fn mu_max_located_on_coarse_grids() {
+    let cf = elastica::ClosedFormScan::new(0.75)
+        .unwrap()
+        .mu_max()
+        .unwrap();
+    let model = Model::new(&Scene::default()).unwrap();
+    for points in [6, 11, 201] {
+        let o = ScanOptions {
+            points,
+            ..ScanOptions::default()
+        };
+        let r = scan(&model, &o).unwrap();
+        assert_abs_diff_eq!(r.mu_max, cf.mu, epsilon = 1e-9);
+        // μ is flat at its maximum: d is determined to ~sqrt(tol)
+        assert_abs_diff_eq!(r.d_at_mu_max, cf.d, epsilon = 1e-6);
+        assert_eq!(r.range_end, vibrissa::RangeEnd::FirstMaximum);
+    }
+}
+
+/// `infer` on the measurable range: inside it, μ0 = μ(d0); outside, errors that name the range.
+#[test]
+fn infer_names_the_measurable_range() {
+    let model = Model::new(&Scene::default()).unwrap();
+    let o = ScanOptions::default();
+    let cf = elastica::ClosedFormScan::new(0.75)
+        .unwrap()
+        .mu_max()
+        .unwrap();
+    let inf = infer(&model, 0.1, &o).unwrap();
+    assert_abs_diff_eq!(inf.measurable_d.1, cf.d, epsilon = 1e-6);
+    assert!(inf.mu0 > 0.7 && inf.mu0 < cf.mu);
+    let e = infer(&model, 0.2, &o).unwrap_err().to_string();
+    assert!(e.contains("0.13") && e.contains("first maximum"), "{e}");
+    let e = infer(
+        &model,
+        0.04,
+        &ScanOptions {
+            d_max: 0.05,
+            ..o.clone()
+        },
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("cuts the measurable range short"), "{e}");
+}
