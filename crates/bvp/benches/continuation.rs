@@ -2,7 +2,7 @@
 //! from λ = 0.1 on the lower branch through the fold (λ_c ≈ 3.5138) back to λ = 0.1 on the upper
 //! branch, with adaptive single shooting. Prints the number of points, Newton iterations and the
 //! fold location once before timing.
-use bvp::continuation::{Continuation, ContinuationOptions, Fixed};
+use bvp::continuation::{Continuation, ContinuationOptions, Member};
 use bvp::samples::BratuFamily;
 use bvp::{BvpSolver, Guess, Shooting, ShootingOptions, Solution};
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -45,7 +45,7 @@ fn bench(c: &mut Criterion) {
     let mut solver = Shooting::new(ShootingOptions::default()).expect("valid options");
     let guess = Guess::constant(0.0, 1.0, 11, &[0.0, 0.0], vec![]);
     let start = solver
-        .solve(&Fixed::new(&BratuFamily, 0.1), &guess)
+        .solve(&Member::new(&BratuFamily, 0.1), &guess)
         .expect("start solution");
     let s = run(&start);
     eprintln!(

@@ -105,8 +105,9 @@ pub struct CollocationOptions {
     /// Valid: `0 < tol < 1`; below about 1e-12 rounding in the residual estimate can make it
     /// unattainable (the mesh then grows to `max_nodes`).
     pub tol: f64,
-    /// Tolerance on the boundary conditions (max-norm). Default 1e-10. Valid: `> 0`.
-    pub bc_tol: f64,
+    /// Tolerance on the boundary conditions (max-norm). Default `None`: the same as `tol` (as in
+    /// scipy's `solve_bvp`). Valid: `> 0`.
+    pub bc_tol: Option<f64>,
     /// Cap on mesh nodes. Default 10 000. Valid: `>= 3`. A refinement beyond it, or a guess mesh
     /// with more nodes, is reported as [`BvpError::MeshLimit`].
     pub max_nodes: usize,
@@ -129,7 +130,7 @@ impl Default for CollocationOptions {
         CollocationOptions {
             scheme: Scheme::Lobatto4,
             tol: 1e-6,
-            bc_tol: 1e-10,
+            bc_tol: None,
             max_nodes: 10_000,
             max_mesh_passes: 50,
             adapt: true,
@@ -148,13 +149,20 @@ fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static s
 }
 
 impl CollocationOptions {
+    /// The boundary-condition tolerance in effect: `bc_tol`, or `tol` when unset.
+    pub fn bc_tol(&self) -> f64 {
+        self.bc_tol.unwrap_or(self.tol)
+    }
+
     /// Checks the ranges documented on the fields (and [`NewtonOptions::validate`]).
     pub fn validate(&self) -> Result<(), BvpError> {
         if !(self.tol > 0.0 && self.tol < 1.0) {
             return Err(invalid("tol", self.tol, "must be in (0, 1)"));
         }
-        if !(self.bc_tol > 0.0 && self.bc_tol.is_finite()) {
-            return Err(invalid("bc_tol", self.bc_tol, "must be finite and > 0"));
+        if let Some(bc_tol) = self.bc_tol {
+            if !(bc_tol > 0.0 && bc_tol.is_finite()) {
+                return Err(invalid("bc_tol", bc_tol, "must be finite and > 0"));
+            }
         }
         if self.max_nodes < 3 {
             return Err(invalid("max_nodes", self.max_nodes, "must be >= 3"));
@@ -843,7 +851,8 @@ impl BvpSolver for Collocation {
         let (a, b) = problem.interval();
         let opts = self.opts.clone();
         let mut nopts = opts.newton.clone();
-        nopts.tol = nopts.tol.min(opts.tol / 20.0).min(opts.bc_tol);
+        let bc_tol = opts.bc_tol();
+        nopts.tol = nopts.tol.min(opts.tol / 20.0).min(bc_tol);
 
         let mut stats = Stats::default();
         let mut mesh = self.initial_mesh(guess, a, b);
@@ -938,7 +947,7 @@ impl BvpSolver for Collocation {
             let bcres = disc.bc_residual(&u, &mut stats);
             let max_rms = rms.iter().fold(0.0_f64, |m, v| m.max(*v));
             stats.error_estimate = Some(max_rms);
-            let converged = max_rms <= opts.tol && bcres <= opts.bc_tol;
+            let converged = max_rms <= opts.tol && bcres <= bc_tol;
             if !opts.adapt || converged {
                 let (z, dz) = disc.nodal();
                 let params = u[disc.lay.pcol()..].to_vec();

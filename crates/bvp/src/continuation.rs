@@ -17,7 +17,7 @@
 //!
 //! Every corrector is an ordinary [`Bvp`] solve by any [`BvpSolver`] (shooting or collocation):
 //!
-//! - [`Fixed`] freezes `λ`: the family member at `λ`. Used by natural continuation, by
+//! - [`Member`] freezes `λ`: the family member at `λ`. Used by natural continuation, by
 //!   [`Continuation::point_at`] and to land exactly on a `λ` bound.
 //! - [`Arclength`] makes `λ` an extra unknown parameter (`k + 1` unknowns, `n + k + 1` conditions)
 //!   and appends the pseudo-arclength condition
@@ -79,12 +79,12 @@
 //! at λ = 1:
 //!
 //! ```
-//! use bvp::continuation::{Continuation, ContinuationOptions, Fixed};
+//! use bvp::continuation::{Continuation, ContinuationOptions, Member};
 //! use bvp::{samples::BratuFamily, BvpSolver, Guess, Shooting, ShootingOptions};
 //!
 //! let mut solver = Shooting::new(ShootingOptions::default())?;
 //! let guess = Guess::constant(0.0, 1.0, 11, &[0.0, 0.0], vec![]);
-//! let start = solver.solve(&Fixed::new(&BratuFamily, 0.1), &guess)?;
+//! let start = solver.solve(&Member::new(&BratuFamily, 0.1), &guess)?;
 //! let opts = ContinuationOptions { lambda_min: 0.1, ..Default::default() };
 //! let mut cont = Continuation::new(&BratuFamily, solver, start, 0.1, opts)?;
 //! let mut fold = None;
@@ -205,7 +205,7 @@ impl<T: ParamBvp + ?Sized> ParamBvp for &T {
 
 /// The member of a family at a fixed `λ`, as an ordinary [`Bvp`].
 #[derive(Debug)]
-pub struct Fixed<'a, P: ParamBvp + ?Sized> {
+pub struct Member<'a, P: ParamBvp + ?Sized> {
     family: &'a P,
     lambda: f64,
     // ∂F/∂λ and ∂g/∂λ are computed by the family but not needed here; buffers avoid allocation.
@@ -213,11 +213,11 @@ pub struct Fixed<'a, P: ParamBvp + ?Sized> {
     dgl: RefCell<Vec<f64>>,
 }
 
-impl<'a, P: ParamBvp + ?Sized> Fixed<'a, P> {
+impl<'a, P: ParamBvp + ?Sized> Member<'a, P> {
     /// The member of `family` at `lambda`.
     pub fn new(family: &'a P, lambda: f64) -> Self {
         let Dims { n, k } = family.dims();
-        Fixed {
+        Member {
             family,
             lambda,
             dfdl: RefCell::new(vec![0.0; n]),
@@ -231,7 +231,7 @@ impl<'a, P: ParamBvp + ?Sized> Fixed<'a, P> {
     }
 }
 
-impl<P: ParamBvp + ?Sized> Bvp for Fixed<'_, P> {
+impl<P: ParamBvp + ?Sized> Bvp for Member<'_, P> {
     fn dims(&self) -> Dims {
         self.family.dims()
     }
@@ -764,7 +764,7 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
                 }
             }
         };
-        self.solver.solve(&Fixed::new(self.family, lambda), &guess)
+        self.solver.solve(&Member::new(self.family, lambda), &guess)
     }
 
     fn v_of(&self, sol: &Solution, lambda: f64) -> Vec<f64> {
@@ -793,7 +793,7 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
         self.start = Some(start);
         let sol = self
             .solver
-            .solve(&Fixed::new(self.family, self.lambda0), &guess)
+            .solve(&Member::new(self.family, self.lambda0), &guess)
             .map_err(|e| BvpError::Continuation {
                 step: 0,
                 lambda: self.lambda0,
@@ -848,7 +848,7 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
         };
         let sol = self
             .solver
-            .solve(&Fixed::new(self.family, lambda), &guess)?;
+            .solve(&Member::new(self.family, lambda), &guess)?;
         Ok(Attempt {
             lambda,
             iters: sol.stats.newton_iters,
@@ -1044,7 +1044,7 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
             } else {
                 Guess::from(&cur.sol)
             };
-            let sol = match self.solver.solve(&Fixed::new(self.family, bound), &guess) {
+            let sol = match self.solver.solve(&Member::new(self.family, bound), &guess) {
                 Ok(s) => s,
                 Err(e) => return Err(self.wrap(e, ds)),
             };

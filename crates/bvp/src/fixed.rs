@@ -11,7 +11,10 @@
 //! (`tests/allocations.rs` counts the allocations of whole solves).
 //!
 //! The boundary residual has `N + K` entries, a length stable Rust cannot yet spell as an array
-//! type, so [`FixedBvp::bc`] and its Jacobian write into slices of that length.
+//! type, so [`FixedBvp::bc`] writes into a slice of that length, and the boundary Jacobians are
+//! slices of `N + K` rows. Every Jacobian is written row by row, `d[i][j] = ∂(output i)/∂(input
+//! j)` — the layout of [`Bvp`] (there flattened). Parameter-free problems use `K = 0` (the
+//! default), and their `dfdp`, `dgp` are simply not touched.
 //!
 //! ```
 //! use bvp::fixed::{Fixed, FixedBvp};
@@ -19,7 +22,7 @@
 //!
 //! /// `y'' = −y`, `y(0) = 0`, `y(π/2) = 1`: `y = sin s`.
 //! struct Sine;
-//! impl FixedBvp<2, 0> for Sine {
+//! impl FixedBvp<2> for Sine {
 //!     fn interval(&self) -> (f64, f64) {
 //!         (0.0, std::f64::consts::FRAC_PI_2)
 //!     }
@@ -29,6 +32,17 @@
 //!     fn bc(&self, za: &[f64; 2], zb: &[f64; 2], _p: &[f64; 0], res: &mut [f64]) {
 //!         res[0] = za[0];
 //!         res[1] = zb[0] - 1.0;
+//!     }
+//!     fn rhs_jacobian(
+//!         &self,
+//!         _s: f64,
+//!         _z: &[f64; 2],
+//!         _p: &[f64; 0],
+//!         dfdz: &mut [[f64; 2]; 2],
+//!         _dfdp: &mut [[f64; 0]; 2],
+//!     ) -> bool {
+//!         *dfdz = [[0.0, 1.0], [-1.0, 0.0]];
+//!         true
 //!     }
 //! }
 //!
@@ -40,38 +54,41 @@
 
 use crate::{Bvp, Dims};
 
-/// A boundary-value problem with `N` states and `K` unknown parameters, written with arrays.
+/// A boundary-value problem with `N` states and `K` unknown parameters (default none), written
+/// with arrays.
 ///
 /// Same problem as [`Bvp`]: `z' = F(s, z, p)` on `[a, b]`, `g(z(a), z(b), p) = 0` with `N + K`
-/// conditions. Jacobians are optional (finite differences otherwise); matrices are row-major as
-/// in [`Bvp`]: `dfdz[i][j] = ∂F_i/∂z_j`, `dfdp[i][j] = ∂F_i/∂p_j`.
-pub trait FixedBvp<const N: usize, const K: usize> {
+/// conditions. Jacobians are optional (finite differences otherwise) and written row by row as
+/// in [`Bvp`]: `dfdz[i][j] = ∂F_i/∂z_j`, `dfdp[i][j] = ∂F_i/∂p_j`, `dga[i][j] = ∂g_i/∂z_j(a)`,
+/// `dgb[i][j] = ∂g_i/∂z_j(b)`, `dgp[i][j] = ∂g_i/∂p_j` (`i` over the `N + K` conditions).
+pub trait FixedBvp<const N: usize, const K: usize = 0> {
     /// The interval `[a, b]`, `a < b`.
     fn interval(&self) -> (f64, f64);
     /// Right-hand side `F(s, z, p)`.
     fn rhs(&self, s: f64, z: &[f64; N], p: &[f64; K]) -> [f64; N];
     /// Boundary residual `g(za, zb, p)` into `res` (length `N + K`).
     fn bc(&self, za: &[f64; N], zb: &[f64; N], p: &[f64; K], res: &mut [f64]);
-    /// Analytic `(∂F/∂z, ∂F/∂p)`; `None` (the default) for finite differences.
-    #[allow(clippy::type_complexity)]
+    /// Analytic `dfdz = ∂F/∂z`, `dfdp = ∂F/∂p`; `false` (the default) for finite differences.
     fn rhs_jacobian(
         &self,
         _s: f64,
         _z: &[f64; N],
         _p: &[f64; K],
-    ) -> Option<([[f64; N]; N], [[f64; K]; N])> {
-        None
+        _dfdz: &mut [[f64; N]; N],
+        _dfdp: &mut [[f64; K]; N],
+    ) -> bool {
+        false
     }
-    /// Analytic Jacobians of `g` (row-major, `N + K` rows) as in [`Bvp::bc_jacobian`]; `false`
-    /// (the default) for finite differences.
+    /// Analytic Jacobians of `g` (`N + K` rows each); `false` (the default) for finite
+    /// differences.
     fn bc_jacobian(
         &self,
         _za: &[f64; N],
         _zb: &[f64; N],
         _p: &[f64; K],
-        _dga: &mut [f64],
-        _dgb: &mut [f64],
-        _dgp: &mut [f64],
+        _dga: &mut [[f64; N]],
+        _dgb: &mut [[f64; N]],
+        _dgp: &mut [[f64; K]],
     ) -> bool {
         false
     }
@@ -80,7 +97,7 @@ pub trait FixedBvp<const N: usize, const K: usize> {
 /// Adapter that makes a [`FixedBvp`] usable by every solver (it implements [`Bvp`]). The sizes
 /// are inferred from the problem's one `FixedBvp` implementation.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Fixed<T, const N: usize, const K: usize>(pub T);
+pub struct Fixed<T, const N: usize, const K: usize = 0>(pub T);
 
 /// Views the first `M` entries of a solver slice as an array. Solvers pass slices of exactly the
 /// lengths [`Bvp::dims`] announces, so the view always exists.
@@ -88,6 +105,27 @@ fn view<const M: usize>(x: &[f64]) -> &[f64; M] {
     match x.first_chunk::<M>() {
         Some(a) => a,
         None => unreachable!("solver passed {} values, the problem has {M}", x.len()),
+    }
+}
+
+/// Views the first `rows · M` entries of a flat row-major matrix as `rows` rows of `M` columns.
+fn rows_mut<const M: usize>(x: &mut [f64], rows: usize) -> &mut [[f64; M]] {
+    assert!(
+        x.len() >= rows * M,
+        "matrix of {rows}×{M} in {} values",
+        x.len()
+    );
+    // SAFETY: `[f64; M]` is `M` consecutive `f64` with the alignment of `f64`; the view covers the
+    // first `rows · M` values of `x` (checked above; nothing for `M = 0`) and borrows `x`
+    // exclusively for its lifetime.
+    unsafe { std::slice::from_raw_parts_mut(x.as_mut_ptr().cast::<[f64; M]>(), rows) }
+}
+
+/// Views a flat row-major `R × C` matrix as an array of rows.
+fn matrix_mut<const R: usize, const C: usize>(x: &mut [f64]) -> &mut [[f64; C]; R] {
+    match rows_mut::<C>(x, R).try_into() {
+        Ok(m) => m,
+        Err(_) => unreachable!("a slice of {R} rows is an array of {R} rows"),
     }
 }
 
@@ -112,16 +150,8 @@ impl<T: FixedBvp<N, K>, const N: usize, const K: usize> Bvp for Fixed<T, N, K> {
         dfdz: &mut [f64],
         dfdp: &mut [f64],
     ) -> bool {
-        match self.0.rhs_jacobian(s, view(z), view(p)) {
-            Some((jz, jp)) => {
-                for i in 0..N {
-                    dfdz[i * N..(i + 1) * N].copy_from_slice(&jz[i]);
-                    dfdp[i * K..(i + 1) * K].copy_from_slice(&jp[i]);
-                }
-                true
-            }
-            None => false,
-        }
+        self.0
+            .rhs_jacobian(s, view(z), view(p), matrix_mut(dfdz), matrix_mut(dfdp))
     }
     fn bc_jacobian(
         &self,
@@ -132,7 +162,13 @@ impl<T: FixedBvp<N, K>, const N: usize, const K: usize> Bvp for Fixed<T, N, K> {
         dgb: &mut [f64],
         dgp: &mut [f64],
     ) -> bool {
-        self.0
-            .bc_jacobian(view(za), view(zb), view(p), dga, dgb, dgp)
+        self.0.bc_jacobian(
+            view(za),
+            view(zb),
+            view(p),
+            rows_mut(dga, N + K),
+            rows_mut(dgb, N + K),
+            rows_mut(dgp, N + K),
+        )
     }
 }

@@ -9,8 +9,9 @@
 //!     g(z(a), z(b), p) = 0           n + k conditions (two-point, non-separated allowed)
 //! ```
 //!
-//! A problem is a type implementing [`Bvp`]; it knows nothing of solvers. Analytic Jacobians
-//! (`∂F/∂z`, `∂F/∂p`, and those of `g`) are optional: without them the solvers use finite differences.
+//! A problem is a type implementing [`Bvp`] (or closures assembled by [`from_fns`]); it knows
+//! nothing of solvers. Analytic Jacobians (`∂F/∂z`, `∂F/∂p`, and those of `g`, all row-major with
+//! the names of [`Bvp`]) are optional: without them the solvers use finite differences.
 //!
 //! # Solvers
 //!
@@ -53,7 +54,7 @@ pub use collocation::{Collocation, CollocationOptions, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Status};
 pub use newton::NewtonOptions;
-pub use problem::{Bvp, Dims};
+pub use problem::{from_fns, Bvp, Dims, FnBvp};
 pub use shooting::{Integrator, Shooting, ShootingOptions};
 pub use solution::{Guess, Solution};
 pub use stats::Stats;

@@ -11,9 +11,23 @@ pub struct Dims {
 
 /// A two-point boundary-value problem `z' = F(s, z, p)` on `[a, b]`, `g(z(a), z(b), p) = 0`.
 ///
-/// Matrices are row-major slices: `dfdz[i * n + j] = ∂F_i/∂z_j`, `dfdp[i * k + j] = ∂F_i/∂p_j`,
-/// `dga[i * n + j] = ∂g_i/∂z_j(a)`, `dgb` likewise for `z(b)`, `dgp[i * k + j] = ∂g_i/∂p_j`,
-/// with `i` over the `n + k` conditions.
+/// # Jacobian layout (one convention for every Jacobian of the crate)
+///
+/// Every Jacobian is a row-major matrix `d[row][col] = ∂(output row)/∂(input col)`, here stored
+/// flat as `d[row * cols + col]`:
+///
+/// | name   | rows (outputs)       | cols (inputs) | entry `[i * cols + j]` |
+/// |--------|----------------------|---------------|------------------------|
+/// | `dfdz` | `n` (components of F) | `n`          | `∂F_i/∂z_j`            |
+/// | `dfdp` | `n`                  | `k`           | `∂F_i/∂p_j`            |
+/// | `dga`  | `n + k` (conditions) | `n`           | `∂g_i/∂z_j(a)`         |
+/// | `dgb`  | `n + k`              | `n`           | `∂g_i/∂z_j(b)`         |
+/// | `dgp`  | `n + k`              | `k`           | `∂g_i/∂p_j`            |
+///
+/// Without parameters (`k = 0`) `dfdp` and `dgp` are empty and can be ignored.
+/// [`crate::fixed::FixedBvp`] uses the same layout as arrays of rows (`d[i][j]`), and
+/// [`crate::continuation::ParamBvp`] adds the `λ` columns `dfdl`, `dgl`.
+/// A problem can also be assembled from closures with [`crate::from_fns`].
 ///
 /// The Jacobian methods return `false` when not implemented (the default); solvers then use
 /// finite differences ([`crate::fd`]). Implementations must not allocate: solvers call these in
@@ -28,7 +42,7 @@ pub trait Bvp {
     fn rhs(&self, s: f64, z: &[f64], p: &[f64], dz: &mut [f64]);
     /// Boundary residual: writes `g(za, zb, p)` (length `n + k`) into `res`.
     fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]);
-    /// Analytic `∂F/∂z` (n×n) and `∂F/∂p` (n×k); `false` if not provided.
+    /// Analytic `dfdz = ∂F/∂z` (n×n) and `dfdp = ∂F/∂p` (n×k), row-major; `false` if not provided.
     fn rhs_jacobian(
         &self,
         _s: f64,
@@ -39,7 +53,8 @@ pub trait Bvp {
     ) -> bool {
         false
     }
-    /// Analytic Jacobians of `g` with respect to `z(a)`, `z(b)`, `p`; `false` if not provided.
+    /// Analytic Jacobians of `g` (row-major, `n + k` rows): `dga = ∂g/∂z(a)`, `dgb = ∂g/∂z(b)`,
+    /// `dgp = ∂g/∂p`; `false` if not provided.
     fn bc_jacobian(
         &self,
         _za: &[f64],
@@ -86,5 +101,157 @@ impl<T: Bvp + ?Sized> Bvp for &T {
         dgp: &mut [f64],
     ) -> bool {
         (**self).bc_jacobian(za, zb, p, dga, dgb, dgp)
+    }
+}
+
+/// Signature of an unset rhs Jacobian closure of [`FnBvp`].
+pub type NoRhsJacobian = fn(f64, &[f64], &[f64], &mut [f64], &mut [f64]);
+/// Signature of an unset bc Jacobian closure of [`FnBvp`].
+pub type NoBcJacobian = fn(&[f64], &[f64], &[f64], &mut [f64], &mut [f64], &mut [f64]);
+
+/// A problem assembled from closures, made by [`from_fns`]; implements [`Bvp`].
+///
+/// The closures take the arguments of the [`Bvp`] methods of the same names (Jacobian layouts as
+/// documented there). Parameters default to none; Jacobians default to finite differences.
+///
+/// ```
+/// use bvp::{from_fns, BvpSolver, Collocation, CollocationOptions, Guess};
+///
+/// // y'' = −y, y(0) = 0, y(π/2) = 1: y = sin s.
+/// let sine = from_fns(
+///     2,
+///     (0.0, std::f64::consts::FRAC_PI_2),
+///     |_s, z, _p, dz| {
+///         dz[0] = z[1];
+///         dz[1] = -z[0];
+///     },
+///     |za, zb, _p, res| {
+///         res[0] = za[0];
+///         res[1] = zb[0] - 1.0;
+///     },
+/// )
+/// .with_rhs_jacobian(|_s, _z, _p, dfdz, _dfdp| dfdz.copy_from_slice(&[0.0, 1.0, -1.0, 0.0]));
+/// let guess = Guess::constant(0.0, std::f64::consts::FRAC_PI_2, 11, &[0.5, 0.5], vec![]);
+/// let sol = Collocation::new(CollocationOptions::default())?.solve(&sine, &guess)?;
+/// assert!((sol.node(0)[1] - 1.0).abs() < 1e-6); // y'(0) = cos 0
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct FnBvp<F, G, J = NoRhsJacobian, H = NoBcJacobian> {
+    dims: Dims,
+    interval: (f64, f64),
+    rhs: F,
+    bc: G,
+    rhs_jac: Option<J>,
+    bc_jac: Option<H>,
+}
+
+/// A problem with `n` states on `interval = (a, b)` from its right-hand side
+/// `rhs(s, z, p, dz)` and boundary residual `bc(za, zb, p, res)`; see [`FnBvp`] for parameters
+/// and Jacobians.
+pub fn from_fns<F, G>(n: usize, interval: (f64, f64), rhs: F, bc: G) -> FnBvp<F, G>
+where
+    F: Fn(f64, &[f64], &[f64], &mut [f64]),
+    G: Fn(&[f64], &[f64], &[f64], &mut [f64]),
+{
+    FnBvp {
+        dims: Dims { n, k: 0 },
+        interval,
+        rhs,
+        bc,
+        rhs_jac: None,
+        bc_jac: None,
+    }
+}
+
+impl<F, G, J, H> FnBvp<F, G, J, H> {
+    /// The same problem with `k` unknown parameters (so `bc` writes `n + k` residuals).
+    pub fn with_params(mut self, k: usize) -> Self {
+        self.dims.k = k;
+        self
+    }
+
+    /// The same problem with the analytic `jac(s, z, p, dfdz, dfdp)`.
+    pub fn with_rhs_jacobian<J2>(self, jac: J2) -> FnBvp<F, G, J2, H>
+    where
+        J2: Fn(f64, &[f64], &[f64], &mut [f64], &mut [f64]),
+    {
+        FnBvp {
+            dims: self.dims,
+            interval: self.interval,
+            rhs: self.rhs,
+            bc: self.bc,
+            rhs_jac: Some(jac),
+            bc_jac: self.bc_jac,
+        }
+    }
+
+    /// The same problem with the analytic `jac(za, zb, p, dga, dgb, dgp)`.
+    pub fn with_bc_jacobian<H2>(self, jac: H2) -> FnBvp<F, G, J, H2>
+    where
+        H2: Fn(&[f64], &[f64], &[f64], &mut [f64], &mut [f64], &mut [f64]),
+    {
+        FnBvp {
+            dims: self.dims,
+            interval: self.interval,
+            rhs: self.rhs,
+            bc: self.bc,
+            rhs_jac: self.rhs_jac,
+            bc_jac: Some(jac),
+        }
+    }
+}
+
+impl<F, G, J, H> Bvp for FnBvp<F, G, J, H>
+where
+    F: Fn(f64, &[f64], &[f64], &mut [f64]),
+    G: Fn(&[f64], &[f64], &[f64], &mut [f64]),
+    J: Fn(f64, &[f64], &[f64], &mut [f64], &mut [f64]),
+    H: Fn(&[f64], &[f64], &[f64], &mut [f64], &mut [f64], &mut [f64]),
+{
+    fn dims(&self) -> Dims {
+        self.dims
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.interval
+    }
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
+        (self.rhs)(s, z, p, dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
+        (self.bc)(za, zb, p, res)
+    }
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        p: &[f64],
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+    ) -> bool {
+        match &self.rhs_jac {
+            Some(j) => {
+                j(s, z, p, dfdz, dfdp);
+                true
+            }
+            None => false,
+        }
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64],
+        zb: &[f64],
+        p: &[f64],
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+    ) -> bool {
+        match &self.bc_jac {
+            Some(j) => {
+                j(za, zb, p, dga, dgb, dgp);
+                true
+            }
+            None => false,
+        }
     }
 }

@@ -2,8 +2,8 @@
 //!
 //! # Method
 //!
-//! Split `[a, b]` into `M` equal segments `a = t_0 < t_1 < … < t_M = b` (`M = segments`; `M = 1` is
-//! single shooting). The unknowns are the states at the segment starts and the parameters,
+//! Split `[a, b]` into `M` segments `a = t_0 < t_1 < … < t_M = b` (`M = segments` equal ones, or
+//! the given [`ShootingOptions::nodes`]; `M = 1` is single shooting). The unknowns are the states at the segment starts and the parameters,
 //!
 //! ```text
 //!     u = (z_0, z_1, …, z_{M−1}, p)            N = M n + k unknowns,
@@ -30,8 +30,8 @@
 //!
 //! # Integrators
 //!
-//! - [`Integrator::Rk4`]: classical RK4 with `steps` equal steps in total (split as evenly as
-//!   possible over the segments). The variational equations are integrated with the same stages,
+//! - [`Integrator::Rk4`]: classical RK4 with `steps` steps in total, split over the segments in
+//!   proportion to their lengths (at least one each). The variational equations are integrated with the same stages,
 //!   so the Newton matrix is the exact Jacobian of the discrete residual: quadratic convergence.
 //!   Global error `O(h⁴)`.
 //! - [`Integrator::Adaptive`]: Dormand–Prince 8(5,3) (DOP853) with Hairer's error norm on `z`,
@@ -89,8 +89,14 @@ pub enum Integrator {
 pub struct ShootingOptions {
     /// Integrator. Default: `Adaptive { rtol: 1e-10, atol: 1e-12 }`.
     pub integrator: Integrator,
-    /// Number of shooting segments; 1 is single shooting. Default 1.
+    /// Number of equal shooting segments; 1 is single shooting. Default 1. Ignored when `nodes`
+    /// is given.
     pub segments: usize,
+    /// Segment boundaries `a = t_0 < t_1 < … < t_M = b` for non-uniform multiple shooting
+    /// (e.g. denser where the solution varies fast). Default empty: `segments` equal segments.
+    /// Valid: finite, strictly increasing, at least 2 values; the first and last must be the
+    /// problem's interval ends (checked at solve time).
+    pub nodes: Vec<f64>,
     /// Newton options. Default [`NewtonOptions::default`].
     pub newton: NewtonOptions,
     /// Cap on the steps of one adaptive integration of one segment (exceeding it is reported as
@@ -109,6 +115,7 @@ impl Default for ShootingOptions {
                 atol: 1e-12,
             },
             segments: 1,
+            nodes: Vec::new(),
             newton: NewtonOptions::default(),
             max_steps: 100_000,
             pivot_tol: DEFAULT_PIVOT_TOL,
@@ -125,6 +132,15 @@ fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static s
 }
 
 impl ShootingOptions {
+    /// Number of segments `M`: from `nodes` if given, else `segments`.
+    pub fn segment_count(&self) -> usize {
+        if self.nodes.is_empty() {
+            self.segments
+        } else {
+            self.nodes.len() - 1
+        }
+    }
+
     /// Checks the ranges: `segments ≥ 1`; RK4: `steps ≥ 1` and `segments ≤ steps`; adaptive:
     /// `0 < rtol < 1`, `atol ≥ 0` (finite); `max_steps ≥ 1`; `0 ≤ pivot_tol < 1`; Newton options
     /// ([`NewtonOptions::validate`]).
@@ -132,12 +148,23 @@ impl ShootingOptions {
         if self.segments < 1 {
             return Err(invalid("segments", self.segments, "must be >= 1"));
         }
+        if !self.nodes.is_empty()
+            && (self.nodes.len() < 2
+                || !self.nodes.iter().all(|t| t.is_finite())
+                || !self.nodes.windows(2).all(|w| w[1] > w[0]))
+        {
+            return Err(invalid(
+                "nodes",
+                format!("{:?}", self.nodes),
+                "must be empty or >= 2 finite, strictly increasing values",
+            ));
+        }
         match self.integrator {
             Integrator::Rk4 { steps } => {
                 if steps < 1 {
                     return Err(invalid("integrator.steps", steps, "must be >= 1"));
                 }
-                if self.segments > steps {
+                if self.segment_count() > steps {
                     return Err(invalid(
                         "segments",
                         self.segments,
@@ -188,7 +215,7 @@ struct Work {
 }
 
 impl Work {
-    fn resize(&mut self, dims: Dims, segments: usize, a: f64, b: f64) {
+    fn resize(&mut self, dims: Dims, segments: usize, a: f64, b: f64, given: &[f64]) {
         let (n, k) = (dims.n, dims.k);
         let m = n + k;
         let big_n = segments * n + k;
@@ -212,8 +239,13 @@ impl Work {
             self.segments = segments;
         }
         self.nodes.clear();
-        self.nodes
-            .extend((0..=segments).map(|j| a + (b - a) * j as f64 / segments as f64));
+        if given.is_empty() {
+            self.nodes
+                .extend((0..=segments).map(|j| a + (b - a) * j as f64 / segments as f64));
+        } else {
+            self.nodes.extend_from_slice(given);
+            self.nodes[0] = a;
+        }
         self.nodes[segments] = b;
         self.cached = false;
     }
@@ -245,9 +277,19 @@ impl Shooting {
     }
 }
 
-/// Steps of RK4 on segment `j` of `segments` (total `steps`, remainder to the first segments).
-fn rk4_steps(steps: usize, segments: usize, j: usize) -> usize {
-    steps / segments + usize::from(j < steps % segments)
+/// Steps of RK4 on segment `j` of `nodes`: `steps` in total in proportion to the segment lengths,
+/// at least one per segment (equal segments: the remainder goes to the first ones).
+fn rk4_steps(steps: usize, nodes: &[f64], uniform: bool, j: usize) -> usize {
+    let segments = nodes.len() - 1;
+    if uniform {
+        return steps / segments + usize::from(j < steps % segments);
+    }
+    let len = nodes[segments] - nodes[0];
+    let extra = steps - segments;
+    // Cumulative rounding keeps the total exact.
+    let cum = |i: usize| ((nodes[i] - nodes[0]) / len * extra as f64 + 1e-9).floor() as usize;
+    let end = if j + 1 == segments { extra } else { cum(j + 1) };
+    1 + end - cum(j)
 }
 
 /// The Newton system of (multiple) shooting.
@@ -261,7 +303,7 @@ impl<P: Bvp + ?Sized> System<'_, P> {
     fn mode(&self, j: usize) -> Mode {
         match self.opts.integrator {
             Integrator::Rk4 { steps } => Mode::Fixed {
-                steps: rk4_steps(steps, self.opts.segments, j),
+                steps: rk4_steps(steps, &self.w.nodes, self.opts.nodes.is_empty(), j),
             },
             Integrator::Adaptive { rtol, atol } => Mode::Adaptive {
                 rtol,
@@ -275,7 +317,7 @@ impl<P: Bvp + ?Sized> System<'_, P> {
     fn evaluate(&mut self, u: &[f64], r: &mut [f64], stats: &mut Stats) -> Result<(), BvpError> {
         let Dims { n, k } = self.problem.dims();
         let m = n + k;
-        let segs = self.opts.segments;
+        let segs = self.w.segments;
         let p = &u[segs * n..];
         self.w.cached = false;
         for j in 0..segs {
@@ -333,7 +375,7 @@ impl<P: Bvp + ?Sized> NewtonSystem for System<'_, P> {
         }
         let Dims { n, k } = self.problem.dims();
         let m = n + k;
-        let segs = self.opts.segments;
+        let segs = self.w.segments;
         let big_n = segs * n + k;
         let w = &mut *self.w;
         let p = &u[segs * n..];
@@ -431,8 +473,18 @@ impl BvpSolver for Shooting {
                 "need finite a < b",
             ));
         }
-        let segs = self.opts.segments;
-        self.work.resize(dims, segs, a, b);
+        let segs = self.opts.segment_count();
+        if let (Some(&t0), Some(&t1)) = (self.opts.nodes.first(), self.opts.nodes.last()) {
+            let tol = 1e-12 * (b - a);
+            if (t0 - a).abs() > tol || (t1 - b).abs() > tol {
+                return Err(invalid(
+                    "nodes",
+                    format!("[{t0}, …, {t1}]"),
+                    "must start at a and end at b of the problem's interval",
+                ));
+            }
+        }
+        self.work.resize(dims, segs, a, b, &self.opts.nodes);
 
         // Warm start: guess values at the segment starts, guess parameters.
         self.u.clear();

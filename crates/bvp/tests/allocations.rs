@@ -57,20 +57,23 @@ impl FixedBvp<2, 0> for FixedBratu {
         _s: f64,
         z: &[f64; 2],
         _p: &[f64; 0],
-    ) -> Option<([[f64; 2]; 2], [[f64; 0]; 2])> {
-        Some(([[0.0, 1.0], [-self.0 * z[0].exp(), 0.0]], [[]; 2]))
+        dfdz: &mut [[f64; 2]; 2],
+        _dfdp: &mut [[f64; 0]; 2],
+    ) -> bool {
+        *dfdz = [[0.0, 1.0], [-self.0 * z[0].exp(), 0.0]];
+        true
     }
     fn bc_jacobian(
         &self,
         _za: &[f64; 2],
         _zb: &[f64; 2],
         _p: &[f64; 0],
-        dga: &mut [f64],
-        dgb: &mut [f64],
-        _dgp: &mut [f64],
+        dga: &mut [[f64; 2]],
+        dgb: &mut [[f64; 2]],
+        _dgp: &mut [[f64; 0]],
     ) -> bool {
-        dga.copy_from_slice(&[1.0, 0.0, 0.0, 0.0]);
-        dgb.copy_from_slice(&[0.0, 0.0, 1.0, 0.0]);
+        dga.copy_from_slice(&[[1.0, 0.0], [0.0, 0.0]]);
+        dgb.copy_from_slice(&[[0.0, 0.0], [1.0, 0.0]]);
         true
     }
 }

@@ -60,7 +60,7 @@ fn options_are_validated() {
             ..Default::default()
         },
         CollocationOptions {
-            bc_tol: -1.0,
+            bc_tol: Some(-1.0),
             ..Default::default()
         },
         CollocationOptions {

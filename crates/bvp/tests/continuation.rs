@@ -11,7 +11,7 @@
 //! - `y'' = y, y(0) = 0, y(1) = λ`: `y = λ sinh(x)/sinh(1)`.
 //! - `y'' = p, y(0) = 0, y'(0) = 0, y(1) = λ` (p unknown): `y = λx²`, `p = 2λ`.
 
-use bvp::continuation::{Arclength, Continuation, ContinuationOptions, Fixed, FoldKind, Method};
+use bvp::continuation::{Arclength, Continuation, ContinuationOptions, FoldKind, Member, Method};
 use bvp::{
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Dims, Guess, Integrator, ParamBvp,
     Scheme, Shooting, ShootingOptions, Solution, Status,
@@ -158,7 +158,7 @@ fn collocation() -> Collocation {
 
 fn start<P: ParamBvp, S: BvpSolver>(family: &P, solver: &mut S, lambda: f64) -> Solution {
     let guess = Guess::constant(0.0, 1.0, 11, &[0.0, 0.0], vec![0.0; family.dims().k]);
-    solver.solve(&Fixed::new(family, lambda), &guess).unwrap()
+    solver.solve(&Member::new(family, lambda), &guess).unwrap()
 }
 
 /// Traces Bratu from λ = 0.1 on the lower branch through the fold back to λ = 0.1 (a bound) on

@@ -183,7 +183,7 @@ impl Engine {
                     Collocation::new(CollocationOptions {
                         scheme,
                         tol: cfg.tol,
-                        bc_tol: cfg.tol,
+                        bc_tol: Some(cfg.tol),
                         max_nodes: 20_000,
                         newton,
                         ..CollocationOptions::default()
@@ -489,7 +489,8 @@ fn solve_fast<P: Profile>(
     };
     // near a turning point the residual says little about the unknowns (square-root
     // dependence): leave such rods to the generic solver
-    if !(cv.cond() < 1e6) {
+    // (a NaN condition number is ill-conditioned too)
+    if cv.cond().partial_cmp(&1e6) != Some(std::cmp::Ordering::Less) {
         return None;
     }
     // a homotopy step that landed on the mirror image (the load bending the other way at the

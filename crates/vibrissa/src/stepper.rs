@@ -163,7 +163,7 @@ impl<P: Profile> GenericStepper<P> {
     fn solve(&mut self, d: f64, guess: &Guess) -> Result<Solution, bvp::BvpError> {
         let r = self
             .engine
-            .solve(&bvp::continuation::Fixed::new(&self.family, d), guess);
+            .solve(&bvp::continuation::Member::new(&self.family, d), guess);
         match &r {
             Ok(s) => self.stats.accumulate(&s.stats),
             Err(e) => {

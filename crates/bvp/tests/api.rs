@@ -1,0 +1,216 @@
+//! The problem-definition API: closures ([`bvp::from_fns`]), array problems with row Jacobians,
+//! option defaults and non-uniform multiple shooting.
+
+use bvp::fixed::{Fixed, FixedBvp};
+use bvp::samples::LinearSinh;
+use bvp::{
+    from_fns, Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Dims, Guess, Integrator,
+    Shooting, ShootingOptions,
+};
+
+/// 21 equal nodes on `[0, π]`.
+fn mesh() -> Vec<f64> {
+    (0..21)
+        .map(|i| std::f64::consts::PI * i as f64 / 20.0)
+        .collect()
+}
+
+/// `y'' = y`, `y(0) = 0`, `y(1) = 1` as closures: `y = sinh s / sinh 1`.
+#[test]
+fn closure_problem_solves_like_the_struct() {
+    let p = from_fns(
+        2,
+        (0.0, 1.0),
+        |_s, z, _p, dz| {
+            dz[0] = z[1];
+            dz[1] = z[0];
+        },
+        |za, zb, _p, r| {
+            r[0] = za[0];
+            r[1] = zb[0] - 1.0;
+        },
+    )
+    .with_rhs_jacobian(|_s, _z, _p, dfdz, _dfdp| dfdz.copy_from_slice(&[0.0, 1.0, 1.0, 0.0]))
+    .with_bc_jacobian(|_za, _zb, _p, dga, dgb, _dgp| {
+        dga.copy_from_slice(&[1.0, 0.0, 0.0, 0.0]);
+        dgb.copy_from_slice(&[0.0, 0.0, 1.0, 0.0]);
+    });
+    assert_eq!(p.dims(), Dims { n: 2, k: 0 });
+    let mut jz = [0.0; 4];
+    assert!(p.rhs_jacobian(0.3, &[1.0, 2.0], &[], &mut jz, &mut []));
+    assert_eq!(jz, [0.0, 1.0, 1.0, 0.0]);
+    let sol = Collocation::new(CollocationOptions::default())
+        .unwrap()
+        .solve(&p, &LinearSinh::guess())
+        .unwrap();
+    for s in [0.0, 0.25, 0.7, 1.0] {
+        let e = LinearSinh::exact(s);
+        assert!((sol.at(s)[0] - e[0]).abs() < 1e-6, "s = {s}");
+    }
+}
+
+/// An eigenvalue problem with a parameter, as closures without Jacobians: `y'' = −λ y`,
+/// `y(0) = y(π) = 0`, `y'(0) = 1`, first eigenvalue `λ = 1`.
+#[test]
+fn closure_problem_with_parameter() {
+    let p = from_fns(
+        2,
+        (0.0, std::f64::consts::PI),
+        |_s, z, p, dz| {
+            dz[0] = z[1];
+            dz[1] = -p[0] * z[0];
+        },
+        |za, zb, _p, r| {
+            r[0] = za[0];
+            r[1] = zb[0];
+            r[2] = za[1] - 1.0;
+        },
+    )
+    .with_params(1);
+    let guess = Guess::from_fn(2, mesh(), vec![1.2], |s, z| {
+        z[0] = s.sin();
+        z[1] = s.cos();
+    });
+    let sol = Shooting::new(ShootingOptions::default())
+        .unwrap()
+        .solve(&p, &guess)
+        .unwrap();
+    assert!((sol.params[0] - 1.0).abs() < 1e-9, "{}", sol.params[0]);
+}
+
+/// `y'' = −λ y` with `k = 1` written with arrays and row Jacobians, checked against finite
+/// differences through the [`Bvp`] view (the row layout must land in the flat row-major one).
+struct ArrayEigen;
+
+impl FixedBvp<2, 1> for ArrayEigen {
+    fn interval(&self) -> (f64, f64) {
+        (0.0, std::f64::consts::PI)
+    }
+    fn rhs(&self, _s: f64, z: &[f64; 2], p: &[f64; 1]) -> [f64; 2] {
+        [z[1], -p[0] * z[0]]
+    }
+    fn bc(&self, za: &[f64; 2], zb: &[f64; 2], _p: &[f64; 1], res: &mut [f64]) {
+        res[0] = za[0];
+        res[1] = zb[0];
+        res[2] = za[1] - 1.0;
+    }
+    fn rhs_jacobian(
+        &self,
+        _s: f64,
+        z: &[f64; 2],
+        p: &[f64; 1],
+        dfdz: &mut [[f64; 2]; 2],
+        dfdp: &mut [[f64; 1]; 2],
+    ) -> bool {
+        *dfdz = [[0.0, 1.0], [-p[0], 0.0]];
+        *dfdp = [[0.0], [-z[0]]];
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64; 2],
+        _zb: &[f64; 2],
+        _p: &[f64; 1],
+        dga: &mut [[f64; 2]],
+        dgb: &mut [[f64; 2]],
+        dgp: &mut [[f64; 1]],
+    ) -> bool {
+        assert_eq!((dga.len(), dgb.len(), dgp.len()), (3, 3, 3));
+        dga.copy_from_slice(&[[1.0, 0.0], [0.0, 0.0], [0.0, 1.0]]);
+        dgb.copy_from_slice(&[[0.0, 0.0], [1.0, 0.0], [0.0, 0.0]]);
+        dgp.copy_from_slice(&[[0.0]; 3]);
+        true
+    }
+}
+
+#[test]
+fn array_rows_are_row_major() {
+    let p = Fixed(ArrayEigen);
+    let (z, q) = ([0.7, -0.2], [1.3]);
+    let (mut jz, mut jp) = ([0.0; 4], [0.0; 2]);
+    assert!(p.rhs_jacobian(0.1, &z, &q, &mut jz, &mut jp));
+    assert_eq!(jz, [0.0, 1.0, -1.3, 0.0]);
+    assert_eq!(jp, [0.0, -0.7]);
+    let (mut ga, mut gb, mut gp) = ([9.0; 6], [9.0; 6], [9.0; 3]);
+    assert!(p.bc_jacobian(&z, &z, &q, &mut ga, &mut gb, &mut gp));
+    assert_eq!(ga, [1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+    assert_eq!(gb, [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
+    assert_eq!(gp, [0.0; 3]);
+    let guess = Guess::from_fn(2, mesh(), vec![0.8], |s, z| {
+        z[0] = s.sin();
+        z[1] = s.cos();
+    });
+    let sol = Collocation::new(CollocationOptions::default())
+        .unwrap()
+        .solve(&p, &guess)
+        .unwrap();
+    assert!((sol.params[0] - 1.0).abs() < 1e-6, "{}", sol.params[0]);
+}
+
+#[test]
+fn bc_tol_defaults_to_tol() {
+    let o = CollocationOptions {
+        tol: 1e-5,
+        ..Default::default()
+    };
+    assert_eq!(o.bc_tol, None);
+    assert_eq!(o.bc_tol(), 1e-5);
+    let o = CollocationOptions {
+        bc_tol: Some(1e-9),
+        ..o
+    };
+    assert_eq!(o.bc_tol(), 1e-9);
+}
+
+/// Non-uniform segments give the same solution as uniform ones; RK4 steps follow the lengths.
+#[test]
+fn non_uniform_multiple_shooting() {
+    let nodes = vec![0.0, 0.1, 0.15, 0.5, 1.0];
+    for integrator in [
+        Integrator::Rk4 { steps: 200 },
+        Integrator::Adaptive {
+            rtol: 1e-10,
+            atol: 1e-12,
+        },
+    ] {
+        let mut s = Shooting::new(ShootingOptions {
+            integrator,
+            nodes: nodes.clone(),
+            ..Default::default()
+        })
+        .unwrap();
+        let sol = s.solve(&LinearSinh, &LinearSinh::guess()).unwrap();
+        assert_eq!(sol.stats.nodes, 5);
+        for &t in &nodes {
+            let e = LinearSinh::exact(t);
+            assert!((sol.at(t)[0] - e[0]).abs() < 1e-8, "t = {t}");
+            assert!((sol.at(t)[1] - e[1]).abs() < 1e-8, "t = {t}");
+        }
+        if let Integrator::Rk4 { steps } = integrator {
+            // One node per RK4 step, segments included.
+            assert_eq!(sol.mesh.len(), steps + 1);
+        }
+    }
+}
+
+#[test]
+fn bad_shooting_nodes_are_rejected() {
+    let bad = ShootingOptions {
+        nodes: vec![0.0, 0.5, 0.5, 1.0],
+        ..Default::default()
+    };
+    assert!(matches!(
+        Shooting::new(bad),
+        Err(BvpError::InvalidOption { name: "nodes", .. })
+    ));
+    // Valid on their own, but not spanning the problem's interval [0, 1].
+    let mut s = Shooting::new(ShootingOptions {
+        nodes: vec![0.0, 0.5, 2.0],
+        ..Default::default()
+    })
+    .unwrap();
+    assert!(matches!(
+        s.solve(&LinearSinh, &LinearSinh::guess()),
+        Err(BvpError::InvalidOption { name: "nodes", .. })
+    ));
+}
