@@ -77,6 +77,7 @@
 // Modules import downward only: scene, profile → equations → shooter → rodsolve → shape →
 // model → solve → stepper/march (report) → scan → analytic.
 mod analytic;
+mod arclength;
 pub mod equations;
 mod error;
 mod march;

@@ -1,7 +1,7 @@
 //! Newton on the rod's own shot: the unknowns `u = (m(0), f, α)` and three conditions
 //! `(m(1), c₁, c₂)` at the tip, one 3×3 system for every tip condition (α fixed is the row
-//! `α − α_given = 0`). Used by single solves (damped Newton), the scan (chord Newton with tangents)
-//! and the homotopy from the uniform straight rod to any rod.
+//! `α − α_given = 0`). Used by single solves (damped Newton) and the scan (chord Newton with
+//! tangents); families of rods are followed by [`crate::arclength`].
 
 use crate::equations::Y;
 use crate::profile::Profile;
@@ -298,84 +298,4 @@ pub(crate) fn correct_chord<P: Profile>(
         }
     }
     Err(ShotFailure::MeshLimit { steps: sh.steps() })
-}
-
-/// Natural continuation in `t ∈ [0, 1]` with the rod's shot: `at(t)` gives the member's profile,
-/// compliance and tip condition (at `t = 0`, `u0` is a good start), each member solved by damped
-/// Newton from the quadratic extrapolation of the last three, with step control. A correction far
-/// larger than the step's change is rejected (a jump to another branch). Used for the homotopy
-/// from the uniform straight rod to any rod and for moving the tip. Returns the member at `t = 1`
-/// and the last `t` reached on failure.
-pub(crate) fn continuation<P: Profile>(
-    sh: &mut Shooter<P>,
-    at: impl Fn(f64) -> (P, f64, TipCond),
-    u0: [f64; 3],
-    tol: f64,
-) -> Result<Converged, (f64, ShotFailure)> {
-    let (p, c, cond) = at(0.0);
-    sh.set_profile(p, c);
-    let first = solve_damped(sh, &cond, u0, tol, 30).map_err(|e| (0.0, e))?;
-    let mut hist: Vec<(f64, [f64; 3])> = vec![(0.0, first.u)];
-    let mut last = first;
-    let mut dt: f64 = 0.25;
-    let mut steps = 0;
-    while hist[hist.len() - 1].0 < 1.0 {
-        steps += 1;
-        let t0 = hist[hist.len() - 1].0;
-        if steps > 2000 || dt < 1e-5 {
-            return Err((
-                t0,
-                ShotFailure::NoConvergence {
-                    iteration: steps,
-                    residual: f64::NAN,
-                },
-            ));
-        }
-        let t = (t0 + dt).min(1.0);
-        let guess = extrapolate(&hist, t);
-        let (p, c, cond) = at(t);
-        sh.set_profile(p, c);
-        match solve_damped(sh, &cond, guess, tol, 12) {
-            Ok(cv) => {
-                let ul = hist[hist.len() - 1].1;
-                let (mut corr, mut change) = (0.0f64, 0.0f64);
-                for i in 0..3 {
-                    corr = corr.max((cv.u[i] - guess[i]).abs());
-                    change = change.max((cv.u[i] - ul[i]).abs());
-                }
-                let scale = 1.0 + cv.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-                if hist.len() > 1 && corr > 0.25 * change.max(1e-3 * scale * dt) && corr > 1e-8 {
-                    dt *= 0.5;
-                    continue;
-                }
-                if cv.iterations <= 3 {
-                    dt = (dt * 1.5).min(0.25);
-                }
-                hist.push((t, cv.u));
-                if hist.len() > 3 {
-                    hist.remove(0);
-                }
-                last = cv;
-            }
-            Err(_) => dt *= 0.5,
-        }
-    }
-    Ok(last)
-}
-
-/// Lagrange extrapolation of the last (at most three) `(t, u)` to `t`.
-fn extrapolate(hist: &[(f64, [f64; 3])], t: f64) -> [f64; 3] {
-    let mut u = [0.0; 3];
-    for (i, (ti, ui)) in hist.iter().enumerate() {
-        let w: f64 = hist
-            .iter()
-            .enumerate()
-            .filter(|(j, _)| *j != i)
-            .map(|(_, (tj, _))| (t - tj) / (ti - tj))
-            .product();
-        for c in 0..3 {
-            u[c] += w * ui[c];
-        }
-    }
-    u
 }

@@ -6,7 +6,7 @@ use crate::march::{march, Contact, Ctx};
 use crate::profile::{Profile, Uniform};
 use crate::report::{Inference, RangeEnd, ScanOptions, ScanResult};
 use crate::shooter::Shooter;
-use crate::solve::{solve, Engine, Method, SolverConfig, Target};
+use crate::solve::{solve, Engine, Method, Target};
 use crate::stepper::{GenericStepper, OwnStepper};
 use crate::{BranchChoice, Model, Shape, VibrissaError};
 use bvp::Guess;
@@ -116,14 +116,6 @@ fn run_with<P: Profile>(
     };
     let u0 = [start.m_base, start.f, contact.beta];
     if let Some(tol) = opts.solver.own_shooter_tol() {
-        let fallback = GenericStepper {
-            family,
-            engine: Engine::new(&SolverConfig {
-                method: Method::Shooting,
-                ..opts.solver.clone()
-            })?,
-            stats: Default::default(),
-        };
         let mut st = OwnStepper {
             shooter: match start.solution() {
                 Some(sol) => Shooter::on_mesh(profile.clone(), c, tol, sol.mesh.clone()),
@@ -131,7 +123,6 @@ fn run_with<P: Profile>(
             },
             eta: contact.eta,
             x_star: contact.x_star,
-            fallback,
         };
         let p0 = st.correct_from(0.0, u0, None).map_err(start_failed)?;
         Ok(march(&mut st, &ctx, grid, p0, start.stats.clone()))

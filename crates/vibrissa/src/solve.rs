@@ -1,8 +1,9 @@
 //! Single solves: the rod shape for a given force angle and tip condition.
 
+use crate::arclength::{self, Arc, ArcPoint, Family, Homotopy, Steps, TipLine};
 use crate::equations::{Ends, HomotopyFamily, RodBvp};
 use crate::profile::{Profile, Uniform};
-use crate::rodsolve::{self, TipCond};
+use crate::rodsolve::{self, Converged, TipCond};
 use crate::shape::{elastica_guess, shape_from, shape_from_elastica, BranchChoice, Shape};
 use crate::shooter::Shooter;
 use crate::{Model, VibrissaError};
@@ -12,6 +13,7 @@ use bvp::{
     Scheme, Shooting, ShootingOptions, Solution, Stats,
 };
 use elastica::{Branch, Elastica};
+use nalgebra::Vector4;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::fmt;
@@ -429,6 +431,11 @@ fn uniform_start(alpha: f64, target: &Target, branch: &BranchChoice) -> [f64; 3]
 
 /// [`solve`] on the rod's own shooter: `member(t)` is the rod at homotopy amplitude `t`. `None`
 /// when it does not converge (the caller then runs the generic solver).
+///
+/// The homotopy from the uniform clamped rod (`t = 0`, started from its closed form) to the rod
+/// (`t = 1`) follows the curve by pseudo-arclength ([`crate::arclength`]), so it passes folds in
+/// `t` and never jumps to another branch (e.g. the mirror image bending the other way); a tip
+/// target then moves the tip along its line the same way.
 fn solve_fast<P: Profile>(
     model: &Model,
     member: impl Fn(f64) -> (P, f64),
@@ -443,7 +450,6 @@ fn solve_fast<P: Profile>(
         Target::Phi1(phi1) => TipCond::Phi1 { phi1, alpha },
         Target::Eta(eta) | Target::Tip { y1: eta, .. } => TipCond::Eta { eta, alpha },
     };
-    let mut u_start = [0.0; 3];
     let cv = if let BranchChoice::Guess(g) = branch {
         let cond = match target {
             Target::Tip { x1, y1 } => TipCond::Pos { x1, y1 },
@@ -457,32 +463,17 @@ fn solve_fast<P: Profile>(
         rodsolve::solve_damped(&mut sh, &cond, [g.m_base, g.f, a], tol, 40).ok()?
     } else {
         let u0 = uniform_start(alpha, &target, branch);
-        u_start = u0;
-        let cond = height(&target);
-        let cv = rodsolve::continuation(
-            &mut sh,
-            |t| {
-                let (p, c) = member(t);
-                (p, c, cond)
-            },
-            u0,
-            tol,
-        )
-        .ok()?;
+        let fam = Homotopy {
+            member: &member,
+            cond: height(&target),
+        };
+        let cv = follow_to(&mut sh, &fam, u0, 0.0, 1.0, tol)?;
         match target {
             Target::Tip { x1, y1 } => {
                 // move the tip from where the height solve put it to x1, α free
                 let x0 = sh.shoot::<false>(&cv.u).y1[0];
-                rodsolve::continuation(
-                    &mut sh,
-                    |t| {
-                        let x = x0 + t * (x1 - x0);
-                        (p1.clone(), c1, TipCond::Pos { x1: x, y1 })
-                    },
-                    cv.u,
-                    tol,
-                )
-                .ok()?
+                let line = TipLine { x0, slope: 1.0, y1 };
+                follow_to(&mut sh, &line, cv.u, 0.0, x1 - x0, tol)?
             }
             _ => cv,
         }
@@ -491,11 +482,6 @@ fn solve_fast<P: Profile>(
     // dependence): leave such rods to the generic solver
     // (a NaN condition number is ill-conditioned too)
     if cv.cond().partial_cmp(&1e6) != Some(std::cmp::Ordering::Less) {
-        return None;
-    }
-    // a homotopy step that landed on the mirror image (the load bending the other way at the
-    // foot) left the branch: leave it to the generic pseudo-arclength homotopy
-    if branch.load_reversals().is_some() && cv.u[0] * u_start[0] < 0.0 {
         return None;
     }
     let params = match target {
@@ -509,6 +495,61 @@ fn solve_fast<P: Profile>(
         ..sh.stats.clone()
     };
     Some(shape_from(sol, alpha, model.profile(1.0)))
+}
+
+/// Follows `fam` by pseudo-arclength from its member at `from` (Newton from `u0`) until `λ`
+/// passes `to`, and returns the member at `to`; `None` on failure.
+fn follow_to<P: Profile, F: Family<P>>(
+    sh: &mut Shooter<P>,
+    fam: &F,
+    u0: [f64; 3],
+    from: f64,
+    to: f64,
+    tol: f64,
+) -> Option<Converged> {
+    let cond = fam.set(sh, from);
+    let first = rodsolve::solve_damped(sh, &cond, u0, tol, 30).ok()?;
+    if to == from {
+        return Some(first);
+    }
+    let r_lam = fam.r_lam(sh, &first.u, from);
+    let start = ArcPoint {
+        v: Vector4::new(first.u[0], first.u[1], first.u[2], from),
+        jac: first.jac,
+        r_lam,
+        residual: first.residual,
+        iterations: first.iterations,
+    };
+    let span = (to - from).abs();
+    let steps = Steps {
+        ds: 0.1 * span,
+        ds_min: 1e-7 * span,
+        ds_max: 0.25 * span,
+    };
+    let dir = (to - from).signum();
+    let mut arc = Arc::new(start, dir, steps, tol).ok()?;
+    for _ in 0..2000 {
+        let (prev, _) = arc.step(sh, fam).ok()?;
+        let (l0, l1) = (prev.lam(), arc.last.lam());
+        if (l1 - to) * dir >= 0.0 {
+            // the member at `to`, from the chord between the points on either side
+            let w = (to - l0) / (l1 - l0);
+            let (a, b) = (prev.u(), arc.last.u());
+            let u = [
+                a[0] + w * (b[0] - a[0]),
+                a[1] + w * (b[1] - a[1]),
+                a[2] + w * (b[2] - a[2]),
+            ];
+            return arclength::at_lambda(sh, fam, u, to, tol, 16)
+                .ok()
+                .map(|p| p.converged());
+        }
+        // the curve turned back past its start: no member at `to` connected to it
+        if (l1 - from) * dir < -span {
+            return None;
+        }
+    }
+    None
 }
 
 fn solve_analytic(

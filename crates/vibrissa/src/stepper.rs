@@ -9,10 +9,12 @@
 //!
 //! Both pass folds in `d` by the pseudo-arclength continuation of crate `bvp`.
 
+use crate::arclength::{self, Arc, Steps, TipLine};
 use crate::equations::ScanFamily;
 use crate::march::{Passed, Pt, Stepper};
 use crate::profile::Profile;
-use crate::rodsolve::{correct_chord, TipCond};
+use crate::rodsolve::{correct_chord, ShotFailure, TipCond};
+use crate::search;
 use crate::shooter::Shooter;
 use crate::solve::Engine;
 use bvp::continuation::{Continuation, ContinuationOptions, FoldKind};
@@ -26,8 +28,6 @@ pub(crate) struct OwnStepper<P: Profile> {
     pub shooter: Shooter<P>,
     pub eta: f64,
     pub x_star: f64,
-    /// For folds in `d` only.
-    pub fallback: GenericStepper<P>,
 }
 
 impl<P: Profile> OwnStepper<P> {
@@ -78,6 +78,71 @@ impl<P: Profile> OwnStepper<P> {
     }
 }
 
+impl<P: Profile> OwnStepper<P> {
+    /// Pseudo-arclength from the newest point until the branch passes `target` (or `d_end`) or
+    /// turns back in `d`; the fold is located as the root of `dd/dσ` between the two points that
+    /// straddle it.
+    fn follow(&mut self, hist: &[Pt], target: f64, d_end: f64) -> Result<Passed, ShotFailure> {
+        let tol = self.shooter.tol;
+        let fam = TipLine {
+            x0: self.x_star,
+            slope: -1.0,
+            y1: self.eta,
+        };
+        let last = &hist[hist.len() - 1];
+        let start = arclength::at_lambda(&mut self.shooter, &fam, last.u, last.d, tol, 16)?;
+        let steps = Steps {
+            ds: 1e-3,
+            ds_min: 1e-10,
+            ds_max: 0.05,
+        };
+        let mut arc = Arc::new(start, 1.0, steps, tol)?;
+        for _ in 0..5000 {
+            let (prev, tprev) = arc.step(&mut self.shooter, &fam)?;
+            if arc.tau[3] <= 0.0 && tprev[3] > 0.0 {
+                let b = arc.last.clone();
+                let span = tprev.dot(&(b.v - prev.v));
+                let sh = &mut self.shooter;
+                let mut slope = |sigma: f64| -> Result<f64, String> {
+                    let p = arclength::between(sh, &fam, &prev, &tprev, &b, sigma, tol)
+                        .map_err(|e| e.to_string())?;
+                    p.tangent(Some(&tprev))
+                        .map(|t| t[3])
+                        .ok_or_else(|| "singular tangent".to_string())
+                };
+                let sigma = match search::root(&mut slope, 0.0, span, 1e-14 * (1.0 + span)) {
+                    Ok(x) => x,
+                    Err(e) => {
+                        return Ok(Passed::Failed(format!("locating the fold in d: {e}")));
+                    }
+                };
+                let p = arclength::between(sh, &fam, &prev, &tprev, &b, sigma, tol)?;
+                let sol = self.shooter.solution(vec![p.v[1], p.v[2]], p.residual);
+                return Ok(Passed::Fold(p.lam(), Some(sol)));
+            }
+            if arc.last.lam() > target || arc.last.lam() >= d_end {
+                let p = &arc.last;
+                let cv = p.converged();
+                let du = cv
+                    .solve([0.0, -1.0, 0.0])
+                    .ok_or(ShotFailure::Singular { iteration: 0 })?;
+                return Ok(Passed::Beyond(Pt {
+                    d: p.lam(),
+                    u: cv.u,
+                    du: Some(du),
+                    det: Some(cv.det()),
+                    iters: p.iterations,
+                    sol: self.shooter.solution(vec![cv.u[1], cv.u[2]], cv.residual),
+                }));
+            }
+        }
+        Ok(Passed::Failed(format!(
+            "pseudo-arclength did not pass d = {target} in 5000 steps (last d = {})",
+            arc.last.lam()
+        )))
+    }
+}
+
 fn max_diff(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a.iter()
         .zip(b)
@@ -90,19 +155,14 @@ impl<P: Profile> Stepper for OwnStepper<P> {
     }
 
     fn pass_fold(&mut self, hist: &[Pt], target: f64, d_end: f64) -> Passed {
-        match self.fallback.pass_fold(hist, target, d_end) {
-            Passed::Beyond(q) => match self.correct_from(q.d, q.u, None) {
-                Ok(p) => Passed::Beyond(p),
-                Err(e) => Passed::Failed(format!("after the pseudo-arclength step: {e}")),
-            },
-            other => other,
+        match self.follow(hist, target, d_end) {
+            Ok(p) => p,
+            Err(e) => Passed::Failed(format!("pseudo-arclength in d: {e}")),
         }
     }
 
     fn stats(&self) -> Stats {
-        let mut s = self.shooter.stats.clone();
-        s.accumulate(&self.fallback.stats);
-        s
+        self.shooter.stats.clone()
     }
 
     fn h_max(&self) -> f64 {
