@@ -19,7 +19,7 @@ use std::time::Duration;
 use vibrissa::equations::{Ends, RodBvp};
 use vibrissa::profile::Uniform;
 use vibrissa::{
-    scan, solve, BranchChoice, Method, Model, ScanOptions, Scene, SolverConfig, Target,
+    scan, solve, BranchChoice, Method, Rod, ScanOptions, SolverConfig, Surface, Target,
 };
 
 fn cfg(method: Method, tol: f64, rk4: Option<usize>) -> SolverConfig {
@@ -33,10 +33,10 @@ fn cfg(method: Method, tol: f64, rk4: Option<usize>) -> SolverConfig {
 
 fn bench_shape(c: &mut Criterion) {
     let (alpha, phi1) = (-PI / 8.0, PI / 8.0);
-    let model = Model::new(&Scene::default()).unwrap();
+    let rod = Rod::uniform();
     let f_ref = Elastica::new(Branch::Convex, alpha, phi1).unwrap().f;
     let warm = solve(
-        &model,
+        &rod,
         0.9 * alpha,
         Target::Phi1(0.9 * phi1),
         &BranchChoice::Convex,
@@ -74,7 +74,7 @@ fn bench_shape(c: &mut Criterion) {
         } else {
             BranchChoice::Convex
         };
-        let s = solve(&model, alpha, Target::Phi1(phi1), &choice, &cf).unwrap();
+        let s = solve(&rod, alpha, Target::Phi1(phi1), &choice, &cf).unwrap();
         eprintln!(
             "shape/{name}: rel. error in f {:.2e} ({} rhs evals, {} Newton iterations)",
             (s.f - f_ref).abs() / f_ref,
@@ -82,7 +82,7 @@ fn bench_shape(c: &mut Criterion) {
             s.stats.newton_iters
         );
         group.bench_function(name, |b| {
-            b.iter(|| solve(&model, alpha, Target::Phi1(phi1), &choice, &cf).unwrap())
+            b.iter(|| solve(&rod, alpha, Target::Phi1(phi1), &choice, &cf).unwrap())
         });
     }
     // The bare BVP solve (crate bvp on the rod model), without the closed-form start, branch
@@ -137,7 +137,7 @@ fn scan_opts(method: Method, tol: f64) -> ScanOptions {
 }
 
 fn bench_scan(c: &mut Criterion) {
-    let model = Model::new(&Scene::default()).unwrap();
+    let (rod, surface) = (Rod::uniform(), Surface::flat(0.75).unwrap());
     let cf = elastica::ClosedFormScan::new(0.75).unwrap();
     let mut group = c.benchmark_group("scan");
     group.sample_size(10);
@@ -148,7 +148,7 @@ fn bench_scan(c: &mut Criterion) {
         ("shooting-1e-6", Method::Shooting, 1e-6),
     ] {
         let o = scan_opts(method, tol);
-        let r = scan(&model, &o).unwrap();
+        let r = scan(&rod, &surface, &o).unwrap();
         // μ_max against the closed form: a single well-defined number per scan
         let mm = cf.mu_max().unwrap();
         eprintln!(
@@ -159,27 +159,24 @@ fn bench_scan(c: &mut Criterion) {
             mm.mu,
             (r.mu_max - mm.mu).abs()
         );
-        group.bench_function(name, |b| b.iter(|| black_box(scan(&model, &o).unwrap())));
+        group.bench_function(name, |b| {
+            b.iter(|| black_box(scan(&rod, &surface, &o).unwrap()))
+        });
     }
     group.finish();
 }
 
-fn sweep(models: &[Model], o: &ScanOptions) -> f64 {
-    models
+fn sweep(surfaces: &[Surface], o: &ScanOptions) -> f64 {
+    let rod = Rod::uniform();
+    surfaces
         .par_iter()
-        .map(|m| scan(m, o).map_or(f64::NAN, |r| r.mu_max))
+        .map(|s| scan(&rod, s, o).map_or(f64::NAN, |r| r.mu_max))
         .sum()
 }
 
 fn bench_sweep(c: &mut Criterion) {
-    let models: Vec<Model> = (0..50)
-        .map(|i| {
-            Model::new(&Scene {
-                eta: 0.60 + 0.35 * i as f64 / 49.0,
-                ..Scene::default()
-            })
-            .unwrap()
-        })
+    let models: Vec<Surface> = (0..50)
+        .map(|i| Surface::flat(0.60 + 0.35 * i as f64 / 49.0).unwrap())
         .collect();
     let o = scan_opts(Method::Shooting, 1e-10);
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());

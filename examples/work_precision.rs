@@ -3,7 +3,7 @@
 //! 1. one shape, α = −π/8, φ1 = π/8, convex and one-flex branch (the paper's Fig. 3); error in `f`
 //!    relative to the closed form (crate `elastica`);
 //! 2. the stiction scan at η = 0.75, d ∈ [0, 0.5], 201 points; max error in μ against the closed
-//!    form (`elastica::ClosedFormScan`), compared at the closed-form points' `d`;
+//!    form (the library's closed-form scan, `Method::Analytic`), compared at the same `d`;
 //! 3. the tapered rod (ρ = 0.1) scan at η = 0.97 (at η = 0.75 the start rod already penetrates
 //!    the surface), grid of 201 points on [0, 0.5] up to the scan's fold in d; max error in μ
 //!    against a very tight solve of single shooting (cross-checked against collocation of
@@ -24,14 +24,14 @@
 //! until it lasts ≥ 0.1 s), so they are comparable within one run of this program.
 
 use anyhow::{anyhow, bail, Context, Result};
-use elastica::{Branch, ClosedFormScan, Elastica, ScanPoint as CfPoint};
+use elastica::{Branch, Elastica};
 use plotters::prelude::*;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::{Duration, Instant};
 use vibrissa::{
-    scan_at, solve, BranchChoice, Method, Model, ScanOptions, Scene, SolverConfig, Target,
+    scan_at, solve, BranchChoice, Method, Rod, ScanOptions, Scene, SolverConfig, Surface, Target,
 };
 
 /// One measured configuration.
@@ -146,13 +146,13 @@ fn knob_parts(k: Knob) -> (f64, Option<usize>) {
 fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
     let alpha = -PI / 8.0;
     let phi1 = PI / 8.0;
-    let model = Model::new(&Scene::default())?;
+    let rod = Rod::uniform();
     let near = |b: BranchChoice| -> Result<BranchChoice> {
         let cfg = SolverConfig {
             rk4_steps: Some(20),
             ..SolverConfig::default()
         };
-        let s = solve(&model, 0.9 * alpha, Target::Phi1(0.9 * phi1), &b, &cfg)?;
+        let s = solve(&rod, 0.9 * alpha, Target::Phi1(0.9 * phi1), &b, &cfg)?;
         Ok(BranchChoice::Guess(Box::new(s)))
     };
     let branches = [
@@ -173,7 +173,7 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
             let mut note = String::new();
             for ((_, choice), &fr) in branches.iter().zip(&f_ref) {
                 let r = time_it(|| {
-                    solve(&model, alpha, Target::Phi1(phi1), choice, &cfg).map_err(Into::into)
+                    solve(&rod, alpha, Target::Phi1(phi1), choice, &cfg).map_err(Into::into)
                 });
                 match r {
                     Ok((shape, t, n)) => {
@@ -220,7 +220,7 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
             ..SolverConfig::default()
         };
         let (shape, t, n) =
-            time_it(|| solve(&model, alpha, Target::Phi1(phi1), choice, &cfg).map_err(Into::into))?;
+            time_it(|| solve(&rod, alpha, Target::Phi1(phi1), choice, &cfg).map_err(Into::into))?;
         err = err.max((shape.f - fm).abs() / fm);
         time += t;
         reps = n;
@@ -240,68 +240,12 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
     Ok(())
 }
 
-/// The closed-form scan as one curve in a parameter `t ∈ [0, 3]`: phase 0 in α (t ∈ [0, 1]),
-/// phase 1 in φ1 down to the fold (t ∈ [1, 2]), the other sheet in φ1 back up (t ∈ [2, 3]).
-struct CfCurve {
-    cf: ClosedFormScan,
-}
-
-impl CfCurve {
-    fn at(&self, t: f64) -> Result<CfPoint> {
-        Ok(self.cf.curve_at(t)?)
-    }
-
-    /// Closed-form points whose `d` are close to `targets` (increasing): `d(t)` is tabulated,
-    /// checked monotone, and inverted by Brent's method; the returned points are exact.
-    fn points_near(&self, targets: &[f64]) -> Result<Vec<CfPoint>> {
-        let n = 3000;
-        let tab: Vec<(f64, f64)> = (0..=n)
-            .map(|i| {
-                let t = 3.0 * i as f64 / n as f64;
-                self.at(t).map(|p| (t, p.d))
-            })
-            .collect::<Result<_>>()?;
-        if tab.windows(2).any(|w| w[1].1 <= w[0].1) {
-            bail!("closed-form d(t) is not increasing: cannot invert");
-        }
-        let mut out = Vec::with_capacity(targets.len());
-        for &d in targets {
-            if d <= 0.0 {
-                out.push(self.at(0.0)?);
-                continue;
-            }
-            let j = tab
-                .windows(2)
-                .position(|w| w[0].1 <= d && d <= w[1].1)
-                .ok_or_else(|| anyhow!("d = {d} beyond the closed-form curve"))?;
-            let (a, b) = (tab[j].0, tab[j + 1].0);
-            let t = elastica::roots::try_brent_root(
-                |t| {
-                    Ok(self
-                        .at(t)
-                        .map_err(|_| elastica::ElasticaError::NotFinite {
-                            name: "closed form",
-                            value: t,
-                        })?
-                        .d
-                        - d)
-                },
-                a,
-                b,
-                1e-14,
-                200,
-            )?;
-            out.push(self.at(t)?);
-        }
-        Ok(out)
-    }
-}
-
-/// The scan problems: (problem name, model, reference points `(d, μ)`).
+/// The scan problems: (problem name, rod, surface, reference points `(d, μ)`).
 fn scan_problem(
     rows: &mut Vec<Row>,
     problem: &'static str,
-    model: &Model,
+    rod: &Rod,
+    surface: &Surface,
     reference: &[(f64, f64)],
     quick: bool,
     cap: f64,
@@ -315,7 +259,7 @@ fn scan_problem(
                 ..ScanOptions::default()
             };
             let (tol, rk4_steps) = knob_parts(knob);
-            let r = time_it(|| scan_at(model, &opts, &d).map_err(Into::into));
+            let r = time_it(|| scan_at(rod, surface, &opts, &d).map_err(Into::into));
             let (err, time, reps, rhs, newton, note) = match r {
                 Ok((res, t, n)) => {
                     // compared where both have points (the reference may stop early too)
@@ -364,21 +308,24 @@ fn scan_problem(
 }
 
 fn uniform_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
-    let eta = 0.75;
-    let curve = CfCurve {
-        cf: ClosedFormScan::new(eta)?,
+    let (rod, surface) = Scene::default().parts()?;
+    let grid: Vec<f64> = (0..201).map(|i| 0.5 * i as f64 / 200.0).collect();
+    // the reference: the library's closed-form scan (elastica's curve across the fold in φ1,
+    // each d found on it by Brent's method)
+    let analytic = ScanOptions {
+        d_max: 0.5,
+        solver: SolverConfig {
+            method: Method::Analytic,
+            ..SolverConfig::default()
+        },
+        ..ScanOptions::default()
     };
-    let targets: Vec<f64> = (0..201)
-        .map(|i| {
-            if i == 200 {
-                0.5 - 1e-9
-            } else {
-                0.5 * i as f64 / 200.0
-            }
-        })
-        .collect();
-    let (pts, t_cf, reps) = time_it(|| curve.points_near(&targets))?;
-    let reference: Vec<(f64, f64)> = pts.iter().map(|p| (p.d, p.mu)).collect();
+    let (r, t_cf, reps) =
+        time_it(|| scan_at(&rod, &surface, &analytic, &grid).map_err(Into::into))?;
+    if r.points.len() != grid.len() {
+        bail!("the closed-form reference stopped early: {}", r.stop);
+    }
+    let reference: Vec<(f64, f64)> = r.points.iter().map(|p| (p.d, p.mu)).collect();
     rows.push(Row {
         problem: "scan",
         method: "analytic".into(),
@@ -389,13 +336,9 @@ fn uniform_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         reps,
         rhs_evals: 0,
         newton_iters: 0,
-        note: "the reference itself (201 closed-form points, d found by Brent)".into(),
+        note: "the reference itself (vibrissa::scan_at with Method::Analytic, 201 points)".into(),
     });
-    let model = Model::new(&Scene {
-        eta,
-        ..Scene::default()
-    })?;
-    scan_problem(rows, "scan", &model, &reference, quick, cap)
+    scan_problem(rows, "scan", &rod, &surface, &reference, quick, cap)
 }
 
 fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
@@ -406,7 +349,7 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         stiffness: vibrissa::Stiffness::Taper { ratio: 0.1 },
         ..Scene::default()
     };
-    let model = Model::new(&scene)?;
+    let (rod, surface) = scene.parts()?;
     let grid: Vec<f64> = (0..201).map(|i| 0.5 * i as f64 / 200.0).collect();
     let tight = |method, tol| -> Result<Vec<(f64, f64)>> {
         let opts = ScanOptions {
@@ -418,7 +361,7 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
             },
             ..ScanOptions::default()
         };
-        let r = scan_at(&model, &opts, &grid)?;
+        let r = scan_at(&rod, &surface, &opts, &grid)?;
         eprintln!(
             "taper {method:?} {tol:e}: {} points, stop: {}",
             r.points.len(),
@@ -454,7 +397,7 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         newton_iters: 0,
         note: "reference (shooting-dop853 tol 1e-13) vs collocation6 tol 1e-11".into(),
     });
-    scan_problem(rows, "taper", &model, &reference, quick, cap)
+    scan_problem(rows, "taper", &rod, &surface, &reference, quick, cap)
 }
 
 fn machine() -> String {

@@ -45,7 +45,9 @@ pub fn nonneg_f64(s: &str) -> Result<f64, String> {
     long_about = "Elastic whisker (vibrissa) model: tip-contact solves, stiction scans, parameter sweeps, the paper's figures.\n\n\
 Units are normalized: length L (the rod length), force EI/L^2, moment EI/L (EI at the base), angles in radians. \
 The tip force is F = (f sin(alpha), -f cos(alpha)): alpha = 0 points straight down, alpha < 0 rotates it clockwise; \
-mu = tan(-alpha). m_base = m(0) is the internal moment at the foot (the paper's clamp moment is m0 = -m_base).",
+mu = F.t/N = tan(beta - alpha) is the signed friction ratio the contact must supply (beta: surface angle; \
+N = f cos(alpha - beta) >= 0 the normal force; mu > 0 holds the tip back against the drag), the tip slips where |mu| \
+reaches mu0 and lifts off where N reaches 0. m_base = m(0) is the internal moment at the foot (the paper's clamp moment is m0 = -m_base).",
     allow_negative_numbers = true
 )]
 pub struct Cli {
@@ -182,6 +184,11 @@ pub struct SolveArgs {
     /// Number of points of --shape-out, uniform in s (>= 2).
     #[arg(long, value_name = "N", default_value_t = 101, value_parser = clap::value_parser!(u32).range(2..=1_000_000))]
     pub shape_points: u32,
+    /// Make it an error when the rod crosses the surface line through its tip (inclined by
+    /// --surface-angle): some point with s < 1 above it, or the tip arriving from above. Without
+    /// it such a rod is reported with penetration = 1 and a warning on stderr.
+    #[arg(long)]
+    pub require_contact: bool,
 }
 
 /// `vibrissa scan`.
@@ -196,7 +203,8 @@ pub struct ScanArgs {
     /// Number of output points, uniform in d from 0 to --d-max (>= 2).
     #[arg(long, value_name = "N", default_value_t = 201, value_parser = clap::value_parser!(u32).range(2..=10_000_000))]
     pub points: u32,
-    /// Stiction coefficient: stop when mu = tan(-alpha) reaches it (the tip slips). [default: none]
+    /// Stiction coefficient: stop where |mu| reaches it (the tip slips, backwards for mu = mu0,
+    /// forwards for mu = -mu0). mu = F.t/N is the signed friction ratio, tan(beta - alpha). [default: none]
     #[arg(long, value_name = "MU", value_parser = nonneg_f64)]
     pub mu0: Option<f64>,
     #[command(flatten)]

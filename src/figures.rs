@@ -5,13 +5,13 @@ use crate::cli::{FiguresArgs, MethodArg};
 use crate::error::{solve_fail, usage, Fail, Res};
 use crate::numeric;
 use crate::output::{csv_line, num, AtomicFile};
-use crate::scan::{run_scan, ClosedCurve, ScanOut, ScanSpec};
+use crate::scan::{run_scan, ScanOut, ScanSpec};
 use elastica::{Branch, Elastica};
 use plotters::prelude::*;
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 use std::io::Write;
 use std::path::Path;
-use vibrissa::{BranchChoice, Model, Scene, SolverConfig, Target};
+use vibrissa::{BranchChoice, Rod, Scene, SolverConfig, Target};
 
 /// How a series is drawn.
 #[derive(Clone, Copy, PartialEq)]
@@ -239,7 +239,7 @@ fn lin(a: f64, b: f64, n: usize) -> impl Iterator<Item = f64> {
 
 struct Ctx {
     cfg: SolverConfig,
-    model: Model,
+    rod: Rod,
     method: MethodArg,
     tol: f64,
 }
@@ -250,7 +250,7 @@ impl Ctx {
             Branch::Convex => BranchChoice::Convex,
             Branch::OneFlex => BranchChoice::Flex,
         };
-        vibrissa::solve(&self.model, alpha, target, &b, &self.cfg).ok()
+        vibrissa::solve(&self.rod, alpha, target, &b, &self.cfg).ok()
     }
 
     fn scan(&self, eta: f64, d_max: f64, points: usize, shapes: usize) -> Res<ScanOut> {
@@ -489,19 +489,13 @@ fn scan_figs(dir: &Path, cx: &Ctx, eta: f64, first: usize) -> Res<()> {
     // the low surface's scan ends near d = 0.094: zoom in
     let d_max = if eta < 0.65 { 0.1 } else { 0.5 };
     let dense = cx.scan(eta, d_max, 101, 0)?;
-    let c = ClosedCurve::new(eta)?;
+    let c = elastica::ClosedFormScan::new(eta)?;
     // closed-form curve in the curve parameter (also beyond the fold in phi1)
-    let mut cf: Vec<crate::scan::Pt> = Vec::new();
-    let tmax = if c.cf.fold.is_some() {
-        3.0
-    } else if c.cf.phase0_end == elastica::Phase0End::TurningPoint {
-        2.0
-    } else {
-        1.0
-    };
+    let mut cf: Vec<elastica::ScanPoint> = Vec::new();
+    let tmax = c.curve_end();
     let last_d = dense.pts.last().map_or(0.0, |p| p.d);
     for t in lin(0.0, tmax, (tmax * 150.0) as usize + 1) {
-        if let Ok(p) = c.pt(t) {
+        if let Ok(p) = c.curve_at(t) {
             if p.d <= last_d + 1e-9 {
                 cf.push(p);
             }
@@ -526,7 +520,7 @@ fn scan_figs(dir: &Path, cx: &Ctx, eta: f64, first: usize) -> Res<()> {
         RED_,
         dense.pts.iter().map(|p| (p.phi1, p.f)).collect(),
     ));
-    let end_name = if c.cf.phase0_end == elastica::Phase0End::TurningPoint {
+    let end_name = if c.phase0_end == elastica::Phase0End::TurningPoint {
         "turning point (closed form)"
     } else {
         "end of phase 0: phi1 = 0"
@@ -535,7 +529,7 @@ fn scan_figs(dir: &Path, cx: &Ctx, eta: f64, first: usize) -> Res<()> {
         end_name,
         Kind::Cross,
         GREEN_,
-        vec![(c.cf.turning.phi1, c.cf.turning.f)],
+        vec![(c.turning.phi1, c.turning.f)],
     ));
     a.legend_pos = SeriesLabelPosition::UpperRight;
     figure(
@@ -574,7 +568,7 @@ fn scan_figs(dir: &Path, cx: &Ctx, eta: f64, first: usize) -> Res<()> {
             flex.push((sh[k].x + p.d, sh[k].y));
         }
     }
-    let x1s = c.cf.start.x1;
+    let x1s = c.start.x1;
     b.series.push(series(
         &format!("surface y = {eta}"),
         Kind::Dashed,
@@ -663,7 +657,7 @@ pub fn run(a: &FiguresArgs) -> Res<()> {
         .map_err(|e| solve_fail(format!("cannot create {}: {e}", a.out_dir.display())))?;
     let cx = Ctx {
         cfg: numeric::config(a.method, a.tol),
-        model: numeric::model(&Scene::default())?,
+        rod: Rod::uniform(),
         method: a.method,
         tol: a.tol,
     };

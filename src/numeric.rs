@@ -1,9 +1,9 @@
-//! Numerical back end: the `vibrissa` model crate (shooting, collocation, continuation).
+//! The library side of the program: scene parts, solver settings, one solve.
 
 use crate::cli::{BranchArg, MethodArg, SolveArgs};
 use crate::error::{Fail, Res};
 use crate::solve::{branch_name, ShapeRow, SolveOut};
-use vibrissa::{BranchChoice, Method, Model, Scene, SolverConfig, Target, VibrissaError};
+use vibrissa::{BranchChoice, Method, Rod, Scene, SolverConfig, Surface, Target, VibrissaError};
 
 impl From<VibrissaError> for Fail {
     fn from(e: VibrissaError) -> Fail {
@@ -43,14 +43,14 @@ pub fn config(m: MethodArg, tol: f64) -> SolverConfig {
     }
 }
 
-/// Validated model of a scene.
-pub fn model(scene: &Scene) -> Res<Model> {
-    Ok(Model::new(scene)?)
+/// The validated parts of a scene: the rod and the surface.
+pub fn parts(scene: &Scene) -> Res<(Rod, Surface)> {
+    Ok(scene.parts()?)
 }
 
-/// Numerical solve of one rod.
+/// Solve of one rod, by any method.
 pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
-    let model = model(scene)?;
+    let rod = scene.rod()?;
     let target = match (a.phi1, a.eta) {
         (Some(p), _) => Target::Phi1(p),
         (None, Some(h)) => Target::Eta(h),
@@ -61,7 +61,8 @@ pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
         BranchArg::Flex => BranchChoice::Flex,
     };
     let cfg = config(a.solver.method, a.solver.tol);
-    let sh = vibrissa::solve(&model, a.alpha, target, &branch, &cfg)?;
+    let sh = vibrissa::solve(&rod, a.alpha, target, &branch, &cfg)?;
+    let clearance = sh.clearance(scene.surface_angle);
     let shape = if npts >= 2 {
         sh.samples(npts)
             .into_iter()
@@ -92,6 +93,8 @@ pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
         s_flex: sh.s_flex,
         y_max: sh.y_max,
         residual: sh.residual,
+        penetration: clearance.penetrates(),
+        clearance,
         physical: None,
         shape,
     })

@@ -2,26 +2,23 @@
 //! paper's rod) and its CSV / JSON / human output.
 
 use crate::cli::{InferArgs, MethodArg, ScanArgs};
-use crate::error::{solve_fail, usage, Fail, Res};
+use crate::error::{solve_fail, Res};
 use crate::numeric;
 use crate::output::{csv_line, num, opt, AtomicFile, Sink};
-use crate::scene_args::{build_scene, is_paper_rod, not_analytic, units_of, Units};
+use crate::scene_args::{build_scene, Units};
 use crate::solve::ShapeRow;
-use elastica::roots::try_brent_root;
-use elastica::{Branch, ClosedFormScan, Elastica, ElasticaError, Phase0End};
 use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
-use vibrissa::{ScanOptions, Scene, StopReason};
+use vibrissa::{RangeEnd, ScanOptions, Scene, StopReason};
 
-/// One scan point (the columns of the scan CSV): the library's point, also built from the closed
-/// forms for `--method analytic`.
+/// One scan point (the columns of the scan CSV).
 pub type Pt = vibrissa::ScanPoint;
 
 /// True when every value of the point is finite (a result row may be printed).
 fn finite(p: &Pt) -> bool {
     [
-        p.d, p.mu, p.alpha, p.phi1, p.f, p.fx, p.fy, p.m_base, p.y_max,
+        p.d, p.mu, p.normal, p.alpha, p.phi1, p.f, p.fx, p.fy, p.m_base, p.y_max,
     ]
     .iter()
     .all(|v| v.is_finite())
@@ -31,7 +28,7 @@ fn finite(p: &Pt) -> bool {
 /// Why the scan stopped, flattened for CSV / JSON.
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Stop {
-    /// `d_max`, `slip`, `penetration`, `fold_in_d`, `solver_failure`, `closed_form_end`
+    /// `d_max`, `slip`, `lift_off`, `penetration`, `fold_in_d`, `solver_failure`
     pub reason: String,
     /// where (last displacement)
     pub d: Option<f64>,
@@ -77,10 +74,14 @@ pub struct ScanOut {
     pub eta: f64,
     /// start (d = 0)
     pub start: Pt,
-    /// mu_max over the scan
+    /// largest |mu| over the measurable range
     pub mu_max: f64,
+    /// the signed mu there
+    pub mu_at_max: f64,
     /// d at mu_max (upper end of the measurable range)
     pub d_at_mu_max: f64,
+    /// what ends the measurable range
+    pub range_end: RangeEnd,
     /// stop reason
     pub stop: Stop,
     /// number of points
@@ -114,16 +115,52 @@ pub struct ScanSpec {
     pub shape_points: usize,
 }
 
-/// Run a scan on a validated scene.
+/// Run a scan on a validated scene (every method, the closed forms included, through the
+/// library's one scan driver).
 pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
     let t0 = Instant::now();
-    let mut out = if spec.method == MethodArg::Analytic {
-        if !is_paper_rod(scene, true) {
-            return Err(not_analytic());
-        }
-        analytic_scan(scene.eta, spec)?
-    } else {
-        numeric_scan(scene, spec)?
+    let (rod, surface) = numeric::parts(scene)?;
+    let opts = ScanOptions {
+        d_max: spec.d_max,
+        points: spec.points,
+        mu0: spec.mu0,
+        solver: numeric::config(spec.method, spec.tol),
+        keep_shapes: (spec.shape_points >= 2).then_some(spec.shape_points),
+    };
+    let r = vibrissa::scan(&rod, &surface, &opts)?;
+    let mut out = ScanOut {
+        method: spec.method.name(),
+        eta: r.eta,
+        start: r.start,
+        mu_max: r.mu_max,
+        mu_at_max: r.mu_at_max,
+        d_at_mu_max: r.d_at_mu_max,
+        range_end: r.range_end,
+        stop: Stop::from(&r.stop),
+        points: r.points.len(),
+        stats: Work {
+            newton_iters: r.stats.newton_iters,
+            rhs_evals: r.stats.rhs_evals,
+            factorizations: r.stats.factorizations,
+        },
+        time_ms: 0.0,
+        pts: r.points,
+        shapes: r
+            .shapes
+            .iter()
+            .map(|sh| {
+                sh.iter()
+                    .map(|p| ShapeRow {
+                        s: p.s,
+                        x: p.x,
+                        y: p.y,
+                        phi: p.phi,
+                        kappa: p.kappa,
+                        m: p.m,
+                    })
+                    .collect()
+            })
+            .collect(),
     };
     // never present non-finite rows
     if let Some(bad) = out.pts.iter().position(|p| !finite(p)) {
@@ -146,304 +183,17 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
     Ok(out)
 }
 
-fn numeric_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
-    let model = numeric::model(scene)?;
-    let opts = ScanOptions {
-        d_max: spec.d_max,
-        points: spec.points,
-        mu0: spec.mu0,
-        solver: numeric::config(spec.method, spec.tol),
-        keep_shapes: (spec.shape_points >= 2).then_some(spec.shape_points),
-    };
-    let r = vibrissa::scan(&model, &opts)?;
-    Ok(ScanOut {
-        method: spec.method.name(),
-        eta: r.eta,
-        start: r.start,
-        mu_max: r.mu_max,
-        d_at_mu_max: r.d_at_mu_max,
-        stop: Stop::from(&r.stop),
-        points: r.points.len(),
-        stats: Work {
-            newton_iters: r.stats.newton_iters,
-            rhs_evals: r.stats.rhs_evals,
-            factorizations: r.stats.factorizations,
-        },
-        time_ms: 0.0,
-        pts: r.points.clone(),
-        shapes: r
-            .shapes
-            .iter()
-            .map(|sh| {
-                sh.iter()
-                    .map(|p| ShapeRow {
-                        s: p.s,
-                        x: p.x,
-                        y: p.y,
-                        phi: p.phi,
-                        kappa: p.kappa,
-                        m: p.m,
-                    })
-                    .collect()
-            })
-            .collect(),
-    })
-}
-
-/// The closed-form scan along one curve parameter `t`: `t ∈ [0, 1]` phase 0 (alpha from 0 to
-/// alpha_t), `t ∈ [1, 2]` phase 1 (phi1 from phi1_t down to phi1_min), `t ∈ [2, 3]` the other
-/// sheet beyond the fold in phi1 (phi1 back up). `d(t)` is checked to increase.
-pub struct ClosedCurve {
-    /// the closed-form scan
-    pub cf: ClosedFormScan,
-    t_end: f64,
-}
-
-impl ClosedCurve {
-    /// Set up at height `eta`.
-    pub fn new(eta: f64) -> Res<ClosedCurve> {
-        let cf = ClosedFormScan::new(eta)?;
-        let t_end = cf.curve_end();
-        Ok(ClosedCurve { cf, t_end })
-    }
-
-    /// The rod at curve parameter `t`.
-    pub fn at(&self, t: f64) -> Result<(Elastica, f64), ElasticaError> {
-        let cf = &self.cf;
-        let p = cf.curve_at(t)?;
-        let br = if t <= 1.0 || p.flex == 0 {
-            Branch::Convex
-        } else {
-            Branch::OneFlex
-        };
-        let e = if t == 1.0 && br == Branch::Convex && cf.phase0_end == Phase0End::TurningPoint {
-            Elastica::turning(Branch::Convex, p.alpha)?
-        } else {
-            Elastica::new(br, p.alpha, p.phi1)?
-        };
-        Ok((e, p.d))
-    }
-
-    /// Scan point at `t`.
-    pub fn pt(&self, t: f64) -> Result<Pt, ElasticaError> {
-        let (e, d) = self.at(t)?;
-        Ok(pt_of(&e, d))
-    }
-}
-
-fn pt_of(e: &Elastica, d: f64) -> Pt {
-    Pt {
-        d,
-        mu: (-e.alpha).tan(),
-        normal: e.f * e.alpha.cos(),
-        alpha: e.alpha,
-        phi1: e.phi1,
-        f: e.f,
-        fx: e.fx(),
-        fy: e.fy(),
-        m_base: e.m_base,
-        flex: e.flex_count(),
-        s_flex: if e.flex_count() > 0 { e.s_b } else { None },
-        y_max: e.y_max(),
-        event: None,
-    }
-}
-
-/// Grid of the curve: (t, d) with d increasing, and how it ends.
-fn curve_grid(c: &ClosedCurve) -> (Vec<(f64, f64)>, Stop) {
-    const PER_UNIT: usize = 64;
-    let n = (c.t_end * PER_UNIT as f64) as usize;
-    let mut grid: Vec<(f64, f64)> = Vec::with_capacity(n + 1);
-    for i in 0..=n {
-        let t = if i == n {
-            c.t_end
-        } else {
-            i as f64 / PER_UNIT as f64
-        };
-        match c.at(t) {
-            Ok((_, d)) => {
-                if let Some(&(_, dp)) = grid.last() {
-                    if d < dp {
-                        return (
-                            grid,
-                            Stop {
-                                reason: "fold_in_d".into(),
-                                d: Some(dp),
-                                detail: format!("fold in d (snap-through) near d = {dp}"),
-                            },
-                        );
-                    }
-                }
-                grid.push((t, d));
-            }
-            Err(e) => {
-                let d = grid.last().map(|g| g.1).unwrap_or(0.0);
-                return (
-                    grid,
-                    Stop {
-                        reason: "closed_form_end".into(),
-                        d: Some(d),
-                        detail: format!("closed forms end after d = {d}: {e}"),
-                    },
-                );
-            }
-        }
-    }
-    let d = grid.last().map(|g| g.1).unwrap_or(0.0);
-    let stop = if c.cf.phase0_end == Phase0End::TipHorizontal || c.t_end == 2.0 {
-        Stop {
-            reason: "penetration".into(),
-            d: Some(d),
-            detail: format!(
-                "penetration at d = {d}: the tip slope reaches 0, beyond it the rod would cross the surface"
-            ),
-        }
-    } else {
-        Stop {
-            reason: "closed_form_end".into(),
-            d: Some(d),
-            detail: format!("end of the closed-form branches at d = {d}"),
-        }
-    };
-    (grid, stop)
-}
-
-/// Parameter `t` with `d(t) = d` inside the grid cell that brackets it.
-fn t_of_d(c: &ClosedCurve, grid: &[(f64, f64)], d: f64) -> Res<f64> {
-    let i = grid.partition_point(|g| g.1 < d);
-    if i == 0 {
-        return Ok(grid[0].0);
-    }
-    if i >= grid.len() {
-        return Err(solve_fail(format!(
-            "d = {d} is beyond the closed-form curve"
-        )));
-    }
-    let (ta, tb) = (grid[i - 1].0, grid[i].0);
-    if grid[i].1 == d {
-        return Ok(tb);
-    }
-    Ok(try_brent_root(|t| Ok(c.at(t)?.1 - d), ta, tb, 1e-15, 200)?)
-}
-
-/// The closed-form scan at `d = d_max·i/(N−1)`.
-pub fn analytic_scan(eta: f64, spec: &ScanSpec) -> Res<ScanOut> {
-    let c = ClosedCurve::new(eta)?;
-    let (grid, end) = curve_grid(&c);
-    let d_reach = grid.last().map(|g| g.1).unwrap_or(0.0);
-    let start = c.pt(0.0)?;
-    let n = spec.points;
-    let mut pts = Vec::with_capacity(n);
-    let mut shapes = Vec::new();
-    let mut stop = Stop {
-        reason: "d_max".into(),
-        d: None,
-        detail: "d_max reached".into(),
-    };
-    let mut prev_t = 0.0;
-    for i in 0..n {
-        let d = if i + 1 == n {
-            spec.d_max
-        } else {
-            spec.d_max * i as f64 / (n - 1) as f64
-        };
-        if d > d_reach {
-            // the last point is where the curve ends (penetration, fold, end of closed forms)
-            if let Some(&(te, de)) = grid.last() {
-                if pts.last().is_none_or(|p: &Pt| p.d < de) {
-                    let (e, _) = c.at(te)?;
-                    pts.push(pt_of(&e, de));
-                    if spec.shape_points >= 2 {
-                        shapes.push(elastica_shape(&e, spec.shape_points)?);
-                    }
-                }
-            }
-            stop = end.clone();
-            break;
-        }
-        let t = t_of_d(&c, &grid, d)?;
-        let (mut e, _) = c.at(t)?;
-        let mut p = pt_of(&e, d);
-        if let Some(mu0) = spec.mu0 {
-            if p.mu >= mu0 {
-                // the slip point between the previous output point and this one
-                let ts = if i == 0 {
-                    0.0
-                } else {
-                    try_brent_root(|t| Ok(c.pt(t)?.mu - mu0), prev_t, t, 1e-15, 200)?
-                };
-                let (es, ds) = c.at(ts)?;
-                e = es;
-                p = pt_of(&e, ds);
-                stop = Stop {
-                    reason: "slip".into(),
-                    d: Some(ds),
-                    detail: format!("slip at d = {ds} (mu = {})", p.mu),
-                };
-                pts.push(p);
-                if spec.shape_points >= 2 {
-                    shapes.push(elastica_shape(&e, spec.shape_points)?);
-                }
-                break;
-            }
-        }
-        pts.push(p);
-        if spec.shape_points >= 2 {
-            shapes.push(elastica_shape(&e, spec.shape_points)?);
-        }
-        prev_t = t;
-    }
-    // mu_max over what was scanned: the closed-form maximum if reached, else the last point
-    let best = c.cf.mu_max()?;
-    let last_d = pts.last().map(|p| p.d).unwrap_or(0.0);
-    let (mu_max, d_at) = if best.d <= last_d {
-        (best.mu, best.d)
-    } else {
-        let m = pts
-            .iter()
-            .max_by(|a, b| a.mu.total_cmp(&b.mu))
-            .copied()
-            .unwrap_or(start);
-        (m.mu, m.d)
-    };
-    Ok(ScanOut {
-        method: "analytic",
-        eta,
-        start,
-        mu_max,
-        d_at_mu_max: d_at,
-        stop,
-        points: pts.len(),
-        stats: Work::default(),
-        time_ms: 0.0,
-        pts,
-        shapes,
-    })
-}
-
-/// Closed-form shape samples.
-pub fn elastica_shape(e: &Elastica, n: usize) -> Res<Vec<ShapeRow>> {
-    Ok(e.shape(n)?
-        .into_iter()
-        .map(|p| ShapeRow {
-            s: p.s,
-            x: p.x,
-            y: p.y,
-            phi: p.phi,
-            kappa: p.kappa,
-            m: p.kappa,
-        })
-        .collect())
-}
-
-/// Header of the scan CSV.
+/// Header of the scan CSV: the point, its physical-unit values (scenes with `[physical]`), and
+/// `event` last (empty for grid points; `slip`, `lift_off`, `penetration`, `fold_in_d` on the
+/// row where the scan stopped).
 pub fn header(physical: bool) -> Vec<&'static str> {
     let mut h = vec![
-        "d", "mu", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "s_flex", "y_max",
+        "d", "mu", "normal", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "s_flex", "y_max",
     ];
     if physical {
         h.extend(["d_mm", "f_N", "fx_N", "fy_N", "m_base_Nm"]);
     }
+    h.push("event");
     h
 }
 
@@ -452,6 +202,7 @@ pub fn row(p: &Pt, u: Option<Units>) -> Vec<String> {
     let mut r = vec![
         num(p.d),
         num(p.mu),
+        num(p.normal),
         num(p.alpha),
         num(p.phi1),
         num(p.f),
@@ -474,6 +225,7 @@ pub fn row(p: &Pt, u: Option<Units>) -> Vec<String> {
             .map(num),
         );
     }
+    r.push(p.event.map_or("", |e| e.name()).to_string());
     r
 }
 
@@ -487,17 +239,21 @@ pub fn write_points<W: Write>(w: &mut W, out: &ScanOut, u: Option<Units>) -> Res
 }
 
 /// Write the shapes CSV: point index, d, then the shape in the foot frame (x, y) and in the lab
-/// frame (x_lab = x + d: the foot started at 0, the tip stays put).
+/// frame (x_lab = x + d: the foot started at 0, the tip stays put), and the point's event.
 pub fn write_shapes(path: &std::path::Path, out: &ScanOut) -> Res<()> {
     let mut f = AtomicFile::create(path)?;
     csv_line(
         &mut f,
-        &["point", "d", "s", "x", "y", "x_lab", "phi", "kappa", "m"],
+        &[
+            "point", "d", "s", "x", "y", "x_lab", "phi", "kappa", "m", "event",
+        ],
     )?;
     for (i, (p, sh)) in out.pts.iter().zip(&out.shapes).enumerate() {
+        let event = p.event.map_or("", |e| e.name());
         for q in sh {
             let mut r = vec![i.to_string()];
             r.extend([p.d, q.s, q.x, q.y, q.x + p.d, q.phi, q.kappa, q.m].map(num));
+            r.push(event.to_string());
             csv_line(&mut f, &r)?;
         }
     }
@@ -507,10 +263,11 @@ pub fn write_shapes(path: &std::path::Path, out: &ScanOut) -> Res<()> {
 /// A short human summary.
 pub fn summary(out: &ScanOut, csv: Option<&std::path::Path>) -> String {
     let mut s = format!(
-        "scan eta = {} ({}): mu_max = {:.6} at d = {:.6}; start f0 = {:.6}, phi1_0 = {:.6}; {} points; stopped: {}; {:.1} ms",
+        "scan eta = {} ({}): mu_max = {:.6} (mu = {:.6}) at d = {:.6}; start f0 = {:.6}, phi1_0 = {:.6}; {} points; stopped: {}; {:.1} ms",
         out.eta,
         out.method,
         out.mu_max,
+        out.mu_at_max,
         out.d_at_mu_max,
         out.start.f,
         out.start.phi1,
@@ -564,7 +321,7 @@ pub fn run(a: &ScanArgs) -> Res<()> {
             out.stop.detail
         )));
     }
-    let u = units_of(&scene);
+    let u = numeric::parts(&scene)?.0.units();
     if let Some(p) = &a.shapes {
         write_shapes(p, &out)?;
     }
@@ -596,9 +353,9 @@ pub struct InferOut {
     pub eta: f64,
     /// slip displacement
     pub d0: f64,
-    /// inferred stiction coefficient
+    /// inferred stiction coefficient |mu(d0)|
     pub mu0: f64,
-    /// mu_max of the scan
+    /// largest |mu| of the scan (the end of the measurable range of mu0)
     pub mu_max: f64,
     /// measurable range of d: [0, d at mu_max]
     pub d_min: f64,
@@ -606,54 +363,26 @@ pub struct InferOut {
     pub d_max_measurable: f64,
 }
 
-fn not_measurable(d0: f64, hi: f64) -> Fail {
-    usage(format!(
-        "d0 = {d0} is outside the measurable range [0, {hi}] = [0, d at mu_max]; beyond d at mu_max mu decreases and d0 does not determine mu0"
-    ))
-}
-
 /// Run `vibrissa infer`.
 pub fn run_infer(a: &InferArgs) -> Res<()> {
     let scene = build_scene(&a.scene, a.eta)?;
-    let out = if a.solver.method == MethodArg::Analytic {
-        if !is_paper_rod(&scene, true) {
-            return Err(not_analytic());
-        }
-        let c = ClosedCurve::new(scene.eta)?;
-        let best = c.cf.mu_max()?;
-        if !(a.d0 >= 0.0 && a.d0 <= best.d) {
-            return Err(not_measurable(a.d0, best.d));
-        }
-        let (grid, _) = curve_grid(&c);
-        let t = t_of_d(&c, &grid, a.d0)?;
-        InferOut {
-            method: "analytic",
-            eta: scene.eta,
-            d0: a.d0,
-            mu0: c.pt(t)?.mu,
-            mu_max: best.mu,
-            d_min: 0.0,
-            d_max_measurable: best.d,
-        }
-    } else {
-        let model = numeric::model(&scene)?;
-        let opts = ScanOptions {
-            d_max: a.d_max,
-            points: a.points as usize,
-            mu0: None,
-            solver: numeric::config(a.solver.method, a.solver.tol),
-            keep_shapes: None,
-        };
-        let r = vibrissa::infer(&model, a.d0, &opts)?;
-        InferOut {
-            method: a.solver.method.name(),
-            eta: scene.eta,
-            d0: r.d0,
-            mu0: r.mu0,
-            mu_max: r.mu_max,
-            d_min: r.measurable_d.0,
-            d_max_measurable: r.measurable_d.1,
-        }
+    let (rod, surface) = numeric::parts(&scene)?;
+    let opts = ScanOptions {
+        d_max: a.d_max,
+        points: a.points as usize,
+        mu0: None,
+        solver: numeric::config(a.solver.method, a.solver.tol),
+        keep_shapes: None,
+    };
+    let r = vibrissa::infer(&rod, &surface, a.d0, &opts)?;
+    let out = InferOut {
+        method: a.solver.method.name(),
+        eta: scene.eta,
+        d0: r.d0,
+        mu0: r.mu0,
+        mu_max: r.mu_max,
+        d_min: r.measurable_d.0,
+        d_max_measurable: r.measurable_d.1,
     };
     if !(out.mu0.is_finite() && out.mu_max.is_finite()) {
         return Err(solve_fail("the inference produced non-finite values"));

@@ -1,7 +1,7 @@
 //! Building a `vibrissa::Scene` from `--scene FILE.toml` and the scene flags.
 
 use crate::cli::SceneArgs;
-use crate::error::{usage, Fail, Res};
+use crate::error::{usage, Res};
 use std::path::Path;
 use vibrissa::{Physical, Precurvature, Scene, Stiffness};
 
@@ -114,33 +114,4 @@ pub fn apply_overrides(
     if let Some(b) = surface_angle {
         sc.surface_angle = b;
     }
-}
-
-/// Whether the scene is the paper's uniform, straight, clamped rod (closed forms apply).
-/// `need_surface`: the horizontal surface matters too (scans).
-pub fn is_paper_rod(sc: &Scene, need_surface: bool) -> bool {
-    let uniform = match &sc.stiffness {
-        Stiffness::Uniform => true,
-        Stiffness::Taper { ratio } => *ratio == 1.0,
-        Stiffness::Table { b, .. } => b.iter().all(|v| *v == 1.0),
-    };
-    let straight = match &sc.precurvature {
-        Precurvature::None => true,
-        Precurvature::Linear { k0, k1 } => *k0 == 0.0 && *k1 == 0.0,
-        Precurvature::Table { k, .. } => k.iter().all(|v| *v == 0.0),
-    };
-    uniform
-        && straight
-        && sc.support_compliance == 0.0
-        && (!need_surface || sc.surface_angle == 0.0)
-}
-
-/// Error for `--method analytic` on a scene without closed forms.
-pub fn not_analytic() -> Fail {
-    usage("--method analytic needs the paper's rod: uniform (no taper), straight (no precurvature), clamped (support_compliance = 0), horizontal surface; use --method shooting or collocation")
-}
-
-/// Physical unit factors of a (validated) scene.
-pub fn units_of(sc: &Scene) -> Option<Units> {
-    vibrissa::Model::new(sc).ok().and_then(|m| m.units())
 }

@@ -1,11 +1,10 @@
 //! `vibrissa solve`: one rod, one load.
 
-use crate::cli::{BranchArg, MethodArg, SolveArgs};
-use crate::error::{Fail, Res};
+use crate::cli::{BranchArg, SolveArgs};
+use crate::error::{usage, Res};
 use crate::numeric;
 use crate::output::{csv_line, num, opt, AtomicFile};
-use crate::scene_args::{build_scene, is_paper_rod, not_analytic, units_of, Units};
-use elastica::{Branch, Elastica};
+use crate::scene_args::{build_scene, Units};
 use serde::Serialize;
 use std::io::Write;
 
@@ -57,6 +56,11 @@ pub struct SolveOut {
     pub y_max: f64,
     /// residual of the solve (see README)
     pub residual: f64,
+    /// the rod crosses the surface line through its tip (see `clearance`)
+    pub penetration: bool,
+    /// how the rod lies against that line: largest height above it over s < 1 and where, and
+    /// sin(phi1 - beta)
+    pub clearance: vibrissa::Clearance,
     /// physical-unit values, when the scene has dimensions
     #[serde(skip_serializing_if = "Option::is_none")]
     pub physical: Option<PhysicalOut>,
@@ -82,70 +86,6 @@ pub struct PhysicalOut {
     pub y1_mm: f64,
 }
 
-/// Closed-form solve on the uniform rod.
-pub fn analytic(
-    branch: BranchArg,
-    alpha: f64,
-    phi1: Option<f64>,
-    eta: Option<f64>,
-    shape_points: usize,
-) -> Res<SolveOut> {
-    let br = match branch {
-        BranchArg::Convex => Branch::Convex,
-        BranchArg::Flex => Branch::OneFlex,
-    };
-    let e = match (phi1, eta) {
-        (Some(p), _) => Elastica::new(br, alpha, p)?,
-        (None, Some(h)) => elastica::solve_eta(br, alpha, h).map_err(|err| match err {
-            elastica::ElasticaError::NoRoot { a, b, .. } => Fail::Usage(format!(
-                "no {} rod with alpha = {alpha} has its tip at height eta = {h} (tip slope searched over [{a}, {b}] = [0, pi/2 + 2 alpha])",
-                branch_name(branch)
-            )),
-            other => other.into(),
-        })?,
-        (None, None) => return Err(crate::error::usage("give --phi1 or --eta")),
-    };
-    // first integral at the clamp (phi = pi/2): m(0)^2 / 2 = f [cos(alpha) - sin(phi1 - alpha)]
-    let fi = 0.5 * e.m_base * e.m_base - e.f * (e.alpha.cos() - (e.phi1 - e.alpha).sin());
-    let mut residual = fi.abs() / e.f.max(1.0);
-    if let Some(h) = eta {
-        residual = residual.max((e.y1 - h).abs());
-    }
-    let shape = if shape_points >= 2 {
-        e.shape(shape_points)?
-            .into_iter()
-            .map(|p| ShapeRow {
-                s: p.s,
-                x: p.x,
-                y: p.y,
-                phi: p.phi,
-                kappa: p.kappa,
-                m: p.kappa,
-            })
-            .collect()
-    } else {
-        Vec::new()
-    };
-    Ok(SolveOut {
-        method: "analytic",
-        branch: branch_name(branch),
-        alpha: e.alpha,
-        phi1: e.phi1,
-        f: e.f,
-        fx: e.fx(),
-        fy: e.fy(),
-        x1: e.x1,
-        y1: e.y1,
-        m_base: e.m_base,
-        flex: e.flex_count(),
-        s_flex: if e.flex_count() > 0 { e.s_b } else { None },
-        y_max: e.y_max(),
-        residual,
-        physical: None,
-        shape,
-    })
-}
-
 /// CLI name of a branch.
 pub fn branch_name(b: BranchArg) -> &'static str {
     match b {
@@ -169,8 +109,21 @@ pub fn add_units(o: &mut SolveOut, u: Option<Units>) {
 /// Header of the solve CSV.
 pub fn header(physical: bool) -> Vec<&'static str> {
     let mut h = vec![
-        "method", "branch", "alpha", "phi1", "f", "fx", "fy", "x1", "y1", "m_base", "flex",
-        "s_flex", "y_max", "residual",
+        "method",
+        "branch",
+        "alpha",
+        "phi1",
+        "f",
+        "fx",
+        "fy",
+        "x1",
+        "y1",
+        "m_base",
+        "flex",
+        "s_flex",
+        "y_max",
+        "residual",
+        "penetration",
     ];
     if physical {
         h.extend(["f_N", "fx_N", "fy_N", "m_base_Nm", "x1_mm", "y1_mm"]);
@@ -195,6 +148,7 @@ pub fn row(o: &SolveOut) -> Vec<String> {
         opt(o.s_flex),
         num(o.y_max),
         num(o.residual),
+        u8::from(o.penetration).to_string(),
     ];
     if let Some(p) = &o.physical {
         r.extend(
@@ -224,20 +178,33 @@ pub fn run(a: &SolveArgs) -> Res<()> {
     } else {
         0
     };
-    let mut out = if a.solver.method == MethodArg::Analytic {
-        if !is_paper_rod(&scene, false) {
-            return Err(not_analytic());
-        }
-        analytic(a.branch, a.alpha, a.phi1, a.eta, npts)?
-    } else {
-        numeric::solve(&scene, a, npts)?
-    };
+    let mut out = numeric::solve(&scene, a, npts)?;
     if out.residual.is_nan() || !out.f.is_finite() {
         return Err(crate::error::solve_fail(
             "the solver returned a non-finite result",
         ));
     }
-    add_units(&mut out, units_of(&scene));
+    if out.penetration {
+        let c = &out.clearance;
+        let what = if c.height > 0.0 {
+            format!(
+                "the rod rises {:.3e} above the surface line through its tip at s = {:.6}",
+                c.height, c.s
+            )
+        } else {
+            format!(
+                "the tip arrives from above the surface line (sin(phi1 - surface angle) = {:.3e})",
+                c.tip_approach
+            )
+        };
+        if a.require_contact {
+            return Err(usage(format!(
+                "no contact at the tip only: {what} (--require-contact)"
+            )));
+        }
+        eprintln!("warning: penetration: {what}");
+    }
+    add_units(&mut out, scene.rod()?.units());
     if let Some(p) = &a.shape_out {
         write_shape(p, &out.shape)?;
     }

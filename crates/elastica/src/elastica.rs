@@ -374,7 +374,7 @@ pub fn solve_eta_all(branch: Branch, alpha: f64, eta: f64) -> Result<Vec<Elastic
         }
         if fa.signum() != fb.signum() {
             let r = brent_root(
-                |p| y1_of(branch, alpha, p).map(|y| y - eta).unwrap_or(f64::NAN),
+                |p| y1_of(branch, alpha, p).map(|y| y - eta),
                 a,
                 b,
                 1e-15,

@@ -1,37 +1,163 @@
-//! One-dimensional root finding and maximisation (Brent's methods), reused by crate `vibrissa`.
+//! One-dimensional root finding and maximisation: argmin's Brent methods (`BrentRoot`: inverse
+//! quadratic interpolation, secant and bisection; `BrentOpt`: golden section with parabolic
+//! interpolation; Brent 1973, ch. 4–5) behind a small interface shared with crate `vibrissa`.
 //!
-//! Both work on a bracket and never leave it, so they cannot wander into a region where the
-//! function is undefined. NaN function values are reported as errors, never propagated.
+//! The function may fail with the caller's own error type `E`; its first error ends the search and
+//! is returned unchanged as [`RootError::Caller`]. Both methods stay inside the bracket, so they
+//! cannot wander into a region where the function is undefined; NaN or infinite values are
+//! reported as errors, never propagated.
 
-use crate::error::{finite, ElasticaError};
+use crate::error::ElasticaError;
+use argmin::core::{CostFunction, Executor, State, TerminationReason, TerminationStatus};
+use argmin::solver::brent::{BrentOpt, BrentRoot};
+use std::cell::RefCell;
 
-/// Root of `f` in `[a, b]` by Brent's method (inverse quadratic interpolation, secant and
-/// bisection; Brent 1973, ch. 4). Needs `f(a)` and `f(b)` of opposite sign (or one of them zero).
-/// Stops when the bracket is narrower than `2 (4 eps |x| + tol)`.
-pub fn brent_root<F: FnMut(f64) -> f64>(
-    mut f: F,
-    a: f64,
-    b: f64,
-    tol: f64,
-    max_iter: usize,
-) -> Result<f64, ElasticaError> {
-    try_brent_root(|x| Ok(f(x)), a, b, tol, max_iter)
+/// Why a one-dimensional search failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RootError<E> {
+    /// The function itself failed (its first error, unchanged).
+    Caller(E),
+    /// A bound, the tolerance or a function value is not finite.
+    NotFinite {
+        /// What is not finite.
+        name: &'static str,
+        /// At this abscissa (the bound itself for a bound).
+        x: f64,
+        /// The value.
+        value: f64,
+    },
+    /// `f(a)` and `f(b)` have the same sign: no bracketed root.
+    NoBracket {
+        /// Left end.
+        a: f64,
+        /// Right end.
+        b: f64,
+        /// `f(a)`.
+        fa: f64,
+        /// `f(b)`.
+        fb: f64,
+    },
+    /// The iteration limit was reached before the bracket was narrow enough.
+    NoConvergence {
+        /// Iterations spent.
+        iterations: u64,
+        /// The best abscissa reached.
+        x: f64,
+    },
+    /// The solver stopped for another reason (argmin's message).
+    Solver(String),
 }
 
-/// As [`brent_root`] for a fallible function: the first error of `f` is returned as is.
-pub fn try_brent_root<F: FnMut(f64) -> Result<f64, ElasticaError>>(
-    mut f: F,
+impl<E: std::fmt::Display> std::fmt::Display for RootError<E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RootError::Caller(e) => write!(f, "{e}"),
+            RootError::NotFinite { name, x, value } => {
+                write!(f, "{name} is not finite ({value:e} at x = {x:e})")
+            }
+            RootError::NoBracket { a, b, fa, fb } => write!(
+                f,
+                "no sign change on [{a:e}, {b:e}] (f = {fa:e} and {fb:e})"
+            ),
+            RootError::NoConvergence { iterations, x } => {
+                write!(
+                    f,
+                    "no convergence in {iterations} iterations (last x = {x:e})"
+                )
+            }
+            RootError::Solver(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+impl From<RootError<ElasticaError>> for ElasticaError {
+    fn from(e: RootError<ElasticaError>) -> Self {
+        match e {
+            RootError::Caller(e) => e,
+            RootError::NotFinite { name, value, .. } => ElasticaError::NotFinite { name, value },
+            RootError::NoBracket { a, b, fa, fb } => ElasticaError::NoRoot {
+                what: "brent_root",
+                a,
+                b,
+                fa,
+                fb,
+            },
+            RootError::NoConvergence { iterations, .. } => ElasticaError::NoConvergence {
+                what: "brent",
+                iterations: iterations as usize,
+                width: f64::NAN,
+            },
+            RootError::Solver(_) => ElasticaError::NoConvergence {
+                what: "brent",
+                iterations: 0,
+                width: f64::NAN,
+            },
+        }
+    }
+}
+
+/// The caller's function as an argmin cost; its first failure is kept for the caller, and argmin
+/// sees an error that ends the run.
+struct Cost<'f, E> {
+    f: RefCell<&'f mut dyn FnMut(f64) -> Result<f64, E>>,
+    sign: f64,
+    failure: &'f RefCell<Option<RootError<E>>>,
+}
+
+#[derive(Debug)]
+struct Stop;
+
+impl std::fmt::Display for Stop {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("the function failed")
+    }
+}
+
+impl std::error::Error for Stop {}
+
+impl<E> CostFunction for Cost<'_, E> {
+    type Param = f64;
+    type Output = f64;
+    fn cost(&self, x: &f64) -> Result<f64, argmin::core::Error> {
+        let r = (self.f.borrow_mut())(*x);
+        let fail = match r {
+            Ok(v) if v.is_finite() => return Ok(self.sign * v),
+            Ok(v) => RootError::NotFinite {
+                name: "f(x)",
+                x: *x,
+                value: v,
+            },
+            Err(e) => RootError::Caller(e),
+        };
+        self.failure.borrow_mut().get_or_insert(fail);
+        Err(Stop.into())
+    }
+}
+
+fn bounds<E>(a: f64, b: f64, tol: f64) -> Result<(), RootError<E>> {
+    for (name, v) in [("a", a), ("b", b), ("tol", tol)] {
+        if !v.is_finite() {
+            return Err(RootError::NotFinite {
+                name,
+                x: v,
+                value: v,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Root of `f` in `[a, b]` (`f(a)`, `f(b)` of opposite signs or one of them zero) to the absolute
+/// tolerance `tol` in `x` (the bracket is narrower than about `tol + 4 eps |x|` at the end).
+pub fn brent_root<E>(
+    mut f: impl FnMut(f64) -> Result<f64, E>,
     a: f64,
     b: f64,
     tol: f64,
-    max_iter: usize,
-) -> Result<f64, ElasticaError> {
-    finite("a", a)?;
-    finite("b", b)?;
-    let tol = finite("tol", tol)?.abs();
-    let (mut a, mut b) = (a, b);
-    let mut fa = finite("f(a)", f(a)?)?;
-    let mut fb = finite("f(b)", f(b)?)?;
+    max_iter: u64,
+) -> Result<f64, RootError<E>> {
+    bounds(a, b, tol)?;
+    let (fa, fb) = (value(&mut f, a)?, value(&mut f, b)?);
     if fa == 0.0 {
         return Ok(a);
     }
@@ -39,227 +165,186 @@ pub fn try_brent_root<F: FnMut(f64) -> Result<f64, ElasticaError>>(
         return Ok(b);
     }
     if fa.signum() == fb.signum() {
-        return Err(ElasticaError::NoRoot {
-            what: "brent_root",
-            a,
-            b,
-            fa,
-            fb,
-        });
+        return Err(RootError::NoBracket { a, b, fa, fb });
     }
-    let (mut c, mut fc) = (a, fa);
-    let (mut d, mut e) = (b - a, b - a);
-    for _ in 0..max_iter {
-        if fb.signum() == fc.signum() {
-            c = a;
-            fc = fa;
-            d = b - a;
-            e = d;
-        }
-        if fc.abs() < fb.abs() {
-            a = b;
-            b = c;
-            c = a;
-            fa = fb;
-            fb = fc;
-            fc = fa;
-        }
-        let tol1 = 2.0 * f64::EPSILON * b.abs() + 0.5 * tol;
-        let xm = 0.5 * (c - b);
-        if xm.abs() <= tol1 || fb == 0.0 {
-            return Ok(b);
-        }
-        if e.abs() >= tol1 && fa.abs() > fb.abs() {
-            // inverse quadratic interpolation (or secant when a == c)
-            let s = fb / fa;
-            let (mut p, mut q);
-            if a == c {
-                p = 2.0 * xm * s;
-                q = 1.0 - s;
-            } else {
-                let qq = fa / fc;
-                let r = fb / fc;
-                p = s * (2.0 * xm * qq * (qq - r) - (b - a) * (r - 1.0));
-                q = (qq - 1.0) * (r - 1.0) * (s - 1.0);
-            }
-            if p > 0.0 {
-                q = -q;
-            }
-            p = p.abs();
-            let min1 = 3.0 * xm * q - (tol1 * q).abs();
-            let min2 = (e * q).abs();
-            if 2.0 * p < min1.min(min2) {
-                e = d;
-                d = p / q;
-            } else {
-                d = xm;
-                e = d;
-            }
-        } else {
-            d = xm;
-            e = d;
-        }
-        a = b;
-        fa = fb;
-        b += if d.abs() > tol1 { d } else { tol1.copysign(xm) };
-        fb = finite("f(x)", f(b)?)?;
-    }
-    Err(ElasticaError::NoConvergence {
-        what: "brent_root",
-        iterations: max_iter,
-        width: (c - b).abs(),
-    })
+    let failure = RefCell::new(None);
+    let cost = Cost {
+        f: RefCell::new(&mut f),
+        sign: 1.0,
+        failure: &failure,
+    };
+    let solver = BrentRoot::new(a, b, tol.abs());
+    let res = Executor::new(cost, solver)
+        .configure(|s| s.param(b).max_iters(max_iter))
+        .run();
+    finish(res, &failure, max_iter).map(|(x, _)| x)
 }
 
-/// Maximum of `f` on `[a, b]` by Brent's method (golden section plus parabolic interpolation;
-/// Brent 1973, ch. 5), returning `(x_max, f(x_max))`. Finds a local maximum; for a unimodal `f` it
-/// is the maximum. The end points are compared too, so a maximum at an end of the interval is
-/// found. `tol` is the absolute tolerance in `x` (the attainable accuracy is about
-/// `sqrt(eps) |x|`, as for any method that uses function values only).
-pub fn brent_max<F: FnMut(f64) -> f64>(
-    mut f: F,
+/// Maximum of `f` on `[a, b]`: `(x_max, f(x_max))`, a local maximum (the maximum for a unimodal
+/// `f`); the end points are compared too, so a maximum at an end is found. `tol` is the absolute
+/// tolerance in `x` (the attainable accuracy is about `sqrt(eps) |x|`, as for any method that
+/// uses function values only).
+pub fn brent_max<E>(
+    mut f: impl FnMut(f64) -> Result<f64, E>,
     a: f64,
     b: f64,
     tol: f64,
-    max_iter: usize,
-) -> Result<(f64, f64), ElasticaError> {
-    try_brent_max(|x| Ok(f(x)), a, b, tol, max_iter)
-}
-
-/// As [`brent_max`] for a fallible function.
-pub fn try_brent_max<F: FnMut(f64) -> Result<f64, ElasticaError>>(
-    mut f: F,
-    a: f64,
-    b: f64,
-    tol: f64,
-    max_iter: usize,
-) -> Result<(f64, f64), ElasticaError> {
-    finite("a", a)?;
-    finite("b", b)?;
-    let tol = finite("tol", tol)?.abs();
-    let (mut a, mut b) = if a <= b { (a, b) } else { (b, a) };
-    let (a0, b0) = (a, b);
-    // minimise g = -f
-    let mut g = |x: f64| -> Result<f64, ElasticaError> { Ok(-finite("f(x)", f(x)?)?) };
-    const CGOLD: f64 = 0.381_966_011_250_105_1;
-    let mut x = a + CGOLD * (b - a);
-    let (mut w, mut v) = (x, x);
-    let mut fx = g(x)?;
-    let (mut fw, mut fv) = (fx, fx);
-    let (mut d, mut e) = (0.0f64, 0.0f64);
-    let mut converged = false;
-    for _ in 0..max_iter {
-        let xm = 0.5 * (a + b);
-        let tol1 = f64::EPSILON.sqrt() * x.abs() + tol / 3.0;
-        let tol2 = 2.0 * tol1;
-        if (x - xm).abs() <= tol2 - 0.5 * (b - a) {
-            converged = true;
-            break;
-        }
-        let mut golden = true;
-        if e.abs() > tol1 {
-            let r = (x - w) * (fx - fv);
-            let mut q = (x - v) * (fx - fw);
-            let mut p = (x - v) * q - (x - w) * r;
-            q = 2.0 * (q - r);
-            if q > 0.0 {
-                p = -p;
-            }
-            q = q.abs();
-            let etemp = e;
-            if p.abs() < (0.5 * q * etemp).abs() && p > q * (a - x) && p < q * (b - x) {
-                e = d;
-                d = p / q;
-                let u = x + d;
-                if u - a < tol2 || b - u < tol2 {
-                    d = tol1.copysign(xm - x);
-                }
-                golden = false;
-            }
-        }
-        if golden {
-            e = if x >= xm { a - x } else { b - x };
-            d = CGOLD * e;
-        }
-        let u = if d.abs() >= tol1 {
-            x + d
-        } else {
-            x + tol1.copysign(d)
-        };
-        let fu = g(u)?;
-        if fu <= fx {
-            if u >= x {
-                a = x;
-            } else {
-                b = x;
-            }
-            v = w;
-            fv = fw;
-            w = x;
-            fw = fx;
-            x = u;
-            fx = fu;
-        } else {
-            if u < x {
-                a = u;
-            } else {
-                b = u;
-            }
-            if fu <= fw || w == x {
-                v = w;
-                fv = fw;
-                w = u;
-                fw = fu;
-            } else if fu <= fv || v == x || v == w {
-                v = u;
-                fv = fu;
-            }
-        }
-    }
-    if !converged {
-        return Err(ElasticaError::NoConvergence {
-            what: "brent_max",
-            iterations: max_iter,
-            width: b - a,
-        });
-    }
-    // a maximum at an end point of the interval is approached but never evaluated: compare
-    let (mut best_x, mut best) = (x, -fx);
-    for xe in [a0, b0] {
-        let fe = -g(xe)?;
+    max_iter: u64,
+) -> Result<(f64, f64), RootError<E>> {
+    bounds(a, b, tol)?;
+    let (lo, hi) = if a <= b { (a, b) } else { (b, a) };
+    let failure = RefCell::new(None);
+    let cost = Cost {
+        f: RefCell::new(&mut f),
+        sign: -1.0,
+        failure: &failure,
+    };
+    let solver = BrentOpt::new(lo, hi).set_tolerance(f64::EPSILON.sqrt(), tol.abs() / 3.0);
+    let res = Executor::new(cost, solver)
+        .configure(|s| s.max_iters(max_iter))
+        .run();
+    let (mut x, mut best) = finish(res, &failure, max_iter)?;
+    best = -best;
+    // a maximum at an end point is approached but never evaluated: compare
+    for xe in [lo, hi] {
+        let fe = value(&mut f, xe)?;
         if fe > best {
             best = fe;
-            best_x = xe;
+            x = xe;
         }
     }
-    Ok((best_x, best))
+    Ok((x, best))
+}
+
+fn value<E>(f: &mut impl FnMut(f64) -> Result<f64, E>, x: f64) -> Result<f64, RootError<E>> {
+    match f(x) {
+        Ok(v) if v.is_finite() => Ok(v),
+        Ok(v) => Err(RootError::NotFinite {
+            name: "f(x)",
+            x,
+            value: v,
+        }),
+        Err(e) => Err(RootError::Caller(e)),
+    }
+}
+
+type Run<'f, E, S> = Result<
+    argmin::core::OptimizationResult<
+        Cost<'f, E>,
+        S,
+        argmin::core::IterState<f64, (), (), (), (), f64>,
+    >,
+    argmin::core::Error,
+>;
+
+/// The solution `(x, cost)` of a run, or why there is none (the caller's error first).
+fn finish<E, S>(
+    res: Run<'_, E, S>,
+    failure: &RefCell<Option<RootError<E>>>,
+    max_iter: u64,
+) -> Result<(f64, f64), RootError<E>> {
+    match res {
+        Ok(r) => {
+            let st = r.state();
+            let x = st.get_best_param().copied().unwrap_or(f64::NAN);
+            let c = st.get_best_cost();
+            match st.get_termination_status() {
+                TerminationStatus::Terminated(TerminationReason::SolverConverged) => Ok((x, c)),
+                TerminationStatus::Terminated(TerminationReason::MaxItersReached) => {
+                    Err(RootError::NoConvergence {
+                        iterations: max_iter,
+                        x,
+                    })
+                }
+                other => Err(RootError::Solver(format!("{other:?}"))),
+            }
+        }
+        // the cost function kept the reason for its own error
+        Err(e) => Err(failure
+            .borrow_mut()
+            .take()
+            .unwrap_or_else(|| RootError::Solver(e.to_string()))),
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    type R = Result<f64, String>;
+
     #[test]
     fn root_of_cubic() {
-        let r = brent_root(|x| x * x * x - 2.0, 0.0, 2.0, 1e-15, 100).unwrap();
+        let r = brent_root(|x| R::Ok(x * x * x - 2.0), 0.0, 2.0, 1e-15, 100).unwrap();
         assert!((r - 2f64.cbrt()).abs() < 1e-15);
     }
 
     #[test]
-    fn root_needs_sign_change() {
-        let e = brent_root(|x| x * x + 1.0, -1.0, 1.0, 1e-12, 100).unwrap_err();
-        assert!(matches!(e, ElasticaError::NoRoot { .. }));
-        let e = brent_root(|_| f64::NAN, -1.0, 1.0, 1e-12, 100).unwrap_err();
-        assert!(matches!(e, ElasticaError::NotFinite { .. }));
+    fn root_needs_sign_change_and_finite_values() {
+        let e = brent_root(|x| R::Ok(x * x + 1.0), -1.0, 1.0, 1e-12, 100).unwrap_err();
+        assert!(matches!(e, RootError::NoBracket { .. }));
+        let e = brent_root(|_| R::Ok(f64::NAN), -1.0, 1.0, 1e-12, 100).unwrap_err();
+        assert!(matches!(e, RootError::NotFinite { .. }));
+    }
+
+    #[test]
+    fn the_callers_error_comes_back_unchanged() {
+        let e = brent_root(
+            |x| {
+                if x > 0.5 {
+                    Err(format!("bad at {x}"))
+                } else {
+                    Ok(x - 0.7)
+                }
+            },
+            0.0,
+            0.4,
+            1e-12,
+            100,
+        )
+        .unwrap_err();
+        assert!(matches!(e, RootError::NoBracket { .. }), "{e:?}");
+        let e = brent_root(
+            |x| {
+                if x > 0.9 {
+                    Err("past 0.9".to_string())
+                } else {
+                    Ok(x - 0.2)
+                }
+            },
+            0.0,
+            0.8,
+            1e-12,
+            100,
+        );
+        assert!((e.unwrap() - 0.2).abs() < 1e-12);
+        let e = brent_root(
+            |x| {
+                if (0.3..0.9).contains(&x) {
+                    Err(format!("bad at {x}"))
+                } else {
+                    Ok(x - 0.5)
+                }
+            },
+            0.0,
+            1.0,
+            1e-12,
+            100,
+        )
+        .unwrap_err();
+        assert!(
+            matches!(&e, RootError::Caller(m) if m.starts_with("bad at")),
+            "{e:?}"
+        );
     }
 
     #[test]
     fn max_of_smooth_function() {
-        let (x, fx) = brent_max(|x| (x - 0.3f64).cos(), -1.0, 2.0, 1e-12, 200).unwrap();
+        let (x, fx) = brent_max(|x| R::Ok((x - 0.3f64).cos()), -1.0, 2.0, 1e-12, 200).unwrap();
         assert!((x - 0.3).abs() < 1e-7, "{x}");
         assert!((fx - 1.0).abs() < 1e-14);
         // maximum at an end point
-        let (x, _) = brent_max(|x| x, 0.0, 1.0, 1e-12, 200).unwrap();
+        let (x, _) = brent_max(|x| R::Ok(x), 0.0, 1.0, 1e-12, 200).unwrap();
         assert_eq!(x, 1.0);
     }
 }

@@ -12,7 +12,7 @@
 
 use crate::elastica::{solve_eta, Branch, Elastica};
 use crate::error::{finite, ElasticaError};
-use crate::roots::{try_brent_max, try_brent_root};
+use crate::roots::{brent_max, brent_root};
 use crate::{ellint::half_pi_plus, lower_limit};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::FRAC_PI_4;
@@ -88,7 +88,13 @@ fn alpha_low(phi1: f64) -> f64 {
 
 /// Peak of y1 over alpha in [alpha_low(phi1), 0] on the one-flex branch: (alpha, y1).
 fn flex_peak(phi1: f64) -> Result<(f64, f64), ElasticaError> {
-    try_brent_max(|a| y1_flex(a, phi1), alpha_low(phi1), 0.0, 1e-12, 500)
+    Ok(brent_max(
+        |a| y1_flex(a, phi1),
+        alpha_low(phi1),
+        0.0,
+        1e-12,
+        500,
+    )?)
 }
 
 impl ClosedFormScan {
@@ -110,14 +116,14 @@ impl ClosedFormScan {
         let y_low = y1_turning(-FRAC_PI_4)?;
         let (end, phase0_end) = if eta > y_low {
             // y1 along the turning-point locus rises from 0.6015 (alpha = -pi/4) to 1 (alpha = 0)
-            let at = try_brent_root(|a| Ok(y1_turning(a)? - eta), -FRAC_PI_4, 0.0, TOL, 200)?;
+            let at = brent_root(|a| Ok(y1_turning(a)? - eta), -FRAC_PI_4, 0.0, TOL, 200)?;
             (
                 Elastica::turning(Branch::Convex, at)?,
                 Phase0End::TurningPoint,
             )
         } else {
             // convex rod with a horizontal tip: y1(alpha, 0) rises from eta_ to 0.6015
-            let a0 = try_brent_root(
+            let a0 = brent_root(
                 |a| Ok(Elastica::new(Branch::Convex, a, 0.0)?.y1 - eta),
                 -FRAC_PI_4,
                 0.0,
@@ -142,7 +148,7 @@ impl ClosedFormScan {
             // fold: the phi1 where max_alpha y1 = eta (the two alpha roots merge)
             let gap = |p: f64| -> Result<f64, ElasticaError> { Ok(flex_peak(p)?.1 - eta) };
             if gap(0.0)? < 0.0 {
-                let pf = try_brent_root(gap, 0.0, scan.phi1_t, 1e-13, 200)?;
+                let pf = brent_root(gap, 0.0, scan.phi1_t, 1e-13, 200)?;
                 let (af, _) = flex_peak(pf)?;
                 let e = Elastica::new(Branch::OneFlex, af, pf)?;
                 scan.fold = Some(point(&e, x1s));
@@ -213,7 +219,7 @@ impl ClosedFormScan {
         let a = if ypk - self.eta <= 1e-14 {
             apk // at the fold
         } else {
-            try_brent_root(|a| Ok(y1_flex(a, phi1)? - self.eta), lo, apk, TOL, 200)?
+            brent_root(|a| Ok(y1_flex(a, phi1)? - self.eta), lo, apk, TOL, 200)?
         };
         Ok(point(
             &Elastica::new(Branch::OneFlex, a, phi1)?,
@@ -229,7 +235,7 @@ impl ClosedFormScan {
         let a = if ypk - self.eta <= 1e-14 {
             apk
         } else {
-            try_brent_root(|a| Ok(y1_flex(a, phi1)? - self.eta), apk, 0.0, TOL, 200)?
+            brent_root(|a| Ok(y1_flex(a, phi1)? - self.eta), apk, 0.0, TOL, 200)?
         };
         Ok(point(
             &Elastica::new(Branch::OneFlex, a, phi1)?,
@@ -316,7 +322,7 @@ impl ClosedFormScan {
         if self.phase0_end == Phase0End::TipHorizontal {
             return Ok(self.turning);
         }
-        let (p, _) = try_brent_max(
+        let (p, _) = brent_max(
             |p| Ok(self.phase1_at_phi1(p)?.mu),
             self.phi1_min(),
             self.phi1_t,

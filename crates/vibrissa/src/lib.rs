@@ -81,9 +81,9 @@ mod arclength;
 pub mod equations;
 mod error;
 mod march;
-pub mod model;
 pub mod profile;
 pub mod report;
+mod rod;
 mod rodsolve;
 pub mod scan;
 pub mod scene;
@@ -94,9 +94,11 @@ pub mod solve;
 mod stepper;
 
 pub use error::VibrissaError;
-pub use model::{Model, Units};
 pub use report::{Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason};
+pub use rod::{
+    Rod, RodBuilder, Surface, Units, MAX_B, MAX_COMPLIANCE, MAX_PRECURVATURE, MIN_TAPER,
+};
 pub use scan::{infer, scan, scan_at};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};
-pub use shape::{BranchChoice, Shape, ShapeKind, ShapePoint};
+pub use shape::{BranchChoice, Clearance, Shape, ShapeKind, ShapePoint};
 pub use solve::{solve, Method, SolverConfig, Target};

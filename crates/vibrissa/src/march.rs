@@ -13,7 +13,7 @@
 use crate::profile::Profile;
 use crate::report::{Event, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason};
 use crate::search;
-use crate::shape::{extrema, flex_and_reversals, shape_from, ShapePoint};
+use crate::shape::{clearance, extrema, flex_and_reversals, shape_from, ShapePoint};
 use bvp::{Solution, Stats};
 
 /// A converged point of the branch.
@@ -83,23 +83,10 @@ pub(crate) struct Watch {
 
 impl Contact {
     pub fn watch(&self, p: &Pt) -> Watch {
-        let (sb, cb) = self.beta.sin_cos();
         let (f, alpha) = (p.u[1], p.u[2]);
         let mu = (self.beta - alpha).tan();
         let normal = f * (alpha - self.beta).cos();
-        // height above the surface line through the contact point (x* − d, η)
-        let x1 = self.x_star - p.d;
-        let ex = extrema(&p.sol, -sb, cb);
-        let h0 = -sb * x1 + cb * self.eta;
-        let interior = ex.interior - h0;
-        let phi1 = p.sol.right()[2];
-        // tip slope turned below the surface line: the points just before the tip are above it
-        let tip = -(phi1 - self.beta).sin();
-        let (pen, pen_s) = if interior > tip {
-            (interior, ex.s_interior)
-        } else {
-            (tip, 1.0)
-        };
+        let (pen, pen_s) = clearance(&p.sol, self.beta).excess();
         let mut z = [0.0; 4];
         p.sol.eval(pen_s, &mut z);
         // d|μ|/dd = sign(μ)·dμ/dd, dμ/dd = −sec²(β − α)·α'; at μ = 0 it is |dμ/dd|

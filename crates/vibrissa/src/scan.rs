@@ -8,14 +8,14 @@ use crate::report::{Inference, RangeEnd, ScanOptions, ScanResult};
 use crate::shooter::Shooter;
 use crate::solve::{solve, Engine, Method, Target};
 use crate::stepper::{GenericStepper, OwnStepper};
-use crate::{BranchChoice, Model, Shape, VibrissaError};
+use crate::{BranchChoice, Rod, Shape, Surface, VibrissaError};
 use bvp::Guess;
 
 /// Runs the stiction scan. Errors only for invalid input or when it cannot even start;
 /// failures along the way end the scan with [`StopReason::SolverFailure`].
 ///
 /// Output points are at `d = i·d_max/(points − 1)`, `i = 0, …, points − 1`, up to the stop.
-pub fn scan(model: &Model, opts: &ScanOptions) -> Result<ScanResult, VibrissaError> {
+pub fn scan(rod: &Rod, surface: &Surface, opts: &ScanOptions) -> Result<ScanResult, VibrissaError> {
     opts.validate()?;
     let n = opts.points;
     let grid: Vec<f64> = (0..n)
@@ -27,12 +27,17 @@ pub fn scan(model: &Model, opts: &ScanOptions) -> Result<ScanResult, VibrissaErr
             }
         })
         .collect();
-    scan_impl(model, opts, &grid)
+    scan_impl(rod, surface, opts, &grid)
 }
 
 /// As [`scan`], with output points at the given displacements (sorted ascending, in
 /// `[0, d_max]`) instead of the uniform grid; `opts.points` is ignored.
-pub fn scan_at(model: &Model, opts: &ScanOptions, d: &[f64]) -> Result<ScanResult, VibrissaError> {
+pub fn scan_at(
+    rod: &Rod,
+    surface: &Surface,
+    opts: &ScanOptions,
+    d: &[f64],
+) -> Result<ScanResult, VibrissaError> {
     opts.validate()?;
     for (i, &di) in d.iter().enumerate() {
         if !(di >= 0.0 && di <= opts.d_max) {
@@ -50,17 +55,21 @@ pub fn scan_at(model: &Model, opts: &ScanOptions, d: &[f64]) -> Result<ScanResul
             ));
         }
     }
-    scan_impl(model, opts, d)
+    scan_impl(rod, surface, opts, d)
 }
 
-fn scan_impl(model: &Model, opts: &ScanOptions, grid: &[f64]) -> Result<ScanResult, VibrissaError> {
+fn scan_impl(
+    rod: &Rod,
+    surface: &Surface,
+    opts: &ScanOptions,
+    grid: &[f64],
+) -> Result<ScanResult, VibrissaError> {
     if opts.solver.method == Method::Analytic {
-        return crate::analytic::scan_analytic(model, opts, grid);
+        return crate::analytic::scan_analytic(rod, surface, opts, grid);
     }
-    let scene = model.scene();
-    let (eta, beta) = (scene.eta, scene.surface_angle);
+    let (eta, beta) = (surface.eta(), surface.angle());
     let start = solve(
-        model,
+        rod,
         beta,
         Target::Eta(eta),
         &BranchChoice::Convex,
@@ -72,24 +81,24 @@ fn scan_impl(model: &Model, opts: &ScanOptions, grid: &[f64]) -> Result<ScanResu
         beta,
         x_star: start.x1,
     };
-    if model.has_uniform_profile() {
-        run_with(model, Uniform, opts, grid, contact, &start)
+    if rod.has_uniform_profile() {
+        run_with(rod, Uniform, opts, grid, contact, &start)
     } else {
-        run_with(model, model.profile(1.0), opts, grid, contact, &start)
+        run_with(rod, rod.profile(1.0), opts, grid, contact, &start)
     }
 }
 
 /// The march for one profile type, on the rod's own shooter (single shooting) or a generic
 /// method.
 fn run_with<P: Profile>(
-    model: &Model,
+    rod: &Rod,
     profile: P,
     opts: &ScanOptions,
     grid: &[f64],
     contact: Contact,
     start: &Shape,
 ) -> Result<ScanResult, VibrissaError> {
-    let c = model.scene().support_compliance;
+    let c = rod.support_compliance();
     let family = ScanFamily {
         rod: RodBvp {
             profile: profile.clone(),
@@ -103,7 +112,7 @@ fn run_with<P: Profile>(
         eta: contact.eta,
         x_star: contact.x_star,
     };
-    let general = model.profile(1.0);
+    let general = rod.profile(1.0);
     let ctx = Ctx {
         contact,
         profile: &profile,
@@ -157,7 +166,12 @@ fn context(e: VibrissaError, what: &str) -> VibrissaError {
 /// its first maximum, lift-off, penetration, a fold in `d` (beyond it a slip would be ambiguous
 /// or impossible). A `d_max` that ends the scan while `|μ|` still rises is an error too: the range
 /// is not known then.
-pub fn infer(model: &Model, d0: f64, opts: &ScanOptions) -> Result<Inference, VibrissaError> {
+pub fn infer(
+    rod: &Rod,
+    surface: &Surface,
+    d0: f64,
+    opts: &ScanOptions,
+) -> Result<Inference, VibrissaError> {
     opts.validate()?;
     if !(d0.is_finite() && d0 >= 0.0) {
         return Err(VibrissaError::range(
@@ -171,7 +185,7 @@ pub fn infer(model: &Model, d0: f64, opts: &ScanOptions) -> Result<Inference, Vi
         keep_shapes: None,
         ..opts.clone()
     };
-    let probe = scan_at(model, &o, &[])?;
+    let probe = scan_at(rod, surface, &o, &[])?;
     let max = probe.d_at_mu_max;
     match probe.range_end {
         RangeEnd::FirstMaximum | RangeEnd::Event => {}
@@ -195,7 +209,7 @@ pub fn infer(model: &Model, d0: f64, opts: &ScanOptions) -> Result<Inference, Vi
             end: format!("{} ({})", probe.range_end, probe.stop),
         });
     }
-    let at = scan_at(model, &o, &[d0])?;
+    let at = scan_at(rod, surface, &o, &[d0])?;
     let p = at
         .points
         .iter()

@@ -1,18 +1,21 @@
-//! The scene: rod stiffness profile, pre-curvature, support, surface, physical units.
+//! The scene file: rod stiffness profile, pre-curvature, support, surface, physical units — the
+//! format of `vibrissa --scene FILE.toml` and of the command-line flags. The library itself works
+//! on its parts, [`Scene::rod`] and [`Scene::surface`].
 //!
-//! The same fields are read from a TOML scene file (`vibrissa --scene FILE.toml`) and set by
-//! command-line flags. All lengths are normalized by the rod length L, forces by EI_base/L²,
+//! Every `kind` refuses keys it does not have (`{ kind = "uniform", ratio = 0.5 }` is an error,
+//! not a uniform rod): the variants without values are empty structs for that reason. All lengths are normalized by the rod length L, forces by EI_base/L²,
 //! moments by EI_base/L, unless stated otherwise.
 
+use crate::rod::{Rod, Surface};
+use crate::VibrissaError;
 use serde::{Deserialize, Serialize};
 
 /// Reciprocal bending stiffness profile `b(s)` (`b = 1` at the base of a uniform rod).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Stiffness {
     /// `b ≡ 1`.
-    #[default]
-    Uniform,
+    Uniform {},
     /// Conical taper with tip/base radius ratio `ratio ∈ (0, 1]`: `b(s) = (1 − (1 − ratio)·s)^(−4)`.
     Taper {
         /// Tip/base radius ratio ρ.
@@ -28,12 +31,11 @@ pub enum Stiffness {
 }
 
 /// Pre-curvature (rest curvature) `κ0(s)`; positive bends the rest shape to the left (counter-clockwise).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Precurvature {
     /// Straight rest shape.
-    #[default]
-    None,
+    None {},
     /// `κ0(s) = k0 + k1·s` (constant when `k1 = 0`).
     Linear {
         /// Curvature at the base.
@@ -81,12 +83,24 @@ pub struct Scene {
     pub physical: Option<Physical>,
 }
 
+impl Default for Stiffness {
+    fn default() -> Self {
+        Stiffness::Uniform {}
+    }
+}
+
+impl Default for Precurvature {
+    fn default() -> Self {
+        Precurvature::None {}
+    }
+}
+
 impl Default for Scene {
     fn default() -> Self {
         Scene {
             eta: 0.75,
-            stiffness: Stiffness::Uniform,
-            precurvature: Precurvature::None,
+            stiffness: Stiffness::Uniform {},
+            precurvature: Precurvature::None {},
             support_compliance: 0.0,
             surface_angle: 0.0,
             physical: None,
@@ -94,121 +108,31 @@ impl Default for Scene {
     }
 }
 
-use crate::VibrissaError;
-
-fn finite(name: &str, v: f64) -> Result<(), VibrissaError> {
-    if v.is_finite() {
-        Ok(())
-    } else {
-        Err(VibrissaError::range(name, v, "(finite numbers)"))
-    }
-}
-
-/// Checks a piecewise-linear table: equal lengths >= 2, finite, `s` strictly increasing from 0 to 1.
-fn check_table(name: &str, s: &[f64], v: &[f64], positive: bool) -> Result<(), VibrissaError> {
-    let bad = |reason: String| VibrissaError::InvalidTable {
-        name: name.to_string(),
-        reason,
-    };
-    if s.len() != v.len() {
-        return Err(bad(format!(
-            "s has {} entries but the values have {}; they must have the same length",
-            s.len(),
-            v.len()
-        )));
-    }
-    if s.len() < 2 {
-        return Err(bad(format!(
-            "{} entries; at least 2 are needed to cover [0, 1]",
-            s.len()
-        )));
-    }
-    for (i, (&si, &vi)) in s.iter().zip(v).enumerate() {
-        if !si.is_finite() || !vi.is_finite() {
-            return Err(bad(format!(
-                "entry {i} (s = {si}, value = {vi}) is not finite"
-            )));
-        }
-        if positive && vi <= 0.0 {
-            return Err(bad(format!(
-                "value {vi} at s = {si} (entry {i}) must be > 0 (valid range (0, inf))"
-            )));
-        }
-        if i > 0 && si <= s[i - 1] {
-            return Err(bad(format!(
-                "s must be strictly increasing: s[{i}] = {si} <= s[{}] = {}",
-                i - 1,
-                s[i - 1]
-            )));
-        }
-    }
-    let (s0, s1) = (s[0], s[s.len() - 1]);
-    if s0 > 0.0 || s1 < 1.0 {
-        return Err(bad(format!(
-            "s covers [{s0}, {s1}] but must cover [0, 1] (first entry <= 0, last >= 1)"
-        )));
-    }
-    Ok(())
-}
-
 impl Scene {
-    /// Checks every value; the error names the value and its valid range.
-    pub fn validate(&self) -> Result<(), VibrissaError> {
-        let (_, eta_low) = elastica::lower_limit();
-        if !(self.eta > eta_low && self.eta < 1.0) {
-            return Err(VibrissaError::range(
-                "eta",
-                self.eta,
-                format!("({eta_low:.8}, 1) = (eta_, 1)"),
-            ));
-        }
-        match &self.stiffness {
-            Stiffness::Uniform => {}
-            Stiffness::Taper { ratio } => {
-                if !(*ratio > 0.0 && *ratio <= 1.0) {
-                    return Err(VibrissaError::range("stiffness.ratio", *ratio, "(0, 1]"));
-                }
-            }
-            Stiffness::Table { s, b } => check_table("stiffness", s, b, true)?,
-        }
-        match &self.precurvature {
-            Precurvature::None => {}
-            Precurvature::Linear { k0, k1 } => {
-                finite("precurvature.k0", *k0)?;
-                finite("precurvature.k1", *k1)?;
-            }
-            Precurvature::Table { s, k } => check_table("precurvature", s, k, false)?,
-        }
-        let c = self.support_compliance;
-        if !(c.is_finite() && c >= 0.0) {
-            return Err(VibrissaError::range("support_compliance", c, "[0, inf)"));
-        }
-        let beta = self.surface_angle;
-        if !(beta.is_finite() && beta.abs() < std::f64::consts::FRAC_PI_4) {
-            return Err(VibrissaError::range(
-                "surface_angle",
-                beta,
-                "(-pi/4, pi/4) radians",
-            ));
-        }
-        if let Some(p) = &self.physical {
-            for (name, v) in [
-                ("physical.length_mm", p.length_mm),
-                ("physical.youngs_modulus_gpa", p.youngs_modulus_gpa),
-                ("physical.base_diameter_um", p.base_diameter_um),
-            ] {
-                if !(v.is_finite() && v > 0.0) {
-                    return Err(VibrissaError::range(name, v, "(0, inf)"));
-                }
-            }
-        }
-        Ok(())
+    /// The rod of the scene (stiffness, rest curvature, support, physical dimensions), validated.
+    pub fn rod(&self) -> Result<Rod, VibrissaError> {
+        Rod::new(
+            self.stiffness.clone(),
+            self.precurvature.clone(),
+            self.support_compliance,
+            self.physical.clone(),
+        )
     }
 
-    /// True for the paper's scene: uniform, straight, clamped rod, horizontal surface.
-    pub fn is_paper_scene(&self) -> bool {
-        crate::profile::is_uniform(&self.stiffness, &self.precurvature)
-            && self.support_compliance == 0.0
-            && self.surface_angle == 0.0
+    /// The surface of the scene (height and inclination), validated.
+    pub fn surface(&self) -> Result<Surface, VibrissaError> {
+        Surface::new(self.eta, self.surface_angle)
+    }
+
+    /// Both parts, validated: `(rod, surface)`.
+    pub fn parts(&self) -> Result<(Rod, Surface), VibrissaError> {
+        Ok((self.rod()?, self.surface()?))
+    }
+
+    /// Checks every value (see [`Rod::new`] and [`Surface::new`]); the error names the value and
+    /// its valid range.
+    pub fn validate(&self) -> Result<(), VibrissaError> {
+        self.surface()?;
+        self.rod().map(|_| ())
     }
 }

@@ -1,5 +1,7 @@
-//! One-dimensional searches of the scan (events, the maximum of |μ|), with the caller's error
-//! passed through.
+//! One-dimensional searches of the scan (events, the maximum of |μ|, folds): argmin's Brent
+//! methods through [`elastica::roots`], with the caller's solver error passed through unchanged.
+
+use elastica::roots::{brent_max, brent_root};
 
 /// A root of `f` in `[a, b]` (`f(a)`, `f(b)` of opposite signs or zero) to `tol` in `x`.
 pub(crate) fn root(
@@ -8,23 +10,7 @@ pub(crate) fn root(
     b: f64,
     tol: f64,
 ) -> Result<f64, String> {
-    let mut failure = None;
-    let r = elastica::roots::try_brent_root(
-        |x| {
-            f(x).map_err(|e| {
-                failure = Some(e);
-                elastica::ElasticaError::NotFinite {
-                    name: "search",
-                    value: x,
-                }
-            })
-        },
-        a,
-        b,
-        tol,
-        200,
-    );
-    r.map_err(|e| failure.unwrap_or_else(|| e.to_string()))
+    brent_root(f, a, b, tol, 200).map_err(|e| e.to_string())
 }
 
 /// The maximum of `f` on `[a, b]` to `tol` in `x`: `(x, f(x))`.
@@ -34,21 +20,5 @@ pub(crate) fn maximize(
     b: f64,
     tol: f64,
 ) -> Result<(f64, f64), String> {
-    let mut failure = None;
-    let r = elastica::roots::try_brent_max(
-        |x| {
-            f(x).map_err(|e| {
-                failure = Some(e);
-                elastica::ElasticaError::NotFinite {
-                    name: "search",
-                    value: x,
-                }
-            })
-        },
-        a,
-        b,
-        tol,
-        200,
-    );
-    r.map_err(|e| failure.unwrap_or_else(|| e.to_string()))
+    brent_max(f, a, b, tol, 200).map_err(|e| e.to_string())
 }

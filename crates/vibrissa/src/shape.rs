@@ -119,6 +119,30 @@ impl Shape {
         }
     }
 
+    /// How the rod lies against the surface line through its tip inclined by `beta` (0: the
+    /// horizontal surface at height `y1`); [`Clearance::penetrates`] tells whether it crosses it.
+    pub fn clearance(&self, beta: f64) -> Clearance {
+        match &self.data {
+            ShapeData::Numeric { sol, .. } => clearance(sol, beta),
+            ShapeData::Analytic(e) => {
+                let (sb, cb) = beta.sin_cos();
+                let h = |x: f64, y: f64| -sb * (x - e.x1) + cb * (y - e.y1);
+                let mut best = (h(0.0, 0.0), 0.0);
+                // the closed form has no interpolant to maximize on: dense samples
+                for p in e.shape(1025).unwrap_or_default() {
+                    if p.s < 1.0 && h(p.x, p.y) > best.0 {
+                        best = (h(p.x, p.y), p.s);
+                    }
+                }
+                Clearance {
+                    height: best.0,
+                    s: best.1,
+                    tip_approach: (e.phi1 - beta).sin(),
+                }
+            }
+        }
+    }
+
     /// The underlying BVP solution (numerical methods only).
     pub fn solution(&self) -> Option<&Solution> {
         match &self.data {
@@ -455,6 +479,54 @@ pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
         }
     }
     out
+}
+
+/// How a rod lies against the surface line through its tip, inclined by β (normal
+/// `n = (−sin β, cos β)`): the largest height above that line over `s < 1` and where, and how the
+/// tip arrives at it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Clearance {
+    /// Largest height `n·(p(s) − p(1))` over `s < 1` (negative: the rod stays below the line).
+    pub height: f64,
+    /// Its arc length.
+    pub s: f64,
+    /// `sin(φ(1) − β)`: positive when the tip arrives from below the surface.
+    pub tip_approach: f64,
+}
+
+impl Clearance {
+    /// The rod crosses the surface: a point with `s < 1` above the line, or the tip arriving from
+    /// above it (then the points just before the tip are above).
+    pub fn penetrates(&self) -> bool {
+        self.excess().0 > 0.0
+    }
+    /// One measure that is positive exactly when the rod penetrates, and the arc length it refers
+    /// to: `max(height, −tip_approach)`.
+    pub(crate) fn excess(&self) -> (f64, f64) {
+        if self.height > -self.tip_approach {
+            (self.height, self.s)
+        } else {
+            (-self.tip_approach, 1.0)
+        }
+    }
+}
+
+/// The [`Clearance`] of a numerical solution (exact on its cubic Hermite interpolant).
+pub(crate) fn clearance(sol: &Solution, beta: f64) -> Clearance {
+    let (sb, cb) = beta.sin_cos();
+    let ex = extrema(sol, -sb, cb);
+    let (za, zb) = (sol.left(), sol.right());
+    let h = |z: &[f64]| -sb * z[0] + cb * z[1];
+    let (height, s) = if ex.interior > h(za) {
+        (ex.interior, ex.s_interior)
+    } else {
+        (h(za), 0.0)
+    };
+    Clearance {
+        height: height - h(zb),
+        s,
+        tip_approach: (zb[2] - beta).sin(),
+    }
 }
 
 /// Builds a [`Shape`] from a converged solution with `params = [f]` (α given) or `[f, α]`.

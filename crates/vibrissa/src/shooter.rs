@@ -291,7 +291,12 @@ mod tests {
         };
         let u = [-1.2, 3.0, -0.2];
         let mut a = Shooter::new(Uniform, 0.0, 1e-10, 16);
-        let mut b = Shooter::new(General::new(&scene, 1.0), 0.0, 1e-10, 16);
+        let mut b = Shooter::new(
+            General::new(&scene.stiffness, &scene.precurvature, 1.0),
+            0.0,
+            1e-10,
+            16,
+        );
         let (sa, sb) = (a.shoot::<true>(&u), b.shoot::<true>(&u));
         assert_eq!(sa.y1, sb.y1);
     }
@@ -306,7 +311,12 @@ mod tests {
             support_compliance: 0.7,
             ..Scene::default()
         };
-        let mut sh = Shooter::new(General::new(&scene, 1.0), 0.7, 1e-10, 40);
+        let mut sh = Shooter::new(
+            General::new(&scene.stiffness, &scene.precurvature, 1.0),
+            0.7,
+            1e-10,
+            40,
+        );
         let u = [-0.8, 2.5, -0.3];
         let y = sh.shoot::<true>(&u).y1;
         for q in 0..3 {
@@ -334,7 +344,12 @@ mod tests {
             stiffness: Stiffness::Taper { ratio: 0.1 },
             ..Scene::default()
         };
-        let mut sh = Shooter::new(General::new(&scene, 1.0), 0.0, 1e-10, 8);
+        let mut sh = Shooter::new(
+            General::new(&scene.stiffness, &scene.precurvature, 1.0),
+            0.0,
+            1e-10,
+            8,
+        );
         let u = [-0.05, 0.3, 0.0];
         let mut passes = 0;
         while sh.shoot::<false>(&u).err > 1.0 {

@@ -6,7 +6,7 @@ use crate::profile::{Profile, Uniform};
 use crate::rodsolve::{self, Converged, TipCond};
 use crate::shape::{elastica_guess, shape_from, shape_from_elastica, BranchChoice, Shape};
 use crate::shooter::Shooter;
-use crate::{Model, VibrissaError};
+use crate::{Rod, VibrissaError};
 use bvp::{
     continuation::{Continuation, ContinuationOptions},
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Integrator, NewtonOptions,
@@ -356,7 +356,7 @@ pub(crate) fn run<B: Bvp + ?Sized>(
 /// converged solution on another branch is an error ([`VibrissaError::WrongBranch`]) unless
 /// [`BranchChoice::Any`] is asked for.
 pub fn solve(
-    model: &Model,
+    rod: &Rod,
     alpha: f64,
     target: Target,
     branch: &BranchChoice,
@@ -366,16 +366,16 @@ pub fn solve(
     check_alpha(alpha)?;
     check_target(&target)?;
     if cfg.method == Method::Analytic {
-        return solve_analytic(model, alpha, target, branch);
+        return solve_analytic(rod, alpha, target, branch);
     }
     let fast = cfg.own_shooter_tol().and_then(|tol| {
-        if model.has_uniform_profile() {
-            let c = model.scene().support_compliance;
-            solve_fast(model, |t| (Uniform, t * c), alpha, target, branch, tol)
+        if rod.has_uniform_profile() {
+            let c = rod.support_compliance();
+            solve_fast(rod, |t| (Uniform, t * c), alpha, target, branch, tol)
         } else {
-            let (p, c) = (model.profile(1.0), model.scene().support_compliance);
+            let (p, c) = (rod.profile(1.0), rod.support_compliance());
             solve_fast(
-                model,
+                rod,
                 |t| (p.clone().with_t(t), t * c),
                 alpha,
                 target,
@@ -388,17 +388,10 @@ pub fn solve(
         Some(s) => s,
         None => {
             let mut engine = Engine::new(cfg)?;
-            if model.has_uniform_profile() && model.scene().support_compliance == 0.0 {
-                solve_with(model, Uniform, &mut engine, alpha, target, branch)?
+            if rod.is_uniform_clamped() {
+                solve_with(rod, Uniform, &mut engine, alpha, target, branch)?
             } else {
-                solve_with(
-                    model,
-                    model.profile(1.0),
-                    &mut engine,
-                    alpha,
-                    target,
-                    branch,
-                )?
+                solve_with(rod, rod.profile(1.0), &mut engine, alpha, target, branch)?
             }
         }
     };
@@ -437,7 +430,7 @@ fn uniform_start(alpha: f64, target: &Target, branch: &BranchChoice) -> [f64; 3]
 /// `t` and never jumps to another branch (e.g. the mirror image bending the other way); a tip
 /// target then moves the tip along its line the same way.
 fn solve_fast<P: Profile>(
-    model: &Model,
+    rod: &Rod,
     member: impl Fn(f64) -> (P, f64),
     alpha: f64,
     target: Target,
@@ -494,7 +487,7 @@ fn solve_fast<P: Profile>(
         residual: cv.residual,
         ..sh.stats.clone()
     };
-    Some(shape_from(sol, alpha, model.profile(1.0)))
+    Some(shape_from(sol, alpha, rod.profile(1.0)))
 }
 
 /// Follows `fam` by pseudo-arclength from its member at `from` (Newton from `u0`) until `λ`
@@ -553,15 +546,16 @@ fn follow_to<P: Profile, F: Family<P>>(
 }
 
 fn solve_analytic(
-    model: &Model,
+    rod: &Rod,
     alpha: f64,
     target: Target,
     branch: &BranchChoice,
 ) -> Result<Shape, VibrissaError> {
-    if !model.is_paper_scene() {
+    if !rod.is_uniform_clamped() {
         return Err(VibrissaError::MethodUnavailable {
             method: "analytic".into(),
-            reason: "closed forms exist only for the paper's scene (uniform, straight, clamped rod, horizontal surface)".into(),
+            reason: "closed forms exist only for the paper's rod (uniform, straight, clamped)"
+                .into(),
         });
     }
     if matches!(target, Target::Tip { .. }) {
@@ -571,7 +565,16 @@ fn solve_analytic(
         });
     }
     let e = closed_form(alpha, &target, elastica_branch(branch))?;
-    Ok(shape_from_elastica(e))
+    // the residual of a closed form: the defect of the first integral at the clamp (φ = π/2),
+    // ½m(0)² = f·[cos α − sin(φ1 − α)], relative to max(f, 1), and the miss of a height target
+    let fi = 0.5 * e.m_base * e.m_base - e.f * (e.alpha.cos() - (e.phi1 - e.alpha).sin());
+    let mut residual = fi.abs() / e.f.max(1.0);
+    if let Target::Eta(h) = target {
+        residual = residual.max((e.y1 - h).abs());
+    }
+    let mut shape = shape_from_elastica(e);
+    shape.residual = residual;
+    Ok(shape)
 }
 
 fn ends_of(target: Target) -> Ends {
@@ -584,18 +587,18 @@ fn ends_of(target: Target) -> Ends {
 
 /// Core of [`solve`] for one profile type.
 pub(crate) fn solve_with<Pr: Profile>(
-    model: &Model,
+    rod: &Rod,
     profile: Pr,
     engine: &mut Engine,
     alpha: f64,
     target: Target,
     branch: &BranchChoice,
 ) -> Result<Shape, VibrissaError> {
-    let c = model.scene().support_compliance;
+    let c = rod.support_compliance();
     if let Target::Tip { x1, y1 } = target {
-        return solve_tip(model, profile, engine, alpha, x1, y1, branch);
+        return solve_tip(rod, profile, engine, alpha, x1, y1, branch);
     }
-    let rod = RodBvp {
+    let problem = RodBvp {
         profile: profile.clone(),
         compliance: c,
         alpha,
@@ -603,10 +606,10 @@ pub(crate) fn solve_with<Pr: Profile>(
     };
     if let BranchChoice::Guess(g) = branch {
         let guess = g.guess(vec![g.f]);
-        let sol = run(engine, &rod, &guess, || {
+        let sol = run(engine, &problem, &guess, || {
             format!("solve at alpha = {alpha}, {target:?} from the given shape")
         })?;
-        return Ok(shape_from(sol, alpha, model.profile(1.0)));
+        return Ok(shape_from(sol, alpha, rod.profile(1.0)));
     }
     // the closed form of the uniform clamped rod where it exists, else a circular arc
     let guess = match closed_form(alpha, &target, elastica_branch(branch)) {
@@ -617,19 +620,19 @@ pub(crate) fn solve_with<Pr: Profile>(
         },
     };
     if Pr::UNIFORM && c == 0.0 {
-        let sol = run(engine, &rod, &guess, || {
+        let sol = run(engine, &problem, &guess, || {
             format!("solve at alpha = {alpha}, {target:?}")
         })?;
-        return Ok(shape_from(sol, alpha, model.profile(1.0)));
+        return Ok(shape_from(sol, alpha, rod.profile(1.0)));
     }
     let family = HomotopyFamily {
-        profile: model.profile(1.0),
+        profile: rod.profile(1.0),
         compliance: c,
         alpha,
         ends: ends_of(target),
     };
     let sol = homotopy(engine, &family, &guess)?;
-    Ok(shape_from(sol, alpha, model.profile(1.0)))
+    Ok(shape_from(sol, alpha, rod.profile(1.0)))
 }
 
 /// A rough "solution" made of a guess (for continuation starts, which correct it first).
@@ -700,7 +703,7 @@ pub(crate) fn homotopy(
 /// Tip target: solve for `y(1) = y1` at the given `alpha`, then continue the tip x to `x1` with
 /// `(f, α)` unknown.
 fn solve_tip<Pr: Profile>(
-    model: &Model,
+    rod: &Rod,
     profile: Pr,
     engine: &mut Engine,
     alpha: f64,
@@ -708,8 +711,8 @@ fn solve_tip<Pr: Profile>(
     y1: f64,
     branch: &BranchChoice,
 ) -> Result<Shape, VibrissaError> {
-    let c = model.scene().support_compliance;
-    let rod = RodBvp {
+    let c = rod.support_compliance();
+    let problem = RodBvp {
         profile: profile.clone(),
         compliance: c,
         alpha,
@@ -717,19 +720,12 @@ fn solve_tip<Pr: Profile>(
     };
     let start = match branch {
         BranchChoice::Guess(g) => {
-            let sol = run(engine, &rod, &g.guess(vec![g.f, g.alpha]), || {
+            let sol = run(engine, &problem, &g.guess(vec![g.f, g.alpha]), || {
                 format!("tip ({x1}, {y1}) from the given shape")
             })?;
-            return Ok(shape_from(sol, alpha, model.profile(1.0)));
+            return Ok(shape_from(sol, alpha, rod.profile(1.0)));
         }
-        _ => solve_with(
-            model,
-            profile.clone(),
-            engine,
-            alpha,
-            Target::Eta(y1),
-            branch,
-        )?,
+        _ => solve_with(rod, profile.clone(), engine, alpha, Target::Eta(y1), branch)?,
     };
     let mut sol = start
         .solution()
@@ -747,7 +743,7 @@ fn solve_tip<Pr: Profile>(
         };
         let r = RodBvp {
             ends: Ends::Tip { x1: xn, y1 },
-            ..rod.clone()
+            ..problem.clone()
         };
         match engine.solve(&r, &Guess::from(&sol)) {
             Ok(s) => {
@@ -771,5 +767,5 @@ fn solve_tip<Pr: Profile>(
     }
     let residual = sol.stats.residual;
     sol.stats = Stats { residual, ..stats };
-    Ok(shape_from(sol, alpha, model.profile(1.0)))
+    Ok(shape_from(sol, alpha, rod.profile(1.0)))
 }

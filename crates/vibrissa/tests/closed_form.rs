@@ -2,7 +2,7 @@
 //! (paper §3, Remark 3.1): μ and f at the closed-form points' displacements, both phases.
 
 use elastica::{ClosedFormScan, Phase0End};
-use vibrissa::{scan_at, Method, Model, ScanOptions, Scene, SolverConfig, StopReason};
+use vibrissa::{scan_at, Method, ScanOptions, Scene, SolverConfig, StopReason};
 
 fn opts(method: Method, tol: f64) -> ScanOptions {
     ScanOptions {
@@ -51,12 +51,13 @@ fn compare(eta: f64, method: Method, tol: f64, err: f64) -> (usize, StopReason) 
     };
     let order: Vec<usize> = order.into_iter().filter(|&i| ds[i] <= d_limit).collect();
     let d_sorted: Vec<f64> = order.iter().map(|&i| ds[i].max(0.0)).collect();
-    let model = Model::new(&Scene {
+    let (rod, surface) = Scene {
         eta,
         ..Scene::default()
-    })
+    }
+    .parts()
     .unwrap();
-    let r = scan_at(&model, &opts(method, tol), &d_sorted).unwrap();
+    let r = scan_at(&rod, &surface, &opts(method, tol), &d_sorted).unwrap();
     // the grid points (an event that ends the scan adds its own last point)
     let grid: Vec<_> = r.points.iter().filter(|p| p.event.is_none()).collect();
     assert_eq!(grid.len(), d_sorted.len(), "stop: {}", r.stop);
@@ -104,8 +105,8 @@ fn eta_06_matches_closed_form() {
 #[test]
 fn eta_075_passes_mu_max_and_phi1_fold() {
     let cf = ClosedFormScan::new(0.75).unwrap();
-    let model = Model::new(&Scene::default()).unwrap();
-    let r = vibrissa::scan(&model, &opts(Method::Shooting, 1e-12)).unwrap();
+    let (rod, surface) = Scene::default().parts().unwrap();
+    let r = vibrissa::scan(&rod, &surface, &opts(Method::Shooting, 1e-12)).unwrap();
     assert_eq!(r.stop, StopReason::DMax);
     assert_eq!(r.points.len(), 201);
     assert!((r.points.last().unwrap().d - 0.5).abs() < 1e-15);
@@ -149,12 +150,13 @@ fn eta_06_stops_by_penetration_near_horizontal_tip() {
     // paper, text under Figs. 9-11: phase 0 ends close to alpha = -pi/4, phi1 = 0; the run ends there
     let cf = ClosedFormScan::new(0.6).unwrap();
     assert_eq!(cf.phase0_end, Phase0End::TipHorizontal);
-    let model = Model::new(&Scene {
+    let (rod, surface) = Scene {
         eta: 0.6,
         ..Scene::default()
-    })
+    }
+    .parts()
     .unwrap();
-    let r = vibrissa::scan(&model, &opts(Method::Shooting, 1e-12)).unwrap();
+    let r = vibrissa::scan(&rod, &surface, &opts(Method::Shooting, 1e-12)).unwrap();
     match r.stop {
         StopReason::Penetration { d, s, y } => {
             assert!((d - cf.turning.d).abs() < 1e-8, "{d} vs {}", cf.turning.d);

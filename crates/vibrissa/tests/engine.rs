@@ -4,8 +4,8 @@
 
 use approx::assert_abs_diff_eq;
 use vibrissa::{
-    infer, scan, solve, BranchChoice, Event, Method, Model, Precurvature, ScanOptions, ScanResult,
-    Scene, SolverConfig, Stiffness, StopReason, Target,
+    infer, scan, solve, BranchChoice, Event, Method, Precurvature, ScanOptions, ScanResult, Scene,
+    SolverConfig, Stiffness, StopReason, Target,
 };
 
 fn scene(f: impl Fn(&mut Scene)) -> Scene {
@@ -15,7 +15,8 @@ fn scene(f: impl Fn(&mut Scene)) -> Scene {
 }
 
 fn run(s: &Scene, o: &ScanOptions) -> ScanResult {
-    scan(&Model::new(s).unwrap(), o).unwrap()
+    let (rod, surface) = s.parts().unwrap();
+    scan(&rod, &surface, o).unwrap()
 }
 
 fn with_method(o: &ScanOptions, method: Method, tol: f64) -> ScanOptions {
@@ -274,7 +275,7 @@ fn slip_row_and_cost() {
 fn precurved_rods_solve_on_both_branches() {
     for k0 in [0.1, 0.3, 0.5, -0.3, 1.0] {
         let s = scene(|s| s.precurvature = Precurvature::Linear { k0, k1: 0.0 });
-        let m = Model::new(&s).unwrap();
+        let m = s.rod().unwrap();
         let cfg = SolverConfig::default();
         let c = solve(&m, -0.2, Target::Eta(0.75), &BranchChoice::Convex, &cfg).unwrap();
         assert_eq!(c.load_reversals, 0, "k0 {k0}");
@@ -295,13 +296,13 @@ fn mu_max_located_on_coarse_grids() {
         .unwrap()
         .mu_max()
         .unwrap();
-    let model = Model::new(&Scene::default()).unwrap();
+    let (rod, surface) = Scene::default().parts().unwrap();
     for points in [6, 11, 201] {
         let o = ScanOptions {
             points,
             ..ScanOptions::default()
         };
-        let r = scan(&model, &o).unwrap();
+        let r = scan(&rod, &surface, &o).unwrap();
         assert_abs_diff_eq!(r.mu_max, cf.mu, epsilon = 1e-9);
         // μ is flat at its maximum: d is determined to ~sqrt(tol)
         assert_abs_diff_eq!(r.d_at_mu_max, cf.d, epsilon = 1e-6);
@@ -312,19 +313,20 @@ fn mu_max_located_on_coarse_grids() {
 /// `infer` on the measurable range: inside it, μ0 = μ(d0); outside, errors that name the range.
 #[test]
 fn infer_names_the_measurable_range() {
-    let model = Model::new(&Scene::default()).unwrap();
+    let (rod, surface) = Scene::default().parts().unwrap();
     let o = ScanOptions::default();
     let cf = elastica::ClosedFormScan::new(0.75)
         .unwrap()
         .mu_max()
         .unwrap();
-    let inf = infer(&model, 0.1, &o).unwrap();
+    let inf = infer(&rod, &surface, 0.1, &o).unwrap();
     assert_abs_diff_eq!(inf.measurable_d.1, cf.d, epsilon = 1e-6);
     assert!(inf.mu0 > 0.7 && inf.mu0 < cf.mu);
-    let e = infer(&model, 0.2, &o).unwrap_err().to_string();
+    let e = infer(&rod, &surface, 0.2, &o).unwrap_err().to_string();
     assert!(e.contains("0.13") && e.contains("first maximum"), "{e}");
     let e = infer(
-        &model,
+        &rod,
+        &surface,
         0.04,
         &ScanOptions {
             d_max: 0.05,

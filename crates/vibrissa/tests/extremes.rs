@@ -3,8 +3,8 @@
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 use vibrissa::{
-    scan, solve, BranchChoice, Method, Model, Precurvature, ScanOptions, Scene, Shape,
-    SolverConfig, Stiffness, StopReason, Target, VibrissaError,
+    scan, solve, BranchChoice, Method, Precurvature, Rod, ScanOptions, Scene, Shape, SolverConfig,
+    Stiffness, StopReason, Target, VibrissaError,
 };
 
 fn cfg() -> SolverConfig {
@@ -39,8 +39,8 @@ fn finite_or_typed(r: Result<Shape, VibrissaError>) -> Option<Shape> {
     }
 }
 
-fn paper() -> Model {
-    Model::new(&Scene::default()).unwrap()
+fn paper() -> Rod {
+    Rod::uniform()
 }
 
 #[test]
@@ -81,13 +81,15 @@ fn eta_near_lower_limit() {
     .expect("solvable");
     assert!((s.f - e.f).abs() < 1e-8 * e.f && (s.phi1 - e.phi1).abs() < 1e-7);
     // the scan there stops almost at once: the tip turns below the surface
-    let model = Model::new(&Scene {
+    let (rod, surface) = Scene {
         eta: eta_low + 1e-3,
         ..Scene::default()
-    })
+    }
+    .parts()
     .unwrap();
     let r = scan(
-        &model,
+        &rod,
+        &surface,
         &ScanOptions {
             points: 11,
             ..ScanOptions::default()
@@ -157,16 +159,17 @@ fn phi1_to_zero() {
 
 #[test]
 fn strong_taper() {
-    let model = Model::new(&Scene {
+    let rod = Scene {
         stiffness: Stiffness::Taper { ratio: 0.05 },
         ..Scene::default()
-    })
+    }
+    .rod()
     .unwrap();
     let mut shapes = vec![];
     for method in [Method::Shooting, Method::MultipleShooting] {
         let c = SolverConfig { method, ..cfg() };
         if let Some(s) = finite_or_typed(solve(
-            &model,
+            &rod,
             -0.1,
             Target::Eta(0.75),
             &BranchChoice::Convex,
@@ -184,10 +187,11 @@ fn strong_taper() {
 #[test]
 fn half_circle_precurvature() {
     // κ0 = π: the unloaded rod is a half circle ending at (−2/π, 0)
-    let model = Model::new(&Scene {
+    let rod = Scene {
         precurvature: Precurvature::Linear { k0: PI, k1: 0.0 },
         ..Scene::default()
-    })
+    }
+    .rod()
     .unwrap();
     for target in [
         Target::Eta(0.75),
@@ -195,7 +199,7 @@ fn half_circle_precurvature() {
         Target::Eta(0.2),
     ] {
         for branch in [BranchChoice::Convex, BranchChoice::Flex] {
-            if let Some(s) = finite_or_typed(solve(&model, -0.1, target, &branch, &cfg())) {
+            if let Some(s) = finite_or_typed(solve(&rod, -0.1, target, &branch, &cfg())) {
                 assert!(s.residual < 1e-9);
                 match target {
                     Target::Eta(e) => assert!((s.y1 - e).abs() < 1e-9),
@@ -211,13 +215,14 @@ fn half_circle_precurvature() {
 fn compliance_zero_to_hundred() {
     let mut solved = 0;
     for c in [0.0, 0.1, 1.0, 10.0, 100.0] {
-        let model = Model::new(&Scene {
+        let rod = Scene {
             support_compliance: c,
             ..Scene::default()
-        })
+        }
+        .rod()
         .unwrap();
         if let Some(s) = finite_or_typed(solve(
-            &model,
+            &rod,
             -0.2,
             Target::Eta(0.75),
             &BranchChoice::Convex,

@@ -5,12 +5,12 @@ use bvp::Bvp;
 use proptest::prelude::*;
 use vibrissa::equations::{Ends, RodBvp};
 use vibrissa::{
-    infer, scan, solve, BranchChoice, Method, Model, Precurvature, ScanOptions, Scene,
-    SolverConfig, Stiffness, Target, VibrissaError,
+    infer, scan, solve, BranchChoice, Method, Precurvature, ScanOptions, Scene, SolverConfig,
+    Stiffness, Target, VibrissaError,
 };
 
 fn err_of(scene: Scene) -> String {
-    Model::new(&scene).unwrap_err().to_string()
+    scene.validate().unwrap_err().to_string()
 }
 
 #[test]
@@ -38,16 +38,26 @@ fn bad_scenes_name_value_and_range() {
             stiffness: Stiffness::Taper { ratio },
             ..Scene::default()
         });
-        assert!(e.contains("ratio") && e.contains("(0, 1]"), "{e}");
+        assert!(e.contains("taper ratio") && e.contains("[0.01, 1]"), "{e}");
     }
-    let e = err_of(Scene {
-        support_compliance: -1.0,
-        ..Scene::default()
-    });
-    assert!(
-        e.contains("support_compliance = -1") && e.contains("[0, inf)"),
-        "{e}"
-    );
+    for c in [-1.0, 2e4, f64::INFINITY] {
+        let e = err_of(Scene {
+            support_compliance: c,
+            ..Scene::default()
+        });
+        assert!(
+            e.contains(&format!("support compliance = {c}")) && e.contains("[0, 1e4]"),
+            "{e}"
+        );
+    }
+    // rest curvatures past the model's range (a rod curled over ~3 turns)
+    for (k0, k1) in [(25.0, 0.0), (-1e300, 0.0), (15.0, 10.0)] {
+        let e = err_of(Scene {
+            precurvature: Precurvature::Linear { k0, k1 },
+            ..Scene::default()
+        });
+        assert!(e.contains("precurvature") && e.contains("[-20, 20]"), "{e}");
+    }
     let e = err_of(Scene {
         precurvature: Precurvature::Linear {
             k0: f64::NAN,
@@ -82,7 +92,7 @@ fn bad_scenes_name_value_and_range() {
         },
         ..Scene::default()
     });
-    assert!(e.contains("> 0"), "{e}");
+    assert!(e.contains("(0, 1e8]"), "{e}");
     let e = err_of(Scene {
         precurvature: Precurvature::Table {
             s: vec![0.0, 1.0],
@@ -103,11 +113,38 @@ fn bad_scenes_name_value_and_range() {
         e.contains("length_mm = -3") && e.contains("(0, inf)"),
         "{e}"
     );
+    // dimensions whose units underflow are refused, not reported as empty columns
+    let e = err_of(Scene {
+        physical: Some(vibrissa::Physical {
+            length_mm: 1e200,
+            youngs_modulus_gpa: 3.0,
+            base_diameter_um: 1e-100,
+        }),
+        ..Scene::default()
+    });
+    assert!(e.contains("force unit"), "{e}");
+}
+
+/// Every `kind` refuses keys it does not have: a uniform rod with a ratio or a straight rod with
+/// a curvature is a mistake in the file, not the paper's rod.
+#[test]
+fn scene_kinds_refuse_foreign_keys() {
+    for text in [
+        "stiffness = { kind = \"uniform\", ratio = 0.5 }",
+        "precurvature = { kind = \"none\", k0 = -0.5 }",
+        "stiffness = { kind = \"taper\", ratio = 0.5, k0 = 1 }",
+        "precurvature = { kind = \"linear\", k0 = 1, ratio = 2 }",
+    ] {
+        let e = toml::from_str::<Scene>(text).unwrap_err().to_string();
+        assert!(e.contains("unknown field"), "{text}: {e}");
+    }
+    let ok: Scene = toml::from_str("stiffness = { kind = \"uniform\" }").unwrap();
+    assert_eq!(ok, Scene::default());
 }
 
 #[test]
 fn bad_scan_options() {
-    let model = Model::new(&Scene::default()).unwrap();
+    let (rod, surface) = Scene::default().parts().unwrap();
     let bad = [
         (
             ScanOptions {
@@ -139,15 +176,15 @@ fn bad_scan_options() {
         ),
     ];
     for (o, name) in bad {
-        let e = scan(&model, &o).unwrap_err().to_string();
+        let e = scan(&rod, &surface, &o).unwrap_err().to_string();
         assert!(e.contains(name) && e.contains("valid range"), "{e}");
     }
     // a negative d0 is bad input, named with its range and no NaN in it
-    let e = infer(&model, -0.1, &ScanOptions::default()).unwrap_err();
+    let e = infer(&rod, &surface, -0.1, &ScanOptions::default()).unwrap_err();
     assert!(matches!(e, VibrissaError::OutOfRange { .. }), "{e}");
     assert!(!e.to_string().contains("NaN"), "{e}");
     // beyond the first maximum of |μ| (d ≈ 0.130): not measurable, the message says why
-    let e = infer(&model, 0.2, &ScanOptions::default()).unwrap_err();
+    let e = infer(&rod, &surface, 0.2, &ScanOptions::default()).unwrap_err();
     assert!(matches!(e, VibrissaError::NotMeasurable { .. }), "{e}");
     assert!(e.to_string().contains("first maximum"), "{e}");
     // a d_max before the first maximum cuts the range short: an error that says so
@@ -155,22 +192,23 @@ fn bad_scan_options() {
         d_max: 0.05,
         ..ScanOptions::default()
     };
-    let e = infer(&model, 0.04, &short).unwrap_err();
+    let e = infer(&rod, &surface, 0.04, &short).unwrap_err();
     assert!(matches!(e, VibrissaError::RangeCutShort { .. }), "{e}");
 }
 
 #[test]
 fn analytic_only_on_paper_scene() {
-    let model = Model::new(&Scene {
+    let rod = Scene {
         stiffness: Stiffness::Taper { ratio: 0.5 },
         ..Scene::default()
-    })
+    }
+    .rod()
     .unwrap();
     let cfg = SolverConfig {
         method: Method::Analytic,
         ..SolverConfig::default()
     };
-    let e = solve(&model, -0.1, Target::Eta(0.7), &BranchChoice::Convex, &cfg).unwrap_err();
+    let e = solve(&rod, -0.1, Target::Eta(0.7), &BranchChoice::Convex, &cfg).unwrap_err();
     assert!(matches!(e, VibrissaError::MethodUnavailable { .. }), "{e}");
     let e = "bogus".parse::<Method>().unwrap_err().to_string();
     assert!(e.contains("bogus") && e.contains("collocation6"), "{e}");
@@ -252,14 +290,14 @@ proptest! {
             support_compliance: c,
             ..Scene::default()
         };
-        let model = Model::new(&scene).unwrap();
+        let rod = scene.rod().unwrap();
         let z = [x, y, phi, m];
         let (ends, p) = if with_alpha {
             (Ends::Tip { x1: 0.3, y1: 0.7 }, vec![f, alpha])
         } else {
             (Ends::Eta { eta: 0.7 }, vec![f])
         };
-        let rod = RodBvp { profile: model.profile(1.0), compliance: c, alpha, ends };
+        let rod = RodBvp { profile: rod.profile(1.0), compliance: c, alpha, ends };
         fd_check(&rod, s, &z, &p);
         let uni = RodBvp { profile: vibrissa::profile::Uniform, compliance: c, alpha, ends: Ends::Phi1 { phi1: 0.2 } };
         fd_check(&uni, s, &z, &p[..1]);

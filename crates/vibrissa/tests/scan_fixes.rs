@@ -6,8 +6,8 @@ use bvp::{Integrator, NewtonOptions, Shooting, ShootingOptions};
 use vibrissa::equations::{Ends, RodBvp, ScanFamily};
 use vibrissa::profile::Uniform;
 use vibrissa::{
-    scan, solve, BranchChoice, Event, Model, ScanOptions, ScanResult, Scene, SolverConfig,
-    Stiffness, StopReason, Target,
+    scan, solve, BranchChoice, Event, Rod, ScanOptions, ScanResult, Scene, SolverConfig, Stiffness,
+    StopReason, Target,
 };
 
 fn grid_len(o: &ScanOptions, upto: f64) -> usize {
@@ -49,8 +49,9 @@ fn table_profile_costs_about_as_much_as_the_uniform_branch() {
         ..Scene::default()
     };
     let o = ScanOptions::default();
-    let rt = scan(&Model::new(&table).unwrap(), &o).unwrap();
-    let ru = scan(&Model::new(&Scene::default()).unwrap(), &o).unwrap();
+    let (rod, surface) = table.parts().unwrap();
+    let rt = scan(&rod, &surface, &o).unwrap();
+    let ru = scan(&Rod::uniform(), &surface, &o).unwrap();
     assert_eq!(rt.stop, StopReason::DMax);
     check_points(&rt, &o);
     assert!(
@@ -76,9 +77,9 @@ fn start_below_the_surface_stops_at_d0() {
         stiffness: Stiffness::Taper { ratio: 0.5 },
         ..Scene::default()
     };
-    let model = Model::new(&scene).unwrap();
+    let (rod, surface) = scene.parts().unwrap();
     let start = solve(
-        &model,
+        &rod,
         0.0,
         Target::Eta(0.6),
         &BranchChoice::Convex,
@@ -91,7 +92,7 @@ fn start_below_the_surface_stops_at_d0() {
         points: 21,
         ..ScanOptions::default()
     };
-    let r = scan(&model, &o).unwrap();
+    let r = scan(&rod, &surface, &o).unwrap();
     match r.stop {
         StopReason::Penetration { d, s, y } => {
             assert_eq!(d, 0.0);
@@ -107,16 +108,17 @@ fn start_below_the_surface_stops_at_d0() {
 fn penetration_between_grid_points_is_located() {
     // paper rod at η = 0.6 on a coarse grid (spacing 0.1): the tip turns horizontal at
     // d ≈ 0.0937 (closed form in tests/closed_form.rs), between the grid points 0 and 0.1
-    let model = Model::new(&Scene {
+    let (rod, surface) = Scene {
         eta: 0.6,
         ..Scene::default()
-    })
+    }
+    .parts()
     .unwrap();
     let o = ScanOptions {
         points: 6,
         ..ScanOptions::default()
     };
-    let r = scan(&model, &o).unwrap();
+    let r = scan(&rod, &surface, &o).unwrap();
     let cf = elastica::ClosedFormScan::new(0.6).unwrap();
     match r.stop {
         StopReason::Penetration { d, .. } => assert!((d - cf.turning.d).abs() < 1e-7),
@@ -150,7 +152,8 @@ fn coarse_grids_keep_every_point() {
         ..ScanOptions::default()
     };
     for (i, scene) in scenes.iter().enumerate() {
-        let r = scan(&Model::new(scene).unwrap(), &o).unwrap();
+        let (rod, surface) = scene.parts().unwrap();
+        let r = scan(&rod, &surface, &o).unwrap();
         check_points(&r, &o);
         if i == 0 {
             assert!(matches!(r.stop, StopReason::Penetration { d, .. } if d == 0.0));
@@ -164,17 +167,18 @@ fn coarse_grids_keep_every_point() {
 fn fold_in_d_is_found_where_d_is_largest_on_the_branch() {
     // paper rod at η = 0.95 pushed to d = 0.6: d has a maximum along the branch (snap-through)
     let eta = 0.95;
-    let model = Model::new(&Scene {
+    let (rod, surface) = Scene {
         eta,
         ..Scene::default()
-    })
+    }
+    .parts()
     .unwrap();
     let o = ScanOptions {
         d_max: 0.6,
         points: 7,
         ..ScanOptions::default()
     };
-    let r = scan(&model, &o).unwrap();
+    let r = scan(&rod, &surface, &o).unwrap();
     let d_fold = match r.stop {
         StopReason::FoldInD { d } => d,
         ref other => panic!("expected a fold in d, got {other}"),
@@ -183,7 +187,7 @@ fn fold_in_d_is_found_where_d_is_largest_on_the_branch() {
     // reference: a separate pseudo-arclength run with small fixed steps, no fold detection;
     // the maximum of d from the parabola through the three points around the largest d
     let start = solve(
-        &model,
+        &rod,
         0.0,
         Target::Eta(eta),
         &BranchChoice::Convex,

@@ -1,9 +1,7 @@
 //! Tapered, pre-curved and compliant rods: the methods agree to their tolerances, the homotopy
 //! start lands on the requested branch, and the uniform rod satisfies the first integral.
 
-use vibrissa::{
-    solve, BranchChoice, Method, Model, Precurvature, Scene, SolverConfig, Stiffness, Target,
-};
+use vibrissa::{solve, BranchChoice, Method, Precurvature, Scene, SolverConfig, Stiffness, Target};
 
 fn cfg(method: Method, tol: f64) -> SolverConfig {
     SolverConfig {
@@ -35,9 +33,9 @@ fn scenes() -> Vec<Scene> {
 #[test]
 fn methods_agree_on_tapered_and_precurved_rods() {
     for scene in scenes() {
-        let model = Model::new(&scene).unwrap();
+        let rod = scene.rod().unwrap();
         let reference = solve(
-            &model,
+            &rod,
             -0.3,
             Target::Eta(0.75),
             &BranchChoice::Convex,
@@ -50,7 +48,7 @@ fn methods_agree_on_tapered_and_precurved_rods() {
             (Method::Collocation4, 1e-6, 1e-4),
         ] {
             let s = solve(
-                &model,
+                &rod,
                 -0.3,
                 Target::Eta(0.75),
                 &BranchChoice::Convex,
@@ -79,9 +77,9 @@ fn homotopy_start_lands_on_requested_branch() {
         stiffness: Stiffness::Taper { ratio: 0.4 },
         ..Scene::default()
     };
-    let model = Model::new(&scene).unwrap();
+    let rod = scene.rod().unwrap();
     let c = solve(
-        &model,
+        &rod,
         -0.2,
         Target::Phi1(0.3),
         &BranchChoice::Convex,
@@ -91,7 +89,7 @@ fn homotopy_start_lands_on_requested_branch() {
     assert_eq!(c.flex, 0);
     assert!(c.m_base < 0.0 && (c.phi1 - 0.3).abs() < 1e-9);
     let f = solve(
-        &model,
+        &rod,
         -0.2,
         Target::Phi1(0.3),
         &BranchChoice::Flex,
@@ -110,10 +108,10 @@ fn homotopy_start_lands_on_requested_branch() {
 fn first_integral_holds_on_uniform_rod() {
     // m'·m = f cos(φ − α) φ' with κ = m gives ½κ² = f[sin(φ − α) − sin(φ1 − α)] (m(1) = 0).
     // (design.md writes 2f on the right; that factor contradicts the paper's (2.6), see elastica.)
-    let model = Model::new(&Scene::default()).unwrap();
+    let rod = Scene::default().rod().unwrap();
     for (alpha, branch) in [(-0.3, BranchChoice::Convex), (-0.3, BranchChoice::Flex)] {
         let s = solve(
-            &model,
+            &rod,
             alpha,
             Target::Phi1(0.4),
             &branch,
@@ -130,7 +128,7 @@ fn first_integral_holds_on_uniform_rod() {
 
 #[test]
 fn uniform_solves_match_closed_forms() {
-    let model = Model::new(&Scene::default()).unwrap();
+    let rod = Scene::default().rod().unwrap();
     for (branch, eb) in [
         (BranchChoice::Convex, elastica::Branch::Convex),
         (BranchChoice::Flex, elastica::Branch::OneFlex),
@@ -141,14 +139,7 @@ fn uniform_solves_match_closed_forms() {
             Method::MultipleShooting,
             Method::Collocation6,
         ] {
-            let s = solve(
-                &model,
-                -0.4,
-                Target::Phi1(0.5),
-                &branch,
-                &cfg(method, 1e-11),
-            )
-            .unwrap();
+            let s = solve(&rod, -0.4, Target::Phi1(0.5), &branch, &cfg(method, 1e-11)).unwrap();
             assert!(
                 (s.f - e.f).abs() < 1e-7 * e.f,
                 "{method}: {} vs {}",
@@ -159,7 +150,7 @@ fn uniform_solves_match_closed_forms() {
             assert!((s.m_base - e.m_base).abs() < 1e-6);
         }
         let a = solve(
-            &model,
+            &rod,
             -0.4,
             Target::Phi1(0.5),
             &branch,
@@ -172,10 +163,10 @@ fn uniform_solves_match_closed_forms() {
 
 #[test]
 fn tip_target_solves_for_alpha_and_f() {
-    let model = Model::new(&Scene::default()).unwrap();
+    let rod = Scene::default().rod().unwrap();
     let e = elastica::Elastica::new(elastica::Branch::Convex, -0.35, 0.45).unwrap();
     let s = solve(
-        &model,
+        &rod,
         0.0,
         Target::Tip { x1: e.x1, y1: e.y1 },
         &BranchChoice::Convex,

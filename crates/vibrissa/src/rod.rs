@@ -1,0 +1,360 @@
+//! The rod (stiffness profile, rest curvature, support; no surface) and the surface its tip
+//! touches, each validated once; physical units.
+
+use crate::profile::General;
+use crate::scene::{Physical, Precurvature, Stiffness};
+use crate::VibrissaError;
+use std::f64::consts::FRAC_PI_4;
+
+/// Physical units of a rod with [`Physical`] dimensions.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Units {
+    /// Force unit `E·I/L²` in N (`I = π d⁴/64` at the base).
+    pub force_n: f64,
+    /// Moment unit `E·I/L` in N·m.
+    pub moment_nm: f64,
+    /// Length unit `L` in mm.
+    pub length_mm: f64,
+}
+
+/// Largest rest curvature `|κ0|` (1/L) accepted: a rod curled more than ~3 turns is outside the
+/// model (and its shots need impractically many steps).
+pub const MAX_PRECURVATURE: f64 = 20.0;
+/// Largest support compliance `c` (rad per unit moment EI/L): beyond it the support is a hinge
+/// for every load the model resolves.
+pub const MAX_COMPLIANCE: f64 = 1e4;
+/// Smallest taper ratio ρ (tip/base radius): `b(1) = ρ⁻⁴ ≤ 1e8`.
+pub const MIN_TAPER: f64 = 0.01;
+/// Largest tabulated reciprocal stiffness `b` (`MIN_TAPER⁻⁴`).
+pub const MAX_B: f64 = 1e8;
+
+/// A validated rod: reciprocal bending stiffness `b(s)`, rest curvature `κ0(s)`, support
+/// compliance `c` (`φ(0) = π/2 + c·m(0)`; 0 is a clamp), optional physical dimensions. It carries
+/// no surface ([`Surface`] belongs to the scan and the tip-height solve).
+///
+/// ```
+/// use vibrissa::Rod;
+/// let whisker = Rod::builder()
+///     .taper(0.3)
+///     .precurvature(-0.5, 0.2)
+///     .support_compliance(0.1)
+///     .build()?;
+/// assert!(!whisker.is_uniform_clamped());
+/// assert!(Rod::uniform().is_uniform_clamped());
+/// # Ok::<(), vibrissa::VibrissaError>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rod {
+    stiffness: Stiffness,
+    precurvature: Precurvature,
+    compliance: f64,
+    physical: Option<Physical>,
+    uniform_profile: bool,
+}
+
+/// Builder of a [`Rod`]; every setting defaults to the uniform, straight, clamped rod.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RodBuilder {
+    stiffness: Stiffness,
+    precurvature: Precurvature,
+    compliance: f64,
+    physical: Option<Physical>,
+}
+
+impl RodBuilder {
+    /// Conical taper with tip/base radius ratio `ratio ∈ [MIN_TAPER, 1]`: `b = (1 − (1 − ρ)s)⁻⁴`.
+    pub fn taper(mut self, ratio: f64) -> Self {
+        self.stiffness = Stiffness::Taper { ratio };
+        self
+    }
+    /// Any stiffness profile.
+    pub fn stiffness(mut self, stiffness: Stiffness) -> Self {
+        self.stiffness = stiffness;
+        self
+    }
+    /// Linear rest curvature `κ0(s) = k0 + k1·s` (1/L; positive bends the rest shape left).
+    pub fn precurvature(mut self, k0: f64, k1: f64) -> Self {
+        self.precurvature = Precurvature::Linear { k0, k1 };
+        self
+    }
+    /// Any rest-curvature profile.
+    pub fn precurvature_profile(mut self, precurvature: Precurvature) -> Self {
+        self.precurvature = precurvature;
+        self
+    }
+    /// Compliance `c ≥ 0` of the rotational spring at the foot.
+    pub fn support_compliance(mut self, c: f64) -> Self {
+        self.compliance = c;
+        self
+    }
+    /// Physical dimensions (results also in N, N·m, mm).
+    pub fn physical(mut self, physical: Physical) -> Self {
+        self.physical = Some(physical);
+        self
+    }
+    /// Validates and builds; the error names the value and its valid range.
+    pub fn build(self) -> Result<Rod, VibrissaError> {
+        Rod::new(
+            self.stiffness,
+            self.precurvature,
+            self.compliance,
+            self.physical,
+        )
+    }
+}
+
+fn finite_within(name: &str, v: f64, bound: f64) -> Result<(), VibrissaError> {
+    if v.is_finite() && v.abs() <= bound {
+        Ok(())
+    } else {
+        Err(VibrissaError::range(
+            name,
+            v,
+            format!("[-{bound}, {bound}] (1/L)"),
+        ))
+    }
+}
+
+/// Checks a piecewise-linear table: equal lengths ≥ 2, finite, `s` strictly increasing, covering
+/// `[0, 1]`; values `valid` (described by `range`).
+fn check_table(
+    name: &str,
+    s: &[f64],
+    v: &[f64],
+    valid: impl Fn(f64) -> bool,
+    range: &str,
+) -> Result<(), VibrissaError> {
+    let bad = |reason: String| VibrissaError::InvalidTable {
+        name: name.to_string(),
+        reason,
+    };
+    if s.len() != v.len() {
+        return Err(bad(format!(
+            "s has {} entries but the values have {}; they must have the same length",
+            s.len(),
+            v.len()
+        )));
+    }
+    if s.len() < 2 {
+        return Err(bad(format!(
+            "{} entries; at least 2 are needed to cover [0, 1]",
+            s.len()
+        )));
+    }
+    for (i, (&si, &vi)) in s.iter().zip(v).enumerate() {
+        if !si.is_finite() || !vi.is_finite() {
+            return Err(bad(format!(
+                "entry {i} (s = {si}, value = {vi}) is not finite"
+            )));
+        }
+        if !valid(vi) {
+            return Err(bad(format!(
+                "value {vi} at s = {si} (entry {i}) is outside the valid range {range}"
+            )));
+        }
+        if i > 0 && si <= s[i - 1] {
+            return Err(bad(format!(
+                "s must be strictly increasing: s[{i}] = {si} <= s[{}] = {}",
+                i - 1,
+                s[i - 1]
+            )));
+        }
+    }
+    let (s0, s1) = (s[0], s[s.len() - 1]);
+    if s0 > 0.0 || s1 < 1.0 {
+        return Err(bad(format!(
+            "s covers [{s0}, {s1}] but must cover [0, 1] (first entry <= 0, last >= 1)"
+        )));
+    }
+    Ok(())
+}
+
+impl Rod {
+    /// The uniform, straight, clamped rod (the paper's).
+    pub fn uniform() -> Rod {
+        Rod {
+            stiffness: Stiffness::Uniform {},
+            precurvature: Precurvature::None {},
+            compliance: 0.0,
+            physical: None,
+            uniform_profile: true,
+        }
+    }
+
+    /// A builder starting from the uniform, straight, clamped rod.
+    pub fn builder() -> RodBuilder {
+        RodBuilder::default()
+    }
+
+    /// Validates the parts of a rod: taper ratio in `[MIN_TAPER, 1]`, tabulated `b` in
+    /// `(0, MAX_B]`, `|κ0| ≤ MAX_PRECURVATURE`, `c ∈ [0, MAX_COMPLIANCE]`, physical
+    /// dimensions positive with finite units.
+    pub fn new(
+        stiffness: Stiffness,
+        precurvature: Precurvature,
+        support_compliance: f64,
+        physical: Option<Physical>,
+    ) -> Result<Rod, VibrissaError> {
+        match &stiffness {
+            Stiffness::Uniform {} => {}
+            Stiffness::Taper { ratio } => {
+                if !(*ratio >= MIN_TAPER && *ratio <= 1.0) {
+                    return Err(VibrissaError::range(
+                        "taper ratio",
+                        *ratio,
+                        format!("[{MIN_TAPER}, 1]"),
+                    ));
+                }
+            }
+            Stiffness::Table { s, b } => check_table(
+                "stiffness",
+                s,
+                b,
+                |v| v > 0.0 && v <= MAX_B,
+                &format!("(0, {MAX_B:e}]"),
+            )?,
+        }
+        match &precurvature {
+            Precurvature::None {} => {}
+            Precurvature::Linear { k0, k1 } => {
+                finite_within("precurvature k0", *k0, MAX_PRECURVATURE)?;
+                finite_within("precurvature k0 + k1", k0 + k1, MAX_PRECURVATURE)?;
+            }
+            Precurvature::Table { s, k } => check_table(
+                "precurvature",
+                s,
+                k,
+                |v| v.abs() <= MAX_PRECURVATURE,
+                &format!("[-{MAX_PRECURVATURE}, {MAX_PRECURVATURE}] (1/L)"),
+            )?,
+        }
+        let c = support_compliance;
+        if !(c.is_finite() && (0.0..=MAX_COMPLIANCE).contains(&c)) {
+            return Err(VibrissaError::range(
+                "support compliance",
+                c,
+                format!("[0, {MAX_COMPLIANCE:e}]"),
+            ));
+        }
+        if let Some(p) = &physical {
+            for (name, v) in [
+                ("length_mm", p.length_mm),
+                ("youngs_modulus_gpa", p.youngs_modulus_gpa),
+                ("base_diameter_um", p.base_diameter_um),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(VibrissaError::range(name, v, "(0, inf)"));
+                }
+            }
+        }
+        let uniform_profile = crate::profile::is_uniform(&stiffness, &precurvature);
+        let rod = Rod {
+            stiffness,
+            precurvature,
+            compliance: c,
+            physical,
+            uniform_profile,
+        };
+        if let Some(u) = rod.units() {
+            for (name, v) in [
+                ("force unit EI/L^2 (N)", u.force_n),
+                ("moment unit EI/L (N m)", u.moment_nm),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(VibrissaError::range(
+                        name,
+                        v,
+                        "(0, inf): the physical dimensions over- or underflow",
+                    ));
+                }
+            }
+        }
+        Ok(rod)
+    }
+
+    /// The stiffness profile.
+    pub fn stiffness(&self) -> &Stiffness {
+        &self.stiffness
+    }
+    /// The rest-curvature profile.
+    pub fn precurvature(&self) -> &Precurvature {
+        &self.precurvature
+    }
+    /// Support compliance `c`.
+    pub fn support_compliance(&self) -> f64 {
+        self.compliance
+    }
+    /// Physical dimensions, if any.
+    pub fn physical(&self) -> Option<&Physical> {
+        self.physical.as_ref()
+    }
+    /// True when `b ≡ 1` and `κ0 ≡ 0` (the support may still be compliant).
+    pub fn has_uniform_profile(&self) -> bool {
+        self.uniform_profile
+    }
+    /// The paper's rod: uniform, straight and clamped, where the closed forms of crate
+    /// `elastica` hold (the one test of "paper's rod" in the workspace).
+    pub fn is_uniform_clamped(&self) -> bool {
+        self.uniform_profile && self.compliance == 0.0
+    }
+    /// The profile at homotopy amplitude `t` (1: the rod itself).
+    pub fn profile(&self, t: f64) -> General {
+        General::new(&self.stiffness, &self.precurvature, t)
+    }
+    /// Physical units, if the rod has physical dimensions.
+    pub fn units(&self) -> Option<Units> {
+        let p = self.physical.as_ref()?;
+        let l = p.length_mm * 1e-3;
+        let d = p.base_diameter_um * 1e-6;
+        let e = p.youngs_modulus_gpa * 1e9;
+        let i = std::f64::consts::PI * d.powi(4) / 64.0;
+        Some(Units {
+            force_n: e * i / (l * l),
+            moment_nm: e * i / l,
+            length_mm: p.length_mm,
+        })
+    }
+}
+
+/// The surface the tip touches: the height `eta` of the contact point above the foot (in rod
+/// lengths) and the inclination `angle` β of the surface line (rad, 0 = horizontal).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Surface {
+    eta: f64,
+    angle: f64,
+}
+
+impl Surface {
+    /// A surface at height `eta ∈ (η_, 1)` (η_ ≈ 0.456947, the lowest height at which the uniform
+    /// rod's start touches with its tip) inclined by `angle ∈ (−π/4, π/4)`.
+    pub fn new(eta: f64, angle: f64) -> Result<Surface, VibrissaError> {
+        let (_, eta_low) = elastica::lower_limit();
+        if !(eta > eta_low && eta < 1.0) {
+            return Err(VibrissaError::range(
+                "eta",
+                eta,
+                format!("({eta_low:.17}, 1) (eta_, the lowest start height of the uniform rod, to the rod length)"),
+            ));
+        }
+        if !(angle.is_finite() && angle.abs() < FRAC_PI_4) {
+            return Err(VibrissaError::range(
+                "surface angle",
+                angle,
+                "(-pi/4, pi/4) radians",
+            ));
+        }
+        Ok(Surface { eta, angle })
+    }
+    /// A horizontal surface at height `eta`.
+    pub fn flat(eta: f64) -> Result<Surface, VibrissaError> {
+        Surface::new(eta, 0.0)
+    }
+    /// Height of the contact point.
+    pub fn eta(&self) -> f64 {
+        self.eta
+    }
+    /// Inclination β.
+    pub fn angle(&self) -> f64 {
+        self.angle
+    }
+}
