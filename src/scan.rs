@@ -188,7 +188,7 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
 /// row where the scan stopped).
 pub fn header(physical: bool) -> Vec<&'static str> {
     let mut h = vec![
-        "d", "mu", "normal", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "s_flex", "y_max",
+        "d", "mu", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "s_flex", "y_max", "normal",
     ];
     if physical {
         h.extend(["d_mm", "f_N", "fx_N", "fy_N", "m_base_Nm"]);
@@ -202,7 +202,6 @@ pub fn row(p: &Pt, u: Option<Units>) -> Vec<String> {
     let mut r = vec![
         num(p.d),
         num(p.mu),
-        num(p.normal),
         num(p.alpha),
         num(p.phi1),
         num(p.f),
@@ -212,6 +211,7 @@ pub fn row(p: &Pt, u: Option<Units>) -> Vec<String> {
         p.flex.to_string(),
         opt(p.s_flex),
         num(p.y_max),
+        num(p.normal),
     ];
     if let Some(u) = u {
         r.extend(
