@@ -31,7 +31,8 @@ impl Fail {
             Fail::Usage(m) | Fail::Solve(m) => m,
             Fail::Closed => "output closed by its reader",
         };
-        one_line(m)
+        // the model prints f64 with `{}`: 1e300 would be a 300-digit decimal
+        crate::numbers::shorten_numbers(&one_line(m))
     }
 }
 

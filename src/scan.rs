@@ -557,12 +557,12 @@ pub fn run(a: &ScanArgs) -> Res<()> {
             0
         },
     };
-    let out = run_scan(&scene, &spec)?;
+    let mut out = run_scan(&scene, &spec)?;
+    crate::progress::stop();
     if out.pts.is_empty() {
-        return Err(solve_fail(format!(
-            "the scan produced no points: {}",
-            out.stop.detail
-        )));
+        // the start (d = 0) was solved (run_scan checks it): report it, and why the scan stopped
+        out.pts.push(out.start);
+        out.points = 1;
     }
     let u = units_of(&scene);
     if let Some(p) = &a.shapes {
@@ -655,6 +655,7 @@ pub fn run_infer(a: &InferArgs) -> Res<()> {
             d_max_measurable: r.measurable_d.1,
         }
     };
+    crate::progress::stop();
     if !(out.mu0.is_finite() && out.mu_max.is_finite()) {
         return Err(solve_fail("the inference produced non-finite values"));
     }

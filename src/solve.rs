@@ -232,6 +232,7 @@ pub fn run(a: &SolveArgs) -> Res<()> {
     } else {
         numeric::solve(&scene, a, npts)?
     };
+    crate::progress::stop();
     if out.residual.is_nan() || !out.f.is_finite() {
         return Err(crate::error::solve_fail(
             "the solver returned a non-finite result",
