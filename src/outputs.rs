@@ -61,31 +61,39 @@ fn label(flag: &str, path: &Path) -> String {
     }
 }
 
-/// The target after following symbolic links (up to 40), and whether it is a special file.
+/// The target after following symbolic links, and whether it is a special file (device, FIFO,
+/// socket: written in place through the path as given, which also serves `/dev/stderr`, whose
+/// link names no file).
 fn resolve(lab: &str, path: &Path) -> Res<(PathBuf, bool)> {
     if path.as_os_str().is_empty() {
         return Err(usage(format!("{lab}: an empty file name")));
     }
-    let mut p = path.to_path_buf();
-    for _ in 0..40 {
-        match std::fs::symlink_metadata(&p) {
-            Ok(m) if m.file_type().is_symlink() => {
-                let t = std::fs::read_link(&p)
-                    .map_err(|e| solve_fail(format!("cannot read the link {lab}: {e}")))?;
-                p = match p.parent() {
-                    Some(dir) if !t.is_absolute() => dir.join(t),
-                    _ => t,
-                };
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_dir() => Err(usage(format!("{lab} is a directory; give a file name"))),
+        Ok(m) if !m.is_file() => Ok((path.to_path_buf(), true)),
+        Ok(_) => std::fs::canonicalize(path)
+            .map(|p| (p, false))
+            .map_err(|e| solve_fail(format!("cannot resolve {lab}: {e}"))),
+        Err(e) if e.kind() == io::ErrorKind::NotFound => {
+            // a new file, or a link to one: follow the links by hand (up to 40)
+            let mut p = path.to_path_buf();
+            for _ in 0..40 {
+                match std::fs::symlink_metadata(&p) {
+                    Ok(m) if m.file_type().is_symlink() => {
+                        let t = std::fs::read_link(&p)
+                            .map_err(|e| solve_fail(format!("cannot read the link {lab}: {e}")))?;
+                        p = match p.parent() {
+                            Some(dir) if !t.is_absolute() => dir.join(t),
+                            _ => t,
+                        };
+                    }
+                    _ => return Ok((p, false)),
+                }
             }
-            Ok(m) if m.is_dir() => {
-                return Err(usage(format!("{lab} is a directory; give a file name")));
-            }
-            Ok(m) => return Ok((p, !m.is_file())),
-            Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok((p, false)),
-            Err(e) => return Err(solve_fail(format!("cannot inspect {lab}: {e}"))),
+            Err(usage(format!("{lab}: too many levels of symbolic links")))
         }
+        Err(e) => Err(solve_fail(format!("cannot write {lab}: {e}"))),
     }
-    Err(usage(format!("{lab}: too many levels of symbolic links")))
 }
 
 /// Directory and file name of a (resolved) target, the directory canonicalized.

@@ -47,7 +47,7 @@ pub fn build_scene(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
         physical: physical_src(&a.physical),
     };
     validate::scene(&sc, &src)?;
-    sc.validate().map_err(|e| validate::shorten(e.into()))?;
+    validate::model_check(&sc, a.scene.as_deref())?;
     Ok(sc)
 }
 

@@ -276,6 +276,7 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
         physical: physical_src(&a.physical),
     };
     validate::scene(&probe, &src)?;
+    validate::model_check(&probe, a.scene.as_deref())?;
     for (x, f, r) in [
         (&a.eta, "--eta", validate::eta_range()),
         (&a.taper, "--taper", validate::TAPER),

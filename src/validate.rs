@@ -278,14 +278,17 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
         for i in 0..3 {
             check(src.of(src.physical[i], keys[i]), vals[i], &POSITIVE)?;
         }
-        let l = p.length_mm * 1e-3;
-        let e = p.youngs_modulus_gpa * 1e9;
-        // EI = E·π d⁴/64 computed in logarithms: the factors alone may overflow
-        let log_ei = e.ln() + (PI / 64.0).ln() + 4.0 * (p.base_diameter_um * 1e-6).ln();
+        // in logarithms: the factors alone may overflow (E in Pa = GPa·1e9, d in m = µm·1e-6)
+        let ln10 = std::f64::consts::LN_10;
+        let log_l = p.length_mm.ln() - 3.0 * ln10;
+        let log_ei = p.youngs_modulus_gpa.ln()
+            + 9.0 * ln10
+            + (PI / 64.0).ln()
+            + 4.0 * (p.base_diameter_um.ln() - 6.0 * ln10);
         for (name, unit, log_v) in [
             ("the length unit L", "mm", p.length_mm.ln()),
-            ("the force unit EI/L^2", "N", log_ei - 2.0 * l.ln()),
-            ("the moment unit EI/L", "N m", log_ei - l.ln()),
+            ("the force unit EI/L^2", "N", log_ei - 2.0 * log_l),
+            ("the moment unit EI/L", "N m", log_ei - log_l),
         ] {
             let v = log_v.exp();
             if !(log_v >= UNIT.lo.ln() && log_v <= UNIT.hi.ln()) {
@@ -460,6 +463,17 @@ pub fn jobs(asked: Option<u32>, scenes: u64) -> usize {
         j = cap;
     }
     j.min(scenes.max(1) as usize).max(1)
+}
+
+/// The model's own check of a scene (tables and the rest), its message prefixed with the file.
+pub fn model_check(sc: &Scene, file: Option<&Path>) -> Res<()> {
+    sc.validate().map_err(|e| {
+        let f = shorten(e.into());
+        match (file, f) {
+            (Some(p), Fail::Usage(m)) => usage(format!("scene file {}: {m}", p.display())),
+            (_, f) => f,
+        }
+    })
 }
 
 /// Library errors rendered with short numbers (the model prints `{}` of an `f64`).

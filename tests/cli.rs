@@ -2,92 +2,11 @@
 //! closed forms (crate `elastica`) and the paper's printed numbers, and check the error contract.
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-struct Out {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn run(args: &[&str]) -> Out {
-    let o = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
-        .args(args)
-        .output()
-        .expect("run vibrissa");
-    Out {
-        code: o.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
-    }
-}
-
-fn ok(args: &[&str]) -> Out {
-    let o = run(args);
-    assert_eq!(
-        o.code, 0,
-        "vibrissa {args:?} failed: {}\n{}",
-        o.stderr, o.stdout
-    );
-    o
-}
-
-/// A bad invocation: non-zero exit, exactly one line on stderr starting with `error:`, no panic.
-fn bad(args: &[&str], code: i32) -> String {
-    let o = run(args);
-    assert_eq!(o.code, code, "vibrissa {args:?}: stderr {:?}", o.stderr);
-    let lines: Vec<&str> = o.stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "vibrissa {args:?}: stderr {:?}", o.stderr);
-    assert!(lines[0].starts_with("error: "), "{:?}", lines[0]);
-    assert!(!o.stderr.contains("panicked"), "{:?}", o.stderr);
-    assert!(!o.stdout.contains("NaN"), "{:?}", o.stdout);
-    lines[0].to_string()
-}
-
-fn tmpdir(name: &str) -> PathBuf {
-    // Under target/ (not /tmp), so repeated runs leave nothing behind outside the build directory.
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Parse a CSV with a header into (header, rows).
-fn csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut r = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .from_reader(text.as_bytes());
-    let h = r.headers().unwrap().iter().map(String::from).collect();
-    let rows = r
-        .records()
-        .map(|x| x.unwrap().iter().map(String::from).collect())
-        .collect();
-    (h, rows)
-}
-
-fn col(h: &[String], row: &[String], name: &str) -> f64 {
-    let i = h
-        .iter()
-        .position(|c| c == name)
-        .unwrap_or_else(|| panic!("no column {name} in {h:?}"));
-    row[i]
-        .parse()
-        .unwrap_or_else(|_| panic!("column {name}: {:?}", row[i]))
-}
-
-fn json(text: &str) -> serde_json::Value {
-    serde_json::from_str(text).unwrap_or_else(|e| panic!("bad JSON {e}: {text}"))
-}
-
-fn close(a: f64, b: f64, tol: f64, what: &str) {
-    assert!(
-        (a - b).abs() <= tol,
-        "{what}: {a} vs {b} (|diff| = {:e} > {tol:e})",
-        (a - b).abs()
-    );
-}
+mod common;
+use common::*;
 
 const A8: &str = "-0.39269908169872414"; // -pi/8
 const P8: &str = "0.39269908169872414"; // (pi/2 + 2(-pi/8))/2 = pi/8
