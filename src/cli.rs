@@ -301,7 +301,17 @@ pub struct SweepArgs {
     #[command(flatten)]
     pub physical: PhysicalArgs,
     /// Methods, a comma list (shooting, multiple-shooting, collocation, collocation6, analytic).
-    #[arg(long, value_name = "LIST", default_value = "shooting")]
+    #[arg(
+        long,
+        value_name = "LIST",
+        default_value = "shooting",
+        long_help = "Methods, a comma list of:\n\
+- shooting:          single shooting (adaptive Runge-Kutta, Newton on the unknown initial values)\n\
+- multiple-shooting: multiple shooting (several segments)\n\
+- collocation:       Lobatto IIIA collocation of order 4 with mesh adaptation\n\
+- collocation6:      Lobatto IIIA collocation of order 6 with mesh adaptation\n\
+- analytic:          closed-form elliptic-integral solution (uniform clamped straight rod only)"
+    )]
     pub method: String,
     /// Solver tolerances (LIST), each in [1e-15, 1e-2].
     #[arg(long, value_name = "LIST", value_parser = axis, default_value = "1e-10")]

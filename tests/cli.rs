@@ -516,6 +516,64 @@ fn help_documents_every_flag() {
     }
 }
 
+/// Statements of `--help` that README relies on.
+#[test]
+fn help_states_ranges_and_requirements() {
+    let h = ok(&["solve", "--help"]).stdout;
+    assert!(h.contains("One of --phi1 and --eta is required"), "{h}");
+    assert!(h.contains("(-pi/2, pi/2)"), "solve --help: the range of --alpha");
+    let h = ok(&["scan", "--help"]).stdout;
+    assert!(
+        h.contains("point, d, s, x, y, x_lab, phi, kappa, m"),
+        "scan --help: --shapes columns"
+    );
+    assert!(h.contains("eta_ = 0.456946581044463625"), "eta_ defined");
+    // one layout for every command: flags on their own line, Scene and Physical sections
+    for cmd in ["solve", "scan", "infer", "sweep"] {
+        let h = ok(&[cmd, "--help"]).stdout;
+        assert!(h.contains("\nScene:\n"), "{cmd}: no Scene section");
+        assert!(h.contains("\nPhysical units:\n"), "{cmd}: no Physical units section");
+        assert!(h.contains("\n      --scene <FILE.toml>\n"), "{cmd}: layout");
+    }
+    let h = ok(&["figures", "--help"]).stdout;
+    assert!(!h.contains("--scene"), "figures takes no scene");
+}
+
+/// A sweep with physical dimensions adds the physical columns, f0_N = f0 · EI/L².
+#[test]
+fn sweep_physical_columns() {
+    let o = ok(&[
+        "sweep",
+        "--eta",
+        "0.7,0.8",
+        "--points",
+        "3",
+        "--length-mm",
+        "30",
+        "--youngs-modulus-gpa",
+        "3.3",
+        "--base-diameter-um",
+        "100",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(rows.len(), 2);
+    let ei = 3.3e9 * PI * 1e-4f64.powi(4) / 64.0;
+    for r in &rows {
+        close(
+            col(&h, r, "f0_N"),
+            col(&h, r, "f0") * ei / 0.03f64.powi(2),
+            1e-15,
+            "f0 in N",
+        );
+        close(
+            col(&h, r, "d_end_mm"),
+            col(&h, r, "d_end") * 30.0,
+            1e-12,
+            "d_end in mm",
+        );
+    }
+}
+
 #[test]
 fn figures_are_valid_svg_with_data() {
     let d = tmpdir("figs");

@@ -161,3 +161,43 @@ fn negative_values_are_used() {
     assert_eq!(beta[..3], [-0.1, 0.0, 0.1]);
     assert_eq!([k0[0], k0[3], k0[6]], [-1.0, 0.0, 1.0]);
 }
+
+/// The same quantity has the same default in every command (scan and sweep once disagreed on
+/// --points), and every scene-taking command has the Scene and Physical units sections.
+#[test]
+fn commands_agree_on_defaults_and_sections() {
+    let cmd = cli::command();
+    let default = |sub: &str, id: &str| -> Option<String> {
+        let s = cmd.find_subcommand(sub).unwrap();
+        let a = s.get_arguments().find(|a| a.get_id() == id)?;
+        a.get_default_values()
+            .first()
+            .map(|v| v.to_string_lossy().into_owned())
+    };
+    for id in ["points", "d_max", "tol", "method"] {
+        let vals: Vec<(String, Option<String>)> = ["scan", "infer", "sweep"]
+            .iter()
+            .map(|s| (s.to_string(), default(s, id)))
+            .collect();
+        assert!(
+            vals.windows(2).all(|w| w[0].1 == w[1].1),
+            "--{id} defaults differ: {vals:?}"
+        );
+    }
+    for sub in ["solve", "scan", "infer", "sweep"] {
+        let s = cmd.find_subcommand(sub).unwrap();
+        for (heading, ids) in [
+            ("Scene", &["scene", "taper", "precurvature", "support_compliance"][..]),
+            ("Physical units", &["length_mm", "youngs_modulus_gpa", "base_diameter_um"][..]),
+        ] {
+            for id in ids {
+                let a = s.get_arguments().find(|a| a.get_id() == *id);
+                assert_eq!(
+                    a.and_then(|a| a.get_help_heading()),
+                    Some(heading),
+                    "{sub} --{id}"
+                );
+            }
+        }
+    }
+}
