@@ -521,7 +521,10 @@ fn help_documents_every_flag() {
 fn help_states_ranges_and_requirements() {
     let h = ok(&["solve", "--help"]).stdout;
     assert!(h.contains("One of --phi1 and --eta is required"), "{h}");
-    assert!(h.contains("(-pi/2, pi/2)"), "solve --help: the range of --alpha");
+    assert!(
+        h.contains("(-pi/2, pi/2)"),
+        "solve --help: the range of --alpha"
+    );
     let h = ok(&["scan", "--help"]).stdout;
     assert!(
         h.contains("point, d, s, x, y, x_lab, phi, kappa, m"),
@@ -532,7 +535,10 @@ fn help_states_ranges_and_requirements() {
     for cmd in ["solve", "scan", "infer", "sweep"] {
         let h = ok(&[cmd, "--help"]).stdout;
         assert!(h.contains("\nScene:\n"), "{cmd}: no Scene section");
-        assert!(h.contains("\nPhysical units:\n"), "{cmd}: no Physical units section");
+        assert!(
+            h.contains("\nPhysical units:\n"),
+            "{cmd}: no Physical units section"
+        );
         assert!(h.contains("\n      --scene <FILE.toml>\n"), "{cmd}: layout");
     }
     let h = ok(&["figures", "--help"]).stdout;

@@ -187,8 +187,14 @@ fn commands_agree_on_defaults_and_sections() {
     for sub in ["solve", "scan", "infer", "sweep"] {
         let s = cmd.find_subcommand(sub).unwrap();
         for (heading, ids) in [
-            ("Scene", &["scene", "taper", "precurvature", "support_compliance"][..]),
-            ("Physical units", &["length_mm", "youngs_modulus_gpa", "base_diameter_um"][..]),
+            (
+                "Scene",
+                &["scene", "taper", "precurvature", "support_compliance"][..],
+            ),
+            (
+                "Physical units",
+                &["length_mm", "youngs_modulus_gpa", "base_diameter_um"][..],
+            ),
         ] {
             for id in ids {
                 let a = s.get_arguments().find(|a| a.get_id() == *id);
