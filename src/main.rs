@@ -46,7 +46,7 @@ fn clap_exit(e: clap::Error) -> ! {
             let r = e.print().and_then(|_| std::io::stdout().flush());
             match r {
                 Err(err) if err.kind() != std::io::ErrorKind::BrokenPipe => {
-                    eprintln!("error: writing the help text to stdout: {err}");
+                    progress::eprint(&format!("error: writing the help text to stdout: {err}"));
                     std::process::exit(1)
                 }
                 _ => std::process::exit(0),
@@ -57,7 +57,7 @@ fn clap_exit(e: clap::Error) -> ! {
             std::process::exit(2)
         }
         _ => {
-            eprintln!("error: {}", clap_one_line(&e));
+            progress::eprint(&format!("error: {}", clap_one_line(&e)));
             std::process::exit(2)
         }
     }
@@ -119,7 +119,7 @@ fn run(mut cli: Cli) -> Res<()> {
 fn main() {
     let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     if let Some(msg) = cli::missing_value(&args) {
-        eprintln!("error: {msg} (see --help)");
+        progress::eprint(&format!("error: {msg} (see --help)"));
         std::process::exit(2);
     }
     let matches = cli::command()
@@ -139,7 +139,7 @@ fn main() {
             .map(|s| s.to_string())
             .or_else(|| info.payload().downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "unknown".into());
-        eprintln!("error: internal error: {}", one_line(&msg));
+        progress::eprint(&format!("error: internal error: {}", one_line(&msg)));
     }));
     let r = run(cli);
     progress::stop();
@@ -152,7 +152,7 @@ fn main() {
         }
     };
     if let Err(e) = r {
-        eprintln!("error: {}", e.message());
+        progress::note(&format!("error: {}", e.message()));
         std::process::exit(e.code());
     }
 }

@@ -39,7 +39,7 @@ pub fn start(label: &str, lines: bool) {
             loop {
                 let s = t0.elapsed().as_secs();
                 if s >= next {
-                    eprintln!("{label}: still computing, {s} s");
+                    eprint(&format!("{label}: still computing, {s} s"));
                     next = s + 10;
                 }
                 if rx.recv_timeout(Duration::from_millis(500)) != Err(RecvTimeoutError::Timeout) {
@@ -74,6 +74,18 @@ pub fn stop() {
 
 /// A warning on stderr (one line, `warning: ...`), after clearing the spinner.
 pub fn warn(msg: &str) {
+    note(&format!("warning: {}", crate::error::one_line(msg)));
+}
+
+/// A line on stderr, after clearing the spinner. A stderr that cannot be written (a full
+/// device, a closed pipe) is ignored: it is where errors would be reported.
+pub fn note(line: &str) {
     stop();
-    eprintln!("warning: {}", crate::error::one_line(msg));
+    eprint(line);
+}
+
+/// A line on stderr, ignoring failures (`eprintln!` would panic).
+pub fn eprint(line: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "{line}");
 }

@@ -574,7 +574,7 @@ pub fn run(a: &ScanArgs) -> Res<()> {
         sink.finish()?;
     }
     if out.stop.reason != "d_max" {
-        eprintln!("warning: the scan stopped early: {}", out.stop.detail);
+        crate::progress::warn(&format!("the scan stopped early: {}", out.stop.detail));
     }
     if a.json {
         let v = json_summary(&out, a.out.as_deref());
@@ -582,7 +582,7 @@ pub fn run(a: &ScanArgs) -> Res<()> {
     } else if a.out.is_some() {
         writeln!(io::stdout(), "{}", summary(&out, a.out.as_deref()))?;
     } else {
-        eprintln!("{}", summary(&out, None));
+        crate::progress::note(&summary(&out, None));
     }
     Ok(())
 }

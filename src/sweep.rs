@@ -379,10 +379,10 @@ pub fn run(a: &SweepArgs) -> Res<()> {
         if let Some(p) = &a.out {
             outputs::plan(&[("--out", p)], true)?;
         }
-        eprintln!(
+        crate::progress::note(&format!(
             "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes); {jobs} threads",
             hi - lo
-        );
+        ));
         return Ok(());
     }
     if let Some(p) = &a.out {
@@ -497,11 +497,11 @@ pub fn run(a: &SweepArgs) -> Res<()> {
             Some(p) => format!("; written to {}", p.display()),
             None => String::new(),
         };
-        eprintln!(
+        crate::progress::note(&format!(
             "sweep: {done} scenes in {:.1} s ({} solved, {failed} with an error){dest}",
             t0.elapsed().as_secs_f64(),
             done - failed
-        );
+        ));
     }
     Ok(())
 }

@@ -164,19 +164,41 @@ fn devices_and_fifos_are_written_in_place() {
         "{}",
         o.stderr
     );
-    // stdout on a full device
-    let full = std::fs::OpenOptions::new()
-        .write(true)
-        .open("/dev/full")
-        .unwrap();
-    let o = vib()
-        .args(["scan", "--points", "3"])
-        .stdout(Stdio::from(full))
-        .output()
-        .unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    let e = String::from_utf8_lossy(&o.stderr);
-    assert!(e.contains("writing stdout: No space left"), "{e}");
+    // stdout on a full device, for every command that prints to it
+    for args in [
+        &["scan", "--points", "3"][..],
+        &["scan", "--points", "3", "--json"],
+        &["solve", "--alpha", "0", "--phi1", "0.3"],
+        &["infer", "--d0", "0.05", "--points", "5"],
+        &["sweep", "--eta", "0.7", "--points", "3"],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let o = vib().args(args).stdout(Stdio::from(full)).output().unwrap();
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(e.contains("writing stdout: No space left"), "{args:?}: {e}");
+    }
+    // stderr on a full device: warnings and summaries are lost, never a panic
+    for (args, code) in [
+        (&["scan", "--points", "3", "--eta", "0.6"][..], 0),
+        (&["scan", "--eta", "0.3"], 2),
+        (&["sweep", "--eta", "0.7", "--dry-run"], 0),
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let o = vib()
+            .args(args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::from(full))
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(code), "{args:?}");
+    }
 }
 
 #[test]
@@ -315,4 +337,17 @@ fn jobs_are_capped_with_a_warning() {
         "{}",
         o.stderr
     );
+}
+
+#[test]
+fn dash_is_stdout() {
+    let d = tmpdir("dash");
+    let o = run_in(&d, &["scan", "--points", "3", "--out", "-"]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    assert!(o.stdout.starts_with("d,mu,alpha"), "{}", o.stdout);
+    assert_eq!(o.stdout.lines().count(), 4, "only the table on stdout");
+    let o = run_in(&d, &["sweep", "--eta", "0.7", "--points", "3", "--out", "-"]);
+    assert_eq!(o.code, 0, "{}", o.stderr);
+    assert!(o.stdout.starts_with("index,eta"), "{}", o.stdout);
+    assert!(listing(&d).is_empty(), "{:?}", listing(&d));
 }
