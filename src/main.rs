@@ -151,7 +151,7 @@ fn main() {
             Err(e)
         }
     };
-    if let Err(e) = r {
+    if let Err(e) = r.map_err(validate::explain) {
         progress::note(&format!("error: {}", e.message()));
         std::process::exit(e.code());
     }
