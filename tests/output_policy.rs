@@ -346,7 +346,10 @@ fn dash_is_stdout() {
     assert_eq!(o.code, 0, "{}", o.stderr);
     assert!(o.stdout.starts_with("d,mu,alpha"), "{}", o.stdout);
     assert_eq!(o.stdout.lines().count(), 4, "only the table on stdout");
-    let o = run_in(&d, &["sweep", "--eta", "0.7", "--points", "3", "--out", "-"]);
+    let o = run_in(
+        &d,
+        &["sweep", "--eta", "0.7", "--points", "3", "--out", "-"],
+    );
     assert_eq!(o.code, 0, "{}", o.stderr);
     assert!(o.stdout.starts_with("index,eta"), "{}", o.stdout);
     assert!(listing(&d).is_empty(), "{:?}", listing(&d));
