@@ -1,39 +1,62 @@
-//! Command-line definitions (clap derive). Every flag says its unit and default.
+//! Command-line definitions (clap derive). Every flag says its unit, range and default.
+//!
+//! Numbers are parsed here only for their spelling (every form Rust's `f64` parser accepts,
+//! negative ones included: `-1e-3`, `-.5`, `-0.1:0.1:3`, `-1,0,1`); their ranges are checked by
+//! `validate`, the same for every command. Depends on clap, std and `numbers` only (the
+//! end-to-end tests include this file to list every numeric flag).
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use crate::numbers::{self, Axis};
+use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
+use std::any::TypeId;
 use std::path::PathBuf;
 
-/// Parse a finite `f64` (NaN and infinities are rejected at the command line).
+/// Parse a finite `f64` (NaN and infinities are refused).
 pub fn finite_f64(s: &str) -> Result<f64, String> {
-    let v: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("'{s}' is not a number"))?;
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(format!("'{s}' is not a finite number"))
-    }
+    numbers::finite_f64(s)
 }
 
-/// Parse a strictly positive finite `f64`.
-pub fn positive_f64(s: &str) -> Result<f64, String> {
-    let v = finite_f64(s)?;
-    if v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("{v} must be > 0"))
-    }
+/// Parse an `f64` that may be `inf` (no limit); NaN refused.
+pub fn f64_or_inf(s: &str) -> Result<f64, String> {
+    numbers::number_or_inf(s)
 }
 
-/// Parse a non-negative finite `f64`.
-pub fn nonneg_f64(s: &str) -> Result<f64, String> {
-    let v = finite_f64(s)?;
-    if v >= 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("{v} must be >= 0"))
-    }
+/// Parse a grid axis (`a:b:n` or a comma list).
+pub fn axis(s: &str) -> Result<Axis, String> {
+    numbers::parse_axis(s)
+}
+
+/// Parse a shard `K/N`.
+pub fn shard(s: &str) -> Result<Shard, String> {
+    numbers::parse_shard(s).map(|(k, n)| Shard { k, n })
+}
+
+/// Shard `k` of `n` (1-based).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// this shard, 1..=n
+    pub k: u64,
+    /// number of shards
+    pub n: u64,
+}
+
+/// Most output points of a scan (the model's limit).
+pub const MAX_POINTS: u64 = 1_000_000;
+/// Most points of one shape.
+pub const MAX_SHAPE_POINTS: u64 = 100_000;
+/// Most worker threads asked for (more are capped at a multiple of the cores, with a warning).
+pub const MAX_JOBS: u64 = 65_536;
+
+fn points(s: &str) -> Result<u32, String> {
+    numbers::count(s, 2, MAX_POINTS)
+}
+fn shape_points(s: &str) -> Result<u32, String> {
+    numbers::count(s, 2, MAX_SHAPE_POINTS)
+}
+fn solve_shape_points(s: &str) -> Result<u32, String> {
+    numbers::count(s, 2, 1_000_000)
+}
+fn jobs(s: &str) -> Result<u32, String> {
+    numbers::count(s, 1, MAX_JOBS)
 }
 
 /// The `vibrissa` program.
@@ -47,8 +70,9 @@ Units are normalized: length L (the rod length), force EI/L^2, moment EI/L (EI a
 The tip force is F = (f sin(alpha), -f cos(alpha)): alpha = 0 points straight down, alpha < 0 rotates it clockwise; \
 mu = F.t/N = tan(beta - alpha) is the signed friction ratio the contact must supply (beta: surface angle; \
 N = f cos(alpha - beta) >= 0 the normal force; mu > 0 holds the tip back against the drag), the tip slips where |mu| \
-reaches mu0 and lifts off where N reaches 0. m_base = m(0) is the internal moment at the foot (the paper's clamp moment is m0 = -m_base).",
-    allow_negative_numbers = true
+reaches mu0 and lifts off where N reaches 0. m_base = m(0) is the internal moment at the foot (the paper's clamp moment is m0 = -m_base).\n\n\
+Exit codes: 0 success (also when the reader closes stdout early), 1 solver or I/O failure, 2 bad input. \
+Output files appear only when the whole command succeeded (see README, \"Output files\")."
 )]
 pub struct Cli {
     /// The command to run.
@@ -58,18 +82,15 @@ pub struct Cli {
 
 /// Sub-commands.
 #[derive(Subcommand, Debug)]
+#[allow(clippy::large_enum_variant)] // one value per process
 pub enum Command {
     /// Solve one tip-loaded rod: given alpha and the tip slope phi1 (or the tip height eta).
-    #[command(allow_negative_numbers = true)]
     Solve(SolveArgs),
     /// Stiction scan: drag the foot by d while the tip sticks at height eta; report mu(d).
-    #[command(allow_negative_numbers = true)]
     Scan(ScanArgs),
     /// Grid of stiction scans over scene parameters, in parallel, one CSV row per scene.
-    #[command(allow_negative_numbers = true)]
     Sweep(SweepArgs),
     /// Read the stiction coefficient mu0 = mu(d0) off a scan at the slip displacement d0.
-    #[command(allow_negative_numbers = true)]
     Infer(InferArgs),
     /// Regenerate the paper's Figures 2-11 as SVG files, with the CSV data behind each.
     Figures(FiguresArgs),
@@ -113,36 +134,43 @@ pub enum BranchArg {
     Flex,
 }
 
-/// Scene flags shared by all commands; they override the values of `--scene`.
+/// Physical dimensions: with all three (or a scene file's `[physical]`), physical-unit columns.
+#[derive(Args, Debug, Clone, Default)]
+pub struct PhysicalArgs {
+    /// Physical rod length (mm), in (0, inf); with --youngs-modulus-gpa and --base-diameter-um adds physical-unit columns.
+    #[arg(long, value_name = "MM", value_parser = finite_f64, help_heading = "Physical units")]
+    pub length_mm: Option<f64>,
+    /// Young's modulus (GPa), in (0, inf).
+    #[arg(long, value_name = "GPA", value_parser = finite_f64, help_heading = "Physical units")]
+    pub youngs_modulus_gpa: Option<f64>,
+    /// Base diameter (µm), in (0, inf); I = pi d^4 / 64.
+    #[arg(long, value_name = "UM", value_parser = finite_f64, help_heading = "Physical units")]
+    pub base_diameter_um: Option<f64>,
+}
+
+/// Scene flags of solve, scan and infer; they override the values of `--scene`.
 #[derive(Args, Debug, Clone, Default)]
 pub struct SceneArgs {
     /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"). Flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
-    /// Conical taper: tip/base radius ratio RHO in (0, 1]; b(s) = (1 - (1 - RHO) s)^-4. [default: 1, uniform]
+    /// Conical taper: tip/base radius ratio RHO in [0.01, 1]; b(s) = (1 - (1 - RHO) s)^-4. [default: 1, uniform]
     #[arg(long, value_name = "RHO", value_parser = finite_f64, help_heading = "Scene")]
     pub taper: Option<f64>,
-    /// Pre-curvature at the foot K0 (1/L; > 0 bends the rest shape counter-clockwise). [default: 0]
+    /// Pre-curvature at the foot K0 (1/L; > 0 bends the rest shape counter-clockwise), in [-3, 3]. [default: 0]
     #[arg(long, value_name = "K0", value_parser = finite_f64, help_heading = "Scene")]
     pub precurvature: Option<f64>,
-    /// Pre-curvature slope K1 (1/L^2): kappa0(s) = K0 + K1 s. [default: 0]
+    /// Pre-curvature slope K1 (1/L^2): kappa0(s) = K0 + K1 s, in [-6, 6] with |K0 + K1| <= 3. [default: 0]
     #[arg(long, value_name = "K1", value_parser = finite_f64, help_heading = "Scene")]
     pub precurvature_slope: Option<f64>,
-    /// Compliance C >= 0 of the rotational spring at the foot (1/(EI/L)): phi(0) = pi/2 + C m(0); 0 = clamp. [default: 0]
+    /// Compliance C in [0, 1000] of the rotational spring at the foot (1/(EI/L)): phi(0) = pi/2 + C m(0); 0 = clamp. [default: 0]
     #[arg(long, value_name = "C", value_parser = finite_f64, help_heading = "Scene")]
     pub support_compliance: Option<f64>,
-    /// Inclination B of the surface line through the contact point (rad; 0 = horizontal). [default: 0]
+    /// Inclination B of the surface line through the contact point (rad), in (-pi/4, pi/4); 0 = horizontal. [default: 0]
     #[arg(long, value_name = "B", value_parser = finite_f64, help_heading = "Scene")]
     pub surface_angle: Option<f64>,
-    /// Physical rod length (mm); with --youngs-modulus-gpa and --base-diameter-um adds physical-unit columns.
-    #[arg(long, value_name = "MM", value_parser = positive_f64, help_heading = "Physical units")]
-    pub length_mm: Option<f64>,
-    /// Young's modulus (GPa).
-    #[arg(long, value_name = "GPA", value_parser = positive_f64, help_heading = "Physical units")]
-    pub youngs_modulus_gpa: Option<f64>,
-    /// Base diameter (µm); I = pi d^4 / 64.
-    #[arg(long, value_name = "UM", value_parser = positive_f64, help_heading = "Physical units")]
-    pub base_diameter_um: Option<f64>,
+    #[command(flatten)]
+    pub physical: PhysicalArgs,
 }
 
 /// Solver flags shared by solve, scan and infer.
@@ -151,21 +179,22 @@ pub struct SolverArgs {
     /// Numerical method ("analytic" only for the uniform clamped straight rod).
     #[arg(long, value_enum, default_value = "shooting")]
     pub method: MethodArg,
-    /// Tolerance of the numerical solver (residual / local error), dimensionless.
-    #[arg(long, value_name = "T", value_parser = positive_f64, default_value = "1e-10")]
+    /// Tolerance of the numerical solver (residual / local error), in [1e-15, 1e-2].
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
     pub tol: f64,
 }
 
 /// `vibrissa solve`.
 #[derive(Args, Debug)]
+#[command(after_help = "One of --phi1 and --eta is required.")]
 pub struct SolveArgs {
-    /// Force angle alpha (rad): 0 = straight down, < 0 = rotated clockwise (friction to -x).
+    /// Force angle alpha (rad), in (-pi/2, pi/2): 0 = straight down, < 0 = rotated clockwise (friction to -x); the closed forms (analytic) need [-pi/4, 0].
     #[arg(long, value_name = "A", value_parser = finite_f64)]
     pub alpha: f64,
-    /// Tip slope phi1 = phi(1) (rad).
+    /// Tip slope phi1 = phi(1) (rad), in [-pi, pi]; the closed forms need [0, pi/2 + 2 alpha]. One of --phi1 and --eta is required.
     #[arg(long, value_name = "P", value_parser = finite_f64, required_unless_present = "eta", conflicts_with = "eta")]
     pub phi1: Option<f64>,
-    /// Tip height eta (rod lengths): solve for the tip slope that puts the tip at y(1) = eta.
+    /// Tip height eta (rod lengths), in (-1, 1): solve for the tip slope that puts the tip at y(1) = eta. One of --phi1 and --eta is required.
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
     /// Solution family.
@@ -181,8 +210,8 @@ pub struct SolveArgs {
     /// Also write the rod shape (s, x, y, phi, kappa, m) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub shape_out: Option<PathBuf>,
-    /// Number of points of --shape-out, uniform in s (>= 2).
-    #[arg(long, value_name = "N", default_value_t = 101, value_parser = clap::value_parser!(u32).range(2..=1_000_000))]
+    /// Number of points of --shape-out, uniform in s, in [2, 1000000] (needs --shape-out).
+    #[arg(long, value_name = "N", default_value = "101", value_parser = solve_shape_points, requires = "shape_out")]
     pub shape_points: u32,
     /// Make it an error when the rod crosses the surface line through its tip (inclined by
     /// --surface-angle): some point with s < 1 above it, or the tip arriving from above. Without
@@ -194,32 +223,33 @@ pub struct SolveArgs {
 /// `vibrissa scan`.
 #[derive(Args, Debug)]
 pub struct ScanArgs {
-    /// Surface height eta (rod lengths), in (0.45695, 1) for the uniform rod. [default: scene file's, else 0.75]
+    /// Surface height eta (rod lengths), in (eta_, 1) with eta_ = 0.456946581044463625 (the tip height of the uniform rod pushed straight down with a horizontal tip). [default: scene file's, else 0.75]
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
-    /// Largest foot displacement d (rod lengths).
-    #[arg(long, value_name = "D", value_parser = positive_f64, default_value = "0.5")]
+    /// Largest foot displacement d (rod lengths), in (0, 2).
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
     pub d_max: f64,
-    /// Number of output points, uniform in d from 0 to --d-max (>= 2).
-    #[arg(long, value_name = "N", default_value_t = 201, value_parser = clap::value_parser!(u32).range(2..=10_000_000))]
+    /// Number of output points, uniform in d from 0 to --d-max, in [2, 1000000].
+    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
     pub points: u32,
-    /// Stiction coefficient: stop where |mu| reaches it (the tip slips, backwards for mu = mu0,
-    /// forwards for mu = -mu0). mu = F.t/N is the signed friction ratio, tan(beta - alpha). [default: none]
-    #[arg(long, value_name = "MU", value_parser = nonneg_f64)]
+    /// Stiction coefficient, in [0, inf]: stop where |mu| reaches it (the tip slips, backwards for
+    /// mu = mu0, forwards for mu = -mu0; mu = F.t/N = tan(beta - alpha) is the signed friction
+    /// ratio). [default: none]
+    #[arg(long, value_name = "MU", value_parser = f64_or_inf)]
     pub mu0: Option<f64>,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Write the scan points to this CSV file (written to a temporary file, renamed when complete).
-    /// Without it the CSV goes to stdout (unless --json).
+    /// Write the scan points to this CSV file ("-": stdout). Without it the CSV goes to stdout
+    /// (unless --json).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, phi, kappa).
+    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab, phi, kappa, m).
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
-    /// Points per shape in --shapes (>= 2).
-    #[arg(long, value_name = "N", default_value_t = 41, value_parser = clap::value_parser!(u32).range(2..=100_000))]
+    /// Points per shape in --shapes, in [2, 100000]; --points × --shape-points × 100 bytes must fit in 1 GB (needs --shapes).
+    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
     pub shape_points: u32,
     /// Print the summary as a JSON object on stdout.
     #[arg(long)]
@@ -229,17 +259,17 @@ pub struct ScanArgs {
 /// `vibrissa infer`.
 #[derive(Args, Debug)]
 pub struct InferArgs {
-    /// Surface height eta (rod lengths). [default: scene file's, else 0.75]
+    /// Surface height eta (rod lengths), in (eta_, 1) (see scan --help). [default: scene file's, else 0.75]
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
-    /// Measured foot displacement at which the tip slipped (rod lengths).
+    /// Measured foot displacement at which the tip slipped (rod lengths), in [0, --d-max).
     #[arg(long, value_name = "D", value_parser = finite_f64)]
     pub d0: f64,
-    /// Largest foot displacement the underlying scan explores (rod lengths).
-    #[arg(long, value_name = "D", value_parser = positive_f64, default_value = "0.5")]
+    /// Largest foot displacement the underlying scan explores (rod lengths), in (0, 2).
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
     pub d_max: f64,
-    /// Points of the underlying scan (>= 2).
-    #[arg(long, value_name = "N", default_value_t = 201, value_parser = clap::value_parser!(u32).range(2..=10_000_000))]
+    /// Points of the underlying scan, in [2, 1000000].
+    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
     pub points: u32,
     #[command(flatten)]
     pub solver: SolverArgs,
@@ -252,61 +282,76 @@ pub struct InferArgs {
 
 /// `vibrissa sweep`.
 #[derive(Args, Debug)]
+#[command(
+    after_help = "LIST: a range a:b:n (n points, both ends included, computed from the decimal digits typed: 0.6:0.95:8 gives 0.6, 0.65, ..., 0.95) or a comma list v1,v2,... Negative values need no '=': --precurvature -1,0,1."
+)]
 pub struct SweepArgs {
-    /// Surface heights: a range a:b:n (n points, both ends included) or a comma list. [default: scene's, else 0.75]
-    #[arg(long, value_name = "LIST")]
-    pub eta: Option<String>,
-    /// Taper ratios RHO in (0, 1] (range a:b:n or list). [default: scene's]
-    #[arg(long, value_name = "LIST")]
-    pub taper: Option<String>,
-    /// Pre-curvatures K0 (1/L) (range or list). [default: scene's]
-    #[arg(long, value_name = "LIST")]
-    pub precurvature: Option<String>,
-    /// Pre-curvature slopes K1 (1/L^2) (range or list). [default: scene's]
-    #[arg(long, value_name = "LIST")]
-    pub precurvature_slope: Option<String>,
-    /// Support compliances C >= 0 (range or list). [default: scene's]
-    #[arg(long, value_name = "LIST")]
-    pub support_compliance: Option<String>,
-    /// Surface angles B (rad) (range or list). [default: scene's]
-    #[arg(long, value_name = "LIST")]
-    pub surface_angle: Option<String>,
-    /// Methods, a comma list (shooting, multiple-shooting, collocation, collocation6, analytic).
-    #[arg(long, value_name = "LIST", default_value = "shooting")]
-    pub method: String,
-    /// Solver tolerances (range or list).
-    #[arg(long, value_name = "LIST", default_value = "1e-10")]
-    pub tol: String,
     /// Base scene file (TOML); the grid flags override its values.
-    #[arg(long, value_name = "FILE.toml")]
+    #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
-    /// Largest foot displacement of each scan (rod lengths).
-    #[arg(long, value_name = "D", value_parser = positive_f64, default_value = "0.5")]
+    /// Surface heights, in (eta_, 1) (see scan --help). [default: scene's, else 0.75]
+    #[arg(long, value_name = "LIST", value_parser = axis, help_heading = "Scene")]
+    pub eta: Option<Axis>,
+    /// Taper ratios RHO in [0.01, 1]. [default: scene's]
+    #[arg(long, value_name = "LIST", value_parser = axis, help_heading = "Scene")]
+    pub taper: Option<Axis>,
+    /// Pre-curvatures K0 (1/L), in [-3, 3]. [default: scene's]
+    #[arg(long, value_name = "LIST", value_parser = axis, help_heading = "Scene")]
+    pub precurvature: Option<Axis>,
+    /// Pre-curvature slopes K1 (1/L^2), in [-6, 6] with |K0 + K1| <= 3. [default: scene's]
+    #[arg(long, value_name = "LIST", value_parser = axis, help_heading = "Scene")]
+    pub precurvature_slope: Option<Axis>,
+    /// Support compliances C in [0, 1000]. [default: scene's]
+    #[arg(long, value_name = "LIST", value_parser = axis, help_heading = "Scene")]
+    pub support_compliance: Option<Axis>,
+    /// Surface angles B (rad), in (-pi/4, pi/4). [default: scene's]
+    #[arg(long, value_name = "LIST", value_parser = axis, help_heading = "Scene")]
+    pub surface_angle: Option<Axis>,
+    #[command(flatten)]
+    pub physical: PhysicalArgs,
+    /// Methods, a comma list (shooting, multiple-shooting, collocation, collocation6, analytic).
+    #[arg(
+        long,
+        value_name = "LIST",
+        default_value = "shooting",
+        long_help = "Methods, a comma list of:\n\
+- shooting:          single shooting (adaptive Runge-Kutta, Newton on the unknown initial values)\n\
+- multiple-shooting: multiple shooting (several segments)\n\
+- collocation:       Lobatto IIIA collocation of order 4 with mesh adaptation\n\
+- collocation6:      Lobatto IIIA collocation of order 6 with mesh adaptation\n\
+- analytic:          closed-form elliptic-integral solution (uniform clamped straight rod only)"
+    )]
+    pub method: String,
+    /// Solver tolerances (LIST), each in [1e-15, 1e-2].
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "1e-10")]
+    pub tol: Axis,
+    /// Largest foot displacement of each scan (rod lengths), in (0, 2).
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
     pub d_max: f64,
-    /// Points per scan (>= 2).
-    #[arg(long, value_name = "N", default_value_t = 101, value_parser = clap::value_parser!(u32).range(2..=10_000_000))]
+    /// Points per scan, in [2, 1000000] (as scan).
+    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
     pub points: u32,
-    /// Stiction coefficient at which each scan stops (slip). [default: none]
-    #[arg(long, value_name = "MU", value_parser = nonneg_f64)]
+    /// Stiction coefficient at which each scan stops (slip), in [0, inf]. [default: none]
+    #[arg(long, value_name = "MU", value_parser = f64_or_inf)]
     pub mu0: Option<f64>,
-    /// Worker threads. [default: all cores]
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=4096))]
+    /// Worker threads; more than 4 per core are capped, with a warning. [default: all cores]
+    #[arg(long, value_name = "N", value_parser = jobs)]
     pub jobs: Option<u32>,
     /// Run only shard K of N (1-based), e.g. --shard $SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT.
     /// Shard K gets the K-th contiguous block of the grid; shard 1 alone writes the header, so
     /// concatenating shards 1..N gives exactly the unsharded output.
-    #[arg(long, value_name = "K/N")]
-    pub shard: Option<String>,
+    #[arg(long, value_name = "K/N", value_parser = shard)]
+    pub shard: Option<Shard>,
     /// Never write the header line (also not in shard 1).
     #[arg(long)]
     pub no_header: bool,
     /// Add a time_ms column (wall time per scene; makes the output non-reproducible).
     #[arg(long)]
     pub timing: bool,
-    /// Output CSV file (temporary file renamed when complete). [default: stdout]
+    /// Output CSV file ("-": stdout). [default: stdout]
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Print the grid size and this shard's range on stderr and exit without solving.
+    /// Check every value, print the grid size and this shard's range on stderr, and exit without solving.
     #[arg(long)]
     pub dry_run: bool,
 }
@@ -323,7 +368,79 @@ pub struct FiguresArgs {
     /// Numerical method for the numerical curves.
     #[arg(long, value_enum, default_value = "shooting")]
     pub method: MethodArg,
-    /// Solver tolerance for the numerical curves.
-    #[arg(long, value_name = "T", value_parser = positive_f64, default_value = "1e-10")]
+    /// Solver tolerance for the numerical curves, in [1e-15, 1e-2].
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
     pub tol: f64,
+}
+
+/// True for flags whose values are numbers, counts, number lists or ranges: they take values
+/// starting with '-' (`--alpha -1e-3`, `--precurvature -1,0,1`).
+pub fn is_numeric(a: &clap::Arg) -> bool {
+    if !a.get_action().takes_values() || a.is_positional() {
+        return false;
+    }
+    let t = a.get_value_parser().type_id();
+    t == TypeId::of::<f64>()
+        || t == TypeId::of::<u32>()
+        || t == TypeId::of::<Axis>()
+        || t == TypeId::of::<Shard>()
+        || a.get_value_names()
+            .is_some_and(|n| n.iter().any(|n| n.as_str() == "LIST"))
+}
+
+/// The command with every numeric flag taking values that start with '-'. clap's own
+/// `allow_negative_numbers` knows only `-1` and `-1.5`, not `-1e-3`, `-.5`, `-inf` or lists.
+pub fn command() -> clap::Command {
+    let mut cmd = Cli::command();
+    let names: Vec<String> = cmd
+        .get_subcommands()
+        .map(|s| s.get_name().to_string())
+        .collect();
+    for name in names {
+        cmd = cmd.mut_subcommand(name, |sub| {
+            sub.mut_args(|a| {
+                if is_numeric(&a) {
+                    a.allow_hyphen_values(true)
+                } else {
+                    a
+                }
+            })
+        });
+    }
+    cmd
+}
+
+/// A numeric flag directly followed by another flag of the same command (`--alpha --phi1 0.3`):
+/// numeric flags take values starting with '-', so clap would take the flag for the value and
+/// report the word after it instead. Returns the message.
+pub fn missing_value(args: &[std::ffi::OsString]) -> Option<String> {
+    let cmd = command();
+    let words: Vec<String> = args
+        .iter()
+        .skip(1)
+        .map(|a| a.to_string_lossy().into_owned())
+        .collect();
+    let pos = words.iter().position(|w| !w.starts_with('-'))?;
+    let sub = cmd.find_subcommand(&words[pos])?;
+    let long = |w: &str| -> Option<clap::Arg> {
+        let name = w.strip_prefix("--")?;
+        sub.get_arguments()
+            .find(|a| a.get_long() == Some(name))
+            .cloned()
+    };
+    for pair in words[pos + 1..].windows(2) {
+        if pair[0] == "--" {
+            break;
+        }
+        if let Some(a) = long(&pair[0]) {
+            let next = pair[1].split('=').next().unwrap_or("");
+            if is_numeric(&a) && (long(next).is_some() || next == "--help") {
+                return Some(format!(
+                    "{} needs a value; the next word is the flag {next}",
+                    pair[0]
+                ));
+            }
+        }
+    }
+    None
 }

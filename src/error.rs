@@ -31,7 +31,8 @@ impl Fail {
             Fail::Usage(m) | Fail::Solve(m) => m,
             Fail::Closed => "output closed by its reader",
         };
-        one_line(m)
+        // the model prints f64 with `{}`: 1e300 would be a 300-digit decimal
+        crate::numbers::shorten_numbers(&one_line(m))
     }
 }
 
@@ -73,11 +74,18 @@ impl From<elastica::ElasticaError> for Fail {
 }
 
 /// An output failure: [`Fail::Closed`] when its I/O cause is a broken pipe, else [`Fail::Solve`].
+/// File outputs name themselves (`writing --out x.csv: ...`, see `outputs`); every other file
+/// operation maps its error with its path, so an unnamed I/O error is a write to stdout.
 fn output_fail(io_kind: Option<std::io::ErrorKind>, e: impl fmt::Display) -> Fail {
     if io_kind == Some(std::io::ErrorKind::BrokenPipe) {
         Fail::Closed
     } else {
-        Fail::Solve(e.to_string())
+        let m = e.to_string();
+        if m.starts_with("writing ") || io_kind.is_none() {
+            Fail::Solve(m)
+        } else {
+            Fail::Solve(format!("writing stdout: {m}"))
+        }
     }
 }
 

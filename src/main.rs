@@ -3,17 +3,22 @@
 mod cli;
 mod error;
 mod figures;
+mod numbers;
 mod numeric;
 mod output;
+mod outputs;
+mod progress;
 mod scan;
 mod scene_args;
 mod solve;
 mod sweep;
+mod validate;
 
 use clap::error::ErrorKind;
-use clap::Parser;
+use clap::FromArgMatches;
 use cli::{Cli, Command};
-use error::{one_line, Fail};
+use error::{one_line, Fail, Res};
+use std::io::Write;
 
 /// Turn a clap error into one line (`error: ...`, with a tip if clap has one).
 fn clap_one_line(e: &clap::Error) -> String {
@@ -33,57 +38,121 @@ fn clap_one_line(e: &clap::Error) -> String {
     format!("{msg} (see --help)")
 }
 
-fn run(cli: Cli) -> Result<(), Fail> {
-    match cli.command {
-        Command::Solve(a) => solve::run(&a),
-        Command::Scan(a) => scan::run(&a),
-        Command::Infer(a) => scan::run_infer(&a),
-        Command::Sweep(a) => sweep::run(&a),
-        Command::Figures(a) => figures::run(&a),
+/// Exit for a clap outcome: help and version on stdout (exit 0, or 1 when stdout cannot be
+/// written; a closed pipe is not an error), anything else one line on stderr with exit 2.
+fn clap_exit(e: clap::Error) -> ! {
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let r = e.print().and_then(|_| std::io::stdout().flush());
+            match r {
+                Err(err) if err.kind() != std::io::ErrorKind::BrokenPipe => {
+                    progress::eprint(&format!("error: writing the help text to stdout: {err}"));
+                    std::process::exit(1)
+                }
+                _ => std::process::exit(0),
+            }
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            std::process::exit(2)
+        }
+        _ => {
+            progress::eprint(&format!("error: {}", clap_one_line(&e)));
+            std::process::exit(2)
+        }
+    }
+}
+
+/// Everything that must hold before any work: values in range, the scene, the outputs (no two
+/// the same, directories writable; temporaries created). `sweep` does its own, with the grid.
+fn prepare(cmd: &mut Command) -> Res<()> {
+    validate::command(cmd)?;
+    match cmd {
+        Command::Solve(a) => {
+            scene_args::build_scene(&a.scene, None)?;
+            if let Some(p) = &a.shape_out {
+                outputs::plan(&[("--shape-out", p)], false)?;
+            }
+        }
+        Command::Scan(a) => {
+            scene_args::build_scene(&a.scene, a.eta)?;
+            let mut outs = Vec::new();
+            if let Some(p) = &a.out {
+                outs.push(("--out", p.as_path()));
+            }
+            if let Some(p) = &a.shapes {
+                outs.push(("--shapes", p.as_path()));
+            }
+            outputs::plan(&outs, false)?;
+        }
+        Command::Infer(a) => {
+            scene_args::build_scene(&a.scene, a.eta)?;
+        }
+        Command::Sweep(_) | Command::Figures(_) => {}
+    }
+    Ok(())
+}
+
+fn run(mut cli: Cli) -> Res<()> {
+    prepare(&mut cli.command)?;
+    match &cli.command {
+        Command::Solve(a) => {
+            progress::start("solve", false);
+            solve::run(a)
+        }
+        Command::Scan(a) => {
+            progress::start("scan", false);
+            scan::run(a)
+        }
+        Command::Infer(a) => {
+            progress::start("infer", false);
+            scan::run_infer(a)
+        }
+        Command::Sweep(a) => sweep::run(a),
+        Command::Figures(a) => {
+            progress::start("figures", true);
+            figures::run(a)
+        }
     }
 }
 
 fn main() {
-    let cli = match Cli::try_parse() {
-        Ok(c) => c,
-        Err(e) => match e.kind() {
-            ErrorKind::DisplayHelp
-            | ErrorKind::DisplayVersion
-            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-                let _ = e.print();
-                std::process::exit(
-                    if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
-                        2
-                    } else {
-                        0
-                    },
-                );
-            }
-            _ => {
-                eprintln!("error: {}", clap_one_line(&e));
-                std::process::exit(2);
-            }
-        },
-    };
-    // a panic would be a bug; still, report it as one line, not a backtrace
+    let args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    if let Some(msg) = cli::missing_value(&args) {
+        progress::eprint(&format!("error: {msg} (see --help)"));
+        std::process::exit(2);
+    }
+    let matches = cli::command()
+        .try_get_matches_from(&args)
+        .unwrap_or_else(|e| clap_exit(e));
+    let cli = Cli::from_arg_matches(&matches).unwrap_or_else(|e| clap_exit(e));
+    // a panic would be a bug; still, report it as one line, not a backtrace, and leave no
+    // temporary file behind
     std::panic::set_hook(Box::new(|info| {
         if sweep::QUIET_PANICS.load(std::sync::atomic::Ordering::SeqCst) {
             return;
         }
+        outputs::abort_if_free();
         let msg = info
             .payload()
             .downcast_ref::<&str>()
             .map(|s| s.to_string())
             .or_else(|| info.payload().downcast_ref::<String>().cloned())
             .unwrap_or_else(|| "unknown".into());
-        eprintln!("error: internal error: {}", one_line(&msg));
+        progress::eprint(&format!("error: internal error: {}", one_line(&msg)));
     }));
-    match run(cli) {
-        Ok(()) => {}
-        Err(Fail::Closed) => {}
+    let r = run(cli);
+    progress::stop();
+    let r = match r {
+        // the reader of stdout went away: the command's files are complete, keep them
+        Ok(()) | Err(Fail::Closed) => outputs::commit_all(),
         Err(e) => {
-            eprintln!("error: {}", e.message());
-            std::process::exit(e.code());
+            outputs::abort_all();
+            Err(e)
         }
+    };
+    if let Err(e) = r.map_err(validate::explain) {
+        progress::note(&format!("error: {}", e.message()));
+        std::process::exit(e.code());
     }
 }

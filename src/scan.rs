@@ -314,12 +314,12 @@ pub fn run(a: &ScanArgs) -> Res<()> {
             0
         },
     };
-    let out = run_scan(&scene, &spec)?;
+    let mut out = run_scan(&scene, &spec)?;
+    crate::progress::stop();
     if out.pts.is_empty() {
-        return Err(solve_fail(format!(
-            "the scan produced no points: {}",
-            out.stop.detail
-        )));
+        // the start (d = 0) was solved (run_scan checks it): report it, and why the scan stopped
+        out.pts.push(out.start);
+        out.points = 1;
     }
     let u = numeric::parts(&scene)?.0.units();
     if let Some(p) = &a.shapes {
@@ -331,7 +331,7 @@ pub fn run(a: &ScanArgs) -> Res<()> {
         sink.finish()?;
     }
     if out.stop.reason != "d_max" {
-        eprintln!("warning: the scan stopped early: {}", out.stop.detail);
+        crate::progress::warn(&format!("the scan stopped early: {}", out.stop.detail));
     }
     if a.json {
         let v = json_summary(&out, a.out.as_deref());
@@ -339,7 +339,7 @@ pub fn run(a: &ScanArgs) -> Res<()> {
     } else if a.out.is_some() {
         writeln!(io::stdout(), "{}", summary(&out, a.out.as_deref()))?;
     } else {
-        eprintln!("{}", summary(&out, None));
+        crate::progress::note(&summary(&out, None));
     }
     Ok(())
 }
@@ -384,6 +384,7 @@ pub fn run_infer(a: &InferArgs) -> Res<()> {
         d_min: r.measurable_d.0,
         d_max_measurable: r.measurable_d.1,
     };
+    crate::progress::stop();
     if !(out.mu0.is_finite() && out.mu_max.is_finite()) {
         return Err(solve_fail("the inference produced non-finite values"));
     }

@@ -1,18 +1,23 @@
-//! Building a `vibrissa::Scene` from `--scene FILE.toml` and the scene flags.
+//! Building a `vibrissa::Scene` from `--scene FILE.toml` and the scene flags, validated by the
+//! shared validation layer (messages name the flag or the file's key the value came from).
 
-use crate::cli::SceneArgs;
+use crate::cli::{PhysicalArgs, SceneArgs};
 use crate::error::{usage, Res};
+use crate::validate::{self, SceneSrc};
 use std::path::Path;
 use vibrissa::{Physical, Precurvature, Scene, Stiffness};
 
 /// Physical unit factors (re-exported from the model crate).
 pub use vibrissa::Units;
 
-/// Read a scene file (TOML, unknown keys rejected). Errors name the file and the line.
+/// Read a scene file (TOML; unknown keys, also those that do not belong to a table's `kind`, are
+/// refused). Errors name the file and the line.
 pub fn read_scene_file(path: &Path) -> Res<Scene> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| usage(format!("cannot read scene file {}: {e}", path.display())))?;
-    toml::from_str::<Scene>(&text).map_err(|e| {
+    // first the keys of each kind: its message has the key's own line and the valid keys
+    validate::scene_file_keys(path, &text)?;
+    let sc = toml::from_str::<Scene>(&text).map_err(|e| {
         let line = e
             .span()
             .map(|sp| text[..sp.start.min(text.len())].matches('\n').count() + 1)
@@ -23,17 +28,40 @@ pub fn read_scene_file(path: &Path) -> Res<Scene> {
             path.display(),
             e.message()
         ))
-    })
-}
-
-/// The scene: file values (or defaults), then the flags on top; validated.
-pub fn build_scene(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
-    let sc = build_scene_unchecked(a, eta)?;
-    sc.validate()?;
+    })?;
     Ok(sc)
 }
 
-/// The scene without the model's validation.
+/// The scene: file values (or defaults), then the flags on top (`eta`: the `--eta` flag of scan
+/// and infer); validated.
+pub fn build_scene(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
+    let sc = build_scene_unchecked(a, eta)?;
+    let flag = |present: bool, f: &'static str| present.then_some(f);
+    let src = SceneSrc {
+        file: a.scene.as_deref(),
+        eta: flag(eta.is_some(), "--eta"),
+        taper: flag(a.taper.is_some(), "--taper"),
+        k0: flag(a.precurvature.is_some(), "--precurvature"),
+        k1: flag(a.precurvature_slope.is_some(), "--precurvature-slope"),
+        c: flag(a.support_compliance.is_some(), "--support-compliance"),
+        beta: flag(a.surface_angle.is_some(), "--surface-angle"),
+        physical: physical_src(&a.physical),
+    };
+    validate::scene(&sc, &src)?;
+    validate::model_check(&sc, a.scene.as_deref())?;
+    Ok(sc)
+}
+
+/// Which physical values came from flags.
+pub fn physical_src(p: &PhysicalArgs) -> [Option<&'static str>; 3] {
+    [
+        p.length_mm.map(|_| "--length-mm"),
+        p.youngs_modulus_gpa.map(|_| "--youngs-modulus-gpa"),
+        p.base_diameter_um.map(|_| "--base-diameter-um"),
+    ]
+}
+
+/// The scene without validation.
 pub fn build_scene_unchecked(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
     let mut sc = match &a.scene {
         Some(p) => read_scene_file(p)?,
@@ -50,6 +78,12 @@ pub fn build_scene_unchecked(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
         a.support_compliance,
         a.surface_angle,
     );
+    apply_physical(&mut sc, &a.physical)?;
+    Ok(sc)
+}
+
+/// The physical flags on top of the file's `[physical]`: all three, or those the file lacks.
+pub fn apply_physical(sc: &mut Scene, a: &PhysicalArgs) -> Res<()> {
     match (a.length_mm, a.youngs_modulus_gpa, a.base_diameter_um) {
         (None, None, None) => {}
         (Some(l), Some(e), Some(d)) => {
@@ -59,31 +93,27 @@ pub fn build_scene_unchecked(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
                 base_diameter_um: d,
             })
         }
-        (l, e, d) => {
-            // complete a file's physical block, or ask for all three
-            let base = sc.physical.clone();
-            match base {
-                Some(mut p) => {
-                    if let Some(l) = l {
-                        p.length_mm = l;
-                    }
-                    if let Some(e) = e {
-                        p.youngs_modulus_gpa = e;
-                    }
-                    if let Some(d) = d {
-                        p.base_diameter_um = d;
-                    }
-                    sc.physical = Some(p);
+        (l, e, d) => match sc.physical.as_mut() {
+            // complete a file's physical block
+            Some(p) => {
+                if let Some(l) = l {
+                    p.length_mm = l;
                 }
-                None => {
-                    return Err(usage(
-                        "physical units need all three of --length-mm, --youngs-modulus-gpa, --base-diameter-um",
-                    ))
+                if let Some(e) = e {
+                    p.youngs_modulus_gpa = e;
+                }
+                if let Some(d) = d {
+                    p.base_diameter_um = d;
                 }
             }
-        }
+            None => {
+                return Err(usage(
+                    "physical units need all three of --length-mm, --youngs-modulus-gpa, --base-diameter-um (or a scene file with [physical])",
+                ))
+            }
+        },
     }
-    Ok(sc)
+    Ok(())
 }
 
 /// Apply scene overrides (flags or sweep grid values).
@@ -114,4 +144,9 @@ pub fn apply_overrides(
     if let Some(b) = surface_angle {
         sc.surface_angle = b;
     }
+}
+
+/// Physical unit factors of a (validated) scene.
+pub fn units_of(sc: &Scene) -> Option<Units> {
+    sc.rod().ok().and_then(|r| r.units())
 }

@@ -179,6 +179,7 @@ pub fn run(a: &SolveArgs) -> Res<()> {
         0
     };
     let mut out = numeric::solve(&scene, a, npts)?;
+    crate::progress::stop();
     if out.residual.is_nan() || !out.f.is_finite() {
         return Err(crate::error::solve_fail(
             "the solver returned a non-finite result",

@@ -1,11 +1,16 @@
 //! `vibrissa sweep`: a grid of stiction scans over scene parameters, in parallel (rayon), with
 //! rows streamed in grid order through a bounded reorder buffer, and `--shard K/N`.
 
-use crate::cli::{MethodArg, SweepArgs};
-use crate::error::{one_line, usage, Res};
+use crate::cli::{MethodArg, Shard, SweepArgs};
+use crate::error::{one_line, solve_fail, usage, Res};
+use crate::numbers::{short, Axis};
 use crate::output::{csv_line, num, Sink};
+use crate::outputs;
 use crate::scan::{run_scan, ScanSpec};
-use crate::scene_args::{apply_overrides, read_scene_file};
+use crate::scene_args::{
+    apply_overrides, apply_physical, physical_src, read_scene_file, units_of, Units,
+};
+use crate::validate::{self, SceneSrc, Src};
 use clap::ValueEnum;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -18,50 +23,6 @@ use vibrissa::{Precurvature, Scene, Stiffness};
 /// Set while a sweep runs: a panic inside one scene becomes that scene's error row, and the
 /// panic hook stays quiet.
 pub static QUIET_PANICS: AtomicBool = AtomicBool::new(false);
-
-/// Parse a grid axis: `a:b:n` (n points, both ends included) or a comma list `v1,v2,...`.
-pub fn parse_axis(name: &str, s: &str) -> Res<Vec<f64>> {
-    let bad = |why: String| usage(format!("--{name} '{s}': {why}"));
-    let num = |t: &str| -> Res<f64> {
-        let v: f64 = t
-            .trim()
-            .parse()
-            .map_err(|_| bad(format!("'{}' is not a number", t.trim())))?;
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            Err(bad(format!("'{}' is not a finite number", t.trim())))
-        }
-    };
-    if s.contains(':') {
-        let parts: Vec<&str> = s.split(':').collect();
-        if parts.len() != 3 {
-            return Err(bad("a range is a:b:n (start, end, number of points)".into()));
-        }
-        let (a, b) = (num(parts[0])?, num(parts[1])?);
-        let n: usize = parts[2]
-            .trim()
-            .parse()
-            .map_err(|_| bad(format!("'{}' is not a point count", parts[2].trim())))?;
-        if n == 0 || n > 10_000_000 {
-            return Err(bad(format!("point count {n} is outside [1, 10000000]")));
-        }
-        if n == 1 {
-            return Ok(vec![a]);
-        }
-        Ok((0..n)
-            .map(|i| {
-                if i + 1 == n {
-                    b
-                } else {
-                    a + (b - a) * i as f64 / (n - 1) as f64
-                }
-            })
-            .collect())
-    } else {
-        s.split(',').map(num).collect()
-    }
-}
 
 /// One grid point's parameters (`None`: the base scene's value).
 #[derive(Clone, Debug)]
@@ -89,21 +50,10 @@ struct Grid {
 }
 
 impl Grid {
-    fn len(&self) -> usize {
-        self.eta.len()
-            * self.taper.len()
-            * self.k0.len()
-            * self.k1.len()
-            * self.c.len()
-            * self.beta.len()
-            * self.method.len()
-            * self.tol.len()
-    }
-
-    fn cell(&self, mut i: usize) -> Cell {
+    fn cell(&self, mut i: u64) -> Cell {
         let mut take = |n: usize| {
-            let r = i % n;
-            i /= n;
+            let r = (i % n as u64) as usize;
+            i /= n as u64;
             r
         };
         let it = take(self.tol.len());
@@ -127,31 +77,15 @@ impl Grid {
     }
 }
 
-fn axis(name: &str, s: &Option<String>) -> Res<Vec<Option<f64>>> {
-    Ok(match s {
-        Some(s) => parse_axis(name, s)?.into_iter().map(Some).collect(),
+fn axis(a: &Option<Axis>) -> Vec<Option<f64>> {
+    match a {
+        Some(a) => a.values.iter().copied().map(Some).collect(),
         None => vec![None],
-    })
-}
-
-/// Parse `K/N` (1-based).
-pub fn parse_shard(s: &str) -> Res<(usize, usize)> {
-    let bad = || {
-        usage(format!(
-            "--shard '{s}': expected K/N with 1 <= K <= N (e.g. 3/10)"
-        ))
-    };
-    let (k, n) = s.split_once('/').ok_or_else(bad)?;
-    let k: usize = k.trim().parse().map_err(|_| bad())?;
-    let n: usize = n.trim().parse().map_err(|_| bad())?;
-    if n == 0 || k == 0 || k > n {
-        return Err(bad());
     }
-    Ok((k, n))
 }
 
-/// Columns of the sweep CSV.
-pub fn header(timing: bool) -> Vec<&'static str> {
+/// Columns of the sweep CSV (`physical`: the base scene has physical dimensions).
+pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
     let mut h = vec![
         "index",
         "eta",
@@ -173,6 +107,9 @@ pub fn header(timing: bool) -> Vec<&'static str> {
         "newton_iters",
         "rhs_evals",
     ];
+    if physical {
+        h.extend(["f0_N", "d_at_mu_max_mm", "d_end_mm"]);
+    }
     if timing {
         h.push("time_ms");
     }
@@ -201,14 +138,21 @@ fn scene_cols(sc: &Scene) -> [String; 6] {
     ]
 }
 
-/// Compute one row (never fails: errors go into the `error` column).
-fn one_row(base: &Scene, cell: &Cell, idx: usize, a: &SweepArgs) -> Vec<String> {
-    let t0 = Instant::now();
+/// The scene of one grid point.
+fn cell_scene(base: &Scene, cell: &Cell) -> Scene {
     let mut sc = base.clone();
     if let Some(e) = cell.eta {
         sc.eta = e;
     }
     apply_overrides(&mut sc, cell.taper, cell.k0, cell.k1, cell.c, cell.beta);
+    sc
+}
+
+/// Compute one row (never fails: errors go into the `error` column). `Err` only when the
+/// scene failed (for the summary count).
+fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, bool) {
+    let t0 = Instant::now();
+    let sc = cell_scene(base, cell);
     let mut row = vec![idx.to_string()];
     row.extend(scene_cols(&sc));
     row.push(cell.method.name().to_string());
@@ -226,6 +170,16 @@ fn one_row(base: &Scene, cell: &Cell, idx: usize, a: &SweepArgs) -> Vec<String> 
         run_scan(&sc, &spec)
     });
     let ms = t0.elapsed().as_secs_f64() * 1e3;
+    let physical = base.physical.is_some();
+    let units = if physical { units_of(&sc) } else { None };
+    let blank = |row: &mut Vec<String>| {
+        row.extend((0..6).map(|_| String::new()));
+        row.push("error".into());
+        row.extend((0..3).map(|_| String::new()));
+        if physical {
+            row.extend((0..3).map(|_| String::new()));
+        }
+    };
     let err = match result {
         Ok(Ok(o)) => {
             let last = o.pts.last().copied().unwrap_or(o.start);
@@ -241,13 +195,26 @@ fn one_row(base: &Scene, cell: &Cell, idx: usize, a: &SweepArgs) -> Vec<String> 
                 o.stats.newton_iters.to_string(),
                 o.stats.rhs_evals.to_string(),
             ]);
+            if physical {
+                let u = units.unwrap_or(Units {
+                    force_n: f64::NAN,
+                    moment_nm: f64::NAN,
+                    length_mm: f64::NAN,
+                });
+                row.extend(
+                    [
+                        o.start.f * u.force_n,
+                        o.d_at_mu_max * u.length_mm,
+                        last.d * u.length_mm,
+                    ]
+                    .map(num),
+                );
+            }
             String::new()
         }
         Ok(Err(e)) => {
-            row.extend((0..6).map(|_| String::new()));
-            row.push("error".into());
-            row.extend((0..3).map(|_| String::new()));
-            e.message()
+            blank(&mut row);
+            validate::shorten(e).message()
         }
         Err(p) => {
             let msg = p
@@ -255,17 +222,16 @@ fn one_row(base: &Scene, cell: &Cell, idx: usize, a: &SweepArgs) -> Vec<String> 
                 .map(|s| s.to_string())
                 .or_else(|| p.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "panic".into());
-            row.extend((0..6).map(|_| String::new()));
-            row.push("error".into());
-            row.extend((0..3).map(|_| String::new()));
+            blank(&mut row);
             format!("internal error: {}", one_line(&msg))
         }
     };
     if a.timing {
         row.push(format!("{ms:.3}"));
     }
+    let failed = !err.is_empty();
     row.push(err);
-    row
+    (row, failed)
 }
 
 fn csv_string(fields: &[String]) -> String {
@@ -275,12 +241,94 @@ fn csv_string(fields: &[String]) -> String {
     String::from_utf8_lossy(&v).into_owned()
 }
 
-/// Run `vibrissa sweep`.
-pub fn run(a: &SweepArgs) -> Res<()> {
-    let base = match &a.scene {
+/// The base scene (file, then the physical flags), each value checked where the grid does not
+/// override it.
+fn base_scene(a: &SweepArgs) -> Res<Scene> {
+    let mut base = match &a.scene {
         Some(p) => read_scene_file(p)?,
         None => Scene::default(),
     };
+    apply_physical(&mut base, &a.physical)?;
+    // check the base with the axes' first values in place: each quantity is then checked from
+    // where it came (the flag or the file's key); the axes' other values are checked below
+    let first = |x: &Option<Axis>| x.as_ref().and_then(|x| x.values.first().copied());
+    let mut probe = base.clone();
+    if let Some(e) = first(&a.eta) {
+        probe.eta = e;
+    }
+    apply_overrides(
+        &mut probe,
+        first(&a.taper),
+        first(&a.precurvature),
+        first(&a.precurvature_slope),
+        first(&a.support_compliance),
+        first(&a.surface_angle),
+    );
+    let flag = |x: &Option<Axis>, f: &'static str| x.as_ref().map(|_| f);
+    let src = SceneSrc {
+        file: a.scene.as_deref(),
+        eta: flag(&a.eta, "--eta"),
+        taper: flag(&a.taper, "--taper"),
+        k0: flag(&a.precurvature, "--precurvature"),
+        k1: flag(&a.precurvature_slope, "--precurvature-slope"),
+        c: flag(&a.support_compliance, "--support-compliance"),
+        beta: flag(&a.surface_angle, "--surface-angle"),
+        physical: physical_src(&a.physical),
+    };
+    validate::scene(&probe, &src)?;
+    validate::model_check(&probe, a.scene.as_deref())?;
+    for (x, f, r) in [
+        (&a.eta, "--eta", validate::eta_range()),
+        (&a.taper, "--taper", validate::TAPER),
+        (&a.precurvature, "--precurvature", validate::PRECURVATURE),
+        (
+            &a.precurvature_slope,
+            "--precurvature-slope",
+            validate::PRECURVATURE_SLOPE,
+        ),
+        (
+            &a.support_compliance,
+            "--support-compliance",
+            validate::SUPPORT_COMPLIANCE,
+        ),
+        (&a.surface_angle, "--surface-angle", validate::SURFACE_ANGLE),
+    ] {
+        if let Some(x) = x {
+            for v in &x.values {
+                validate::check(Src::Flag(f), *v, &r)?;
+            }
+        }
+    }
+    // the rest curvature at the tip, K0 + K1, over the extreme combinations
+    if a.precurvature.is_some() || a.precurvature_slope.is_some() {
+        let (b0, b1) = match &base.precurvature {
+            Precurvature::Linear { k0, k1 } => (*k0, *k1),
+            _ => (0.0, 0.0),
+        };
+        let ext = |x: &Option<Axis>, b: f64| match x {
+            Some(x) => x
+                .values
+                .iter()
+                .fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(*v), hi.max(*v))),
+            None => (b, b),
+        };
+        let (lo0, hi0) = ext(&a.precurvature, b0);
+        let (lo1, hi1) = ext(&a.precurvature_slope, b1);
+        for end in [lo0 + lo1, hi0 + hi1] {
+            if !validate::PRECURVATURE.contains(end) {
+                return Err(usage(format!(
+                    "--precurvature K0 + --precurvature-slope K1 reaches {} (the rest curvature at the tip), outside the valid range [-3, 3] (1/L)",
+                    short(end)
+                )));
+            }
+        }
+    }
+    Ok(base)
+}
+
+/// Run `vibrissa sweep`.
+pub fn run(a: &SweepArgs) -> Res<()> {
+    let base = base_scene(a)?;
     let methods = a
         .method
         .split(',')
@@ -293,49 +341,63 @@ pub fn run(a: &SweepArgs) -> Res<()> {
             })
         })
         .collect::<Res<Vec<_>>>()?;
-    let tols = parse_axis("tol", &a.tol)?;
-    if let Some(t) = tols.iter().find(|t| **t <= 0.0) {
-        return Err(usage(format!("--tol: {t} must be > 0")));
-    }
     let grid = Grid {
-        eta: axis("eta", &a.eta)?,
-        taper: axis("taper", &a.taper)?,
-        k0: axis("precurvature", &a.precurvature)?,
-        k1: axis("precurvature-slope", &a.precurvature_slope)?,
-        c: axis("support-compliance", &a.support_compliance)?,
-        beta: axis("surface-angle", &a.surface_angle)?,
+        eta: axis(&a.eta),
+        taper: axis(&a.taper),
+        k0: axis(&a.precurvature),
+        k1: axis(&a.precurvature_slope),
+        c: axis(&a.support_compliance),
+        beta: axis(&a.surface_angle),
         method: methods,
-        tol: tols,
+        tol: a.tol.values.clone(),
     };
-    let total = grid.len();
-    let (k, n) = match &a.shard {
-        Some(s) => parse_shard(s)?,
-        None => (1, 1),
-    };
+    let total = validate::grid_size(&[
+        ("--eta", grid.eta.len()),
+        ("--taper", grid.taper.len()),
+        ("--precurvature", grid.k0.len()),
+        ("--precurvature-slope", grid.k1.len()),
+        ("--support-compliance", grid.c.len()),
+        ("--surface-angle", grid.beta.len()),
+        ("--method", grid.method.len()),
+        ("--tol", grid.tol.len()),
+    ])?;
+    let Shard { k, n } = a.shard.unwrap_or(Shard { k: 1, n: 1 });
     // shard k gets the k-th contiguous block: concatenation keeps the grid order
-    let lo = ((k - 1) as u128 * total as u128 / n as u128) as usize;
-    let hi = (k as u128 * total as u128 / n as u128) as usize;
+    let lo = ((k - 1) as u128 * total as u128 / n as u128) as u64;
+    let hi = (k as u128 * total as u128 / n as u128) as u64;
+    let jobs = validate::jobs(a.jobs, hi - lo);
+    // each worker holds one scan of --points points
+    validate::budget(
+        "--jobs",
+        jobs as u64,
+        "--points",
+        a.points as u64,
+        "scan points",
+        validate::BYTES_PER_SCAN_POINT,
+    )?;
     if a.dry_run {
-        eprintln!(
-            "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes)",
+        if let Some(p) = &a.out {
+            outputs::plan(&[("--out", p)], true)?;
+        }
+        crate::progress::note(&format!(
+            "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes); {jobs} threads",
             hi - lo
-        );
+        ));
         return Ok(());
     }
-    let jobs = a
-        .jobs
-        .map(|j| j as usize)
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
+    if let Some(p) = &a.out {
+        outputs::plan(&[("--out", p)], false)?;
+    }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)
         .build()
-        .map_err(|e| usage(format!("cannot start {jobs} worker threads: {e}")))?;
+        .map_err(|e| solve_fail(format!("cannot start {jobs} worker threads: {e}")))?;
     let mut sink = Sink::open(a.out.as_deref())?;
-    if k == 1 && !a.no_header {
-        csv_line(&mut sink, &header(a.timing))?;
-    }
-    let bar = if std::io::stderr().is_terminal() {
-        let b = indicatif::ProgressBar::new((hi - lo) as u64);
+    let physical = base.physical.is_some();
+    let t0 = Instant::now();
+    let show_bar = std::io::stderr().is_terminal();
+    let bar = if show_bar {
+        let b = indicatif::ProgressBar::new(hi - lo);
         if let Ok(style) = indicatif::ProgressStyle::with_template(
             "{elapsed_precise} [{bar:40}] {pos}/{len} scenes (eta {eta})",
         ) {
@@ -345,24 +407,52 @@ pub fn run(a: &SweepArgs) -> Res<()> {
     } else {
         indicatif::ProgressBar::hidden()
     };
+    // rows written to the terminal must not share the bar's line
+    let to_terminal = show_bar && a.out.is_none() && std::io::stdout().is_terminal();
+    let write = |sink: &mut Sink, text: &str| -> std::io::Result<()> {
+        if to_terminal {
+            bar.suspend(|| {
+                sink.write_all(text.as_bytes())?;
+                sink.flush()
+            })
+        } else {
+            sink.write_all(text.as_bytes())
+        }
+    };
+    if k == 1 && !a.no_header {
+        write(
+            &mut sink,
+            &csv_string(&to_strings(&header(a.timing, physical))),
+        )?;
+    }
     QUIET_PANICS.store(true, Ordering::SeqCst);
+    // set when the output failed or closed: workers skip the remaining scenes
+    let stop = AtomicBool::new(false);
     // bounded window: at most `window` rows wait in the reorder buffer
-    let window = (jobs * 32).max(64);
-    let (tx, rx) = mpsc::sync_channel::<(usize, String)>(window);
+    let window = (jobs as u64 * 32).max(64);
+    let (tx, rx) = mpsc::sync_channel::<(u64, String, bool)>(window as usize);
     let grid = &grid;
     let base = &base;
+    let stop = &stop;
     let mut write_err = None;
+    let mut failed = 0u64;
+    let mut done = 0u64;
     std::thread::scope(|s| {
         s.spawn(move || {
             pool.install(|| {
                 let mut start = lo;
-                while start < hi {
+                while start < hi && !stop.load(Ordering::Relaxed) {
                     let end = (start + window).min(hi);
                     (start..end)
                         .into_par_iter()
                         .for_each_with(tx.clone(), |tx, i| {
-                            let row = one_row(base, &grid.cell(i), i, a);
-                            let _ = tx.send((i, csv_string(&row)));
+                            if stop.load(Ordering::Relaxed) {
+                                return;
+                            }
+                            let (row, bad) = one_row(base, &grid.cell(i), i, a);
+                            if tx.send((i, csv_string(&row), bad)).is_err() {
+                                stop.store(true, Ordering::Relaxed);
+                            }
                         });
                     start = end;
                 }
@@ -370,29 +460,52 @@ pub fn run(a: &SweepArgs) -> Res<()> {
             drop(tx);
         });
         let mut next = lo;
-        let mut buf: BTreeMap<usize, String> = BTreeMap::new();
-        for (i, line) in rx {
-            buf.insert(i, line);
-            while let Some(l) = buf.remove(&next) {
-                if write_err.is_none() {
-                    if let Err(e) = sink.write_all(l.as_bytes()) {
-                        write_err = Some(e);
-                    }
+        let mut buf: BTreeMap<u64, (String, bool)> = BTreeMap::new();
+        for (i, line, bad) in rx.iter() {
+            buf.insert(i, (line, bad));
+            while let Some((l, bad)) = buf.remove(&next) {
+                if let Err(e) = write(&mut sink, &l) {
+                    write_err = Some(e);
+                    break;
                 }
+                failed += bad as u64;
+                done += 1;
                 next += 1;
                 bar.inc(1);
             }
-            if write_err.is_none() {
+            if write_err.is_none() && !to_terminal {
                 if let Err(e) = sink.flush() {
                     write_err = Some(e);
                 }
             }
+            if write_err.is_some() {
+                // stop promptly: no more scenes, and the workers' sends fail from now on
+                stop.store(true, Ordering::Relaxed);
+                break;
+            }
         }
+        drop(rx);
     });
     QUIET_PANICS.store(false, Ordering::SeqCst);
     bar.finish_and_clear();
     if let Some(e) = write_err {
         return Err(e.into());
     }
-    sink.finish()
+    sink.finish()?;
+    if show_bar {
+        let dest = match &a.out {
+            Some(p) => format!("; written to {}", p.display()),
+            None => String::new(),
+        };
+        crate::progress::note(&format!(
+            "sweep: {done} scenes in {:.1} s ({} solved, {failed} with an error){dest}",
+            t0.elapsed().as_secs_f64(),
+            done - failed
+        ));
+    }
+    Ok(())
+}
+
+fn to_strings(v: &[&str]) -> Vec<String> {
+    v.iter().map(|s| s.to_string()).collect()
 }

@@ -2,92 +2,11 @@
 //! closed forms (crate `elastica`) and the paper's printed numbers, and check the error contract.
 
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-struct Out {
-    code: i32,
-    stdout: String,
-    stderr: String,
-}
-
-fn run(args: &[&str]) -> Out {
-    let o = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
-        .args(args)
-        .output()
-        .expect("run vibrissa");
-    Out {
-        code: o.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
-    }
-}
-
-fn ok(args: &[&str]) -> Out {
-    let o = run(args);
-    assert_eq!(
-        o.code, 0,
-        "vibrissa {args:?} failed: {}\n{}",
-        o.stderr, o.stdout
-    );
-    o
-}
-
-/// A bad invocation: non-zero exit, exactly one line on stderr starting with `error:`, no panic.
-fn bad(args: &[&str], code: i32) -> String {
-    let o = run(args);
-    assert_eq!(o.code, code, "vibrissa {args:?}: stderr {:?}", o.stderr);
-    let lines: Vec<&str> = o.stderr.lines().collect();
-    assert_eq!(lines.len(), 1, "vibrissa {args:?}: stderr {:?}", o.stderr);
-    assert!(lines[0].starts_with("error: "), "{:?}", lines[0]);
-    assert!(!o.stderr.contains("panicked"), "{:?}", o.stderr);
-    assert!(!o.stdout.contains("NaN"), "{:?}", o.stdout);
-    lines[0].to_string()
-}
-
-fn tmpdir(name: &str) -> PathBuf {
-    // Under target/ (not /tmp), so repeated runs leave nothing behind outside the build directory.
-    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-/// Parse a CSV with a header into (header, rows).
-fn csv(text: &str) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut r = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .from_reader(text.as_bytes());
-    let h = r.headers().unwrap().iter().map(String::from).collect();
-    let rows = r
-        .records()
-        .map(|x| x.unwrap().iter().map(String::from).collect())
-        .collect();
-    (h, rows)
-}
-
-fn col(h: &[String], row: &[String], name: &str) -> f64 {
-    let i = h
-        .iter()
-        .position(|c| c == name)
-        .unwrap_or_else(|| panic!("no column {name} in {h:?}"));
-    row[i]
-        .parse()
-        .unwrap_or_else(|_| panic!("column {name}: {:?}", row[i]))
-}
-
-fn json(text: &str) -> serde_json::Value {
-    serde_json::from_str(text).unwrap_or_else(|e| panic!("bad JSON {e}: {text}"))
-}
-
-fn close(a: f64, b: f64, tol: f64, what: &str) {
-    assert!(
-        (a - b).abs() <= tol,
-        "{what}: {a} vs {b} (|diff| = {:e} > {tol:e})",
-        (a - b).abs()
-    );
-}
+mod common;
+use common::*;
 
 const A8: &str = "-0.39269908169872414"; // -pi/8
 const P8: &str = "0.39269908169872414"; // (pi/2 + 2(-pi/8))/2 = pi/8
@@ -339,7 +258,7 @@ fn sweep_shards_concatenate_to_the_full_file() {
         "--eta",
         "0.7,0.75,0.8,0.9",
         "--taper",
-        "1,2",
+        "1,0.5",
         "--method",
         "analytic,shooting",
         "--points",
@@ -352,13 +271,15 @@ fn sweep_shards_concatenate_to_the_full_file() {
     let text = std::fs::read_to_string(&full).unwrap();
     let (h, rows) = csv(&text);
     assert_eq!(rows.len(), 16);
-    // grid order: eta slowest, method fastest; failing scenes are rows with an error
+    // grid order: eta slowest, method fastest; a scene that fails is a row with its error
     let ie = h.iter().position(|c| c == "error").unwrap();
     let im = h.iter().position(|c| c == "method").unwrap();
     assert_eq!(rows[0][im], "analytic");
     assert_eq!(rows[1][im], "shooting");
-    assert!(rows[2][ie].contains("ratio"), "taper 2: {:?}", rows[2]);
-    assert!(rows[3][ie].contains("ratio"), "taper 2: {:?}", rows[3]);
+    // the closed forms exist only for the uniform rod: an error row, and the sweep goes on
+    assert!(rows[2][ie].contains("analytic"), "taper 0.5: {:?}", rows[2]);
+    assert_eq!(col(&h, &rows[2], "taper"), 0.5);
+    assert!(rows[3][ie].is_empty(), "taper 0.5, shooting: {:?}", rows[3]);
     assert!(rows[0][ie].is_empty());
     // the uniform-rod rows: numerical and closed form agree
     for k in [0, 4, 8, 12] {
@@ -591,6 +512,70 @@ fn help_documents_every_flag() {
         assert!(
             o.stdout.contains("default"),
             "{cmd} --help shows no defaults"
+        );
+    }
+}
+
+/// Statements of `--help` that README relies on.
+#[test]
+fn help_states_ranges_and_requirements() {
+    let h = ok(&["solve", "--help"]).stdout;
+    assert!(h.contains("One of --phi1 and --eta is required"), "{h}");
+    assert!(
+        h.contains("(-pi/2, pi/2)"),
+        "solve --help: the range of --alpha"
+    );
+    let h = ok(&["scan", "--help"]).stdout;
+    assert!(
+        h.contains("point, d, s, x, y, x_lab, phi, kappa, m"),
+        "scan --help: --shapes columns"
+    );
+    assert!(h.contains("eta_ = 0.456946581044463625"), "eta_ defined");
+    // one layout for every command: flags on their own line, Scene and Physical sections
+    for cmd in ["solve", "scan", "infer", "sweep"] {
+        let h = ok(&[cmd, "--help"]).stdout;
+        assert!(h.contains("\nScene:\n"), "{cmd}: no Scene section");
+        assert!(
+            h.contains("\nPhysical units:\n"),
+            "{cmd}: no Physical units section"
+        );
+        assert!(h.contains("\n      --scene <FILE.toml>\n"), "{cmd}: layout");
+    }
+    let h = ok(&["figures", "--help"]).stdout;
+    assert!(!h.contains("--scene"), "figures takes no scene");
+}
+
+/// A sweep with physical dimensions adds the physical columns, f0_N = f0 · EI/L².
+#[test]
+fn sweep_physical_columns() {
+    let o = ok(&[
+        "sweep",
+        "--eta",
+        "0.7,0.8",
+        "--points",
+        "3",
+        "--length-mm",
+        "30",
+        "--youngs-modulus-gpa",
+        "3.3",
+        "--base-diameter-um",
+        "100",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(rows.len(), 2);
+    let ei = 3.3e9 * PI * 1e-4f64.powi(4) / 64.0;
+    for r in &rows {
+        close(
+            col(&h, r, "f0_N"),
+            col(&h, r, "f0") * ei / 0.03f64.powi(2),
+            1e-15,
+            "f0 in N",
+        );
+        close(
+            col(&h, r, "d_end_mm"),
+            col(&h, r, "d_end") * 30.0,
+            1e-12,
+            "d_end in mm",
         );
     }
 }

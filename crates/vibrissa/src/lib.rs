@@ -96,7 +96,8 @@ mod stepper;
 pub use error::VibrissaError;
 pub use report::{Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason};
 pub use rod::{
-    Rod, RodBuilder, Surface, Units, MAX_B, MAX_COMPLIANCE, MAX_PRECURVATURE, MIN_TAPER,
+    Rod, RodBuilder, Surface, Units, MAX_B, MAX_COMPLIANCE, MAX_PRECURVATURE, MAX_SURFACE_ANGLE,
+    MIN_B, MIN_TAPER,
 };
 pub use scan::{infer, scan, scan_at};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};

@@ -17,16 +17,22 @@ pub struct Units {
     pub length_mm: f64,
 }
 
-/// Largest rest curvature `|κ0|` (1/L) accepted: a rod curled more than ~3 turns is outside the
-/// model (and its shots need impractically many steps).
-pub const MAX_PRECURVATURE: f64 = 20.0;
-/// Largest support compliance `c` (rad per unit moment EI/L): beyond it the support is a hinge
-/// for every load the model resolves.
-pub const MAX_COMPLIANCE: f64 = 1e4;
-/// Smallest taper ratio ρ (tip/base radius): `b(1) = ρ⁻⁴ ≤ 1e8`.
+/// Largest rest curvature `|κ0(s)|` (1/L): 3 already bends the rest shape through 172°; whiskers
+/// have `|κ0| < 2`. More curled rods touch a surface above them only when pulled, or start on
+/// branches that pressing cannot reach.
+pub const MAX_PRECURVATURE: f64 = 3.0;
+/// Largest support compliance `c` (L/EI): with `c = 1000` the foot turns a thousand times more
+/// than the rod bends, a hinge for every purpose (μ_max within 0.2 % of `c = 10⁴`).
+pub const MAX_COMPLIANCE: f64 = 1e3;
+/// Smallest taper ratio ρ (tip/base radius): the tip is `ρ⁻⁴ = 10⁸` times more flexible than the
+/// foot; real whiskers have 0.02–0.2.
 pub const MIN_TAPER: f64 = 0.01;
-/// Largest tabulated reciprocal stiffness `b` (`MIN_TAPER⁻⁴`).
+/// Range `[MIN_B, MAX_B]` of a tabulated reciprocal stiffness `b` (relative to the foot).
+pub const MIN_B: f64 = 1e-8;
+/// See [`MIN_B`].
 pub const MAX_B: f64 = 1e8;
+/// Largest surface inclination `|β|` (rad, exclusive).
+pub const MAX_SURFACE_ANGLE: f64 = FRAC_PI_4;
 
 /// A validated rod: reciprocal bending stiffness `b(s)`, rest curvature `κ0(s)`, support
 /// compliance `c` (`φ(0) = π/2 + c·m(0)`; 0 is a clamp), optional physical dimensions. It carries
@@ -187,7 +193,7 @@ impl Rod {
     }
 
     /// Validates the parts of a rod: taper ratio in `[MIN_TAPER, 1]`, tabulated `b` in
-    /// `(0, MAX_B]`, `|κ0| ≤ MAX_PRECURVATURE`, `c ∈ [0, MAX_COMPLIANCE]`, physical
+    /// `[MIN_B, MAX_B]`, `|κ0| ≤ MAX_PRECURVATURE`, `c ∈ [0, MAX_COMPLIANCE]`, physical
     /// dimensions positive with finite units.
     pub fn new(
         stiffness: Stiffness,
@@ -210,8 +216,8 @@ impl Rod {
                 "stiffness",
                 s,
                 b,
-                |v| v > 0.0 && v <= MAX_B,
-                &format!("(0, {MAX_B:e}]"),
+                |v| (MIN_B..=MAX_B).contains(&v),
+                &format!("[{MIN_B:e}, {MAX_B:e}]"),
             )?,
         }
         match &precurvature {
@@ -233,7 +239,7 @@ impl Rod {
             return Err(VibrissaError::range(
                 "support compliance",
                 c,
-                format!("[0, {MAX_COMPLIANCE:e}]"),
+                format!("[0, {MAX_COMPLIANCE}] (L/EI)"),
             ));
         }
         if let Some(p) = &physical {
@@ -336,7 +342,7 @@ impl Surface {
                 format!("({eta_low:.17}, 1) (eta_, the lowest start height of the uniform rod, to the rod length)"),
             ));
         }
-        if !(angle.is_finite() && angle.abs() < FRAC_PI_4) {
+        if !(angle.is_finite() && angle.abs() < MAX_SURFACE_ANGLE) {
             return Err(VibrissaError::range(
                 "surface angle",
                 angle,

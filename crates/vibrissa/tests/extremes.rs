@@ -185,10 +185,19 @@ fn strong_taper() {
 }
 
 #[test]
-fn half_circle_precurvature() {
-    // κ0 = π: the unloaded rod is a half circle ending at (−2/π, 0)
-    let rod = Scene {
+fn nearly_half_circle_precurvature() {
+    // κ0 = 3, the largest accepted: the unloaded rod bends through 172°; a half circle (κ0 = π)
+    // is past the model's range and refused with it
+    let e = Scene {
         precurvature: Precurvature::Linear { k0: PI, k1: 0.0 },
+        ..Scene::default()
+    }
+    .rod()
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("[-3, 3]"), "{e}");
+    let rod = Scene {
+        precurvature: Precurvature::Linear { k0: 3.0, k1: 0.0 },
         ..Scene::default()
     }
     .rod()

@@ -40,23 +40,23 @@ fn bad_scenes_name_value_and_range() {
         });
         assert!(e.contains("taper ratio") && e.contains("[0.01, 1]"), "{e}");
     }
-    for c in [-1.0, 2e4, f64::INFINITY] {
+    for c in [-1.0, 2e3, f64::INFINITY] {
         let e = err_of(Scene {
             support_compliance: c,
             ..Scene::default()
         });
         assert!(
-            e.contains(&format!("support compliance = {c}")) && e.contains("[0, 1e4]"),
+            e.contains(&format!("support compliance = {c}")) && e.contains("[0, 1000]"),
             "{e}"
         );
     }
     // rest curvatures past the model's range (a rod curled over ~3 turns)
-    for (k0, k1) in [(25.0, 0.0), (-1e300, 0.0), (15.0, 10.0)] {
+    for (k0, k1) in [(3.5, 0.0), (-1e300, 0.0), (2.0, 1.5)] {
         let e = err_of(Scene {
             precurvature: Precurvature::Linear { k0, k1 },
             ..Scene::default()
         });
-        assert!(e.contains("precurvature") && e.contains("[-20, 20]"), "{e}");
+        assert!(e.contains("precurvature") && e.contains("[-3, 3]"), "{e}");
     }
     let e = err_of(Scene {
         precurvature: Precurvature::Linear {
@@ -92,7 +92,7 @@ fn bad_scenes_name_value_and_range() {
         },
         ..Scene::default()
     });
-    assert!(e.contains("(0, 1e8]"), "{e}");
+    assert!(e.contains("[1e-8, 1e8]"), "{e}");
     let e = err_of(Scene {
         precurvature: Precurvature::Table {
             s: vec![0.0, 1.0],
@@ -282,7 +282,7 @@ proptest! {
     fn analytic_jacobians_match_finite_differences(
         s in 0.0..1.0f64, x in -1.0..1.0f64, y in -1.0..1.0f64, phi in -3.0..3.0f64,
         m in -5.0..5.0f64, f in 0.0..30.0f64, alpha in -1.5..0.5f64, ratio in 0.05..1.0f64,
-        k0 in -3.0..3.0f64, c in 0.0..10.0f64, with_alpha in proptest::bool::ANY,
+        k0 in -3.0..2.5f64, c in 0.0..10.0f64, with_alpha in proptest::bool::ANY,
     ) {
         let scene = Scene {
             stiffness: Stiffness::Taper { ratio },

@@ -1,0 +1,592 @@
+//! One validation layer for every command: the same range for the same quantity, whether it
+//! comes from a flag, a sweep axis or a scene file; messages name what the user typed (the flag,
+//! or the file and its key), the value with enough digits to see why it is outside, and the
+//! range. Also the limits on sizes (grid, memory) and threads.
+
+use crate::cli::{Command, FiguresArgs, InferArgs, ScanArgs, SolveArgs, SweepArgs};
+use crate::error::{usage, Fail, Res};
+use crate::numbers::{digits, digits_to_decide, short};
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::path::Path;
+use vibrissa::{Precurvature, Scene, Stiffness};
+
+/// Where a value came from, for the message.
+#[derive(Clone, Copy, Debug)]
+pub enum Src<'a> {
+    /// a flag (or a sweep axis), e.g. `--taper`
+    Flag(&'static str),
+    /// a scene file and its key, e.g. `stiffness.ratio`
+    File(&'a Path, &'static str),
+    /// the built-in default (always valid)
+    Default,
+}
+
+/// A closed or open interval, with its symbolic form and what it means.
+#[derive(Clone, Copy, Debug)]
+pub struct Range {
+    /// lower end
+    pub lo: f64,
+    /// whether `lo` itself is allowed
+    pub lo_closed: bool,
+    /// upper end
+    pub hi: f64,
+    /// whether `hi` itself is allowed
+    pub hi_closed: bool,
+    /// symbolic form, e.g. `(-pi/4, pi/4)`, or empty
+    pub symbol: &'static str,
+    /// why the range is what it is, or empty
+    pub why: &'static str,
+}
+
+impl Range {
+    const fn new(lo: f64, lo_closed: bool, hi: f64, hi_closed: bool) -> Range {
+        Range {
+            lo,
+            lo_closed,
+            hi,
+            hi_closed,
+            symbol: "",
+            why: "",
+        }
+    }
+    const fn sym(mut self, symbol: &'static str) -> Range {
+        self.symbol = symbol;
+        self
+    }
+    const fn why(mut self, why: &'static str) -> Range {
+        self.why = why;
+        self
+    }
+
+    /// Whether `v` is inside (NaN never is).
+    pub fn contains(&self, v: f64) -> bool {
+        let lo = if self.lo_closed {
+            v >= self.lo
+        } else {
+            v > self.lo
+        };
+        let hi = if self.hi_closed {
+            v <= self.hi
+        } else {
+            v < self.hi
+        };
+        lo && hi
+    }
+
+    fn show(&self, p: usize) -> String {
+        let end = |v: f64| {
+            if v.is_infinite() {
+                if v > 0.0 {
+                    "inf".to_string()
+                } else {
+                    "-inf".to_string()
+                }
+            } else {
+                digits(v, p)
+            }
+        };
+        let num = format!(
+            "{}{}, {}{}",
+            if self.lo_closed { '[' } else { '(' },
+            end(self.lo),
+            end(self.hi),
+            if self.hi_closed { ']' } else { ')' }
+        );
+        if self.symbol.is_empty() {
+            num
+        } else {
+            format!("{} = {num}", self.symbol)
+        }
+    }
+}
+
+/// Surface height of the paper's scan.
+pub fn eta_range() -> Range {
+    let (_, lo) = elastica::lower_limit();
+    Range::new(lo, false, 1.0, false).sym("(eta_, 1)").why(
+        "eta_ = 0.456946581044463625... is the tip height of the uniform clamped rod pushed straight down (alpha = 0) with a horizontal tip (phi1 = 0); on a lower surface the scan would start with the rod crossing it",
+    )
+}
+/// Taper ratio: the model accepts (0, 1]; below 0.01 the tip is 10^8 times more flexible than
+/// the foot, beyond what the solvers resolve and beyond real whiskers (0.02-0.2).
+pub const TAPER: Range = Range::new(vibrissa::MIN_TAPER, true, 1.0, true)
+    .why("tip/base radius ratio; real whiskers have 0.02-0.2, and below 0.01 the tip would be over 10^8 times more flexible than the foot");
+/// Pre-curvature at the foot (1/L): whiskers have |k0| < 2; 3 rad is a rest shape bent through
+/// 172 degrees. The rest curvature K0 + K1 s stays in this range along the rod.
+pub const PRECURVATURE: Range = Range::new(
+    -vibrissa::MAX_PRECURVATURE,
+    true,
+    vibrissa::MAX_PRECURVATURE,
+    true,
+)
+    .why("1/L; the rest curvature K0 + K1 s must stay within [-3, 3] along the rod: whiskers have |K0| < 2, and 3 already bends the rest shape through 172 degrees");
+/// Pre-curvature slope (1/L²): with |K0| <= 3 and |K0 + K1| <= 3, |K1| <= 6.
+pub const PRECURVATURE_SLOPE: Range = Range::new(
+    -2.0 * vibrissa::MAX_PRECURVATURE,
+    true,
+    2.0 * vibrissa::MAX_PRECURVATURE,
+    true,
+)
+.why("1/L^2; the rest curvature K0 + K1 s must stay within [-3, 3] along the rod");
+/// Support compliance (the library's range).
+pub const SUPPORT_COMPLIANCE: Range = Range::new(0.0, true, vibrissa::MAX_COMPLIANCE, true).why(
+    "L/(EI); 0 is a clamp, and with 1000 the foot turns a thousand times more than the rod bends: a hinge",
+);
+/// Surface inclination.
+pub const SURFACE_ANGLE: Range = Range::new(
+    -vibrissa::MAX_SURFACE_ANGLE,
+    false,
+    vibrissa::MAX_SURFACE_ANGLE,
+    false,
+)
+.sym("(-pi/4, pi/4)")
+.why("radians");
+/// Solver tolerance.
+pub const TOL: Range = Range::new(1e-15, true, 1e-2, true);
+/// Largest foot displacement of a scan.
+pub const D_MAX: Range = Range::new(0.0, false, 2.0, false).why("rod lengths");
+/// Stiction coefficient (`inf`: never slips).
+pub const MU0: Range = Range::new(0.0, true, f64::INFINITY, true);
+/// Force angle of `solve`: the surface pushes on the tip (fy = -f cos(alpha) < 0).
+pub const ALPHA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
+    .sym("(-pi/2, pi/2)")
+    .why("radians; the contact pushes the tip down, fy = -f cos(alpha) < 0");
+/// Tip slope of `solve`.
+pub const PHI1: Range = Range::new(-PI, true, PI, true)
+    .sym("[-pi, pi]")
+    .why("radians");
+/// Tip height target of `solve`.
+pub const TIP_HEIGHT: Range = Range::new(-1.0, false, 1.0, false).why("rod lengths");
+/// Physical dimensions.
+pub const POSITIVE: Range = Range::new(0.0, false, f64::INFINITY, false);
+/// Table values of a tabulated stiffness profile `b(s)` (flexibility relative to EI at the foot).
+pub const TABLE_B: Range = Range::new(vibrissa::MIN_B, true, vibrissa::MAX_B, true);
+/// Unit factors of the physical-unit columns: beyond this the columns would overflow or vanish.
+pub const UNIT: Range = Range::new(1e-150, true, 1e150, true);
+
+/// Most scenes of one sweep grid (the product of the axis lengths).
+pub const MAX_SCENES: u64 = 1_000_000_000;
+/// Memory budget of the values a command holds at once (bytes).
+pub const MEMORY_BUDGET: u64 = 1 << 30;
+/// Memory per shape sample of `scan --shapes` (measured: 1e6 samples, 100 MB resident).
+pub const BYTES_PER_SHAPE_SAMPLE: u64 = 100;
+/// Memory per scan point (measured: a 1e5-point scan, 22 MB resident above start-up).
+pub const BYTES_PER_SCAN_POINT: u64 = 250;
+/// `--jobs` above this many threads per core is capped (with a warning).
+pub const JOBS_PER_CORE: usize = 4;
+
+/// Check `v` against `r`; the message names the source and shows the range.
+pub fn check(src: Src, v: f64, r: &Range) -> Res<()> {
+    if r.contains(v) {
+        return Ok(());
+    }
+    let p = digits_to_decide(v, &[r.lo, r.hi]);
+    let who = match src {
+        Src::Flag(f) => format!("{f} {}", digits(v, p)),
+        Src::File(path, key) => format!("scene file {}: {key} = {}", path.display(), digits(v, p)),
+        Src::Default => format!("the default value {}", digits(v, p)),
+    };
+    let why = if r.why.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", r.why)
+    };
+    Err(usage(format!(
+        "{who} is outside the valid range {}{why}",
+        r.show(p)
+    )))
+}
+
+/// Where each scene quantity came from.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneSrc<'a> {
+    /// the scene file, if any
+    pub file: Option<&'a Path>,
+    /// `eta` from a flag
+    pub eta: Option<&'static str>,
+    /// `stiffness.ratio` from a flag
+    pub taper: Option<&'static str>,
+    /// `precurvature.k0` from a flag
+    pub k0: Option<&'static str>,
+    /// `precurvature.k1` from a flag
+    pub k1: Option<&'static str>,
+    /// `support_compliance` from a flag
+    pub c: Option<&'static str>,
+    /// `surface_angle` from a flag
+    pub beta: Option<&'static str>,
+    /// the three physical values from flags
+    pub physical: [Option<&'static str>; 3],
+}
+
+impl SceneSrc<'_> {
+    fn of(&self, flag: Option<&'static str>, key: &'static str) -> Src<'_> {
+        match (flag, self.file) {
+            (Some(f), _) => Src::Flag(f),
+            (None, Some(p)) => Src::File(p, key),
+            (None, None) => Src::Default,
+        }
+    }
+}
+
+/// Check every value of a scene.
+pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
+    check(src.of(src.eta, "eta"), sc.eta, &eta_range())?;
+    match &sc.stiffness {
+        Stiffness::Uniform {} => {}
+        Stiffness::Taper { ratio } => {
+            check(src.of(src.taper, "stiffness.ratio"), *ratio, &TAPER)?;
+        }
+        Stiffness::Table { b, .. } => {
+            for v in b {
+                check(src.of(None, "stiffness.b"), *v, &TABLE_B)?;
+            }
+        }
+    }
+    match &sc.precurvature {
+        Precurvature::None {} => {}
+        Precurvature::Linear { k0, k1 } => {
+            check(src.of(src.k0, "precurvature.k0"), *k0, &PRECURVATURE)?;
+            check(src.of(src.k1, "precurvature.k1"), *k1, &PRECURVATURE_SLOPE)?;
+            let end = k0 + k1;
+            if !PRECURVATURE.contains(end) {
+                let who = match (src.k0.or(src.k1), src.file) {
+                    (Some(_), _) | (None, None) => {
+                        "--precurvature K0 + --precurvature-slope K1".to_string()
+                    }
+                    (None, Some(p)) => {
+                        format!(
+                            "scene file {}: precurvature.k0 + precurvature.k1",
+                            p.display()
+                        )
+                    }
+                };
+                return Err(usage(format!(
+                    "{who} = {} (the rest curvature at the tip) is outside the valid range [-3, 3] (1/L)",
+                    short(end)
+                )));
+            }
+        }
+        Precurvature::Table { k, .. } => {
+            for v in k {
+                check(src.of(None, "precurvature.k"), *v, &PRECURVATURE)?;
+            }
+        }
+    }
+    check(
+        src.of(src.c, "support_compliance"),
+        sc.support_compliance,
+        &SUPPORT_COMPLIANCE,
+    )?;
+    check(
+        src.of(src.beta, "surface_angle"),
+        sc.surface_angle,
+        &SURFACE_ANGLE,
+    )?;
+    if let Some(p) = &sc.physical {
+        let keys = [
+            "physical.length_mm",
+            "physical.youngs_modulus_gpa",
+            "physical.base_diameter_um",
+        ];
+        let vals = [p.length_mm, p.youngs_modulus_gpa, p.base_diameter_um];
+        for i in 0..3 {
+            check(src.of(src.physical[i], keys[i]), vals[i], &POSITIVE)?;
+        }
+        // in logarithms: the factors alone may overflow (E in Pa = GPa·1e9, d in m = µm·1e-6)
+        let ln10 = std::f64::consts::LN_10;
+        let log_l = p.length_mm.ln() - 3.0 * ln10;
+        let log_ei = p.youngs_modulus_gpa.ln()
+            + 9.0 * ln10
+            + (PI / 64.0).ln()
+            + 4.0 * (p.base_diameter_um.ln() - 6.0 * ln10);
+        for (name, unit, log_v) in [
+            ("the length unit L", "mm", p.length_mm.ln()),
+            ("the force unit EI/L^2", "N", log_ei - 2.0 * log_l),
+            ("the moment unit EI/L", "N m", log_ei - log_l),
+        ] {
+            let v = log_v.exp();
+            if !(log_v >= UNIT.lo.ln() && log_v <= UNIT.hi.ln()) {
+                let shown = if v.is_finite() && v > 0.0 {
+                    short(v)
+                } else {
+                    format!("1e{:.0}", log_v / std::f64::consts::LN_10)
+                };
+                return Err(usage(format!(
+                    "the physical dimensions (length {} mm, Young's modulus {} GPa, base diameter {} um) give {name} = {shown} {unit}, outside [1e-150, 1e150]: the physical-unit columns would overflow or vanish",
+                    short(p.length_mm),
+                    short(p.youngs_modulus_gpa),
+                    short(p.base_diameter_um)
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn tol(t: f64) -> Res<()> {
+    check(Src::Flag("--tol"), t, &TOL)
+}
+
+fn mu0(m: &mut Option<f64>) -> Res<()> {
+    if let Some(v) = *m {
+        check(Src::Flag("--mu0"), v, &MU0)?;
+        if v == f64::INFINITY {
+            // never slips: the same as no threshold
+            *m = None;
+        }
+    }
+    Ok(())
+}
+
+/// Check the values of a command that are not part of the scene (those are checked when the
+/// scene is built), and normalize a few spellings (`--out -` is stdout, `--mu0 inf` is none).
+pub fn command(cmd: &mut Command) -> Res<()> {
+    match cmd {
+        Command::Solve(a) => solve(a),
+        Command::Scan(a) => scan(a),
+        Command::Infer(a) => infer(a),
+        Command::Sweep(a) => sweep_flags(a),
+        Command::Figures(a) => figures(a),
+    }
+}
+
+fn solve(a: &mut SolveArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    check(Src::Flag("--alpha"), a.alpha, &ALPHA)?;
+    if let Some(p) = a.phi1 {
+        check(Src::Flag("--phi1"), p, &PHI1)?;
+    }
+    if let Some(h) = a.eta {
+        check(Src::Flag("--eta"), h, &TIP_HEIGHT)?;
+    }
+    if a.shape_out.as_deref().is_some_and(is_stdout) {
+        return Err(usage(
+            "--shape-out - would share stdout with the result; give it a file name",
+        ));
+    }
+    Ok(())
+}
+
+fn scan(a: &mut ScanArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
+    mu0(&mut a.mu0)?;
+    if a.out.as_deref().is_some_and(is_stdout) {
+        a.out = None;
+    }
+    if a.shapes.as_deref().is_some_and(is_stdout) {
+        return Err(usage(
+            "--shapes - would share stdout with the scan's table or summary; give it a file name",
+        ));
+    }
+    if a.shapes.is_some() {
+        budget(
+            "--points",
+            a.points as u64,
+            "--shape-points",
+            a.shape_points as u64,
+            "shape samples",
+            BYTES_PER_SHAPE_SAMPLE,
+        )?;
+    }
+    Ok(())
+}
+
+fn infer(a: &mut InferArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
+    let r = Range::new(0.0, true, a.d_max, true).why("rod lengths; the upper end is --d-max");
+    check(Src::Flag("--d0"), a.d0, &r)
+}
+
+fn sweep_flags(a: &mut SweepArgs) -> Res<()> {
+    for t in &a.tol.values {
+        tol(*t)?;
+    }
+    check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
+    mu0(&mut a.mu0)?;
+    if a.out.as_deref().is_some_and(is_stdout) {
+        a.out = None;
+    }
+    Ok(())
+}
+
+fn figures(a: &mut FiguresArgs) -> Res<()> {
+    tol(a.tol)
+}
+
+/// `-` means stdout.
+pub fn is_stdout(p: &Path) -> bool {
+    p.as_os_str() == "-"
+}
+
+/// `a × b` items of `bytes` each within [`MEMORY_BUDGET`], else an error naming the product.
+pub fn budget(fa: &str, a: u64, fb: &str, b: u64, what: &str, bytes: u64) -> Res<()> {
+    let prod = a.saturating_mul(b);
+    let need = prod.saturating_mul(bytes);
+    if need > MEMORY_BUDGET {
+        return Err(usage(format!(
+            "{fa} {a} × {fb} {b} = {} {what} to hold in memory at once, about {} GB at {bytes} bytes each, more than the budget of 1 GB; lower one of them",
+            short(prod as f64),
+            digits(need as f64 / 1e9, 2)
+        )));
+    }
+    Ok(())
+}
+
+/// Number of grid points: the product of the axis lengths, checked against [`MAX_SCENES`].
+pub fn grid_size(axes: &[(&str, usize)]) -> Res<u64> {
+    let mut n: u64 = 1;
+    let mut overflow = false;
+    for &(_, len) in axes {
+        match n.checked_mul(len as u64) {
+            Some(m) if m <= MAX_SCENES => n = m,
+            _ => {
+                overflow = true;
+                break;
+            }
+        }
+    }
+    if overflow {
+        let total: f64 = axes.iter().map(|&(_, l)| l as f64).product();
+        let sizes: Vec<String> = axes
+            .iter()
+            .filter(|a| a.1 > 1)
+            .map(|(name, l)| format!("{l} ({name})"))
+            .collect();
+        return Err(usage(format!(
+            "the grid has {} = {} scenes, more than the limit of {}; split it into several sweeps",
+            sizes.join(" × "),
+            short(total),
+            short(MAX_SCENES as f64)
+        )));
+    }
+    Ok(n)
+}
+
+/// Worker threads: `asked` (default: the cores), capped at [`JOBS_PER_CORE`] per core with a
+/// warning, and at the number of scenes.
+pub fn jobs(asked: Option<u32>, scenes: u64) -> usize {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let cap = JOBS_PER_CORE * cores;
+    let mut j = asked.map_or(cores, |j| j as usize);
+    if j > cap {
+        crate::progress::warn(&format!(
+            "--jobs {j} is more than {JOBS_PER_CORE} threads per core; using {cap} ({cores} cores)"
+        ));
+        j = cap;
+    }
+    j.min(scenes.max(1) as usize).max(1)
+}
+
+/// The model's own check of a scene (tables and the rest), its message prefixed with the file.
+pub fn model_check(sc: &Scene, file: Option<&Path>) -> Res<()> {
+    sc.validate().map_err(|e| {
+        let f = shorten(e.into());
+        match (file, f) {
+            (Some(p), Fail::Usage(m)) => usage(format!("scene file {}: {m}", p.display())),
+            (_, f) => f,
+        }
+    })
+}
+
+/// A hint in the user's terms for solver failures whose message is the model's own words (the
+/// model's error types are mapped to [`Fail`] in `numeric`; this adds what the user can do).
+pub fn explain(f: Fail) -> Fail {
+    let hint = |m: &str| -> Option<&'static str> {
+        if m.contains("pulled at the tip (f < 0)") {
+            Some("only a pulling force reaches this tip position, a surface cannot pull; in a scan the surface is then above the tip of the rod's rest shape: lower --eta or change the pre-curvature")
+        } else if m.contains("homotopy from the uniform clamped rod failed") {
+            Some("the start solve is followed from the paper's straight uniform rod to this scene and could not reach it; the scene may have no pushed contact at this height (try another --eta), or try another --method")
+        } else {
+            None
+        }
+    };
+    match f {
+        Fail::Solve(m) => match hint(&m) {
+            Some(h) => Fail::Solve(format!("{m} ({h})")),
+            None => Fail::Solve(m),
+        },
+        other => other,
+    }
+}
+
+/// Library errors rendered with short numbers (the model prints `{}` of an `f64`).
+pub fn shorten(f: Fail) -> Fail {
+    match f {
+        Fail::Usage(m) => Fail::Usage(crate::numbers::shorten_numbers(&m)),
+        Fail::Solve(m) => Fail::Solve(crate::numbers::shorten_numbers(&m)),
+        Fail::Closed => Fail::Closed,
+    }
+}
+
+/// Scene-file check that serde cannot do: keys that do not belong to the table's `kind` (serde
+/// ignores extra keys next to a unit variant such as `{ kind = "uniform", ratio = 0.5 }`).
+pub fn scene_file_keys(path: &Path, text: &str) -> Res<()> {
+    #[derive(serde::Deserialize)]
+    struct Kinds {
+        stiffness: Option<toml::Spanned<toml::Value>>,
+        precurvature: Option<toml::Spanned<toml::Value>>,
+    }
+    // a file that does not parse is reported by the full parse, with its line
+    let Ok(k) = toml::from_str::<Kinds>(text) else {
+        return Ok(());
+    };
+    let line_of = |pos: usize| text[..pos.min(text.len())].matches('\n').count() + 1;
+    for (name, t, kinds) in [
+        (
+            "stiffness",
+            k.stiffness,
+            &[
+                ("uniform", &["kind"][..]),
+                ("taper", &["kind", "ratio"][..]),
+                ("table", &["kind", "s", "b"][..]),
+            ][..],
+        ),
+        (
+            "precurvature",
+            k.precurvature,
+            &[
+                ("none", &["kind"][..]),
+                ("linear", &["kind", "k0", "k1"][..]),
+                ("table", &["kind", "s", "k"][..]),
+            ][..],
+        ),
+    ] {
+        let Some(t) = t else { continue };
+        let span = t.span();
+        let toml::Value::Table(tab) = t.into_inner() else {
+            continue;
+        };
+        let Some(kind) = tab.get("kind").and_then(|v| v.as_str()) else {
+            continue;
+        };
+        let Some((_, allowed)) = kinds.iter().find(|(k, _)| *k == kind) else {
+            continue;
+        };
+        for key in tab.keys() {
+            if !allowed.contains(&key.as_str()) {
+                // the line of `key =` from the table's start on (the span of a `[table]`
+                // may cover its header only)
+                let from = span.start.min(text.len());
+                let mut pos = from;
+                let mut off = from;
+                for l in text[from..].split_inclusive('\n') {
+                    let t = l.trim_start().trim_start_matches('{').trim_start();
+                    if t.starts_with(key.as_str()) || l.contains(&format!(" {key} =")) {
+                        pos = off;
+                        break;
+                    }
+                    off += l.len();
+                }
+                return Err(usage(format!(
+                    "scene file {} (line {}): unknown key '{key}' in {name} of kind \"{kind}\"; its keys are {}",
+                    path.display(),
+                    line_of(pos),
+                    allowed.join(", ")
+                )));
+            }
+        }
+    }
+    Ok(())
+}
