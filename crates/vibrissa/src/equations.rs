@@ -64,21 +64,30 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
 }
 
 /// The rod's right-hand side at a point where `b(s) = b`, `κ0(s) = k0`, for the force `f` at the
-/// angle with sine `sa` and cosine `ca`; with `VAR` also the variational equations in
-/// `u = (m(0), f, α)` (components `4 + 4q + i` hold `∂z_i/∂u_q`), else only the first four.
+/// angle with sine `sa` and cosine `ca`, on a state of `N` components: `N = 4` is `z` alone,
+/// `N = 16` adds the variational equations in `u = (m(0), f, α)` (components `4 + 4q + i` hold
+/// `∂z_i/∂u_q`). Monomorphized per width, so a shot without sensitivities moves 4 numbers per
+/// stage, not 16.
 #[inline(always)]
-pub(crate) fn rod_rhs_var<const VAR: bool>(y: &Y, f: f64, ca: f64, sa: f64, b: f64, k0: f64) -> Y {
+pub(crate) fn rod_rhs_var<const N: usize>(
+    y: &[f64; N],
+    f: f64,
+    ca: f64,
+    sa: f64,
+    b: f64,
+    k0: f64,
+) -> [f64; N] {
     let (sp, cp) = sin_cos(y[2]);
     // sin/cos(φ − α) from those of φ and α: one sin_cos per evaluation
     let cd = cp * ca + sp * sa;
     let sd = sp * ca - cp * sa;
     let fsd = f * sd;
-    let mut d = [0.0; NV];
+    let mut d = [0.0; N];
     d[0] = cp;
     d[1] = sp;
     d[2] = k0 + b * y[3];
     d[3] = f * cd;
-    if !VAR {
+    if N < NV {
         return d;
     }
     for q in 0..3 {
@@ -96,11 +105,10 @@ pub(crate) fn rod_rhs_var<const VAR: bool>(y: &Y, f: f64, ca: f64, sa: f64, b: f
 /// [`rod_rhs_var`] without sensitivities, for slices (the `bvp` problems).
 #[inline(always)]
 fn rod_rhs(z: &[f64], f: f64, alpha: f64, b: f64, k0: f64, dz: &mut [f64]) {
-    let mut y = [0.0; NV];
-    y[..4].copy_from_slice(&z[..4]);
+    let y = [z[0], z[1], z[2], z[3]];
     let (sa, ca) = sin_cos(alpha);
-    let d = rod_rhs_var::<false>(&y, f, ca, sa, b, k0);
-    dz[..4].copy_from_slice(&d[..4]);
+    let d = rod_rhs_var::<4>(&y, f, ca, sa, b, k0);
+    dz[..4].copy_from_slice(&d);
 }
 
 /// Boundary conditions besides the support (`x(0) = y(0) = 0`, `φ(0) = π/2 + c·m(0)`, `m(1) = 0`).

@@ -55,6 +55,11 @@ pub(crate) trait Stepper {
     fn stats(&self) -> Stats;
     /// Largest natural step in `d`.
     fn h_max(&self) -> f64;
+    /// The branch between the points of `hist` as a polynomial in `d` (from their exact tangents):
+    /// `(u, du/dd)` at `d`, where the stepper has one.
+    fn interpolant(&self, _hist: &[Pt], _d: f64) -> Option<([f64; 3], [f64; 3])> {
+        None
+    }
 }
 
 /// The contact seen from the rod's foot: tip fixed at `(x* − d, η)`, surface angle β.
@@ -82,15 +87,13 @@ pub(crate) struct Watch {
 }
 
 impl Contact {
-    pub fn watch(&self, p: &Pt) -> Watch {
-        let (f, alpha) = (p.u[1], p.u[2]);
+    /// `(μ, N, d|μ|/dd)` of the unknowns `u = (m(0), f, α)` and their tangent `du/dd`.
+    fn of_u(&self, u: &[f64; 3], du: Option<&[f64; 3]>) -> (f64, f64, Option<f64>) {
+        let (f, alpha) = (u[1], u[2]);
         let mu = (self.beta - alpha).tan();
         let normal = f * (alpha - self.beta).cos();
-        let (pen, pen_s) = clearance(&p.sol, self.beta).excess();
-        let mut z = [0.0; 4];
-        p.sol.eval(pen_s, &mut z);
         // d|μ|/dd = sign(μ)·dμ/dd, dμ/dd = −sec²(β − α)·α'; at μ = 0 it is |dμ/dd|
-        let dmu_abs = p.du.map(|du| {
+        let dmu_abs = du.map(|du| {
             let dmu = -du[2] / (self.beta - alpha).cos().powi(2);
             if mu == 0.0 {
                 dmu.abs()
@@ -98,6 +101,14 @@ impl Contact {
                 mu.signum() * dmu
             }
         });
+        (mu, normal, dmu_abs)
+    }
+
+    pub fn watch(&self, p: &Pt) -> Watch {
+        let (mu, normal, dmu_abs) = self.of_u(&p.u, p.du.as_ref());
+        let (pen, pen_s) = clearance(&p.sol, self.beta).excess();
+        let mut z = [0.0; 4];
+        p.sol.eval(pen_s, &mut z);
         Watch {
             d: p.d,
             mu,
@@ -106,6 +117,40 @@ impl Contact {
             pen_s,
             pen_y: z[1],
             dmu_abs,
+        }
+    }
+}
+
+/// A function along the branch that is negative before an event and reaches 0 at it.
+#[derive(Clone, Copy, Debug)]
+enum Crossing {
+    /// The rod rises above the surface line.
+    Penetration,
+    /// The normal force falls to 0.
+    LiftOff,
+    /// `|μ|` reaches μ0.
+    Slip(f64),
+    /// `|μ|` stops rising (its first maximum).
+    MuMax,
+}
+
+impl Crossing {
+    fn of_watch(self, w: &Watch) -> f64 {
+        match self {
+            Crossing::Penetration => w.pen,
+            Crossing::LiftOff => -w.normal,
+            Crossing::Slip(mu0) => w.mu.abs() - mu0,
+            Crossing::MuMax => -w.dmu_abs.unwrap_or(f64::NAN),
+        }
+    }
+    /// The value from the unknowns alone (`None` for penetration, which needs the shape).
+    fn of_u(self, c: &Contact, u: &[f64; 3], du: &[f64; 3]) -> Option<f64> {
+        let (mu, normal, dmu_abs) = c.of_u(u, Some(du));
+        match self {
+            Crossing::Penetration => None,
+            Crossing::LiftOff => Some(-normal),
+            Crossing::Slip(mu0) => Some(mu.abs() - mu0),
+            Crossing::MuMax => dmu_abs.map(|v| -v),
         }
     }
 }
@@ -313,29 +358,28 @@ fn run<P: Profile>(
         // events between d and the new point, the earliest first
         let mut event: Option<(Event, Pt, Watch)> = None;
         let mut failure: Option<StopReason> = None;
-        let mut consider =
-            |ev: Event, g: &dyn Fn(&Watch) -> f64, hist: &[Pt], stepper: &mut dyn Stepper| {
-                if g(&w) < 0.0 {
-                    return;
-                }
-                match locate(stepper, ctx, hist, d, w.d, g) {
-                    Ok((pe, we)) => {
-                        if event.as_ref().is_none_or(|(_, q, _)| pe.d < q.d) {
-                            event = Some((ev, pe, we));
-                        }
-                    }
-                    Err(msg) => {
-                        failure.get_or_insert(StopReason::SolverFailure {
-                            d,
-                            message: format!("locating the {}: {msg}", ev.name()),
-                        });
+        let mut consider = |ev: Event, g: Crossing, hist: &[Pt], stepper: &mut dyn Stepper| {
+            if g.of_watch(&w) < 0.0 {
+                return;
+            }
+            match locate(stepper, ctx, hist, d, w.d, g) {
+                Ok((pe, we)) => {
+                    if event.as_ref().is_none_or(|(_, q, _)| pe.d < q.d) {
+                        event = Some((ev, pe, we));
                     }
                 }
-            };
-        consider(Event::Penetration, &|w: &Watch| w.pen, hist, stepper);
-        consider(Event::LiftOff, &|w: &Watch| -w.normal, hist, stepper);
+                Err(msg) => {
+                    failure.get_or_insert(StopReason::SolverFailure {
+                        d,
+                        message: format!("locating the {}: {msg}", ev.name()),
+                    });
+                }
+            }
+        };
+        consider(Event::Penetration, Crossing::Penetration, hist, stepper);
+        consider(Event::LiftOff, Crossing::LiftOff, hist, stepper);
         if let Some(mu0) = ctx.opts.mu0 {
-            consider(Event::Slip, &|w: &Watch| w.mu.abs() - mu0, hist, stepper);
+            consider(Event::Slip, Crossing::Slip(mu0), hist, stepper);
         }
         if event.is_none() {
             if let Some(f) = failure {
@@ -374,23 +418,52 @@ fn run<P: Profile>(
     }
 }
 
-/// The first `d` in `[a, b]` where `g(watch(d))` reaches 0 (`g(a) < 0 ≤ g(b)`), by Brent's
-/// method on solves within the step.
+/// The first `d` in `[a, b]` where `g` reaches 0 (`g(a) < 0 ≤ g(b)`). Where the stepper has the
+/// branch as a polynomial (exact tangents) and `g` depends on the unknowns alone: Brent's method on
+/// that polynomial, refined by Newton steps with solves (derivative from the polynomial) — one or
+/// two solves. Otherwise Brent's method on solves within the step.
 fn locate<P: Profile>(
     stepper: &mut dyn Stepper,
     ctx: &Ctx<'_, P>,
     hist: &[Pt],
     a: f64,
     b: f64,
-    g: &dyn Fn(&Watch) -> f64,
+    g: Crossing,
 ) -> Result<(Pt, Watch), String> {
+    let c = &ctx.contact;
+    let on_poly = |stepper: &dyn Stepper, d: f64| -> Option<f64> {
+        let (u, du) = stepper.interpolant(hist, d)?;
+        g.of_u(c, &u, &du)
+    };
+    if on_poly(stepper, a).is_some() {
+        let mut poly = |d: f64| on_poly(stepper, d).ok_or_else(|| "no polynomial".to_string());
+        if let Ok(mut d) = search::root(&mut poly, a, b, 1e-15 * (1.0 + b.abs())) {
+            let eps = 1e-6 * (b - a);
+            for _ in 0..4 {
+                let p = stepper.correct(d, hist)?;
+                let w = c.watch(&p);
+                let slope = match (on_poly(stepper, d + eps), on_poly(stepper, d - eps)) {
+                    (Some(gp), Some(gm)) => (gp - gm) / (2.0 * eps),
+                    _ => break,
+                };
+                let step = g.of_watch(&w) / slope;
+                if !step.is_finite() || !(a..=b).contains(&(d - step)) {
+                    break;
+                }
+                if step.abs() <= 1e-13 * (1.0 + d.abs()) {
+                    return Ok((p, w));
+                }
+                d -= step;
+            }
+        }
+    }
     let mut eval = |d: f64| -> Result<f64, String> {
         let p = stepper.correct(d, hist)?;
-        Ok(g(&ctx.contact.watch(&p)))
+        Ok(g.of_watch(&c.watch(&p)))
     };
     let d = search::root(&mut eval, a, b, 1e-13)?;
     let p = stepper.correct(d, hist)?;
-    let w = ctx.contact.watch(&p);
+    let w = c.watch(&p);
     Ok((p, w))
 }
 
@@ -409,19 +482,8 @@ fn first_max<P: Profile>(
         if !(s0 > 0.0 && s1 <= 0.0) {
             return None;
         }
-        let mut eval = |d: f64| -> Result<f64, String> {
-            let p = stepper.correct(d, hist)?;
-            ctx.contact
-                .watch(&p)
-                .dmu_abs
-                .ok_or_else(|| "no tangent".to_string())
-        };
-        let d = search::root(&mut eval, prev.d, w.d, 1e-13).ok()?;
-        if d > d_stop {
-            return None;
-        }
-        let p = stepper.correct(d, hist).ok()?;
-        return Some(ctx.contact.watch(&p));
+        let (p, wm) = locate(stepper, ctx, hist, prev.d, w.d, Crossing::MuMax).ok()?;
+        return (p.d <= d_stop).then_some(wm);
     }
     let pp = pprev?;
     if !(prev.mu.abs() > pp.mu.abs() && prev.mu.abs() >= w.mu.abs()) {

@@ -212,7 +212,7 @@ pub(crate) fn solve_damped<P: Profile>(
 /// Chord Newton from a good prediction `u0` (the scan's corrector): the Jacobian of the first
 /// iterate is kept while the residual falls by 10× per iteration, so from a good predictor a
 /// point costs one shot with and one without sensitivities. The returned Jacobian is fresh at the
-/// solution when the iterate moved more than `1e-6` (tangents come from it).
+/// solution when the iterate moved more than `1e-5` (tangents come from it).
 pub(crate) fn correct_chord<P: Profile>(
     sh: &mut Shooter<P>,
     cond: &TipCond,
@@ -257,7 +257,7 @@ pub(crate) fn correct_chord<P: Profile>(
                     .zip(&u_start)
                     .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
                 let mut j = jac.unwrap_or_else(Matrix3::zeros);
-                if !fresh || moved > 1e-6 {
+                if !fresh || moved > 1e-5 {
                     // the first Jacobian is too rough for a tangent: one more shot at the solution
                     // (it leaves the same path in the shooter, the state being the same)
                     let s = sh.shoot::<true>(&u);

@@ -298,42 +298,41 @@ impl Shape {
     }
 }
 
-/// Per-interval cubic Hermite polynomials of the components of a solution on its mesh (the
-/// interpolant of [`Solution::eval`]'s default form), evaluated from an interval hint.
+/// The moment `m(s)` of a solution as per-interval cubic Hermite polynomials (the interpolant of
+/// [`Solution::eval`]'s default form), evaluated from an interval hint.
 pub(crate) struct Sampler<'a> {
     mesh: &'a [f64],
-    /// `coef[4 * i + c]`: the cubic of component `c` on interval `i`, in `t ∈ [0, 1]`.
+    /// The cubic of `m` on interval `i`, in `t ∈ [0, 1]`.
     coef: Vec<[f64; 4]>,
 }
 
 impl<'a> Sampler<'a> {
-    /// The interpolant of components 0..4 of `sol`.
+    /// The interpolant of the moment (component 3) of `sol`.
     pub fn new(sol: &'a Solution) -> Self {
         let n = sol.mesh.len() - 1;
-        let w = sol.n;
-        let mut coef = Vec::with_capacity(4 * n);
-        for i in 0..n {
-            let h = sol.mesh[i + 1] - sol.mesh[i];
-            for c in 0..4 {
+        let (w, c) = (sol.n, 3);
+        let coef = (0..n)
+            .map(|i| {
+                let h = sol.mesh[i + 1] - sol.mesh[i];
                 let (z0, z1) = (sol.z[w * i + c], sol.z[w * (i + 1) + c]);
                 let (d0, d1) = (h * sol.dz[w * i + c], h * sol.dz[w * (i + 1) + c]);
-                coef.push([
+                [
                     z0,
                     d0,
                     -3.0 * z0 - 2.0 * d0 + 3.0 * z1 - d1,
                     2.0 * z0 + d0 - 2.0 * z1 + d1,
-                ]);
-            }
-        }
+                ]
+            })
+            .collect();
         Sampler {
             mesh: &sol.mesh,
             coef,
         }
     }
 
-    /// Component `c` at `s`, searching the interval from the hint `i`; also returns the interval.
+    /// `m(s)`, searching the interval from the hint `i`; also returns the interval.
     #[inline]
-    pub fn at(&self, c: usize, s: f64, mut i: usize) -> (f64, usize) {
+    pub fn at(&self, s: f64, mut i: usize) -> (f64, usize) {
         let n = self.mesh.len() - 1;
         let mesh = self.mesh;
         i = i.min(n - 1);
@@ -344,8 +343,76 @@ impl<'a> Sampler<'a> {
             i -= 1;
         }
         let t = ((s - mesh[i]) / (mesh[i + 1] - mesh[i])).clamp(0.0, 1.0);
-        let k = &self.coef[4 * i + c];
+        let k = &self.coef[i];
         (((k[3] * t + k[2]) * t + k[1]) * t + k[0], i)
+    }
+
+    /// Sign changes of `m(s)` itself on `[0, 1)`, exact on the interpolant: each interval's cubic
+    /// is split at its critical points into monotone pieces, whose end values are compared
+    /// (values within `1e-9` of the largest treated as zero; the tip, where `m(1) = 0`, excluded).
+    /// The first one's arc length by Brent's method on its piece.
+    pub fn moment_sign_changes(&self) -> (usize, Option<f64>) {
+        let n = self.coef.len();
+        let poly = |k: &[f64; 4], t: f64| ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+        let scale = self
+            .coef
+            .iter()
+            .map(|k| k[0].abs())
+            .fold(poly(&self.coef[n - 1], 1.0).abs(), f64::max);
+        let eps = 1e-9 * scale.max(1e-300);
+        let (mut count, mut first) = (0, None);
+        // the last value beyond eps: (interval, t, value)
+        let mut prev: Option<(usize, f64, f64)> = None;
+        for (i, k) in self.coef.iter().enumerate() {
+            // critical points of the cubic in (0, 1): roots of 3 k3 t² + 2 k2 t + k1
+            let (a, b, c) = (3.0 * k[3], 2.0 * k[2], k[1]);
+            let mut ts = [0.0, 1.0, 1.0, 1.0];
+            let mut m = 1;
+            let disc = b * b - 4.0 * a * c;
+            if a != 0.0 && disc > 0.0 {
+                let q = -0.5 * (b + b.signum() * disc.sqrt());
+                for r in [q / a, c / q] {
+                    if r > 0.0 && r < 1.0 {
+                        ts[m] = r;
+                        m += 1;
+                    }
+                }
+            } else if a == 0.0 && b != 0.0 {
+                let r = -c / b;
+                if r > 0.0 && r < 1.0 {
+                    ts[m] = r;
+                    m += 1;
+                }
+            }
+            ts[m] = 1.0;
+            ts[1..m].sort_by(f64::total_cmp);
+            let last = if i + 1 == n { m - 1 } else { m };
+            for &t in &ts[usize::from(i > 0)..=last] {
+                let v = poly(k, t);
+                if v.abs() <= eps {
+                    continue;
+                }
+                if let Some((pi, pt, pv)) = prev {
+                    if pv.signum() != v.signum() {
+                        count += 1;
+                        if first.is_none() {
+                            first = Some(self.root_between((pi, pt), (i, t)));
+                        }
+                    }
+                }
+                prev = Some((i, t, v));
+            }
+        }
+        (count, first)
+    }
+
+    /// The root of `m` between two points `(interval, t)` of opposite signs.
+    fn root_between(&self, a: (usize, f64), b: (usize, f64)) -> f64 {
+        let s_of = |(i, t): (usize, f64)| self.mesh[i] + t * (self.mesh[i + 1] - self.mesh[i]);
+        let (sa, sb) = (s_of(a), s_of(b));
+        let mut g = |s: f64| -> Result<f64, String> { Ok(self.at(s, a.0).0) };
+        // the ends bracket the root: Brent cannot fail here, take the midpoint if it does
+        crate::search::root(&mut g, sa, sb, 1e-14).unwrap_or(0.5 * (sa + sb))
     }
 
     /// Sign changes of `g(s, m(s))` on `[0, 1)` (129 samples, values within `1e-9` of the largest
@@ -354,7 +421,7 @@ impl<'a> Sampler<'a> {
     pub fn sign_changes(&self, g: impl Fn(f64, f64) -> f64) -> (usize, Option<f64>) {
         const N: usize = 128;
         let val = |s: f64, hint: usize| {
-            let (m, i) = self.at(3, s, hint);
+            let (m, i) = self.at(s, hint);
             (g(s, m), i)
         };
         let mut vals = [0.0; N + 1];
@@ -376,19 +443,12 @@ impl<'a> Sampler<'a> {
                 if kp.signum() != k.signum() {
                     count += 1;
                     if first.is_none() {
-                        let (mut a, mut b) = (sp, s);
-                        let mut hint = self.at(3, a, 0).1;
-                        for _ in 0..60 {
-                            let c = 0.5 * (a + b);
-                            let (kc, ic) = val(c, hint);
-                            hint = ic;
-                            if (kc > 0.0) == (kp > 0.0) {
-                                a = c;
-                            } else {
-                                b = c;
-                            }
-                        }
-                        first = Some(0.5 * (a + b));
+                        let hint = self.at(sp, 0).1;
+                        let mut g = |c: f64| -> Result<f64, String> { Ok(val(c, hint).0) };
+                        // the samples bracket the root: Brent cannot fail here, bisect if it does
+                        first = Some(
+                            crate::search::root(&mut g, sp, s, 1e-14).unwrap_or(0.5 * (sp + s)),
+                        );
                     }
                 }
             }
@@ -405,7 +465,7 @@ pub(crate) fn flex_and_reversals<P: Profile>(
     profile: &P,
 ) -> (usize, Option<f64>, usize) {
     let smp = Sampler::new(sol);
-    let (rev, s_rev) = smp.sign_changes(|_, m| m);
+    let (rev, s_rev) = smp.moment_sign_changes();
     if P::UNIFORM {
         return (rev, s_rev, rev);
     }

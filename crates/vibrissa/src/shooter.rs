@@ -106,28 +106,45 @@ impl<P: Profile> Shooter<P> {
         }
     }
 
-    /// Splits the steps whose last error estimate exceeded 1 (by the order-8 rule with a margin);
-    /// `false` when the mesh would exceed [`MAX_STEPS`].
+    /// A new mesh after a shot with steps over tolerance: each such step should shrink by
+    /// `0.9·e^(−1/8)` (the order-8 rule with a margin; a quarter where `e` is not finite), the
+    /// others keep their size, and the nodes equidistribute that step-size function, so the mesh
+    /// grows by what the errors ask for rather than by halving whole steps. `false` when it would
+    /// exceed [`MAX_STEPS`].
     pub fn refine(&mut self) -> bool {
-        let mut nodes = Vec::with_capacity(self.nodes.len() * 2);
-        for (i, w) in self.nodes.windows(2).enumerate() {
-            nodes.push(w[0]);
-            let e = self.step_err.get(i).copied().unwrap_or(0.0);
-            if e > 1.0 {
-                let k = if e.is_finite() {
-                    (e.powf(1.0 / 8.0) * 1.2).ceil().clamp(2.0, 16.0) as usize
+        // steps per unit of the old step of each interval
+        let shrink: Vec<f64> = (0..self.steps())
+            .map(|i| {
+                let e = self.step_err.get(i).copied().unwrap_or(0.0);
+                if !e.is_finite() {
+                    4.0
+                } else if e > 1.0 {
+                    1.0 / (0.9 * e.powf(-1.0 / 8.0))
                 } else {
-                    4
-                };
-                for j in 1..k {
-                    nodes.push(w[0] + (w[1] - w[0]) * j as f64 / k as f64);
+                    1.0
                 }
-            }
-        }
-        nodes.push(1.0);
-        if nodes.len() > MAX_STEPS + 1 || nodes.len() == self.nodes.len() {
+            })
+            .collect();
+        let total: f64 = shrink.iter().sum();
+        let n_new = total.ceil() as usize;
+        if n_new > MAX_STEPS || n_new <= self.steps() {
             return false;
         }
+        // the nodes where the cumulative step count, stretched to n_new, is an integer
+        let stretch = n_new as f64 / total;
+        let mut nodes = Vec::with_capacity(n_new + 1);
+        nodes.push(0.0);
+        let mut count = 0.0;
+        for (w, k) in self.nodes.windows(2).zip(&shrink) {
+            let per = k * stretch;
+            let next = count + per;
+            while (nodes.len() as f64) < next - 1e-9 && nodes.len() < n_new {
+                let t = (nodes.len() as f64 - count) / per;
+                nodes.push(w[0] + (w[1] - w[0]) * t);
+            }
+            count = next;
+        }
+        nodes.push(1.0);
         self.set_mesh(nodes);
         true
     }
@@ -143,27 +160,37 @@ impl<P: Profile> Shooter<P> {
                 return unsafe { self.shoot_avx2::<VAR>(u) };
             }
         }
-        self.shoot_impl::<VAR>(u)
+        self.shoot_width::<VAR>(u)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     unsafe fn shoot_avx2<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
-        self.shoot_impl::<VAR>(u)
+        self.shoot_width::<VAR>(u)
     }
 
     #[inline(always)]
-    fn shoot_impl<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
-        let nv = if VAR { NV } else { 4 };
+    fn shoot_width<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
+        if VAR {
+            self.shoot_impl::<true, NV>(u)
+        } else {
+            self.shoot_impl::<false, 4>(u)
+        }
+    }
+
+    #[inline(always)]
+    fn shoot_impl<const VAR: bool, const N: usize>(&mut self, u: &[f64; 3]) -> Shot {
         let (m0, f, alpha) = (u[0], u[1], u[2]);
         let (sa, ca) = alpha.sin_cos();
         let c = self.compliance;
         let n = self.nodes.len() - 1;
-        let mut y = [0.0; NV];
+        let mut y = [0.0; N];
         y[2] = FRAC_PI_2 + c * m0;
         y[3] = m0;
-        y[4 + 2] = c; // ∂φ(0)/∂m0
-        y[4 + 3] = 1.0; // ∂m(0)/∂m0
+        if VAR {
+            y[4 + 2] = c; // ∂φ(0)/∂m0
+            y[4 + 3] = 1.0; // ∂m(0)/∂m0
+        }
         self.path_z.clear();
         self.path_dz.clear();
         self.step_err.clear();
@@ -175,9 +202,9 @@ impl<P: Profile> Shooter<P> {
                 (e[0], e[1])
             }
         };
-        let mut k = [[0.0; NV]; 12];
+        let mut k = [[0.0; N]; 12];
         let (b0, q0) = bk(0);
-        k[0] = rod_rhs_var::<VAR>(&y, f, ca, sa, b0, q0);
+        k[0] = rod_rhs_var::<N>(&y, f, ca, sa, b0, q0);
         let mut err_max: f64 = 0.0;
         for step in 0..n {
             let h = self.nodes[step + 1] - self.nodes[step];
@@ -190,12 +217,12 @@ impl<P: Profile> Shooter<P> {
                     let mut t = y;
                     $(
                         let ha = h * tab::A[$i * tab::STAGES + $j];
-                        for cc in 0..nv {
+                        for cc in 0..N {
                             t[cc] += ha * k[$j][cc];
                         }
                     )*
                     let (bb, qq) = bk(base + $i);
-                    k[$i] = rod_rhs_var::<VAR>(&t, f, ca, sa, bb, qq);
+                    k[$i] = rod_rhs_var::<N>(&t, f, ca, sa, bb, qq);
                 }};
             }
             stage!(1, [0]);
@@ -213,7 +240,7 @@ impl<P: Profile> Shooter<P> {
             let mut ynew = y;
             for j in NZB {
                 let hb = h * tab::B[j];
-                for cc in 0..nv {
+                for cc in 0..N {
                     ynew[cc] += hb * k[j][cc];
                 }
             }
@@ -240,7 +267,7 @@ impl<P: Profile> Shooter<P> {
             err_max = err_max.max(err);
             y = ynew;
             let (bb, qq) = bk(base + 12);
-            k[0] = rod_rhs_var::<VAR>(&y, f, ca, sa, bb, qq);
+            k[0] = rod_rhs_var::<N>(&y, f, ca, sa, bb, qq);
         }
         self.path_z.extend_from_slice(&y[..4]);
         self.path_dz.extend_from_slice(&k[0][..4]);
@@ -250,10 +277,9 @@ impl<P: Profile> Shooter<P> {
             self.stats.jac_evals += 12 * n + 1;
         }
         self.stats.bc_evals += 1;
-        Shot {
-            y1: y,
-            err: err_max,
-        }
+        let mut y1 = [0.0; NV];
+        y1[..N].copy_from_slice(&y);
+        Shot { y1, err: err_max }
     }
 
     /// The last shot's path as a [`Solution`] (cubic Hermite between the mesh nodes).

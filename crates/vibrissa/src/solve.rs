@@ -456,11 +456,16 @@ fn solve_fast<P: Profile>(
         rodsolve::solve_damped(&mut sh, &cond, [g.m_base, g.f, a], tol, 40).ok()?
     } else {
         let u0 = uniform_start(alpha, &target, branch);
-        let fam = Homotopy {
-            member: &member,
-            cond: height(&target),
+        let cv = if rod.is_uniform_clamped() {
+            // the start is the rod's own closed form: no homotopy
+            rodsolve::solve_damped(&mut sh, &height(&target), u0, tol, 30).ok()?
+        } else {
+            let fam = Homotopy {
+                member: &member,
+                cond: height(&target),
+            };
+            follow_to(&mut sh, &fam, u0, 0.0, 1.0, tol)?
         };
-        let cv = follow_to(&mut sh, &fam, u0, 0.0, 1.0, tol)?;
         match target {
             Target::Tip { x1, y1 } => {
                 // move the tip from where the height solve put it to x1, α free

@@ -168,16 +168,27 @@ impl<P: Profile> Stepper for OwnStepper<P> {
     fn h_max(&self) -> f64 {
         0.01
     }
+
+    fn interpolant(&self, hist: &[Pt], d: f64) -> Option<([f64; 3], [f64; 3])> {
+        hist.iter()
+            .all(|p| p.du.is_some())
+            .then(|| interpolate(hist, d))
+    }
 }
 
 /// Predictor from the last (at most three) points to `d`: the Hermite polynomial through their
 /// values and tangents (degree 5 with three points) where all have tangents, else Lagrange.
 pub(crate) fn predict(hist: &[Pt], d: f64) -> [f64; 3] {
+    interpolate(hist, d).0
+}
+
+/// The polynomial of [`predict`] and its derivative at `d`.
+pub(crate) fn interpolate(hist: &[Pt], d: f64) -> ([f64; 3], [f64; 3]) {
     let m = hist.len().min(3);
     let pts = &hist[hist.len() - m..];
     let hermite = pts.iter().all(|p| p.du.is_some());
-    let mut u = [0.0; 3];
-    for (i, ui) in u.iter_mut().enumerate() {
+    let (mut u, mut du) = ([0.0; 3], [0.0; 3]);
+    for i in 0..3 {
         // divided differences, nodes newest first (confluent pairs with tangents)
         let mut z = [0.0; 6];
         let mut q = [[0.0; 6]; 6];
@@ -200,14 +211,18 @@ pub(crate) fn predict(hist: &[Pt], d: f64) -> [f64; 3] {
                 q[j][k] = (q[j][k - 1] - q[j - 1][k - 1]) / (z[j] - z[j - k]);
             }
         }
-        let (mut v, mut w) = (0.0, 1.0);
+        // Newton form and its derivative (product rule on the nested factors)
+        let (mut v, mut dv, mut w, mut dw) = (0.0, 0.0, 1.0, 0.0);
         for k in 0..len {
             v += q[k][k] * w;
+            dv += q[k][k] * dw;
+            dw = dw * (d - z[k]) + w;
             w *= d - z[k];
         }
-        *ui = v;
+        u[i] = v;
+        du[i] = dv;
     }
-    u
+    (u, du)
 }
 
 /// The stepper on a generic method of crate `bvp`.
