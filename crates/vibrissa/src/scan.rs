@@ -140,6 +140,7 @@ fn run_with<P: Profile>(
             family,
             engine: Engine::new(&opts.solver)?,
             stats: Default::default(),
+            tangents: Shooter::new(profile.clone(), c, opts.solver.tol.min(1e-8), 8),
         };
         let mut sol = start
             .solution()

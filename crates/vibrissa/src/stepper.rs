@@ -225,11 +225,15 @@ pub(crate) fn interpolate(hist: &[Pt], d: f64) -> ([f64; 3], [f64; 3]) {
     (u, du)
 }
 
-/// The stepper on a generic method of crate `bvp`.
+/// The stepper on a generic method of crate `bvp`. Its points get their tangents `du/dd` from the
+/// rod's own shooter (one shot with sensitivities at the converged unknowns), so its predictor,
+/// its branch check and the event location work as on the own stepper, whatever the method.
 pub(crate) struct GenericStepper<P: Profile> {
     pub family: ScanFamily<P>,
     pub engine: Engine,
     pub stats: Stats,
+    /// The shooter that gives the tangents.
+    pub tangents: Shooter<P>,
 }
 
 // the solver's own error, passed through unboxed as crate `bvp` returns it
@@ -253,14 +257,50 @@ impl<P: Profile> GenericStepper<P> {
     /// The point at `d` from `guess`.
     pub fn point(&mut self, d: f64, guess: &Guess) -> Result<Pt, String> {
         let sol = self.solve(d, guess).map_err(|e| e.to_string())?;
-        Ok(Pt {
+        Ok(self.pt(d, sol))
+    }
+
+    /// The branch point of a converged solution, with its tangent where the shooter resolves it.
+    fn pt(&mut self, d: f64, sol: Solution) -> Pt {
+        let u = [sol.left()[3], sol.params[0], sol.params[1]];
+        let (du, det) = match self.tangent(d, &u) {
+            Some((du, det)) => (Some(du), Some(det)),
+            None => (None, None),
+        };
+        Pt {
             d,
-            u: [sol.left()[3], sol.params[0], sol.params[1]],
-            du: None,
-            det: None,
+            u,
+            du,
+            det,
             iters: sol.stats.newton_iters,
             sol,
-        })
+        }
+    }
+
+    /// `du/dd = −J⁻¹ ∂R/∂d` and `det J` from one shot with sensitivities at `u` (on a mesh within
+    /// the tolerance).
+    fn tangent(&mut self, d: f64, u: &[f64; 3]) -> Option<([f64; 3], f64)> {
+        let cond = TipCond::Pos {
+            x1: self.family.x_star - d,
+            y1: self.family.eta,
+        };
+        for _ in 0..8 {
+            let shot = self.tangents.shoot::<true>(u);
+            if shot.err > 1.0 {
+                if !self.tangents.refine() {
+                    return None;
+                }
+                continue;
+            }
+            let j = cond.jacobian(&shot.y1);
+            let du = j.lu().solve(&nalgebra::Vector3::new(0.0, -1.0, 0.0))?;
+            let du = [du[0], du[1], du[2]];
+            return du
+                .iter()
+                .all(|v| v.is_finite())
+                .then(|| (du, j.determinant()));
+        }
+        None
     }
 
     /// Lagrange inter-/extrapolation in `d` of the (at most three) nearest points, on the mesh of
@@ -319,11 +359,18 @@ impl<P: Profile> GenericStepper<P> {
 
 impl<P: Profile> Stepper for GenericStepper<P> {
     fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, String> {
-        let g = self.guess_at(hist, d);
+        let mut g = self.guess_at(hist, d);
+        // with tangents the unknowns come from the Hermite predictor
+        let ug = match self.interpolant(hist, d) {
+            Some((u, _)) => {
+                g.params = vec![u[1], u[2]];
+                u
+            }
+            None => [g.z[3], g.params[0], g.params[1]],
+        };
         let p = self.point(d, &g)?;
         let last = &hist[hist.len() - 1];
         // the correction must be small against the change over the step
-        let ug = [g.z[3], g.params[0], g.params[1]];
         let (corr, change) = (max_diff(&p.u, &ug), max_diff(&p.u, &last.u));
         let scale = 1.0 + p.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         if !(corr <= 0.5 * change.max(1e-3 * scale * (d - last.d).abs().min(1.0))
@@ -352,6 +399,7 @@ impl<P: Profile> Stepper for GenericStepper<P> {
             ..ContinuationOptions::default()
         };
         let mut stats = Stats::default();
+        let mut beyond = None;
         let result = (|| {
             let mut cont =
                 match Continuation::new(&self.family, &mut self.engine, last.sol.clone(), d, copts)
@@ -377,15 +425,8 @@ impl<P: Profile> Stepper for GenericStepper<P> {
                 }
                 prev = bp.lambda;
                 if bp.lambda > target || bp.on_bound {
-                    let sol = bp.solution;
-                    return Passed::Beyond(Pt {
-                        d: bp.lambda,
-                        u: [sol.left()[3], sol.params[0], sol.params[1]],
-                        du: None,
-                        det: None,
-                        iters: sol.stats.newton_iters,
-                        sol,
-                    });
+                    beyond = Some((bp.lambda, bp.solution));
+                    return Passed::Failed(String::new());
                 }
             }
             Passed::Failed(format!(
@@ -393,14 +434,25 @@ impl<P: Profile> Stepper for GenericStepper<P> {
             ))
         })();
         self.stats.accumulate(&stats);
-        result
+        match beyond {
+            Some((d, sol)) => Passed::Beyond(self.pt(d, sol)),
+            None => result,
+        }
     }
 
     fn stats(&self) -> Stats {
-        self.stats.clone()
+        let mut s = self.stats.clone();
+        s.accumulate(&self.tangents.stats);
+        s
     }
 
     fn h_max(&self) -> f64 {
         0.05
+    }
+
+    fn interpolant(&self, hist: &[Pt], d: f64) -> Option<([f64; 3], [f64; 3])> {
+        hist.iter()
+            .all(|p| p.du.is_some())
+            .then(|| interpolate(hist, d))
     }
 }
