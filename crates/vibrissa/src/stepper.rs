@@ -49,33 +49,56 @@ impl<P: Profile> OwnStepper<P> {
             .solve([0.0, -1.0, 0.0])
             .ok_or("singular Jacobian at the solution")?;
         let det = cv.det();
-        if let Some(last) = newest {
-            // the corrector crossed a fold in d when det J changes sign
-            if let Some(det0) = last.det {
-                if det0.signum() != det.signum() {
-                    return Err("the corrector crossed a fold in d".into());
-                }
-            }
-            let corr = max_diff(&cv.u, &u);
-            let change = max_diff(&cv.u, &last.u);
-            let scale = 1.0 + cv.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            if !(corr <= 0.5 * change.max(1e-3 * scale * (d - last.d).abs().min(1.0))
-                || corr < 1e-9 * scale)
-            {
-                return Err(format!(
-                    "the corrector moved {corr:.3e} from the prediction (another branch?)"
-                ));
-            }
-        }
-        Ok(Pt {
+        let p = Pt {
             d,
             u: cv.u,
             du: Some(du),
             det: Some(det),
             iters: cv.iterations,
             sol: self.shooter.solution(vec![cv.u[1], cv.u[2]], cv.residual),
-        })
+        };
+        if let Some(last) = newest {
+            same_branch(last, &u, &p)?;
+        }
+        Ok(p)
     }
+}
+
+/// Whether the corrected point `p` (predicted at `pred`) continues the branch from `last`: `det J`
+/// keeps its sign (else the step crossed a fold in `d`), the tangent in `(u, d)` turned by less
+/// than ~30° (else the step was too long for the branch's curvature), and the correction is
+/// small against the change over the step (else it jumped to another branch).
+fn same_branch(last: &Pt, pred: &[f64; 3], p: &Pt) -> Result<(), String> {
+    if let (Some(d0), Some(d1)) = (last.det, p.det) {
+        if d0.signum() != d1.signum() {
+            return Err("the corrector crossed a fold in d".into());
+        }
+    }
+    if let (Some(a), Some(b)) = (last.du, p.du) {
+        let unit = |t: [f64; 3]| {
+            let n = (t.iter().map(|v| v * v).sum::<f64>() + 1.0).sqrt();
+            [t[0] / n, t[1] / n, t[2] / n, 1.0 / n]
+        };
+        let (ta, tb) = (unit(a), unit(b));
+        let cos: f64 = ta.iter().zip(&tb).map(|(x, y)| x * y).sum();
+        if cos < 0.85 {
+            return Err(format!(
+                "the branch turned by {:.0}° over the step",
+                cos.clamp(-1.0, 1.0).acos().to_degrees()
+            ));
+        }
+    }
+    let corr = max_diff(&p.u, pred);
+    let change = max_diff(&p.u, &last.u);
+    let scale = 1.0 + p.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    if !(corr <= 0.5 * change.max(1e-3 * scale * (p.d - last.d).abs().min(1.0))
+        || corr < 1e-9 * scale)
+    {
+        return Err(format!(
+            "the corrector moved {corr:.3e} from the prediction (another branch?)"
+        ));
+    }
+    Ok(())
 }
 
 impl<P: Profile> OwnStepper<P> {
@@ -369,17 +392,7 @@ impl<P: Profile> Stepper for GenericStepper<P> {
             None => [g.z[3], g.params[0], g.params[1]],
         };
         let p = self.point(d, &g)?;
-        let last = &hist[hist.len() - 1];
-        // the correction must be small against the change over the step
-        let (corr, change) = (max_diff(&p.u, &ug), max_diff(&p.u, &last.u));
-        let scale = 1.0 + p.u.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        if !(corr <= 0.5 * change.max(1e-3 * scale * (d - last.d).abs().min(1.0))
-            || corr < 1e-9 * scale)
-        {
-            return Err(format!(
-                "the corrector moved {corr:.3e} from the prediction (another branch?)"
-            ));
-        }
+        same_branch(&hist[hist.len() - 1], &ug, &p)?;
         Ok(p)
     }
 
