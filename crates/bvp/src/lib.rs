@@ -46,17 +46,20 @@ pub mod fd;
 pub mod fixed;
 pub mod linalg;
 pub mod newton;
+pub mod path;
 pub mod samples;
 pub mod shooting;
 pub mod tableau;
+pub mod testset;
 
 pub use collocation::{Collocation, CollocationOptions, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Status};
 pub use newton::NewtonOptions;
+pub use path::{solve_by_continuation, PathOptions, PathSolution, Scale};
 pub use problem::{from_fns, Bvp, Dims, FnBvp};
 pub use shooting::{Integrator, Shooting, ShootingOptions};
-pub use solution::{Guess, Solution};
+pub use solution::{Dense, Guess, Solution};
 pub use stats::Stats;
 
 /// A BVP solver: takes a problem and an initial guess, returns a converged solution or says why not.
@@ -66,4 +69,10 @@ pub use stats::Stats;
 pub trait BvpSolver {
     /// Solves `problem` starting from `guess`.
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError>;
+}
+
+impl<S: BvpSolver + ?Sized> BvpSolver for &mut S {
+    fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
+        (**self).solve(problem, guess)
+    }
 }

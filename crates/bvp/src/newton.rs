@@ -131,6 +131,14 @@ pub trait NewtonSystem {
         du: &mut [f64],
         stats: &mut Stats,
     ) -> Result<(), BvpError>;
+
+    /// Scales `w_i > 0` of the residual rows at `u`, whose residual was the last one evaluated:
+    /// convergence, the precision floor and the line search then use `r_i / w_i` (e.g. a
+    /// collocation row in units of `z'` divided by `1 + |F|`, so that layers with `|z'| ~ 1e6`
+    /// are judged relative to their size). Return `false` (the default) for unscaled rows.
+    fn residual_scale(&mut self, _u: &[f64], _w: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// A [`BvpError::SingularJacobian`] with placeholder statistics (filled in by the driver).
@@ -183,11 +191,23 @@ pub struct Newton {
     du: Vec<f64>,
     ut: Vec<f64>,
     rt: Vec<f64>,
+    w: Vec<f64>,
     iterations: usize,
 }
 
 fn max_norm(x: &[f64]) -> f64 {
     x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+/// Scaled max-norm and merit `½ Σ (r_i / w_i)²`.
+fn scaled(r: &[f64], w: &[f64]) -> (f64, f64) {
+    let (mut f, mut phi) = (0.0_f64, 0.0);
+    for (x, s) in r.iter().zip(w) {
+        let v = x / s;
+        f = f.max(v.abs());
+        phi += v * v;
+    }
+    (f, 0.5 * phi)
 }
 
 fn all_finite(x: &[f64]) -> bool {
@@ -211,6 +231,20 @@ impl Newton {
         self.iterations
     }
 
+    /// Refreshes the row scales at `u` (its residual was the last evaluated); true if scaled.
+    fn rescale<S: NewtonSystem + ?Sized>(&mut self, sys: &mut S, u: &[f64]) -> bool {
+        if sys.residual_scale(u, &mut self.w) {
+            for w in &mut self.w {
+                if !(*w > 0.0 && w.is_finite()) {
+                    *w = 1.0;
+                }
+            }
+            true
+        } else {
+            false
+        }
+    }
+
     /// Runs damped Newton on `sys` from `u` (overwritten by the solution, or by the last accepted
     /// iterate on failure). The residual vector has the length of `u` (square systems).
     pub fn solve<S: NewtonSystem + ?Sized>(
@@ -225,6 +259,8 @@ impl Newton {
             v.clear();
             v.resize(m, 0.0);
         }
+        self.w.clear();
+        self.w.resize(m, 1.0);
         self.iterations = 0;
 
         sys.residual(u, &mut self.r, stats)
@@ -232,8 +268,8 @@ impl Newton {
         if !all_finite(&self.r) {
             return Err(attach(non_finite("residual", f64::NAN), 0, stats));
         }
-        let mut f = max_norm(&self.r);
-        let mut phi = 0.5 * self.r.iter().map(|v| v * v).sum::<f64>();
+        self.rescale(sys, u);
+        let (mut f, mut phi) = scaled(&self.r, &self.w);
         stats.residual = f;
         if f <= opts.tol {
             return Ok(());
@@ -271,12 +307,13 @@ impl Newton {
                     Err(e) => return Err(attach(e, it, stats)),
                 };
                 let next = if ok {
-                    let phit = 0.5 * self.rt.iter().map(|v| v * v).sum::<f64>();
+                    let (ftrial, phit) = scaled(&self.rt, &self.w);
                     if phit <= (1.0 - 2.0 * ARMIJO * lambda) * phi {
-                        break (max_norm(&self.rt), phit);
+                        break (ftrial, phit);
                     }
-                    if small_step && f <= opts.step_residual_tol {
-                        // At the rounding floor: the step is negligible and cannot decrease φ.
+                    if f <= opts.step_residual_tol && (small_step || lambda == 1.0) {
+                        // At the rounding floor: the full step cannot decrease φ any more
+                        // (or is negligible); the residual is already at the floor tolerance.
                         return Ok(());
                     }
                     let denom = phit - phi + 2.0 * phi * lambda;
@@ -308,8 +345,10 @@ impl Newton {
 
             u.copy_from_slice(&self.ut);
             std::mem::swap(&mut self.r, &mut self.rt);
-            f = ft;
-            phi = phit;
+            (f, phi) = (ft, phit);
+            if self.rescale(sys, u) {
+                (f, phi) = scaled(&self.r, &self.w);
+            }
             stats.residual = f;
             if f <= opts.tol || (small_step && f <= opts.step_residual_tol) {
                 return Ok(());

@@ -270,6 +270,7 @@ impl<P: Profile> Shooter<P> {
                 residual,
                 ..Stats::default()
             },
+            dense: bvp::Dense::Hermite,
         }
     }
 }

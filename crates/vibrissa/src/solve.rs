@@ -602,6 +602,7 @@ pub(crate) fn guess_as_solution(g: &Guess) -> Solution {
         params: g.params.clone(),
         status: bvp::Status::Converged,
         stats: Stats::default(),
+        dense: bvp::Dense::Hermite,
     }
 }
 
