@@ -274,6 +274,8 @@ struct Disc<'a, P: ?Sized> {
     w: &'a mut Work,
     /// Last NaN/∞ met in a residual evaluation (also in rejected Newton trials).
     non_finite: Option<(&'static str, f64)>,
+    /// The Newton matrix was factorized on this mesh (its LU is usable for estimates).
+    factored: bool,
 }
 
 impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
@@ -307,6 +309,7 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
             lay,
             w,
             non_finite: None,
+            factored: false,
         }
     }
 
@@ -475,6 +478,32 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
         self.w.g[..n + k]
             .iter()
             .fold(0.0, |m: f64, v| m.max(v.abs()))
+    }
+
+    /// Estimate of `‖J⁻¹ diag(w)‖∞` (`w` the Newton row scales): how much a scaled residual of
+    /// size 1 can move the discrete solution. Two solves with the last LU on this mesh (one
+    /// linearization if Newton did not factorize here), right-hand sides `w` and `(−1)ⁱ w`.
+    fn amplification(&mut self, u: &[f64], stats: &mut Stats) -> Result<f64, BvpError> {
+        self.ensure_points(u, stats)?;
+        let dim = self.lay.dim();
+        let mut w = vec![1.0; dim];
+        self.residual_scale(u, &mut w);
+        let mut best = 0.0_f64;
+        for sign in [1.0, -1.0] {
+            let mut x: Vec<f64> = w
+                .iter()
+                .enumerate()
+                .map(|(i, wi)| if i % 2 == 0 { *wi } else { sign * wi })
+                .collect();
+            if self.factored {
+                self.w.sys.solve(&mut x).map_err(|_| singular())?;
+            } else {
+                let b = x.clone();
+                self.solve_linearized(u, &b, &mut x, stats)?;
+            }
+            best = best.max(x.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
+        }
+        Ok(best)
     }
 
     /// `z'' = d/ds F(s, z(s), p)` at the nodes by a central difference along the solution's
@@ -715,6 +744,7 @@ impl<P: Bvp + ?Sized> NewtonSystem for Disc<'_, P> {
         }
         stats.factorizations += 1;
         w.sys.factor().map_err(|_| singular())?;
+        self.factored = true;
         for (d, v) in du.iter_mut().zip(r) {
             *d = -v;
         }
@@ -1042,7 +1072,27 @@ impl BvpSolver for Collocation {
             let bcres = disc.bc_residual(&u, &mut stats);
             let max_rms = rms.iter().fold(0.0_f64, |m, v| m.max(*v));
             stats.error_estimate = Some(max_rms);
-            let converged = max_rms <= opts.tol && bcres <= bc_tol;
+            let mut converged = max_rms <= opts.tol && bcres <= bc_tol;
+            if converged && opts.adapt {
+                // Conditioning: residuals at the tolerance may move the solution by `amp·tol`.
+                // Beyond the size of the solution itself no digit is right: the problem is
+                // numerically singular at this tolerance (e.g. it has no solution and the mesh
+                // only picks one of huge amplitude), reported as a singular Jacobian.
+                let amp = disc
+                    .amplification(&u, &mut stats)
+                    .map_err(|e| attach_stats(e, &stats))?;
+                let size = u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                if amp * opts.tol > 1.0 + size {
+                    converged = false;
+                    if best.is_none() {
+                        stats.nodes = mesh.len();
+                        return Err(BvpError::SingularJacobian {
+                            iteration: stats.newton_iters,
+                            stats,
+                        });
+                    }
+                }
+            }
             if !opts.adapt || converged {
                 let (z, dz) = disc.nodal();
                 let params = u[disc.lay.pcol()..].to_vec();

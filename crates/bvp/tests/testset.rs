@@ -137,13 +137,21 @@ fn lobatto6_solves_the_set_at_mild_eps() {
             if p.id() == 23 && eps < 0.05 {
                 continue; // Troesch at μ = 100: reached by continuation.
             }
-            // Problem 17 at ε = 0.01 is ill-conditioned (√(3/ε)·0.2 ≈ π: the homogeneous
-            // problem is nearly singular), so a residual of tol allows errors ≫ tol.
-            let ill = p.id() == 17 && eps < 0.05;
+            if p.id() == 17 && eps < 0.05 {
+                // Nearly singular at ε = 0.01 (the discrete Newton matrix amplifies scaled
+                // residuals by ~1e12: no digit of a tol-residual solution is certain; errors of
+                // 0.2 at tol 1e-4 were measured before this check): reported, not returned.
+                let r = solver.solve(&p.at(eps), &p.guess(eps, 101));
+                assert!(
+                    matches!(r, Err(bvp::BvpError::SingularJacobian { .. })),
+                    "{r:?}"
+                );
+                continue;
+            }
             let sol = solver
                 .solve(&p.at(eps), &p.guess(eps, 101))
                 .unwrap_or_else(|e| panic!("problem {} eps {eps}: {e}", p.id()));
-            if p.has_exact() && !ill {
+            if p.has_exact() {
                 let (node, fine) = errors(&p, eps, &sol);
                 assert!(
                     fine.max(node) <= 10.0 * tol,
@@ -212,7 +220,7 @@ fn dense_output_is_as_accurate_as_the_nodes() {
         (3, 0.1),
         (6, 0.01),
         (9, 0.1),
-        (17, 0.01),
+        (17, 0.05),
         (21, 0.01),
     ];
     for (id, eps) in cases {
@@ -220,7 +228,9 @@ fn dense_output_is_as_accurate_as_the_nodes() {
         let g = p.guess(eps, 101);
         for tol in [1e-5, 1e-8] {
             for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
-                let sol = lobatto(scheme, tol).solve(&p.at(eps), &g).unwrap();
+                let sol = lobatto(scheme, tol)
+                    .solve(&p.at(eps), &g)
+                    .unwrap_or_else(|e| panic!("{scheme:?} {id} {eps} {tol}: {e}"));
                 let (node, fine) = errors(&p, eps, &sol);
                 assert!(
                     fine <= 10.0 * node + 1e-12,
