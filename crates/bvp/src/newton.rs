@@ -268,7 +268,7 @@ impl Newton {
         if !all_finite(&self.r) {
             return Err(attach(non_finite("residual", f64::NAN), 0, stats));
         }
-        self.rescale(sys, u);
+        let rows_scaled = self.rescale(sys, u);
         let (mut f, mut phi) = scaled(&self.r, &self.w);
         stats.residual = f;
         if f <= opts.tol {
@@ -311,9 +311,10 @@ impl Newton {
                     if phit <= (1.0 - 2.0 * ARMIJO * lambda) * phi {
                         break (ftrial, phit);
                     }
-                    if f <= opts.step_residual_tol && (small_step || lambda == 1.0) {
-                        // At the rounding floor: the full step cannot decrease φ any more
-                        // (or is negligible); the residual is already at the floor tolerance.
+                    if f <= opts.step_residual_tol && (small_step || (rows_scaled && lambda == 1.0))
+                    {
+                        // At the rounding floor: the step is negligible, or (rows scaled to
+                        // their size, so f is relative) the full step cannot decrease φ any more.
                         return Ok(());
                     }
                     let denom = phit - phi + 2.0 * phi * lambda;
