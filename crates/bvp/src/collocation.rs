@@ -183,6 +183,8 @@ const DEFAULT_NODES: usize = 11;
 /// Newton failures answered by refining the mesh (from the unconverged iterate) before one is
 /// reported.
 const MAX_RETRIES: usize = 8;
+/// Bisections of a mesh whose solution failed the conditioning check before it is reported.
+const MAX_ILL_REFINES: usize = 2;
 /// Coarsening attempts after acceptance.
 const MAX_COARSEN: usize = 8;
 
@@ -976,6 +978,7 @@ impl BvpSolver for Collocation {
         let mut best: Option<Solution> = None;
         let mut retries = 0;
         let mut coarsenings = 0;
+        let mut ill_refines = 0;
         let mut rms = Vec::new();
 
         loop {
@@ -1085,6 +1088,24 @@ impl BvpSolver for Collocation {
                 if amp * opts.tol > 1.0 + size {
                     converged = false;
                     if best.is_none() {
+                        // A coarse mesh that does not resolve a layer can be ill-conditioned
+                        // by itself: bisect (from this solution) a few times before reporting.
+                        if ill_refines < MAX_ILL_REFINES && 2 * mesh.len() - 1 <= opts.max_nodes {
+                            ill_refines += 1;
+                            let fine = bisect(&mesh);
+                            let snap = snapshot(&disc, &mesh, &u);
+                            fill_unknowns(
+                                &self.tab,
+                                &fine,
+                                dims,
+                                &snap.params,
+                                |s, o| snap.eval(&self.tab, n, s, o),
+                                &mut u,
+                            );
+                            source = Some(snap);
+                            mesh = fine;
+                            continue;
+                        }
                         stats.nodes = mesh.len();
                         return Err(BvpError::SingularJacobian {
                             iteration: stats.newton_iters,

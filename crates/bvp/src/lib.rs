@@ -46,6 +46,8 @@ pub mod fd;
 pub mod fixed;
 pub mod linalg;
 pub mod newton;
+#[cfg(feature = "ode_solvers")]
+pub mod odes;
 pub mod path;
 pub mod samples;
 pub mod shooting;
