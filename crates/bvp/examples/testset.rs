@@ -147,18 +147,14 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
         let t = Instant::now();
         let r = if cont {
             // Direct first (the guess at eps), continuation from EPS_EASY if that fails.
-            s.solve(&p.at(eps), &p.guess(eps, GUESS_NODES))
-                .or_else(|_| {
-                    solve_by_continuation(
-                        p,
-                        &mut s,
-                        &guess0,
-                        EPS_EASY,
-                        eps,
-                        &PathOptions::default(),
-                    )
-                    .map(|r| r.solution)
-                })
+            match s.solve(&p.at(eps), &p.guess(eps, GUESS_NODES)) {
+                Ok(sol) => Ok(sol),
+                Err(_) => {
+                    let opts = PathOptions::default();
+                    solve_by_continuation(p, &mut s, &guess0, EPS_EASY, eps, &opts)
+                        .map(|r| r.solution)
+                }
+            }
         } else {
             s.solve(&p.at(eps), &guess0)
         };
@@ -201,7 +197,14 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
 }
 
 /// scipy rows keyed by (id, eps, tol): (converged, error, nodes, time).
-fn read_scipy(path: &std::path::Path) -> HashMap<(u8, String, String), (bool, f64, usize, f64)> {
+/// (problem, eps, tol) as formatted keys.
+type Key = (u8, String, String);
+/// scipy: (converged, error, nodes, time).
+type ScipyRow = (bool, f64, usize, f64);
+/// One case of a method: (converged, error, tol, nodes, time, key).
+type Case = (bool, f64, f64, usize, f64, Key);
+
+fn read_scipy(path: &std::path::Path) -> HashMap<Key, ScipyRow> {
     let mut out = HashMap::new();
     let Ok(text) = std::fs::read_to_string(path) else {
         return out;
@@ -303,7 +306,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     writeln!(md, "| solver | converged / {cases} | error ≤ 10·tol (of converged with exact) | median error/tol | median nodes | time vs scipy (geo. mean, both converged) |")?;
     writeln!(md, "|---|---|---|---|---|---|")?;
-    let mut summary = |name: &str, rs: &[(bool, f64, f64, usize, f64, (u8, String, String))]| {
+    let summary = |name: &str, rs: &[Case]| {
         let conv = rs.iter().filter(|r| r.0).count();
         let with_exact: Vec<_> = rs.iter().filter(|r| r.0 && r.1.is_finite()).collect();
         let good = with_exact.iter().filter(|r| r.1 <= 10.0 * r.2).count();

@@ -48,21 +48,37 @@
 //! adjacent intervals with `ρ < tol/100` are merged (the residual grows by `2³` resp. `2⁴`, still
 //! far below `tol`); the current `S` interpolates the new starting values. After acceptance the
 //! mesh is also coarsened (up to 8 times) while that removes at least 10 % of the nodes, and the
-//! coarse solution is kept only if it still meets `tol`. A Newton failure on the first mesh is
-//! retried (twice) on the bisected mesh before it is reported.
+//! coarse solution is kept only if it still meets `tol`. Newton failures: see below.
 //!
 //! # Dense output
 //!
-//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there, so for
-//! Lobatto4 [`Solution::eval`] (cubic Hermite) reproduces `S` exactly. For Lobatto6 the nodal
-//! values keep their 6th order, but `eval` between nodes is the cubic Hermite interpolant of
-//! them: 4th order (error `≈ h⁴ |z⁗| / 384`, of the size of `tol`).
+//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there, and
+//! `z'' = d/ds F(s, z(s), p)` at the nodes (a central difference along the tangent `(1, F)`, two
+//! evaluations of `F` per node): [`Solution::eval`] is the quintic Hermite interpolant
+//! ([`crate::Dense::Quintic`], order 6). The collocation polynomials themselves are less accurate
+//! between nodes than at them (Lobatto4's cubic has a larger error constant between nodes;
+//! Lobatto6's quartic is of order 5 against 6 at the nodes); with the quintic, the error on a
+//! fine grid stays within 10× the nodal error (`tests/testset.rs`).
 //!
-//! # Newton thresholds
+//! # Newton thresholds and failures
 //!
-//! Collocation rows are divided by `h_i` (units of `z'`), boundary rows are as given; Newton stops
-//! when the max-norm is at most `min(newton.tol, tol / 20, bc_tol)` (or at the rounding floor, see
-//! [`NewtonOptions`]), so that the algebraic error is negligible against the residual control.
+//! Collocation rows are divided by `h_i` (units of `z'`) and scaled by `1 + max |F_c|` over their
+//! interval ([`crate::newton::NewtonSystem::residual_scale`]), boundary rows are as given; Newton
+//! stops when the scaled max-norm is at most `min(newton.tol, tol / 20, bc_tol)` (or at the
+//! rounding floor `newton.step_residual_tol`, see [`NewtonOptions`]), so that the algebraic
+//! error is negligible against the residual control. A Newton failure (stall or iteration limit,
+//! not NaN/∞) is answered, up to 8 times, by refining where the unconverged iterate's residual
+//! exceeds `tol` (bisecting if nowhere) and restarting from that iterate, as `solve_bvp` does: a
+//! coarse mesh that cannot resolve a layer often has no nearby discrete solution at all.
+//!
+//! # Conditioning check
+//!
+//! At acceptance, `A ≈ ‖J⁻¹ diag(w)‖∞` (two solves with the last LU, `w` the row scales) bounds
+//! how far residuals of size `tol` can move the discrete solution. If `A·tol` exceeds
+//! `1 + ‖u‖∞`, no digit of the solution is certain: the mesh is bisected (twice at most, a coarse
+//! mesh can be ill-conditioned by itself) and then [`BvpError::SingularJacobian`] is reported.
+//! This catches problems without a solution, on which residual control alone "converges" to a
+//! discrete solution of huge amplitude (as `solve_bvp` does), and nearly singular ones.
 
 // Index loops mirror the formulas (several arrays indexed alike).
 #![allow(clippy::needless_range_loop)]

@@ -28,10 +28,19 @@
 //! Problems with a handful of states can be written with arrays instead of slices
 //! ([`fixed::FixedBvp`], wrapped in [`fixed::Fixed`]).
 //!
-//! All solvers return a [`Solution`] (mesh values, dense evaluation, parameters, [`Stats`]) or a
+//! All solvers return a [`Solution`] (mesh values, dense evaluation of the method's order
+//! ([`Dense`]), parameters, [`Stats`]) or a
 //! [`BvpError`] that says why the solve failed and carries the statistics gathered so far.
 //!
-//! [`samples`] holds problems with known answers, shared by tests, benches and examples.
+//! [`solve_by_continuation`] ([`path`]) solves a hard member of a [`ParamBvp`] family by walking
+//! the parameter from an easy value, with any solver.
+//!
+//! [`samples`] holds problems with known answers, shared by tests, benches and examples;
+//! [`testset`] the Cash–Mazzia BVP test set (28 singularly perturbed and nonlinear problems, exact
+//! solutions where they exist), run in full by `cargo run --release -p bvp --example testset`.
+//!
+//! With the feature `ode_solvers`, the module `odes` adapts right-hand sides written as
+//! `ode_solvers::System` and offers single shooting through `ode_solvers`' Dop853 as a baseline.
 #![warn(missing_docs)]
 
 mod error;

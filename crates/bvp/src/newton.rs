@@ -19,12 +19,23 @@
 //! failed trial and `λ` is quartered. This is the plain residual-based (not Deuflhard's
 //! affine-invariant) damping: it is cheap and adequate when the unknowns are reasonably scaled.
 //!
+//! # Scaling
+//!
+//! A system may scale its rows ([`NewtonSystem::residual_scale`]): every norm below is then of
+//! `R_i / w_i`, with `w` refreshed at each accepted iterate and held fixed during its line
+//! search (so `φ` is a fixed quadratic merit function per iteration and the Armijo test above
+//! holds for the Newton direction). Collocation scales its rows (units of `z'`) by
+//! `1 + max |F|` over the interval, so a layer where `|z'| ~ 1e6` is judged relative to its size
+//! instead of against an absolute residual rounding cannot reach; shooting does not scale.
+//!
 //! # Termination
 //!
 //! - converged: `‖R(u)‖∞ ≤ tol` (checked at the start too, so an exact guess costs no iteration);
-//! - converged at the precision floor: the Newton step satisfies
-//!   `‖Δu‖∞ ≤ step_tol · (1 + ‖u‖∞)` and `‖R(u)‖∞ ≤ step_residual_tol`;
-//! - [`BvpError::Stalled`]: `λ` fell below `min_damping` without an acceptable decrease;
+//! - converged at the precision floor: `‖R(u)‖∞ ≤ step_residual_tol` and either the Newton step
+//!   satisfies `‖Δu‖∞ ≤ step_tol · (1 + ‖u‖∞)`, or (scaled rows only) the full step no longer
+//!   decreases `φ` (rounding, not stagnation);
+//! - [`BvpError::Stalled`]: `λ` fell below `min_damping` without an acceptable decrease while the
+//!   residual is above `step_residual_tol` (real stagnation; the message names the options);
 //! - [`BvpError::MaxIterations`]: `max_iter` linearizations without convergence;
 //! - [`BvpError::SingularJacobian`], [`BvpError::NonFinite`]: reported by the system (or a
 //!   non-finite Newton step / initial residual, detected here).
@@ -50,8 +61,9 @@ pub struct NewtonOptions {
     pub step_tol: f64,
     /// Smallest damping factor of the line search before declaring a stall. Default 1e-6.
     pub min_damping: f64,
-    /// The step criterion only counts as convergence when the residual max-norm is at most this
-    /// (guards against tiny steps of a hugely ill-conditioned system). Default 1e-8.
+    /// Precision floor: at or below this (scaled) residual max-norm, a negligible step or (scaled
+    /// rows) a full step that cannot decrease the residual counts as convergence; above it, a
+    /// line search that fails is [`BvpError::Stalled`]. Default 1e-8.
     pub step_residual_tol: f64,
 }
 

@@ -239,7 +239,7 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
     let log = match opts.scale {
         Scale::Linear => false,
         Scale::Log => {
-            if !(from * to > 0.0) {
+            if from * to <= 0.0 || (from * to).is_nan() {
                 return Err(invalid(
                     "scale",
                     format!("Log with {from} -> {to}"),

@@ -204,12 +204,6 @@ impl BvpSolver for Engine {
     }
 }
 
-impl BvpSolver for &mut Engine {
-    fn solve<B: Bvp + ?Sized>(&mut self, p: &B, g: &Guess) -> Result<Solution, BvpError> {
-        (**self).solve(p, g)
-    }
-}
-
 /// The tip condition of a solve.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
