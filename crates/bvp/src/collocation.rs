@@ -48,21 +48,37 @@
 //! adjacent intervals with `ρ < tol/100` are merged (the residual grows by `2³` resp. `2⁴`, still
 //! far below `tol`); the current `S` interpolates the new starting values. After acceptance the
 //! mesh is also coarsened (up to 8 times) while that removes at least 10 % of the nodes, and the
-//! coarse solution is kept only if it still meets `tol`. A Newton failure on the first mesh is
-//! retried (twice) on the bisected mesh before it is reported.
+//! coarse solution is kept only if it still meets `tol`. Newton failures: see below.
 //!
 //! # Dense output
 //!
-//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there, so for
-//! Lobatto4 [`Solution::eval`] (cubic Hermite) reproduces `S` exactly. For Lobatto6 the nodal
-//! values keep their 6th order, but `eval` between nodes is the cubic Hermite interpolant of
-//! them: 4th order (error `≈ h⁴ |z⁗| / 384`, of the size of `tol`).
+//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there, and
+//! `z'' = d/ds F(s, z(s), p)` at the nodes (a central difference along the tangent `(1, F)`, two
+//! evaluations of `F` per node): [`Solution::eval`] is the quintic Hermite interpolant
+//! ([`crate::Dense::Quintic`], order 6). The collocation polynomials themselves are less accurate
+//! between nodes than at them (Lobatto4's cubic has a larger error constant between nodes;
+//! Lobatto6's quartic is of order 5 against 6 at the nodes); with the quintic, the error on a
+//! fine grid stays within 10× the nodal error (`tests/testset.rs`).
 //!
-//! # Newton thresholds
+//! # Newton thresholds and failures
 //!
-//! Collocation rows are divided by `h_i` (units of `z'`), boundary rows are as given; Newton stops
-//! when the max-norm is at most `min(newton.tol, tol / 20, bc_tol)` (or at the rounding floor, see
-//! [`NewtonOptions`]), so that the algebraic error is negligible against the residual control.
+//! Collocation rows are divided by `h_i` (units of `z'`) and scaled by `1 + max |F_c|` over their
+//! interval ([`crate::newton::NewtonSystem::residual_scale`]), boundary rows are as given; Newton
+//! stops when the scaled max-norm is at most `min(newton.tol, tol / 20, bc_tol)` (or at the
+//! rounding floor `newton.step_residual_tol`, see [`NewtonOptions`]), so that the algebraic
+//! error is negligible against the residual control. A Newton failure (stall or iteration limit,
+//! not NaN/∞) is answered, up to 8 times, by refining where the unconverged iterate's residual
+//! exceeds `tol` (bisecting if nowhere) and restarting from that iterate, as `solve_bvp` does: a
+//! coarse mesh that cannot resolve a layer often has no nearby discrete solution at all.
+//!
+//! # Conditioning check
+//!
+//! At acceptance, `A ≈ ‖J⁻¹ diag(w)‖∞` (two solves with the last LU, `w` the row scales) bounds
+//! how far residuals of size `tol` can move the discrete solution. If `A·tol` exceeds
+//! `1 + ‖u‖∞`, no digit of the solution is certain: the mesh is bisected (twice at most, a coarse
+//! mesh can be ill-conditioned by itself) and then [`BvpError::SingularJacobian`] is reported.
+//! This catches problems without a solution, on which residual control alone "converges" to a
+//! discrete solution of huge amplitude (as `solve_bvp` does), and nearly singular ones.
 
 // Index loops mirror the formulas (several arrays indexed alike).
 #![allow(clippy::needless_range_loop)]
@@ -73,7 +89,7 @@ mod tableau;
 use crate::fd::{bc_jacobian_or_fd, rhs_jacobian_or_fd, FdScheme, FdScratch};
 use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
 use crate::solution::locate;
-use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, NewtonOptions, Solution, Stats, Status};
+use crate::{Bvp, BvpError, BvpSolver, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
 use sparse::{Layout, SparseSystem};
 use tableau::{Tableau, EST_T, EST_W, MAXC};
 
@@ -180,8 +196,11 @@ impl CollocationOptions {
 
 /// Nodes of the default mesh when the guess has fewer than 3.
 const DEFAULT_NODES: usize = 11;
-/// Newton-failure retries on a bisected mesh.
-const MAX_RETRIES: usize = 2;
+/// Newton failures answered by refining the mesh (from the unconverged iterate) before one is
+/// reported.
+const MAX_RETRIES: usize = 8;
+/// Bisections of a mesh whose solution failed the conditioning check before it is reported.
+const MAX_ILL_REFINES: usize = 2;
 /// Coarsening attempts after acceptance.
 const MAX_COARSEN: usize = 8;
 
@@ -273,6 +292,8 @@ struct Disc<'a, P: ?Sized> {
     w: &'a mut Work,
     /// Last NaN/∞ met in a residual evaluation (also in rejected Newton trials).
     non_finite: Option<(&'static str, f64)>,
+    /// The Newton matrix was factorized on this mesh (its LU is usable for estimates).
+    factored: bool,
 }
 
 impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
@@ -306,6 +327,7 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
             lay,
             w,
             non_finite: None,
+            factored: false,
         }
     }
 
@@ -476,6 +498,76 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
             .fold(0.0, |m: f64, v| m.max(v.abs()))
     }
 
+    /// Estimate of `‖J⁻¹ diag(w)‖∞` (`w` the Newton row scales): how much a scaled residual of
+    /// size 1 can move the discrete solution. Two solves with the last LU on this mesh (one
+    /// linearization if Newton did not factorize here), right-hand sides `w` and `(−1)ⁱ w`.
+    fn amplification(&mut self, u: &[f64], stats: &mut Stats) -> Result<f64, BvpError> {
+        self.ensure_points(u, stats)?;
+        let dim = self.lay.dim();
+        let mut w = vec![1.0; dim];
+        self.residual_scale(u, &mut w);
+        let mut best = 0.0_f64;
+        for sign in [1.0, -1.0] {
+            let mut x: Vec<f64> = w
+                .iter()
+                .enumerate()
+                .map(|(i, wi)| if i % 2 == 0 { *wi } else { sign * wi })
+                .collect();
+            if self.factored {
+                self.w.sys.solve(&mut x).map_err(|_| singular())?;
+            } else {
+                let b = x.clone();
+                self.solve_linearized(u, &b, &mut x, stats)?;
+            }
+            best = best.max(x.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
+        }
+        Ok(best)
+    }
+
+    /// `z'' = d/ds F(s, z(s), p)` at the nodes by a central difference along the solution's
+    /// tangent `(1, F)`, step `∛ε · h` (h the shorter adjacent interval): error `O(ε^⅔)`
+    /// relative, far below the 6th-order nodal accuracy once multiplied by `h²` in the quintic.
+    fn second_derivatives(
+        &mut self,
+        p: &[f64],
+        z: &[f64],
+        dz: &[f64],
+        stats: &mut Stats,
+    ) -> Vec<f64> {
+        let n = self.lay.n;
+        let m = self.mesh;
+        let mut d2 = vec![0.0; z.len()];
+        let mut fm = vec![0.0; n];
+        for i in 0..m.len() {
+            let hl = if i > 0 {
+                m[i] - m[i - 1]
+            } else {
+                f64::INFINITY
+            };
+            let hr = if i + 1 < m.len() {
+                m[i + 1] - m[i]
+            } else {
+                f64::INFINITY
+            };
+            let d = f64::EPSILON.cbrt() * hl.min(hr);
+            let (zi, fi) = (&z[i * n..(i + 1) * n], &dz[i * n..(i + 1) * n]);
+            for c in 0..n {
+                self.w.tmp[c] = zi[c] + d * fi[c];
+                self.w.tmp2[c] = zi[c] - d * fi[c];
+            }
+            self.prob.rhs(m[i] + d, &self.w.tmp, p, &mut self.w.fe);
+            self.prob.rhs(m[i] - d, &self.w.tmp2, p, &mut fm);
+            stats.rhs_evals += 2;
+            for c in 0..n {
+                let v = (self.w.fe[c] - fm[c]) / (2.0 * d);
+                // NaN/∞ (e.g. F undefined just outside [a, b]): fall back to 0, i.e. the
+                // quintic degrades to a Hermite-like interpolant there.
+                d2[i * n + c] = if v.is_finite() { v } else { 0.0 };
+            }
+        }
+        d2
+    }
+
     /// Nodal values and slopes (node-major) of the current points.
     fn nodal(&self) -> (Vec<f64>, Vec<f64>) {
         let (n, q) = (self.lay.n, self.tab.q);
@@ -490,6 +582,30 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
 }
 
 impl<P: Bvp + ?Sized> NewtonSystem for Disc<'_, P> {
+    fn residual_scale(&mut self, u: &[f64], w: &mut [f64]) -> bool {
+        if self.w.u_at.as_slice() != u {
+            return false;
+        }
+        // Collocation rows of interval i, component c: 1 + max |F_c| over the interval's points
+        // (the rows are in units of z'); boundary rows as given.
+        let (n, q) = (self.lay.n, self.tab.q);
+        let per = self.lay.stride / n;
+        for i in 0..self.lay.intervals() {
+            for c in 0..n {
+                let mut m = 0.0_f64;
+                for j in 0..=q {
+                    m = m.max(self.w.fpts[(q * i + j) * n + c].abs());
+                }
+                for r in 0..per {
+                    w[i * self.lay.stride + r * n + c] = 1.0 + m;
+                }
+            }
+        }
+        let b = self.lay.bcrow();
+        w[b..].fill(1.0);
+        true
+    }
+
     fn residual(&mut self, u: &[f64], r: &mut [f64], stats: &mut Stats) -> Result<(), BvpError> {
         self.eval_points(u, stats)?;
         let (n, k, q) = (self.lay.n, self.lay.k, self.tab.q);
@@ -646,6 +762,7 @@ impl<P: Bvp + ?Sized> NewtonSystem for Disc<'_, P> {
         }
         stats.factorizations += 1;
         w.sys.factor().map_err(|_| singular())?;
+        self.factored = true;
         for (d, v) in du.iter_mut().zip(r) {
             *d = -v;
         }
@@ -877,6 +994,7 @@ impl BvpSolver for Collocation {
         let mut best: Option<Solution> = None;
         let mut retries = 0;
         let mut coarsenings = 0;
+        let mut ill_refines = 0;
         let mut rms = Vec::new();
 
         loop {
@@ -910,6 +1028,32 @@ impl BvpSolver for Collocation {
                 if let Some(sol) = best {
                     // A coarsening attempt failed: keep the accepted solution.
                     return Ok(with_total_stats(sol, &stats));
+                }
+                if retry && opts.adapt && retries < MAX_RETRIES {
+                    // Refine where the unconverged iterate's residual is large and restart from
+                    // that iterate (as solve_bvp does): a coarse mesh that cannot resolve a layer
+                    // often has no nearby discrete solution at all.
+                    if disc.estimate(&u, &mut rms, &mut stats).is_ok() {
+                        let mut fine = adapt_mesh(&mesh, &rms, opts.tol, true, false);
+                        if fine.len() == mesh.len() {
+                            fine = bisect(&mesh);
+                        }
+                        if fine.len() <= opts.max_nodes {
+                            retries += 1;
+                            let snap = snapshot(&disc, &mesh, &u);
+                            fill_unknowns(
+                                &self.tab,
+                                &fine,
+                                dims,
+                                &snap.params,
+                                |s, o| snap.eval(&self.tab, n, s, o),
+                                &mut u,
+                            );
+                            source = Some(snap);
+                            mesh = fine;
+                            continue;
+                        }
+                    }
                 }
                 if retry
                     && opts.adapt
@@ -947,10 +1091,53 @@ impl BvpSolver for Collocation {
             let bcres = disc.bc_residual(&u, &mut stats);
             let max_rms = rms.iter().fold(0.0_f64, |m, v| m.max(*v));
             stats.error_estimate = Some(max_rms);
-            let converged = max_rms <= opts.tol && bcres <= bc_tol;
+            let mut converged = max_rms <= opts.tol && bcres <= bc_tol;
+            if converged && opts.adapt {
+                // Conditioning: residuals at the tolerance may move the solution by `amp·tol`.
+                // Beyond the size of the solution itself no digit is right: the problem is
+                // numerically singular at this tolerance (e.g. it has no solution and the mesh
+                // only picks one of huge amplitude), reported as a singular Jacobian.
+                let amp = disc
+                    .amplification(&u, &mut stats)
+                    .map_err(|e| attach_stats(e, &stats))?;
+                let size = u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                if amp * opts.tol > 1.0 + size {
+                    converged = false;
+                    if best.is_none() {
+                        // A coarse mesh that does not resolve a layer can be ill-conditioned
+                        // by itself: bisect (from this solution) a few times before reporting.
+                        if ill_refines < MAX_ILL_REFINES && 2 * mesh.len() - 1 <= opts.max_nodes {
+                            ill_refines += 1;
+                            let fine = bisect(&mesh);
+                            let snap = snapshot(&disc, &mesh, &u);
+                            fill_unknowns(
+                                &self.tab,
+                                &fine,
+                                dims,
+                                &snap.params,
+                                |s, o| snap.eval(&self.tab, n, s, o),
+                                &mut u,
+                            );
+                            source = Some(snap);
+                            mesh = fine;
+                            continue;
+                        }
+                        stats.nodes = mesh.len();
+                        return Err(BvpError::SingularJacobian {
+                            iteration: stats.newton_iters,
+                            stats,
+                        });
+                    }
+                }
+            }
             if !opts.adapt || converged {
                 let (z, dz) = disc.nodal();
                 let params = u[disc.lay.pcol()..].to_vec();
+                // Both schemes: the quintic Hermite of the nodes (their cubic / quartic
+                // collocation polynomials are less accurate between nodes than at them).
+                let dense = Dense::Quintic {
+                    d2z: disc.second_derivatives(&params, &z, &dz, &mut stats),
+                };
                 let sol = Solution {
                     n,
                     mesh: mesh.clone(),
@@ -959,6 +1146,7 @@ impl BvpSolver for Collocation {
                     params,
                     status: Status::Converged,
                     stats: stats.clone(),
+                    dense,
                 };
                 if !opts.adapt {
                     return Ok(sol);

@@ -115,6 +115,8 @@
 //! - The last `history` points (solutions included) are kept for [`Continuation::point_at`].
 
 use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, Solution, Stats};
+use argmin::core::{CostFunction, Executor, State as _, TerminationReason, TerminationStatus};
+use argmin::solver::brent::BrentOpt;
 use std::cell::RefCell;
 use std::collections::VecDeque;
 
@@ -1241,7 +1243,7 @@ fn locate_fold<P: ParamBvp + ?Sized, S: BvpSolver>(
     let f2 = ((c.lambda - b.lambda) / (len - tb) - (b.lambda - a.lambda) / tb) / len;
     let kcurv = f2.abs().max(f64::MIN_POSITIVE);
     let xtol = 0.25 * (opts.fold_tol / kcurv).sqrt();
-    let max_eval = 60;
+    let max_eval: u64 = 60;
 
     let mut eval = |t: f64, evals: &mut Vec<(f64, f64, Solution)>| -> Option<f64> {
         // Warm start: linear blend of the evaluated neighbours in t.
@@ -1287,76 +1289,32 @@ fn locate_fold<P: ParamBvp + ?Sized, S: BvpSolver>(
         }
     };
 
-    // Brent's minimisation (Brent 1973, ch. 5) on [0, len] starting from x = t_B.
-    const CGOLD: f64 = 0.381_966_011_250_105_1;
-    let (mut lo, mut hi) = (0.0, len);
-    let mut x = tb;
-    let mut fx = sgn * b.lambda;
-    let (mut w, mut fw, mut v, mut fv) = (x, fx, x, fx);
-    let (mut d, mut e) = (0.0f64, 0.0f64);
-    let mut located = false;
-    while evals.len() - 3 < max_eval {
-        let xm = 0.5 * (lo + hi);
-        let tol1 = 1e-10 * x.abs() + xtol;
-        let tol2 = 2.0 * tol1;
-        if (x - xm).abs() <= tol2 - 0.5 * (hi - lo) {
-            located = true;
-            break;
-        }
-        let mut golden = true;
-        if e.abs() > tol1 {
-            let r = (x - w) * (fx - fv);
-            let mut q = (x - v) * (fx - fw);
-            let mut p = (x - v) * q - (x - w) * r;
-            q = 2.0 * (q - r);
-            if q > 0.0 {
-                p = -p;
-            }
-            q = q.abs();
-            let etemp = e;
-            if p.abs() < (0.5 * q * etemp).abs() && p > q * (lo - x) && p < q * (hi - x) {
-                e = d;
-                d = p / q;
-                let u = x + d;
-                if u - lo < tol2 || hi - u < tol2 {
-                    d = tol1.copysign(xm - x);
+    // Brent's minimisation (argmin's BrentOpt: golden section with parabolic steps) on [0, len];
+    // a failed solve ends it and the best point so far is returned, unlocated
+    let (x, fx, located) = {
+        let cost = FoldCost {
+            f: RefCell::new(|t: f64| eval(t, &mut evals)),
+        };
+        let solver = BrentOpt::new(0.0, len).set_tolerance(1e-10, xtol);
+        match Executor::new(cost, solver)
+            .configure(|st| st.max_iters(max_eval))
+            .run()
+        {
+            Ok(r) => {
+                let st = r.state();
+                let converged = st.get_termination_status()
+                    == &TerminationStatus::Terminated(TerminationReason::SolverConverged);
+                match st.get_best_param() {
+                    Some(&x) => (x, st.get_best_cost(), converged),
+                    None => (tb, sgn * b.lambda, false),
                 }
-                golden = false;
+            }
+            Err(_) => {
+                let n_eval = evals.len() - 2;
+                return fallback(&evals, n_eval);
             }
         }
-        if golden {
-            e = if x >= xm { lo - x } else { hi - x };
-            d = CGOLD * e;
-        }
-        let u = if d.abs() >= tol1 {
-            x + d
-        } else {
-            x + tol1.copysign(d)
-        };
-        let Some(fu) = eval(u, &mut evals) else {
-            let n_eval = evals.len() - 2;
-            return fallback(&evals, n_eval);
-        };
-        if fu <= fx {
-            if u >= x {
-                lo = x;
-            } else {
-                hi = x;
-            }
-            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
-        } else {
-            if u < x {
-                lo = u;
-            } else {
-                hi = u;
-            }
-            if fu <= fw || w == x {
-                (v, fv, w, fw) = (w, fw, u, fu);
-            } else if fu <= fv || v == x || v == w {
-                (v, fv) = (u, fu);
-            }
-        }
-    }
+    };
     let best = evals
         .iter()
         .min_by(|p, q| (p.0 - x).abs().total_cmp(&(q.0 - x).abs()))
@@ -1368,5 +1326,18 @@ fn locate_fold<P: ParamBvp + ?Sized, S: BvpSolver>(
         solution: best.2.clone(),
         located,
         evaluations: evals.len() - 3,
+    }
+}
+
+/// A fold's `sgn·λ(t)` as an argmin cost; a failed solve is an error that ends the search.
+struct FoldCost<F> {
+    f: RefCell<F>,
+}
+
+impl<F: FnMut(f64) -> Option<f64>> CostFunction for FoldCost<F> {
+    type Param = f64;
+    type Output = f64;
+    fn cost(&self, t: &f64) -> Result<f64, argmin::core::Error> {
+        (self.f.borrow_mut())(*t).ok_or_else(|| argmin::core::Error::msg("the solve failed"))
     }
 }

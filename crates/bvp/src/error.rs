@@ -7,11 +7,13 @@ use crate::Stats;
 pub enum Status {
     /// Converged to the requested tolerances.
     Converged,
-    /// Newton made no progress (damping reached its minimum without decrease of the residual).
+    /// Newton made no progress (damping reached its minimum without decrease of the residual,
+    /// which was above the precision floor `newton.step_residual_tol`).
     Stalled,
     /// The Newton iteration limit was reached.
     MaxIterations,
-    /// The Newton matrix was singular (or numerically so).
+    /// The Newton matrix was singular, or numerically so (collocation: residuals at the
+    /// tolerance could move the solution by more than its size).
     SingularJacobian,
     /// The right-hand side, the boundary conditions or a Jacobian produced NaN or infinity.
     NonFinite,
@@ -47,7 +49,11 @@ pub enum BvpError {
         expected: usize,
     },
     /// The Newton matrix is singular.
-    #[error("singular Jacobian at Newton iteration {iteration} ({stats})")]
+    #[error(
+        "singular Jacobian at Newton iteration {iteration}: the problem (or its discretization at \
+         this tolerance) has no locally unique solution; check the boundary conditions and \
+         parameters, or try another guess ({stats})"
+    )]
     SingularJacobian {
         /// Newton iteration at which factorization failed.
         iteration: usize,
@@ -55,7 +61,12 @@ pub enum BvpError {
         stats: Stats,
     },
     /// Damped Newton could not reduce the residual.
-    #[error("Newton stalled at iteration {iteration} with residual {residual:.3e} ({stats})")]
+    #[error(
+        "Newton stalled at iteration {iteration} with (scaled) residual {residual:.3e}: the damped \
+         step cannot reduce it (line search down to newton.min_damping); try a better guess or \
+         solve_by_continuation, or, if this is the rounding floor of the problem, raise \
+         newton.step_residual_tol ({stats})"
+    )]
     Stalled {
         /// Newton iteration.
         iteration: usize,
@@ -65,7 +76,10 @@ pub enum BvpError {
         stats: Stats,
     },
     /// Iteration limit reached.
-    #[error("no convergence in {max_iter} Newton iterations, residual {residual:.3e} ({stats})")]
+    #[error(
+        "no convergence in {max_iter} Newton iterations (raise newton.max_iter), residual \
+         {residual:.3e} ({stats})"
+    )]
     MaxIterations {
         /// The limit.
         max_iter: usize,
@@ -85,7 +99,10 @@ pub enum BvpError {
         stats: Stats,
     },
     /// Collocation mesh would exceed `max_nodes`.
-    #[error("mesh limit: {needed} nodes needed but max_nodes = {max_nodes}; residual {residual:.3e} ({stats})")]
+    #[error(
+        "mesh limit: {needed} nodes needed but max_nodes = {max_nodes} (raise max_nodes or \
+         max_mesh_passes, or loosen tol); residual {residual:.3e} ({stats})"
+    )]
     MeshLimit {
         /// The cap.
         max_nodes: usize,
@@ -97,7 +114,10 @@ pub enum BvpError {
         stats: Stats,
     },
     /// Adaptive integration failed.
-    #[error("integration failed at s = {s}: step size {h:.3e} too small ({stats})")]
+    #[error(
+        "integration failed at s = {s}: step size {h:.3e} too small or max_steps reached (raise \
+         max_steps, loosen rtol/atol, or use more shooting segments) ({stats})"
+    )]
     StepSizeTooSmall {
         /// Where.
         s: f64,

@@ -28,10 +28,19 @@
 //! Problems with a handful of states can be written with arrays instead of slices
 //! ([`fixed::FixedBvp`], wrapped in [`fixed::Fixed`]).
 //!
-//! All solvers return a [`Solution`] (mesh values, dense evaluation, parameters, [`Stats`]) or a
+//! All solvers return a [`Solution`] (mesh values, dense evaluation of the method's order
+//! ([`Dense`]), parameters, [`Stats`]) or a
 //! [`BvpError`] that says why the solve failed and carries the statistics gathered so far.
 //!
-//! [`samples`] holds problems with known answers, shared by tests, benches and examples.
+//! [`solve_by_continuation`] ([`path`]) solves a hard member of a [`ParamBvp`] family by walking
+//! the parameter from an easy value, with any solver.
+//!
+//! [`samples`] holds problems with known answers, shared by tests, benches and examples;
+//! [`testset`] the Cash–Mazzia BVP test set (28 singularly perturbed and nonlinear problems, exact
+//! solutions where they exist), run in full by `cargo run --release -p bvp --example testset`.
+//!
+//! With the feature `ode_solvers`, the module `odes` adapts right-hand sides written as
+//! `ode_solvers::System` and offers single shooting through `ode_solvers`' Dop853 as a baseline.
 #![warn(missing_docs)]
 
 mod error;
@@ -46,17 +55,22 @@ pub mod fd;
 pub mod fixed;
 pub mod linalg;
 pub mod newton;
+#[cfg(feature = "ode_solvers")]
+pub mod odes;
+pub mod path;
 pub mod samples;
 pub mod shooting;
 pub mod tableau;
+pub mod testset;
 
 pub use collocation::{Collocation, CollocationOptions, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Status};
 pub use newton::NewtonOptions;
+pub use path::{solve_by_continuation, PathOptions, PathSolution, Scale};
 pub use problem::{from_fns, Bvp, Dims, FnBvp};
 pub use shooting::{Integrator, Shooting, ShootingOptions};
-pub use solution::{Guess, Solution};
+pub use solution::{Dense, Guess, Solution};
 pub use stats::Stats;
 
 /// A BVP solver: takes a problem and an initial guess, returns a converged solution or says why not.
@@ -66,4 +80,10 @@ pub use stats::Stats;
 pub trait BvpSolver {
     /// Solves `problem` starting from `guess`.
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError>;
+}
+
+impl<S: BvpSolver + ?Sized> BvpSolver for &mut S {
+    fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
+        (**self).solve(problem, guess)
+    }
 }

@@ -19,12 +19,23 @@
 //! failed trial and `λ` is quartered. This is the plain residual-based (not Deuflhard's
 //! affine-invariant) damping: it is cheap and adequate when the unknowns are reasonably scaled.
 //!
+//! # Scaling
+//!
+//! A system may scale its rows ([`NewtonSystem::residual_scale`]): every norm below is then of
+//! `R_i / w_i`, with `w` refreshed at each accepted iterate and held fixed during its line
+//! search (so `φ` is a fixed quadratic merit function per iteration and the Armijo test above
+//! holds for the Newton direction). Collocation scales its rows (units of `z'`) by
+//! `1 + max |F|` over the interval, so a layer where `|z'| ~ 1e6` is judged relative to its size
+//! instead of against an absolute residual rounding cannot reach; shooting does not scale.
+//!
 //! # Termination
 //!
 //! - converged: `‖R(u)‖∞ ≤ tol` (checked at the start too, so an exact guess costs no iteration);
-//! - converged at the precision floor: the Newton step satisfies
-//!   `‖Δu‖∞ ≤ step_tol · (1 + ‖u‖∞)` and `‖R(u)‖∞ ≤ step_residual_tol`;
-//! - [`BvpError::Stalled`]: `λ` fell below `min_damping` without an acceptable decrease;
+//! - converged at the precision floor: `‖R(u)‖∞ ≤ step_residual_tol` and either the Newton step
+//!   satisfies `‖Δu‖∞ ≤ step_tol · (1 + ‖u‖∞)`, or (scaled rows only) the full step no longer
+//!   decreases `φ` (rounding, not stagnation);
+//! - [`BvpError::Stalled`]: `λ` fell below `min_damping` without an acceptable decrease while the
+//!   residual is above `step_residual_tol` (real stagnation; the message names the options);
 //! - [`BvpError::MaxIterations`]: `max_iter` linearizations without convergence;
 //! - [`BvpError::SingularJacobian`], [`BvpError::NonFinite`]: reported by the system (or a
 //!   non-finite Newton step / initial residual, detected here).
@@ -50,8 +61,9 @@ pub struct NewtonOptions {
     pub step_tol: f64,
     /// Smallest damping factor of the line search before declaring a stall. Default 1e-6.
     pub min_damping: f64,
-    /// The step criterion only counts as convergence when the residual max-norm is at most this
-    /// (guards against tiny steps of a hugely ill-conditioned system). Default 1e-8.
+    /// Precision floor: at or below this (scaled) residual max-norm, a negligible step or (scaled
+    /// rows) a full step that cannot decrease the residual counts as convergence; above it, a
+    /// line search that fails is [`BvpError::Stalled`]. Default 1e-8.
     pub step_residual_tol: f64,
 }
 
@@ -131,6 +143,14 @@ pub trait NewtonSystem {
         du: &mut [f64],
         stats: &mut Stats,
     ) -> Result<(), BvpError>;
+
+    /// Scales `w_i > 0` of the residual rows at `u`, whose residual was the last one evaluated:
+    /// convergence, the precision floor and the line search then use `r_i / w_i` (e.g. a
+    /// collocation row in units of `z'` divided by `1 + |F|`, so that layers with `|z'| ~ 1e6`
+    /// are judged relative to their size). Return `false` (the default) for unscaled rows.
+    fn residual_scale(&mut self, _u: &[f64], _w: &mut [f64]) -> bool {
+        false
+    }
 }
 
 /// A [`BvpError::SingularJacobian`] with placeholder statistics (filled in by the driver).
@@ -183,11 +203,23 @@ pub struct Newton {
     du: Vec<f64>,
     ut: Vec<f64>,
     rt: Vec<f64>,
+    w: Vec<f64>,
     iterations: usize,
 }
 
 fn max_norm(x: &[f64]) -> f64 {
     x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+/// Scaled max-norm and merit `½ Σ (r_i / w_i)²`.
+fn scaled(r: &[f64], w: &[f64]) -> (f64, f64) {
+    let (mut f, mut phi) = (0.0_f64, 0.0);
+    for (x, s) in r.iter().zip(w) {
+        let v = x / s;
+        f = f.max(v.abs());
+        phi += v * v;
+    }
+    (f, 0.5 * phi)
 }
 
 fn all_finite(x: &[f64]) -> bool {
@@ -211,6 +243,20 @@ impl Newton {
         self.iterations
     }
 
+    /// Refreshes the row scales at `u` (its residual was the last evaluated); true if scaled.
+    fn rescale<S: NewtonSystem + ?Sized>(&mut self, sys: &mut S, u: &[f64]) -> bool {
+        if sys.residual_scale(u, &mut self.w) {
+            for w in &mut self.w {
+                if !(*w > 0.0 && w.is_finite()) {
+                    *w = 1.0;
+                }
+            }
+            true
+        } else {
+            false
+        }
+    }
+
     /// Runs damped Newton on `sys` from `u` (overwritten by the solution, or by the last accepted
     /// iterate on failure). The residual vector has the length of `u` (square systems).
     pub fn solve<S: NewtonSystem + ?Sized>(
@@ -225,6 +271,8 @@ impl Newton {
             v.clear();
             v.resize(m, 0.0);
         }
+        self.w.clear();
+        self.w.resize(m, 1.0);
         self.iterations = 0;
 
         sys.residual(u, &mut self.r, stats)
@@ -232,8 +280,8 @@ impl Newton {
         if !all_finite(&self.r) {
             return Err(attach(non_finite("residual", f64::NAN), 0, stats));
         }
-        let mut f = max_norm(&self.r);
-        let mut phi = 0.5 * self.r.iter().map(|v| v * v).sum::<f64>();
+        let rows_scaled = self.rescale(sys, u);
+        let (mut f, mut phi) = scaled(&self.r, &self.w);
         stats.residual = f;
         if f <= opts.tol {
             return Ok(());
@@ -271,12 +319,14 @@ impl Newton {
                     Err(e) => return Err(attach(e, it, stats)),
                 };
                 let next = if ok {
-                    let phit = 0.5 * self.rt.iter().map(|v| v * v).sum::<f64>();
+                    let (ftrial, phit) = scaled(&self.rt, &self.w);
                     if phit <= (1.0 - 2.0 * ARMIJO * lambda) * phi {
-                        break (max_norm(&self.rt), phit);
+                        break (ftrial, phit);
                     }
-                    if small_step && f <= opts.step_residual_tol {
-                        // At the rounding floor: the step is negligible and cannot decrease φ.
+                    if f <= opts.step_residual_tol && (small_step || (rows_scaled && lambda == 1.0))
+                    {
+                        // At the rounding floor: the step is negligible, or (rows scaled to
+                        // their size, so f is relative) the full step cannot decrease φ any more.
                         return Ok(());
                     }
                     let denom = phit - phi + 2.0 * phi * lambda;
@@ -308,8 +358,10 @@ impl Newton {
 
             u.copy_from_slice(&self.ut);
             std::mem::swap(&mut self.r, &mut self.rt);
-            f = ft;
-            phi = phit;
+            (f, phi) = (ft, phit);
+            if self.rescale(sys, u) {
+                (f, phi) = scaled(&self.r, &self.w);
+            }
             stats.residual = f;
             if f <= opts.tol || (small_step && f <= opts.step_residual_tol) {
                 return Ok(());

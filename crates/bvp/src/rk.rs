@@ -85,7 +85,14 @@ pub(crate) struct Recorder<'a> {
     pub mesh: &'a mut Vec<f64>,
     pub z: &'a mut Vec<f64>,
     pub dz: &'a mut Vec<f64>,
+    /// DOP853 only: if given, each accepted step is appended here instead, as
+    /// `[s, z (n), dz (n), r1 … r7 (7n)]` ([`DENSE_RECORD`] values per state), with `r1 … r7` the
+    /// coefficients of the 7th-order continuous extension ([`crate::tableau::dop853::D_DENSE`]).
+    pub dense: Option<&'a mut Vec<f64>>,
 }
+
+/// Values per state (plus one for `s`) of a dense record: `z`, `dz`, `r1 … r7`.
+pub(crate) const DENSE_RECORD: usize = 9;
 
 /// Work buffers of the integrator (sized once per problem, reused across integrations).
 #[derive(Clone, Debug, Default)]
@@ -98,6 +105,8 @@ pub(crate) struct RkWork {
     stages: Vec<f64>,
     dfdz: Vec<f64>,
     dfdp: Vec<f64>,
+    /// `f(t + h, y_new)` and the three extra stages of the continuous extension (`4n`).
+    kx: Vec<f64>,
     fd: FdScratch,
 }
 
@@ -161,6 +170,7 @@ impl RkWork {
             (&mut self.stages, 12 * dim),
             (&mut self.dfdz, n * n),
             (&mut self.dfdp, n * k),
+            (&mut self.kx, 4 * n),
         ] {
             v.clear();
             v.resize(len, 0.0);
@@ -203,6 +213,7 @@ impl RkWork {
             stages,
             dfdz,
             dfdp,
+            kx,
             fd,
             ..
         } = self;
@@ -283,12 +294,24 @@ impl RkWork {
                     stats.steps += 1;
                     let err = error_norm(tab, h, &y[..n], &ynew[..n], stages, dim, n, rtol, atol);
                     if err <= 1.0 {
-                        if let Some(r) = rec.as_deref_mut() {
-                            record(r, s, &y[..n], &stages[..n]);
-                        }
                         let s_new = if last { t1 } else { s + h };
-                        y.copy_from_slice(ynew);
-                        f(s_new, y, &mut stages[..dim], stats)?;
+                        let dense = rec.as_deref_mut().and_then(|r| r.dense.as_deref_mut());
+                        if let (Some(out), false) = (dense, var) {
+                            // Continuous extension: f(s_new, y_new) (also the next k1) and three
+                            // extra stages, then the coefficients r1 … r7.
+                            f(s_new, ynew, &mut kx[..n], stats)?;
+                            dense_record(
+                                tab, s, h, y, ynew, stages, kx, ytmp, n, &mut f, stats, out,
+                            )?;
+                            y.copy_from_slice(ynew);
+                            stages[..n].copy_from_slice(&kx[..n]);
+                        } else {
+                            if let Some(r) = rec.as_deref_mut() {
+                                record(r, s, &y[..n], &stages[..n]);
+                            }
+                            y.copy_from_slice(ynew);
+                            f(s_new, y, &mut stages[..dim], stats)?;
+                        }
                         let mut fac = if err == 0.0 {
                             6.0
                         } else {
@@ -322,6 +345,69 @@ impl RkWork {
         }
         Ok(())
     }
+}
+
+/// Computes the extra stages and appends `[s, z, dz, r1 … r7]` of one accepted DOP853 step
+/// (`kx[..n]` holds `f(s + h, y_new)`; `stages` the twelve stages of the step, `dim = n`).
+#[allow(clippy::too_many_arguments)]
+fn dense_record<F>(
+    tab: &Tableau,
+    s: f64,
+    h: f64,
+    y: &[f64],
+    ynew: &[f64],
+    stages: &[f64],
+    kx: &mut [f64],
+    ytmp: &mut [f64],
+    n: usize,
+    f: &mut F,
+    stats: &mut Stats,
+    out: &mut Vec<f64>,
+) -> Result<(), BvpError>
+where
+    F: FnMut(f64, &[f64], &mut [f64], &mut Stats) -> Result<(), BvpError>,
+{
+    use crate::tableau::dop853::{A_DENSE, C_DENSE, D_DENSE};
+    let ns = tab.stages;
+    // Stage j of the extended set: 0..12 the step's, 12 = f_new, 13.. the extra ones.
+    let stage = |j: usize, kx: &[f64], i: usize| -> f64 {
+        if j < ns {
+            stages[j * n + i]
+        } else {
+            kx[(j - ns) * n + i]
+        }
+    };
+    for r in 0..3 {
+        for i in 0..n {
+            let mut acc = 0.0;
+            for (j, &a) in A_DENSE[r].iter().enumerate().take(ns + 1 + r) {
+                if a != 0.0 {
+                    acc += a * stage(j, kx, i);
+                }
+            }
+            ytmp[i] = y[i] + h * acc;
+        }
+        let tail = &mut kx[(r + 1) * n..];
+        f(s + C_DENSE[r] * h, &ytmp[..n], &mut tail[..n], stats)?;
+    }
+    out.push(s);
+    out.extend_from_slice(&y[..n]);
+    out.extend_from_slice(&stages[..n]);
+    out.extend((0..n).map(|i| ynew[i] - y[i]));
+    out.extend((0..n).map(|i| h * stages[i] - (ynew[i] - y[i])));
+    out.extend((0..n).map(|i| 2.0 * (ynew[i] - y[i]) - h * (stages[i] + kx[i])));
+    for d in &D_DENSE {
+        for i in 0..n {
+            let mut acc = 0.0;
+            for (j, &w) in d.iter().enumerate() {
+                if w != 0.0 {
+                    acc += w * stage(j, kx, i);
+                }
+            }
+            out.push(h * acc);
+        }
+    }
+    Ok(())
 }
 
 fn record(r: &mut Recorder<'_>, s: f64, z: &[f64], dz: &[f64]) {

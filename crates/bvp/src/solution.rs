@@ -3,12 +3,36 @@
 use crate::{Stats, Status};
 use std::fmt;
 
+/// How [`Solution::eval`] interpolates between mesh nodes: each solver's own continuous
+/// extension, of the order of the method, so values between nodes are as accurate as the nodes
+/// (up to a small constant).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Dense {
+    /// Cubic Hermite on `z`, `dz` (order 4, C¹): the collocation polynomial of Lobatto4, RK4
+    /// shooting, and solutions built by hand.
+    #[default]
+    Hermite,
+    /// Quintic Hermite on `z`, `dz` and `d2z ≈ z''` at the nodes (node-major, like `z`): order 6,
+    /// C². Lobatto6 (its own quartic collocation polynomial is only of order 5 between nodes).
+    Quintic {
+        /// Second derivatives at the nodes, `d/ds F(s, z(s), p)`.
+        d2z: Vec<f64>,
+    },
+    /// DOP853's continuous extension of order 7 (Hairer's `contd8`) on every step: `7n`
+    /// coefficients `r1 … r7` per mesh interval (blocks of `n`), see
+    /// [`crate::tableau::dop853::D_DENSE`].
+    Dop853 {
+        /// Coefficients, interval-major.
+        coef: Vec<f64>,
+    },
+}
+
 /// A converged solution: values and derivatives on a mesh, unknown parameters, statistics.
 ///
 /// Values are stored node-major: `z[i * n + j]` is state `j` at `mesh[i]`; `dz` likewise holds
-/// `F(s_i, z_i, p)`. [`Solution::eval`] interpolates with cubic Hermite polynomials, which is
-/// fourth-order accurate and continuous in value and slope (collocation solvers may override
-/// accuracy by using finer meshes).
+/// `F(s_i, z_i, p)`. [`Solution::eval`] interpolates with the solver's continuous extension
+/// ([`Dense`]: cubic Hermite for Lobatto4 and RK4, quintic Hermite for Lobatto6, DOP853's own
+/// 7th-order extension for adaptive shooting).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Solution {
     /// Number of states.
@@ -25,6 +49,9 @@ pub struct Solution {
     pub status: Status,
     /// Statistics of the solve.
     pub stats: Stats,
+    /// Interpolation between the nodes (not serialized).
+    #[serde(skip)]
+    pub dense: Dense,
 }
 
 impl Solution {
@@ -53,10 +80,53 @@ impl Solution {
         self.node(self.mesh.len() - 1)
     }
 
-    /// Evaluates the solution at `s` (clamped to `[a, b]`) into `out` (length `n`) by cubic Hermite
-    /// interpolation between nodes.
+    /// Evaluates the solution at `s` (clamped to `[a, b]`) into `out` (length `n`) with the
+    /// solver's continuous extension ([`Dense`]).
     pub fn eval(&self, s: f64, out: &mut [f64]) {
-        hermite_eval(&self.mesh, &self.z, &self.dz, self.n, s, out);
+        let n = self.n;
+        let ok = |len: usize, per: usize| len == per * n && self.mesh.len() >= 2;
+        match &self.dense {
+            Dense::Quintic { d2z } if ok(d2z.len(), self.mesh.len()) => {
+                let i = locate(&self.mesh, s);
+                let h = self.mesh[i + 1] - self.mesh[i];
+                let t = ((s - self.mesh[i]) / h).clamp(0.0, 1.0);
+                let (t2, t3) = (t * t, t * t * t);
+                let (t4, t5) = (t3 * t, t3 * t2);
+                let h0 = 1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5;
+                let h1 = 1.0 - h0;
+                let g0 = h * (t - 6.0 * t3 + 8.0 * t4 - 3.0 * t5);
+                let g1 = h * (-4.0 * t3 + 7.0 * t4 - 3.0 * t5);
+                let k0 = 0.5 * h * h * (t2 - 3.0 * t3 + 3.0 * t4 - t5);
+                let k1 = 0.5 * h * h * (t3 - 2.0 * t4 + t5);
+                let (a, b) = (i * n, (i + 1) * n);
+                for j in 0..n {
+                    out[j] = h0 * self.z[a + j]
+                        + h1 * self.z[b + j]
+                        + g0 * self.dz[a + j]
+                        + g1 * self.dz[b + j]
+                        + k0 * d2z[a + j]
+                        + k1 * d2z[b + j];
+                }
+            }
+            Dense::Dop853 { coef } if ok(coef.len(), 7 * (self.mesh.len() - 1)) => {
+                let i = locate(&self.mesh, s);
+                let h = self.mesh[i + 1] - self.mesh[i];
+                let t = ((s - self.mesh[i]) / h).clamp(0.0, 1.0);
+                let u = 1.0 - t;
+                let c = &coef[7 * n * i..7 * n * (i + 1)];
+                for j in 0..n {
+                    let r = |m: usize| c[m * n + j];
+                    let v = r(5) + t * r(6);
+                    let v = r(4) + u * v;
+                    let v = r(3) + t * v;
+                    let v = r(2) + u * v;
+                    let v = r(1) + t * v;
+                    let v = r(0) + u * v;
+                    out[j] = self.z[i * n + j] + t * v;
+                }
+            }
+            _ => hermite_eval(&self.mesh, &self.z, &self.dz, n, s, out),
+        }
     }
 
     /// Convenience: evaluates at `s` into a new vector.

@@ -23,7 +23,8 @@ pub struct Stats {
     pub nodes: usize,
     /// Mesh refinement / coarsening passes (collocation).
     pub mesh_passes: usize,
-    /// Max-norm of the final nonlinear residual (boundary and continuity/collocation conditions).
+    /// Max-norm of the final nonlinear residual (boundary and continuity/collocation conditions;
+    /// collocation rows divided by `1 + |F|`, see [`crate::newton::NewtonSystem::residual_scale`]).
     pub residual: f64,
     /// Estimated error of the solution (collocation: max scaled residual of the ODE between nodes).
     pub error_estimate: Option<f64>,

@@ -646,6 +646,7 @@ fn invalid_options_are_rejected() {
         params: vec![],
         status: Status::Converged,
         stats: Default::default(),
+        dense: Default::default(),
     };
     let bad = [
         ContinuationOptions {

@@ -296,6 +296,7 @@ impl<P: Profile> Shooter<P> {
                 residual,
                 ..Stats::default()
             },
+            dense: bvp::Dense::Hermite,
         }
     }
 }

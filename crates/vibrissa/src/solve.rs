@@ -206,12 +206,6 @@ impl BvpSolver for Engine {
     }
 }
 
-impl BvpSolver for &mut Engine {
-    fn solve<B: Bvp + ?Sized>(&mut self, p: &B, g: &Guess) -> Result<Solution, BvpError> {
-        (**self).solve(p, g)
-    }
-}
-
 /// The tip condition of a solve.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -651,6 +645,7 @@ pub(crate) fn guess_as_solution(g: &Guess) -> Solution {
         params: g.params.clone(),
         status: bvp::Status::Converged,
         stats: Stats::default(),
+        dense: bvp::Dense::Hermite,
     }
 }
 

@@ -1,0 +1,384 @@
+//! The Cash–Mazzia test-set study: every implemented problem (`bvp::testset`) × ε ∈ {1e-1, 1e-2,
+//! 1e-3, 1e-4} × tol ∈ {1e-4, 1e-6, 1e-8}, each method with default options from the same
+//! 101-node straight-line guess; `+cont`: the same solve and, if it fails,
+//! `solve_by_continuation` from ε = 0.1 (straight-line guess there).
+//!
+//! ```text
+//! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR]
+//! ```
+//!
+//! Writes `DIR/bvp.csv` (one row per case and method) and `DIR/summary.md` (per method: converged
+//! count, fine-grid error against tol, nodes, time; beside scipy's `solve_bvp` when
+//! `DIR/scipy.csv` from `scipy_testset.py` is present). Default DIR: `data/bvp_testset`.
+//!
+//! Error: `max |y − y_exact| / (1 + |y_exact|)` over a fine grid (2001 equal points plus 9 inside
+//! every mesh interval of the solution) and, separately, over the solution's mesh nodes.
+
+use bvp::testset::CashMazzia;
+use bvp::{
+    solve_by_continuation, BvpError, BvpSolver, Collocation, CollocationOptions, Integrator,
+    PathOptions, Scheme, Shooting, ShootingOptions, Solution,
+};
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+const EPS: [f64; 4] = [1e-1, 1e-2, 1e-3, 1e-4];
+const TOLS: [f64; 3] = [1e-4, 1e-6, 1e-8];
+const GUESS_NODES: usize = 101;
+const EPS_EASY: f64 = 0.1;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Method {
+    Lobatto4,
+    Lobatto6,
+    Shoot,
+    MShoot,
+}
+
+impl Method {
+    fn name(self) -> &'static str {
+        match self {
+            Method::Lobatto4 => "lobatto4",
+            Method::Lobatto6 => "lobatto6",
+            Method::Shoot => "shoot",
+            Method::MShoot => "mshoot16",
+        }
+    }
+}
+
+enum Solver {
+    Coll(Collocation),
+    Shoot(Shooting),
+}
+
+impl BvpSolver for Solver {
+    fn solve<P: bvp::Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &bvp::Guess,
+    ) -> Result<Solution, BvpError> {
+        match self {
+            Solver::Coll(s) => s.solve(problem, guess),
+            Solver::Shoot(s) => s.solve(problem, guess),
+        }
+    }
+}
+
+fn solver(m: Method, tol: f64) -> Solver {
+    match m {
+        Method::Lobatto4 | Method::Lobatto6 => Solver::Coll(
+            Collocation::new(CollocationOptions {
+                scheme: if m == Method::Lobatto4 {
+                    Scheme::Lobatto4
+                } else {
+                    Scheme::Lobatto6
+                },
+                tol,
+                ..CollocationOptions::default()
+            })
+            .expect("valid options"),
+        ),
+        Method::Shoot | Method::MShoot => Solver::Shoot(
+            Shooting::new(ShootingOptions {
+                integrator: Integrator::Adaptive {
+                    rtol: 1e-2 * tol,
+                    atol: 1e-2 * tol,
+                },
+                segments: if m == Method::MShoot { 16 } else { 1 },
+                ..ShootingOptions::default()
+            })
+            .expect("valid options"),
+        ),
+    }
+}
+
+/// Fine-grid and nodal scaled errors of `y` against the exact solution.
+fn errors(p: &CashMazzia, eps: f64, sol: &Solution) -> (f64, f64) {
+    let Some(_) = p.exact(0.0, eps) else {
+        return (f64::NAN, f64::NAN);
+    };
+    let err = |x: f64, y: f64| {
+        let e = p.exact(x, eps).map_or(f64::NAN, |v| v[0]);
+        (y - e).abs() / (1.0 + e.abs())
+    };
+    let (a, b) = p.span();
+    let mut fine = 0.0_f64;
+    let mut out = [0.0; 2];
+    let mut at = |x: f64, fine: &mut f64| {
+        sol.eval(x, &mut out);
+        *fine = fine.max(err(x, out[0]));
+    };
+    for i in 0..=2000 {
+        at(a + (b - a) * i as f64 / 2000.0, &mut fine);
+    }
+    for w in sol.mesh.windows(2) {
+        for j in 1..10 {
+            at(w[0] + (w[1] - w[0]) * j as f64 / 10.0, &mut fine);
+        }
+    }
+    let mut node = 0.0_f64;
+    for (i, &x) in sol.mesh.iter().enumerate() {
+        node = node.max(err(x, sol.node(i)[0]));
+    }
+    (fine.max(node), node)
+}
+
+struct Row {
+    id: u8,
+    eps: f64,
+    tol: f64,
+    method: String,
+    status: String,
+    error: f64,
+    node_error: f64,
+    nodes: usize,
+    time: f64,
+}
+
+fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
+    let guess0 = p.guess(if cont { EPS_EASY } else { eps }, GUESS_NODES);
+    let mut best = f64::INFINITY;
+    let mut result = None;
+    let t_all = Instant::now();
+    // Repeat fast solves for a steadier time (minimum of the repeats).
+    for _ in 0..20 {
+        let mut s = solver(m, tol);
+        let t = Instant::now();
+        let r = if cont {
+            // Direct first (the guess at eps), continuation from EPS_EASY if that fails.
+            match s.solve(&p.at(eps), &p.guess(eps, GUESS_NODES)) {
+                Ok(sol) => Ok(sol),
+                Err(_) => {
+                    let opts = PathOptions::default();
+                    solve_by_continuation(p, &mut s, &guess0, EPS_EASY, eps, &opts)
+                        .map(|r| r.solution)
+                }
+            }
+        } else {
+            s.solve(&p.at(eps), &guess0)
+        };
+        best = best.min(t.elapsed().as_secs_f64());
+        let done = t_all.elapsed().as_secs_f64() > 0.05;
+        result = Some(r);
+        if done {
+            break;
+        }
+    }
+    let r = result.expect("at least one run");
+    let method = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
+    match r {
+        Ok(sol) => {
+            let (error, node_error) = errors(p, eps, &sol);
+            Row {
+                id: p.id(),
+                eps,
+                tol,
+                method,
+                status: "Converged".into(),
+                error,
+                node_error,
+                nodes: sol.len(),
+                time: best,
+            }
+        }
+        Err(e) => Row {
+            id: p.id(),
+            eps,
+            tol,
+            method,
+            status: format!("{:?}", e.status()),
+            error: f64::NAN,
+            node_error: f64::NAN,
+            nodes: e.stats().map_or(0, |s| s.nodes),
+            time: best,
+        },
+    }
+}
+
+/// scipy rows keyed by (id, eps, tol): (converged, error, nodes, time).
+/// (problem, eps, tol) as formatted keys.
+type Key = (u8, String, String);
+/// scipy: (converged, error, nodes, time).
+type ScipyRow = (bool, f64, usize, f64);
+/// One case of a method: (converged, error, tol, nodes, time, key).
+type Case = (bool, f64, f64, usize, f64, Key);
+
+fn read_scipy(path: &std::path::Path) -> HashMap<Key, ScipyRow> {
+    let mut out = HashMap::new();
+    let Ok(text) = std::fs::read_to_string(path) else {
+        return out;
+    };
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() < 8 {
+            continue;
+        }
+        let key = (
+            f[0].parse().unwrap_or(0),
+            format!("{:e}", f[1].parse::<f64>().unwrap_or(f64::NAN)),
+            format!("{:e}", f[2].parse::<f64>().unwrap_or(f64::NAN)),
+        );
+        out.insert(
+            key,
+            (
+                f[4] == "Converged",
+                f[5].parse().unwrap_or(f64::NAN),
+                f[7].parse().unwrap_or(0),
+                f[8].parse().unwrap_or(f64::NAN),
+            ),
+        );
+    }
+    out
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let quick = args.iter().any(|a| a == "--quick");
+    let only: Option<String> = args
+        .iter()
+        .position(|a| a == "--methods")
+        .and_then(|i| args.get(i + 1).cloned());
+    let dir = args
+        .iter()
+        .position(|a| a == "--out")
+        .and_then(|i| args.get(i + 1).cloned())
+        .unwrap_or_else(|| "data/bvp_testset".into());
+    let dir = std::path::PathBuf::from(dir);
+    std::fs::create_dir_all(&dir)?;
+
+    let methods = [
+        (Method::Lobatto4, false),
+        (Method::Lobatto6, false),
+        (Method::Shoot, false),
+        (Method::MShoot, false),
+        (Method::Lobatto4, true),
+        (Method::Lobatto6, true),
+        (Method::Shoot, true),
+        (Method::MShoot, true),
+    ];
+    let problems: Vec<CashMazzia> = if quick {
+        [1, 6, 20, 23, 25]
+            .iter()
+            .filter_map(|&i| CashMazzia::new(i))
+            .collect()
+    } else {
+        CashMazzia::all().collect()
+    };
+    let mut rows = Vec::new();
+    for &(m, cont) in &methods {
+        let name = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
+        if let Some(o) = &only {
+            if !o.split(',').any(|x| x == name) {
+                continue;
+            }
+        }
+        let t = Instant::now();
+        for p in &problems {
+            for &eps in &EPS {
+                for &tol in &TOLS {
+                    rows.push(run_case(p, eps, tol, m, cont));
+                }
+            }
+        }
+        eprintln!("{name}: {:.1} s", t.elapsed().as_secs_f64());
+    }
+
+    let mut csv = String::from("problem,eps,tol,method,status,error,node_error,nodes,time_s\n");
+    for r in &rows {
+        writeln!(
+            csv,
+            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e}",
+            r.id, r.eps, r.tol, r.method, r.status, r.error, r.node_error, r.nodes, r.time
+        )?;
+    }
+    std::fs::write(dir.join("bvp.csv"), csv)?;
+
+    // Summary.
+    let scipy = read_scipy(&dir.join("scipy.csv"));
+    let cases = problems.len() * EPS.len() * TOLS.len();
+    let exact_cases = problems.iter().filter(|p| p.has_exact()).count() * EPS.len() * TOLS.len();
+    let mut md = String::new();
+    writeln!(
+        md,
+        "Cash–Mazzia test set: {} problems × ε ∈ {{1e-1, 1e-2, 1e-3, 1e-4}} × tol ∈ {{1e-4, 1e-6, 1e-8}} = {cases} cases ({exact_cases} with exact solutions); 101-node straight-line guess; `+cont`: on failure, `solve_by_continuation` from ε = 0.1.\n",
+        problems.len()
+    )?;
+    writeln!(md, "| solver | converged / {cases} | error ≤ 10·tol (of converged with exact) | median error/tol | median nodes | time vs scipy (geo. mean, both converged) |")?;
+    writeln!(md, "|---|---|---|---|---|---|")?;
+    let summary = |name: &str, rs: &[Case]| {
+        let conv = rs.iter().filter(|r| r.0).count();
+        let with_exact: Vec<_> = rs.iter().filter(|r| r.0 && r.1.is_finite()).collect();
+        let good = with_exact.iter().filter(|r| r.1 <= 10.0 * r.2).count();
+        let mut ratios: Vec<f64> = with_exact.iter().map(|r| r.1 / r.2).collect();
+        ratios.sort_by(f64::total_cmp);
+        let med = ratios.get(ratios.len() / 2).copied().unwrap_or(f64::NAN);
+        let mut nodes: Vec<usize> = rs.iter().filter(|r| r.0).map(|r| r.3).collect();
+        nodes.sort_unstable();
+        let medn = nodes.get(nodes.len() / 2).copied().unwrap_or(0);
+        let mut logs = Vec::new();
+        for r in rs.iter().filter(|r| r.0) {
+            if let Some(s) = scipy.get(&r.5) {
+                if s.0 && s.3 > 0.0 && r.4 > 0.0 {
+                    logs.push((s.3 / r.4).ln());
+                }
+            }
+        }
+        let speed = if logs.is_empty() || name == "scipy solve_bvp" {
+            "—".to_string()
+        } else {
+            format!(
+                "{:.1}× faster ({} cases)",
+                (logs.iter().sum::<f64>() / logs.len() as f64).exp(),
+                logs.len()
+            )
+        };
+        let pct = if with_exact.is_empty() {
+            "—".into()
+        } else {
+            format!(
+                "{good}/{} ({:.0} %)",
+                with_exact.len(),
+                100.0 * good as f64 / with_exact.len() as f64
+            )
+        };
+        format!("| {name} | {conv} | {pct} | {med:.2e} | {medn} | {speed} |")
+    };
+    if !scipy.is_empty() {
+        let rs: Vec<_> = scipy
+            .iter()
+            .filter(|(k, _)| problems.iter().any(|p| p.id() == k.0))
+            .map(|(k, v)| {
+                let tol: f64 = k.2.parse().unwrap_or(f64::NAN);
+                (v.0, v.1, tol, v.2, v.3, k.clone())
+            })
+            .collect();
+        writeln!(md, "{}", summary("scipy solve_bvp", &rs))?;
+    }
+    let mut names: Vec<String> = Vec::new();
+    for r in &rows {
+        if !names.contains(&r.method) {
+            names.push(r.method.clone());
+        }
+    }
+    for name in &names {
+        let rs: Vec<_> = rows
+            .iter()
+            .filter(|r| &r.method == name)
+            .map(|r| {
+                (
+                    r.status == "Converged",
+                    r.error,
+                    r.tol,
+                    r.nodes,
+                    r.time,
+                    (r.id, format!("{:e}", r.eps), format!("{:e}", r.tol)),
+                )
+            })
+            .collect();
+        writeln!(md, "{}", summary(name, &rs))?;
+    }
+    std::fs::write(dir.join("summary.md"), &md)?;
+    print!("{md}");
+    Ok(())
+}

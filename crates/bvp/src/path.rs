@@ -1,0 +1,335 @@
+//! Solving a hard member of a family by continuation from an easy one: [`solve_by_continuation`].
+//!
+//! Singularly perturbed problems (`ε y'' = …` with `ε` small), stiff loads and strong
+//! nonlinearities often defeat Newton from any simple guess, while the same problem at a mild
+//! parameter value is easy and its solution is an excellent guess for a slightly harder one.
+//! [`solve_by_continuation`] solves the family member at `from` from the user's guess, then walks
+//! the parameter to `to` with [`Continuation`] (its step control: a failed corrector halves the
+//! step, an easy one doubles it, bounded by `ds_min`/`ds_max`) and returns the solution at exactly
+//! `to`. Every [`BvpSolver`] works (shooting, multiple shooting, collocation); collocation meshes
+//! adapt along the way, so the final mesh resolves the layers of the hard member.
+//!
+//! # Scale
+//!
+//! A parameter spanning decades (`ε` from 1e-1 to 1e-4) is walked in `μ = ln λ` ([`Scale::Log`];
+//! chosen by [`Scale::Auto`] when `from` and `to` have the same sign and differ by more than a
+//! factor 10): equal steps in `μ` are equal ratios of `ε`, which is how layer widths change.
+//! Steps (`ds`, `ds_min`, `ds_max` of [`ContinuationOptions`]) are then measured in `μ`.
+//!
+//! # Method
+//!
+//! The default is natural continuation ([`Method::Natural`]): step the parameter, correct with it
+//! fixed, predictor the secant through the last two solutions. Its steps are measured in the
+//! parameter alone, which suits layer problems (their boundary slopes grow like `1/ε`, so an
+//! arclength in the boundary values would force tiny parameter steps). If the path folds (a limit
+//! point before `to`), natural continuation stops there with [`BvpError::Continuation`] and a
+//! "fold?" hint; choose [`Method::PseudoArclength`] to pass folds (the result is then the first
+//! point found at `to` along the branch).
+//!
+//! ```
+//! use bvp::testset::CashMazzia;
+//! use bvp::{solve_by_continuation, Collocation, CollocationOptions, PathOptions};
+//!
+//! // Problem 20 of the Cash–Mazzia set, ε y'' + y'² = 1, is out of Newton's reach from a
+//! // straight line at ε = 1e-3, but easy at ε = 0.1.
+//! let p = CashMazzia::new(20).unwrap();
+//! let mut solver = Collocation::new(CollocationOptions::default())?;
+//! let guess = p.guess(0.1, 101);
+//! let res = solve_by_continuation(&p, &mut solver, &guess, 0.1, 1e-3, &PathOptions::default())?;
+//! let y = res.solution.at(0.745)[0];
+//! let exact = p.exact(0.745, 1e-3).unwrap()[0];
+//! assert!((y - exact).abs() < 1e-5);
+//! # Ok::<(), bvp::BvpError>(())
+//! ```
+
+use crate::continuation::{Continuation, ContinuationOptions, Member, Method, ParamBvp};
+use crate::{BvpError, BvpSolver, Dims, Guess, Solution, Stats};
+
+/// How the parameter is walked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
+pub enum Scale {
+    /// `Log` when `from` and `to` have the same sign and `|ln(to/from)| > ln 10`, else `Linear`.
+    #[default]
+    Auto,
+    /// Steps in `λ`.
+    Linear,
+    /// Steps in `ln |λ|` (needs `from`, `to` nonzero and of the same sign).
+    Log,
+}
+
+/// Options of [`solve_by_continuation`].
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PathOptions {
+    /// Parameter scale. Default [`Scale::Auto`].
+    pub scale: Scale,
+    /// Continuation options. Default: those of [`ContinuationOptions::default`] with
+    /// `method = Natural`, `ds = 0.2`, `ds_min = 1e-4`, `ds_max = 1.0` (in the units of `scale`)
+    /// and `max_steps = 500`. `lambda_min`, `lambda_max` and `direction` are set from `from` and
+    /// `to` and ignored here.
+    pub continuation: ContinuationOptions,
+}
+
+impl Default for PathOptions {
+    fn default() -> Self {
+        PathOptions {
+            scale: Scale::Auto,
+            continuation: ContinuationOptions {
+                method: Method::Natural,
+                ds: 0.2,
+                ds_min: 1e-4,
+                ds_max: 1.0,
+                max_steps: 500,
+                ..ContinuationOptions::default()
+            },
+        }
+    }
+}
+
+impl PathOptions {
+    /// Checks the continuation options (bounds and direction excepted).
+    pub fn validate(&self) -> Result<(), BvpError> {
+        ContinuationOptions {
+            lambda_min: f64::NEG_INFINITY,
+            lambda_max: f64::INFINITY,
+            direction: 1.0,
+            ..self.continuation.clone()
+        }
+        .validate()
+    }
+}
+
+/// The solution at `to` and how it was reached.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PathSolution {
+    /// The solution of the member at `to` (its `stats` are those of the last solve).
+    pub solution: Solution,
+    /// Parameter values of the accepted points, `from` first and `to` last.
+    pub path: Vec<f64>,
+    /// Work of the whole walk: every solve, rejected steps included.
+    pub stats: Stats,
+}
+
+/// The family in `μ = ln(λ/sign)`: `λ = sign·e^μ`.
+struct LogFamily<'a, P: ?Sized> {
+    family: &'a P,
+    sign: f64,
+}
+
+impl<P: ParamBvp + ?Sized> ParamBvp for LogFamily<'_, P> {
+    fn dims(&self) -> Dims {
+        self.family.dims()
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.family.interval()
+    }
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], mu: f64, dz: &mut [f64]) {
+        self.family.rhs(s, z, p, self.sign * mu.exp(), dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], mu: f64, res: &mut [f64]) {
+        self.family.bc(za, zb, p, self.sign * mu.exp(), res)
+    }
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        p: &[f64],
+        mu: f64,
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+        dfdl: &mut [f64],
+    ) -> bool {
+        let lambda = self.sign * mu.exp();
+        let ok = self.family.rhs_jacobian(s, z, p, lambda, dfdz, dfdp, dfdl);
+        dfdl.iter_mut().for_each(|d| *d *= lambda);
+        ok
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64],
+        zb: &[f64],
+        p: &[f64],
+        mu: f64,
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+        dgl: &mut [f64],
+    ) -> bool {
+        let lambda = self.sign * mu.exp();
+        let ok = self
+            .family
+            .bc_jacobian(za, zb, p, lambda, dga, dgb, dgp, dgl);
+        dgl.iter_mut().for_each(|d| *d *= lambda);
+        ok
+    }
+}
+
+/// The identity reparametrization (so both scales share one code path).
+struct Same<'a, P: ?Sized>(&'a P);
+
+impl<P: ParamBvp + ?Sized> ParamBvp for Same<'_, P> {
+    fn dims(&self) -> Dims {
+        self.0.dims()
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.0.interval()
+    }
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], l: f64, dz: &mut [f64]) {
+        self.0.rhs(s, z, p, l, dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], l: f64, res: &mut [f64]) {
+        self.0.bc(za, zb, p, l, res)
+    }
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        p: &[f64],
+        l: f64,
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+        dfdl: &mut [f64],
+    ) -> bool {
+        self.0.rhs_jacobian(s, z, p, l, dfdz, dfdp, dfdl)
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64],
+        zb: &[f64],
+        p: &[f64],
+        l: f64,
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+        dgl: &mut [f64],
+    ) -> bool {
+        self.0.bc_jacobian(za, zb, p, l, dga, dgb, dgp, dgl)
+    }
+}
+
+fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static str) -> BvpError {
+    BvpError::InvalidOption {
+        name,
+        value: value.to_string(),
+        reason,
+    }
+}
+
+/// Solves the member of `family` at `to` by continuation from the member at `from`, which is
+/// solved first from `guess` (see the [module docs](self)). `solver` is used for every solve.
+///
+/// Errors: the solver's error at `from` (as is); [`BvpError::Continuation`] when the walk
+/// cannot proceed even at `ds_min` (with the parameter reached and the solver's last error), or
+/// when `max_steps` run out or the branch turns back before `to`.
+pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
+    family: &P,
+    solver: &mut S,
+    guess: &Guess,
+    from: f64,
+    to: f64,
+    opts: &PathOptions,
+) -> Result<PathSolution, BvpError> {
+    opts.validate()?;
+    if !(from.is_finite() && to.is_finite()) {
+        return Err(invalid(
+            "from/to",
+            format!("{from} -> {to}"),
+            "must be finite",
+        ));
+    }
+    let log = match opts.scale {
+        Scale::Linear => false,
+        Scale::Log => {
+            if from * to <= 0.0 || (from * to).is_nan() {
+                return Err(invalid(
+                    "scale",
+                    format!("Log with {from} -> {to}"),
+                    "Log needs from and to nonzero and of the same sign",
+                ));
+            }
+            true
+        }
+        Scale::Auto => from * to > 0.0 && (to / from).ln().abs() > std::f64::consts::LN_10,
+    };
+    let start = solver.solve(&Member::new(family, from), guess)?;
+    let mut stats = start.stats.clone();
+    if from == to {
+        return Ok(PathSolution {
+            solution: start,
+            path: vec![from],
+            stats,
+        });
+    }
+    let sign = from.signum();
+    let walk = |solver: &mut S, stats: &mut Stats, fam: &dyn ParamBvp, m0: f64, m1: f64| {
+        let copts = ContinuationOptions {
+            lambda_min: m0.min(m1),
+            lambda_max: m0.max(m1),
+            direction: (m1 - m0).signum(),
+            ..opts.continuation.clone()
+        };
+        let mut path = Vec::new();
+        let cont = Continuation::new(fam, &mut *solver, start.clone(), m0, copts)?;
+        let mut last_lambda = m0;
+        for point in cont {
+            let point = match point {
+                Ok(p) => p,
+                Err(e) => {
+                    if let Some(s) = e.stats() {
+                        stats.accumulate(s);
+                    }
+                    return Err(e);
+                }
+            };
+            if point.step > 0 {
+                stats.accumulate(&point.stats);
+            }
+            path.push(point.lambda);
+            last_lambda = point.lambda;
+            if point.step > 0 && point.on_bound {
+                if point.lambda == m1 {
+                    return Ok((point.solution, path));
+                }
+                break;
+            }
+        }
+        Err(BvpError::Continuation {
+            step: path.len(),
+            lambda: last_lambda,
+            ds: 0.0,
+            hint: " (the branch turned back or max_steps ran out before reaching the target)",
+            source: Box::new(BvpError::MaxIterations {
+                max_iter: opts.continuation.max_steps,
+                residual: f64::NAN,
+                stats: stats.clone(),
+            }),
+        })
+    };
+    let (solution, path) = if log {
+        let fam = LogFamily { family, sign };
+        let (sol, path) = walk(
+            solver,
+            &mut stats,
+            &fam,
+            (from / sign).ln(),
+            (to / sign).ln(),
+        )?;
+        (sol, path.into_iter().map(|m| sign * m.exp()).collect())
+    } else {
+        walk(solver, &mut stats, &Same(family), from, to)?
+    };
+    let mut path: Vec<f64> = path;
+    if let Some(last) = path.last_mut() {
+        *last = to;
+    }
+    if let Some(first) = path.first_mut() {
+        *first = from;
+    }
+    stats.nodes = solution.stats.nodes;
+    stats.residual = solution.stats.residual;
+    stats.error_estimate = solution.stats.error_estimate;
+    Ok(PathSolution {
+        solution,
+        path,
+        stats,
+    })
+}
