@@ -20,7 +20,8 @@
 //!
 //! Environment: `WP_CAP_S` (default 8): a method's tolerance sweep on one problem stops after the
 //! first run slower than this many seconds (that run is kept); `WP_QUICK=1`: fewer tolerances
-//! (smoke test); `WP_PLOT_ONLY=1`: redraw the SVG from the CSV in the output directory.
+//! (smoke test); `WP_PLOT_ONLY=1`: redraw the SVG and `summary.md` from the CSV in the output
+//! directory.
 //!
 //! Times are wall-clock, single thread, the minimum over batches (each batch repeats a fast run
 //! until it lasts ≥ 0.1 s), so they are comparable within one run of this program.
@@ -299,6 +300,28 @@ impl CfCurve {
     }
 }
 
+/// The `(d, μ)` of a scan's grid points (without the row of the event that ends it).
+fn grid_points(points: &[vibrissa::ScanPoint]) -> Vec<(f64, f64)> {
+    points
+        .iter()
+        .filter(|p| p.event.is_none())
+        .map(|p| (p.d, p.mu))
+        .collect()
+}
+
+/// Max |Δμ| over the displacements present in both lists (the same grid values), and how many.
+fn max_diff(a: &[(f64, f64)], b: &[(f64, f64)]) -> (f64, usize) {
+    let mut err: f64 = 0.0;
+    let mut n = 0;
+    for &(d, mu) in a {
+        if let Some(&(_, mr)) = b.iter().find(|q| q.0 == d) {
+            err = err.max((mu - mr).abs());
+            n += 1;
+        }
+    }
+    (err, n)
+}
+
 /// The scan problems: (problem name, model, reference points `(d, μ)`).
 fn scan_problem(
     rows: &mut Vec<Row>,
@@ -320,25 +343,26 @@ fn scan_problem(
             let r = time_it(|| scan_at(model, &opts, &d).map_err(Into::into));
             let (err, time, reps, rhs, newton, note) = match r {
                 Ok((res, t, n)) => {
-                    // compared where both have points (the reference may stop early too)
-                    let mut err: f64 = 0.0;
-                    for (p, &(dr, mr)) in res.points.iter().zip(reference) {
-                        debug_assert_eq!(p.d, dr);
-                        err = err.max((p.mu - mr).abs());
-                    }
-                    let note = if res.points.len() != reference.len() {
+                    // compared at the grid points both have (the reference may stop early
+                    // too); the row of the event that ends a scan (e.g. the fold in d) is not
+                    // a grid point: near a fold in d, mu(d) has a square-root singularity and
+                    // a 1e-12 shift of the fold moves mu there by 1e-6
+                    let grid = grid_points(&res.points);
+                    let (err, compared) = max_diff(&grid, reference);
+                    let note = if compared != reference.len() {
                         format!(
-                            "{} points, reference {}: {}",
-                            res.points.len(),
+                            "{compared} grid points compared, reference {}: {}",
                             reference.len(),
                             res.stop
                         )
                     } else {
                         String::new()
                     };
-                    if res.points.len() + 2 < reference.len() {
-                        err = f64::NAN;
-                    }
+                    let err = if compared + 2 < reference.len() {
+                        f64::NAN
+                    } else {
+                        err
+                    };
                     (err, t, n, res.stats.rhs_evals, res.stats.newton_iters, note)
                 }
                 Err(e) => (f64::NAN, f64::NAN, 0, 0, 0, format!("failed: {e}")),
@@ -429,7 +453,7 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         if r.points.len() < 10 {
             bail!("reference scan stopped early: {}", r.stop);
         }
-        Ok(r.points.iter().map(|p| (p.d, p.mu)).collect())
+        Ok(grid_points(&r.points))
     };
     let reference = tight(Method::Shooting, 1e-13).context("tapered reference (shooting)")?;
     // Cross-check of the reference by another method.
@@ -437,11 +461,7 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         f64::NAN
     } else {
         let c = tight(Method::Collocation6, 1e-11).context("tapered cross-check")?;
-        reference
-            .iter()
-            .zip(&c)
-            .map(|(a, b)| (a.1 - b.1).abs())
-            .fold(0.0, f64::max)
+        max_diff(&reference, &c).0
     };
     eprintln!("taper reference: shooting 1e-13 vs collocation6 1e-11: max |dmu| = {check:.2e}");
     rows.push(Row {
@@ -457,6 +477,13 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         note: "reference (shooting-dop853 tol 1e-13) vs collocation6 tol 1e-11".into(),
     });
     scan_problem(rows, "taper", &model, &reference, quick, cap)
+}
+
+/// The machine's load (other processes compete for the cores while timing).
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "unknown".into())
 }
 
 fn machine() -> String {
@@ -581,9 +608,11 @@ fn plot(path: &Path, rows: &[Row]) -> Result<()> {
         // the legend has its own row under the panels: it never covers data
         let (body, legend) = root.split_vertically((h - 56) * S);
         for (panel, (prob, title)) in body.split_evenly((1, 3)).iter().zip(PROBLEMS) {
+            // drawn: runs with an error, and the closed-form reference (time only)
             let pts: Vec<&Row> = rows
                 .iter()
                 .filter(|r| r.problem == prob && r.time_s.is_finite() && r.time_s > 0.0)
+                .filter(|r| r.error.is_finite() || r.method == "analytic")
                 .collect();
             let errs = pts
                 .iter()
@@ -693,14 +722,23 @@ fn plot(path: &Path, rows: &[Row]) -> Result<()> {
     Ok(())
 }
 
+/// Three significant digits in µs, ms or s.
 fn fmt_time(t: f64) -> String {
-    if t < 1e-3 {
-        format!("{:.2} µs", t * 1e6)
+    let (v, unit) = if t < 1e-3 {
+        (t * 1e6, "µs")
     } else if t < 1.0 {
-        format!("{:.2} ms", t * 1e3)
+        (t * 1e3, "ms")
     } else {
-        format!("{t:.2} s")
-    }
+        (t, "s")
+    };
+    let prec = if v >= 100.0 {
+        0
+    } else if v >= 10.0 {
+        1
+    } else {
+        2
+    };
+    format!("{v:.prec$} {unit}")
 }
 
 fn setting(r: &Row) -> String {
@@ -779,9 +817,11 @@ fn main() -> Result<()> {
     if std::env::var("WP_PLOT_ONLY").is_ok_and(|v| v == "1") {
         let rows = read_csv(&dir.join("work_precision.csv"))?;
         plot(&dir.join("work_precision.svg"), &rows)?;
+        std::fs::write(dir.join("summary.md"), summary(&rows, cap))?;
         eprintln!("re-plotted {}", dir.display());
         return Ok(());
     }
+    let load_start = load_average();
     let mut rows = Vec::new();
     single_shape(&mut rows, quick, cap)?;
     uniform_scan(&mut rows, quick, cap)?;
@@ -789,7 +829,11 @@ fn main() -> Result<()> {
     write_csv(&dir.join("work_precision.csv"), &rows)?;
     plot(&dir.join("work_precision.svg"), &rows)?;
     std::fs::write(dir.join("summary.md"), summary(&rows, cap))?;
-    std::fs::write(dir.join("machine.txt"), machine())?;
+    let load = format!(
+        "load average (1, 5, 15 min) at start: {load_start}; at end: {}\n",
+        load_average()
+    );
+    std::fs::write(dir.join("machine.txt"), machine() + &load)?;
     eprintln!("wrote {}", dir.display());
     Ok(())
 }
