@@ -9,16 +9,19 @@
 //!    against a very tight solve of single shooting (cross-checked against collocation of
 //!    order 6).
 //!
-//! Run from the workspace root (writes `data/work_precision/work_precision.{csv,svg}` and
-//! `machine.txt`):
+//! Run from the workspace root; it writes `work_precision.{csv,svg}`, `summary.md` and
+//! `machine.txt` into the directory given as the first argument, else `$WP_OUT`, else
+//! `target/work_precision` (never the committed copy in `data/work_precision/` unless asked):
 //!
 //! ```sh
-//! cargo run --release --example work_precision
+//! cargo run --release --example work_precision                          # target/work_precision
+//! cargo run --release --example work_precision -- data/work_precision   # refresh the committed copy
 //! ```
 //!
-//! Environment: `WP_CAP_S` (default 8): a method's tolerance sweep on one problem stops after a
-//! run slower than this many seconds; `WP_QUICK=1`: fewer tolerances (smoke test);
-//! `WP_PLOT_ONLY=1`: redraw the SVG from the committed CSV.
+//! Environment: `WP_CAP_S` (default 8): a method's tolerance sweep on one problem stops after the
+//! first run slower than this many seconds (that run is kept); `WP_QUICK=1`: fewer tolerances
+//! (smoke test); `WP_PLOT_ONLY=1`: redraw the SVG and `summary.md` from the CSV in the output
+//! directory.
 //!
 //! Times are wall-clock, single thread, the minimum over batches (each batch repeats a fast run
 //! until it lasts ≥ 0.1 s), so they are comparable within one run of this program.
@@ -28,7 +31,7 @@ use elastica::{Branch, Elastica};
 use plotters::prelude::*;
 use std::f64::consts::PI;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use vibrissa::{
     scan_at, solve, BranchChoice, Method, Rod, ScanOptions, Scene, SolverConfig, Surface, Target,
@@ -240,6 +243,28 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
     Ok(())
 }
 
+/// The `(d, μ)` of a scan's grid points (without the row of the event that ends it).
+fn grid_points(points: &[vibrissa::ScanPoint]) -> Vec<(f64, f64)> {
+    points
+        .iter()
+        .filter(|p| p.event.is_none())
+        .map(|p| (p.d, p.mu))
+        .collect()
+}
+
+/// Max |Δμ| over the displacements present in both lists (the same grid values), and how many.
+fn max_diff(a: &[(f64, f64)], b: &[(f64, f64)]) -> (f64, usize) {
+    let mut err: f64 = 0.0;
+    let mut n = 0;
+    for &(d, mu) in a {
+        if let Some(&(_, mr)) = b.iter().find(|q| q.0 == d) {
+            err = err.max((mu - mr).abs());
+            n += 1;
+        }
+    }
+    (err, n)
+}
+
 /// The scan problems: (problem name, rod, surface, reference points `(d, μ)`).
 fn scan_problem(
     rows: &mut Vec<Row>,
@@ -262,25 +287,26 @@ fn scan_problem(
             let r = time_it(|| scan_at(rod, surface, &opts, &d).map_err(Into::into));
             let (err, time, reps, rhs, newton, note) = match r {
                 Ok((res, t, n)) => {
-                    // compared where both have points (the reference may stop early too)
-                    let mut err: f64 = 0.0;
-                    for (p, &(dr, mr)) in res.points.iter().zip(reference) {
-                        debug_assert_eq!(p.d, dr);
-                        err = err.max((p.mu - mr).abs());
-                    }
-                    let note = if res.points.len() != reference.len() {
+                    // compared at the grid points both have (the reference may stop early
+                    // too); the row of the event that ends a scan (e.g. the fold in d) is not
+                    // a grid point: near a fold in d, mu(d) has a square-root singularity and
+                    // a 1e-12 shift of the fold moves mu there by 1e-6
+                    let grid = grid_points(&res.points);
+                    let (err, compared) = max_diff(&grid, reference);
+                    let note = if compared != reference.len() {
                         format!(
-                            "{} points, reference {}: {}",
-                            res.points.len(),
+                            "{compared} grid points compared, reference {}: {}",
                             reference.len(),
                             res.stop
                         )
                     } else {
                         String::new()
                     };
-                    if res.points.len() + 2 < reference.len() {
-                        err = f64::NAN;
-                    }
+                    let err = if compared + 2 < reference.len() {
+                        f64::NAN
+                    } else {
+                        err
+                    };
                     (err, t, n, res.stats.rhs_evals, res.stats.newton_iters, note)
                 }
                 Err(e) => (f64::NAN, f64::NAN, 0, 0, 0, format!("failed: {e}")),
@@ -322,10 +348,10 @@ fn uniform_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
     };
     let (r, t_cf, reps) =
         time_it(|| scan_at(&rod, &surface, &analytic, &grid).map_err(Into::into))?;
-    if r.points.len() != grid.len() {
+    let reference = grid_points(&r.points);
+    if reference.len() != grid.len() {
         bail!("the closed-form reference stopped early: {}", r.stop);
     }
-    let reference: Vec<(f64, f64)> = r.points.iter().map(|p| (p.d, p.mu)).collect();
     rows.push(Row {
         problem: "scan",
         method: "analytic".into(),
@@ -370,7 +396,7 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         if r.points.len() < 10 {
             bail!("reference scan stopped early: {}", r.stop);
         }
-        Ok(r.points.iter().map(|p| (p.d, p.mu)).collect())
+        Ok(grid_points(&r.points))
     };
     let reference = tight(Method::Shooting, 1e-13).context("tapered reference (shooting)")?;
     // Cross-check of the reference by another method.
@@ -378,11 +404,7 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         f64::NAN
     } else {
         let c = tight(Method::Collocation6, 1e-11).context("tapered cross-check")?;
-        reference
-            .iter()
-            .zip(&c)
-            .map(|(a, b)| (a.1 - b.1).abs())
-            .fold(0.0, f64::max)
+        max_diff(&reference, &c).0
     };
     eprintln!("taper reference: shooting 1e-13 vs collocation6 1e-11: max |dmu| = {check:.2e}");
     rows.push(Row {
@@ -398,6 +420,13 @@ fn tapered_scan(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         note: "reference (shooting-dop853 tol 1e-13) vs collocation6 tol 1e-11".into(),
     });
     scan_problem(rows, "taper", &rod, &surface, &reference, quick, cap)
+}
+
+/// The machine's load (other processes compete for the cores while timing).
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "unknown".into())
 }
 
 fn machine() -> String {
@@ -482,18 +511,31 @@ const PROBLEMS: [(&str, &str); 3] = [
     ("taper", "3. taper rho = 0.1, eta = 0.97: max error in mu"),
 ];
 
+/// Accuracy targets of the summary (issue #6): problem, target error.
+const TARGETS: [(&str, f64); 3] = [("shape", 1e-10), ("scan", 1e-9), ("taper", 1e-9)];
+
+const METHODS: [&str; 6] = [
+    "shooting-rk4",
+    "shooting-dop853",
+    "multiple-shooting-8",
+    "collocation4",
+    "collocation6",
+    "analytic",
+];
+
+/// SVG user units per output pixel: plotters rounds to whole units, so the plot is drawn `S`
+/// times larger and shown at the output size through the `viewBox` (no jagged lines).
+const S: u32 = 4;
+
+/// Errors below this (including exact 0) are drawn at it.
+const FLOOR: f64 = 1e-17;
+
+fn font(size: u32) -> (&'static str, u32) {
+    ("sans-serif", size * S)
+}
+
 fn plot(path: &Path, rows: &[Row]) -> Result<()> {
-    let root = SVGBackend::new(path, (1500, 520)).into_drawing_area();
-    root.fill(&WHITE)?;
-    let panels = root.split_evenly((1, 3));
-    let methods = [
-        "shooting-rk4",
-        "shooting-dop853",
-        "multiple-shooting-8",
-        "collocation4",
-        "collocation6",
-        "analytic",
-    ];
+    let (w, h) = (1500u32, 600u32);
     let colors = [
         RGBColor(31, 119, 180),
         RGBColor(255, 127, 14),
@@ -502,61 +544,209 @@ fn plot(path: &Path, rows: &[Row]) -> Result<()> {
         RGBColor(148, 103, 189),
         RGBColor(0, 0, 0),
     ];
-    const FLOOR: f64 = 1e-16;
-    for (panel, (prob, title)) in panels.iter().zip(PROBLEMS) {
-        let pts: Vec<&Row> = rows
-            .iter()
-            .filter(|r| r.problem == prob && r.time_s.is_finite() && r.time_s > 0.0)
-            .collect();
-        let tmin = pts.iter().map(|r| r.time_s).fold(f64::INFINITY, f64::min);
-        let tmax = pts.iter().map(|r| r.time_s).fold(0.0, f64::max);
-        let mut chart = ChartBuilder::on(panel)
-            .caption(title, ("sans-serif", 17))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
-            .build_cartesian_2d(
-                (1e-16f64..1e-1f64).log_scale(),
-                (tmin / 2.0..tmax * 2.0).log_scale(),
-            )?;
-        chart
-            .configure_mesh()
-            .x_desc("error (analytic: error floor 1e-16 if unknown)")
-            .y_desc("time per solve / scan [s]")
-            .x_label_formatter(&|v| format!("{v:.0e}"))
-            .y_label_formatter(&|v| format!("{v:.0e}"))
-            .draw()?;
-        for (m, c) in methods.iter().zip(colors) {
-            let line: Vec<(f64, f64)> = pts
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (w * S, h * S)).into_drawing_area();
+        root.fill(&WHITE)?;
+        // the legend has its own row under the panels: it never covers data
+        let (body, legend) = root.split_vertically((h - 56) * S);
+        for (panel, (prob, title)) in body.split_evenly((1, 3)).iter().zip(PROBLEMS) {
+            // drawn: runs with an error, and the closed-form reference (time only)
+            let pts: Vec<&Row> = rows
                 .iter()
-                // failed or incomparable runs (NaN error) are in the CSV, not on the plot
-                .filter(|r| r.method == *m && (r.error.is_finite() || r.method == "analytic"))
-                .map(|r| {
-                    let e = if r.error.is_finite() { r.error } else { FLOOR };
-                    (e.max(FLOOR), r.time_s)
-                })
+                .filter(|r| r.problem == prob && r.time_s.is_finite() && r.time_s > 0.0)
+                .filter(|r| r.error.is_finite() || r.method == "analytic")
                 .collect();
-            if line.is_empty() {
-                continue;
-            }
+            let errs = pts
+                .iter()
+                .filter(|r| r.error.is_finite())
+                .map(|r| r.error.max(FLOOR));
+            let emin = errs.clone().fold(f64::INFINITY, f64::min);
+            let emax = errs.fold(0.0, f64::max);
+            let tmin = pts.iter().map(|r| r.time_s).fold(f64::INFINITY, f64::min);
+            let tmax = pts.iter().map(|r| r.time_s).fold(0.0, f64::max);
+            let (xr, yr) = (emin / 4.0..emax * 4.0, tmin / 2.0..tmax * 2.0);
+            let mut chart = ChartBuilder::on(panel)
+                .caption(title, font(17))
+                .margin(12 * S)
+                .x_label_area_size(44 * S)
+                .y_label_area_size(64 * S)
+                .build_cartesian_2d(xr.clone().log_scale(), yr.log_scale())?;
             chart
-                .draw_series(LineSeries::new(line.clone(), c.stroke_width(2)))?
-                .label(*m)
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2))
-                });
-            chart.draw_series(line.iter().map(|&p| Circle::new(p, 3, c.filled())))?;
+                .configure_mesh()
+                .x_desc("error (0 drawn at 1e-17)")
+                .y_desc("time per solve / scan [s]")
+                .x_label_formatter(&|v| format!("{v:.0e}"))
+                .y_label_formatter(&|v| format!("{v:.0e}"))
+                .axis_desc_style(font(15))
+                .label_style(font(13))
+                .light_line_style(RGBColor(238, 238, 238).stroke_width(S / 2))
+                .bold_line_style(RGBColor(205, 205, 205).stroke_width(S))
+                .axis_style(BLACK.stroke_width(S))
+                .set_all_tick_mark_size(5 * S)
+                .draw()?;
+            for (m, c) in METHODS.iter().zip(colors) {
+                let mine: Vec<&&Row> = pts.iter().filter(|r| r.method == *m).collect();
+                // failed or incomparable runs (NaN error) are in the CSV, not on the plot
+                let mut line: Vec<(f64, f64)> = mine
+                    .iter()
+                    .filter(|r| r.error.is_finite())
+                    .map(|r| (r.error.max(FLOOR), r.time_s))
+                    .collect();
+                // the line joins, in order of cost, the runs that no faster run of the method
+                // beats in accuracy (the Pareto front: time up, error down, no zigzag); the
+                // other runs are hollow dots
+                line.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.0.total_cmp(&b.0)));
+                let mut front: Vec<(f64, f64)> = Vec::new();
+                let mut rest: Vec<(f64, f64)> = Vec::new();
+                for p in line {
+                    if front.last().is_none_or(|q| p.0 < q.0) {
+                        front.push(p);
+                    } else {
+                        rest.push(p);
+                    }
+                }
+                chart.draw_series(LineSeries::new(front.clone(), c.stroke_width(2 * S)))?;
+                chart.draw_series(front.iter().map(|&p| Circle::new(p, 3 * S, c.filled())))?;
+                chart.draw_series(
+                    rest.iter()
+                        .map(|&p| Circle::new(p, 3 * S, c.stroke_width(S * 3 / 2))),
+                )?;
+                // the closed-form reference of a scan has no error of its own: its time as a
+                // dashed horizontal line
+                for r in mine
+                    .iter()
+                    .filter(|r| !r.error.is_finite() && *m == "analytic")
+                {
+                    chart.draw_series(DashedLineSeries::new(
+                        [(xr.start, r.time_s), (xr.end, r.time_s)],
+                        6 * S,
+                        5 * S,
+                        c.stroke_width(S),
+                    ))?;
+                }
+            }
         }
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 12))
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()?;
+        let names = [
+            "shooting, RK4 (steps)",
+            "shooting, DOP853 (tol)",
+            "multiple shooting, 8 segments",
+            "collocation, order 4",
+            "collocation, order 6",
+            "closed form (dashed: scan reference, time only)",
+        ];
+        legend.draw(&Text::new(
+            "lines: for each method the runs that no faster run beats in accuracy; hollow dots: \
+             the other runs",
+            (30 * S as i32, 30 * S as i32),
+            font(13),
+        ))?;
+        let mut x = 30 * S as i32;
+        for (name, c) in names.iter().zip(colors) {
+            let y = 18 * S as i32;
+            legend.draw(&PathElement::new(
+                vec![(x, y), (x + 26 * S as i32, y)],
+                c.stroke_width(2 * S),
+            ))?;
+            legend.draw(&Circle::new((x + 13 * S as i32, y), 3 * S, c.filled()))?;
+            let t = name.to_string();
+            legend.draw(&Text::new(
+                t,
+                (x + 32 * S as i32, y - 7 * S as i32),
+                font(14),
+            ))?;
+            x += (44 + 7 * name.len() as u32) as i32 * S as i32;
+        }
+        root.present()?;
     }
-    root.present()?;
+    let inner = format!("width=\"{}\" height=\"{}\"", w * S, h * S);
+    let svg = svg.replacen(&inner, &format!("width=\"{w}\" height=\"{h}\""), 1);
+    std::fs::write(path, svg)?;
     Ok(())
+}
+
+/// Three significant digits in µs, ms or s.
+fn fmt_time(t: f64) -> String {
+    let (v, unit) = if t < 1e-3 {
+        (t * 1e6, "µs")
+    } else if t < 1.0 {
+        (t * 1e3, "ms")
+    } else {
+        (t, "s")
+    };
+    let prec = if v >= 100.0 {
+        0
+    } else if v >= 10.0 {
+        1
+    } else {
+        2
+    };
+    format!("{v:.prec$} {unit}")
+}
+
+fn setting(r: &Row) -> String {
+    match r.rk4_steps {
+        Some(n) => format!("{n} steps"),
+        None if r.tol.is_finite() => format!("tol {:.0e}", r.tol),
+        None => "—".into(),
+    }
+}
+
+/// Per problem and method: the cheapest run reaching the target and the most accurate run.
+fn summary(rows: &[Row], cap: f64) -> String {
+    let mut s = format!(
+        "Cheapest run reaching the target and most accurate run per method (cap {cap} s: a \
+         method's sweep stops after the first run slower than the cap; that run is kept).\n\n\
+         | problem (target) | method | cheapest reaching the target | error | time | most accurate | error | time |\n\
+         |---|---|---|---|---|---|---|---|\n"
+    );
+    for (prob, target) in TARGETS {
+        let mut lines: Vec<(f64, String)> = Vec::new();
+        for m in METHODS {
+            let runs: Vec<&Row> = rows
+                .iter()
+                .filter(|r| r.problem == prob && r.method == m && r.error.is_finite())
+                .filter(|r| r.time_s.is_finite())
+                .collect();
+            let Some(best) = runs.iter().min_by(|a, b| a.error.total_cmp(&b.error)) else {
+                continue;
+            };
+            let cheap = runs
+                .iter()
+                .filter(|r| r.error <= target)
+                .min_by(|a, b| a.time_s.total_cmp(&b.time_s));
+            let (key, c) = match cheap {
+                Some(r) => (
+                    r.time_s,
+                    format!("{} | {:.1e} | {}", setting(r), r.error, fmt_time(r.time_s)),
+                ),
+                None => (f64::INFINITY, "not reached | | ".to_string()),
+            };
+            lines.push((
+                key,
+                format!(
+                    "| {prob} (≤ {target:.0e}) | {m} | {c} | {} | {:.1e} | {} |\n",
+                    setting(best),
+                    best.error,
+                    fmt_time(best.time_s)
+                ),
+            ));
+        }
+        lines.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (_, l) in lines {
+            s.push_str(&l);
+        }
+    }
+    s
+}
+
+/// The output directory: the first argument, else `WP_OUT`, else `target/work_precision`.
+fn out_dir() -> PathBuf {
+    std::env::args_os()
+        .nth(1)
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("WP_OUT").map(PathBuf::from))
+        .unwrap_or_else(|| PathBuf::from("target/work_precision"))
 }
 
 fn main() -> Result<()> {
@@ -565,21 +755,28 @@ fn main() -> Result<()> {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(8.0);
-    let dir = Path::new("data/work_precision");
-    std::fs::create_dir_all(dir)?;
+    let dir = out_dir();
+    std::fs::create_dir_all(&dir)?;
     if std::env::var("WP_PLOT_ONLY").is_ok_and(|v| v == "1") {
         let rows = read_csv(&dir.join("work_precision.csv"))?;
         plot(&dir.join("work_precision.svg"), &rows)?;
+        std::fs::write(dir.join("summary.md"), summary(&rows, cap))?;
         eprintln!("re-plotted {}", dir.display());
         return Ok(());
     }
+    let load_start = load_average();
     let mut rows = Vec::new();
     single_shape(&mut rows, quick, cap)?;
     uniform_scan(&mut rows, quick, cap)?;
     tapered_scan(&mut rows, quick, cap)?;
     write_csv(&dir.join("work_precision.csv"), &rows)?;
     plot(&dir.join("work_precision.svg"), &rows)?;
-    std::fs::write(dir.join("machine.txt"), machine())?;
+    std::fs::write(dir.join("summary.md"), summary(&rows, cap))?;
+    let load = format!(
+        "load average (1, 5, 15 min) at start: {load_start}; at end: {}\n",
+        load_average()
+    );
+    std::fs::write(dir.join("machine.txt"), machine() + &load)?;
     eprintln!("wrote {}", dir.display());
     Ok(())
 }
