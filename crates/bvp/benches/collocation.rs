@@ -60,6 +60,7 @@ fn fixed<P: Bvp>(c: &mut Criterion, name: &str, prob: &P, coarse: &Guess, scheme
             let mut solver = Collocation::new(CollocationOptions {
                 scheme,
                 adapt: false,
+                max_nodes: 2 * intervals,
                 ..Default::default()
             })
             .expect("valid options");
