@@ -185,7 +185,7 @@ const MAX_RETRIES: usize = 2;
 /// Coarsening attempts after acceptance.
 const MAX_COARSEN: usize = 8;
 
-/// Collocation solver (keeps its work buffers, including the symbolic LU, between solves).
+/// Collocation solver (keeps its work buffers, including those of the LU, between solves).
 #[derive(Clone, Debug)]
 pub struct Collocation {
     opts: CollocationOptions,
@@ -214,7 +214,7 @@ impl Collocation {
     /// Times this solver's linear-algebra work buffers had to grow (a Newton system larger than
     /// any before); meshes no larger than one already seen reuse them without allocating.
     pub fn symbolic_factorizations(&self) -> usize {
-        self.work.sys.symbolic_count
+        self.work.sys.buffer_growths
     }
 }
 

@@ -119,7 +119,7 @@ pub(crate) struct AbdSystem {
     v: Vec<f64>,
     factored: bool,
     /// Times the work buffers had to grow (a layout larger than any seen before).
-    pub symbolic_count: usize,
+    pub buffer_growths: usize,
 }
 
 impl Clone for AbdSystem {
@@ -217,7 +217,7 @@ impl AbdSystem {
                 || fd * fd > self.fin.capacity()
                 || dim > self.colmax.capacity()
                 || l.wrows() > self.t.capacity();
-            self.symbolic_count += usize::from(grows);
+            self.buffer_growths += usize::from(grows);
             resize(&mut self.win, wlen);
             resize(&mut self.piv, l.intervals() * l.stride);
             resize(&mut self.fin, fd * fd);
@@ -650,7 +650,7 @@ mod tests {
         let mut x = vec![1.0, 1.0, 2.0];
         s.solve(&mut x).unwrap();
         assert_eq!(x, [2.0, 3.0, 4.0]);
-        assert_eq!(s.symbolic_count, 1);
+        assert_eq!(s.buffer_growths, 1);
     }
 
     #[test]
@@ -741,8 +741,8 @@ mod tests {
         s.prepare(l(50)).unwrap();
         s.prepare(l(20)).unwrap();
         s.prepare(l(50)).unwrap();
-        assert_eq!(s.symbolic_count, 1);
+        assert_eq!(s.buffer_growths, 1);
         s.prepare(l(51)).unwrap();
-        assert_eq!(s.symbolic_count, 2);
+        assert_eq!(s.buffer_growths, 2);
     }
 }
