@@ -212,7 +212,8 @@ impl AbdSystem {
             self.layout = Some(l);
             let (fd, dim) = (l.carry(), l.dim());
             let wlen = l.intervals() * l.wrows() * l.wcols();
-            let grows = wlen > self.win.capacity()
+            let grows = l.block_len() > self.blocks.capacity()
+                || wlen > self.win.capacity()
                 || l.intervals() * l.stride > self.piv.capacity()
                 || fd * fd > self.fin.capacity()
                 || dim > self.colmax.capacity()
