@@ -26,8 +26,8 @@
 //! unknowns per interval), so every equation stays local to one interval.
 //! The `n + k` boundary conditions `g(z_0, z_N, p) = 0` close the square system. Its Jacobian
 //! (from [`Bvp::rhs_jacobian`] or finite differences, [`crate::fd`]) is block-sparse: each interval
-//! couples only its own unknowns, the right node and `p`; it is factorized by faer's sparse LU
-//! (COLAMD ordering; the symbolic analysis is kept and reused while the mesh size is unchanged).
+//! couples only its own unknowns, the right node and `p`; it is factorized by a structured
+//! (almost block diagonal) LU with partial pivoting, interval by interval (`collocation::abd`).
 //! Damped Newton is [`crate::newton::Newton`].
 //!
 //! Orders at the nodes: 4 (Lobatto4) and 6 (Lobatto6, superconvergence of Gauss–Lobatto
@@ -83,14 +83,14 @@
 // Index loops mirror the formulas (several arrays indexed alike).
 #![allow(clippy::needless_range_loop)]
 
-mod sparse;
+mod abd;
 mod tableau;
 
 use crate::fd::{bc_jacobian_or_fd, rhs_jacobian_or_fd, FdScheme, FdScratch};
 use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
 use crate::solution::locate;
 use crate::{Bvp, BvpError, BvpSolver, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
-use sparse::{Layout, SparseSystem};
+use abd::{AbdSystem, Layout};
 use tableau::{Tableau, EST_T, EST_W, MAXC};
 
 /// Collocation scheme.
@@ -204,7 +204,7 @@ const MAX_ILL_REFINES: usize = 2;
 /// Coarsening attempts after acceptance.
 const MAX_COARSEN: usize = 8;
 
-/// Collocation solver (keeps its work buffers, including the symbolic LU, between solves).
+/// Collocation solver (keeps its work buffers, including those of the LU, between solves).
 #[derive(Clone, Debug)]
 pub struct Collocation {
     opts: CollocationOptions,
@@ -230,17 +230,17 @@ impl Collocation {
         &self.opts
     }
 
-    /// Symbolic sparse factorizations computed so far by this solver (they are reused while the
-    /// mesh size, `n`, `k` stay the same).
+    /// Times this solver's linear-algebra work buffers had to grow (a Newton system larger than
+    /// any before); meshes no larger than one already seen reuse them without allocating.
     pub fn symbolic_factorizations(&self) -> usize {
-        self.work.sys.symbolic_count
+        self.work.sys.buffer_growths
     }
 }
 
 /// Work buffers of one solver.
 #[derive(Clone, Debug)]
 struct Work {
-    sys: SparseSystem,
+    sys: AbdSystem,
     fd: FdScratch,
     /// `u` at which `ypts`/`fpts` were computed.
     u_at: Vec<f64>,
@@ -260,7 +260,7 @@ struct Work {
 impl Default for Work {
     fn default() -> Self {
         Work {
-            sys: SparseSystem::new(),
+            sys: AbdSystem::new(),
             fd: FdScratch::with_scheme(Dims { n: 0, k: 0 }, FdScheme::Forward),
             u_at: Vec::new(),
             ypts: Vec::new(),

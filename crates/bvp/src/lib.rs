@@ -21,7 +21,8 @@
 //! - [`Shooting`]: single (`segments = 1`) and multiple shooting; Jacobians from the variational
 //!   equations; fixed-step RK4 or an adaptive embedded pair.
 //! - [`Collocation`]: Lobatto IIIA collocation of order 4 (the `bvp4c` / `solve_bvp` scheme) and 6,
-//!   residual control, mesh refinement and coarsening, sparse Newton systems (faer).
+//!   residual control, mesh refinement and coarsening, Newton systems by a structured
+//!   (almost block diagonal) LU.
 //! - [`continuation`]: natural-parameter and pseudo-arclength continuation of a [`ParamBvp`] family,
 //!   with fold detection and location.
 //!

@@ -1,5 +1,6 @@
-//! Heap allocations of whole solves, counted by a global allocator: the Newton and integration
-//! loops must not allocate, for slice-based ([`Bvp`]) and array-based ([`FixedBvp`]) problems.
+//! Heap allocations of whole solves, counted by a global allocator per thread: the Newton and
+//! integration loops must not allocate, for slice-based ([`Bvp`]) and array-based ([`FixedBvp`])
+//! problems.
 //!
 //! A warm solver (buffers sized by an earlier solve) allocates only the returned [`Solution`]:
 //! with RK4 that is a fixed handful of vectors however many steps and Newton iterations the solve
@@ -7,30 +8,43 @@
 //! `O(log steps)` reallocations. One allocation per step or per iteration would show up as
 //! hundreds.
 //!
-//! Everything runs in one test function: the counter is global and the test harness runs test
-//! functions on parallel threads.
+//! The counter is thread-local, so allocations of other threads (the test harness, other tests,
+//! anything else in the process) are not counted: only the solving thread's own.
 
 use bvp::fixed::{Fixed, FixedBvp};
 use bvp::samples::{Bratu, Cantilever};
 use bvp::{Bvp, BvpSolver, Guess, Integrator, Shooting, ShootingOptions, Solution};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
 struct Counting;
 
-static ALLOCS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    // Const-initialized and without destructor: accessing it never allocates.
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// Counts one allocation of the calling thread (ignored while the thread is torn down).
+fn count() {
+    let _ = ALLOCS.try_with(|c| c.set(c.get() + 1));
+}
+
+/// Allocations made so far by the calling thread.
+fn allocs() -> usize {
+    ALLOCS.with(Cell::get)
+}
 
 // SAFETY: forwards to the system allocator; only counts calls.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        count();
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCS.fetch_add(1, Ordering::Relaxed);
+        count();
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -80,9 +94,9 @@ impl FixedBvp<2, 0> for FixedBratu {
 
 /// Allocations made by one solve, and the solution.
 fn counted<P: Bvp>(solver: &mut Shooting, p: &P, g: &Guess) -> (usize, Solution) {
-    let before = ALLOCS.load(Ordering::Relaxed);
+    let before = allocs();
     let sol = solver.solve(p, g).expect("solve");
-    (ALLOCS.load(Ordering::Relaxed) - before, sol)
+    (allocs() - before, sol)
 }
 
 fn rk4(steps: usize, segments: usize) -> Shooting {

@@ -1,0 +1,1 @@
+//! Empty on purpose: see `Cargo.toml` (feature unification across the workspace's members).
