@@ -13,6 +13,8 @@ impl From<VibrissaError> for Fail {
             | VibrissaError::InvalidTable { .. }
             | VibrissaError::MethodUnavailable { .. }
             | VibrissaError::NotMeasurable { .. }
+            | VibrissaError::RangeCutShort { .. }
+            | VibrissaError::NoContact { .. }
             | VibrissaError::InvalidName { .. } => Fail::Usage(msg),
             VibrissaError::Elastica { source, .. } => match Fail::from(source) {
                 Fail::Usage(_) => Fail::Usage(msg),

@@ -16,13 +16,25 @@ use vibrissa::{RangeEnd, ScanOptions, Scene, StopReason};
 pub type Pt = vibrissa::ScanPoint;
 
 /// True when every value of the point is finite (a result row may be printed).
+/// (At lift-off the normal force is 0 and the friction ratio unbounded: `mu = ±inf` there.)
 fn finite(p: &Pt) -> bool {
+    let lift_off = p.event == Some(vibrissa::Event::LiftOff);
     [
-        p.d, p.mu, p.normal, p.alpha, p.phi1, p.f, p.fx, p.fy, p.m_base, p.y_max,
+        p.d, p.normal, p.alpha, p.phi1, p.f, p.fx, p.fy, p.m_base, p.y_max,
     ]
     .iter()
     .all(|v| v.is_finite())
+        && (p.mu.is_finite() || (lift_off && p.mu.is_infinite()))
         && p.s_flex.is_none_or(f64::is_finite)
+}
+
+/// μ as written: `inf`/`-inf` at lift-off, where it is unbounded.
+fn mu_text(mu: f64) -> String {
+    if mu.is_infinite() {
+        if mu > 0.0 { "inf" } else { "-inf" }.to_string()
+    } else {
+        num(mu)
+    }
 }
 
 /// Why the scan stopped, flattened for CSV / JSON.
@@ -173,7 +185,9 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
             detail: format!("non-finite values at d = {d}"),
         };
     }
-    if !finite(&out.start) || !out.mu_max.is_finite() || !out.d_at_mu_max.is_finite() {
+    let unbounded = out.stop.reason == "lift_off" && out.mu_max.is_infinite();
+    if !finite(&out.start) || !(out.mu_max.is_finite() || unbounded) || !out.d_at_mu_max.is_finite()
+    {
         return Err(solve_fail(
             "the scan produced non-finite start or maximum values",
         ));
@@ -201,7 +215,7 @@ pub fn header(physical: bool) -> Vec<&'static str> {
 pub fn row(p: &Pt, u: Option<Units>) -> Vec<String> {
     let mut r = vec![
         num(p.d),
-        num(p.mu),
+        mu_text(p.mu),
         num(p.alpha),
         num(p.phi1),
         num(p.f),

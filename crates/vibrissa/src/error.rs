@@ -38,6 +38,17 @@ pub enum VibrissaError {
         /// What the solution is.
         found: crate::shape::ShapeKind,
     },
+    /// The rod does not reach the surface: the solution connected to the pressed uniform rod
+    /// would need the tip pulled up to height `eta` (`f < 0`), or it is not a proper rod.
+    #[error("no contact: the rod does not reach the surface at eta = {eta} by itself ({found}, f = {f}); lower the surface or change the rest curvature")]
+    NoContact {
+        /// Surface height.
+        eta: f64,
+        /// The force the contact would need (negative: a pull).
+        f: f64,
+        /// What the solution is.
+        found: crate::shape::ShapeKind,
+    },
     /// The BVP solver failed.
     #[error("{context}: {source}")]
     Solver {
@@ -66,12 +77,18 @@ pub enum VibrissaError {
     },
     /// `infer`: the scan reached `d_max` while `|μ|` still rose, so the measurable range is not
     /// known.
-    #[error("d_max = {d_max} cuts the measurable range short (|mu| = {mu} is still rising there); raise d_max")]
+    #[error("d_max = {d_max} cuts the measurable range short (|mu| = {mu} is still rising there); {}", match full {
+        Some((max, end)) => format!("the measurable range is [0, {max}], ending at {end}: raise d_max above {max}"),
+        None => "raise d_max".to_string(),
+    })]
     RangeCutShort {
         /// The scan's end.
         d_max: f64,
         /// `|μ|` there.
         mu: f64,
+        /// The whole range's upper end and what ends it, from a scan to the largest `d_max`
+        /// (`None` if that scan does not find it either).
+        full: Option<(f64, String)>,
     },
     /// A computation did not reach its goal (continuation stalled, homotopy failed, ...).
     #[error("{what} failed: {reason}")]

@@ -208,14 +208,11 @@ pub(crate) fn march<P: Profile>(
         None
     };
     let stop = if let Some(ev) = start_event {
+        // the start itself is not a valid state (the rod crosses the surface, is pulled, or
+        // slips): it is reported as the event, never as a grid row
         range.close(RangeEnd::Event);
-        match out.emit(stepper, ctx, &hist, grid, 0.0) {
-            Err(fail) => fail,
-            Ok(()) => {
-                out.event(ctx, &hist[0], &w0, ev);
-                stop_reason(ev, &w0)
-            }
-        }
+        out.event(ctx, &hist[0], &w0, ev);
+        stop_reason(ev, &w0)
     } else {
         run(stepper, ctx, &mut hist, &mut out, &mut range, grid, d_end)
     };

@@ -8,7 +8,7 @@ use crate::report::{Inference, RangeEnd, ScanOptions, ScanResult};
 use crate::shooter::Shooter;
 use crate::solve::{solve, Engine, Method, Target};
 use crate::stepper::{GenericStepper, OwnStepper};
-use crate::{BranchChoice, Rod, Shape, Surface, VibrissaError};
+use crate::{BranchChoice, Rod, Shape, ShapeKind, Surface, VibrissaError};
 use bvp::Guess;
 
 /// Runs the stiction scan. Errors only for invalid input or when it cannot even start;
@@ -68,14 +68,26 @@ fn scan_impl(
         return crate::analytic::scan_analytic(rod, surface, opts, grid);
     }
     let (eta, beta) = (surface.eta(), surface.angle());
+    // the start: the rod continuously connected to the pressed uniform rod (whatever its load
+    // reversals: a pre-curved rod may have some), pushed, not pulled
     let start = solve(
         rod,
         beta,
         Target::Eta(eta),
-        &BranchChoice::Convex,
+        &BranchChoice::Any,
         &opts.solver,
     )
-    .map_err(|e| context(e, "scan start (alpha = surface angle, y(1) = eta, convex)"))?;
+    .map_err(|e| context(e, "scan start (alpha = surface angle, y(1) = eta)"))?;
+    match start.kind() {
+        ShapeKind::Regular { .. } => {}
+        found => {
+            return Err(VibrissaError::NoContact {
+                eta,
+                f: start.f,
+                found,
+            })
+        }
+    }
     let contact = Contact {
         eta,
         beta,
@@ -191,10 +203,20 @@ pub fn infer(
     match probe.range_end {
         RangeEnd::FirstMaximum | RangeEnd::Event => {}
         RangeEnd::DMax => {
+            // what the range would be: the scan to (almost) the largest d_max, 2 rod lengths
+            let wide = ScanOptions {
+                d_max: 1.999,
+                ..o.clone()
+            };
+            let full = scan_at(rod, surface, &wide, &[]).ok().and_then(|w| {
+                matches!(w.range_end, RangeEnd::FirstMaximum | RangeEnd::Event)
+                    .then(|| (w.d_at_mu_max, format!("{} ({})", w.range_end, w.stop)))
+            });
             return Err(VibrissaError::RangeCutShort {
                 d_max: opts.d_max,
                 mu: probe.mu_max,
-            })
+                full,
+            });
         }
         RangeEnd::SolverFailure => {
             return Err(VibrissaError::NoConvergence {
