@@ -128,10 +128,12 @@ impl MethodArg {
 /// Branch of the solution family for `solve`.
 #[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum BranchArg {
-    /// no flex point (curvature <= 0 all along)
+    /// no load reversal: the bending moment m(s) keeps its sign (the paper's convex rod)
     Convex,
-    /// one flex point (curvature > 0 near the foot, < 0 near the tip)
+    /// one load reversal: m(s) changes sign once (the paper's one-flex rod)
     Flex,
+    /// whatever the solution connected to the uniform rod's convex one is (see load_reversals)
+    Any,
 }
 
 /// Physical dimensions: with all three (or a scene file's `[physical]`), physical-unit columns.

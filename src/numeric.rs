@@ -61,6 +61,7 @@ pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
     let branch = match a.branch {
         BranchArg::Convex => BranchChoice::Convex,
         BranchArg::Flex => BranchChoice::Flex,
+        BranchArg::Any => BranchChoice::Any,
     };
     let cfg = config(a.solver.method, a.solver.tol);
     let sh = vibrissa::solve(&rod, a.alpha, target, &branch, &cfg)?;
@@ -92,6 +93,7 @@ pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
         y1: sh.y1,
         m_base: sh.m_base,
         flex: sh.flex,
+        load_reversals: sh.load_reversals,
         s_flex: sh.s_flex,
         y_max: sh.y_max,
         residual: sh.residual,

@@ -48,8 +48,10 @@ pub struct SolveOut {
     pub y1: f64,
     /// m(0)
     pub m_base: f64,
-    /// number of flex points
+    /// number of flex points (sign changes of the curvature)
     pub flex: usize,
+    /// sign changes of the bending moment m(s): the branch (0 convex, 1 flex)
+    pub load_reversals: usize,
     /// arc length of the (first) flex point
     pub s_flex: Option<f64>,
     /// max over s of y(s)
@@ -91,6 +93,7 @@ pub fn branch_name(b: BranchArg) -> &'static str {
     match b {
         BranchArg::Convex => "convex",
         BranchArg::Flex => "flex",
+        BranchArg::Any => "any",
     }
 }
 
@@ -120,6 +123,7 @@ pub fn header(physical: bool) -> Vec<&'static str> {
         "y1",
         "m_base",
         "flex",
+        "load_reversals",
         "s_flex",
         "y_max",
         "residual",
@@ -145,6 +149,7 @@ pub fn row(o: &SolveOut) -> Vec<String> {
         num(o.y1),
         num(o.m_base),
         o.flex.to_string(),
+        o.load_reversals.to_string(),
         opt(o.s_flex),
         num(o.y_max),
         num(o.residual),

@@ -217,7 +217,7 @@ const CASES: &str = r#"
 2 | scan --scene ratio0.toml --taper 0.5 --precurvature 9 | --precurvature 9
 2 | scan --precurvature 1 --scene ratio0.toml | stiffness.ratio
 # the rest tip is at sin(2)/2 = 0.45 < 0.75: no pushed contact (a solver failure, exit 1)
-1 | scan --precurvature -2 --points 3 --out precious.csv | pulling force
+2 | scan --precurvature -2 --points 3 --out precious.csv | does not reach the surface
 # infer
 2 | infer | --d0
 2 | infer --d0 -0.1 | --d0 -0.1

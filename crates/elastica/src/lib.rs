@@ -8,7 +8,7 @@
 //! ## The math (paper sections 2-3, Appendix A)
 //!
 //! First integral: `kappa^2 = 2 f [sin(phi - alpha) - sin(phi1 - alpha)]`, i.e.
-//! `kappa^2/2 = f [..]`. (The paper's display (2.4), and `design.md`, write `kappa^2/2 = 2f [..]`;
+//! `kappa^2/2 = f [..]`. (The paper's display (2.4) writes `kappa^2/2 = 2f [..]`;
 //! that factor 2 is a slip: it contradicts the paper's own (2.6) and the buckling load `pi^2/4`.)
 //!
 //! With `u = phi1 - alpha`, modulus `k = sin(pi/4 - u/2)` (`m = k^2 = (1 - sin u)/2 <= 1/2` in the

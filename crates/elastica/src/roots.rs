@@ -344,7 +344,7 @@ mod tests {
         assert!((x - 0.3).abs() < 1e-7, "{x}");
         assert!((fx - 1.0).abs() < 1e-14);
         // maximum at an end point
-        let (x, _) = brent_max(|x| R::Ok(x), 0.0, 1.0, 1e-12, 200).unwrap();
+        let (x, _) = brent_max(R::Ok, 0.0, 1.0, 1e-12, 200).unwrap();
         assert_eq!(x, 1.0);
     }
 }

@@ -17,7 +17,7 @@ fn cases() -> Vec<Elastica> {
 }
 
 /// kappa^2 = 2 f [sin(phi - a) - sin(phi1 - a)], i.e. kappa^2/2 = f [..]. (The paper's (2.4)
-/// and design.md print kappa^2/2 = 2 f [..]; that is a factor-2 slip, cf. (2.6).)
+/// prints kappa^2/2 = 2 f [..]; that is a factor-2 slip, cf. (2.6).)
 #[test]
 fn first_integral() -> Result<(), ElasticaError> {
     for e in cases() {

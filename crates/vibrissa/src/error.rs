@@ -36,18 +36,18 @@ pub enum VibrissaError {
         /// Branch asked for.
         requested: String,
         /// What the solution is.
-        found: crate::shape::ShapeKind,
+        found: crate::kind::ShapeKind,
     },
     /// The rod does not reach the surface: the solution connected to the pressed uniform rod
     /// would need the tip pulled up to height `eta` (`f < 0`), or it is not a proper rod.
-    #[error("no contact: the rod does not reach the surface at eta = {eta} by itself ({found}, f = {f}); lower the surface or change the rest curvature")]
+    #[error("no contact: the rod does not reach the surface at eta = {eta} by itself ({found}, f = {f:.6e}); lower the surface or change the rest curvature")]
     NoContact {
         /// Surface height.
         eta: f64,
         /// The force the contact would need (negative: a pull).
         f: f64,
         /// What the solution is.
-        found: crate::shape::ShapeKind,
+        found: crate::kind::ShapeKind,
     },
     /// The BVP solver failed.
     #[error("{context}: {source}")]

@@ -4,7 +4,7 @@
 //! zero-sized [`Uniform`] (b ≡ 1, κ0 ≡ 0, folded away by monomorphization), every other rod the
 //! table-driven [`General`]. The choice is made once per solve, never per right-hand-side call.
 
-use crate::scene::{Precurvature, Stiffness};
+use crate::parts::{Precurvature, Stiffness};
 
 /// Reciprocal bending stiffness `b(s)` and pre-curvature `κ0(s)` of a rod.
 pub trait Profile: Clone + Send + Sync {

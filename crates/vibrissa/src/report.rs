@@ -22,7 +22,7 @@ use crate::VibrissaError;
 use serde::Serialize;
 use std::fmt;
 
-/// Options of [`crate::scan`].
+/// Options of [`crate::scan()`].
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ScanOptions {
@@ -194,7 +194,7 @@ impl fmt::Display for StopReason {
     }
 }
 
-/// Result of [`crate::scan`].
+/// Result of [`crate::scan()`].
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ScanResult {
     /// Surface height.

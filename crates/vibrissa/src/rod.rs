@@ -1,8 +1,8 @@
 //! The rod (stiffness profile, rest curvature, support; no surface) and the surface its tip
 //! touches, each validated once; physical units.
 
+use crate::parts::{Physical, Precurvature, Stiffness};
 use crate::profile::General;
-use crate::scene::{Physical, Precurvature, Stiffness};
 use crate::VibrissaError;
 use std::f64::consts::FRAC_PI_4;
 

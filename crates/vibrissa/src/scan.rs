@@ -1,5 +1,5 @@
 //! The quasi-static stiction scan (paper §3) and its inverse: the entry points, the start, and the
-//! choice of stepper; the march itself is in [`crate::march`].
+//! choice of stepper; the march itself is in module `march`.
 
 use crate::equations::{Ends, RodBvp, ScanFamily};
 use crate::march::{march, Contact, Ctx};
@@ -12,7 +12,7 @@ use crate::{BranchChoice, Rod, Shape, ShapeKind, Surface, VibrissaError};
 use bvp::Guess;
 
 /// Runs the stiction scan. Errors only for invalid input or when it cannot even start;
-/// failures along the way end the scan with [`StopReason::SolverFailure`].
+/// failures along the way end the scan with [`crate::StopReason::SolverFailure`].
 ///
 /// Output points are at `d = i·d_max/(points − 1)`, `i = 0, …, points − 1`, up to the stop.
 pub fn scan(rod: &Rod, surface: &Surface, opts: &ScanOptions) -> Result<ScanResult, VibrissaError> {
@@ -210,7 +210,7 @@ pub fn infer(
             };
             let full = scan_at(rod, surface, &wide, &[]).ok().and_then(|w| {
                 matches!(w.range_end, RangeEnd::FirstMaximum | RangeEnd::Event)
-                    .then(|| (w.d_at_mu_max, format!("{} ({})", w.range_end, w.stop)))
+                    .then(|| (w.d_at_mu_max, range_end_text(&w)))
             });
             return Err(VibrissaError::RangeCutShort {
                 d_max: opts.d_max,
@@ -229,7 +229,7 @@ pub fn infer(
         return Err(VibrissaError::NotMeasurable {
             d0,
             max,
-            end: format!("{} ({})", probe.range_end, probe.stop),
+            end: range_end_text(&probe),
         });
     }
     let at = scan_at(rod, surface, &o, &[d0])?;
@@ -248,4 +248,12 @@ pub fn infer(
         mu_max: probe.mu_max,
         range_end: probe.range_end,
     })
+}
+
+/// What ends a scan's measurable range, with the event when it is one.
+fn range_end_text(r: &ScanResult) -> String {
+    match r.range_end {
+        RangeEnd::Event => format!("{} ({})", r.range_end, r.stop),
+        other => other.to_string(),
+    }
 }

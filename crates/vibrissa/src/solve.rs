@@ -346,7 +346,7 @@ pub(crate) fn run<B: Bvp + ?Sized>(
 /// (a circular arc where it has none); any other rod follows the homotopy from it in the
 /// amplitude `t ∈ [0, 1]` of taper, pre-curvature and compliance, so the answer is the solution
 /// continuously connected to the uniform rod's branch. Single shooting runs on the rod's own
-/// shooter ([`crate::rodsolve`]) for every profile; the other methods through crate `bvp`. A
+/// shooter (module `rodsolve`) for every profile; the other methods through crate `bvp`. A
 /// converged solution on another branch is an error ([`VibrissaError::WrongBranch`]) unless
 /// [`BranchChoice::Any`] is asked for.
 pub fn solve(

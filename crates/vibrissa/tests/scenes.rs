@@ -107,7 +107,8 @@ fn homotopy_start_lands_on_requested_branch() {
 #[test]
 fn first_integral_holds_on_uniform_rod() {
     // m'·m = f cos(φ − α) φ' with κ = m gives ½κ² = f[sin(φ − α) − sin(φ1 − α)] (m(1) = 0).
-    // (design.md writes 2f on the right; that factor contradicts the paper's (2.6), see elastica.)
+    // (the paper's display (2.4) writes 2f on the right; that factor contradicts its (2.6), see
+    // elastica.)
     let rod = Scene::default().rod().unwrap();
     for (alpha, branch) in [(-0.3, BranchChoice::Convex), (-0.3, BranchChoice::Flex)] {
         let s = solve(
