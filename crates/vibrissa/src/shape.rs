@@ -377,9 +377,43 @@ impl<'a> Sampler<'a> {
         (count, first)
     }
 
-    /// The root of `m` between two points `(interval, t)` of opposite signs.
+    /// The root of `m` between two points `(interval, t)` of opposite signs. On one monotone
+    /// piece of one cubic (the usual case) by Newton's method on the cubic, kept in the bracket by
+    /// bisection — a polynomial root, ~10× cheaper than a general 1-D search per output point;
+    /// across intervals by Brent's method (argmin).
     fn root_between(&self, a: (usize, f64), b: (usize, f64)) -> f64 {
         let s_of = |(i, t): (usize, f64)| self.mesh[i] + t * (self.mesh[i + 1] - self.mesh[i]);
+        if a.0 == b.0 {
+            let k = &self.coef[a.0];
+            let p = |t: f64| ((k[3] * t + k[2]) * t + k[1]) * t + k[0];
+            let dp = |t: f64| (3.0 * k[3] * t + 2.0 * k[2]) * t + k[1];
+            let (mut lo, mut hi) = (a.1, b.1);
+            let neg_lo = p(lo) < 0.0;
+            let mut t = 0.5 * (lo + hi);
+            for _ in 0..100 {
+                let v = p(t);
+                if v == 0.0 {
+                    break;
+                }
+                if (v < 0.0) == neg_lo {
+                    lo = t;
+                } else {
+                    hi = t;
+                }
+                let newton = t - v / dp(t);
+                let next = if newton > lo.min(hi) && newton < lo.max(hi) {
+                    newton
+                } else {
+                    0.5 * (lo + hi)
+                };
+                if (next - t).abs() <= 1e-15 * (1.0 + t.abs()) {
+                    t = next;
+                    break;
+                }
+                t = next;
+            }
+            return s_of((a.0, t));
+        }
         let (sa, sb) = (s_of(a), s_of(b));
         let mut g = |s: f64| -> Result<f64, String> { Ok(self.at(s, a.0).0) };
         // the ends bracket the root: Brent cannot fail here, take the midpoint if it does
