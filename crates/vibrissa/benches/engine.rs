@@ -38,6 +38,23 @@ fn cases() -> Vec<Case> {
     let lin = |k0, k1| Precurvature::Linear { k0, k1 };
     let list: Vec<(&'static str, Scene, ScanOptions)> = vec![
         ("uniform", Scene::default(), full.clone()),
+        // the same physics written as a general profile: taper ratio 1 is dispatched to the
+        // uniform path, a table of b = 1 runs the tabulated profile (its whole extra cost)
+        (
+            "taper 1.0 (uniform)",
+            s(&|x| x.stiffness = Stiffness::Taper { ratio: 1.0 }),
+            full.clone(),
+        ),
+        (
+            "table b = 1",
+            s(&|x| {
+                x.stiffness = Stiffness::Table {
+                    s: vec![0.0, 0.25, 0.5, 0.75, 1.0],
+                    b: vec![1.0; 5],
+                }
+            }),
+            full.clone(),
+        ),
         (
             "taper 0.7",
             s(&|x| x.stiffness = Stiffness::Taper { ratio: 0.7 }),
