@@ -13,8 +13,10 @@
 //! | [`NoSolution`] | `y'' = −y` on `[0, π]`, `y(0) = 0`, `y(π) = 1` | none (resonance) |
 //! | [`NanRhs`] | `y' = −√y`, `y(0) = 1` on `[0, 4]` | rhs is NaN once `y < 0` |
 //! | [`SingularNeumann`] | `y'' = 0`, `y'(0) = 0`, `y'(1) = 0` | a line of solutions: singular Jacobian |
+//! | [`Parabola`] | `y'' = p`, `y(0) = y'(0) = 0`, `y(1) = e`, `p` unknown | `y = e s²`, `p = 2e` |
 //!
 //! State layouts are given on each type; second-order equations use `z = (y, y')`.
+//! [`FiniteDifferences`] hides a problem's analytic Jacobians (solvers then difference).
 
 use crate::continuation::ParamBvp;
 use crate::{Bvp, Dims, Guess};
@@ -749,6 +751,98 @@ impl Bvp for SingularNeumann {
     }
 }
 
+// ---------------------------------------------------------------------------------------------
+
+/// `y'' = p` on `[0, 1]`, `y(0) = 0`, `y'(0) = 0`, `y(1) = end`, with unknown `p` (`k = 1`);
+/// `z = (y, y')`. Exact: `y = end·s²`, `p = 2·end`: a polynomial that both collocation schemes
+/// reproduce to rounding, so Newton on a coarsened mesh (or a warm start) starts converged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Parabola {
+    /// `y(1)`.
+    pub end: f64,
+}
+
+impl Parabola {
+    /// Exact `(y, y')` at `s`.
+    pub fn exact(&self, s: f64) -> [f64; 2] {
+        [self.end * s * s, 2.0 * self.end * s]
+    }
+    /// Exact parameter `p = 2·end`.
+    pub fn parameter(&self) -> f64 {
+        2.0 * self.end
+    }
+    /// Guess: zero states and `p = 0` on 11 nodes.
+    pub fn guess() -> Guess {
+        Guess::constant(0.0, 1.0, 11, &[0.0, 0.0], vec![0.0])
+    }
+}
+
+impl Bvp for Parabola {
+    fn dims(&self) -> Dims {
+        Dims { n: 2, k: 1 }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn rhs(&self, _s: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
+        dz[0] = z[1];
+        dz[1] = p[0];
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+        res[0] = za[0];
+        res[1] = za[1];
+        res[2] = zb[0] - self.end;
+    }
+    fn rhs_jacobian(
+        &self,
+        _s: f64,
+        _z: &[f64],
+        _p: &[f64],
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+    ) -> bool {
+        dfdz.copy_from_slice(&[0.0, 1.0, 0.0, 0.0]);
+        dfdp.copy_from_slice(&[0.0, 1.0]);
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64],
+        _zb: &[f64],
+        _p: &[f64],
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+    ) -> bool {
+        zero([dga, dgb, dgp]);
+        dga[0] = 1.0; // row 0, col 0
+        dga[3] = 1.0; // row 1, col 1
+        dgb[4] = 1.0; // row 2, col 0
+        true
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// A problem with its analytic Jacobians hidden: solvers must use finite differences.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FiniteDifferences<P>(pub P);
+
+impl<P: Bvp> Bvp for FiniteDifferences<P> {
+    fn dims(&self) -> Dims {
+        self.0.dims()
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.0.interval()
+    }
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
+        self.0.rhs(s, z, p, dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
+        self.0.bc(za, zb, p, res)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -786,6 +880,10 @@ mod tests {
         check_closed_form(&LinearNonSeparated, LinearNonSeparated::exact, &[]);
         for j in 1..=3 {
             check_closed_form(&Eigen, |s| Eigen::exact(j, s), &[Eigen::eigenvalue(j)]);
+        }
+        for end in [1.0, -2.0] {
+            let p = Parabola { end };
+            check_closed_form(&p, |s| p.exact(s), &[p.parameter()]);
         }
         for lambda in [0.5, 1.0, 3.0, 3.5] {
             let p = Bratu { lambda };

@@ -9,7 +9,8 @@
 //! so `‖e‖∞ ≲ 1.5 · 2 · 3 · tol ≈ 10 tol`. The tests assert `max error ≤ 10 tol`.
 
 use bvp::samples::{
-    Bratu, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution, SingularNeumann,
+    Bratu, Cantilever, Eigen, FiniteDifferences, LinearNonSeparated, LinearSinh, NanRhs,
+    NoSolution, Parabola, SingularNeumann,
 };
 use bvp::{
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Scheme, Solution, Status,
@@ -352,24 +353,6 @@ fn bad_guess_dimensions_are_rejected() {
     let _ = LinearSinh.dims();
 }
 
-/// Hides the analytic Jacobians of a problem, so the solver must use finite differences.
-struct NoJac<P>(P);
-
-impl<P: Bvp> Bvp for NoJac<P> {
-    fn dims(&self) -> bvp::Dims {
-        self.0.dims()
-    }
-    fn interval(&self) -> (f64, f64) {
-        self.0.interval()
-    }
-    fn rhs(&self, s: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
-        self.0.rhs(s, z, p, dz)
-    }
-    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
-        self.0.bc(za, zb, p, res)
-    }
-}
-
 #[test]
 fn finite_difference_jacobians_give_the_same_answer() {
     // Eigen has an unknown parameter, so ∂F/∂p and ∂g/∂p are differenced too.
@@ -377,7 +360,7 @@ fn finite_difference_jacobians_give_the_same_answer() {
         let tol = 1e-8;
         let analytic = solver(scheme, tol).solve(&Eigen, &Eigen::guess()).unwrap();
         let fd = solver(scheme, tol)
-            .solve(&NoJac(Eigen), &Eigen::guess())
+            .solve(&FiniteDifferences(Eigen), &Eigen::guess())
             .unwrap();
         let want = Eigen::eigenvalue(1);
         assert!(
@@ -389,6 +372,38 @@ fn finite_difference_jacobians_give_the_same_answer() {
         // Forward differences: n + k extra rhs evaluations per Jacobian evaluation.
         assert!(fd.stats.rhs_evals > analytic.stats.rhs_evals);
         assert!(fd.stats.jac_evals > 0 && fd.stats.bc_evals > analytic.stats.bc_evals);
+    }
+}
+
+#[test]
+fn exact_start_with_finite_difference_jacobians_is_accepted() {
+    // The conditioning check at acceptance must linearize at the solution even when Newton did
+    // not factorize on the accepted mesh (coarsened mesh, warm start): it once differenced the
+    // boundary conditions against its own right-hand side and reported SingularJacobian here.
+    for scheme in SCHEMES {
+        for end in [0.5, 1.0, -2.0] {
+            let exact = Parabola { end };
+            let prob = FiniteDifferences(exact);
+            let mut c = solver(scheme, 1e-9);
+            let sol = c
+                .solve(&prob, &Parabola::guess())
+                .unwrap_or_else(|e| panic!("{scheme:?} end {end}: {e}"));
+            // Exact polynomial: only rounding and the √ε differences remain.
+            let check = |sol: &Solution| {
+                assert!(
+                    (sol.params[0] - exact.parameter()).abs() <= 1e-10,
+                    "{scheme:?} p"
+                );
+                let (nodal, dense) = max_errors(sol, |s| exact.exact(s));
+                assert!(nodal <= 1e-10 && dense <= 1e-10, "{nodal:e} {dense:e}");
+            };
+            check(&sol);
+            let again = c
+                .solve(&prob, &Guess::from(&sol))
+                .unwrap_or_else(|e| panic!("{scheme:?} end {end}, warm: {e}"));
+            assert_eq!(again.stats.newton_iters, 0, "{}", again.stats);
+            check(&again);
+        }
     }
 }
 

@@ -5,7 +5,7 @@ use bvp::continuation::ParamBvp;
 use bvp::fd::{self, FdScheme, FdScratch};
 use bvp::samples::{
     Bratu, BratuFamily, Cantilever, Eigen, LinearNonSeparated, LinearSinh, NanRhs, NoSolution,
-    SingularNeumann,
+    Parabola, SingularNeumann,
 };
 use bvp::Bvp;
 use proptest::prelude::*;
@@ -69,6 +69,7 @@ proptest! {
         check(&SingularNeumann, t, &za, &zb, &[])?;
         check(&Eigen, t, &za, &zb, &[lambda])?;
         check(&Bratu { lambda: lambda / 10.0 }, t, &za, &zb, &[])?;
+        check(&Parabola { end: lambda - 20.0 }, t, &za, &zb, &[lambda])?;
     }
 
     #[test]

@@ -488,8 +488,12 @@ mod tests {
 
     /// ABD solution against dense LU of the assembled matrix; returns the relative difference.
     fn compare(l: Layout, kind: Kind, separated: bool, seed: u64) -> f64 {
+        compare_with(&mut AbdSystem::new(), l, kind, separated, seed)
+    }
+
+    /// [`compare`] with a given (possibly used) system.
+    fn compare_with(s: &mut AbdSystem, l: Layout, kind: Kind, separated: bool, seed: u64) -> f64 {
         let mut rng = Rng(seed);
-        let mut s = AbdSystem::new();
         s.prepare(l).unwrap();
         fill(l, kind, separated, &mut rng, &mut s.blocks);
         let a = dense(l, &s.blocks);
@@ -728,6 +732,19 @@ mod tests {
         s.factor().expect("scaled column is not singular");
         let mut x = vec![1.0; l.dim()];
         s.solve(&mut x).unwrap();
+    }
+
+    #[test]
+    fn one_system_reused_across_shrinking_and_changing_layouts() {
+        // As in a solve (coarsening shrinks the mesh) and across problems (n, k change): stale
+        // buffers from a larger layout must not leak into a smaller one.
+        let mut s = AbdSystem::new();
+        let mut seq = layouts();
+        seq.sort_by_key(|l| std::cmp::Reverse(l.intervals() * l.wrows() * l.wcols()));
+        for (t, l) in seq.into_iter().enumerate() {
+            let d = compare_with(&mut s, l, Kind::Collocation, false, 500 + t as u64);
+            assert!(d <= 1e-10, "{l:?}: relative difference {d:e}");
+        }
     }
 
     #[test]
