@@ -31,10 +31,10 @@ pub enum VibrissaError {
         reason: String,
     },
     /// The solve converged, but to another branch than the one asked for.
-    #[error("wrong branch: requested {requested}, the solver converged to {found}")]
+    #[error("wrong branch: requested {requested} load reversal(s) (0: convex, 1: flex), the solver converged to {found}")]
     WrongBranch {
-        /// Branch asked for.
-        requested: String,
+        /// Load reversals (sign changes of the moment) of the branch asked for.
+        requested: usize,
         /// What the solution is.
         found: crate::kind::ShapeKind,
     },

@@ -43,11 +43,42 @@ pub(crate) enum Passed {
     Failed(String),
 }
 
+/// Why a correction was refused.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum StepError {
+    /// The corrector landed across a fold in `d` (`det J` changed sign): the fold is within the
+    /// step, pass or locate it by pseudo-arclength rather than by shorter natural steps.
+    CrossedFold,
+    /// Anything else (a shorter step may succeed).
+    Failed(String),
+}
+
+impl std::fmt::Display for StepError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StepError::CrossedFold => f.write_str("the corrector crossed a fold in d"),
+            StepError::Failed(m) => f.write_str(m),
+        }
+    }
+}
+
+impl From<String> for StepError {
+    fn from(m: String) -> Self {
+        StepError::Failed(m)
+    }
+}
+
+impl From<StepError> for String {
+    fn from(e: StepError) -> Self {
+        e.to_string()
+    }
+}
+
 /// Prediction and correction of branch points (the method-specific part of the scan).
 pub(crate) trait Stepper {
     /// The point at `d` from the history `hist` (newest last; `d` ahead of it or inside its span).
     /// Rejects corrections that land on another branch.
-    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, String>;
+    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, StepError>;
     /// Pseudo-arclength continuation from the newest point until the branch passes `target` or
     /// turns back in `d`.
     fn pass_fold(&mut self, hist: &[Pt], target: f64, d_end: f64) -> Passed;
@@ -312,7 +343,7 @@ fn run<P: Profile>(
                 };
                 p
             }
-            Err(_) if h > h_min => {
+            Err(StepError::Failed(_)) if h > h_min => {
                 h *= 0.25;
                 continue;
             }

@@ -145,12 +145,14 @@ fn run_with<P: Profile>(
             eta: contact.eta,
             x_star: contact.x_star,
         };
-        let p0 = st.correct_from(0.0, u0, None).map_err(start_failed)?;
+        let p0 = st
+            .correct_from(0.0, u0, None)
+            .map_err(|e| start_failed(e.to_string()))?;
         Ok(march(&mut st, &ctx, grid, p0, start.stats.clone()))
     } else {
         let mut st = GenericStepper {
             family,
-            engine: Engine::new(&opts.solver)?,
+            engine: Engine::with_max_iter(&opts.solver, 12)?,
             stats: Default::default(),
             tangents: Shooter::new(profile.clone(), c, opts.solver.tol.min(1e-8), 8),
         };

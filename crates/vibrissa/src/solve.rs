@@ -140,10 +140,20 @@ pub(crate) enum Engine {
 }
 
 impl Engine {
+    /// For single solves (from rough guesses: up to 30 Newton iterations).
     pub(crate) fn new(cfg: &SolverConfig) -> Result<Engine, VibrissaError> {
+        Engine::with_max_iter(cfg, 30)
+    }
+
+    /// For the steps of a continuation, which start from good predictions: a step that needs
+    /// more than `max_iter` Newton iterations is better shortened than pursued.
+    pub(crate) fn with_max_iter(
+        cfg: &SolverConfig,
+        max_iter: usize,
+    ) -> Result<Engine, VibrissaError> {
         cfg.validate()?;
         let newton = NewtonOptions {
-            max_iter: 30,
+            max_iter,
             tol: cfg.tol,
             ..NewtonOptions::default()
         };
@@ -258,13 +268,12 @@ fn arc_guess(alpha: f64, target: &Target) -> Option<Guess> {
 
 /// Checks that a shape is on the requested branch.
 pub(crate) fn check_branch(shape: &Shape, branch: &BranchChoice) -> Result<(), VibrissaError> {
-    if shape.is_on(branch) {
-        Ok(())
-    } else {
-        Err(VibrissaError::WrongBranch {
-            requested: branch.to_string(),
+    match branch.load_reversals() {
+        Some(requested) if !shape.is_on(branch) => Err(VibrissaError::WrongBranch {
+            requested,
             found: shape.kind(),
-        })
+        }),
+        _ => Ok(()),
     }
 }
 

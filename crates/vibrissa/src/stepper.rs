@@ -11,7 +11,7 @@
 
 use crate::arclength::{self, Arc, Steps, TipLine};
 use crate::equations::ScanFamily;
-use crate::march::{Passed, Pt, Stepper};
+use crate::march::{Passed, Pt, StepError, Stepper};
 use crate::profile::Profile;
 use crate::rodsolve::{correct_chord, ShotFailure, TipCond};
 use crate::search;
@@ -37,7 +37,7 @@ impl<P: Profile> OwnStepper<P> {
         d: f64,
         u: [f64; 3],
         newest: Option<&Pt>,
-    ) -> Result<Pt, String> {
+    ) -> Result<Pt, StepError> {
         // the chord iteration converges linearly: stopping it at a tenth of the integration
         // tolerance keeps Newton's share of the error in (m(0), f, α) below the discretization's
         // (at tol 1e-10 the paper scan's μ is off by 9.3e-11 instead of 2.2e-9, for ~1 % more
@@ -51,7 +51,7 @@ impl<P: Profile> OwnStepper<P> {
             correct_chord(&mut self.shooter, &cond, u, tol, MAX_ITER).map_err(|e| e.to_string())?;
         let du = cv
             .solve([0.0, -1.0, 0.0])
-            .ok_or("singular Jacobian at the solution")?;
+            .ok_or_else(|| StepError::Failed("singular Jacobian at the solution".into()))?;
         let det = cv.det();
         let p = Pt {
             d,
@@ -72,10 +72,10 @@ impl<P: Profile> OwnStepper<P> {
 /// keeps its sign (else the step crossed a fold in `d`), the tangent in `(u, d)` turned by less
 /// than ~30° (else the step was too long for the branch's curvature), and the correction is
 /// small against the change over the step (else it jumped to another branch).
-fn same_branch(last: &Pt, pred: &[f64; 3], p: &Pt) -> Result<(), String> {
+fn same_branch(last: &Pt, pred: &[f64; 3], p: &Pt) -> Result<(), StepError> {
     if let (Some(d0), Some(d1)) = (last.det, p.det) {
         if d0.signum() != d1.signum() {
-            return Err("the corrector crossed a fold in d".into());
+            return Err(StepError::CrossedFold);
         }
     }
     if let (Some(a), Some(b)) = (last.du, p.du) {
@@ -86,10 +86,10 @@ fn same_branch(last: &Pt, pred: &[f64; 3], p: &Pt) -> Result<(), String> {
         let (ta, tb) = (unit(a), unit(b));
         let cos: f64 = ta.iter().zip(&tb).map(|(x, y)| x * y).sum();
         if cos < 0.85 {
-            return Err(format!(
+            return Err(StepError::Failed(format!(
                 "the branch turned by {:.0}° over the step",
                 cos.clamp(-1.0, 1.0).acos().to_degrees()
-            ));
+            )));
         }
     }
     let corr = max_diff(&p.u, pred);
@@ -98,9 +98,9 @@ fn same_branch(last: &Pt, pred: &[f64; 3], p: &Pt) -> Result<(), String> {
     if !(corr <= 0.5 * change.max(1e-3 * scale * (p.d - last.d).abs().min(1.0))
         || corr < 1e-9 * scale)
     {
-        return Err(format!(
+        return Err(StepError::Failed(format!(
             "the corrector moved {corr:.3e} from the prediction (another branch?)"
-        ));
+        )));
     }
     Ok(())
 }
@@ -177,7 +177,7 @@ fn max_diff(a: &[f64; 3], b: &[f64; 3]) -> f64 {
 }
 
 impl<P: Profile> Stepper for OwnStepper<P> {
-    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, String> {
+    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, StepError> {
         self.correct_from(d, predict(hist, d), hist.last())
     }
 
@@ -385,7 +385,7 @@ impl<P: Profile> GenericStepper<P> {
 }
 
 impl<P: Profile> Stepper for GenericStepper<P> {
-    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, String> {
+    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, StepError> {
         let mut g = self.guess_at(hist, d);
         // with tangents the unknowns come from the Hermite predictor
         let ug = match self.interpolant(hist, d) {
