@@ -59,11 +59,12 @@
 //! [`VibrissaError`].
 #![warn(missing_docs)]
 
-// Modules import downward only (no cycle; checked): kind, parts, search → profile → error →
-// rod → scene; equations → shooter → rodsolve → arclength → shape → solve → report → march →
-// stepper → analytic → scan.
+// Modules import downward only (tests/layering.rs checks it): kind, parts, search → profile,
+// error → config, rod → scene; equations → shooter → rodsolve → arclength; sampling → shape →
+// solve → report → march → stepper → analytic → scan.
 mod analytic;
 mod arclength;
+mod config;
 pub mod equations;
 mod error;
 mod kind;
@@ -73,6 +74,7 @@ pub mod profile;
 pub mod report;
 mod rod;
 mod rodsolve;
+mod sampling;
 pub mod scan;
 pub mod scene;
 mod search;

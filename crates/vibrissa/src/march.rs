@@ -12,8 +12,9 @@
 
 use crate::profile::Profile;
 use crate::report::{Event, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason};
+use crate::sampling::{clearance, extrema, flex_and_reversals};
 use crate::search;
-use crate::shape::{clearance, extrema, flex_and_reversals, shape_from, ShapePoint};
+use crate::shape::{shape_from, ShapePoint};
 use bvp::{Solution, Stats};
 
 /// A converged point of the branch.

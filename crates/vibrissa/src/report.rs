@@ -16,8 +16,8 @@
 //! the tip forward. The tip slips where `|μ|` reaches μ0 (either sign) and lifts off where `N`
 //! reaches 0 (where `|μ|` grows without bound).
 
+use crate::config::SolverConfig;
 use crate::shape::ShapePoint;
-use crate::solve::SolverConfig;
 use crate::VibrissaError;
 use serde::Serialize;
 use std::fmt;

@@ -1,12 +1,13 @@
 //! The quasi-static stiction scan (paper §3) and its inverse: the entry points, the start, and the
 //! choice of stepper; the march itself is in module `march`.
 
+use crate::config::Engine;
 use crate::equations::{Ends, RodBvp, ScanFamily};
 use crate::march::{march, Contact, Ctx};
 use crate::profile::{Profile, Uniform};
 use crate::report::{Inference, RangeEnd, ScanOptions, ScanResult};
 use crate::shooter::Shooter;
-use crate::solve::{solve, Engine, Method, Target};
+use crate::solve::{solve, Method, Target};
 use crate::stepper::{GenericStepper, OwnStepper};
 use crate::{BranchChoice, Rod, Shape, ShapeKind, Surface, VibrissaError};
 use bvp::Guess;

@@ -10,13 +10,13 @@
 //! Both pass folds in `d` by the pseudo-arclength continuation of crate `bvp`.
 
 use crate::arclength::{self, Arc, Steps, TipLine};
+use crate::config::Engine;
 use crate::equations::ScanFamily;
 use crate::march::{Passed, Pt, StepError, Stepper};
 use crate::profile::Profile;
 use crate::rodsolve::{correct_chord, ShotFailure, TipCond};
 use crate::search;
 use crate::shooter::Shooter;
-use crate::solve::Engine;
 use bvp::continuation::{Continuation, ContinuationOptions, FoldKind};
 use bvp::{BvpSolver, Guess, ParamBvp, Solution, Stats};
 

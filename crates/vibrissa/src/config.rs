@@ -1,0 +1,224 @@
+//! Solver settings: the method, its tolerance, the engine built from them, the tip condition.
+
+use crate::VibrissaError;
+use bvp::{
+    Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Integrator, NewtonOptions,
+    Scheme, Shooting, ShootingOptions, Solution,
+};
+use serde::{Deserialize, Serialize};
+use std::fmt;
+use std::str::FromStr;
+
+/// Numerical method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Single shooting (adaptive Runge–Kutta unless `rk4_steps` is set).
+    #[default]
+    Shooting,
+    /// Multiple shooting with `segments` segments.
+    MultipleShooting,
+    /// Lobatto IIIA collocation, order 4.
+    #[serde(rename = "collocation")]
+    Collocation4,
+    /// Lobatto IIIA collocation, order 6.
+    #[serde(rename = "collocation6")]
+    Collocation6,
+    /// Closed forms (crate `elastica`); only for the paper's scene.
+    Analytic,
+}
+
+impl Method {
+    /// All methods.
+    pub const ALL: [Method; 5] = [
+        Method::Shooting,
+        Method::MultipleShooting,
+        Method::Collocation4,
+        Method::Collocation6,
+        Method::Analytic,
+    ];
+    /// The command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Shooting => "shooting",
+            Method::MultipleShooting => "multiple-shooting",
+            Method::Collocation4 => "collocation",
+            Method::Collocation6 => "collocation6",
+            Method::Analytic => "analytic",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Method {
+    type Err = VibrissaError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Method::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| VibrissaError::InvalidName {
+                name: "method",
+                value: s.to_string(),
+                valid: "shooting, multiple-shooting, collocation, collocation6, analytic",
+            })
+    }
+}
+
+/// Solver settings.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SolverConfig {
+    /// Method. Default shooting.
+    pub method: Method,
+    /// Tolerance (Newton residual; integrator / collocation tolerance). Default 1e-10.
+    pub tol: f64,
+    /// Segments of multiple shooting. Default 8.
+    pub segments: usize,
+    /// `Some(n)`: fixed-step RK4 with `n` steps instead of the adaptive integrator.
+    pub rk4_steps: Option<usize>,
+}
+
+impl Default for SolverConfig {
+    fn default() -> Self {
+        SolverConfig {
+            method: Method::Shooting,
+            tol: 1e-10,
+            segments: 8,
+            rk4_steps: None,
+        }
+    }
+}
+
+impl SolverConfig {
+    /// The tolerance of the rod's own shooter when this configuration is plain single shooting
+    /// with the adaptive integrator (which the shooter replaces), else `None`.
+    pub(crate) fn own_shooter_tol(&self) -> Option<f64> {
+        (self.method == Method::Shooting && self.rk4_steps.is_none()).then_some(self.tol)
+    }
+    /// Checks the values: `tol ∈ [1e-15, 1e-2]`, `segments ∈ [1, 10000]`, `rk4_steps ≥ 1`.
+    pub fn validate(&self) -> Result<(), VibrissaError> {
+        if !(self.tol >= 1e-15 && self.tol <= 1e-2) {
+            return Err(VibrissaError::range("tol", self.tol, "[1e-15, 1e-2]"));
+        }
+        if !(1..=10_000).contains(&self.segments) {
+            return Err(VibrissaError::range(
+                "segments",
+                self.segments as f64,
+                "[1, 10000]",
+            ));
+        }
+        if let Some(n) = self.rk4_steps {
+            if !(1..=10_000_000).contains(&n) {
+                return Err(VibrissaError::range("rk4_steps", n as f64, "[1, 1e7]"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A BVP solver built from a [`SolverConfig`]; keeps its work buffers across solves.
+#[derive(Clone, Debug)]
+#[allow(clippy::large_enum_variant)] // one per solve or scan, never in bulk
+pub(crate) enum Engine {
+    Shoot(Shooting),
+    Coll(Collocation),
+}
+
+impl Engine {
+    /// For single solves (from rough guesses: up to 30 Newton iterations).
+    pub(crate) fn new(cfg: &SolverConfig) -> Result<Engine, VibrissaError> {
+        Engine::with_max_iter(cfg, 30)
+    }
+
+    /// For the steps of a continuation, which start from good predictions: a step that needs
+    /// more than `max_iter` Newton iterations is better shortened than pursued.
+    pub(crate) fn with_max_iter(
+        cfg: &SolverConfig,
+        max_iter: usize,
+    ) -> Result<Engine, VibrissaError> {
+        cfg.validate()?;
+        let newton = NewtonOptions {
+            max_iter,
+            tol: cfg.tol,
+            ..NewtonOptions::default()
+        };
+        let wrap = |e: BvpError| VibrissaError::solver("solver options", e);
+        let integrator = match cfg.rk4_steps {
+            Some(steps) => Integrator::Rk4 { steps },
+            None => Integrator::Adaptive {
+                rtol: cfg.tol,
+                atol: cfg.tol,
+            },
+        };
+        Ok(match cfg.method {
+            Method::Shooting | Method::MultipleShooting | Method::Analytic => {
+                let segments = if cfg.method == Method::MultipleShooting {
+                    cfg.segments
+                } else {
+                    1
+                };
+                Engine::Shoot(
+                    Shooting::new(ShootingOptions {
+                        integrator,
+                        segments,
+                        newton,
+                        // a smooth rod needs a few hundred steps at most; more means a Newton
+                        // iterate far off (huge f), better rejected fast
+                        max_steps: 1500,
+                        ..ShootingOptions::default()
+                    })
+                    .map_err(wrap)?,
+                )
+            }
+            Method::Collocation4 | Method::Collocation6 => {
+                let scheme = if cfg.method == Method::Collocation4 {
+                    Scheme::Lobatto4
+                } else {
+                    Scheme::Lobatto6
+                };
+                Engine::Coll(
+                    Collocation::new(CollocationOptions {
+                        scheme,
+                        tol: cfg.tol,
+                        bc_tol: Some(cfg.tol),
+                        max_nodes: 20_000,
+                        newton,
+                        ..CollocationOptions::default()
+                    })
+                    .map_err(wrap)?,
+                )
+            }
+        })
+    }
+}
+
+impl BvpSolver for Engine {
+    fn solve<B: Bvp + ?Sized>(&mut self, p: &B, g: &Guess) -> Result<Solution, BvpError> {
+        match self {
+            Engine::Shoot(s) => s.solve(p, g),
+            Engine::Coll(c) => c.solve(p, g),
+        }
+    }
+}
+
+/// The tip condition of a solve.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Target {
+    /// Tip slope `φ(1)`; unknown `f`.
+    Phi1(f64),
+    /// Tip height `y(1)`; unknown `f`.
+    Eta(f64),
+    /// Tip position; unknowns `f` and `α` (the given `α` is only the start of the search).
+    Tip {
+        /// Tip x.
+        x1: f64,
+        /// Tip y.
+        y1: f64,
+    },
+}
