@@ -246,40 +246,40 @@ pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
         let w = s1 - s0;
         let (y0, y1) = (h(i), h(i + 1));
         let (d0, d1) = (dh(i) * w, dh(i + 1) * w);
-        if !(d0 > 0.0 && d1 <= 0.0) {
-            continue;
-        }
-        // Hermite cubic p(t); p'(t) = a t² + b t + c
+        // Hermite cubic p(t); p'(t) = a t² + b t + c, p''(t) = 2 a t + b. Every local maximum
+        // inside the interval counts, also where p' has the same sign at both ends (a maximum
+        // and a minimum inside one interval, as near the tip of an S-shaped rod).
         let a = 6.0 * y0 + 3.0 * d0 - 6.0 * y1 + 3.0 * d1;
         let b = -6.0 * y0 - 4.0 * d0 + 6.0 * y1 - 2.0 * d1;
         let c = d0;
-        let t = if d1 == 0.0 {
-            1.0
-        } else if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
-            -c / b
-        } else {
-            let disc = (b * b - 4.0 * a * c).max(0.0).sqrt();
-            let q = -0.5 * (b + b.signum() * disc);
-            let (r1, r2) = (q / a, c / q);
-            if (0.0..=1.0).contains(&r1) {
-                r1
-            } else {
-                r2
+        let mut roots = [f64::NAN; 2];
+        if a.abs() <= 1e-14 * (b.abs() + c.abs()) {
+            if b != 0.0 {
+                roots[0] = -c / b;
             }
-        };
-        if !(0.0..=1.0).contains(&t) {
-            continue;
+        } else {
+            let disc = b * b - 4.0 * a * c;
+            if disc >= 0.0 {
+                let q = -0.5 * (b + b.signum() * disc.sqrt());
+                roots = [q / a, if q != 0.0 { c / q } else { f64::NAN }];
+            }
         }
-        let (t2, t3) = (t * t, t * t * t);
-        let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
-            + (t3 - 2.0 * t2 + t) * d0
-            + (-2.0 * t3 + 3.0 * t2) * y1
-            + (t3 - t2) * d1;
-        out.max = out.max.max(y);
-        let s = s0 + t * w;
-        if s < 1.0 - 1e-9 && y > out.interior {
-            out.interior = y;
-            out.s_interior = s;
+        for t in roots {
+            // a maximum (p'' < 0) inside [0, 1]
+            if !((0.0..=1.0).contains(&t) && 2.0 * a * t + b < 0.0) {
+                continue;
+            }
+            let (t2, t3) = (t * t, t * t * t);
+            let y = (2.0 * t3 - 3.0 * t2 + 1.0) * y0
+                + (t3 - 2.0 * t2 + t) * d0
+                + (-2.0 * t3 + 3.0 * t2) * y1
+                + (t3 - t2) * d1;
+            out.max = out.max.max(y);
+            let s = s0 + t * w;
+            if s < 1.0 - 1e-9 && y > out.interior {
+                out.interior = y;
+                out.s_interior = s;
+            }
         }
     }
     out

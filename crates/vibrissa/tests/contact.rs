@@ -46,3 +46,38 @@ proptest! {
         }
     }
 }
+
+/// Found by the property test: near d = 0.39 this rod turns S-shaped at its tip and rises above
+/// the surface at s ≈ 0.967 while the tip still arrives from below, a maximum inside one mesh
+/// interval whose end slopes have the same sign. The scan stops there with penetration, and no
+/// row is above the surface.
+#[test]
+fn an_s_shaped_tip_that_rises_above_the_surface_is_a_penetration() {
+    let scene = Scene {
+        eta: 0.7238972629710195,
+        stiffness: Stiffness::Taper {
+            ratio: 0.7034764277413978,
+        },
+        precurvature: Precurvature::Linear {
+            k0: 0.35384608576947507,
+            k1: 0.22365066836351954,
+        },
+        support_compliance: 0.5511142318116053,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = ScanOptions {
+        points: 21,
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    match r.stop {
+        vibrissa::StopReason::Penetration { d, s, y } => {
+            assert!(d > 0.375 && d < 0.4, "{d}");
+            assert!(s > 0.9 && s < 1.0, "{s}");
+            assert!((y - scene.eta).abs() < 1e-9, "{y}");
+        }
+        ref other => panic!("expected penetration, got {other}"),
+    }
+    assert!(r.points.iter().all(|p| p.y_max <= scene.eta + 1e-9));
+}
