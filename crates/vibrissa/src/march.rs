@@ -333,6 +333,14 @@ fn run<P: Profile>(
         if d_end - target < 1e-3 * h {
             target = d_end;
         }
+        // a slip the predictor sees coming within the step: step to just past it (the event
+        // is then located on a short step, and the scan pays no full step beyond it)
+        if let Some(mu0) = ctx.opts.mu0 {
+            if let Some(ds) = predicted_crossing(stepper, ctx, hist, d, target, Crossing::Slip(mu0))
+            {
+                target = ds + 1e-6 * (target - ds);
+            }
+        }
         let p = match stepper.correct(target, hist) {
             Ok(p) => {
                 h = if p.iters <= 2 {
@@ -445,6 +453,31 @@ fn run<P: Profile>(
         pprev = Some(prev);
         prev = w;
     }
+}
+
+/// Where the branch polynomial, extrapolated from the last points, predicts `g` to reach 0
+/// within `(a, b]` (`None` without a polynomial, or when it does not).
+fn predicted_crossing<P: Profile>(
+    stepper: &dyn Stepper,
+    ctx: &Ctx<'_, P>,
+    hist: &[Pt],
+    a: f64,
+    b: f64,
+    g: Crossing,
+) -> Option<f64> {
+    let on_poly = |d: f64| -> Result<f64, String> {
+        let (u, du) = stepper
+            .interpolant(hist, d)
+            .ok_or_else(|| "no polynomial".to_string())?;
+        g.of_u(&ctx.contact, &u, &du)
+            .ok_or_else(|| "not a function of the unknowns".to_string())
+    };
+    let (ga, gb) = (on_poly(a).ok()?, on_poly(b).ok()?);
+    if !(ga < 0.0 && gb >= 0.0) {
+        return None;
+    }
+    let mut f = on_poly;
+    search::root(&mut f, a, b, 1e-15 * (1.0 + b.abs())).ok()
 }
 
 /// The first `d` in `[a, b]` where `g` reaches 0 (`g(a) < 0 ≤ g(b)`). Where the stepper has the
