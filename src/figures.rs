@@ -1249,7 +1249,7 @@ fn fig_mu(
     let mut m = panel(
         &format!("friction ratio vs foot displacement, {tag}"),
         "foot displacement d (L)",
-        "mu = |fx/fy| = tan(-alpha)",
+        "friction ratio mu = tan(-alpha)",
     );
     m.series.push(series(
         numerical,

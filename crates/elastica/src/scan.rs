@@ -22,7 +22,7 @@ use std::f64::consts::FRAC_PI_4;
 pub struct ScanPoint {
     /// foot displacement `d = x1(start) - x1(current)`
     pub d: f64,
-    /// friction ratio the contact must supply, `mu = tan(-alpha) = |fx/fy|`
+    /// friction ratio the contact must supply, `mu = tan(-alpha) = -fx/|fy|` (signed)
     pub mu: f64,
     /// force angle
     pub alpha: f64,
