@@ -48,8 +48,8 @@ impl Method {
 }
 
 enum Solver {
-    Coll(Collocation),
-    Shoot(Shooting),
+    Coll(Box<Collocation>),
+    Shoot(Box<Shooting>),
 }
 
 impl BvpSolver for Solver {
@@ -67,7 +67,7 @@ impl BvpSolver for Solver {
 
 fn solver(m: Method, tol: f64) -> Solver {
     match m {
-        Method::Lobatto4 | Method::Lobatto6 => Solver::Coll(
+        Method::Lobatto4 | Method::Lobatto6 => Solver::Coll(Box::new(
             Collocation::new(CollocationOptions {
                 scheme: if m == Method::Lobatto4 {
                     Scheme::Lobatto4
@@ -78,8 +78,8 @@ fn solver(m: Method, tol: f64) -> Solver {
                 ..CollocationOptions::default()
             })
             .expect("valid options"),
-        ),
-        Method::Shoot | Method::MShoot => Solver::Shoot(
+        )),
+        Method::Shoot | Method::MShoot => Solver::Shoot(Box::new(
             Shooting::new(ShootingOptions {
                 integrator: Integrator::Adaptive {
                     rtol: 1e-2 * tol,
@@ -89,7 +89,7 @@ fn solver(m: Method, tol: f64) -> Solver {
                 ..ShootingOptions::default()
             })
             .expect("valid options"),
-        ),
+        )),
     }
 }
 

@@ -29,9 +29,18 @@
 //!
 //! # Singularity
 //!
-//! A pivot is declared zero when `|u_jj| ≤ PIVOT_TOL · max |a_·j|`, the largest entry of that
-//! column in the assembled matrix: relative per column, so rescaling an unknown does not change
-//! the verdict. NaN/∞ in the matrix or the solution are reported as singular too.
+//! A pivot is suspect when `|u_jj| ≤ PIVOT_TOL · max |a_·j|`, the largest entry of that column in
+//! the assembled matrix (relative per column, so rescaling an unknown does not change the
+//! verdict). That test is cheap but blind to rows of a smaller scale: the last carry of a stiff
+//! problem condenses the far boundary condition into rows far smaller than the interval rows'
+//! `1/h`, and their exact, uncancelled pivots fell below it (Troesch's problem at μ = 25: pivot
+//! 4.1e-7 against 1e-14 · 4.2e7, a matrix singular in no sense). A suspect factorization is
+//! therefore redone tracking `|L||U|` (the magnitudes each entry was computed from,
+//! `m_rc ← m_rc + |l_rj| m_jc`), and a pivot is declared zero only when
+//! `|u_jj| ≤ PIVOT_TOL · m_jj`: it is at the rounding level of its own computation (exact
+//! cancellation, an all-zero column). That test is invariant to row and column scaling alike.
+//! Near-singular but exactly factored matrices are left to the conditioning check of the
+//! collocation solver. NaN/∞ in the matrix or the solution are reported as singular too.
 
 /// Relative pivot threshold (about 45 ε): matrices singular to working precision.
 const PIVOT_TOL: f64 = 1e-14;
@@ -111,6 +120,9 @@ pub(crate) struct AbdSystem {
     /// Final dense system for `(z_N, p)` and its interchanges.
     fin: Vec<f64>,
     fpiv: Vec<usize>,
+    /// `|L||U|` magnitudes of `win` and `fin`, only for a factorization with a suspect pivot.
+    mwin: Vec<f64>,
+    mfin: Vec<f64>,
     /// Column maxima of the assembled matrix (pivot thresholds), then of the final system.
     colmax: Vec<f64>,
     fscale: Vec<f64>,
@@ -135,10 +147,13 @@ fn resize<T: Clone + Default>(v: &mut Vec<T>, len: usize) {
 }
 
 /// Gaussian elimination with partial pivoting of the first `ne` columns of the row-major
-/// `rows × cols` matrix `w`, updating all columns; `scale[j]` is the size of column `j` for the
-/// pivot test. Multipliers are stored below the diagonal.
+/// `rows × cols` matrix `w`, updating all columns. Multipliers are stored below the diagonal.
+/// Pivot test: with `mag` (the `|L||U|` magnitudes of `w`'s entries, updated alongside),
+/// `|u_jj| ≤ PIVOT_TOL · m_jj`; without, `|u_jj| ≤ PIVOT_TOL · scale[j]` (`scale[j]` the size
+/// of column `j`). See the module docs.
 fn eliminate(
     w: &mut [f64],
+    mut mag: Option<&mut [f64]>,
     rows: usize,
     cols: usize,
     ne: usize,
@@ -155,8 +170,9 @@ fn eliminate(
                 p = r;
             }
         }
+        let floor = mag.as_deref().map_or(scale[j], |m| m[p * cols + j]);
         // Also catches all-zero columns (0 ≤ 0) and NaN from overflow during the elimination.
-        if best.is_nan() || best <= PIVOT_TOL * scale[j] {
+        if best.is_nan() || best <= PIVOT_TOL * floor {
             return Err(LinError::Singular);
         }
         piv[j] = p;
@@ -164,16 +180,31 @@ fn eliminate(
             for c in 0..cols {
                 w.swap(j * cols + c, p * cols + c);
             }
+            if let Some(m) = mag.as_deref_mut() {
+                for c in 0..cols {
+                    m.swap(j * cols + c, p * cols + c);
+                }
+            }
         }
         let (top, bottom) = w.split_at_mut((j + 1) * cols);
         let prow = &top[j * cols..];
         let inv = 1.0 / prow[j];
-        for row in bottom[..(rows - j - 1) * cols].chunks_exact_mut(cols) {
+        for (r, row) in bottom[..(rows - j - 1) * cols]
+            .chunks_exact_mut(cols)
+            .enumerate()
+        {
             let l = row[j] * inv;
             row[j] = l;
             if l != 0.0 {
                 for (x, u) in row[j + 1..].iter_mut().zip(&prow[j + 1..]) {
                     *x -= l * u;
+                }
+                if let Some(m) = mag.as_deref_mut() {
+                    let (mt, mb) = m.split_at_mut((j + 1) * cols);
+                    let mrow = &mut mb[r * cols..(r + 1) * cols];
+                    for (x, u) in mrow[j + 1..].iter_mut().zip(&mt[j * cols + j + 1..]) {
+                        *x += l.abs() * u;
+                    }
                 }
             }
         }
@@ -273,6 +304,18 @@ impl AbdSystem {
         if self.blocks.len() != l.block_len() || !self.column_maxima(l) {
             return Err(LinError::Singular);
         }
+        if self.factor_windows(l, false).is_err() {
+            // A suspect pivot: decide with the magnitudes it was computed from (module docs).
+            resize(&mut self.mwin, self.win.len());
+            resize(&mut self.mfin, self.fin.len());
+            self.factor_windows(l, true)?;
+        }
+        self.factored = true;
+        Ok(())
+    }
+
+    /// The window eliminations and the final system; `track`: with `|L||U|` magnitudes.
+    fn factor_windows(&mut self, l: Layout, track: bool) -> Result<(), LinError> {
         let (n, s, m) = (l.n, l.stride, l.carry());
         let (w, wr, wc) = (l.width(), l.wrows(), l.wcols());
         let slot = wr * wc;
@@ -280,6 +323,23 @@ impl AbdSystem {
             let (done, rest) = self.win.split_at_mut(i * slot);
             let cur = &mut rest[..slot];
             cur.fill(0.0);
+            let mut mcur = None;
+            if track {
+                // Carried rows keep the magnitudes of their history; new rows start at |a|.
+                let (mdone, mrest) = self.mwin.split_at_mut(i * slot);
+                let mc = &mut mrest[..slot];
+                mc.fill(0.0);
+                if i > 0 {
+                    let prev = &mdone[(i - 1) * slot..];
+                    for r in 0..m {
+                        let src = &prev[(s + r) * wc..(s + r + 1) * wc];
+                        let dst = &mut mc[r * wc..(r + 1) * wc];
+                        dst[..n].copy_from_slice(&src[s..s + n]);
+                        dst[s + n..].copy_from_slice(&src[s + n..]);
+                    }
+                }
+                mcur = Some(mc);
+            }
             if i == 0 {
                 // Boundary rows [g_a | g_b | g_p]: z_0 is eliminated here, z_N is the border.
                 for (r, src) in self.blocks[l.bc_offset()..]
@@ -306,8 +366,18 @@ impl AbdSystem {
                 dst[..s + n].copy_from_slice(&src[..s + n]);
                 dst[s + 2 * n..].copy_from_slice(&src[s + n..]);
             }
+            if let Some(mc) = mcur.as_deref_mut() {
+                for (r, row) in cur.chunks_exact(wc).enumerate() {
+                    if i == 0 || r >= m {
+                        for (x, v) in mc[r * wc..(r + 1) * wc].iter_mut().zip(row) {
+                            *x = v.abs();
+                        }
+                    }
+                }
+            }
             eliminate(
                 cur,
+                mcur,
                 wr,
                 wc,
                 s,
@@ -327,9 +397,20 @@ impl AbdSystem {
         }
         self.fscale[..n].copy_from_slice(&self.colmax[l.bcrow()..l.pcol()]);
         self.fscale[n..].copy_from_slice(&self.colmax[l.pcol()..]);
-        eliminate(&mut self.fin, m, m, m, &mut self.fpiv, &self.fscale)?;
-        self.factored = true;
-        Ok(())
+        let mut mfin = None;
+        if track {
+            let mlast = &self.mwin[(l.intervals() - 1) * slot..];
+            for r in 0..m {
+                let src = &mlast[(s + r) * wc..(s + r + 1) * wc];
+                let dst = &mut self.mfin[r * m..(r + 1) * m];
+                for c in 0..n {
+                    dst[c] = src[s + c] + src[s + n + c];
+                }
+                dst[n..].copy_from_slice(&src[s + 2 * n..]);
+            }
+            mfin = Some(&mut self.mfin[..]);
+        }
+        eliminate(&mut self.fin, mfin, m, m, m, &mut self.fpiv, &self.fscale)
     }
 
     /// Solves `A x = rhs` in place with the last factorization; non-finite output means singular.
@@ -732,6 +813,35 @@ mod tests {
         s.factor().expect("scaled column is not singular");
         let mut x = vec![1.0; l.dim()];
         s.solve(&mut x).unwrap();
+    }
+
+    #[test]
+    fn pivot_test_is_relative_per_row_too() {
+        // Scaling the boundary rows by 1e-20 leaves the system solvable, with the same solution.
+        // Those rows reach the final system (the boundary conditions at both ends), whose pivots
+        // then fall far below 1e-14 of the interval rows' column maxima: once reported singular.
+        let l = Layout {
+            nodes: 5,
+            n: 2,
+            k: 1,
+            stride: 2,
+        };
+        let mut s = AbdSystem::new();
+        s.prepare(l).unwrap();
+        fill(l, Kind::Collocation, false, &mut Rng(3), &mut s.blocks);
+        s.factor().unwrap();
+        let mut want = vec![1.0; l.dim()];
+        s.solve(&mut want).unwrap();
+        for v in &mut s.blocks[l.bc_offset()..] {
+            *v *= 1e-20;
+        }
+        s.factor().expect("row-scaled system is not singular");
+        let mut x = vec![1.0; l.dim()];
+        x[l.bcrow()..].iter_mut().for_each(|v| *v *= 1e-20);
+        s.solve(&mut x).unwrap();
+        for (a, b) in x.iter().zip(&want) {
+            assert!((a - b).abs() <= 1e-10 * (1.0 + b.abs()), "{a} vs {b}");
+        }
     }
 
     #[test]
