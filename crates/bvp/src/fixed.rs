@@ -13,8 +13,9 @@
 //! The boundary residual has `N + K` entries, a length stable Rust cannot yet spell as an array
 //! type, so [`FixedBvp::bc`] writes into a slice of that length, and the boundary Jacobians are
 //! slices of `N + K` rows. Every Jacobian is written row by row, `d[i][j] = ∂(output i)/∂(input
-//! j)` — the layout of [`Bvp`] (there flattened). Parameter-free problems use `K = 0` (the
-//! default), and their `dfdp`, `dgp` are simply not touched.
+//! j)` — the layout of [`Bvp`] (there flattened). The Jacobians in the parameters have methods
+//! of their own ([`FixedBvp::rhs_param_jacobian`], [`FixedBvp::bc_param_jacobian`]), so a
+//! parameter-free problem (`K = 0`, the default) never names a matrix of width zero.
 //!
 //! ```
 //! use bvp::fixed::{Fixed, FixedBvp};
@@ -33,14 +34,7 @@
 //!         res[0] = za[0];
 //!         res[1] = zb[0] - 1.0;
 //!     }
-//!     fn rhs_jacobian(
-//!         &self,
-//!         _s: f64,
-//!         _z: &[f64; 2],
-//!         _p: &[f64; 0],
-//!         dfdz: &mut [[f64; 2]; 2],
-//!         _dfdp: &mut [[f64; 0]; 2],
-//!     ) -> bool {
+//!     fn rhs_jacobian(&self, _s: f64, _z: &[f64; 2], _p: &[f64; 0], dfdz: &mut [[f64; 2]; 2]) -> bool {
 //!         *dfdz = [[0.0, 1.0], [-1.0, 0.0]];
 //!         true
 //!     }
@@ -61,6 +55,10 @@ use crate::{Bvp, Dims};
 /// conditions. Jacobians are optional (finite differences otherwise) and written row by row as
 /// in [`Bvp`]: `dfdz[i][j] = ∂F_i/∂z_j`, `dfdp[i][j] = ∂F_i/∂p_j`, `dga[i][j] = ∂g_i/∂z_j(a)`,
 /// `dgb[i][j] = ∂g_i/∂z_j(b)`, `dgp[i][j] = ∂g_i/∂p_j` (`i` over the `N + K` conditions).
+///
+/// The parameter Jacobians are asked for only when `K > 0`. An analytic Jacobian of `F` (or of
+/// `g`) is used when every part of it is provided; with `K > 0` and no parameter part, the
+/// solvers take finite differences of the whole of it.
 pub trait FixedBvp<const N: usize, const K: usize = 0> {
     /// The interval `[a, b]`, `a < b`.
     fn interval(&self) -> (f64, f64);
@@ -68,19 +66,29 @@ pub trait FixedBvp<const N: usize, const K: usize = 0> {
     fn rhs(&self, s: f64, z: &[f64; N], p: &[f64; K]) -> [f64; N];
     /// Boundary residual `g(za, zb, p)` into `res` (length `N + K`).
     fn bc(&self, za: &[f64; N], zb: &[f64; N], p: &[f64; K], res: &mut [f64]);
-    /// Analytic `dfdz = ∂F/∂z`, `dfdp = ∂F/∂p`; `false` (the default) for finite differences.
+    /// Analytic `dfdz = ∂F/∂z`; `false` (the default) for finite differences.
     fn rhs_jacobian(
         &self,
         _s: f64,
         _z: &[f64; N],
         _p: &[f64; K],
         _dfdz: &mut [[f64; N]; N],
+    ) -> bool {
+        false
+    }
+    /// Analytic `dfdp = ∂F/∂p` (only asked for when `K > 0`); `false` (the default) for finite
+    /// differences.
+    fn rhs_param_jacobian(
+        &self,
+        _s: f64,
+        _z: &[f64; N],
+        _p: &[f64; K],
         _dfdp: &mut [[f64; K]; N],
     ) -> bool {
         false
     }
-    /// Analytic Jacobians of `g` (`N + K` rows each); `false` (the default) for finite
-    /// differences.
+    /// Analytic `dga = ∂g/∂z(a)`, `dgb = ∂g/∂z(b)` (`N + K` rows each); `false` (the default)
+    /// for finite differences.
     fn bc_jacobian(
         &self,
         _za: &[f64; N],
@@ -88,6 +96,16 @@ pub trait FixedBvp<const N: usize, const K: usize = 0> {
         _p: &[f64; K],
         _dga: &mut [[f64; N]],
         _dgb: &mut [[f64; N]],
+    ) -> bool {
+        false
+    }
+    /// Analytic `dgp = ∂g/∂p` (`N + K` rows; only asked for when `K > 0`); `false` (the
+    /// default) for finite differences.
+    fn bc_param_jacobian(
+        &self,
+        _za: &[f64; N],
+        _zb: &[f64; N],
+        _p: &[f64; K],
         _dgp: &mut [[f64; K]],
     ) -> bool {
         false
@@ -150,8 +168,9 @@ impl<T: FixedBvp<N, K>, const N: usize, const K: usize> Bvp for Fixed<T, N, K> {
         dfdz: &mut [f64],
         dfdp: &mut [f64],
     ) -> bool {
-        self.0
-            .rhs_jacobian(s, view(z), view(p), matrix_mut(dfdz), matrix_mut(dfdp))
+        let (z, p) = (view(z), view(p));
+        self.0.rhs_jacobian(s, z, p, matrix_mut(dfdz))
+            && (K == 0 || self.0.rhs_param_jacobian(s, z, p, matrix_mut(dfdp)))
     }
     fn bc_jacobian(
         &self,
@@ -162,13 +181,9 @@ impl<T: FixedBvp<N, K>, const N: usize, const K: usize> Bvp for Fixed<T, N, K> {
         dgb: &mut [f64],
         dgp: &mut [f64],
     ) -> bool {
-        self.0.bc_jacobian(
-            view(za),
-            view(zb),
-            view(p),
-            rows_mut(dga, N + K),
-            rows_mut(dgb, N + K),
-            rows_mut(dgp, N + K),
-        )
+        let (za, zb, p) = (view(za), view(zb), view(p));
+        self.0
+            .bc_jacobian(za, zb, p, rows_mut(dga, N + K), rows_mut(dgb, N + K))
+            && (K == 0 || self.0.bc_param_jacobian(za, zb, p, rows_mut(dgp, N + K)))
     }
 }

@@ -66,14 +66,7 @@ impl FixedBvp<2, 0> for FixedBratu {
         res[0] = za[0];
         res[1] = zb[0];
     }
-    fn rhs_jacobian(
-        &self,
-        _s: f64,
-        z: &[f64; 2],
-        _p: &[f64; 0],
-        dfdz: &mut [[f64; 2]; 2],
-        _dfdp: &mut [[f64; 0]; 2],
-    ) -> bool {
+    fn rhs_jacobian(&self, _s: f64, z: &[f64; 2], _p: &[f64; 0], dfdz: &mut [[f64; 2]; 2]) -> bool {
         *dfdz = [[0.0, 1.0], [-self.0 * z[0].exp(), 0.0]];
         true
     }
@@ -84,7 +77,6 @@ impl FixedBvp<2, 0> for FixedBratu {
         _p: &[f64; 0],
         dga: &mut [[f64; 2]],
         dgb: &mut [[f64; 2]],
-        _dgp: &mut [[f64; 0]],
     ) -> bool {
         dga.copy_from_slice(&[[1.0, 0.0], [0.0, 0.0]]);
         dgb.copy_from_slice(&[[0.0, 0.0], [1.0, 0.0]]);

@@ -94,15 +94,17 @@ impl FixedBvp<2, 1> for ArrayEigen {
         res[1] = zb[0];
         res[2] = za[1] - 1.0;
     }
-    fn rhs_jacobian(
+    fn rhs_jacobian(&self, _s: f64, z: &[f64; 2], p: &[f64; 1], dfdz: &mut [[f64; 2]; 2]) -> bool {
+        *dfdz = [[0.0, 1.0], [-p[0], 0.0]];
+        true
+    }
+    fn rhs_param_jacobian(
         &self,
         _s: f64,
         z: &[f64; 2],
-        p: &[f64; 1],
-        dfdz: &mut [[f64; 2]; 2],
+        _p: &[f64; 1],
         dfdp: &mut [[f64; 1]; 2],
     ) -> bool {
-        *dfdz = [[0.0, 1.0], [-p[0], 0.0]];
         *dfdp = [[0.0], [-z[0]]];
         true
     }
@@ -113,11 +115,20 @@ impl FixedBvp<2, 1> for ArrayEigen {
         _p: &[f64; 1],
         dga: &mut [[f64; 2]],
         dgb: &mut [[f64; 2]],
-        dgp: &mut [[f64; 1]],
     ) -> bool {
-        assert_eq!((dga.len(), dgb.len(), dgp.len()), (3, 3, 3));
+        assert_eq!((dga.len(), dgb.len()), (3, 3));
         dga.copy_from_slice(&[[1.0, 0.0], [0.0, 0.0], [0.0, 1.0]]);
         dgb.copy_from_slice(&[[0.0, 0.0], [1.0, 0.0], [0.0, 0.0]]);
+        true
+    }
+    fn bc_param_jacobian(
+        &self,
+        _za: &[f64; 2],
+        _zb: &[f64; 2],
+        _p: &[f64; 1],
+        dgp: &mut [[f64; 1]],
+    ) -> bool {
+        assert_eq!(dgp.len(), 3);
         dgp.copy_from_slice(&[[0.0]; 3]);
         true
     }
@@ -136,6 +147,54 @@ fn array_rows_are_row_major() {
     assert_eq!(ga, [1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
     assert_eq!(gb, [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
     assert_eq!(gp, [0.0; 3]);
+    let guess = Guess::from_fn(2, mesh(), vec![0.8], |s, z| {
+        z[0] = s.sin();
+        z[1] = s.cos();
+    });
+    let sol = Collocation::new(CollocationOptions::default())
+        .unwrap()
+        .solve(&p, &guess)
+        .unwrap();
+    assert!((sol.params[0] - 1.0).abs() < 1e-6, "{}", sol.params[0]);
+}
+
+/// The same problem without its parameter Jacobians: the state parts alone are not a whole
+/// Jacobian, so the view reports none and the solvers difference all of it.
+struct ArrayEigenStateJacobians;
+
+impl FixedBvp<2, 1> for ArrayEigenStateJacobians {
+    fn interval(&self) -> (f64, f64) {
+        ArrayEigen.interval()
+    }
+    fn rhs(&self, s: f64, z: &[f64; 2], p: &[f64; 1]) -> [f64; 2] {
+        ArrayEigen.rhs(s, z, p)
+    }
+    fn bc(&self, za: &[f64; 2], zb: &[f64; 2], p: &[f64; 1], res: &mut [f64]) {
+        ArrayEigen.bc(za, zb, p, res)
+    }
+    fn rhs_jacobian(&self, s: f64, z: &[f64; 2], p: &[f64; 1], dfdz: &mut [[f64; 2]; 2]) -> bool {
+        ArrayEigen.rhs_jacobian(s, z, p, dfdz)
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64; 2],
+        zb: &[f64; 2],
+        p: &[f64; 1],
+        dga: &mut [[f64; 2]],
+        dgb: &mut [[f64; 2]],
+    ) -> bool {
+        ArrayEigen.bc_jacobian(za, zb, p, dga, dgb)
+    }
+}
+
+#[test]
+fn partial_jacobians_fall_back_to_differences() {
+    let p = Fixed(ArrayEigenStateJacobians);
+    let (z, q) = ([0.7, -0.2], [1.3]);
+    let (mut jz, mut jp) = ([0.0; 4], [0.0; 2]);
+    assert!(!p.rhs_jacobian(0.1, &z, &q, &mut jz, &mut jp));
+    let (mut ga, mut gb, mut gp) = ([0.0; 6], [0.0; 6], [0.0; 3]);
+    assert!(!p.bc_jacobian(&z, &z, &q, &mut ga, &mut gb, &mut gp));
     let guess = Guess::from_fn(2, mesh(), vec![0.8], |s, z| {
         z[0] = s.sin();
         z[1] = s.cos();
