@@ -23,6 +23,8 @@ pub enum Status {
     StepSizeTooSmall,
     /// Options or problem dimensions were invalid.
     InvalidInput,
+    /// A continuation path ended before its target (step limit, or the branch turned back).
+    PathEnded,
 }
 
 /// Why a solve failed. Every variant that comes from a solve carries the [`Stats`] gathered so far.
@@ -144,6 +146,25 @@ pub enum BvpError {
         #[source]
         source: Box<BvpError>,
     },
+    /// [`crate::solve_by_continuation`] took every step it could and stopped short of its
+    /// target: `continuation.max_steps` ran out, or the branch turned back (a fold in the
+    /// parameter) and ended on the starting side.
+    #[error(
+        "continuation stopped at lambda = {lambda} after {steps} steps, short of {target}: \
+         {reason} ({stats})"
+    )]
+    PathEnded {
+        /// Parameter value of the last point.
+        lambda: f64,
+        /// The requested value.
+        target: f64,
+        /// Points computed after the start.
+        steps: usize,
+        /// What ended the path, with the option to change.
+        reason: &'static str,
+        /// Statistics of the whole path.
+        stats: Stats,
+    },
 }
 
 impl BvpError {
@@ -158,6 +179,7 @@ impl BvpError {
             BvpError::MeshLimit { .. } => Status::MeshLimit,
             BvpError::StepSizeTooSmall { .. } => Status::StepSizeTooSmall,
             BvpError::Continuation { source, .. } => source.status(),
+            BvpError::PathEnded { .. } => Status::PathEnded,
         }
     }
 
@@ -170,7 +192,8 @@ impl BvpError {
             | BvpError::MaxIterations { stats, .. }
             | BvpError::NonFinite { stats, .. }
             | BvpError::MeshLimit { stats, .. }
-            | BvpError::StepSizeTooSmall { stats, .. } => Some(stats),
+            | BvpError::StepSizeTooSmall { stats, .. }
+            | BvpError::PathEnded { stats, .. } => Some(stats),
             BvpError::Continuation { source, .. } => source.stats(),
         }
     }

@@ -218,8 +218,9 @@ fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static s
 /// solved first from `guess` (see the [module docs](self)). `solver` is used for every solve.
 ///
 /// Errors: the solver's error at `from` (as is); [`BvpError::Continuation`] when the walk
-/// cannot proceed even at `ds_min` (with the parameter reached and the solver's last error), or
-/// when `max_steps` run out or the branch turns back before `to`.
+/// cannot proceed even at `ds_min` (with the parameter reached and the solver's last error);
+/// [`BvpError::PathEnded`] when `max_steps` run out or the branch turns back before `to`. Both
+/// report the parameter itself (not its logarithm on a log scale).
 pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
     family: &P,
     solver: &mut S,
@@ -270,6 +271,7 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
         let mut path = Vec::new();
         let cont = Continuation::new(fam, &mut *solver, start.clone(), m0, copts)?;
         let mut last_lambda = m0;
+        let mut turned_back = false;
         for point in cont {
             let point = match point {
                 Ok(p) => p,
@@ -289,20 +291,53 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
                 if point.lambda == m1 {
                     return Ok((point.solution, path));
                 }
+                turned_back = true;
                 break;
             }
         }
-        Err(BvpError::Continuation {
-            step: path.len(),
+        Err(BvpError::PathEnded {
             lambda: last_lambda,
-            ds: 0.0,
-            hint: " (the branch turned back or max_steps ran out before reaching the target)",
-            source: Box::new(BvpError::MaxIterations {
-                max_iter: opts.continuation.max_steps,
-                residual: f64::NAN,
-                stats: stats.clone(),
-            }),
+            target: m1,
+            steps: path.len().saturating_sub(1),
+            reason: if turned_back {
+                "the branch turned back at a fold in the parameter and returned to the starting \
+                 side (the target is not on this branch)"
+            } else {
+                "continuation.max_steps ran out (raise it; a step length that stays small \
+                 means the corrector struggles there)"
+            },
+            stats: stats.clone(),
         })
+    };
+    // Errors carry the parameter itself, not its logarithm.
+    let unlog = |e: BvpError| match e {
+        BvpError::Continuation {
+            step,
+            lambda,
+            ds,
+            hint,
+            source,
+        } if log => BvpError::Continuation {
+            step,
+            lambda: sign * lambda.exp(),
+            ds,
+            hint,
+            source,
+        },
+        BvpError::PathEnded {
+            lambda,
+            steps,
+            reason,
+            stats,
+            ..
+        } if log => BvpError::PathEnded {
+            lambda: sign * lambda.exp(),
+            target: to,
+            steps,
+            reason,
+            stats,
+        },
+        e => e,
     };
     let (solution, path) = if log {
         let fam = LogFamily { family, sign };
@@ -312,7 +347,8 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
             &fam,
             (from / sign).ln(),
             (to / sign).ln(),
-        )?;
+        )
+        .map_err(unlog)?;
         (sol, path.into_iter().map(|m| sign * m.exp()).collect())
     } else {
         walk(solver, &mut stats, &Same(family), from, to)?

@@ -277,6 +277,69 @@ fn continuation_reaches_hard_members() {
     assert!(fine.max(node) < 1e-8, "{node:.2e} {fine:.2e}");
 }
 
+/// The continuation step grows when the predictor is good, also for an adaptive solver whose
+/// corrector spends an iteration on every refined mesh: problem 20 (ε y'' = 1 − y'², corner
+/// layer) from ε = 0.1 to 1e-3 by Lobatto4 at tol 1e-6 takes 13 points; when those iterations
+/// counted against the step (4–5 per corrector, at a target of 4), it took 30, and problem 30
+/// at tol 1e-8 crawled to ε = 2.5e-3 in 500 steps.
+#[test]
+fn continuation_steps_grow_on_adaptive_meshes() {
+    let (eps, tol) = (1e-3, 1e-6);
+    let p = CashMazzia::new(20).unwrap();
+    let res = solve_by_continuation(
+        &p,
+        &mut lobatto(Scheme::Lobatto4, tol),
+        &p.guess(0.1, 101),
+        0.1,
+        eps,
+        &PathOptions::default(),
+    )
+    .unwrap();
+    assert!(
+        res.path.len() <= 20,
+        "{} points: {:?}",
+        res.path.len(),
+        res.path
+    );
+    let (node, fine) = errors(&p, eps, &res.solution);
+    assert!(
+        fine.max(node) <= 10.0 * tol,
+        "error {fine:.2e} (nodes {node:.2e})"
+    );
+}
+
+/// A path that runs out of steps says so (not as a Newton iteration limit) and reports where it
+/// stopped as a value of ε, not of ln ε.
+#[test]
+fn exhausted_path_reports_the_parameter_reached() {
+    let p = CashMazzia::new(20).unwrap();
+    let mut opts = PathOptions::default();
+    opts.continuation.max_steps = 3;
+    let err = solve_by_continuation(
+        &p,
+        &mut lobatto(Scheme::Lobatto4, 1e-6),
+        &p.guess(0.1, 101),
+        0.1,
+        1e-3,
+        &opts,
+    )
+    .unwrap_err();
+    assert_eq!(err.status(), bvp::Status::PathEnded);
+    match &err {
+        bvp::BvpError::PathEnded {
+            lambda,
+            target,
+            steps,
+            ..
+        } => {
+            assert!(*lambda > 1e-3 && *lambda < 0.1, "{err}");
+            assert_eq!((*target, *steps), (1e-3, 3));
+        }
+        e => panic!("{e}"),
+    }
+    assert!(err.to_string().contains("continuation.max_steps"), "{err}");
+}
+
 /// Dense output keeps the method's accuracy between nodes: the error on 9 points inside every
 /// interval is at most 10 × the error at the nodes, plus 1e-12 (the floor of the quintic's
 /// finite-difference `z''` on steps of ~0.05; nodal errors there are ~1e-14).
