@@ -340,6 +340,34 @@ fn exhausted_path_reports_the_parameter_reached() {
     assert!(err.to_string().contains("continuation.max_steps"), "{err}");
 }
 
+/// Problem 15 (ε y'' = x y, y(±1) = 1) is singular at ε = 0.077979544967 (the homogeneous
+/// problem has a solution there: data/bvp_testset/p15_singular_members.py), which is why
+/// continuation from ε = 0.1 cannot reach its small-ε members. That member has no solution and
+/// neither scheme returns one (with a huge amplitude, as residual control alone would); its
+/// neighbours solve.
+#[test]
+fn singular_member_of_problem_15_is_reported() {
+    let p = CashMazzia::new(15).unwrap();
+    let tol = 1e-6;
+    for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
+        let eps = 0.077979544967;
+        let r = lobatto(scheme, tol).solve(&p.at(eps), &p.guess(eps, 101));
+        assert!(
+            matches!(
+                r,
+                Err(bvp::BvpError::SingularJacobian { .. } | bvp::BvpError::Stalled { .. })
+            ),
+            "{scheme:?}: {r:?}"
+        );
+        for eps in [0.07, 0.09] {
+            let sol = lobatto(scheme, tol)
+                .solve(&p.at(eps), &p.guess(eps, 101))
+                .unwrap_or_else(|e| panic!("{scheme:?} at {eps}: {e}"));
+            assert!(sol.len() > 2);
+        }
+    }
+}
+
 /// Dense output keeps the method's accuracy between nodes: the error on 9 points inside every
 /// interval is at most 10 × the error at the nodes, plus 1e-12 (the floor of the quintic's
 /// finite-difference `z''` on steps of ~0.05; nodal errors there are ~1e-14).
