@@ -211,6 +211,7 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
             }
         }
     }
+    generic_shape(rows, &branches, &f_ref, alpha, phi1, quick, cap)?;
     // The closed form itself, against the mpmath values of data/elastica/special_values.csv.
     #[allow(clippy::excessive_precision)] // the digits as printed in the data file
     let mp = [4.718_125_860_964_310_5, 19.028_967_652_434_935];
@@ -240,6 +241,126 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         newton_iters: 0,
         note: "error against mpmath (data/elastica/special_values.csv)".into(),
     });
+    Ok(())
+}
+
+/// One configured generic solver, applied to a guess.
+type Runner = Box<dyn FnMut(&bvp::Guess) -> Result<bvp::Solution>>;
+
+/// Problem 1 through the generic crate `bvp` alone (the rod model `RodBvp`, the same warm starts,
+/// no closed-form start, branch check or shape post-processing): its DOP853 single shooting
+/// (variational equations on the same stages) and, with `--features ode-baseline`, single
+/// shooting through `ode_solvers`' Dop853 (Sparse output, forward-difference Newton matrix), the
+/// off-the-shelf baseline of the hand-written integrator. Tolerance `tol` for rtol, atol and
+/// Newton alike.
+fn generic_shape(
+    rows: &mut Vec<Row>,
+    branches: &[(Branch, BranchChoice)],
+    f_ref: &[f64],
+    alpha: f64,
+    phi1: f64,
+    quick: bool,
+    cap: f64,
+) -> Result<()> {
+    use bvp::{BvpSolver, Guess, Integrator, NewtonOptions, Shooting, ShootingOptions};
+    use vibrissa::equations::{Ends, RodBvp};
+    use vibrissa::profile::Uniform;
+    let problem = RodBvp {
+        profile: Uniform,
+        compliance: 0.0,
+        alpha,
+        ends: Ends::Phi1 { phi1 },
+    };
+    let guesses: Vec<Guess> = branches
+        .iter()
+        .map(|(_, choice)| {
+            let BranchChoice::Guess(w) = choice else {
+                bail!("warm start expected")
+            };
+            let sol = w
+                .solution()
+                .ok_or_else(|| anyhow!("numeric warm start expected"))?;
+            let mut g = Guess::from(sol);
+            g.params = vec![w.f];
+            Ok(g)
+        })
+        .collect::<Result<_>>()?;
+    let tols: Vec<f64> = if quick {
+        vec![1e-4, 1e-8]
+    } else {
+        (3..=12).map(|e| 10f64.powi(-e)).collect()
+    };
+    let newton = |tol: f64| NewtonOptions {
+        tol,
+        ..NewtonOptions::default()
+    };
+    let mut sweep = |name: &str, make: &mut dyn FnMut(f64) -> Result<Runner>| -> Result<()> {
+        for &tol in &tols {
+            let mut solve_one = make(tol)?;
+            let (mut err, mut time, mut reps, mut rhs, mut its) = (0.0_f64, 0.0, 0, 0, 0);
+            let mut note = String::new();
+            for (g, &fr) in guesses.iter().zip(f_ref) {
+                match time_it(|| solve_one(g)) {
+                    Ok((sol, t, n)) => {
+                        err = err.max((sol.params[0] - fr).abs() / fr);
+                        time += t;
+                        reps = n;
+                        rhs += sol.stats.rhs_evals;
+                        its += sol.stats.newton_iters;
+                    }
+                    Err(e) => {
+                        note = format!("failed: {e}");
+                        err = f64::NAN;
+                    }
+                }
+            }
+            eprintln!("shape  {name:20} tol {tol:e}: err {err:.2e} time {time:.3e} s");
+            rows.push(Row {
+                problem: "shape",
+                method: name.to_string(),
+                tol,
+                rk4_steps: None,
+                error: err,
+                time_s: time,
+                reps,
+                rhs_evals: rhs,
+                newton_iters: its,
+                note,
+            });
+            if time > cap {
+                break;
+            }
+        }
+        Ok(())
+    };
+    let p = problem.clone();
+    sweep("bvp-shooting-dop853", &mut |tol| {
+        let mut solver = Shooting::new(ShootingOptions {
+            integrator: Integrator::Adaptive {
+                rtol: tol,
+                atol: tol,
+            },
+            newton: newton(tol),
+            ..ShootingOptions::default()
+        })?;
+        let p = p.clone();
+        Ok(Box::new(move |g: &Guess| Ok(solver.solve(&p, g)?)))
+    })?;
+    #[cfg(feature = "ode-baseline")]
+    {
+        use bvp::odes::{OdeShooting, OdeShootingOptions};
+        let p = problem.clone();
+        sweep("ode_solvers-dop853", &mut |tol| {
+            let mut solver = OdeShooting::new(OdeShootingOptions {
+                rtol: tol,
+                atol: tol,
+                newton: newton(tol),
+                ..OdeShootingOptions::default()
+            })?;
+            let p = p.clone();
+            Ok(Box::new(move |g: &Guess| Ok(solver.solve(&p, g)?)))
+        })?;
+    }
     Ok(())
 }
 
@@ -514,13 +635,15 @@ const PROBLEMS: [(&str, &str); 3] = [
 /// Accuracy targets of the summary (issue #6): problem, target error.
 const TARGETS: [(&str, f64); 3] = [("shape", 1e-10), ("scan", 1e-9), ("taper", 1e-9)];
 
-const METHODS: [&str; 6] = [
+const METHODS: [&str; 8] = [
     "shooting-rk4",
     "shooting-dop853",
     "multiple-shooting-8",
     "collocation4",
     "collocation6",
     "analytic",
+    "bvp-shooting-dop853",
+    "ode_solvers-dop853",
 ];
 
 /// SVG user units per output pixel: plotters rounds to whole units, so the plot is drawn `S`
@@ -543,13 +666,15 @@ fn plot(path: &Path, rows: &[Row]) -> Result<()> {
         RGBColor(214, 39, 40),
         RGBColor(148, 103, 189),
         RGBColor(0, 0, 0),
+        RGBColor(140, 86, 75),
+        RGBColor(227, 119, 194),
     ];
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (w * S, h * S)).into_drawing_area();
         root.fill(&WHITE)?;
         // the legend has its own row under the panels: it never covers data
-        let (body, legend) = root.split_vertically((h - 56) * S);
+        let (body, legend) = root.split_vertically((h - 76) * S);
         for (panel, (prob, title)) in body.split_evenly((1, 3)).iter().zip(PROBLEMS) {
             // drawn: runs with an error, and the closed-form reference (time only)
             let pts: Vec<&Row> = rows
@@ -634,16 +759,21 @@ fn plot(path: &Path, rows: &[Row]) -> Result<()> {
             "collocation, order 4",
             "collocation, order 6",
             "closed form (dashed: scan reference, time only)",
+            "generic bvp shooting, DOP853 (shape only)",
+            "ode_solvers Dop853 shooting (shape only)",
         ];
         legend.draw(&Text::new(
             "lines: for each method the runs that no faster run beats in accuracy; hollow dots: \
              the other runs",
-            (30 * S as i32, 30 * S as i32),
+            (30 * S as i32, 50 * S as i32),
             font(13),
         ))?;
-        let mut x = 30 * S as i32;
+        let (mut x, mut y) = (30 * S as i32, 16 * S as i32);
         for (name, c) in names.iter().zip(colors) {
-            let y = 18 * S as i32;
+            let width = (44 + 7 * name.len() as u32) as i32 * S as i32;
+            if x + width > (w - 20) as i32 * S as i32 {
+                (x, y) = (30 * S as i32, y + 20 * S as i32);
+            }
             legend.draw(&PathElement::new(
                 vec![(x, y), (x + 26 * S as i32, y)],
                 c.stroke_width(2 * S),
@@ -655,7 +785,7 @@ fn plot(path: &Path, rows: &[Row]) -> Result<()> {
                 (x + 32 * S as i32, y - 7 * S as i32),
                 font(14),
             ))?;
-            x += (44 + 7 * name.len() as u32) as i32 * S as i32;
+            x += width;
         }
         root.present()?;
     }

@@ -150,21 +150,30 @@ pub enum BvpError {
     /// target: `continuation.max_steps` ran out, or the branch turned back (a fold in the
     /// parameter) and ended on the starting side.
     #[error(
-        "continuation stopped at lambda = {lambda} after {steps} steps, short of {target}: \
-         {reason} ({stats})"
+        "continuation stopped at lambda = {lambda} after {steps} steps, short of its target: \
+         {} ({stats})",
+        path_end(*.turned_back)
     )]
     PathEnded {
         /// Parameter value of the last point.
         lambda: f64,
-        /// The requested value.
-        target: f64,
         /// Points computed after the start.
         steps: usize,
-        /// What ended the path, with the option to change.
-        reason: &'static str,
+        /// The branch turned back (else the step limit ran out).
+        turned_back: bool,
         /// Statistics of the whole path.
         stats: Stats,
     },
+}
+
+fn path_end(turned_back: bool) -> &'static str {
+    if turned_back {
+        "the branch turned back at a fold in the parameter and returned to the starting side \
+         (the target is not on this branch)"
+    } else {
+        "continuation.max_steps ran out (raise it; a step length that stays small means the \
+         corrector struggles there)"
+    }
 }
 
 impl BvpError {

@@ -297,15 +297,8 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
         }
         Err(BvpError::PathEnded {
             lambda: last_lambda,
-            target: m1,
             steps: path.len().saturating_sub(1),
-            reason: if turned_back {
-                "the branch turned back at a fold in the parameter and returned to the starting \
-                 side (the target is not on this branch)"
-            } else {
-                "continuation.max_steps ran out (raise it; a step length that stays small \
-                 means the corrector struggles there)"
-            },
+            turned_back,
             stats: stats.clone(),
         })
     };
@@ -327,14 +320,12 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
         BvpError::PathEnded {
             lambda,
             steps,
-            reason,
+            turned_back,
             stats,
-            ..
         } if log => BvpError::PathEnded {
             lambda: sign * lambda.exp(),
-            target: to,
             steps,
-            reason,
+            turned_back,
             stats,
         },
         e => e,

@@ -94,7 +94,7 @@ impl FixedBvp<2, 1> for ArrayEigen {
         res[1] = zb[0];
         res[2] = za[1] - 1.0;
     }
-    fn rhs_jacobian(&self, _s: f64, z: &[f64; 2], p: &[f64; 1], dfdz: &mut [[f64; 2]; 2]) -> bool {
+    fn rhs_jacobian(&self, _s: f64, _z: &[f64; 2], p: &[f64; 1], dfdz: &mut [[f64; 2]; 2]) -> bool {
         *dfdz = [[0.0, 1.0], [-p[0], 0.0]];
         true
     }

@@ -328,12 +328,12 @@ fn exhausted_path_reports_the_parameter_reached() {
     match &err {
         bvp::BvpError::PathEnded {
             lambda,
-            target,
             steps,
+            turned_back,
             ..
         } => {
             assert!(*lambda > 1e-3 && *lambda < 0.1, "{err}");
-            assert_eq!((*target, *steps), (1e-3, 3));
+            assert_eq!((*steps, *turned_back), (3, false));
         }
         e => panic!("{e}"),
     }
