@@ -15,8 +15,12 @@
 //!
 //! ```sh
 //! cargo run --release --example work_precision                          # target/work_precision
-//! cargo run --release --example work_precision -- data/work_precision   # refresh the committed copy
+//! cargo run --release --example work_precision --features ode-baseline -- data/work_precision  # the committed copy
 //! ```
+//!
+//! Problem 1 also runs through the generic crate `bvp` on the rod model: its DOP853 shooting and,
+//! with `--features ode-baseline` (as in the committed run), shooting through `ode_solvers`'
+//! Dop853, the off-the-shelf baseline of the hand-written integrators.
 //!
 //! Environment: `WP_CAP_S` (default 8): a method's tolerance sweep on one problem stops after the
 //! first run slower than this many seconds (that run is kept); `WP_QUICK=1`: fewer tolerances
