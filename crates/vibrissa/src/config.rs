@@ -166,7 +166,14 @@ impl Engine {
                     Shooting::new(ShootingOptions {
                         integrator,
                         segments,
-                        newton,
+                        // Newton to at most 1e-9 whatever the integration tolerance: scans and
+                        // homotopies predict from the last points, and loose residuals are
+                        // noise there (multiple shooting at tol 1e-3 stopped at d = 0.11 on the
+                        // paper scan with a singular Jacobian)
+                        newton: NewtonOptions {
+                            tol: cfg.tol.min(1e-9),
+                            ..newton
+                        },
                         // a smooth rod needs a few hundred steps at most; more means a Newton
                         // iterate far off (huge f), better rejected fast
                         max_steps: 1500,

@@ -225,6 +225,10 @@ fn solve_fast<P: Profile>(
 ) -> Option<Shape> {
     let (p1, c1) = member(1.0);
     let mut sh = Shooter::new(p1.clone(), c1, tol, 8);
+    // Newton to at most 1e-9 whatever the integration tolerance: the homotopy and tip moves are
+    // continuations, and iterates left with loose residuals stray (the rat whiskers' starts
+    // failed at tol 1e-2)
+    let ntol = tol.min(1e-9);
     let height = |t: &Target| match *t {
         Target::Phi1(phi1) => TipCond::Phi1 { phi1, alpha },
         Target::Eta(eta) | Target::Tip { y1: eta, .. } => TipCond::Eta { eta, alpha },
@@ -239,25 +243,25 @@ fn solve_fast<P: Profile>(
         } else {
             alpha
         };
-        rodsolve::solve_damped(&mut sh, &cond, [g.m_base, g.f, a], tol, 40).ok()?
+        rodsolve::solve_damped(&mut sh, &cond, [g.m_base, g.f, a], ntol, 40).ok()?
     } else {
         let u0 = uniform_start(alpha, &target, branch);
         let cv = if rod.is_uniform_clamped() {
             // the start is the rod's own closed form: no homotopy
-            rodsolve::solve_damped(&mut sh, &height(&target), u0, tol, 30).ok()?
+            rodsolve::solve_damped(&mut sh, &height(&target), u0, ntol, 30).ok()?
         } else {
             let fam = Homotopy {
                 member: &member,
                 cond: height(&target),
             };
-            follow_to(&mut sh, &fam, u0, 0.0, 1.0, tol)?
+            follow_to(&mut sh, &fam, u0, 0.0, 1.0, ntol)?
         };
         match target {
             Target::Tip { x1, y1 } => {
                 // move the tip from where the height solve put it to x1, α free
                 let x0 = sh.shoot::<false>(&cv.u).y1[0];
                 let line = TipLine { x0, slope: 1.0, y1 };
-                follow_to(&mut sh, &line, cv.u, 0.0, x1 - x0, tol)?
+                follow_to(&mut sh, &line, cv.u, 0.0, x1 - x0, ntol)?
             }
             _ => cv,
         }

@@ -38,11 +38,7 @@ impl<P: Profile> OwnStepper<P> {
         u: [f64; 3],
         newest: Option<&Pt>,
     ) -> Result<Pt, StepError> {
-        // the chord iteration converges linearly: stopping it at a tenth of the integration
-        // tolerance keeps Newton's share of the error in (m(0), f, α) below the discretization's
-        // (at tol 1e-10 the paper scan's μ is off by 9.3e-11 instead of 2.2e-9, for ~1 % more
-        // time)
-        let tol = 0.1 * self.shooter.tol;
+        let tol = corrector_tol(self.shooter.tol);
         let cond = TipCond::Pos {
             x1: self.x_star - d,
             y1: self.eta,
@@ -66,6 +62,18 @@ impl<P: Profile> OwnStepper<P> {
         }
         Ok(p)
     }
+}
+
+/// The Newton tolerance of the scan's corrector for the integration tolerance `tol`.
+///
+/// The chord iteration converges linearly: stopping it at a tenth of `tol` keeps Newton's share
+/// of the error in `(m(0), f, α)` below the discretization's (at tol 1e-10 the paper scan's μ is
+/// off by 9.3e-11 instead of 2.2e-9, for ~1 % more time). And never above 1e-9: the predictor
+/// extrapolates the last points and the branch checks compare corrections with the change over
+/// a step, so a point left with a residual of 1e-4 is noise that shrinking steps amplify (the
+/// paper scan at tol 1e-3 stopped at d = 0.16 with steps of 1e-7 and "corrections" of 4).
+pub(crate) fn corrector_tol(tol: f64) -> f64 {
+    (0.1 * tol).min(1e-9)
 }
 
 /// Whether the corrected point `p` (predicted at `pred`) continues the branch from `last`: `det J`
@@ -110,7 +118,7 @@ impl<P: Profile> OwnStepper<P> {
     /// turns back in `d`; the fold is located as the root of `dd/dσ` between the two points that
     /// straddle it.
     fn follow(&mut self, hist: &[Pt], target: f64, d_end: f64) -> Result<Passed, ShotFailure> {
-        let tol = self.shooter.tol;
+        let tol = corrector_tol(self.shooter.tol);
         let fam = TipLine {
             x0: self.x_star,
             slope: -1.0,
