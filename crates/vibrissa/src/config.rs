@@ -192,9 +192,13 @@ impl Engine {
                     Collocation::new(CollocationOptions {
                         scheme,
                         tol: cfg.tol,
-                        bc_tol: Some(cfg.tol),
+                        // boundary rows and Newton to 1e-9 at most, as for shooting
+                        bc_tol: Some(cfg.tol.min(1e-9)),
                         max_nodes: 20_000,
-                        newton,
+                        newton: NewtonOptions {
+                            tol: cfg.tol.min(1e-9),
+                            ..newton
+                        },
                         ..CollocationOptions::default()
                     })
                     .map_err(wrap)?,
