@@ -788,9 +788,8 @@ mod tests {
         assert!(s.factor().is_err());
     }
 
-    #[test]
-    fn pivot_test_is_relative_per_column() {
-        // Scaling one unknown (a column) by 1e-200 leaves the system solvable.
+    /// A small collocation system (5 nodes, n = 2, k = 1) with random blocks.
+    fn small_random_system() -> (Layout, AbdSystem) {
         let l = Layout {
             nodes: 5,
             n: 2,
@@ -800,6 +799,13 @@ mod tests {
         let mut s = AbdSystem::new();
         s.prepare(l).unwrap();
         fill(l, Kind::Collocation, false, &mut Rng(3), &mut s.blocks);
+        (l, s)
+    }
+
+    #[test]
+    fn pivot_test_is_relative_per_column() {
+        // Scaling one unknown (a column) by 1e-200 leaves the system solvable.
+        let (l, mut s) = small_random_system();
         let w = l.width();
         for i in 0..l.intervals() {
             for r in 0..l.stride {
@@ -820,15 +826,7 @@ mod tests {
         // Scaling the boundary rows by 1e-20 leaves the system solvable, with the same solution.
         // Those rows reach the final system (the boundary conditions at both ends), whose pivots
         // then fall far below 1e-14 of the interval rows' column maxima: once reported singular.
-        let l = Layout {
-            nodes: 5,
-            n: 2,
-            k: 1,
-            stride: 2,
-        };
-        let mut s = AbdSystem::new();
-        s.prepare(l).unwrap();
-        fill(l, Kind::Collocation, false, &mut Rng(3), &mut s.blocks);
+        let (l, mut s) = small_random_system();
         s.factor().unwrap();
         let mut want = vec![1.0; l.dim()];
         s.solve(&mut want).unwrap();
