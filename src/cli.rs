@@ -181,7 +181,8 @@ pub struct SolverArgs {
     /// Numerical method ("analytic" only for the uniform clamped straight rod).
     #[arg(long, value_enum, default_value = "shooting")]
     pub method: MethodArg,
-    /// Tolerance of the numerical solver (residual / local error), in [1e-15, 1e-2].
+    /// Tolerance of the numerical solver (local error / collocation residual), in [1e-15, 1e-2];
+    /// Newton always iterates to min(tol, 1e-9).
     #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
     pub tol: f64,
 }

@@ -75,7 +75,10 @@ impl FromStr for Method {
 pub struct SolverConfig {
     /// Method. Default shooting.
     pub method: Method,
-    /// Tolerance (Newton residual; integrator / collocation tolerance). Default 1e-10.
+    /// Tolerance of the discretization (integrator local error, collocation residual). Newton
+    /// iterates to `min(tol, 1e-9)` (the scan's chord corrector to `min(tol/10, 1e-9)`), so a loose
+    /// tolerance coarsens the mesh but never leaves iterates that continuation would take for
+    /// the branch. Default 1e-10.
     pub tol: f64,
     /// Segments of multiple shooting. Default 8.
     pub segments: usize,
