@@ -78,7 +78,19 @@ fn scan_impl(
         &BranchChoice::Any,
         &opts.solver,
     )
-    .map_err(|e| context(e, "scan start (alpha = surface angle, y(1) = eta)"))?;
+    .map_err(|e| match convex_reach(beta) {
+        // say why when the uniform rod's convex shape, the start of every rod's homotopy,
+        // cannot have its tip at eta under this force angle
+        Some((lo, hi)) if !(lo..=hi).contains(&eta) => context(
+            e,
+            &format!(
+                "scan start (alpha = surface angle, y(1) = eta; at this surface angle the \
+                 uniform clamped rod's convex shapes put the tip only at heights in \
+                 [{lo:.6}, {hi:.6}], not at eta = {eta}: flatten the surface or move eta)"
+            ),
+        ),
+        _ => context(e, "scan start (alpha = surface angle, y(1) = eta)"),
+    })?;
     match start.kind() {
         ShapeKind::Regular { .. } => {}
         found => {
@@ -165,6 +177,14 @@ fn run_with<P: Profile>(
         let p0 = st.point(0.0, &Guess::from(&sol)).map_err(start_failed)?;
         Ok(march(&mut st, &ctx, grid, p0, start.stats.clone()))
     }
+}
+
+/// The tip heights `[y1(φ1 = 0), y1(φ1 = π/2 + 2α)]` of the uniform clamped rod's convex shapes
+/// under the force angle `alpha` (`y1` increases with `φ1` there), where the closed forms exist.
+fn convex_reach(alpha: f64) -> Option<(f64, f64)> {
+    let top = std::f64::consts::FRAC_PI_2 + 2.0 * alpha;
+    let y = |p: f64| elastica::Elastica::new(elastica::Branch::Convex, alpha, p).map(|e| e.y1);
+    Some((y(0.0).ok()?, y(top).ok()?))
 }
 
 fn context(e: VibrissaError, what: &str) -> VibrissaError {

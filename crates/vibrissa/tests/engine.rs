@@ -382,3 +382,26 @@ fn loose_tolerances_scan_the_whole_range() {
         );
     }
 }
+
+/// On a steep surface the start, the uniform rod's convex shape, may not reach the surface
+/// height: the error says which heights it reaches (from the closed forms), and a height in
+/// that range scans.
+#[test]
+fn steep_surface_names_the_reachable_heights() {
+    let steep = scene(|s| s.surface_angle = -0.7);
+    let (rod, surface) = steep.parts().unwrap();
+    let err = scan(&rod, &surface, &ScanOptions::default()).unwrap_err();
+    let msg = err.to_string();
+    assert!(msg.contains("put the tip only at heights in ["), "{msg}");
+    let range = msg.split("heights in [").nth(1).unwrap();
+    let (lo, rest) = range.split_once(", ").unwrap();
+    let hi = rest.split(']').next().unwrap();
+    let (lo, hi): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
+    assert!(lo < hi && hi < 0.75, "{lo} {hi}");
+    let inside = scene(|s| {
+        s.surface_angle = -0.7;
+        s.eta = 0.5 * (lo + hi);
+    });
+    let r = run(&inside, &ScanOptions::default());
+    assert!(r.points.len() > 1, "{}", r.stop);
+}
