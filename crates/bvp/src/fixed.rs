@@ -14,27 +14,29 @@
 //! type, so [`FixedBvp::bc`] writes into a slice of that length, and the boundary Jacobians are
 //! slices of `N + K` rows. Every Jacobian is written row by row, `d[i][j] = ∂(output i)/∂(input
 //! j)` — the layout of [`Bvp`] (there flattened). The Jacobians in the parameters have methods
-//! of their own ([`FixedBvp::rhs_param_jacobian`], [`FixedBvp::bc_param_jacobian`]), so a
-//! parameter-free problem (`K = 0`, the default) never names a matrix of width zero.
+//! of their own ([`FixedBvp::rhs_param_jacobian`], [`FixedBvp::bc_param_jacobian`]).
+//!
+//! A problem without parameters implements [`SimpleBvp`] instead: no parameter arguments at
+//! all, and `N` boundary conditions returned as an array. Every [`SimpleBvp`] is a
+//! [`FixedBvp`] with `K = 0`, so it is wrapped in [`Fixed`] the same way.
 //!
 //! ```
-//! use bvp::fixed::{Fixed, FixedBvp};
+//! use bvp::fixed::{Fixed, SimpleBvp};
 //! use bvp::{BvpSolver, Guess, Shooting, ShootingOptions};
 //!
 //! /// `y'' = −y`, `y(0) = 0`, `y(π/2) = 1`: `y = sin s`.
 //! struct Sine;
-//! impl FixedBvp<2> for Sine {
+//! impl SimpleBvp<2> for Sine {
 //!     fn interval(&self) -> (f64, f64) {
 //!         (0.0, std::f64::consts::FRAC_PI_2)
 //!     }
-//!     fn rhs(&self, _s: f64, z: &[f64; 2], _p: &[f64; 0]) -> [f64; 2] {
+//!     fn rhs(&self, _s: f64, z: &[f64; 2]) -> [f64; 2] {
 //!         [z[1], -z[0]]
 //!     }
-//!     fn bc(&self, za: &[f64; 2], zb: &[f64; 2], _p: &[f64; 0], res: &mut [f64]) {
-//!         res[0] = za[0];
-//!         res[1] = zb[0] - 1.0;
+//!     fn bc(&self, za: &[f64; 2], zb: &[f64; 2]) -> [f64; 2] {
+//!         [za[0], zb[0] - 1.0]
 //!     }
-//!     fn rhs_jacobian(&self, _s: f64, _z: &[f64; 2], _p: &[f64; 0], dfdz: &mut [[f64; 2]; 2]) -> bool {
+//!     fn rhs_jacobian(&self, _s: f64, _z: &[f64; 2], dfdz: &mut [[f64; 2]; 2]) -> bool {
 //!         *dfdz = [[0.0, 1.0], [-1.0, 0.0]];
 //!         true
 //!     }
@@ -109,6 +111,66 @@ pub trait FixedBvp<const N: usize, const K: usize = 0> {
         _dgp: &mut [[f64; K]],
     ) -> bool {
         false
+    }
+}
+
+/// A boundary-value problem with `N` states and no unknown parameters, written with arrays:
+/// `z' = F(s, z)` on `[a, b]`, `g(z(a), z(b)) = 0` with `N` conditions. Jacobians are optional
+/// (finite differences otherwise), row by row: `dfdz[i][j] = ∂F_i/∂z_j`,
+/// `dga[i][j] = ∂g_i/∂z_j(a)`, `dgb[i][j] = ∂g_i/∂z_j(b)`. Every `SimpleBvp<N>` is a
+/// [`FixedBvp<N>`](FixedBvp); wrap it in [`Fixed`] for the solvers.
+pub trait SimpleBvp<const N: usize> {
+    /// The interval `[a, b]`, `a < b`.
+    fn interval(&self) -> (f64, f64);
+    /// Right-hand side `F(s, z)`.
+    fn rhs(&self, s: f64, z: &[f64; N]) -> [f64; N];
+    /// Boundary residual `g(za, zb)`.
+    fn bc(&self, za: &[f64; N], zb: &[f64; N]) -> [f64; N];
+    /// Analytic `dfdz = ∂F/∂z`; `false` (the default) for finite differences.
+    fn rhs_jacobian(&self, _s: f64, _z: &[f64; N], _dfdz: &mut [[f64; N]; N]) -> bool {
+        false
+    }
+    /// Analytic `dga = ∂g/∂z(a)`, `dgb = ∂g/∂z(b)`; `false` (the default) for finite differences.
+    fn bc_jacobian(
+        &self,
+        _za: &[f64; N],
+        _zb: &[f64; N],
+        _dga: &mut [[f64; N]; N],
+        _dgb: &mut [[f64; N]; N],
+    ) -> bool {
+        false
+    }
+}
+
+impl<T: SimpleBvp<N>, const N: usize> FixedBvp<N> for T {
+    fn interval(&self) -> (f64, f64) {
+        SimpleBvp::interval(self)
+    }
+    fn rhs(&self, s: f64, z: &[f64; N], _p: &[f64; 0]) -> [f64; N] {
+        SimpleBvp::rhs(self, s, z)
+    }
+    fn bc(&self, za: &[f64; N], zb: &[f64; N], _p: &[f64; 0], res: &mut [f64]) {
+        res[..N].copy_from_slice(&SimpleBvp::bc(self, za, zb));
+    }
+    fn rhs_jacobian(&self, s: f64, z: &[f64; N], _p: &[f64; 0], dfdz: &mut [[f64; N]; N]) -> bool {
+        SimpleBvp::rhs_jacobian(self, s, z, dfdz)
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64; N],
+        zb: &[f64; N],
+        _p: &[f64; 0],
+        dga: &mut [[f64; N]],
+        dgb: &mut [[f64; N]],
+    ) -> bool {
+        // the solvers pass N + K = N rows
+        match (
+            <&mut [[f64; N]; N]>::try_from(dga),
+            <&mut [[f64; N]; N]>::try_from(dgb),
+        ) {
+            (Ok(a), Ok(b)) => SimpleBvp::bc_jacobian(self, za, zb, a, b),
+            _ => false,
+        }
     }
 }
 

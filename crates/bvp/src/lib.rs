@@ -27,7 +27,8 @@
 //!   with fold detection and location.
 //!
 //! Problems with a handful of states can be written with arrays instead of slices
-//! ([`fixed::FixedBvp`], wrapped in [`fixed::Fixed`]).
+//! ([`fixed::FixedBvp`], or [`fixed::SimpleBvp`] without parameters, wrapped in
+//! [`fixed::Fixed`]).
 //!
 //! All solvers return a [`Solution`] (mesh values, dense evaluation of the method's order
 //! ([`Dense`]), parameters, [`Stats`]) or a

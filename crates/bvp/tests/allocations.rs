@@ -11,7 +11,7 @@
 //! The counter is thread-local, so allocations of other threads (the test harness, other tests,
 //! anything else in the process) are not counted: only the solving thread's own.
 
-use bvp::fixed::{Fixed, FixedBvp};
+use bvp::fixed::{Fixed, SimpleBvp};
 use bvp::samples::{Bratu, Cantilever};
 use bvp::{Bvp, BvpSolver, Guess, Integrator, Shooting, ShootingOptions, Solution};
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -52,21 +52,21 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-/// Bratu's problem written with arrays; the same arithmetic as [`Bratu`].
+/// Bratu's problem written with arrays (a parameter-free [`SimpleBvp`], through the blanket
+/// [`FixedBvp`] implementation); the same arithmetic as [`Bratu`].
 struct FixedBratu(f64);
 
-impl FixedBvp<2, 0> for FixedBratu {
+impl SimpleBvp<2> for FixedBratu {
     fn interval(&self) -> (f64, f64) {
         (0.0, 1.0)
     }
-    fn rhs(&self, _s: f64, z: &[f64; 2], _p: &[f64; 0]) -> [f64; 2] {
+    fn rhs(&self, _s: f64, z: &[f64; 2]) -> [f64; 2] {
         [z[1], -self.0 * z[0].exp()]
     }
-    fn bc(&self, za: &[f64; 2], zb: &[f64; 2], _p: &[f64; 0], res: &mut [f64]) {
-        res[0] = za[0];
-        res[1] = zb[0];
+    fn bc(&self, za: &[f64; 2], zb: &[f64; 2]) -> [f64; 2] {
+        [za[0], zb[0]]
     }
-    fn rhs_jacobian(&self, _s: f64, z: &[f64; 2], _p: &[f64; 0], dfdz: &mut [[f64; 2]; 2]) -> bool {
+    fn rhs_jacobian(&self, _s: f64, z: &[f64; 2], dfdz: &mut [[f64; 2]; 2]) -> bool {
         *dfdz = [[0.0, 1.0], [-self.0 * z[0].exp(), 0.0]];
         true
     }
@@ -74,12 +74,11 @@ impl FixedBvp<2, 0> for FixedBratu {
         &self,
         _za: &[f64; 2],
         _zb: &[f64; 2],
-        _p: &[f64; 0],
-        dga: &mut [[f64; 2]],
-        dgb: &mut [[f64; 2]],
+        dga: &mut [[f64; 2]; 2],
+        dgb: &mut [[f64; 2]; 2],
     ) -> bool {
-        dga.copy_from_slice(&[[1.0, 0.0], [0.0, 0.0]]);
-        dgb.copy_from_slice(&[[0.0, 0.0], [1.0, 0.0]]);
+        *dga = [[1.0, 0.0], [0.0, 0.0]];
+        *dgb = [[0.0, 0.0], [1.0, 0.0]];
         true
     }
 }

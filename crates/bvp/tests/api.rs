@@ -1,7 +1,7 @@
 //! The problem-definition API: closures ([`bvp::from_fns`]), array problems with row Jacobians,
 //! option defaults and non-uniform multiple shooting.
 
-use bvp::fixed::{Fixed, FixedBvp};
+use bvp::fixed::{Fixed, FixedBvp, SimpleBvp};
 use bvp::samples::LinearSinh;
 use bvp::{
     from_fns, Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Dims, Guess, Integrator,
@@ -272,4 +272,82 @@ fn bad_shooting_nodes_are_rejected() {
         s.solve(&LinearSinh, &LinearSinh::guess()),
         Err(BvpError::InvalidOption { name: "nodes", .. })
     ));
+}
+
+/// `y'' = −y`, `y(0) = 0`, `y(π/2) = 1` (`y = sin s`) as a [`SimpleBvp`] (no parameter
+/// arguments) with analytic Jacobians.
+struct SineSimple;
+
+impl SimpleBvp<2> for SineSimple {
+    fn interval(&self) -> (f64, f64) {
+        (0.0, std::f64::consts::FRAC_PI_2)
+    }
+    fn rhs(&self, _s: f64, z: &[f64; 2]) -> [f64; 2] {
+        [z[1], -z[0]]
+    }
+    fn bc(&self, za: &[f64; 2], zb: &[f64; 2]) -> [f64; 2] {
+        [za[0], zb[0] - 1.0]
+    }
+    fn rhs_jacobian(&self, _s: f64, _z: &[f64; 2], dfdz: &mut [[f64; 2]; 2]) -> bool {
+        *dfdz = [[0.0, 1.0], [-1.0, 0.0]];
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64; 2],
+        _zb: &[f64; 2],
+        dga: &mut [[f64; 2]; 2],
+        dgb: &mut [[f64; 2]; 2],
+    ) -> bool {
+        *dga = [[1.0, 0.0], [0.0, 0.0]];
+        *dgb = [[0.0, 0.0], [1.0, 0.0]];
+        true
+    }
+}
+
+/// The same problem implemented as a parameter-free [`FixedBvp`] directly (still possible next
+/// to the blanket implementation for [`SimpleBvp`]), without Jacobians.
+struct SineFixed;
+
+impl FixedBvp<2> for SineFixed {
+    fn interval(&self) -> (f64, f64) {
+        (0.0, std::f64::consts::FRAC_PI_2)
+    }
+    fn rhs(&self, _s: f64, z: &[f64; 2], _p: &[f64; 0]) -> [f64; 2] {
+        [z[1], -z[0]]
+    }
+    fn bc(&self, za: &[f64; 2], zb: &[f64; 2], _p: &[f64; 0], res: &mut [f64]) {
+        res[0] = za[0];
+        res[1] = zb[0] - 1.0;
+    }
+}
+
+#[test]
+fn simple_problems_are_fixed_problems() {
+    let p = Fixed(SineSimple);
+    assert_eq!(p.dims(), Dims { n: 2, k: 0 });
+    let (z, q): ([f64; 2], [f64; 0]) = ([0.3, 0.4], []);
+    let (mut jz, mut jp) = ([0.0; 4], [0.0; 0]);
+    assert!(p.rhs_jacobian(0.1, &z, &q, &mut jz, &mut jp));
+    assert_eq!(jz, [0.0, 1.0, -1.0, 0.0]);
+    let (mut ga, mut gb, mut gp) = ([9.0; 4], [9.0; 4], [0.0; 0]);
+    assert!(p.bc_jacobian(&z, &z, &q, &mut ga, &mut gb, &mut gp));
+    assert_eq!((ga, gb), ([1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]));
+    let mut res = [9.0; 2];
+    p.bc(&z, &[1.5, 0.0], &q, &mut res);
+    assert_eq!(res, [0.3, 0.5]);
+    let guess = Guess::constant(0.0, std::f64::consts::FRAC_PI_2, 11, &[0.5, 0.5], vec![]);
+    let mut solver = Collocation::new(CollocationOptions {
+        tol: 1e-8,
+        ..CollocationOptions::default()
+    })
+    .unwrap();
+    let a = solver.solve(&p, &guess).unwrap();
+    let b = solver.solve(&Fixed(SineFixed), &guess).unwrap();
+    for (i, &s) in a.mesh.iter().enumerate() {
+        assert!((a.node(i)[0] - s.sin()).abs() < 1e-7, "{s}");
+    }
+    for (i, &s) in b.mesh.iter().enumerate() {
+        assert!((b.node(i)[0] - s.sin()).abs() < 1e-7, "{s}");
+    }
 }
