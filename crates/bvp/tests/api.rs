@@ -15,6 +15,15 @@ fn mesh() -> Vec<f64> {
         .collect()
 }
 
+/// The guess of the eigenproblems `y'' = −λ y`, `y(0) = y(π) = 0`, `y'(0) = 1`: `y = sin s` on
+/// [`mesh`], `λ = lam`.
+fn eigen_guess(lam: f64) -> Guess {
+    Guess::from_fn(2, mesh(), vec![lam], |s, z| {
+        z[0] = s.sin();
+        z[1] = s.cos();
+    })
+}
+
 /// `y'' = y`, `y(0) = 0`, `y(1) = 1` as closures: `y = sinh s / sinh 1`.
 #[test]
 fn closure_problem_solves_like_the_struct() {
@@ -67,10 +76,7 @@ fn closure_problem_with_parameter() {
         },
     )
     .with_params(1);
-    let guess = Guess::from_fn(2, mesh(), vec![1.2], |s, z| {
-        z[0] = s.sin();
-        z[1] = s.cos();
-    });
+    let guess = eigen_guess(1.2);
     let sol = Shooting::new(ShootingOptions::default())
         .unwrap()
         .solve(&p, &guess)
@@ -147,10 +153,7 @@ fn array_rows_are_row_major() {
     assert_eq!(ga, [1.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
     assert_eq!(gb, [0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
     assert_eq!(gp, [0.0; 3]);
-    let guess = Guess::from_fn(2, mesh(), vec![0.8], |s, z| {
-        z[0] = s.sin();
-        z[1] = s.cos();
-    });
+    let guess = eigen_guess(0.8);
     let sol = Collocation::new(CollocationOptions::default())
         .unwrap()
         .solve(&p, &guess)
@@ -195,10 +198,7 @@ fn partial_jacobians_fall_back_to_differences() {
     assert!(!p.rhs_jacobian(0.1, &z, &q, &mut jz, &mut jp));
     let (mut ga, mut gb, mut gp) = ([0.0; 6], [0.0; 6], [0.0; 3]);
     assert!(!p.bc_jacobian(&z, &z, &q, &mut ga, &mut gb, &mut gp));
-    let guess = Guess::from_fn(2, mesh(), vec![0.8], |s, z| {
-        z[0] = s.sin();
-        z[1] = s.cos();
-    });
+    let guess = eigen_guess(0.8);
     let sol = Collocation::new(CollocationOptions::default())
         .unwrap()
         .solve(&p, &guess)
