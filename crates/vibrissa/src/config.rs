@@ -69,6 +69,10 @@ impl FromStr for Method {
     }
 }
 
+/// The loosest Newton tolerance of any solve: Newton iterates to `min(tol, NEWTON_TOL_MAX)`
+/// whatever the discretization tolerance `tol` (see [`SolverConfig::tol`]).
+pub(crate) const NEWTON_TOL_MAX: f64 = 1e-9;
+
 /// Solver settings.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -169,12 +173,12 @@ impl Engine {
                     Shooting::new(ShootingOptions {
                         integrator,
                         segments,
-                        // Newton to at most 1e-9 whatever the integration tolerance: scans and
-                        // homotopies predict from the last points, and loose residuals are
-                        // noise there (multiple shooting at tol 1e-3 stopped at d = 0.11 on the
-                        // paper scan with a singular Jacobian)
+                        // Newton to NEWTON_TOL_MAX at most whatever the integration tolerance:
+                        // scans and homotopies predict from the last points, and loose
+                        // residuals are noise there (multiple shooting at tol 1e-3 stopped at
+                        // d = 0.11 on the paper scan with a singular Jacobian)
                         newton: NewtonOptions {
-                            tol: cfg.tol.min(1e-9),
+                            tol: cfg.tol.min(NEWTON_TOL_MAX),
                             ..newton
                         },
                         // a smooth rod needs a few hundred steps at most; more means a Newton
@@ -195,11 +199,11 @@ impl Engine {
                     Collocation::new(CollocationOptions {
                         scheme,
                         tol: cfg.tol,
-                        // boundary rows and Newton to 1e-9 at most, as for shooting
-                        bc_tol: Some(cfg.tol.min(1e-9)),
+                        // boundary rows and Newton to NEWTON_TOL_MAX at most, as for shooting
+                        bc_tol: Some(cfg.tol.min(NEWTON_TOL_MAX)),
                         max_nodes: 20_000,
                         newton: NewtonOptions {
-                            tol: cfg.tol.min(1e-9),
+                            tol: cfg.tol.min(NEWTON_TOL_MAX),
                             ..newton
                         },
                         ..CollocationOptions::default()

@@ -3,7 +3,7 @@
 pub use crate::config::{Method, SolverConfig, Target};
 
 use crate::arclength::{self, Arc, ArcPoint, Family, Homotopy, Steps, TipLine};
-use crate::config::Engine;
+use crate::config::{Engine, NEWTON_TOL_MAX};
 use crate::equations::{Ends, HomotopyFamily, RodBvp};
 use crate::profile::{Profile, Uniform};
 use crate::rodsolve::{self, Converged, TipCond};
@@ -228,7 +228,7 @@ fn solve_fast<P: Profile>(
     // Newton to at most 1e-9 whatever the integration tolerance: the homotopy and tip moves are
     // continuations, and iterates left with loose residuals stray (the rat whiskers' starts
     // failed at tol 1e-2)
-    let ntol = tol.min(1e-9);
+    let ntol = tol.min(NEWTON_TOL_MAX);
     let height = |t: &Target| match *t {
         Target::Phi1(phi1) => TipCond::Phi1 { phi1, alpha },
         Target::Eta(eta) | Target::Tip { y1: eta, .. } => TipCond::Eta { eta, alpha },

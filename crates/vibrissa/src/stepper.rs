@@ -10,7 +10,7 @@
 //! Both pass folds in `d` by the pseudo-arclength continuation of crate `bvp`.
 
 use crate::arclength::{self, Arc, Steps, TipLine};
-use crate::config::Engine;
+use crate::config::{Engine, NEWTON_TOL_MAX};
 use crate::equations::ScanFamily;
 use crate::march::{Passed, Pt, StepError, Stepper};
 use crate::profile::Profile;
@@ -73,7 +73,7 @@ impl<P: Profile> OwnStepper<P> {
 /// a step, so a point left with a residual of 1e-4 is noise that shrinking steps amplify (the
 /// paper scan at tol 1e-3 stopped at d = 0.16 with steps of 1e-7 and "corrections" of 4).
 pub(crate) fn corrector_tol(tol: f64) -> f64 {
-    (0.1 * tol).min(1e-9)
+    (0.1 * tol).min(NEWTON_TOL_MAX)
 }
 
 /// Whether the corrected point `p` (predicted at `pred`) continues the branch from `last`: `det J`
