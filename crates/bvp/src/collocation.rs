@@ -796,6 +796,18 @@ struct Snapshot {
 }
 
 impl Snapshot {
+    /// The unknowns on `mesh` interpolated from this solution (its collocation polynomials).
+    fn fill(&self, tab: &Tableau, dims: Dims, mesh: &[f64], u: &mut Vec<f64>) {
+        fill_unknowns(
+            tab,
+            mesh,
+            dims,
+            &self.params,
+            |s, o| self.eval(tab, dims.n, s, o),
+            u,
+        );
+    }
+
     /// Evaluates the collocation polynomial `S` at `s`.
     fn eval(&self, tab: &Tableau, n: usize, s: f64, out: &mut [f64]) {
         let q = tab.q;
@@ -1058,14 +1070,7 @@ impl BvpSolver for Collocation {
                         if fine.len() <= opts.max_nodes {
                             retries += 1;
                             let snap = snapshot(&disc, &mesh, &u);
-                            fill_unknowns(
-                                &self.tab,
-                                &fine,
-                                dims,
-                                &snap.params,
-                                |s, o| snap.eval(&self.tab, n, s, o),
-                                &mut u,
-                            );
+                            snap.fill(&self.tab, dims, &fine, &mut u);
                             source = Some(snap);
                             mesh = fine;
                             continue;
@@ -1080,14 +1085,7 @@ impl BvpSolver for Collocation {
                     retries += 1;
                     mesh = bisect(&mesh);
                     match &source {
-                        Some(snap) => fill_unknowns(
-                            &self.tab,
-                            &mesh,
-                            dims,
-                            &snap.params,
-                            |s, o| snap.eval(&self.tab, n, s, o),
-                            &mut u,
-                        ),
+                        Some(snap) => snap.fill(&self.tab, dims, &mesh, &mut u),
                         None => fill_unknowns(
                             &self.tab,
                             &mesh,
@@ -1132,14 +1130,7 @@ impl BvpSolver for Collocation {
                             ill_refines += 1;
                             let fine = bisect(&mesh);
                             let snap = snapshot(&disc, &mesh, &u);
-                            fill_unknowns(
-                                &self.tab,
-                                &fine,
-                                dims,
-                                &snap.params,
-                                |s, o| snap.eval(&self.tab, n, s, o),
-                                &mut u,
-                            );
+                            snap.fill(&self.tab, dims, &fine, &mut u);
                             source = Some(snap);
                             mesh = fine;
                             continue;
@@ -1178,14 +1169,7 @@ impl BvpSolver for Collocation {
                     if coarse.len() * 10 <= mesh.len() * 9 {
                         coarsenings += 1;
                         let snap = snapshot(&disc, &mesh, &u);
-                        fill_unknowns(
-                            &self.tab,
-                            &coarse,
-                            dims,
-                            &snap.params,
-                            |s, o| snap.eval(&self.tab, n, s, o),
-                            &mut u,
-                        );
+                        snap.fill(&self.tab, dims, &coarse, &mut u);
                         source = Some(snap);
                         mesh = coarse;
                         best = Some(sol);
@@ -1216,14 +1200,7 @@ impl BvpSolver for Collocation {
                 });
             }
             let snap = snapshot(&disc, &mesh, &u);
-            fill_unknowns(
-                &self.tab,
-                &new_mesh,
-                dims,
-                &snap.params,
-                |s, o| snap.eval(&self.tab, n, s, o),
-                &mut u,
-            );
+            snap.fill(&self.tab, dims, &new_mesh, &mut u);
             source = Some(snap);
             mesh = new_mesh;
         }
