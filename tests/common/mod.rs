@@ -11,10 +11,12 @@ pub struct Out {
 }
 
 pub fn run(args: &[&str]) -> Out {
-    let o = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
-        .args(args)
-        .output()
-        .expect("run vibrissa");
+    output(Command::new(env!("CARGO_BIN_EXE_vibrissa")).args(args))
+}
+
+/// Runs `cmd` to its end and collects its exit code and output.
+fn output(cmd: &mut Command) -> Out {
+    let o = cmd.output().expect("run vibrissa");
     Out {
         code: o.status.code().unwrap_or(-1),
         stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
@@ -90,16 +92,11 @@ pub fn close(a: f64, b: f64, tol: f64, what: &str) {
 
 /// Run the program in directory `dir`.
 pub fn run_in(dir: &std::path::Path, args: &[&str]) -> Out {
-    let o = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("run vibrissa");
-    Out {
-        code: o.status.code().unwrap_or(-1),
-        stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
-    }
+    output(
+        Command::new(env!("CARGO_BIN_EXE_vibrissa"))
+            .args(args)
+            .current_dir(dir),
+    )
 }
 
 /// The names in a directory, sorted (hidden ones included: a temporary left behind shows).
