@@ -85,12 +85,17 @@ enum Knob {
     Steps(usize),
 }
 
-fn configs(quick: bool) -> Vec<(String, Vec<(Knob, SolverConfig)>)> {
-    let tols: Vec<f64> = if quick {
+/// The tolerances of every method's sweep: 1e-3 … 1e-12 (two with `quick`).
+fn tolerances(quick: bool) -> Vec<f64> {
+    if quick {
         vec![1e-4, 1e-8]
     } else {
         (3..=12).map(|e| 10f64.powi(-e)).collect()
-    };
+    }
+}
+
+fn configs(quick: bool) -> Vec<(String, Vec<(Knob, SolverConfig)>)> {
+    let tols = tolerances(quick);
     let steps: Vec<usize> = if quick {
         vec![32, 256]
     } else {
@@ -172,43 +177,9 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         .collect::<Result<_, _>>()?;
     for (name, cfgs) in configs(quick) {
         for (knob, cfg) in cfgs {
-            let mut err: f64 = 0.0;
-            let mut time = 0.0;
-            let mut reps = 0;
-            let mut rhs = 0;
-            let mut newton = 0;
-            let mut note = String::new();
-            for ((_, choice), &fr) in branches.iter().zip(&f_ref) {
-                let r = time_it(|| {
-                    solve(&rod, alpha, Target::Phi1(phi1), choice, &cfg).map_err(Into::into)
-                });
-                match r {
-                    Ok((shape, t, n)) => {
-                        err = err.max((shape.f - fr).abs() / fr);
-                        time += t;
-                        reps = n;
-                        rhs += shape.stats.rhs_evals;
-                        newton += shape.stats.newton_iters;
-                    }
-                    Err(e) => {
-                        note = format!("failed: {e}");
-                        err = f64::NAN;
-                    }
-                }
-            }
-            let (tol, rk4_steps) = knob_parts(knob);
-            eprintln!("shape  {name:20} {knob:?}: err {err:.2e} time {time:.3e} s");
-            rows.push(Row {
-                problem: "shape",
-                method: name.clone(),
-                tol,
-                rk4_steps,
-                error: err,
-                time_s: time,
-                reps,
-                rhs_evals: rhs,
-                newton_iters: newton,
-                note,
+            let time = shape_row(rows, &name, knob, &f_ref, |i| {
+                let s = solve(&rod, alpha, Target::Phi1(phi1), &branches[i].1, &cfg)?;
+                Ok((s.f, s.stats))
             });
             if time > cap {
                 break;
@@ -246,6 +217,50 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         note: "error against mpmath (data/elastica/special_values.csv)".into(),
     });
     Ok(())
+}
+
+/// One setting of problem 1: both branches solved by `solve_branch(i)` (`f` and the work
+/// counters) and timed; error = the larger relative error in `f` against `f_ref`. Appends the
+/// row and returns the time of both branches.
+fn shape_row(
+    rows: &mut Vec<Row>,
+    method: &str,
+    knob: Knob,
+    f_ref: &[f64],
+    mut solve_branch: impl FnMut(usize) -> Result<(f64, bvp::Stats)>,
+) -> f64 {
+    let (mut err, mut time, mut reps, mut rhs, mut newton) = (0.0_f64, 0.0, 0, 0, 0);
+    let mut note = String::new();
+    for (i, &fr) in f_ref.iter().enumerate() {
+        match time_it(|| solve_branch(i)) {
+            Ok(((f, stats), t, n)) => {
+                err = err.max((f - fr).abs() / fr);
+                time += t;
+                reps = n;
+                rhs += stats.rhs_evals;
+                newton += stats.newton_iters;
+            }
+            Err(e) => {
+                note = format!("failed: {e}");
+                err = f64::NAN;
+            }
+        }
+    }
+    let (tol, rk4_steps) = knob_parts(knob);
+    eprintln!("shape  {method:20} {knob:?}: err {err:.2e} time {time:.3e} s");
+    rows.push(Row {
+        problem: "shape",
+        method: method.to_string(),
+        tol,
+        rk4_steps,
+        error: err,
+        time_s: time,
+        reps,
+        rhs_evals: rhs,
+        newton_iters: newton,
+        note,
+    });
+    time
 }
 
 /// One configured generic solver, applied to a guess.
@@ -289,47 +304,16 @@ fn generic_shape(
             Ok(g)
         })
         .collect::<Result<_>>()?;
-    let tols: Vec<f64> = if quick {
-        vec![1e-4, 1e-8]
-    } else {
-        (3..=12).map(|e| 10f64.powi(-e)).collect()
-    };
     let newton = |tol: f64| NewtonOptions {
         tol,
         ..NewtonOptions::default()
     };
     let mut sweep = |name: &str, make: &mut dyn FnMut(f64) -> Result<Runner>| -> Result<()> {
-        for &tol in &tols {
+        for tol in tolerances(quick) {
             let mut solve_one = make(tol)?;
-            let (mut err, mut time, mut reps, mut rhs, mut its) = (0.0_f64, 0.0, 0, 0, 0);
-            let mut note = String::new();
-            for (g, &fr) in guesses.iter().zip(f_ref) {
-                match time_it(|| solve_one(g)) {
-                    Ok((sol, t, n)) => {
-                        err = err.max((sol.params[0] - fr).abs() / fr);
-                        time += t;
-                        reps = n;
-                        rhs += sol.stats.rhs_evals;
-                        its += sol.stats.newton_iters;
-                    }
-                    Err(e) => {
-                        note = format!("failed: {e}");
-                        err = f64::NAN;
-                    }
-                }
-            }
-            eprintln!("shape  {name:20} tol {tol:e}: err {err:.2e} time {time:.3e} s");
-            rows.push(Row {
-                problem: "shape",
-                method: name.to_string(),
-                tol,
-                rk4_steps: None,
-                error: err,
-                time_s: time,
-                reps,
-                rhs_evals: rhs,
-                newton_iters: its,
-                note,
+            let time = shape_row(rows, name, Knob::Tol(tol), f_ref, |i| {
+                let sol = solve_one(&guesses[i])?;
+                Ok((sol.params[0], sol.stats))
             });
             if time > cap {
                 break;
