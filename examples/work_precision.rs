@@ -112,6 +112,7 @@ fn configs(quick: bool) -> Vec<(String, Vec<(Knob, SolverConfig)>)> {
                         tol,
                         segments,
                         rk4_steps: None,
+                        ..SolverConfig::default()
                     },
                 )
             })

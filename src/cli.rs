@@ -171,8 +171,36 @@ pub struct SceneArgs {
     /// Inclination B of the surface line through the contact point (rad), in (-pi/4, pi/4); 0 = horizontal. [default: 0]
     #[arg(long, value_name = "B", value_parser = finite_f64, help_heading = "Scene")]
     pub surface_angle: Option<f64>,
+    /// Where the rod may touch the surface: anywhere (the rod stays below the surface line
+    /// everywhere; sides touch and lie down) or the tip alone (the paper's model: a touching side
+    /// ends the scan with penetration). [default: scene file's, else anywhere]
+    #[arg(long, value_enum, value_name = "MODEL", help_heading = "Scene")]
+    pub contact: Option<ContactArg>,
+    /// The state a scan starts from: pressed (the rod pressed onto the surface from its rest
+    /// shape) or connected (the tip-loaded state connected to the pressed straight uniform rod).
+    /// [default: scene file's, else pressed]
+    #[arg(long, value_enum, value_name = "START", help_heading = "Scene")]
+    pub start: Option<StartArg>,
     #[command(flatten)]
     pub physical: PhysicalArgs,
+}
+
+/// Contact model.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ContactArg {
+    /// anywhere along the rod (the paper's compound constraint)
+    Anywhere,
+    /// the tip alone (the paper's model)
+    Tip,
+}
+
+/// Start of a scan.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StartArg {
+    /// pressed onto the surface from the rest shape
+    Pressed,
+    /// connected to the pressed straight uniform rod
+    Connected,
 }
 
 /// Solver flags shared by solve, scan and infer.

@@ -63,7 +63,10 @@ pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
         BranchArg::Flex => BranchChoice::Flex,
         BranchArg::Any => BranchChoice::Any,
     };
-    let cfg = config(a.solver.method, a.solver.tol);
+    let cfg = SolverConfig {
+        start: scene.start,
+        ..config(a.solver.method, a.solver.tol)
+    };
     let sh = vibrissa::solve(&rod, a.alpha, target, &branch, &cfg)?;
     let clearance = sh.clearance(scene.surface_angle);
     let shape = if npts >= 2 {

@@ -56,6 +56,8 @@ impl From<&StopReason> for Stop {
             StopReason::LiftOff { d } => ("lift_off", Some(*d)),
             StopReason::Penetration { d, .. } => ("penetration", Some(*d)),
             StopReason::FoldInD { d } => ("fold_in_d", Some(*d)),
+            StopReason::SlipOff { d } => ("slip_off", Some(*d)),
+            StopReason::ContactChange { d, .. } => ("contact_change", Some(*d)),
             StopReason::SolverFailure { d, .. } => ("solver_failure", Some(*d)),
         };
         Stop {
@@ -136,8 +138,12 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
         d_max: spec.d_max,
         points: spec.points,
         mu0: spec.mu0,
-        solver: numeric::config(spec.method, spec.tol),
+        solver: vibrissa::SolverConfig {
+            start: scene.start,
+            ..numeric::config(spec.method, spec.tol)
+        },
         keep_shapes: (spec.shape_points >= 2).then_some(spec.shape_points),
+        contact: scene.contact,
     };
     let r = vibrissa::scan(&rod, &surface, &opts)?;
     let mut out = ScanOut {
@@ -197,12 +203,15 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
     Ok(out)
 }
 
-/// Header of the scan CSV: the point, its physical-unit values (scenes with `[physical]`), and
-/// `event` last (empty for grid points; `slip`, `lift_off`, `penetration`, `fold_in_d` on the
-/// row where the scan stopped).
+/// Header of the scan CSV: the point, its contact state (`contact`: `tip`, `side`, `side+tip`,
+/// …; `s_c`: the arc length of the first contact inside the rod, empty if none), its
+/// physical-unit values (scenes with `[physical]`), and `event` last (empty for grid points; a
+/// change of contact state — `touchdown`, `peel_back`, `release` — or the reason the scan
+/// stopped — `slip`, `lift_off`, `penetration`, `fold_in_d` — on event rows).
 pub fn header(physical: bool) -> Vec<&'static str> {
     let mut h = vec![
         "d", "mu", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "s_flex", "y_max", "normal",
+        "contact", "s_c",
     ];
     if physical {
         h.extend(["d_mm", "f_N", "fx_N", "fy_N", "m_base_Nm"]);
@@ -226,6 +235,8 @@ pub fn row(p: &Pt, u: Option<Units>) -> Vec<String> {
         opt(p.s_flex),
         num(p.y_max),
         num(p.normal),
+        p.contact.name().to_string(),
+        opt(p.s_c),
     ];
     if let Some(u) = u {
         r.extend(
@@ -385,8 +396,12 @@ pub fn run_infer(a: &InferArgs) -> Res<()> {
         d_max: a.d_max,
         points: a.points as usize,
         mu0: None,
-        solver: numeric::config(a.solver.method, a.solver.tol),
+        solver: vibrissa::SolverConfig {
+            start: scene.start,
+            ..numeric::config(a.solver.method, a.solver.tol)
+        },
         keep_shapes: None,
+        contact: scene.contact,
     };
     let r = vibrissa::infer(&rod, &surface, a.d0, &opts)?;
     let out = InferOut {

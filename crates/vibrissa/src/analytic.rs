@@ -121,6 +121,7 @@ fn point(e: &Elastica, d: f64, event: Option<Event>) -> ScanPoint {
         d,
         mu: (-e.alpha).tan(),
         normal: e.f * e.alpha.cos(),
+        mu_peak: (-e.alpha).tan().abs(),
         alpha: e.alpha,
         phi1: e.phi1,
         f: e.f,
@@ -130,6 +131,8 @@ fn point(e: &Elastica, d: f64, event: Option<Event>) -> ScanPoint {
         flex: e.flex_count(),
         s_flex: if e.flex_count() > 0 { e.s_b } else { None },
         y_max: e.y_max(),
+        contact: crate::report::ContactLabel::TIP,
+        s_c: None,
         event,
     }
 }
@@ -204,7 +207,7 @@ pub(crate) fn scan_analytic(
                 mu: p.mu,
             },
             Event::FoldInD => StopReason::FoldInD { d: d_stop },
-            Event::Penetration | Event::LiftOff => StopReason::Penetration {
+            _ => StopReason::Penetration {
                 d: d_stop,
                 s: 1.0,
                 y: eta,
@@ -239,6 +242,7 @@ pub(crate) fn scan_analytic(
     };
     Ok(ScanResult {
         eta,
+        surface_point: [e0.x1, e0.y1],
         start,
         points,
         mu_max,

@@ -1,81 +1,29 @@
-//! Pseudo-arclength continuation on the rod's own shooter, for every one-parameter family of rods:
-//! the homotopy from the uniform straight rod to any rod, the tip moved along a line, and the scan
-//! in the foot displacement `d` where it folds.
+//! Pseudo-arclength continuation on the rod's own shooter, for every curve `R(u, λ) = 0` of a
+//! contact chain (the foot dragged, turned, the surface pressed) or of the rod itself (the
+//! homotopy from the uniform straight rod).
 //!
-//! The curve `R(u, λ) = 0` (`u = (m(0), f, α)`, three tip conditions `R`) is followed in
-//! `v = (u, λ)`: Euler predictor along the unit tangent `τ` (`[J  R_λ] τ = 0`, oriented like the
-//! last one), Newton corrector on the hyperplane `τ·(v − v_pred) = 0` with the 4×4 bordered
-//! Jacobian (nalgebra LU), step control by the corrector's iterations and the turn of the tangent.
-//! The same corrector with the hyperplane normal `e_λ` solves one member at a given `λ`, and with
-//! the normal of a step it parametrizes the curve between two points (where events are located).
-//! A fold in `λ` is where `τ_λ` (whose sign is that of `det J`) changes sign.
+//! The curve is followed in `v = (u, λ)`: Euler predictor along the unit tangent `τ` (the null
+//! vector of `[J  R_λ]` by cofactors, oriented like the last one), Newton corrector on the
+//! hyperplane `τ·(v − v_pred) = 0` with the bordered Jacobian (nalgebra LU), step control by the
+//! corrector's iterations and the turn of the tangent. The same corrector with the hyperplane
+//! normal `e_λ` solves one member at a given `λ`, and with the normal of a step it parametrizes
+//! the curve between two points (where events are located). A fold in `λ` is where `τ_λ` (whose
+//! sign is that of `det J`) changes sign.
 
-use crate::profile::Profile;
-use crate::rodsolve::{Converged, ShotFailure, TipCond};
-use crate::shooter::{Shooter, MAX_STEPS};
-use nalgebra::{Matrix3, Matrix4, Vector3, Vector4};
+use crate::chain::Curve;
+use crate::rodsolve::{at_floor, max_abs, Converged, ShotFailure};
+use crate::shooter::MAX_STEPS;
+use nalgebra::{DMatrix, DVector};
 
-/// A one-parameter family of rods on the shooter.
-pub(crate) trait Family<P: Profile> {
-    /// Sets the shooter to member `lam` (profile, support) and returns its tip condition.
-    fn set(&self, sh: &mut Shooter<P>, lam: f64) -> TipCond;
-    /// `∂R/∂λ` at `u` of member `lam`; may shoot (the caller shoots `u` at `lam` afterwards).
-    fn r_lam(&self, sh: &mut Shooter<P>, u: &[f64; 3], lam: f64) -> Vector3<f64>;
-}
-
-/// The tip moved along a horizontal line: `x(1) = x0 + slope·λ`, `y(1) = y1`, α unknown. The scan
-/// is `x0 = x*`, `slope = −1` (λ = d); moving the tip to a target x is `slope = 1`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct TipLine {
-    pub x0: f64,
-    pub slope: f64,
-    pub y1: f64,
-}
-
-impl<P: Profile> Family<P> for TipLine {
-    fn set(&self, _sh: &mut Shooter<P>, lam: f64) -> TipCond {
-        TipCond::Pos {
-            x1: self.x0 + self.slope * lam,
-            y1: self.y1,
-        }
-    }
-    fn r_lam(&self, _sh: &mut Shooter<P>, _u: &[f64; 3], _lam: f64) -> Vector3<f64> {
-        Vector3::new(0.0, -self.slope, 0.0)
-    }
-}
-
-/// The homotopy: member `t` is the rod `member(t)` (profile and compliance) under the fixed tip
-/// condition `cond`. `∂R/∂t` by a forward difference (the profile enters through its table).
-pub(crate) struct Homotopy<M> {
-    pub member: M,
-    pub cond: TipCond,
-}
-
-impl<P: Profile, M: Fn(f64) -> (P, f64)> Family<P> for Homotopy<M> {
-    fn set(&self, sh: &mut Shooter<P>, lam: f64) -> TipCond {
-        let (p, c) = (self.member)(lam);
-        sh.set_profile(p, c);
-        self.cond
-    }
-    fn r_lam(&self, sh: &mut Shooter<P>, u: &[f64; 3], lam: f64) -> Vector3<f64> {
-        let h = 1e-7;
-        self.set(sh, lam);
-        let r0 = self.cond.residual(&sh.shoot::<false>(u).y1, u);
-        self.set(sh, lam + h);
-        let r1 = self.cond.residual(&sh.shoot::<false>(u).y1, u);
-        (r1 - r0) / h
-    }
-}
-
-/// A converged point of a family.
+/// A converged point of a curve.
 #[derive(Clone, Debug)]
 pub(crate) struct ArcPoint {
-    /// `(m(0), f, α, λ)`.
-    pub v: Vector4<f64>,
+    /// `(u, λ)`.
+    pub v: DVector<f64>,
     /// `∂R/∂u` there.
-    pub jac: Matrix3<f64>,
+    pub jac: DMatrix<f64>,
     /// `∂R/∂λ` there.
-    pub r_lam: Vector3<f64>,
+    pub r_lam: DVector<f64>,
     /// Max-norm of `R`.
     pub residual: f64,
     /// Newton iterations it took.
@@ -83,94 +31,119 @@ pub(crate) struct ArcPoint {
 }
 
 impl ArcPoint {
+    /// Number of unknowns.
+    pub fn n(&self) -> usize {
+        self.v.len() - 1
+    }
     /// The unknowns `u`.
-    pub fn u(&self) -> [f64; 3] {
-        [self.v[0], self.v[1], self.v[2]]
+    pub fn u(&self) -> Vec<f64> {
+        self.v.iter().take(self.n()).copied().collect()
     }
     /// The family parameter.
     pub fn lam(&self) -> f64 {
-        self.v[3]
+        self.v[self.n()]
     }
     /// As a converged solve at fixed `λ`.
     pub fn converged(&self) -> Converged {
         Converged {
             u: self.u(),
-            jac: self.jac,
+            jac: self.jac.clone(),
+            r_lam: self.r_lam.clone(),
             residual: self.residual,
             iterations: self.iterations,
         }
     }
-    /// The unit tangent, oriented along `along` (or with `dλ > 0` when `along` is `None`).
-    pub fn tangent(&self, along: Option<&Vector4<f64>>) -> Option<Vector4<f64>> {
-        // the null vector of [J R_λ] by cofactors: τ_i = (−1)^i det of [J R_λ] without column i
-        let col = |c: usize| -> Vector3<f64> {
-            if c < 3 {
-                self.jac.column(c).into()
-            } else {
-                self.r_lam
-            }
-        };
-        let minor = |skip: usize| {
-            let mut idx = (0..4).filter(|&c| c != skip);
-            let (a, b, c) = (idx.next(), idx.next(), idx.next());
-            match (a, b, c) {
-                (Some(a), Some(b), Some(c)) => {
-                    Matrix3::from_columns(&[col(a), col(b), col(c)]).determinant()
-                }
-                _ => f64::NAN,
-            }
-        };
-        let mut t = Vector4::new(-minor(0), minor(1), -minor(2), minor(3));
-        let n = t.norm();
-        if !(n > 0.0 && n.is_finite()) {
-            return None;
+    /// A converged solve as a point at `lam`.
+    pub fn from_converged(c: &Converged, lam: f64) -> ArcPoint {
+        let n = c.u.len();
+        let mut v = DVector::zeros(n + 1);
+        for (i, x) in c.u.iter().enumerate() {
+            v[i] = *x;
         }
-        t /= n;
+        v[n] = lam;
+        ArcPoint {
+            v,
+            jac: c.jac.clone(),
+            r_lam: c.r_lam.clone(),
+            residual: c.residual,
+            iterations: c.iterations,
+        }
+    }
+    /// The unit tangent, oriented along `along` (or with `dλ > 0` when `along` is `None`).
+    pub fn tangent(&self, along: Option<&DVector<f64>>) -> Option<DVector<f64>> {
+        let t = null_vector(&self.jac, &self.r_lam)?;
         let flip = match along {
             Some(d) => t.dot(d) < 0.0,
-            None => t[3] < 0.0,
+            None => t[self.n()] < 0.0,
         };
         Some(if flip { -t } else { t })
     }
 }
 
-fn max_abs(r: &Vector3<f64>) -> f64 {
-    r.iter().fold(0.0f64, |a, v| a.max(v.abs()))
+/// The unit null vector of `[J  r]` (n × (n + 1)) by cofactors: `τ_i = (−1)^i det` of the matrix
+/// without column `i`; `τ_λ` has the sign of `det J`.
+pub(crate) fn null_vector(jac: &DMatrix<f64>, r_lam: &DVector<f64>) -> Option<DVector<f64>> {
+    let n = jac.nrows();
+    let full = {
+        let mut m = DMatrix::zeros(n, n + 1);
+        m.view_mut((0, 0), (n, n)).copy_from(jac);
+        m.set_column(n, r_lam);
+        m
+    };
+    let mut t = DVector::zeros(n + 1);
+    for skip in 0..=n {
+        let cols: Vec<usize> = (0..=n).filter(|&c| c != skip).collect();
+        let minor = full.select_columns(cols.iter());
+        // the sign puts det J on the λ component: τ_λ = (−1)^n · (−1)^n det J
+        let sign = if (n + skip) % 2 == 0 { 1.0 } else { -1.0 };
+        t[skip] = sign * minor.determinant();
+    }
+    let norm = t.norm();
+    if !(norm > 0.0 && norm.is_finite()) {
+        return None;
+    }
+    Some(t / norm)
 }
 
 /// Newton on `R(v) = 0`, `normal·(v − v_pred) = 0` from `v_pred` to `|R| ≤ tol` with every step
-/// error of the shot within tolerance; the shooter's path holds the point afterwards.
-pub(crate) fn correct<P: Profile, F: Family<P>>(
-    sh: &mut Shooter<P>,
-    fam: &F,
-    v_pred: Vector4<f64>,
-    normal: Vector4<f64>,
+/// error of the shot within tolerance; the shooter's paths hold the point afterwards.
+pub(crate) fn correct<C: Curve + ?Sized>(
+    cv: &mut C,
+    v_pred: &DVector<f64>,
+    normal: &DVector<f64>,
     tol: f64,
     max_iter: usize,
 ) -> Result<ArcPoint, ShotFailure> {
+    let n = cv.n();
     for _pass in 0..16 {
-        let mut v = v_pred;
+        let mut v = v_pred.clone();
         let mut rn_prev = f64::INFINITY;
         let mut refined = false;
+        let mut last_step = f64::INFINITY;
         for it in 0..=max_iter {
-            let u = [v[0], v[1], v[2]];
-            let lam = v[3];
-            let r_lam = fam.r_lam(sh, &u, lam);
-            let cond = fam.set(sh, lam);
-            let shot = sh.shoot::<true>(&u);
-            let r = cond.residual(&shot.y1, &u);
-            let rn = max_abs(&r);
+            let u: Vec<f64> = v.iter().take(n).copied().collect();
+            let lam = v[n];
+            let e = cv
+                .eval(&u, lam, true)
+                .map_err(|_| ShotFailure::NoConvergence {
+                    iteration: it,
+                    residual: f64::NAN,
+                })?;
+            let (jac, r_lam) = match (e.jac, e.r_lam) {
+                (Some(j), Some(l)) => (j, l),
+                _ => return Err(ShotFailure::Singular { iteration: it }),
+            };
+            let rn = max_abs(&e.r);
             if !rn.is_finite() || !r_lam.iter().all(|x| x.is_finite()) {
                 return Err(ShotFailure::NoConvergence {
                     iteration: it,
                     residual: rn,
                 });
             }
-            let jac = cond.jacobian(&shot.y1);
-            if rn <= tol {
-                if shot.err > 1.0 {
+            if rn <= tol || at_floor(rn, tol, last_step, &u) {
+                if e.err > 1.0 {
                     // a coarse mesh can have spurious solutions: refine, start over
-                    if !sh.refine() {
+                    if !cv.refine() {
                         return Err(ShotFailure::MeshLimit { steps: MAX_STEPS });
                     }
                     refined = true;
@@ -192,38 +165,48 @@ pub(crate) fn correct<P: Profile, F: Family<P>>(
                 });
             }
             rn_prev = rn;
-            let mut m = Matrix4::zeros();
-            m.fixed_view_mut::<3, 3>(0, 0).copy_from(&jac);
-            m.fixed_view_mut::<3, 1>(0, 3).copy_from(&r_lam);
-            m.set_row(3, &normal.transpose());
-            let rhs = Vector4::new(-r[0], -r[1], -r[2], -normal.dot(&(v - v_pred)));
+            let mut m = DMatrix::zeros(n + 1, n + 1);
+            m.view_mut((0, 0), (n, n)).copy_from(&jac);
+            m.view_mut((0, n), (n, 1)).copy_from(&r_lam);
+            m.set_row(n, &normal.transpose());
+            let mut rhs = DVector::zeros(n + 1);
+            for i in 0..n {
+                rhs[i] = -e.r[i];
+            }
+            rhs[n] = -normal.dot(&(&v - v_pred));
             let dv = m
                 .lu()
                 .solve(&rhs)
                 .filter(|x| x.iter().all(|c| c.is_finite()))
                 .ok_or(ShotFailure::Singular { iteration: it })?;
-            sh.stats.newton_iters += 1;
-            sh.stats.factorizations += 1;
+            cv.count_iteration();
+            last_step = dv.iter().fold(0.0f64, |m, x| m.max(x.abs()));
             v += dv;
         }
         if !refined {
             break;
         }
     }
-    Err(ShotFailure::MeshLimit { steps: sh.steps() })
+    Err(ShotFailure::MeshLimit { steps: MAX_STEPS })
 }
 
 /// The member at `λ = lam` from the prediction `u`.
-pub(crate) fn at_lambda<P: Profile, F: Family<P>>(
-    sh: &mut Shooter<P>,
-    fam: &F,
-    u: [f64; 3],
+pub(crate) fn at_lambda<C: Curve + ?Sized>(
+    cv: &mut C,
+    u: &[f64],
     lam: f64,
     tol: f64,
     max_iter: usize,
 ) -> Result<ArcPoint, ShotFailure> {
-    let v = Vector4::new(u[0], u[1], u[2], lam);
-    correct(sh, fam, v, Vector4::new(0.0, 0.0, 0.0, 1.0), tol, max_iter)
+    let n = u.len();
+    let mut v = DVector::zeros(n + 1);
+    for (i, x) in u.iter().enumerate() {
+        v[i] = *x;
+    }
+    v[n] = lam;
+    let mut normal = DVector::zeros(n + 1);
+    normal[n] = 1.0;
+    correct(cv, &v, &normal, tol, max_iter)
 }
 
 /// Step-size settings of [`Arc`].
@@ -237,7 +220,7 @@ pub(crate) struct Steps {
 /// A followed curve: the last point and its tangent, the step size.
 pub(crate) struct Arc {
     pub last: ArcPoint,
-    pub tau: Vector4<f64>,
+    pub tau: DVector<f64>,
     pub steps: Steps,
     pub tol: f64,
 }
@@ -262,17 +245,26 @@ impl Arc {
         })
     }
 
+    /// Starts at `p` heading along `tau` (any orientation the caller chose).
+    pub fn along(p: ArcPoint, tau: DVector<f64>, steps: Steps, tol: f64) -> Arc {
+        Arc {
+            last: p,
+            tau,
+            steps,
+            tol,
+        }
+    }
+
     /// One accepted step along the curve (the step size shrinks on failures and grows after easy
     /// steps); returns the previous point and its tangent.
-    pub fn step<P: Profile, F: Family<P>>(
+    pub fn step<C: Curve + ?Sized>(
         &mut self,
-        sh: &mut Shooter<P>,
-        fam: &F,
-    ) -> Result<(ArcPoint, Vector4<f64>), ShotFailure> {
+        cv: &mut C,
+    ) -> Result<(ArcPoint, DVector<f64>), ShotFailure> {
         loop {
             let ds = self.steps.ds;
-            let pred = self.last.v + self.tau * ds;
-            let attempt = correct(sh, fam, pred, self.tau, self.tol, ARC_ITER).and_then(|p| {
+            let pred = &self.last.v + &self.tau * ds;
+            let attempt = correct(cv, &pred, &self.tau, self.tol, ARC_ITER).and_then(|p| {
                 let t = p
                     .tangent(Some(&self.tau))
                     .ok_or(ShotFailure::Singular { iteration: 0 })?;
@@ -281,7 +273,7 @@ impl Arc {
             match attempt {
                 // the tangent turned by less than ~25° and the corrector moved less than a third
                 // of the step: the same branch, resolved
-                Ok((p, t)) if t.dot(&self.tau) > 0.9 && (p.v - pred).norm() < 0.3 * ds => {
+                Ok((p, t)) if t.dot(&self.tau) > 0.9 && (&p.v - &pred).norm() < 0.3 * ds => {
                     let it = p.iterations;
                     let prev = std::mem::replace(&mut self.last, p);
                     let tprev = std::mem::replace(&mut self.tau, t);
@@ -312,19 +304,59 @@ impl Arc {
 
 /// The point between `a` (tangent `ta`) and `b` at arclength `sigma` along `ta` from `a`
 /// (`0 ≤ sigma ≤ ta·(b − a)`), predicted linearly between them.
-pub(crate) fn between<P: Profile, F: Family<P>>(
-    sh: &mut Shooter<P>,
-    fam: &F,
+pub(crate) fn between<C: Curve + ?Sized>(
+    cv: &mut C,
     a: &ArcPoint,
-    ta: &Vector4<f64>,
+    ta: &DVector<f64>,
     b: &ArcPoint,
     sigma: f64,
     tol: f64,
 ) -> Result<ArcPoint, ShotFailure> {
-    let span = ta.dot(&(b.v - a.v));
+    let span = ta.dot(&(&b.v - &a.v));
     let w = if span != 0.0 { sigma / span } else { 0.0 };
-    let pred = a.v + (b.v - a.v) * w;
+    let pred = &a.v + (&b.v - &a.v) * w;
     // the hyperplane ta·(v − a) = sigma through the prediction
-    let shifted = pred + ta * (sigma - ta.dot(&(pred - a.v)));
-    correct(sh, fam, shifted, *ta, tol, 2 * ARC_ITER)
+    let shifted = &pred + ta * (sigma - ta.dot(&(&pred - &a.v)));
+    correct(cv, &shifted, ta, tol, 2 * ARC_ITER)
+}
+
+/// Follows `cv` by pseudo-arclength from its converged point `first` (at `λ = from`) until `λ`
+/// passes `to`, and returns the member at `to`; the error says why not (the curve turned back,
+/// or a step failed).
+pub(crate) fn follow_to<C: Curve + ?Sized>(
+    cv: &mut C,
+    first: ArcPoint,
+    to: f64,
+    tol: f64,
+) -> Result<ArcPoint, String> {
+    let from = first.lam();
+    if to == from {
+        return Ok(first);
+    }
+    let span = (to - from).abs();
+    let steps = Steps {
+        ds: 0.1 * span,
+        ds_min: 1e-7 * span,
+        ds_max: 0.25 * span,
+    };
+    let dir = (to - from).signum();
+    let mut arc = Arc::new(first, dir, steps, tol).map_err(|e| e.to_string())?;
+    for _ in 0..2000 {
+        let (prev, _) = arc
+            .step(cv)
+            .map_err(|e| format!("at {}: {e}", arc.last.lam()))?;
+        let (l0, l1) = (prev.lam(), arc.last.lam());
+        if (l1 - to) * dir >= 0.0 {
+            // the member at `to`, from the chord between the points on either side
+            let w = (to - l0) / (l1 - l0);
+            let (a, b) = (prev.u(), arc.last.u());
+            let u: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x + w * (y - x)).collect();
+            return at_lambda(cv, &u, to, tol, 16).map_err(|e| e.to_string());
+        }
+        // the curve turned back past its start: no member at `to` connected to it
+        if (l1 - from) * dir < -span {
+            return Err(format!("the curve turned back at {}", l0));
+        }
+    }
+    Err("no member reached in 2000 steps".into())
 }

@@ -88,6 +88,10 @@ pub struct SolverConfig {
     pub segments: usize,
     /// `Some(n)`: fixed-step RK4 with `n` steps instead of the adaptive integrator.
     pub rk4_steps: Option<usize>,
+    /// Which equilibrium a solve or a scan starts from: the rod pressed onto the surface (or
+    /// loaded at its tip) from its rest shape (default), or the state connected to the straight
+    /// uniform rod pressed the same way (the homotopy in the rod's deviations).
+    pub start: StartKind,
 }
 
 impl Default for SolverConfig {
@@ -97,6 +101,7 @@ impl Default for SolverConfig {
             tol: 1e-10,
             segments: 8,
             rk4_steps: None,
+            start: StartKind::Pressed,
         }
     }
 }
@@ -137,11 +142,6 @@ pub(crate) enum Engine {
 }
 
 impl Engine {
-    /// For single solves (from rough guesses: up to 30 Newton iterations).
-    pub(crate) fn new(cfg: &SolverConfig) -> Result<Engine, VibrissaError> {
-        Engine::with_max_iter(cfg, 30)
-    }
-
     /// For the steps of a continuation, which start from good predictions: a step that needs
     /// more than `max_iter` Newton iterations is better shortened than pursued.
     pub(crate) fn with_max_iter(
@@ -240,3 +240,20 @@ pub enum Target {
         y1: f64,
     },
 }
+
+/// Which equilibrium a scan or a solve starts from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StartKind {
+    /// The rod pressed onto the surface from its rest shape (frictionless, normal to the
+    /// surface), by continuation in the load from first touch; a rod with no preferred side
+    /// (straight, horizontal surface) bends to the right.
+    #[default]
+    Pressed,
+    /// The tip-loaded state connected to the straight uniform rod pressed the same way, by the
+    /// homotopy in the rod's deviations (taper, rest curvature, compliance): the force normal to
+    /// the surface, the tip at height η. A rod bent against its own rest curvature can be such a
+    /// state.
+    Connected,
+}
+

@@ -49,6 +49,13 @@ pub enum VibrissaError {
         /// What the solution is.
         found: crate::kind::ShapeKind,
     },
+    /// There is no start for the scan: the rod does not reach the surface, or pressing it onto
+    /// the surface does not end in a contact state (the reason says which, with its values).
+    #[error("no start: {reason}")]
+    NoStart {
+        /// What happened, with the numbers.
+        reason: String,
+    },
     /// The BVP solver failed.
     #[error("{context}: {source}")]
     Solver {

@@ -64,9 +64,11 @@
 // solve → report → march → stepper → analytic → scan.
 mod analytic;
 mod arclength;
+mod chain;
 mod config;
 pub mod equations;
 mod error;
+mod generic;
 mod kind;
 mod march;
 mod parts;
@@ -81,10 +83,15 @@ mod search;
 mod shape;
 mod shooter;
 pub mod solve;
+mod start;
 mod stepper;
+mod watch;
 
 pub use error::VibrissaError;
-pub use report::{Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason};
+pub use report::{
+    ContactLabel, ContactModel, Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult,
+    StopReason,
+};
 pub use rod::{
     Rod, RodBuilder, Surface, Units, MAX_B, MAX_COMPLIANCE, MAX_PRECURVATURE, MAX_SURFACE_ANGLE,
     MIN_B, MIN_TAPER,
@@ -92,4 +99,4 @@ pub use rod::{
 pub use scan::{infer, scan, scan_at};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};
 pub use shape::{BranchChoice, Clearance, Shape, ShapeKind, ShapePoint};
-pub use solve::{solve, Method, SolverConfig, Target};
+pub use solve::{solve, Method, SolverConfig, StartKind, Target};

@@ -1,45 +1,56 @@
-//! The scan's one march in the foot displacement `d`, for every rod and every method.
+//! The one march: a contact chain followed in its family parameter `λ` (the foot displacement
+//! `d` of the scan, the press depth of the start, the foot angle of a whisk), for every rod,
+//! every method and every contact set.
 //!
 //! Natural continuation from output point to output point (intermediate steps where the grid is
 //! coarse), each point predicted from the last ones and corrected by a [`Stepper`]; where a
-//! natural step fails for tiny steps (near a fold in `d`) the stepper's pseudo-arclength
-//! continuation passes it or locates the fold. After every step the events between the last point
-//! and the new one are located by Brent's method on solves inside that step (no restart):
-//! penetration, lift-off (`N = 0`), slip (`|μ| = μ0`, either sign); the earliest ends the scan and
-//! is written as the last point with its [`Event`]. The first maximum of `|μ|` (the end of the
-//! measurable range) is located on the way, by the root of `d|μ|/dd` from exact tangents where the
-//! stepper has them, else by Brent's maximizer.
+//! natural step fails for tiny steps (near a fold in `λ`) the stepper's pseudo-arclength
+//! continuation passes it or locates the fold. After every step the events between the last
+//! point and the new one are located on solves inside that step (no restart): a contact lifts,
+//! slips, a free part of the rod touches the surface, the tip turns tangent to it, a lying part
+//! peels back, an object slips off the tip. The earliest is written as a point with its
+//! [`Event`]. An event that ends the contact state but not the scene changes the contact set and
+//! the march goes on in the same step sequence (touchdown, peel-back, release); the others end
+//! it. The first maximum of `|μ|` (the end of the measurable range) is located on the way, by
+//! the root of `d|μ|/dλ` from exact tangents.
 
-use crate::profile::Profile;
-use crate::report::{Event, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason};
-use crate::sampling::{clearance, extrema, flex_and_reversals};
+use crate::chain::{Contact, ContactSet, Geom, Mode};
+use crate::profile::{General, Profile};
+use crate::report::{ContactLabel, Event, RangeEnd, ScanPoint, StopReason};
+use crate::sampling::flex_and_reversals;
 use crate::search;
 use crate::shape::{shape_from, ShapePoint};
+use crate::watch::{Crossing, Env, Watch};
 use bvp::{Solution, Stats};
 
 /// A converged point of the branch.
 #[derive(Clone, Debug)]
 pub(crate) struct Pt {
-    /// Foot displacement.
-    pub d: f64,
-    /// `(m(0), f, α)`.
-    pub u: [f64; 3],
-    /// Exact tangent `du/dd`, where the stepper has one.
-    pub du: Option<[f64; 3]>,
-    /// `det ∂R/∂u` (its sign changes at a fold in `d`), where the stepper has it.
+    /// Family parameter.
+    pub lam: f64,
+    /// The unknowns of the contact set.
+    pub u: Vec<f64>,
+    /// Exact tangent `du/dλ`, where the stepper has one.
+    pub du: Option<Vec<f64>>,
+    /// `det ∂R/∂u` (its sign changes at a fold in `λ`), where the stepper has it.
     pub det: Option<f64>,
     /// Newton iterations it took.
     pub iters: usize,
-    /// The rod (`params = [f, α]`).
+    /// The whole rod (`params = [f, α]` of the total contact force).
     pub sol: Solution,
+    /// What the march watches there.
+    pub w: Watch,
+    /// The method's own solution, when it is not the rod's own shooter (the generic methods'
+    /// stacked segments; their guesses come from it).
+    pub raw: Option<Solution>,
 }
 
 /// Result of the pseudo-arclength fallback.
 pub(crate) enum Passed {
     /// The branch continues beyond the failed step: a point on it.
     Beyond(Pt),
-    /// `d` has a maximum along the branch here (with the rod there, if it was found).
-    Fold(f64, Option<Solution>),
+    /// `λ` has a maximum along the branch here (with the rod there, if it was found).
+    Fold(f64, Option<Pt>),
     /// Neither.
     Failed(String),
 }
@@ -47,8 +58,8 @@ pub(crate) enum Passed {
 /// Why a correction was refused.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum StepError {
-    /// The corrector landed across a fold in `d` (`det J` changed sign): the fold is within the
-    /// step, pass or locate it by pseudo-arclength rather than by shorter natural steps.
+    /// The corrector landed across a fold in `λ` (`det J` changed sign, and the tangent agrees):
+    /// pass or locate it by pseudo-arclength rather than by shorter natural steps.
     CrossedFold,
     /// Anything else (a shorter step may succeed).
     Failed(String),
@@ -57,7 +68,7 @@ pub(crate) enum StepError {
 impl std::fmt::Display for StepError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            StepError::CrossedFold => f.write_str("the corrector crossed a fold in d"),
+            StepError::CrossedFold => f.write_str("the corrector crossed a fold"),
             StepError::Failed(m) => f.write_str(m),
         }
     }
@@ -75,119 +86,66 @@ impl From<StepError> for String {
     }
 }
 
-/// Prediction and correction of branch points (the method-specific part of the scan).
+/// Prediction and correction of branch points (the method-specific part of a march).
 pub(crate) trait Stepper {
-    /// The point at `d` from the history `hist` (newest last; `d` ahead of it or inside its span).
-    /// Rejects corrections that land on another branch.
-    fn correct(&mut self, d: f64, hist: &[Pt]) -> Result<Pt, StepError>;
+    /// The current contact set.
+    fn set(&self) -> &ContactSet;
+    /// The point at `λ` from the history `hist` (newest last; `λ` ahead of it or inside its
+    /// span); rejects corrections that land on another branch. With `fresh` the tangent is exact
+    /// at the point (events that use it).
+    fn correct(&mut self, lam: f64, hist: &[Pt], fresh: bool) -> Result<Pt, StepError>;
     /// Pseudo-arclength continuation from the newest point until the branch passes `target` or
-    /// turns back in `d`.
-    fn pass_fold(&mut self, hist: &[Pt], target: f64, d_end: f64) -> Passed;
+    /// turns back in `λ`.
+    fn pass_fold(&mut self, hist: &[Pt], target: f64, lam_end: f64) -> Passed;
+    /// Changes the contact set at `λ` and corrects `u` (the old state in the new unknowns) there.
+    fn switch(&mut self, set: ContactSet, lam: f64, u: Vec<f64>) -> Result<Pt, StepError>;
     /// Work done so far.
     fn stats(&self) -> Stats;
-    /// Largest natural step in `d`.
+    /// Largest natural step in `λ`.
     fn h_max(&self) -> f64;
-    /// The branch between the points of `hist` as a polynomial in `d` (from their exact tangents):
-    /// `(u, du/dd)` at `d`, where the stepper has one.
-    fn interpolant(&self, _hist: &[Pt], _d: f64) -> Option<([f64; 3], [f64; 3])> {
-        None
+    /// The foot's x in the lab frame at `λ` (for along-surface anchors).
+    fn foot_x(&self, lam: f64) -> f64;
+    /// The branch between the points of `hist` as a polynomial in `λ` (from their exact
+    /// tangents): `(u, du/dλ)` at `λ`.
+    fn interpolant(&self, hist: &[Pt], lam: f64) -> Option<(Vec<f64>, Vec<f64>)> {
+        hist.iter()
+            .all(|p| p.du.is_some())
+            .then(|| interpolate(hist, lam))
     }
 }
 
-/// The contact seen from the rod's foot: tip fixed at `(x* − d, η)`, surface angle β.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Contact {
-    pub eta: f64,
-    pub beta: f64,
-    pub x_star: f64,
+/// What a march needs besides the stepper.
+pub(crate) struct Spec<'a> {
+    pub env: &'a Env,
+    /// Output values of `λ` (sorted).
+    pub grid: &'a [f64],
+    /// Where the march ends.
+    pub lam_end: f64,
+    /// Keep each output point's shape sampled at this many points.
+    pub keep_shapes: Option<usize>,
+    /// The rod's profile (flex points, shapes).
+    pub general: &'a General,
+    /// New contacts hold by friction (stuck, rolling) rather than slide freely (the press).
+    pub friction: bool,
+    /// Whether the first point must be a valid contact state (else it is reported as the event
+    /// it is); a press starts at first touch, where the contact force is zero.
+    pub check_start: bool,
 }
 
-/// Per-point quantities the scan watches.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Watch {
-    pub d: f64,
-    /// Signed friction ratio `tan(β − α)`.
-    pub mu: f64,
-    /// Normal force `f cos(α − β)`.
-    pub normal: f64,
-    /// > 0: the rod is above the surface somewhere with s < 1 (or its tip turns into it).
-    pub pen: f64,
-    pub pen_s: f64,
-    pub pen_y: f64,
-    /// Sign-carrying slope of `|μ|` in `d` (from the exact tangent), if known.
-    pub dmu_abs: Option<f64>,
+/// What a march produced.
+pub(crate) struct MarchOut {
+    pub points: Vec<ScanPoint>,
+    pub shapes: Vec<Vec<ShapePoint>>,
+    /// `(|μ|, μ, λ)` at the end of the measurable range, and what ended it.
+    pub best: (f64, f64, f64),
+    pub range_end: RangeEnd,
+    pub stop: StopReason,
+    /// The last point and its contact set.
+    pub last: Option<(ContactSet, Pt)>,
+    pub stats: Stats,
 }
 
-impl Contact {
-    /// `(μ, N, d|μ|/dd)` of the unknowns `u = (m(0), f, α)` and their tangent `du/dd`.
-    fn of_u(&self, u: &[f64; 3], du: Option<&[f64; 3]>) -> (f64, f64, Option<f64>) {
-        let (f, alpha) = (u[1], u[2]);
-        let mu = (self.beta - alpha).tan();
-        let normal = f * (alpha - self.beta).cos();
-        // d|μ|/dd = sign(μ)·dμ/dd, dμ/dd = −sec²(β − α)·α'; at μ = 0 it is |dμ/dd|
-        let dmu_abs = du.map(|du| {
-            let dmu = -du[2] / (self.beta - alpha).cos().powi(2);
-            if mu == 0.0 {
-                dmu.abs()
-            } else {
-                mu.signum() * dmu
-            }
-        });
-        (mu, normal, dmu_abs)
-    }
-
-    pub fn watch(&self, p: &Pt) -> Watch {
-        let (mu, normal, dmu_abs) = self.of_u(&p.u, p.du.as_ref());
-        let (pen, pen_s) = clearance(&p.sol, self.beta).excess();
-        let mut z = [0.0; 4];
-        p.sol.eval(pen_s, &mut z);
-        Watch {
-            d: p.d,
-            mu,
-            normal,
-            pen,
-            pen_s,
-            pen_y: z[1],
-            dmu_abs,
-        }
-    }
-}
-
-/// A function along the branch that is negative before an event and reaches 0 at it.
-#[derive(Clone, Copy, Debug)]
-enum Crossing {
-    /// The rod rises above the surface line.
-    Penetration,
-    /// The normal force falls to 0.
-    LiftOff,
-    /// `|μ|` reaches μ0.
-    Slip(f64),
-    /// `|μ|` stops rising (its first maximum).
-    MuMax,
-}
-
-impl Crossing {
-    fn of_watch(self, w: &Watch) -> f64 {
-        match self {
-            Crossing::Penetration => w.pen,
-            Crossing::LiftOff => -w.normal,
-            Crossing::Slip(mu0) => w.mu.abs() - mu0,
-            Crossing::MuMax => -w.dmu_abs.unwrap_or(f64::NAN),
-        }
-    }
-    /// The value from the unknowns alone (`None` for penetration, which needs the shape).
-    fn of_u(self, c: &Contact, u: &[f64; 3], du: &[f64; 3]) -> Option<f64> {
-        let (mu, normal, dmu_abs) = c.of_u(u, Some(du));
-        match self {
-            Crossing::Penetration => None,
-            Crossing::LiftOff => Some(-normal),
-            Crossing::Slip(mu0) => Some(mu.abs() - mu0),
-            Crossing::MuMax => dmu_abs.map(|v| -v),
-        }
-    }
-}
-
-/// The first maximum of `|μ|`: `(|μ|, μ, d)` and what ended the range, once known.
+/// The first maximum of `|μ|` and what ended the range, once known.
 struct RangeTracker {
     best: (f64, f64, f64),
     end: Option<RangeEnd>,
@@ -196,7 +154,7 @@ struct RangeTracker {
 impl RangeTracker {
     fn see(&mut self, w: &Watch) {
         if self.end.is_none() && w.mu.abs() >= self.best.0 {
-            self.best = (w.mu.abs(), w.mu, w.d);
+            self.best = (w.mu.abs(), w.mu, w.lam);
         }
     }
     fn close(&mut self, end: RangeEnd) {
@@ -206,429 +164,822 @@ impl RangeTracker {
     }
 }
 
-/// Runs the march from the start point `p0` (d = 0) over `grid` (sorted, in `[0, d_max]`).
+/// Runs the march from the point `p0` (λ = `p0.lam`) over the grid.
 pub(crate) fn march<P: Profile>(
     stepper: &mut dyn Stepper,
-    ctx: &Ctx<'_, P>,
-    grid: &[f64],
+    spec: &Spec<'_>,
+    profile: &P,
     p0: Pt,
     mut stats: Stats,
-) -> ScanResult {
-    let (contact, profile, opts) = (ctx.contact, ctx.profile, ctx.opts);
-    let d_end = opts.d_max;
+) -> MarchOut {
     let mut out = Output {
-        points: Vec::with_capacity(grid.len() + 1),
+        points: Vec::with_capacity(spec.grid.len() + 1),
         shapes: Vec::new(),
-        keep: opts.keep_shapes,
-        gi: 0,
+        gi: spec.grid.partition_point(|&g| g < p0.lam),
     };
-    let w0 = contact.watch(&p0);
-    let start = scan_point(&p0, &w0, profile, None);
     let mut range = RangeTracker {
-        best: (w0.mu.abs(), w0.mu, 0.0),
+        best: (p0.w.mu.abs(), p0.w.mu, p0.lam),
         end: None,
     };
-    let mut hist: Vec<Pt> = vec![p0];
-    // events at the start itself
-    let start_event = if w0.pen > 0.0 {
-        Some(Event::Penetration)
-    } else if w0.normal <= 0.0 {
-        Some(Event::LiftOff)
-    } else if opts.mu0.is_some_and(|m| w0.mu.abs() >= m) {
-        Some(Event::Slip)
+    let start_event = if spec.check_start {
+        start_event(spec.env, stepper.set(), &p0.w)
     } else {
         None
     };
+    let mut last = None;
     let stop = if let Some(ev) = start_event {
         // the start itself is not a valid state (the rod crosses the surface, is pulled, or
         // slips): it is reported as the event, never as a grid row
         range.close(RangeEnd::Event);
-        out.event(ctx, &hist[0], &w0, ev);
-        stop_reason(ev, &w0)
+        out.push(spec, profile, stepper.set(), &p0, Some(ev));
+        let s = stop_reason(ev, &p0.w, stepper.set());
+        last = Some((stepper.set().clone(), p0));
+        s
     } else {
-        run(stepper, ctx, &mut hist, &mut out, &mut range, grid, d_end)
+        let mut run = Run {
+            stepper,
+            spec,
+            profile,
+            out: &mut out,
+            range: &mut range,
+        };
+        let (s, l) = run.run(p0);
+        last = l.or(last);
+        s
     };
     stats.accumulate(&stepper.stats());
-    if let Some(last) = hist.last() {
-        stats.residual = last.sol.stats.residual;
-        stats.nodes = last.sol.mesh.len();
+    if let Some((_, p)) = &last {
+        stats.residual = p.sol.stats.residual;
+        stats.nodes = p.sol.mesh.len();
     }
-    let (mu_max, mu_at_max, d_at_mu_max) = range.best;
-    ScanResult {
-        eta: contact.eta,
-        start,
+    MarchOut {
         points: out.points,
-        mu_max,
-        mu_at_max,
-        d_at_mu_max,
+        shapes: out.shapes,
+        best: range.best,
         range_end: range.end.unwrap_or(RangeEnd::SolverFailure),
         stop,
+        last,
         stats,
-        shapes: out.shapes,
     }
 }
 
-/// What the march needs besides the stepper: the contact, the rod's profile (as the stepper's
-/// type, and as the general one kept in shapes), the options.
-pub(crate) struct Ctx<'a, P: Profile> {
-    pub contact: Contact,
-    pub profile: &'a P,
-    pub general: &'a crate::profile::General,
-    pub opts: &'a ScanOptions,
-}
-
-fn stop_reason(ev: Event, w: &Watch) -> StopReason {
-    match ev {
-        Event::Slip => StopReason::Slip { d: w.d, mu: w.mu },
-        Event::LiftOff => StopReason::LiftOff { d: w.d },
-        Event::Penetration => StopReason::Penetration {
-            d: w.d,
-            s: w.pen_s,
-            y: w.pen_y,
-        },
-        Event::FoldInD => StopReason::FoldInD { d: w.d },
-    }
-}
-
-/// The march proper; returns why it stopped.
-fn run<P: Profile>(
-    stepper: &mut dyn Stepper,
-    ctx: &Ctx<'_, P>,
-    hist: &mut Vec<Pt>,
-    out: &mut Output,
-    range: &mut RangeTracker,
-    grid: &[f64],
-    d_end: f64,
-) -> StopReason {
-    let h_max = stepper.h_max().min(d_end);
-    let mut h: f64 = 0.01_f64.min(h_max);
-    let h_min = 1e-7;
-    let mut steps = 0usize;
-    let mut prev = ctx.contact.watch(&hist[0]);
-    let mut pprev: Option<Watch> = None;
-    loop {
-        let d = prev.d;
-        if d >= d_end {
-            range.close(RangeEnd::DMax);
-            if let Err(fail) = out.emit(stepper, ctx, hist, grid, d_end) {
-                return fail;
-            }
-            return StopReason::DMax;
-        }
-        steps += 1;
-        if steps > 100_000 {
-            range.close(RangeEnd::SolverFailure);
-            return StopReason::SolverFailure {
-                d,
-                message: "more than 100000 continuation steps".into(),
-            };
-        }
-        // next target: at most h ahead, never past the next grid point
-        let mut target = (d + h).min(d_end);
-        if let Some(&g) = grid.get(out.gi) {
-            if g > d && g < target {
-                target = g;
-            }
-        }
-        if d_end - target < 1e-3 * h {
-            target = d_end;
-        }
-        // a slip the predictor sees coming within the step: step to just past it (the event
-        // is then located on a short step, and the scan pays no full step beyond it)
-        if let Some(mu0) = ctx.opts.mu0 {
-            if let Some(ds) = predicted_crossing(stepper, ctx, hist, d, target, Crossing::Slip(mu0))
-            {
-                target = ds + 1e-6 * (target - ds);
-            }
-        }
-        let p = match stepper.correct(target, hist) {
-            Ok(p) => {
-                h = if p.iters <= 2 {
-                    (2.0 * h).min(h_max)
-                } else if p.iters <= 4 {
-                    (1.25 * h).min(h_max)
-                } else {
-                    0.5 * h
-                };
-                p
-            }
-            Err(StepError::Failed(_)) if h > h_min => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => match stepper.pass_fold(hist, target, d_end) {
-                Passed::Beyond(p) => p,
-                Passed::Fold(df, sol) => {
-                    range.close(RangeEnd::Event);
-                    if let Err(fail) = out.emit(stepper, ctx, hist, grid, df.min(d_end)) {
-                        return fail;
-                    }
-                    if let Some(sol) = sol {
-                        let p = Pt {
-                            d: df,
-                            u: [sol.left()[3], sol.params[0], sol.params[1]],
-                            du: None,
-                            det: None,
-                            iters: 0,
-                            sol,
-                        };
-                        let w = ctx.contact.watch(&p);
-                        range.see(&w);
-                        out.event(ctx, &p, &w, Event::FoldInD);
-                    }
-                    return StopReason::FoldInD { d: df };
-                }
-                Passed::Failed(msg) => {
-                    range.close(RangeEnd::SolverFailure);
-                    return StopReason::SolverFailure {
-                        d,
-                        message: format!("natural step to d = {target}: {e}; {msg}"),
-                    };
-                }
-            },
-        };
-        let w = ctx.contact.watch(&p);
-        hist.push(p);
-        if hist.len() > 4 {
-            hist.remove(0);
-        }
-        // events between d and the new point, the earliest first
-        let mut event: Option<(Event, Pt, Watch)> = None;
-        let mut failure: Option<StopReason> = None;
-        let mut consider = |ev: Event, g: Crossing, hist: &[Pt], stepper: &mut dyn Stepper| {
-            if g.of_watch(&w) < 0.0 {
-                return;
-            }
-            match locate(stepper, ctx, hist, d, w.d, g) {
-                Ok((pe, we)) => {
-                    if event.as_ref().is_none_or(|(_, q, _)| pe.d < q.d) {
-                        event = Some((ev, pe, we));
-                    }
-                }
-                Err(msg) => {
-                    failure.get_or_insert(StopReason::SolverFailure {
-                        d,
-                        message: format!("locating the {}: {msg}", ev.name()),
-                    });
-                }
-            }
-        };
-        consider(Event::Penetration, Crossing::Penetration, hist, stepper);
-        consider(Event::LiftOff, Crossing::LiftOff, hist, stepper);
-        if let Some(mu0) = ctx.opts.mu0 {
-            consider(Event::Slip, Crossing::Slip(mu0), hist, stepper);
-        }
-        if event.is_none() {
-            if let Some(f) = failure {
-                range.close(RangeEnd::SolverFailure);
-                return f;
-            }
-        }
-        let d_stop = event.as_ref().map_or(w.d, |e| e.1.d);
-        // the first maximum of |μ| between the last point and d_stop
-        if range.end.is_none() {
-            if let Some(m) = first_max(stepper, ctx, hist, &prev, pprev.as_ref(), &w, d_stop) {
-                range.see(&m);
-                range.close(RangeEnd::FirstMaximum);
-            }
-        }
-        if let Some((ev, _, we)) = &mut event {
-            if *ev == Event::LiftOff {
-                // N = 0 exactly there: the friction ratio is unbounded, any μ0 slips before
-                we.normal = 0.0;
-                we.mu = f64::INFINITY.copysign(we.mu);
-            }
-            range.see(we);
-        } else {
-            range.see(&w);
-        }
-        if let Err(fail) = out.emit(stepper, ctx, hist, grid, d_stop) {
-            return fail;
-        }
-        if let Some((ev, pe, we)) = event {
-            range.close(RangeEnd::Event);
-            out.event(ctx, &pe, &we, ev);
-            return stop_reason(ev, &we);
-        }
-        pprev = Some(prev);
-        prev = w;
-    }
-}
-
-/// Where the branch polynomial, extrapolated from the last points, predicts `g` to reach 0
-/// within `(a, b]` (`None` without a polynomial, or when it does not).
-fn predicted_crossing<P: Profile>(
-    stepper: &dyn Stepper,
-    ctx: &Ctx<'_, P>,
-    hist: &[Pt],
-    a: f64,
-    b: f64,
-    g: Crossing,
-) -> Option<f64> {
-    let on_poly = |d: f64| -> Result<f64, String> {
-        let (u, du) = stepper
-            .interpolant(hist, d)
-            .ok_or_else(|| "no polynomial".to_string())?;
-        g.of_u(&ctx.contact, &u, &du)
-            .ok_or_else(|| "not a function of the unknowns".to_string())
-    };
-    let (ga, gb) = (on_poly(a).ok()?, on_poly(b).ok()?);
-    if !(ga < 0.0 && gb >= 0.0) {
+/// An event already true at the start.
+fn start_event(env: &Env, set: &ContactSet, w: &Watch) -> Option<Event> {
+    if set.contacts.is_empty() {
         return None;
     }
-    let mut f = on_poly;
-    search::root(&mut f, a, b, 1e-15 * (1.0 + b.abs())).ok()
+    if w.clear > 0.0 || w.tip_approach < 0.0 || (!env.compound && set.label() != "tip") {
+        // a start that crosses the surface, or (the paper's tip-only model) touches it with
+        // its side
+        return Some(Event::Penetration);
+    }
+    if w.contacts.iter().any(|c| c.normal <= 0.0) {
+        return Some(Event::LiftOff);
+    }
+    if let Some(m) = env.mu0 {
+        if w.contacts.iter().any(|c| c.tangential.abs() >= m * c.normal) {
+            return Some(Event::Slip);
+        }
+    }
+    None
 }
 
-/// The first `d` in `[a, b]` where `g` reaches 0 (`g(a) < 0 ≤ g(b)`). Where the stepper has the
-/// branch as a polynomial (exact tangents) and `g` depends on the unknowns alone: Brent's method on
-/// that polynomial, refined by Newton steps with solves (derivative from the polynomial) — one or
-/// two solves. Otherwise Brent's method on solves within the step.
-fn locate<P: Profile>(
-    stepper: &mut dyn Stepper,
-    ctx: &Ctx<'_, P>,
-    hist: &[Pt],
-    a: f64,
-    b: f64,
-    g: Crossing,
-) -> Result<(Pt, Watch), String> {
-    let c = &ctx.contact;
-    let on_poly = |stepper: &dyn Stepper, d: f64| -> Option<f64> {
-        let (u, du) = stepper.interpolant(hist, d)?;
-        g.of_u(c, &u, &du)
-    };
-    if on_poly(stepper, a).is_some() {
-        let mut poly = |d: f64| on_poly(stepper, d).ok_or_else(|| "no polynomial".to_string());
-        if let Ok(mut d) = search::root(&mut poly, a, b, 1e-15 * (1.0 + b.abs())) {
-            let eps = 1e-6 * (b - a);
-            for _ in 0..4 {
-                let p = stepper.correct(d, hist)?;
-                let w = c.watch(&p);
-                let slope = match (on_poly(stepper, d + eps), on_poly(stepper, d - eps)) {
-                    (Some(gp), Some(gm)) => (gp - gm) / (2.0 * eps),
-                    _ => break,
-                };
-                let step = g.of_watch(&w) / slope;
-                if !step.is_finite() || !(a..=b).contains(&(d - step)) {
-                    break;
+fn stop_reason(ev: Event, w: &Watch, set: &ContactSet) -> StopReason {
+    let d = w.lam;
+    match ev {
+        Event::Slip => StopReason::Slip { d, mu: w.mu },
+        Event::LiftOff => StopReason::LiftOff { d },
+        // a side touching at the start (tip-only model), the tip turning into the surface, or
+        // the free rod reaching it
+        Event::Penetration => {
+            let (s, y) = if let Some(j) = set.contacts.iter().position(|c| !c.tip) {
+                (w.contacts[j].s, w.last_y)
+            } else if w.tip_approach < 0.0 || w.tip_approach.abs() < w.clear.abs() {
+                (1.0, w.last_y)
+            } else {
+                (w.clear_s, w.clear_z[1])
+            };
+            StopReason::Penetration { d, s, y }
+        }
+        Event::FoldInD => StopReason::FoldInD { d },
+        Event::SlipOff => StopReason::SlipOff { d },
+        Event::Touchdown | Event::PeelBack | Event::Release => StopReason::ContactChange {
+            d,
+            message: format!("{} in state {}", ev.name(), set.label()),
+        },
+    }
+}
+
+struct Run<'a, 'b, P: Profile> {
+    stepper: &'a mut dyn Stepper,
+    spec: &'a Spec<'b>,
+    profile: &'a P,
+    out: &'a mut Output,
+    range: &'a mut RangeTracker,
+}
+
+/// A located event inside a step.
+struct Found {
+    cross: Crossing,
+    pt: Pt,
+}
+
+impl<P: Profile> Run<'_, '_, P> {
+    /// The march proper; returns why it stopped and the last point.
+    fn run(&mut self, p0: Pt) -> (StopReason, Option<(ContactSet, Pt)>) {
+        let spec = self.spec;
+        let lam_end = spec.lam_end;
+        let h_max = self.stepper.h_max().min(lam_end - p0.lam).max(1e-12);
+        let mut h: f64 = 0.01_f64.min(h_max);
+        let h_min = 1e-7 * (1.0 + lam_end.abs());
+        let mut steps = 0usize;
+        let max_steps = 10 * spec.grid.len() + 100_000;
+        let mut stalled = 0usize;
+        let mut hist: Vec<Pt> = vec![p0];
+        // event functions that are zero at the last change of the contact set, until they
+        // leave zero (on the side where the new state holds)
+        let mut pending: Vec<Crossing> = Crossing::all(spec.env, self.stepper.set())
+            .into_iter()
+            .filter(|c| !(c.of_watch(spec.env, &hist[0].w) < 0.0))
+            .collect();
+        let mut pprev: Option<Watch> = None;
+        loop {
+            let prev = hist[hist.len() - 1].clone();
+            let lam = prev.lam;
+            let last_of = |hist: &[Pt], set: &ContactSet| {
+                Some((set.clone(), hist[hist.len() - 1].clone()))
+            };
+            if lam >= lam_end {
+                self.range.close(RangeEnd::DMax);
+                if let Err(fail) = self.emit(&hist, lam_end) {
+                    return (fail, last_of(&hist, self.stepper.set()));
                 }
-                if step.abs() <= 1e-13 * (1.0 + d.abs()) {
-                    return Ok((p, w));
+                return (StopReason::DMax, last_of(&hist, self.stepper.set()));
+            }
+            steps += 1;
+            if steps > max_steps {
+                self.range.close(RangeEnd::SolverFailure);
+                return (
+                    StopReason::SolverFailure {
+                        d: lam,
+                        message: format!(
+                            "the march needed more than {max_steps} steps (10 per output point and \
+                             100000 more)"
+                        ),
+                    },
+                    last_of(&hist, self.stepper.set()),
+                );
+            }
+            // next target: at most h ahead, never past the next grid point
+            let mut target = (lam + h).min(lam_end);
+            if let Some(&g) = spec.grid.get(self.out.gi) {
+                if g > lam && g < target {
+                    target = g;
                 }
-                d -= step;
+            }
+            if lam_end - target < 1e-3 * h {
+                target = lam_end;
+            }
+            // an event the predictor sees coming within the step: step to just past it (the
+            // event is then located on a short step, and the march pays no full step beyond it)
+            let armed: Vec<Crossing> = Crossing::all(spec.env, self.stepper.set())
+                .into_iter()
+                .filter(|c| !pending.contains(c))
+                .collect();
+            for &c in &armed {
+                if let Some(ds) = self.predicted_crossing(&hist, lam, target, c) {
+                    // (not when it is as good as here: the step would not move)
+                    if ds - lam > h_min {
+                        target = ds + 1e-6 * (target - ds);
+                    }
+                }
+            }
+            let p = match self.stepper.correct(target, &hist, false) {
+                Ok(p) => {
+                    h = if p.iters <= 2 {
+                        (2.0 * h).min(h_max)
+                    } else if p.iters <= 4 {
+                        (1.25 * h).min(h_max)
+                    } else {
+                        0.5 * h
+                    };
+                    p
+                }
+                Err(StepError::Failed(_)) if h > h_min => {
+                    h *= 0.25;
+                    continue;
+                }
+                Err(e) => match self.stepper.pass_fold(&hist, target, lam_end) {
+                    Passed::Beyond(p) => p,
+                    Passed::Fold(lf, pt) => {
+                        self.range.close(RangeEnd::Event);
+                        if let Err(fail) = self.emit(&hist, lf.min(lam_end)) {
+                            return (fail, last_of(&hist, self.stepper.set()));
+                        }
+                        if let Some(p) = pt {
+                            self.range.see(&p.w);
+                            self.out.push(
+                                spec,
+                                self.profile,
+                                self.stepper.set(),
+                                &p,
+                                Some(Event::FoldInD),
+                            );
+                            let set = self.stepper.set().clone();
+                            return (StopReason::FoldInD { d: lf }, Some((set, p)));
+                        }
+                        return (
+                            StopReason::FoldInD { d: lf },
+                            last_of(&hist, self.stepper.set()),
+                        );
+                    }
+                    Passed::Failed(msg) => {
+                        self.range.close(RangeEnd::SolverFailure);
+                        return (
+                            StopReason::SolverFailure {
+                                d: lam,
+                                message: format!("natural step to {target}: {e}; {msg}"),
+                            },
+                            last_of(&hist, self.stepper.set()),
+                        );
+                    }
+                },
+            };
+            // a change of contact set holds only if its new event functions leave zero inwards
+            let mut wrong = None;
+            pending.retain(|&c| {
+                let v = c.of_watch(spec.env, &p.w);
+                if v > 0.0 {
+                    wrong.get_or_insert((c, v));
+                }
+                !(v < 0.0)
+            });
+            if let Some((c, v)) = wrong {
+                self.range.close(RangeEnd::SolverFailure);
+                let set = self.stepper.set().clone();
+                return (
+                    StopReason::ContactChange {
+                        d: lam,
+                        message: format!(
+                            "the contact state {} does not hold beyond d = {lam}: {} = {v:.3e} after the change",
+                            set.label(),
+                            c.describe()
+                        ),
+                    },
+                    last_of(&hist, &set),
+                );
+            }
+            if p.lam - lam <= 1e-12 * (1.0 + lam.abs()) {
+                stalled += 1;
+                if stalled > 50 {
+                    self.range.close(RangeEnd::SolverFailure);
+                    return (
+                        StopReason::SolverFailure {
+                            d: lam,
+                            message: "the march stalled: 50 steps without progress".into(),
+                        },
+                        last_of(&hist, self.stepper.set()),
+                    );
+                }
+            } else {
+                stalled = 0;
+            }
+            hist.push(p.clone());
+            if hist.len() > 4 {
+                hist.remove(0);
+            }
+            // events between λ and the new point, the earliest first
+            let mut found: Option<Found> = None;
+            let mut failure: Option<StopReason> = None;
+            for &c in &armed {
+                if !(c.of_watch(spec.env, &p.w) >= 0.0) {
+                    continue;
+                }
+                match self.locate(&hist, lam, p.lam, c) {
+                    Ok(pe) => {
+                        if found.as_ref().is_none_or(|f| pe.lam < f.pt.lam) {
+                            found = Some(Found { cross: c, pt: pe });
+                        }
+                    }
+                    Err(msg) => {
+                        failure.get_or_insert(StopReason::SolverFailure {
+                            d: lam,
+                            message: format!("locating the {c:?} event: {msg}"),
+                        });
+                    }
+                }
+            }
+            if found.is_none() {
+                if let Some(f) = failure {
+                    self.range.close(RangeEnd::SolverFailure);
+                    return (f, last_of(&hist, self.stepper.set()));
+                }
+            }
+            let l_stop = found.as_ref().map_or(p.lam, |f| f.pt.lam);
+            // the first maximum of |μ| between the last point and l_stop
+            if self.range.end.is_none() {
+                if let Some(m) = self.first_max(&hist, &prev.w, pprev.as_ref(), &p.w, l_stop) {
+                    self.range.see(&m);
+                    self.range.close(RangeEnd::FirstMaximum);
+                }
+            }
+            match &found {
+                Some(f) => self.range.see(&f.pt.w),
+                None => self.range.see(&p.w),
+            }
+            if let Err(fail) = self.emit(&hist, l_stop) {
+                return (fail, last_of(&hist, self.stepper.set()));
+            }
+            let Some(Found { cross, pt: mut pe }) = found else {
+                pprev = Some(prev.w.clone());
+                continue;
+            };
+            // an event: a change of contact set, or the end
+            let set = self.stepper.set().clone();
+            match self.transition(&set, cross, &pe) {
+                Next::Done => {
+                    self.range.close(RangeEnd::DMax);
+                    return (StopReason::DMax, Some((set, pe)));
+                }
+                Next::Stop(ev) => {
+                    if ev == Event::LiftOff {
+                        // N = 0 exactly there: the friction ratio is unbounded
+                        pe.w.normal = 0.0;
+                        pe.w.mu = f64::INFINITY.copysign(pe.w.mu);
+                    }
+                    self.range.see(&pe.w);
+                    self.range.close(RangeEnd::Event);
+                    self.out.push(spec, self.profile, &set, &pe, Some(ev));
+                    return (stop_reason(ev, &pe.w, &set), Some((set, pe)));
+                }
+                Next::Switch(ev, new_set, u) => {
+                    self.out.push(spec, self.profile, &set, &pe, Some(ev));
+                    let rising = pe.w.dmu_abs;
+                    match self.stepper.switch(new_set.clone(), pe.lam, u) {
+                        Ok(q) => {
+                            // a maximum of |μ| at the kink of the change
+                            if self.range.end.is_none()
+                                && rising.is_some_and(|s| s > 0.0)
+                                && q.w.dmu_abs.is_some_and(|s| s < 0.0)
+                            {
+                                self.range.see(&q.w);
+                                self.range.close(RangeEnd::FirstMaximum);
+                            }
+                            pending = Crossing::all(spec.env, &new_set)
+                                .into_iter()
+                                .filter(|c| !(c.of_watch(spec.env, &q.w) < 0.0))
+                                .collect();
+                            hist = vec![q];
+                            pprev = None;
+                        }
+                        Err(e) => {
+                            self.range.close(RangeEnd::SolverFailure);
+                            return (
+                                StopReason::ContactChange {
+                                    d: pe.lam,
+                                    message: format!(
+                                        "{} ({} to {}): the new contact state does not hold: {e}",
+                                        ev.name(),
+                                        set.label(),
+                                        new_set.label()
+                                    ),
+                                },
+                                Some((set, pe)),
+                            );
+                        }
+                    }
+                }
             }
         }
     }
-    let mut eval = |d: f64| -> Result<f64, String> {
-        let p = stepper.correct(d, hist)?;
-        Ok(g.of_watch(&c.watch(&p)))
-    };
-    let d = search::root(&mut eval, a, b, 1e-13)?;
-    let p = stepper.correct(d, hist)?;
-    let w = c.watch(&p);
-    Ok((p, w))
 }
 
-/// The first maximum of `|μ|` in `(prev.d, d_stop]`, if there is one: the root of `d|μ|/dd`
-/// where tangents are known, else (three-point pattern) Brent's maximizer.
-fn first_max<P: Profile>(
-    stepper: &mut dyn Stepper,
-    ctx: &Ctx<'_, P>,
-    hist: &[Pt],
-    prev: &Watch,
-    pprev: Option<&Watch>,
-    w: &Watch,
-    d_stop: f64,
-) -> Option<Watch> {
-    if let (Some(s0), Some(s1)) = (prev.dmu_abs, w.dmu_abs) {
-        if !(s0 > 0.0 && s1 <= 0.0) {
+/// What follows an event.
+enum Next {
+    /// The march ends with this event.
+    Stop(Event),
+    /// The contact set changes (the event, the new set, the old state in its unknowns).
+    Switch(Event, ContactSet, Vec<f64>),
+    /// The march reached its target.
+    Done,
+}
+
+impl<P: Profile> Run<'_, '_, P> {
+    /// The contact set after the event `cross` at the point `pe` (or the end).
+    fn transition(&self, set: &ContactSet, cross: Crossing, pe: &Pt) -> Next {
+        let env = self.spec.env;
+        let friction = self.spec.friction;
+        let u = &pe.u;
+        let xf = self.stepper.foot_x(pe.lam);
+        let along = |z: &[f64], beta: f64, p0: [f64; 2]| {
+            let (sb, cb) = beta.sin_cos();
+            cb * (z[0] + xf - p0[0]) + sb * (z[1] - p0[1])
+        };
+        match cross {
+            Crossing::Slip(_) => Next::Stop(Event::Slip),
+            Crossing::SlipOff(_) => Next::Stop(Event::SlipOff),
+            Crossing::MuMax => Next::Stop(Event::FoldInD),
+            Crossing::Target(_) => Next::Done,
+            Crossing::Lift(j) => {
+                if set.contacts.len() == 1 {
+                    return Next::Stop(Event::LiftOff);
+                }
+                let mut ns = set.clone();
+                ns.contacts.remove(j);
+                let o = set.offset(j);
+                let mut nu = u.clone();
+                nu.drain(o..o + set.contacts[j].unknowns());
+                Next::Switch(Event::Release, ns, nu)
+            }
+            Crossing::Touchdown | Crossing::TipTangent if !env.compound => {
+                Next::Stop(Event::Penetration)
+            }
+            Crossing::Touchdown => {
+                let Some((p0, beta)) = env.line else {
+                    return Next::Stop(Event::Penetration);
+                };
+                let s = pe.w.clear_s;
+                let z = pe.w.clear_z;
+                let phi_ref = crate::chain::slope_on(beta, z[2]);
+                let mode = if friction {
+                    Mode::Rolling(along(&z, beta, p0) - (phi_ref - beta).cos().round() * s)
+                } else {
+                    Mode::Free
+                };
+                let ct = Contact::on_surface(false, p0, beta, mode, phi_ref);
+                let j = (0..set.contacts.len())
+                    .find(|&j| set.s_of(j, u) > s)
+                    .unwrap_or(set.contacts.len());
+                let mut ns = set.clone();
+                ns.contacts.insert(j, ct);
+                let o = if j < set.contacts.len() {
+                    set.offset(j)
+                } else {
+                    u.len()
+                };
+                let mut nu = u.clone();
+                nu.splice(o..o, [0.0, 0.0, s]);
+                Next::Switch(Event::Touchdown, ns, nu)
+            }
+            Crossing::TipTangent => {
+                let j = set.contacts.len() - 1;
+                let ct = set.contacts[j];
+                let Geom::Line { p0, beta } = ct.geom else {
+                    return Next::Stop(Event::Penetration);
+                };
+                let zb = pe.sol.right();
+                let phi_ref = crate::chain::slope_on(beta, zb[2]);
+                let mode = if friction {
+                    Mode::Rolling(along(zb, beta, p0) - (phi_ref - beta).cos().round())
+                } else {
+                    Mode::Free
+                };
+                let mut ns = set.clone();
+                ns.contacts[j] = Contact::on_surface(false, p0, beta, mode, phi_ref);
+                let mut nu = u.clone();
+                nu.push(1.0);
+                Next::Switch(Event::Touchdown, ns, nu)
+            }
+            Crossing::PeelBack(j) => {
+                let ct = set.contacts[j];
+                let Geom::Line { p0, beta } = ct.geom else {
+                    return Next::Stop(Event::SlipOff);
+                };
+                let o = set.offset(j);
+                let mut ns = set.clone();
+                let mut nu = u.clone();
+                if set.tip() {
+                    // the rolling contact reaches the touching tip: one contact there
+                    let ot = set.offset(set.contacts.len() - 1);
+                    nu[ot] += u[o];
+                    nu[ot + 1] += u[o + 1];
+                    nu.drain(o..o + 3);
+                    ns.contacts.remove(j);
+                } else {
+                    let zb = pe.sol.right();
+                    let mode = if friction {
+                        Mode::Stuck(along(zb, beta, p0))
+                    } else {
+                        Mode::Free
+                    };
+                    ns.contacts[j] = Contact::on_surface(true, p0, beta, mode, 0.0);
+                    nu.remove(o + 2);
+                }
+                Next::Switch(Event::PeelBack, ns, nu)
+            }
+        }
+    }
+
+    /// Where the branch polynomial, extrapolated from the last points, predicts `c` to reach 0
+    /// within `(a, b]` (`None` without a polynomial, or when it does not).
+    fn predicted_crossing(&self, hist: &[Pt], a: f64, b: f64, c: Crossing) -> Option<f64> {
+        let env = self.spec.env;
+        let set = self.stepper.set();
+        let on_poly = |lam: f64| -> Result<f64, String> {
+            let (u, _) = self
+                .stepper
+                .interpolant(hist, lam)
+                .ok_or_else(|| "no polynomial".to_string())?;
+            c.of_u(env, set, &u)
+                .ok_or_else(|| "not a function of the unknowns".to_string())
+        };
+        let (ga, gb) = (on_poly(a).ok()?, on_poly(b).ok()?);
+        if !(ga < 0.0 && gb >= 0.0) {
             return None;
         }
-        let (p, wm) = locate(stepper, ctx, hist, prev.d, w.d, Crossing::MuMax).ok()?;
-        return (p.d <= d_stop).then_some(wm);
+        let mut f = on_poly;
+        search::root(&mut f, a, b, 1e-15 * (1.0 + b.abs())).ok()
     }
-    let pp = pprev?;
-    if !(prev.mu.abs() > pp.mu.abs() && prev.mu.abs() >= w.mu.abs()) {
-        return None;
+
+    /// The first `λ` in `[a, b]` where `c` reaches 0 (`c(a) < 0 ≤ c(b)`). Where the stepper has
+    /// the branch as a polynomial and `c` depends on the unknowns alone: Brent's method on that
+    /// polynomial, refined by Newton steps with solves — one or two solves. Otherwise Brent's
+    /// method on solves within the step (the event function evaluated on the rod).
+    fn locate(&mut self, hist: &[Pt], a: f64, b: f64, c: Crossing) -> Result<Pt, String> {
+        let env = self.spec.env;
+        let fresh = c == Crossing::MuMax;
+        let set = self.stepper.set().clone();
+        let poly_val = |st: &dyn Stepper, lam: f64| -> Option<f64> {
+            let (u, du) = st.interpolant(hist, lam)?;
+            match c {
+                Crossing::MuMax => Some(-mu_slope(&set, &u, &du)),
+                _ => c.of_u(env, &set, &u),
+            }
+        };
+        if poly_val(&*self.stepper, a).is_some() {
+            let st: &dyn Stepper = &*self.stepper;
+            let mut poly = |lam: f64| poly_val(st, lam).ok_or_else(|| "no polynomial".to_string());
+            if let Ok(mut lam) = search::root(&mut poly, a, b, 1e-15 * (1.0 + b.abs())) {
+                let eps = 1e-6 * (b - a);
+                for _ in 0..4 {
+                    let p = self.stepper.correct(lam, hist, fresh)?;
+                    let st: &dyn Stepper = &*self.stepper;
+                    let slope = match (poly_val(st, lam + eps), poly_val(st, lam - eps)) {
+                        (Some(gp), Some(gm)) => (gp - gm) / (2.0 * eps),
+                        _ => break,
+                    };
+                    let step = c.of_watch(env, &p.w) / slope;
+                    if !step.is_finite() || !(a..=b).contains(&(lam - step)) {
+                        break;
+                    }
+                    if step.abs() <= 1e-13 * (1.0 + lam.abs()) {
+                        return Ok(p);
+                    }
+                    lam -= step;
+                }
+            }
+        }
+        let stepper = &mut *self.stepper;
+        let mut eval = |lam: f64| -> Result<f64, String> {
+            let p = stepper.correct(lam, hist, fresh)?;
+            Ok(c.of_watch(env, &p.w))
+        };
+        let lam = search::root(&mut eval, a, b, 1e-13 * (1.0 + b.abs()))?;
+        let p = self.stepper.correct(lam, hist, fresh)?;
+        self.inside(hist, a, p, c, fresh)
     }
-    let mut eval = |d: f64| -> Result<f64, String> {
-        let p = stepper.correct(d, hist)?;
-        Ok(ctx.contact.watch(&p).mu.abs())
-    };
-    let (d, _) = search::maximize(&mut eval, pp.d, w.d.min(d_stop), 1e-10).ok()?;
-    let p = stepper.correct(d, hist).ok()?;
-    Some(ctx.contact.watch(&p))
+
+    /// The located event point on the side where the old state still holds (`c ≤ 0`): a root to
+    /// ~1e-13 in λ may lie a rounding beyond it (a free part ~1e-12 above the surface); then λ
+    /// moves back by twice the secant step towards `a`, doubling until the point is inside.
+    fn inside(&mut self, hist: &[Pt], a: f64, p: Pt, c: Crossing, fresh: bool) -> Result<Pt, String> {
+        let env = self.spec.env;
+        let g = c.of_watch(env, &p.w);
+        if !(g > 0.0) {
+            return Ok(p);
+        }
+        let ga = hist
+            .iter()
+            .find(|q| q.lam == a)
+            .map_or(-1.0, |q| c.of_watch(env, &q.w));
+        let secant = g * (p.lam - a) / (g - ga);
+        for k in 0..8 {
+            let lam = (p.lam - 2.0 * secant * f64::from(1 << k)).max(a);
+            let q = self.stepper.correct(lam, hist, fresh)?;
+            if !(c.of_watch(env, &q.w) > 0.0) {
+                return Ok(q);
+            }
+        }
+        Ok(p)
+    }
+
+    /// The first maximum of `|μ|` in `(prev.λ, l_stop]`, if there is one: the root of `d|μ|/dλ`
+    /// where tangents are known, else (three-point pattern) Brent's maximizer.
+    fn first_max(
+        &mut self,
+        hist: &[Pt],
+        prev: &Watch,
+        pprev: Option<&Watch>,
+        w: &Watch,
+        l_stop: f64,
+    ) -> Option<Watch> {
+        if let (Some(s0), Some(s1)) = (prev.dmu_abs, w.dmu_abs) {
+            if !(s0 > 0.0 && s1 <= 0.0) {
+                return None;
+            }
+            let p = self.locate(hist, prev.lam, w.lam, Crossing::MuMax).ok()?;
+            return (p.lam <= l_stop).then_some(p.w);
+        }
+        let pp = pprev?;
+        if !(prev.mu.abs() > pp.mu.abs() && prev.mu.abs() >= w.mu.abs()) {
+            return None;
+        }
+        let stepper = &mut *self.stepper;
+        let mut eval = |lam: f64| -> Result<f64, String> {
+            Ok(stepper.correct(lam, hist, false)?.w.mu.abs())
+        };
+        let (lam, _) = search::maximize(&mut eval, pp.lam, w.lam.min(l_stop), 1e-12).ok()?;
+        Some(self.stepper.correct(lam, hist, false).ok()?.w)
+    }
+
+    /// Emits the grid points up to `upto` (the branch point itself where one is at the grid
+    /// value, else a solve from the history). A point that cannot be solved ends the march.
+    fn emit(&mut self, hist: &[Pt], upto: f64) -> Result<(), StopReason> {
+        while let Some(&g) = self.spec.grid.get(self.out.gi) {
+            if g > upto {
+                break;
+            }
+            let p = match hist.iter().rev().find(|p| p.lam == g) {
+                Some(p) => p.clone(),
+                None => match self.stepper.correct(g, hist, false) {
+                    Ok(p) => p,
+                    Err(e) => self.bridge(hist, g).map_err(|e2| StopReason::SolverFailure {
+                        d: hist.iter().map(|p| p.lam).filter(|&l| l < g).fold(0.0, f64::max),
+                        message: format!("output point at {g}: {e}; in shorter steps: {e2}"),
+                    })?,
+                },
+            };
+            let set = self.stepper.set().clone();
+            self.out.push(self.spec, self.profile, &set, &p, None);
+            self.out.gi += 1;
+        }
+        Ok(())
+    }
+}
+
+impl<P: Profile> Run<'_, '_, P> {
+    /// The point at `g` by natural steps from the last point of `hist` before it (where one
+    /// correction from the whole history fails, e.g. after pseudo-arclength jumped past `g`).
+    fn bridge(&mut self, hist: &[Pt], g: f64) -> Result<Pt, String> {
+        let mut local: Vec<Pt> = hist.iter().filter(|p| p.lam < g).cloned().collect();
+        let Some(last) = local.last() else {
+            return Err("no point before it".into());
+        };
+        let mut h = (g - last.lam) / 4.0;
+        for _ in 0..200 {
+            let lam = local[local.len() - 1].lam;
+            let target = (lam + h).min(g);
+            match self.stepper.correct(target, &local, false) {
+                Ok(p) => {
+                    if target == g {
+                        return Ok(p);
+                    }
+                    local.push(p);
+                    if local.len() > 4 {
+                        local.remove(0);
+                    }
+                    h *= 1.5;
+                }
+                Err(e) => {
+                    h *= 0.25;
+                    if h < 1e-9 * (1.0 + g.abs()) {
+                        return Err(e.to_string());
+                    }
+                }
+            }
+        }
+        Err("no convergence in 200 steps".into())
+    }
+}
+
+/// `d|μ|/dλ` of the total friction ratio from the unknowns and their tangent (surface
+/// contacts; the unknowns are the forces in the surface frame).
+fn mu_slope(set: &ContactSet, u: &[f64], du: &[f64]) -> f64 {
+    let (mut n, mut t, mut dn, mut dt) = (0.0, 0.0, 0.0, 0.0);
+    for j in 0..set.contacts.len() {
+        let o = set.offset(j);
+        n += u[o];
+        t += u[o + 1];
+        dn += du[o];
+        dt += du[o + 1];
+    }
+    let mu = t / n;
+    let dmu = (dt * n - t * dn) / (n * n);
+    if mu == 0.0 {
+        dmu.abs()
+    } else {
+        mu.signum() * dmu
+    }
 }
 
 /// The output point of a branch point.
-fn scan_point<P: Profile>(p: &Pt, w: &Watch, profile: &P, event: Option<Event>) -> ScanPoint {
-    let (f, alpha) = (p.u[1], p.u[2]);
+pub(crate) fn scan_point<P: Profile>(
+    p: &Pt,
+    set: &ContactSet,
+    profile: &P,
+    event: Option<Event>,
+) -> ScanPoint {
+    let w = &p.w;
+    let (fx, fy) = (w.force[0], w.force[1]);
+    let f = (fx * fx + fy * fy).sqrt();
+    let alpha = fx.atan2(-fy);
     let (flex, s_flex, _) = flex_and_reversals(&p.sol, profile);
+    let s_c = set
+        .contacts
+        .iter()
+        .position(|c| !c.tip)
+        .map(|j| set.s_of(j, &p.u));
+    let mu_peak = w
+        .contacts
+        .iter()
+        .map(|c| (c.tangential / c.normal).abs())
+        .fold(0.0, f64::max);
     ScanPoint {
-        d: p.d,
+        d: p.lam,
         mu: w.mu,
         normal: w.normal,
+        mu_peak,
         alpha,
         phi1: p.sol.right()[2],
         f,
-        fx: f * alpha.sin(),
-        fy: -f * alpha.cos(),
+        fx,
+        fy,
         m_base: p.sol.left()[3],
         flex,
         s_flex,
-        y_max: extrema(&p.sol, 0.0, 1.0).max,
+        y_max: w.y_max,
+        contact: ContactLabel::of(set),
+        s_c,
         event,
     }
 }
 
-/// Output points on the grid, filled as the march passes them, and the event point.
+/// Output points on the grid, filled as the march passes them, and the event points.
 struct Output {
     points: Vec<ScanPoint>,
     shapes: Vec<Vec<ShapePoint>>,
-    keep: Option<usize>,
     gi: usize,
 }
 
 impl Output {
-    fn push<P: Profile>(&mut self, ctx: &Ctx<'_, P>, p: &Pt, w: &Watch, event: Option<Event>) {
-        self.points.push(scan_point(p, w, ctx.profile, event));
-        if let Some(ns) = self.keep {
-            let shape = shape_from(p.sol.clone(), p.u[2], ctx.general.clone());
+    fn push<P: Profile>(
+        &mut self,
+        spec: &Spec<'_>,
+        profile: &P,
+        set: &ContactSet,
+        p: &Pt,
+        event: Option<Event>,
+    ) {
+        self.points.push(scan_point(p, set, profile, event));
+        if let Some(ns) = spec.keep_shapes {
+            let shape = shape_from(p.sol.clone(), 0.0, spec.general.clone());
             self.shapes.push(shape.samples(ns));
         }
     }
+}
 
-    fn event<P: Profile>(&mut self, ctx: &Ctx<'_, P>, p: &Pt, w: &Watch, ev: Event) {
-        self.push(ctx, p, w, Some(ev));
-    }
-
-    /// Emits the grid points up to `upto` (the branch point itself where one is at the grid value,
-    /// else a solve from the history). A point that cannot be solved ends the scan.
-    fn emit<P: Profile>(
-        &mut self,
-        stepper: &mut dyn Stepper,
-        ctx: &Ctx<'_, P>,
-        hist: &[Pt],
-        grid: &[f64],
-        upto: f64,
-    ) -> Result<(), StopReason> {
-        while let Some(&dg) = grid.get(self.gi) {
-            if dg > upto {
-                break;
+/// Predictor from the last (at most three) points to `λ`: the Hermite polynomial through their
+/// values and tangents (degree 5 with three points) where all have tangents, else Lagrange; and
+/// its derivative.
+pub(crate) fn interpolate(hist: &[Pt], lam: f64) -> (Vec<f64>, Vec<f64>) {
+    let m = hist.len().min(3);
+    let pts = &hist[hist.len() - m..];
+    let hermite = pts.iter().all(|p| p.du.is_some());
+    let n = pts[pts.len() - 1].u.len();
+    let (mut u, mut du) = (vec![0.0; n], vec![0.0; n]);
+    for i in 0..n {
+        // divided differences, nodes newest first (confluent pairs with tangents)
+        let mut z = [0.0; 6];
+        let mut q = [[0.0; 6]; 6];
+        let mut len = 0;
+        for p in pts.iter().rev() {
+            let reps = if hermite { 2 } else { 1 };
+            for r in 0..reps {
+                z[len] = p.lam;
+                q[len][0] = p.u[i];
+                if r == 1 {
+                    q[len][1] = p.du.as_ref().map_or(0.0, |du| du[i]);
+                } else if len > 0 {
+                    q[len][1] = (q[len][0] - q[len - 1][0]) / (z[len] - z[len - 1]);
+                }
+                len += 1;
             }
-            let p = match hist.iter().rev().find(|p| p.d == dg) {
-                Some(p) => p.clone(),
-                None => stepper
-                    .correct(dg, hist)
-                    .map_err(|e| StopReason::SolverFailure {
-                        d: dg,
-                        message: format!("output point at d = {dg}: {e}"),
-                    })?,
-            };
-            let w = ctx.contact.watch(&p);
-            self.push(ctx, &p, &w, None);
-            self.gi += 1;
         }
-        Ok(())
+        for k in 2..len {
+            for j in k..len {
+                q[j][k] = (q[j][k - 1] - q[j - 1][k - 1]) / (z[j] - z[j - k]);
+            }
+        }
+        // Newton form and its derivative (product rule on the nested factors)
+        let (mut v, mut dv, mut w, mut dw) = (0.0, 0.0, 1.0, 0.0);
+        for k in 0..len {
+            v += q[k][k] * w;
+            dv += q[k][k] * dw;
+            dw = dw * (lam - z[k]) + w;
+            w *= lam - z[k];
+        }
+        u[i] = v;
+        du[i] = dv;
     }
+    (u, du)
 }

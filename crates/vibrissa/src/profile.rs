@@ -14,6 +14,12 @@ pub trait Profile: Clone + Send + Sync {
     fn b(&self, s: f64) -> f64;
     /// `κ0(s)`.
     fn k0(&self, s: f64) -> f64;
+    /// The profile at homotopy amplitude `t` (0: the uniform straight rod, 1: itself).
+    fn at_amplitude(&self, t: f64) -> Self;
+    /// Whether the rest shape is straight (`κ0 ≡ 0`).
+    fn straight(&self) -> bool;
+    /// `(db/ds, dκ0/ds)` at `s` (the slope of a table's interval there).
+    fn slopes(&self, s: f64) -> (f64, f64);
     /// Curvature `κ = κ0(s) + b(s)·m`.
     #[inline(always)]
     fn kappa(&self, s: f64, m: f64) -> f64 {
@@ -31,6 +37,15 @@ pub struct Uniform;
 
 impl Profile for Uniform {
     const UNIFORM: bool = true;
+    fn at_amplitude(&self, _t: f64) -> Self {
+        Uniform
+    }
+    fn straight(&self) -> bool {
+        true
+    }
+    fn slopes(&self, _s: f64) -> (f64, f64) {
+        (0.0, 0.0)
+    }
     #[inline(always)]
     fn b(&self, _s: f64) -> f64 {
         1.0
@@ -108,24 +123,51 @@ impl General {
             Precurvature::Table { s: st, k } => t * interp(st, k, s),
         }
     }
-    /// `∂b/∂t` at `s` and `t`.
-    pub(crate) fn db_dt(&self, s: f64, t: f64) -> f64 {
-        match &self.stiffness {
-            Stiffness::Uniform {} => 0.0,
-            Stiffness::Taper { ratio } => {
-                let r = 1.0 - t * (1.0 - ratio) * s;
-                4.0 * (1.0 - ratio) * s / (r * r * r * r * r)
-            }
-            Stiffness::Table { s: st, b } => {
-                let v = interp(st, b, s);
-                v.powf(t) * v.ln()
-            }
-        }
+}
+
+/// The slope of the piecewise-linear table at `s` (0 outside it).
+fn table_slope(s_tab: &[f64], v: &[f64], s: f64) -> f64 {
+    let n = s_tab.len();
+    if s < s_tab[0] || s >= s_tab[n - 1] {
+        return 0.0;
     }
+    let i = s_tab.partition_point(|&t| t <= s).clamp(1, n - 1) - 1;
+    (v[i + 1] - v[i]) / (s_tab[i + 1] - s_tab[i])
 }
 
 impl Profile for General {
     const UNIFORM: bool = false;
+    fn slopes(&self, s: f64) -> (f64, f64) {
+        let t = self.t;
+        let db = match &self.stiffness {
+            Stiffness::Uniform {} => 0.0,
+            Stiffness::Taper { ratio } => {
+                let r = 1.0 - t * (1.0 - ratio) * s;
+                4.0 * t * (1.0 - ratio) / (r * r * r * r * r)
+            }
+            Stiffness::Table { s: st, b } => {
+                let v = interp(st, b, s);
+                t * v.powf(t - 1.0) * table_slope(st, b, s)
+            }
+        };
+        let dk = match &self.precurvature {
+            Precurvature::None {} => 0.0,
+            Precurvature::Linear { k1, .. } => t * k1,
+            Precurvature::Table { s: st, k } => t * table_slope(st, k, s),
+        };
+        (db, dk)
+    }
+    fn at_amplitude(&self, t: f64) -> Self {
+        self.clone().with_t(t)
+    }
+    fn straight(&self) -> bool {
+        self.t == 0.0
+            || match &self.precurvature {
+                Precurvature::None {} => true,
+                Precurvature::Linear { k0, k1 } => *k0 == 0.0 && *k1 == 0.0,
+                Precurvature::Table { k, .. } => k.iter().all(|v| *v == 0.0),
+            }
+    }
     #[inline]
     fn b(&self, s: f64) -> f64 {
         self.b_at(s, self.t)

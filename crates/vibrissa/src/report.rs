@@ -36,6 +36,21 @@ pub struct ScanOptions {
     pub solver: SolverConfig,
     /// `Some(n)`: keep each output point's shape sampled at `n` points.
     pub keep_shapes: Option<usize>,
+    /// Where the rod may touch: anywhere (default) or the tip alone (the paper's model).
+    pub contact: ContactModel,
+}
+
+/// Where the rod may touch the surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactModel {
+    /// Anywhere: the rod stays on its side of the surface line everywhere (the paper's compound
+    /// constraint `y(s) ≤ η`). Where a free part reaches the surface a new contact forms, a tip
+    /// that turns tangent lies down, and the scan goes on in the new contact state.
+    #[default]
+    Anywhere,
+    /// The tip alone (the paper's model): a touching side is a penetration that ends the scan.
+    Tip,
 }
 
 impl Default for ScanOptions {
@@ -46,6 +61,7 @@ impl Default for ScanOptions {
             mu0: None,
             solver: SolverConfig::default(),
             keep_shapes: None,
+            contact: ContactModel::Anywhere,
         }
     }
 }
@@ -85,8 +101,12 @@ pub struct ScanPoint {
     /// Signed friction ratio the contact must supply, `μ = F·t/N = tan(β − α)` (β: surface
     /// angle; `tan(−α)` on the flat surface); see the module docs.
     pub mu: f64,
-    /// Normal force `N = −F·n = f cos(α − β)` (≥ 0 while the tip touches).
+    /// Normal force `N = −F·n = f cos(α − β)` (≥ 0 while the tip touches); with several
+    /// contacts their sum.
     pub normal: f64,
+    /// The largest friction ratio `|T_j|/N_j` any single contact needs (equal to `|mu|` with one
+    /// contact); a stuck contact slips where it reaches μ0.
+    pub mu_peak: f64,
     /// Force angle.
     pub alpha: f64,
     /// Tip slope.
@@ -105,33 +125,128 @@ pub struct ScanPoint {
     pub s_flex: Option<f64>,
     /// Maximum of `y(s)`.
     pub y_max: f64,
-    /// The event at this point, if it is the point where the scan stopped (not a grid point).
+    /// Which parts of the rod touch (`tip`, `side`, `side+tip`, …, along the rod from the foot).
+    pub contact: ContactLabel,
+    /// Arc length of the first contact inside the rod (a side touching or lying on the surface,
+    /// or a point object), if there is one.
+    pub s_c: Option<f64>,
+    /// The event at this point, if it is one (a change of the contact state, or where the scan
+    /// stopped), not a grid point.
     pub event: Option<Event>,
 }
 
-/// An event that ends a scan, located to solver accuracy.
+impl ScanPoint {
+    /// A point with every number NaN (a placeholder where a scan has no point).
+    pub fn nan() -> ScanPoint {
+        ScanPoint {
+            d: f64::NAN,
+            mu: f64::NAN,
+            normal: f64::NAN,
+            mu_peak: f64::NAN,
+            alpha: f64::NAN,
+            phi1: f64::NAN,
+            f: f64::NAN,
+            fx: f64::NAN,
+            fy: f64::NAN,
+            m_base: f64::NAN,
+            flex: 0,
+            s_flex: None,
+            y_max: f64::NAN,
+            contact: ContactLabel("none"),
+            s_c: None,
+            event: None,
+        }
+    }
+}
+
+/// The contact state of a point: which parts of the rod touch, in order from the foot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct ContactLabel(&'static str);
+
+impl ContactLabel {
+    /// The states the model has names for; longer sets are `multiple`.
+    const NAMES: [&'static str; 12] = [
+        "none",
+        "tip",
+        "side",
+        "side+tip",
+        "side+side",
+        "side+side+tip",
+        "point",
+        "point+tip",
+        "side+point",
+        "point+side",
+        "point+point",
+        "multiple",
+    ];
+    pub(crate) fn of(set: &crate::chain::ContactSet) -> ContactLabel {
+        let l = set.label();
+        ContactLabel(
+            Self::NAMES
+                .iter()
+                .find(|n| **n == l)
+                .copied()
+                .unwrap_or("multiple"),
+        )
+    }
+    /// The tip alone (the paper's model).
+    pub const TIP: ContactLabel = ContactLabel("tip");
+    /// The name (`tip`, `side+tip`, …).
+    pub fn name(self) -> &'static str {
+        self.0
+    }
+}
+
+impl fmt::Display for ContactLabel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0)
+    }
+}
+
+/// An event of a scan, located to the solver's tolerance on the rod itself: a change of the
+/// contact state, or the end of the scan.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Event {
-    /// `|μ|` reached μ0: the tip slips (either direction).
+    /// `|μ|` reached μ0 at a stuck contact: it slips (either direction). Ends the scan.
     Slip,
-    /// The normal force reached zero: the tip leaves the surface.
+    /// The normal force of the last contact reached zero: the rod leaves the surface. Ends the
+    /// scan.
     LiftOff,
-    /// The rod touches the surface elsewhere, or its tip turns into it.
+    /// Tip-only model (`ContactModel::Tip`): the rod touches the surface elsewhere, or its tip
+    /// turns into it. Ends the scan.
     Penetration,
-    /// `d` has a maximum along the branch: snap-through.
+    /// `d` has a maximum along the branch: snap-through. Ends the scan.
     FoldInD,
+    /// A new contact forms: a free part of the rod reaches the surface, or the tip lies down on
+    /// it (turns tangent). The scan goes on in the new state.
+    Touchdown,
+    /// The part lying on the surface peels back to the tip: the tip alone touches again.
+    PeelBack,
+    /// One of several contacts lifts off (its normal force reached zero); the others hold.
+    Release,
+    /// The point object slips off the tip. Ends a whisk.
+    SlipOff,
 }
 
 impl Event {
-    /// The name used in CSV and JSON (`slip`, `lift_off`, `penetration`, `fold_in_d`).
+    /// The name used in CSV and JSON (`slip`, `lift_off`, `penetration`, `fold_in_d`,
+    /// `touchdown`, `peel_back`, `release`, `slip_off`).
     pub fn name(self) -> &'static str {
         match self {
             Event::Slip => "slip",
             Event::LiftOff => "lift_off",
             Event::Penetration => "penetration",
             Event::FoldInD => "fold_in_d",
+            Event::Touchdown => "touchdown",
+            Event::PeelBack => "peel_back",
+            Event::Release => "release",
+            Event::SlipOff => "slip_off",
         }
+    }
+    /// Whether the event ends the march.
+    pub fn ends(self) -> bool {
+        !matches!(self, Event::Touchdown | Event::PeelBack | Event::Release)
     }
 }
 
@@ -168,6 +283,19 @@ pub enum StopReason {
         /// Displacement at the fold.
         d: f64,
     },
+    /// The point object slipped off the tip.
+    SlipOff {
+        /// Where (the family parameter: the foot angle of a whisk).
+        d: f64,
+    },
+    /// The contact changes to a state the model cannot continue in (the evidence in the
+    /// message): a physical limit of the model, not a solver failure.
+    ContactChange {
+        /// Where.
+        d: f64,
+        /// What changed, and why the new state does not hold.
+        message: String,
+    },
     /// The solver failed.
     SolverFailure {
         /// Last displacement reached.
@@ -187,6 +315,10 @@ impl fmt::Display for StopReason {
                 write!(f, "penetration at d = {d} (s = {s}, y = {y})")
             }
             StopReason::FoldInD { d } => write!(f, "fold in d (snap-through) at d = {d}"),
+            StopReason::SlipOff { d } => write!(f, "the object slipped off the tip at {d}"),
+            StopReason::ContactChange { d, message } => {
+                write!(f, "contact change at d = {d}: {message}")
+            }
             StopReason::SolverFailure { d, message } => {
                 write!(f, "solver failure after d = {d}: {message}")
             }
@@ -199,6 +331,10 @@ impl fmt::Display for StopReason {
 pub struct ScanResult {
     /// Surface height.
     pub eta: f64,
+    /// A point of the surface line (foot frame at `d = 0`): where the start's last contact
+    /// touches it. The line has the surface's inclination β through it; at `d` it lies `d`
+    /// further back (−x) relative to the foot.
+    pub surface_point: [f64; 2],
     /// The starting rod (d = 0).
     pub start: ScanPoint,
     /// Points at the requested displacements, up to where the scan stopped.

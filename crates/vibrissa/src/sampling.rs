@@ -228,22 +228,26 @@ pub(crate) struct Extrema {
     pub s_interior: f64,
 }
 
-pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
+/// Arc lengths of the interior local maxima (`p' = 0`, `p'' < 0` inside an interval) of
+/// `h(s) = cx·x(s) + cy·y(s)` on the cubic Hermite interpolant: candidates to refine on the rod.
+pub(crate) fn local_maxima(sol: &Solution, cx: f64, cy: f64) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    for_each_max(sol, cx, cy, |s, v| out.push((s, v)));
+    out
+}
+
+/// Calls `f(s, h)` at every interior local maximum of `h = cx·x + cy·y` on the interpolant.
+fn for_each_max(sol: &Solution, cx: f64, cy: f64, mut f: impl FnMut(f64, f64)) {
     let n = sol.n;
     let len = sol.mesh.len();
     let h = |i: usize| cx * sol.z[i * n] + cy * sol.z[i * n + 1];
     let dh = |i: usize| cx * sol.dz[i * n] + cy * sol.dz[i * n + 1];
-    let mut out = Extrema {
-        max: f64::NEG_INFINITY,
-        interior: f64::NEG_INFINITY,
-        s_interior: f64::NAN,
-    };
-    for i in 0..len {
-        out.max = out.max.max(h(i));
-    }
     for i in 0..len.saturating_sub(1) {
         let (s0, s1) = (sol.mesh[i], sol.mesh[i + 1]);
         let w = s1 - s0;
+        if w <= 0.0 {
+            continue;
+        }
         let (y0, y1) = (h(i), h(i + 1));
         let (d0, d1) = (dh(i) * w, dh(i + 1) * w);
         // Hermite cubic p(t); p'(t) = a t² + b t + c, p''(t) = 2 a t + b. Every local maximum
@@ -265,7 +269,6 @@ pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
             }
         }
         for t in roots {
-            // a maximum (p'' < 0) inside [0, 1]
             if !((0.0..=1.0).contains(&t) && 2.0 * a * t + b < 0.0) {
                 continue;
             }
@@ -274,14 +277,28 @@ pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
                 + (t3 - 2.0 * t2 + t) * d0
                 + (-2.0 * t3 + 3.0 * t2) * y1
                 + (t3 - t2) * d1;
-            out.max = out.max.max(y);
-            let s = s0 + t * w;
-            if s < 1.0 - 1e-9 && y > out.interior {
-                out.interior = y;
-                out.s_interior = s;
-            }
+            f(s0 + t * w, y);
         }
     }
+}
+
+pub(crate) fn extrema(sol: &Solution, cx: f64, cy: f64) -> Extrema {
+    let n = sol.n;
+    let mut out = Extrema {
+        max: f64::NEG_INFINITY,
+        interior: f64::NEG_INFINITY,
+        s_interior: f64::NAN,
+    };
+    for i in 0..sol.mesh.len() {
+        out.max = out.max.max(cx * sol.z[i * n] + cy * sol.z[i * n + 1]);
+    }
+    for_each_max(sol, cx, cy, |s, y| {
+        out.max = out.max.max(y);
+        if s < 1.0 - 1e-9 && y > out.interior {
+            out.interior = y;
+            out.s_interior = s;
+        }
+    });
     out
 }
 

@@ -1,16 +1,15 @@
 //! The quasi-static stiction scan (paper §3) and its inverse: the entry points, the start, and the
 //! choice of stepper; the march itself is in module `march`.
 
-use crate::config::Engine;
-use crate::equations::{Ends, RodBvp, ScanFamily};
-use crate::march::{march, Contact, Ctx};
+use crate::chain::{Chain, Family};
+use crate::generic::GenericStepper;
+use crate::march::{march, Spec};
 use crate::profile::{Profile, Uniform};
-use crate::report::{Inference, RangeEnd, ScanOptions, ScanResult};
-use crate::shooter::Shooter;
-use crate::solve::{solve, Method, Target};
-use crate::stepper::{GenericStepper, OwnStepper};
-use crate::{BranchChoice, Rod, Shape, ShapeKind, Surface, VibrissaError};
-use bvp::Guess;
+use crate::report::{ContactModel, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult};
+use crate::solve::Method;
+use crate::stepper::OwnStepper;
+use crate::watch::Env;
+use crate::{Rod, Surface, VibrissaError};
 
 /// Runs the stiction scan. Errors only for invalid input or when it cannot even start;
 /// failures along the way end the scan with [`crate::StopReason::SolverFailure`].
@@ -68,133 +67,95 @@ fn scan_impl(
     if opts.solver.method == Method::Analytic {
         return crate::analytic::scan_analytic(rod, surface, opts, grid);
     }
-    let (eta, beta) = (surface.eta(), surface.angle());
-    // the start: the rod continuously connected to the pressed uniform rod (whatever its load
-    // reversals: a pre-curved rod may have some), pushed, not pulled
-    let start = solve(
-        rod,
-        beta,
-        Target::Eta(eta),
-        &BranchChoice::Any,
-        &opts.solver,
-    )
-    .map_err(|e| match convex_reach(beta) {
-        // say why when the uniform rod's convex shape, the start of every rod's homotopy,
-        // cannot have its tip at eta under this force angle
-        Some((lo, hi)) if !(lo..=hi).contains(&eta) => context(
-            e,
-            &format!(
-                "scan start (alpha = surface angle, y(1) = eta; at this surface angle the \
-                 uniform clamped rod's convex shapes put the tip only at heights in \
-                 [{lo:.6}, {hi:.6}], not at eta = {eta}: flatten the surface or move eta)"
-            ),
-        ),
-        _ => context(e, "scan start (alpha = surface angle, y(1) = eta)"),
-    })?;
-    match start.kind() {
-        ShapeKind::Regular { .. } => {}
-        found => {
-            return Err(VibrissaError::NoContact {
-                eta,
-                f: start.f,
-                found,
-            })
-        }
-    }
-    let contact = Contact {
-        eta,
-        beta,
-        x_star: start.x1,
-    };
     if rod.has_uniform_profile() {
-        run_with(rod, Uniform, opts, grid, contact, &start)
+        scan_with(rod, Uniform, surface, opts, grid)
     } else {
-        run_with(rod, rod.profile(1.0), opts, grid, contact, &start)
+        scan_with(rod, rod.profile(1.0), surface, opts, grid)
     }
 }
 
-/// The march for one profile type, on the rod's own shooter (single shooting) or a generic
-/// method.
-fn run_with<P: Profile>(
+/// The scan for one profile type: the start, then the march in `d` on the rod's own shooter or
+/// a generic method.
+fn scan_with<P: Profile>(
     rod: &Rod,
     profile: P,
+    surface: &Surface,
     opts: &ScanOptions,
     grid: &[f64],
-    contact: Contact,
-    start: &Shape,
 ) -> Result<ScanResult, VibrissaError> {
-    let c = rod.support_compliance();
-    let family = ScanFamily {
-        rod: RodBvp {
-            profile: profile.clone(),
-            compliance: c,
-            alpha: contact.beta,
-            ends: Ends::Tip {
-                x1: contact.x_star,
-                y1: contact.eta,
-            },
-        },
-        eta: contact.eta,
-        x_star: contact.x_star,
-    };
+    let (eta, beta) = (surface.eta(), surface.angle());
     let general = rod.profile(1.0);
-    let ctx = Ctx {
-        contact,
-        profile: &profile,
+    let compound = opts.contact == ContactModel::Anywhere;
+    let tol = opts.solver.tol;
+    let start = crate::start::scan_start(rod, &profile, surface, opts.solver.start, tol)?;
+    let (set, p0) = crate::start::stuck(&start, beta);
+    let env = Env {
+        line: Some((p0, beta)),
+        mu0: opts.mu0,
+        compound,
+        target: None,
+    };
+    let spec = Spec {
+        env: &env,
+        grid,
+        lam_end: opts.d_max,
+        keep_shapes: opts.keep_shapes,
         general: &general,
-        opts,
+        friction: true,
+        check_start: true,
     };
     let start_failed = |e: String| VibrissaError::NoConvergence {
         what: "scan start (correction at d = 0)".into(),
         reason: e,
     };
-    let u0 = [start.m_base, start.f, contact.beta];
-    if let Some(tol) = opts.solver.own_shooter_tol() {
-        let mut st = OwnStepper {
-            shooter: match start.solution() {
-                Some(sol) => Shooter::on_mesh(profile.clone(), c, tol, sol.mesh.clone()),
-                None => Shooter::new(profile.clone(), c, tol, 8),
-            },
-            eta: contact.eta,
-            x_star: contact.x_star,
-        };
+    let c = rod.support_compliance();
+    let out = if opts.solver.own_shooter_tol().is_some() {
+        let mut sh = start.sh.clone();
+        sh.stats = Default::default();
+        let chain = Chain::new(sh, set, Family::Drag);
+        let mut st = OwnStepper { chain, env: env.clone() };
         let p0 = st
-            .correct_from(0.0, u0, None)
+            .correct_from(0.0, &start.pt.u, None, true)
             .map_err(|e| start_failed(e.to_string()))?;
-        Ok(march(&mut st, &ctx, grid, p0, start.stats.clone()))
+        march(&mut st, &spec, &profile, p0, start.stats.clone())
     } else {
-        let mut st = GenericStepper {
-            family,
-            engine: Engine::with_max_iter(&opts.solver, 12)?,
-            stats: Default::default(),
-            tangents: Shooter::new(profile.clone(), c, opts.solver.tol.min(1e-8), 8),
-        };
-        let mut sol = start
-            .solution()
-            .cloned()
-            .ok_or(VibrissaError::NotImplemented("analytic start"))?;
-        sol.params = vec![start.f, contact.beta];
-        let p0 = st.point(0.0, &Guess::from(&sol)).map_err(start_failed)?;
-        Ok(march(&mut st, &ctx, grid, p0, start.stats.clone()))
-    }
-}
-
-/// The tip heights `[y1(φ1 = 0), y1(φ1 = π/2 + 2α)]` of the uniform clamped rod's convex shapes
-/// under the force angle `alpha` (`y1` increases with `φ1` there), where the closed forms exist.
-fn convex_reach(alpha: f64) -> Option<(f64, f64)> {
-    let top = std::f64::consts::FRAC_PI_2 + 2.0 * alpha;
-    let y = |p: f64| elastica::Elastica::new(elastica::Branch::Convex, alpha, p).map(|e| e.y1);
-    Some((y(0.0).ok()?, y(top).ok()?))
-}
-
-fn context(e: VibrissaError, what: &str) -> VibrissaError {
-    match e {
-        VibrissaError::Solver { context, source } => VibrissaError::Solver {
-            context: format!("{what}: {context}"),
-            source,
-        },
-        other => other,
-    }
+        let mut st = GenericStepper::new(
+            profile.clone(),
+            c,
+            set,
+            Family::Drag,
+            env.clone(),
+            &opts.solver,
+        )?;
+        let p0 = st
+            .first(0.0, &start.pt.u)
+            .map_err(|e| start_failed(e.to_string()))?;
+        march(&mut st, &spec, &profile, p0, start.stats.clone())
+    };
+    let start_point = out
+        .points
+        .first()
+        .copied()
+        .filter(|p| p.d == 0.0)
+        .unwrap_or_else(|| {
+            let mut sp = out.points.first().copied().unwrap_or(ScanPoint::nan());
+            sp.d = 0.0;
+            sp
+        });
+    let (mu_max, mu_at_max, d_at_mu_max) = out.best;
+    Ok(ScanResult {
+        eta,
+        surface_point: p0,
+        start: start_point,
+        points: out.points,
+        mu_max,
+        mu_at_max,
+        d_at_mu_max,
+        range_end: out.range_end,
+        stop: out.stop,
+        stats: out.stats,
+        shapes: out.shapes,
+    })
 }
 
 /// Infers μ0 from the displacement `d0` at which the tip slipped: `μ0 = |μ(d0)|` for `d0` in

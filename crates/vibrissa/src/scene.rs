@@ -28,6 +28,11 @@ pub struct Scene {
     pub surface_angle: f64,
     /// Optional physical dimensions.
     pub physical: Option<Physical>,
+    /// Where the rod may touch the surface: `anywhere` (default) or the `tip` alone (the
+    /// paper's model).
+    pub contact: crate::ContactModel,
+    /// The state a scan starts from: `pressed` (default) or `connected`.
+    pub start: crate::StartKind,
 }
 
 impl Default for Scene {
@@ -39,6 +44,8 @@ impl Default for Scene {
             support_compliance: 0.0,
             surface_angle: 0.0,
             physical: None,
+            contact: crate::ContactModel::Anywhere,
+            start: crate::StartKind::Pressed,
         }
     }
 }

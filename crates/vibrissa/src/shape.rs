@@ -9,7 +9,7 @@ pub use crate::kind::ShapeKind;
 use crate::profile::{General, Profile};
 pub use crate::sampling::Clearance;
 use crate::sampling::{clearance, extrema, flex_and_reversals};
-use bvp::{Guess, Solution, Stats};
+use bvp::{Solution, Stats};
 use elastica::Elastica;
 use serde::Serialize;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -154,49 +154,6 @@ impl Shape {
         }
     }
 
-    /// A BVP guess from this shape with parameters `params`.
-    pub(crate) fn guess(&self, params: Vec<f64>) -> Guess {
-        match &self.data {
-            ShapeData::Numeric { sol, .. } => {
-                let mut g = Guess::from(sol);
-                g.params = params;
-                g
-            }
-            ShapeData::Analytic(e) => elastica_guess(e, params),
-        }
-    }
-}
-
-/// Samples of the closed-form rod as a BVP guess (with derivatives, so interpolation is Hermite).
-pub(crate) fn elastica_guess(e: &Elastica, params: Vec<f64>) -> Guess {
-    let nodes = 41;
-    let mesh: Vec<f64> = (0..nodes).map(|i| i as f64 / (nodes - 1) as f64).collect();
-    let mut z = Vec::with_capacity(4 * nodes);
-    let mut dz = Vec::with_capacity(4 * nodes);
-    for &s in &mesh {
-        // point_at only fails for s outside [0, 1]
-        let p = e.point_at(s).unwrap_or(elastica::ShapePoint {
-            s,
-            x: 0.0,
-            y: s,
-            phi: FRAC_PI_2,
-            kappa: 0.0,
-        });
-        z.extend_from_slice(&[p.x, p.y, p.phi, p.kappa]);
-        dz.extend_from_slice(&[
-            p.phi.cos(),
-            p.phi.sin(),
-            p.kappa,
-            e.f * (p.phi - e.alpha).cos(),
-        ]);
-    }
-    Guess {
-        n: 4,
-        mesh,
-        z,
-        dz: Some(dz),
-        params,
-    }
 }
 
 /// Which solution family a solve asks for. Branches are told apart by the sign changes of the

@@ -1,121 +1,156 @@
-//! The rod's own shooter: one integration of the rod equations over `s ∈ [0, 1]` from the foot
-//! state given by `u = (m(0), f, α)`, with the sensitivities `∂z/∂u` carried on the same stages.
+//! The rod's own integrator: the rod equations over one segment `[a, b]` of the arc length under a
+//! constant internal force `G = (Gx, Gy)` (the resultant of every contact force beyond the
+//! segment), with the sensitivities of the end state carried on the same stages.
 //!
-//! - 8th-order DOP853 weights on a fixed mesh; fixed steps make the sensitivities the exact
-//!   Jacobian of the discrete residual, so Newton converges quadratically. The embedded error
-//!   estimate of each step is checked against `tol` (`rtol = atol = tol`, Hairer's norm, as the
-//!   adaptive integrator of crate `bvp`); steps that exceed it are split and the solve redone, so
-//!   the mesh grades itself (fine near the thin tip of a tapered rod) and the accuracy contract is
-//!   the generic one.
+//! ```text
+//!     x' = cos φ,   y' = sin φ,   φ' = κ0(s) + b(s)·m,   m' = Gx sin φ − Gy cos φ
+//! ```
+//!
+//! - 8th-order DOP853 weights on a fixed mesh per segment (nodes in `σ ∈ [0, 1]`,
+//!   `s = a + (b − a)σ`). Fixed steps make the sensitivities the exact derivatives of the discrete
+//!   end state with respect to the start `(φ, m)` and the force, so Newton converges
+//!   quadratically. The embedded error estimate of each step is checked against `tol`
+//!   (`rtol = atol = tol`, Hairer's norm); steps over it are split by equidistributing the step
+//!   sizes the errors ask for, and the solve redone, so each segment's mesh grades itself (fine
+//!   near the thin tip of a tapered rod).
+//! - Columns of the sensitivities: `nd` start directions in `(φ, m)` (one, `(c, 1)`, for the
+//!   first segment of a rod whose foot slope is `π/2 + c·m(0)`; two, `e_φ` and `e_m`, elsewhere)
+//!   and the two force components. Monomorphized per width: 4 (no sensitivities), 16 (one start
+//!   direction) or 20 (two), so the paper's rod costs what it always did.
 //! - Generic over the [`Profile`]: the uniform rod folds `b ≡ 1`, `κ0 ≡ 0` away; any other
-//!   profile is evaluated once per mesh at the stage abscissae and read from a table, so a shot
-//!   costs the same for a tapered, pre-curved or tabulated rod.
+//!   profile is tabulated once per mesh and interval at the stage abscissae.
 //! - Allocation-free per shot (buffers kept), an inline `sin_cos`, and an AVX2 build chosen at run
-//!   time (the 16 components are four 256-bit lanes).
+//!   time.
 
-use crate::equations::{rod_rhs_var, NV, Y};
 use crate::profile::Profile;
 use bvp::tableau::dop853 as tab;
-use bvp::{Solution, Stats, Status};
-use std::f64::consts::FRAC_PI_2;
+use bvp::Stats;
 
-/// Largest number of steps before a shot gives up refining (a far-off Newton iterate).
+/// Largest number of steps of one segment's mesh (a far-off Newton iterate refines forever).
 pub(crate) const MAX_STEPS: usize = 100_000;
 
-/// Result of one integration over `[0, 1]`.
+/// Result of one segment: the end state, its sensitivities to the columns, the largest scaled
+/// step error (≤ 1: within tolerance).
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Shot {
-    /// End state and sensitivities: `y[0..4] = z(1)`, `y[4 + 4q + i] = ∂z_i(1)/∂u_q`.
-    pub y1: Y,
-    /// Max over the steps of the scaled error estimate (≤ 1: within tolerance).
+pub(crate) struct SegShot {
+    /// `z(b)`.
+    pub z: [f64; 4],
+    /// `∂z(b)/∂(column q)`: the start directions first, then `Gx`, `Gy`.
+    pub col: [[f64; 4]; 4],
+    /// Number of columns filled.
+    pub ncol: usize,
+    /// Max over the steps of the scaled error estimate.
     pub err: f64,
 }
 
-/// The fixed-mesh integrator of one rod, with its recorded path.
+/// The mesh of one segment and what depends on it.
+#[derive(Clone, Debug)]
+struct SegMesh {
+    /// Nodes `0 = σ_0 < … < σ_N = 1`.
+    nodes: Vec<f64>,
+    /// The interval `(a, b)` the profile table was made for.
+    ab: (f64, f64),
+    /// `(b, κ0)` at the 12 stage abscissae of each step, then at the end (non-uniform profiles).
+    coef: Vec<[f64; 2]>,
+    /// Scaled error estimate of each step of the last shot.
+    step_err: Vec<f64>,
+    /// The last shot's nodes in `s`, `z` and `F(z)` (node-major, 4 each), and its force.
+    path_s: Vec<f64>,
+    path_z: Vec<f64>,
+    path_dz: Vec<f64>,
+    force: [f64; 2],
+}
+
+impl SegMesh {
+    fn uniform(steps: usize) -> SegMesh {
+        SegMesh {
+            nodes: (0..=steps).map(|i| i as f64 / steps as f64).collect(),
+            ab: (f64::NAN, f64::NAN),
+            coef: Vec::new(),
+            step_err: Vec::new(),
+            path_s: Vec::new(),
+            path_z: Vec::new(),
+            path_dz: Vec::new(),
+            force: [0.0; 2],
+        }
+    }
+}
+
+/// The fixed-mesh integrator of one rod, segment by segment, with its recorded path.
 #[derive(Clone, Debug)]
 pub(crate) struct Shooter<P: Profile> {
     /// Stiffness and rest curvature.
     pub profile: P,
-    /// Support compliance `c`: `φ(0) = π/2 + c·m(0)`.
+    /// Support compliance `c`: `φ(0) = π/2 − θ + c·m(0)`.
     pub compliance: f64,
     /// Tolerance of the step error estimates.
     pub tol: f64,
-    /// Mesh nodes, `0 = s_0 < … < s_N = 1`.
-    nodes: Vec<f64>,
-    /// `(b, κ0)` at the 12 stage abscissae of each step, then at `s = 1` (non-uniform profiles).
-    coef: Vec<[f64; 2]>,
-    /// Scaled error estimate of each step of the last shot.
-    step_err: Vec<f64>,
-    /// Nodes' `z` and `F(z)` (node-major, 4 each) of the last shot.
-    path_z: Vec<f64>,
-    path_dz: Vec<f64>,
+    segs: Vec<SegMesh>,
     /// Work counters.
     pub stats: Stats,
 }
 
 impl<P: Profile> Shooter<P> {
-    /// A shooter with `steps` equal steps.
+    /// A shooter whose segments start with `steps` equal steps.
     pub fn new(profile: P, compliance: f64, tol: f64, steps: usize) -> Self {
-        let mut s = Shooter {
+        Shooter {
             profile,
             compliance,
             tol,
-            nodes: Vec::new(),
-            coef: Vec::new(),
-            step_err: Vec::new(),
-            path_z: Vec::new(),
-            path_dz: Vec::new(),
+            segs: vec![SegMesh::uniform(steps.max(1))],
             stats: Stats::default(),
-        };
-        s.set_mesh((0..=steps).map(|i| i as f64 / steps as f64).collect());
-        s
-    }
-
-    /// A shooter on the mesh `nodes` (`0 = s_0 < … < s_N = 1`), e.g. the one a solve ended on.
-    pub fn on_mesh(profile: P, compliance: f64, tol: f64, nodes: Vec<f64>) -> Self {
-        let mut s = Shooter::new(profile, compliance, tol, 1);
-        s.set_mesh(nodes);
-        s
-    }
-
-    /// Number of steps.
-    pub fn steps(&self) -> usize {
-        self.nodes.len() - 1
-    }
-
-    /// Replaces the profile (homotopy), keeping the mesh.
-    pub fn set_profile(&mut self, profile: P, compliance: f64) {
-        self.profile = profile;
-        self.compliance = compliance;
-        let nodes = std::mem::take(&mut self.nodes);
-        self.set_mesh(nodes);
-    }
-
-    fn set_mesh(&mut self, nodes: Vec<f64>) {
-        self.nodes = nodes;
-        self.coef.clear();
-        if !P::UNIFORM {
-            for w in self.nodes.windows(2) {
-                let h = w[1] - w[0];
-                for c in tab::C {
-                    let s = w[0] + c * h;
-                    self.coef.push([self.profile.b(s), self.profile.k0(s)]);
-                }
-            }
-            self.coef.push([self.profile.b(1.0), self.profile.k0(1.0)]);
         }
     }
 
-    /// A new mesh after a shot with steps over tolerance: each such step should shrink by
-    /// `0.9·e^(−1/8)` (the order-8 rule with a margin; a quarter where `e` is not finite), the
-    /// others keep their size, and the nodes equidistribute that step-size function, so the mesh
-    /// grows by what the errors ask for rather than by halving whole steps. `false` when it would
-    /// exceed [`MAX_STEPS`].
-    pub fn refine(&mut self) -> bool {
-        // steps per unit of the old step of each interval
-        let shrink: Vec<f64> = (0..self.steps())
+    /// Replaces the profile (homotopy), keeping the meshes.
+    pub fn set_profile(&mut self, profile: P, compliance: f64) {
+        self.profile = profile;
+        self.compliance = compliance;
+        for m in &mut self.segs {
+            m.ab = (f64::NAN, f64::NAN);
+        }
+    }
+
+    /// Makes room for `n` segments (new ones copy the density of the first).
+    pub fn ensure_segments(&mut self, n: usize) {
+        while self.segs.len() < n {
+            let steps = (self.segs[0].nodes.len() - 1).clamp(4, 64);
+            self.segs.push(SegMesh::uniform(steps));
+        }
+    }
+
+    /// Recomputes segment `k`'s profile table when its interval changed.
+    fn tabulate(&mut self, k: usize, a: f64, b: f64) {
+        if P::UNIFORM {
+            return;
+        }
+        let m = &mut self.segs[k];
+        if m.ab == (a, b) && !m.coef.is_empty() {
+            return;
+        }
+        m.ab = (a, b);
+        m.coef.clear();
+        let len = b - a;
+        for w in m.nodes.windows(2) {
+            let h = w[1] - w[0];
+            for c in tab::C {
+                let s = a + len * (w[0] + c * h);
+                m.coef.push([self.profile.b(s), self.profile.k0(s)]);
+            }
+        }
+        m.coef.push([self.profile.b(b), self.profile.k0(b)]);
+    }
+
+    /// A new mesh for segment `k` after a shot with steps over tolerance: each such step should
+    /// shrink by `0.9·e^(−1/8)` (the order-8 rule with a margin; a quarter where `e` is not
+    /// finite), the others keep their size, and the nodes equidistribute that step-size function.
+    /// `false` when it would exceed [`MAX_STEPS`].
+    pub fn refine(&mut self, k: usize) -> bool {
+        let m = &mut self.segs[k];
+        let n_old = m.nodes.len() - 1;
+        let shrink: Vec<f64> = (0..n_old)
             .map(|i| {
-                let e = self.step_err.get(i).copied().unwrap_or(0.0);
+                let e = m.step_err.get(i).copied().unwrap_or(0.0);
                 if !e.is_finite() {
                     4.0
                 } else if e > 1.0 {
@@ -127,16 +162,15 @@ impl<P: Profile> Shooter<P> {
             .collect();
         let total: f64 = shrink.iter().sum();
         let n_new = total.ceil() as usize;
-        if n_new > MAX_STEPS || n_new <= self.steps() {
+        if n_new > MAX_STEPS || n_new <= n_old {
             return false;
         }
-        // the nodes where the cumulative step count, stretched to n_new, is an integer
         let stretch = n_new as f64 / total;
         let mut nodes = Vec::with_capacity(n_new + 1);
         nodes.push(0.0);
         let mut count = 0.0;
-        for (w, k) in self.nodes.windows(2).zip(&shrink) {
-            let per = k * stretch;
+        for (w, q) in m.nodes.windows(2).zip(&shrink) {
+            let per = q * stretch;
             let next = count + per;
             while (nodes.len() as f64) < next - 1e-9 && nodes.len() < n_new {
                 let t = (nodes.len() as f64 - count) / per;
@@ -145,72 +179,127 @@ impl<P: Profile> Shooter<P> {
             count = next;
         }
         nodes.push(1.0);
-        self.set_mesh(nodes);
+        m.nodes = nodes;
+        m.ab = (f64::NAN, f64::NAN);
         true
     }
 
-    /// Integrates from `u = (m(0), f, α)`; with `VAR` also the sensitivities (else only `z`).
-    #[inline]
-    pub fn shoot<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
+    /// Refines every segment whose last shot had a step over tolerance; `false` if one could
+    /// not be refined.
+    pub fn refine_all(&mut self, upto: usize) -> bool {
+        for k in 0..upto.min(self.segs.len()) {
+            if self.segs[k].step_err.iter().any(|e| !(*e <= 1.0)) && !self.refine(k) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Integrates segment `k` over `[a, b]` from `z0` under the force `g`; with sensitivities to
+    /// the start directions `dirs` (each `(∂φ, ∂m)` at `a`, one or two of them) and to `g`.
+    pub fn shoot(
+        &mut self,
+        k: usize,
+        a: f64,
+        b: f64,
+        z0: [f64; 4],
+        dirs: &[[f64; 2]],
+        g: [f64; 2],
+        var: bool,
+    ) -> SegShot {
+        self.ensure_segments(k + 1);
+        self.tabulate(k, a, b);
         #[cfg(target_arch = "x86_64")]
         {
             if std::is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU has AVX2 (checked just above), the only requirement of
-                // `shoot_avx2`.
-                return unsafe { self.shoot_avx2::<VAR>(u) };
+                // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
+                return unsafe { self.shoot_avx2(k, a, b, z0, dirs, g, var) };
             }
         }
-        self.shoot_width::<VAR>(u)
+        self.shoot_width(k, a, b, z0, dirs, g, var)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn shoot_avx2<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
-        self.shoot_width::<VAR>(u)
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn shoot_avx2(
+        &mut self,
+        k: usize,
+        a: f64,
+        b: f64,
+        z0: [f64; 4],
+        dirs: &[[f64; 2]],
+        g: [f64; 2],
+        var: bool,
+    ) -> SegShot {
+        self.shoot_width(k, a, b, z0, dirs, g, var)
     }
 
     #[inline(always)]
-    fn shoot_width<const VAR: bool>(&mut self, u: &[f64; 3]) -> Shot {
-        if VAR {
-            self.shoot_impl::<true, NV>(u)
-        } else {
-            self.shoot_impl::<false, 4>(u)
+    #[allow(clippy::too_many_arguments)]
+    fn shoot_width(
+        &mut self,
+        k: usize,
+        a: f64,
+        b: f64,
+        z0: [f64; 4],
+        dirs: &[[f64; 2]],
+        g: [f64; 2],
+        var: bool,
+    ) -> SegShot {
+        match (var, dirs.len()) {
+            (false, _) => self.shoot_impl::<4>(k, a, b, z0, dirs, g),
+            (true, 1) => self.shoot_impl::<16>(k, a, b, z0, dirs, g),
+            _ => self.shoot_impl::<20>(k, a, b, z0, dirs, g),
         }
     }
 
     #[inline(always)]
-    fn shoot_impl<const VAR: bool, const N: usize>(&mut self, u: &[f64; 3]) -> Shot {
-        let (m0, f, alpha) = (u[0], u[1], u[2]);
-        let (sa, ca) = alpha.sin_cos();
-        let c = self.compliance;
-        let n = self.nodes.len() - 1;
+    fn shoot_impl<const N: usize>(
+        &mut self,
+        k: usize,
+        a: f64,
+        b: f64,
+        z0: [f64; 4],
+        dirs: &[[f64; 2]],
+        g: [f64; 2],
+    ) -> SegShot {
+        let ncol = (N - 4) / 4;
         let mut y = [0.0; N];
-        y[2] = FRAC_PI_2 + c * m0;
-        y[3] = m0;
-        if VAR {
-            y[4 + 2] = c; // ∂φ(0)/∂m0
-            y[4 + 3] = 1.0; // ∂m(0)/∂m0
+        y[..4].copy_from_slice(&z0);
+        for (q, d) in dirs.iter().enumerate().take(ncol.saturating_sub(2)) {
+            y[4 + 4 * q + 2] = d[0];
+            y[4 + 4 * q + 3] = d[1];
         }
-        self.path_z.clear();
-        self.path_dz.clear();
-        self.step_err.clear();
+        let tol = self.tol;
+        let len = b - a;
+        let m = &mut self.segs[k];
+        m.path_s.clear();
+        m.path_z.clear();
+        m.path_dz.clear();
+        m.step_err.clear();
+        m.force = g;
+        let n = m.nodes.len() - 1;
+        let coef = &m.coef;
         let bk = |i: usize| -> (f64, f64) {
             if P::UNIFORM {
                 (1.0, 0.0)
             } else {
-                let e = self.coef[i];
+                let e = coef[i];
                 (e[0], e[1])
             }
         };
-        let mut k = [[0.0; N]; 12];
+        let (gx, gy) = (g[0], g[1]);
+        let mut kk = [[0.0; N]; 12];
         let (b0, q0) = bk(0);
-        k[0] = rod_rhs_var::<N>(&y, f, ca, sa, b0, q0);
+        kk[0] = rhs::<N>(&y, gx, gy, b0, q0);
         let mut err_max: f64 = 0.0;
         for step in 0..n {
-            let h = self.nodes[step + 1] - self.nodes[step];
+            let h = len * (m.nodes[step + 1] - m.nodes[step]);
             let base = 12 * step;
-            self.path_z.extend_from_slice(&y[..4]);
-            self.path_dz.extend_from_slice(&k[0][..4]);
+            m.path_s.push(a + len * m.nodes[step]);
+            m.path_z.extend_from_slice(&y[..4]);
+            m.path_dz.extend_from_slice(&kk[0][..4]);
             // stage sums over the nonzero coefficients only, unrolled
             macro_rules! stage {
                 ($i:literal, [$($j:literal),*]) => {{
@@ -218,11 +307,11 @@ impl<P: Profile> Shooter<P> {
                     $(
                         let ha = h * tab::A[$i * tab::STAGES + $j];
                         for cc in 0..N {
-                            t[cc] += ha * k[$j][cc];
+                            t[cc] += ha * kk[$j][cc];
                         }
                     )*
                     let (bb, qq) = bk(base + $i);
-                    k[$i] = rod_rhs_var::<N>(&t, f, ca, sa, bb, qq);
+                    kk[$i] = rhs::<N>(&t, gx, gy, bb, qq);
                 }};
             }
             stage!(1, [0]);
@@ -241,64 +330,229 @@ impl<P: Profile> Shooter<P> {
             for j in NZB {
                 let hb = h * tab::B[j];
                 for cc in 0..N {
-                    ynew[cc] += hb * k[j][cc];
+                    ynew[cc] += hb * kk[j][cc];
                 }
             }
-            // Hairer's DOP853 error norm over z
-            let (mut e5, mut e3) = (0.0, 0.0);
-            for cc in 0..4 {
-                let sk = self.tol * (1.0 + y[cc].abs().max(ynew[cc].abs()));
-                let (mut a5, mut a3) = (0.0, 0.0);
-                for j in NZB {
-                    a5 += tab::E5[j] * k[j][cc];
-                    a3 += tab::E3[j] * k[j][cc];
-                }
-                e5 += (a5 / sk) * (a5 / sk);
-                e3 += (a3 / sk) * (a3 / sk);
-            }
-            let deno = e5 + 0.01 * e3;
-            let err = if deno > 0.0 {
-                h * e5 / (4.0 * deno).sqrt()
-            } else {
-                0.0
-            };
-            let err = if err.is_nan() { f64::INFINITY } else { err };
-            self.step_err.push(err);
+            let err = step_error(tol, &y, &ynew, &kk, h);
+            m.step_err.push(err);
             err_max = err_max.max(err);
             y = ynew;
             let (bb, qq) = bk(base + 12);
-            k[0] = rod_rhs_var::<N>(&y, f, ca, sa, bb, qq);
+            kk[0] = rhs::<N>(&y, gx, gy, bb, qq);
         }
-        self.path_z.extend_from_slice(&y[..4]);
-        self.path_dz.extend_from_slice(&k[0][..4]);
+        m.path_s.push(b);
+        m.path_z.extend_from_slice(&y[..4]);
+        m.path_dz.extend_from_slice(&kk[0][..4]);
         self.stats.steps += n;
         self.stats.rhs_evals += 12 * n + 1;
-        if VAR {
+        if N > 4 {
             self.stats.jac_evals += 12 * n + 1;
         }
-        self.stats.bc_evals += 1;
-        let mut y1 = [0.0; NV];
-        y1[..N].copy_from_slice(&y);
-        Shot { y1, err: err_max }
-    }
-
-    /// The last shot's path as a [`Solution`] (cubic Hermite between the mesh nodes).
-    pub fn solution(&self, params: Vec<f64>, residual: f64) -> Solution {
-        Solution {
-            n: 4,
-            mesh: self.nodes.clone(),
-            z: self.path_z.clone(),
-            dz: self.path_dz.clone(),
-            params,
-            status: Status::Converged,
-            stats: Stats {
-                nodes: self.nodes.len(),
-                residual,
-                ..Stats::default()
-            },
-            dense: bvp::Dense::Hermite,
+        let mut col = [[0.0; 4]; 4];
+        for (q, c) in col.iter_mut().enumerate().take(ncol) {
+            c.copy_from_slice(&y[4 + 4 * q..8 + 4 * q]);
+        }
+        SegShot {
+            z: [y[0], y[1], y[2], y[3]],
+            col,
+            ncol,
+            err: err_max,
         }
     }
+
+    /// The right-hand side `F(z)` of segment `k`'s last shot at arc length `s`.
+    pub fn rhs_at(&self, k: usize, s: f64, z: &[f64; 4]) -> [f64; 4] {
+        let g = self.segs[k].force;
+        let (b, k0) = if P::UNIFORM {
+            (1.0, 0.0)
+        } else {
+            (self.profile.b(s), self.profile.k0(s))
+        };
+        rhs::<4>(z, g[0], g[1], b, k0)
+    }
+
+    /// The state at arc length `s` inside segment `k` of the last shot, on the rod itself: one
+    /// DOP853 step from the recorded node before `s` (its local error is within the mesh's,
+    /// unlike an interpolant's between nodes).
+    pub fn state_at(&self, k: usize, s: f64) -> [f64; 4] {
+        let m = &self.segs[k];
+        let i = m.path_s.partition_point(|&t| t <= s).saturating_sub(1);
+        let i = i.min(m.path_s.len().saturating_sub(1));
+        let s0 = m.path_s[i];
+        let z0 = [
+            m.path_z[4 * i],
+            m.path_z[4 * i + 1],
+            m.path_z[4 * i + 2],
+            m.path_z[4 * i + 3],
+        ];
+        self.step(z0, s0, s - s0, m.force)
+    }
+
+    /// The end state of segment `k`'s mesh laid on `[a, b]` from `z0` under the force `g`, without
+    /// sensitivities or a record (the profile read directly): the differences in the segment's
+    /// ends that move with the contacts.
+    pub fn end_state(&self, k: usize, a: f64, b: f64, z0: [f64; 4], g: [f64; 2]) -> [f64; 4] {
+        let nodes = &self.segs[k].nodes;
+        let mut z = z0;
+        for w in nodes.windows(2) {
+            let s0 = a + (b - a) * w[0];
+            z = self.step(z, s0, (b - a) * (w[1] - w[0]), g);
+        }
+        z
+    }
+
+    /// One DOP853 step of size `h` from `z0` at `s0` (no sensitivities, the profile read
+    /// directly).
+    fn step(&self, z0: [f64; 4], s0: f64, h: f64, g: [f64; 2]) -> [f64; 4] {
+        if h == 0.0 {
+            return z0;
+        }
+        let pb = |s: f64| -> (f64, f64) {
+            if P::UNIFORM {
+                (1.0, 0.0)
+            } else {
+                (self.profile.b(s), self.profile.k0(s))
+            }
+        };
+        let mut kk = [[0.0; 4]; 12];
+        for st in 0..12 {
+            let mut t = z0;
+            for (j, kj) in kk.iter().enumerate().take(st) {
+                let ha = h * tab::A[st * tab::STAGES + j];
+                if ha != 0.0 {
+                    for c in 0..4 {
+                        t[c] += ha * kj[c];
+                    }
+                }
+            }
+            let (bb, qq) = pb(s0 + tab::C[st] * h);
+            kk[st] = rhs::<4>(&t, g[0], g[1], bb, qq);
+        }
+        let mut z = z0;
+        for (j, kj) in kk.iter().enumerate() {
+            let hb = h * tab::B[j];
+            for c in 0..4 {
+                z[c] += hb * kj[c];
+            }
+        }
+        z
+    }
+
+    /// The recorded path of segment `k`'s last shot: nodes in `s`, `z`, `F(z)` (node-major).
+    pub fn path(&self, k: usize) -> (&[f64], &[f64], &[f64]) {
+        let m = &self.segs[k];
+        (&m.path_s, &m.path_z, &m.path_dz)
+    }
+}
+
+/// `(sin x, cos x)` for moderate `|x|` (here slopes within a few turns): Cody–Waite reduction by
+/// π/2 and fdlibm's kernel polynomials on `[−π/4, π/4]` (error ≲ 1 ulp there). About a third of
+/// the instructions of libm's general `sincos`, which is the largest single cost of a shot.
+#[inline(always)]
+#[allow(clippy::excessive_precision)]
+pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
+    const PIO2_HI: f64 = 1.570_796_326_734_125_614_17; // first 33 bits of π/2
+    const PIO2_LO: f64 = 6.077_100_506_506_192_249_99e-11; // π/2 − PIO2_HI
+    const S: [f64; 6] = [
+        -1.666_666_666_666_663_243_48e-01,
+        8.333_333_333_322_489_461_24e-03,
+        -1.984_126_982_985_794_931_34e-04,
+        2.755_731_370_707_006_767_89e-06,
+        -2.505_076_025_340_686_341_95e-08,
+        1.589_690_995_211_550_102_21e-10,
+    ];
+    const C: [f64; 6] = [
+        4.166_666_666_666_660_190_37e-02,
+        -1.388_888_888_887_410_957_49e-03,
+        2.480_158_728_947_672_941_78e-05,
+        -2.755_731_435_139_066_330_35e-07,
+        2.087_572_321_298_174_827_90e-09,
+        -1.135_964_755_778_819_482_65e-11,
+    ];
+    if x.is_nan() || x.abs() >= 1e5 {
+        return x.sin_cos();
+    }
+    let k = (x * std::f64::consts::FRAC_2_PI).round();
+    let r = (x - k * PIO2_HI) - k * PIO2_LO;
+    let z = r * r;
+    let sp = S[1] + z * (S[2] + z * (S[3] + z * (S[4] + z * S[5])));
+    let sr = r + r * z * (S[0] + z * sp);
+    let cp = C[0] + z * (C[1] + z * (C[2] + z * (C[3] + z * (C[4] + z * C[5]))));
+    let hz = 0.5 * z;
+    let w = 1.0 - hz;
+    // fdlibm's split keeps 1 − z/2 exact to the last bit
+    let cr = w + (((1.0 - w) - hz) + z * z * cp);
+    // quadrant by selects rather than a jump table
+    let q = k as i64;
+    let (s1, c1) = if q & 1 == 0 { (sr, cr) } else { (cr, -sr) };
+    if q & 2 == 0 {
+        (s1, c1)
+    } else {
+        (-s1, -c1)
+    }
+}
+
+/// Hairer's DOP853 error norm over `z` of one step from `y` to `ynew`.
+#[inline(always)]
+fn step_error<const N: usize>(
+    tol: f64,
+    y: &[f64; N],
+    ynew: &[f64; N],
+    kk: &[[f64; N]; 12],
+    h: f64,
+) -> f64 {
+    const NZB: [usize; 8] = [0, 5, 6, 7, 8, 9, 10, 11];
+    let (mut e5, mut e3) = (0.0, 0.0);
+    for cc in 0..4 {
+        let sk = tol * (1.0 + y[cc].abs().max(ynew[cc].abs()));
+        let (mut a5, mut a3) = (0.0, 0.0);
+        for j in NZB {
+            a5 += tab::E5[j] * kk[j][cc];
+            a3 += tab::E3[j] * kk[j][cc];
+        }
+        e5 += (a5 / sk) * (a5 / sk);
+        e3 += (a3 / sk) * (a3 / sk);
+    }
+    let deno = e5 + 0.01 * e3;
+    let err = if deno > 0.0 {
+        h.abs() * e5 / (4.0 * deno).sqrt()
+    } else {
+        0.0
+    };
+    if err.is_nan() {
+        f64::INFINITY
+    } else {
+        err
+    }
+}
+
+/// The rod's right-hand side where `b(s) = b`, `κ0(s) = k0`, under the force `(gx, gy)`, on a
+/// state of `N` components: `z` and, for `N > 4`, `(N − 4)/4` sensitivity columns whose last two
+/// are the force components (components `4 + 4q + i` hold `∂z_i/∂(column q)`).
+#[inline(always)]
+pub(crate) fn rhs<const N: usize>(y: &[f64; N], gx: f64, gy: f64, b: f64, k0: f64) -> [f64; N] {
+    let (sp, cp) = sin_cos(y[2]);
+    let mut d = [0.0; N];
+    d[0] = cp;
+    d[1] = sp;
+    d[2] = k0 + b * y[3];
+    d[3] = gx * sp - gy * cp;
+    if N == 4 {
+        return d;
+    }
+    let dm_dphi = gx * cp + gy * sp;
+    let ncol = (N - 4) / 4;
+    for q in 0..ncol {
+        let (dphi, dm) = (y[4 + 4 * q + 2], y[4 + 4 * q + 3]);
+        d[4 + 4 * q] = -sp * dphi;
+        d[4 + 4 * q + 1] = cp * dphi;
+        d[4 + 4 * q + 2] = b * dm;
+        d[4 + 4 * q + 3] = dm_dphi * dphi;
+    }
+    let qx = ncol - 2;
+    d[4 + 4 * qx + 3] += sp;
+    d[4 + 4 * (qx + 1) + 3] -= cp;
+    d
 }
 
 #[cfg(test)]
@@ -316,7 +570,6 @@ mod tests {
             precurvature: Precurvature::Linear { k0: 0.0, k1: 0.0 },
             ..Scene::default()
         };
-        let u = [-1.2, 3.0, -0.2];
         let mut a = Shooter::new(Uniform, 0.0, 1e-10, 16);
         let mut b = Shooter::new(
             General::new(&scene.stiffness, &scene.precurvature, 1.0),
@@ -324,18 +577,23 @@ mod tests {
             1e-10,
             16,
         );
-        let (sa, sb) = (a.shoot::<true>(&u), b.shoot::<true>(&u));
-        assert_eq!(sa.y1, sb.y1);
+        let z0 = [0.0, 0.0, 1.5, -1.2];
+        let (sa, sb) = (
+            a.shoot(0, 0.0, 1.0, z0, &[[0.0, 1.0]], [0.6, -3.0], true),
+            b.shoot(0, 0.0, 1.0, z0, &[[0.0, 1.0]], [0.6, -3.0], true),
+        );
+        assert_eq!(sa.z, sb.z);
+        assert_eq!(sa.col, sb.col);
     }
 
-    /// Sensitivities against central differences of the shot, for a tapered, pre-curved,
-    /// compliant rod (the shot is smooth in u; the difference error is ~h² ≈ 1e-10).
+    /// Sensitivities against central differences of the shot, for a tapered, pre-curved rod on
+    /// an inner segment with two start directions (the shot is smooth; the difference error is
+    /// ~h² ≈ 1e-10).
     #[test]
     fn sensitivities_match_differences() {
         let scene = Scene {
             stiffness: Stiffness::Taper { ratio: 0.5 },
             precurvature: Precurvature::Linear { k0: 0.4, k1: -0.3 },
-            support_compliance: 0.7,
             ..Scene::default()
         };
         let mut sh = Shooter::new(
@@ -344,20 +602,44 @@ mod tests {
             1e-10,
             40,
         );
-        let u = [-0.8, 2.5, -0.3];
-        let y = sh.shoot::<true>(&u).y1;
-        for q in 0..3 {
-            let e = 1e-5;
-            let (mut up, mut um) = (u, u);
-            up[q] += e;
-            um[q] -= e;
-            let (yp, ym) = (sh.shoot::<false>(&up).y1, sh.shoot::<false>(&um).y1);
+        let (a, b) = (0.2, 0.9);
+        let z0 = [0.1, 0.3, 1.2, -0.8];
+        let g = [1.5, -2.5];
+        let dirs = [[1.0, 0.0], [0.0, 1.0]];
+        let y = sh.shoot(0, a, b, z0, &dirs, g, true);
+        let e = 1e-5;
+        let fd = |sh: &mut Shooter<General>, q: usize| -> [f64; 4] {
+            let (mut zp, mut zm, mut gp, mut gm) = (z0, z0, g, g);
+            match q {
+                0 => {
+                    zp[2] += e;
+                    zm[2] -= e
+                }
+                1 => {
+                    zp[3] += e;
+                    zm[3] -= e
+                }
+                2 => {
+                    gp[0] += e;
+                    gm[0] -= e
+                }
+                _ => {
+                    gp[1] += e;
+                    gm[1] -= e
+                }
+            }
+            let p = sh.shoot(0, a, b, zp, &[], gp, false).z;
+            let m = sh.shoot(0, a, b, zm, &[], gm, false).z;
+            [0, 1, 2, 3].map(|i| (p[i] - m[i]) / (2.0 * e))
+        };
+        for q in 0..4 {
+            let d = fd(&mut sh, q);
             for i in 0..4 {
-                let fd = (yp[i] - ym[i]) / (2.0 * e);
-                let an = y[4 + 4 * q + i];
+                let an = y.col[q][i];
                 assert!(
-                    (fd - an).abs() <= 1e-7 * (1.0 + an.abs()),
-                    "∂z{i}/∂u{q}: fd {fd} analytic {an}"
+                    (d[i] - an).abs() <= 1e-7 * (1.0 + an.abs()),
+                    "∂z{i}/∂col{q}: fd {} analytic {an}",
+                    d[i]
                 );
             }
         }
@@ -377,16 +659,35 @@ mod tests {
             1e-10,
             8,
         );
-        let u = [-0.05, 0.3, 0.0];
+        let z0 = [0.0, 0.0, std::f64::consts::FRAC_PI_2, -0.05];
         let mut passes = 0;
-        while sh.shoot::<false>(&u).err > 1.0 {
-            assert!(sh.refine());
+        while sh.shoot(0, 0.0, 1.0, z0, &[], [0.0, -0.3], false).err > 1.0 {
+            assert!(sh.refine(0));
             passes += 1;
             assert!(passes < 20);
         }
-        let n = sh.steps();
-        let first = sh.nodes[1] - sh.nodes[0];
-        let last = sh.nodes[n] - sh.nodes[n - 1];
+        let nodes = &sh.segs[0].nodes;
+        let n = nodes.len() - 1;
+        let first = nodes[1] - nodes[0];
+        let last = nodes[n] - nodes[n - 1];
         assert!(last < 0.5 * first, "first step {first}, last {last}");
+    }
+
+    /// The state on the rod between nodes (one step from the node before) agrees with a shot on
+    /// a mesh through that point.
+    #[test]
+    fn state_between_nodes_is_on_the_rod() {
+        let mut sh = Shooter::new(Uniform, 0.0, 1e-12, 12);
+        let z0 = [0.0, 0.0, std::f64::consts::FRAC_PI_2, -1.6];
+        while sh.shoot(0, 0.0, 1.0, z0, &[], [0.0, -2.8], false).err > 1.0 {
+            assert!(sh.refine(0));
+        }
+        let s = 0.4321;
+        let z = sh.state_at(0, s);
+        let mut fine = Shooter::new(Uniform, 0.0, 1e-13, 64);
+        let zf = fine.shoot(0, 0.0, s, z0, &[], [0.0, -2.8], false).z;
+        for i in 0..4 {
+            assert!((z[i] - zf[i]).abs() < 1e-11, "{i}: {} vs {}", z[i], zf[i]);
+        }
     }
 }

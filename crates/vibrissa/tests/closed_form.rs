@@ -2,10 +2,13 @@
 //! (paper §3, Remark 3.1): μ and f at the closed-form points' displacements, both phases.
 
 use elastica::{ClosedFormScan, Phase0End};
-use vibrissa::{scan_at, Method, ScanOptions, Scene, SolverConfig, StopReason};
+use vibrissa::{scan_at, ContactModel, Method, ScanOptions, Scene, SolverConfig, StopReason};
 
+/// The paper's model (the tip alone touches), which the closed forms describe; the numerical
+/// scan starts from the rod pressed onto the surface, found without the closed forms.
 fn opts(method: Method, tol: f64) -> ScanOptions {
     ScanOptions {
+        contact: ContactModel::Tip,
         d_max: 0.5,
         solver: SolverConfig {
             method,

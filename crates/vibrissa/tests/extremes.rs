@@ -92,6 +92,7 @@ fn eta_near_lower_limit() {
         &surface,
         &ScanOptions {
             points: 11,
+            contact: vibrissa::ContactModel::Tip,
             ..ScanOptions::default()
         },
     )

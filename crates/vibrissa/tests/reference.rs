@@ -78,13 +78,17 @@ fn scene(name: &str) -> Scene {
     s
 }
 
+/// The reference's model: the paper's tip contact, from the state connected to the straight
+/// uniform rod (the script starts there).
 fn opts(method: Method, tol: f64, d_max: f64) -> ScanOptions {
     ScanOptions {
         d_max,
+        contact: vibrissa::ContactModel::Tip,
         solver: SolverConfig {
             method,
             tol,
             segments: 4,
+            start: vibrissa::StartKind::Connected,
             ..SolverConfig::default()
         },
         ..ScanOptions::default()

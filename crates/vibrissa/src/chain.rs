@@ -1,0 +1,703 @@
+//! The contact set and the rod under it: one abstraction for every scene (a tip stuck on a
+//! surface, a side lying on it, a point object touching the side, a frictionless press), solved
+//! by shooting segment by segment.
+//!
+//! Contacts sit at arc lengths `0 < s_1 < … < s_L ≤ 1` (the tip is `s = 1`). Between them the
+//! internal force is constant, the resultant of the contact forces beyond; beyond the last one
+//! the rod is unloaded (its rest shape). Each contact `j` carries a force `F_j = −N_j n_j +
+//! T_j t_j` in a frame fixed when it formed (`n_j` points into the obstacle, `t_j = (−n_y, n_x)`;
+//! for the surface `t` points back along it, against the drag), and adds as many unknowns as
+//! conditions:
+//!
+//! ```text
+//!     unknowns  u = (m(0); N_j, T_j [, s_j if interior] for each contact)
+//!     residual  m(s_L) = 0;  for each contact:
+//!       surface, tip:       on the line;                       mode
+//!       surface, interior:  on the line;  φ(s_j) = β (+2πk);   mode
+//!       point object:       x(s_j) = X,   y(s_j) = Y;          mode
+//!     mode: stuck (the tip's place along the line, or the object's material point s_j, fixed),
+//!           rolling (along-line position − s_j fixed: no slip at a moving contact point),
+//!           frictionless (no tangential force), sliding (T = ratio·N)
+//! ```
+//!
+//! The one-parameter families (module docs of `family` in [`Family`]) move the foot, turn it,
+//! or shift the surface along its normal; `λ` enters the conditions and, for a turned foot, the
+//! start slope. The Jacobian comes from the segment sensitivities of the shooter by the chain
+//! rule; a breakpoint `s_j` moves a segment's end by `F(z(s_j))` (the continuous derivative, exact
+//! to the integration tolerance).
+
+use crate::profile::Profile;
+use crate::shooter::Shooter;
+use bvp::Solution;
+use nalgebra::{DMatrix, DVector};
+use std::f64::consts::FRAC_PI_2;
+
+/// What a contact touches.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Geom {
+    /// The surface line through `p0` (lab frame) inclined by `beta`, shifted along its normal by
+    /// the pose's offset `h`.
+    Line { p0: [f64; 2], beta: f64 },
+    /// A point object at `p` (lab frame).
+    Point { p: [f64; 2] },
+    /// No obstacle: the tip's slope is held at `phi1` (a single solve's tip condition).
+    Slope { phi1: f64 },
+}
+
+/// How a contact holds.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Mode {
+    /// Stuck: the tip's along-line coordinate stays at the value, or (point object) the material
+    /// point `s` of the rod stays at the object.
+    Stuck(f64),
+    /// Rolling on the surface without slip: along-line position − `s` stays at the value.
+    Rolling(f64),
+    /// Frictionless: no tangential force (for a point object: the force is normal to the rod).
+    Free,
+    /// Sliding with `T = ratio·N`.
+    Sliding(f64),
+}
+
+/// One contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Contact {
+    /// At the tip (`s = 1`), else at an unknown interior arc length.
+    pub tip: bool,
+    pub geom: Geom,
+    pub mode: Mode,
+    /// Unit normal of the force frame, into the obstacle.
+    pub n: [f64; 2],
+    /// The rod's slope at an interior surface contact (β + 2πk).
+    pub phi_ref: f64,
+}
+
+impl Contact {
+    /// Unit tangent of the force frame, `(−n_y, n_x)`.
+    pub fn t(&self) -> [f64; 2] {
+        [-self.n[1], self.n[0]]
+    }
+    /// Unknowns it adds: `N`, `T` and, inside the rod, `s`.
+    pub fn unknowns(&self) -> usize {
+        if self.tip {
+            2
+        } else {
+            3
+        }
+    }
+    /// The Cartesian force from `(N, T)`.
+    pub fn force(&self, nn: f64, tt: f64) -> [f64; 2] {
+        let t = self.t();
+        [-nn * self.n[0] + tt * t[0], -nn * self.n[1] + tt * t[1]]
+    }
+    /// A surface contact on the line of `surface` (frame: normal up into it, tangent back).
+    pub fn on_surface(tip: bool, p0: [f64; 2], beta: f64, mode: Mode, phi_ref: f64) -> Contact {
+        Contact {
+            tip,
+            geom: Geom::Line { p0, beta },
+            mode,
+            n: [-beta.sin(), beta.cos()],
+            phi_ref,
+        }
+    }
+}
+
+/// The contacts, ordered along the rod (the tip, if touching, last).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub(crate) struct ContactSet {
+    pub contacts: Vec<Contact>,
+}
+
+impl ContactSet {
+    /// Number of unknowns.
+    pub fn n(&self) -> usize {
+        1 + self.contacts.iter().map(Contact::unknowns).sum::<usize>()
+    }
+    /// Offset of contact `j`'s unknowns `(N, T[, s])` in `u`.
+    pub fn offset(&self, j: usize) -> usize {
+        1 + self.contacts[..j]
+            .iter()
+            .map(Contact::unknowns)
+            .sum::<usize>()
+    }
+    /// Arc length of contact `j` at `u`.
+    pub fn s_of(&self, j: usize, u: &[f64]) -> f64 {
+        if self.contacts[j].tip {
+            1.0
+        } else {
+            u[self.offset(j) + 2]
+        }
+    }
+    /// Whether the tip touches.
+    pub fn tip(&self) -> bool {
+        self.contacts.last().is_some_and(|c| c.tip)
+    }
+    /// The label of the state: `tip`, `side`, `tip+side`, `point`, … in order along the rod.
+    pub fn label(&self) -> String {
+        if self.contacts.is_empty() {
+            return "none".into();
+        }
+        self.contacts
+            .iter()
+            .map(|c| match (c.geom, c.tip) {
+                (Geom::Line { .. } | Geom::Slope { .. }, true) => "tip",
+                (Geom::Line { .. } | Geom::Slope { .. }, false) => "side",
+                (Geom::Point { .. }, _) => "point",
+            })
+            .collect::<Vec<_>>()
+            .join("+")
+    }
+}
+
+/// Where the foot is and how the surface sits at a family parameter `λ`: foot at `(xf, 0)`,
+/// turned clockwise by `theta` (`φ(0) = π/2 − θ + c·m(0)`), the surface line shifted along its
+/// normal by `h` (the scene's surface at `h = 0`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Pose {
+    pub xf: f64,
+    pub theta: f64,
+    pub h: f64,
+    /// Offset of a held tip slope (a single solve's slope condition `φ(1) = φ1 + phi`).
+    pub phi: f64,
+}
+
+/// A one-parameter family of scenes: what `λ` moves.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Family {
+    /// The foot dragged: `xf = λ` (the stiction scan; `λ = d`).
+    Drag,
+    /// The surface pressed down from the offset `h0`: `h = h0 − λ` (the start; loading at a
+    /// fixed force angle).
+    Press { h0: f64 },
+    /// The foot turned: `θ = λ` (whisking against an object).
+    Turn,
+    /// The held tip slope moved: `φ(1) = φ1 + λ` (a single solve's family).
+    Slope,
+    /// Nothing moves with λ (a fixed scene; a homotopy of the rod itself sets the shooter).
+    Fixed(Pose),
+}
+
+impl Family {
+    /// The pose at `λ` and its derivative in `λ`.
+    pub fn pose(&self, lam: f64) -> (Pose, Pose) {
+        let z = Pose::default();
+        match *self {
+            Family::Drag => (Pose { xf: lam, ..z }, Pose { xf: 1.0, ..z }),
+            Family::Press { h0 } => (Pose { h: h0 - lam, ..z }, Pose { h: -1.0, ..z }),
+            Family::Turn => (Pose { theta: lam, ..z }, Pose { theta: 1.0, ..z }),
+            Family::Slope => (Pose { phi: lam, ..z }, Pose { phi: 1.0, ..z }),
+            Family::Fixed(p) => (p, z),
+        }
+    }
+}
+
+/// Why an evaluation has no value.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum EvalError {
+    /// The contacts' arc lengths are out of order or outside `(0, 1]`.
+    Order,
+    /// Not finite.
+    NonFinite,
+}
+
+/// Residual, and on request its Jacobians, of one contact set at `(u, λ)`.
+#[derive(Clone, Debug)]
+pub(crate) struct Eval {
+    pub r: DVector<f64>,
+    /// `∂R/∂u` (n × n).
+    pub jac: Option<DMatrix<f64>>,
+    /// `∂R/∂λ`.
+    pub r_lam: Option<DVector<f64>>,
+    /// Largest scaled step error of the loaded segments (≤ 1: within tolerance).
+    pub err: f64,
+}
+
+/// A contact set and the rod under it, for one family.
+#[derive(Clone, Debug)]
+pub(crate) struct Chain<P: Profile> {
+    pub sh: Shooter<P>,
+    pub set: ContactSet,
+    pub family: Family,
+    /// The breakpoints of the last evaluation.
+    bps: Vec<f64>,
+}
+
+/// How far past the tip a contact's arc length may go inside a solve (see
+/// [`Chain::breakpoints`]).
+pub(crate) const OVERSHOOT: f64 = 0.05;
+
+/// The state at a breakpoint and its sensitivities (4 rows × n + 1 columns; the last is λ).
+#[derive(Clone, Debug)]
+struct Sens {
+    z: [f64; 4],
+    d: DMatrix<f64>,
+}
+
+impl<P: Profile> Chain<P> {
+    /// A chain of `set` on the shooter `sh` in `family`.
+    pub fn new(sh: Shooter<P>, set: ContactSet, family: Family) -> Self {
+        Chain {
+            sh,
+            set,
+            family,
+            bps: Vec::new(),
+        }
+    }
+
+    /// The sorted breakpoints `s_1 < … < s_L` at `u`, or `Order`. A contact may pass the tip by
+    /// a little ([`OVERSHOOT`]): the rod continued beyond it, so that events at the tip (a lying
+    /// part peeling back, an object slipping off) are bracketed by solves.
+    fn breakpoints(&self, u: &[f64]) -> Result<Vec<f64>, EvalError> {
+        let mut prev = 0.0;
+        let mut out = Vec::with_capacity(self.set.contacts.len());
+        for j in 0..self.set.contacts.len() {
+            let s = self.set.s_of(j, u);
+            if !(s > prev && s <= 1.0 + OVERSHOOT) {
+                return Err(EvalError::Order);
+            }
+            out.push(s);
+            prev = s;
+        }
+        Ok(out)
+    }
+
+    /// Residual and, with `var`, `∂R/∂u` and `∂R/∂λ` at `(u, λ)`.
+    pub fn eval(&mut self, u: &[f64], lam: f64, var: bool) -> Result<Eval, EvalError> {
+        let set = &self.set;
+        let n = set.n();
+        let nc = n + 1; // columns: u, then λ
+        let (pose, dpose) = self.family.pose(lam);
+        let bps = self.breakpoints(u)?;
+        self.bps.clone_from(&bps);
+        let c = self.sh.compliance;
+        let m0 = u[0];
+        // forces and their resultants beyond each breakpoint
+        let forces: Vec<[f64; 2]> = set
+            .contacts
+            .iter()
+            .enumerate()
+            .map(|(j, ct)| {
+                let o = set.offset(j);
+                ct.force(u[o], u[o + 1])
+            })
+            .collect();
+        let mut r = DVector::zeros(n);
+        let mut jac = var.then(|| DMatrix::zeros(n, n));
+        let mut rl = var.then(|| DVector::zeros(n));
+        // the start and its sensitivities
+        let z0 = [0.0, 0.0, FRAC_PI_2 - pose.theta + c * m0, m0];
+        let mut cur = Sens {
+            z: z0,
+            d: DMatrix::zeros(4, if var { nc } else { 0 }),
+        };
+        if var {
+            cur.d[(2, 0)] = c;
+            cur.d[(3, 0)] = 1.0;
+            cur.d[(2, n)] = -dpose.theta;
+        }
+        let mut err: f64 = 0.0;
+        let mut a = 0.0;
+        let mut row = 1;
+        for (k, &b) in bps.iter().enumerate() {
+            // the force on segment k: the contacts from k on
+            let mut g = [0.0; 2];
+            for f in &forces[k..] {
+                g[0] += f[0];
+                g[1] += f[1];
+            }
+            let first = k == 0 && dpose.theta == 0.0;
+            let dirs: &[[f64; 2]] = if first {
+                &[[c, 1.0]]
+            } else {
+                &[[1.0, 0.0], [0.0, 1.0]]
+            };
+            let shot = self.sh.shoot(k, a, b, cur.z, dirs, g, var);
+            err = err.max(shot.err);
+            if !shot.z.iter().all(|v| v.is_finite()) {
+                return Err(EvalError::NonFinite);
+            }
+            let next = if var {
+                let mut d = DMatrix::zeros(4, nc);
+                // start position carried over; start (φ, m) through the columns
+                for col in 0..nc {
+                    d[(0, col)] += cur.d[(0, col)];
+                    d[(1, col)] += cur.d[(1, col)];
+                    if first {
+                        let w = cur.d[(3, col)];
+                        for i in 0..4 {
+                            d[(i, col)] += shot.col[0][i] * w;
+                        }
+                    } else {
+                        let (wp, wm) = (cur.d[(2, col)], cur.d[(3, col)]);
+                        for i in 0..4 {
+                            d[(i, col)] += shot.col[0][i] * wp + shot.col[1][i] * wm;
+                        }
+                    }
+                }
+                // the force columns: contacts j ≥ k
+                let (qx, qy) = (shot.ncol - 2, shot.ncol - 1);
+                for j in k..set.contacts.len() {
+                    let ct = &set.contacts[j];
+                    let o = set.offset(j);
+                    let t = ct.t();
+                    for (col, dfx, dfy) in [(o, -ct.n[0], -ct.n[1]), (o + 1, t[0], t[1])] {
+                        for i in 0..4 {
+                            d[(i, col)] += shot.col[qx][i] * dfx + shot.col[qy][i] * dfy;
+                        }
+                    }
+                }
+                // moving ends, by central differences of the discrete end state (the mesh laid
+                // on the moved segment): exact to ~1e-10, so Newton converges as with exact
+                // derivatives whatever the integration tolerance
+                let moving_b = !set.contacts[k].tip;
+                let moving_a = k > 0 && !set.contacts[k - 1].tip;
+                if moving_b || moving_a {
+                    let dlt = 1e-5 * (b - a);
+                    let diff = |lo: [f64; 4], hi: [f64; 4]| {
+                        [0, 1, 2, 3].map(|i| (hi[i] - lo[i]) / (2.0 * dlt))
+                    };
+                    if moving_b {
+                        let col = set.offset(k) + 2;
+                        let dz = diff(
+                            self.sh.end_state(k, a, b - dlt, cur.z, g),
+                            self.sh.end_state(k, a, b + dlt, cur.z, g),
+                        );
+                        for i in 0..4 {
+                            d[(i, col)] += dz[i];
+                        }
+                    }
+                    if moving_a {
+                        // the start state stays where it is: only the segment's span moves
+                        let col = set.offset(k - 1) + 2;
+                        let dz = diff(
+                            self.sh.end_state(k, a - dlt, b, cur.z, g),
+                            self.sh.end_state(k, a + dlt, b, cur.z, g),
+                        );
+                        for i in 0..4 {
+                            d[(i, col)] += dz[i];
+                        }
+                    }
+                }
+                d
+            } else {
+                DMatrix::zeros(4, 0)
+            };
+            cur = Sens { z: shot.z, d: next };
+            // the contact's conditions
+            let ct = set.contacts[k];
+            let o = set.offset(k);
+            let z = cur.z;
+            let cs = conditions(&ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
+            for i in 0..cs.rows {
+                r[row] = cs.val[i];
+                if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
+                    let dz = &cur.d;
+                    for col in 0..nc {
+                        let mut g: f64 = (0..4).map(|q| cs.dz[i][q] * dz[(q, col)]).sum();
+                        if col >= o && col < o + ct.unknowns() {
+                            g += cs.down[i][col - o];
+                        }
+                        if col < n {
+                            j[(row, col)] = g;
+                        } else {
+                            l[row] = g + cs.dlam[i];
+                        }
+                    }
+                }
+                row += 1;
+            }
+            a = b;
+        }
+        // the free end of the loaded part: m(s_L) = 0 (with no contact: m(1) = 0 on the rest shape)
+        if bps.is_empty() {
+            let shot = self.sh.shoot(0, 0.0, 1.0, cur.z, &[[c, 1.0]], [0.0, 0.0], var);
+            err = err.max(shot.err);
+            if var {
+                let mut d = DMatrix::zeros(4, nc);
+                for i in 0..4 {
+                    d[(i, 0)] = shot.col[0][i];
+                }
+                cur = Sens { z: shot.z, d };
+            } else {
+                cur.z = shot.z;
+            }
+        }
+        r[0] = cur.z[3];
+        if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
+            for col in 0..n {
+                j[(0, col)] = cur.d[(3, col)];
+            }
+            l[0] = cur.d[(3, n)];
+        }
+        if !r.iter().all(|v| v.is_finite()) {
+            return Err(EvalError::NonFinite);
+        }
+        Ok(Eval {
+            r,
+            jac,
+            r_lam: rl,
+            err,
+        })
+    }
+
+    /// Refines the meshes of the loaded segments whose last shot was over tolerance.
+    pub fn refine(&mut self) -> bool {
+        let k = self.set.contacts.len().max(1);
+        self.sh.refine_all(k)
+    }
+}
+
+/// A curve `R(u, λ) = 0` the solvers follow: a contact chain in its family, or a homotopy of
+/// the rod itself.
+pub(crate) trait Curve {
+    /// Number of unknowns.
+    fn n(&self) -> usize;
+    /// Residual, and with `var` the Jacobians, at `(u, λ)`.
+    fn eval(&mut self, u: &[f64], lam: f64, var: bool) -> Result<Eval, EvalError>;
+    /// Refines the meshes after a shot over tolerance; `false` past the step limit.
+    fn refine(&mut self) -> bool;
+    /// Counts one Newton iteration (one factorization).
+    fn count_iteration(&mut self);
+}
+
+impl<P: Profile> Curve for Chain<P> {
+    fn n(&self) -> usize {
+        self.set.n()
+    }
+    fn eval(&mut self, u: &[f64], lam: f64, var: bool) -> Result<Eval, EvalError> {
+        Chain::eval(self, u, lam, var)
+    }
+    fn refine(&mut self) -> bool {
+        Chain::refine(self)
+    }
+    fn count_iteration(&mut self) {
+        self.sh.stats.newton_iters += 1;
+        self.sh.stats.factorizations += 1;
+    }
+}
+
+/// A curve in a parameter that changes the chain itself (not its family's pose): the rod's
+/// profile and compliance (the homotopy from the uniform straight rod), the angle of a held tip
+/// force. `set(chain, λ)` makes member `λ`; the chain is evaluated at its own family parameter
+/// `at`; `∂R/∂λ` by a forward difference.
+pub(crate) struct Morph<P: Profile, M: FnMut(&mut Chain<P>, f64)> {
+    pub chain: Chain<P>,
+    pub set: M,
+    pub at: f64,
+}
+
+impl<P: Profile, M: FnMut(&mut Chain<P>, f64)> Curve for Morph<P, M> {
+    fn n(&self) -> usize {
+        self.chain.set.n()
+    }
+    fn eval(&mut self, u: &[f64], t: f64, var: bool) -> Result<Eval, EvalError> {
+        if var {
+            let h = 1e-7;
+            (self.set)(&mut self.chain, t + h);
+            let r1 = self.chain.eval(u, self.at, false)?.r;
+            (self.set)(&mut self.chain, t);
+            let mut e = self.chain.eval(u, self.at, true)?;
+            e.r_lam = Some((r1 - &e.r) / h);
+            Ok(e)
+        } else {
+            (self.set)(&mut self.chain, t);
+            self.chain.eval(u, self.at, false)
+        }
+    }
+    fn refine(&mut self) -> bool {
+        self.chain.refine()
+    }
+    fn count_iteration(&mut self) {
+        self.chain.count_iteration()
+    }
+}
+
+impl<P: Profile> Chain<P> {
+    /// The whole rod of the last evaluation as a [`Solution`] (the loaded segments' paths, then
+    /// the unloaded rest beyond the last contact, integrated here to the tolerance), with
+    /// `params = [f, α]` of the total contact force. A breakpoint appears twice in the mesh, with
+    /// the derivatives on either side (the moment's slope jumps there).
+    pub fn path(&mut self, u: &[f64]) -> Solution {
+        let nseg = self.bps.len().max(1);
+        let s_end = self.bps.last().copied().unwrap_or(1.0);
+        if s_end < 1.0 {
+            let (_, pz, _) = self.sh.path(nseg - 1);
+            let last = pz.len() - 4;
+            let z0 = [pz[last], pz[last + 1], pz[last + 2], pz[last + 3]];
+            for _ in 0..32 {
+                let shot = self.sh.shoot(nseg, s_end, 1.0, z0, &[], [0.0, 0.0], false);
+                if shot.err <= 1.0 || !self.sh.refine(nseg) {
+                    break;
+                }
+            }
+        }
+        let segs = nseg + usize::from(s_end < 1.0);
+        let (mut mesh, mut z, mut dz) = (Vec::new(), Vec::new(), Vec::new());
+        for k in 0..segs {
+            let (ps, pz, pdz) = self.sh.path(k);
+            mesh.extend_from_slice(ps);
+            z.extend_from_slice(pz);
+            dz.extend_from_slice(pdz);
+        }
+        let f = self.total_force(u);
+        Solution {
+            n: 4,
+            stats: bvp::Stats {
+                nodes: mesh.len(),
+                ..bvp::Stats::default()
+            },
+            mesh,
+            z,
+            dz,
+            params: polar(f, self.set.contacts.first().map(|c| c.n)).to_vec(),
+            status: bvp::Status::Converged,
+            dense: bvp::Dense::Hermite,
+        }
+    }
+
+    /// The total contact force at `u` (the force the rod's foot carries).
+    pub fn total_force(&self, u: &[f64]) -> [f64; 2] {
+        let mut g = [0.0; 2];
+        for (j, ct) in self.set.contacts.iter().enumerate() {
+            let o = self.set.offset(j);
+            let f = ct.force(u[o], u[o + 1]);
+            g[0] += f[0];
+            g[1] += f[1];
+        }
+        g
+    }
+
+    /// The state on the rod at arc length `s` (last evaluation, after [`Chain::path`]): one
+    /// integration step from the node before `s` in its segment.
+    pub fn state_at(&self, s: f64) -> [f64; 4] {
+        let k = self.bps.partition_point(|&b| b < s);
+        self.sh.state_at(k, s)
+    }
+}
+
+/// `[f, α]` with `F = (f sin α, −f cos α)` for the force `F`: α within a quarter turn of the
+/// angle of the frame normal `n` (`α_n = atan2(−n_x, n_y)`, the force angle of a pure normal
+/// force), `f` negative where the force pulls against that normal.
+pub(crate) fn polar(f: [f64; 2], n: Option<[f64; 2]>) -> [f64; 2] {
+    use std::f64::consts::{FRAC_PI_2, PI, TAU};
+    let a_ref = n.map_or(0.0, |n| (-n[0]).atan2(n[1]));
+    let mag = (f[0] * f[0] + f[1] * f[1]).sqrt();
+    if mag == 0.0 {
+        return [0.0, a_ref];
+    }
+    let mut d = f[0].atan2(-f[1]) - a_ref;
+    d -= TAU * (d / TAU).round();
+    if d > FRAC_PI_2 {
+        [-mag, a_ref + d - PI]
+    } else if d <= -FRAC_PI_2 {
+        [-mag, a_ref + d + PI]
+    } else {
+        [mag, a_ref + d]
+    }
+}
+
+/// The conditions of one contact at the rod's state `z` there (foot frame), with its own unknowns
+/// `own = (N, T[, s])`: values and derivatives with respect to `z`, `own` and `λ` (explicit).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Conds {
+    pub rows: usize,
+    pub val: [f64; 3],
+    pub dz: [[f64; 4]; 3],
+    pub down: [[f64; 3]; 3],
+    pub dlam: [f64; 3],
+}
+
+impl Conds {
+    fn push(&mut self, val: f64, dz: [f64; 4], down: [f64; 3], dlam: f64) {
+        let i = self.rows;
+        self.val[i] = val;
+        self.dz[i] = dz;
+        self.down[i] = down;
+        self.dlam[i] = dlam;
+        self.rows += 1;
+    }
+}
+
+/// See [`Conds`]: on the surface (its place along the line per the mode, tangent inside the rod),
+/// at a point object (its position, and the mode), or a held tip slope.
+pub(crate) fn conditions(
+    ct: &Contact,
+    z: &[f64; 4],
+    own: &[f64],
+    pose: &Pose,
+    dpose: &Pose,
+) -> Conds {
+    let mut cs = Conds::default();
+    let (rx, ry) = (z[0] + pose.xf, z[1]);
+    let (nn, tt) = (own[0], own[1]);
+    let friction =
+        |cs: &mut Conds, ratio: f64| cs.push(tt - ratio * nn, [0.0; 4], [-ratio, 1.0, 0.0], 0.0);
+    match ct.geom {
+        Geom::Line { p0, beta } => {
+            let (sb, cb) = beta.sin_cos();
+            let nv = [-sb, cb];
+            let e = [cb, sb];
+            cs.push(
+                nv[0] * (rx - p0[0]) + nv[1] * (ry - p0[1]) - pose.h,
+                [nv[0], nv[1], 0.0, 0.0],
+                [0.0; 3],
+                nv[0] * dpose.xf - dpose.h,
+            );
+            if !ct.tip {
+                cs.push(z[2] - ct.phi_ref, [0.0, 0.0, 1.0, 0.0], [0.0; 3], 0.0);
+            }
+            let along = e[0] * (rx - p0[0]) + e[1] * (ry - p0[1]);
+            let da = [e[0], e[1], 0.0, 0.0];
+            match ct.mode {
+                Mode::Stuck(anchor) => cs.push(along - anchor, da, [0.0; 3], e[0] * dpose.xf),
+                Mode::Rolling(k) => {
+                    // the rod runs along the line forwards or backwards (its slope β or β + π)
+                    let dir = (ct.phi_ref - beta).cos().round();
+                    cs.push(along - dir * own[2] - k, da, [0.0, 0.0, -dir], e[0] * dpose.xf)
+                }
+                Mode::Free => friction(&mut cs, 0.0),
+                Mode::Sliding(ratio) => friction(&mut cs, ratio),
+            }
+        }
+        Geom::Slope { phi1 } => {
+            cs.push(
+                z[2] - phi1 - pose.phi,
+                [0.0, 0.0, 1.0, 0.0],
+                [0.0; 3],
+                -dpose.phi,
+            );
+            match ct.mode {
+                Mode::Sliding(ratio) => friction(&mut cs, ratio),
+                _ => friction(&mut cs, 0.0),
+            }
+        }
+        Geom::Point { p } => {
+            cs.push(rx - p[0], [1.0, 0.0, 0.0, 0.0], [0.0; 3], dpose.xf);
+            cs.push(ry - p[1], [0.0, 1.0, 0.0, 0.0], [0.0; 3], 0.0);
+            match ct.mode {
+                Mode::Stuck(sa) if !ct.tip => {
+                    cs.push(own[2] - sa, [0.0; 4], [0.0, 0.0, 1.0], 0.0)
+                }
+                Mode::Sliding(ratio) => friction(&mut cs, ratio),
+                _ => {
+                    // frictionless: F·τ(φ) = 0, F = −N n + T t
+                    let (sp, cp) = z[2].sin_cos();
+                    let t = ct.t();
+                    let f = ct.force(nn, tt);
+                    cs.push(
+                        f[0] * cp + f[1] * sp,
+                        [0.0, 0.0, -f[0] * sp + f[1] * cp, 0.0],
+                        [-(ct.n[0] * cp + ct.n[1] * sp), t[0] * cp + t[1] * sp, 0.0],
+                        0.0,
+                    )
+                }
+            }
+        }
+    }
+    cs
+}
+
+/// The rod's slope where it lies tangent to a line of inclination `beta` with slope near `phi`:
+/// `β + kπ` (forwards or backwards along the line), the multiple nearest `phi`.
+pub(crate) fn slope_on(beta: f64, phi: f64) -> f64 {
+    beta + std::f64::consts::PI * ((phi - beta) / std::f64::consts::PI).round()
+}

@@ -1,0 +1,547 @@
+//! Where a scan starts: the rod pressed onto the surface from its rest shape, found numerically
+//! (no closed form anywhere on the path).
+//!
+//! The press is a march in the depth `λ` by which the surface line (inclination β) has moved
+//! along its normal since it first touched the unloaded rod, the contacts frictionless (the force
+//! normal to the surface, the contact points free to slide), until the last contact point is at
+//! the surface height η. First touch is the rest shape's highest point: the tip, or a side where
+//! the rest shape is tangent to the line. New contacts form on the way (a tapered tip lies down)
+//! exactly as in the scan.
+//!
+//! A rod whose rest shape gives no side preference (straight, on a horizontal surface) meets the
+//! surface with an axial load and stays straight until it buckles: the press starts on the
+//! buckled branch, bent to the right (the paper's convention, `m(0) < 0`), from the critical load
+//! of the rod (the first root of `∂m(1)/∂m(0)` on the straight rod, by Brent's method) and a
+//! small deflection.
+
+use crate::chain::{Chain, Contact, ContactSet, Family, Geom, Mode};
+use crate::march::{march, MarchOut, Pt, Spec};
+use crate::profile::{General, Profile};
+use crate::report::{RangeEnd, StopReason};
+use crate::rodsolve::solve_damped;
+use crate::search;
+use crate::shooter::Shooter;
+use crate::stepper::{corrector_tol, OwnStepper};
+use crate::watch::{Env, Goal};
+use crate::config::StartKind;
+use crate::VibrissaError;
+use bvp::Stats;
+use std::f64::consts::FRAC_PI_2;
+
+/// How a press is set up.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PressSpec {
+    /// Inclination of the line the contact points stay on.
+    pub geom_beta: f64,
+    /// Inclination of the line the contact force is normal to (the force angle; equal to
+    /// `geom_beta` for a real surface).
+    pub force_beta: f64,
+    /// New contacts form along the rod (else the tip alone touches and nothing else is checked).
+    pub sides: bool,
+    /// Where the press ends.
+    pub goal: Goal,
+}
+
+/// A pressed state: its contact set (frictionless contacts on the line through `p0`), the point,
+/// the work done.
+pub(crate) struct Pressed<P: Profile> {
+    /// The shooter, its meshes graded for the pressed rod.
+    pub sh: Shooter<P>,
+    pub set: ContactSet,
+    pub pt: Pt,
+    pub p0: [f64; 2],
+    /// The line's final offset along its normal (the press geometry: `n·r = h`).
+    pub h: f64,
+    /// The goal as approached (its side).
+    pub goal: Goal,
+    pub stats: Stats,
+}
+
+/// Why a press ends without reaching its goal.
+fn press_failed(what: &str, stop: &StopReason) -> VibrissaError {
+    VibrissaError::NoStart {
+        reason: format!("{what}: {stop}"),
+    }
+}
+
+/// The rest shape (unloaded) and its highest point along the normal of a line inclined by
+/// `beta`: `(height, s)`, refined on the rod.
+fn rest_top<P: Profile>(sh: &mut Shooter<P>, beta: f64, tip_only: bool) -> (f64, f64, [f64; 4]) {
+    let z0 = [0.0, 0.0, FRAC_PI_2, 0.0];
+    for _ in 0..32 {
+        let shot = sh.shoot(0, 0.0, 1.0, z0, &[], [0.0, 0.0], false);
+        if shot.err <= 1.0 || !sh.refine(0) {
+            break;
+        }
+    }
+    let (sb, cb) = beta.sin_cos();
+    let (ps, pz, _) = sh.path(0);
+    let last = pz.len() - 4;
+    let zt = [pz[last], pz[last + 1], pz[last + 2], pz[last + 3]];
+    let h = |z: &[f64]| -sb * z[0] + cb * z[1];
+    let mut best = (h(&zt), 1.0, zt);
+    if tip_only {
+        return best;
+    }
+    // interior maxima: the tangent points φ(s) = β (+2πk) on the rod, bracketed by the nodes
+    let n = ps.len();
+    for i in 0..n - 1 {
+        let g = |z: &[f64]| (z[2] - beta).sin();
+        let (za, zb) = (&pz[4 * i..4 * i + 4], &pz[4 * i + 4..4 * i + 8]);
+        if g(za) > 0.0 && g(zb) <= 0.0 && (za[2] - beta).cos() > 0.0 {
+            let mut f = |s: f64| -> Result<f64, String> { Ok(g(&sh.state_at(0, s))) };
+            if let Ok(s) = search::root(&mut f, ps[i], ps[i + 1], 1e-15) {
+                let z = sh.state_at(0, s);
+                if s < 1.0 && h(&z) > best.0 {
+                    best = (h(&z), s, z);
+                }
+            }
+        }
+    }
+    best
+}
+
+/// `∂m(1)/∂m(0)` of the straight rod under the axial load `f` (its zero is the buckling load).
+fn straight_stiffness<P: Profile>(sh: &mut Shooter<P>, f: f64) -> f64 {
+    let c = sh.compliance;
+    let z0 = [0.0, 0.0, FRAC_PI_2, 0.0];
+    for _ in 0..32 {
+        let shot = sh.shoot(0, 0.0, 1.0, z0, &[[c, 1.0]], [0.0, -f], true);
+        if shot.err <= 1.0 || !sh.refine(0) {
+            return shot.col[0][3];
+        }
+    }
+    f64::NAN
+}
+
+/// The press of `spec` on the rod of `sh` (tolerance `tol`), from first touch to the goal.
+pub(crate) fn press<P: Profile>(
+    mut sh: Shooter<P>,
+    general: &General,
+    profile: &P,
+    spec: &PressSpec,
+) -> Result<Pressed<P>, VibrissaError> {
+    let tol = sh.tol;
+    let gb = spec.geom_beta;
+    let (top, s_top, z_top) = rest_top(&mut sh, gb, !spec.sides);
+    let symmetric = gb == 0.0 && spec.force_beta == 0.0 && s_top == 1.0 && profile.straight();
+    if let Goal::Height(eta, _) = spec.goal {
+        if z_top[1] <= eta {
+            return Err(VibrissaError::NoStart {
+                reason: format!(
+                    "the rod does not reach the surface: its rest shape's highest point (s = {s_top:.6}) \
+                     is at height {:.6}, below eta = {eta}; it touches only when pulled up",
+                    z_top[1]
+                ),
+            });
+        }
+    }
+    let p0 = [0.0, 0.0];
+    let n_force = [-spec.force_beta.sin(), spec.force_beta.cos()];
+    let mut contact = Contact::on_surface(s_top >= 1.0, p0, gb, Mode::Free, 0.0);
+    contact.n = n_force;
+    if !contact.tip {
+        contact.phi_ref = crate::chain::slope_on(gb, z_top[2]);
+    }
+    let set = ContactSet {
+        contacts: vec![contact],
+    };
+    let family = Family::Press { h0: top };
+    let mut chain = Chain::new(sh, set, family);
+    let ntol = corrector_tol(tol);
+    // the first point: at first touch (N = 0), or on the buckled branch of a symmetric rod
+    // how far the goal lies: the first point must be short of it
+    let room = match spec.goal {
+        Goal::Height(eta, _) => (z_top[1] - eta).max(1e-12),
+        Goal::TipSlope(..) => 1.0,
+    };
+    // the side a symmetric rod buckles to: the right (the paper's), unless the goal is a tip
+    // slope only the left-bent rod reaches
+    let left = matches!(spec.goal, Goal::TipSlope(p, _) if p > FRAC_PI_2);
+    let (lam0, u0) = if symmetric {
+        buckled_start(&mut chain, top, ntol, (0.1 * room).min(1e-3), left)?
+    } else if contact.tip {
+        // a small load: at zero load a straight tip's height is stationary under a transverse
+        // force (it falls as the load squared), which no Newton iteration in the height resolves
+        loaded_start(&mut chain, top, ntol, 1e-3)?
+    } else {
+        (0.0, vec![0.0, 0.0, 0.0, s_top])
+    };
+    let cv = solve_damped(&mut chain, lam0, &u0, ntol, 40).map_err(|e| VibrissaError::NoStart {
+        reason: format!("the first point of the press did not converge: {e}"),
+    })?;
+    // a slope goal approached from the side the first point is on
+    let goal = match spec.goal {
+        Goal::TipSlope(p, _) => {
+            let phi1 = chain.sh.path(0).1[chain.sh.path(0).1.len() - 2];
+            Goal::TipSlope(p, if phi1 >= p { 1.0 } else { -1.0 })
+        }
+        g => g,
+    };
+    let env = Env {
+        line: spec.sides.then_some((p0, gb)),
+        mu0: None,
+        compound: spec.sides,
+        target: Some(goal),
+    };
+    let mut st = OwnStepper { chain, env };
+    let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
+        reason: format!("the first point of the press: {e}"),
+    })?;
+    let mspec = Spec {
+        env: &st.env.clone(),
+        grid: &[],
+        lam_end: top + 4.0,
+        keep_shapes: None,
+        general,
+        friction: false,
+        check_start: false,
+    };
+    let out: MarchOut = march(&mut st, &mspec, profile, p, Stats::default());
+    match (&out.stop, out.range_end, out.last) {
+        (StopReason::DMax, RangeEnd::DMax, Some((set, pt))) if goal_met(&goal, &pt) => {
+            Ok(Pressed {
+                sh: st.chain.sh,
+                set,
+                h: top - pt.lam,
+                goal,
+                pt,
+                p0,
+                stats: out.stats,
+            })
+        }
+        (StopReason::DMax, _, _) => Err(VibrissaError::NoStart {
+            reason: format!(
+                "pressing the rod {} deep did not bring its contact to the goal {:?}",
+                top + 4.0,
+                spec.goal
+            ),
+        }),
+        (stop, _, _) => Err(press_failed("pressing the rod onto the surface", stop)),
+    }
+}
+
+fn goal_met(goal: &Goal, pt: &Pt) -> bool {
+    match *goal {
+        Goal::Height(h, _) => (pt.w.last_y - h).abs() <= 1e-6,
+        Goal::TipSlope(p, _) => (pt.w.phi1 - p).abs() <= 1e-6,
+    }
+}
+
+/// The press's point where the tip force (normal to its frame, no friction) is `n0`: `m(0)` from
+/// `m(1) = 0` by Newton, the depth from the tip's height: `(λ, u)`.
+fn loaded_start<P: Profile>(
+    chain: &mut Chain<P>,
+    top: f64,
+    tol: f64,
+    n0: f64,
+) -> Result<(f64, Vec<f64>), VibrissaError> {
+    let ct = chain.set.contacts[0];
+    let g = ct.force(n0, 0.0);
+    let c = chain.sh.compliance;
+    let mut m0 = 0.0;
+    for _ in 0..60 {
+        let z0 = [0.0, 0.0, FRAC_PI_2 + c * m0, m0];
+        let shot = chain.sh.shoot(0, 0.0, 1.0, z0, &[[c, 1.0]], g, true);
+        if shot.err > 1.0 {
+            if !chain.sh.refine(0) {
+                break;
+            }
+            continue;
+        }
+        let step = shot.z[3] / shot.col[0][3];
+        if !step.is_finite() {
+            break;
+        }
+        m0 -= step;
+        if step.abs() <= tol {
+            let Geom::Line { beta, .. } = ct.geom else {
+                break;
+            };
+            let z1 = chain
+                .sh
+                .shoot(0, 0.0, 1.0, [0.0, 0.0, FRAC_PI_2 + c * m0, m0], &[], g, false)
+                .z;
+            let h = -beta.sin() * z1[0] + beta.cos() * z1[1];
+            return Ok((top - h, vec![m0, n0, 0.0]));
+        }
+    }
+    Err(VibrissaError::NoStart {
+        reason: format!("the rod under a tip load of {n0} did not converge"),
+    })
+}
+
+/// A point on the buckled branch of the straight rod under an axial tip load, bent to the right,
+/// its tip lowered by about `drop`: `(λ, u)` of the press.
+fn buckled_start<P: Profile>(
+    chain: &mut Chain<P>,
+    top: f64,
+    tol: f64,
+    drop: f64,
+    left: bool,
+) -> Result<(f64, Vec<f64>), VibrissaError> {
+    let side = if left { -1.0 } else { 1.0 };
+    let sh = &mut chain.sh;
+    // the first sign change of ∂m(1)/∂m(0) in f: bracket by doubling, then Brent
+    let k0 = straight_stiffness(sh, 0.0);
+    let (mut lo, mut hi) = (0.0, 0.5);
+    let mut found = false;
+    for _ in 0..60 {
+        let k = straight_stiffness(sh, hi);
+        if k.signum() != k0.signum() {
+            found = true;
+            break;
+        }
+        lo = hi;
+        hi *= 1.5;
+        if hi > 1e9 {
+            break;
+        }
+    }
+    if !found {
+        return Err(VibrissaError::NoStart {
+            reason: "the straight rod does not buckle under an axial tip load".into(),
+        });
+    }
+    let mut g = |f: f64| -> Result<f64, String> { Ok(straight_stiffness(sh, f)) };
+    let f_cr = search::root(&mut g, lo, hi, 1e-14 * hi).map_err(|e| VibrissaError::NoStart {
+        reason: format!("the buckling load: {e}"),
+    })?;
+    // a small deflection on the right-bent branch: m(0) = −ε, f from m(1) = 0 (Newton in f)
+    let solve_f = |chain: &mut Chain<P>, eps: f64| -> Option<(f64, f64)> {
+        let mut f = f_cr;
+        let c = chain.sh.compliance;
+        let z0 = [0.0, 0.0, FRAC_PI_2 - c * eps, -eps];
+        for _ in 0..60 {
+            let shot = chain
+                .sh
+                .shoot(0, 0.0, 1.0, z0, &[[c, 1.0]], [0.0, -f], true);
+            if shot.err > 1.0 {
+                if !chain.sh.refine(0) {
+                    return None;
+                }
+                continue;
+            }
+            let r = shot.z[3];
+            // ∂m(1)/∂f = −∂m(1)/∂Gy
+            let dr = -shot.col[2][3];
+            let step = r / dr;
+            if !step.is_finite() {
+                return None;
+            }
+            if r.abs() <= tol || step.abs() <= 1e-15 * f.abs() {
+                return Some((f, shot.z[1]));
+            }
+            f -= step;
+        }
+        None
+    };
+    let eps0 = 1e-2;
+    let (_, y0) = solve_f(chain, eps0).ok_or_else(|| VibrissaError::NoStart {
+        reason: "no buckled state next to the critical load".into(),
+    })?;
+    // the amplitude for the tip drop asked for (the drop grows as ε²)
+    let drop0 = top - y0;
+    let eps = if drop0 > 0.0 {
+        (eps0 * (drop / drop0).sqrt()).min(0.3)
+    } else {
+        eps0
+    };
+    let (f, y) = solve_f(chain, side * eps).ok_or_else(|| VibrissaError::NoStart {
+        reason: "no buckled state next to the critical load".into(),
+    })?;
+    Ok((top - y, vec![-side * eps, f, 0.0]))
+}
+
+/// The pressed state as the start of a drag: the surface line through the pressed contacts
+/// (foot at the origin), the tip stuck where it is, the sides rolling without slip.
+pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64; 2]) {
+    let (sb, cb) = beta.sin_cos();
+    let n = [-sb, cb];
+    // a point of the pressed line: the last contact point
+    let z_last = if p.set.tip() {
+        let z = p.pt.sol.right();
+        [z[0], z[1]]
+    } else {
+        let s = p.pt.w.contacts.last().map_or(1.0, |c| c.s);
+        let mut z = [0.0; 4];
+        p.pt.sol.eval(s, &mut z);
+        [z[0], z[1]]
+    };
+    let _ = n;
+    let p0 = z_last;
+    let along = |z: &[f64]| cb * (z[0] - p0[0]) + sb * (z[1] - p0[1]);
+    let contacts = p
+        .set
+        .contacts
+        .iter()
+        .enumerate()
+        .map(|(j, c)| {
+            let s = p.set.s_of(j, &p.pt.u);
+            let mut z = [0.0; 4];
+            p.pt.sol.eval(s, &mut z);
+            let mode = if c.tip {
+                Mode::Stuck(along(&z))
+            } else {
+                Mode::Rolling(along(&z) - (c.phi_ref - beta).cos().round() * s)
+            };
+            Contact {
+                geom: Geom::Line { p0, beta },
+                mode,
+                ..*c
+            }
+        })
+        .collect();
+    (ContactSet { contacts }, p0)
+}
+
+/// The start of a scan: the pressed (or connected) state at `d = 0`.
+pub(crate) fn scan_start<P: Profile>(
+    rod: &crate::Rod,
+    profile: &P,
+    surface: &crate::Surface,
+    kind: StartKind,
+    tol: f64,
+) -> Result<Pressed<P>, VibrissaError> {
+    let (eta, beta) = (surface.eta(), surface.angle());
+    let c = rod.support_compliance();
+    let general = rod.profile(1.0);
+    let ntol = corrector_tol(tol);
+    match kind {
+        StartKind::Pressed => press(
+            Shooter::new(profile.clone(), c, tol, 8),
+            &general,
+            profile,
+            // pressed as it is, sides touching where they do (the tip-only model then has no
+            // valid start: the scan reports the penetration at d = 0)
+            &PressSpec {
+                geom_beta: beta,
+                force_beta: beta,
+                sides: true,
+                goal: Goal::Height(eta, 1.0),
+            },
+        ),
+        StartKind::Connected => {
+            // the uniform clamped rod pressed down at its tip to height eta, the force turned to
+            // the surface's normal, then the rod's deviations grown to the scene's rod
+            let spec = PressSpec {
+                geom_beta: 0.0,
+                force_beta: 0.0,
+                sides: false,
+                goal: Goal::Height(eta, 1.0),
+            };
+            let uniform = profile.at_amplitude(0.0);
+            let pu = press(
+                Shooter::new(uniform, 0.0, tol, 8),
+                &rod.profile(0.0),
+                &profile.at_amplitude(0.0),
+                &spec,
+            )?;
+            let h = pu.h;
+            let chain = Chain::new(
+                pu.sh,
+                pu.set.clone(),
+                Family::Fixed(crate::chain::Pose {
+                    h,
+                    ..Default::default()
+                }),
+            );
+            let (chain, u) = turn_force(chain, &pu.pt.u, 0.0, beta, ntol)?;
+            let p1 = profile.clone();
+            let (chain, end) = morph(
+                chain,
+                &u,
+                move |ch: &mut Chain<P>, t: f64| ch.sh.set_profile(p1.at_amplitude(t), t * c),
+                ntol,
+                "homotopy from the uniform clamped rod",
+            )?;
+            let mut st = OwnStepper {
+                chain,
+                env: Env {
+                    line: None,
+                    mu0: None,
+                    compound: false,
+                    target: None,
+                },
+            };
+            // the shooter's paths hold the point at t = 1 (the last correction)
+            let pt = st
+                .point(0.0, end)
+                .map_err(|e| VibrissaError::NoStart {
+                    reason: format!("the connected start: {e}"),
+                })?;
+            if pt.w.normal < 0.0 {
+                return Err(VibrissaError::NoStart {
+                    reason: format!(
+                        "no contact: the state connected to the pressed uniform rod needs the tip \
+                         pulled up to height eta = {eta} (normal force {:.6e})",
+                        pt.w.normal
+                    ),
+                });
+            }
+            let mut stats = pu.stats;
+            stats.accumulate(&st.chain.sh.stats);
+            Ok(Pressed {
+                sh: st.chain.sh,
+                set: st.chain.set,
+                pt,
+                p0: pu.p0,
+                h,
+                goal: pu.goal,
+                stats,
+            })
+        }
+    }
+}
+
+/// Follows `chain` through the change `set(chain, λ)` for `λ` from 0 to 1, from its converged
+/// unknowns `u` at `λ = 0`: the chain at `λ = 1` and its converged point there (the shooter's
+/// paths hold it).
+pub(crate) fn morph<P: Profile>(
+    chain: Chain<P>,
+    u: &[f64],
+    set: impl FnMut(&mut Chain<P>, f64),
+    tol: f64,
+    what: &str,
+) -> Result<(Chain<P>, crate::rodsolve::Converged), VibrissaError> {
+    let mut m = crate::chain::Morph {
+        chain,
+        set,
+        at: 0.0,
+    };
+    let fail = |e: String| VibrissaError::NoConvergence {
+        what: what.to_string(),
+        reason: e,
+    };
+    let first = crate::arclength::at_lambda(&mut m, u, 0.0, tol, 30).map_err(|e| fail(e.to_string()))?;
+    let end = crate::arclength::follow_to(&mut m, first, 1.0, tol).map_err(fail)?;
+    // the member at 1 once more, so that the shooter's paths hold it
+    let cv = crate::rodsolve::solve_damped(&mut m, 1.0, &end.u(), tol, 30)
+        .map_err(|e| fail(e.to_string()))?;
+    Ok((m.chain, cv))
+}
+
+/// Turns the held tip force of a one-contact chain from the angle `from` to `to` (its frame
+/// rotated; the tip condition held): the chain and its unknowns at `to`.
+pub(crate) fn turn_force<P: Profile>(
+    chain: Chain<P>,
+    u: &[f64],
+    from: f64,
+    to: f64,
+    tol: f64,
+) -> Result<(Chain<P>, Vec<f64>), VibrissaError> {
+    if from == to {
+        return Ok((chain, u.to_vec()));
+    }
+    let (chain, cv) = morph(
+        chain,
+        u,
+        move |ch: &mut Chain<P>, t: f64| {
+            let a = from + t * (to - from);
+            ch.set.contacts[0].n = [-a.sin(), a.cos()];
+        },
+        tol,
+        &format!("turning the tip force from {from} to {to}"),
+    )?;
+    Ok((chain, cv.u))
+}

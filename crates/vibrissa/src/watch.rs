@@ -1,0 +1,394 @@
+//! What the marches watch at each solved point: the contact forces, the friction ratio, how the
+//! free parts of the rod stand off the surface (found on the rod itself, not on an interpolant),
+//! and the event functions that are negative while a contact state holds and reach zero where it
+//! ends (a contact lifts, slips, a new one forms, a lying part peels back, the object slips off).
+
+use crate::chain::{Contact, ContactSet, Geom, Mode};
+use bvp::Solution;
+
+/// The scene's obstacles and thresholds, fixed along a march.
+#[derive(Clone, Debug)]
+pub(crate) struct Env {
+    /// The surface line (lab frame: a point on it and its inclination β), if the scene has one.
+    pub line: Option<([f64; 2], f64)>,
+    /// Slip threshold of the stuck contacts.
+    pub mu0: Option<f64>,
+    /// Contact anywhere (new contacts form) or the paper's tip-only model (a touching side is a
+    /// penetration that ends the march).
+    pub compound: bool,
+    /// March until the target is reached (the press of the start, a load to a tip condition).
+    pub target: Option<Goal>,
+}
+
+/// Where a press ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Goal {
+    /// The last contact point at this height, approached from above (`+1`) or below (`−1`).
+    Height(f64, f64),
+    /// The tip slope at this value, approached from above (`+1`) or below (`−1`).
+    TipSlope(f64, f64),
+}
+
+
+/// One contact's forces in its own frame (surface: normal and tangent of the line; point
+/// object: the rod's normal and tangent there) and its place.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ContactForce {
+    /// Normal force (≥ 0 while it pushes).
+    pub normal: f64,
+    /// Tangential (friction) force.
+    pub tangential: f64,
+    /// Arc length.
+    pub s: f64,
+}
+
+/// Per-point quantities of a march.
+#[derive(Clone, Debug)]
+pub(crate) struct Watch {
+    pub lam: f64,
+    /// Total friction ratio `ΣT/ΣN` (signed).
+    pub mu: f64,
+    /// Total normal force.
+    pub normal: f64,
+    /// Total contact force (the foot carries its opposite).
+    pub force: [f64; 2],
+    /// Each contact.
+    pub contacts: Vec<ContactForce>,
+    /// Largest height of a free part of the rod above the surface (`−inf` without one) and where.
+    pub clear: f64,
+    pub clear_s: f64,
+    /// The state on the rod at `clear_s`.
+    pub clear_z: [f64; 4],
+    /// `sin(φ(1) − β)` where the tip touches the surface (positive: it arrives from below).
+    pub tip_approach: f64,
+    /// Slope of `|μ|` along λ (from the exact tangent), if known.
+    pub dmu_abs: Option<f64>,
+    /// Largest `y` on the rod.
+    pub y_max: f64,
+    /// Height `y` of the last contact point (NaN without contact).
+    pub last_y: f64,
+    /// Tip slope.
+    pub phi1: f64,
+}
+
+/// Distance from a contact inside which a maximum of the height is that contact's own.
+const NEAR: f64 = 1e-4;
+
+/// The watch of the point `(λ, u)` with tangent `du` and path `sol`; `exact(s)` gives the state on
+/// the rod at `s` (to refine the highest points found on the interpolant).
+pub(crate) fn watch(
+    env: &Env,
+    set: &ContactSet,
+    lam: f64,
+    u: &[f64],
+    du: Option<&[f64]>,
+    sol: &Solution,
+    xf: f64,
+    exact: &mut dyn FnMut(f64) -> [f64; 4],
+    kappa: &dyn Fn(f64, f64) -> f64,
+    straight: bool,
+) -> Watch {
+    let mut contacts = Vec::with_capacity(set.contacts.len());
+    let (mut nsum, mut tsum) = (0.0, 0.0);
+    let (mut dnsum, mut dtsum) = (0.0, 0.0);
+    let mut force = [0.0; 2];
+    for (j, ct) in set.contacts.iter().enumerate() {
+        let o = set.offset(j);
+        let s = set.s_of(j, u);
+        let f = ct.force(u[o], u[o + 1]);
+        force[0] += f[0];
+        force[1] += f[1];
+        let (nrm, tng, dn, dt) = match ct.geom {
+            Geom::Line { .. } | Geom::Slope { .. } => (
+                u[o],
+                u[o + 1],
+                du.map_or(0.0, |d| d[o]),
+                du.map_or(0.0, |d| d[o + 1]),
+            ),
+            Geom::Point { .. } => {
+                let z = exact(s);
+                let (nl, tl) = point_frame(ct, z[2]);
+                let dfx = du.map_or(0.0, |d| -d[o] * ct.n[0] + d[o + 1] * ct.t()[0]);
+                let dfy = du.map_or(0.0, |d| -d[o] * ct.n[1] + d[o + 1] * ct.t()[1]);
+                (
+                    -(f[0] * nl[0] + f[1] * nl[1]),
+                    f[0] * tl[0] + f[1] * tl[1],
+                    -(dfx * nl[0] + dfy * nl[1]),
+                    dfx * tl[0] + dfy * tl[1],
+                )
+            }
+        };
+        nsum += nrm;
+        tsum += tng;
+        dnsum += dn;
+        dtsum += dt;
+        contacts.push(ContactForce {
+            normal: nrm,
+            tangential: tng,
+            s,
+        });
+    }
+    let mu = if nsum != 0.0 { tsum / nsum } else { 0.0 };
+    let dmu_abs = du.map(|_| {
+        let dmu = (dtsum * nsum - tsum * dnsum) / (nsum * nsum);
+        if mu == 0.0 {
+            dmu.abs()
+        } else {
+            mu.signum() * dmu
+        }
+    });
+    let (clear, clear_s, tip_approach) = match env.line {
+        Some((p0, beta)) => clearance(set, u, sol, p0, beta, xf, exact, kappa, straight),
+        None => (f64::NEG_INFINITY, f64::NAN, f64::NAN),
+    };
+    let clear_z = if clear_s.is_finite() {
+        exact(clear_s)
+    } else {
+        [f64::NAN; 4]
+    };
+    let y_max = crate::sampling::extrema(sol, 0.0, 1.0).max;
+    let last_y = match contacts.last() {
+        Some(c) if c.s >= 1.0 => sol.right()[1],
+        Some(c) => exact(c.s)[1],
+        None => f64::NAN,
+    };
+    Watch {
+        lam,
+        mu,
+        normal: nsum,
+        force,
+        contacts,
+        clear,
+        clear_s,
+        clear_z,
+        tip_approach,
+        dmu_abs,
+        y_max,
+        last_y,
+        phi1: sol.right()[2],
+    }
+}
+
+/// The rod's normal (on the side of the contact frame's normal) and tangent at a point object
+/// where the rod's slope is `phi`.
+fn point_frame(ct: &Contact, phi: f64) -> ([f64; 2], [f64; 2]) {
+    let (sp, cp) = phi.sin_cos();
+    let mut nl = [sp, -cp];
+    if nl[0] * ct.n[0] + nl[1] * ct.n[1] < 0.0 {
+        nl = [-sp, cp];
+    }
+    ([nl[0], nl[1]], [-nl[1], nl[0]])
+}
+
+/// Largest height above the surface line (shifted to where the contacts hold it: the line through
+/// `p0` in the lab frame, the foot at `xf`) of the rod's free parts — outside the contacts' own
+/// neighbourhoods, and not over an unloaded rest that lies on the line — refined on the rod, and
+/// the tip's approach `sin(φ(1) − β)` (NaN unless the tip touches the surface).
+fn clearance(
+    set: &ContactSet,
+    u: &[f64],
+    sol: &Solution,
+    p0: [f64; 2],
+    beta: f64,
+    xf: f64,
+    exact: &mut dyn FnMut(f64) -> [f64; 4],
+    kappa: &dyn Fn(f64, f64) -> f64,
+    straight: bool,
+) -> (f64, f64, f64) {
+    let (sb, cb) = beta.sin_cos();
+    let h = |x: f64, y: f64| -sb * (x + xf - p0[0]) + cb * (y - p0[1]);
+    let surf: Vec<f64> = set
+        .contacts
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| matches!(c.geom, Geom::Line { .. }))
+        .map(|(j, _)| set.s_of(j, u))
+        .collect();
+    // the line the contacts hold the rod on: its height offset (0 when the scene's own surface,
+    // else the pressed one's)
+    let off = surf
+        .last()
+        .map(|&s| {
+            let z = exact(s);
+            h(z[0], z[1])
+        })
+        .unwrap_or(0.0);
+    let s_last = set
+        .contacts
+        .iter()
+        .enumerate()
+        .map(|(j, _)| set.s_of(j, u))
+        .fold(0.0, f64::max);
+    // an unloaded rest lying on the line (a straight rest shape beyond a tangent contact)
+    let lying_from = match set.contacts.last() {
+        Some(c) if !c.tip && matches!(c.geom, Geom::Line { .. }) && straight => s_last,
+        _ => 2.0,
+    };
+    let near = |s: f64| surf.iter().any(|&c| (s - c).abs() < NEAR) || s >= lying_from - NEAR;
+    // candidates: local maxima of the height on the interpolant, refined on the rod where they
+    // come near the surface (far below it the interpolant's error, ~1e-8, does not matter)
+    let mut best = (f64::NEG_INFINITY, f64::NAN);
+    for (s0, v0) in crate::sampling::local_maxima(sol, -sb, cb) {
+        if s0 <= 0.0 || near(s0) || s0 >= 1.0 {
+            continue;
+        }
+        // the interpolant measures −sin β·x + cos β·y in the foot frame
+        let v0 = v0 + h(0.0, 0.0);
+        let (s, v) = if v0 - off > -1e-4 {
+            refine_max(exact, kappa, s0, beta, &h)
+        } else {
+            (s0, v0)
+        };
+        if near(s) {
+            continue;
+        }
+        if v - off > best.0 {
+            best = (v - off, s);
+        }
+    }
+    if best.0 == f64::NEG_INFINITY {
+        // no free maximum: the foot's height (always below), so that the function stays finite
+        best = (h(0.0, 0.0) - off, 0.0);
+    }
+    // the tip, when it is free (its height is a maximum of the free part's end)
+    let tip_contact = set.tip();
+    if !tip_contact && lying_from > 1.0 {
+        let zb = sol.right();
+        let v = h(zb[0], zb[1]) - off;
+        if v > best.0 {
+            best = (v, 1.0);
+        }
+    }
+    let approach = if tip_contact && matches!(set.contacts.last().map(|c| c.geom), Some(Geom::Line { .. })) {
+        (sol.right()[2] - beta).sin()
+    } else {
+        f64::NAN
+    };
+    (best.0, best.1, approach)
+}
+
+/// Newton on `φ(s) = β` (the tangent point where the height is largest) from `s0`, on the rod.
+fn refine_max(
+    exact: &mut dyn FnMut(f64) -> [f64; 4],
+    kappa: &dyn Fn(f64, f64) -> f64,
+    s0: f64,
+    beta: f64,
+    h: &dyn Fn(f64, f64) -> f64,
+) -> (f64, f64) {
+    let mut s = s0;
+    let mut z = exact(s);
+    for _ in 0..8 {
+        // height' = sin(φ − β), height'' = cos(φ − β)·κ
+        let g = (z[2] - beta).sin();
+        let dg = (z[2] - beta).cos() * kappa(s, z[3]);
+        if dg >= 0.0 || !dg.is_finite() {
+            break;
+        }
+        let next = (s - g / dg).clamp(0.0, 1.0);
+        if next == s {
+            break;
+        }
+        let step = (next - s).abs();
+        s = next;
+        z = exact(s);
+        if step < 1e-14 {
+            break;
+        }
+    }
+    (s, h(z[0], z[1]))
+}
+
+/// The events of a contact state: functions negative while it holds, zero where it ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Crossing {
+    /// Contact `j`'s normal force falls to 0.
+    Lift(usize),
+    /// Contact `j` (stuck or rolling) needs `|T| = μ0 N`.
+    Slip(usize),
+    /// A free part of the rod reaches the surface.
+    Touchdown,
+    /// The tip, touching the surface, turns tangent to it.
+    TipTangent,
+    /// The rolling contact `j` reaches the tip (the lying part peels back).
+    PeelBack(usize),
+    /// The point object at contact `j` reaches the tip.
+    SlipOff(usize),
+    /// `|μ|` stops rising (its first maximum).
+    MuMax,
+    /// The last contact point reaches the target height (the end of a press).
+    Target(Goal),
+}
+
+impl Crossing {
+    /// What the function measures, in words.
+    pub fn describe(self) -> String {
+        match self {
+            Crossing::Lift(j) => format!("-(normal force of contact {})", j + 1),
+            Crossing::Slip(j) => format!("|T| - mu0 N of contact {}", j + 1),
+            Crossing::Touchdown => "the height of the free rod above the surface".into(),
+            Crossing::TipTangent => "-sin(phi(1) - beta)".into(),
+            Crossing::PeelBack(j) | Crossing::SlipOff(j) => {
+                format!("s - 1 of contact {}", j + 1)
+            }
+            Crossing::MuMax => "-d|mu|/dd".into(),
+            Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
+            Crossing::Target(Goal::TipSlope(p, _)) => format!("phi(1) - {p}"),
+        }
+    }
+
+    /// The event functions of a contact set.
+    pub fn all(env: &Env, set: &ContactSet) -> Vec<Crossing> {
+        let mut v = Vec::new();
+        for (j, c) in set.contacts.iter().enumerate() {
+            v.push(Crossing::Lift(j));
+            if env.mu0.is_some() && matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_)) {
+                v.push(Crossing::Slip(j));
+            }
+            match (c.geom, c.tip) {
+                (Geom::Line { .. }, true) => v.push(Crossing::TipTangent),
+                (Geom::Line { .. }, false) => v.push(Crossing::PeelBack(j)),
+                (Geom::Point { .. }, false) => v.push(Crossing::SlipOff(j)),
+                _ => {}
+            }
+        }
+        if env.line.is_some() {
+            v.push(Crossing::Touchdown);
+        }
+        if let Some(h) = env.target {
+            v.push(Crossing::Target(h));
+        }
+        v
+    }
+
+    /// Its value at a watched point.
+    pub fn of_watch(self, env: &Env, w: &Watch) -> f64 {
+        match self {
+            Crossing::Lift(j) => -w.contacts[j].normal,
+            Crossing::Slip(j) => {
+                let c = w.contacts[j];
+                c.tangential.abs() - env.mu0.unwrap_or(f64::INFINITY) * c.normal
+            }
+            Crossing::Touchdown => w.clear,
+            Crossing::TipTangent => -w.tip_approach,
+            Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
+            Crossing::MuMax => -w.dmu_abs.unwrap_or(f64::NAN),
+            Crossing::Target(Goal::Height(h, sign)) => sign * (h - w.last_y),
+            Crossing::Target(Goal::TipSlope(p, sign)) => sign * (p - w.phi1),
+        }
+    }
+
+    /// Whether the value depends on the unknowns alone on a surface (so the branch polynomial
+    /// predicts it).
+    pub fn of_u(self, env: &Env, set: &ContactSet, u: &[f64]) -> Option<f64> {
+        let line = |j: usize| matches!(set.contacts[j].geom, Geom::Line { .. });
+        match self {
+            Crossing::Lift(j) if line(j) => Some(-u[set.offset(j)]),
+            Crossing::Slip(j) if line(j) => {
+                let o = set.offset(j);
+                Some(u[o + 1].abs() - env.mu0.unwrap_or(f64::INFINITY) * u[o])
+            }
+            Crossing::PeelBack(j) | Crossing::SlipOff(j) => Some(set.s_of(j, u) - 1.0),
+            _ => None,
+        }
+    }
+}
