@@ -15,6 +15,7 @@ impl From<VibrissaError> for Fail {
             | VibrissaError::NotMeasurable { .. }
             | VibrissaError::RangeCutShort { .. }
             | VibrissaError::NoContact { .. }
+            | VibrissaError::OutOfReach { .. }
             | VibrissaError::InvalidName { .. } => Fail::Usage(msg),
             VibrissaError::Elastica { source, .. } => match Fail::from(source) {
                 Fail::Usage(_) => Fail::Usage(msg),

@@ -25,7 +25,9 @@ fn finite(p: &Pt) -> bool {
     .iter()
     .all(|v| v.is_finite())
         && (p.mu.is_finite() || (lift_off && p.mu.is_infinite()))
+        && (p.mu_peak.is_finite() || (lift_off && p.mu_peak.is_infinite()))
         && p.s_flex.is_none_or(f64::is_finite)
+        && p.s_c.is_none_or(f64::is_finite)
 }
 
 /// μ as written: `inf`/`-inf` at lift-off, where it is unbounded.
@@ -203,15 +205,16 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
     Ok(out)
 }
 
-/// Header of the scan CSV: the point, its contact state (`contact`: `tip`, `side`, `side+tip`,
-/// …; `s_c`: the arc length of the first contact inside the rod, empty if none), its
+/// Header of the scan CSV: the point, the largest friction ratio a single contact needs
+/// (`mu_peak`; `|mu|` with one contact), its contact state (`contact`: `tip`, `side`,
+/// `side+tip`, …; `s_c`: the arc length of the first contact inside the rod, empty if none), its
 /// physical-unit values (scenes with `[physical]`), and `event` last (empty for grid points; a
 /// change of contact state — `touchdown`, `peel_back`, `release` — or the reason the scan
 /// stopped — `slip`, `lift_off`, `penetration`, `fold_in_d` — on event rows).
 pub fn header(physical: bool) -> Vec<&'static str> {
     let mut h = vec![
         "d", "mu", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "s_flex", "y_max", "normal",
-        "contact", "s_c",
+        "mu_peak", "contact", "s_c",
     ];
     if physical {
         h.extend(["d_mm", "f_N", "fx_N", "fy_N", "m_base_Nm"]);
@@ -235,6 +238,7 @@ pub fn row(p: &Pt, u: Option<Units>) -> Vec<String> {
         opt(p.s_flex),
         num(p.y_max),
         num(p.normal),
+        mu_text(p.mu_peak),
         p.contact.name().to_string(),
         opt(p.s_c),
     ];

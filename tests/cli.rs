@@ -207,7 +207,17 @@ fn scan_matches_closed_form_scan() {
 
 #[test]
 fn scan_low_surface_stops_with_penetration_and_slip() {
-    let o = ok(&["scan", "--eta", "0.6", "--points", "11", "--json"]);
+    // the paper's tip-only model: the tip turning horizontal ends the scan
+    let o = ok(&[
+        "scan",
+        "--eta",
+        "0.6",
+        "--points",
+        "11",
+        "--json",
+        "--contact",
+        "tip",
+    ]);
     let v = json(&o.stdout);
     assert_eq!(v["stop_reason"], "penetration");
     // the paper: at eta = 0.6 the convex phase ends close to alpha = -pi/4, phi1 = 0
@@ -219,6 +229,21 @@ fn scan_low_surface_stops_with_penetration_and_slip() {
         "penetration d",
     );
     assert!(o.stderr.contains("stopped early"));
+    // contact anywhere (the default): the tip lies down there and the scan goes on to d_max,
+    // the touchdown a row of its own at the same d
+    let o = ok(&["scan", "--eta", "0.6", "--points", "11"]);
+    let rows: Vec<&str> = o.stdout.lines().collect();
+    let touchdown = rows
+        .iter()
+        .find(|r| r.ends_with(",touchdown"))
+        .expect("a touchdown row");
+    close(
+        touchdown.split(',').next().unwrap().parse().unwrap(),
+        cf.turning.d,
+        1e-6,
+        "touchdown d",
+    );
+    assert!(rows.last().unwrap().starts_with("0.5,"), "{}", o.stdout);
     // slip threshold
     let o = ok(&[
         "scan", "--points", "21", "--mu0", "0.5", "--json", "--method", "analytic",

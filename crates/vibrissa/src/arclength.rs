@@ -320,15 +320,34 @@ pub(crate) fn between<C: Curve + ?Sized>(
     correct(cv, &shifted, ta, tol, 2 * ARC_ITER)
 }
 
+/// Why [`follow_to`] did not reach its member.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum FollowError {
+    /// The curve turns back (a fold) before `to`: the furthest `λ` it reached.
+    TurnedBack { reached: f64 },
+    /// A step failed at `λ`.
+    Step { at: f64, reason: String },
+}
+
+impl std::fmt::Display for FollowError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FollowError::TurnedBack { reached } => {
+                write!(f, "the curve turns back at {reached} (a fold)")
+            }
+            FollowError::Step { at, reason } => write!(f, "at {at}: {reason}"),
+        }
+    }
+}
+
 /// Follows `cv` by pseudo-arclength from its converged point `first` (at `λ = from`) until `λ`
-/// passes `to`, and returns the member at `to`; the error says why not (the curve turned back,
-/// or a step failed).
+/// passes `to`, and returns the member at `to`.
 pub(crate) fn follow_to<C: Curve + ?Sized>(
     cv: &mut C,
     first: ArcPoint,
     to: f64,
     tol: f64,
-) -> Result<ArcPoint, String> {
+) -> Result<ArcPoint, FollowError> {
     let from = first.lam();
     if to == from {
         return Ok(first);
@@ -340,23 +359,32 @@ pub(crate) fn follow_to<C: Curve + ?Sized>(
         ds_max: 0.25 * span,
     };
     let dir = (to - from).signum();
-    let mut arc = Arc::new(first, dir, steps, tol).map_err(|e| e.to_string())?;
+    let step_err = |at: f64, e: ShotFailure| FollowError::Step {
+        at,
+        reason: e.to_string(),
+    };
+    let mut arc = Arc::new(first, dir, steps, tol).map_err(|e| step_err(from, e))?;
+    let mut reached = from;
     for _ in 0..2000 {
-        let (prev, _) = arc
-            .step(cv)
-            .map_err(|e| format!("at {}: {e}", arc.last.lam()))?;
+        let (prev, _) = arc.step(cv).map_err(|e| step_err(arc.last.lam(), e))?;
         let (l0, l1) = (prev.lam(), arc.last.lam());
+        if (l1 - reached) * dir > 0.0 {
+            reached = l1;
+        }
         if (l1 - to) * dir >= 0.0 {
             // the member at `to`, from the chord between the points on either side
             let w = (to - l0) / (l1 - l0);
             let (a, b) = (prev.u(), arc.last.u());
             let u: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x + w * (y - x)).collect();
-            return at_lambda(cv, &u, to, tol, 16).map_err(|e| e.to_string());
+            return at_lambda(cv, &u, to, tol, 16).map_err(|e| step_err(to, e));
         }
         // the curve turned back past its start: no member at `to` connected to it
-        if (l1 - from) * dir < -span {
-            return Err(format!("the curve turned back at {}", l0));
+        if (l1 - from) * dir < -span || (reached - l1) * dir > span {
+            return Err(FollowError::TurnedBack { reached });
         }
     }
-    Err("no member reached in 2000 steps".into())
+    Err(FollowError::Step {
+        at: arc.last.lam(),
+        reason: "no member reached in 2000 steps".into(),
+    })
 }

@@ -34,6 +34,7 @@ use std::f64::consts::FRAC_PI_2;
 
 /// What a contact touches.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(dead_code)] // point objects: the whisk, next
 pub(crate) enum Geom {
     /// The surface line through `p0` (lab frame) inclined by `beta`, shifted along its normal by
     /// the pose's offset `h`.
@@ -46,6 +47,7 @@ pub(crate) enum Geom {
 
 /// How a contact holds.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(dead_code)] // sliding: the drag, next
 pub(crate) enum Mode {
     /// Stuck: the tip's along-line coordinate stays at the value, or (point object) the material
     /// point `s` of the rod stays at the object.
@@ -162,6 +164,7 @@ pub(crate) struct Pose {
 
 /// A one-parameter family of scenes: what `λ` moves.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[allow(dead_code)] // the turned foot: the whisk, next
 pub(crate) enum Family {
     /// The foot dragged: `xf = λ` (the stiction scan; `λ = d`).
     Drag,
@@ -409,7 +412,9 @@ impl<P: Profile> Chain<P> {
         }
         // the free end of the loaded part: m(s_L) = 0 (with no contact: m(1) = 0 on the rest shape)
         if bps.is_empty() {
-            let shot = self.sh.shoot(0, 0.0, 1.0, cur.z, &[[c, 1.0]], [0.0, 0.0], var);
+            let shot = self
+                .sh
+                .shoot(0, 0.0, 1.0, cur.z, &[[c, 1.0]], [0.0, 0.0], var);
             err = err.max(shot.err);
             if var {
                 let mut d = DMatrix::zeros(4, nc);
@@ -652,7 +657,12 @@ pub(crate) fn conditions(
                 Mode::Rolling(k) => {
                     // the rod runs along the line forwards or backwards (its slope β or β + π)
                     let dir = (ct.phi_ref - beta).cos().round();
-                    cs.push(along - dir * own[2] - k, da, [0.0, 0.0, -dir], e[0] * dpose.xf)
+                    cs.push(
+                        along - dir * own[2] - k,
+                        da,
+                        [0.0, 0.0, -dir],
+                        e[0] * dpose.xf,
+                    )
                 }
                 Mode::Free => friction(&mut cs, 0.0),
                 Mode::Sliding(ratio) => friction(&mut cs, ratio),
@@ -674,9 +684,7 @@ pub(crate) fn conditions(
             cs.push(rx - p[0], [1.0, 0.0, 0.0, 0.0], [0.0; 3], dpose.xf);
             cs.push(ry - p[1], [0.0, 1.0, 0.0, 0.0], [0.0; 3], 0.0);
             match ct.mode {
-                Mode::Stuck(sa) if !ct.tip => {
-                    cs.push(own[2] - sa, [0.0; 4], [0.0, 0.0, 1.0], 0.0)
-                }
+                Mode::Stuck(sa) if !ct.tip => cs.push(own[2] - sa, [0.0; 4], [0.0, 0.0, 1.0], 0.0),
                 Mode::Sliding(ratio) => friction(&mut cs, ratio),
                 _ => {
                     // frictionless: F·τ(φ) = 0, F = −N n + T t

@@ -256,4 +256,3 @@ pub enum StartKind {
     /// state.
     Connected,
 }
-

@@ -49,6 +49,16 @@ pub enum VibrissaError {
         /// What the solution is.
         found: crate::kind::ShapeKind,
     },
+    /// No contact: the rod does not reach the surface or the object without being pulled.
+    #[error("no contact: {what} (it reaches {reach:.6}, the contact needs {needed:.6})")]
+    OutOfReach {
+        /// What does not reach what, in words.
+        what: String,
+        /// How far the rod reaches (a height, a distance).
+        reach: f64,
+        /// How far it would have to reach.
+        needed: f64,
+    },
     /// There is no start for the scan: the rod does not reach the surface, or pressing it onto
     /// the surface does not end in a contact state (the reason says which, with its values).
     #[error("no start: {reason}")]

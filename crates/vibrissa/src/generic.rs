@@ -18,7 +18,7 @@ use crate::march::{interpolate, Passed, Pt, StepError, Stepper};
 use crate::profile::Profile;
 use crate::shooter::{rhs, Shooter};
 use crate::stepper::same_branch;
-use crate::watch::{watch, Env};
+use crate::watch::{watch, Env, RodView};
 use crate::VibrissaError;
 use bvp::continuation::{Continuation, ContinuationOptions, FoldKind, Member, ParamBvp};
 use bvp::{BvpSolver, Dims, Guess, Solution, Stats};
@@ -308,7 +308,10 @@ impl<P: Profile> GenericStepper<P> {
     /// The first point: the method's solve at `λ` from the shooter's rod at the unknowns `u`.
     pub fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String> {
         // the own shooter's rod as the guess
-        let e = self.chain.eval(u, lam, false).map_err(|e| format!("{e:?}"))?;
+        let e = self
+            .chain
+            .eval(u, lam, false)
+            .map_err(|e| format!("{e:?}"))?;
         let _ = e;
         let guess = self.stacked_guess(u);
         let sol = self.solve(lam, &guess).map_err(|e| e.to_string())?;
@@ -376,7 +379,10 @@ impl<P: Profile> GenericStepper<P> {
         let (du, det) = match ev.and_then(|e| e.jac.zip(e.r_lam)) {
             Some((j, l)) => {
                 let det = j.determinant();
-                let du = j.lu().solve(&(-l)).map(|x| x.iter().copied().collect::<Vec<_>>());
+                let du = j
+                    .lu()
+                    .solve(&(-l))
+                    .map(|x| x.iter().copied().collect::<Vec<_>>());
                 (du.filter(|d| d.iter().all(|v| v.is_finite())), Some(det))
             }
             None => (None, None),
@@ -404,11 +410,13 @@ impl<P: Profile> GenericStepper<P> {
             lam,
             &u,
             du.as_deref(),
-            &path,
-            xf,
-            &mut exact,
-            &|s, m| profile.kappa(s, m),
-            profile.straight(),
+            RodView {
+                sol: &path,
+                xf,
+                exact: &mut exact,
+                kappa: &|s, m| profile.kappa(s, m),
+                straight: profile.straight(),
+            },
         );
         self.last = Some(sol.clone());
         Ok(Pt {
@@ -480,7 +488,11 @@ impl<P: Profile> GenericStepper<P> {
         let mut idx: Vec<usize> = (0..hist.len())
             .filter(|&i| hist[i].raw.as_ref().is_some_and(|r| r.n == newest.n))
             .collect();
-        idx.sort_by(|&a, &b| (hist[a].lam - lam).abs().total_cmp(&(hist[b].lam - lam).abs()));
+        idx.sort_by(|&a, &b| {
+            (hist[a].lam - lam)
+                .abs()
+                .total_cmp(&(hist[b].lam - lam).abs())
+        });
         idx.dedup_by(|a, b| hist[*a].lam == hist[*b].lam);
         idx.truncate(3);
         let w: Vec<f64> = idx

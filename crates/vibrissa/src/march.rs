@@ -237,7 +237,10 @@ fn start_event(env: &Env, set: &ContactSet, w: &Watch) -> Option<Event> {
         return Some(Event::LiftOff);
     }
     if let Some(m) = env.mu0 {
-        if w.contacts.iter().any(|c| c.tangential.abs() >= m * c.normal) {
+        if w.contacts
+            .iter()
+            .any(|c| c.tangential.abs() >= m * c.normal)
+        {
             return Some(Event::Slip);
         }
     }
@@ -300,15 +303,14 @@ impl<P: Profile> Run<'_, '_, P> {
         // leave zero (on the side where the new state holds)
         let mut pending: Vec<Crossing> = Crossing::all(spec.env, self.stepper.set())
             .into_iter()
-            .filter(|c| !(c.of_watch(spec.env, &hist[0].w) < 0.0))
+            .filter(|c| !holds(c.of_watch(spec.env, &hist[0].w)))
             .collect();
         let mut pprev: Option<Watch> = None;
         loop {
             let prev = hist[hist.len() - 1].clone();
             let lam = prev.lam;
-            let last_of = |hist: &[Pt], set: &ContactSet| {
-                Some((set.clone(), hist[hist.len() - 1].clone()))
-            };
+            let last_of =
+                |hist: &[Pt], set: &ContactSet| Some((set.clone(), hist[hist.len() - 1].clone()));
             if lam >= lam_end {
                 self.range.close(RangeEnd::DMax);
                 if let Err(fail) = self.emit(&hist, lam_end) {
@@ -412,7 +414,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 if v > 0.0 {
                     wrong.get_or_insert((c, v));
                 }
-                !(v < 0.0)
+                !holds(v)
             });
             if let Some((c, v)) = wrong {
                 self.range.close(RangeEnd::SolverFailure);
@@ -452,7 +454,7 @@ impl<P: Profile> Run<'_, '_, P> {
             let mut found: Option<Found> = None;
             let mut failure: Option<StopReason> = None;
             for &c in &armed {
-                if !(c.of_watch(spec.env, &p.w) >= 0.0) {
+                if !ended(c.of_watch(spec.env, &p.w)) {
                     continue;
                 }
                 match self.locate(&hist, lam, p.lam, c) {
@@ -527,7 +529,7 @@ impl<P: Profile> Run<'_, '_, P> {
                             }
                             pending = Crossing::all(spec.env, &new_set)
                                 .into_iter()
-                                .filter(|c| !(c.of_watch(spec.env, &q.w) < 0.0))
+                                .filter(|c| !holds(c.of_watch(spec.env, &q.w)))
                                 .collect();
                             hist = vec![q];
                             pprev = None;
@@ -552,6 +554,21 @@ impl<P: Profile> Run<'_, '_, P> {
             }
         }
     }
+}
+
+/// An event function's value where its contact state holds strictly (NaN: not known to).
+fn holds(v: f64) -> bool {
+    v < 0.0
+}
+
+/// Its value where the event has happened (zero included).
+fn ended(v: f64) -> bool {
+    v >= 0.0
+}
+
+/// Its value beyond the event (NaN: not known to be).
+fn beyond(v: f64) -> bool {
+    v > 0.0
 }
 
 /// What follows an event.
@@ -742,10 +759,17 @@ impl<P: Profile> Run<'_, '_, P> {
     /// The located event point on the side where the old state still holds (`c ≤ 0`): a root to
     /// ~1e-13 in λ may lie a rounding beyond it (a free part ~1e-12 above the surface); then λ
     /// moves back by twice the secant step towards `a`, doubling until the point is inside.
-    fn inside(&mut self, hist: &[Pt], a: f64, p: Pt, c: Crossing, fresh: bool) -> Result<Pt, String> {
+    fn inside(
+        &mut self,
+        hist: &[Pt],
+        a: f64,
+        p: Pt,
+        c: Crossing,
+        fresh: bool,
+    ) -> Result<Pt, String> {
         let env = self.spec.env;
         let g = c.of_watch(env, &p.w);
-        if !(g > 0.0) {
+        if !beyond(g) {
             return Ok(p);
         }
         let ga = hist
@@ -756,7 +780,7 @@ impl<P: Profile> Run<'_, '_, P> {
         for k in 0..8 {
             let lam = (p.lam - 2.0 * secant * f64::from(1 << k)).max(a);
             let q = self.stepper.correct(lam, hist, fresh)?;
-            if !(c.of_watch(env, &q.w) > 0.0) {
+            if !beyond(c.of_watch(env, &q.w)) {
                 return Ok(q);
             }
         }
@@ -785,9 +809,8 @@ impl<P: Profile> Run<'_, '_, P> {
             return None;
         }
         let stepper = &mut *self.stepper;
-        let mut eval = |lam: f64| -> Result<f64, String> {
-            Ok(stepper.correct(lam, hist, false)?.w.mu.abs())
-        };
+        let mut eval =
+            |lam: f64| -> Result<f64, String> { Ok(stepper.correct(lam, hist, false)?.w.mu.abs()) };
         let (lam, _) = search::maximize(&mut eval, pp.lam, w.lam.min(l_stop), 1e-12).ok()?;
         Some(self.stepper.correct(lam, hist, false).ok()?.w)
     }
@@ -803,10 +826,16 @@ impl<P: Profile> Run<'_, '_, P> {
                 Some(p) => p.clone(),
                 None => match self.stepper.correct(g, hist, false) {
                     Ok(p) => p,
-                    Err(e) => self.bridge(hist, g).map_err(|e2| StopReason::SolverFailure {
-                        d: hist.iter().map(|p| p.lam).filter(|&l| l < g).fold(0.0, f64::max),
-                        message: format!("output point at {g}: {e}; in shorter steps: {e2}"),
-                    })?,
+                    Err(e) => self
+                        .bridge(hist, g)
+                        .map_err(|e2| StopReason::SolverFailure {
+                            d: hist
+                                .iter()
+                                .map(|p| p.lam)
+                                .filter(|&l| l < g)
+                                .fold(0.0, f64::max),
+                            message: format!("output point at {g}: {e}; in shorter steps: {e2}"),
+                        })?,
                 },
             };
             let set = self.stepper.set().clone();

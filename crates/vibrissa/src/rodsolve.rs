@@ -53,7 +53,9 @@ impl Converged {
     /// Solves `J x = b`; `None` when `J` is singular.
     pub fn solve(&self, b: &DVector<f64>) -> Option<Vec<f64>> {
         let x = self.jac.clone().lu().solve(b)?;
-        x.iter().all(|v| v.is_finite()).then(|| x.iter().copied().collect())
+        x.iter()
+            .all(|v| v.is_finite())
+            .then(|| x.iter().copied().collect())
     }
     /// The tangent `du/dλ = −J⁻¹ ∂R/∂λ`.
     pub fn tangent(&self) -> Option<Vec<f64>> {

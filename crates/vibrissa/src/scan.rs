@@ -113,7 +113,10 @@ fn scan_with<P: Profile>(
         let mut sh = start.sh.clone();
         sh.stats = Default::default();
         let chain = Chain::new(sh, set, Family::Drag);
-        let mut st = OwnStepper { chain, env: env.clone() };
+        let mut st = OwnStepper {
+            chain,
+            env: env.clone(),
+        };
         let p0 = st
             .correct_from(0.0, &start.pt.u, None, true)
             .map_err(|e| start_failed(e.to_string()))?;

@@ -153,7 +153,6 @@ impl Shape {
             ShapeData::Analytic(_) => None,
         }
     }
-
 }
 
 /// Which solution family a solve asks for. Branches are told apart by the sign changes of the

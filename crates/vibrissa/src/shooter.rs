@@ -188,7 +188,7 @@ impl<P: Profile> Shooter<P> {
     /// not be refined.
     pub fn refine_all(&mut self, upto: usize) -> bool {
         for k in 0..upto.min(self.segs.len()) {
-            if self.segs[k].step_err.iter().any(|e| !(*e <= 1.0)) && !self.refine(k) {
+            if self.segs[k].step_err.iter().any(|e| e.is_nan() || *e > 1.0) && !self.refine(k) {
                 return false;
             }
         }
@@ -197,6 +197,7 @@ impl<P: Profile> Shooter<P> {
 
     /// Integrates segment `k` over `[a, b]` from `z0` under the force `g`; with sensitivities to
     /// the start directions `dirs` (each `(∂φ, ∂m)` at `a`, one or two of them) and to `g`.
+    #[allow(clippy::too_many_arguments)]
     pub fn shoot(
         &mut self,
         k: usize,
@@ -358,17 +359,6 @@ impl<P: Profile> Shooter<P> {
             ncol,
             err: err_max,
         }
-    }
-
-    /// The right-hand side `F(z)` of segment `k`'s last shot at arc length `s`.
-    pub fn rhs_at(&self, k: usize, s: f64, z: &[f64; 4]) -> [f64; 4] {
-        let g = self.segs[k].force;
-        let (b, k0) = if P::UNIFORM {
-            (1.0, 0.0)
-        } else {
-            (self.profile.b(s), self.profile.k0(s))
-        };
-        rhs::<4>(z, g[0], g[1], b, k0)
     }
 
     /// The state at arc length `s` inside segment `k` of the last shot, on the rod itself: one
@@ -630,16 +620,14 @@ mod tests {
             }
             let p = sh.shoot(0, a, b, zp, &[], gp, false).z;
             let m = sh.shoot(0, a, b, zm, &[], gm, false).z;
-            [0, 1, 2, 3].map(|i| (p[i] - m[i]) / (2.0 * e))
+            std::array::from_fn::<f64, 4, _>(|i| (p[i] - m[i]) / (2.0 * e))
         };
         for q in 0..4 {
             let d = fd(&mut sh, q);
-            for i in 0..4 {
-                let an = y.col[q][i];
+            for (i, (di, an)) in d.iter().zip(y.col[q]).enumerate() {
                 assert!(
-                    (d[i] - an).abs() <= 1e-7 * (1.0 + an.abs()),
-                    "∂z{i}/∂col{q}: fd {} analytic {an}",
-                    d[i]
+                    (di - an).abs() <= 1e-7 * (1.0 + an.abs()),
+                    "∂z{i}/∂col{q}: fd {di} analytic {an}"
                 );
             }
         }

@@ -115,21 +115,26 @@ fn solve_with<P: Profile>(
     let context = || format!("solve at alpha = {alpha}, {target:?}");
     let cv = match branch {
         BranchChoice::Guess(g) => {
-            let u0 = vec![g.m_base, g.f * (g.alpha - alpha).cos(), g.f * (alpha - g.alpha).sin()];
-            solve_damped(&mut chain, 0.0, &u0, ntol, 40).map_err(|e| VibrissaError::NoConvergence {
-                what: format!("{} from the given shape", context()),
-                reason: e.to_string(),
+            let u0 = vec![
+                g.m_base,
+                g.f * (g.alpha - alpha).cos(),
+                g.f * (alpha - g.alpha).sin(),
+            ];
+            solve_damped(&mut chain, 0.0, &u0, ntol, 40).map_err(|e| {
+                VibrissaError::NoConvergence {
+                    what: format!("{} from the given shape", context()),
+                    reason: e.to_string(),
+                }
             })?
         }
         _ => {
             let loaded = load(rod, &profile, alpha, &target, branch, tol, cfg.start)?;
-            let first = solve_damped(&mut chain, 0.0, &loaded, ntol, 40).map_err(|e| {
+            solve_damped(&mut chain, 0.0, &loaded, ntol, 40).map_err(|e| {
                 VibrissaError::NoConvergence {
                     what: context(),
                     reason: e.to_string(),
                 }
-            })?;
-            first
+            })?
         }
     };
     let mut stats = chain.sh.stats.clone();
@@ -149,12 +154,13 @@ fn solve_with<P: Profile>(
             compound: false,
             target: None,
         };
-        let mut g =
-            GenericStepper::new(profile.clone(), c, set, Family::Fixed(pose), env, cfg)?;
-        let p = g.first(0.0, &cv.u).map_err(|e| VibrissaError::NoConvergence {
-            what: context(),
-            reason: e,
-        })?;
+        let mut g = GenericStepper::new(profile.clone(), c, set, Family::Fixed(pose), env, cfg)?;
+        let p = g
+            .first(0.0, &cv.u)
+            .map_err(|e| VibrissaError::NoConvergence {
+                what: context(),
+                reason: e,
+            })?;
         stats.accumulate(&g.stats);
         let mut sol = g.own_solution().unwrap_or(p.sol);
         sol.stats = Stats {
@@ -223,10 +229,12 @@ fn load<P: Profile>(
     };
     let mut chain = Chain::new(pressed.sh, set0, Family::Fixed(pose));
     let f = pressed.pt.w.force;
-    let first = solve_damped(&mut chain, 0.0, &[pressed.pt.u[0], -f[1], f[0]], ntol, 30)
-        .map_err(|e| VibrissaError::NoConvergence {
-            what: format!("the pressed rod at {target:?}"),
-            reason: e.to_string(),
+    let first =
+        solve_damped(&mut chain, 0.0, &[pressed.pt.u[0], -f[1], f[0]], ntol, 30).map_err(|e| {
+            VibrissaError::NoConvergence {
+                what: format!("the pressed rod at {target:?}"),
+                reason: e.to_string(),
+            }
         })?;
     let (chain, u) = crate::start::turn_force(chain, &first.u, 0.0, alpha, ntol)?;
     let (mut chain, mut u) = (chain, u);
@@ -238,6 +246,7 @@ fn load<P: Profile>(
             move |ch: &mut Chain<P>, t: f64| ch.sh.set_profile(p1.at_amplitude(t), t * c),
             ntol,
             "homotopy from the uniform clamped rod",
+            &|t| format!("t = {t} of 1"),
         )?;
         (chain, u) = (ch, cv.u);
     }
@@ -260,17 +269,21 @@ fn load<P: Profile>(
                 beta: 0.0,
             };
         }
-        let first = solve_damped(&mut ch, 0.0, &u, ntol, 30).map_err(|e| {
-            VibrissaError::NoConvergence {
+        let first =
+            solve_damped(&mut ch, 0.0, &u, ntol, 30).map_err(|e| VibrissaError::NoConvergence {
                 what: format!("tip target ({x1}, {y1})"),
                 reason: e.to_string(),
-            }
-        })?;
-        let end = arclength::follow_to(&mut ch, ArcPoint::from_converged(&first, 0.0), x0 - x1, ntol)
-            .map_err(|e| VibrissaError::NoConvergence {
-                what: format!("continuation of the tip x towards {x1}"),
-                reason: e,
             })?;
+        let end = arclength::follow_to(
+            &mut ch,
+            ArcPoint::from_converged(&first, 0.0),
+            x0 - x1,
+            ntol,
+        )
+        .map_err(|e| VibrissaError::NoConvergence {
+            what: format!("continuation of the tip x towards {x1}"),
+            reason: e.to_string(),
+        })?;
         u = end.u();
     }
     Ok(u)
@@ -297,8 +310,11 @@ fn flex_of<P: Profile>(
         Target::Eta(e) | Target::Tip { y1: e, .. } => (Family::Press { h0: e }, 0.0),
     };
     chain.family = family;
-    let first = arclength::at_lambda(&mut chain, u, lam0, tol, 30).map_err(|e| fail(e.to_string()))?;
-    let t0 = first.tangent(None).ok_or_else(|| fail("no tangent".into()))?;
+    let first =
+        arclength::at_lambda(&mut chain, u, lam0, tol, 30).map_err(|e| fail(e.to_string()))?;
+    let t0 = first
+        .tangent(None)
+        .ok_or_else(|| fail("no tangent".into()))?;
     let steps = arclength::Steps {
         ds: 0.02,
         ds_min: 1e-9,
@@ -309,13 +325,18 @@ fn flex_of<P: Profile>(
     // both ways along the curve, the load falling first (towards the fold where the flex point
     // is born, in the paper's scene), each until the load or the parameter runs away
     for sign in [-1.0, 1.0] {
-        let tau = if t0[1] * sign >= 0.0 { t0.clone() } else { -t0.clone() };
+        let tau = if t0[1] * sign >= 0.0 {
+            t0.clone()
+        } else {
+            -t0.clone()
+        };
         let mut arc = arclength::Arc::along(first.clone(), tau, steps, tol);
         for _ in 0..2000 {
             let (prev, _) = match arc.step(&mut chain) {
                 Ok(p) => p,
                 Err(e) => {
-                    last_err = format!("at lambda = {}, f = {}: {e}", arc.last.lam(), arc.last.v[1]);
+                    last_err =
+                        format!("at lambda = {}, f = {}: {e}", arc.last.lam(), arc.last.v[1]);
                     break;
                 }
             };

@@ -15,6 +15,7 @@
 //! small deflection.
 
 use crate::chain::{Chain, Contact, ContactSet, Family, Geom, Mode};
+use crate::config::StartKind;
 use crate::march::{march, MarchOut, Pt, Spec};
 use crate::profile::{General, Profile};
 use crate::report::{RangeEnd, StopReason};
@@ -23,7 +24,6 @@ use crate::search;
 use crate::shooter::Shooter;
 use crate::stepper::{corrector_tol, OwnStepper};
 use crate::watch::{Env, Goal};
-use crate::config::StartKind;
 use crate::VibrissaError;
 use bvp::Stats;
 use std::f64::consts::FRAC_PI_2;
@@ -127,12 +127,13 @@ pub(crate) fn press<P: Profile>(
     let symmetric = gb == 0.0 && spec.force_beta == 0.0 && s_top == 1.0 && profile.straight();
     if let Goal::Height(eta, _) = spec.goal {
         if z_top[1] <= eta {
-            return Err(VibrissaError::NoStart {
-                reason: format!(
-                    "the rod does not reach the surface: its rest shape's highest point (s = {s_top:.6}) \
-                     is at height {:.6}, below eta = {eta}; it touches only when pulled up",
-                    z_top[1]
+            return Err(VibrissaError::OutOfReach {
+                what: format!(
+                    "the rod's rest shape does not reach the surface at eta = {eta}: its highest \
+                     point (s = {s_top:.6}) is below it, so it touches only when pulled up"
                 ),
+                reach: z_top[1],
+                needed: eta,
             });
         }
     }
@@ -260,7 +261,15 @@ fn loaded_start<P: Profile>(
             };
             let z1 = chain
                 .sh
-                .shoot(0, 0.0, 1.0, [0.0, 0.0, FRAC_PI_2 + c * m0, m0], &[], g, false)
+                .shoot(
+                    0,
+                    0.0,
+                    1.0,
+                    [0.0, 0.0, FRAC_PI_2 + c * m0, m0],
+                    &[],
+                    g,
+                    false,
+                )
                 .z;
             let h = -beta.sin() * z1[0] + beta.cos() * z1[1];
             return Ok((top - h, vec![m0, n0, 0.0]));
@@ -454,6 +463,7 @@ pub(crate) fn scan_start<P: Profile>(
                 move |ch: &mut Chain<P>, t: f64| ch.sh.set_profile(p1.at_amplitude(t), t * c),
                 ntol,
                 "homotopy from the uniform clamped rod",
+                &|t| format!("t = {t} of 1"),
             )?;
             let mut st = OwnStepper {
                 chain,
@@ -465,18 +475,18 @@ pub(crate) fn scan_start<P: Profile>(
                 },
             };
             // the shooter's paths hold the point at t = 1 (the last correction)
-            let pt = st
-                .point(0.0, end)
-                .map_err(|e| VibrissaError::NoStart {
-                    reason: format!("the connected start: {e}"),
-                })?;
+            let pt = st.point(0.0, end).map_err(|e| VibrissaError::NoStart {
+                reason: format!("the connected start: {e}"),
+            })?;
             if pt.w.normal < 0.0 {
-                return Err(VibrissaError::NoStart {
-                    reason: format!(
-                        "no contact: the state connected to the pressed uniform rod needs the tip \
-                         pulled up to height eta = {eta} (normal force {:.6e})",
+                return Err(VibrissaError::OutOfReach {
+                    what: format!(
+                        "the state connected to the pressed uniform rod needs the tip pulled up to \
+                         height eta = {eta} (normal force {:.6e})",
                         pt.w.normal
                     ),
+                    reach: pt.w.normal,
+                    needed: 0.0,
                 });
             }
             let mut stats = pu.stats;
@@ -503,6 +513,7 @@ pub(crate) fn morph<P: Profile>(
     set: impl FnMut(&mut Chain<P>, f64),
     tol: f64,
     what: &str,
+    param: &dyn Fn(f64) -> String,
 ) -> Result<(Chain<P>, crate::rodsolve::Converged), VibrissaError> {
     let mut m = crate::chain::Morph {
         chain,
@@ -513,8 +524,19 @@ pub(crate) fn morph<P: Profile>(
         what: what.to_string(),
         reason: e,
     };
-    let first = crate::arclength::at_lambda(&mut m, u, 0.0, tol, 30).map_err(|e| fail(e.to_string()))?;
-    let end = crate::arclength::follow_to(&mut m, first, 1.0, tol).map_err(fail)?;
+    let first =
+        crate::arclength::at_lambda(&mut m, u, 0.0, tol, 30).map_err(|e| fail(e.to_string()))?;
+    let end = crate::arclength::follow_to(&mut m, first, 1.0, tol).map_err(|e| {
+        fail(match e {
+            crate::arclength::FollowError::TurnedBack { reached } => format!(
+                "no such state: the curve turns back (a fold) at {}",
+                param(reached)
+            ),
+            crate::arclength::FollowError::Step { at, reason } => {
+                format!("at {}: {reason}", param(at))
+            }
+        })
+    })?;
     // the member at 1 once more, so that the shooter's paths hold it
     let cv = crate::rodsolve::solve_damped(&mut m, 1.0, &end.u(), tol, 30)
         .map_err(|e| fail(e.to_string()))?;
@@ -541,7 +563,8 @@ pub(crate) fn turn_force<P: Profile>(
             ch.set.contacts[0].n = [-a.sin(), a.cos()];
         },
         tol,
-        &format!("turning the tip force from {from} to {to}"),
+        &format!("turning the tip force from alpha = {from} to alpha = {to}"),
+        &|t| format!("alpha = {}", from + t * (to - from)),
     )?;
     Ok((chain, cv.u))
 }

@@ -14,7 +14,7 @@ use crate::march::{interpolate, Passed, Pt, StepError, Stepper};
 use crate::profile::Profile;
 use crate::rodsolve::{correct_chord, Converged, ShotFailure};
 use crate::search;
-use crate::watch::{watch, Env};
+use crate::watch::{watch, Env, RodView};
 use bvp::Stats;
 
 /// Newton iterations per point before a natural step is given up.
@@ -53,11 +53,13 @@ impl<P: Profile> OwnStepper<P> {
             lam,
             &cv.u,
             du.as_deref(),
-            &sol,
-            xf,
-            &mut |s| chain.state_at(s),
-            &|s, m| chain.sh.profile.kappa(s, m),
-            chain.sh.profile.straight(),
+            RodView {
+                sol: &sol,
+                xf,
+                exact: &mut |s| chain.state_at(s),
+                kappa: &|s, m| chain.sh.profile.kappa(s, m),
+                straight: chain.sh.profile.straight(),
+            },
         );
         Ok(Pt {
             lam,
@@ -84,7 +86,9 @@ impl<P: Profile> OwnStepper<P> {
             .map_err(|e| e.to_string())?;
         let p = self.point(lam, cv)?;
         if p.du.is_none() {
-            return Err(StepError::Failed("singular Jacobian at the solution".into()));
+            return Err(StepError::Failed(
+                "singular Jacobian at the solution".into(),
+            ));
         }
         if let Some(last) = newest {
             same_branch(last, u, &p, self.chain.sh.tol)?;

@@ -29,7 +29,6 @@ pub(crate) enum Goal {
     TipSlope(f64, f64),
 }
 
-
 /// One contact's forces in its own frame (surface: normal and tangent of the line; point
 /// object: the rod's normal and tangent there) and its place.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,20 +73,36 @@ pub(crate) struct Watch {
 /// Distance from a contact inside which a maximum of the height is that contact's own.
 const NEAR: f64 = 1e-4;
 
-/// The watch of the point `(λ, u)` with tangent `du` and path `sol`; `exact(s)` gives the state on
-/// the rod at `s` (to refine the highest points found on the interpolant).
+/// The solved rod as the watch sees it.
+pub(crate) struct RodView<'a> {
+    /// The whole rod (its interpolant locates the highest points).
+    pub sol: &'a Solution,
+    /// The foot's x in the lab frame.
+    pub xf: f64,
+    /// The state on the rod at `s` (refines what the interpolant found).
+    pub exact: &'a mut dyn FnMut(f64) -> [f64; 4],
+    /// The curvature `κ(s, m)`.
+    pub kappa: &'a dyn Fn(f64, f64) -> f64,
+    /// The rest shape is straight (an unloaded part beyond a tangent contact lies on the line).
+    pub straight: bool,
+}
+
+/// The watch of the point `(λ, u)` with tangent `du` on the rod `rod`.
 pub(crate) fn watch(
     env: &Env,
     set: &ContactSet,
     lam: f64,
     u: &[f64],
     du: Option<&[f64]>,
-    sol: &Solution,
-    xf: f64,
-    exact: &mut dyn FnMut(f64) -> [f64; 4],
-    kappa: &dyn Fn(f64, f64) -> f64,
-    straight: bool,
+    rod: RodView<'_>,
 ) -> Watch {
+    let RodView {
+        sol,
+        xf,
+        exact,
+        kappa,
+        straight,
+    } = rod;
     let mut contacts = Vec::with_capacity(set.contacts.len());
     let (mut nsum, mut tsum) = (0.0, 0.0);
     let (mut dnsum, mut dtsum) = (0.0, 0.0);
@@ -138,7 +153,18 @@ pub(crate) fn watch(
         }
     });
     let (clear, clear_s, tip_approach) = match env.line {
-        Some((p0, beta)) => clearance(set, u, sol, p0, beta, xf, exact, kappa, straight),
+        Some((p0, beta)) => clearance(
+            set,
+            u,
+            (p0, beta),
+            RodView {
+                sol,
+                xf,
+                exact: &mut *exact,
+                kappa,
+                straight,
+            },
+        ),
         None => (f64::NEG_INFINITY, f64::NAN, f64::NAN),
     };
     let clear_z = if clear_s.is_finite() {
@@ -187,14 +213,16 @@ fn point_frame(ct: &Contact, phi: f64) -> ([f64; 2], [f64; 2]) {
 fn clearance(
     set: &ContactSet,
     u: &[f64],
-    sol: &Solution,
-    p0: [f64; 2],
-    beta: f64,
-    xf: f64,
-    exact: &mut dyn FnMut(f64) -> [f64; 4],
-    kappa: &dyn Fn(f64, f64) -> f64,
-    straight: bool,
+    (p0, beta): ([f64; 2], f64),
+    rod: RodView<'_>,
 ) -> (f64, f64, f64) {
+    let RodView {
+        sol,
+        xf,
+        exact,
+        kappa,
+        straight,
+    } = rod;
     let (sb, cb) = beta.sin_cos();
     let h = |x: f64, y: f64| -sb * (x + xf - p0[0]) + cb * (y - p0[1]);
     let surf: Vec<f64> = set
@@ -259,11 +287,12 @@ fn clearance(
             best = (v, 1.0);
         }
     }
-    let approach = if tip_contact && matches!(set.contacts.last().map(|c| c.geom), Some(Geom::Line { .. })) {
-        (sol.right()[2] - beta).sin()
-    } else {
-        f64::NAN
-    };
+    let approach =
+        if tip_contact && matches!(set.contacts.last().map(|c| c.geom), Some(Geom::Line { .. })) {
+            (sol.right()[2] - beta).sin()
+        } else {
+            f64::NAN
+        };
     (best.0, best.1, approach)
 }
 

@@ -406,7 +406,10 @@ fn loose_tolerances_scan_the_whole_range() {
             r.stop,
             t.stop
         );
-        assert!(r.points.iter().any(|p| p.event == Some(Event::Touchdown)), "{f}");
+        assert!(
+            r.points.iter().any(|p| p.event == Some(Event::Touchdown)),
+            "{f}"
+        );
     }
 }
 

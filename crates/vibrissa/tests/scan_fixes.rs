@@ -6,8 +6,8 @@ use bvp::{Integrator, NewtonOptions, Shooting, ShootingOptions};
 use vibrissa::equations::{Ends, RodBvp, ScanFamily};
 use vibrissa::profile::Uniform;
 use vibrissa::{
-    scan, solve, BranchChoice, ContactModel, Event, Rod, ScanOptions, ScanResult, Scene, SolverConfig, Stiffness,
-    StopReason, Target,
+    scan, solve, BranchChoice, ContactModel, Event, Rod, ScanOptions, ScanResult, Scene,
+    SolverConfig, Stiffness, StopReason, Target,
 };
 
 fn grid_len(o: &ScanOptions, upto: f64) -> usize {
