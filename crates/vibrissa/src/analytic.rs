@@ -158,10 +158,10 @@ pub(crate) fn scan_analytic(
     opts: &ScanOptions,
     grid: &[f64],
 ) -> Result<ScanResult, VibrissaError> {
-    if !(rod.is_uniform_clamped() && surface.angle() == 0.0) {
+    if !(rod.is_uniform_clamped() && surface.angle() == 0.0 && surface.profile().is_none()) {
         return Err(VibrissaError::MethodUnavailable {
             method: "analytic".into(),
-            reason: "closed forms exist only for the paper's rod (uniform, straight, clamped) on a horizontal surface".into(),
+            reason: "closed forms exist only for the paper's rod (uniform, straight, clamped) on a horizontal straight surface".into(),
         });
     }
     let eta = surface.eta();

@@ -43,6 +43,8 @@ pub(crate) enum Geom {
     Point { p: [f64; 2] },
     /// No obstacle: the tip's slope is held at `phi1` (a single solve's tip condition).
     Slope { phi1: f64 },
+    /// A curved surface `y = h(x)` (lab frame), shifted up by the pose's offset `h`.
+    Curve { h: &'static crate::surface::Height },
 }
 
 /// How a contact holds.
@@ -101,6 +103,24 @@ impl Contact {
             phi_ref,
         }
     }
+    /// A contact on the curved surface `h` at lab `x` (frame: the local normal and tangent
+    /// there; `phi_ref` the rod's slope there if it lies tangent, `θ(x) + kπ`).
+    pub fn on_curve(
+        tip: bool,
+        h: &'static crate::surface::Height,
+        x: f64,
+        mode: Mode,
+        phi_ref: f64,
+    ) -> Contact {
+        let th = h.angle(x).0;
+        Contact {
+            tip,
+            geom: Geom::Curve { h },
+            mode,
+            n: [-th.sin(), th.cos()],
+            phi_ref,
+        }
+    }
 }
 
 /// The contacts, ordered along the rod (the tip, if touching, last).
@@ -141,8 +161,8 @@ impl ContactSet {
         self.contacts
             .iter()
             .map(|c| match (c.geom, c.tip) {
-                (Geom::Line { .. } | Geom::Slope { .. }, true) => "tip",
-                (Geom::Line { .. } | Geom::Slope { .. }, false) => "side",
+                (Geom::Line { .. } | Geom::Slope { .. } | Geom::Curve { .. }, true) => "tip",
+                (Geom::Line { .. } | Geom::Slope { .. } | Geom::Curve { .. }, false) => "side",
                 (Geom::Point { .. }, _) => "point",
             })
             .collect::<Vec<_>>()
@@ -160,6 +180,11 @@ pub(crate) struct Pose {
     pub h: f64,
     /// Offset of a held tip slope (a single solve's slope condition `φ(1) = φ1 + phi`).
     pub phi: f64,
+    /// How far a stuck surface contact's anchor has moved along the surface (a slip in progress).
+    pub slide: f64,
+    /// How much of a curved surface's shape is flattened away (0: the profile itself; 1: its
+    /// straight trend; the start grows the shape from the pressed straight surface).
+    pub flat: f64,
 }
 
 /// A one-parameter family of scenes: what `λ` moves.
@@ -177,6 +202,12 @@ pub(crate) enum Family {
     Slope,
     /// Nothing moves with λ (a fixed scene; a homotopy of the rod itself sets the shooter).
     Fixed(Pose),
+    /// The foot held at `xf` while the stuck contact slides along the surface by `dir·λ` (a slip:
+    /// its anchor moves, in arc length).
+    Slide { xf: f64, dir: f64 },
+    /// A curved surface's shape grown from its straight trend (`λ = 0`, lifted by `off0`) to
+    /// itself (`λ = 1`): `flat = 1 − λ`, `h = (1 − λ)·off0`.
+    Grow { off0: f64 },
 }
 
 impl Family {
@@ -189,6 +220,26 @@ impl Family {
             Family::Turn => (Pose { theta: lam, ..z }, Pose { theta: 1.0, ..z }),
             Family::Slope => (Pose { phi: lam, ..z }, Pose { phi: 1.0, ..z }),
             Family::Fixed(p) => (p, z),
+            Family::Slide { xf, dir } => (
+                Pose {
+                    xf,
+                    slide: dir * lam,
+                    ..z
+                },
+                Pose { slide: dir, ..z },
+            ),
+            Family::Grow { off0 } => (
+                Pose {
+                    h: (1.0 - lam) * off0,
+                    flat: 1.0 - lam,
+                    ..z
+                },
+                Pose {
+                    h: -off0,
+                    flat: -1.0,
+                    ..z
+                },
+            ),
         }
     }
 }
@@ -653,7 +704,12 @@ pub(crate) fn conditions(
             let along = e[0] * (rx - p0[0]) + e[1] * (ry - p0[1]);
             let da = [e[0], e[1], 0.0, 0.0];
             match ct.mode {
-                Mode::Stuck(anchor) => cs.push(along - anchor, da, [0.0; 3], e[0] * dpose.xf),
+                Mode::Stuck(anchor) => cs.push(
+                    along - anchor - pose.slide,
+                    da,
+                    [0.0; 3],
+                    e[0] * dpose.xf - dpose.slide,
+                ),
                 Mode::Rolling(k) => {
                     // the rod runs along the line forwards or backwards (its slope β or β + π)
                     let dir = (ct.phi_ref - beta).cos().round();
@@ -668,6 +724,7 @@ pub(crate) fn conditions(
                 Mode::Sliding(ratio) => friction(&mut cs, ratio),
             }
         }
+        Geom::Curve { h } => curve_conditions(&mut cs, ct, h, z, own, pose, dpose),
         Geom::Slope { phi1 } => {
             cs.push(
                 z[2] - phi1 - pose.phi,
@@ -702,6 +759,99 @@ pub(crate) fn conditions(
         }
     }
     cs
+}
+
+/// The conditions on a curved surface `y = h(x) + pose.h`: on it; tangent to it inside the rod
+/// (`φ = θ(x) + kπ`, `θ = atan h'`); the mode, with the tip's place as arc length `σ(x)` along
+/// the surface and the friction ratio in the local frame (`N`, `T` of the force resolved on the
+/// normal and tangent at the contact point: the unknowns are the force in the frame fixed when
+/// the contact formed, so that the shooter's forces stay constant along a segment).
+fn curve_conditions(
+    cs: &mut Conds,
+    ct: &Contact,
+    h: &crate::surface::Height,
+    z: &[f64; 4],
+    own: &[f64],
+    pose: &Pose,
+    dpose: &Pose,
+) {
+    let rx = z[0] + pose.xf;
+    let amp = 1.0 - pose.flat;
+    let (hv, d, _) = h.jet_scaled(rx, amp);
+    // the shape's part (its amplitude moves with `flat`)
+    let (sv, sd) = if dpose.flat != 0.0 {
+        h.shape(rx)
+    } else {
+        (0.0, 0.0)
+    };
+    cs.push(
+        z[1] - hv - pose.h,
+        [-d, 1.0, 0.0, 0.0],
+        [0.0; 3],
+        -d * dpose.xf - dpose.h + sv * dpose.flat,
+    );
+    let (th, dth) = h.angle_scaled(rx, amp);
+    // dθ/dλ at a fixed point: through x (the foot) and the amplitude
+    let dth_lam = dth * dpose.xf - sd / (1.0 + d * d) * dpose.flat;
+    // the multiple of π the rod's slope keeps against the surface's (|θ| < π/4)
+    let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
+    if !ct.tip {
+        cs.push(z[2] - th - kpi, [-dth, 0.0, 1.0, 0.0], [0.0; 3], -dth_lam);
+    }
+    let (sg, dsg) = h.sigma(rx);
+    match ct.mode {
+        Mode::Stuck(anchor) => cs.push(
+            sg - anchor - pose.slide,
+            [dsg, 0.0, 0.0, 0.0],
+            [0.0; 3],
+            dsg * dpose.xf - dpose.slide,
+        ),
+        Mode::Rolling(k) => {
+            let dir = kpi.cos().round();
+            cs.push(
+                sg - dir * own[2] - k,
+                [dsg, 0.0, 0.0, 0.0],
+                [0.0, 0.0, -dir],
+                dsg * dpose.xf,
+            )
+        }
+        Mode::Free | Mode::Sliding(_) => {
+            let ratio = if let Mode::Sliding(r) = ct.mode {
+                r
+            } else {
+                0.0
+            };
+            // N_loc = Fx sin θ − Fy cos θ, T_loc = −Fx cos θ − Fy sin θ; F = −N n + T t
+            let f = ct.force(own[0], own[1]);
+            let (st, c) = th.sin_cos();
+            let nl = f[0] * st - f[1] * c;
+            let tl = -f[0] * c - f[1] * st;
+            let t = ct.t();
+            let dn = [-ct.n[0] * st + ct.n[1] * c, t[0] * st - t[1] * c];
+            let dt = [ct.n[0] * c + ct.n[1] * st, -t[0] * c - t[1] * st];
+            // ∂/∂θ: N_loc' = −T_loc... (Fx cos θ + Fy sin θ = −T_loc), T_loc' = N_loc
+            let dth_row = (nl + ratio * tl) * dth;
+            cs.push(
+                tl - ratio * nl,
+                [dth_row, 0.0, 0.0, 0.0],
+                [dt[0] - ratio * dn[0], dt[1] - ratio * dn[1], 0.0],
+                (nl + ratio * tl) * dth_lam,
+            )
+        }
+    }
+}
+
+/// The force `(N, T)` of a contact resolved on the local normal and tangent of a curved surface at
+/// lab `x` (for a line: the unknowns themselves).
+pub(crate) fn local_forces(ct: &Contact, nn: f64, tt: f64, x: f64) -> (f64, f64) {
+    match ct.geom {
+        Geom::Curve { h } => {
+            let f = ct.force(nn, tt);
+            let (st, c) = h.angle(x).0.sin_cos();
+            (f[0] * st - f[1] * c, -f[0] * c - f[1] * st)
+        }
+        _ => (nn, tt),
+    }
 }
 
 /// The rod's slope where it lies tangent to a line of inclination `beta` with slope near `phi`:

@@ -66,9 +66,11 @@ mod analytic;
 mod arclength;
 mod chain;
 mod config;
+pub mod drag;
 pub mod equations;
 mod error;
 mod generic;
+mod ground;
 mod kind;
 mod march;
 mod parts;
@@ -85,8 +87,10 @@ mod shooter;
 pub mod solve;
 mod start;
 mod stepper;
+pub mod surface;
 mod watch;
 
+pub use drag::{drag, DragOptions, DragResult};
 pub use error::VibrissaError;
 pub use report::{
     ContactLabel, ContactModel, Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult,

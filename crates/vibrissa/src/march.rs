@@ -20,6 +20,7 @@ use crate::report::{ContactLabel, Event, RangeEnd, ScanPoint, StopReason};
 use crate::sampling::flex_and_reversals;
 use crate::search;
 use crate::shape::{shape_from, ShapePoint};
+use crate::surface::Meter;
 use crate::watch::{Crossing, Env, Watch};
 use bvp::{Solution, Stats};
 
@@ -143,6 +144,10 @@ pub(crate) struct MarchOut {
     /// The last point and its contact set.
     pub last: Option<(ContactSet, Pt)>,
     pub stats: Stats,
+    /// The tip state `z(1)` (foot frame) of each output point.
+    pub tips: Vec<[f64; 4]>,
+    /// The work integrated along the march (`env.ground.meter`; 0 without one).
+    pub metered: f64,
 }
 
 /// The first maximum of `|μ|` and what ended the range, once known.
@@ -176,6 +181,8 @@ pub(crate) fn march<P: Profile>(
         points: Vec::with_capacity(spec.grid.len() + 1),
         shapes: Vec::new(),
         gi: spec.grid.partition_point(|&g| g < p0.lam),
+        tips: Vec::with_capacity(spec.grid.len() + 1),
+        metered: 0.0,
     };
     let mut range = RangeTracker {
         best: (p0.w.mu.abs(), p0.w.mu, p0.lam),
@@ -220,6 +227,8 @@ pub(crate) fn march<P: Profile>(
         stop,
         last,
         stats,
+        tips: out.tips,
+        metered: out.metered,
     }
 }
 
@@ -478,6 +487,10 @@ impl<P: Profile> Run<'_, '_, P> {
                 }
             }
             let l_stop = found.as_ref().map_or(p.lam, |f| f.pt.lam);
+            if let Some(m) = spec.env.ground.meter {
+                let end = found.as_ref().map_or(&p, |f| &f.pt).clone();
+                self.out.metered += self.meter_between(m, &hist, &prev, &end, 0);
+            }
             // the first maximum of |μ| between the last point and l_stop
             if self.range.end.is_none() {
                 if let Some(m) = self.first_max(&hist, &prev.w, pprev.as_ref(), &p.w, l_stop) {
@@ -581,6 +594,101 @@ enum Next {
     Done,
 }
 
+/// The contact set after a touchdown, the tip lying down, or a peel-back on a curved surface (as
+/// on a line, with the surface's arc length for the places and its local frame for the forces).
+fn curve_transition(
+    h: &'static crate::surface::Height,
+    set: &ContactSet,
+    cross: Crossing,
+    pe: &Pt,
+    xf: f64,
+    friction: bool,
+) -> Next {
+    let u = &pe.u;
+    let rolling = |z: &[f64], s: f64| -> (Mode, f64) {
+        let x = z[0] + xf;
+        let th = h.angle(x).0;
+        let phi_ref = crate::chain::slope_on(th, z[2]);
+        let dir = (phi_ref - th).cos().round();
+        let mode = if friction {
+            Mode::Rolling(h.sigma(x).0 - dir * s)
+        } else {
+            Mode::Free
+        };
+        (mode, phi_ref)
+    };
+    match cross {
+        Crossing::Touchdown => {
+            let s = pe.w.clear_s;
+            let z = pe.w.clear_z;
+            let (mode, phi_ref) = rolling(&z, s);
+            let ct = Contact::on_curve(false, h, z[0] + xf, mode, phi_ref);
+            let j = (0..set.contacts.len())
+                .find(|&j| set.s_of(j, u) > s)
+                .unwrap_or(set.contacts.len());
+            let mut ns = set.clone();
+            ns.contacts.insert(j, ct);
+            let o = if j < set.contacts.len() {
+                set.offset(j)
+            } else {
+                u.len()
+            };
+            let mut nu = u.clone();
+            nu.splice(o..o, [0.0, 0.0, s]);
+            Next::Switch(Event::Touchdown, ns, nu)
+        }
+        Crossing::TipTangent => {
+            let j = set.contacts.len() - 1;
+            let zb = pe.sol.right();
+            let (mode, phi_ref) = rolling(zb, 1.0);
+            let mut ns = set.clone();
+            // the force keeps its frame (the unknowns carry over)
+            ns.contacts[j] = Contact {
+                tip: false,
+                mode,
+                phi_ref,
+                ..set.contacts[j]
+            };
+            let mut nu = u.clone();
+            nu.push(1.0);
+            Next::Switch(Event::Touchdown, ns, nu)
+        }
+        Crossing::PeelBack(j) => {
+            let o = set.offset(j);
+            let mut ns = set.clone();
+            let mut nu = u.clone();
+            if set.tip() {
+                // the rolling contact reaches the touching tip: one contact there (its force
+                // expressed in the tip's frame)
+                let jt = set.contacts.len() - 1;
+                let ot = set.offset(jt);
+                let f = set.contacts[j].force(u[o], u[o + 1]);
+                let ct = set.contacts[jt];
+                let t = ct.t();
+                nu[ot] -= f[0] * ct.n[0] + f[1] * ct.n[1];
+                nu[ot + 1] += f[0] * t[0] + f[1] * t[1];
+                nu.drain(o..o + 3);
+                ns.contacts.remove(j);
+            } else {
+                let zb = pe.sol.right();
+                let mode = if friction {
+                    Mode::Stuck(h.sigma(zb[0] + xf).0)
+                } else {
+                    Mode::Free
+                };
+                ns.contacts[j] = Contact {
+                    tip: true,
+                    mode,
+                    ..set.contacts[j]
+                };
+                nu.remove(o + 2);
+            }
+            Next::Switch(Event::PeelBack, ns, nu)
+        }
+        _ => Next::Stop(Event::Penetration),
+    }
+}
+
 impl<P: Profile> Run<'_, '_, P> {
     /// The contact set after the event `cross` at the point `pe` (or the end).
     fn transition(&self, set: &ContactSet, cross: Crossing, pe: &Pt) -> Next {
@@ -594,6 +702,8 @@ impl<P: Profile> Run<'_, '_, P> {
         };
         match cross {
             Crossing::Slip(_) => Next::Stop(Event::Slip),
+            // the end of a slip: the march in the slip's parameter reached its goal
+            Crossing::Stick(_) => Next::Done,
             Crossing::SlipOff(_) => Next::Stop(Event::SlipOff),
             Crossing::MuMax => Next::Stop(Event::FoldInD),
             Crossing::Target(_) => Next::Done,
@@ -610,6 +720,14 @@ impl<P: Profile> Run<'_, '_, P> {
             }
             Crossing::Touchdown | Crossing::TipTangent if !env.compound => {
                 Next::Stop(Event::Penetration)
+            }
+            Crossing::Touchdown | Crossing::TipTangent | Crossing::PeelBack(_)
+                if env.ground.curve.is_some() =>
+            {
+                match env.ground.curve {
+                    Some(h) => curve_transition(h, set, cross, pe, xf, friction),
+                    None => Next::Stop(Event::Penetration),
+                }
             }
             Crossing::Touchdown => {
                 let Some((p0, beta)) = env.line else {
@@ -685,6 +803,31 @@ impl<P: Profile> Run<'_, '_, P> {
                 Next::Switch(Event::PeelBack, ns, nu)
             }
         }
+    }
+
+    /// `∫ rate dλ` of the work `m` from `a` to `b` on the branch (points of `hist`'s span):
+    /// the Hermite-corrected trapezoid, halved with solves at the midpoints until the halves agree
+    /// with the whole to 1e-11 (its error falls 16-fold per halving: the halves' sum is then
+    /// extrapolated).
+    fn meter_between(&mut self, m: Meter, hist: &[Pt], a: &Pt, b: &Pt, depth: u32) -> f64 {
+        let env = self.spec.env;
+        let ends = |st: &dyn Stepper, a: &Pt, b: &Pt| {
+            let set = st.set();
+            metered(m, env, set, (a, st.foot_x(a.lam)), (b, st.foot_x(b.lam)))
+        };
+        let whole = ends(&*self.stepper, a, b);
+        if depth >= 16 || b.lam - a.lam <= 1e-13 * (1.0 + b.lam.abs()) {
+            return whole;
+        }
+        let Ok(mid) = self.stepper.correct(0.5 * (a.lam + b.lam), hist, true) else {
+            return whole;
+        };
+        let halves = ends(&*self.stepper, a, &mid) + ends(&*self.stepper, &mid, b);
+        if (halves - whole).abs() <= 1e-11 * (1.0 + whole.abs()) {
+            return halves + (halves - whole) / 15.0;
+        }
+        self.meter_between(m, hist, a, &mid, depth + 1)
+            + self.meter_between(m, hist, &mid, b, depth + 1)
     }
 
     /// Where the branch polynomial, extrapolated from the last points, predicts `c` to reach 0
@@ -881,6 +1024,60 @@ impl<P: Profile> Run<'_, '_, P> {
     }
 }
 
+/// The rate of the work `m` at the point `p` (foot at `xf`) and its slope in `λ`.
+fn meter_rate(m: Meter, env: &Env, set: &ContactSet, p: &Pt, xf: f64) -> (f64, f64) {
+    let zero = vec![0.0; p.u.len()];
+    let du = p.du.as_deref().unwrap_or(&zero);
+    match m {
+        Meter::Foot => {
+            let (mut r, mut dr) = (0.0, 0.0);
+            for (j, ct) in set.contacts.iter().enumerate() {
+                let o = set.offset(j);
+                r -= ct.force(p.u[o], p.u[o + 1])[0];
+                dr -= ct.force(du[o], du[o + 1])[0];
+            }
+            (r, dr)
+        }
+        Meter::Slide => {
+            let dir = env.ground.slide.map_or(1.0, |s| s.dir);
+            let Some(j) = set.contacts.iter().position(|c| c.tip) else {
+                return (0.0, 0.0);
+            };
+            let ct = set.contacts[j];
+            let o = set.offset(j);
+            let f = ct.force(p.u[o], p.u[o + 1]);
+            let df = ct.force(du[o], du[o + 1]);
+            // the unit tangent along +σ at the tip and its turn per unit arc length
+            let (e, de) = match ct.geom {
+                Geom::Curve { h } => {
+                    let x = p.sol.right()[0] + xf;
+                    let (_, d, dd) = h.jet(x);
+                    let w = (1.0 + d * d).sqrt();
+                    let kappa = dd / (w * w * w);
+                    ([1.0 / w, d / w], [-d / w * kappa, kappa / w])
+                }
+                Geom::Line { beta, .. } => ([beta.cos(), beta.sin()], [0.0, 0.0]),
+                _ => return (0.0, 0.0),
+            };
+            let r = -dir * (f[0] * e[0] + f[1] * e[1]);
+            let dr = -dir * (df[0] * e[0] + df[1] * e[1]) - (f[0] * de[0] + f[1] * de[1]);
+            (r, dr)
+        }
+    }
+}
+
+/// `∫ rate dλ` between two points of one branch: the trapezoid with the end-slope correction
+/// (exact for cubics; Hermite data from the exact tangents).
+fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) -> f64 {
+    let h = b.0.lam - a.0.lam;
+    if h == 0.0 {
+        return 0.0;
+    }
+    let (ra, da) = meter_rate(m, env, set, a.0, a.1);
+    let (rb, db) = meter_rate(m, env, set, b.0, b.1);
+    0.5 * h * (ra + rb) + h * h / 12.0 * (da - db)
+}
+
 /// `d|μ|/dλ` of the total friction ratio from the unknowns and their tangent (surface
 /// contacts; the unknowns are the forces in the surface frame).
 fn mu_slope(set: &ContactSet, u: &[f64], du: &[f64]) -> f64 {
@@ -948,6 +1145,8 @@ struct Output {
     points: Vec<ScanPoint>,
     shapes: Vec<Vec<ShapePoint>>,
     gi: usize,
+    tips: Vec<[f64; 4]>,
+    metered: f64,
 }
 
 impl Output {
@@ -960,6 +1159,8 @@ impl Output {
         event: Option<Event>,
     ) {
         self.points.push(scan_point(p, set, profile, event));
+        let zb = p.sol.right();
+        self.tips.push([zb[0], zb[1], zb[2], zb[3]]);
         if let Some(ns) = spec.keep_shapes {
             let shape = shape_from(p.sol.clone(), 0.0, spec.general.clone());
             self.shapes.push(shape.samples(ns));

@@ -328,6 +328,12 @@ impl Rod {
 pub struct Surface {
     eta: f64,
     angle: f64,
+    /// A curved profile (none: the straight line through the contact point).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    profile: Option<&'static crate::surface::Height>,
+    /// A friction profile.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    texture: Option<&'static crate::surface::Texture>,
 }
 
 impl Surface {
@@ -349,7 +355,12 @@ impl Surface {
                 "(-pi/4, pi/4) radians",
             ));
         }
-        Ok(Surface { eta, angle })
+        Ok(Surface {
+            eta,
+            angle,
+            profile: None,
+            texture: None,
+        })
     }
     /// A horizontal surface at height `eta`.
     pub fn flat(eta: f64) -> Result<Surface, VibrissaError> {
@@ -362,5 +373,31 @@ impl Surface {
     /// Inclination β.
     pub fn angle(&self) -> f64 {
         self.angle
+    }
+    /// The surface with the height profile `p` (heights relative to `eta`, plus the inclination;
+    /// see [`crate::surface`]); errors name the scene key.
+    pub fn with_profile(
+        self,
+        p: &crate::surface::SurfaceProfile,
+    ) -> Result<Surface, VibrissaError> {
+        let profile = crate::surface::Height::new(p, self.eta, self.angle)?
+            .map(crate::surface::intern_height);
+        Ok(Surface { profile, ..self })
+    }
+    /// The surface with the friction profile `f` (see [`crate::surface`]).
+    pub fn with_friction(
+        self,
+        f: &crate::surface::FrictionProfile,
+    ) -> Result<Surface, VibrissaError> {
+        let texture = crate::surface::Texture::new(f)?.map(crate::surface::intern_texture);
+        Ok(Surface { texture, ..self })
+    }
+    /// The curved height profile, if not a straight line.
+    pub fn profile(&self) -> Option<&'static crate::surface::Height> {
+        self.profile
+    }
+    /// The friction profile, if any.
+    pub fn texture(&self) -> Option<&'static crate::surface::Texture> {
+        self.texture
     }
 }

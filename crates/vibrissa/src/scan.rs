@@ -8,7 +8,6 @@ use crate::profile::{Profile, Uniform};
 use crate::report::{ContactModel, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult};
 use crate::solve::Method;
 use crate::stepper::OwnStepper;
-use crate::watch::Env;
 use crate::{Rod, Surface, VibrissaError};
 
 /// Runs the stiction scan. Errors only for invalid input or when it cannot even start;
@@ -83,18 +82,18 @@ fn scan_with<P: Profile>(
     opts: &ScanOptions,
     grid: &[f64],
 ) -> Result<ScanResult, VibrissaError> {
-    let (eta, beta) = (surface.eta(), surface.angle());
+    let eta = surface.eta();
     let general = rod.profile(1.0);
     let compound = opts.contact == ContactModel::Anywhere;
     let tol = opts.solver.tol;
-    let start = crate::start::scan_start(rod, &profile, surface, opts.solver.start, tol)?;
-    let (set, p0) = crate::start::stuck(&start, beta);
-    let env = Env {
-        line: Some((p0, beta)),
-        mu0: opts.mu0,
-        compound,
-        target: None,
-    };
+    let (start, set, p0) = crate::ground::start(rod, &profile, surface, opts.solver.start, tol)?;
+    // a friction profile without a given μ0: the static coefficient where the tip sticks
+    let mu0 = opts.mu0.or_else(|| {
+        surface
+            .texture()
+            .map(|t| t.at(start.pt.sol.right()[0], 1.0).0)
+    });
+    let env = crate::ground::env_of(surface, p0, mu0, compound);
     let spec = Spec {
         env: &env,
         grid,

@@ -33,6 +33,12 @@ pub struct Scene {
     pub contact: crate::ContactModel,
     /// The state a scan starts from: `pressed` (default) or `connected`.
     pub start: crate::StartKind,
+    /// The surface's shape: `line` (default), `sine`, `circle`, `table` (module
+    /// [`crate::surface`]).
+    pub surface: crate::surface::SurfaceProfile,
+    /// The friction along the surface: `none` (default: the command's coefficients), `uniform`,
+    /// `table`, `patches`.
+    pub friction: crate::surface::FrictionProfile,
 }
 
 impl Default for Scene {
@@ -46,6 +52,8 @@ impl Default for Scene {
             physical: None,
             contact: crate::ContactModel::Anywhere,
             start: crate::StartKind::Pressed,
+            surface: Default::default(),
+            friction: Default::default(),
         }
     }
 }
@@ -61,9 +69,11 @@ impl Scene {
         )
     }
 
-    /// The surface of the scene (height and inclination), validated.
+    /// The surface of the scene (height, inclination, profile and friction), validated.
     pub fn surface(&self) -> Result<Surface, VibrissaError> {
-        Surface::new(self.eta, self.surface_angle)
+        Surface::new(self.eta, self.surface_angle)?
+            .with_profile(&self.surface)?
+            .with_friction(&self.friction)
     }
 
     /// Both parts, validated: `(rod, surface)`.

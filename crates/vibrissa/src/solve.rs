@@ -153,6 +153,7 @@ fn solve_with<P: Profile>(
             mu0: None,
             compound: false,
             target: None,
+            ground: Default::default(),
         };
         let mut g = GenericStepper::new(profile.clone(), c, set, Family::Fixed(pose), env, cfg)?;
         let p = g

@@ -184,6 +184,7 @@ pub(crate) fn press<P: Profile>(
         mu0: None,
         compound: spec.sides,
         target: Some(goal),
+        ground: Default::default(),
     };
     let mut st = OwnStepper { chain, env };
     let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
@@ -472,6 +473,7 @@ pub(crate) fn scan_start<P: Profile>(
                     mu0: None,
                     compound: false,
                     target: None,
+                    ground: Default::default(),
                 },
             };
             // the shooter's paths hold the point at t = 1 (the last correction)

@@ -4,6 +4,7 @@
 //! ends (a contact lifts, slips, a new one forms, a lying part peels back, the object slips off).
 
 use crate::chain::{Contact, ContactSet, Geom, Mode};
+use crate::surface::Ground;
 use bvp::Solution;
 
 /// The scene's obstacles and thresholds, fixed along a march.
@@ -18,6 +19,8 @@ pub(crate) struct Env {
     pub compound: bool,
     /// March until the target is reached (the press of the start, a load to a tip condition).
     pub target: Option<Goal>,
+    /// A curved surface, a friction texture, a slip in progress (module `surface`).
+    pub ground: Ground,
 }
 
 /// Where a press ends.
@@ -39,6 +42,12 @@ pub(crate) struct ContactForce {
     pub tangential: f64,
     /// Arc length.
     pub s: f64,
+    /// Lab x of the contact point.
+    pub x: f64,
+    /// Its slip threshold (μ0 for the tip, else the texture's μs there; `inf`: none).
+    pub mu_s: f64,
+    /// μk there during a slip (`inf` otherwise).
+    pub mu_k: f64,
 }
 
 /// Per-point quantities of a march.
@@ -113,7 +122,25 @@ pub(crate) fn watch(
         let f = ct.force(u[o], u[o + 1]);
         force[0] += f[0];
         force[1] += f[1];
+        let x = if s >= 1.0 {
+            sol.right()[0] + xf
+        } else {
+            exact(s)[0] + xf
+        };
         let (nrm, tng, dn, dt) = match ct.geom {
+            Geom::Curve { .. } => {
+                let (nl, tl) = crate::chain::local_forces(ct, u[o], u[o + 1], x);
+                // the frame turns with a moving contact point: no slope from the unknowns alone
+                // unless the contact is stuck
+                let (dn, dt) = match du {
+                    Some(d) if matches!(ct.mode, Mode::Stuck(_)) && env.ground.slide.is_none() => {
+                        let q = crate::chain::local_forces(ct, d[o], d[o + 1], x);
+                        (q.0, q.1)
+                    }
+                    _ => (f64::NAN, f64::NAN),
+                };
+                (nl, tl, dn, dt)
+            }
             Geom::Line { .. } | Geom::Slope { .. } => (
                 u[o],
                 u[o + 1],
@@ -137,35 +164,52 @@ pub(crate) fn watch(
         tsum += tng;
         dnsum += dn;
         dtsum += dt;
+        let side = env.ground.slide.map_or(1.0, |sl| sl.dir);
+        let tex = env.ground.friction_at(x, side);
+        let mu_s = match (ct.tip, tex) {
+            (false, Some((ms, _))) => ms,
+            _ => env.mu0.unwrap_or(f64::INFINITY),
+        };
         contacts.push(ContactForce {
             normal: nrm,
             tangential: tng,
             s,
+            x,
+            mu_s,
+            mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
         });
     }
     let mu = if nsum != 0.0 { tsum / nsum } else { 0.0 };
-    let dmu_abs = du.map(|_| {
-        let dmu = (dtsum * nsum - tsum * dnsum) / (nsum * nsum);
-        if mu == 0.0 {
-            dmu.abs()
-        } else {
-            mu.signum() * dmu
+    let dmu_abs = du
+        .filter(|_| dnsum.is_finite() && dtsum.is_finite())
+        .map(|_| {
+            let dmu = (dtsum * nsum - tsum * dnsum) / (nsum * nsum);
+            if mu == 0.0 {
+                dmu.abs()
+            } else {
+                mu.signum() * dmu
+            }
+        });
+    let (clear, clear_s, tip_approach) = match (env.line, env.ground.curve) {
+        (_, Some(h)) => {
+            let amp = if env.ground.grow { lam } else { 1.0 };
+            curve_clearance(set, u, (h, amp), sol, xf, exact, kappa)
         }
-    });
-    let (clear, clear_s, tip_approach) = match env.line {
-        Some((p0, beta)) => clearance(
-            set,
-            u,
-            (p0, beta),
-            RodView {
-                sol,
-                xf,
-                exact: &mut *exact,
-                kappa,
-                straight,
-            },
-        ),
-        None => (f64::NEG_INFINITY, f64::NAN, f64::NAN),
+        (line, None) => match line {
+            Some((p0, beta)) => clearance(
+                set,
+                u,
+                (p0, beta),
+                RodView {
+                    sol,
+                    xf,
+                    exact: &mut *exact,
+                    kappa,
+                    straight,
+                },
+            ),
+            None => (f64::NEG_INFINITY, f64::NAN, f64::NAN),
+        },
     };
     let clear_z = if clear_s.is_finite() {
         exact(clear_s)
@@ -296,6 +340,62 @@ fn clearance(
     (best.0, best.1, approach)
 }
 
+/// As [`clearance`], above the curved surface `h` (the gap `y − h(x)` measured vertically, from
+/// the offset the contacts hold the rod at); the tip's approach `sin(φ(1) − θ(x(1)))`.
+fn curve_clearance(
+    set: &ContactSet,
+    u: &[f64],
+    (h, amp): (&crate::surface::Height, f64),
+    sol: &Solution,
+    xf: f64,
+    exact: &mut dyn FnMut(f64) -> [f64; 4],
+    kappa: &dyn Fn(f64, f64) -> f64,
+) -> (f64, f64, f64) {
+    let hh = |x: f64| h.jet_scaled(x, amp).0;
+    let ss: Vec<f64> = (0..set.contacts.len()).map(|j| set.s_of(j, u)).collect();
+    let off = ss
+        .last()
+        .map(|&s| {
+            let z = if s >= 1.0 {
+                sol.right().to_vec()
+            } else {
+                exact(s).to_vec()
+            };
+            z[1] - hh(z[0] + xf)
+        })
+        .unwrap_or(0.0);
+    let near = |s: f64| ss.iter().any(|&c| (s - c).abs() < NEAR);
+    let lab = |s: f64, z: [f64; 4]| [z[0] + xf, z[1], z[2], kappa(s, z[3])];
+    let mut sample = |s: f64| {
+        let mut z = [0.0; 4];
+        sol.eval(s, &mut z);
+        lab(s, z)
+    };
+    let mut on_rod = |s: f64| lab(s, exact(s));
+    // samples fine enough for the surface's own waves over the rod's reach
+    let n = 256;
+    let (mut best, mut at) =
+        crate::surface::curve_clearance(h, amp, off, n, &mut sample, &mut on_rod, &near);
+    let zb = sol.right();
+    if !set.tip() && h.covers(zb[0] + xf) {
+        let v = zb[1] - hh(zb[0] + xf) - off;
+        if v > best {
+            (best, at) = (v, 1.0);
+        }
+    }
+    if best == f64::NEG_INFINITY {
+        // nothing free over the surface: the foot's gap (always below), to stay finite
+        best = -hh(xf) - off;
+        at = 0.0;
+    }
+    let approach = if set.tip() {
+        (zb[2] - h.angle_scaled(zb[0] + xf, amp).0).sin()
+    } else {
+        f64::NAN
+    };
+    (best, at, approach)
+}
+
 /// Newton on `φ(s) = β` (the tangent point where the height is largest) from `s0`, on the rod.
 fn refine_max(
     exact: &mut dyn FnMut(f64) -> [f64; 4],
@@ -334,6 +434,9 @@ pub(crate) enum Crossing {
     Lift(usize),
     /// Contact `j` (stuck or rolling) needs `|T| = μ0 N`.
     Slip(usize),
+    /// The sliding contact `j` needs no more than `dir·T = μk N` (the end of a slip; `dir` the
+    /// way it slides).
+    Stick(usize),
     /// A free part of the rod reaches the surface.
     Touchdown,
     /// The tip, touching the surface, turns tangent to it.
@@ -354,6 +457,7 @@ impl Crossing {
         match self {
             Crossing::Lift(j) => format!("-(normal force of contact {})", j + 1),
             Crossing::Slip(j) => format!("|T| - mu0 N of contact {}", j + 1),
+            Crossing::Stick(j) => format!("mu_k N - dir T of contact {}", j + 1),
             Crossing::Touchdown => "the height of the free rod above the surface".into(),
             Crossing::TipTangent => "-sin(phi(1) - beta)".into(),
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => {
@@ -370,17 +474,22 @@ impl Crossing {
         let mut v = Vec::new();
         for (j, c) in set.contacts.iter().enumerate() {
             v.push(Crossing::Lift(j));
-            if env.mu0.is_some() && matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_)) {
+            let sliding = env.ground.slide.is_some() && c.tip;
+            if sliding {
+                v.push(Crossing::Stick(j));
+            } else if (env.mu0.is_some() || env.ground.texture.is_some())
+                && matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_))
+            {
                 v.push(Crossing::Slip(j));
             }
             match (c.geom, c.tip) {
-                (Geom::Line { .. }, true) => v.push(Crossing::TipTangent),
-                (Geom::Line { .. }, false) => v.push(Crossing::PeelBack(j)),
+                (Geom::Line { .. } | Geom::Curve { .. }, true) => v.push(Crossing::TipTangent),
+                (Geom::Line { .. } | Geom::Curve { .. }, false) => v.push(Crossing::PeelBack(j)),
                 (Geom::Point { .. }, false) => v.push(Crossing::SlipOff(j)),
                 _ => {}
             }
         }
-        if env.line.is_some() {
+        if env.line.is_some() || env.ground.curve.is_some() {
             v.push(Crossing::Touchdown);
         }
         if let Some(h) = env.target {
@@ -395,7 +504,13 @@ impl Crossing {
             Crossing::Lift(j) => -w.contacts[j].normal,
             Crossing::Slip(j) => {
                 let c = w.contacts[j];
-                c.tangential.abs() - env.mu0.unwrap_or(f64::INFINITY) * c.normal
+                c.tangential.abs() - c.mu_s * c.normal
+            }
+            Crossing::Stick(j) => {
+                // signed along the slip: it rises through zero once where μk holds the tip
+                let c = w.contacts[j];
+                let dir = env.ground.slide.map_or(1.0, |s| s.dir);
+                c.mu_k * c.normal - dir * c.tangential
             }
             Crossing::Touchdown => w.clear,
             Crossing::TipTangent => -w.tip_approach,
@@ -412,9 +527,21 @@ impl Crossing {
         let line = |j: usize| matches!(set.contacts[j].geom, Geom::Line { .. });
         match self {
             Crossing::Lift(j) if line(j) => Some(-u[set.offset(j)]),
-            Crossing::Slip(j) if line(j) => {
+            Crossing::Slip(j)
+                if line(j) && (set.contacts[j].tip || env.ground.texture.is_none()) =>
+            {
                 let o = set.offset(j);
                 Some(u[o + 1].abs() - env.mu0.unwrap_or(f64::INFINITY) * u[o])
+            }
+            Crossing::Stick(j) if line(j) => {
+                let mu_k = match (env.ground.texture, env.ground.slide) {
+                    (None, Some(sl)) => sl.mu_k,
+                    (Some(t), Some(_)) => t.uniform_mu_k()?,
+                    _ => return None,
+                };
+                let o = set.offset(j);
+                let dir = env.ground.slide.map_or(1.0, |s| s.dir);
+                Some(mu_k * u[o] - dir * u[o + 1])
             }
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => Some(set.s_of(j, u) - 1.0),
             _ => None,

@@ -1,0 +1,886 @@
+//! The drag across a surface (issue 21): the foot travels `d` from 0 to `d_max` and the tip
+//! sticks and slips again and again.
+//!
+//! ```text
+//!     stick:  the march in d (family Drag), the tip stuck at its place σ_a along the surface,
+//!             until the friction ratio it needs reaches μs(x_tip):   |T| = μs N
+//!     slip:   the foot held at d_s, the tip's place moved along the surface, σ = σ_a + dir·λ
+//!             (family Slide; dir the way the contact force pushes it), the rod in equilibrium
+//!             with the tip held there at every λ, until the ratio it needs falls to μk:
+//!             |T| = μk(x_tip) N; then the tip sticks at σ_a + dir·λ* and the next stick starts
+//! ```
+//!
+//! The slip is the quasi-static limit of the sliding tip (docs/model.md, "The drag"): a tip that
+//! needs more friction than kinetic friction gives moves on; overdamped, it stops at the first
+//! equilibrium where kinetic friction holds it. Both phases are the one march of module `march`
+//! on the same stepper (the rod's own shooter or a generic method), with its events (lift-off,
+//! touchdown, peel-back, folds) handled as in the scan; a phase starts from the converged point
+//! where the last one ended.
+//!
+//! Energy (each phase, by the march's metered integral on its accepted points, Hermite-corrected
+//! trapezoid): in a stick the foot's work `W = ∫ −F_x dd` equals the change of the elastic
+//! energy `E = ∫ ½ b m² ds + ½ c m(0)²` (stuck and rolling contacts do no work); in a slip the
+//! contact absorbs `D = ∫ T dσ = E_before − E_after` (the released energy). `E` is integrated on
+//! the rod itself (10-point Gauss–Legendre on every step of the shooter's mesh).
+
+use crate::chain::{Chain, ContactSet, Family, Mode};
+use crate::config::SolverConfig;
+use crate::generic::GenericStepper;
+use crate::march::{march, scan_point, Pt, Spec, Stepper};
+use crate::profile::{Profile, Uniform};
+use crate::report::{ContactLabel, ContactModel, Event, StopReason};
+use crate::shape::{shape_from, ShapePoint};
+use crate::solve::Method;
+use crate::stepper::OwnStepper;
+use crate::surface::{gauss10, Meter, Slide};
+use crate::watch::{Crossing, Env};
+use crate::{Rod, Surface, VibrissaError};
+use serde::Serialize;
+use std::fmt;
+
+/// Largest foot displacement of a drag (rod lengths).
+pub const MAX_DRAG: f64 = 1000.0;
+/// Longest slip the march follows (rod lengths along the surface) before it calls the slip
+/// unbounded.
+pub const MAX_SLIP: f64 = 4.0;
+
+/// Options of [`drag`].
+#[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DragOptions {
+    /// Largest foot displacement, in `(0, 1000]`. Default 2.
+    pub d_max: f64,
+    /// Output points, uniformly on `[0, d_max]` (both included), in `[2, 1e6]`. Default 401.
+    pub points: usize,
+    /// Static friction coefficient μs (with `mu_k`; none: the surface's friction profile).
+    pub mu_s: Option<f64>,
+    /// Kinetic friction coefficient `μk ∈ [0, μs)`.
+    pub mu_k: Option<f64>,
+    /// Solver settings (every method but `analytic`).
+    pub solver: SolverConfig,
+    /// `Some(n)`: keep each row's shape sampled at `n` points.
+    pub keep_shapes: Option<usize>,
+    /// Where the rod may touch the surface.
+    pub contact: ContactModel,
+    /// Most slips before the drag stops (a guard), in `[1, 1e6]`. Default 100 000.
+    pub max_slips: usize,
+    /// Integrate the foot's work over each stick and the work the sliding tip absorbs over each
+    /// slip (the energy balance; extra solves inside the steps). Default false.
+    pub energy_balance: bool,
+}
+
+impl Default for DragOptions {
+    fn default() -> Self {
+        DragOptions {
+            d_max: 2.0,
+            points: 401,
+            mu_s: None,
+            mu_k: None,
+            solver: SolverConfig::default(),
+            keep_shapes: None,
+            contact: ContactModel::Anywhere,
+            max_slips: 100_000,
+            energy_balance: false,
+        }
+    }
+}
+
+impl DragOptions {
+    /// Checks every value; the error names it and its valid range.
+    pub fn validate(&self) -> Result<(), VibrissaError> {
+        if !(self.d_max > 0.0 && self.d_max <= MAX_DRAG) {
+            return Err(VibrissaError::range(
+                "d_max",
+                self.d_max,
+                format!("(0, {MAX_DRAG}] rod lengths"),
+            ));
+        }
+        if !(2..=1_000_000).contains(&self.points) {
+            return Err(VibrissaError::range(
+                "points",
+                self.points as f64,
+                "[2, 1000000]",
+            ));
+        }
+        match (self.mu_s, self.mu_k) {
+            (None, None) => {}
+            (Some(s), Some(k)) => {
+                if !(s.is_finite() && (0.0..=100.0).contains(&s)) {
+                    return Err(VibrissaError::range("mu_s", s, "[0, 100]"));
+                }
+                if !(k.is_finite() && k >= 0.0 && k < s) {
+                    return Err(VibrissaError::range(
+                        "mu_k",
+                        k,
+                        format!(
+                            "[0, mu_s = {s}) (kinetic friction below static: with mu_k = mu_s \
+                             the tip would slide steadily, no stick-slip)"
+                        ),
+                    ));
+                }
+            }
+            (s, _) => {
+                return Err(VibrissaError::range(
+                    if s.is_some() { "mu_k" } else { "mu_s" },
+                    f64::NAN,
+                    "given with the other one (both or neither: the surface's friction profile)",
+                ))
+            }
+        }
+        if let Some(n) = self.keep_shapes {
+            if !(2..=100_000).contains(&n) {
+                return Err(VibrissaError::range("keep_shapes", n as f64, "[2, 100000]"));
+            }
+        }
+        if !(1..=1_000_000).contains(&self.max_slips) {
+            return Err(VibrissaError::range(
+                "max_slips",
+                self.max_slips as f64,
+                "[1, 1000000]",
+            ));
+        }
+        if self.solver.method == Method::Analytic {
+            return Err(VibrissaError::MethodUnavailable {
+                method: "analytic".into(),
+                reason: "the drag's slips have no closed form; use shooting, multiple-shooting, \
+                         collocation or collocation6"
+                    .into(),
+            });
+        }
+        self.solver.validate()
+    }
+}
+
+/// Stick or slip.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phase {
+    /// The tip sticks; the foot moves.
+    Stick,
+    /// The tip slips; the foot is held.
+    Slip,
+}
+
+impl Phase {
+    /// `stick` or `slip`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Phase::Stick => "stick",
+            Phase::Slip => "slip",
+        }
+    }
+}
+
+/// An event of a drag.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DragEvent {
+    /// The tip starts to slip (the row: the state just before).
+    Slip,
+    /// The tip sticks again (the row: the state after the slip).
+    SlipEnd,
+    /// A change of the contact state or the end, as in the scan.
+    Contact(Event),
+}
+
+impl DragEvent {
+    /// The name in CSV and JSON: `slip`, `slip_end`, or the scan's event names.
+    pub fn name(self) -> &'static str {
+        match self {
+            DragEvent::Slip => "slip",
+            DragEvent::SlipEnd => "slip_end",
+            DragEvent::Contact(e) => e.name(),
+        }
+    }
+}
+
+/// One row of a drag: an output displacement (stick) or an event.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DragRow {
+    /// Foot displacement.
+    pub d: f64,
+    /// Stick or slip.
+    pub phase: Phase,
+    /// Lab position of the tip.
+    pub x_tip: f64,
+    /// Height of the tip.
+    pub y_tip: f64,
+    /// Signed friction ratio the contacts need, `ΣT/ΣN` in the local frames (see the scan).
+    pub mu: f64,
+    /// Normal force (sum over the contacts).
+    pub normal: f64,
+    /// The tip's static coefficient where it is (the slip threshold of the phase).
+    pub mu_s: f64,
+    /// The force the rod exerts on its support, x (equal to the total contact force).
+    pub fx: f64,
+    /// The force on the support, y.
+    pub fy: f64,
+    /// `m(0)` (the paper's clamp moment is `−m(0)`).
+    pub m_base: f64,
+    /// Which parts touch.
+    pub contact: ContactLabel,
+    /// The event at this row.
+    pub event: Option<DragEvent>,
+    /// On a slip row: how far the tip slips along the surface (arc length, + towards +x).
+    pub jump: Option<f64>,
+    /// On a slip row: the elastic energy the slip releases.
+    pub released: Option<f64>,
+}
+
+/// The base signals at one state.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Signals {
+    /// Friction ratio.
+    pub mu: f64,
+    /// Normal force.
+    pub normal: f64,
+    /// Force on the support, x.
+    pub fx: f64,
+    /// Force on the support, y.
+    pub fy: f64,
+    /// `m(0)`.
+    pub m_base: f64,
+    /// Lab x of the tip.
+    pub x_tip: f64,
+    /// Elastic energy.
+    pub energy: f64,
+}
+
+/// One slip and the stick phase before it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SlipEvent {
+    /// Foot displacement at the slip.
+    pub d: f64,
+    /// Where the stick phase before it began.
+    pub d_stick: f64,
+    /// Arc length the tip slips along the surface (+ towards +x).
+    pub jump: f64,
+    /// Elastic energy released, `E_before − E_after`.
+    pub released: f64,
+    /// The work the sliding contact absorbs, `∫ T dσ` (equal to `released`: the energy balance
+    /// of the slip); with `energy_balance`.
+    pub dissipated: Option<f64>,
+    /// The foot's work over the stick phase before, `∫ −F_x dd` (equal to the energy's change
+    /// over it); with `energy_balance`.
+    pub work: Option<f64>,
+    /// Elastic energy at the start of that stick phase.
+    pub energy_stick: f64,
+    /// The signals just before the slip.
+    pub before: Signals,
+    /// The signals just after.
+    pub after: Signals,
+}
+
+/// Means and spreads over the slips of a drag.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DragSummary {
+    /// Number of slips (stick–slip cycles).
+    pub cycles: usize,
+    /// Mean of the slip lengths along the surface.
+    pub jump_mean: f64,
+    /// Their standard deviation (n − 1; 0 for fewer than 2).
+    pub jump_std: f64,
+    /// Mean drop of `|fx|` at a slip (`|fx|` before − after).
+    pub drop_fx_mean: f64,
+    /// Its standard deviation.
+    pub drop_fx_std: f64,
+    /// Mean drop of the normal force.
+    pub drop_normal_mean: f64,
+    /// Its standard deviation.
+    pub drop_normal_std: f64,
+    /// Mean released energy.
+    pub released_mean: f64,
+    /// Its standard deviation.
+    pub released_std: f64,
+    /// Mean foot displacement between slips (from the second slip on).
+    pub period_mean: f64,
+    /// Its standard deviation.
+    pub period_std: f64,
+}
+
+/// Result of [`drag`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DragResult {
+    /// Rows: the output displacements and the events, in order.
+    pub rows: Vec<DragRow>,
+    /// The slips.
+    pub slips: Vec<SlipEvent>,
+    /// Means and spreads.
+    pub summary: DragSummary,
+    /// Why the drag stopped (`d_max` reached, or an event that ends it).
+    pub stop: StopReason,
+    /// Accumulated solver statistics.
+    pub stats: bvp::Stats,
+    /// Shapes of the rows (if `keep_shapes`).
+    #[serde(skip)]
+    pub shapes: Vec<Vec<ShapePoint>>,
+}
+
+impl fmt::Display for DragResult {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let s = &self.summary;
+        write!(
+            f,
+            "{} slips; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy \
+             {:.6e} ± {:.2e}; stopped: {}; {} Newton iterations",
+            s.cycles,
+            s.jump_mean,
+            s.jump_std,
+            s.drop_fx_mean,
+            s.drop_fx_std,
+            s.released_mean,
+            s.released_std,
+            self.stop,
+            self.stats.newton_iters
+        )
+    }
+}
+
+/// A stepper the drag can move between its phases.
+trait DragStepper: Stepper {
+    /// Sets the family and the march's view for the next phase.
+    fn phase(&mut self, family: Family, env: &Env);
+    /// The elastic energy of the point at `(u, λ)`.
+    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64>;
+    /// The first point, at `λ`, from the unknowns `u`.
+    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String>;
+}
+
+impl<P: Profile> DragStepper for OwnStepper<P> {
+    fn phase(&mut self, family: Family, env: &Env) {
+        self.chain.family = family;
+        self.env = env.clone();
+    }
+    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64> {
+        elastic_energy(&mut self.chain, u, lam)
+    }
+    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String> {
+        self.correct_from(lam, u, None, true)
+            .map_err(|e| e.to_string())
+    }
+}
+
+impl<P: Profile> DragStepper for GenericStepper<P> {
+    fn phase(&mut self, family: Family, env: &Env) {
+        self.bvp.family = family;
+        self.chain.family = family;
+        self.env = env.clone();
+    }
+    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64> {
+        elastic_energy(&mut self.chain, u, lam)
+    }
+    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String> {
+        GenericStepper::first(self, lam, u)
+    }
+}
+
+/// `E = ∫ ½ b m² ds + ½ c m(0)²` of the rod at `(u, λ)` on the chain's own shooter (the unloaded
+/// rest beyond the last contact has `m ≡ 0`).
+pub(crate) fn elastic_energy<P: Profile>(chain: &mut Chain<P>, u: &[f64], lam: f64) -> Option<f64> {
+    for _ in 0..32 {
+        let e = chain.eval(u, lam, false).ok()?;
+        if e.err <= 1.0 {
+            break;
+        }
+        if !chain.refine() {
+            return None;
+        }
+    }
+    let nseg = chain.set.contacts.len().max(1);
+    let mut total = 0.5 * chain.sh.compliance * u[0] * u[0];
+    for k in 0..nseg {
+        let (ps, _, _) = chain.sh.path(k);
+        let ps = ps.to_vec();
+        for w in ps.windows(2) {
+            total += gauss10(w[0], w[1], |s| {
+                let m = chain.sh.state_at(k, s)[3];
+                0.5 * chain.sh.profile.b(s) * m * m
+            });
+        }
+    }
+    total.is_finite().then_some(total)
+}
+
+/// The coefficients of a drag: uniform, or the surface's texture.
+#[derive(Clone, Copy, Debug)]
+struct Friction {
+    uniform: Option<(f64, f64)>,
+    texture: Option<&'static crate::surface::Texture>,
+}
+
+impl Friction {
+    fn at(&self, x: f64, side: f64) -> (f64, f64) {
+        match (self.uniform, self.texture) {
+            (Some(p), _) => p,
+            (None, Some(t)) => t.at(x, side),
+            _ => (f64::INFINITY, f64::INFINITY),
+        }
+    }
+}
+
+/// Drags the foot from `d = 0` to `opts.d_max` across `surface`, through every slip. Errors only
+/// for invalid input or when it cannot start; events that end it (lift-off, a fold, a side
+/// reaching its slip limit, a solver failure) end it with their [`StopReason`].
+pub fn drag(rod: &Rod, surface: &Surface, opts: &DragOptions) -> Result<DragResult, VibrissaError> {
+    opts.validate()?;
+    let fr = Friction {
+        uniform: opts.mu_s.zip(opts.mu_k),
+        texture: surface.texture(),
+    };
+    if fr.uniform.is_none() && fr.texture.is_none() {
+        return Err(VibrissaError::range(
+            "mu_s",
+            f64::NAN,
+            "given (with mu_k), or a friction profile in the scene",
+        ));
+    }
+    if rod.has_uniform_profile() {
+        drag_with(rod, Uniform, surface, opts, fr)
+    } else {
+        drag_with(rod, rod.profile(1.0), surface, opts, fr)
+    }
+}
+
+fn drag_with<P: Profile>(
+    rod: &Rod,
+    profile: P,
+    surface: &Surface,
+    opts: &DragOptions,
+    fr: Friction,
+) -> Result<DragResult, VibrissaError> {
+    let general = rod.profile(1.0);
+    let tol = opts.solver.tol;
+    let compound = opts.contact == ContactModel::Anywhere;
+    let (start, set, p0) = crate::ground::start(rod, &profile, surface, opts.solver.start, tol)?;
+    let mut base = crate::ground::env_of(surface, p0, None, compound);
+    // uniform coefficients: no texture (the thresholds are μ0 and the slide's μk)
+    base.ground.texture = if fr.uniform.is_some() {
+        None
+    } else {
+        fr.texture
+    };
+    let n = opts.points;
+    let grid: Vec<f64> = (0..n)
+        .map(|i| {
+            if i + 1 == n {
+                opts.d_max
+            } else {
+                opts.d_max * i as f64 / (n - 1) as f64
+            }
+        })
+        .collect();
+    let mut st: Box<dyn DragStepper> = if opts.solver.own_shooter_tol().is_some() {
+        let mut sh = start.sh.clone();
+        sh.stats = Default::default();
+        Box::new(OwnStepper {
+            chain: Chain::new(sh, set.clone(), Family::Drag),
+            env: base.clone(),
+        })
+    } else {
+        Box::new(GenericStepper::new(
+            profile.clone(),
+            rod.support_compliance(),
+            set.clone(),
+            Family::Drag,
+            base.clone(),
+            &opts.solver,
+        )?)
+    };
+    let p = st
+        .first(0.0, &start.pt.u)
+        .map_err(|e| VibrissaError::NoConvergence {
+            what: "drag start (correction at d = 0)".into(),
+            reason: e,
+        })?;
+    let mut run = DragRun {
+        st: st.as_mut(),
+        profile: &profile,
+        general: &general,
+        opts,
+        fr,
+        base,
+        surface,
+        grid: &grid,
+        rows: Vec::new(),
+        shapes: Vec::new(),
+        slips: Vec::new(),
+    };
+    let stop = run.run(p);
+    let (rows, shapes, slips) = (run.rows, run.shapes, run.slips);
+    let mut stats = start.stats.clone();
+    stats.accumulate(&st.stats());
+    Ok(DragResult {
+        summary: summary(&slips),
+        rows,
+        slips,
+        stop,
+        stats,
+        shapes,
+    })
+}
+
+struct DragRun<'a, P: Profile> {
+    st: &'a mut dyn DragStepper,
+    profile: &'a P,
+    general: &'a crate::profile::General,
+    opts: &'a DragOptions,
+    fr: Friction,
+    base: Env,
+    surface: &'a Surface,
+    grid: &'a [f64],
+    rows: Vec<DragRow>,
+    shapes: Vec<Vec<ShapePoint>>,
+    slips: Vec<SlipEvent>,
+}
+
+/// The tip's contact in a set: the last one, if it is the tip and stuck.
+fn stuck_tip(set: &ContactSet) -> Option<usize> {
+    let j = set.contacts.len().checked_sub(1)?;
+    let c = set.contacts[j];
+    (c.tip && matches!(c.mode, Mode::Stuck(_))).then_some(j)
+}
+
+impl<P: Profile> DragRun<'_, P> {
+    fn failure(d: f64, message: String) -> StopReason {
+        StopReason::SolverFailure { d, message }
+    }
+
+    /// The phases, from the stuck start `p` at `d = 0`; why the drag stopped.
+    fn run(&mut self, mut p: Pt) -> StopReason {
+        let mut first = true;
+        // the tip's static coefficient after a slip (the patch it stopped in, or ahead of it)
+        let mut carry: Option<f64> = None;
+        let mut e_stick = match self.st.energy(&p.u, p.lam) {
+            Some(e) => e,
+            None => return Self::failure(0.0, "the elastic energy of the start".into()),
+        };
+        loop {
+            let d = p.lam;
+            // the stick phase
+            let x_tip = p.sol.right()[0] + d;
+            let mu_s = carry.take().unwrap_or_else(|| self.fr.at(x_tip, 1.0).0);
+            let mut env = self.base.clone();
+            env.mu0 = Some(mu_s);
+            env.ground.meter = self.opts.energy_balance.then_some(Meter::Foot);
+            self.st.phase(Family::Drag, &env);
+            let gi = if first {
+                0
+            } else {
+                self.grid.partition_point(|&g| g <= d)
+            };
+            let spec = Spec {
+                env: &env,
+                grid: &self.grid[gi..],
+                lam_end: self.opts.d_max,
+                keep_shapes: self.opts.keep_shapes,
+                general: self.general,
+                friction: true,
+                check_start: first,
+            };
+            first = false;
+            let out = march(&mut *self.st, &spec, self.profile, p, Default::default());
+            self.collect(&out, Phase::Stick, None, mu_s);
+            let Some((sset, pe)) = out.last else {
+                return out.stop;
+            };
+            match out.stop {
+                StopReason::Slip { .. } => {}
+                other => return other,
+            }
+            // which contact slips: the tip (a cycle), or a side (not modelled: the end)
+            let w = &pe.w;
+            let worst = (0..w.contacts.len())
+                .map(|j| (j, Crossing::Slip(j).of_watch(&env, w)))
+                .max_by(|a, b| a.1.total_cmp(&b.1));
+            let tip = stuck_tip(&sset);
+            if worst.map(|w| w.0) != tip || tip.is_none() {
+                let s = worst.map_or(f64::NAN, |(j, _)| w.contacts[j].s);
+                return StopReason::ContactChange {
+                    d: pe.lam,
+                    message: format!(
+                        "the contact at s = {s} ({}) reached its slip limit; a side sliding on the \
+                         surface is not modelled (only the stuck tip slips)",
+                        sset.label()
+                    ),
+                };
+            }
+            let jt = tip.unwrap_or(0);
+            if self.slips.len() >= self.opts.max_slips {
+                return StopReason::ContactChange {
+                    d: pe.lam,
+                    message: format!("max_slips = {} reached", self.opts.max_slips),
+                };
+            }
+            let e_before = match self.st.energy(&pe.u, pe.lam) {
+                Some(e) => e,
+                None => return Self::failure(pe.lam, "the elastic energy before a slip".into()),
+            };
+            let work = out.metered;
+            let dir = w.contacts[jt].tangential.signum();
+            let d_s = pe.lam;
+            // the slip: a march in the tip's slide at the held foot, in pieces between the
+            // texture's patch boundaries (μk uniform in each; at a boundary the tip sticks if the
+            // patch ahead holds it)
+            let (mut cset, mut cu, mut clam) = (sset.clone(), pe.u.clone(), 0.0);
+            let mut x_now = w.contacts[jt].x;
+            let mut dissipated = 0.0;
+            let mut mu_s_next = None;
+            let (eset, qe) = loop {
+                let (_, mu_k) = self.fr.at(x_now, dir);
+                let boundary = self.fr.texture.and_then(|t| t.next_boundary(x_now, dir));
+                let lam_end = match boundary {
+                    Some(xb) if self.fr.uniform.is_none() => {
+                        (clam + self.arc(x_now, xb).abs()).min(MAX_SLIP)
+                    }
+                    _ => MAX_SLIP,
+                };
+                let mut senv = self.base.clone();
+                senv.ground.slide = Some(Slide { dir, mu_k });
+                senv.ground.meter = self.opts.energy_balance.then_some(Meter::Slide);
+                if boundary.is_some() {
+                    // μk is this patch's until the boundary
+                    senv.ground.texture = None;
+                }
+                // (the point again, watched with this piece's μk)
+                self.st.phase(Family::Slide { xf: d_s, dir }, &senv);
+                let q = match self.st.switch(cset.clone(), clam, cu.clone()) {
+                    Ok(q) => q,
+                    Err(e) => return Self::failure(d_s, format!("the slip at {clam}: {e}")),
+                };
+                let sspec = Spec {
+                    env: &senv,
+                    grid: &[],
+                    lam_end,
+                    keep_shapes: self.opts.keep_shapes,
+                    general: self.general,
+                    friction: true,
+                    check_start: false,
+                };
+                let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
+                self.collect(&sout, Phase::Slip, Some(d_s), mu_s);
+                dissipated += sout.metered;
+                let Some((eset, qe)) = sout.last else {
+                    return sout.stop;
+                };
+                match &sout.stop {
+                    StopReason::DMax if qe.lam < lam_end * (1.0 - 1e-14) => break (eset, qe),
+                    StopReason::DMax if lam_end >= MAX_SLIP => {
+                        return StopReason::ContactChange {
+                            d: d_s,
+                            message: format!(
+                                "the tip slid {MAX_SLIP} rod lengths along the surface without \
+                                 reaching an equilibrium where mu_k holds it"
+                            ),
+                        }
+                    }
+                    StopReason::DMax => {
+                        // at a patch boundary: the patch ahead holds the tip, or it slides on
+                        let (ms, mk) = self.fr.at(qe.sol.right()[0] + d_s, dir);
+                        let Some(j) = stuck_tip(&eset) else {
+                            break (eset, qe);
+                        };
+                        let c = qe.w.contacts[j];
+                        if dir * c.tangential <= mk * c.normal {
+                            mu_s_next = Some(ms);
+                            break (eset, qe);
+                        }
+                        x_now = c.x;
+                        (cset, cu, clam) = (eset, qe.u, qe.lam);
+                    }
+                    StopReason::FoldInD { d } => {
+                        return StopReason::ContactChange {
+                            d: d_s,
+                            message: format!(
+                                "the slip does not end quasi-statically: the tip's equilibria \
+                                 fold back after it slid {d} (a snap)"
+                            ),
+                        }
+                    }
+                    other => return at_foot(other.clone(), d_s),
+                }
+            };
+            let Some(je) = stuck_tip(&eset) else {
+                return StopReason::ContactChange {
+                    d: d_s,
+                    message: format!("the slip ended without a stuck tip ({})", eset.label()),
+                };
+            };
+            // the tip sticks where it stopped; the next stick phase
+            let lam_s = qe.lam;
+            let mut nset = eset.clone();
+            if let Mode::Stuck(a) = nset.contacts[je].mode {
+                nset.contacts[je].mode = Mode::Stuck(a + dir * lam_s);
+            }
+            self.st.phase(Family::Drag, &self.base);
+            let pa = match self.st.switch(nset.clone(), d_s, qe.u.clone()) {
+                Ok(q) => q,
+                Err(e) => return Self::failure(d_s, format!("the stuck state after a slip: {e}")),
+            };
+            let e_after = match self.st.energy(&pa.u, pa.lam) {
+                Some(e) => e,
+                None => return Self::failure(d_s, "the elastic energy after a slip".into()),
+            };
+            let sig = |q: &Pt, e: f64| -> Signals {
+                Signals {
+                    mu: q.w.mu,
+                    normal: q.w.normal,
+                    fx: q.w.force[0],
+                    fy: q.w.force[1],
+                    m_base: q.sol.left()[3],
+                    x_tip: q.sol.right()[0] + d_s,
+                    energy: e,
+                }
+            };
+            let ev = SlipEvent {
+                d: d_s,
+                d_stick: d,
+                jump: dir * lam_s,
+                released: e_before - e_after,
+                dissipated: self.opts.energy_balance.then_some(dissipated),
+                work: self.opts.energy_balance.then_some(work),
+                energy_stick: e_stick,
+                before: sig(&pe, e_before),
+                after: sig(&pa, e_after),
+            };
+            // the slip row (just before) carries the jump and the energy; then the state after
+            if let Some(r) = self.slip_row(ev.d) {
+                r.phase = Phase::Slip;
+                r.event = Some(DragEvent::Slip);
+                r.jump = Some(ev.jump);
+                r.released = Some(ev.released);
+            }
+            let mu_s_next = mu_s_next.unwrap_or_else(|| self.fr.at(ev.after.x_tip, dir).0);
+            let sp = scan_point(&pa, &nset, self.profile, None);
+            self.rows.push(DragRow {
+                phase: Phase::Slip,
+                event: Some(DragEvent::SlipEnd),
+                ..row_of(&sp, pa.sol.right(), d_s, mu_s_next)
+            });
+            if let Some(ns) = self.opts.keep_shapes {
+                let shape = shape_from(pa.sol.clone(), 0.0, self.general.clone());
+                self.shapes.push(shape.samples(ns));
+            }
+            self.slips.push(ev);
+            e_stick = e_after;
+            carry = Some(mu_s_next);
+            p = pa;
+        }
+    }
+
+    /// Arc length along the surface from lab `x0` to `x1`.
+    fn arc(&self, x0: f64, x1: f64) -> f64 {
+        match self.surface.profile() {
+            Some(h) => h.sigma(x1).0 - h.sigma(x0).0,
+            None => (x1 - x0) / self.surface.angle().cos(),
+        }
+    }
+
+    /// The last slip row of the stick phase just collected (the event row the march wrote).
+    fn slip_row(&mut self, d: f64) -> Option<&mut DragRow> {
+        self.rows
+            .iter_mut()
+            .rev()
+            .find(|r| r.d == d && r.event == Some(DragEvent::Contact(Event::Slip)))
+    }
+
+    /// The rows of one phase's march (`held`: the foot's place during a slip, whose march runs in
+    /// the slide).
+    fn collect(
+        &mut self,
+        out: &crate::march::MarchOut,
+        phase: Phase,
+        held: Option<f64>,
+        mu_s: f64,
+    ) {
+        for (i, sp) in out.points.iter().enumerate() {
+            let d = held.unwrap_or(sp.d);
+            let mut r = row_of(sp, &out.tips[i], d, mu_s);
+            r.phase = phase;
+            self.rows.push(r);
+            if let Some(sh) = out.shapes.get(i) {
+                self.shapes.push(sh.clone());
+            }
+        }
+    }
+}
+
+/// A stop reason of the slip's march, at the foot's place `d`.
+fn at_foot(stop: StopReason, d: f64) -> StopReason {
+    match stop {
+        StopReason::LiftOff { .. } => StopReason::LiftOff { d },
+        StopReason::Penetration { s, y, .. } => StopReason::Penetration { d, s, y },
+        StopReason::SlipOff { .. } => StopReason::SlipOff { d },
+        StopReason::Slip { mu, .. } => StopReason::ContactChange {
+            d,
+            message: format!(
+                "a side contact reached its slip limit (mu = {mu}) while the tip slipped; a side \
+                 sliding on the surface is not modelled"
+            ),
+        },
+        StopReason::ContactChange { message, .. } => StopReason::ContactChange {
+            d,
+            message: format!("during a slip: {message}"),
+        },
+        StopReason::SolverFailure { message, .. } => StopReason::SolverFailure {
+            d,
+            message: format!("during a slip: {message}"),
+        },
+        other => other,
+    }
+}
+
+fn row_of(sp: &crate::ScanPoint, tip: &[f64], d: f64, mu_s: f64) -> DragRow {
+    DragRow {
+        d,
+        phase: Phase::Stick,
+        x_tip: tip[0] + d,
+        y_tip: tip[1],
+        mu: sp.mu,
+        normal: sp.normal,
+        mu_s,
+        fx: sp.fx,
+        fy: sp.fy,
+        m_base: sp.m_base,
+        contact: sp.contact,
+        event: sp.event.map(DragEvent::Contact),
+        jump: None,
+        released: None,
+    }
+}
+
+fn mean_std(v: &[f64]) -> (f64, f64) {
+    if v.is_empty() {
+        return (f64::NAN, f64::NAN);
+    }
+    let n = v.len() as f64;
+    let m = v.iter().sum::<f64>() / n;
+    let s = if v.len() < 2 {
+        0.0
+    } else {
+        (v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0)).sqrt()
+    };
+    (m, s)
+}
+
+fn summary(slips: &[SlipEvent]) -> DragSummary {
+    let col = |f: &dyn Fn(&SlipEvent) -> f64| mean_std(&slips.iter().map(f).collect::<Vec<_>>());
+    let (jm, js) = col(&|e| e.jump);
+    let (fm, fs) = col(&|e| e.before.fx.abs() - e.after.fx.abs());
+    let (nm, ns) = col(&|e| e.before.normal - e.after.normal);
+    let (rm, rs) = col(&|e| e.released);
+    let periods: Vec<f64> = slips.windows(2).map(|w| w[1].d - w[0].d).collect();
+    let (pm, ps) = mean_std(&periods);
+    DragSummary {
+        cycles: slips.len(),
+        jump_mean: jm,
+        jump_std: js,
+        drop_fx_mean: fm,
+        drop_fx_std: fs,
+        drop_normal_mean: nm,
+        drop_normal_std: ns,
+        released_mean: rm,
+        released_std: rs,
+        period_mean: pm,
+        period_std: ps,
+    }
+}

@@ -1,0 +1,951 @@
+//! Surfaces that are not one straight line, and friction that changes along them (issue 21).
+//!
+//! A surface profile is a height function of the lab position `x` (the foot at `x = 0` when
+//! `d = 0`, the foot's height `y = 0`):
+//!
+//! ```text
+//!     h(x) = η + x·tan β + shape(x)
+//!     shape: sine       A·sin(2πx/λ + φ0)                       (a corrugation)
+//!            circle     R − √(R² − (x − x0)²)                   (the lower arc of a cylinder of
+//!                                                               radius R resting at (x0, η))
+//!            table      natural cubic spline through (x_i, y_i)  (C², zero curvature at the ends)
+//! ```
+//!
+//! The rod stays below the surface (`y ≤ h(x)` on its free parts). The surface's unit normal into
+//! the obstacle is `n(x) = (−sin θ, cos θ)`, its tangent back against the drag `t = (−cos θ,
+//! −sin θ)`, `θ = atan h'(x)`; contact forces are resolved in that local frame (normal `N`,
+//! friction `T`). Arc length along the surface, `σ(x) = ∫₀ˣ √(1 + h'²) dx`, measures where a stuck
+//! contact holds and how far a rolling one has rolled; it is integrated by 10-point
+//! Gauss–Legendre on panels (64 per period of a corrugation, 8 per table interval, 256 over a
+//! circle's arc), exact to rounding because the integrand is analytic inside every panel.
+//!
+//! Slopes are limited to `|h'| < 1` (45°, as the straight surface's inclination): the circle and
+//! the table end where the surface ends (a contact that reaches the end stops the march), and a
+//! corrugation with `|tan β| + 2πA/λ ≥ 1` is refused.
+//!
+//! Friction profiles give the static and kinetic coefficients `μs(x) ≥ μk(x) ≥ 0` at the lab
+//! position of a contact point: uniform, a table (piecewise linear in `x`, constant beyond its
+//! ends), or periodic patches (a texture: piecewise constant, patch `i` on `[x_i, x_{i+1})` of
+//! each period). At a patch boundary a point takes the value of the patch on the side given
+//! (the side a slip came from decides which patch then holds the tip).
+
+use crate::VibrissaError;
+use serde::{Deserialize, Serialize};
+use std::sync::Mutex;
+
+/// The surface's shape in a scene file (`[surface]`). Heights are relative to `eta` and add to
+/// the inclination `surface_angle` (`h(x) = eta + x·tan(surface_angle) + shape(x)`), except for
+/// `line`, today's surface: the straight line through the start's contact point at height `eta`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SurfaceProfile {
+    /// The straight line through the start's contact point (at height `eta`), inclined by
+    /// `surface_angle` (the default).
+    Line {},
+    /// A corrugation `amplitude·sin(2π x / wavelength + phase)`.
+    Sine {
+        /// Amplitude `A` (rod lengths), `|A| ≤ 0.2`.
+        amplitude: f64,
+        /// Wavelength `λ > 0` (rod lengths), in `[0.01, 100]`.
+        wavelength: f64,
+        /// Phase `φ0` (rad) at `x = 0`.
+        #[serde(default)]
+        phase: f64,
+    },
+    /// The lower arc of a circle (a cylinder's cross-section above the rod) of radius `radius`
+    /// whose lowest point is at `(x0, eta)`; it ends where its slope reaches 45°.
+    Circle {
+        /// Radius `R` (rod lengths), in `[0.05, 1000]`.
+        radius: f64,
+        /// Lab `x` of the lowest point.
+        #[serde(default)]
+        x0: f64,
+    },
+    /// Heights `y_i` at lab positions `x_i` (strictly increasing, at least 3), interpolated by the
+    /// natural cubic spline (continuous curvature, zero curvature at the ends); the surface ends
+    /// at the table's ends.
+    Table {
+        /// Lab positions, strictly increasing.
+        x: Vec<f64>,
+        /// Heights relative to `eta`.
+        y: Vec<f64>,
+    },
+}
+
+/// The friction along the surface in a scene file (`[friction]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum FrictionProfile {
+    /// None in the scene: the command's coefficients (the default).
+    None {},
+    /// The same everywhere.
+    Uniform {
+        /// Static coefficient μs.
+        mu_s: f64,
+        /// Kinetic coefficient μk ≤ μs.
+        mu_k: f64,
+    },
+    /// Tables at lab positions `x` (strictly increasing), piecewise linear, constant beyond the
+    /// ends.
+    Table {
+        /// Lab positions.
+        x: Vec<f64>,
+        /// μs at each.
+        mu_s: Vec<f64>,
+        /// μk at each (≤ μs).
+        mu_k: Vec<f64>,
+    },
+    /// A periodic texture of patches: patch `i` covers `[x_i, x_{i+1})` of each period
+    /// (`0 = x_0 < x_1 < … < period`), shifted by `offset`.
+    Patches {
+        /// Period (rod lengths).
+        period: f64,
+        /// Patch starts within the period, from 0, strictly increasing, below `period`.
+        x: Vec<f64>,
+        /// μs of each patch.
+        mu_s: Vec<f64>,
+        /// μk of each patch (`μk < μs`).
+        mu_k: Vec<f64>,
+        /// Lab position of the start of patch 0.
+        #[serde(default)]
+        offset: f64,
+    },
+}
+
+impl Default for SurfaceProfile {
+    fn default() -> Self {
+        SurfaceProfile::Line {}
+    }
+}
+
+impl Default for FrictionProfile {
+    fn default() -> Self {
+        FrictionProfile::None {}
+    }
+}
+
+/// Largest slope `|h'|` of a profile (45°, as the straight surface's inclination).
+pub const MAX_PROFILE_SLOPE: f64 = 1.0;
+
+const GL_X: [f64; 10] = [
+    -0.973_906_528_517_171_7,
+    -0.865_063_366_688_984_5,
+    -0.679_409_568_299_024_4,
+    -0.433_395_394_129_247_2,
+    -0.148_874_338_981_631_2,
+    0.148_874_338_981_631_2,
+    0.433_395_394_129_247_2,
+    0.679_409_568_299_024_4,
+    0.865_063_366_688_984_5,
+    0.973_906_528_517_171_7,
+];
+const GL_W: [f64; 10] = [
+    0.066_671_344_308_688_14,
+    0.149_451_349_150_580_6,
+    0.219_086_362_515_982_04,
+    0.269_266_719_309_996_35,
+    0.295_524_224_714_752_87,
+    0.295_524_224_714_752_87,
+    0.269_266_719_309_996_35,
+    0.219_086_362_515_982_04,
+    0.149_451_349_150_580_6,
+    0.066_671_344_308_688_14,
+];
+
+/// 10-point Gauss–Legendre of `f` on `[a, b]`.
+pub(crate) fn gauss10(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
+    let (c, r) = (0.5 * (a + b), 0.5 * (b - a));
+    r * GL_X
+        .iter()
+        .zip(&GL_W)
+        .map(|(x, w)| w * f(c + r * x))
+        .sum::<f64>()
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+enum Shape {
+    Sine {
+        a: f64,
+        k: f64,
+        phase: f64,
+    },
+    Circle {
+        r: f64,
+        x0: f64,
+    },
+    Spline {
+        x: Vec<f64>,
+        y: Vec<f64>,
+        m: Vec<f64>,
+    },
+}
+
+/// A resolved height profile (see the module docs): `h`, `h'`, `h''`, its arc length and where
+/// it exists.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Height {
+    shape: Shape,
+    eta: f64,
+    slope: f64,
+    /// Where the surface exists (lab x); `±inf` for a corrugation.
+    lo: f64,
+    hi: f64,
+    /// Arc length: panel breakpoints (over one period, or the domain) and σ at each.
+    panels: Vec<f64>,
+    cum: Vec<f64>,
+    /// Arc length of one period (corrugation), else 0.
+    period_arc: f64,
+}
+
+impl Height {
+    /// The profile of `p` at base height `eta` and inclination `beta` (`None` for a line);
+    /// errors name the scene key.
+    pub fn new(p: &SurfaceProfile, eta: f64, beta: f64) -> Result<Option<Height>, VibrissaError> {
+        let slope = beta.tan();
+        let (shape, lo, hi) = match p {
+            SurfaceProfile::Line {} => return Ok(None),
+            &SurfaceProfile::Sine {
+                amplitude,
+                wavelength,
+                phase,
+            } => {
+                if !(amplitude.is_finite() && amplitude.abs() <= 0.2) {
+                    return Err(VibrissaError::range(
+                        "surface.amplitude",
+                        amplitude,
+                        "[-0.2, 0.2] rod lengths",
+                    ));
+                }
+                if !(wavelength.is_finite() && (0.01..=100.0).contains(&wavelength)) {
+                    return Err(VibrissaError::range(
+                        "surface.wavelength",
+                        wavelength,
+                        "[0.01, 100] rod lengths",
+                    ));
+                }
+                if !phase.is_finite() {
+                    return Err(VibrissaError::range("surface.phase", phase, "finite"));
+                }
+                let k = std::f64::consts::TAU / wavelength;
+                let steepest = slope.abs() + amplitude.abs() * k;
+                if steepest >= MAX_PROFILE_SLOPE {
+                    return Err(VibrissaError::range(
+                        "surface.amplitude",
+                        amplitude,
+                        format!(
+                            "|amplitude| < {:.6} for this wavelength and surface_angle (the \
+                             steepest slope |tan(surface_angle)| + 2 pi |amplitude| / wavelength \
+                             = {steepest:.6} must stay below 1, 45 degrees)",
+                            ((MAX_PROFILE_SLOPE - slope.abs()) / k).max(0.0)
+                        ),
+                    ));
+                }
+                (
+                    Shape::Sine {
+                        a: amplitude,
+                        k,
+                        phase,
+                    },
+                    f64::NEG_INFINITY,
+                    f64::INFINITY,
+                )
+            }
+            &SurfaceProfile::Circle { radius, x0 } => {
+                if !(radius.is_finite() && (0.05..=1000.0).contains(&radius)) {
+                    return Err(VibrissaError::range(
+                        "surface.radius",
+                        radius,
+                        "[0.05, 1000] rod lengths",
+                    ));
+                }
+                if !x0.is_finite() {
+                    return Err(VibrissaError::range("surface.x0", x0, "finite"));
+                }
+                // where h' = u/√(R² − u²) + tan β reaches ±1
+                let end = |t: f64| radius * t / (1.0 + t * t).sqrt();
+                let (lo, hi) = (
+                    x0 + end(-MAX_PROFILE_SLOPE - slope),
+                    x0 + end(MAX_PROFILE_SLOPE - slope),
+                );
+                if !(lo < x0 && hi > x0) {
+                    return Err(VibrissaError::range(
+                        "surface_angle",
+                        beta,
+                        "(-pi/4, pi/4) radians",
+                    ));
+                }
+                (Shape::Circle { r: radius, x0 }, lo, hi)
+            }
+            SurfaceProfile::Table { x, y } => {
+                let shape = spline(x, y)?;
+                let (lo, hi) = (x[0], x[x.len() - 1]);
+                (shape, lo, hi)
+            }
+        };
+        if !(eta.is_finite() && slope.is_finite()) {
+            return Err(VibrissaError::range("eta", eta, "finite"));
+        }
+        let mut h = Height {
+            shape,
+            eta,
+            slope,
+            lo,
+            hi,
+            panels: Vec::new(),
+            cum: Vec::new(),
+            period_arc: 0.0,
+        };
+        if let Shape::Spline { x, .. } = &h.shape {
+            // the steepest slope of each interval: its ends and the vertex of its quadratic
+            let x = x.clone();
+            for w in x.windows(2) {
+                let mut worst = h.jet(w[0]).1.abs().max(h.jet(w[1]).1.abs());
+                // h'' changes sign inside: the vertex of h' by bisection on h''
+                let (g0, g1) = (h.jet(w[0]).2, h.jet(w[1]).2);
+                if g0 * g1 < 0.0 {
+                    let (mut a, mut b) = (w[0], w[1]);
+                    for _ in 0..60 {
+                        let c = 0.5 * (a + b);
+                        if h.jet(c).2 * g0 > 0.0 {
+                            a = c;
+                        } else {
+                            b = c;
+                        }
+                    }
+                    worst = worst.max(h.jet(0.5 * (a + b)).1.abs());
+                }
+                if worst >= MAX_PROFILE_SLOPE {
+                    return Err(VibrissaError::InvalidTable {
+                        name: "surface".into(),
+                        reason: format!(
+                            "the spline through the table (with surface_angle) has the slope \
+                             {worst:.6} between x = {} and x = {}; slopes must stay below 1 \
+                             (45 degrees)",
+                            w[0], w[1]
+                        ),
+                    });
+                }
+            }
+        }
+        h.tabulate_arc();
+        Ok(Some(h))
+    }
+
+    /// `(h, h', h'')` at lab `x` (beyond the ends of a circle or a table: continued along the end
+    /// tangent, so that solver iterates stay finite; the surface itself ends there).
+    pub fn jet(&self, x: f64) -> (f64, f64, f64) {
+        self.jet_scaled(x, 1.0)
+    }
+
+    /// As [`Height::jet`] with the shape scaled by `amp` (`eta + x·tan β + amp·shape(x)`).
+    pub fn jet_scaled(&self, x: f64, amp: f64) -> (f64, f64, f64) {
+        if x < self.lo || x > self.hi {
+            let e = if x < self.lo { self.lo } else { self.hi };
+            let (h, d, _) = self.jet_scaled(e, amp);
+            return (h + d * (x - e), d, 0.0);
+        }
+        let (v, d, dd) = match &self.shape {
+            &Shape::Sine { a, k, phase } => {
+                let (s, c) = (k * x + phase).sin_cos();
+                (a * s, a * k * c, -a * k * k * s)
+            }
+            &Shape::Circle { r, x0 } => {
+                let u = x - x0;
+                let w = (r * r - u * u).sqrt();
+                (r - w, u / w, r * r / (w * w * w))
+            }
+            Shape::Spline { x: xs, y, m } => {
+                let n = xs.len();
+                let i = xs.partition_point(|&t| t <= x).clamp(1, n - 1) - 1;
+                let hh = xs[i + 1] - xs[i];
+                let (a, b) = ((xs[i + 1] - x) / hh, (x - xs[i]) / hh);
+                let v = a * y[i]
+                    + b * y[i + 1]
+                    + ((a * a * a - a) * m[i] + (b * b * b - b) * m[i + 1]) * hh * hh / 6.0;
+                let d = (y[i + 1] - y[i]) / hh
+                    + (-(3.0 * a * a - 1.0) * m[i] + (3.0 * b * b - 1.0) * m[i + 1]) * hh / 6.0;
+                let dd = a * m[i] + b * m[i + 1];
+                (v, d, dd)
+            }
+        };
+        (
+            self.eta + self.slope * x + amp * v,
+            self.slope + amp * d,
+            amp * dd,
+        )
+    }
+
+    /// `h(x)`.
+    pub fn h(&self, x: f64) -> f64 {
+        self.jet(x).0
+    }
+
+    /// Whether the surface exists at `x`.
+    pub fn covers(&self, x: f64) -> bool {
+        x >= self.lo && x <= self.hi
+    }
+
+    /// Where the surface exists, `(lo, hi)` (lab x; infinite for a corrugation).
+    pub fn domain(&self) -> (f64, f64) {
+        (self.lo, self.hi)
+    }
+
+    /// The surface's inclination `θ = atan h'` at `x` and `dθ/dx`.
+    pub fn angle(&self, x: f64) -> (f64, f64) {
+        self.angle_scaled(x, 1.0)
+    }
+
+    /// As [`Height::angle`] with the shape scaled by `amp`.
+    pub fn angle_scaled(&self, x: f64, amp: f64) -> (f64, f64) {
+        let (_, d, dd) = self.jet_scaled(x, amp);
+        (d.atan(), dd / (1.0 + d * d))
+    }
+
+    /// The shape alone (without `η` and the trend) and its first derivative at `x` (continued
+    /// as [`Height::jet`] beyond the ends).
+    pub fn shape(&self, x: f64) -> (f64, f64) {
+        let (h1, d1, _) = self.jet_scaled(x, 1.0);
+        let (h0, d0, _) = self.jet_scaled(x, 0.0);
+        (h1 - h0, d1 - d0)
+    }
+
+    /// The straight trend's slope `tan β`.
+    pub fn trend(&self) -> f64 {
+        self.slope
+    }
+
+    fn speed(&self, x: f64) -> f64 {
+        let d = self.jet(x).1;
+        (1.0 + d * d).sqrt()
+    }
+
+    fn tabulate_arc(&mut self) {
+        let (a, b, n) = match &self.shape {
+            Shape::Sine { k, .. } => (0.0, std::f64::consts::TAU / k, 64),
+            Shape::Circle { .. } => (self.lo, self.hi, 256),
+            Shape::Spline { x, .. } => {
+                let mut p = Vec::new();
+                for w in x.windows(2) {
+                    for j in 0..8 {
+                        p.push(w[0] + (w[1] - w[0]) * j as f64 / 8.0);
+                    }
+                }
+                p.push(x[x.len() - 1]);
+                self.set_panels(p);
+                return;
+            }
+        };
+        let p: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
+        self.set_panels(p);
+        if let Shape::Sine { .. } = self.shape {
+            self.period_arc = self.cum[self.cum.len() - 1];
+        }
+    }
+
+    fn set_panels(&mut self, p: Vec<f64>) {
+        let mut cum = vec![0.0; p.len()];
+        for i in 1..p.len() {
+            cum[i] = cum[i - 1] + gauss10(p[i - 1], p[i], |x| self.speed(x));
+        }
+        self.panels = p;
+        self.cum = cum;
+    }
+
+    /// Arc length from the panels' start to `x` (inside the tabulated span).
+    fn arc_in(&self, x: f64) -> f64 {
+        let p = &self.panels;
+        let i = p.partition_point(|&t| t <= x).clamp(1, p.len() - 1) - 1;
+        self.cum[i] + gauss10(p[i], x, |t| self.speed(t))
+    }
+
+    /// Arc length `σ(x)` along the surface from `x = 0` (signed), and `dσ/dx = √(1 + h'²)`.
+    pub fn sigma(&self, x: f64) -> (f64, f64) {
+        let abs = |x: f64| -> f64 {
+            match self.shape {
+                Shape::Sine { k, .. } => {
+                    let period = std::f64::consts::TAU / k;
+                    let n = (x / period).floor();
+                    n * self.period_arc + self.arc_in(x - n * period)
+                }
+                _ => {
+                    if x < self.lo {
+                        self.arc_in(self.lo) - (self.lo - x) * self.speed(self.lo)
+                    } else if x > self.hi {
+                        self.arc_in(self.hi) + (x - self.hi) * self.speed(self.hi)
+                    } else {
+                        self.arc_in(x)
+                    }
+                }
+            }
+        };
+        (abs(x) - abs(0.0), self.speed(x))
+    }
+}
+
+/// The natural cubic spline through a table (second derivatives `m`, zero at the ends).
+fn spline(x: &[f64], y: &[f64]) -> Result<Shape, VibrissaError> {
+    let bad = |reason: String| VibrissaError::InvalidTable {
+        name: "surface".into(),
+        reason,
+    };
+    if x.len() != y.len() {
+        return Err(bad(format!(
+            "x has {} entries and y has {}: one height per position",
+            x.len(),
+            y.len()
+        )));
+    }
+    if x.len() < 3 || x.len() > 100_000 {
+        return Err(bad(format!(
+            "{} points: a table needs at least 3 (and at most 100000)",
+            x.len()
+        )));
+    }
+    for (i, (&a, &b)) in x.iter().zip(y).enumerate() {
+        if !(a.is_finite() && b.is_finite() && b.abs() <= 1.0) {
+            return Err(bad(format!(
+                "entry {i}: x = {a}, y = {b} (finite, |y| <= 1 rod length)"
+            )));
+        }
+        if i > 0 && a <= x[i - 1] {
+            return Err(bad(format!(
+                "x[{i}] = {a} is not above x[{}] = {}: x must increase strictly",
+                i - 1,
+                x[i - 1]
+            )));
+        }
+    }
+    // tridiagonal system of the natural spline (Thomas algorithm)
+    let n = x.len();
+    let mut m = vec![0.0; n];
+    let (mut c, mut d) = (vec![0.0; n], vec![0.0; n]);
+    for i in 1..n - 1 {
+        let (h0, h1) = (x[i] - x[i - 1], x[i + 1] - x[i]);
+        let a = h0 / 6.0;
+        let b = (h0 + h1) / 3.0;
+        let cc = h1 / 6.0;
+        let r = (y[i + 1] - y[i]) / h1 - (y[i] - y[i - 1]) / h0;
+        let den = b - a * c[i - 1];
+        c[i] = cc / den;
+        d[i] = (r - a * d[i - 1]) / den;
+    }
+    for i in (1..n - 1).rev() {
+        m[i] = d[i] - c[i] * m[i + 1];
+    }
+    Ok(Shape::Spline {
+        x: x.to_vec(),
+        y: y.to_vec(),
+        m,
+    })
+}
+
+/// A resolved friction profile: `μs(x)`, `μk(x)`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Texture {
+    profile: FrictionProfile,
+}
+
+impl Texture {
+    /// The texture of `p` (`None` for `none`); errors name the scene key.
+    pub fn new(p: &FrictionProfile) -> Result<Option<Texture>, VibrissaError> {
+        let pair = |i: usize, s: f64, k: f64| -> Result<(), VibrissaError> {
+            let at = if i == usize::MAX {
+                String::new()
+            } else {
+                format!("[{i}]")
+            };
+            if !(s.is_finite() && (0.0..=100.0).contains(&s)) {
+                return Err(VibrissaError::range(
+                    format!("friction.mu_s{at}"),
+                    s,
+                    "[0, 100]",
+                ));
+            }
+            if !(k.is_finite() && k >= 0.0 && k <= s) {
+                return Err(VibrissaError::range(
+                    format!("friction.mu_k{at}"),
+                    k,
+                    format!("[0, mu_s{at} = {s}] (kinetic friction at most static)"),
+                ));
+            }
+            Ok(())
+        };
+        let lists = |x: &[f64], s: &[f64], k: &[f64]| -> Result<(), VibrissaError> {
+            if x.is_empty() || x.len() != s.len() || x.len() != k.len() {
+                return Err(VibrissaError::InvalidTable {
+                    name: "friction".into(),
+                    reason: format!(
+                        "x, mu_s and mu_k need the same number of entries, at least 1 (they have \
+                         {}, {}, {})",
+                        x.len(),
+                        s.len(),
+                        k.len()
+                    ),
+                });
+            }
+            for i in 0..x.len() {
+                if !x[i].is_finite() || (i > 0 && x[i] <= x[i - 1]) {
+                    return Err(VibrissaError::InvalidTable {
+                        name: "friction".into(),
+                        reason: format!("x[{i}] = {} must be finite and above x[i-1]", x[i]),
+                    });
+                }
+                pair(i, s[i], k[i])?;
+            }
+            Ok(())
+        };
+        match p {
+            FrictionProfile::None {} => return Ok(None),
+            &FrictionProfile::Uniform { mu_s, mu_k } => pair(usize::MAX, mu_s, mu_k)?,
+            FrictionProfile::Table { x, mu_s, mu_k } => lists(x, mu_s, mu_k)?,
+            FrictionProfile::Patches {
+                period,
+                x,
+                mu_s,
+                mu_k,
+                offset,
+            } => {
+                if !(period.is_finite() && *period > 0.0 && *period <= 1e3) {
+                    return Err(VibrissaError::range(
+                        "friction.period",
+                        *period,
+                        "(0, 1000] rod lengths",
+                    ));
+                }
+                if !offset.is_finite() {
+                    return Err(VibrissaError::range("friction.offset", *offset, "finite"));
+                }
+                lists(x, mu_s, mu_k)?;
+                if x[0] != 0.0 || x[x.len() - 1] >= *period {
+                    return Err(VibrissaError::InvalidTable {
+                        name: "friction".into(),
+                        reason: format!(
+                            "patch starts x must begin at 0 and stay below the period {period} \
+                             (they are {x:?})"
+                        ),
+                    });
+                }
+                for i in 0..x.len() {
+                    if mu_k[i] >= mu_s[i] {
+                        return Err(VibrissaError::range(
+                            format!("friction.mu_k[{i}]"),
+                            mu_k[i],
+                            format!(
+                                "[0, mu_s[{i}] = {}) (a texture's patches need kinetic friction \
+                                 below static)",
+                                mu_s[i]
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(Some(Texture { profile: p.clone() }))
+    }
+
+    /// `(μs, μk)` at lab `x`; at a patch boundary (within 1e-9) the patch on the side `side`
+    /// (`+1`: towards +x).
+    pub fn at(&self, x: f64, side: f64) -> (f64, f64) {
+        let interp = |xs: &[f64], v: &[f64]| -> f64 {
+            let n = xs.len();
+            if x <= xs[0] {
+                return v[0];
+            }
+            if x >= xs[n - 1] {
+                return v[n - 1];
+            }
+            let i = xs.partition_point(|&t| t <= x).clamp(1, n - 1) - 1;
+            let t = (x - xs[i]) / (xs[i + 1] - xs[i]);
+            v[i] + t * (v[i + 1] - v[i])
+        };
+        match &self.profile {
+            FrictionProfile::None {} => (f64::INFINITY, f64::INFINITY),
+            &FrictionProfile::Uniform { mu_s, mu_k } => (mu_s, mu_k),
+            FrictionProfile::Table { x: xs, mu_s, mu_k } => (interp(xs, mu_s), interp(xs, mu_k)),
+            FrictionProfile::Patches {
+                period,
+                x: xs,
+                mu_s,
+                mu_k,
+                offset,
+            } => {
+                let q = x + side.signum() * 1e-9 - offset;
+                let r = q - period * (q / period).floor();
+                let i = xs.partition_point(|&t| t <= r).max(1) - 1;
+                (mu_s[i], mu_k[i])
+            }
+        }
+    }
+
+    /// The first patch boundary beyond `x` (by more than 1e-12) in the direction `dir`, if the
+    /// texture has patches.
+    pub fn next_boundary(&self, x: f64, dir: f64) -> Option<f64> {
+        let FrictionProfile::Patches {
+            period,
+            x: xs,
+            offset,
+            ..
+        } = &self.profile
+        else {
+            return None;
+        };
+        let q = x - offset;
+        let n = (q / period).floor();
+        let mut best: Option<f64> = None;
+        for k in [n - 1.0, n, n + 1.0] {
+            for &b in xs {
+                let xb = offset + k * period + b;
+                if dir * (xb - x) > 1e-12 && best.is_none_or(|c| dir * (xb - c) < 0.0) {
+                    best = Some(xb);
+                }
+            }
+        }
+        best
+    }
+
+    /// Whether μk is the same everywhere (then the end of a slip is predicted from the unknowns
+    /// alone); `Some(μk)`.
+    pub fn uniform_mu_k(&self) -> Option<f64> {
+        match self.profile {
+            FrictionProfile::Uniform { mu_k, .. } => Some(mu_k),
+            _ => None,
+        }
+    }
+}
+
+/// What a march knows of the surface besides a straight line: the curved profile the contacts
+/// touch, the friction texture, and whether this march is a slip (the tip sliding, its end where
+/// the needed friction ratio falls to μk).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Ground {
+    pub curve: Option<&'static Height>,
+    pub texture: Option<&'static Texture>,
+    pub slide: Option<Slide>,
+    /// Integrate the work along the march (the drag's energy balance).
+    pub meter: Option<Meter>,
+    /// The march grows the curve's shape: its amplitude is `λ` (the start on a curve).
+    pub grow: bool,
+}
+
+/// The work a march integrates over its accepted points (`MarchOut::metered`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Meter {
+    /// The work of the foot as it moves in x: `∫ −F_x dλ` (the foot carries minus the total
+    /// contact force).
+    Foot,
+    /// The work the sliding tip's contact force absorbs: `∫ −F·dr_tip` (`∫ T dσ` on the surface).
+    Slide,
+}
+
+/// A slip in progress.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Slide {
+    /// The direction the tip slides along the surface (`+1`: towards +x).
+    pub dir: f64,
+    /// μk when there is no texture.
+    pub mu_k: f64,
+}
+
+impl Ground {
+    /// `(μs, μk)` at lab `x` from the texture, else `None`.
+    pub fn friction_at(&self, x: f64, side: f64) -> Option<(f64, f64)> {
+        self.texture.map(|t| t.at(x, side))
+    }
+    /// μk at `x` during the slide (`None` outside one).
+    pub fn mu_k_at(&self, x: f64) -> Option<f64> {
+        let s = self.slide?;
+        Some(self.friction_at(x, s.dir).map_or(s.mu_k, |p| p.1))
+    }
+}
+
+/// The one shared copy of a profile: contacts refer to it by a `'static` reference, so that they
+/// stay plain values. Equal profiles share one copy (repeated runs do not grow the store).
+pub(crate) fn intern_height(h: Height) -> &'static Height {
+    static STORE: Mutex<Vec<&'static Height>> = Mutex::new(Vec::new());
+    let mut v = STORE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(&old) = v.iter().find(|&&o| *o == h) {
+        return old;
+    }
+    let new: &'static Height = Box::leak(Box::new(h));
+    v.push(new);
+    new
+}
+
+/// As [`intern_height`], for textures.
+pub(crate) fn intern_texture(t: Texture) -> &'static Texture {
+    static STORE: Mutex<Vec<&'static Texture>> = Mutex::new(Vec::new());
+    let mut v = STORE.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some(&old) = v.iter().find(|&&o| *o == t) {
+        return old;
+    }
+    let new: &'static Texture = Box::leak(Box::new(t));
+    v.push(new);
+    new
+}
+
+/// The largest height `y(s) − h(x(s)) − off` of the rod's free parts above a curved surface and
+/// where, found on the interpolant `sample(s) = (x_lab, y, φ, κ)` at `n + 1` points and refined
+/// on the rod (`exact`, same layout; Newton on the gap's slope `sin φ − h' cos φ`). Points near `skip(s)` (the
+/// contacts) and outside the surface's domain do not count.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn curve_clearance(
+    h: &Height,
+    amp: f64,
+    off: f64,
+    n: usize,
+    sample: &mut dyn FnMut(f64) -> [f64; 4],
+    exact: &mut dyn FnMut(f64) -> [f64; 4],
+    skip: &dyn Fn(f64) -> bool,
+) -> (f64, f64) {
+    let gap = |z: &[f64; 4]| z[1] - h.jet_scaled(z[0], amp).0 - off;
+    let mut best = (f64::NEG_INFINITY, f64::NAN);
+    let pts: Vec<(f64, [f64; 4])> = (0..=n)
+        .map(|i| {
+            let s = i as f64 / n as f64;
+            (s, sample(s))
+        })
+        .collect();
+    for i in 1..n {
+        let (s, z) = pts[i];
+        let (gp, g, gn) = (gap(&pts[i - 1].1), gap(&z), gap(&pts[i + 1].1));
+        // local maxima of the sampled gap, and any sample already close to the surface
+        if !(g >= gp && g >= gn) {
+            continue;
+        }
+        if skip(s) || !h.covers(z[0]) {
+            continue;
+        }
+        let (mut s1, mut z1) = (s, exact(s));
+        if g > -1e-3 {
+            // Newton on the gap's slope g' = sin φ − h' cos φ (g'' = κ(cos φ + h' sin φ) − h'' cos² φ)
+            for _ in 0..12 {
+                let (_, d, dd) = h.jet_scaled(z1[0], amp);
+                let (sp, cp) = z1[2].sin_cos();
+                let d1 = sp - d * cp;
+                let d2 = z1[3] * (cp + d * sp) - dd * cp * cp;
+                if d2 >= 0.0 || !d2.is_finite() {
+                    break;
+                }
+                let next = (s1 - d1 / d2).clamp(pts[i - 1].0, pts[i + 1].0);
+                let step = (next - s1).abs();
+                s1 = next;
+                z1 = exact(s1);
+                if step < 1e-14 {
+                    break;
+                }
+            }
+        }
+        if skip(s1) || !h.covers(z1[0]) {
+            continue;
+        }
+        let g1 = gap(&z1);
+        if g1 > best.0 {
+            best = (g1, s1);
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sine_arc_length_matches_a_fine_sum() {
+        let h = Height::new(
+            &SurfaceProfile::Sine {
+                amplitude: 0.05,
+                wavelength: 0.4,
+                phase: 0.3,
+            },
+            0.75,
+            0.1,
+        )
+        .unwrap()
+        .unwrap();
+        // composite Simpson with 200 000 intervals (error ~1e-16 per unit)
+        let simpson = |a: f64, b: f64| {
+            let n = 200_000;
+            let w = (b - a) / n as f64;
+            let f = |x: f64| (1.0 + h.jet(x).1.powi(2)).sqrt();
+            let mut s = f(a) + f(b);
+            for i in 1..n {
+                s += f(a + i as f64 * w) * if i % 2 == 1 { 4.0 } else { 2.0 };
+            }
+            s * w / 3.0
+        };
+        for x in [-1.3, -0.05, 0.0, 0.17, 0.9, 3.7] {
+            let want = if x >= 0.0 {
+                simpson(0.0, x)
+            } else {
+                -simpson(x, 0.0)
+            };
+            assert!(
+                (h.sigma(x).0 - want).abs() < 1e-12,
+                "{x}: {} {want}",
+                h.sigma(x).0
+            );
+        }
+    }
+
+    #[test]
+    fn spline_derivatives_are_consistent() {
+        let h = Height::new(
+            &SurfaceProfile::Table {
+                x: vec![-1.0, -0.3, 0.2, 0.8, 1.5],
+                y: vec![0.0, 0.05, -0.02, 0.04, 0.0],
+            },
+            0.75,
+            0.0,
+        )
+        .unwrap()
+        .unwrap();
+        // (at the knot -0.3 the third derivative jumps: the difference of h' is off by ~e·jump)
+        for x in [-0.9, -0.3, 0.0, 0.5, 1.4] {
+            let e = 1e-7;
+            let (_, d, dd) = h.jet(x);
+            let fd = (h.h(x + e) - h.h(x - e)) / (2.0 * e);
+            let fdd = (h.jet(x + e).1 - h.jet(x - e).1) / (2.0 * e);
+            assert!((d - fd).abs() < 1e-8 && (dd - fdd).abs() < 1e-6, "{x}");
+        }
+        // the spline interpolates and has zero curvature at the ends
+        assert!((h.h(0.2) - 0.73).abs() < 1e-15);
+        assert!(h.jet(-1.0).2.abs() < 1e-12 && h.jet(1.5).2.abs() < 1e-12);
+    }
+
+    #[test]
+    fn circle_and_patches() {
+        let h = Height::new(
+            &SurfaceProfile::Circle {
+                radius: 2.0,
+                x0: 0.1,
+            },
+            0.8,
+            0.0,
+        )
+        .unwrap()
+        .unwrap();
+        let (lo, hi) = h.domain();
+        assert!((hi - 0.1 - 2.0 / 2f64.sqrt()).abs() < 1e-14 && (lo + hi - 0.2).abs() < 1e-14);
+        // arc length of a circle: R·asin(u/R)
+        let want = 2.0 * ((0.6f64 - 0.1) / 2.0).asin() - 2.0 * ((0.0f64 - 0.1) / 2.0).asin();
+        assert!((h.sigma(0.6).0 - want).abs() < 1e-13);
+        let t = Texture::new(&FrictionProfile::Patches {
+            period: 0.3,
+            x: vec![0.0, 0.1],
+            mu_s: vec![0.5, 0.8],
+            mu_k: vec![0.3, 0.6],
+            offset: 0.05,
+        })
+        .unwrap()
+        .unwrap();
+        assert_eq!(t.at(0.1, 1.0), (0.5, 0.3));
+        assert_eq!(t.at(0.16, 1.0), (0.8, 0.6));
+        assert_eq!(t.at(0.15, 1.0), (0.8, 0.6));
+        assert_eq!(t.at(0.15, -1.0), (0.5, 0.3));
+        assert_eq!(t.at(0.05 + 0.3 * 7.0, 1.0), (0.5, 0.3));
+        assert!((t.next_boundary(0.16, 1.0).unwrap() - 0.35).abs() < 1e-15);
+        assert!((t.next_boundary(0.16, -1.0).unwrap() - 0.15).abs() < 1e-15);
+        assert!((t.next_boundary(0.35, 1.0).unwrap() - 0.45).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,345 @@
+//! The drag across a surface (issue 21): stick–slip cycles against the single scan, the energy
+//! balance of every phase, every method, curved and textured surfaces.
+
+use vibrissa::drag::{DragEvent, Phase};
+use vibrissa::surface::{FrictionProfile, SurfaceProfile};
+use vibrissa::{
+    drag, scan, ContactModel, DragOptions, DragResult, Method, Precurvature, ScanOptions, Scene,
+    SolverConfig, Stiffness, StopReason,
+};
+
+fn scene(f: impl Fn(&mut Scene)) -> Scene {
+    let mut s = Scene::default();
+    f(&mut s);
+    s
+}
+
+fn run(s: &Scene, o: &DragOptions) -> DragResult {
+    let (rod, surface) = s.parts().unwrap();
+    drag(&rod, &surface, o).unwrap()
+}
+
+fn uniform(mu_s: f64, mu_k: f64, d_max: f64) -> DragOptions {
+    DragOptions {
+        d_max,
+        points: 11,
+        mu_s: Some(mu_s),
+        mu_k: Some(mu_k),
+        ..DragOptions::default()
+    }
+}
+
+/// The slip displacement of the single scan at μ0.
+fn scan_slip(s: &Scene, mu0: f64) -> f64 {
+    let (rod, surface) = s.parts().unwrap();
+    let r = scan(
+        &rod,
+        &surface,
+        &ScanOptions {
+            mu0: Some(mu0),
+            ..ScanOptions::default()
+        },
+    )
+    .unwrap();
+    match r.stop {
+        StopReason::Slip { d, .. } => d,
+        other => panic!("the scan did not slip: {other}"),
+    }
+}
+
+/// Flat surface, uniform rod: the first slip where the scan reaches μs, every cycle
+/// Δd = d(μs) − d(μk) long, the tip slipping Δd, to 1e-9.
+#[test]
+fn flat_drag_is_periodic_as_the_scan_predicts() {
+    for (s, mu_s, mu_k) in [
+        (Scene::default(), 0.5, 0.3),
+        (scene(|s| s.eta = 0.6), 0.4, 0.1),
+    ] {
+        let ds = scan_slip(&s, mu_s);
+        let dk = scan_slip(&s, mu_k);
+        let period = ds - dk;
+        let r = run(&s, &uniform(mu_s, mu_k, ds + 6.5 * period));
+        assert_eq!(r.stop, StopReason::DMax, "{}", r.stop);
+        assert_eq!(r.slips.len(), 7, "{r}");
+        for (k, e) in r.slips.iter().enumerate() {
+            let want = ds + k as f64 * period;
+            assert!((e.d - want).abs() < 1e-9, "slip {k}: d {} want {want}", e.d);
+            assert!(
+                (e.jump - period).abs() < 1e-9,
+                "slip {k}: jump {} want {period}",
+                e.jump
+            );
+            assert!((e.before.mu - mu_s).abs() < 1e-9 && (e.after.mu - mu_k).abs() < 1e-9);
+            // stick phases after the first start where the previous slip ended
+            if k > 0 {
+                assert_eq!(e.d_stick, r.slips[k - 1].d);
+            }
+        }
+        // the sawtooth's corners repeat: base signals before and after each slip
+        let (a, b) = (&r.slips[1], &r.slips[6]);
+        for (x, y) in [
+            (a.before.fx, b.before.fx),
+            (a.after.fx, b.after.fx),
+            (a.before.m_base, b.before.m_base),
+            (a.after.m_base, b.after.m_base),
+        ] {
+            assert!((x - y).abs() < 1e-8, "{x} {y}");
+        }
+        assert!(r.summary.period_std < 1e-9 && (r.summary.period_mean - period).abs() < 1e-9);
+    }
+}
+
+/// Rows: every output displacement once, in order, stuck rows within the cone, each slip a pair
+/// of rows at the same d (before: `slip` with the jump and the released energy; after:
+/// `slip_end`).
+#[test]
+fn rows_and_events() {
+    let s = Scene::default();
+    let o = DragOptions {
+        points: 51,
+        keep_shapes: Some(9),
+        ..uniform(0.5, 0.3, 0.2)
+    };
+    let r = run(&s, &o);
+    let grid: Vec<f64> = r
+        .rows
+        .iter()
+        .filter(|r| r.event.is_none())
+        .map(|r| r.d)
+        .collect();
+    assert_eq!(grid.len(), 51);
+    assert!(grid.windows(2).all(|w| w[1] > w[0]));
+    assert_eq!(r.shapes.len(), r.rows.len());
+    assert!(r.rows.windows(2).all(|w| w[1].d >= w[0].d));
+    let slips: Vec<_> = r
+        .rows
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.event == Some(DragEvent::Slip))
+        .collect();
+    assert_eq!(slips.len(), r.slips.len());
+    for ((i, row), e) in slips.iter().zip(&r.slips) {
+        let next = &r.rows[i + 1];
+        assert_eq!(next.event, Some(DragEvent::SlipEnd));
+        assert_eq!((row.phase, next.phase), (Phase::Slip, Phase::Slip));
+        assert_eq!((row.d, next.d), (e.d, e.d));
+        assert_eq!(row.jump, Some(e.jump));
+        assert!((next.x_tip - row.x_tip - e.jump).abs() < 1e-12);
+        assert!(e.released > 0.0 && row.released == Some(e.released));
+        assert!(row.fx.abs() > next.fx.abs());
+    }
+    for row in r.rows.iter().filter(|r| r.phase == Phase::Stick) {
+        assert!(row.mu.abs() <= 0.5 + 1e-9, "{row:?}");
+    }
+}
+
+/// The energy balance of every phase to 1e-8: over a stick the foot's work equals the change of
+/// the elastic energy, over a slip the work the sliding tip's contact absorbs equals the energy
+/// released; several scenes, among them a tapered pre-curved rod and a corrugated surface.
+#[test]
+fn energy_balance_of_every_phase() {
+    let cases = [
+        ("paper", Scene::default(), 0.5, 0.3, 0.08),
+        (
+            "taper 0.5, rest curvature 0.5",
+            scene(|s| {
+                s.stiffness = Stiffness::Taper { ratio: 0.5 };
+                s.precurvature = Precurvature::Linear { k0: 0.5, k1: 0.0 };
+            }),
+            0.5,
+            0.3,
+            0.02,
+        ),
+        (
+            "taper 0.3, rest curvature -0.8 + 0.6 s, compliance 0.2",
+            scene(|s| {
+                s.stiffness = Stiffness::Taper { ratio: 0.3 };
+                s.precurvature = Precurvature::Linear { k0: -0.8, k1: 0.6 };
+                s.support_compliance = 0.2;
+                s.eta = 0.8;
+            }),
+            0.6,
+            0.2,
+            0.12,
+        ),
+        (
+            "compliance 0.5",
+            scene(|s| s.support_compliance = 0.5),
+            0.5,
+            0.3,
+            0.02,
+        ),
+        (
+            "corrugated",
+            scene(|s| {
+                s.surface = SurfaceProfile::Sine {
+                    amplitude: 0.01,
+                    wavelength: 0.2,
+                    phase: 2.0,
+                }
+            }),
+            0.5,
+            0.3,
+            0.06,
+        ),
+    ];
+    for (name, s, mu_s, mu_k, d_max) in cases {
+        let r = run(
+            &s,
+            &DragOptions {
+                energy_balance: true,
+                ..uniform(mu_s, mu_k, d_max)
+            },
+        );
+        assert!(r.slips.len() >= 2, "{name}: {r}");
+        for (k, e) in r.slips.iter().enumerate() {
+            let work = e.work.unwrap();
+            let de = e.before.energy - e.energy_stick;
+            assert!(
+                (work - de).abs() < 1e-8,
+                "{name}, stick {k}: work {work} energy change {de}"
+            );
+            let diss = e.dissipated.unwrap();
+            assert!(
+                (diss - e.released).abs() < 1e-8,
+                "{name}, slip {k}: dissipated {diss} released {}",
+                e.released
+            );
+            // one cycle: the foot's work is the energy's change plus what the slip dissipated
+            let cycle = e.after.energy - e.energy_stick;
+            assert!((work - (cycle + diss)).abs() < 2e-8, "{name}, cycle {k}");
+            if k > 0 {
+                assert_eq!(e.energy_stick, r.slips[k - 1].after.energy);
+            }
+        }
+    }
+}
+
+/// Multiple shooting and both collocations run the drag's stick and slip states: the same slips
+/// as the rod's own shooter.
+#[test]
+fn every_method_runs_the_drag() {
+    let s = Scene::default();
+    let own = run(&s, &uniform(0.5, 0.3, 0.05));
+    assert_eq!(own.slips.len(), 3);
+    // (collocation at its own tolerance: a drag of three cycles, tens of ms in a test build)
+    for (method, tol, eps) in [
+        (Method::MultipleShooting, 1e-10, 1e-9),
+        (Method::Collocation6, 1e-6, 1e-9),
+        (Method::Collocation4, 1e-5, 1e-7),
+    ] {
+        let o = DragOptions {
+            solver: SolverConfig {
+                method,
+                tol,
+                segments: 4,
+                ..SolverConfig::default()
+            },
+            ..uniform(0.5, 0.3, 0.05)
+        };
+        let r = run(&s, &o);
+        assert_eq!(r.slips.len(), own.slips.len(), "{method:?}: {r}");
+        for (a, b) in r.slips.iter().zip(&own.slips) {
+            assert!(
+                (a.d - b.d).abs() < eps && (a.jump - b.jump).abs() < eps,
+                "{method:?}: {} {} / {} {}",
+                a.d,
+                b.d,
+                a.jump,
+                b.jump
+            );
+        }
+    }
+}
+
+/// A two-patch texture: the tip sticks where it stopped (in the slippery patch, or at the edge
+/// of the grippy one), each stick ends where μ reaches that patch's μs, each slip where μ falls to
+/// the μk of the patch the tip is in — or at a patch edge where the patch ahead holds it.
+#[test]
+fn two_patch_texture() {
+    let s = scene(|s| {
+        s.friction = FrictionProfile::Patches {
+            period: 0.1,
+            x: vec![0.0, 0.05],
+            mu_s: vec![0.4, 0.7],
+            mu_k: vec![0.3, 0.5],
+            offset: 0.0,
+        }
+    });
+    let r = run(
+        &s,
+        &DragOptions {
+            mu_s: None,
+            mu_k: None,
+            d_max: 0.3,
+            points: 11,
+            ..DragOptions::default()
+        },
+    );
+    assert!(r.slips.len() >= 5, "{r}");
+    let patch = |x: f64| if (x.rem_euclid(0.1)) < 0.05 { 0 } else { 1 };
+    let mu_s = [0.4, 0.7];
+    let mu_k = [0.3, 0.5];
+    let mut at_edge = 0;
+    for e in &r.slips {
+        // the slip starts at its patch's μs (the tip stuck in it, or at the edge it stopped at)
+        let i = patch(e.before.x_tip + 1e-9);
+        assert!((e.before.mu - mu_s[i]).abs() < 1e-9, "{e:?}");
+        let j = patch(e.after.x_tip - 1e-9);
+        let edge = (e.after.x_tip * 20.0 - (e.after.x_tip * 20.0).round()).abs() < 1e-9;
+        if edge {
+            // stopped at a patch edge: the patch ahead holds it, the one behind did not
+            at_edge += 1;
+            assert!(
+                e.after.mu <= mu_k[1 - j] + 1e-12 && e.after.mu > mu_k[j],
+                "{e:?}"
+            );
+        } else {
+            assert!((e.after.mu - mu_k[j]).abs() < 1e-9, "{e:?}");
+        }
+    }
+    assert!(at_edge >= 1);
+}
+
+/// No row has the rod above the profile, and no stuck row needs more than μs (random
+/// corrugations, textures and rods).
+mod property {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+        #[test]
+        fn rows_stay_below_the_profile_and_in_the_cone(
+            amp in 0.0..0.012f64,
+            wave in 0.15..0.6f64,
+            phase in 0.0..std::f64::consts::TAU,
+            mu_s in 0.3..0.8f64,
+            ratio in 0.2..0.9f64,
+            taper in 0.4..1.0f64,
+        ) {
+            let s = scene(|s| {
+                s.surface = SurfaceProfile::Sine { amplitude: amp, wavelength: wave, phase };
+                s.stiffness = Stiffness::Taper { ratio: taper };
+            });
+            let (rod, surface) = s.parts().unwrap();
+            let h = surface.profile().unwrap();
+            let o = DragOptions {
+                keep_shapes: Some(201),
+                points: 21,
+                contact: ContactModel::Anywhere,
+                ..uniform(mu_s, ratio * mu_s, 0.15)
+            };
+            let r = drag(&rod, &surface, &o).unwrap();
+            for (row, shape) in r.rows.iter().zip(&r.shapes) {
+                for p in shape {
+                    let gap = p.y - h.h(p.x + row.d);
+                    prop_assert!(gap < 1e-8, "row at d = {}: s = {} is {gap:.3e} above", row.d, p.s);
+                }
+                if row.phase == Phase::Stick && row.event.is_none() {
+                    prop_assert!(row.mu.abs() <= row.mu_s + 1e-9, "{row:?}");
+                }
+            }
+        }
+    }
+}
