@@ -69,6 +69,7 @@ mod config;
 pub mod drag;
 pub mod equations;
 mod error;
+pub mod fit;
 mod generic;
 mod ground;
 mod kind;
@@ -92,6 +93,7 @@ mod watch;
 
 pub use drag::{drag, DragOptions, DragResult};
 pub use error::VibrissaError;
+pub use fit::{fit, FitOptions, FitResult, Trace, TraceSlip};
 pub use report::{
     ContactLabel, ContactModel, Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult,
     StopReason,

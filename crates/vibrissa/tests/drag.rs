@@ -343,3 +343,102 @@ mod property {
         }
     }
 }
+
+/// Against the independent computation of `data/drag` (scipy: DOP853 and Powell's method on the
+/// tip-contact equations in Cartesian forces, the slip followed in the tip's lab x; its own
+/// spread 5e-12): the slips' places, the tip's positions before and after, μ there and at the
+/// output displacements, to 1e-8 — a corrugated surface and a two-patch texture.
+#[test]
+fn matches_the_independent_reference() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/drag/reference.csv"
+    ))
+    .unwrap();
+    let rows: Vec<Vec<String>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(String::from).collect())
+        .collect();
+    let cases = [
+        (
+            "corrugated",
+            scene(|s| {
+                s.surface = SurfaceProfile::Sine {
+                    amplitude: 0.01,
+                    wavelength: 0.2,
+                    phase: 2.0,
+                }
+            }),
+            Some((0.5, 0.3)),
+            0.12,
+            13,
+            4,
+        ),
+        (
+            "two patches",
+            scene(|s| {
+                s.friction = FrictionProfile::Patches {
+                    period: 0.1,
+                    x: vec![0.0, 0.05],
+                    mu_s: vec![0.4, 0.7],
+                    mu_k: vec![0.3, 0.5],
+                    offset: 0.0,
+                }
+            }),
+            None,
+            0.16,
+            17,
+            5,
+        ),
+    ];
+    for (name, s, mu, d_max, points, slips) in cases {
+        let r = run(
+            &s,
+            &DragOptions {
+                d_max,
+                points,
+                mu_s: mu.map(|m| m.0),
+                mu_k: mu.map(|m| m.1),
+                max_slips: slips,
+                contact: ContactModel::Tip,
+                ..DragOptions::default()
+            },
+        );
+        assert!(r.slips.len() >= slips, "{name}: {r}");
+        let (mut checked, mut worst) = (0, 0.0f64);
+        for row in rows.iter().filter(|r| r[0] == name) {
+            let (kind, k) = (row[1].as_str(), row[2].parse::<usize>().unwrap());
+            let v: Vec<f64> = row[3..6].iter().map(|x| x.parse().unwrap()).collect();
+            let (d, x, mu) = match kind {
+                "slip" => {
+                    let e = &r.slips[k];
+                    (e.d, e.before.x_tip, e.before.mu)
+                }
+                "slip_end" => {
+                    let e = &r.slips[k];
+                    (e.d, e.after.x_tip, e.after.mu)
+                }
+                _ => {
+                    let g = r
+                        .rows
+                        .iter()
+                        .find(|q| q.event.is_none() && (q.d - v[0]).abs() < 1e-15)
+                        .unwrap_or_else(|| panic!("{name}: no row at d = {}", v[0]));
+                    assert_eq!(g.contact.name(), "tip");
+                    (g.d, g.x_tip, g.mu)
+                }
+            };
+            for (what, a, b) in [("d", d, v[0]), ("x_tip", x, v[1]), ("mu", mu, v[2])] {
+                worst = worst.max((a - b).abs());
+                assert!(
+                    (a - b).abs() < 1e-8,
+                    "{name} {kind} {k}: {what} {a} against {b} (reference)"
+                );
+            }
+            checked += 1;
+        }
+        assert!(checked >= 15, "{name}: {checked} reference values");
+        eprintln!("{name}: {checked} reference points, largest difference {worst:.2e}");
+    }
+}

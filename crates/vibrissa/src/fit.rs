@@ -1,0 +1,714 @@
+//! Reading the surface from the signals (issue 21): the friction coefficients `μs`, `μk` (and on
+//! request the surface height η and inclination β) estimated from a measured drag by nonlinear
+//! least squares.
+//!
+//! The data are the trace's slips (the sawtooth's corners): for each slip `k` its foot
+//! displacement `d_k` and any of the base signals `fx`, `fy`, `m_base` just before and just after
+//! it. The model is the drag ([`crate::drag()`]) of the same scene at the parameters `θ`; its
+//! slip `k` gives the same quantities. The residuals
+//!
+//! ```text
+//!     r_i(θ) = (observed_i − model_i(θ)) / σ_kind(i)
+//! ```
+//!
+//! are minimized by argmin's Gauss–Newton method with a backtracking (Armijo) line search, in
+//! unconstrained coordinates (`μs = e^a`, `μk = μs / (1 + e^−b)`, η and β mapped onto their open
+//! ranges); the Jacobian by central differences of drags. `σ_kind` is each kind's noise level
+//! (`d`, `fx`, `fy`, `m_base`): given, or estimated from the residuals of a first fit with unit
+//! weights (`σ² = Σ r² / (n_kind − p·n_kind/n)`), then the fit repeated with those weights.
+//!
+//! Standard errors: `cov = s² (JᵀJ)⁻¹` with `J` the Jacobian of the weighted residuals with
+//! respect to the natural parameters at the estimate and `s² = Σ r² / (n − p)`. A parameter is
+//! not identifiable from the given signals when the column-scaled `J` is rank deficient (singular
+//! value ratio below 1e-7): the parameters carrying the null direction are named, held at their
+//! starting values, and the others fitted (e.g. μk from a trace with one slip and no signals after
+//! it: the slip's place depends on μs alone).
+//!
+//! Starting values: μs from the first slip — the friction ratio of the scan at `d_1` — and μk
+//! from the second (the scan's ratio at `d_1 − (d_2 − d_1)`, the place the flat surface's slip
+//! goes back to), else `0.6 μs`.
+
+use crate::drag::{drag, DragOptions, DragResult};
+use crate::report::{ContactModel, ScanOptions};
+use crate::{Scene, SolverConfig, VibrissaError};
+use argmin::core::{CostFunction, Error as ArgminError, Executor, Jacobian, Operator, State};
+use argmin::solver::gaussnewton::GaussNewtonLS;
+use argmin::solver::linesearch::condition::ArmijoCondition;
+use argmin::solver::linesearch::BacktrackingLineSearch;
+use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
+use std::cell::RefCell;
+use std::fmt;
+
+/// A base signal.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Signal {
+    /// Force on the support, x.
+    Fx,
+    /// Force on the support, y.
+    Fy,
+    /// `m(0)`.
+    MBase,
+}
+
+impl Signal {
+    /// All, in column order.
+    pub const ALL: [Signal; 3] = [Signal::Fx, Signal::Fy, Signal::MBase];
+    /// The column name: `fx`, `fy`, `m_base`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Signal::Fx => "fx",
+            Signal::Fy => "fy",
+            Signal::MBase => "m_base",
+        }
+    }
+}
+
+/// One observed slip: where, and the signals just before and just after it (those measured).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Default)]
+pub struct TraceSlip {
+    /// Foot displacement at the slip.
+    pub d: f64,
+    /// `fx`, `fy`, `m_base` just before (in [`Signal::ALL`] order), if measured.
+    pub before: [Option<f64>; 3],
+    /// The same just after.
+    pub after: [Option<f64>; 3],
+}
+
+/// A measured drag: its slips in order.
+#[derive(Clone, Debug, PartialEq, Serialize, Default)]
+pub struct Trace {
+    /// The slips.
+    pub slips: Vec<TraceSlip>,
+}
+
+/// Options of [`fit`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FitOptions {
+    /// Also estimate the surface height η (straight surfaces). Default false.
+    pub fit_eta: bool,
+    /// Also estimate the surface inclination β (straight surfaces). Default false.
+    pub fit_angle: bool,
+    /// Starting `(μs, μk)`; default from the first two slips (module docs).
+    pub guess: Option<(f64, f64)>,
+    /// Noise levels of `d`, `fx`, `fy`, `m_base` (`None`: estimated).
+    pub sigma: Option<[f64; 4]>,
+    /// Solver of the drags.
+    pub solver: SolverConfig,
+    /// Where the rod may touch.
+    pub contact: ContactModel,
+    /// Most Gauss–Newton iterations per fit, in `[1, 1000]`. Default 50.
+    pub max_iter: u64,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        FitOptions {
+            fit_eta: false,
+            fit_angle: false,
+            guess: None,
+            sigma: None,
+            solver: SolverConfig::default(),
+            contact: ContactModel::Anywhere,
+            max_iter: 50,
+        }
+    }
+}
+
+/// One estimated parameter.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FitParam {
+    /// `mu_s`, `mu_k`, `eta`, `surface_angle`.
+    pub name: &'static str,
+    /// The estimate (the starting value when not identifiable).
+    pub value: f64,
+    /// Its standard error (`None` when not identifiable, or when the observations are as many as
+    /// the parameters and no noise levels are given).
+    pub std_error: Option<f64>,
+    /// Whether the signals determine it.
+    pub identifiable: bool,
+}
+
+/// Result of [`fit`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FitResult {
+    /// The parameters.
+    pub params: Vec<FitParam>,
+    /// Why some parameter is not identifiable, if one is.
+    pub message: Option<String>,
+    /// Observations used.
+    pub observations: usize,
+    /// The noise levels used for `d`, `fx`, `fy`, `m_base` (NaN where unused).
+    pub sigma: [f64; 4],
+    /// `s² = Σ r² / (n − p)` of the weighted residuals (≈ 1 when the noise levels fit; NaN when
+    /// `n = p` and no noise levels are given).
+    pub s2: f64,
+    /// Gauss–Newton iterations (both passes).
+    pub iterations: u64,
+    /// Drags computed.
+    pub drags: usize,
+}
+
+impl FitResult {
+    /// The estimate of `name`, if fitted.
+    pub fn get(&self, name: &str) -> Option<&FitParam> {
+        self.params.iter().find(|p| p.name == name)
+    }
+}
+
+impl fmt::Display for FitResult {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for p in &self.params {
+            match p.std_error {
+                Some(se) => write!(f, "{} = {:.6} ± {:.2e}; ", p.name, p.value, se)?,
+                None => write!(f, "{} = {:.6} (not identifiable); ", p.name, p.value)?,
+            }
+        }
+        write!(
+            f,
+            "{} observations, s² = {:.3}, {} iterations, {} drags",
+            self.observations, self.s2, self.iterations, self.drags
+        )?;
+        if let Some(m) = &self.message {
+            write!(f, "; {m}")?;
+        }
+        Ok(())
+    }
+}
+
+/// Which quantity an observation is: the slip's place, or a signal before/after it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Obs {
+    D(usize),
+    Before(usize, usize),
+    After(usize, usize),
+}
+
+impl Obs {
+    fn kind(self) -> usize {
+        match self {
+            Obs::D(_) => 0,
+            Obs::Before(_, s) | Obs::After(_, s) => 1 + s,
+        }
+    }
+}
+
+/// A parameter's natural value from its free coordinate, and back.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Par {
+    MuS,
+    MuK,
+    Eta,
+    Angle,
+}
+
+impl Par {
+    fn name(self) -> &'static str {
+        match self {
+            Par::MuS => "mu_s",
+            Par::MuK => "mu_k",
+            Par::Eta => "eta",
+            Par::Angle => "surface_angle",
+        }
+    }
+}
+
+/// The least-squares problem: observations, weights, the scene and which parameters are free.
+struct Model<'a> {
+    scene: &'a Scene,
+    trace: &'a Trace,
+    obs: Vec<(Obs, f64)>,
+    sigma: [f64; 4],
+    free: Vec<Par>,
+    /// Natural values of every parameter (the held ones stay).
+    base: [f64; 4],
+    opts: &'a FitOptions,
+    d_max: f64,
+    drags: RefCell<usize>,
+}
+
+fn logistic(x: f64) -> f64 {
+    1.0 / (1.0 + (-x).exp())
+}
+
+fn logit(p: f64) -> f64 {
+    (p / (1.0 - p)).ln()
+}
+
+impl Model<'_> {
+    /// Natural `(μs, μk, η, β)` from the free coordinates `x`.
+    fn natural(&self, x: &[f64]) -> [f64; 4] {
+        let mut v = self.base;
+        for (i, p) in self.free.iter().enumerate() {
+            match p {
+                Par::MuS => v[0] = x[i].exp(),
+                Par::MuK => {}
+                Par::Eta => {
+                    let lo = elastica::lower_limit().1;
+                    v[2] = lo + (1.0 - lo) * logistic(x[i]);
+                }
+                Par::Angle => v[3] = crate::MAX_SURFACE_ANGLE * (2.0 * logistic(x[i]) - 1.0),
+            }
+        }
+        if let Some(i) = self.free.iter().position(|&p| p == Par::MuK) {
+            v[1] = v[0] * logistic(x[i]);
+        }
+        v
+    }
+
+    /// Free coordinates of natural values.
+    fn coords(&self, v: [f64; 4]) -> Vec<f64> {
+        self.free
+            .iter()
+            .map(|p| match p {
+                Par::MuS => v[0].ln(),
+                Par::MuK => logit(v[1] / v[0]),
+                Par::Eta => {
+                    let lo = elastica::lower_limit().1;
+                    logit((v[2] - lo) / (1.0 - lo))
+                }
+                Par::Angle => logit(0.5 * (v[3] / crate::MAX_SURFACE_ANGLE + 1.0)),
+            })
+            .collect()
+    }
+
+    /// The drag at natural values.
+    fn drag_at(&self, v: [f64; 4]) -> Result<DragResult, VibrissaError> {
+        *self.drags.borrow_mut() += 1;
+        let mut sc = self.scene.clone();
+        sc.eta = v[2];
+        sc.surface_angle = v[3];
+        let (rod, surface) = sc.parts()?;
+        drag(
+            &rod,
+            &surface,
+            &DragOptions {
+                d_max: self.d_max,
+                points: 2,
+                mu_s: Some(v[0]),
+                mu_k: Some(v[1]),
+                solver: self.opts.solver.clone(),
+                contact: self.opts.contact,
+                max_slips: self.trace.slips.len(),
+                ..DragOptions::default()
+            },
+        )
+    }
+
+    /// Weighted residuals at natural values (a missing model slip counts as one at `d_max`, its
+    /// signals as zero; a drag that fails gives large residuals, so that a line search backs
+    /// off).
+    fn residuals(&self, v: [f64; 4]) -> DVector<f64> {
+        let r = match self.drag_at(v) {
+            Ok(r) => r,
+            Err(_) => return DVector::from_element(self.obs.len(), 1e6),
+        };
+        DVector::from_iterator(
+            self.obs.len(),
+            self.obs.iter().map(|&(o, y)| {
+                let sig = |k: usize, s: usize, after: bool| -> f64 {
+                    r.slips.get(k).map_or(0.0, |e| {
+                        let x = if after { &e.after } else { &e.before };
+                        [x.fx, x.fy, x.m_base][s]
+                    })
+                };
+                let m = match o {
+                    Obs::D(k) => r.slips.get(k).map_or(self.d_max, |e| e.d),
+                    Obs::Before(k, s) => sig(k, s, false),
+                    Obs::After(k, s) => sig(k, s, true),
+                };
+                (y - m) / self.sigma[o.kind()]
+            }),
+        )
+    }
+
+    /// `∂r/∂(natural free parameters)` by central differences.
+    fn jacobian_natural(&self, v: [f64; 4]) -> DMatrix<f64> {
+        let mut j = DMatrix::zeros(self.obs.len(), self.free.len());
+        for (c, p) in self.free.iter().enumerate() {
+            let i = match p {
+                Par::MuS => 0,
+                Par::MuK => 1,
+                Par::Eta => 2,
+                Par::Angle => 3,
+            };
+            let h = 1e-6 * v[i].abs().max(0.1);
+            let (mut a, mut b) = (v, v);
+            a[i] += h;
+            b[i] -= h;
+            let col = (self.residuals(a) - self.residuals(b)) / (2.0 * h);
+            j.set_column(c, &col);
+        }
+        j
+    }
+}
+
+/// The model as argmin's problem (weighted residuals in the free coordinates).
+struct Ls<'m, 'a>(&'m Model<'a>);
+
+impl Operator for Ls<'_, '_> {
+    type Param = DVector<f64>;
+    type Output = DVector<f64>;
+    fn apply(&self, x: &Self::Param) -> Result<Self::Output, ArgminError> {
+        Ok(self.0.residuals(self.0.natural(x.as_slice())))
+    }
+}
+
+impl CostFunction for Ls<'_, '_> {
+    type Param = DVector<f64>;
+    type Output = f64;
+    fn cost(&self, x: &Self::Param) -> Result<f64, ArgminError> {
+        Ok(self.apply(x)?.norm())
+    }
+}
+
+impl Jacobian for Ls<'_, '_> {
+    type Param = DVector<f64>;
+    type Jacobian = DMatrix<f64>;
+    fn jacobian(&self, x: &Self::Param) -> Result<Self::Jacobian, ArgminError> {
+        let n = x.len();
+        let mut j = DMatrix::zeros(self.0.obs.len(), n);
+        for c in 0..n {
+            let h = 1e-6 * x[c].abs().max(0.1);
+            let (mut a, mut b) = (x.clone(), x.clone());
+            a[c] += h;
+            b[c] -= h;
+            let col = (self.apply(&a)? - self.apply(&b)?) / (2.0 * h);
+            j.set_column(c, &col);
+        }
+        Ok(j)
+    }
+}
+
+/// The parameters carrying the null direction of `j` (columns scaled to unit norm), if its
+/// singular values fall below 1e-7 of the largest.
+fn unidentifiable(j: &DMatrix<f64>, free: &[Par]) -> Option<Vec<usize>> {
+    let n = j.ncols();
+    let norms: Vec<f64> = (0..n).map(|c| j.column(c).norm()).collect();
+    // a zero column: that parameter does nothing
+    let zero: Vec<usize> = (0..n)
+        .filter(|&c| norms[c] <= 1e-9 * norms.iter().fold(1e-300f64, |a, &b| a.max(b)))
+        .collect();
+    if !zero.is_empty() {
+        return Some(zero);
+    }
+    let mut js = j.clone();
+    for c in 0..n {
+        let nc = norms[c];
+        js.column_mut(c).scale_mut(1.0 / nc);
+    }
+    let svd = js.svd(false, true);
+    let sv = &svd.singular_values;
+    let (imin, smin) =
+        sv.iter().enumerate().fold(
+            (0, f64::INFINITY),
+            |a, (i, &s)| if s < a.1 { (i, s) } else { a },
+        );
+    let smax = sv.iter().fold(0.0f64, |a, &s| a.max(s));
+    if smin > 1e-7 * smax {
+        return None;
+    }
+    let vt = svd.v_t?;
+    let v = vt.row(imin);
+    let _ = free;
+    Some((0..n).filter(|&c| v[c].abs() > 0.3).collect())
+}
+
+/// Estimates μs, μk (and on request η, β) of `scene` from the slips of `trace` (module docs).
+/// Errors for invalid input (fewer than one slip, non-finite values), when the start cannot be
+/// guessed, or when Gauss–Newton fails.
+pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult, VibrissaError> {
+    if !(1..=1000).contains(&opts.max_iter) {
+        return Err(VibrissaError::range(
+            "max_iter",
+            opts.max_iter as f64,
+            "[1, 1000]",
+        ));
+    }
+    opts.solver.validate()?;
+    let (rod, surface) = scene.parts()?;
+    if (opts.fit_eta || opts.fit_angle) && surface.profile().is_some() {
+        return Err(VibrissaError::MethodUnavailable {
+            method: "fit of eta or surface_angle".into(),
+            reason: "only on a straight surface (a curved profile is placed by its own keys)"
+                .into(),
+        });
+    }
+    if trace.slips.is_empty() {
+        return Err(VibrissaError::InvalidTable {
+            name: "trace".into(),
+            reason: "no slip: the fit reads the slips (their places and the signals around them)"
+                .into(),
+        });
+    }
+    let mut obs = Vec::new();
+    for (k, s) in trace.slips.iter().enumerate() {
+        if !(s.d.is_finite() && s.d >= 0.0) || (k > 0 && s.d <= trace.slips[k - 1].d) {
+            return Err(VibrissaError::InvalidTable {
+                name: "trace".into(),
+                reason: format!(
+                    "slip {k} at d = {}: slips must be finite, at d >= 0, in increasing order",
+                    s.d
+                ),
+            });
+        }
+        obs.push((Obs::D(k), s.d));
+        for i in 0..3 {
+            for (x, o) in [
+                (s.before[i], Obs::Before(k, i)),
+                (s.after[i], Obs::After(k, i)),
+            ] {
+                if let Some(v) = x {
+                    if !v.is_finite() {
+                        return Err(VibrissaError::InvalidTable {
+                            name: "trace".into(),
+                            reason: format!("slip {k}: {} = {v}", Signal::ALL[i].name()),
+                        });
+                    }
+                    obs.push((o, v));
+                }
+            }
+        }
+    }
+    if let Some(s) = opts.sigma {
+        if let Some(i) = (0..4).find(|&i| !(s[i].is_finite() && s[i] > 0.0)) {
+            return Err(VibrissaError::range(
+                ["sigma.d", "sigma.fx", "sigma.fy", "sigma.m_base"][i],
+                s[i],
+                "(0, inf)",
+            ));
+        }
+    }
+    // the start: μs (and μk) read off the scan at the first slips
+    let (mu_s0, mu_k0) = match opts.guess {
+        Some(g) => g,
+        None => {
+            let d1 = trace.slips[0].d;
+            let d2 = trace.slips.get(1).map(|s| s.d);
+            let back = d2.map(|d2| d1 - (d2 - d1)).filter(|&b| b > 0.0);
+            let mut at = vec![d1];
+            if let Some(b) = back {
+                at.insert(0, b);
+            }
+            let o = ScanOptions {
+                d_max: (1.05 * d1).clamp(1e-3, 1.999),
+                points: 2,
+                solver: opts.solver.clone(),
+                contact: opts.contact,
+                ..ScanOptions::default()
+            };
+            let r = crate::scan_at(&rod, &surface, &o, &at)?;
+            let grid: Vec<f64> = r
+                .points
+                .iter()
+                .filter(|p| p.event.is_none())
+                .map(|p| p.mu.abs())
+                .collect();
+            match (grid.len(), back) {
+                (2, Some(_)) => (grid[1], grid[0].min(0.95 * grid[1])),
+                (n, _) if n >= 1 => (grid[n - 1], 0.6 * grid[n - 1]),
+                _ => {
+                    return Err(VibrissaError::NoConvergence {
+                        what: "the fit's starting values (the scan to the first slip)".into(),
+                        reason: r.stop.to_string(),
+                    })
+                }
+            }
+        }
+    };
+    if !(mu_s0 > 0.0 && mu_k0 >= 0.0 && mu_k0 < mu_s0) {
+        return Err(VibrissaError::range(
+            "guess mu_k",
+            mu_k0,
+            format!("[0, mu_s = {mu_s0}) with mu_s > 0"),
+        ));
+    }
+    let mut free = vec![Par::MuS, Par::MuK];
+    if opts.fit_eta {
+        free.push(Par::Eta);
+    }
+    if opts.fit_angle {
+        free.push(Par::Angle);
+    }
+    let d_last = trace.slips[trace.slips.len() - 1].d;
+    let mut model = Model {
+        scene,
+        trace,
+        obs,
+        sigma: [1.0; 4],
+        free,
+        base: [
+            mu_s0,
+            mu_k0.max(1e-6 * mu_s0),
+            scene.eta,
+            scene.surface_angle,
+        ],
+        opts,
+        d_max: (2.0 * d_last + 0.5).min(crate::drag::MAX_DRAG),
+        drags: RefCell::new(0),
+    };
+    let n = model.obs.len();
+    // identifiability at the start: hold what the signals do not determine
+    let j0 = model.jacobian_natural(model.base);
+    let mut message = None;
+    let mut held = Vec::new();
+    if let Some(bad) = unidentifiable(&j0, &model.free) {
+        let names: Vec<&str> = bad.iter().map(|&c| model.free[c].name()).collect();
+        let slips = trace.slips.len();
+        let after = trace
+            .slips
+            .iter()
+            .any(|s| s.after.iter().any(Option::is_some));
+        let why = if slips == 1 && !after {
+            "the trace has one slip and no signals after it, so nothing in it depends on where \
+             the slip ends"
+                .to_string()
+        } else {
+            "the given signals do not change along that direction of the parameters".to_string()
+        };
+        message = Some(format!(
+            "{} cannot be determined from this trace ({why}); held at the starting value",
+            names.join(" and ")
+        ));
+        // hold the last of them (μk before μs)
+        let mut drop: Vec<usize> = bad.clone();
+        drop.sort_unstable();
+        if drop.len() == model.free.len() {
+            drop.remove(0);
+        }
+        for &c in drop.iter().rev() {
+            held.push(model.free.remove(c));
+        }
+    }
+    if model.free.len() > n {
+        return Err(VibrissaError::InvalidTable {
+            name: "trace".into(),
+            reason: format!(
+                "{n} observations for {} parameters: the fit needs at least as many observations \
+                 as parameters",
+                model.free.len()
+            ),
+        });
+    }
+    // no residual degrees of freedom: the estimate fits exactly, its spread is unknown unless
+    // the noise levels are given
+    let exact = model.free.len() == n;
+    let mut iterations = 0;
+    let solve =
+        |model: &Model<'_>, x0: Vec<f64>, iters: &mut u64| -> Result<Vec<f64>, VibrissaError> {
+            let ls = BacktrackingLineSearch::new(ArmijoCondition::new(1e-6).map_err(|e| {
+                VibrissaError::NoConvergence {
+                    what: "fit".into(),
+                    reason: e.to_string(),
+                }
+            })?);
+            let solver = GaussNewtonLS::new(ls).with_tolerance(1e-10).map_err(|e| {
+                VibrissaError::NoConvergence {
+                    what: "fit".into(),
+                    reason: e.to_string(),
+                }
+            })?;
+            let res = Executor::new(Ls(model), solver)
+                .configure(|s| s.param(DVector::from_vec(x0)).max_iters(opts.max_iter))
+                .run()
+                .map_err(|e| VibrissaError::NoConvergence {
+                    what: "the least-squares fit (Gauss-Newton)".into(),
+                    reason: e.to_string(),
+                })?;
+            *iters += res.state.get_iter();
+            let best = res.state.get_best_param().cloned().ok_or_else(|| {
+                VibrissaError::NoConvergence {
+                    what: "the least-squares fit (Gauss-Newton)".into(),
+                    reason: "no estimate".into(),
+                }
+            })?;
+            Ok(best.iter().copied().collect())
+        };
+    // pass 1 with unit weights (or the given noise levels), then with estimated levels
+    if let Some(s) = opts.sigma {
+        model.sigma = s;
+    }
+    let x0 = model.coords(model.base);
+    let mut x = solve(&model, x0, &mut iterations)?;
+    let p = model.free.len() as f64;
+    if opts.sigma.is_none() && !exact {
+        let v = model.natural(&x);
+        let r = model.residuals(v);
+        let mut sig = [f64::NAN; 4];
+        for (k, s) in sig.iter_mut().enumerate() {
+            let (sum, cnt) = model
+                .obs
+                .iter()
+                .zip(r.iter())
+                .filter(|((o, _), _)| o.kind() == k)
+                .fold((0.0, 0usize), |a, (_, ri)| (a.0 + ri * ri, a.1 + 1));
+            if cnt > 0 {
+                let dof = cnt as f64 - p * cnt as f64 / n as f64;
+                // (residuals of the unit-weight pass are in the kind's own units)
+                *s = (sum / dof.max(1e-3)).sqrt().max(1e-14);
+            }
+        }
+        model.sigma = sig.map(|s| if s.is_nan() { 1.0 } else { s });
+        x = solve(&model, x, &mut iterations)?;
+        // report NaN for kinds without observations
+        for (k, s) in sig.iter().enumerate() {
+            if s.is_nan() {
+                model.sigma[k] = f64::NAN;
+            }
+        }
+    }
+    let v = model.natural(&x);
+    let used_sigma = model.sigma;
+    model.sigma = model.sigma.map(|s| if s.is_nan() { 1.0 } else { s });
+    let r = model.residuals(v);
+    let s2 = match (exact, opts.sigma) {
+        (false, _) => r.norm_squared() / (n as f64 - p),
+        // given noise levels: the weighted residuals have unit variance
+        (true, Some(_)) => 1.0,
+        (true, None) => f64::NAN,
+    };
+    if exact && opts.sigma.is_none() {
+        let note = "as many observations as parameters: the estimate fits them exactly and its \
+                    standard error needs the noise levels (sigma)";
+        message = Some(match message {
+            Some(m) => format!("{m}; {note}"),
+            None => note.to_string(),
+        });
+    }
+    let j = model.jacobian_natural(v);
+    let cov = (j.transpose() * &j).try_inverse();
+    let mut params = Vec::new();
+    for par in [Par::MuS, Par::MuK, Par::Eta, Par::Angle] {
+        let value = v[par as usize];
+        if let Some(c) = model.free.iter().position(|&q| q == par) {
+            let se = cov
+                .as_ref()
+                .map(|c2| (s2 * c2[(c, c)]).sqrt())
+                .filter(|s| s.is_finite());
+            params.push(FitParam {
+                name: par.name(),
+                value,
+                std_error: se,
+                identifiable: true,
+            });
+        } else if held.contains(&par) {
+            params.push(FitParam {
+                name: par.name(),
+                value,
+                std_error: None,
+                identifiable: false,
+            });
+        }
+    }
+    let drags = *model.drags.borrow();
+    Ok(FitResult {
+        params,
+        message,
+        observations: n,
+        sigma: used_sigma,
+        s2,
+        iterations,
+        drags,
+    })
+}
