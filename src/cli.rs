@@ -153,7 +153,7 @@ pub struct PhysicalArgs {
 /// Scene flags of solve, scan and infer; they override the values of `--scene`.
 #[derive(Args, Debug, Clone, Default)]
 pub struct SceneArgs {
-    /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"). Flags override its values.
+    /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"; "-": stdin; read once, so a pipe or FIFO works). Flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
     /// Conical taper: tip/base radius ratio RHO in [0.01, 1]; b(s) = (1 - (1 - RHO) s)^-4. [default: 1, uniform]
@@ -289,7 +289,7 @@ pub struct InferArgs {
     after_help = "LIST: a range a:b:n (n points, both ends included, computed from the decimal digits typed: 0.6:0.95:8 gives 0.6, 0.65, ..., 0.95) or a comma list v1,v2,... Negative values need no '=': --precurvature -1,0,1."
 )]
 pub struct SweepArgs {
-    /// Base scene file (TOML); the grid flags override its values.
+    /// Base scene file (TOML; "-": stdin; read once, so a pipe or FIFO works); the grid flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
     /// Surface heights, in (eta_, 1) (see scan --help). [default: scene's, else 0.75]
