@@ -244,8 +244,8 @@ pub struct ScanArgs {
     pub solver: SolverArgs,
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Write the scan points to this CSV file ("-": stdout). Without it the CSV goes to stdout
-    /// (unless --json).
+    /// Write the scan points to this CSV file ("-": stdout, not with --json). Without it the CSV
+    /// goes to stdout (unless --json).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
     /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab, phi, kappa, m).

@@ -372,6 +372,11 @@ fn scan(a: &mut ScanArgs) -> Res<()> {
     check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
     mu0(&mut a.mu0)?;
     if a.out.as_deref().is_some_and(is_stdout) {
+        if a.json {
+            return Err(usage(
+                "--out - with --json would put the scan's CSV and its JSON summary on the same stdout; give --out a file name (the JSON then names it), or leave out --out - (--json alone prints only the summary)",
+            ));
+        }
         a.out = None;
     }
     if a.shapes.as_deref().is_some_and(is_stdout) {
