@@ -25,6 +25,11 @@ pub fn axis(s: &str) -> Result<Axis, String> {
     numbers::parse_axis(s)
 }
 
+/// Parse a grid axis whose lists may hold `inf` (`--mu0 0.5,1,inf`).
+pub fn axis_or_inf(s: &str) -> Result<Axis, String> {
+    numbers::parse_axis_or_inf(s)
+}
+
 /// Parse a shard `K/N`.
 pub fn shard(s: &str) -> Result<Shard, String> {
     numbers::parse_shard(s).map(|(k, n)| Shard { k, n })
@@ -328,15 +333,16 @@ pub struct SweepArgs {
     /// Solver tolerances (LIST), each in [1e-15, 1e-2].
     #[arg(long, value_name = "LIST", value_parser = axis, default_value = "1e-10")]
     pub tol: Axis,
-    /// Largest foot displacement of each scan (rod lengths), in (0, 2).
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
-    pub d_max: f64,
-    /// Points per scan, in [2, 1000000] (as scan).
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
-    pub points: u32,
-    /// Stiction coefficient at which each scan stops (slip), in [0, inf]. [default: none]
-    #[arg(long, value_name = "MU", value_parser = f64_or_inf)]
-    pub mu0: Option<f64>,
+    /// Stiction coefficients at which the scans stop (slip) (LIST), each in [0, inf]; inf (in a
+    /// comma list) never slips. [default: none]
+    #[arg(long, value_name = "LIST", value_parser = axis_or_inf)]
+    pub mu0: Option<Axis>,
+    /// Largest foot displacements of the scans (LIST, rod lengths), each in (0, 2).
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "0.5")]
+    pub d_max: Axis,
+    /// Points per scan (LIST), whole numbers in [2, 1000000] (as scan).
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "201")]
+    pub points: Axis,
     /// Worker threads; more than 4 per core are capped, with a warning. [default: all cores]
     #[arg(long, value_name = "N", value_parser = jobs)]
     pub jobs: Option<u32>,
@@ -411,6 +417,36 @@ pub fn command() -> clap::Command {
         });
     }
     cmd
+}
+
+/// The values of sub-command `sub`'s flags on this process's command line, as typed (a flag not
+/// given: its default, or empty), in the order of `--help`, leaving out the flags in `skip`:
+/// (`--flag`, value). A flag added later is included without a change here.
+pub fn typed_values(sub: &str, skip: &[&str]) -> Vec<(String, String)> {
+    let cmd = command();
+    let Ok(m) = cmd.clone().try_get_matches_from(std::env::args_os()) else {
+        return Vec::new();
+    };
+    let (Some(sm), Some(sc)) = (m.subcommand_matches(sub), cmd.find_subcommand(sub)) else {
+        return Vec::new();
+    };
+    sc.get_arguments()
+        .filter_map(|a| {
+            let long = a.get_long()?;
+            if long == "help" || skip.contains(&long) {
+                return None;
+            }
+            let v = sm
+                .get_raw(a.get_id().as_str())
+                .map(|vs| {
+                    vs.map(|v| v.to_string_lossy().into_owned())
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                })
+                .unwrap_or_default();
+            Some((format!("--{long}"), v))
+        })
+        .collect()
 }
 
 /// A numeric flag directly followed by another flag of the same command (`--alpha --phi1 0.3`):
