@@ -678,8 +678,6 @@ fn closed_stdout_is_not_an_error() {
 #[cfg(unix)]
 #[test]
 fn a_scene_is_read_once_from_stdin_a_pipe_or_a_fifo() {
-    use std::io::Write;
-    use std::process::Stdio;
     let d = tmpdir("scene-once");
     let text = "eta = 0.7\nsupport_compliance = 0.5\n";
     let file = write(&d, "s.toml", text);
@@ -697,66 +695,40 @@ fn a_scene_is_read_once_from_stdin_a_pipe_or_a_fifo() {
         &["sweep", "--points", "5", "--taper", "1,0.8"],
     ];
     for args in commands {
-        let with = |scene: &str| -> Vec<String> {
-            let mut v: Vec<String> = args.iter().map(|s| s.to_string()).collect();
-            v.extend(["--scene".to_string(), scene.to_string()]);
-            v
-        };
-        let reference = ok(&with(&file).iter().map(String::as_str).collect::<Vec<_>>()).stdout;
+        fn with<'a>(args: &[&'a str], scene: &'a str) -> Vec<&'a str> {
+            [args, &["--scene", scene]].concat()
+        }
+        let reference = ok(&with(args, &file)).stdout;
         // the scene matters: without it the output differs
         assert_ne!(
             ok(args).stdout,
             reference,
             "{args:?}: the scene changes nothing"
         );
-        for scene in ["/dev/stdin", "-"] {
-            let mut c = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
-                .args(with(scene))
-                .stdin(Stdio::piped())
-                .stdout(Stdio::piped())
-                .stderr(Stdio::piped())
-                .spawn()
-                .unwrap();
-            c.stdin.take().unwrap().write_all(text.as_bytes()).unwrap();
-            let o = wait_at_most(c, 60, &format!("{args:?} --scene {scene}"));
-            let err = String::from_utf8_lossy(&o.stderr);
-            assert_eq!(o.status.code(), Some(0), "{args:?} --scene {scene}: {err}");
-            assert_eq!(
-                String::from_utf8_lossy(&o.stdout),
-                reference,
-                "{args:?} --scene {scene}"
-            );
+        for (scene, input) in [
+            ("/dev/stdin", Some(text)),
+            ("-", Some(text)),
+            // a FIFO: a writer writes the scene once
+            (fifo.as_str(), None),
+        ] {
+            let writer = input.is_none().then(|| {
+                let f = fifo.clone();
+                std::thread::spawn(move || std::fs::write(f, text).unwrap())
+            });
+            let o = run_fed(&with(args, scene), input);
+            if let Some(w) = writer {
+                w.join().unwrap();
+            }
+            assert_eq!(o.code, 0, "{args:?} --scene {scene}: {}", o.stderr);
+            assert_eq!(o.stdout, reference, "{args:?} --scene {scene}");
         }
-        // a FIFO: one writer writes the scene once
-        let (f, t) = (fifo.clone(), text.to_string());
-        let writer = std::thread::spawn(move || std::fs::write(f, t).unwrap());
-        let c = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
-            .args(with(&fifo))
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let o = wait_at_most(c, 60, &format!("{args:?} --scene FIFO"));
-        writer.join().unwrap();
-        let err = String::from_utf8_lossy(&o.stderr);
-        assert_eq!(o.status.code(), Some(0), "{args:?} --scene FIFO: {err}");
-        assert_eq!(
-            String::from_utf8_lossy(&o.stdout),
-            reference,
-            "{args:?} FIFO"
-        );
     }
     // a bad scene from stdin is named as such
-    let mut c = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
-        .args(["scan", "--scene", "-"])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    c.stdin.take().unwrap().write_all(b"eta = 0.3\n").unwrap();
-    let o = wait_at_most(c, 60, "bad scene on stdin");
-    assert_eq!(o.status.code(), Some(2));
-    let e = String::from_utf8_lossy(&o.stderr);
-    assert!(e.starts_with("error: scene file -: eta = 0.3"), "{e}");
+    let o = run_fed(&["scan", "--scene", "-"], Some("eta = 0.3\n"));
+    assert_eq!(o.code, 2);
+    assert!(
+        o.stderr.starts_with("error: scene file -: eta = 0.3"),
+        "{}",
+        o.stderr
+    );
 }

@@ -14,6 +14,20 @@ fn vib() -> Command {
     Command::new(env!("CARGO_BIN_EXE_vibrissa"))
 }
 
+/// A sweep of 600 scenes that takes a second or two (debug build): long enough to be killed part
+/// way.
+const GRID: [&str; 9] = [
+    "sweep",
+    "--eta",
+    "0.6:0.9:300",
+    "--taper",
+    "1,0.5",
+    "--points",
+    "11",
+    "--d-max",
+    "0.3",
+];
+
 /// Rows in a journal (the lines after `# rows`, complete or not).
 fn journal_rows(p: &Path) -> usize {
     let t = std::fs::read_to_string(p).unwrap_or_default();
@@ -60,19 +74,8 @@ fn kill_part_way(dir: &Path, args: &[&str], journal: &Path, rows: usize) -> usiz
 #[test]
 fn a_killed_sweep_resumes_to_the_bytes_of_an_uninterrupted_run() {
     let d = tmpdir("resume");
-    let grid = [
-        "sweep",
-        "--eta",
-        "0.6:0.9:300",
-        "--taper",
-        "1,0.5",
-        "--points",
-        "11",
-        "--d-max",
-        "0.3",
-    ];
     for shard in [None, Some("2/3")] {
-        let mut args: Vec<&str> = grid.to_vec();
+        let mut args: Vec<&str> = GRID.to_vec();
         if let Some(s) = shard {
             args.extend(["--shard", s]);
         }
@@ -141,17 +144,7 @@ fn a_killed_sweep_resumes_to_the_bytes_of_an_uninterrupted_run() {
 #[test]
 fn a_changed_command_does_not_resume() {
     let d = tmpdir("changed");
-    let args = [
-        "sweep",
-        "--eta",
-        "0.6:0.9:300",
-        "--taper",
-        "1,0.5",
-        "--points",
-        "11",
-        "--out",
-        "out.csv",
-    ];
+    let args = [&GRID[..], &["--out", "out.csv"]].concat();
     let journal = d.join("out.csv.journal");
     kill_part_way(&d, &args, &journal, 5);
     let before = std::fs::read(&journal).unwrap();
@@ -166,7 +159,7 @@ fn a_changed_command_does_not_resume() {
         (&["--shard", "1/2"], "--shard was not given, now 1/2"),
         (&["--scene", scene], "base scene was"),
     ] {
-        let mut a: Vec<&str> = args.to_vec();
+        let mut a: Vec<&str> = args.clone();
         // replace a flag's value, or add the flag
         match a.iter().position(|x| *x == change[0]) {
             Some(i) => a[i + 1] = change[1],

@@ -125,3 +125,27 @@ pub fn wait_at_most(mut child: Child, secs: u64, what: &str) -> std::process::Ou
         std::thread::sleep(Duration::from_millis(20));
     }
 }
+
+/// Run with `input` written to stdin (`None`: stdin is empty), for at most 60 s.
+pub fn run_fed(args: &[&str], input: Option<&str>) -> Out {
+    use std::io::Write;
+    use std::process::Stdio;
+    let mut c = Command::new(env!("CARGO_BIN_EXE_vibrissa"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = c.stdin.take().unwrap();
+    if let Some(text) = input {
+        stdin.write_all(text.as_bytes()).unwrap();
+    }
+    drop(stdin);
+    let o = wait_at_most(c, 60, &format!("vibrissa {args:?}"));
+    Out {
+        code: o.status.code().unwrap_or(-1),
+        stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
+    }
+}
