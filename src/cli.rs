@@ -357,10 +357,12 @@ pub struct SweepArgs {
     /// Add a time_ms column (wall time per scene; makes the output non-reproducible).
     #[arg(long)]
     pub timing: bool,
-    /// Output CSV file ("-": stdout). [default: stdout]
+    /// Output CSV file ("-": stdout). A file gets a journal, FILE.journal, with the finished rows:
+    /// after a kill the same command resumes the sweep (see README, "A sweep's journal").
+    /// [default: stdout]
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Check every value, print the grid size and this shard's range on stderr, and exit without solving.
+    /// Check every value, print the grid size, this shard's range and the rows a journal holds on stderr, and exit without solving.
     #[arg(long)]
     pub dry_run: bool,
 }
