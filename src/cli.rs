@@ -25,6 +25,11 @@ pub fn axis(s: &str) -> Result<Axis, String> {
     numbers::parse_axis(s)
 }
 
+/// Parse a grid axis whose lists may hold `inf` (`--mu0 0.5,1,inf`).
+pub fn axis_or_inf(s: &str) -> Result<Axis, String> {
+    numbers::parse_axis_or_inf(s)
+}
+
 /// Parse a shard `K/N`.
 pub fn shard(s: &str) -> Result<Shard, String> {
     numbers::parse_shard(s).map(|(k, n)| Shard { k, n })
@@ -153,7 +158,7 @@ pub struct PhysicalArgs {
 /// Scene flags of solve, scan and infer; they override the values of `--scene`.
 #[derive(Args, Debug, Clone, Default)]
 pub struct SceneArgs {
-    /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"). Flags override its values.
+    /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"; "-": stdin; read once, so a pipe or FIFO works). Flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
     /// Conical taper: tip/base radius ratio RHO in [0.01, 1]; b(s) = (1 - (1 - RHO) s)^-4. [default: 1, uniform]
@@ -272,8 +277,8 @@ pub struct ScanArgs {
     pub solver: SolverArgs,
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Write the scan points to this CSV file ("-": stdout). Without it the CSV goes to stdout
-    /// (unless --json).
+    /// Write the scan points to this CSV file ("-": stdout, not with --json). Without it the CSV
+    /// goes to stdout (unless --json).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
     /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab, phi, kappa, m).
@@ -317,7 +322,7 @@ pub struct InferArgs {
     after_help = "LIST: a range a:b:n (n points, both ends included, computed from the decimal digits typed: 0.6:0.95:8 gives 0.6, 0.65, ..., 0.95) or a comma list v1,v2,... Negative values need no '=': --precurvature -1,0,1."
 )]
 pub struct SweepArgs {
-    /// Base scene file (TOML); the grid flags override its values.
+    /// Base scene file (TOML; "-": stdin; read once, so a pipe or FIFO works); the grid flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
     /// Surface heights, in (eta_, 1) (see scan --help). [default: scene's, else 0.75]
@@ -356,15 +361,16 @@ pub struct SweepArgs {
     /// Solver tolerances (LIST), each in [1e-15, 1e-2].
     #[arg(long, value_name = "LIST", value_parser = axis, default_value = "1e-10")]
     pub tol: Axis,
-    /// Largest foot displacement of each scan (rod lengths), in (0, 2).
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
-    pub d_max: f64,
-    /// Points per scan, in [2, 1000000] (as scan).
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
-    pub points: u32,
-    /// Stiction coefficient at which each scan stops (slip), in [0, inf]. [default: none]
-    #[arg(long, value_name = "MU", value_parser = f64_or_inf)]
-    pub mu0: Option<f64>,
+    /// Stiction coefficients at which the scans stop (slip) (LIST), each in [0, inf]; inf (in a
+    /// comma list) never slips. [default: none]
+    #[arg(long, value_name = "LIST", value_parser = axis_or_inf)]
+    pub mu0: Option<Axis>,
+    /// Largest foot displacements of the scans (LIST, rod lengths), each in (0, 2).
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "0.5")]
+    pub d_max: Axis,
+    /// Points per scan (LIST), whole numbers in [2, 1000000] (as scan).
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "201")]
+    pub points: Axis,
     /// Worker threads; more than 4 per core are capped, with a warning. [default: all cores]
     #[arg(long, value_name = "N", value_parser = jobs)]
     pub jobs: Option<u32>,
@@ -379,10 +385,12 @@ pub struct SweepArgs {
     /// Add a time_ms column (wall time per scene; makes the output non-reproducible).
     #[arg(long)]
     pub timing: bool,
-    /// Output CSV file ("-": stdout). [default: stdout]
+    /// Output CSV file ("-": stdout). A file gets a journal, FILE.journal, with the finished rows:
+    /// after a kill the same command resumes the sweep (see README, "A sweep's journal").
+    /// [default: stdout]
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Check every value, print the grid size and this shard's range on stderr, and exit without solving.
+    /// Check every value, print the grid size, this shard's range and the rows a journal holds on stderr, and exit without solving.
     #[arg(long)]
     pub dry_run: bool,
 }
@@ -439,6 +447,36 @@ pub fn command() -> clap::Command {
         });
     }
     cmd
+}
+
+/// The values of sub-command `sub`'s flags on this process's command line, as typed (a flag not
+/// given: its default, or empty), in the order of `--help`, leaving out the flags in `skip`:
+/// (`--flag`, value). A flag added later is included without a change here.
+pub fn typed_values(sub: &str, skip: &[&str]) -> Vec<(String, String)> {
+    let cmd = command();
+    let Ok(m) = cmd.clone().try_get_matches_from(std::env::args_os()) else {
+        return Vec::new();
+    };
+    let (Some(sm), Some(sc)) = (m.subcommand_matches(sub), cmd.find_subcommand(sub)) else {
+        return Vec::new();
+    };
+    sc.get_arguments()
+        .filter_map(|a| {
+            let long = a.get_long()?;
+            if long == "help" || skip.contains(&long) {
+                return None;
+            }
+            let v = sm
+                .get_raw(a.get_id().as_str())
+                .map(|vs| {
+                    vs.map(|v| v.to_string_lossy().into_owned())
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                })
+                .unwrap_or_default();
+            Some((format!("--{long}"), v))
+        })
+        .collect()
 }
 
 /// A numeric flag directly followed by another flag of the same command (`--alpha --phi1 0.3`):

@@ -3,6 +3,7 @@
 mod cli;
 mod error;
 mod figures;
+mod journal;
 mod numbers;
 mod numeric;
 mod output;

@@ -372,6 +372,11 @@ fn scan(a: &mut ScanArgs) -> Res<()> {
     check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
     mu0(&mut a.mu0)?;
     if a.out.as_deref().is_some_and(is_stdout) {
+        if a.json {
+            return Err(usage(
+                "--out - with --json would put the scan's CSV and its JSON summary on the same stdout; give --out a file name (the JSON then names it), or leave out --out - (--json alone prints only the summary)",
+            ));
+        }
         a.out = None;
     }
     if a.shapes.as_deref().is_some_and(is_stdout) {
@@ -400,11 +405,39 @@ fn infer(a: &mut InferArgs) -> Res<()> {
 }
 
 fn sweep_flags(a: &mut SweepArgs) -> Res<()> {
-    for t in &a.tol.values {
-        tol(*t)?;
+    // the ends of a range suffice: its other values lie between them
+    for t in a.tol.extremes() {
+        tol(t)?;
     }
-    check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
-    mu0(&mut a.mu0)?;
+    for v in a.d_max.extremes() {
+        check(Src::Flag("--d-max"), v, &D_MAX)?;
+    }
+    if let Some(m) = &a.mu0 {
+        for v in m.extremes() {
+            check(Src::Flag("--mu0"), v, &MU0)?;
+        }
+    }
+    if let Some(v) = a.points.first_fraction() {
+        return Err(usage(format!(
+            "--points {} gives {}, not a whole number of points per scan",
+            a.points.text,
+            short(v)
+        )));
+    }
+    // whole numbers, shown as such (as scan's --points: [2, 1000000])
+    let max = crate::cli::MAX_POINTS;
+    for v in a.points.extremes() {
+        if !(2.0..=max as f64).contains(&v) {
+            let shown = if v.abs() < 1e15 {
+                format!("{}", v as i64)
+            } else {
+                short(v)
+            };
+            return Err(usage(format!(
+                "--points {shown} is outside the valid range [2, {max}] (points per scan)"
+            )));
+        }
+    }
     if a.out.as_deref().is_some_and(is_stdout) {
         a.out = None;
     }
@@ -434,12 +467,13 @@ pub fn budget(fa: &str, a: u64, fb: &str, b: u64, what: &str, bytes: u64) -> Res
     Ok(())
 }
 
-/// Number of grid points: the product of the axis lengths, checked against [`MAX_SCENES`].
-pub fn grid_size(axes: &[(&str, usize)]) -> Res<u64> {
+/// Number of grid points: the product of the axis lengths, checked against [`MAX_SCENES`] by
+/// arithmetic (the grid itself is never built).
+pub fn grid_size(axes: &[(&str, u64)]) -> Res<u64> {
     let mut n: u64 = 1;
     let mut overflow = false;
     for &(_, len) in axes {
-        match n.checked_mul(len as u64) {
+        match n.checked_mul(len) {
             Some(m) if m <= MAX_SCENES => n = m,
             _ => {
                 overflow = true;

@@ -141,6 +141,8 @@ const CASES: &str = r#"
 2 | solve --alpha -0.3 --phi1 0.3 --scene ratio0.toml | stiffness.ratio = 0
 2 | solve --alpha -0.3 --phi1 0.3 extra | extra
 # scan
+2 | scan --out - --json --points 3 | --out - with --json
+2 | scan --json --out - --shapes precious.csv | same stdout
 2 | scan --eta 0.456946581 --out precious.csv | (0.45694658104, 1)
 2 | scan --eta 0.45694658104446 --out precious.csv | eta_ =
 2 | scan --eta 1 --out precious.csv | --eta 1 is outside
