@@ -63,6 +63,18 @@ impl BvpSolver for Solver {
             Solver::Shoot(s) => s.solve(problem, guess),
         }
     }
+    fn tolerance(&self) -> Option<f64> {
+        match self {
+            Solver::Coll(s) => s.tolerance(),
+            Solver::Shoot(s) => s.tolerance(),
+        }
+    }
+    fn set_tolerance(&mut self, tol: f64) {
+        match self {
+            Solver::Coll(s) => s.set_tolerance(tol),
+            Solver::Shoot(s) => s.set_tolerance(tol),
+        }
+    }
 }
 
 fn solver(m: Method, tol: f64) -> Solver {
@@ -93,35 +105,41 @@ fn solver(m: Method, tol: f64) -> Solver {
     }
 }
 
-/// Fine-grid and nodal scaled errors of `y` against the exact solution.
-fn errors(p: &CashMazzia, eps: f64, sol: &Solution) -> (f64, f64) {
+/// Errors of `y` against the exact solution over a fine grid (2001 equal points plus 9 inside
+/// every mesh interval of the solution, and the nodes): `(scaled, pointwise, nodes)`, with
+/// `scaled = max |y − y_exact| / (1 + max |y_exact|)` (the solution's scale, the study's measure),
+/// `pointwise = max |y − y_exact| / (1 + |y_exact|)` and `nodes` the pointwise error at the nodes.
+fn errors(p: &CashMazzia, eps: f64, sol: &Solution) -> (f64, f64, f64) {
     let Some(_) = p.exact(0.0, eps) else {
-        return (f64::NAN, f64::NAN);
-    };
-    let err = |x: f64, y: f64| {
-        let e = p.exact(x, eps).map_or(f64::NAN, |v| v[0]);
-        (y - e).abs() / (1.0 + e.abs())
+        return (f64::NAN, f64::NAN, f64::NAN);
     };
     let (a, b) = p.span();
-    let mut fine = 0.0_f64;
-    let mut out = [0.0; 2];
-    let mut at = |x: f64, fine: &mut f64| {
-        sol.eval(x, &mut out);
-        *fine = fine.max(err(x, out[0]));
-    };
-    for i in 0..=2000 {
-        at(a + (b - a) * i as f64 / 2000.0, &mut fine);
-    }
+    let mut xs: Vec<f64> = (0..=2000)
+        .map(|i| a + (b - a) * i as f64 / 2000.0)
+        .collect();
     for w in sol.mesh.windows(2) {
-        for j in 1..10 {
-            at(w[0] + (w[1] - w[0]) * j as f64 / 10.0, &mut fine);
+        xs.extend((1..10).map(|j| w[0] + (w[1] - w[0]) * j as f64 / 10.0));
+    }
+    let mut out = [0.0; 2];
+    let (mut abs, mut top, mut point) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut node = 0.0_f64;
+    for (i, &x) in xs.iter().chain(&sol.mesh).enumerate() {
+        let e = p.exact(x, eps).map_or(f64::NAN, |v| v[0]);
+        let y = if i >= xs.len() {
+            sol.node(i - xs.len())[0]
+        } else {
+            sol.eval(x, &mut out);
+            out[0]
+        };
+        let d = (y - e).abs();
+        abs = abs.max(d);
+        top = top.max(e.abs());
+        point = point.max(d / (1.0 + e.abs()));
+        if i >= xs.len() {
+            node = node.max(d / (1.0 + e.abs()));
         }
     }
-    let mut node = 0.0_f64;
-    for (i, &x) in sol.mesh.iter().enumerate() {
-        node = node.max(err(x, sol.node(i)[0]));
-    }
-    (fine.max(node), node)
+    (abs / (1.0 + top), point, node)
 }
 
 struct Row {
@@ -131,12 +149,17 @@ struct Row {
     method: String,
     status: String,
     error: f64,
+    pointwise: f64,
     node_error: f64,
+    estimate: f64,
     nodes: usize,
     time: f64,
 }
 
 fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
+    if std::env::var("BVP_DEBUG").is_ok() {
+        eprintln!("CASE {} {eps:e} {tol:e} {}", p.id(), m.name());
+    }
     let guess0 = p.guess(if cont { EPS_EASY } else { eps }, GUESS_NODES);
     let mut best = f64::INFINITY;
     let mut result = None;
@@ -169,7 +192,7 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
     let method = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
     match r {
         Ok(sol) => {
-            let (error, node_error) = errors(p, eps, &sol);
+            let (error, pointwise, node_error) = errors(p, eps, &sol);
             Row {
                 id: p.id(),
                 eps,
@@ -177,7 +200,9 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
                 method,
                 status: "Converged".into(),
                 error,
+                pointwise,
                 node_error,
+                estimate: sol.stats.error_estimate.unwrap_or(f64::NAN),
                 nodes: sol.len(),
                 time: best,
             }
@@ -189,7 +214,9 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
             method,
             status: format!("{:?}", e.status()),
             error: f64::NAN,
+            pointwise: f64::NAN,
             node_error: f64::NAN,
+            estimate: e.stats().and_then(|s| s.error_estimate).unwrap_or(f64::NAN),
             nodes: e.stats().map_or(0, |s| s.nodes),
             time: best,
         },
@@ -284,12 +311,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         eprintln!("{name}: {:.1} s", t.elapsed().as_secs_f64());
     }
 
-    let mut csv = String::from("problem,eps,tol,method,status,error,node_error,nodes,time_s\n");
+    let mut csv = String::from(
+        "problem,eps,tol,method,status,error,node_error,nodes,time_s,pointwise_error,estimate\n",
+    );
     for r in &rows {
         writeln!(
             csv,
-            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e}",
-            r.id, r.eps, r.tol, r.method, r.status, r.error, r.node_error, r.nodes, r.time
+            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e},{:.3e},{:.3e}",
+            r.id,
+            r.eps,
+            r.tol,
+            r.method,
+            r.status,
+            r.error,
+            r.node_error,
+            r.nodes,
+            r.time,
+            r.pointwise,
+            r.estimate
         )?;
     }
     std::fs::write(dir.join("bvp.csv"), csv)?;

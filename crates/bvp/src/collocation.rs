@@ -990,6 +990,17 @@ impl Collocation {
 }
 
 impl BvpSolver for Collocation {
+    fn tolerance(&self) -> Option<f64> {
+        Some(self.opts.tol)
+    }
+
+    /// Sets `tol` (values outside `(0, 1)` are ignored).
+    fn set_tolerance(&mut self, tol: f64) {
+        if tol > 0.0 && tol < 1.0 {
+            self.opts.tol = tol;
+        }
+    }
+
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
         self.check_input(problem, guess)?;
         let dims = problem.dims();

@@ -25,6 +25,9 @@ pub enum Status {
     InvalidInput,
     /// A continuation path ended before its target (step limit, or the branch turned back).
     PathEnded,
+    /// The solve converged, but the solution it would return fails its own check: its error
+    /// estimate or boundary residual exceeds the tolerance.
+    Inaccurate,
 }
 
 /// Why a solve failed. Every variant that comes from a solve carries the [`Stats`] gathered so far.
@@ -164,6 +167,43 @@ pub enum BvpError {
         /// Statistics of the whole path.
         stats: Stats,
     },
+    /// Newton converged, but the solution it would return fails the solver's own check of it
+    /// (e.g. shooting: the error estimate of the returned trajectory exceeds `tol`): no solution
+    /// is returned rather than a wrong one.
+    #[error(
+        "the converged solution misses its tolerance: {check} {value:.3e} > tol {tol:.3e} \
+         (tighten the integrator, use more segments, or collocation) ({stats})"
+    )]
+    Inaccurate {
+        /// Which check failed.
+        check: Check,
+        /// The measured value.
+        value: f64,
+        /// The tolerance it had to meet.
+        tol: f64,
+        /// Statistics of the solve.
+        stats: Stats,
+    },
+}
+
+/// What an [`BvpError::Inaccurate`] solution missed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Check {
+    /// The estimated error of the returned trajectory and of its dense output, scaled by the
+    /// solution's size (see the solver's docs).
+    ErrorEstimate,
+    /// The boundary conditions (and, multiple shooting, the continuity at the segment joints)
+    /// evaluated on the returned trajectory.
+    BoundaryResidual,
+}
+
+impl std::fmt::Display for Check {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Check::ErrorEstimate => "error estimate",
+            Check::BoundaryResidual => "boundary residual",
+        })
+    }
 }
 
 fn path_end(turned_back: bool) -> &'static str {
@@ -189,6 +229,7 @@ impl BvpError {
             BvpError::StepSizeTooSmall { .. } => Status::StepSizeTooSmall,
             BvpError::Continuation { source, .. } => source.status(),
             BvpError::PathEnded { .. } => Status::PathEnded,
+            BvpError::Inaccurate { .. } => Status::Inaccurate,
         }
     }
 
@@ -202,7 +243,8 @@ impl BvpError {
             | BvpError::NonFinite { stats, .. }
             | BvpError::MeshLimit { stats, .. }
             | BvpError::StepSizeTooSmall { stats, .. }
-            | BvpError::PathEnded { stats, .. } => Some(stats),
+            | BvpError::PathEnded { stats, .. }
+            | BvpError::Inaccurate { stats, .. } => Some(stats),
             BvpError::Continuation { source, .. } => source.stats(),
         }
     }

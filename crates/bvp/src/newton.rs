@@ -189,7 +189,8 @@ pub fn attach(mut err: BvpError, iteration: usize, stats: &Stats) -> BvpError {
         BvpError::MaxIterations { stats: st, .. }
         | BvpError::NonFinite { stats: st, .. }
         | BvpError::MeshLimit { stats: st, .. }
-        | BvpError::StepSizeTooSmall { stats: st, .. } => *st = stats.clone(),
+        | BvpError::StepSizeTooSmall { stats: st, .. }
+        | BvpError::Inaccurate { stats: st, .. } => *st = stats.clone(),
         // Input errors carry no statistics; wrapped errors (continuation) keep their own.
         _ => {}
     }
