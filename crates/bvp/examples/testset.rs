@@ -1,7 +1,9 @@
 //! The Cash–Mazzia test-set study: every implemented problem (`bvp::testset`) × ε ∈ {1e-1, 1e-2,
-//! 1e-3, 1e-4} × tol ∈ {1e-4, 1e-6, 1e-8}, each method with default options from the same
+//! 1e-3, 1e-4} × tol ∈ {1e-4, 1e-6, 1e-8}, each method with default options (shooting: DOP853 at
+//! rtol = atol = tol/100 and `tol` as its accuracy) from the same
 //! 101-node straight-line guess; `+cont`: the same solve and, if it fails,
-//! `solve_by_continuation` from ε = 0.1 (straight-line guess there).
+//! `bvp::solve_member`: continuation from ε = 0.1 (same guess). The extended problems
+//! (`CashMazzia::extended`: growth like 1/ε, fourth order) are included.
 //!
 //! ```text
 //! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR]
@@ -16,8 +18,8 @@
 
 use bvp::testset::CashMazzia;
 use bvp::{
-    solve_by_continuation, BvpError, BvpSolver, Collocation, CollocationOptions, Integrator,
-    PathOptions, Scheme, Shooting, ShootingOptions, Solution,
+    solve_member, BvpError, BvpSolver, Collocation, CollocationOptions, Integrator, PathOptions,
+    Scheme, Shooting, ShootingOptions, Solution,
 };
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -98,6 +100,7 @@ fn solver(m: Method, tol: f64) -> Solver {
                     atol: 1e-2 * tol,
                 },
                 segments: if m == Method::MShoot { 16 } else { 1 },
+                tol: Some(tol),
                 ..ShootingOptions::default()
             })
             .expect("valid options"),
@@ -160,7 +163,7 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
     if std::env::var("BVP_DEBUG").is_ok() {
         eprintln!("CASE {} {eps:e} {tol:e} {}", p.id(), m.name());
     }
-    let guess0 = p.guess(if cont { EPS_EASY } else { eps }, GUESS_NODES);
+    let guess = p.guess(eps, GUESS_NODES);
     let mut best = f64::INFINITY;
     let mut result = None;
     let t_all = Instant::now();
@@ -169,17 +172,11 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
         let mut s = solver(m, tol);
         let t = Instant::now();
         let r = if cont {
-            // Direct first (the guess at eps), continuation from EPS_EASY if that fails.
-            match s.solve(&p.at(eps), &p.guess(eps, GUESS_NODES)) {
-                Ok(sol) => Ok(sol),
-                Err(_) => {
-                    let opts = PathOptions::default();
-                    solve_by_continuation(p, &mut s, &guess0, EPS_EASY, eps, &opts)
-                        .map(|r| r.solution)
-                }
-            }
+            // Direct first, continuation from EPS_EASY if that fails (bvp::solve_member).
+            let opts = PathOptions::default();
+            solve_member(p, &mut s, &guess, eps, EPS_EASY, &opts).map(|r| r.solution)
         } else {
-            s.solve(&p.at(eps), &guess0)
+            s.solve(&p.at(eps), &guess)
         };
         best = best.min(t.elapsed().as_secs_f64());
         let done = t_all.elapsed().as_secs_f64() > 0.05;
@@ -290,7 +287,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .filter_map(|&i| CashMazzia::new(i))
             .collect()
     } else {
-        CashMazzia::all().collect()
+        CashMazzia::all().chain(CashMazzia::extended()).collect()
     };
     let mut rows = Vec::new();
     for &(m, cont) in &methods {

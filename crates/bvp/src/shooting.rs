@@ -60,13 +60,14 @@
 //!    trajectory's error, so it bounds the returned one's with a margin (by DOP853's tolerance
 //!    proportionality, typically 100×: the Cash–Mazzia study measures the error/estimate ratio
 //!    below 1 wherever the error exceeds `1e-9`). `stats.error_estimate`.
-//! 3. Both are checked against [`ShootingOptions::tol`] (default `100·rtol`); a miss is
+//! 3. Both are checked against [`ShootingOptions::tol`] (default `1000·rtol`); a miss is
 //!    [`BvpError::Inaccurate`], never a success.
-//! 4. Conditioning: `A = ‖J⁻¹‖∞` (two solves with Newton's factorization): if `A · tol` exceeds
-//!    `1 + ‖u‖∞`, residuals of the size the solution is trusted to could move it by more than
-//!    its size (a problem without a locally unique solution, e.g. a homogeneous solution that
-//!    meets the boundary conditions), and [`BvpError::SingularJacobian`] is reported, as
-//!    collocation does.
+//! 4. Conditioning: `A = ‖J⁻¹‖∞` (two solves with Newton's factorization): the integration
+//!    leaves residuals of relative size `δ = min(rtol, 1e-6)` (at loose `rtol` DOP853 delivers
+//!    far more than asked), which may move the solution by `A · δ · (1 + ‖u‖∞)`; if `A · δ > 1`
+//!    no digit is certain (a problem without a
+//!    locally unique solution, e.g. a homogeneous solution that meets the boundary conditions)
+//!    and [`BvpError::SingularJacobian`] is reported, as collocation does.
 //!
 //! The mesh of the returned solution is every accepted step of the fine pass (segment ends
 //! coincide with the next segment's start; the start value is kept), `dz = F(s_i, z_i, p)`, and
@@ -133,9 +134,11 @@ pub struct ShootingOptions {
     /// Accuracy the returned solution must meet: its error estimate (scaled componentwise by
     /// `1 + max |z_j|` over the trajectory, see the module docs) and the boundary and continuity
     /// residual of the returned trajectory, else [`BvpError::Inaccurate`]. Default `None`:
-    /// `100 · rtol` for the adaptive integrator (the error DOP853's tolerance proportionality
-    /// gives on well-conditioned problems), no check for RK4 (fixed steps have no error
-    /// estimate; the residual of its trajectory is Newton's). Valid: `0 < tol < 1`.
+    /// `1000 · rtol` for the adaptive integrator (the estimate describes the Newton-tolerance
+    /// trajectory, typically ~100× less accurate than the returned one, so this asks for a
+    /// returned error near `10 · rtol`), no check for RK4 (fixed steps have no error estimate;
+    /// the residual of its trajectory is Newton's). Set it to state the accuracy you need, with
+    /// `rtol ≈ tol / 100` (what [`BvpSolver::set_tolerance`] does). Valid: `0 < tol < 1`.
     pub tol: Option<f64>,
 }
 
@@ -174,7 +177,7 @@ impl ShootingOptions {
         }
     }
 
-    /// The accuracy checked on the returned solution: `tol`, or `100 · rtol` (adaptive) when
+    /// The accuracy checked on the returned solution: `tol`, or `1000 · rtol` (adaptive) when
     /// unset; `None` for RK4 without `tol`.
     pub fn accuracy_tol(&self) -> Option<f64> {
         match (self.tol, self.integrator) {
@@ -313,7 +316,11 @@ impl Work {
 }
 
 /// Default accuracy of the returned solution in units of `rtol` ([`ShootingOptions::tol`]).
-const DEFAULT_TOL_FACTOR: f64 = 100.0;
+const DEFAULT_TOL_FACTOR: f64 = 1000.0;
+/// Largest relative residual size assumed by the conditioning check.
+const CONDITIONING_DELTA_MAX: f64 = 1e-6;
+/// `rtol` per unit of `tol` set by [`BvpSolver::set_tolerance`].
+const RTOL_PER_TOL: f64 = 0.01;
 /// Tolerance factor of the adaptive output pass (see [`Solution`] in the module docs).
 const DENSE_TOL_FACTOR: f64 = 0.01;
 /// Smallest relative tolerance of the output pass (DOP853 near the rounding limit).
@@ -530,7 +537,7 @@ impl BvpSolver for Shooting {
             return;
         }
         if let Integrator::Adaptive { rtol, atol } = self.opts.integrator {
-            let new = tol / DEFAULT_TOL_FACTOR;
+            let new = tol * RTOL_PER_TOL;
             self.opts.integrator = Integrator::Adaptive {
                 rtol: new,
                 atol: atol * new / rtol,
@@ -832,20 +839,25 @@ impl Shooting {
         })
     }
 
-    /// Conditioning: residuals of the size the returned solution is trusted to (`tol`) may move
-    /// it by `‖J⁻¹‖∞ · tol`; beyond `1 + ‖u‖∞` no digit is certain (the problem has no locally
-    /// unique solution at this tolerance, e.g. a homogeneous solution meeting the boundary
+    /// Conditioning: the integration leaves residuals of relative size `δ` (DOP853:
+    /// `min(rtol, 1e-6)`, since at loose `rtol` its 8th-order steps deliver far more than asked;
+    /// RK4: `tol` if set, else no check), which may move the solution by
+    /// `‖J⁻¹‖∞ · δ · (1 + ‖u‖∞)`;
+    /// beyond `1 + ‖u‖∞`, i.e. `‖J⁻¹‖∞ · δ > 1`, no digit is certain (the problem has no locally
+    /// unique solution at this accuracy, e.g. a homogeneous solution meets the boundary
     /// conditions) and [`BvpError::SingularJacobian`] is reported.
     fn check_conditioning<P: Bvp + ?Sized>(
         &mut self,
         problem: &P,
         stats: &mut Stats,
     ) -> Result<(), BvpError> {
-        let Some(tol) = self.opts.accuracy_tol() else {
-            return Ok(());
+        let delta = match (self.opts.integrator, self.opts.tol) {
+            (Integrator::Adaptive { rtol, .. }, _) => rtol.min(CONDITIONING_DELTA_MAX),
+            (Integrator::Rk4 { .. }, Some(tol)) => tol.min(CONDITIONING_DELTA_MAX),
+            (Integrator::Rk4 { .. }, None) => return Ok(()),
         };
         let amp = self.amplification(problem, stats)?;
-        if amp * tol > 1.0 + max_norm(&self.u) {
+        if amp * delta > 1.0 {
             return Err(BvpError::SingularJacobian {
                 iteration: stats.newton_iters,
                 stats: stats.clone(),
