@@ -91,7 +91,7 @@ mod abd;
 mod tableau;
 
 use crate::fd::{bc_jacobian_or_fd, rhs_jacobian_or_fd, FdScheme, FdScratch};
-use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
+use crate::newton::{attach, homotopy, non_finite, singular, Newton, NewtonSystem};
 use crate::solution::locate;
 use crate::{Bvp, BvpError, BvpSolver, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
 use abd::{AbdSystem, Layout};
@@ -143,6 +143,10 @@ pub struct CollocationOptions {
     /// Newton options. `max_iter`, `step_tol`, `min_damping`, `step_residual_tol` apply as given;
     /// the residual threshold is `min(newton.tol, tol / 20, bc_tol)`.
     pub newton: NewtonOptions,
+    /// Globalization: when damped Newton fails on the first mesh, solve the Newton homotopy
+    /// `R(u) − τ R(u₀) = 0` from `τ = 1` to `0` on that mesh (see [`crate::newton::homotopy`])
+    /// before refining. Default `true`.
+    pub homotopy: bool,
 }
 
 impl Default for CollocationOptions {
@@ -156,6 +160,7 @@ impl Default for CollocationOptions {
             adapt: true,
             coarsen: true,
             newton: NewtonOptions::default(),
+            homotopy: true,
         }
     }
 }
@@ -664,6 +669,17 @@ impl<P: Bvp + ?Sized> NewtonSystem for Disc<'_, P> {
         }
         self.w.sys.solve(du).map_err(|_| singular())
     }
+
+    fn resolve(&mut self, r: &[f64], du: &mut [f64]) -> Result<bool, BvpError> {
+        if !self.factored {
+            return Ok(false);
+        }
+        for (d, v) in du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        self.w.sys.solve(du).map_err(|_| singular())?;
+        Ok(true)
+    }
 }
 
 impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
@@ -1035,6 +1051,7 @@ impl BvpSolver for Collocation {
         let mut retries = 0;
         let mut coarsenings = 0;
         let mut ill_refines = 0;
+        let mut homotopy_tried = false;
         let mut rms = Vec::new();
 
         loop {
@@ -1053,7 +1070,23 @@ impl BvpSolver for Collocation {
             stats.mesh_passes += 1;
             stats.nodes = mesh.len();
             let mut disc = Disc::new(problem, &self.tab, &mesh, &mut self.work);
-            let res = self.newton.solve(&mut disc, &mut u, &nopts, &mut stats);
+            let start = (!homotopy_tried).then(|| u.clone());
+            let mut res = self.newton.solve(&mut disc, &mut u, &nopts, &mut stats);
+            if let (Err(BvpError::Stalled { .. } | BvpError::MaxIterations { .. }), Some(u0)) =
+                (&res, start)
+            {
+                if disc.non_finite.is_none() && opts.homotopy {
+                    // Globalization: the Newton homotopy from the starting values on this mesh.
+                    homotopy_tried = true;
+                    let mut uh = u0;
+                    let mut hstats = stats.clone();
+                    if homotopy(&mut self.newton, &mut disc, &mut uh, &nopts, &mut hstats).is_ok() {
+                        u = uh;
+                        res = Ok(());
+                    }
+                    stats = hstats;
+                }
+            }
             if let Err(mut e) = res {
                 let failed = matches!(e, BvpError::Stalled { .. } | BvpError::MaxIterations { .. });
                 if let (true, Some((location, s))) = (failed, disc.non_finite) {

@@ -68,7 +68,7 @@ pub mod testset;
 pub use collocation::{Collocation, CollocationOptions, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Check, Status};
-pub use newton::NewtonOptions;
+pub use newton::{Damping, NewtonOptions};
 pub use path::{solve_by_continuation, solve_member, PathOptions, PathSolution, Scale};
 pub use problem::{from_fns, Bvp, Dims, FnBvp};
 pub use shooting::{Integrator, Shooting, ShootingOptions};

@@ -418,13 +418,14 @@ fn walk_family<P: ParamBvp + ?Sized, S: BvpSolver>(
 /// use bvp::testset::CashMazzia;
 /// use bvp::{solve_member, Collocation, CollocationOptions, PathOptions, Scheme};
 ///
-/// // ε y'' = 1 − y'² at ε = 1e-3 defeats Newton from a straight line; ε = 0.1 does not.
+/// // ε y'' = 1 − y'² at ε = 1e-4 defeats Newton (and its homotopy) from a straight line;
+/// // ε = 0.1 does not.
 /// let p = CashMazzia::new(20).unwrap();
 /// let mut solver = Collocation::new(CollocationOptions {
 ///     scheme: Scheme::Lobatto6,
 ///     ..CollocationOptions::default()
 /// })?;
-/// let res = solve_member(&p, &mut solver, &p.guess(1e-3, 101), 1e-3, 0.1, &PathOptions::default())?;
+/// let res = solve_member(&p, &mut solver, &p.guess(1e-4, 101), 1e-4, 0.1, &PathOptions::default())?;
 /// assert!(res.path.len() > 2);
 /// # Ok::<(), bvp::BvpError>(())
 /// ```

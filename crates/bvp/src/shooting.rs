@@ -523,6 +523,14 @@ impl<P: Bvp + ?Sized> NewtonSystem for System<'_, P> {
         w.lu.solve(du);
         Ok(())
     }
+
+    fn resolve(&mut self, r: &[f64], du: &mut [f64]) -> Result<bool, BvpError> {
+        for (d, v) in du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        self.w.lu.solve(du);
+        Ok(true)
+    }
 }
 
 impl BvpSolver for Shooting {
