@@ -332,87 +332,99 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // Summary.
     let scipy = read_scipy(&dir.join("scipy.csv"));
-    let cases = problems.len() * EPS.len() * TOLS.len();
-    let exact_cases = problems.iter().filter(|p| p.has_exact()).count() * EPS.len() * TOLS.len();
     let mut md = String::new();
     writeln!(
         md,
-        "Cash–Mazzia test set: {} problems × ε ∈ {{1e-1, 1e-2, 1e-3, 1e-4}} × tol ∈ {{1e-4, 1e-6, 1e-8}} = {cases} cases ({exact_cases} with exact solutions); 101-node straight-line guess; `+cont`: on failure, `solve_by_continuation` from ε = 0.1.\n",
-        problems.len()
+        "Cash–Mazzia test set × ε ∈ {{1e-1, 1e-2, 1e-3, 1e-4}} × tol ∈ {{1e-4, 1e-6, 1e-8}}; 101-node straight-line guess; default options (shooting: DOP853 at rtol = atol = tol/100, `tol` its accuracy); `+cont`: `bvp::solve_member` (on failure, continuation from ε = 0.1). Error: max |y − y_exact| / (1 + max |y_exact|) over 2001 points, 9 inside every mesh interval and the nodes (relative to the solution's scale).\n"
     )?;
-    writeln!(md, "| solver | converged / {cases} | error ≤ 10·tol (of converged with exact) | median error/tol | median nodes | time vs scipy (geo. mean, both converged) |")?;
-    writeln!(md, "|---|---|---|---|---|---|")?;
-    let summary = |name: &str, rs: &[Case]| {
-        let conv = rs.iter().filter(|r| r.0).count();
-        let with_exact: Vec<_> = rs.iter().filter(|r| r.0 && r.1.is_finite()).collect();
-        let good = with_exact.iter().filter(|r| r.1 <= 10.0 * r.2).count();
-        let mut ratios: Vec<f64> = with_exact.iter().map(|r| r.1 / r.2).collect();
-        ratios.sort_by(f64::total_cmp);
-        let med = ratios.get(ratios.len() / 2).copied().unwrap_or(f64::NAN);
-        let mut nodes: Vec<usize> = rs.iter().filter(|r| r.0).map(|r| r.3).collect();
-        nodes.sort_unstable();
-        let medn = nodes.get(nodes.len() / 2).copied().unwrap_or(0);
-        let mut logs = Vec::new();
-        for r in rs.iter().filter(|r| r.0) {
-            if let Some(s) = scipy.get(&r.5) {
-                if s.0 && s.3 > 0.0 && r.4 > 0.0 {
-                    logs.push((s.3 / r.4).ln());
+    let subsets: [(&str, fn(u8) -> bool); 2] = [
+        ("published set (28 problems)", |id| id < 100),
+        ("published and extended set (32 problems)", |_| true),
+    ];
+    for (title, keep) in subsets {
+        let problems: Vec<CashMazzia> = problems.iter().copied().filter(|p| keep(p.id())).collect();
+        let rows: Vec<&Row> = rows.iter().filter(|r| keep(r.id)).collect();
+        let cases = problems.len() * EPS.len() * TOLS.len();
+        let exact_cases =
+            problems.iter().filter(|p| p.has_exact()).count() * EPS.len() * TOLS.len();
+        writeln!(
+            md,
+            "\n### {title}: {cases} cases ({exact_cases} with exact solutions)\n"
+        )?;
+        writeln!(md, "| solver | converged / {cases} | error ≤ 10·tol (of converged with exact) | median error/tol | median nodes | time vs scipy (geo. mean, both converged) |")?;
+        writeln!(md, "|---|---|---|---|---|---|")?;
+        let summary = |name: &str, rs: &[Case]| {
+            let conv = rs.iter().filter(|r| r.0).count();
+            let with_exact: Vec<_> = rs.iter().filter(|r| r.0 && r.1.is_finite()).collect();
+            let good = with_exact.iter().filter(|r| r.1 <= 10.0 * r.2).count();
+            let mut ratios: Vec<f64> = with_exact.iter().map(|r| r.1 / r.2).collect();
+            ratios.sort_by(f64::total_cmp);
+            let med = ratios.get(ratios.len() / 2).copied().unwrap_or(f64::NAN);
+            let mut nodes: Vec<usize> = rs.iter().filter(|r| r.0).map(|r| r.3).collect();
+            nodes.sort_unstable();
+            let medn = nodes.get(nodes.len() / 2).copied().unwrap_or(0);
+            let mut logs = Vec::new();
+            for r in rs.iter().filter(|r| r.0) {
+                if let Some(s) = scipy.get(&r.5) {
+                    if s.0 && s.3 > 0.0 && r.4 > 0.0 {
+                        logs.push((s.3 / r.4).ln());
+                    }
                 }
             }
-        }
-        let speed = if logs.is_empty() || name == "scipy solve_bvp" {
-            "—".to_string()
-        } else {
-            format!(
-                "{:.1}× faster ({} cases)",
-                (logs.iter().sum::<f64>() / logs.len() as f64).exp(),
-                logs.len()
-            )
-        };
-        let pct = if with_exact.is_empty() {
-            "—".into()
-        } else {
-            format!(
-                "{good}/{} ({:.0} %)",
-                with_exact.len(),
-                100.0 * good as f64 / with_exact.len() as f64
-            )
-        };
-        format!("| {name} | {conv} | {pct} | {med:.2e} | {medn} | {speed} |")
-    };
-    if !scipy.is_empty() {
-        let rs: Vec<_> = scipy
-            .iter()
-            .filter(|(k, _)| problems.iter().any(|p| p.id() == k.0))
-            .map(|(k, v)| {
-                let tol: f64 = k.2.parse().unwrap_or(f64::NAN);
-                (v.0, v.1, tol, v.2, v.3, k.clone())
-            })
-            .collect();
-        writeln!(md, "{}", summary("scipy solve_bvp", &rs))?;
-    }
-    let mut names: Vec<String> = Vec::new();
-    for r in &rows {
-        if !names.contains(&r.method) {
-            names.push(r.method.clone());
-        }
-    }
-    for name in &names {
-        let rs: Vec<_> = rows
-            .iter()
-            .filter(|r| &r.method == name)
-            .map(|r| {
-                (
-                    r.status == "Converged",
-                    r.error,
-                    r.tol,
-                    r.nodes,
-                    r.time,
-                    (r.id, format!("{:e}", r.eps), format!("{:e}", r.tol)),
+            let speed = if logs.is_empty() || name == "scipy solve_bvp" {
+                "—".to_string()
+            } else {
+                format!(
+                    "{:.1}× faster ({} cases)",
+                    (logs.iter().sum::<f64>() / logs.len() as f64).exp(),
+                    logs.len()
                 )
-            })
-            .collect();
-        writeln!(md, "{}", summary(name, &rs))?;
+            };
+            let pct = if with_exact.is_empty() {
+                "—".into()
+            } else {
+                format!(
+                    "{good}/{} ({:.0} %)",
+                    with_exact.len(),
+                    100.0 * good as f64 / with_exact.len() as f64
+                )
+            };
+            format!("| {name} | {conv} | {pct} | {med:.2e} | {medn} | {speed} |")
+        };
+        if !scipy.is_empty() {
+            let rs: Vec<_> = scipy
+                .iter()
+                .filter(|(k, _)| problems.iter().any(|p| p.id() == k.0))
+                .map(|(k, v)| {
+                    let tol: f64 = k.2.parse().unwrap_or(f64::NAN);
+                    (v.0, v.1, tol, v.2, v.3, k.clone())
+                })
+                .collect();
+            writeln!(md, "{}", summary("scipy solve_bvp", &rs))?;
+        }
+        let mut names: Vec<String> = Vec::new();
+        for r in rows.iter() {
+            if !names.contains(&r.method) {
+                names.push(r.method.clone());
+            }
+        }
+        for name in &names {
+            let rs: Vec<_> = rows
+                .iter()
+                .filter(|r| &r.method == name)
+                .map(|r| {
+                    (
+                        r.status == "Converged",
+                        r.error,
+                        r.tol,
+                        r.nodes,
+                        r.time,
+                        (r.id, format!("{:e}", r.eps), format!("{:e}", r.tol)),
+                    )
+                })
+                .collect();
+            writeln!(md, "{}", summary(name, &rs))?;
+        }
     }
     std::fs::write(dir.join("summary.md"), &md)?;
     print!("{md}");

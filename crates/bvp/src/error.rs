@@ -53,6 +53,19 @@ pub enum BvpError {
         /// What was expected.
         expected: usize,
     },
+    /// The guess is malformed: its mesh is not finite and strictly increasing or does not span
+    /// the problem's interval, or a value is not finite.
+    #[error("invalid guess: {what} at index {index} (value {value}): {reason}")]
+    InvalidGuess {
+        /// What is wrong: "mesh", "values", "derivatives", "parameters".
+        what: &'static str,
+        /// Index of the first offending entry.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The rule it breaks.
+        reason: &'static str,
+    },
     /// The Newton matrix is singular.
     #[error(
         "singular Jacobian at Newton iteration {iteration}: the problem (or its discretization at \
@@ -220,7 +233,9 @@ impl BvpError {
     /// The termination status this error stands for.
     pub fn status(&self) -> Status {
         match self {
-            BvpError::InvalidOption { .. } | BvpError::Dimension { .. } => Status::InvalidInput,
+            BvpError::InvalidOption { .. }
+            | BvpError::Dimension { .. }
+            | BvpError::InvalidGuess { .. } => Status::InvalidInput,
             BvpError::SingularJacobian { .. } => Status::SingularJacobian,
             BvpError::Stalled { .. } => Status::Stalled,
             BvpError::MaxIterations { .. } => Status::MaxIterations,
@@ -236,7 +251,9 @@ impl BvpError {
     /// Statistics of the failed solve, if it got that far.
     pub fn stats(&self) -> Option<&Stats> {
         match self {
-            BvpError::InvalidOption { .. } | BvpError::Dimension { .. } => None,
+            BvpError::InvalidOption { .. }
+            | BvpError::Dimension { .. }
+            | BvpError::InvalidGuess { .. } => None,
             BvpError::SingularJacobian { stats, .. }
             | BvpError::Stalled { stats, .. }
             | BvpError::MaxIterations { stats, .. }

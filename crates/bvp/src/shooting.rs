@@ -558,34 +558,7 @@ impl BvpSolver for Shooting {
         let dims = problem.dims();
         let Dims { n, k } = dims;
         let (a, b) = problem.interval();
-        if guess.n != n {
-            return Err(BvpError::Dimension {
-                what: "guess states",
-                got: guess.n,
-                expected: n,
-            });
-        }
-        if guess.params.len() != k {
-            return Err(BvpError::Dimension {
-                what: "guess parameters",
-                got: guess.params.len(),
-                expected: k,
-            });
-        }
-        if guess.mesh.is_empty() || guess.z.len() != n * guess.mesh.len() {
-            return Err(BvpError::Dimension {
-                what: "guess values",
-                got: guess.z.len(),
-                expected: n * guess.mesh.len().max(1),
-            });
-        }
-        if !(a < b && a.is_finite() && b.is_finite()) {
-            return Err(invalid(
-                "interval",
-                format!("[{a}, {b}]"),
-                "need finite a < b",
-            ));
-        }
+        guess.validate(dims, (a, b))?;
         let segs = self.opts.segment_count();
         if let (Some(&t0), Some(&t1)) = (self.opts.nodes.first(), self.opts.nodes.last()) {
             let tol = 1e-12 * (b - a);

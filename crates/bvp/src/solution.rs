@@ -1,6 +1,6 @@
 //! Solutions and initial guesses.
 
-use crate::{Stats, Status};
+use crate::{BvpError, Stats, Status};
 use std::fmt;
 
 /// How [`Solution::eval`] interpolates between mesh nodes: each solver's own continuous
@@ -358,6 +358,94 @@ impl Guess {
             .map(|i| a + (b - a) * i as f64 / (nodes - 1) as f64)
             .collect();
         Self::from_fn(z0.len(), mesh, params, |_, z| z.copy_from_slice(z0))
+    }
+
+    /// Checks the guess against a problem of `dims` on `interval` (called by every solver):
+    /// `n` states, `k` parameters, `z` (and `dz`) of `n` values per node, at least one node, a
+    /// mesh of two or more nodes finite, strictly increasing and spanning the interval (ends
+    /// within `1e-12 (b − a)`), every value finite. Errors: [`BvpError::Dimension`],
+    /// [`BvpError::InvalidGuess`], [`BvpError::InvalidOption`] for a bad interval.
+    pub fn validate(&self, dims: crate::Dims, interval: (f64, f64)) -> Result<(), BvpError> {
+        let crate::Dims { n, k } = dims;
+        let dim = |what, got, expected| {
+            if got == expected {
+                Ok(())
+            } else {
+                Err(BvpError::Dimension {
+                    what,
+                    got,
+                    expected,
+                })
+            }
+        };
+        if n == 0 {
+            return Err(BvpError::Dimension {
+                what: "problem states n",
+                got: 0,
+                expected: 1,
+            });
+        }
+        let (a, b) = interval;
+        if !(a < b && a.is_finite() && b.is_finite()) {
+            return Err(BvpError::InvalidOption {
+                name: "interval",
+                value: format!("[{a}, {b}]"),
+                reason: "must be finite with a < b",
+            });
+        }
+        dim("guess states", self.n, n)?;
+        dim("guess parameters", self.params.len(), k)?;
+        if self.mesh.is_empty() {
+            return Err(BvpError::Dimension {
+                what: "guess mesh nodes",
+                got: 0,
+                expected: 1,
+            });
+        }
+        dim("guess values", self.z.len(), n * self.mesh.len())?;
+        if let Some(dz) = &self.dz {
+            dim("guess derivatives", dz.len(), self.z.len())?;
+        }
+        let bad = |what, index: usize, value: f64, reason| {
+            Err(BvpError::InvalidGuess {
+                what,
+                index,
+                value,
+                reason,
+            })
+        };
+        let m = &self.mesh;
+        if let Some(i) = m.iter().position(|t| !t.is_finite()) {
+            return bad("mesh", i, m[i], "must be finite");
+        }
+        if let Some(i) = m.windows(2).position(|w| w[1] <= w[0]) {
+            return bad("mesh", i + 1, m[i + 1], "must be strictly increasing");
+        }
+        if m.len() >= 2 {
+            let slack = 1e-12 * (b - a);
+            if (m[0] - a).abs() > slack {
+                return bad("mesh", 0, m[0], "must start at a, the interval's left end");
+            }
+            if (m[m.len() - 1] - b).abs() > slack {
+                return bad(
+                    "mesh",
+                    m.len() - 1,
+                    m[m.len() - 1],
+                    "must end at b, the interval's right end",
+                );
+            }
+        }
+        for (what, v) in [("values", &self.z), ("parameters", &self.params)] {
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return bad(what, i, v[i], "must be finite");
+            }
+        }
+        if let Some(dz) = &self.dz {
+            if let Some(i) = dz.iter().position(|x| !x.is_finite()) {
+                return bad("derivatives", i, dz[i], "must be finite");
+            }
+        }
+        Ok(())
     }
 
     /// Evaluates the guess at `s` into `out`.

@@ -351,3 +351,49 @@ fn simple_problems_are_fixed_problems() {
         assert!((b.node(i)[0] - s.sin()).abs() < 1e-7, "{s}");
     }
 }
+
+/// Every malformed guess is a typed error from every solver, naming the entry (issue 24: a mesh
+/// `[0, 1, 0.5]` or one not spanning the interval was silently replaced by a uniform one).
+#[test]
+fn malformed_guesses_are_typed_errors() {
+    let mk = |mesh: Vec<f64>| Guess::from_fn(2, mesh, vec![], |s, z| z.copy_from_slice(&[s, 1.0]));
+    let mut nan_value = mk(vec![0.0, 0.5, 1.0]);
+    nan_value.z[3] = f64::NAN;
+    let cases = [
+        (mk(vec![0.0, 1.0, 0.5]), "mesh", 2),
+        (mk(vec![0.0, 0.5]), "mesh", 1),
+        (mk(vec![0.1, 0.5, 1.0]), "mesh", 0),
+        (mk(vec![0.0, f64::NAN, 1.0]), "mesh", 1),
+        (nan_value, "values", 3),
+    ];
+    let mut coll = Collocation::new(CollocationOptions::default()).unwrap();
+    let mut shoot = Shooting::new(ShootingOptions::default()).unwrap();
+    for (guess, what, index) in cases {
+        for r in [
+            coll.solve(&LinearSinh, &guess),
+            shoot.solve(&LinearSinh, &guess),
+        ] {
+            match r {
+                Err(BvpError::InvalidGuess {
+                    what: w, index: i, ..
+                }) => assert_eq!((w, i), (what, index), "{:?}", guess.mesh),
+                other => panic!("{:?}: {other:?}", guess.mesh),
+            }
+        }
+    }
+    // Shape errors stay dimension errors; a one-node guess (a constant) is valid.
+    let short = Guess {
+        z: vec![0.0; 3],
+        ..mk(vec![0.0, 1.0])
+    };
+    assert!(matches!(
+        coll.solve(&LinearSinh, &short),
+        Err(BvpError::Dimension {
+            what: "guess values",
+            ..
+        })
+    ));
+    let one = Guess::from_fn(2, vec![0.3], vec![], |_, z| z.copy_from_slice(&[0.5, 1.0]));
+    assert!(coll.solve(&LinearSinh, &one).is_ok());
+    assert!(shoot.solve(&LinearSinh, &one).is_ok());
+}
