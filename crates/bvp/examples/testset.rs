@@ -123,7 +123,7 @@ fn errors(p: &CashMazzia, eps: f64, sol: &Solution) -> (f64, f64, f64) {
     for w in sol.mesh.windows(2) {
         xs.extend((1..10).map(|j| w[0] + (w[1] - w[0]) * j as f64 / 10.0));
     }
-    let mut out = [0.0; 2];
+    let mut out = vec![0.0; sol.n];
     let (mut abs, mut top, mut point) = (0.0_f64, 0.0_f64, 0.0_f64);
     let mut node = 0.0_f64;
     for (i, &x) in xs.iter().chain(&sol.mesh).enumerate() {
@@ -221,6 +221,8 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
 }
 
 /// scipy rows keyed by (id, eps, tol): (converged, error, nodes, time).
+/// A titled subset of the problems, by id.
+type Subset = (&'static str, fn(u8) -> bool);
 /// (problem, eps, tol) as formatted keys.
 type Key = (u8, String, String);
 /// scipy: (converged, error, nodes, time).
@@ -337,7 +339,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         md,
         "Cash–Mazzia test set × ε ∈ {{1e-1, 1e-2, 1e-3, 1e-4}} × tol ∈ {{1e-4, 1e-6, 1e-8}}; 101-node straight-line guess; default options (shooting: DOP853 at rtol = atol = tol/100, `tol` its accuracy); `+cont`: `bvp::solve_member` (on failure, continuation from ε = 0.1). Error: max |y − y_exact| / (1 + max |y_exact|) over 2001 points, 9 inside every mesh interval and the nodes (relative to the solution's scale).\n"
     )?;
-    let subsets: [(&str, fn(u8) -> bool); 2] = [
+    let subsets: [Subset; 2] = [
         ("published set (28 problems)", |id| id < 100),
         ("published and extended set (32 problems)", |_| true),
     ];

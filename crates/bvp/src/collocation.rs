@@ -92,6 +92,7 @@ mod tableau;
 
 use crate::fd::{bc_jacobian_or_fd, rhs_jacobian_or_fd, FdScheme, FdScratch};
 use crate::newton::{attach, homotopy, non_finite, singular, Newton, NewtonSystem};
+use crate::singular::Regular;
 use crate::solution::locate;
 use crate::{Bvp, BvpError, BvpSolver, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
 use abd::{AbdSystem, Layout};
@@ -203,6 +204,25 @@ impl CollocationOptions {
     }
 }
 
+/// One mesh pass of a collocation solve, as reported to the observer of
+/// [`Collocation::solve_observed`].
+#[derive(Clone, Copy, Debug)]
+pub struct Progress<'a> {
+    /// Mesh pass (1 for the first Newton solve).
+    pub pass: usize,
+    /// The mesh of this pass.
+    pub mesh: &'a [f64],
+    /// Newton iterations of the whole solve so far.
+    pub newton_iters: usize,
+    /// Whether Newton converged on this mesh (else the solver refines and retries, or fails).
+    pub newton_converged: bool,
+    /// Newton's final scaled residual on this mesh.
+    pub residual: f64,
+    /// Scaled RMS collocation residual of each interval (the error control's `ρ_i`; empty when
+    /// Newton did not converge): where the mesh is refined next.
+    pub residuals: &'a [f64],
+}
+
 /// Nodes of the default mesh when the guess has fewer than 3.
 const DEFAULT_NODES: usize = 11;
 /// Newton failures answered by refining the mesh (from the unconverged iterate) before one is
@@ -237,6 +257,20 @@ impl Collocation {
     /// The options.
     pub fn options(&self) -> &CollocationOptions {
         &self.opts
+    }
+
+    /// [`BvpSolver::solve`] reporting each mesh pass to `observer` (the library prints nothing;
+    /// `cargo run --release -p bvp --example progress` prints what scipy's `verbose=2` shows).
+    pub fn solve_observed<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &Guess,
+        observer: &mut dyn FnMut(&Progress<'_>),
+    ) -> Result<Solution, BvpError> {
+        match Regular::new(problem)? {
+            Some(reg) => self.solve_plain(&reg, guess, observer),
+            None => self.solve_plain(problem, guess, observer),
+        }
     }
 
     /// Times this solver's linear-algebra work buffers had to grow (a Newton system larger than
@@ -956,6 +990,21 @@ impl BvpSolver for Collocation {
     }
 
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
+        match Regular::new(problem)? {
+            Some(reg) => self.solve_plain(&reg, guess, &mut |_| {}),
+            None => self.solve_plain(problem, guess, &mut |_| {}),
+        }
+    }
+}
+
+impl Collocation {
+    /// [`BvpSolver::solve`] of a problem without a singular term.
+    fn solve_plain<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &Guess,
+        observer: &mut dyn FnMut(&Progress<'_>),
+    ) -> Result<Solution, BvpError> {
         guess.validate(problem.dims(), problem.interval())?;
         let dims = problem.dims();
         let n = dims.n;
@@ -1026,6 +1075,14 @@ impl BvpSolver for Collocation {
                 }
             }
             if let Err(mut e) = res {
+                observer(&Progress {
+                    pass: stats.mesh_passes,
+                    mesh: &mesh,
+                    newton_iters: stats.newton_iters,
+                    newton_converged: false,
+                    residual: stats.residual,
+                    residuals: &[],
+                });
                 let failed = matches!(e, BvpError::Stalled { .. } | BvpError::MaxIterations { .. });
                 if let (true, Some((location, s))) = (failed, disc.non_finite) {
                     // Newton was blocked by NaN/∞ of the problem: report that, it is the cause.
@@ -1088,6 +1145,14 @@ impl BvpSolver for Collocation {
             let bcres = disc.bc_residual(&u, &mut stats);
             let max_rms = rms.iter().fold(0.0_f64, |m, v| m.max(*v));
             stats.error_estimate = Some(max_rms);
+            observer(&Progress {
+                pass: stats.mesh_passes,
+                mesh: &mesh,
+                newton_iters: stats.newton_iters,
+                newton_converged: true,
+                residual: stats.residual,
+                residuals: &rms,
+            });
             let mut converged = max_rms <= opts.tol && bcres <= bc_tol;
             if converged && opts.adapt {
                 // Conditioning: this solution's residuals (the estimated defect, the boundary

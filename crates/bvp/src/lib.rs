@@ -48,6 +48,7 @@
 mod error;
 mod problem;
 mod rk;
+mod singular;
 mod solution;
 mod stats;
 
@@ -65,12 +66,12 @@ pub mod shooting;
 pub mod tableau;
 pub mod testset;
 
-pub use collocation::{Collocation, CollocationOptions, Scheme};
+pub use collocation::{Collocation, CollocationOptions, Progress, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Check, Status};
 pub use newton::{Damping, NewtonOptions};
 pub use path::{solve_by_continuation, solve_member, PathOptions, PathSolution, Scale};
-pub use problem::{from_fns, Bvp, Dims, FnBvp};
+pub use problem::{from_fns, Bvp, Dims, FnBvp, SingularTerm};
 pub use shooting::{Integrator, Shooting, ShootingOptions};
 pub use solution::{Dense, Guess, Solution};
 pub use stats::Stats;

@@ -832,6 +832,9 @@ impl<P: Bvp> Bvp for FiniteDifferences<P> {
     fn dims(&self) -> Dims {
         self.0.dims()
     }
+    fn singular_term(&self) -> Option<&[f64]> {
+        self.0.singular_term()
+    }
     fn interval(&self) -> (f64, f64) {
         self.0.interval()
     }

@@ -89,6 +89,7 @@ use crate::fd::{bc_jacobian_or_fd, FdScratch};
 use crate::linalg::{DenseLu, DEFAULT_PIVOT_TOL};
 use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
 use crate::rk::{Mode, Recorder, RkWork, DENSE_RECORD};
+use crate::singular::{Regular, SERIES_START};
 use crate::{
     Bvp, BvpError, BvpSolver, Check, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status,
 };
@@ -265,6 +266,10 @@ struct Work {
     lu: DenseLu,
     /// DOP853 steps of an output pass with their continuous extension (reused between passes).
     records: Vec<f64>,
+    /// Singular term: the first segment starts at this offset from the series at `s = 0`.
+    series: Option<f64>,
+    /// Start state of a segment started from the series.
+    zs: Vec<f64>,
     /// Residual of an output pass, chord steps, and `n`-vectors of the error estimate.
     r_out: Vec<f64>,
     du: Vec<f64>,
@@ -293,6 +298,7 @@ impl Work {
                 (&mut self.du, big_n),
                 (&mut self.va, n),
                 (&mut self.vb, n),
+                (&mut self.zs, n),
                 (&mut self.scale, n),
             ] {
                 v.clear();
@@ -312,6 +318,35 @@ impl Work {
         }
         self.nodes[segments] = b;
         self.cached = false;
+    }
+}
+
+impl Work {
+    /// Start of segment `j` from the unknowns `uj` (its start values): `(t_j, z)` with `z` in
+    /// `zs`; the first segment of a singular problem starts at `δ` from the series
+    /// `z(δ) = z(0) + δ z'(0)`, `z'(0) = F(0, z(0))` of the regularized problem.
+    fn start<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        p: &[f64],
+        j: usize,
+        uj: &[f64],
+        stats: &mut Stats,
+    ) -> f64 {
+        match self.series {
+            Some(delta) if j == 0 => {
+                problem.rhs(self.nodes[0], uj, p, &mut self.zs);
+                stats.rhs_evals += 1;
+                for (z, u) in self.zs.iter_mut().zip(uj) {
+                    *z = u + delta * *z;
+                }
+                self.nodes[0] + delta
+            }
+            _ => {
+                self.zs.copy_from_slice(uj);
+                self.nodes[j]
+            }
+        }
     }
 }
 
@@ -408,12 +443,13 @@ impl<P: Bvp + ?Sized> System<'_, P> {
         for j in 0..segs {
             let mode = self.mode(j);
             let w = &mut *self.w;
+            let t0 = w.start(self.problem, p, j, &u[j * n..(j + 1) * n], stats);
             w.rk.integrate(
                 self.problem,
                 p,
-                w.nodes[j],
+                t0,
                 w.nodes[j + 1],
-                &u[j * n..(j + 1) * n],
+                &w.zs,
                 true,
                 mode,
                 None,
@@ -555,6 +591,22 @@ impl BvpSolver for Shooting {
     }
 
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
+        match Regular::new(problem)? {
+            Some(reg) => self.solve_plain(&reg, guess, true),
+            None => self.solve_plain(problem, guess, false),
+        }
+    }
+}
+
+impl Shooting {
+    /// [`BvpSolver::solve`]; `series`: the problem is a regularized singular one (start the
+    /// first segment from the series at `s = 0`, see [`Bvp::singular_term`]).
+    fn solve_plain<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &Guess,
+        series: bool,
+    ) -> Result<Solution, BvpError> {
         let dims = problem.dims();
         let Dims { n, k } = dims;
         let (a, b) = problem.interval();
@@ -571,6 +623,7 @@ impl BvpSolver for Shooting {
             }
         }
         self.work.resize(dims, segs, a, b, &self.opts.nodes);
+        self.work.series = series.then_some(SERIES_START * (b - a));
 
         // Warm start: guess values at the segment starts, guess parameters.
         self.u.clear();
@@ -754,6 +807,26 @@ impl Shooting {
         for j in 0..segs {
             let mode = sys.mode(j);
             let w = &mut *sys.w;
+            let t0 = w.start(problem, p, j, &u[j * n..(j + 1) * n], stats);
+            if t0 != w.nodes[j] {
+                // Series start: the node s = 0 and the line to z(δ) (slope z'(0)).
+                let u0 = &u[..n];
+                let f0 =
+                    w.zs.iter()
+                        .zip(u0)
+                        .map(|(a, b)| (a - b) / (t0 - w.nodes[0]));
+                if adaptive {
+                    records.push(w.nodes[0]);
+                    records.extend_from_slice(u0);
+                    records.extend(f0);
+                    records.extend(w.zs.iter().zip(u0).map(|(a, b)| a - b));
+                    records.extend(std::iter::repeat_n(0.0, 6 * n));
+                } else {
+                    mesh.push(w.nodes[0]);
+                    z.extend_from_slice(u0);
+                    dz.extend(f0);
+                }
+            }
             let mut rec = Recorder {
                 mesh: &mut mesh,
                 z: &mut z,
@@ -763,9 +836,9 @@ impl Shooting {
             w.rk.integrate(
                 problem,
                 p,
-                w.nodes[j],
+                t0,
                 w.nodes[j + 1],
-                &u[j * n..(j + 1) * n],
+                &w.zs,
                 false,
                 mode,
                 Some(&mut rec),

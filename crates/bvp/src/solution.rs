@@ -218,6 +218,13 @@ impl Solution {
     /// interpolant fails to satisfy the ODE, and by how much (scipy's `rms_residuals`).
     /// `problem` must be the one solved (with `singular_term` if any).
     pub fn residuals<P: crate::Bvp + ?Sized>(&self, problem: &P) -> Vec<f64> {
+        match crate::singular::Regular::new(problem) {
+            Ok(Some(reg)) => self.residuals_of(&reg),
+            _ => self.residuals_of(problem),
+        }
+    }
+
+    fn residuals_of<P: crate::Bvp + ?Sized>(&self, problem: &P) -> Vec<f64> {
         let n = self.n;
         let (mut y, mut dy, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut out = Vec::with_capacity(self.mesh.len().saturating_sub(1));
