@@ -52,14 +52,20 @@
 //!
 //! # Dense output
 //!
-//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there, and
-//! `z'' = d/ds F(s, z(s), p)` at the nodes (a central difference along the tangent `(1, F)`, two
-//! evaluations of `F` per node): [`Solution::eval`] is the quintic Hermite interpolant
-//! ([`crate::Dense::Quintic`], order 6). The collocation polynomials themselves are less accurate
-//! between nodes than at them (Lobatto4's cubic has a larger error constant between nodes;
-//! Lobatto6's quartic is of order 5 against 6 at the nodes); with the quintic, the error on a
-//! fine grid stays within 10× the nodal error (`tests/testset.rs`).
-//!
+//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there.
+//! Lobatto4 returns its collocation polynomial itself, the cubic Hermite interpolant of `z`,
+//! `dz` ([`crate::Dense::Hermite`], as bvp4c and `solve_bvp` do): the residual its error control
+//! measures is that of the returned interpolant (`Solution::residuals` reproduces the estimate),
+//! and scipy's residual assertions hold on it. Between nodes it is less accurate than at them
+//! (within 10·tol on the test set, up to 50× its nodal error). Lobatto6 returns the quintic
+//! Hermite interpolant of `z`, `dz` and `z'' = d/ds F(s, z(s), p)` at the nodes (a central
+//! difference along the tangent `(1, F)`, two evaluations of `F` per node,
+//! [`crate::Dense::Quintic`], order 6; its quartic collocation polynomial is of order 5 between
+//! nodes): the error on a fine grid stays within 10× the nodal error (`tests/testset.rs`), and
+//! the residual estimate is that of the quartic. A quintic for Lobatto4 was tried: its residual
+//! is dominated by the derivative of the global error, which local refinement does not reduce
+//! (Cash–Mazzia 5 and 11 at ε = 1e-4, tol 1e-8, ran into the node limit).
+
 //! # Newton thresholds and failures
 //!
 //! Collocation rows are divided by `h_i` (units of `z'`) and scaled by `1 + max |F_c|` over their
@@ -1195,8 +1201,12 @@ impl Collocation {
                 let params = u[disc.lay.pcol()..].to_vec();
                 // Both schemes: the quintic Hermite of the nodes (their cubic / quartic
                 // collocation polynomials are less accurate between nodes than at them).
-                let dense = Dense::Quintic {
-                    d2z: disc.second_derivatives(&params, &z, &dz, &mut stats),
+                let dense = if self.tab.internal {
+                    Dense::Quintic {
+                        d2z: disc.second_derivatives(&params, &z, &dz, &mut stats),
+                    }
+                } else {
+                    Dense::Hermite
                 };
                 let sol = Solution {
                     n,

@@ -53,6 +53,7 @@ mod solution;
 mod stats;
 
 pub mod collocation;
+pub mod complex;
 pub mod continuation;
 pub mod fd;
 pub mod fixed;

@@ -8,12 +8,12 @@ use std::fmt;
 /// (up to a small constant).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub enum Dense {
-    /// Cubic Hermite on `z`, `dz` (order 4, C¹): RK4 shooting and solutions built by hand.
+    /// Cubic Hermite on `z`, `dz` (order 4, C¹): Lobatto4 (it is its collocation polynomial,
+    /// whose residual the error control measures), RK4 shooting, solutions built by hand.
     #[default]
     Hermite,
     /// Quintic Hermite on `z`, `dz` and `d2z ≈ z''` at the nodes (node-major, like `z`): order 6,
-    /// C². Both collocation schemes, Lobatto4 and Lobatto6 (their own cubic and quartic
-    /// collocation polynomials are less accurate between nodes than at them).
+    /// C². Lobatto6 (its own quartic collocation polynomial is of order 5 between nodes).
     Quintic {
         /// Second derivatives at the nodes, `d/ds F(s, z(s), p)`.
         d2z: Vec<f64>,
@@ -31,8 +31,8 @@ pub enum Dense {
 ///
 /// Values are stored node-major: `z[i * n + j]` is state `j` at `mesh[i]`; `dz` likewise holds
 /// `F(s_i, z_i, p)`. [`Solution::eval`] interpolates with the solver's continuous extension
-/// ([`Dense`]: quintic Hermite for both collocation schemes, cubic Hermite for RK4 shooting,
-/// DOP853's own 7th-order extension for adaptive shooting).
+/// ([`Dense`]: Lobatto4's collocation cubic, the quintic Hermite for Lobatto6, cubic Hermite
+/// for RK4 shooting, DOP853's own 7th-order extension for adaptive shooting).
 ///
 /// `stats` describe this solution as returned: `residual` is its boundary residual (and the
 /// continuity residual of multiple shooting, the collocation residual of collocation) and

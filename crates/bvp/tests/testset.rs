@@ -372,10 +372,14 @@ fn singular_member_of_problem_15_is_reported() {
     }
 }
 
-/// Dense output keeps the method's accuracy between nodes. Collocation: the error on 9 points
-/// inside every interval is at most 10 × the error at the nodes, plus 1e-12 (the floor of the
-/// quintic's finite-difference `z''` on steps of ~0.05; nodal errors there are ~1e-14).
-/// Shooting: the error between nodes is within the reported error estimate.
+/// What the dense output promises between nodes. Lobatto6 (quintic Hermite): the error on 9
+/// points inside every interval is at most 10 × the error at the nodes, plus 1e-12 (the floor
+/// of the quintic's finite-difference `z''` on steps of ~0.05; nodal errors there are ~1e-14).
+/// Lobatto4 returns its own collocation cubic (as bvp4c and scipy do), whose residual is the
+/// one its error control measures: the RMS residual of the returned interpolant on every
+/// interval is the reported estimate (to rounding) and at most tol, and the error between
+/// nodes at most 10·tol (it can be 50× the nodal error: problem 6 at ε = 0.01, tol 1e-5:
+/// 2.0e-7 against 4.3e-9). Shooting: the error between nodes is within the reported estimate.
 #[test]
 fn dense_output_is_as_accurate_as_the_nodes() {
     let cases = [
@@ -395,10 +399,23 @@ fn dense_output_is_as_accurate_as_the_nodes() {
                     .solve(&p.at(eps), &g)
                     .unwrap_or_else(|e| panic!("{scheme:?} {id} {eps} {tol}: {e}"));
                 let (node, fine) = errors(&p, eps, &sol);
+                if scheme == Scheme::Lobatto6 {
+                    assert!(
+                        fine <= 10.0 * node + 1e-12,
+                        "{scheme:?} problem {id} eps {eps} tol {tol:e}: fine {fine:.2e} vs nodes {node:.2e}"
+                    );
+                    continue;
+                }
+                let est = sol.stats.error_estimate.unwrap();
+                let worst = sol
+                    .residuals(&p.at(eps))
+                    .iter()
+                    .fold(0.0_f64, |m, v| m.max(*v));
                 assert!(
-                    fine <= 10.0 * node + 1e-12,
-                    "{scheme:?} problem {id} eps {eps} tol {tol:e}: fine {fine:.2e} vs nodes {node:.2e}"
+                    (worst - est).abs() <= 1e-6 * est && worst <= tol,
+                    "Lobatto4 problem {id} eps {eps} tol {tol:e}: residual {worst:e} vs estimate {est:e}"
                 );
+                assert!(fine <= 10.0 * tol, "Lobatto4 problem {id}: fine {fine:.2e}");
             }
         }
     }
