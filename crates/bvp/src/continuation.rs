@@ -335,8 +335,18 @@ pub fn family<B: Bvp, F: Fn(f64) -> B>(make: F) -> FnFamily<F> {
 }
 
 impl<B: Bvp, F: Fn(f64) -> B> FnFamily<F> {
-    fn step(lambda: f64) -> f64 {
-        1e-6 * (1.0 + lambda.abs())
+    /// `out = ∂/∂λ eval(member)` by a central difference in `λ`.
+    fn d_lambda(&self, lambda: f64, out: &mut [f64], eval: impl Fn(&B, &mut [f64])) {
+        let h = 1e-6 * (1.0 + lambda.abs());
+        let mut sc = self.scratch.borrow_mut();
+        let [a, b] = &mut *sc;
+        a.resize(out.len(), 0.0);
+        b.resize(out.len(), 0.0);
+        eval(&(self.make)(lambda + h), a);
+        eval(&(self.make)(lambda - h), b);
+        for ((d, x), y) in out.iter_mut().zip(a.iter()).zip(b.iter()) {
+            *d = (x - y) / (2.0 * h);
+        }
     }
 }
 
@@ -366,16 +376,7 @@ impl<B: Bvp, F: Fn(f64) -> B> ParamBvp for FnFamily<F> {
         if !(self.make)(lambda).rhs_jacobian(s, z, p, dfdz, dfdp) {
             return false;
         }
-        let h = Self::step(lambda);
-        let mut sc = self.scratch.borrow_mut();
-        let [a, b] = &mut *sc;
-        a.resize(dfdl.len(), 0.0);
-        b.resize(dfdl.len(), 0.0);
-        (self.make)(lambda + h).rhs(s, z, p, a);
-        (self.make)(lambda - h).rhs(s, z, p, b);
-        for ((d, x), y) in dfdl.iter_mut().zip(a.iter()).zip(b.iter()) {
-            *d = (x - y) / (2.0 * h);
-        }
+        self.d_lambda(lambda, dfdl, |m, out| m.rhs(s, z, p, out));
         true
     }
     fn bc_jacobian(
@@ -392,16 +393,7 @@ impl<B: Bvp, F: Fn(f64) -> B> ParamBvp for FnFamily<F> {
         if !(self.make)(lambda).bc_jacobian(za, zb, p, dga, dgb, dgp) {
             return false;
         }
-        let h = Self::step(lambda);
-        let mut sc = self.scratch.borrow_mut();
-        let [a, b] = &mut *sc;
-        a.resize(dgl.len(), 0.0);
-        b.resize(dgl.len(), 0.0);
-        (self.make)(lambda + h).bc(za, zb, p, a);
-        (self.make)(lambda - h).bc(za, zb, p, b);
-        for ((d, x), y) in dgl.iter_mut().zip(a.iter()).zip(b.iter()) {
-            *d = (x - y) / (2.0 * h);
-        }
+        self.d_lambda(lambda, dgl, |m, out| m.bc(za, zb, p, out));
         true
     }
 }

@@ -253,15 +253,7 @@ fn wdiff(a: &[f64], b: &[f64], c: f64, u: &[f64]) -> f64 {
 
 /// RMS norm of `x_i / (1 + |u_i|)`.
 fn wnorm(x: &[f64], u: &[f64]) -> f64 {
-    let s: f64 = x
-        .iter()
-        .zip(u)
-        .map(|(a, b)| {
-            let v = a / (1.0 + b.abs());
-            v * v
-        })
-        .sum();
-    (s / x.len().max(1) as f64).sqrt()
+    wdiff(x, x, 0.0, u)
 }
 
 fn max_norm(x: &[f64]) -> f64 {
