@@ -119,12 +119,12 @@ pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
 
 fn scene_cols(sc: &Scene) -> [String; 6] {
     let taper = match &sc.stiffness {
-        Stiffness::Uniform {} => num(1.0),
+        Stiffness::Uniform => num(1.0),
         Stiffness::Taper { ratio } => num(*ratio),
         Stiffness::Table { .. } => "table".into(),
     };
     let (k0, k1) = match &sc.precurvature {
-        Precurvature::None {} => (num(0.0), num(0.0)),
+        Precurvature::None => (num(0.0), num(0.0)),
         Precurvature::Linear { k0, k1 } => (num(*k0), num(*k1)),
         Precurvature::Table { .. } => ("table".into(), "table".into()),
     };

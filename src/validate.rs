@@ -232,7 +232,7 @@ impl SceneSrc<'_> {
 pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
     check(src.of(src.eta, "eta"), sc.eta, &eta_range())?;
     match &sc.stiffness {
-        Stiffness::Uniform {} => {}
+        Stiffness::Uniform => {}
         Stiffness::Taper { ratio } => {
             check(src.of(src.taper, "stiffness.ratio"), *ratio, &TAPER)?;
         }
@@ -243,7 +243,7 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
         }
     }
     match &sc.precurvature {
-        Precurvature::None {} => {}
+        Precurvature::None => {}
         Precurvature::Linear { k0, k1 } => {
             check(src.of(src.k0, "precurvature.k0"), *k0, &PRECURVATURE)?;
             check(src.of(src.k1, "precurvature.k1"), *k1, &PRECURVATURE_SLOPE)?;

@@ -83,7 +83,7 @@ impl General {
     #[inline]
     pub fn b_at(&self, s: f64, t: f64) -> f64 {
         match &self.stiffness {
-            Stiffness::Uniform {} => 1.0,
+            Stiffness::Uniform => 1.0,
             Stiffness::Taper { ratio } => {
                 let r = 1.0 - t * (1.0 - ratio) * s;
                 let r2 = r * r;
@@ -103,7 +103,7 @@ impl General {
     #[inline]
     pub fn k0_at(&self, s: f64, t: f64) -> f64 {
         match &self.precurvature {
-            Precurvature::None {} => 0.0,
+            Precurvature::None => 0.0,
             Precurvature::Linear { k0, k1 } => t * (k0 + k1 * s),
             Precurvature::Table { s: st, k } => t * interp(st, k, s),
         }
@@ -111,7 +111,7 @@ impl General {
     /// `∂b/∂t` at `s` and `t`.
     pub(crate) fn db_dt(&self, s: f64, t: f64) -> f64 {
         match &self.stiffness {
-            Stiffness::Uniform {} => 0.0,
+            Stiffness::Uniform => 0.0,
             Stiffness::Taper { ratio } => {
                 let r = 1.0 - t * (1.0 - ratio) * s;
                 4.0 * (1.0 - ratio) * s / (r * r * r * r * r)
@@ -146,12 +146,12 @@ impl General {
 /// True when the stiffness is uniform (`b ≡ 1`) and the rod straight (`κ0 ≡ 0`).
 pub(crate) fn is_uniform(stiffness: &Stiffness, precurvature: &Precurvature) -> bool {
     let b1 = match stiffness {
-        Stiffness::Uniform {} => true,
+        Stiffness::Uniform => true,
         Stiffness::Taper { ratio } => *ratio == 1.0,
         Stiffness::Table { .. } => false,
     };
     let k0 = match precurvature {
-        Precurvature::None {} => true,
+        Precurvature::None => true,
         Precurvature::Linear { k0, k1 } => *k0 == 0.0 && *k1 == 0.0,
         Precurvature::Table { .. } => false,
     };

@@ -179,8 +179,8 @@ impl Rod {
     /// The uniform, straight, clamped rod (the paper's).
     pub fn uniform() -> Rod {
         Rod {
-            stiffness: Stiffness::Uniform {},
-            precurvature: Precurvature::None {},
+            stiffness: Stiffness::Uniform,
+            precurvature: Precurvature::None,
             compliance: 0.0,
             physical: None,
             uniform_profile: true,
@@ -202,7 +202,7 @@ impl Rod {
         physical: Option<Physical>,
     ) -> Result<Rod, VibrissaError> {
         match &stiffness {
-            Stiffness::Uniform {} => {}
+            Stiffness::Uniform => {}
             Stiffness::Taper { ratio } => {
                 if !(*ratio >= MIN_TAPER && *ratio <= 1.0) {
                     return Err(VibrissaError::range(
@@ -221,7 +221,7 @@ impl Rod {
             )?,
         }
         match &precurvature {
-            Precurvature::None {} => {}
+            Precurvature::None => {}
             Precurvature::Linear { k0, k1 } => {
                 finite_within("precurvature k0", *k0, MAX_PRECURVATURE)?;
                 finite_within("precurvature k0 + k1", k0 + k1, MAX_PRECURVATURE)?;

@@ -3,8 +3,7 @@
 //! on its parts, [`Scene::rod`] and [`Scene::surface`].
 //!
 //! Every `kind` refuses keys it does not have (`{ kind = "uniform", ratio = 0.5 }` is an error,
-//! not a uniform rod): the variants without values are empty structs for that reason (see
-//! [`Stiffness`]). Lengths are normalized by the rod length L, forces by EI_base/L², moments by
+//! not a uniform rod; see [`Stiffness`]). Lengths are normalized by the rod length L, forces by EI_base/L², moments by
 //! EI_base/L, unless stated otherwise.
 
 pub use crate::parts::{Physical, Precurvature, Stiffness};
@@ -34,8 +33,8 @@ impl Default for Scene {
     fn default() -> Self {
         Scene {
             eta: 0.75,
-            stiffness: Stiffness::Uniform {},
-            precurvature: Precurvature::None {},
+            stiffness: Stiffness::Uniform,
+            precurvature: Precurvature::None,
             support_compliance: 0.0,
             surface_angle: 0.0,
             physical: None,
