@@ -6,6 +6,7 @@
 //! end-to-end tests include this file to list every numeric flag).
 
 use crate::numbers::{self, Axis};
+use clap::builder::TypedValueParser;
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::any::TypeId;
 use std::path::PathBuf;
@@ -55,6 +56,17 @@ fn shape_points(s: &str) -> Result<u32, String> {
 fn solve_shape_points(s: &str) -> Result<u32, String> {
     numbers::count(s, 2, 1_000_000)
 }
+/// The numerical methods (every [`MethodArg`] but `analytic`), with their help texts.
+fn numerical_method() -> impl clap::builder::TypedValueParser<Value = MethodArg> {
+    let values: Vec<clap::builder::PossibleValue> = MethodArg::value_variants()
+        .iter()
+        .filter(|m| **m != MethodArg::Analytic)
+        .filter_map(|m| m.to_possible_value())
+        .collect();
+    clap::builder::PossibleValuesParser::new(values)
+        .map(|s| MethodArg::from_str(&s, false).unwrap_or(MethodArg::Shooting))
+}
+
 fn jobs(s: &str) -> Result<u32, String> {
     numbers::count(s, 1, MAX_JOBS)
 }
@@ -189,13 +201,16 @@ pub struct SolverArgs {
 
 /// `vibrissa solve`.
 #[derive(Args, Debug)]
-#[command(after_help = "One of --phi1 and --eta is required.")]
+#[command(
+    after_help = "One of --phi1 and --eta is required.",
+    group(clap::ArgGroup::new("tip").args(["phi1", "eta"]).required(true).multiple(false))
+)]
 pub struct SolveArgs {
     /// Force angle alpha (rad), in (-pi/2, pi/2): 0 = straight down, < 0 = rotated clockwise (friction to -x); the closed forms (analytic) need [-pi/4, 0].
     #[arg(long, value_name = "A", value_parser = finite_f64)]
     pub alpha: f64,
     /// Tip slope phi1 = phi(1) (rad), in [-pi, pi]; the closed forms need [0, pi/2 + 2 alpha]. One of --phi1 and --eta is required.
-    #[arg(long, value_name = "P", value_parser = finite_f64, required_unless_present = "eta", conflicts_with = "eta")]
+    #[arg(long, value_name = "P", value_parser = finite_f64)]
     pub phi1: Option<f64>,
     /// Tip height eta (rod lengths), in (-1, 1): solve for the tip slope that puts the tip at y(1) = eta. One of --phi1 and --eta is required.
     #[arg(long, value_name = "H", value_parser = finite_f64)]
@@ -248,7 +263,9 @@ pub struct ScanArgs {
     /// (unless --json).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab, phi, kappa, m).
+    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab,
+    /// phi, kappa, m, event; event names the event on the rows of the point where the scan
+    /// stopped, as in the scan CSV).
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000]; --points × --shape-points × 100 bytes must fit in 1 GB (needs --shapes).
@@ -368,8 +385,9 @@ pub struct FiguresArgs {
     /// Only these figures (comma list of numbers 2-11). [default: all]
     #[arg(long, value_name = "LIST")]
     pub only: Option<String>,
-    /// Numerical method for the numerical curves.
-    #[arg(long, value_enum, default_value = "shooting")]
+    /// Numerical method for the numerical curves (the closed forms are always overlaid, so
+    /// "analytic" is not offered).
+    #[arg(long, default_value = "shooting", value_parser = numerical_method())]
     pub method: MethodArg,
     /// Solver tolerance for the numerical curves, in [1e-15, 1e-2].
     #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]

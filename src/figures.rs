@@ -1398,11 +1398,6 @@ pub fn run(a: &FiguresArgs) -> Res<()> {
             .collect::<Res<_>>()?,
         None => (2..=11).collect(),
     };
-    if a.method == MethodArg::Analytic {
-        return Err(usage(
-            "figures overlay numerical solutions on the closed forms: choose a numerical --method",
-        ));
-    }
     std::fs::create_dir_all(&a.out_dir)
         .map_err(|e| solve_fail(format!("cannot create {}: {e}", a.out_dir.display())))?;
     let cx = context(a.method, a.tol)?;

@@ -107,7 +107,7 @@ pub fn eta_range() -> Range {
         "eta_ = 0.456946581044463625... is the tip height of the uniform clamped rod pushed straight down (alpha = 0) with a horizontal tip (phi1 = 0); on a lower surface the scan would start with the rod crossing it",
     )
 }
-/// Taper ratio: the model accepts (0, 1]; below 0.01 the tip is 10^8 times more flexible than
+/// Taper ratio in [0.01, 1] (`vibrissa::MIN_TAPER`): below 0.01 the tip is 10^8 times more flexible than
 /// the foot, beyond what the solvers resolve and beyond real whiskers (0.02-0.2).
 pub const TAPER: Range = Range::new(vibrissa::MIN_TAPER, true, 1.0, true)
     .why("tip/base radius ratio; real whiskers have 0.02-0.2, and below 0.01 the tip would be over 10^8 times more flexible than the foot");

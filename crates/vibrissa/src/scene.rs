@@ -70,3 +70,42 @@ impl Scene {
         self.rod().map(|_| ())
     }
 }
+
+/// A deserializer's message about a scene in the words of the file format: serde names Rust
+/// types (``invalid type: integer `3`, expected internally tagged enum StiffnessFile``); this names
+/// the tables and values a file has instead (`expected a stiffness table such as
+/// { kind = "uniform" }, ...`). Messages without such words are returned unchanged.
+///
+/// ```
+/// let m = vibrissa::scene::plain_message("invalid type: integer `3`, expected internally tagged enum StiffnessFile");
+/// assert_eq!(m, "invalid type: integer `3`, expected a stiffness table: { kind = \"uniform\" }, { kind = \"taper\", ratio = RHO } or { kind = \"table\", s = [...], b = [...] }");
+/// ```
+pub fn plain_message(msg: &str) -> String {
+    const WORDS: [(&str, &str); 8] = [
+        (
+            "internally tagged enum StiffnessFile",
+            "a stiffness table: { kind = \"uniform\" }, { kind = \"taper\", ratio = RHO } or { kind = \"table\", s = [...], b = [...] }",
+        ),
+        (
+            "internally tagged enum PrecurvatureFile",
+            "a precurvature table: { kind = \"none\" }, { kind = \"linear\", k0 = K0, k1 = K1 } or { kind = \"table\", s = [...], k = [...] }",
+        ),
+        (
+            "struct Physical",
+            "a [physical] table with length_mm, youngs_modulus_gpa, base_diameter_um",
+        ),
+        ("struct Scene", "a table of scene keys"),
+        ("expected f64", "expected a number"),
+        ("expected a sequence", "expected an array of numbers"),
+        ("missing field `kind`", "missing key `kind` (the table's kind: uniform, taper or table for stiffness; none, linear or table for precurvature)"),
+        ("missing field", "missing key"),
+    ];
+    let mut m = msg.to_string();
+    for (serde, file) in WORDS {
+        if m.contains(serde) {
+            m = m.replace(serde, file);
+        }
+    }
+    m.replace("unknown field", "unknown key")
+        .replace("unknown variant", "unknown kind")
+}
