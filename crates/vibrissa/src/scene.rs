@@ -106,6 +106,7 @@ pub fn plain_message(msg: &str) -> String {
             m = m.replace(serde, file);
         }
     }
-    m.replace("unknown field", "unknown key")
+    m.replace(", there are no fields", " (this kind has no key but `kind`)")
+        .replace("unknown field", "unknown key")
         .replace("unknown variant", "unknown kind")
 }
