@@ -67,6 +67,12 @@ fn numerical_method() -> impl clap::builder::TypedValueParser<Value = MethodArg>
         .map(|s| MethodArg::from_str(&s, false).unwrap_or(MethodArg::Shooting))
 }
 
+fn point_index(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| "not a point index (a whole number >= 0, the point column)".to_string())
+}
+
 fn jobs(s: &str) -> Result<u32, String> {
     numbers::count(s, 1, MAX_JOBS)
 }
@@ -106,6 +112,8 @@ pub enum Command {
     Infer(InferArgs),
     /// Regenerate the paper's Figures 2-11 as SVG files, with the CSV data behind each.
     Figures(FiguresArgs),
+    /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV or a drag CSV.
+    Plot(PlotArgs),
 }
 
 /// Numerical method.
@@ -392,6 +400,72 @@ pub struct FiguresArgs {
     /// Solver tolerance for the numerical curves, in [1e-15, 1e-2].
     #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
     pub tol: f64,
+}
+
+/// What `vibrissa plot` draws.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlotKind {
+    /// from the file's columns
+    Auto,
+    /// mu, the tip force (fx, fy, normal) and m_base against d, events marked (scan --out)
+    Scan,
+    /// the rod at chosen points in the lab frame with the surface line (scan --shapes)
+    Shapes,
+    /// a heat map of one column over two grid axes, failed scenes crossed (sweep --out)
+    Sweep,
+    /// as scan, plus the tip position x_tip, every slip marked (columns d, phase, x_tip, mu,
+    /// normal, fx, fy, m_base, event)
+    Drag,
+}
+
+/// `vibrissa plot`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "Columns are read by name: extra columns are ignored, and every value of an event column is marked (one marker and legend entry per event name). Units are the files' (normalized: L, EI/L^2, EI/L)."
+)]
+pub struct PlotArgs {
+    /// The CSV file to draw (written by scan --out, scan --shapes, sweep --out, or drag).
+    #[arg(value_name = "FILE.csv")]
+    pub file: PathBuf,
+    /// What the file is.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub kind: PlotKind,
+    /// Output SVG file. [default: FILE with the extension .svg]
+    #[arg(long, value_name = "FILE.svg")]
+    pub out: Option<PathBuf>,
+    /// Figure title. [default: the kind and the file name]
+    #[arg(long, value_name = "TEXT")]
+    pub title: Option<String>,
+    /// Shapes: the point indices to draw (the `point` column), a comma list. [default: six
+    /// points spread over the file and every point with an event]
+    #[arg(
+        long,
+        value_name = "LIST",
+        value_delimiter = ',',
+        value_parser = point_index,
+        help_heading = "Shapes"
+    )]
+    pub select: Option<Vec<usize>>,
+    /// Shapes: inclination of the surface line drawn through the tip (rad), as the scan's --surface-angle.
+    #[arg(long, value_name = "B", value_parser = finite_f64, default_value = "0", help_heading = "Shapes")]
+    pub surface_angle: f64,
+    /// Sweep: column on the horizontal axis. [default: the first grid column that varies]
+    #[arg(long, value_name = "COL", help_heading = "Sweep")]
+    pub x: Option<String>,
+    /// Sweep: column on the vertical axis. [default: the next grid column that varies]
+    #[arg(long, value_name = "COL", help_heading = "Sweep")]
+    pub y: Option<String>,
+    /// Sweep: the column drawn as colour (numbers in eight bins, text one colour per value).
+    #[arg(
+        long,
+        value_name = "COL",
+        default_value = "mu_max",
+        help_heading = "Sweep"
+    )]
+    pub z: String,
+    /// Sweep: keep only the rows with COL = VALUE (repeatable), to fix the grid axes not drawn.
+    #[arg(long = "where", value_name = "COL=VALUE", help_heading = "Sweep")]
+    pub r#where: Vec<String>,
 }
 
 /// True for flags whose values are numbers, counts, number lists or ranges: they take values

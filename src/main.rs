@@ -7,6 +7,7 @@ mod numbers;
 mod numeric;
 mod output;
 mod outputs;
+mod plot;
 mod progress;
 mod scan;
 mod scene_args;
@@ -88,6 +89,10 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Infer(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
         }
+        Command::Plot(a) => {
+            let out = plot::out_path(a);
+            outputs::plan(&[("--out", out.as_path())], false)?;
+        }
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
@@ -113,6 +118,7 @@ fn run(mut cli: Cli) -> Res<()> {
             progress::start("figures", true);
             figures::run(a)
         }
+        Command::Plot(a) => plot::run(a),
     }
 }
 

@@ -347,6 +347,11 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Infer(a) => infer(a),
         Command::Sweep(a) => sweep_flags(a),
         Command::Figures(a) => figures(a),
+        Command::Plot(a) => check(
+            Src::Flag("--surface-angle"),
+            a.surface_angle,
+            &SURFACE_ANGLE,
+        ),
     }
 }
 

@@ -65,7 +65,6 @@ pub struct Physical {
     pub base_diameter_um: f64,
 }
 
-
 /// [`Stiffness`] as written in files (see the module docs).
 #[derive(Clone, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]

@@ -106,7 +106,10 @@ pub fn plain_message(msg: &str) -> String {
             m = m.replace(serde, file);
         }
     }
-    m.replace(", there are no fields", " (this kind has no key but `kind`)")
-        .replace("unknown field", "unknown key")
-        .replace("unknown variant", "unknown kind")
+    m.replace(
+        ", there are no fields",
+        " (this kind has no key but `kind`)",
+    )
+    .replace("unknown field", "unknown key")
+    .replace("unknown variant", "unknown kind")
 }
