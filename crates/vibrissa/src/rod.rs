@@ -333,6 +333,13 @@ pub struct Surface {
 impl Surface {
     /// A surface at height `eta ∈ (η_, 1)` (η_ ≈ 0.456947, the lowest height at which the uniform
     /// rod's start touches with its tip) inclined by `angle ∈ (−π/4, π/4)`.
+    ///
+    /// ```
+    /// let s = vibrissa::Surface::new(0.8, -0.1)?;
+    /// assert_eq!((s.eta(), s.angle()), (0.8, -0.1));
+    /// assert!(vibrissa::Surface::new(0.3, 0.0).is_err()); // below eta_
+    /// # Ok::<(), vibrissa::VibrissaError>(())
+    /// ```
     pub fn new(eta: f64, angle: f64) -> Result<Surface, VibrissaError> {
         let (_, eta_low) = elastica::lower_limit();
         if !(eta > eta_low && eta < 1.0) {

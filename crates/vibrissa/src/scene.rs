@@ -12,6 +12,16 @@ use crate::VibrissaError;
 use serde::{Deserialize, Serialize};
 
 /// A whole scene. Defaults: uniform clamped straight rod, horizontal surface at `eta = 0.75`.
+///
+/// ```
+/// use vibrissa::{Scene, Stiffness};
+///
+/// let scene: Scene = toml::from_str("eta = 0.8\nstiffness = { kind = \"taper\", ratio = 0.5 }")?;
+/// assert_eq!(scene.stiffness, Stiffness::Taper { ratio: 0.5 });
+/// let (rod, surface) = scene.parts()?;
+/// assert_eq!(surface.eta(), 0.8);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Scene {
