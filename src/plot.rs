@@ -444,16 +444,10 @@ fn short(v: f64) -> String {
     crate::numbers::digits(v, 4)
 }
 
-/// The grid columns of a sweep CSV that can be heat-map axes.
-const SWEEP_AXES: [&str; 7] = [
-    "eta",
-    "taper",
-    "precurvature",
-    "precurvature_slope",
-    "support_compliance",
-    "surface_angle",
-    "tol",
-];
+/// The grid columns of a sweep CSV that can be heat-map axes: the scene's and the tolerance.
+fn sweep_axes() -> impl Iterator<Item = &'static str> {
+    crate::sweep::SCENE_AXES.into_iter().chain(["tol"])
+}
 
 /// Eight colours from dark blue to yellow (viridis stops).
 const SCALE: [RGBColor; 8] = [
@@ -509,9 +503,7 @@ fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]
         u.dedup();
         Ok(u)
     };
-    let varying: Vec<&str> = SWEEP_AXES
-        .iter()
-        .copied()
+    let varying: Vec<&str> = sweep_axes()
         .filter(|c| t.has(c) && distinct(c).is_ok_and(|u| u.len() > 1))
         .collect();
     let (xc, yc) =

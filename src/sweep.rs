@@ -84,16 +84,21 @@ fn axis(a: &Option<Axis>) -> Vec<Option<f64>> {
     }
 }
 
+/// The scene columns of the sweep CSV, its numeric grid axes (with `tol`).
+pub const SCENE_AXES: [&str; 6] = [
+    "eta",
+    "taper",
+    "precurvature",
+    "precurvature_slope",
+    "support_compliance",
+    "surface_angle",
+];
+
 /// Columns of the sweep CSV (`physical`: the base scene has physical dimensions).
 pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
-    let mut h = vec![
-        "index",
-        "eta",
-        "taper",
-        "precurvature",
-        "precurvature_slope",
-        "support_compliance",
-        "surface_angle",
+    let mut h = vec!["index"];
+    h.extend(SCENE_AXES);
+    h.extend([
         "method",
         "tol",
         "f0",
@@ -106,7 +111,7 @@ pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
         "points",
         "newton_iters",
         "rhs_evals",
-    ];
+    ]);
     if physical {
         h.extend(["f0_N", "d_at_mu_max_mm", "d_end_mm"]);
     }
