@@ -219,22 +219,22 @@ def scene(**keys: Any) -> Tuple[Any, Any]:
     """``(Rod, Surface)`` from the program's flag names (``eta``, ``taper``, ``precurvature``,
     ``precurvature_slope``, ``support_compliance``, ``surface_angle``; ``physical`` a dict) or
     from a scene file's keys (``stiffness``, ``precurvature`` as dicts, ...)."""
-    flags = {k: keys.pop(k) for k in list(keys) if k in _SCENE_KEYS}
-    file_keys = dict(keys)
+    flags: Dict[str, Any] = {}
+    file_keys: Dict[str, Any] = {}
+    for k, v in keys.items():
+        # `precurvature` is a number as a flag (K0), a table as a file key
+        if k in _SCENE_KEYS and not isinstance(v, Mapping):
+            flags[k] = v
+        else:
+            file_keys[k] = v
     # flags override the file's keys, as on the command line
-    if isinstance(file_keys.get("precurvature"), Mapping) and "precurvature" in flags:
-        file_keys.pop("precurvature")
-    if "eta" in flags:
-        file_keys["eta"] = flags["eta"]
-    if "surface_angle" in flags:
-        file_keys["surface_angle"] = flags["surface_angle"]
-    if "support_compliance" in flags:
-        file_keys["support_compliance"] = flags["support_compliance"]
+    for k in ("eta", "surface_angle", "support_compliance"):
+        if k in flags:
+            file_keys[k] = flags[k]
     if flags.get("taper") is not None:
         file_keys["stiffness"] = {"kind": "taper", "ratio": flags["taper"]}
-    k0, k1 = flags.get("precurvature"), flags.get("precurvature_slope")
-    if k0 is not None or k1 is not None:
-        k0, k1 = k0 or 0.0, k1 or 0.0
+    if "precurvature" in flags or "precurvature_slope" in flags:
+        k0, k1 = flags.get("precurvature") or 0.0, flags.get("precurvature_slope") or 0.0
         file_keys["precurvature"] = (
             {"kind": "none"} if k0 == 0.0 and k1 == 0.0 else {"kind": "linear", "k0": k0, "k1": k1}
         )
