@@ -6,6 +6,8 @@
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
 venv=${1:-"$root/.venv"}
+# absolute: the build runs in another directory and finds maturin on PATH through it
+case "$venv" in /*) ;; *) venv="$PWD/$venv" ;; esac
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check -r "$root/python/requirements.txt"
 # --no-build-isolation: build with the pinned maturin just installed; --locked: with the
