@@ -13,13 +13,18 @@ SCENES = REPO / "data" / "scenes"
 
 
 def program_path() -> pathlib.Path:
-    """The program to compare with: $VIBRISSA_BIN, else target/release/vibrissa (built by
-    `cargo build --release`; .ci/run builds it)."""
-    p = pathlib.Path(os.environ.get("VIBRISSA_BIN", REPO / "target" / "release" / "vibrissa"))
+    """The program to compare with: $VIBRISSA_BIN, else target/release/vibrissa, else
+    target/debug/vibrissa (built by `cargo test`; .ci/run uses it). Debug and release builds
+    compute the same doubles (no fast-math: the optimizer does not reassociate)."""
+    target = REPO / "target"
+    default = target / "release" / "vibrissa"
+    if not default.exists():
+        default = target / "debug" / "vibrissa"
+    p = pathlib.Path(os.environ.get("VIBRISSA_BIN", default))
     if not p.exists():
         pytest.fail(
             f"the vibrissa program is not at {p}: build it with `cargo build --release` "
-            "or set VIBRISSA_BIN"
+            "(or `cargo test`), or set VIBRISSA_BIN"
         )
     return p
 
