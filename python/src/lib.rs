@@ -28,7 +28,8 @@ fn raise(name: &str, msg: String) -> PyErr {
     )
 }
 
-/// The library's error as a Python exception with the same message.
+/// The library's error as a Python exception with the same message; the input errors are those
+/// the program reports as bad input (exit 2), a surface the rod cannot reach among them.
 fn py_err(e: VibrissaError) -> PyErr {
     let msg = e.to_string();
     match e {
@@ -37,7 +38,8 @@ fn py_err(e: VibrissaError) -> PyErr {
         | VibrissaError::InvalidName { .. }
         | VibrissaError::MethodUnavailable { .. }
         | VibrissaError::NotMeasurable { .. }
-        | VibrissaError::RangeCutShort { .. } => raise("InputError", msg),
+        | VibrissaError::RangeCutShort { .. }
+        | VibrissaError::NoContact { .. } => raise("InputError", msg),
         _ => raise("SolveError", msg),
     }
 }

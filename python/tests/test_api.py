@@ -28,6 +28,10 @@ def test_rod_and_surface_validate_like_the_library():
     }
     s = vibrissa.Surface(0.8, -0.1)
     assert (s.eta, s.angle) == (0.8, -0.1)
+    # a surface the rod cannot reach is bad input, as for the program (exit 2)
+    curled, high = vibrissa.scene(eta=0.6, precurvature=-2.5)
+    with pytest.raises(vibrissa.InputError, match="no contact"):
+        vibrissa.scan(curled, high, points=3)
 
 
 def test_scene_dicts_speak_the_file_format():
