@@ -6,6 +6,7 @@
 //! end-to-end tests include this file to list every numeric flag).
 
 use crate::numbers::{self, Axis};
+use clap::builder::TypedValueParser;
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::any::TypeId;
 use std::path::PathBuf;
@@ -60,6 +61,23 @@ fn shape_points(s: &str) -> Result<u32, String> {
 fn solve_shape_points(s: &str) -> Result<u32, String> {
     numbers::count(s, 2, 1_000_000)
 }
+/// The numerical methods (every [`MethodArg`] but `analytic`), with their help texts.
+fn numerical_method() -> impl clap::builder::TypedValueParser<Value = MethodArg> {
+    let values: Vec<clap::builder::PossibleValue> = MethodArg::value_variants()
+        .iter()
+        .filter(|m| **m != MethodArg::Analytic)
+        .filter_map(|m| m.to_possible_value())
+        .collect();
+    clap::builder::PossibleValuesParser::new(values)
+        .map(|s| MethodArg::from_str(&s, false).unwrap_or(MethodArg::Shooting))
+}
+
+fn point_index(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| "not a point index (a whole number >= 0, the point column)".to_string())
+}
+
 fn jobs(s: &str) -> Result<u32, String> {
     numbers::count(s, 1, MAX_JOBS)
 }
@@ -99,6 +117,8 @@ pub enum Command {
     Infer(InferArgs),
     /// Regenerate the paper's Figures 2-11 as SVG files, with the CSV data behind each.
     Figures(FiguresArgs),
+    /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV or a drag CSV.
+    Plot(PlotArgs),
 }
 
 /// Numerical method.
@@ -222,13 +242,16 @@ pub struct SolverArgs {
 
 /// `vibrissa solve`.
 #[derive(Args, Debug)]
-#[command(after_help = "One of --phi1 and --eta is required.")]
+#[command(
+    after_help = "One of --phi1 and --eta is required.",
+    group(clap::ArgGroup::new("tip").args(["phi1", "eta"]).required(true).multiple(false))
+)]
 pub struct SolveArgs {
     /// Force angle alpha (rad), in (-pi/2, pi/2): 0 = straight down, < 0 = rotated clockwise (friction to -x); the closed forms (analytic) need [-pi/4, 0].
     #[arg(long, value_name = "A", value_parser = finite_f64)]
     pub alpha: f64,
     /// Tip slope phi1 = phi(1) (rad), in [-pi, pi]; the closed forms need [0, pi/2 + 2 alpha]. One of --phi1 and --eta is required.
-    #[arg(long, value_name = "P", value_parser = finite_f64, required_unless_present = "eta", conflicts_with = "eta")]
+    #[arg(long, value_name = "P", value_parser = finite_f64)]
     pub phi1: Option<f64>,
     /// Tip height eta (rod lengths), in (-1, 1): solve for the tip slope that puts the tip at y(1) = eta. One of --phi1 and --eta is required.
     #[arg(long, value_name = "H", value_parser = finite_f64)]
@@ -281,7 +304,9 @@ pub struct ScanArgs {
     /// goes to stdout (unless --json).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab, phi, kappa, m).
+    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab,
+    /// phi, kappa, m, event; event names the event on the rows of the point where the scan
+    /// stopped, as in the scan CSV).
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000]; --points × --shape-points × 100 bytes must fit in 1 GB (needs --shapes).
@@ -404,12 +429,79 @@ pub struct FiguresArgs {
     /// Only these figures (comma list of numbers 2-11). [default: all]
     #[arg(long, value_name = "LIST")]
     pub only: Option<String>,
-    /// Numerical method for the numerical curves.
-    #[arg(long, value_enum, default_value = "shooting")]
+    /// Numerical method for the numerical curves (the closed forms are always overlaid, so
+    /// "analytic" is not offered).
+    #[arg(long, default_value = "shooting", value_parser = numerical_method())]
     pub method: MethodArg,
     /// Solver tolerance for the numerical curves, in [1e-15, 1e-2].
     #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
     pub tol: f64,
+}
+
+/// What `vibrissa plot` draws.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlotKind {
+    /// from the file's columns
+    Auto,
+    /// mu, the tip force (fx, fy, normal) and m_base against d, events marked (scan --out)
+    Scan,
+    /// the rod at chosen points in the lab frame with the surface line (scan --shapes)
+    Shapes,
+    /// a heat map of one column over two grid axes, failed scenes crossed (sweep --out)
+    Sweep,
+    /// as scan, plus the tip position x_tip, every slip marked (columns d, phase, x_tip, mu,
+    /// normal, fx, fy, m_base, event)
+    Drag,
+}
+
+/// `vibrissa plot`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "Columns are read by name: extra columns are ignored, and every value of an event column is marked (one marker and legend entry per event name). Units are the files' (normalized: L, EI/L^2, EI/L)."
+)]
+pub struct PlotArgs {
+    /// The CSV file to draw (written by scan --out, scan --shapes, sweep --out, or drag).
+    #[arg(value_name = "FILE.csv")]
+    pub file: PathBuf,
+    /// What the file is.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub kind: PlotKind,
+    /// Output SVG file. [default: FILE with the extension .svg]
+    #[arg(long, value_name = "FILE.svg")]
+    pub out: Option<PathBuf>,
+    /// Figure title. [default: the kind and the file name]
+    #[arg(long, value_name = "TEXT")]
+    pub title: Option<String>,
+    /// Shapes: the point indices to draw (the `point` column), a comma list. [default: six
+    /// points spread over the file and every point with an event]
+    #[arg(
+        long,
+        value_name = "LIST",
+        value_delimiter = ',',
+        value_parser = point_index,
+        help_heading = "Shapes"
+    )]
+    pub select: Option<Vec<usize>>,
+    /// Shapes: inclination of the surface line drawn through the tip (rad), as the scan's --surface-angle.
+    #[arg(long, value_name = "B", value_parser = finite_f64, default_value = "0", help_heading = "Shapes")]
+    pub surface_angle: f64,
+    /// Sweep: column on the horizontal axis. [default: the first grid column that varies]
+    #[arg(long, value_name = "COL", help_heading = "Sweep")]
+    pub x: Option<String>,
+    /// Sweep: column on the vertical axis. [default: the next grid column that varies]
+    #[arg(long, value_name = "COL", help_heading = "Sweep")]
+    pub y: Option<String>,
+    /// Sweep: the column drawn as colour (numbers in eight bins, text one colour per value).
+    #[arg(
+        long,
+        value_name = "COL",
+        default_value = "mu_max",
+        help_heading = "Sweep"
+    )]
+    pub z: String,
+    /// Sweep: keep only the rows with COL = VALUE (repeatable), to fix the grid axes not drawn.
+    #[arg(long = "where", value_name = "COL=VALUE", help_heading = "Sweep")]
+    pub r#where: Vec<String>,
 }
 
 /// True for flags whose values are numbers, counts, number lists or ranges: they take values

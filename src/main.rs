@@ -8,6 +8,7 @@ mod numbers;
 mod numeric;
 mod output;
 mod outputs;
+mod plot;
 mod progress;
 mod scan;
 mod scene_args;
@@ -89,6 +90,10 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Infer(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
         }
+        Command::Plot(a) => {
+            let out = plot::out_path(a);
+            outputs::plan(&[("--out", out.as_path())], false)?;
+        }
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
@@ -114,6 +119,7 @@ fn run(mut cli: Cli) -> Res<()> {
             progress::start("figures", true);
             figures::run(a)
         }
+        Command::Plot(a) => plot::run(a),
     }
 }
 

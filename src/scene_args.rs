@@ -55,7 +55,7 @@ pub fn read_scene_file(path: &Path) -> Res<Scene> {
         usage(format!(
             "scene file {}{line}: {}",
             path.display(),
-            e.message()
+            vibrissa::scene::plain_message(e.message())
         ))
     })?;
     Ok(sc)

@@ -98,16 +98,21 @@ impl Grid<'_> {
     }
 }
 
+/// The scene columns of the sweep CSV, its numeric grid axes (with `tol`).
+pub const SCENE_AXES: [&str; 6] = [
+    "eta",
+    "taper",
+    "precurvature",
+    "precurvature_slope",
+    "support_compliance",
+    "surface_angle",
+];
+
 /// Columns of the sweep CSV (`physical`: the base scene has physical dimensions).
 pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
-    let mut h = vec![
-        "index",
-        "eta",
-        "taper",
-        "precurvature",
-        "precurvature_slope",
-        "support_compliance",
-        "surface_angle",
+    let mut h = vec!["index"];
+    h.extend(SCENE_AXES);
+    h.extend([
         "method",
         "tol",
         "mu0",
@@ -123,7 +128,7 @@ pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
         "points",
         "newton_iters",
         "rhs_evals",
-    ];
+    ]);
     if physical {
         h.extend(["f0_N", "d_at_mu_max_mm", "d_end_mm"]);
     }
@@ -136,12 +141,12 @@ pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
 
 fn scene_cols(sc: &Scene) -> [String; 6] {
     let taper = match &sc.stiffness {
-        Stiffness::Uniform {} => num(1.0),
+        Stiffness::Uniform => num(1.0),
         Stiffness::Taper { ratio } => num(*ratio),
         Stiffness::Table { .. } => "table".into(),
     };
     let (k0, k1) = match &sc.precurvature {
-        Precurvature::None {} => (num(0.0), num(0.0)),
+        Precurvature::None => (num(0.0), num(0.0)),
         Precurvature::Linear { k0, k1 } => (num(*k0), num(*k1)),
         Precurvature::Table { .. } => ("table".into(), "table".into()),
     };

@@ -107,7 +107,7 @@ pub fn eta_range() -> Range {
         "eta_ = 0.456946581044463625... is the tip height of the uniform clamped rod pushed straight down (alpha = 0) with a horizontal tip (phi1 = 0); on a lower surface the scan would start with the rod crossing it",
     )
 }
-/// Taper ratio: the model accepts (0, 1]; below 0.01 the tip is 10^8 times more flexible than
+/// Taper ratio in [0.01, 1] (`vibrissa::MIN_TAPER`): below 0.01 the tip is 10^8 times more flexible than
 /// the foot, beyond what the solvers resolve and beyond real whiskers (0.02-0.2).
 pub const TAPER: Range = Range::new(vibrissa::MIN_TAPER, true, 1.0, true)
     .why("tip/base radius ratio; real whiskers have 0.02-0.2, and below 0.01 the tip would be over 10^8 times more flexible than the foot");
@@ -232,7 +232,7 @@ impl SceneSrc<'_> {
 pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
     check(src.of(src.eta, "eta"), sc.eta, &eta_range())?;
     match &sc.stiffness {
-        Stiffness::Uniform {} => {}
+        Stiffness::Uniform => {}
         Stiffness::Taper { ratio } => {
             check(src.of(src.taper, "stiffness.ratio"), *ratio, &TAPER)?;
         }
@@ -243,7 +243,7 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
         }
     }
     match &sc.precurvature {
-        Precurvature::None {} => {}
+        Precurvature::None => {}
         Precurvature::Linear { k0, k1 } => {
             check(src.of(src.k0, "precurvature.k0"), *k0, &PRECURVATURE)?;
             check(src.of(src.k1, "precurvature.k1"), *k1, &PRECURVATURE_SLOPE)?;
@@ -347,6 +347,11 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Infer(a) => infer(a),
         Command::Sweep(a) => sweep_flags(a),
         Command::Figures(a) => figures(a),
+        Command::Plot(a) => check(
+            Src::Flag("--surface-angle"),
+            a.surface_angle,
+            &SURFACE_ANGLE,
+        ),
     }
 }
 

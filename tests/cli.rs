@@ -757,3 +757,54 @@ fn a_scene_is_read_once_from_stdin_a_pipe_or_a_fifo() {
         o.stderr
     );
 }
+
+/// `vibrissa plot` draws each kind of file (the fixtures of `tests/fixtures/plot`), next to the
+/// input by default, and refuses a file it does not know without leaving an output.
+#[test]
+fn plot_draws_each_kind_of_file() {
+    let dir = tmpdir("plot");
+    let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/plot");
+    for name in ["scan", "shapes", "sweep", "drag"] {
+        let input = dir.join(format!("{name}.csv"));
+        std::fs::copy(fixtures.join(format!("{name}.csv")), &input).unwrap();
+        let o = ok(&["plot", input.to_str().unwrap()]);
+        let out = dir.join(format!("{name}.svg"));
+        assert_eq!(
+            o.stdout.trim(),
+            format!("plot written to {}", out.display()),
+            "{name}"
+        );
+        let svg = std::fs::read_to_string(&out).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("</svg>"), "{name}");
+    }
+    let out = dir.join("chosen.svg");
+    let sweep = fixtures.join("sweep.csv");
+    ok(&[
+        "plot",
+        sweep.to_str().unwrap(),
+        "--z",
+        "stop_reason",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("stop_reason: penetration"));
+    let other = dir.join("other.csv");
+    std::fs::write(&other, "a,b\n1,2\n").unwrap();
+    let e = bad(&["plot", other.to_str().unwrap()], 2);
+    assert!(e.contains("not a file vibrissa writes"), "{e}");
+    assert!(!dir.join("other.svg").exists());
+    let e = bad(
+        &[
+            "plot",
+            fixtures.join("shapes.csv").to_str().unwrap(),
+            "--surface-angle",
+            "1",
+            "--out",
+            dir.join("x.svg").to_str().unwrap(),
+        ],
+        2,
+    );
+    assert!(e.contains("--surface-angle 1 is outside"), "{e}");
+}

@@ -107,3 +107,8 @@ impl<S: BvpSolver + ?Sized> BvpSolver for &mut S {
         (**self).set_tolerance(tol)
     }
 }
+
+/// The examples of the crate's README.md, run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -234,6 +234,18 @@ fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static s
 /// cannot proceed even at `ds_min` (with the parameter reached and the solver's last error);
 /// [`BvpError::PathEnded`] when `max_steps` run out or the branch turns back before `to`. Both
 /// report the parameter itself (not its logarithm on a log scale).
+///
+/// ```
+/// use bvp::{samples::BratuFamily, solve_by_continuation, Guess, PathOptions, Shooting, ShootingOptions};
+///
+/// // Bratu u'' + λeᵘ = 0 from λ = 0.1 to λ = 3 (lower branch, below the fold at 3.5138)
+/// let mut solver = Shooting::new(ShootingOptions::default())?;
+/// let guess = Guess::constant(0.0, 1.0, 11, &[0.0, 0.0], vec![]);
+/// let res = solve_by_continuation(&BratuFamily, &mut solver, &guess, 0.1, 3.0, &PathOptions::default())?;
+/// let exact = bvp::samples::Bratu { lambda: 3.0 }.exact(0, 0.5)[0];
+/// assert!((res.solution.at(0.5)[0] - exact).abs() < 1e-7);
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
 pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
     family: &P,
     solver: &mut S,

@@ -33,6 +33,33 @@ pub struct Dims {
 /// finite differences ([`crate::fd`]). Implementations must not allocate: solvers call these in
 /// their inner loops. Non-finite output is detected by the solvers and reported as
 /// [`crate::BvpError::NonFinite`].
+///
+/// ```
+/// use bvp::{Bvp, BvpSolver, Dims, Guess, Shooting, ShootingOptions};
+///
+/// /// y'' = −y, y(0) = 0, y(π/2) = 1: y = sin s (z = (y, y')).
+/// struct Sine;
+/// impl Bvp for Sine {
+///     fn dims(&self) -> Dims {
+///         Dims { n: 2, k: 0 }
+///     }
+///     fn interval(&self) -> (f64, f64) {
+///         (0.0, std::f64::consts::FRAC_PI_2)
+///     }
+///     fn rhs(&self, _s: f64, z: &[f64], _p: &[f64], dz: &mut [f64]) {
+///         dz[0] = z[1];
+///         dz[1] = -z[0];
+///     }
+///     fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+///         res[0] = za[0];
+///         res[1] = zb[0] - 1.0;
+///     }
+/// }
+/// let guess = Guess::constant(0.0, std::f64::consts::FRAC_PI_2, 5, &[0.5, 0.5], vec![]);
+/// let sol = Shooting::new(ShootingOptions::default())?.solve(&Sine, &guess)?;
+/// assert!((sol.at(0.5)[0] - 0.5f64.sin()).abs() < 1e-8);
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
 pub trait Bvp {
     /// Number of states and unknown parameters.
     fn dims(&self) -> Dims;

@@ -134,6 +134,31 @@ impl Solution {
     }
 
     /// Convenience: evaluates at `s` into a new vector.
+    ///
+    /// ```
+    /// use bvp::{from_fns, BvpSolver, Collocation, CollocationOptions, Guess};
+    ///
+    /// // y'' = −y, y(0) = 0, y(π/2) = 1: y = sin s, evaluated between the mesh nodes
+    /// let sine = from_fns(
+    ///     2,
+    ///     (0.0, std::f64::consts::FRAC_PI_2),
+    ///     |_s, z, _p, dz| {
+    ///         dz[0] = z[1];
+    ///         dz[1] = -z[0];
+    ///     },
+    ///     |za, zb, _p, res| {
+    ///         res[0] = za[0];
+    ///         res[1] = zb[0] - 1.0;
+    ///     },
+    /// );
+    /// let opts = CollocationOptions { tol: 1e-8, ..CollocationOptions::default() };
+    /// let guess = Guess::constant(0.0, std::f64::consts::FRAC_PI_2, 5, &[0.5, 0.5], vec![]);
+    /// let sol = Collocation::new(opts)?.solve(&sine, &guess)?;
+    /// for s in [0.1, 0.77, 1.3] {
+    ///     assert!((sol.at(s)[0] - s.sin()).abs() < 1e-7);
+    /// }
+    /// # Ok::<(), bvp::BvpError>(())
+    /// ```
     pub fn at(&self, s: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.n];
         self.eval(s, &mut out);

@@ -100,3 +100,8 @@ pub use scan::{infer, scan, scan_at};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};
 pub use shape::{BranchChoice, Clearance, Shape, ShapeKind, ShapePoint};
 pub use solve::{solve, Method, SolverConfig, StartKind, Target};
+
+/// The examples of the crate's README.md, run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
