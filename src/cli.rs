@@ -31,6 +31,29 @@ pub fn axis_or_inf(s: &str) -> Result<Axis, String> {
     numbers::parse_axis_or_inf(s)
 }
 
+/// Parse a point `X,Y` (two finite numbers).
+pub fn point(s: &str) -> Result<Point, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    match parts.as_slice() {
+        [x, y] => Ok(Point {
+            x: numbers::finite_f64(x.trim())?,
+            y: numbers::finite_f64(y.trim())?,
+        }),
+        _ => Err(format!(
+            "'{s}' is not a point X,Y (two numbers separated by a comma)"
+        )),
+    }
+}
+
+/// A point `X,Y` of the plane (rod lengths).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    /// x
+    pub x: f64,
+    /// y
+    pub y: f64,
+}
+
 /// Parse a shard `K/N`.
 pub fn shard(s: &str) -> Result<Shard, String> {
     numbers::parse_shard(s).map(|(k, n)| Shard { k, n })
@@ -119,6 +142,12 @@ pub enum Command {
     Figures(FiguresArgs),
     /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV or a drag CSV.
     Plot(PlotArgs),
+    /// Turn the foot against a point object (a peg): the contact moves along the rod until the
+    /// object slips off the tip; one row per foot angle.
+    Whisk(WhiskArgs),
+    /// Where a point object touches the rod, from the base signals of one instant (the inverse
+    /// of solve --peg).
+    Locate(LocateArgs),
 }
 
 /// Numerical method.
@@ -243,13 +272,25 @@ pub struct SolverArgs {
 /// `vibrissa solve`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "One of --phi1 and --eta is required.",
-    group(clap::ArgGroup::new("tip").args(["phi1", "eta"]).required(true).multiple(false))
+    after_help = "One of --phi1 and --eta is required (or --peg X,Y for a point object).",
+    group(clap::ArgGroup::new("tip").args(["phi1", "eta"]).multiple(false))
 )]
 pub struct SolveArgs {
-    /// Force angle alpha (rad), in (-pi/2, pi/2): 0 = straight down, < 0 = rotated clockwise (friction to -x); the closed forms (analytic) need [-pi/4, 0].
-    #[arg(long, value_name = "A", value_parser = finite_f64)]
-    pub alpha: f64,
+    /// Force angle alpha (rad), in (-pi/2, pi/2): 0 = straight down, < 0 = rotated clockwise (friction to -x); the closed forms (analytic) need [-pi/4, 0]. Required unless --peg.
+    #[arg(long, value_name = "A", value_parser = finite_f64, required_unless_present = "peg")]
+    pub alpha: Option<f64>,
+    /// A point object at X,Y (rod lengths, frame of the unturned foot: y up the unloaded rod)
+    /// touching the rod's side instead of a tip load: the rod turned by --theta against it.
+    #[arg(long, value_name = "X,Y", value_parser = point, conflicts_with_all = ["alpha", "phi1", "eta", "branch"])]
+    pub peg: Option<Point>,
+    /// Foot angle for --peg (rad, clockwise, towards +x), in (-pi/2, pi/2): phi(0) = pi/2 - theta
+    /// (+ the compliance term). [default: 0]
+    #[arg(long, value_name = "A", value_parser = finite_f64, requires = "peg")]
+    pub theta: Option<f64>,
+    /// Stiction coefficient at the object for --peg, in [0, inf): the contact sticks while
+    /// |T| <= mu0 N, then slides. [default: frictionless]
+    #[arg(long, value_name = "MU", value_parser = f64_or_inf, requires = "peg")]
+    pub mu0: Option<f64>,
     /// Tip slope phi1 = phi(1) (rad), in [-pi, pi]; the closed forms need [0, pi/2 + 2 alpha]. One of --phi1 and --eta is required.
     #[arg(long, value_name = "P", value_parser = finite_f64)]
     pub phi1: Option<f64>,
@@ -332,6 +373,66 @@ pub struct InferArgs {
     /// Points of the underlying scan, in [2, 1000000].
     #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
     pub points: u32,
+    #[command(flatten)]
+    pub solver: SolverArgs,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print a JSON object instead of CSV.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `vibrissa whisk`.
+#[derive(Args, Debug)]
+pub struct WhiskArgs {
+    /// The point object X,Y (rod lengths, frame of the unturned foot: y up the unloaded rod).
+    #[arg(long, value_name = "X,Y", value_parser = point)]
+    pub peg: Point,
+    /// Largest foot angle (rad, clockwise), in (-pi/2, pi/2); the rows run from first touch.
+    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = "1")]
+    pub theta_max: f64,
+    /// Number of output angles, uniform from first touch to --theta-max, in [2, 1000000].
+    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    pub points: u32,
+    /// Stiction coefficient at the object, in [0, inf): the contact sticks while |T| <= mu0 N,
+    /// then slides with |T| = mu0 N. [default: frictionless]
+    #[arg(long, value_name = "MU", value_parser = f64_or_inf)]
+    pub mu0: Option<f64>,
+    #[command(flatten)]
+    pub solver: SolverArgs,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Write the rows to this CSV file ("-": stdout). Without it the CSV goes to stdout (unless
+    /// --json).
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: Option<PathBuf>,
+    /// Write the rod shapes of all rows to this CSV file (columns point, theta, s, x, y, phi,
+    /// kappa, m, event; frame of the unturned foot).
+    #[arg(long, value_name = "FILE.csv")]
+    pub shapes: Option<PathBuf>,
+    /// Points per shape in --shapes, in [2, 100000] (needs --shapes).
+    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    pub shape_points: u32,
+    /// Print the summary as a JSON object on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `vibrissa locate`.
+#[derive(Args, Debug)]
+pub struct LocateArgs {
+    /// Foot angle (rad, clockwise) at the instant, in (-pi/2, pi/2).
+    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = "0")]
+    pub theta: f64,
+    /// Base moment m_base = m(0) (EI/L).
+    #[arg(long, value_name = "M", value_parser = finite_f64)]
+    pub m_base: f64,
+    /// Contact force on the rod, x component (EI/L^2, frame of the unturned foot).
+    #[arg(long, value_name = "FX", value_parser = finite_f64)]
+    pub fx: f64,
+    /// Contact force on the rod, y component (EI/L^2).
+    #[arg(long, value_name = "FY", value_parser = finite_f64)]
+    pub fy: f64,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]
@@ -515,6 +616,7 @@ pub fn is_numeric(a: &clap::Arg) -> bool {
         || t == TypeId::of::<u32>()
         || t == TypeId::of::<Axis>()
         || t == TypeId::of::<Shard>()
+        || t == TypeId::of::<Point>()
         || a.get_value_names()
             .is_some_and(|n| n.iter().any(|n| n.as_str() == "LIST"))
 }

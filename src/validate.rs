@@ -347,6 +347,8 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Infer(a) => infer(a),
         Command::Sweep(a) => sweep_flags(a),
         Command::Figures(a) => figures(a),
+        Command::Whisk(a) => whisk(a),
+        Command::Locate(a) => locate(a),
         Command::Plot(a) => check(
             Src::Flag("--surface-angle"),
             a.surface_angle,
@@ -357,7 +359,18 @@ pub fn command(cmd: &mut Command) -> Res<()> {
 
 fn solve(a: &mut SolveArgs) -> Res<()> {
     tol(a.solver.tol)?;
-    check(Src::Flag("--alpha"), a.alpha, &ALPHA)?;
+    if let Some(p) = a.peg {
+        peg(p)?;
+        check(Src::Flag("--theta"), a.theta.unwrap_or(0.0), &THETA)?;
+        mu0(&mut a.mu0)?;
+    } else if a.phi1.is_none() && a.eta.is_none() {
+        return Err(usage(
+            "one of --phi1 and --eta is required (the tip condition), or --peg X,Y for a point object",
+        ));
+    }
+    if let Some(al) = a.alpha {
+        check(Src::Flag("--alpha"), al, &ALPHA)?;
+    }
     if let Some(p) = a.phi1 {
         check(Src::Flag("--phi1"), p, &PHI1)?;
     }
@@ -370,6 +383,41 @@ fn solve(a: &mut SolveArgs) -> Res<()> {
         ));
     }
     Ok(())
+}
+
+/// Foot angle of a whisk (rad): within a quarter turn either way.
+pub const THETA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
+    .sym("(-pi/2, pi/2)")
+    .why("the foot turned clockwise, within a quarter turn");
+
+/// A point object: inside the reach of the rod (distance from the foot in (0, 1)).
+fn peg(p: crate::cli::Point) -> Res<()> {
+    let r = (p.x * p.x + p.y * p.y).sqrt();
+    if !(r > 0.0 && r < 1.0) {
+        return Err(usage(format!(
+            "--peg {},{} is at distance {} from the foot, outside the valid range (0, 1) (rod lengths: a point the rod can reach)",
+            p.x, p.y, r
+        )));
+    }
+    Ok(())
+}
+
+fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    peg(a.peg)?;
+    check(Src::Flag("--theta-max"), a.theta_max, &THETA)?;
+    mu0(&mut a.mu0)?;
+    if a.out.as_deref().is_some_and(is_stdout) && a.json {
+        return Err(usage(
+            "--out - with --json would put the rows and the JSON summary on the same stdout; give --out a file name",
+        ));
+    }
+    Ok(())
+}
+
+fn locate(a: &mut crate::cli::LocateArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    check(Src::Flag("--theta"), a.theta, &THETA)
 }
 
 fn scan(a: &mut ScanArgs) -> Res<()> {

@@ -39,7 +39,8 @@ fn py_err(e: VibrissaError) -> PyErr {
         | VibrissaError::MethodUnavailable { .. }
         | VibrissaError::NotMeasurable { .. }
         | VibrissaError::RangeCutShort { .. }
-        | VibrissaError::NoContact { .. } => raise("InputError", msg),
+        | VibrissaError::NoContact { .. }
+        | VibrissaError::OutOfReach { .. } => raise("InputError", msg),
         _ => raise("SolveError", msg),
     }
 }

@@ -72,6 +72,7 @@ mod generic;
 mod kind;
 mod march;
 mod parts;
+pub mod peg;
 pub mod profile;
 pub mod report;
 mod rod;
@@ -88,6 +89,7 @@ mod stepper;
 mod watch;
 
 pub use error::VibrissaError;
+pub use peg::{locate, solve_peg, whisk, PegPoint, WhiskOptions, WhiskResult};
 pub use report::{
     ContactLabel, ContactModel, Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult,
     StopReason,

@@ -124,6 +124,7 @@ fn scan_with<P: Profile>(
         general: &general,
         friction: true,
         check_start: true,
+        slide: false,
     };
     let start_failed = |e: String| VibrissaError::NoConvergence {
         what: "scan start (correction at d = 0)".into(),
