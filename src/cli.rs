@@ -6,6 +6,7 @@
 //! end-to-end tests include this file to list every numeric flag).
 
 use crate::numbers::{self, Axis};
+use clap::builder::TypedValueParser;
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::any::TypeId;
 use std::path::PathBuf;
@@ -23,6 +24,34 @@ pub fn f64_or_inf(s: &str) -> Result<f64, String> {
 /// Parse a grid axis (`a:b:n` or a comma list).
 pub fn axis(s: &str) -> Result<Axis, String> {
     numbers::parse_axis(s)
+}
+
+/// Parse a grid axis whose lists may hold `inf` (`--mu0 0.5,1,inf`).
+pub fn axis_or_inf(s: &str) -> Result<Axis, String> {
+    numbers::parse_axis_or_inf(s)
+}
+
+/// Parse a point `X,Y` (two finite numbers).
+pub fn point(s: &str) -> Result<Point, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    match parts.as_slice() {
+        [x, y] => Ok(Point {
+            x: numbers::finite_f64(x.trim())?,
+            y: numbers::finite_f64(y.trim())?,
+        }),
+        _ => Err(format!(
+            "'{s}' is not a point X,Y (two numbers separated by a comma)"
+        )),
+    }
+}
+
+/// A point `X,Y` of the plane (rod lengths).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    /// x
+    pub x: f64,
+    /// y
+    pub y: f64,
 }
 
 /// Parse a shard `K/N`.
@@ -55,6 +84,23 @@ fn shape_points(s: &str) -> Result<u32, String> {
 fn solve_shape_points(s: &str) -> Result<u32, String> {
     numbers::count(s, 2, 1_000_000)
 }
+/// The numerical methods (every [`MethodArg`] but `analytic`), with their help texts.
+fn numerical_method() -> impl clap::builder::TypedValueParser<Value = MethodArg> {
+    let values: Vec<clap::builder::PossibleValue> = MethodArg::value_variants()
+        .iter()
+        .filter(|m| **m != MethodArg::Analytic)
+        .filter_map(|m| m.to_possible_value())
+        .collect();
+    clap::builder::PossibleValuesParser::new(values)
+        .map(|s| MethodArg::from_str(&s, false).unwrap_or(MethodArg::Shooting))
+}
+
+fn point_index(s: &str) -> Result<usize, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| "not a point index (a whole number >= 0, the point column)".to_string())
+}
+
 fn jobs(s: &str) -> Result<u32, String> {
     numbers::count(s, 1, MAX_JOBS)
 }
@@ -94,6 +140,14 @@ pub enum Command {
     Infer(InferArgs),
     /// Regenerate the paper's Figures 2-11 as SVG files, with the CSV data behind each.
     Figures(FiguresArgs),
+    /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV or a drag CSV.
+    Plot(PlotArgs),
+    /// Turn the foot against a point object (a peg): the contact moves along the rod until the
+    /// object slips off the tip; one row per foot angle.
+    Whisk(WhiskArgs),
+    /// Where a point object touches the rod, from the base signals of one instant (the inverse
+    /// of solve --peg).
+    Locate(LocateArgs),
 }
 
 /// Numerical method.
@@ -153,7 +207,7 @@ pub struct PhysicalArgs {
 /// Scene flags of solve, scan and infer; they override the values of `--scene`.
 #[derive(Args, Debug, Clone, Default)]
 pub struct SceneArgs {
-    /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"). Flags override its values.
+    /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"; "-": stdin; read once, so a pipe or FIFO works). Flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
     /// Conical taper: tip/base radius ratio RHO in [0.01, 1]; b(s) = (1 - (1 - RHO) s)^-4. [default: 1, uniform]
@@ -217,13 +271,28 @@ pub struct SolverArgs {
 
 /// `vibrissa solve`.
 #[derive(Args, Debug)]
-#[command(after_help = "One of --phi1 and --eta is required.")]
+#[command(
+    after_help = "One of --phi1 and --eta is required (or --peg X,Y for a point object).",
+    group(clap::ArgGroup::new("tip").args(["phi1", "eta"]).multiple(false))
+)]
 pub struct SolveArgs {
-    /// Force angle alpha (rad), in (-pi/2, pi/2): 0 = straight down, < 0 = rotated clockwise (friction to -x); the closed forms (analytic) need [-pi/4, 0].
-    #[arg(long, value_name = "A", value_parser = finite_f64)]
-    pub alpha: f64,
+    /// Force angle alpha (rad), in (-pi/2, pi/2): 0 = straight down, < 0 = rotated clockwise (friction to -x); the closed forms (analytic) need [-pi/4, 0]. Required unless --peg.
+    #[arg(long, value_name = "A", value_parser = finite_f64, required_unless_present = "peg")]
+    pub alpha: Option<f64>,
+    /// A point object at X,Y (rod lengths, frame of the unturned foot: y up the unloaded rod)
+    /// touching the rod's side instead of a tip load: the rod turned by --theta against it.
+    #[arg(long, value_name = "X,Y", value_parser = point, conflicts_with_all = ["alpha", "phi1", "eta", "branch"])]
+    pub peg: Option<Point>,
+    /// Foot angle for --peg (rad, clockwise, towards +x), in (-pi/2, pi/2): phi(0) = pi/2 - theta
+    /// (+ the compliance term). [default: 0]
+    #[arg(long, value_name = "A", value_parser = finite_f64, requires = "peg")]
+    pub theta: Option<f64>,
+    /// Stiction coefficient at the object for --peg, in [0, inf): the contact sticks while
+    /// |T| <= mu0 N, then slides. [default: frictionless]
+    #[arg(long, value_name = "MU", value_parser = f64_or_inf, requires = "peg")]
+    pub mu0: Option<f64>,
     /// Tip slope phi1 = phi(1) (rad), in [-pi, pi]; the closed forms need [0, pi/2 + 2 alpha]. One of --phi1 and --eta is required.
-    #[arg(long, value_name = "P", value_parser = finite_f64, required_unless_present = "eta", conflicts_with = "eta")]
+    #[arg(long, value_name = "P", value_parser = finite_f64)]
     pub phi1: Option<f64>,
     /// Tip height eta (rod lengths), in (-1, 1): solve for the tip slope that puts the tip at y(1) = eta. One of --phi1 and --eta is required.
     #[arg(long, value_name = "H", value_parser = finite_f64)]
@@ -272,11 +341,13 @@ pub struct ScanArgs {
     pub solver: SolverArgs,
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Write the scan points to this CSV file ("-": stdout). Without it the CSV goes to stdout
-    /// (unless --json).
+    /// Write the scan points to this CSV file ("-": stdout, not with --json). Without it the CSV
+    /// goes to stdout (unless --json).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab, phi, kappa, m).
+    /// Write the rod shapes of all scan points to this CSV file (columns point, d, s, x, y, x_lab,
+    /// phi, kappa, m, event; event names the event on the rows of the point where the scan
+    /// stopped, as in the scan CSV).
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000]; --points × --shape-points × 100 bytes must fit in 1 GB (needs --shapes).
@@ -311,13 +382,73 @@ pub struct InferArgs {
     pub json: bool,
 }
 
+/// `vibrissa whisk`.
+#[derive(Args, Debug)]
+pub struct WhiskArgs {
+    /// The point object X,Y (rod lengths, frame of the unturned foot: y up the unloaded rod).
+    #[arg(long, value_name = "X,Y", value_parser = point)]
+    pub peg: Point,
+    /// Largest foot angle (rad, clockwise), in (-pi/2, pi/2); the rows run from first touch.
+    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = "1")]
+    pub theta_max: f64,
+    /// Number of output angles, uniform from first touch to --theta-max, in [2, 1000000].
+    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    pub points: u32,
+    /// Stiction coefficient at the object, in [0, inf): the contact sticks while |T| <= mu0 N,
+    /// then slides with |T| = mu0 N. [default: frictionless]
+    #[arg(long, value_name = "MU", value_parser = f64_or_inf)]
+    pub mu0: Option<f64>,
+    #[command(flatten)]
+    pub solver: SolverArgs,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Write the rows to this CSV file ("-": stdout). Without it the CSV goes to stdout (unless
+    /// --json).
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: Option<PathBuf>,
+    /// Write the rod shapes of all rows to this CSV file (columns point, theta, s, x, y, phi,
+    /// kappa, m, event; frame of the unturned foot).
+    #[arg(long, value_name = "FILE.csv")]
+    pub shapes: Option<PathBuf>,
+    /// Points per shape in --shapes, in [2, 100000] (needs --shapes).
+    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    pub shape_points: u32,
+    /// Print the summary as a JSON object on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `vibrissa locate`.
+#[derive(Args, Debug)]
+pub struct LocateArgs {
+    /// Foot angle (rad, clockwise) at the instant, in (-pi/2, pi/2).
+    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = "0")]
+    pub theta: f64,
+    /// Base moment m_base = m(0) (EI/L).
+    #[arg(long, value_name = "M", value_parser = finite_f64)]
+    pub m_base: f64,
+    /// Contact force on the rod, x component (EI/L^2, frame of the unturned foot).
+    #[arg(long, value_name = "FX", value_parser = finite_f64)]
+    pub fx: f64,
+    /// Contact force on the rod, y component (EI/L^2).
+    #[arg(long, value_name = "FY", value_parser = finite_f64)]
+    pub fy: f64,
+    #[command(flatten)]
+    pub solver: SolverArgs,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print a JSON object instead of CSV.
+    #[arg(long)]
+    pub json: bool,
+}
+
 /// `vibrissa sweep`.
 #[derive(Args, Debug)]
 #[command(
     after_help = "LIST: a range a:b:n (n points, both ends included, computed from the decimal digits typed: 0.6:0.95:8 gives 0.6, 0.65, ..., 0.95) or a comma list v1,v2,... Negative values need no '=': --precurvature -1,0,1."
 )]
 pub struct SweepArgs {
-    /// Base scene file (TOML); the grid flags override its values.
+    /// Base scene file (TOML; "-": stdin; read once, so a pipe or FIFO works); the grid flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
     /// Surface heights, in (eta_, 1) (see scan --help). [default: scene's, else 0.75]
@@ -356,15 +487,16 @@ pub struct SweepArgs {
     /// Solver tolerances (LIST), each in [1e-15, 1e-2].
     #[arg(long, value_name = "LIST", value_parser = axis, default_value = "1e-10")]
     pub tol: Axis,
-    /// Largest foot displacement of each scan (rod lengths), in (0, 2).
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
-    pub d_max: f64,
-    /// Points per scan, in [2, 1000000] (as scan).
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
-    pub points: u32,
-    /// Stiction coefficient at which each scan stops (slip), in [0, inf]. [default: none]
-    #[arg(long, value_name = "MU", value_parser = f64_or_inf)]
-    pub mu0: Option<f64>,
+    /// Stiction coefficients at which the scans stop (slip) (LIST), each in [0, inf]; inf (in a
+    /// comma list) never slips. [default: none]
+    #[arg(long, value_name = "LIST", value_parser = axis_or_inf)]
+    pub mu0: Option<Axis>,
+    /// Largest foot displacements of the scans (LIST, rod lengths), each in (0, 2).
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "0.5")]
+    pub d_max: Axis,
+    /// Points per scan (LIST), whole numbers in [2, 1000000] (as scan).
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "201")]
+    pub points: Axis,
     /// Worker threads; more than 4 per core are capped, with a warning. [default: all cores]
     #[arg(long, value_name = "N", value_parser = jobs)]
     pub jobs: Option<u32>,
@@ -379,10 +511,12 @@ pub struct SweepArgs {
     /// Add a time_ms column (wall time per scene; makes the output non-reproducible).
     #[arg(long)]
     pub timing: bool,
-    /// Output CSV file ("-": stdout). [default: stdout]
+    /// Output CSV file ("-": stdout). A file gets a journal, FILE.journal, with the finished rows:
+    /// after a kill the same command resumes the sweep (see README, "A sweep's journal").
+    /// [default: stdout]
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Check every value, print the grid size and this shard's range on stderr, and exit without solving.
+    /// Check every value, print the grid size, this shard's range and the rows a journal holds on stderr, and exit without solving.
     #[arg(long)]
     pub dry_run: bool,
 }
@@ -396,12 +530,79 @@ pub struct FiguresArgs {
     /// Only these figures (comma list of numbers 2-11). [default: all]
     #[arg(long, value_name = "LIST")]
     pub only: Option<String>,
-    /// Numerical method for the numerical curves.
-    #[arg(long, value_enum, default_value = "shooting")]
+    /// Numerical method for the numerical curves (the closed forms are always overlaid, so
+    /// "analytic" is not offered).
+    #[arg(long, default_value = "shooting", value_parser = numerical_method())]
     pub method: MethodArg,
     /// Solver tolerance for the numerical curves, in [1e-15, 1e-2].
     #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
     pub tol: f64,
+}
+
+/// What `vibrissa plot` draws.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PlotKind {
+    /// from the file's columns
+    Auto,
+    /// mu, the tip force (fx, fy, normal) and m_base against d, events marked (scan --out)
+    Scan,
+    /// the rod at chosen points in the lab frame with the surface line (scan --shapes)
+    Shapes,
+    /// a heat map of one column over two grid axes, failed scenes crossed (sweep --out)
+    Sweep,
+    /// as scan, plus the tip position x_tip, every slip marked (columns d, phase, x_tip, mu,
+    /// normal, fx, fy, m_base, event)
+    Drag,
+}
+
+/// `vibrissa plot`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "Columns are read by name: extra columns are ignored, and every value of an event column is marked (one marker and legend entry per event name). Units are the files' (normalized: L, EI/L^2, EI/L)."
+)]
+pub struct PlotArgs {
+    /// The CSV file to draw (written by scan --out, scan --shapes, sweep --out, or drag).
+    #[arg(value_name = "FILE.csv")]
+    pub file: PathBuf,
+    /// What the file is.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub kind: PlotKind,
+    /// Output SVG file. [default: FILE with the extension .svg]
+    #[arg(long, value_name = "FILE.svg")]
+    pub out: Option<PathBuf>,
+    /// Figure title. [default: the kind and the file name]
+    #[arg(long, value_name = "TEXT")]
+    pub title: Option<String>,
+    /// Shapes: the point indices to draw (the `point` column), a comma list. [default: six
+    /// points spread over the file and every point with an event]
+    #[arg(
+        long,
+        value_name = "LIST",
+        value_delimiter = ',',
+        value_parser = point_index,
+        help_heading = "Shapes"
+    )]
+    pub select: Option<Vec<usize>>,
+    /// Shapes: inclination of the surface line drawn through the tip (rad), as the scan's --surface-angle.
+    #[arg(long, value_name = "B", value_parser = finite_f64, default_value = "0", help_heading = "Shapes")]
+    pub surface_angle: f64,
+    /// Sweep: column on the horizontal axis. [default: the first grid column that varies]
+    #[arg(long, value_name = "COL", help_heading = "Sweep")]
+    pub x: Option<String>,
+    /// Sweep: column on the vertical axis. [default: the next grid column that varies]
+    #[arg(long, value_name = "COL", help_heading = "Sweep")]
+    pub y: Option<String>,
+    /// Sweep: the column drawn as colour (numbers in eight bins, text one colour per value).
+    #[arg(
+        long,
+        value_name = "COL",
+        default_value = "mu_max",
+        help_heading = "Sweep"
+    )]
+    pub z: String,
+    /// Sweep: keep only the rows with COL = VALUE (repeatable), to fix the grid axes not drawn.
+    #[arg(long = "where", value_name = "COL=VALUE", help_heading = "Sweep")]
+    pub r#where: Vec<String>,
 }
 
 /// True for flags whose values are numbers, counts, number lists or ranges: they take values
@@ -415,6 +616,7 @@ pub fn is_numeric(a: &clap::Arg) -> bool {
         || t == TypeId::of::<u32>()
         || t == TypeId::of::<Axis>()
         || t == TypeId::of::<Shard>()
+        || t == TypeId::of::<Point>()
         || a.get_value_names()
             .is_some_and(|n| n.iter().any(|n| n.as_str() == "LIST"))
 }
@@ -439,6 +641,36 @@ pub fn command() -> clap::Command {
         });
     }
     cmd
+}
+
+/// The values of sub-command `sub`'s flags on this process's command line, as typed (a flag not
+/// given: its default, or empty), in the order of `--help`, leaving out the flags in `skip`:
+/// (`--flag`, value). A flag added later is included without a change here.
+pub fn typed_values(sub: &str, skip: &[&str]) -> Vec<(String, String)> {
+    let cmd = command();
+    let Ok(m) = cmd.clone().try_get_matches_from(std::env::args_os()) else {
+        return Vec::new();
+    };
+    let (Some(sm), Some(sc)) = (m.subcommand_matches(sub), cmd.find_subcommand(sub)) else {
+        return Vec::new();
+    };
+    sc.get_arguments()
+        .filter_map(|a| {
+            let long = a.get_long()?;
+            if long == "help" || skip.contains(&long) {
+                return None;
+            }
+            let v = sm
+                .get_raw(a.get_id().as_str())
+                .map(|vs| {
+                    vs.map(|v| v.to_string_lossy().into_owned())
+                        .collect::<Vec<_>>()
+                        .join(" ")
+                })
+                .unwrap_or_default();
+            Some((format!("--{long}"), v))
+        })
+        .collect()
 }
 
 /// A numeric flag directly followed by another flag of the same command (`--alpha --phi1 0.3`):

@@ -33,7 +33,7 @@ fn u(px: f64) -> i32 {
 
 /// How a series is drawn.
 #[derive(Clone, Copy, PartialEq, Debug)]
-enum Kind {
+pub(crate) enum Kind {
     /// solid line, 2 px
     Line,
     /// solid line, 1.5 px (a closed form drawn over numerical rings)
@@ -51,6 +51,9 @@ enum Kind {
     Cross,
     /// a segment from `pts[0]` to `pts[1]` with an arrowhead at `pts[1]`
     Arrow,
+    /// filled rectangles centred on the points, of these half-widths in data units (heat-map
+    /// cells); a filled square in the legend
+    Cell(f64, f64),
 }
 
 impl Kind {
@@ -75,22 +78,22 @@ impl Kind {
 }
 
 /// A text placed next to a series' data (e.g. Fig. 2's α of each curve).
-struct Tag {
+pub(crate) struct Tag {
     text: String,
     /// candidate data points to put the text next to, in order of preference
     anchors: Vec<(f64, f64)>,
 }
 
-struct Series {
-    name: String,
-    kind: Kind,
-    color: RGBColor,
-    pts: Vec<(f64, f64)>,
-    legend: bool,
-    tag: Option<Tag>,
+pub(crate) struct Series {
+    pub name: String,
+    pub kind: Kind,
+    pub color: RGBColor,
+    pub pts: Vec<(f64, f64)>,
+    pub legend: bool,
+    pub tag: Option<Tag>,
 }
 
-fn series(name: &str, kind: Kind, color: RGBColor, pts: Vec<(f64, f64)>) -> Series {
+pub(crate) fn series(name: &str, kind: Kind, color: RGBColor, pts: Vec<(f64, f64)>) -> Series {
     Series {
         name: name.into(),
         kind,
@@ -101,20 +104,20 @@ fn series(name: &str, kind: Kind, color: RGBColor, pts: Vec<(f64, f64)>) -> Seri
     }
 }
 
-fn unlabeled(mut s: Series) -> Series {
+pub(crate) fn unlabeled(mut s: Series) -> Series {
     s.legend = false;
     s
 }
 
-struct Panel {
-    title: String,
-    xlabel: String,
-    ylabel: String,
-    series: Vec<Series>,
-    equal_aspect: bool,
+pub(crate) struct Panel {
+    pub title: String,
+    pub xlabel: String,
+    pub ylabel: String,
+    pub series: Vec<Series>,
+    pub equal_aspect: bool,
 }
 
-fn panel(title: &str, xlabel: &str, ylabel: &str) -> Panel {
+pub(crate) fn panel(title: &str, xlabel: &str, ylabel: &str) -> Panel {
     Panel {
         title: title.into(),
         xlabel: xlabel.into(),
@@ -125,26 +128,26 @@ fn panel(title: &str, xlabel: &str, ylabel: &str) -> Panel {
 }
 
 /// One output file: panels side by side, each `w` by `h` output pixels (plus the caption).
-struct Fig {
-    name: String,
-    caption: String,
-    panels: Vec<Panel>,
-    w: u32,
-    h: u32,
+pub(crate) struct Fig {
+    pub name: String,
+    pub caption: String,
+    pub panels: Vec<Panel>,
+    pub w: u32,
+    pub h: u32,
 }
 
 fn pe<E: std::fmt::Debug>(e: E) -> Fail {
     solve_fail(format!("drawing the figure failed: {e:?}"))
 }
 
-const BLUE_: RGBColor = RGBColor(31, 119, 180);
-const ORANGE_: RGBColor = RGBColor(255, 127, 14);
-const GREEN_: RGBColor = RGBColor(44, 160, 44);
-const RED_: RGBColor = RGBColor(214, 39, 40);
-const PURPLE_: RGBColor = RGBColor(148, 103, 189);
-const GREY_: RGBColor = RGBColor(110, 110, 110);
-const NAVY_: RGBColor = RGBColor(20, 30, 110);
-const BROWN_: RGBColor = RGBColor(120, 60, 10);
+pub(crate) const BLUE_: RGBColor = RGBColor(31, 119, 180);
+pub(crate) const ORANGE_: RGBColor = RGBColor(255, 127, 14);
+pub(crate) const GREEN_: RGBColor = RGBColor(44, 160, 44);
+pub(crate) const RED_: RGBColor = RGBColor(214, 39, 40);
+pub(crate) const PURPLE_: RGBColor = RGBColor(148, 103, 189);
+pub(crate) const GREY_: RGBColor = RGBColor(110, 110, 110);
+pub(crate) const NAVY_: RGBColor = RGBColor(20, 30, 110);
+pub(crate) const BROWN_: RGBColor = RGBColor(120, 60, 10);
 
 // ---------------------------------------------------------------------------------------------
 // Layout geometry (SVG user units, absolute in the figure)
@@ -198,6 +201,8 @@ impl Rect {
 pub(crate) enum Mark {
     Path(Vec<(f64, f64)>),
     Dot((f64, f64), f64),
+    /// a filled area
+    Area(Rect),
 }
 
 /// Whether segment `a`-`b` meets the rectangle (Liang-Barsky clipping).
@@ -257,6 +262,11 @@ fn clearance(r: &Rect, marks: &[Mark]) -> f64 {
     for m in marks {
         let d = match m {
             Mark::Dot(c, rad) => (r.dist(*c) - rad).max(0.0),
+            Mark::Area(a) => {
+                let dx = (a.x0 - r.x1).max(r.x0 - a.x1).max(0.0);
+                let dy = (a.y0 - r.y1).max(r.y0 - a.y1).max(0.0);
+                dx.hypot(dy)
+            }
             Mark::Path(p) if p.len() == 1 => r.dist(p[0]),
             Mark::Path(p) => p
                 .windows(2)
@@ -420,12 +430,16 @@ fn font(size: f64) -> TextStyle<'static> {
 fn data_ranges(p: &Panel) -> ((f64, f64), (f64, f64)) {
     let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for s in &p.series {
+        let (hw, hh) = match s.kind {
+            Kind::Cell(hw, hh) => (hw, hh),
+            _ => (0.0, 0.0),
+        };
         for &(x, y) in &s.pts {
             if x.is_finite() && y.is_finite() {
-                x0 = x0.min(x);
-                x1 = x1.max(x);
-                y0 = y0.min(y);
-                y1 = y1.max(y);
+                x0 = x0.min(x - hw);
+                x1 = x1.max(x + hw);
+                y0 = y0.min(y - hh);
+                y1 = y1.max(y + hh);
             }
         }
     }
@@ -500,7 +514,18 @@ fn to_pixels<DB: DrawingBackend>(
                 (b.0 as f64, b.1 as f64)
             })
             .collect();
-        if s.kind.is_line() {
+        if let Kind::Cell(hw, hh) = s.kind {
+            for q in s.pts.iter().filter(|(x, y)| x.is_finite() && y.is_finite()) {
+                let a = c.backend_coord(&(q.0 - hw, q.1 + hh));
+                let b = c.backend_coord(&(q.0 + hw, q.1 - hh));
+                marks.push(Mark::Area(Rect {
+                    x0: a.0 as f64,
+                    y0: a.1 as f64,
+                    x1: b.0 as f64,
+                    y1: b.1 as f64,
+                }));
+            }
+        } else if s.kind.is_line() {
             if !v.is_empty() {
                 marks.push(Mark::Path(v.clone()));
             }
@@ -541,6 +566,12 @@ where
             .map_err(pe),
         Kind::Triangle => closed(&[(0.0, -4.5), (4.0, 2.5), (-4.0, 2.5)], 1.5),
         Kind::Square => closed(&[(-4.0, -4.0), (4.0, -4.0), (4.0, 4.0), (-4.0, 4.0)], 2.0),
+        Kind::Cell(..) => a
+            .draw(&Rectangle::new(
+                [(x - u(5.0), y - u(5.0)), (x + u(5.0), y + u(5.0))],
+                color.filled(),
+            ))
+            .map_err(pe),
         Kind::Cross => {
             let st = color.stroke_width(u(3.0) as u32);
             let h = u(6.0);
@@ -705,7 +736,26 @@ where
             .map(|&(x, y)| (x as i32 - base.0, y as i32 - base.1))
             .collect()
     };
+    // cells first: they fill areas that other series may mark
+    let mut cells = 0;
+    for m in &marks {
+        if let Mark::Area(r) = m {
+            let col = cell_color(p, cells);
+            cells += 1;
+            pa.draw(&Rectangle::new(
+                [
+                    (r.x0 as i32 - base.0, r.y0 as i32 - base.1),
+                    (r.x1 as i32 - base.0, r.y1 as i32 - base.1),
+                ],
+                col.filled(),
+            ))
+            .map_err(pe)?;
+        }
+    }
     for (s, v) in p.series.iter().zip(&px) {
+        if matches!(s.kind, Kind::Cell(..)) {
+            continue;
+        }
         if s.kind.is_line() {
             line(&pa, s.kind, s.color, rel(v))?;
         } else {
@@ -793,8 +843,24 @@ where
     })
 }
 
+/// The colour of the `i`-th cell of a panel (cells are marked in series order).
+fn cell_color(p: &Panel, mut i: usize) -> RGBColor {
+    for s in p.series.iter().filter(|s| matches!(s.kind, Kind::Cell(..))) {
+        let n = s
+            .pts
+            .iter()
+            .filter(|q| q.0.is_finite() && q.1.is_finite())
+            .count();
+        if i < n {
+            return s.color;
+        }
+        i -= n;
+    }
+    BLACK
+}
+
 /// Draw a figure into an SVG string; returns it with the layout of each panel.
-fn render(fig: &Fig) -> Res<(String, Vec<PanelLayout>)> {
+pub(crate) fn render(fig: &Fig) -> Res<(String, Vec<PanelLayout>)> {
     let (w, h) = (fig.w * fig.panels.len() as u32, fig.h + 40);
     let mut svg = String::new();
     let mut layouts = Vec::new();
@@ -1398,11 +1464,6 @@ pub fn run(a: &FiguresArgs) -> Res<()> {
             .collect::<Res<_>>()?,
         None => (2..=11).collect(),
     };
-    if a.method == MethodArg::Analytic {
-        return Err(usage(
-            "figures overlay numerical solutions on the closed forms: choose a numerical --method",
-        ));
-    }
     std::fs::create_dir_all(&a.out_dir)
         .map_err(|e| solve_fail(format!("cannot create {}: {e}", a.out_dir.display())))?;
     let cx = context(a.method, a.tol)?;
@@ -1417,14 +1478,16 @@ pub fn run(a: &FiguresArgs) -> Res<()> {
     Ok(())
 }
 
+/// The layout check of the tests (figures and `plot`): legends and labels never cover data.
 #[cfg(test)]
-mod tests {
+pub(crate) mod layout_check {
     use super::*;
 
     /// Whether a drawn mark reaches into the rectangle, checked independently of the layout code:
     /// every segment sampled every 1/4 output pixel, markers as disks of their radius.
-    fn covers(r: &Rect, m: &Mark) -> bool {
+    pub(crate) fn covers(r: &Rect, m: &Mark) -> bool {
         match m {
+            Mark::Area(a) => a.overlaps(r),
             Mark::Dot(c, rad) => {
                 let dx = (r.x0 - c.0).max(c.0 - r.x1).max(0.0);
                 let dy = (r.y0 - c.1).max(c.1 - r.y1).max(0.0);
@@ -1451,13 +1514,13 @@ mod tests {
 
     /// Legends and labels of one rendered panel: present when the panel has legend entries or
     /// tags, inside the panel, and touching no drawn data (nor each other).
-    fn check_panel(fig: &str, p: &Panel, l: &PanelLayout) {
+    pub(crate) fn check_panel(fig: &str, p: &Panel, l: &PanelLayout) {
         let drawn: usize = l
             .marks
             .iter()
             .map(|m| match m {
                 Mark::Path(v) => v.len(),
-                Mark::Dot(..) => 1,
+                Mark::Dot(..) | Mark::Area(..) => 1,
             })
             .sum();
         let finite: usize = p
@@ -1498,6 +1561,12 @@ mod tests {
             }
         }
     }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::layout_check::*;
+    use super::*;
 
     #[test]
     fn legends_and_labels_never_cover_data() {

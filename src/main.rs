@@ -3,10 +3,13 @@
 mod cli;
 mod error;
 mod figures;
+mod journal;
 mod numbers;
 mod numeric;
 mod output;
 mod outputs;
+mod peg;
+mod plot;
 mod progress;
 mod scan;
 mod scene_args;
@@ -88,6 +91,24 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Infer(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
         }
+        Command::Plot(a) => {
+            let out = plot::out_path(a);
+            outputs::plan(&[("--out", out.as_path())], false)?;
+        }
+        Command::Whisk(a) => {
+            scene_args::build_scene(&a.scene, None)?;
+            let mut outs = Vec::new();
+            if let Some(p) = &a.out {
+                outs.push(("--out", p.as_path()));
+            }
+            if let Some(p) = &a.shapes {
+                outs.push(("--shapes", p.as_path()));
+            }
+            outputs::plan(&outs, false)?;
+        }
+        Command::Locate(a) => {
+            scene_args::build_scene(&a.scene, None)?;
+        }
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
@@ -109,10 +130,19 @@ fn run(mut cli: Cli) -> Res<()> {
             scan::run_infer(a)
         }
         Command::Sweep(a) => sweep::run(a),
+        Command::Whisk(a) => {
+            progress::start("whisk", false);
+            peg::run_whisk(a)
+        }
+        Command::Locate(a) => {
+            progress::start("locate", false);
+            peg::run_locate(a)
+        }
         Command::Figures(a) => {
             progress::start("figures", true);
             figures::run(a)
         }
+        Command::Plot(a) => plot::run(a),
     }
 }
 

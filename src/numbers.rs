@@ -55,24 +55,115 @@ pub fn count(s: &str, lo: u64, hi: u64) -> Result<u32, String> {
     Ok(v as u32)
 }
 
-/// A grid axis of `vibrissa sweep`: the values, and the text they came from.
+/// A grid axis of `vibrissa sweep`: its values (a list, or a range whose values are computed
+/// when asked for, so that a 10^7-point range costs no memory and its size is known at once), and
+/// the text they came from.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
-    /// The values in order.
-    pub values: Vec<f64>,
+    values: Values,
     /// The text typed by the user.
     pub text: String,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Values {
+    /// a comma list (at least one value)
+    List(Vec<f64>),
+    /// `a:b:n`, `n >= 2`: `a + (b − a)·i/(n − 1)`, from the decimal digits typed when they parse
+    Range {
+        a: f64,
+        b: f64,
+        exact: Option<(Decimal, Decimal)>,
+        n: u64,
+    },
+}
+
+impl Axis {
+    /// Number of values (never 0).
+    pub fn len(&self) -> u64 {
+        match &self.values {
+            Values::List(v) => v.len() as u64,
+            Values::Range { n, .. } => *n,
+        }
+    }
+
+    /// The `i`-th value (`i < len()`).
+    pub fn get(&self, i: u64) -> f64 {
+        match &self.values {
+            Values::List(v) => v[i as usize],
+            Values::Range { a, b, exact, n } => {
+                let last = n - 1;
+                exact
+                    .and_then(|(da, db)| lerp_exact(&da, &db, i, last))
+                    .unwrap_or_else(|| {
+                        if i == last {
+                            *b
+                        } else {
+                            a + (b - a) * i as f64 / last as f64
+                        }
+                    })
+            }
+        }
+    }
+
+    /// The first value.
+    pub fn first(&self) -> f64 {
+        self.get(0)
+    }
+
+    /// The values a check against an interval needs to see: every value of a list, the two ends
+    /// of a range (its other values lie between them: each is the correctly rounded value of a
+    /// point between the ends, or their convex combination).
+    pub fn extremes(&self) -> Vec<f64> {
+        match &self.values {
+            Values::List(v) => v.clone(),
+            Values::Range { n, .. } => vec![self.get(0), self.get(n - 1)],
+        }
+    }
+
+    /// The smallest and the largest value.
+    pub fn min_max(&self) -> (f64, f64) {
+        self.extremes()
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+                (lo.min(*v), hi.max(*v))
+            })
+    }
+
+    /// The first value that is not a whole number, if any. A range of whole ends has only whole
+    /// values when its step is whole, that is when its second value is.
+    pub fn first_fraction(&self) -> Option<f64> {
+        let whole = |v: f64| v.fract() == 0.0;
+        match &self.values {
+            Values::List(v) => v.iter().copied().find(|v| !whole(*v)),
+            Values::Range { n, .. } => [0, 1, n - 1]
+                .into_iter()
+                .map(|i| self.get(i))
+                .find(|v| !whole(*v)),
+        }
+    }
 }
 
 /// Most points of one range `a:b:n`.
 pub const MAX_AXIS_POINTS: u64 = 10_000_000;
 
-/// Parse a grid axis: `a:b:n` (n points, both ends included) or a comma list `v1,v2,...`.
+/// Parse a grid axis: `a:b:n` (n points, both ends included) or a comma list `v1,v2,...` of
+/// finite numbers.
 ///
 /// Range points are `a + (b − a)·i/(n − 1)` computed exactly from the decimal digits typed and
 /// rounded once to the nearest `f64`, so `0.6:0.95:8` gives `0.8`, not `0.7999999999999999`
-/// (falls back to floating point for spellings that are not plain decimals).
+/// (falls back to floating point for spellings that are not plain decimals). A range's values
+/// are computed when asked for ([`Axis::get`]), not here.
 pub fn parse_axis(s: &str) -> Result<Axis, String> {
+    parse_axis_with(s, finite_f64)
+}
+
+/// [`parse_axis`], with `inf` allowed in a list (`--mu0 0.5,1,inf`: inf is "never slips").
+pub fn parse_axis_or_inf(s: &str) -> Result<Axis, String> {
+    parse_axis_with(s, number_or_inf)
+}
+
+fn parse_axis_with(s: &str, item: fn(&str) -> Result<f64, String>) -> Result<Axis, String> {
     let values = if s.contains(':') {
         let parts: Vec<&str> = s.split(':').collect();
         if parts.len() != 3 {
@@ -101,30 +192,20 @@ pub fn parse_axis(s: &str) -> Result<Axis, String> {
                     parts[1].trim()
                 ));
             }
-            vec![a]
+            Values::List(vec![a])
         } else {
-            let exact = Decimal::parse(parts[0]).zip(Decimal::parse(parts[1]));
-            (0..n)
-                .map(|i| {
-                    exact
-                        .and_then(|(da, db)| lerp_exact(&da, &db, i, n - 1))
-                        .unwrap_or_else(|| {
-                            if i + 1 == n {
-                                b
-                            } else {
-                                a + (b - a) * i as f64 / (n - 1) as f64
-                            }
-                        })
-                })
-                .collect()
+            Values::Range {
+                a,
+                b,
+                exact: Decimal::parse(parts[0]).zip(Decimal::parse(parts[1])),
+                n,
+            }
         }
     } else {
         if s.trim().is_empty() {
             return Err("an empty list".into());
         }
-        s.split(',')
-            .map(finite_f64)
-            .collect::<Result<Vec<_>, _>>()?
+        Values::List(s.split(',').map(item).collect::<Result<Vec<_>, _>>()?)
     };
     Ok(Axis {
         values,
@@ -133,7 +214,7 @@ pub fn parse_axis(s: &str) -> Result<Axis, String> {
 }
 
 /// A decimal number `m · 10^e` exactly as typed.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct Decimal {
     m: i128,
     e: i32,
@@ -374,27 +455,60 @@ mod tests {
         assert!(number_or_inf("nan").is_err());
     }
 
+    fn values(s: &str) -> Vec<f64> {
+        let a = parse_axis(s).unwrap();
+        (0..a.len()).map(|i| a.get(i)).collect()
+    }
+
     #[test]
     fn ranges_are_exact_decimals() {
-        let v = parse_axis("0.6:0.95:8").unwrap().values;
+        let v = values("0.6:0.95:8");
         // exact values 0.6 + 0.05 i, each the nearest double of its decimal
         let want = [0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9, 0.95];
         assert_eq!(v, want);
-        let v = parse_axis("0.05:1:20").unwrap().values;
+        let v = values("0.05:1:20");
         assert_eq!(v[7], 0.4);
         assert_eq!(v[19], 1.0);
-        let v = parse_axis("-0.1:0.1:3").unwrap().values;
+        let v = values("-0.1:0.1:3");
         assert_eq!(v, [-0.1, 0.0, 0.1]);
         // thirds: the nearest double of 1/3, 2/3
-        let v = parse_axis("0:1:4").unwrap().values;
+        let v = values("0:1:4");
         assert_eq!(v, [0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0]);
-        let v = parse_axis("-1e-3:1e-3:5").unwrap().values;
+        let v = values("-1e-3:1e-3:5");
         assert_eq!(v, [-1e-3, -5e-4, 0.0, 5e-4, 1e-3]);
-        assert_eq!(parse_axis("-1,0,1").unwrap().values, [-1.0, 0.0, 1.0]);
+        assert_eq!(values("-1,0,1"), [-1.0, 0.0, 1.0]);
         assert!(parse_axis("0.5:0.9").is_err());
         assert!(parse_axis("0.5:0.9:1").is_err());
         assert!(parse_axis("0:1:-3").is_err());
         assert!(parse_axis("").is_err());
+    }
+
+    #[test]
+    fn a_range_is_computed_when_asked() {
+        // 10^7 points: known size, values on demand, ends exact
+        let a = parse_axis("0.5:0.9:10000000").unwrap();
+        assert_eq!(a.len(), 10_000_000);
+        assert_eq!(a.extremes(), [0.5, 0.9]);
+        assert_eq!(a.get(5_000_000), 0.5 + 0.4 * 5e6 / 9_999_999.0);
+        assert_eq!(a.min_max(), (0.5, 0.9));
+        let d = parse_axis("0.9:0.5:3").unwrap();
+        assert_eq!(d.min_max(), (0.5, 0.9));
+        assert_eq!(parse_axis("3,-1,2").unwrap().min_max(), (-1.0, 3.0));
+        // whole numbers: ends and step
+        assert_eq!(parse_axis("11:201:20").unwrap().first_fraction(), None);
+        assert_eq!(
+            parse_axis("11:200:3").unwrap().first_fraction(),
+            Some(105.5)
+        );
+        assert_eq!(parse_axis("11,21.5").unwrap().first_fraction(), Some(21.5));
+        // inf only where allowed, and only in lists
+        assert!(parse_axis("0.5,inf").is_err());
+        assert_eq!(
+            parse_axis_or_inf("0.5,inf").unwrap().extremes(),
+            [0.5, f64::INFINITY]
+        );
+        assert!(parse_axis_or_inf("0.5:inf:3").is_err());
+        assert!(parse_axis_or_inf("nan").is_err());
     }
 
     #[test]

@@ -68,7 +68,8 @@ pub fn solve(scene: &Scene, a: &SolveArgs, npts: usize) -> Res<SolveOut> {
         start: scene.start,
         ..config(a.solver.method, a.solver.tol)
     };
-    let sh = vibrissa::solve(&rod, a.alpha, target, &branch, &cfg)?;
+    let alpha = a.alpha.unwrap_or(0.0);
+    let sh = vibrissa::solve(&rod, alpha, target, &branch, &cfg)?;
     let clearance = sh.clearance(scene.surface_angle);
     let shape = if npts >= 2 {
         sh.samples(npts)

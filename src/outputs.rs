@@ -12,6 +12,8 @@
 //! - Temporary names are short (`.NAME.PID.N.part` with NAME cut to 100 bytes), so any legal
 //!   target name works.
 //! - Every I/O error names the user's flag and path and the operation.
+//! - One file outlives a failure on purpose: the journal of `sweep --out FILE` (`journal`), kept
+//!   on error and on a signal, removed after the commit ([`remove_after_commit`]).
 
 use crate::error::{solve_fail, usage, Res};
 use std::fs::{File, OpenOptions};
@@ -45,6 +47,10 @@ struct Slot {
 }
 
 static SLOTS: Mutex<Vec<Slot>> = Mutex::new(Vec::new());
+/// Files to remove once every output is in place (a sweep's journal).
+static AFTER_COMMIT: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// A line for stderr when a signal ends the process (where a sweep's finished rows are kept).
+static SIGNAL_NOTE: Mutex<Option<String>> = Mutex::new(None);
 static COUNTER: AtomicU64 = AtomicU64::new(0);
 static SIGNALS: Once = Once::new();
 
@@ -129,6 +135,32 @@ fn temp_name(name: &std::ffi::OsStr) -> String {
         std::process::id(),
         COUNTER.fetch_add(1, Ordering::Relaxed)
     )
+}
+
+/// The file a regular-file output ends up in (links followed, the directory canonical, as
+/// [`plan`] resolves it); `None` for devices, FIFOs and sockets, which are written in place.
+pub fn file_target(flag: &str, path: &Path) -> Res<Option<PathBuf>> {
+    let lab = label(flag, path);
+    let (target, special) = resolve(&lab, path)?;
+    if special {
+        return Ok(None);
+    }
+    let (dir, name) = split(&lab, &target)?;
+    Ok(Some(dir.join(name)))
+}
+
+/// Remove `path` once every output of the command is in place ([`commit_all`] succeeded); on
+/// failure or a signal it stays.
+pub fn remove_after_commit(path: PathBuf) {
+    AFTER_COMMIT
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .push(path);
+}
+
+/// Print `line` on stderr if a signal ends the process (after the temporaries are removed).
+pub fn note_on_signal(line: String) {
+    *SIGNAL_NOTE.lock().unwrap_or_else(|p| p.into_inner()) = Some(line);
 }
 
 /// Plan the outputs of a command before any work: resolve each, refuse duplicates, and (unless
@@ -335,6 +367,18 @@ pub fn commit_all() -> Res<()> {
             }
         }
     }
+    let after: Vec<PathBuf> = AFTER_COMMIT
+        .lock()
+        .unwrap_or_else(|p| p.into_inner())
+        .drain(..)
+        .collect();
+    if first_err.is_none() {
+        for p in after {
+            if let Err(e) = std::fs::remove_file(&p) {
+                crate::progress::warn(&format!("cannot remove {}: {e}", p.display()));
+            }
+        }
+    }
     first_err.map_or(Ok(()), Err)
 }
 
@@ -359,6 +403,10 @@ fn install_signal_cleanup() {
         std::thread::spawn(move || {
             if let Some(sig) = sigs.forever().next() {
                 abort_all();
+                let note = SIGNAL_NOTE.try_lock().ok().and_then(|n| n.clone());
+                if let Some(n) = note {
+                    crate::progress::eprint(&n);
+                }
                 crate::progress::stop();
                 let _ = signal_hook::low_level::emulate_default_handler(sig);
                 std::process::exit(128 + sig);

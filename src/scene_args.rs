@@ -4,17 +4,46 @@
 use crate::cli::{PhysicalArgs, SceneArgs};
 use crate::error::{usage, Res};
 use crate::validate::{self, SceneSrc};
-use std::path::Path;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 use vibrissa::{Physical, Precurvature, Scene, Stiffness};
 
 /// Physical unit factors (re-exported from the model crate).
 pub use vibrissa::Units;
 
+/// Scene files read so far, by the path as given, with their text.
+static READ: Mutex<Vec<(PathBuf, String)>> = Mutex::new(Vec::new());
+
+/// The text of a scene file, read once per process: a command that builds its scene twice (to
+/// check it before any work, then to run) gets the same text the second time, so `/dev/stdin`,
+/// a pipe or a FIFO (whose second read would be empty, or wait for a writer that never comes)
+/// work like a file. `-` is stdin.
+fn scene_text(path: &Path) -> Res<String> {
+    // a panic while holding the lock leaves the list usable
+    let mut read = READ.lock().unwrap_or_else(|p| p.into_inner());
+    if let Some((_, text)) = read.iter().find(|(p, _)| p == path) {
+        return Ok(text.clone());
+    }
+    let text = if path.as_os_str() == "-" {
+        let mut t = String::new();
+        std::io::stdin()
+            .read_to_string(&mut t)
+            .map(|_| t)
+            .map_err(|e| usage(format!("cannot read the scene from stdin (--scene -): {e}")))?
+    } else {
+        std::fs::read_to_string(path)
+            .map_err(|e| usage(format!("cannot read scene file {}: {e}", path.display())))?
+    };
+    read.push((path.to_path_buf(), text.clone()));
+    Ok(text)
+}
+
 /// Read a scene file (TOML; unknown keys, also those that do not belong to a table's `kind`, are
-/// refused). Errors name the file and the line.
+/// refused). Errors name the file and the line. Each file is read once per process (see
+/// [`scene_text`]).
 pub fn read_scene_file(path: &Path) -> Res<Scene> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| usage(format!("cannot read scene file {}: {e}", path.display())))?;
+    let text = scene_text(path)?;
     // first the keys of each kind: its message has the key's own line and the valid keys
     validate::scene_file_keys(path, &text)?;
     let sc = toml::from_str::<Scene>(&text).map_err(|e| {
@@ -26,7 +55,7 @@ pub fn read_scene_file(path: &Path) -> Res<Scene> {
         usage(format!(
             "scene file {}{line}: {}",
             path.display(),
-            e.message()
+            vibrissa::scene::plain_message(e.message())
         ))
     })?;
     Ok(sc)

@@ -177,6 +177,9 @@ pub fn write_shape(path: &std::path::Path, shape: &[ShapeRow]) -> Res<()> {
 
 /// Run `vibrissa solve`.
 pub fn run(a: &SolveArgs) -> Res<()> {
+    if a.peg.is_some() {
+        return crate::peg::run_solve(a);
+    }
     let scene = build_scene(&a.scene, None)?;
     let npts = if a.shape_out.is_some() {
         a.shape_points as usize

@@ -2,9 +2,10 @@
 //! rows streamed in grid order through a bounded reorder buffer, and `--shard K/N`.
 
 use crate::cli::{MethodArg, Shard, SweepArgs};
-use crate::error::{one_line, solve_fail, usage, Res};
+use crate::error::{one_line, solve_fail, usage, Fail, Res};
+use crate::journal;
 use crate::numbers::{short, Axis};
-use crate::output::{csv_line, num, Sink};
+use crate::output::{csv_line, num, opt, Sink};
 use crate::outputs;
 use crate::scan::{run_scan, ScanSpec};
 use crate::scene_args::{
@@ -18,13 +19,13 @@ use std::io::{IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
-use vibrissa::{Precurvature, Scene, Stiffness};
+use vibrissa::{Precurvature, RangeEnd, Scene, Stiffness};
 
 /// Set while a sweep runs: a panic inside one scene becomes that scene's error row, and the
 /// panic hook stays quiet.
 pub static QUIET_PANICS: AtomicBool = AtomicBool::new(false);
 
-/// One grid point's parameters (`None`: the base scene's value).
+/// One grid point's parameters (`None` for a scene value: the base scene's).
 #[derive(Clone, Debug)]
 struct Cell {
     eta: Option<f64>,
@@ -35,67 +36,88 @@ struct Cell {
     beta: Option<f64>,
     method: MethodArg,
     tol: f64,
+    /// `None`: never slips
+    mu0: Option<f64>,
+    d_max: f64,
+    points: u32,
 }
 
-/// The grid: axes and index arithmetic (last axis fastest).
-struct Grid {
-    eta: Vec<Option<f64>>,
-    taper: Vec<Option<f64>>,
-    k0: Vec<Option<f64>>,
-    k1: Vec<Option<f64>>,
-    c: Vec<Option<f64>>,
-    beta: Vec<Option<f64>>,
+/// The grid: its axes in grid order (the first slowest, the last fastest; the order of the CSV
+/// columns) and index arithmetic. Values are computed per cell, never stored: the size of a grid
+/// is known without building it.
+struct Grid<'a> {
+    /// eta, taper, precurvature, precurvature slope, compliance, surface angle
+    scene: [Option<&'a Axis>; 6],
     method: Vec<MethodArg>,
-    tol: Vec<f64>,
+    tol: &'a Axis,
+    mu0: Option<&'a Axis>,
+    d_max: &'a Axis,
+    points: &'a Axis,
 }
 
-impl Grid {
+impl Grid<'_> {
+    /// The axes' flags and lengths, in grid order.
+    fn lens(&self) -> [(&'static str, u64); 11] {
+        let len = |a: Option<&Axis>| a.map_or(1, Axis::len);
+        let [e, r, k0, k1, c, b] = self.scene.map(len);
+        [
+            ("--eta", e),
+            ("--taper", r),
+            ("--precurvature", k0),
+            ("--precurvature-slope", k1),
+            ("--support-compliance", c),
+            ("--surface-angle", b),
+            ("--method", self.method.len() as u64),
+            ("--tol", self.tol.len()),
+            ("--mu0", len(self.mu0)),
+            ("--d-max", self.d_max.len()),
+            ("--points", self.points.len()),
+        ]
+    }
+
     fn cell(&self, mut i: u64) -> Cell {
-        let mut take = |n: usize| {
-            let r = (i % n as u64) as usize;
-            i /= n as u64;
-            r
-        };
-        let it = take(self.tol.len());
-        let im = take(self.method.len());
-        let ib = take(self.beta.len());
-        let ic = take(self.c.len());
-        let i1 = take(self.k1.len());
-        let i0 = take(self.k0.len());
-        let ir = take(self.taper.len());
-        let ie = take(self.eta.len());
+        let mut at = [0u64; 11];
+        for (k, (_, n)) in self.lens().iter().enumerate().rev() {
+            at[k] = i % n;
+            i /= n;
+        }
+        let v = |a: Option<&Axis>, k: usize| a.map(|a| a.get(at[k]));
         Cell {
-            eta: self.eta[ie],
-            taper: self.taper[ir],
-            k0: self.k0[i0],
-            k1: self.k1[i1],
-            c: self.c[ic],
-            beta: self.beta[ib],
-            method: self.method[im],
-            tol: self.tol[it],
+            eta: v(self.scene[0], 0),
+            taper: v(self.scene[1], 1),
+            k0: v(self.scene[2], 2),
+            k1: v(self.scene[3], 3),
+            c: v(self.scene[4], 4),
+            beta: v(self.scene[5], 5),
+            method: self.method[at[6] as usize],
+            tol: self.tol.get(at[7]),
+            mu0: v(self.mu0, 8).filter(|m| m.is_finite()),
+            d_max: self.d_max.get(at[9]),
+            points: self.points.get(at[10]) as u32,
         }
     }
 }
 
-fn axis(a: &Option<Axis>) -> Vec<Option<f64>> {
-    match a {
-        Some(a) => a.values.iter().copied().map(Some).collect(),
-        None => vec![None],
-    }
-}
+/// The scene columns of the sweep CSV, its numeric grid axes (with `tol`).
+pub const SCENE_AXES: [&str; 6] = [
+    "eta",
+    "taper",
+    "precurvature",
+    "precurvature_slope",
+    "support_compliance",
+    "surface_angle",
+];
 
 /// Columns of the sweep CSV (`physical`: the base scene has physical dimensions).
 pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
-    let mut h = vec![
-        "index",
-        "eta",
-        "taper",
-        "precurvature",
-        "precurvature_slope",
-        "support_compliance",
-        "surface_angle",
+    let mut h = vec!["index"];
+    h.extend(SCENE_AXES);
+    h.extend([
         "method",
         "tol",
+        "mu0",
+        "d_max",
+        "grid_points",
         "f0",
         "phi1_0",
         "mu_max",
@@ -106,7 +128,7 @@ pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
         "points",
         "newton_iters",
         "rhs_evals",
-    ];
+    ]);
     if physical {
         h.extend(["f0_N", "d_at_mu_max_mm", "d_end_mm"]);
     }
@@ -119,12 +141,12 @@ pub fn header(timing: bool, physical: bool) -> Vec<&'static str> {
 
 fn scene_cols(sc: &Scene) -> [String; 6] {
     let taper = match &sc.stiffness {
-        Stiffness::Uniform {} => num(1.0),
+        Stiffness::Uniform => num(1.0),
         Stiffness::Taper { ratio } => num(*ratio),
         Stiffness::Table { .. } => "table".into(),
     };
     let (k0, k1) = match &sc.precurvature {
-        Precurvature::None {} => (num(0.0), num(0.0)),
+        Precurvature::None => (num(0.0), num(0.0)),
         Precurvature::Linear { k0, k1 } => (num(*k0), num(*k1)),
         Precurvature::Table { .. } => ("table".into(), "table".into()),
     };
@@ -157,12 +179,15 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     row.extend(scene_cols(&sc));
     row.push(cell.method.name().to_string());
     row.push(num(cell.tol));
+    row.push(opt(cell.mu0));
+    row.push(num(cell.d_max));
+    row.push(cell.points.to_string());
     let spec = ScanSpec {
         method: cell.method,
         tol: cell.tol,
-        d_max: a.d_max,
-        points: a.points as usize,
-        mu0: a.mu0,
+        d_max: cell.d_max,
+        points: cell.points as usize,
+        mu0: cell.mu0,
         shape_points: 0,
     };
     let result = std::panic::catch_unwind(|| -> Res<_> {
@@ -183,11 +208,14 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     let err = match result {
         Ok(Ok(o)) => {
             let last = o.pts.last().copied().unwrap_or(o.start);
+            let failed = o.stop.reason == SOLVER_FAILURE;
+            let known = max_is_known(failed, o.range_end, o.d_at_mu_max, last.d);
+            let d_at_mu_max = known.then_some(o.d_at_mu_max);
             row.extend([
                 num(o.start.f),
                 num(o.start.phi1),
-                num(o.mu_max),
-                num(o.d_at_mu_max),
+                opt(known.then_some(o.mu_max)),
+                opt(d_at_mu_max),
                 num(last.mu),
                 num(last.d),
                 o.stop.reason.clone(),
@@ -201,16 +229,18 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
                     moment_nm: f64::NAN,
                     length_mm: f64::NAN,
                 });
-                row.extend(
-                    [
-                        o.start.f * u.force_n,
-                        o.d_at_mu_max * u.length_mm,
-                        last.d * u.length_mm,
-                    ]
-                    .map(num),
-                );
+                row.extend([
+                    num(o.start.f * u.force_n),
+                    opt(d_at_mu_max.map(|d| d * u.length_mm)),
+                    num(last.d * u.length_mm),
+                ]);
             }
-            String::new()
+            if failed {
+                // the scan's rows up to the failure are results; the scene is not
+                crate::numbers::shorten_numbers(&one_line(&o.stop.detail))
+            } else {
+                String::new()
+            }
         }
         Ok(Err(e)) => {
             blank(&mut row);
@@ -234,6 +264,18 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     (row, failed)
 }
 
+/// The stop reason of a scan that ended in a solver failure.
+const SOLVER_FAILURE: &str = "solver_failure";
+
+/// Whether a scan's `mu_max` is a result: always when the scan ended at an event or at d_max;
+/// after a solver failure only when the first maximum of |mu| was found before it, at or before
+/// the last point the scan reports (`d_last`). Otherwise the measurable range is unknown (|mu|
+/// was still rising, or the value comes from beyond the last reported point) and the row leaves
+/// `mu_max` and `d_at_mu_max` empty.
+fn max_is_known(failed: bool, range_end: RangeEnd, d_at_mu_max: f64, d_last: f64) -> bool {
+    !failed || (range_end == RangeEnd::FirstMaximum && d_at_mu_max <= d_last)
+}
+
 fn csv_string(fields: &[String]) -> String {
     let mut v = Vec::new();
     // writing to a Vec cannot fail
@@ -251,7 +293,7 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
     apply_physical(&mut base, &a.physical)?;
     // check the base with the axes' first values in place: each quantity is then checked from
     // where it came (the flag or the file's key); the axes' other values are checked below
-    let first = |x: &Option<Axis>| x.as_ref().and_then(|x| x.values.first().copied());
+    let first = |x: &Option<Axis>| x.as_ref().map(Axis::first);
     let mut probe = base.clone();
     if let Some(e) = first(&a.eta) {
         probe.eta = e;
@@ -294,8 +336,9 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
         (&a.surface_angle, "--surface-angle", validate::SURFACE_ANGLE),
     ] {
         if let Some(x) = x {
-            for v in &x.values {
-                validate::check(Src::Flag(f), *v, &r)?;
+            // the ends of a range suffice: its other values lie between them
+            for v in x.extremes() {
+                validate::check(Src::Flag(f), v, &r)?;
             }
         }
     }
@@ -305,13 +348,7 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
             Precurvature::Linear { k0, k1 } => (*k0, *k1),
             _ => (0.0, 0.0),
         };
-        let ext = |x: &Option<Axis>, b: f64| match x {
-            Some(x) => x
-                .values
-                .iter()
-                .fold((f64::MAX, f64::MIN), |(lo, hi), v| (lo.min(*v), hi.max(*v))),
-            None => (b, b),
-        };
+        let ext = |x: &Option<Axis>, b: f64| x.as_ref().map_or((b, b), Axis::min_max);
         let (lo0, hi0) = ext(&a.precurvature, b0);
         let (lo1, hi1) = ext(&a.precurvature_slope, b1);
         for end in [lo0 + lo1, hi0 + hi1] {
@@ -324,6 +361,27 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
         }
     }
     Ok(base)
+}
+
+/// Flags whose values may differ when a journal is resumed: they do not change the rows
+/// (`--out` is where the journal is; of `--scene` the content counts, not the name).
+const NOT_IN_IDENTITY: [&str; 4] = ["jobs", "dry-run", "out", "scene"];
+
+/// What a sweep is, for its journal: the program, the base scene as read (the file's content,
+/// not its name alone) and every flag as typed, except [`NOT_IN_IDENTITY`].
+fn identity(base: &Scene) -> journal::Identity {
+    let mut id = vec![
+        (
+            "program".to_string(),
+            format!("vibrissa {}", env!("CARGO_PKG_VERSION")),
+        ),
+        (
+            "base scene".to_string(),
+            serde_json::to_string(base).unwrap_or_default(),
+        ),
+    ];
+    id.extend(crate::cli::typed_values("sweep", &NOT_IN_IDENTITY));
+    id
 }
 
 /// Run `vibrissa sweep`.
@@ -342,51 +400,65 @@ pub fn run(a: &SweepArgs) -> Res<()> {
         })
         .collect::<Res<Vec<_>>>()?;
     let grid = Grid {
-        eta: axis(&a.eta),
-        taper: axis(&a.taper),
-        k0: axis(&a.precurvature),
-        k1: axis(&a.precurvature_slope),
-        c: axis(&a.support_compliance),
-        beta: axis(&a.surface_angle),
+        scene: [
+            a.eta.as_ref(),
+            a.taper.as_ref(),
+            a.precurvature.as_ref(),
+            a.precurvature_slope.as_ref(),
+            a.support_compliance.as_ref(),
+            a.surface_angle.as_ref(),
+        ],
         method: methods,
-        tol: a.tol.values.clone(),
+        tol: &a.tol,
+        mu0: a.mu0.as_ref(),
+        d_max: &a.d_max,
+        points: &a.points,
     };
-    let total = validate::grid_size(&[
-        ("--eta", grid.eta.len()),
-        ("--taper", grid.taper.len()),
-        ("--precurvature", grid.k0.len()),
-        ("--precurvature-slope", grid.k1.len()),
-        ("--support-compliance", grid.c.len()),
-        ("--surface-angle", grid.beta.len()),
-        ("--method", grid.method.len()),
-        ("--tol", grid.tol.len()),
-    ])?;
+    let total = validate::grid_size(&grid.lens())?;
     let Shard { k, n } = a.shard.unwrap_or(Shard { k: 1, n: 1 });
     // shard k gets the k-th contiguous block: concatenation keeps the grid order
     let lo = ((k - 1) as u128 * total as u128 / n as u128) as u64;
     let hi = (k as u128 * total as u128 / n as u128) as u64;
     let jobs = validate::jobs(a.jobs, hi - lo);
     // each worker holds one scan of --points points
+    let most_points = a.points.min_max().1 as u64;
     validate::budget(
         "--jobs",
         jobs as u64,
         "--points",
-        a.points as u64,
+        most_points,
         "scan points",
         validate::BYTES_PER_SCAN_POINT,
     )?;
+    if let Some(p) = &a.out {
+        outputs::plan(&[("--out", p)], a.dry_run)?;
+    }
+    // a sweep written to a file keeps its finished rows in a journal next to it
+    let journal_path = match &a.out {
+        Some(p) => outputs::file_target("--out", p)?.map(|t| journal::path_of(&t)),
+        None => None,
+    };
+    let id = identity(&base);
+    let mut found = match &journal_path {
+        Some(j) => journal::find(j, &id)?,
+        None => None,
+    };
     if a.dry_run {
-        if let Some(p) = &a.out {
-            outputs::plan(&[("--out", p)], true)?;
+        let mut resume = String::new();
+        if let (Some(f), Some(j)) = (found.as_mut(), &journal_path) {
+            let (done, _) = f.rows(lo, hi, |_| Ok(()))?;
+            resume = format!(
+                "; resumes from {}: {} of {} rows done",
+                j.display(),
+                done.rows,
+                hi - lo
+            );
         }
         crate::progress::note(&format!(
-            "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes); {jobs} threads",
+            "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes); {jobs} threads{resume}",
             hi - lo
         ));
         return Ok(());
-    }
-    if let Some(p) = &a.out {
-        outputs::plan(&[("--out", p)], false)?;
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs)
@@ -425,12 +497,36 @@ pub fn run(a: &SweepArgs) -> Res<()> {
             &csv_string(&to_strings(&header(a.timing, physical))),
         )?;
     }
+    // the journal's rows go to the output as they were; the rest is computed
+    let mut resumed = journal::Finished::default();
+    let mut journal = match &journal_path {
+        Some(j) => {
+            let len = match found.as_mut() {
+                Some(f) => {
+                    let (done, len) = f.rows(lo, hi, |row| Ok(write(&mut sink, row)?))?;
+                    resumed = done;
+                    len
+                }
+                None => 0,
+            };
+            let jr = journal::Journal::open(j, &id, len)?;
+            outputs::note_on_signal(format!(
+                "sweep interrupted: its finished rows are kept in {}; the same command resumes it",
+                j.display()
+            ));
+            Some(jr)
+        }
+        None => None,
+    };
+    drop(found);
+    bar.set_position(resumed.rows);
     QUIET_PANICS.store(true, Ordering::SeqCst);
     // set when the output failed or closed: workers skip the remaining scenes
     let stop = AtomicBool::new(false);
     // bounded window: at most `window` rows wait in the reorder buffer
     let window = (jobs as u64 * 32).max(64);
     let (tx, rx) = mpsc::sync_channel::<(u64, String, bool)>(window as usize);
+    let first = lo + resumed.rows;
     let grid = &grid;
     let base = &base;
     let stop = &stop;
@@ -440,7 +536,7 @@ pub fn run(a: &SweepArgs) -> Res<()> {
     std::thread::scope(|s| {
         s.spawn(move || {
             pool.install(|| {
-                let mut start = lo;
+                let mut start = first;
                 while start < hi && !stop.load(Ordering::Relaxed) {
                     let end = (start + window).min(hi);
                     (start..end)
@@ -459,12 +555,18 @@ pub fn run(a: &SweepArgs) -> Res<()> {
             });
             drop(tx);
         });
-        let mut next = lo;
+        let mut next = first;
         let mut buf: BTreeMap<u64, (String, bool)> = BTreeMap::new();
         for (i, line, bad) in rx.iter() {
             buf.insert(i, (line, bad));
             while let Some((l, bad)) = buf.remove(&next) {
-                if let Err(e) = write(&mut sink, &l) {
+                let r = write(&mut sink, &l).and_then(|_| match journal.as_mut() {
+                    Some(j) => j
+                        .append(&l)
+                        .map_err(|e| outputs::named(&j.path().display().to_string(), e)),
+                    None => Ok(()),
+                });
+                if let Err(e) = r {
                     write_err = Some(e);
                     break;
                 }
@@ -488,24 +590,106 @@ pub fn run(a: &SweepArgs) -> Res<()> {
     });
     QUIET_PANICS.store(false, Ordering::SeqCst);
     bar.finish_and_clear();
+    let kept = |f: Fail| match (&f, &journal_path) {
+        (Fail::Solve(m), Some(j)) => solve_fail(format!(
+            "{m}; the {} finished rows are kept in {}: the same command resumes the sweep",
+            resumed.rows + done,
+            j.display()
+        )),
+        _ => f,
+    };
     if let Some(e) = write_err {
-        return Err(e.into());
+        return Err(kept(e.into()));
     }
-    sink.finish()?;
+    sink.finish().map_err(kept)?;
+    if let Some(j) = journal {
+        let path = j.path().to_path_buf();
+        j.close().map_err(kept)?;
+        outputs::remove_after_commit(path);
+    }
+    let rows = resumed.rows + done;
+    let failed = resumed.failed + failed;
+    let dest = match &a.out {
+        Some(p) => format!("; written to {}", p.display()),
+        None => String::new(),
+    };
     if show_bar {
-        let dest = match &a.out {
-            Some(p) => format!("; written to {}", p.display()),
-            None => String::new(),
+        let from = if resumed.rows > 0 {
+            format!(", {} of them resumed from the journal", resumed.rows)
+        } else {
+            String::new()
         };
         crate::progress::note(&format!(
-            "sweep: {done} scenes in {:.1} s ({} solved, {failed} with an error){dest}",
+            "sweep: {rows} scenes in {:.1} s ({} solved, {failed} with an error{from}){dest}",
             t0.elapsed().as_secs_f64(),
-            done - failed
+            rows - failed
         ));
+    }
+    if rows > 0 && failed == rows {
+        // the file is written (every row says why its scene failed), and the exit code says
+        // that no scene has a result
+        outputs::commit_all()?;
+        let which = if n > 1 {
+            format!("of shard {k}/{n} ")
+        } else {
+            String::new()
+        };
+        return Err(solve_fail(format!(
+            "every scene {which}failed ({rows} of {rows} rows have an error; the error column says why){dest}"
+        )));
     }
     Ok(())
 }
 
 fn to_strings(v: &[&str]) -> Vec<String> {
     v.iter().map(|s| s.to_string()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failed_scan_reports_only_a_maximum_it_reached() {
+        use RangeEnd::*;
+        // a scan that ended at an event or d_max: its maximum is the result
+        for end in [FirstMaximum, Event, DMax] {
+            assert!(max_is_known(false, end, 0.3, 0.5));
+        }
+        // failed: only a first maximum found at or before the last reported point
+        assert!(max_is_known(true, FirstMaximum, 0.1, 0.2));
+        assert!(max_is_known(true, FirstMaximum, 0.2, 0.2));
+        // the scene: the maximum at d = 0.00262 beyond the last point d = 0
+        assert!(!max_is_known(true, SolverFailure, 0.00262, 0.0));
+        assert!(!max_is_known(true, FirstMaximum, 0.00262, 0.0));
+        // |mu| still rising when the solver failed: the measurable range is unknown
+        assert!(!max_is_known(true, SolverFailure, 0.1, 0.2));
+    }
+
+    #[test]
+    fn grid_order_is_the_column_order() {
+        let ax = |s: &str| crate::numbers::parse_axis(s).unwrap();
+        let (eta, tol, d_max, points) = (ax("0.7,0.8"), ax("1e-10"), ax("0.1,0.2"), ax("3:5:2"));
+        let mu0 = crate::numbers::parse_axis_or_inf("0.5,inf").unwrap();
+        let g = Grid {
+            scene: [Some(&eta), None, None, None, None, None],
+            method: vec![MethodArg::Shooting],
+            tol: &tol,
+            mu0: Some(&mu0),
+            d_max: &d_max,
+            points: &points,
+        };
+        let n: u64 = g.lens().iter().map(|l| l.1).product();
+        assert_eq!(n, 16);
+        let c = |i| {
+            let c = g.cell(i);
+            (c.eta, c.mu0, c.d_max, c.points)
+        };
+        assert_eq!(c(0), (Some(0.7), Some(0.5), 0.1, 3));
+        assert_eq!(c(1), (Some(0.7), Some(0.5), 0.1, 5));
+        assert_eq!(c(2), (Some(0.7), Some(0.5), 0.2, 3));
+        // inf never slips
+        assert_eq!(c(4), (Some(0.7), None, 0.1, 3));
+        assert_eq!(c(15), (Some(0.8), None, 0.2, 5));
+    }
 }

@@ -107,7 +107,7 @@ pub fn eta_range() -> Range {
         "eta_ = 0.456946581044463625... is the tip height of the uniform clamped rod pushed straight down (alpha = 0) with a horizontal tip (phi1 = 0); on a lower surface the scan would start with the rod crossing it",
     )
 }
-/// Taper ratio: the model accepts (0, 1]; below 0.01 the tip is 10^8 times more flexible than
+/// Taper ratio in [0.01, 1] (`vibrissa::MIN_TAPER`): below 0.01 the tip is 10^8 times more flexible than
 /// the foot, beyond what the solvers resolve and beyond real whiskers (0.02-0.2).
 pub const TAPER: Range = Range::new(vibrissa::MIN_TAPER, true, 1.0, true)
     .why("tip/base radius ratio; real whiskers have 0.02-0.2, and below 0.01 the tip would be over 10^8 times more flexible than the foot");
@@ -232,7 +232,7 @@ impl SceneSrc<'_> {
 pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
     check(src.of(src.eta, "eta"), sc.eta, &eta_range())?;
     match &sc.stiffness {
-        Stiffness::Uniform {} => {}
+        Stiffness::Uniform => {}
         Stiffness::Taper { ratio } => {
             check(src.of(src.taper, "stiffness.ratio"), *ratio, &TAPER)?;
         }
@@ -243,7 +243,7 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
         }
     }
     match &sc.precurvature {
-        Precurvature::None {} => {}
+        Precurvature::None => {}
         Precurvature::Linear { k0, k1 } => {
             check(src.of(src.k0, "precurvature.k0"), *k0, &PRECURVATURE)?;
             check(src.of(src.k1, "precurvature.k1"), *k1, &PRECURVATURE_SLOPE)?;
@@ -347,12 +347,30 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Infer(a) => infer(a),
         Command::Sweep(a) => sweep_flags(a),
         Command::Figures(a) => figures(a),
+        Command::Whisk(a) => whisk(a),
+        Command::Locate(a) => locate(a),
+        Command::Plot(a) => check(
+            Src::Flag("--surface-angle"),
+            a.surface_angle,
+            &SURFACE_ANGLE,
+        ),
     }
 }
 
 fn solve(a: &mut SolveArgs) -> Res<()> {
     tol(a.solver.tol)?;
-    check(Src::Flag("--alpha"), a.alpha, &ALPHA)?;
+    if let Some(p) = a.peg {
+        peg(p)?;
+        check(Src::Flag("--theta"), a.theta.unwrap_or(0.0), &THETA)?;
+        mu0(&mut a.mu0)?;
+    } else if a.phi1.is_none() && a.eta.is_none() {
+        return Err(usage(
+            "one of --phi1 and --eta is required (the tip condition), or --peg X,Y for a point object",
+        ));
+    }
+    if let Some(al) = a.alpha {
+        check(Src::Flag("--alpha"), al, &ALPHA)?;
+    }
     if let Some(p) = a.phi1 {
         check(Src::Flag("--phi1"), p, &PHI1)?;
     }
@@ -367,11 +385,51 @@ fn solve(a: &mut SolveArgs) -> Res<()> {
     Ok(())
 }
 
+/// Foot angle of a whisk (rad): within a quarter turn either way.
+pub const THETA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
+    .sym("(-pi/2, pi/2)")
+    .why("the foot turned clockwise, within a quarter turn");
+
+/// A point object: inside the reach of the rod (distance from the foot in (0, 1)).
+fn peg(p: crate::cli::Point) -> Res<()> {
+    let r = (p.x * p.x + p.y * p.y).sqrt();
+    if !(r > 0.0 && r < 1.0) {
+        return Err(usage(format!(
+            "--peg {},{} is at distance {} from the foot, outside the valid range (0, 1) (rod lengths: a point the rod can reach)",
+            p.x, p.y, r
+        )));
+    }
+    Ok(())
+}
+
+fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    peg(a.peg)?;
+    check(Src::Flag("--theta-max"), a.theta_max, &THETA)?;
+    mu0(&mut a.mu0)?;
+    if a.out.as_deref().is_some_and(is_stdout) && a.json {
+        return Err(usage(
+            "--out - with --json would put the rows and the JSON summary on the same stdout; give --out a file name",
+        ));
+    }
+    Ok(())
+}
+
+fn locate(a: &mut crate::cli::LocateArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    check(Src::Flag("--theta"), a.theta, &THETA)
+}
+
 fn scan(a: &mut ScanArgs) -> Res<()> {
     tol(a.solver.tol)?;
     check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
     mu0(&mut a.mu0)?;
     if a.out.as_deref().is_some_and(is_stdout) {
+        if a.json {
+            return Err(usage(
+                "--out - with --json would put the scan's CSV and its JSON summary on the same stdout; give --out a file name (the JSON then names it), or leave out --out - (--json alone prints only the summary)",
+            ));
+        }
         a.out = None;
     }
     if a.shapes.as_deref().is_some_and(is_stdout) {
@@ -400,11 +458,39 @@ fn infer(a: &mut InferArgs) -> Res<()> {
 }
 
 fn sweep_flags(a: &mut SweepArgs) -> Res<()> {
-    for t in &a.tol.values {
-        tol(*t)?;
+    // the ends of a range suffice: its other values lie between them
+    for t in a.tol.extremes() {
+        tol(t)?;
     }
-    check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
-    mu0(&mut a.mu0)?;
+    for v in a.d_max.extremes() {
+        check(Src::Flag("--d-max"), v, &D_MAX)?;
+    }
+    if let Some(m) = &a.mu0 {
+        for v in m.extremes() {
+            check(Src::Flag("--mu0"), v, &MU0)?;
+        }
+    }
+    if let Some(v) = a.points.first_fraction() {
+        return Err(usage(format!(
+            "--points {} gives {}, not a whole number of points per scan",
+            a.points.text,
+            short(v)
+        )));
+    }
+    // whole numbers, shown as such (as scan's --points: [2, 1000000])
+    let max = crate::cli::MAX_POINTS;
+    for v in a.points.extremes() {
+        if !(2.0..=max as f64).contains(&v) {
+            let shown = if v.abs() < 1e15 {
+                format!("{}", v as i64)
+            } else {
+                short(v)
+            };
+            return Err(usage(format!(
+                "--points {shown} is outside the valid range [2, {max}] (points per scan)"
+            )));
+        }
+    }
     if a.out.as_deref().is_some_and(is_stdout) {
         a.out = None;
     }
@@ -434,12 +520,13 @@ pub fn budget(fa: &str, a: u64, fb: &str, b: u64, what: &str, bytes: u64) -> Res
     Ok(())
 }
 
-/// Number of grid points: the product of the axis lengths, checked against [`MAX_SCENES`].
-pub fn grid_size(axes: &[(&str, usize)]) -> Res<u64> {
+/// Number of grid points: the product of the axis lengths, checked against [`MAX_SCENES`] by
+/// arithmetic (the grid itself is never built).
+pub fn grid_size(axes: &[(&str, u64)]) -> Res<u64> {
     let mut n: u64 = 1;
     let mut overflow = false;
     for &(_, len) in axes {
-        match n.checked_mul(len as u64) {
+        match n.checked_mul(len) {
             Some(m) if m <= MAX_SCENES => n = m,
             _ => {
                 overflow = true;

@@ -141,6 +141,8 @@ const CASES: &str = r#"
 2 | solve --alpha -0.3 --phi1 0.3 --scene ratio0.toml | stiffness.ratio = 0
 2 | solve --alpha -0.3 --phi1 0.3 extra | extra
 # scan
+2 | scan --out - --json --points 3 | --out - with --json
+2 | scan --json --out - --shapes precious.csv | same stdout
 2 | scan --eta 0.456946581 --out precious.csv | (0.45694658104, 1)
 2 | scan --eta 0.45694658104446 --out precious.csv | eta_ =
 2 | scan --eta 1 --out precious.csv | --eta 1 is outside
@@ -293,7 +295,7 @@ const CASES: &str = r#"
 2 | figures --only 1 --out-dir figs | --only
 2 | figures --only 12 --out-dir figs | --only
 2 | figures --only -1 --out-dir figs | --only
-2 | figures --method analytic --out-dir figs | numerical
+2 | figures --method analytic --out-dir figs | possible values: shooting, multiple-shooting, collocation, collocation6]
 1 | figures --out-dir precious.csv --only 3 | precious.csv
 2 | figures --scene x.toml | --scene
 # the program
@@ -368,4 +370,61 @@ fn bad_invocations_fail_cleanly_and_change_no_file() {
         failures.join("\n")
     );
     assert!(n >= 150, "only {n} invocations");
+}
+
+/// Wrong types in a scene file are told in the file's words (tables, numbers, keys), never in
+/// serde's Rust types ("internally tagged enum", "f64", "struct").
+#[test]
+fn scene_type_errors_speak_the_file_format() {
+    let dir = tmpdir("scene-types");
+    for (text, want) in [
+        (
+            "stiffness = 3\n",
+            "expected a stiffness table: { kind = \"uniform\" }",
+        ),
+        ("stiffness = \"taper\"\n", "expected a stiffness table"),
+        (
+            "precurvature = 0.5\n",
+            "expected a precurvature table: { kind = \"none\" }",
+        ),
+        ("eta = \"high\"\n", "expected a number"),
+        (
+            "stiffness = { kind = \"taper\", ratio = \"x\" }\n",
+            "expected a number",
+        ),
+        ("physical = 3\n", "expected a [physical] table"),
+        ("stiffness = { ratio = 0.5 }\n", "missing key `kind`"),
+        ("stiffness = { kind = \"cone\" }\n", "unknown kind `cone`"),
+    ] {
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, text).unwrap();
+        let e = bad(&["scan", "--scene", path.to_str().unwrap()], 2);
+        assert!(e.contains(want), "{text:?}: {e}");
+        for serde_word in ["internally tagged", "f64", "struct ", "variant", "field"] {
+            assert!(!e.contains(serde_word), "{text:?}: {e}");
+        }
+    }
+}
+
+/// `figures --help` offers only the methods it accepts; `analytic` is refused by the parser
+/// with the list of valid ones. `solve` without a tip condition names both flags.
+#[test]
+fn help_offers_what_the_commands_accept() {
+    let help = ok(&["figures", "--help"]).stdout;
+    let methods = &help[help.find("--method").unwrap()..];
+    let methods = &methods[..methods.find("--tol").unwrap()];
+    for m in ["shooting", "multiple-shooting", "collocation6"] {
+        assert!(methods.contains(m), "{methods}");
+    }
+    assert!(!methods.contains("- analytic"), "{methods}");
+    let e = bad(&["figures", "--method", "analytic"], 2);
+    assert!(
+        e.contains("possible values: shooting, multiple-shooting"),
+        "{e}"
+    );
+    let e = bad(&["solve", "--alpha", "0.1"], 2);
+    assert!(e.contains("--phi1") && e.contains("--eta"), "{e}");
+    let help = ok(&["scan", "--help"]).stdout;
+    let shapes = &help[help.find("--shapes").unwrap()..help.find("--shape-points").unwrap()];
+    assert!(shapes.contains("kappa, m, event"), "{shapes}");
 }

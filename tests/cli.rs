@@ -695,3 +695,116 @@ fn closed_stdout_is_not_an_error() {
     assert_eq!(o.status.code(), Some(0), "stderr {stderr:?}");
     assert!(stderr.is_empty(), "stderr {stderr:?}");
 }
+
+/// A scene file is read once (issue 19): `--scene /dev/stdin`, `--scene -` and a FIFO give the
+/// same output as the same scene in a regular file, for every command that takes a scene (the
+/// scene was read twice: the second read of a pipe is empty, so the scene was silently replaced
+/// by the defaults, and a FIFO waited for a second writer forever).
+#[cfg(unix)]
+#[test]
+fn a_scene_is_read_once_from_stdin_a_pipe_or_a_fifo() {
+    let d = tmpdir("scene-once");
+    let text = "eta = 0.7\nsupport_compliance = 0.5\n";
+    let file = write(&d, "s.toml", text);
+    let fifo = d.join("scene.fifo");
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    let fifo = fifo.to_str().unwrap().to_string();
+    let commands: [&[&str]; 4] = [
+        &["solve", "--alpha", "-0.2", "--eta", "0.7"],
+        &["scan", "--points", "5"],
+        &["infer", "--d0", "0.02", "--points", "5"],
+        &["sweep", "--points", "5", "--taper", "1,0.8"],
+    ];
+    for args in commands {
+        fn with<'a>(args: &[&'a str], scene: &'a str) -> Vec<&'a str> {
+            [args, &["--scene", scene]].concat()
+        }
+        let reference = ok(&with(args, &file)).stdout;
+        // the scene matters: without it the output differs
+        assert_ne!(
+            ok(args).stdout,
+            reference,
+            "{args:?}: the scene changes nothing"
+        );
+        for (scene, input) in [
+            ("/dev/stdin", Some(text)),
+            ("-", Some(text)),
+            // a FIFO: a writer writes the scene once
+            (fifo.as_str(), None),
+        ] {
+            let writer = input.is_none().then(|| {
+                let f = fifo.clone();
+                std::thread::spawn(move || std::fs::write(f, text).unwrap())
+            });
+            let o = run_fed(&with(args, scene), input);
+            if let Some(w) = writer {
+                w.join().unwrap();
+            }
+            assert_eq!(o.code, 0, "{args:?} --scene {scene}: {}", o.stderr);
+            assert_eq!(o.stdout, reference, "{args:?} --scene {scene}");
+        }
+    }
+    // a bad scene from stdin is named as such
+    let o = run_fed(&["scan", "--scene", "-"], Some("eta = 0.3\n"));
+    assert_eq!(o.code, 2);
+    assert!(
+        o.stderr.starts_with("error: scene file -: eta = 0.3"),
+        "{}",
+        o.stderr
+    );
+}
+
+/// `vibrissa plot` draws each kind of file (the fixtures of `tests/fixtures/plot`), next to the
+/// input by default, and refuses a file it does not know without leaving an output.
+#[test]
+fn plot_draws_each_kind_of_file() {
+    let dir = tmpdir("plot");
+    let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/plot");
+    for name in ["scan", "shapes", "sweep", "drag"] {
+        let input = dir.join(format!("{name}.csv"));
+        std::fs::copy(fixtures.join(format!("{name}.csv")), &input).unwrap();
+        let o = ok(&["plot", input.to_str().unwrap()]);
+        let out = dir.join(format!("{name}.svg"));
+        assert_eq!(
+            o.stdout.trim(),
+            format!("plot written to {}", out.display()),
+            "{name}"
+        );
+        let svg = std::fs::read_to_string(&out).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains("</svg>"), "{name}");
+    }
+    let out = dir.join("chosen.svg");
+    let sweep = fixtures.join("sweep.csv");
+    ok(&[
+        "plot",
+        sweep.to_str().unwrap(),
+        "--z",
+        "stop_reason",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("stop_reason: penetration"));
+    let other = dir.join("other.csv");
+    std::fs::write(&other, "a,b\n1,2\n").unwrap();
+    let e = bad(&["plot", other.to_str().unwrap()], 2);
+    assert!(e.contains("not a file vibrissa writes"), "{e}");
+    assert!(!dir.join("other.svg").exists());
+    let e = bad(
+        &[
+            "plot",
+            fixtures.join("shapes.csv").to_str().unwrap(),
+            "--surface-angle",
+            "1",
+            "--out",
+            dir.join("x.svg").to_str().unwrap(),
+        ],
+        2,
+    );
+    assert!(e.contains("--surface-angle 1 is outside"), "{e}");
+}

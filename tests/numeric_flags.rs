@@ -26,6 +26,11 @@ fn base(cmd: &str) -> Vec<(&'static str, &'static str)> {
         // --dry-run checks every value (grid included) without solving
         "sweep" => vec![("--dry-run", ""), ("--points", "3")],
         "figures" => vec![("--only", "3")],
+        // the file to draw (cargo runs tests in the package directory)
+        "plot" => vec![
+            ("tests/fixtures/plot/shapes.csv", ""),
+            ("--out", "/dev/null"),
+        ],
         _ => vec![],
     }
 }
@@ -119,7 +124,7 @@ fn every_numeric_flag_takes_every_negative_spelling() {
         }
     }
     // every command has numeric flags, and the list is not trivially short
-    for c in ["solve", "scan", "infer", "sweep", "figures"] {
+    for c in ["solve", "scan", "infer", "sweep", "figures", "plot"] {
         assert!(
             flags.iter().any(|f| f.starts_with(&format!("{c} "))),
             "{c}: no numeric flag found in {flags:?}"

@@ -1,7 +1,9 @@
 //! The Cash–Mazzia test-set study: every implemented problem (`bvp::testset`) × ε ∈ {1e-1, 1e-2,
-//! 1e-3, 1e-4} × tol ∈ {1e-4, 1e-6, 1e-8}, each method with default options from the same
+//! 1e-3, 1e-4} × tol ∈ {1e-4, 1e-6, 1e-8}, each method with default options (shooting: DOP853 at
+//! rtol = atol = tol/100 and `tol` as its accuracy) from the same
 //! 101-node straight-line guess; `+cont`: the same solve and, if it fails,
-//! `solve_by_continuation` from ε = 0.1 (straight-line guess there).
+//! `bvp::solve_member`: continuation from ε = 0.1 (same guess). The extended problems
+//! (`CashMazzia::extended`: growth like 1/ε, fourth order) are included.
 //!
 //! ```text
 //! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR]
@@ -16,8 +18,8 @@
 
 use bvp::testset::CashMazzia;
 use bvp::{
-    solve_by_continuation, BvpError, BvpSolver, Collocation, CollocationOptions, Integrator,
-    PathOptions, Scheme, Shooting, ShootingOptions, Solution,
+    solve_member, BvpError, BvpSolver, Collocation, CollocationOptions, Integrator, PathOptions,
+    Scheme, Shooting, ShootingOptions, Solution,
 };
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -63,6 +65,18 @@ impl BvpSolver for Solver {
             Solver::Shoot(s) => s.solve(problem, guess),
         }
     }
+    fn tolerance(&self) -> Option<f64> {
+        match self {
+            Solver::Coll(s) => s.tolerance(),
+            Solver::Shoot(s) => s.tolerance(),
+        }
+    }
+    fn set_tolerance(&mut self, tol: f64) {
+        match self {
+            Solver::Coll(s) => s.set_tolerance(tol),
+            Solver::Shoot(s) => s.set_tolerance(tol),
+        }
+    }
 }
 
 fn solver(m: Method, tol: f64) -> Solver {
@@ -86,6 +100,7 @@ fn solver(m: Method, tol: f64) -> Solver {
                     atol: 1e-2 * tol,
                 },
                 segments: if m == Method::MShoot { 16 } else { 1 },
+                tol: Some(tol),
                 ..ShootingOptions::default()
             })
             .expect("valid options"),
@@ -93,35 +108,41 @@ fn solver(m: Method, tol: f64) -> Solver {
     }
 }
 
-/// Fine-grid and nodal scaled errors of `y` against the exact solution.
-fn errors(p: &CashMazzia, eps: f64, sol: &Solution) -> (f64, f64) {
+/// Errors of `y` against the exact solution over a fine grid (2001 equal points plus 9 inside
+/// every mesh interval of the solution, and the nodes): `(scaled, pointwise, nodes)`, with
+/// `scaled = max |y − y_exact| / (1 + max |y_exact|)` (the solution's scale, the study's measure),
+/// `pointwise = max |y − y_exact| / (1 + |y_exact|)` and `nodes` the pointwise error at the nodes.
+fn errors(p: &CashMazzia, eps: f64, sol: &Solution) -> (f64, f64, f64) {
     let Some(_) = p.exact(0.0, eps) else {
-        return (f64::NAN, f64::NAN);
-    };
-    let err = |x: f64, y: f64| {
-        let e = p.exact(x, eps).map_or(f64::NAN, |v| v[0]);
-        (y - e).abs() / (1.0 + e.abs())
+        return (f64::NAN, f64::NAN, f64::NAN);
     };
     let (a, b) = p.span();
-    let mut fine = 0.0_f64;
-    let mut out = [0.0; 2];
-    let mut at = |x: f64, fine: &mut f64| {
-        sol.eval(x, &mut out);
-        *fine = fine.max(err(x, out[0]));
-    };
-    for i in 0..=2000 {
-        at(a + (b - a) * i as f64 / 2000.0, &mut fine);
-    }
+    let mut xs: Vec<f64> = (0..=2000)
+        .map(|i| a + (b - a) * i as f64 / 2000.0)
+        .collect();
     for w in sol.mesh.windows(2) {
-        for j in 1..10 {
-            at(w[0] + (w[1] - w[0]) * j as f64 / 10.0, &mut fine);
+        xs.extend((1..10).map(|j| w[0] + (w[1] - w[0]) * j as f64 / 10.0));
+    }
+    let mut out = vec![0.0; sol.n];
+    let (mut abs, mut top, mut point) = (0.0_f64, 0.0_f64, 0.0_f64);
+    let mut node = 0.0_f64;
+    for (i, &x) in xs.iter().chain(&sol.mesh).enumerate() {
+        let e = p.exact(x, eps).map_or(f64::NAN, |v| v[0]);
+        let y = if i >= xs.len() {
+            sol.node(i - xs.len())[0]
+        } else {
+            sol.eval(x, &mut out);
+            out[0]
+        };
+        let d = (y - e).abs();
+        abs = abs.max(d);
+        top = top.max(e.abs());
+        point = point.max(d / (1.0 + e.abs()));
+        if i >= xs.len() {
+            node = node.max(d / (1.0 + e.abs()));
         }
     }
-    let mut node = 0.0_f64;
-    for (i, &x) in sol.mesh.iter().enumerate() {
-        node = node.max(err(x, sol.node(i)[0]));
-    }
-    (fine.max(node), node)
+    (abs / (1.0 + top), point, node)
 }
 
 struct Row {
@@ -131,13 +152,18 @@ struct Row {
     method: String,
     status: String,
     error: f64,
+    pointwise: f64,
     node_error: f64,
+    estimate: f64,
     nodes: usize,
     time: f64,
 }
 
 fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
-    let guess0 = p.guess(if cont { EPS_EASY } else { eps }, GUESS_NODES);
+    if std::env::var("BVP_DEBUG").is_ok() {
+        eprintln!("CASE {} {eps:e} {tol:e} {}", p.id(), m.name());
+    }
+    let guess = p.guess(eps, GUESS_NODES);
     let mut best = f64::INFINITY;
     let mut result = None;
     let t_all = Instant::now();
@@ -146,17 +172,11 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
         let mut s = solver(m, tol);
         let t = Instant::now();
         let r = if cont {
-            // Direct first (the guess at eps), continuation from EPS_EASY if that fails.
-            match s.solve(&p.at(eps), &p.guess(eps, GUESS_NODES)) {
-                Ok(sol) => Ok(sol),
-                Err(_) => {
-                    let opts = PathOptions::default();
-                    solve_by_continuation(p, &mut s, &guess0, EPS_EASY, eps, &opts)
-                        .map(|r| r.solution)
-                }
-            }
+            // Direct first, continuation from EPS_EASY if that fails (bvp::solve_member).
+            let opts = PathOptions::default();
+            solve_member(p, &mut s, &guess, eps, EPS_EASY, &opts).map(|r| r.solution)
         } else {
-            s.solve(&p.at(eps), &guess0)
+            s.solve(&p.at(eps), &guess)
         };
         best = best.min(t.elapsed().as_secs_f64());
         let done = t_all.elapsed().as_secs_f64() > 0.05;
@@ -169,7 +189,7 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
     let method = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
     match r {
         Ok(sol) => {
-            let (error, node_error) = errors(p, eps, &sol);
+            let (error, pointwise, node_error) = errors(p, eps, &sol);
             Row {
                 id: p.id(),
                 eps,
@@ -177,7 +197,9 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
                 method,
                 status: "Converged".into(),
                 error,
+                pointwise,
                 node_error,
+                estimate: sol.stats.error_estimate.unwrap_or(f64::NAN),
                 nodes: sol.len(),
                 time: best,
             }
@@ -189,7 +211,9 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
             method,
             status: format!("{:?}", e.status()),
             error: f64::NAN,
+            pointwise: f64::NAN,
             node_error: f64::NAN,
+            estimate: e.stats().and_then(|s| s.error_estimate).unwrap_or(f64::NAN),
             nodes: e.stats().map_or(0, |s| s.nodes),
             time: best,
         },
@@ -197,6 +221,8 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
 }
 
 /// scipy rows keyed by (id, eps, tol): (converged, error, nodes, time).
+/// A titled subset of the problems, by id.
+type Subset = (&'static str, fn(u8) -> bool);
 /// (problem, eps, tol) as formatted keys.
 type Key = (u8, String, String);
 /// scipy: (converged, error, nodes, time).
@@ -263,7 +289,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .filter_map(|&i| CashMazzia::new(i))
             .collect()
     } else {
-        CashMazzia::all().collect()
+        CashMazzia::all().chain(CashMazzia::extended()).collect()
     };
     let mut rows = Vec::new();
     for &(m, cont) in &methods {
@@ -284,99 +310,123 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         eprintln!("{name}: {:.1} s", t.elapsed().as_secs_f64());
     }
 
-    let mut csv = String::from("problem,eps,tol,method,status,error,node_error,nodes,time_s\n");
+    let mut csv = String::from(
+        "problem,eps,tol,method,status,error,node_error,nodes,time_s,pointwise_error,estimate\n",
+    );
     for r in &rows {
         writeln!(
             csv,
-            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e}",
-            r.id, r.eps, r.tol, r.method, r.status, r.error, r.node_error, r.nodes, r.time
+            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e},{:.3e},{:.3e}",
+            r.id,
+            r.eps,
+            r.tol,
+            r.method,
+            r.status,
+            r.error,
+            r.node_error,
+            r.nodes,
+            r.time,
+            r.pointwise,
+            r.estimate
         )?;
     }
     std::fs::write(dir.join("bvp.csv"), csv)?;
 
     // Summary.
     let scipy = read_scipy(&dir.join("scipy.csv"));
-    let cases = problems.len() * EPS.len() * TOLS.len();
-    let exact_cases = problems.iter().filter(|p| p.has_exact()).count() * EPS.len() * TOLS.len();
     let mut md = String::new();
     writeln!(
         md,
-        "Cash–Mazzia test set: {} problems × ε ∈ {{1e-1, 1e-2, 1e-3, 1e-4}} × tol ∈ {{1e-4, 1e-6, 1e-8}} = {cases} cases ({exact_cases} with exact solutions); 101-node straight-line guess; `+cont`: on failure, `solve_by_continuation` from ε = 0.1.\n",
-        problems.len()
+        "Cash–Mazzia test set × ε ∈ {{1e-1, 1e-2, 1e-3, 1e-4}} × tol ∈ {{1e-4, 1e-6, 1e-8}}; 101-node straight-line guess; default options (shooting: DOP853 at rtol = atol = tol/100, `tol` its accuracy); `+cont`: `bvp::solve_member` (on failure, continuation from ε = 0.1). Error: max |y − y_exact| / (1 + max |y_exact|) over 2001 points, 9 inside every mesh interval and the nodes (relative to the solution's scale).\n"
     )?;
-    writeln!(md, "| solver | converged / {cases} | error ≤ 10·tol (of converged with exact) | median error/tol | median nodes | time vs scipy (geo. mean, both converged) |")?;
-    writeln!(md, "|---|---|---|---|---|---|")?;
-    let summary = |name: &str, rs: &[Case]| {
-        let conv = rs.iter().filter(|r| r.0).count();
-        let with_exact: Vec<_> = rs.iter().filter(|r| r.0 && r.1.is_finite()).collect();
-        let good = with_exact.iter().filter(|r| r.1 <= 10.0 * r.2).count();
-        let mut ratios: Vec<f64> = with_exact.iter().map(|r| r.1 / r.2).collect();
-        ratios.sort_by(f64::total_cmp);
-        let med = ratios.get(ratios.len() / 2).copied().unwrap_or(f64::NAN);
-        let mut nodes: Vec<usize> = rs.iter().filter(|r| r.0).map(|r| r.3).collect();
-        nodes.sort_unstable();
-        let medn = nodes.get(nodes.len() / 2).copied().unwrap_or(0);
-        let mut logs = Vec::new();
-        for r in rs.iter().filter(|r| r.0) {
-            if let Some(s) = scipy.get(&r.5) {
-                if s.0 && s.3 > 0.0 && r.4 > 0.0 {
-                    logs.push((s.3 / r.4).ln());
+    let subsets: [Subset; 2] = [
+        ("published set (28 problems)", |id| id < 100),
+        ("published and extended set (32 problems)", |_| true),
+    ];
+    for (title, keep) in subsets {
+        let problems: Vec<CashMazzia> = problems.iter().copied().filter(|p| keep(p.id())).collect();
+        let rows: Vec<&Row> = rows.iter().filter(|r| keep(r.id)).collect();
+        let cases = problems.len() * EPS.len() * TOLS.len();
+        let exact_cases =
+            problems.iter().filter(|p| p.has_exact()).count() * EPS.len() * TOLS.len();
+        writeln!(
+            md,
+            "\n### {title}: {cases} cases ({exact_cases} with exact solutions)\n"
+        )?;
+        writeln!(md, "| solver | converged / {cases} | error ≤ 10·tol (of converged with exact) | median error/tol | median nodes | time vs scipy (geo. mean, both converged) |")?;
+        writeln!(md, "|---|---|---|---|---|---|")?;
+        let summary = |name: &str, rs: &[Case]| {
+            let conv = rs.iter().filter(|r| r.0).count();
+            let with_exact: Vec<_> = rs.iter().filter(|r| r.0 && r.1.is_finite()).collect();
+            let good = with_exact.iter().filter(|r| r.1 <= 10.0 * r.2).count();
+            let mut ratios: Vec<f64> = with_exact.iter().map(|r| r.1 / r.2).collect();
+            ratios.sort_by(f64::total_cmp);
+            let med = ratios.get(ratios.len() / 2).copied().unwrap_or(f64::NAN);
+            let mut nodes: Vec<usize> = rs.iter().filter(|r| r.0).map(|r| r.3).collect();
+            nodes.sort_unstable();
+            let medn = nodes.get(nodes.len() / 2).copied().unwrap_or(0);
+            let mut logs = Vec::new();
+            for r in rs.iter().filter(|r| r.0) {
+                if let Some(s) = scipy.get(&r.5) {
+                    if s.0 && s.3 > 0.0 && r.4 > 0.0 {
+                        logs.push((s.3 / r.4).ln());
+                    }
                 }
             }
-        }
-        let speed = if logs.is_empty() || name == "scipy solve_bvp" {
-            "—".to_string()
-        } else {
-            format!(
-                "{:.1}× faster ({} cases)",
-                (logs.iter().sum::<f64>() / logs.len() as f64).exp(),
-                logs.len()
-            )
-        };
-        let pct = if with_exact.is_empty() {
-            "—".into()
-        } else {
-            format!(
-                "{good}/{} ({:.0} %)",
-                with_exact.len(),
-                100.0 * good as f64 / with_exact.len() as f64
-            )
-        };
-        format!("| {name} | {conv} | {pct} | {med:.2e} | {medn} | {speed} |")
-    };
-    if !scipy.is_empty() {
-        let rs: Vec<_> = scipy
-            .iter()
-            .filter(|(k, _)| problems.iter().any(|p| p.id() == k.0))
-            .map(|(k, v)| {
-                let tol: f64 = k.2.parse().unwrap_or(f64::NAN);
-                (v.0, v.1, tol, v.2, v.3, k.clone())
-            })
-            .collect();
-        writeln!(md, "{}", summary("scipy solve_bvp", &rs))?;
-    }
-    let mut names: Vec<String> = Vec::new();
-    for r in &rows {
-        if !names.contains(&r.method) {
-            names.push(r.method.clone());
-        }
-    }
-    for name in &names {
-        let rs: Vec<_> = rows
-            .iter()
-            .filter(|r| &r.method == name)
-            .map(|r| {
-                (
-                    r.status == "Converged",
-                    r.error,
-                    r.tol,
-                    r.nodes,
-                    r.time,
-                    (r.id, format!("{:e}", r.eps), format!("{:e}", r.tol)),
+            let speed = if logs.is_empty() || name == "scipy solve_bvp" {
+                "—".to_string()
+            } else {
+                format!(
+                    "{:.1}× faster ({} cases)",
+                    (logs.iter().sum::<f64>() / logs.len() as f64).exp(),
+                    logs.len()
                 )
-            })
-            .collect();
-        writeln!(md, "{}", summary(name, &rs))?;
+            };
+            let pct = if with_exact.is_empty() {
+                "—".into()
+            } else {
+                format!(
+                    "{good}/{} ({:.0} %)",
+                    with_exact.len(),
+                    100.0 * good as f64 / with_exact.len() as f64
+                )
+            };
+            format!("| {name} | {conv} | {pct} | {med:.2e} | {medn} | {speed} |")
+        };
+        if !scipy.is_empty() {
+            let rs: Vec<_> = scipy
+                .iter()
+                .filter(|(k, _)| problems.iter().any(|p| p.id() == k.0))
+                .map(|(k, v)| {
+                    let tol: f64 = k.2.parse().unwrap_or(f64::NAN);
+                    (v.0, v.1, tol, v.2, v.3, k.clone())
+                })
+                .collect();
+            writeln!(md, "{}", summary("scipy solve_bvp", &rs))?;
+        }
+        let mut names: Vec<String> = Vec::new();
+        for r in rows.iter() {
+            if !names.contains(&r.method) {
+                names.push(r.method.clone());
+            }
+        }
+        for name in &names {
+            let rs: Vec<_> = rows
+                .iter()
+                .filter(|r| &r.method == name)
+                .map(|r| {
+                    (
+                        r.status == "Converged",
+                        r.error,
+                        r.tol,
+                        r.nodes,
+                        r.time,
+                        (r.id, format!("{:e}", r.eps), format!("{:e}", r.tol)),
+                    )
+                })
+                .collect();
+            writeln!(md, "{}", summary(name, &rs))?;
+        }
     }
     std::fs::write(dir.join("summary.md"), &md)?;
     print!("{md}");

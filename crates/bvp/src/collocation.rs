@@ -52,14 +52,20 @@
 //!
 //! # Dense output
 //!
-//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there, and
-//! `z'' = d/ds F(s, z(s), p)` at the nodes (a central difference along the tangent `(1, F)`, two
-//! evaluations of `F` per node): [`Solution::eval`] is the quintic Hermite interpolant
-//! ([`crate::Dense::Quintic`], order 6). The collocation polynomials themselves are less accurate
-//! between nodes than at them (Lobatto4's cubic has a larger error constant between nodes;
-//! Lobatto6's quartic is of order 5 against 6 at the nodes); with the quintic, the error on a
-//! fine grid stays within 10× the nodal error (`tests/testset.rs`).
-//!
+//! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there.
+//! Lobatto4 returns its collocation polynomial itself, the cubic Hermite interpolant of `z`,
+//! `dz` ([`crate::Dense::Hermite`], as bvp4c and `solve_bvp` do): the residual its error control
+//! measures is that of the returned interpolant (`Solution::residuals` reproduces the estimate),
+//! and scipy's residual assertions hold on it. Between nodes it is less accurate than at them
+//! (within 10·tol on the test set, up to 50× its nodal error). Lobatto6 returns the quintic
+//! Hermite interpolant of `z`, `dz` and `z'' = d/ds F(s, z(s), p)` at the nodes (a central
+//! difference along the tangent `(1, F)`, two evaluations of `F` per node,
+//! [`crate::Dense::Quintic`], order 6; its quartic collocation polynomial is of order 5 between
+//! nodes): the error on a fine grid stays within 10× the nodal error (`tests/testset.rs`), and
+//! the residual estimate is that of the quartic. A quintic for Lobatto4 was tried: its residual
+//! is dominated by the derivative of the global error, which local refinement does not reduce
+//! (Cash–Mazzia 5 and 11 at ε = 1e-4, tol 1e-8, ran into the node limit).
+
 //! # Newton thresholds and failures
 //!
 //! Collocation rows are divided by `h_i` (units of `z'`) and scaled by `1 + max |F_c|` over their
@@ -91,7 +97,8 @@ mod abd;
 mod tableau;
 
 use crate::fd::{bc_jacobian_or_fd, rhs_jacobian_or_fd, FdScheme, FdScratch};
-use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
+use crate::newton::{attach, homotopy, non_finite, singular, Newton, NewtonSystem};
+use crate::singular::Regular;
 use crate::solution::locate;
 use crate::{Bvp, BvpError, BvpSolver, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
 use abd::{AbdSystem, Layout};
@@ -143,6 +150,10 @@ pub struct CollocationOptions {
     /// Newton options. `max_iter`, `step_tol`, `min_damping`, `step_residual_tol` apply as given;
     /// the residual threshold is `min(newton.tol, tol / 20, bc_tol)`.
     pub newton: NewtonOptions,
+    /// Globalization: when damped Newton fails on the first mesh, solve the Newton homotopy
+    /// `R(u) − τ R(u₀) = 0` from `τ = 1` to `0` on that mesh (see [`crate::newton::homotopy`])
+    /// before refining. Default `true`.
+    pub homotopy: bool,
 }
 
 impl Default for CollocationOptions {
@@ -156,6 +167,7 @@ impl Default for CollocationOptions {
             adapt: true,
             coarsen: true,
             newton: NewtonOptions::default(),
+            homotopy: true,
         }
     }
 }
@@ -198,6 +210,25 @@ impl CollocationOptions {
     }
 }
 
+/// One mesh pass of a collocation solve, as reported to the observer of
+/// [`Collocation::solve_observed`].
+#[derive(Clone, Copy, Debug)]
+pub struct Progress<'a> {
+    /// Mesh pass (1 for the first Newton solve).
+    pub pass: usize,
+    /// The mesh of this pass.
+    pub mesh: &'a [f64],
+    /// Newton iterations of the whole solve so far.
+    pub newton_iters: usize,
+    /// Whether Newton converged on this mesh (else the solver refines and retries, or fails).
+    pub newton_converged: bool,
+    /// Newton's final scaled residual on this mesh.
+    pub residual: f64,
+    /// Scaled RMS collocation residual of each interval (the error control's `ρ_i`; empty when
+    /// Newton did not converge): where the mesh is refined next.
+    pub residuals: &'a [f64],
+}
+
 /// Nodes of the default mesh when the guess has fewer than 3.
 const DEFAULT_NODES: usize = 11;
 /// Newton failures answered by refining the mesh (from the unconverged iterate) before one is
@@ -232,6 +263,20 @@ impl Collocation {
     /// The options.
     pub fn options(&self) -> &CollocationOptions {
         &self.opts
+    }
+
+    /// [`BvpSolver::solve`] reporting each mesh pass to `observer` (the library prints nothing;
+    /// `cargo run --release -p bvp --example progress` prints what scipy's `verbose=2` shows).
+    pub fn solve_observed<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &Guess,
+        observer: &mut dyn FnMut(&Progress<'_>),
+    ) -> Result<Solution, BvpError> {
+        match Regular::new(problem)? {
+            Some(reg) => self.solve_plain(&reg, guess, observer),
+            None => self.solve_plain(problem, guess, observer),
+        }
     }
 
     /// Times this solver's linear-algebra work buffers had to grow (a Newton system larger than
@@ -664,6 +709,17 @@ impl<P: Bvp + ?Sized> NewtonSystem for Disc<'_, P> {
         }
         self.w.sys.solve(du).map_err(|_| singular())
     }
+
+    fn resolve(&mut self, r: &[f64], du: &mut [f64]) -> Result<bool, BvpError> {
+        if !self.factored {
+            return Ok(false);
+        }
+        for (d, v) in du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        self.w.sys.solve(du).map_err(|_| singular())?;
+        Ok(true)
+    }
 }
 
 impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
@@ -911,73 +967,11 @@ fn adapt_mesh(mesh: &[f64], rms: &[f64], tol: f64, refine: bool, merge: bool) ->
 }
 
 impl Collocation {
-    fn check_input<P: Bvp + ?Sized>(&self, problem: &P, guess: &Guess) -> Result<(), BvpError> {
-        let Dims { n, k } = problem.dims();
-        if n == 0 {
-            return Err(BvpError::Dimension {
-                what: "problem states n",
-                got: 0,
-                expected: 1,
-            });
-        }
-        if guess.n != n {
-            return Err(BvpError::Dimension {
-                what: "guess states",
-                got: guess.n,
-                expected: n,
-            });
-        }
-        if guess.mesh.is_empty() {
-            return Err(BvpError::Dimension {
-                what: "guess mesh nodes",
-                got: 0,
-                expected: 1,
-            });
-        }
-        if guess.z.len() != n * guess.mesh.len() {
-            return Err(BvpError::Dimension {
-                what: "guess values",
-                got: guess.z.len(),
-                expected: n * guess.mesh.len(),
-            });
-        }
-        if let Some(dz) = &guess.dz {
-            if dz.len() != guess.z.len() {
-                return Err(BvpError::Dimension {
-                    what: "guess derivatives",
-                    got: dz.len(),
-                    expected: guess.z.len(),
-                });
-            }
-        }
-        if guess.params.len() != k {
-            return Err(BvpError::Dimension {
-                what: "guess parameters",
-                got: guess.params.len(),
-                expected: k,
-            });
-        }
-        let (a, b) = problem.interval();
-        if !(a < b && a.is_finite() && b.is_finite()) {
-            return Err(invalid(
-                "interval",
-                format!("[{a}, {b}]"),
-                "must be finite with a < b",
-            ));
-        }
-        Ok(())
-    }
-
-    /// The starting mesh: the guess mesh if it has ≥ 3 strictly increasing nodes spanning `[a, b]`,
-    /// else the uniform default.
+    /// The starting mesh: the guess mesh if it has ≥ 3 nodes (validated: strictly increasing,
+    /// spanning `[a, b]`), else the uniform default.
     fn initial_mesh(&self, guess: &Guess, a: f64, b: f64) -> Vec<f64> {
         let m = &guess.mesh;
-        let tol = 1e-12 * (b - a);
-        let ok = m.len() >= 3
-            && (m[0] - a).abs() <= tol
-            && (m[m.len() - 1] - b).abs() <= tol
-            && m.windows(2).all(|w| w[1] > w[0]);
-        if ok {
+        if m.len() >= 3 {
             let mut mesh = m.clone();
             mesh[0] = a;
             let last = mesh.len() - 1;
@@ -990,8 +984,34 @@ impl Collocation {
 }
 
 impl BvpSolver for Collocation {
+    fn tolerance(&self) -> Option<f64> {
+        Some(self.opts.tol)
+    }
+
+    /// Sets `tol` (values outside `(0, 1)` are ignored).
+    fn set_tolerance(&mut self, tol: f64) {
+        if tol > 0.0 && tol < 1.0 {
+            self.opts.tol = tol;
+        }
+    }
+
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
-        self.check_input(problem, guess)?;
+        match Regular::new(problem)? {
+            Some(reg) => self.solve_plain(&reg, guess, &mut |_| {}),
+            None => self.solve_plain(problem, guess, &mut |_| {}),
+        }
+    }
+}
+
+impl Collocation {
+    /// [`BvpSolver::solve`] of a problem without a singular term.
+    fn solve_plain<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &Guess,
+        observer: &mut dyn FnMut(&Progress<'_>),
+    ) -> Result<Solution, BvpError> {
+        guess.validate(problem.dims(), problem.interval())?;
         let dims = problem.dims();
         let n = dims.n;
         let (a, b) = problem.interval();
@@ -1024,6 +1044,7 @@ impl BvpSolver for Collocation {
         let mut retries = 0;
         let mut coarsenings = 0;
         let mut ill_refines = 0;
+        let mut homotopy_tried = false;
         let mut rms = Vec::new();
 
         loop {
@@ -1042,8 +1063,32 @@ impl BvpSolver for Collocation {
             stats.mesh_passes += 1;
             stats.nodes = mesh.len();
             let mut disc = Disc::new(problem, &self.tab, &mesh, &mut self.work);
-            let res = self.newton.solve(&mut disc, &mut u, &nopts, &mut stats);
+            let start = (!homotopy_tried).then(|| u.clone());
+            let mut res = self.newton.solve(&mut disc, &mut u, &nopts, &mut stats);
+            if let (Err(BvpError::Stalled { .. } | BvpError::MaxIterations { .. }), Some(u0)) =
+                (&res, start)
+            {
+                if disc.non_finite.is_none() && opts.homotopy {
+                    // Globalization: the Newton homotopy from the starting values on this mesh.
+                    homotopy_tried = true;
+                    let mut uh = u0;
+                    let mut hstats = stats.clone();
+                    if homotopy(&mut self.newton, &mut disc, &mut uh, &nopts, &mut hstats).is_ok() {
+                        u = uh;
+                        res = Ok(());
+                    }
+                    stats = hstats;
+                }
+            }
             if let Err(mut e) = res {
+                observer(&Progress {
+                    pass: stats.mesh_passes,
+                    mesh: &mesh,
+                    newton_iters: stats.newton_iters,
+                    newton_converged: false,
+                    residual: stats.residual,
+                    residuals: &[],
+                });
                 let failed = matches!(e, BvpError::Stalled { .. } | BvpError::MaxIterations { .. });
                 if let (true, Some((location, s))) = (failed, disc.non_finite) {
                     // Newton was blocked by NaN/∞ of the problem: report that, it is the cause.
@@ -1106,6 +1151,14 @@ impl BvpSolver for Collocation {
             let bcres = disc.bc_residual(&u, &mut stats);
             let max_rms = rms.iter().fold(0.0_f64, |m, v| m.max(*v));
             stats.error_estimate = Some(max_rms);
+            observer(&Progress {
+                pass: stats.mesh_passes,
+                mesh: &mesh,
+                newton_iters: stats.newton_iters,
+                newton_converged: true,
+                residual: stats.residual,
+                residuals: &rms,
+            });
             let mut converged = max_rms <= opts.tol && bcres <= bc_tol;
             if converged && opts.adapt {
                 // Conditioning: this solution's residuals (the estimated defect, the boundary
@@ -1148,8 +1201,12 @@ impl BvpSolver for Collocation {
                 let params = u[disc.lay.pcol()..].to_vec();
                 // Both schemes: the quintic Hermite of the nodes (their cubic / quartic
                 // collocation polynomials are less accurate between nodes than at them).
-                let dense = Dense::Quintic {
-                    d2z: disc.second_derivatives(&params, &z, &dz, &mut stats),
+                let dense = if self.tab.internal {
+                    Dense::Quintic {
+                        d2z: disc.second_derivatives(&params, &z, &dz, &mut stats),
+                    }
+                } else {
+                    Dense::Hermite
                 };
                 let sol = Solution {
                     n,

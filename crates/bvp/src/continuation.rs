@@ -51,7 +51,9 @@
 //!   no tangent); from then on the secant through the last two points is the tangent.
 //! - Natural continuation steps `λ` by `±ds` and corrects with `λ` fixed; its predictor is the
 //!   secant in `λ`. It cannot pass a fold: there the solves fail, the step shrinks to `ds_min` and
-//!   the iterator returns [`BvpError::Continuation`] with the solver's error and a "fold?" hint.
+//!   the iterator returns [`BvpError::Continuation`] with the solver's error and, when Newton
+//!   failed to converge (stall, iteration limit, singular matrix), a "fold?" hint (none for
+//!   non-finite values, integration or mesh limits).
 //! - Step control: a step is rejected (and `ds` halved) if the corrector fails or if the angle
 //!   between the new and the previous secant exceeds `max_angle` (so a step cannot jump to
 //!   another part of the branch); at `ds = ds_min` the angle test is waived and a corrector
@@ -115,11 +117,27 @@
 //!   the branch (the angle limit sees to that); otherwise it is reported with `located = false`.
 //! - The last `history` points (solutions included) are kept for [`Continuation::point_at`].
 
-use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, Solution, Stats};
+use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, Solution, Stats, Status};
 use argmin::core::{CostFunction, Executor, State as _, TerminationReason, TerminationStatus};
 use argmin::solver::brent::BrentOpt;
 use std::cell::RefCell;
 use std::collections::VecDeque;
+
+/// The likely cause of a corrector failure at `ds_min`, for [`BvpError::Continuation`]: a fold
+/// only where the corrector's Newton failed to converge (natural continuation cannot pass one);
+/// non-finite values, integration or mesh limits and inaccurate solutions are their own cause.
+fn failure_hint(method: Method, e: &BvpError) -> &'static str {
+    match (method, e.status()) {
+        (Method::Natural, Status::Stalled | Status::MaxIterations) => {
+            " (fold? natural continuation cannot pass a fold in lambda; use PseudoArclength)"
+        }
+        (Method::Natural, Status::SingularJacobian) => {
+            " (a singular member of the family, or a fold: natural continuation cannot pass a \
+             fold in lambda; try PseudoArclength)"
+        }
+        _ => "",
+    }
+}
 
 /// A family of BVPs in one scalar parameter `λ`: `z' = F(s, z, p; λ)`, `g(z(a), z(b), p; λ) = 0`.
 ///
@@ -271,6 +289,112 @@ impl<P: ParamBvp + ?Sized> Bvp for Member<'_, P> {
         let mut dgl = self.dgl.borrow_mut();
         self.family
             .bc_jacobian(za, zb, p, self.lambda, dga, dgb, dgp, &mut dgl)
+    }
+}
+
+/// A family built from a function that makes the member problem at each `λ`: the bridge from
+/// any [`Bvp`] (a struct with the parameter as a field, an array problem wrapped in
+/// [`crate::fixed::Fixed`], closures from [`crate::from_fns`]) to [`ParamBvp`], for
+/// [`crate::solve_by_continuation`] and [`Continuation`]. Made by [`family`].
+///
+/// `make` is called for every evaluation (it should be cheap: build a small struct). The
+/// dimensions and interval are those of `make(0.0)` and must not depend on `λ`. The Jacobians in
+/// `z` and `p` are the member's own (finite differences where it has none); `∂F/∂λ` and `∂g/∂λ`
+/// are central differences with step `1e-6 · (1 + |λ|)` (error `O(1e-12)` relative).
+pub struct FnFamily<F> {
+    make: F,
+    scratch: RefCell<[Vec<f64>; 2]>,
+}
+
+impl<F> std::fmt::Debug for FnFamily<F> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("FnFamily")
+    }
+}
+
+/// The family whose member at `λ` is `make(λ)`: see [`FnFamily`].
+///
+/// ```
+/// use bvp::continuation::family;
+/// use bvp::samples::Bratu;
+/// use bvp::{solve_by_continuation, BvpSolver, PathOptions, Shooting, ShootingOptions};
+///
+/// // Bratu's problem is a struct with its parameter as a field: walk λ from 0.5 to 3.
+/// let fam = family(|lambda| Bratu { lambda });
+/// let mut solver = Shooting::new(ShootingOptions::default())?;
+/// let guess = Bratu { lambda: 0.5 }.guess();
+/// let res = solve_by_continuation(&fam, &mut solver, &guess, 0.5, 3.0, &PathOptions::default())?;
+/// assert_eq!(*res.path.last().unwrap(), 3.0);
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
+pub fn family<B: Bvp, F: Fn(f64) -> B>(make: F) -> FnFamily<F> {
+    FnFamily {
+        make,
+        scratch: RefCell::new([Vec::new(), Vec::new()]),
+    }
+}
+
+impl<B: Bvp, F: Fn(f64) -> B> FnFamily<F> {
+    /// `out = ∂/∂λ eval(member)` by a central difference in `λ`.
+    fn d_lambda(&self, lambda: f64, out: &mut [f64], eval: impl Fn(&B, &mut [f64])) {
+        let h = 1e-6 * (1.0 + lambda.abs());
+        let mut sc = self.scratch.borrow_mut();
+        let [a, b] = &mut *sc;
+        a.resize(out.len(), 0.0);
+        b.resize(out.len(), 0.0);
+        eval(&(self.make)(lambda + h), a);
+        eval(&(self.make)(lambda - h), b);
+        for ((d, x), y) in out.iter_mut().zip(a.iter()).zip(b.iter()) {
+            *d = (x - y) / (2.0 * h);
+        }
+    }
+}
+
+impl<B: Bvp, F: Fn(f64) -> B> ParamBvp for FnFamily<F> {
+    fn dims(&self) -> Dims {
+        (self.make)(0.0).dims()
+    }
+    fn interval(&self) -> (f64, f64) {
+        (self.make)(0.0).interval()
+    }
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], lambda: f64, dz: &mut [f64]) {
+        (self.make)(lambda).rhs(s, z, p, dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], lambda: f64, res: &mut [f64]) {
+        (self.make)(lambda).bc(za, zb, p, res)
+    }
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        p: &[f64],
+        lambda: f64,
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+        dfdl: &mut [f64],
+    ) -> bool {
+        if !(self.make)(lambda).rhs_jacobian(s, z, p, dfdz, dfdp) {
+            return false;
+        }
+        self.d_lambda(lambda, dfdl, |m, out| m.rhs(s, z, p, out));
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64],
+        zb: &[f64],
+        p: &[f64],
+        lambda: f64,
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+        dgl: &mut [f64],
+    ) -> bool {
+        if !(self.make)(lambda).bc_jacobian(za, zb, p, dga, dgb, dgp) {
+            return false;
+        }
+        self.d_lambda(lambda, dgl, |m, out| m.bc(za, zb, p, out));
+        true
     }
 }
 
@@ -904,17 +1028,11 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
     }
 
     fn wrap(&self, e: BvpError, ds: f64) -> BvpError {
-        let hint = match self.opts.method {
-            Method::Natural => {
-                " (fold? natural continuation cannot pass a fold in lambda; use PseudoArclength)"
-            }
-            Method::PseudoArclength => "",
-        };
         BvpError::Continuation {
             step: self.step + 1,
             lambda: self.history.back().map_or(self.lambda0, |n| n.lambda),
             ds,
-            hint,
+            hint: failure_hint(self.opts.method, &e),
             source: Box::new(e),
         }
     }

@@ -25,6 +25,9 @@ pub enum Status {
     InvalidInput,
     /// A continuation path ended before its target (step limit, or the branch turned back).
     PathEnded,
+    /// The solve converged, but the solution it would return fails its own check: its error
+    /// estimate or boundary residual exceeds the tolerance.
+    Inaccurate,
 }
 
 /// Why a solve failed. Every variant that comes from a solve carries the [`Stats`] gathered so far.
@@ -49,6 +52,19 @@ pub enum BvpError {
         got: usize,
         /// What was expected.
         expected: usize,
+    },
+    /// The guess is malformed: its mesh is not finite and strictly increasing or does not span
+    /// the problem's interval, or a value is not finite.
+    #[error("invalid guess: {what} at index {index} (value {value}): {reason}")]
+    InvalidGuess {
+        /// What is wrong: "mesh", "values", "derivatives", "parameters".
+        what: &'static str,
+        /// Index of the first offending entry.
+        index: usize,
+        /// Its value.
+        value: f64,
+        /// The rule it breaks.
+        reason: &'static str,
     },
     /// The Newton matrix is singular.
     #[error(
@@ -164,6 +180,43 @@ pub enum BvpError {
         /// Statistics of the whole path.
         stats: Stats,
     },
+    /// Newton converged, but the solution it would return fails the solver's own check of it
+    /// (e.g. shooting: the error estimate of the returned trajectory exceeds `tol`): no solution
+    /// is returned rather than a wrong one.
+    #[error(
+        "the converged solution misses its tolerance: {check} {value:.3e} > tol {tol:.3e} \
+         (tighten the integrator, use more segments, or collocation) ({stats})"
+    )]
+    Inaccurate {
+        /// Which check failed.
+        check: Check,
+        /// The measured value.
+        value: f64,
+        /// The tolerance it had to meet.
+        tol: f64,
+        /// Statistics of the solve.
+        stats: Stats,
+    },
+}
+
+/// What an [`BvpError::Inaccurate`] solution missed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Check {
+    /// The estimated error of the returned trajectory and of its dense output, scaled by the
+    /// solution's size (see the solver's docs).
+    ErrorEstimate,
+    /// The boundary conditions (and, multiple shooting, the continuity at the segment joints)
+    /// evaluated on the returned trajectory.
+    BoundaryResidual,
+}
+
+impl std::fmt::Display for Check {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Check::ErrorEstimate => "error estimate",
+            Check::BoundaryResidual => "boundary residual",
+        })
+    }
 }
 
 fn path_end(turned_back: bool) -> &'static str {
@@ -180,7 +233,9 @@ impl BvpError {
     /// The termination status this error stands for.
     pub fn status(&self) -> Status {
         match self {
-            BvpError::InvalidOption { .. } | BvpError::Dimension { .. } => Status::InvalidInput,
+            BvpError::InvalidOption { .. }
+            | BvpError::Dimension { .. }
+            | BvpError::InvalidGuess { .. } => Status::InvalidInput,
             BvpError::SingularJacobian { .. } => Status::SingularJacobian,
             BvpError::Stalled { .. } => Status::Stalled,
             BvpError::MaxIterations { .. } => Status::MaxIterations,
@@ -189,20 +244,24 @@ impl BvpError {
             BvpError::StepSizeTooSmall { .. } => Status::StepSizeTooSmall,
             BvpError::Continuation { source, .. } => source.status(),
             BvpError::PathEnded { .. } => Status::PathEnded,
+            BvpError::Inaccurate { .. } => Status::Inaccurate,
         }
     }
 
     /// Statistics of the failed solve, if it got that far.
     pub fn stats(&self) -> Option<&Stats> {
         match self {
-            BvpError::InvalidOption { .. } | BvpError::Dimension { .. } => None,
+            BvpError::InvalidOption { .. }
+            | BvpError::Dimension { .. }
+            | BvpError::InvalidGuess { .. } => None,
             BvpError::SingularJacobian { stats, .. }
             | BvpError::Stalled { stats, .. }
             | BvpError::MaxIterations { stats, .. }
             | BvpError::NonFinite { stats, .. }
             | BvpError::MeshLimit { stats, .. }
             | BvpError::StepSizeTooSmall { stats, .. }
-            | BvpError::PathEnded { stats, .. } => Some(stats),
+            | BvpError::PathEnded { stats, .. }
+            | BvpError::Inaccurate { stats, .. } => Some(stats),
             BvpError::Continuation { source, .. } => source.stats(),
         }
     }

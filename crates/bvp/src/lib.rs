@@ -48,10 +48,12 @@
 mod error;
 mod problem;
 mod rk;
+mod singular;
 mod solution;
 mod stats;
 
 pub mod collocation;
+pub mod complex;
 pub mod continuation;
 pub mod fd;
 pub mod fixed;
@@ -65,12 +67,12 @@ pub mod shooting;
 pub mod tableau;
 pub mod testset;
 
-pub use collocation::{Collocation, CollocationOptions, Scheme};
+pub use collocation::{Collocation, CollocationOptions, Progress, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
-pub use error::{BvpError, Status};
-pub use newton::NewtonOptions;
-pub use path::{solve_by_continuation, PathOptions, PathSolution, Scale};
-pub use problem::{from_fns, Bvp, Dims, FnBvp};
+pub use error::{BvpError, Check, Status};
+pub use newton::{Damping, NewtonOptions};
+pub use path::{solve_by_continuation, solve_member, PathOptions, PathSolution, Scale};
+pub use problem::{from_fns, Bvp, Dims, FnBvp, SingularTerm};
 pub use shooting::{Integrator, Shooting, ShootingOptions};
 pub use solution::{Dense, Guess, Solution};
 pub use stats::Stats;
@@ -82,10 +84,31 @@ pub use stats::Stats;
 pub trait BvpSolver {
     /// Solves `problem` starting from `guess`.
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError>;
+
+    /// The accuracy the solver checks its solutions against, if it has one (collocation: `tol`;
+    /// shooting: [`ShootingOptions::accuracy_tol`]). Default `None`.
+    fn tolerance(&self) -> Option<f64> {
+        None
+    }
+
+    /// Sets that accuracy (`0 < tol < 1`; used by [`solve_by_continuation`] for the members on
+    /// the way, see [`PathOptions::intermediate_tol`]). Default: ignored.
+    fn set_tolerance(&mut self, _tol: f64) {}
 }
 
 impl<S: BvpSolver + ?Sized> BvpSolver for &mut S {
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
         (**self).solve(problem, guess)
     }
+    fn tolerance(&self) -> Option<f64> {
+        (**self).tolerance()
+    }
+    fn set_tolerance(&mut self, tol: f64) {
+        (**self).set_tolerance(tol)
+    }
 }
+
+/// The examples of the crate's README.md, run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -65,6 +65,25 @@ pub struct NewtonOptions {
     /// rows) a full step that cannot decrease the residual counts as convergence; above it, a
     /// line search that fails is [`BvpError::Stalled`]. Default 1e-8.
     pub step_residual_tol: f64,
+    /// Damping strategy. Default [`Damping::Armijo`]; collocation uses
+    /// [`Damping::AffineInvariant`] when the system supports it (see [`crate::collocation`]).
+    pub damping: Damping,
+}
+
+/// How the Newton step is damped (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub enum Damping {
+    /// Backtracking on the (scaled) residual norm with the Armijo rule.
+    #[default]
+    Armijo,
+    /// Deuflhard's error-oriented, affine-invariant damping (NLEQ-ERR): a trial is accepted
+    /// when the simplified Newton correction `Δ̄u = −J(u)⁻¹R(u + λΔu)` (same factorization)
+    /// satisfies the monotonicity test `‖Δ̄u‖ ≤ (1 − λ/4)‖Δu‖` in the norm weighted by
+    /// `1 + |u_i|`; `λ` is predicted from the previous step's contraction and corrected from
+    /// the failed trial. Invariant under rescaling of the equations, so badly scaled residual
+    /// rows (layers) do not steer the step. Falls back to `Armijo` for systems that cannot
+    /// re-solve with their factorization ([`NewtonSystem::resolve`]).
+    AffineInvariant,
 }
 
 impl Default for NewtonOptions {
@@ -75,6 +94,7 @@ impl Default for NewtonOptions {
             step_tol: 1e-12,
             min_damping: 1e-6,
             step_residual_tol: 1e-8,
+            damping: Damping::Armijo,
         }
     }
 }
@@ -151,6 +171,12 @@ pub trait NewtonSystem {
     fn residual_scale(&mut self, _u: &[f64], _w: &mut [f64]) -> bool {
         false
     }
+
+    /// Solves `J du = −r` with the factorization of the last [`NewtonSystem::solve_linearized`]
+    /// (for [`Damping::AffineInvariant`]); `Ok(false)` (the default) if not supported.
+    fn resolve(&mut self, _r: &[f64], _du: &mut [f64]) -> Result<bool, BvpError> {
+        Ok(false)
+    }
 }
 
 /// A [`BvpError::SingularJacobian`] with placeholder statistics (filled in by the driver).
@@ -189,7 +215,8 @@ pub fn attach(mut err: BvpError, iteration: usize, stats: &Stats) -> BvpError {
         BvpError::MaxIterations { stats: st, .. }
         | BvpError::NonFinite { stats: st, .. }
         | BvpError::MeshLimit { stats: st, .. }
-        | BvpError::StepSizeTooSmall { stats: st, .. } => *st = stats.clone(),
+        | BvpError::StepSizeTooSmall { stats: st, .. }
+        | BvpError::Inaccurate { stats: st, .. } => *st = stats.clone(),
         // Input errors carry no statistics; wrapped errors (continuation) keep their own.
         _ => {}
     }
@@ -204,7 +231,29 @@ pub struct Newton {
     ut: Vec<f64>,
     rt: Vec<f64>,
     w: Vec<f64>,
+    /// Affine-invariant damping: the simplified correction of the trial and its predecessor's
+    /// values for the next prediction.
+    dbar: Vec<f64>,
     iterations: usize,
+}
+
+/// RMS norm of `(a_i − c b_i) / (1 + |u_i|)`.
+fn wdiff(a: &[f64], b: &[f64], c: f64, u: &[f64]) -> f64 {
+    let s: f64 = a
+        .iter()
+        .zip(b)
+        .zip(u)
+        .map(|((x, y), w)| {
+            let v = (x - c * y) / (1.0 + w.abs());
+            v * v
+        })
+        .sum();
+    (s / a.len().max(1) as f64).sqrt()
+}
+
+/// RMS norm of `x_i / (1 + |u_i|)`.
+fn wnorm(x: &[f64], u: &[f64]) -> f64 {
+    wdiff(x, x, 0.0, u)
 }
 
 fn max_norm(x: &[f64]) -> f64 {
@@ -257,6 +306,95 @@ impl Newton {
         }
     }
 
+    /// One affine-invariant damped step from `u` (the Newton step is in `self.du`, `R(u)` in
+    /// `self.r`, scaled max-norm `f`): `Ok(None)` if the system cannot re-solve (use Armijo),
+    /// `Ok(Some(true))` at the rounding floor, `Ok(Some(false))` after an accepted step (`u`,
+    /// `self.r` updated).
+    #[allow(clippy::too_many_arguments)]
+    fn affine_step<S: NewtonSystem + ?Sized>(
+        &mut self,
+        sys: &mut S,
+        u: &mut [f64],
+        opts: &NewtonOptions,
+        it: usize,
+        f: f64,
+        small_step: bool,
+        prev: &mut Option<(f64, f64)>,
+        stats: &mut Stats,
+    ) -> Result<Option<bool>, BvpError> {
+        let ndu = wnorm(&self.du, u);
+        // Prediction from the last step (`self.dbar` still holds its simplified correction
+        // Δ̄u = −J(u_prev)⁻¹R(u)): λ = min(1, ‖Δu_prev‖‖Δ̄u‖ / (‖Δ̄u − Δu‖‖Δu‖) · λ_prev).
+        let mut lambda = match *prev {
+            Some((lp, ndu_prev)) => {
+                let ndbar = wnorm(&self.dbar, u);
+                let diff = wdiff(&self.dbar, &self.du, 1.0, u);
+                if diff > 0.0 && ndu > 0.0 {
+                    (ndu_prev * ndbar / (diff * ndu) * lp).min(1.0)
+                } else {
+                    1.0
+                }
+            }
+            None => 1.0,
+        }
+        .max(opts.min_damping);
+        let mut reduced = false;
+        loop {
+            for ((t, &x), &d) in self.ut.iter_mut().zip(u.iter()).zip(&self.du) {
+                *t = x + lambda * d;
+            }
+            let trial = sys.residual(&self.ut, &mut self.rt, stats);
+            let finite = match trial {
+                Ok(()) => all_finite(&self.rt),
+                Err(BvpError::NonFinite { .. }) | Err(BvpError::StepSizeTooSmall { .. }) => false,
+                Err(e) => return Err(attach(e, it, stats)),
+            };
+            let mut next = 0.25 * lambda;
+            if finite {
+                if !sys.resolve(&self.rt, &mut self.dbar)? {
+                    return Ok(None);
+                }
+                if !all_finite(&self.dbar) {
+                    return Err(attach(non_finite("newton step", f64::NAN), it, stats));
+                }
+                let ndbar = wnorm(&self.dbar, u);
+                // ‖Δ̄u − (1 − λ)Δu‖: the nonlinearity seen along the step.
+                let diff = wdiff(&self.dbar, &self.du, 1.0 - lambda, u);
+                if ndbar <= (1.0 - 0.25 * lambda) * ndu || ndbar == 0.0 {
+                    *prev = Some((lambda, ndu));
+                    u.copy_from_slice(&self.ut);
+                    std::mem::swap(&mut self.r, &mut self.rt);
+                    return Ok(Some(false));
+                }
+                if f <= opts.step_residual_tol && (small_step || lambda == 1.0) {
+                    return Ok(Some(true));
+                }
+                let mu = if diff > 0.0 {
+                    0.5 * ndu * lambda * lambda / diff
+                } else {
+                    0.5 * lambda
+                };
+                next = mu.min(0.5 * lambda);
+            }
+            if reduced && next >= lambda {
+                next = 0.5 * lambda;
+            }
+            reduced = true;
+            if next < opts.min_damping {
+                return Err(attach(
+                    BvpError::Stalled {
+                        iteration: it,
+                        residual: f,
+                        stats: Stats::default(),
+                    },
+                    it,
+                    stats,
+                ));
+            }
+            lambda = next;
+        }
+    }
+
     /// Runs damped Newton on `sys` from `u` (overwritten by the solution, or by the last accepted
     /// iterate on failure). The residual vector has the length of `u` (square systems).
     pub fn solve<S: NewtonSystem + ?Sized>(
@@ -267,7 +405,13 @@ impl Newton {
         stats: &mut Stats,
     ) -> Result<(), BvpError> {
         let m = u.len();
-        for v in [&mut self.r, &mut self.du, &mut self.ut, &mut self.rt] {
+        for v in [
+            &mut self.r,
+            &mut self.du,
+            &mut self.ut,
+            &mut self.rt,
+            &mut self.dbar,
+        ] {
             v.clear();
             v.resize(m, 0.0);
         }
@@ -287,6 +431,9 @@ impl Newton {
             return Ok(());
         }
 
+        // Affine-invariant damping: (λ, ‖Δu‖, ‖Δ̄u − Δu‖-based prediction) of the last step.
+        let mut prev: Option<(f64, f64)> = None;
+        let mut affine = opts.damping == Damping::AffineInvariant;
         for it in 1..=opts.max_iter {
             self.iterations = it;
             stats.newton_iters += 1;
@@ -296,6 +443,23 @@ impl Newton {
                 return Err(attach(non_finite("newton step", f64::NAN), it, stats));
             }
             let small_step = max_norm(&self.du) <= opts.step_tol * (1.0 + max_norm(u));
+
+            if affine {
+                match self.affine_step(sys, u, opts, it, f, small_step, &mut prev, stats)? {
+                    Some(true) => return Ok(()),
+                    Some(false) => {
+                        self.rescale(sys, u);
+                        (f, phi) = scaled(&self.r, &self.w);
+                        stats.residual = f;
+                        if f <= opts.tol || (small_step && f <= opts.step_residual_tol) {
+                            return Ok(());
+                        }
+                        continue;
+                    }
+                    // The system cannot re-solve: Armijo from here on.
+                    None => affine = false,
+                }
+            }
 
             // Backtracking line search.
             let mut lambda = 1.0_f64;
@@ -373,6 +537,139 @@ impl Newton {
             stats: stats.clone(),
         })
     }
+}
+
+/// The Newton homotopy `R(u) − τ R(u₀) = 0` of a system, solved at `τ` (see [`homotopy`]).
+struct Shifted<'a, S: ?Sized> {
+    sys: &'a mut S,
+    r0: &'a [f64],
+    tau: f64,
+    /// `R(u)` unshifted (the system's contract for `solve_linearized`) and `−J⁻¹ r0`.
+    full: Vec<f64>,
+    d0: Vec<f64>,
+}
+
+impl<S: NewtonSystem + ?Sized> NewtonSystem for Shifted<'_, S> {
+    fn residual(&mut self, u: &[f64], r: &mut [f64], stats: &mut Stats) -> Result<(), BvpError> {
+        self.sys.residual(u, r, stats)?;
+        for (x, r0) in r.iter_mut().zip(self.r0) {
+            *x -= self.tau * r0;
+        }
+        Ok(())
+    }
+
+    fn solve_linearized(
+        &mut self,
+        u: &[f64],
+        r: &[f64],
+        du: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        for ((f, x), r0) in self.full.iter_mut().zip(r).zip(self.r0) {
+            *f = x + self.tau * r0;
+        }
+        self.sys.solve_linearized(u, &self.full, du, stats)?;
+        if !self.sys.resolve(self.r0, &mut self.d0)? {
+            return Err(singular());
+        }
+        for (d, d0) in du.iter_mut().zip(&self.d0) {
+            *d -= self.tau * d0;
+        }
+        Ok(())
+    }
+
+    fn residual_scale(&mut self, u: &[f64], w: &mut [f64]) -> bool {
+        self.sys.residual_scale(u, w)
+    }
+
+    fn resolve(&mut self, r: &[f64], du: &mut [f64]) -> Result<bool, BvpError> {
+        self.sys.resolve(r, du)
+    }
+}
+
+/// Steps of [`homotopy`] before it gives up.
+const HOMOTOPY_STEPS: usize = 200;
+/// Newton iterations of an easy [`homotopy`] step (the next one is twice as long).
+const HOMOTOPY_EASY: usize = 5;
+/// Smallest step in `τ` of [`homotopy`].
+const HOMOTOPY_MIN_STEP: f64 = 1e-3;
+
+/// Globalization without a parameter: the Newton homotopy `R(u) − τ R(u₀) = 0` from `τ = 1`
+/// (solved by `u₀`, the given `u`) to `τ = 0` (the system), each step a damped Newton solve
+/// (`opts`, at most 10 iterations) from the secant predictor; a failed step halves `Δτ`, an
+/// easy one (≤ 5 iterations) doubles it. The system must support
+/// [`NewtonSystem::resolve`]. On failure `u` is the last point reached and the error the last
+/// step's.
+pub fn homotopy<S: NewtonSystem + ?Sized>(
+    newton: &mut Newton,
+    sys: &mut S,
+    u: &mut [f64],
+    opts: &NewtonOptions,
+    stats: &mut Stats,
+) -> Result<(), BvpError> {
+    let m = u.len();
+    let mut r0 = vec![0.0; m];
+    sys.residual(u, &mut r0, stats)?;
+    let step_opts = NewtonOptions {
+        max_iter: opts.max_iter.min(10),
+        ..opts.clone()
+    };
+    let mut shifted = Shifted {
+        sys,
+        r0: &r0,
+        tau: 1.0,
+        full: vec![0.0; m],
+        d0: vec![0.0; m],
+    };
+    let (mut tau, mut dt) = (1.0_f64, 0.25_f64);
+    // Last accepted point and the secant to it from the one before (predictor).
+    let mut last = u.to_vec();
+    let mut secant = vec![0.0; m];
+    let mut last_dt = 0.0_f64;
+    for _ in 0..HOMOTOPY_STEPS {
+        let t = if tau - dt < 0.5 * dt { 0.0 } else { tau - dt };
+        shifted.tau = t;
+        if last_dt > 0.0 {
+            let c = (tau - t) / last_dt;
+            for ((x, l), d) in u.iter_mut().zip(&last).zip(&secant) {
+                *x = l + c * d;
+            }
+        }
+        let before = stats.newton_iters;
+        let res = if t == 0.0 {
+            newton.solve(shifted.sys, u, opts, stats)
+        } else {
+            newton.solve(&mut shifted, u, &step_opts, stats)
+        };
+        match res {
+            Ok(()) => {
+                if t == 0.0 {
+                    return Ok(());
+                }
+                for ((d, x), l) in secant.iter_mut().zip(u.iter()).zip(&last) {
+                    *d = x - l;
+                }
+                last.copy_from_slice(u);
+                last_dt = tau - t;
+                tau = t;
+                if stats.newton_iters - before <= HOMOTOPY_EASY {
+                    dt *= 2.0;
+                }
+            }
+            Err(e) => {
+                u.copy_from_slice(&last);
+                dt *= 0.5;
+                if dt < HOMOTOPY_MIN_STEP {
+                    return Err(e);
+                }
+            }
+        }
+    }
+    Err(BvpError::MaxIterations {
+        max_iter: HOMOTOPY_STEPS,
+        residual: stats.residual,
+        stats: stats.clone(),
+    })
 }
 
 /// Convenience: damped Newton with a temporary [`Newton`] (allocates its work vectors).

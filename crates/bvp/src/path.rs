@@ -48,7 +48,8 @@ use crate::{BvpError, BvpSolver, Dims, Guess, Solution, Stats};
 /// How the parameter is walked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
 pub enum Scale {
-    /// `Log` when `from` and `to` have the same sign and `|ln(to/from)| > ln 10`, else `Linear`.
+    /// `Log` when `from` and `to` have the same sign and differ by a factor of 10 or more (up to
+    /// rounding: `0.1 → 0.01` is logarithmic), else `Linear`.
     #[default]
     Auto,
     /// Steps in `λ`.
@@ -67,6 +68,11 @@ pub struct PathOptions {
     /// and `max_steps = 500`. `lambda_min`, `lambda_max` and `direction` are set from `from` and
     /// `to` and ignored here.
     pub continuation: ContinuationOptions,
+    /// Tolerance of the members solved on the way (the solver's [`BvpSolver::set_tolerance`]);
+    /// the member at `to` is then solved again at the solver's own tolerance from the last one.
+    /// Default `None`: every member at the solver's tolerance. A looser one makes the walk
+    /// cheaper (coarser meshes, fewer shooting steps); solvers without a tolerance ignore it.
+    pub intermediate_tol: Option<f64>,
 }
 
 impl Default for PathOptions {
@@ -81,13 +87,20 @@ impl Default for PathOptions {
                 max_steps: 500,
                 ..ContinuationOptions::default()
             },
+            intermediate_tol: None,
         }
     }
 }
 
 impl PathOptions {
-    /// Checks the continuation options (bounds and direction excepted).
+    /// Checks the continuation options (bounds and direction excepted) and `intermediate_tol`
+    /// (`0 < tol < 1`).
     pub fn validate(&self) -> Result<(), BvpError> {
+        if let Some(t) = self.intermediate_tol {
+            if !(t > 0.0 && t < 1.0) {
+                return Err(invalid("intermediate_tol", t, "must be in (0, 1)"));
+            }
+        }
         ContinuationOptions {
             lambda_min: f64::NEG_INFINITY,
             lambda_max: f64::INFINITY,
@@ -221,6 +234,18 @@ fn invalid(name: &'static str, value: impl std::fmt::Display, reason: &'static s
 /// cannot proceed even at `ds_min` (with the parameter reached and the solver's last error);
 /// [`BvpError::PathEnded`] when `max_steps` run out or the branch turns back before `to`. Both
 /// report the parameter itself (not its logarithm on a log scale).
+///
+/// ```
+/// use bvp::{samples::BratuFamily, solve_by_continuation, Guess, PathOptions, Shooting, ShootingOptions};
+///
+/// // Bratu u'' + λeᵘ = 0 from λ = 0.1 to λ = 3 (lower branch, below the fold at 3.5138)
+/// let mut solver = Shooting::new(ShootingOptions::default())?;
+/// let guess = Guess::constant(0.0, 1.0, 11, &[0.0, 0.0], vec![]);
+/// let res = solve_by_continuation(&BratuFamily, &mut solver, &guess, 0.1, 3.0, &PathOptions::default())?;
+/// let exact = bvp::samples::Bratu { lambda: 3.0 }.exact(0, 0.5)[0];
+/// assert!((res.solution.at(0.5)[0] - exact).abs() < 1e-7);
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
 pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
     family: &P,
     solver: &mut S,
@@ -249,8 +274,41 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
             }
             true
         }
-        Scale::Auto => from * to > 0.0 && (to / from).ln().abs() > std::f64::consts::LN_10,
+        // A factor of 10 or more, up to rounding (0.01 / 0.1 = 0.09999999999999999).
+        Scale::Auto => {
+            from * to > 0.0 && (to / from).ln().abs() >= std::f64::consts::LN_10 * (1.0 - 1e-12)
+        }
     };
+    let own_tol = solver.tolerance();
+    if let (Some(t), Some(_)) = (opts.intermediate_tol, own_tol) {
+        solver.set_tolerance(t);
+    }
+    let walked = walk_family(family, solver, guess, from, to, opts, log);
+    let Some(tol) = own_tol.filter(|_| opts.intermediate_tol.is_some()) else {
+        return walked;
+    };
+    solver.set_tolerance(tol);
+    let mut res = walked?;
+    // The member at `to` at the solver's own tolerance, from the last intermediate solution.
+    let sol = solver.solve(&Member::new(family, to), &Guess::from(&res.solution))?;
+    res.stats.accumulate(&sol.stats);
+    res.stats.nodes = sol.stats.nodes;
+    res.stats.residual = sol.stats.residual;
+    res.stats.error_estimate = sol.stats.error_estimate;
+    res.solution = sol;
+    Ok(res)
+}
+
+/// [`solve_by_continuation`] at the solver's current tolerance.
+fn walk_family<P: ParamBvp + ?Sized, S: BvpSolver>(
+    family: &P,
+    solver: &mut S,
+    guess: &Guess,
+    from: f64,
+    to: f64,
+    opts: &PathOptions,
+    log: bool,
+) -> Result<PathSolution, BvpError> {
     let start = solver.solve(&Member::new(family, from), guess)?;
     let mut stats = start.stats.clone();
     if from == to {
@@ -359,4 +417,51 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
         path,
         stats,
     })
+}
+
+/// Solves the member of `family` at `lambda`: directly from `guess` first and, if that fails,
+/// by [`solve_by_continuation`] from the easy member at `easy` (solved from the same `guess`)
+/// with `opts` — the automatic fallback for a plain solve whose hard parameter the user names.
+/// The returned `path` is `[lambda]` for a direct solve; `stats` count both attempts.
+///
+/// Errors: the continuation's (see [`solve_by_continuation`]) when both fail.
+///
+/// ```
+/// use bvp::testset::CashMazzia;
+/// use bvp::{solve_member, Collocation, CollocationOptions, PathOptions, Scheme};
+///
+/// // ε y'' = 1 − y'² at ε = 1e-4 defeats Newton (and its homotopy) from a straight line;
+/// // ε = 0.1 does not.
+/// let p = CashMazzia::new(20).unwrap();
+/// let mut solver = Collocation::new(CollocationOptions {
+///     scheme: Scheme::Lobatto6,
+///     ..CollocationOptions::default()
+/// })?;
+/// let res = solve_member(&p, &mut solver, &p.guess(1e-4, 101), 1e-4, 0.1, &PathOptions::default())?;
+/// assert!(res.path.len() > 2);
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
+pub fn solve_member<P: ParamBvp + ?Sized, S: BvpSolver>(
+    family: &P,
+    solver: &mut S,
+    guess: &Guess,
+    lambda: f64,
+    easy: f64,
+    opts: &PathOptions,
+) -> Result<PathSolution, BvpError> {
+    opts.validate()?;
+    let direct = match solver.solve(&Member::new(family, lambda), guess) {
+        Ok(sol) => {
+            return Ok(PathSolution {
+                stats: sol.stats.clone(),
+                solution: sol,
+                path: vec![lambda],
+            })
+        }
+        Err(e) => e,
+    };
+    let spent = direct.stats().cloned().unwrap_or_default();
+    let mut res = solve_by_continuation(family, solver, guess, easy, lambda, opts)?;
+    res.stats.accumulate(&spent);
+    Ok(res)
 }

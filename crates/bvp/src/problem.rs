@@ -33,6 +33,33 @@ pub struct Dims {
 /// finite differences ([`crate::fd`]). Implementations must not allocate: solvers call these in
 /// their inner loops. Non-finite output is detected by the solvers and reported as
 /// [`crate::BvpError::NonFinite`].
+///
+/// ```
+/// use bvp::{Bvp, BvpSolver, Dims, Guess, Shooting, ShootingOptions};
+///
+/// /// y'' = −y, y(0) = 0, y(π/2) = 1: y = sin s (z = (y, y')).
+/// struct Sine;
+/// impl Bvp for Sine {
+///     fn dims(&self) -> Dims {
+///         Dims { n: 2, k: 0 }
+///     }
+///     fn interval(&self) -> (f64, f64) {
+///         (0.0, std::f64::consts::FRAC_PI_2)
+///     }
+///     fn rhs(&self, _s: f64, z: &[f64], _p: &[f64], dz: &mut [f64]) {
+///         dz[0] = z[1];
+///         dz[1] = -z[0];
+///     }
+///     fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+///         res[0] = za[0];
+///         res[1] = zb[0] - 1.0;
+///     }
+/// }
+/// let guess = Guess::constant(0.0, std::f64::consts::FRAC_PI_2, 5, &[0.5, 0.5], vec![]);
+/// let sol = Shooting::new(ShootingOptions::default())?.solve(&Sine, &guess)?;
+/// assert!((sol.at(0.5)[0] - 0.5f64.sin()).abs() < 1e-8);
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
 pub trait Bvp {
     /// Number of states and unknown parameters.
     fn dims(&self) -> Dims;
@@ -65,6 +92,19 @@ pub trait Bvp {
         _dgp: &mut [f64],
     ) -> bool {
         false
+    }
+    /// A singular term: the `n × n` matrix `S` (row-major) of
+    /// `z' = S z / s + F(s, z, p)` on `[0, b]` (radially symmetric problems: Lane–Emden,
+    /// cylindrical and spherical diffusion), `rhs` writing `F` alone. Default `None`.
+    ///
+    /// The solvers handle `s = 0` as scipy's `solve_bvp` does: a solution regular there has
+    /// `S z(0) = 0` (state it among the boundary conditions, e.g. `y'(0) = 0`) and
+    /// `z'(0) = (I − S)⁻¹ F(0, z(0), p)`, which collocation uses at the node `s = 0`; shooting
+    /// starts from that series, `z(δ) = z(0) + δ z'(0)` with `δ = 1e-7 b` (error `O(δ²)`). The
+    /// interval must start at `a = 0` and `I − S` be invertible, else
+    /// [`crate::BvpError::InvalidOption`].
+    fn singular_term(&self) -> Option<&[f64]> {
+        None
     }
 }
 
@@ -101,6 +141,9 @@ impl<T: Bvp + ?Sized> Bvp for &T {
         dgp: &mut [f64],
     ) -> bool {
         (**self).bc_jacobian(za, zb, p, dga, dgb, dgp)
+    }
+    fn singular_term(&self) -> Option<&[f64]> {
+        (**self).singular_term()
     }
 }
 
@@ -253,5 +296,92 @@ where
             }
             None => false,
         }
+    }
+}
+
+/// A problem with a singular term: `z' = S z / s + F(s, z, p)` on `[0, b]`, with `F`, the
+/// boundary conditions and their Jacobians those of `problem` and `S` (row-major `n × n`)
+/// reported by [`Bvp::singular_term`] (see there for how the solvers treat `s = 0`).
+///
+/// ```
+/// use bvp::{from_fns, BvpSolver, Collocation, CollocationOptions, Guess, SingularTerm};
+///
+/// // Lane–Emden of index 5: y'' + (2/x) y' + y⁵ = 0, y'(0) = 0, y(1) = √(3/4):
+/// // y = (1 + x²/3)^(−1/2). With z = (y, y'): z' = S z / x + (y', −y⁵), S = [0 0; 0 −2].
+/// let f = from_fns(
+///     2,
+///     (0.0, 1.0),
+///     |_x, z, _p, dz| {
+///         dz[0] = z[1];
+///         dz[1] = -z[0].powi(5);
+///     },
+///     |za, zb, _p, r| {
+///         r[0] = za[1];
+///         r[1] = zb[0] - 0.75_f64.sqrt();
+///     },
+/// );
+/// let p = SingularTerm::new(f, vec![0.0, 0.0, 0.0, -2.0]);
+/// let guess = Guess::constant(0.0, 1.0, 11, &[1.0, 0.0], vec![]);
+/// let sol = Collocation::new(CollocationOptions::default())?.solve(&p, &guess)?;
+/// assert!((sol.at(0.0)[0] - 1.0).abs() < 1e-6);
+/// # Ok::<(), bvp::BvpError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct SingularTerm<P> {
+    problem: P,
+    s: Vec<f64>,
+}
+
+impl<P> SingularTerm<P> {
+    /// `problem` with the singular term `S z / s`, `s_matrix` row-major `n × n`.
+    pub fn new(problem: P, s_matrix: Vec<f64>) -> Self {
+        SingularTerm {
+            problem,
+            s: s_matrix,
+        }
+    }
+
+    /// The problem without the term.
+    pub fn inner(&self) -> &P {
+        &self.problem
+    }
+}
+
+impl<P: Bvp> Bvp for SingularTerm<P> {
+    fn dims(&self) -> Dims {
+        self.problem.dims()
+    }
+    fn interval(&self) -> (f64, f64) {
+        self.problem.interval()
+    }
+    fn rhs(&self, s: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
+        self.problem.rhs(s, z, p, dz)
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
+        self.problem.bc(za, zb, p, res)
+    }
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        p: &[f64],
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+    ) -> bool {
+        self.problem.rhs_jacobian(s, z, p, dfdz, dfdp)
+    }
+    fn bc_jacobian(
+        &self,
+        za: &[f64],
+        zb: &[f64],
+        p: &[f64],
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+    ) -> bool {
+        self.problem.bc_jacobian(za, zb, p, dga, dgb, dgp)
+    }
+    fn singular_term(&self) -> Option<&[f64]> {
+        Some(&self.s)
     }
 }

@@ -14,6 +14,7 @@
 //! | [`NanRhs`] | `y' = −√y`, `y(0) = 1` on `[0, 4]` | rhs is NaN once `y < 0` |
 //! | [`SingularNeumann`] | `y'' = 0`, `y'(0) = 0`, `y'(1) = 0` | a line of solutions: singular Jacobian |
 //! | [`Parabola`] | `y'' = p`, `y(0) = y'(0) = 0`, `y(1) = e`, `p` unknown | `y = e s²`, `p = 2e` |
+//! | [`Big`] | scipy's 60-state problems, `y_i'' = 0` or `−p_j² y_i` (two parameters) | `y_i = x`; `sin x`, `p = (1, 1)` |
 //!
 //! State layouts are given on each type; second-order equations use `z = (y, y')`.
 //! [`FiniteDifferences`] hides a problem's analytic Jacobians (solvers then difference).
@@ -832,6 +833,9 @@ impl<P: Bvp> Bvp for FiniteDifferences<P> {
     fn dims(&self) -> Dims {
         self.0.dims()
     }
+    fn singular_term(&self) -> Option<&[f64]> {
+        self.0.singular_term()
+    }
     fn interval(&self) -> (f64, f64) {
         self.0.interval()
     }
@@ -904,5 +908,123 @@ mod tests {
         // Near the fold the roots merge at θ_c = 4 t_c.
         let [a, b] = Bratu::exact_theta(BRATU_LAMBDA_C - 1e-10);
         assert!((b - a).abs() < 1e-3, "{a} {b}");
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// scipy's large test problems (`test_big_problem`, `test_big_problem_with_parameters` of
+/// `scipy/integrate/tests/test_bvp.py`), for any number of state pairs (scipy: 30, i.e. 60
+/// states). State pair `i` is `(y_i, y_i')`.
+///
+/// - Without parameters, on `[0, 1]`: `y_i'' = 0`, `y_i(0) = 0`, `y_i(1) = 1`: `y_i = x`.
+/// - With two parameters, on `[0, π]`: `y_i'' = −p_{i mod 2}² y_i`, `y_i(0) = y_i(π) = 0`,
+///   `y_0'(0) = p_0`, `y_1'(0) = p_1`: `p = (1, 1)`, `y_i = sin x`.
+///
+/// [`Big::guess`] is scipy's: 5 equal nodes, zeros (ones with parameters, `p = (0.5, 0.5)`).
+#[derive(Clone, Copy, Debug)]
+pub struct Big {
+    /// Number of state pairs (`n = 2·pairs`, at least 2).
+    pub pairs: usize,
+    /// With the two unknown parameters.
+    pub params: bool,
+}
+
+impl Big {
+    /// Exact `(y_i, y_i')` (the same for every pair).
+    pub fn exact(&self, s: f64) -> [f64; 2] {
+        if self.params {
+            [s.sin(), s.cos()]
+        } else {
+            [s, 1.0]
+        }
+    }
+
+    /// scipy's guess.
+    pub fn guess(&self) -> Guess {
+        let (a, b) = self.interval();
+        let (v, p) = if self.params {
+            (1.0, vec![0.5, 0.5])
+        } else {
+            (0.0, vec![])
+        };
+        Guess::from_fn(2 * self.pairs, uniform(a, b, 5), p, |_, z| z.fill(v))
+    }
+}
+
+impl Bvp for Big {
+    fn dims(&self) -> Dims {
+        Dims {
+            n: 2 * self.pairs,
+            k: if self.params { 2 } else { 0 },
+        }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, if self.params { PI } else { 1.0 })
+    }
+    fn rhs(&self, _s: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
+        for (i, (d, y)) in dz.chunks_exact_mut(2).zip(z.chunks_exact(2)).enumerate() {
+            d[0] = y[1];
+            d[1] = if self.params {
+                -p[i % 2] * p[i % 2] * y[0]
+            } else {
+                0.0
+            };
+        }
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
+        let m = self.pairs;
+        for i in 0..m {
+            res[i] = za[2 * i];
+            res[m + i] = zb[2 * i] - if self.params { 0.0 } else { 1.0 };
+        }
+        if self.params {
+            res[2 * m] = za[1] - p[0];
+            res[2 * m + 1] = za[3] - p[1];
+        }
+    }
+    fn rhs_jacobian(
+        &self,
+        _s: f64,
+        z: &[f64],
+        p: &[f64],
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+    ) -> bool {
+        let n = 2 * self.pairs;
+        dfdz.fill(0.0);
+        dfdp.fill(0.0);
+        for i in 0..self.pairs {
+            dfdz[2 * i * n + 2 * i + 1] = 1.0;
+            if self.params {
+                let j = i % 2;
+                dfdz[(2 * i + 1) * n + 2 * i] = -p[j] * p[j];
+                dfdp[(2 * i + 1) * 2 + j] = -2.0 * p[j] * z[2 * i];
+            }
+        }
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64],
+        _zb: &[f64],
+        _p: &[f64],
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        dgp: &mut [f64],
+    ) -> bool {
+        let (m, n) = (self.pairs, 2 * self.pairs);
+        zero([dga, dgb, dgp]);
+        for i in 0..m {
+            dga[i * n + 2 * i] = 1.0;
+            dgb[(m + i) * n + 2 * i] = 1.0;
+        }
+        if self.params {
+            dga[2 * m * n + 1] = 1.0;
+            dga[(2 * m + 1) * n + 3] = 1.0;
+            dgp[2 * m * 2] = -1.0;
+            dgp[(2 * m + 1) * 2 + 1] = -1.0;
+        }
+        true
     }
 }

@@ -41,21 +41,42 @@
 //!   Each integration starts from Hairer's initial step estimate, so the discrete map depends on
 //!   `u` only.
 //!
-//! # Output
+//! # Output: what is returned is what is checked
 //!
-//! The returned [`Solution`] has every accepted step node as its mesh (segment ends coincide with
-//! the next segment's start; the start value is kept), `dz = F(s_i, z_i, p)`, and statistics:
-//! `rhs_evals`, `jac_evals` (`∂F` evaluations, one per stage when linearizing), `bc_evals`,
-//! `steps`, `rejected_steps`, `newton_iters`, `factorizations`, `nodes` (= `M + 1` segment nodes)
-//! and `residual` (final max-norm of `R`).
+//! Newton converges on the trajectory of the integrator's own tolerance (the *coarse* one). The
+//! returned [`Solution`] is a second, *fine* trajectory from the converged segment starts:
+//! RK4 repeats the same steps; DOP853 integrates at `rtol/100`, `atol/100` (steps ≈ 1.8×
+//! shorter), because its nodal values are far more accurate than its 7th-order continuous
+//! extension between them. For the adaptive pair:
 //!
-//! [`Solution::eval`] interpolates with each integrator's own continuous extension: cubic
-//! Hermite for RK4 (`O(h⁴)`, its order), and DOP853's 7th-order extension (Hairer's `contd8`,
-//! three extra stages per step, [`crate::Dense::Dop853`]) for the adaptive pair. DOP853's nodal
-//! values are typically 100× more accurate than `rtol` while its extension is one order lower, so
-//! the output pass integrates from the converged segment starts with `rtol/100`, `atol/100`
-//! (steps ≈ 1.8× shorter): the values between the nodes are then as accurate as the nodes
-//! (tests/testset.rs measures ≤ 10×). The nodes of that pass are the mesh.
+//! 1. The fine trajectory's own residual `R` (boundary conditions on its ends, jumps at the
+//!    segment joints) is evaluated; while it exceeds Newton's threshold, chord steps
+//!    `u ← u − J⁻¹ R` with Newton's last matrix (at most 3) and, if they do not converge, Newton
+//!    on the fine trajectory itself correct the starts. `stats.residual` is the max-norm of `R`
+//!    of the trajectory returned.
+//! 2. Error estimate: `max |S_coarse(s) − S_fine(s)|_j / (1 + max |z_j|)` over the fine nodes and
+//!    the midpoints of the fine steps (both dense outputs), componentwise relative to the
+//!    solution's scale (`max |z_j|` over the returned trajectory). It estimates the coarse
+//!    trajectory's error, so it bounds the returned one's with a margin (by DOP853's tolerance
+//!    proportionality, typically 100×: the Cash–Mazzia study measures the error/estimate ratio
+//!    below 1 wherever the error exceeds `1e-9`). `stats.error_estimate`.
+//! 3. Both are checked against [`ShootingOptions::tol`] (default `1000·rtol`); a miss is
+//!    [`BvpError::Inaccurate`], never a success.
+//! 4. Conditioning: `A = ‖J⁻¹‖∞` (two solves with Newton's factorization): the integration
+//!    leaves residuals of relative size `δ = min(rtol, 1e-6)` (at loose `rtol` DOP853 delivers
+//!    far more than asked), which may move the solution by `A · δ · (1 + ‖u‖∞)`; if `A · δ > 1`
+//!    no digit is certain (a problem without a
+//!    locally unique solution, e.g. a homogeneous solution that meets the boundary conditions)
+//!    and [`BvpError::SingularJacobian`] is reported, as collocation does.
+//!
+//! The mesh of the returned solution is every accepted step of the fine pass (segment ends
+//! coincide with the next segment's start; the start value is kept), `dz = F(s_i, z_i, p)`, and
+//! [`Solution::eval`] interpolates with each integrator's own continuous extension: cubic Hermite
+//! for RK4 (`O(h⁴)`, its order) and DOP853's 7th-order extension (Hairer's `contd8`, three extra
+//! stages per step, [`crate::Dense::Dop853`]). Statistics: `rhs_evals`, `jac_evals` (`∂F`
+//! evaluations, one per stage when linearizing), `bc_evals`, `steps`, `rejected_steps`,
+//! `newton_iters`, `factorizations`, `nodes` (= `M + 1` segment nodes), `residual` and
+//! `error_estimate` as above (RK4: no estimate; fixed steps have no error control).
 //!
 //! Globalization is local: damped Newton only finds the solution the guess is attracted to. Single
 //! shooting can fail where the initial-value problem is sensitive (see
@@ -68,7 +89,10 @@ use crate::fd::{bc_jacobian_or_fd, FdScratch};
 use crate::linalg::{DenseLu, DEFAULT_PIVOT_TOL};
 use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
 use crate::rk::{Mode, Recorder, RkWork, DENSE_RECORD};
-use crate::{Bvp, BvpError, BvpSolver, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
+use crate::singular::{Regular, SERIES_START};
+use crate::{
+    Bvp, BvpError, BvpSolver, Check, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status,
+};
 
 /// Integrator used for shooting.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -108,6 +132,15 @@ pub struct ShootingOptions {
     /// Relative pivot threshold of the dense LU (see [`crate::linalg`]): the Newton matrix counts
     /// as singular when a pivot is below `pivot_tol · max|J_ij|`. Default 1e-14.
     pub pivot_tol: f64,
+    /// Accuracy the returned solution must meet: its error estimate (scaled componentwise by
+    /// `1 + max |z_j|` over the trajectory, see the module docs) and the boundary and continuity
+    /// residual of the returned trajectory, else [`BvpError::Inaccurate`]. Default `None`:
+    /// `1000 · rtol` for the adaptive integrator (the estimate describes the Newton-tolerance
+    /// trajectory, typically ~100× less accurate than the returned one, so this asks for a
+    /// returned error near `10 · rtol`), no check for RK4 (fixed steps have no error estimate;
+    /// the residual of its trajectory is Newton's). Set it to state the accuracy you need, with
+    /// `rtol ≈ tol / 100` (what [`BvpSolver::set_tolerance`] does). Valid: `0 < tol < 1`.
+    pub tol: Option<f64>,
 }
 
 impl Default for ShootingOptions {
@@ -122,6 +155,7 @@ impl Default for ShootingOptions {
             newton: NewtonOptions::default(),
             max_steps: 100_000,
             pivot_tol: DEFAULT_PIVOT_TOL,
+            tol: None,
         }
     }
 }
@@ -141,6 +175,16 @@ impl ShootingOptions {
             self.segments
         } else {
             self.nodes.len() - 1
+        }
+    }
+
+    /// The accuracy checked on the returned solution: `tol`, or `1000 · rtol` (adaptive) when
+    /// unset; `None` for RK4 without `tol`.
+    pub fn accuracy_tol(&self) -> Option<f64> {
+        match (self.tol, self.integrator) {
+            (Some(t), _) => Some(t),
+            (None, Integrator::Adaptive { rtol, .. }) => Some(DEFAULT_TOL_FACTOR * rtol),
+            (None, Integrator::Rk4 { .. }) => None,
         }
     }
 
@@ -190,6 +234,11 @@ impl ShootingOptions {
         if !(self.pivot_tol >= 0.0 && self.pivot_tol < 1.0) {
             return Err(invalid("pivot_tol", self.pivot_tol, "must be in [0, 1)"));
         }
+        if let Some(tol) = self.tol {
+            if !(tol > 0.0 && tol < 1.0) {
+                return Err(invalid("tol", tol, "must be in (0, 1)"));
+            }
+        }
         self.newton.validate()
     }
 }
@@ -215,6 +264,18 @@ struct Work {
     dgp: Vec<f64>,
     fd: FdScratch,
     lu: DenseLu,
+    /// DOP853 steps of an output pass with their continuous extension (reused between passes).
+    records: Vec<f64>,
+    /// Singular term: the first segment starts at this offset from the series at `s = 0`.
+    series: Option<f64>,
+    /// Start state of a segment started from the series.
+    zs: Vec<f64>,
+    /// Residual of an output pass, chord steps, and `n`-vectors of the error estimate.
+    r_out: Vec<f64>,
+    du: Vec<f64>,
+    va: Vec<f64>,
+    vb: Vec<f64>,
+    scale: Vec<f64>,
 }
 
 impl Work {
@@ -233,6 +294,12 @@ impl Work {
                 (&mut self.dga, m * n),
                 (&mut self.dgb, m * n),
                 (&mut self.dgp, m * k),
+                (&mut self.r_out, big_n),
+                (&mut self.du, big_n),
+                (&mut self.va, n),
+                (&mut self.vb, n),
+                (&mut self.zs, n),
+                (&mut self.scale, n),
             ] {
                 v.clear();
                 v.resize(len, 0.0);
@@ -254,6 +321,41 @@ impl Work {
     }
 }
 
+impl Work {
+    /// Start of segment `j` from the unknowns `uj` (its start values): `(t_j, z)` with `z` in
+    /// `zs`; the first segment of a singular problem starts at `δ` from the series
+    /// `z(δ) = z(0) + δ z'(0)`, `z'(0) = F(0, z(0))` of the regularized problem.
+    fn start<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        p: &[f64],
+        j: usize,
+        uj: &[f64],
+        stats: &mut Stats,
+    ) -> f64 {
+        match self.series {
+            Some(delta) if j == 0 => {
+                problem.rhs(self.nodes[0], uj, p, &mut self.zs);
+                stats.rhs_evals += 1;
+                for (z, u) in self.zs.iter_mut().zip(uj) {
+                    *z = u + delta * *z;
+                }
+                self.nodes[0] + delta
+            }
+            _ => {
+                self.zs.copy_from_slice(uj);
+                self.nodes[j]
+            }
+        }
+    }
+}
+
+/// Default accuracy of the returned solution in units of `rtol` ([`ShootingOptions::tol`]).
+const DEFAULT_TOL_FACTOR: f64 = 1000.0;
+/// Largest relative residual size assumed by the conditioning check.
+const CONDITIONING_DELTA_MAX: f64 = 1e-6;
+/// `rtol` per unit of `tol` set by [`BvpSolver::set_tolerance`].
+const RTOL_PER_TOL: f64 = 0.01;
 /// Tolerance factor of the adaptive output pass (see [`Solution`] in the module docs).
 const DENSE_TOL_FACTOR: f64 = 0.01;
 /// Smallest relative tolerance of the output pass (DOP853 near the rounding limit).
@@ -305,6 +407,8 @@ struct System<'a, P: ?Sized> {
     problem: &'a P,
     opts: &'a ShootingOptions,
     w: &'a mut Work,
+    /// Integrate at the output tolerances (`DENSE_TOL_FACTOR` × the integrator's).
+    fine: bool,
 }
 
 impl<P: Bvp + ?Sized> System<'_, P> {
@@ -312,6 +416,14 @@ impl<P: Bvp + ?Sized> System<'_, P> {
         match self.opts.integrator {
             Integrator::Rk4 { steps } => Mode::Fixed {
                 steps: rk4_steps(steps, &self.w.nodes, self.opts.nodes.is_empty(), j),
+            },
+            // Output tolerances: steps 100^(1/8) ≈ 1.8× shorter than Newton's, so the 7th-order
+            // extension between them is as accurate as the nodes (which DOP853 gets far below
+            // rtol).
+            Integrator::Adaptive { rtol, atol } if self.fine => Mode::Adaptive {
+                rtol: (DENSE_TOL_FACTOR * rtol).max(OUTPUT_RTOL_MIN),
+                atol: DENSE_TOL_FACTOR * atol,
+                max_steps: 2 * self.opts.max_steps,
             },
             Integrator::Adaptive { rtol, atol } => Mode::Adaptive {
                 rtol,
@@ -331,12 +443,13 @@ impl<P: Bvp + ?Sized> System<'_, P> {
         for j in 0..segs {
             let mode = self.mode(j);
             let w = &mut *self.w;
+            let t0 = w.start(self.problem, p, j, &u[j * n..(j + 1) * n], stats);
             w.rk.integrate(
                 self.problem,
                 p,
-                w.nodes[j],
+                t0,
                 w.nodes[j + 1],
-                &u[j * n..(j + 1) * n],
+                &w.zs,
                 true,
                 mode,
                 None,
@@ -446,41 +559,58 @@ impl<P: Bvp + ?Sized> NewtonSystem for System<'_, P> {
         w.lu.solve(du);
         Ok(())
     }
+
+    fn resolve(&mut self, r: &[f64], du: &mut [f64]) -> Result<bool, BvpError> {
+        for (d, v) in du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        self.w.lu.solve(du);
+        Ok(true)
+    }
 }
 
 impl BvpSolver for Shooting {
+    fn tolerance(&self) -> Option<f64> {
+        self.opts.accuracy_tol()
+    }
+
+    /// Sets `tol` and, for the adaptive integrator, `rtol = tol / 100` (and `atol` in the same
+    /// ratio); values outside `(0, 1)` are ignored.
+    fn set_tolerance(&mut self, tol: f64) {
+        if !(tol > 0.0 && tol < 1.0) {
+            return;
+        }
+        if let Integrator::Adaptive { rtol, atol } = self.opts.integrator {
+            let new = tol * RTOL_PER_TOL;
+            self.opts.integrator = Integrator::Adaptive {
+                rtol: new,
+                atol: atol * new / rtol,
+            };
+        }
+        self.opts.tol = Some(tol);
+    }
+
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
+        match Regular::new(problem)? {
+            Some(reg) => self.solve_plain(&reg, guess, true),
+            None => self.solve_plain(problem, guess, false),
+        }
+    }
+}
+
+impl Shooting {
+    /// [`BvpSolver::solve`]; `series`: the problem is a regularized singular one (start the
+    /// first segment from the series at `s = 0`, see [`Bvp::singular_term`]).
+    fn solve_plain<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &Guess,
+        series: bool,
+    ) -> Result<Solution, BvpError> {
         let dims = problem.dims();
         let Dims { n, k } = dims;
         let (a, b) = problem.interval();
-        if guess.n != n {
-            return Err(BvpError::Dimension {
-                what: "guess states",
-                got: guess.n,
-                expected: n,
-            });
-        }
-        if guess.params.len() != k {
-            return Err(BvpError::Dimension {
-                what: "guess parameters",
-                got: guess.params.len(),
-                expected: k,
-            });
-        }
-        if guess.mesh.is_empty() || guess.z.len() != n * guess.mesh.len() {
-            return Err(BvpError::Dimension {
-                what: "guess values",
-                got: guess.z.len(),
-                expected: n * guess.mesh.len().max(1),
-            });
-        }
-        if !(a < b && a.is_finite() && b.is_finite()) {
-            return Err(invalid(
-                "interval",
-                format!("[{a}, {b}]"),
-                "need finite a < b",
-            ));
-        }
+        guess.validate(dims, (a, b))?;
         let segs = self.opts.segment_count();
         if let (Some(&t0), Some(&t1)) = (self.opts.nodes.first(), self.opts.nodes.last()) {
             let tol = 1e-12 * (b - a);
@@ -493,6 +623,7 @@ impl BvpSolver for Shooting {
             }
         }
         self.work.resize(dims, segs, a, b, &self.opts.nodes);
+        self.work.series = series.then_some(SERIES_START * (b - a));
 
         // Warm start: guess values at the segment starts, guess parameters.
         self.u.clear();
@@ -507,16 +638,151 @@ impl BvpSolver for Shooting {
             ..Stats::default()
         };
         {
+            let nopts = self.newton_options();
             let mut sys = System {
                 problem,
                 opts: &self.opts,
                 w: &mut self.work,
+                fine: false,
             };
             self.newton
-                .solve(&mut sys, &mut self.u, &self.opts.newton, &mut stats)?;
+                .solve(&mut sys, &mut self.u, &nopts, &mut stats)?;
         }
 
-        // Output pass: integrate z only from the solution, recording every accepted step.
+        let newton_residual = stats.residual;
+        let adaptive = matches!(self.opts.integrator, Integrator::Adaptive { .. });
+        let big_n = segs * n + k;
+        let mut r = std::mem::take(&mut self.work.r_out);
+        r.resize(big_n, 0.0);
+        let out = self.output(problem, adaptive, newton_residual, &mut r, &mut stats);
+        self.work.r_out = r;
+        let (sol, est) = out?;
+        let res = max_norm(&self.work.r_out);
+        self.finish(sol, res, est, stats)
+    }
+}
+
+impl Shooting {
+    /// Newton's options with the residual threshold `min(newton.tol, tol)`: the returned
+    /// trajectory's boundary residual is checked against `tol`.
+    fn newton_options(&self) -> NewtonOptions {
+        let mut o = self.opts.newton.clone();
+        if let Some(tol) = self.opts.accuracy_tol() {
+            o.tol = o.tol.min(tol);
+        }
+        o
+    }
+
+    /// The output pass and its checks (see [`BvpSolver::solve`]): the returned trajectory with
+    /// its residual in `r` and its error estimate.
+    fn output<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        adaptive: bool,
+        newton_residual: f64,
+        r: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<(Solution, Option<f64>), BvpError> {
+        if !adaptive {
+            // RK4: the output pass repeats Newton's discretization; its residual is checked.
+            self.check_conditioning(problem, stats)?;
+            return Ok((self.trace(problem, false, r, stats)?, None));
+        }
+        // The trajectory Newton converged on (coarse), then the output pass at a tighter
+        // tolerance from the same starts; chord steps with Newton's last matrix until the
+        // output trajectory itself meets the boundary and continuity conditions.
+        let coarse = self.trace(problem, false, r, stats)?;
+        let threshold = self.newton_options().tol.max(newton_residual);
+        let mut chords = 0;
+        let mut checked = false;
+        let mut polished = false;
+        let fine = loop {
+            let sol = self.trace(problem, true, r, stats)?;
+            let res = max_norm(r);
+            if !checked {
+                checked = true;
+                self.check_conditioning(problem, stats)?;
+            }
+            // After a polishing Newton the residual is Newton's own (checked against tol below).
+            if res <= threshold || polished {
+                break sol;
+            }
+            if chords < MAX_CHORDS && res.is_finite() {
+                chords += 1;
+                self.chord_step(problem, r, stats)?;
+            } else {
+                // The chord with Newton's matrix does not converge: Newton at the output
+                // tolerances.
+                polished = true;
+                let nopts = self.newton_options();
+                let mut sys = System {
+                    problem,
+                    opts: &self.opts,
+                    w: &mut self.work,
+                    fine: true,
+                };
+                self.newton.solve(&mut sys, &mut self.u, &nopts, stats)?;
+            }
+        };
+        let w = &mut self.work;
+        let est = estimate(&coarse, &fine, &mut w.scale, &mut w.va, &mut w.vb) * ESTIMATE_FACTOR;
+        Ok((fine, Some(est)))
+    }
+}
+
+/// Chord steps of the output pass before its boundary residual is reported as missed.
+const MAX_CHORDS: usize = 3;
+/// Factor from the difference of the Newton (coarse) and output (fine) trajectories to the
+/// error estimate of the fine one (see the module docs).
+const ESTIMATE_FACTOR: f64 = 1.0;
+
+fn max_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+/// `max |coarse − fine| / (1 + max |fine|)` componentwise, over the nodes of `fine` and the
+/// midpoints of its steps (dense output of both).
+fn estimate(
+    coarse: &Solution,
+    fine: &Solution,
+    scale: &mut [f64],
+    a: &mut [f64],
+    b: &mut [f64],
+) -> f64 {
+    let n = fine.n;
+    scale.fill(1.0);
+    for zi in fine.z.chunks_exact(n) {
+        for (s, v) in scale.iter_mut().zip(zi) {
+            *s = s.max(1.0 + v.abs());
+        }
+    }
+    let mut est = 0.0_f64;
+    for (i, &s) in fine.mesh.iter().enumerate() {
+        let mid = fine.mesh.get(i + 1).map(|&t| 0.5 * (s + t));
+        for x in std::iter::once(s).chain(mid) {
+            coarse.eval(x, a);
+            fine.eval(x, b);
+            for j in 0..n {
+                est = est.max((a[j] - b[j]).abs() / scale[j]);
+            }
+        }
+    }
+    est
+}
+
+impl Shooting {
+    /// Integrates every segment from the current unknowns (without sensitivities), recording
+    /// the steps (`fine`: at the output tolerances), and writes the residual `R` of that
+    /// trajectory (boundary conditions on its ends, jumps at the segment joints) into `r`.
+    fn trace<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        fine: bool,
+        r: &mut [f64],
+        stats: &mut Stats,
+    ) -> Result<Solution, BvpError> {
+        let Dims { n, k } = problem.dims();
+        let segs = self.work.segments;
         let u = &self.u;
         let p = &u[segs * n..];
         // RK4 knows its node count: one allocation per output vector.
@@ -529,28 +795,38 @@ impl BvpSolver for Shooting {
         let mut z = Vec::with_capacity(nodes * n);
         let mut dz = Vec::with_capacity(nodes * n);
         // DOP853 steps with their continuous extension, unpacked below.
-        let mut records = Vec::new();
+        let mut records = std::mem::take(&mut self.work.records);
+        records.clear();
         let sys = System {
             problem,
             opts: &self.opts,
             w: &mut self.work,
+            fine,
         };
+        let m = n + k;
         for j in 0..segs {
-            let mode = match sys.mode(j) {
-                // Steps 100^(1/8) ≈ 1.8× shorter than Newton's: the 7th-order extension between
-                // them is then as accurate as the nodes (which DOP853 gets far below rtol).
-                Mode::Adaptive {
-                    rtol,
-                    atol,
-                    max_steps,
-                } => Mode::Adaptive {
-                    rtol: (DENSE_TOL_FACTOR * rtol).max(OUTPUT_RTOL_MIN),
-                    atol: DENSE_TOL_FACTOR * atol,
-                    max_steps: 2 * max_steps,
-                },
-                m => m,
-            };
+            let mode = sys.mode(j);
             let w = &mut *sys.w;
+            let t0 = w.start(problem, p, j, &u[j * n..(j + 1) * n], stats);
+            if t0 != w.nodes[j] {
+                // Series start: the node s = 0 and the line to z(δ) (slope z'(0)).
+                let u0 = &u[..n];
+                let f0 =
+                    w.zs.iter()
+                        .zip(u0)
+                        .map(|(a, b)| (a - b) / (t0 - w.nodes[0]));
+                if adaptive {
+                    records.push(w.nodes[0]);
+                    records.extend_from_slice(u0);
+                    records.extend(f0);
+                    records.extend(w.zs.iter().zip(u0).map(|(a, b)| a - b));
+                    records.extend(std::iter::repeat_n(0.0, 6 * n));
+                } else {
+                    mesh.push(w.nodes[0]);
+                    z.extend_from_slice(u0);
+                    dz.extend(f0);
+                }
+            }
             let mut rec = Recorder {
                 mesh: &mut mesh,
                 z: &mut z,
@@ -560,15 +836,20 @@ impl BvpSolver for Shooting {
             w.rk.integrate(
                 problem,
                 p,
-                w.nodes[j],
+                t0,
                 w.nodes[j + 1],
-                &u[j * n..(j + 1) * n],
+                &w.zs,
                 false,
                 mode,
                 Some(&mut rec),
-                &mut stats,
+                stats,
             )
-            .map_err(|e| attach(e, stats.newton_iters, &stats))?;
+            .map_err(|e| attach(e, stats.newton_iters, stats))?;
+            if j + 1 < segs {
+                for i in 0..n {
+                    r[m + j * n + i] = w.rk.z()[i] - u[(j + 1) * n + i];
+                }
+            }
         }
         let mut coef = Vec::new();
         if adaptive {
@@ -578,20 +859,24 @@ impl BvpSolver for Shooting {
             z.reserve_exact((steps + 1) * n);
             dz.reserve_exact((steps + 1) * n);
             coef.reserve_exact(7 * n * steps);
-            for r in records.chunks_exact(per) {
-                mesh.push(r[0]);
-                z.extend_from_slice(&r[1..1 + n]);
-                dz.extend_from_slice(&r[1 + n..1 + 2 * n]);
-                coef.extend_from_slice(&r[1 + 2 * n..]);
+            for rc in records.chunks_exact(per) {
+                mesh.push(rc[0]);
+                z.extend_from_slice(&rc[1..1 + n]);
+                dz.extend_from_slice(&rc[1 + n..1 + 2 * n]);
+                coef.extend_from_slice(&rc[1 + 2 * n..]);
             }
         }
-        let zb = sys.w.rk.z().to_vec();
-        let mut fb = vec![0.0; n];
-        problem.rhs(b, &zb, p, &mut fb);
+        sys.w.records = records;
+        let zb = sys.w.rk.z();
+        let b = sys.w.nodes[segs];
+        let fb = &mut sys.w.va;
+        problem.rhs(b, zb, p, fb);
         stats.rhs_evals += 1;
+        problem.bc(&u[..n], zb, p, &mut r[..m]);
+        stats.bc_evals += 1;
         mesh.push(b);
-        z.extend_from_slice(&zb);
-        dz.extend_from_slice(&fb);
+        z.extend_from_slice(zb);
+        dz.extend_from_slice(fb);
         Ok(Solution {
             n,
             mesh,
@@ -599,12 +884,138 @@ impl BvpSolver for Shooting {
             dz,
             params: p.to_vec(),
             status: Status::Converged,
-            stats,
+            stats: Stats::default(),
             dense: if adaptive {
                 Dense::Dop853 { coef }
             } else {
                 Dense::Hermite
             },
         })
+    }
+
+    /// Conditioning: the integration leaves residuals of relative size `δ` (DOP853:
+    /// `min(rtol, 1e-6)`, since at loose `rtol` its 8th-order steps deliver far more than asked;
+    /// RK4: `tol` if set, else no check), which may move the solution by
+    /// `‖J⁻¹‖∞ · δ · (1 + ‖u‖∞)`;
+    /// beyond `1 + ‖u‖∞`, i.e. `‖J⁻¹‖∞ · δ > 1`, no digit is certain (the problem has no locally
+    /// unique solution at this accuracy, e.g. a homogeneous solution meets the boundary
+    /// conditions) and [`BvpError::SingularJacobian`] is reported.
+    fn check_conditioning<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        let delta = match (self.opts.integrator, self.opts.tol) {
+            (Integrator::Adaptive { rtol, .. }, _) => rtol.min(CONDITIONING_DELTA_MAX),
+            (Integrator::Rk4 { .. }, Some(tol)) => tol.min(CONDITIONING_DELTA_MAX),
+            (Integrator::Rk4 { .. }, None) => return Ok(()),
+        };
+        let amp = self.amplification(problem, stats)?;
+        if amp * delta > 1.0 {
+            return Err(BvpError::SingularJacobian {
+                iteration: stats.newton_iters,
+                stats: stats.clone(),
+            });
+        }
+        Ok(())
+    }
+
+    /// `‖J⁻¹‖∞` estimated by two solves with Newton's last factorization (formed at `u` if Newton
+    /// took no step), right-hand sides `(1, 1, …)` and `(1, −1, 1, …)`.
+    fn amplification<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        stats: &mut Stats,
+    ) -> Result<f64, BvpError> {
+        self.ensure_factored(problem, stats)?;
+        let mut best = 0.0_f64;
+        let w = &mut self.work;
+        for sign in [1.0, -1.0] {
+            for (i, x) in w.du.iter_mut().enumerate() {
+                *x = if i % 2 == 0 { 1.0 } else { sign };
+            }
+            w.lu.solve(&mut w.du);
+            best = best.max(max_norm(&w.du));
+        }
+        Ok(best)
+    }
+
+    fn ensure_factored<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        if stats.factorizations == 0 {
+            let mut sys = System {
+                problem,
+                opts: &self.opts,
+                w: &mut self.work,
+                fine: false,
+            };
+            let (mut rc, mut du) = (
+                std::mem::take(&mut sys.w.r_scratch),
+                std::mem::take(&mut sys.w.du),
+            );
+            let res = sys.residual(&self.u, &mut rc, stats).and_then(|()| {
+                sys.solve_linearized(&self.u, &rc, &mut du, stats)
+                    .map_err(|e| attach(e, stats.newton_iters, stats))
+            });
+            (sys.w.r_scratch, sys.w.du) = (rc, du);
+            res?;
+        }
+        Ok(())
+    }
+
+    /// One chord step `u ← u − J⁻¹ r` with Newton's last factorization (formed here at `u` if
+    /// Newton took no step).
+    fn chord_step<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        r: &[f64],
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        self.ensure_factored(problem, stats)?;
+        let w = &mut self.work;
+        for (d, v) in w.du.iter_mut().zip(r) {
+            *d = -v;
+        }
+        w.lu.solve(&mut w.du);
+        for (x, d) in self.u.iter_mut().zip(&w.du) {
+            *x += d;
+        }
+        Ok(())
+    }
+
+    /// The returned solution with its statistics: `residual` the boundary/continuity residual
+    /// `res` of the returned trajectory, `error_estimate` `est`; both checked against `tol`.
+    fn finish(
+        &self,
+        mut sol: Solution,
+        res: f64,
+        est: Option<f64>,
+        mut stats: Stats,
+    ) -> Result<Solution, BvpError> {
+        stats.residual = res;
+        stats.error_estimate = est;
+        let tol = self.opts.accuracy_tol();
+        if let Some(tol) = tol {
+            for (check, value) in [
+                (Check::BoundaryResidual, Some(stats.residual)),
+                (Check::ErrorEstimate, est),
+            ] {
+                if let Some(v) = value {
+                    if v > tol || v.is_nan() {
+                        return Err(BvpError::Inaccurate {
+                            check,
+                            value: v,
+                            tol,
+                            stats,
+                        });
+                    }
+                }
+            }
+        }
+        sol.stats = stats;
+        Ok(sol)
     }
 }

@@ -1,6 +1,6 @@
 //! Solutions and initial guesses.
 
-use crate::{Stats, Status};
+use crate::{BvpError, Stats, Status};
 use std::fmt;
 
 /// How [`Solution::eval`] interpolates between mesh nodes: each solver's own continuous
@@ -8,12 +8,12 @@ use std::fmt;
 /// (up to a small constant).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub enum Dense {
-    /// Cubic Hermite on `z`, `dz` (order 4, C¹): the collocation polynomial of Lobatto4, RK4
-    /// shooting, and solutions built by hand.
+    /// Cubic Hermite on `z`, `dz` (order 4, C¹): Lobatto4 (it is its collocation polynomial,
+    /// whose residual the error control measures), RK4 shooting, solutions built by hand.
     #[default]
     Hermite,
     /// Quintic Hermite on `z`, `dz` and `d2z ≈ z''` at the nodes (node-major, like `z`): order 6,
-    /// C². Lobatto6 (its own quartic collocation polynomial is only of order 5 between nodes).
+    /// C². Lobatto6 (its own quartic collocation polynomial is of order 5 between nodes).
     Quintic {
         /// Second derivatives at the nodes, `d/ds F(s, z(s), p)`.
         d2z: Vec<f64>,
@@ -31,8 +31,12 @@ pub enum Dense {
 ///
 /// Values are stored node-major: `z[i * n + j]` is state `j` at `mesh[i]`; `dz` likewise holds
 /// `F(s_i, z_i, p)`. [`Solution::eval`] interpolates with the solver's continuous extension
-/// ([`Dense`]: cubic Hermite for Lobatto4 and RK4, quintic Hermite for Lobatto6, DOP853's own
-/// 7th-order extension for adaptive shooting).
+/// ([`Dense`]: Lobatto4's collocation cubic, the quintic Hermite for Lobatto6, cubic Hermite
+/// for RK4 shooting, DOP853's own 7th-order extension for adaptive shooting).
+///
+/// `stats` describe this solution as returned: `residual` is its boundary residual (and the
+/// continuity residual of multiple shooting, the collocation residual of collocation) and
+/// `error_estimate` the solver's estimate for it and its dense output (see each solver).
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Solution {
     /// Number of states.
@@ -130,12 +134,155 @@ impl Solution {
     }
 
     /// Convenience: evaluates at `s` into a new vector.
+    ///
+    /// ```
+    /// use bvp::{from_fns, BvpSolver, Collocation, CollocationOptions, Guess};
+    ///
+    /// // y'' = −y, y(0) = 0, y(π/2) = 1: y = sin s, evaluated between the mesh nodes
+    /// let sine = from_fns(
+    ///     2,
+    ///     (0.0, std::f64::consts::FRAC_PI_2),
+    ///     |_s, z, _p, dz| {
+    ///         dz[0] = z[1];
+    ///         dz[1] = -z[0];
+    ///     },
+    ///     |za, zb, _p, res| {
+    ///         res[0] = za[0];
+    ///         res[1] = zb[0] - 1.0;
+    ///     },
+    /// );
+    /// let opts = CollocationOptions { tol: 1e-8, ..CollocationOptions::default() };
+    /// let guess = Guess::constant(0.0, std::f64::consts::FRAC_PI_2, 5, &[0.5, 0.5], vec![]);
+    /// let sol = Collocation::new(opts)?.solve(&sine, &guess)?;
+    /// for s in [0.1, 0.77, 1.3] {
+    ///     assert!((sol.at(s)[0] - s.sin()).abs() < 1e-7);
+    /// }
+    /// # Ok::<(), bvp::BvpError>(())
+    /// ```
     pub fn at(&self, s: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.n];
         self.eval(s, &mut out);
         out
     }
+
+    /// Evaluates the first derivative `d/ds` of the continuous extension at `s` (clamped to
+    /// `[a, b]`) into `out` (length `n`): scipy's `sol(x, 1)`. It equals `dz` at the nodes and
+    /// is of one order less than [`Solution::eval`] between them (quintic: 5, DOP853's
+    /// extension: 6, cubic Hermite: 3). Fluxes, slopes and moments of the solution come from
+    /// here, not from differencing the interpolant.
+    #[allow(clippy::needless_range_loop)] // the formulas index several arrays alike
+    pub fn eval_derivative(&self, s: f64, out: &mut [f64]) {
+        let n = self.n;
+        let nodes = self.mesh.len();
+        if nodes < 2 {
+            out.copy_from_slice(&self.dz[..n]);
+            return;
+        }
+        let i = locate(&self.mesh, s);
+        let h = self.mesh[i + 1] - self.mesh[i];
+        let t = ((s - self.mesh[i]) / h).clamp(0.0, 1.0);
+        let (a, b) = (i * n, (i + 1) * n);
+        let ok = |len: usize, per: usize| len == per * n;
+        match &self.dense {
+            Dense::Quintic { d2z } if ok(d2z.len(), nodes) => {
+                let (t2, t3, t4) = (t * t, t * t * t, t * t * t * t);
+                // d/dt of the basis of `eval`, then divided by h.
+                let h0 = -30.0 * t2 + 60.0 * t3 - 30.0 * t4;
+                let g0 = h * (1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4);
+                let g1 = h * (-12.0 * t2 + 28.0 * t3 - 15.0 * t4);
+                let k0 = 0.5 * h * h * (2.0 * t - 9.0 * t2 + 12.0 * t3 - 5.0 * t4);
+                let k1 = 0.5 * h * h * (3.0 * t2 - 8.0 * t3 + 5.0 * t4);
+                for j in 0..n {
+                    out[j] = (h0 * (self.z[a + j] - self.z[b + j])
+                        + g0 * self.dz[a + j]
+                        + g1 * self.dz[b + j]
+                        + k0 * d2z[a + j]
+                        + k1 * d2z[b + j])
+                        / h;
+                }
+            }
+            Dense::Dop853 { coef } if ok(coef.len(), 7 * (nodes - 1)) => {
+                let u = 1.0 - t;
+                let c = &coef[7 * n * i..7 * n * (i + 1)];
+                for j in 0..n {
+                    let r = |m: usize| c[m * n + j];
+                    // z = z_i + t·v(t), v nested as in `eval`; carry (value, d/dt).
+                    let (v5, d5) = (r(5) + t * r(6), r(6));
+                    let (v4, d4) = (r(4) + u * v5, -v5 + u * d5);
+                    let (v3, d3) = (r(3) + t * v4, v4 + t * d4);
+                    let (v2, d2) = (r(2) + u * v3, -v3 + u * d3);
+                    let (v1, d1) = (r(1) + t * v2, v2 + t * d2);
+                    let (v0, d0) = (r(0) + u * v1, -v1 + u * d1);
+                    out[j] = (v0 + t * d0) / h;
+                }
+            }
+            _ => {
+                let h00 = 6.0 * t * t - 6.0 * t;
+                let h10 = 3.0 * t * t - 4.0 * t + 1.0;
+                let h11 = 3.0 * t * t - 2.0 * t;
+                for j in 0..n {
+                    out[j] = (h00 * (self.z[a + j] - self.z[b + j])) / h
+                        + h10 * self.dz[a + j]
+                        + h11 * self.dz[b + j];
+                }
+            }
+        }
+    }
+
+    /// Convenience: the first derivative at `s` into a new vector ([`Solution::eval_derivative`]).
+    pub fn derivative_at(&self, s: f64) -> Vec<f64> {
+        let mut out = vec![0.0; self.n];
+        self.eval_derivative(s, &mut out);
+        out
+    }
+
+    /// Per-interval residual of the returned solution as a function: on each mesh interval the
+    /// RMS (5-point Lobatto quadrature, as collocation's error control) of
+    /// `(S'(s) − F(s, S(s), p)) / (1 + |F(s, S(s), p)|)` componentwise, with `S` the continuous
+    /// extension ([`Solution::eval`], [`Solution::eval_derivative`]): where the returned
+    /// interpolant fails to satisfy the ODE, and by how much (scipy's `rms_residuals`).
+    /// `problem` must be the one solved (with `singular_term` if any).
+    pub fn residuals<P: crate::Bvp + ?Sized>(&self, problem: &P) -> Vec<f64> {
+        match crate::singular::Regular::new(problem) {
+            Ok(Some(reg)) => self.residuals_of(&reg),
+            _ => self.residuals_of(problem),
+        }
+    }
+
+    fn residuals_of<P: crate::Bvp + ?Sized>(&self, problem: &P) -> Vec<f64> {
+        let n = self.n;
+        let (mut y, mut dy, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut out = Vec::with_capacity(self.mesh.len().saturating_sub(1));
+        for w in self.mesh.windows(2) {
+            let h = w[1] - w[0];
+            let mut sum = 0.0;
+            for (t, wt) in EST_T.iter().zip(EST_W) {
+                let s = w[0] + t * h;
+                self.eval(s, &mut y);
+                self.eval_derivative(s, &mut dy);
+                problem.rhs(s, &y, &self.params, &mut f);
+                let mut ss = 0.0;
+                for c in 0..n {
+                    let r = (dy[c] - f[c]) / (1.0 + f[c].abs());
+                    ss += r * r;
+                }
+                sum += wt * ss;
+            }
+            out.push(sum.sqrt());
+        }
+        out
+    }
 }
+
+/// Interior nodes of 5-point Lobatto quadrature on `[0, 1]` and their weights (the end nodes carry
+/// weight 1/20 each but the residual vanishes there by construction: the interpolants match `F`
+/// at the nodes).
+pub(crate) const EST_T: [f64; 3] = [
+    0.5 - 0.5 * 0.654_653_670_707_977_1, // sqrt(3/7)
+    0.5,
+    0.5 + 0.5 * 0.654_653_670_707_977_1,
+];
+pub(crate) const EST_W: [f64; 3] = [49.0 / 180.0, 16.0 / 45.0, 49.0 / 180.0];
 
 impl fmt::Display for Solution {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -243,6 +390,94 @@ impl Guess {
             .map(|i| a + (b - a) * i as f64 / (nodes - 1) as f64)
             .collect();
         Self::from_fn(z0.len(), mesh, params, |_, z| z.copy_from_slice(z0))
+    }
+
+    /// Checks the guess against a problem of `dims` on `interval` (called by every solver):
+    /// `n` states, `k` parameters, `z` (and `dz`) of `n` values per node, at least one node, a
+    /// mesh of two or more nodes finite, strictly increasing and spanning the interval (ends
+    /// within `1e-12 (b − a)`), every value finite. Errors: [`BvpError::Dimension`],
+    /// [`BvpError::InvalidGuess`], [`BvpError::InvalidOption`] for a bad interval.
+    pub fn validate(&self, dims: crate::Dims, interval: (f64, f64)) -> Result<(), BvpError> {
+        let crate::Dims { n, k } = dims;
+        let dim = |what, got, expected| {
+            if got == expected {
+                Ok(())
+            } else {
+                Err(BvpError::Dimension {
+                    what,
+                    got,
+                    expected,
+                })
+            }
+        };
+        if n == 0 {
+            return Err(BvpError::Dimension {
+                what: "problem states n",
+                got: 0,
+                expected: 1,
+            });
+        }
+        let (a, b) = interval;
+        if !(a < b && a.is_finite() && b.is_finite()) {
+            return Err(BvpError::InvalidOption {
+                name: "interval",
+                value: format!("[{a}, {b}]"),
+                reason: "must be finite with a < b",
+            });
+        }
+        dim("guess states", self.n, n)?;
+        dim("guess parameters", self.params.len(), k)?;
+        if self.mesh.is_empty() {
+            return Err(BvpError::Dimension {
+                what: "guess mesh nodes",
+                got: 0,
+                expected: 1,
+            });
+        }
+        dim("guess values", self.z.len(), n * self.mesh.len())?;
+        if let Some(dz) = &self.dz {
+            dim("guess derivatives", dz.len(), self.z.len())?;
+        }
+        let bad = |what, index: usize, value: f64, reason| {
+            Err(BvpError::InvalidGuess {
+                what,
+                index,
+                value,
+                reason,
+            })
+        };
+        let m = &self.mesh;
+        if let Some(i) = m.iter().position(|t| !t.is_finite()) {
+            return bad("mesh", i, m[i], "must be finite");
+        }
+        if let Some(i) = m.windows(2).position(|w| w[1] <= w[0]) {
+            return bad("mesh", i + 1, m[i + 1], "must be strictly increasing");
+        }
+        if m.len() >= 2 {
+            let slack = 1e-12 * (b - a);
+            if (m[0] - a).abs() > slack {
+                return bad("mesh", 0, m[0], "must start at a, the interval's left end");
+            }
+            if (m[m.len() - 1] - b).abs() > slack {
+                return bad(
+                    "mesh",
+                    m.len() - 1,
+                    m[m.len() - 1],
+                    "must end at b, the interval's right end",
+                );
+            }
+        }
+        for (what, v) in [("values", &self.z), ("parameters", &self.params)] {
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return bad(what, i, v[i], "must be finite");
+            }
+        }
+        if let Some(dz) = &self.dz {
+            if let Some(i) = dz.iter().position(|x| !x.is_finite()) {
+                return bad("derivatives", i, dz[i], "must be finite");
+            }
+        }
+        Ok(())
     }
 
     /// Evaluates the guess at `s` into `out`.

@@ -38,6 +38,24 @@
 //! | 23 | `y'' = (1/ε) sinh(y/ε)` (Troesch, μ = 1/ε) | [0, 1] | 0, 1 | — |
 //! | 25–30 | `ε y'' = −y p + y` | [0, 1] | see [`CashMazzia::description`] | — |
 //!
+//! # Extended set
+//!
+//! Four problems with closed-form solutions that the published scalar set lacks (ids 101–104,
+//! [`CashMazzia::extended`]; manufactured: the exact solution is substituted into the equation,
+//! and `tests/testset.rs` checks that it solves it):
+//!
+//! | id | equation | interval | conditions | exact `y` |
+//! |---|---|---|---|---|
+//! | 101 | `(ε + x) y'' + 2 y' = 0` | [0, 1] | exact | `1 / (ε + x)` (grows like 1/ε) |
+//! | 102 | `y'' = 2 y³` | [0, 1] | exact | `1 / (ε + x)` (nonlinear, grows like 1/ε) |
+//! | 103 | `ε y'''' − y'' = −2` | [0, 1] | `y, y'` at both ends | `x² + e^{−x/√ε} + e^{(x−1)/√ε}` |
+//! | 104 | `y'''' + y⁵ = 25 / (ε + x)⁵` | [0, 1] | `y, y'` at both ends | `1 / (ε + x)` |
+//!
+//! Each has a unique solution: the linearizations (`(ε + x) w'' + 2w'`, `−w'' + 6y²w`,
+//! `ε w'''' − w''`, `w'''' + 5y⁴w` with the homogeneous conditions) are positive definite or, for
+//! 101, have only `w = 0` (`w = c₁ + c₂/(ε + x)`). Fourth-order problems are the first-order systems of `(y, y', y'', y''')` (`n = 4`);
+//! [`CashMazzia::exact`] still returns `(y, y')`.
+//!
 //! Not included: problem 16 (`ε² y'' = −(π²/4) y`, `y = sin(πx/2ε)`: for ε = 1/(2m), as on the
 //! study grid, `sin(πx/2ε)` solves the homogeneous problem too, so the problem is singular),
 //! problem 24 (a nozzle flow) and the systems 31–35.
@@ -45,6 +63,9 @@
 use crate::continuation::{Member, ParamBvp};
 use crate::{Dims, Guess};
 use std::f64::consts::PI;
+
+/// The problems of the extended set (not in the published one), see the module docs.
+pub const EXTENDED_IDS: [u8; 4] = [101, 102, 103, 104];
 
 /// The problem ids implemented, in order.
 pub const IDS: [u8; 28] = [
@@ -65,14 +86,28 @@ fn ln_cosh(t: f64) -> f64 {
 }
 
 impl CashMazzia {
-    /// Problem `id` of the set, if implemented (see [`IDS`]).
+    /// Problem `id` of the set, if implemented (see [`IDS`] and [`EXTENDED_IDS`]).
     pub fn new(id: u8) -> Option<Self> {
-        IDS.contains(&id).then_some(CashMazzia { id })
+        (IDS.contains(&id) || EXTENDED_IDS.contains(&id)).then_some(CashMazzia { id })
     }
 
-    /// All implemented problems.
+    /// All implemented problems of the published set.
     pub fn all() -> impl Iterator<Item = CashMazzia> {
         IDS.iter().map(|&id| CashMazzia { id })
+    }
+
+    /// The problems of the extended set (solutions growing like 1/ε, fourth order).
+    pub fn extended() -> impl Iterator<Item = CashMazzia> {
+        EXTENDED_IDS.iter().map(|&id| CashMazzia { id })
+    }
+
+    /// Number of states: 2, or 4 for the fourth-order problems.
+    pub fn states(&self) -> usize {
+        if matches!(self.id, 103 | 104) {
+            4
+        } else {
+            2
+        }
     }
 
     /// The problem's number in the published set.
@@ -112,13 +147,17 @@ impl CashMazzia {
             28 => "eps y'' = -y y' + y, y(0) = 1, y(1) = 3/2",
             29 => "eps y'' = -y y' + y, y(0) = 0, y(1) = 3/2",
             30 => "eps y'' = -y y' + y, y(0) = -7/6, y(1) = 3/2",
+            101 => "(eps + x) y'' + 2 y' = 0, y = 1/(eps + x)",
+            102 => "y'' = 2 y^3, y = 1/(eps + x)",
+            103 => "eps y'''' - y'' = -2, y = x^2 + two layers",
+            104 => "y'''' + y^5 = 25/(eps + x)^5, y = 1/(eps + x)",
             _ => "",
         }
     }
 
-    /// True for the linear problems (1–18).
+    /// True for the linear problems (1–18, 101, 103).
     pub fn is_linear(&self) -> bool {
-        self.id <= 18
+        self.id <= 18 || matches!(self.id, 101 | 103)
     }
 
     /// The member at `eps` as an ordinary [`crate::Bvp`].
@@ -234,6 +273,11 @@ impl CashMazzia {
                 [1.0 + eps * ln_cosh(t), t.tanh()]
             }
             21 => ex(-1.0 / r, 0.0),
+            101 | 102 | 104 => {
+                let q = eps + x;
+                [1.0 / q, -1.0 / (q * q)]
+            }
+            103 => add(add([x * x, 2.0 * x], ex(-1.0 / r, 0.0)), ex(1.0 / r, 1.0)),
             _ => return None,
         })
     }
@@ -243,8 +287,8 @@ impl CashMazzia {
         self.exact(0.0, 0.1).is_some()
     }
 
-    /// The straight line between the boundary values on `nodes` equal nodes (`y' ` its slope): the
-    /// common starting guess of the test-set study.
+    /// The straight line between the boundary values on `nodes` equal nodes (`y'` its slope,
+    /// higher derivatives 0): the common starting guess of the test-set study.
     pub fn guess(&self, eps: f64, nodes: usize) -> Guess {
         let (a, b) = self.span();
         let (ya, yb) = self.boundary_values(eps);
@@ -253,13 +297,32 @@ impl CashMazzia {
         let mesh = (0..nodes)
             .map(|i| a + (b - a) * i as f64 / (nodes - 1) as f64)
             .collect();
-        Guess::from_fn(2, mesh, vec![], |x, z| {
+        Guess::from_fn(self.states(), mesh, vec![], |x, z| {
+            z.fill(0.0);
             z[0] = ya + slope * (x - a);
             z[1] = slope;
         })
     }
 
-    /// `(φ, ∂φ/∂y, ∂φ/∂y', ∂φ/∂ε)` of `y'' = φ(x, y, y'; ε)`.
+    /// Fourth-order problems: `(y'''', ∂/∂y, ∂/∂y'', ∂/∂ε)` of `y'''' = ψ(x, y, y''; ε)`.
+    fn psi(&self, x: f64, y: f64, y2: f64, eps: f64) -> [f64; 4] {
+        match self.id {
+            103 => [(y2 - 2.0) / eps, 0.0, 1.0 / eps, -(y2 - 2.0) / (eps * eps)],
+            104 => {
+                let y4 = y * y * y * y;
+                let q5 = (eps + x).powi(5);
+                [
+                    25.0 / q5 - y4 * y,
+                    -5.0 * y4,
+                    0.0,
+                    -125.0 / (q5 * (eps + x)),
+                ]
+            }
+            _ => [f64::NAN; 4],
+        }
+    }
+
+    /// `(φ, ∂φ/∂y, ∂φ/∂y', ∂φ/∂ε)` of `y'' = φ(x, y, y'; ε)` (second-order problems).
     pub fn phi(&self, x: f64, y: f64, p: f64, eps: f64) -> [f64; 4] {
         let e2 = eps * eps;
         // ε y'' = N(x, y, p; ε) with ∂N/∂y, ∂N/∂p, ∂N/∂ε (the explicit ε in N).
@@ -332,6 +395,11 @@ impl CashMazzia {
                 [sh / eps, ch / e2, 0.0, -sh / e2 - y * ch / (e2 * eps)]
             }
             25..=30 => over_eps(-y * p + y, 1.0 - p, -y, 0.0),
+            101 => {
+                let q = eps + x;
+                [-2.0 * p / q, 0.0, -2.0 / q, 2.0 * p / (q * q)]
+            }
+            102 => [2.0 * y * y * y, 6.0 * y * y, 0.0, 0.0],
             _ => [f64::NAN; 4],
         }
     }
@@ -339,16 +407,31 @@ impl CashMazzia {
 
 impl ParamBvp for CashMazzia {
     fn dims(&self) -> Dims {
-        Dims { n: 2, k: 0 }
+        Dims {
+            n: self.states(),
+            k: 0,
+        }
     }
     fn interval(&self) -> (f64, f64) {
         self.span()
     }
     fn rhs(&self, s: f64, z: &[f64], _p: &[f64], eps: f64, dz: &mut [f64]) {
-        dz[0] = z[1];
-        dz[1] = self.phi(s, z[0], z[1], eps)[0];
+        if self.states() == 4 {
+            dz[..3].copy_from_slice(&z[1..4]);
+            dz[3] = self.psi(s, z[0], z[2], eps)[0];
+        } else {
+            dz[0] = z[1];
+            dz[1] = self.phi(s, z[0], z[1], eps)[0];
+        }
     }
     fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], eps: f64, res: &mut [f64]) {
+        if self.states() == 4 {
+            let (a, b) = self.span();
+            let ea = self.exact(a, eps).unwrap_or([f64::NAN; 2]);
+            let eb = self.exact(b, eps).unwrap_or([f64::NAN; 2]);
+            res.copy_from_slice(&[za[0] - ea[0], za[1] - ea[1], zb[0] - eb[0], zb[1] - eb[1]]);
+            return;
+        }
         let (ya, yb) = self.boundary_values(eps);
         res[0] = za[0] - ya;
         res[1] = zb[0] - yb;
@@ -363,6 +446,18 @@ impl ParamBvp for CashMazzia {
         _dfdp: &mut [f64],
         dfdl: &mut [f64],
     ) -> bool {
+        if self.states() == 4 {
+            let [_, fy, fy2, fe] = self.psi(s, z[0], z[2], eps);
+            dfdz.fill(0.0);
+            for i in 0..3 {
+                dfdz[i * 4 + i + 1] = 1.0;
+            }
+            dfdz[12] = fy;
+            dfdz[14] = fy2;
+            dfdl.fill(0.0);
+            dfdl[3] = fe;
+            return true;
+        }
         let [_, fy, fp, fe] = self.phi(s, z[0], z[1], eps);
         dfdz.copy_from_slice(&[0.0, 1.0, fy, fp]);
         dfdl[0] = 0.0;
@@ -380,10 +475,27 @@ impl ParamBvp for CashMazzia {
         _dgp: &mut [f64],
         dgl: &mut [f64],
     ) -> bool {
-        dga.copy_from_slice(&[1.0, 0.0, 0.0, 0.0]);
-        dgb.copy_from_slice(&[0.0, 0.0, 1.0, 0.0]);
         // Boundary values that follow the exact solution depend on ε: central difference.
         let h = 1e-6 * eps;
+        if self.states() == 4 {
+            dga.fill(0.0);
+            dgb.fill(0.0);
+            dga[0] = 1.0;
+            dga[5] = 1.0;
+            dgb[8] = 1.0;
+            dgb[13] = 1.0;
+            let (a, b) = self.span();
+            let at = |x: f64, e: f64| self.exact(x, e).unwrap_or([f64::NAN; 2]);
+            let (a1, a0) = (at(a, eps + h), at(a, eps - h));
+            let (b1, b0) = (at(b, eps + h), at(b, eps - h));
+            for j in 0..2 {
+                dgl[j] = -(a1[j] - a0[j]) / (2.0 * h);
+                dgl[2 + j] = -(b1[j] - b0[j]) / (2.0 * h);
+            }
+            return true;
+        }
+        dga.copy_from_slice(&[1.0, 0.0, 0.0, 0.0]);
+        dgb.copy_from_slice(&[0.0, 0.0, 1.0, 0.0]);
         let (a1, b1) = self.boundary_values(eps + h);
         let (a0, b0) = self.boundary_values(eps - h);
         dgl[0] = -(a1 - a0) / (2.0 * h);

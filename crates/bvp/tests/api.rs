@@ -351,3 +351,148 @@ fn simple_problems_are_fixed_problems() {
         assert!((b.node(i)[0] - s.sin()).abs() < 1e-7, "{s}");
     }
 }
+
+/// Every malformed guess is a typed error from every solver, naming the entry (issue 24: a mesh
+/// `[0, 1, 0.5]` or one not spanning the interval was silently replaced by a uniform one).
+#[test]
+fn malformed_guesses_are_typed_errors() {
+    let mk = |mesh: Vec<f64>| Guess::from_fn(2, mesh, vec![], |s, z| z.copy_from_slice(&[s, 1.0]));
+    let mut nan_value = mk(vec![0.0, 0.5, 1.0]);
+    nan_value.z[3] = f64::NAN;
+    let cases = [
+        (mk(vec![0.0, 1.0, 0.5]), "mesh", 2),
+        (mk(vec![0.0, 0.5]), "mesh", 1),
+        (mk(vec![0.1, 0.5, 1.0]), "mesh", 0),
+        (mk(vec![0.0, f64::NAN, 1.0]), "mesh", 1),
+        (nan_value, "values", 3),
+    ];
+    let mut coll = Collocation::new(CollocationOptions::default()).unwrap();
+    let mut shoot = Shooting::new(ShootingOptions::default()).unwrap();
+    for (guess, what, index) in cases {
+        for r in [
+            coll.solve(&LinearSinh, &guess),
+            shoot.solve(&LinearSinh, &guess),
+        ] {
+            match r {
+                Err(BvpError::InvalidGuess {
+                    what: w, index: i, ..
+                }) => assert_eq!((w, i), (what, index), "{:?}", guess.mesh),
+                other => panic!("{:?}: {other:?}", guess.mesh),
+            }
+        }
+    }
+    // Shape errors stay dimension errors; a one-node guess (a constant) is valid.
+    let short = Guess {
+        z: vec![0.0; 3],
+        ..mk(vec![0.0, 1.0])
+    };
+    assert!(matches!(
+        coll.solve(&LinearSinh, &short),
+        Err(BvpError::Dimension {
+            what: "guess values",
+            ..
+        })
+    ));
+    let one = Guess::from_fn(2, vec![0.3], vec![], |_, z| z.copy_from_slice(&[0.5, 1.0]));
+    assert!(coll.solve(&LinearSinh, &one).is_ok());
+    assert!(shoot.solve(&LinearSinh, &one).is_ok());
+}
+
+/// The derivative of the dense output (scipy's `sol(x, 1)`) for every kind of dense output:
+/// equal to `dz` at the nodes and close to the exact `y'`, `y''` between them; and the
+/// per-interval residuals of the returned solution are small.
+#[test]
+fn derivatives_and_residuals_of_the_solution() {
+    use bvp::Scheme;
+    let exact = LinearSinh::exact; // (sinh s, cosh s) / sinh 1
+    let mut sols = Vec::new();
+    for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
+        let mut s = Collocation::new(CollocationOptions {
+            scheme,
+            tol: 1e-8,
+            ..CollocationOptions::default()
+        })
+        .unwrap();
+        sols.push((
+            format!("{scheme:?}"),
+            s.solve(&LinearSinh, &LinearSinh::guess()).unwrap(),
+        ));
+    }
+    for integrator in [
+        Integrator::Rk4 { steps: 200 },
+        Integrator::Adaptive {
+            rtol: 1e-10,
+            atol: 1e-10,
+        },
+    ] {
+        let mut s = Shooting::new(ShootingOptions {
+            integrator,
+            ..ShootingOptions::default()
+        })
+        .unwrap();
+        sols.push((
+            format!("{integrator:?}"),
+            s.solve(&LinearSinh, &LinearSinh::guess()).unwrap(),
+        ));
+    }
+    for (name, sol) in &sols {
+        for i in 0..sol.len() {
+            let d = sol.derivative_at(sol.mesh[i]);
+            for (got, want) in d.iter().zip(&sol.dz[i * 2..i * 2 + 2]) {
+                assert!(
+                    (got - want).abs() <= 1e-9 * (1.0 + want.abs()),
+                    "{name} node {i}"
+                );
+            }
+        }
+        for k in 0..50 {
+            let s = (k as f64 + 0.37) / 50.0;
+            let d = sol.derivative_at(s);
+            let e = exact(s);
+            // y' = cosh/sinh 1 and y'' = y.
+            assert!(
+                (d[0] - e[1]).abs() < 1e-6,
+                "{name} s {s}: y' {} vs {}",
+                d[0],
+                e[1]
+            );
+            assert!(
+                (d[1] - e[0]).abs() < 1e-6,
+                "{name} s {s}: y'' {} vs {}",
+                d[1],
+                e[0]
+            );
+        }
+        let worst = sol
+            .residuals(&LinearSinh)
+            .iter()
+            .fold(0.0_f64, |m, v| m.max(*v));
+        assert!(worst < 1e-6, "{name}: residual {worst:e}");
+    }
+}
+
+/// The observer sees every mesh pass, the last one converged within tol.
+#[test]
+fn collocation_progress_is_observed() {
+    let mut passes = Vec::new();
+    let mut s = Collocation::new(CollocationOptions {
+        tol: 1e-8,
+        ..CollocationOptions::default()
+    })
+    .unwrap();
+    let sol = s
+        .solve_observed(&LinearSinh, &LinearSinh::guess(), &mut |p| {
+            let max = p.residuals.iter().fold(0.0_f64, |m, v| m.max(*v));
+            passes.push((p.pass, p.mesh.len(), p.newton_converged, max));
+        })
+        .unwrap();
+    assert_eq!(passes.len(), sol.stats.mesh_passes, "{passes:?}");
+    assert!(passes.len() >= 2, "{passes:?}");
+    assert!(passes.iter().enumerate().all(|(i, p)| p.0 == i + 1));
+    assert!(
+        passes
+            .iter()
+            .any(|p| p.2 && p.3 <= 1e-8 && p.1 == sol.len()),
+        "{passes:?}"
+    );
+}

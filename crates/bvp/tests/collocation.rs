@@ -471,19 +471,31 @@ fn higher_order_needs_fewer_nodes() {
 
 #[test]
 fn malformed_input_is_an_error_not_a_panic() {
-    // NaN in the guess.
+    // NaN in the guess: rejected before any evaluation (it used to surface as NonFinite).
     let guess = Guess::constant(0.0, 1.0, 5, &[f64::NAN, 0.0], vec![]);
     let r = solver(Scheme::Lobatto6, 1e-6).solve(&LinearSinh, &guess);
-    assert!(matches!(r, Err(BvpError::NonFinite { .. })), "{r:?}");
-    // Non-increasing guess mesh: ignored in favour of the default mesh (values interpolated).
+    assert!(
+        matches!(r, Err(BvpError::InvalidGuess { what: "values", .. })),
+        "{r:?}"
+    );
+    // Non-increasing guess mesh: an error naming the node (it used to be silently replaced by
+    // the default mesh).
     let guess = Guess::from_fn(2, vec![0.0, 0.7, 0.3, 1.0], vec![], |s, z| {
         z[0] = s;
         z[1] = 1.0;
     });
-    let sol = solver(Scheme::Lobatto4, 1e-6)
-        .solve(&LinearSinh, &guess)
-        .unwrap();
-    assert!(max_errors(&sol, LinearSinh::exact).0 <= 1e-5);
+    let r = solver(Scheme::Lobatto4, 1e-6).solve(&LinearSinh, &guess);
+    assert!(
+        matches!(
+            r,
+            Err(BvpError::InvalidGuess {
+                what: "mesh",
+                index: 2,
+                ..
+            })
+        ),
+        "{r:?}"
+    );
     // Wrong parameter count for a problem with an unknown parameter.
     let mut g = Eigen::guess();
     g.params.clear();

@@ -57,6 +57,19 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
     #[test]
+    fn big_problems(
+        t in 0.0..1.0f64,
+        seed in proptest::collection::vec(-1.0..1.0f64, 16),
+        q in proptest::collection::vec(0.3..2.0f64, 2),
+    ) {
+        for params in [false, true] {
+            let p = bvp::samples::Big { pairs: 4, params };
+            let (za, zb) = (&seed[..8], &seed[8..]);
+            check(&p, t, za, zb, if params { &q } else { &[] })?;
+        }
+    }
+
+    #[test]
     fn two_state_samples(
         t in 0.0..1.0f64,
         za in prop::array::uniform2(-3.0..3.0f64),

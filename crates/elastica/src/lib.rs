@@ -63,3 +63,8 @@ pub use elastica::{
 };
 pub use error::ElasticaError;
 pub use scan::{ClosedFormScan, Phase0End, ScanPoint};
+
+/// The examples of the crate's README.md, run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

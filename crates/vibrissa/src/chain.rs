@@ -34,7 +34,6 @@ use std::f64::consts::FRAC_PI_2;
 
 /// What a contact touches.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[allow(dead_code)] // point objects: the whisk, next
 pub(crate) enum Geom {
     /// The surface line through `p0` (lab frame) inclined by `beta`, shifted along its normal by
     /// the pose's offset `h`.
@@ -71,7 +70,8 @@ pub(crate) struct Contact {
     pub mode: Mode,
     /// Unit normal of the force frame, into the obstacle.
     pub n: [f64; 2],
-    /// The rod's slope at an interior surface contact (β + 2πk).
+    /// The rod's slope at an interior surface contact (β + kπ); at a point object, its slope
+    /// where the contact formed (which side of the rod the object is on).
     pub phi_ref: f64,
 }
 
@@ -92,6 +92,19 @@ impl Contact {
     pub fn force(&self, nn: f64, tt: f64) -> [f64; 2] {
         let t = self.t();
         [-nn * self.n[0] + tt * t[0], -nn * self.n[1] + tt * t[1]]
+    }
+    /// The rod's own frame at a point-object contact where its slope is `phi`: the tangent `τ`
+    /// (increasing s) and the normal `ν` on the side of the object (the side it was on when the
+    /// contact formed, at the slope `phi_ref`).
+    pub fn rod_frame(&self, phi: f64) -> ([f64; 2], [f64; 2]) {
+        let (sr, cr) = self.phi_ref.sin_cos();
+        let side = if self.n[0] * sr - self.n[1] * cr >= 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let (sp, cp) = phi.sin_cos();
+        ([cp, sp], [side * sp, -side * cp])
     }
     /// A surface contact on the line of `surface` (frame: normal up into it, tangent back).
     pub fn on_surface(tip: bool, p0: [f64; 2], beta: f64, mode: Mode, phi_ref: f64) -> Contact {
@@ -189,7 +202,6 @@ pub(crate) struct Pose {
 
 /// A one-parameter family of scenes: what `λ` moves.
 #[derive(Clone, Copy, Debug, PartialEq)]
-#[allow(dead_code)] // the turned foot: the whisk, next
 pub(crate) enum Family {
     /// The foot dragged: `xf = λ` (the stiction scan; `λ = d`).
     Drag,
@@ -742,16 +754,25 @@ pub(crate) fn conditions(
             cs.push(ry - p[1], [0.0, 1.0, 0.0, 0.0], [0.0; 3], 0.0);
             match ct.mode {
                 Mode::Stuck(sa) if !ct.tip => cs.push(own[2] - sa, [0.0; 4], [0.0, 0.0, 1.0], 0.0),
-                Mode::Sliding(ratio) => friction(&mut cs, ratio),
-                _ => {
-                    // frictionless: F·τ(φ) = 0, F = −N n + T t
-                    let (sp, cp) = z[2].sin_cos();
+                mode => {
+                    // frictionless or sliding, in the rod's own frame at the contact (tangent τ,
+                    // normal ν towards the object): T = F·τ = ratio·N = −ratio F·ν
+                    let ratio = match mode {
+                        Mode::Sliding(r) => r,
+                        _ => 0.0,
+                    };
+                    let (tau, nu) = ct.rod_frame(z[2]);
+                    let dtau = [-tau[1], tau[0]];
+                    let dnu = [-nu[1], nu[0]];
                     let t = ct.t();
                     let f = ct.force(nn, tt);
+                    let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+                    let w = [tau[0] + ratio * nu[0], tau[1] + ratio * nu[1]];
+                    let dw = [dtau[0] + ratio * dnu[0], dtau[1] + ratio * dnu[1]];
                     cs.push(
-                        f[0] * cp + f[1] * sp,
-                        [0.0, 0.0, -f[0] * sp + f[1] * cp, 0.0],
-                        [-(ct.n[0] * cp + ct.n[1] * sp), t[0] * cp + t[1] * sp, 0.0],
+                        dot(f, w),
+                        [0.0, 0.0, dot(f, dw), 0.0],
+                        [-dot(ct.n, w), dot(t, w), 0.0],
                         0.0,
                     )
                 }

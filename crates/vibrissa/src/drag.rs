@@ -576,6 +576,7 @@ impl<P: Profile> DragRun<'_, P> {
                 general: self.general,
                 friction: true,
                 check_start: first,
+                slide: false,
             };
             first = false;
             let out = march(&mut *self.st, &spec, self.profile, p, Default::default());
@@ -655,6 +656,7 @@ impl<P: Profile> DragRun<'_, P> {
                     general: self.general,
                     friction: true,
                     check_start: false,
+                    slide: false,
                 };
                 let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
                 self.collect(&sout, Phase::Slip, Some(d_s), mu_s);

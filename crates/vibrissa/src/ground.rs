@@ -129,6 +129,7 @@ fn curve_start<P: Profile>(
         general: &rod.profile(1.0),
         friction: false,
         check_start: false,
+        slide: false,
     };
     let out = march(&mut st, &spec, profile, p0, Stats::default());
     let (set, end) = match (&out.stop, out.last) {

@@ -75,6 +75,7 @@ mod ground;
 mod kind;
 mod march;
 mod parts;
+pub mod peg;
 pub mod profile;
 pub mod report;
 mod rod;
@@ -94,6 +95,7 @@ mod watch;
 pub use drag::{drag, DragOptions, DragResult};
 pub use error::VibrissaError;
 pub use fit::{fit, FitOptions, FitResult, Trace, TraceSlip};
+pub use peg::{locate, solve_peg, whisk, PegPoint, WhiskOptions, WhiskResult};
 pub use report::{
     ContactLabel, ContactModel, Event, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult,
     StopReason,
@@ -106,3 +108,8 @@ pub use scan::{infer, scan, scan_at};
 pub use scene::{Physical, Precurvature, Scene, Stiffness};
 pub use shape::{BranchChoice, Clearance, Shape, ShapeKind, ShapePoint};
 pub use solve::{solve, Method, SolverConfig, StartKind, Target};
+
+/// The examples of the crate's README.md, run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -131,6 +131,9 @@ pub(crate) struct Spec<'a> {
     /// Whether the first point must be a valid contact state (else it is reported as the event
     /// it is); a press starts at first touch, where the contact force is zero.
     pub check_start: bool,
+    /// A stuck contact that reaches `|T| = μ0 N` slides on (`T = ±μ0 N`) instead of ending the
+    /// march (a whisk against an object).
+    pub slide: bool,
 }
 
 /// What a march produced.
@@ -701,6 +704,12 @@ impl<P: Profile> Run<'_, '_, P> {
             cb * (z[0] + xf - p0[0]) + sb * (z[1] - p0[1])
         };
         match cross {
+            Crossing::Slip(j) if self.spec.slide => {
+                let c = pe.w.contacts[j];
+                let mut ns = set.clone();
+                ns.contacts[j].mode = Mode::Sliding(c.tangential / c.normal);
+                Next::Switch(Event::Slip, ns, u.clone())
+            }
             Crossing::Slip(_) => Next::Stop(Event::Slip),
             // the end of a slip: the march in the slip's parameter reached its goal
             Crossing::Stick(_) => Next::Done,

@@ -98,7 +98,7 @@ impl General {
     #[inline]
     pub fn b_at(&self, s: f64, t: f64) -> f64 {
         match &self.stiffness {
-            Stiffness::Uniform {} => 1.0,
+            Stiffness::Uniform => 1.0,
             Stiffness::Taper { ratio } => {
                 let r = 1.0 - t * (1.0 - ratio) * s;
                 let r2 = r * r;
@@ -118,7 +118,7 @@ impl General {
     #[inline]
     pub fn k0_at(&self, s: f64, t: f64) -> f64 {
         match &self.precurvature {
-            Precurvature::None {} => 0.0,
+            Precurvature::None => 0.0,
             Precurvature::Linear { k0, k1 } => t * (k0 + k1 * s),
             Precurvature::Table { s: st, k } => t * interp(st, k, s),
         }
@@ -140,7 +140,7 @@ impl Profile for General {
     fn slopes(&self, s: f64) -> (f64, f64) {
         let t = self.t;
         let db = match &self.stiffness {
-            Stiffness::Uniform {} => 0.0,
+            Stiffness::Uniform => 0.0,
             Stiffness::Taper { ratio } => {
                 let r = 1.0 - t * (1.0 - ratio) * s;
                 4.0 * t * (1.0 - ratio) / (r * r * r * r * r)
@@ -151,7 +151,7 @@ impl Profile for General {
             }
         };
         let dk = match &self.precurvature {
-            Precurvature::None {} => 0.0,
+            Precurvature::None => 0.0,
             Precurvature::Linear { k1, .. } => t * k1,
             Precurvature::Table { s: st, k } => t * table_slope(st, k, s),
         };
@@ -163,7 +163,7 @@ impl Profile for General {
     fn straight(&self) -> bool {
         self.t == 0.0
             || match &self.precurvature {
-                Precurvature::None {} => true,
+                Precurvature::None => true,
                 Precurvature::Linear { k0, k1 } => *k0 == 0.0 && *k1 == 0.0,
                 Precurvature::Table { k, .. } => k.iter().all(|v| *v == 0.0),
             }
@@ -188,12 +188,12 @@ impl General {
 /// True when the stiffness is uniform (`b ≡ 1`) and the rod straight (`κ0 ≡ 0`).
 pub(crate) fn is_uniform(stiffness: &Stiffness, precurvature: &Precurvature) -> bool {
     let b1 = match stiffness {
-        Stiffness::Uniform {} => true,
+        Stiffness::Uniform => true,
         Stiffness::Taper { ratio } => *ratio == 1.0,
         Stiffness::Table { .. } => false,
     };
     let k0 = match precurvature {
-        Precurvature::None {} => true,
+        Precurvature::None => true,
         Precurvature::Linear { k0, k1 } => *k0 == 0.0 && *k1 == 0.0,
         Precurvature::Table { .. } => false,
     };

@@ -179,8 +179,8 @@ impl Rod {
     /// The uniform, straight, clamped rod (the paper's).
     pub fn uniform() -> Rod {
         Rod {
-            stiffness: Stiffness::Uniform {},
-            precurvature: Precurvature::None {},
+            stiffness: Stiffness::Uniform,
+            precurvature: Precurvature::None,
             compliance: 0.0,
             physical: None,
             uniform_profile: true,
@@ -202,7 +202,7 @@ impl Rod {
         physical: Option<Physical>,
     ) -> Result<Rod, VibrissaError> {
         match &stiffness {
-            Stiffness::Uniform {} => {}
+            Stiffness::Uniform => {}
             Stiffness::Taper { ratio } => {
                 if !(*ratio >= MIN_TAPER && *ratio <= 1.0) {
                     return Err(VibrissaError::range(
@@ -221,7 +221,7 @@ impl Rod {
             )?,
         }
         match &precurvature {
-            Precurvature::None {} => {}
+            Precurvature::None => {}
             Precurvature::Linear { k0, k1 } => {
                 finite_within("precurvature k0", *k0, MAX_PRECURVATURE)?;
                 finite_within("precurvature k0 + k1", k0 + k1, MAX_PRECURVATURE)?;
@@ -339,6 +339,13 @@ pub struct Surface {
 impl Surface {
     /// A surface at height `eta ∈ (η_, 1)` (η_ ≈ 0.456947, the lowest height at which the uniform
     /// rod's start touches with its tip) inclined by `angle ∈ (−π/4, π/4)`.
+    ///
+    /// ```
+    /// let s = vibrissa::Surface::new(0.8, -0.1)?;
+    /// assert_eq!((s.eta(), s.angle()), (0.8, -0.1));
+    /// assert!(vibrissa::Surface::new(0.3, 0.0).is_err()); // below eta_
+    /// # Ok::<(), vibrissa::VibrissaError>(())
+    /// ```
     pub fn new(eta: f64, angle: f64) -> Result<Surface, VibrissaError> {
         let (_, eta_low) = elastica::lower_limit();
         if !(eta > eta_low && eta < 1.0) {

@@ -14,6 +14,18 @@ use crate::{Rod, Surface, VibrissaError};
 /// failures along the way end the scan with [`crate::StopReason::SolverFailure`].
 ///
 /// Output points are at `d = i·d_max/(points − 1)`, `i = 0, …, points − 1`, up to the stop.
+///
+/// ```
+/// use vibrissa::{Rod, ScanOptions, StopReason, Surface};
+///
+/// // the paper's rod at eta = 0.75, stopped where |mu| reaches mu0 = 0.7 (the tip slips)
+/// let opts = ScanOptions { points: 21, mu0: Some(0.7), ..ScanOptions::default() };
+/// let r = vibrissa::scan(&Rod::uniform(), &Surface::flat(0.75)?, &opts)?;
+/// let last = r.points.last().unwrap();
+/// assert_eq!(last.event, Some(vibrissa::Event::Slip));
+/// assert!(matches!(r.stop, StopReason::Slip { .. }) && (last.mu - 0.7).abs() < 1e-9);
+/// # Ok::<(), vibrissa::VibrissaError>(())
+/// ```
 pub fn scan(rod: &Rod, surface: &Surface, opts: &ScanOptions) -> Result<ScanResult, VibrissaError> {
     opts.validate()?;
     let n = opts.points;
@@ -31,6 +43,15 @@ pub fn scan(rod: &Rod, surface: &Surface, opts: &ScanOptions) -> Result<ScanResu
 
 /// As [`scan`], with output points at the given displacements (sorted ascending, in
 /// `[0, d_max]`) instead of the uniform grid; `opts.points` is ignored.
+///
+/// ```
+/// use vibrissa::{Rod, ScanOptions, Surface};
+///
+/// let r = vibrissa::scan_at(&Rod::uniform(), &Surface::flat(0.75)?, &ScanOptions::default(), &[0.0, 0.1])?;
+/// assert_eq!(r.points.len(), 2);
+/// assert!((r.points[1].mu - 0.7183848759918717).abs() < 1e-9); // the README's scan at d = 0.1
+/// # Ok::<(), vibrissa::VibrissaError>(())
+/// ```
 pub fn scan_at(
     rod: &Rod,
     surface: &Surface,
@@ -102,6 +123,7 @@ fn scan_with<P: Profile>(
         general: &general,
         friction: true,
         check_start: true,
+        slide: false,
     };
     let start_failed = |e: String| VibrissaError::NoConvergence {
         what: "scan start (correction at d = 0)".into(),
@@ -165,6 +187,17 @@ fn scan_with<P: Profile>(
 /// its first maximum, lift-off, penetration, a fold in `d` (beyond it a slip would be ambiguous
 /// or impossible). A `d_max` that ends the scan while `|μ|` still rises is an error too: the range
 /// is not known then.
+///
+/// ```
+/// use vibrissa::{Rod, ScanOptions, Surface};
+///
+/// let (rod, surface) = (Rod::uniform(), Surface::flat(0.75)?);
+/// let r = vibrissa::infer(&rod, &surface, 0.1, &ScanOptions::default())?;
+/// assert!((r.mu0 - 0.7183848759918717).abs() < 1e-9);
+/// // beyond the first maximum of |mu| a slip displacement has two answers: refused
+/// assert!(vibrissa::infer(&rod, &surface, 0.2, &ScanOptions::default()).is_err());
+/// # Ok::<(), vibrissa::VibrissaError>(())
+/// ```
 pub fn infer(
     rod: &Rod,
     surface: &Surface,

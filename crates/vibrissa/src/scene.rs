@@ -3,8 +3,7 @@
 //! on its parts, [`Scene::rod`] and [`Scene::surface`].
 //!
 //! Every `kind` refuses keys it does not have (`{ kind = "uniform", ratio = 0.5 }` is an error,
-//! not a uniform rod): the variants without values are empty structs for that reason (see
-//! [`Stiffness`]). Lengths are normalized by the rod length L, forces by EI_base/L², moments by
+//! not a uniform rod; see [`Stiffness`]). Lengths are normalized by the rod length L, forces by EI_base/L², moments by
 //! EI_base/L, unless stated otherwise.
 
 pub use crate::parts::{Physical, Precurvature, Stiffness};
@@ -13,6 +12,16 @@ use crate::VibrissaError;
 use serde::{Deserialize, Serialize};
 
 /// A whole scene. Defaults: uniform clamped straight rod, horizontal surface at `eta = 0.75`.
+///
+/// ```
+/// use vibrissa::{Scene, Stiffness};
+///
+/// let scene: Scene = toml::from_str("eta = 0.8\nstiffness = { kind = \"taper\", ratio = 0.5 }")?;
+/// assert_eq!(scene.stiffness, Stiffness::Taper { ratio: 0.5 });
+/// let (rod, surface) = scene.parts()?;
+/// assert_eq!(surface.eta(), 0.8);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Scene {
@@ -45,8 +54,8 @@ impl Default for Scene {
     fn default() -> Self {
         Scene {
             eta: 0.75,
-            stiffness: Stiffness::Uniform {},
-            precurvature: Precurvature::None {},
+            stiffness: Stiffness::Uniform,
+            precurvature: Precurvature::None,
             support_compliance: 0.0,
             surface_angle: 0.0,
             physical: None,
@@ -87,4 +96,47 @@ impl Scene {
         self.surface()?;
         self.rod().map(|_| ())
     }
+}
+
+/// A deserializer's message about a scene in the words of the file format: serde names Rust
+/// types (``invalid type: integer `3`, expected internally tagged enum StiffnessFile``); this names
+/// the tables and values a file has instead (`expected a stiffness table such as
+/// { kind = "uniform" }, ...`). Messages without such words are returned unchanged.
+///
+/// ```
+/// let m = vibrissa::scene::plain_message("invalid type: integer `3`, expected internally tagged enum StiffnessFile");
+/// assert_eq!(m, "invalid type: integer `3`, expected a stiffness table: { kind = \"uniform\" }, { kind = \"taper\", ratio = RHO } or { kind = \"table\", s = [...], b = [...] }");
+/// ```
+pub fn plain_message(msg: &str) -> String {
+    const WORDS: [(&str, &str); 8] = [
+        (
+            "internally tagged enum StiffnessFile",
+            "a stiffness table: { kind = \"uniform\" }, { kind = \"taper\", ratio = RHO } or { kind = \"table\", s = [...], b = [...] }",
+        ),
+        (
+            "internally tagged enum PrecurvatureFile",
+            "a precurvature table: { kind = \"none\" }, { kind = \"linear\", k0 = K0, k1 = K1 } or { kind = \"table\", s = [...], k = [...] }",
+        ),
+        (
+            "struct Physical",
+            "a [physical] table with length_mm, youngs_modulus_gpa, base_diameter_um",
+        ),
+        ("struct Scene", "a table of scene keys"),
+        ("expected f64", "expected a number"),
+        ("expected a sequence", "expected an array of numbers"),
+        ("missing field `kind`", "missing key `kind` (the table's kind: uniform, taper or table for stiffness; none, linear or table for precurvature)"),
+        ("missing field", "missing key"),
+    ];
+    let mut m = msg.to_string();
+    for (serde, file) in WORDS {
+        if m.contains(serde) {
+            m = m.replace(serde, file);
+        }
+    }
+    m.replace(
+        ", there are no fields",
+        " (this kind has no key but `kind`)",
+    )
+    .replace("unknown field", "unknown key")
+    .replace("unknown variant", "unknown kind")
 }

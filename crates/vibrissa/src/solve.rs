@@ -34,6 +34,19 @@ use std::f64::consts::PI;
 /// A converged solution on another branch is an error ([`VibrissaError::WrongBranch`]) unless
 /// [`BranchChoice::Any`] is asked for. [`BranchChoice::Guess`] starts Newton from the given
 /// shape instead.
+///
+/// ```
+/// use vibrissa::{BranchChoice, Method, Rod, SolverConfig, Target};
+///
+/// // the paper's Fig. 3: alpha = -pi/8, phi1 = pi/8 needs f = 4.718136... (closed form)
+/// let cfg = SolverConfig::default();
+/// let shape = vibrissa::solve(&Rod::uniform(), -0.3927, Target::Phi1(0.3927), &BranchChoice::Convex, &cfg)?;
+/// assert!((shape.f - 4.718136345368394).abs() < 1e-8);
+/// let closed = SolverConfig { method: Method::Analytic, ..cfg };
+/// let exact = vibrissa::solve(&Rod::uniform(), -0.3927, Target::Phi1(0.3927), &BranchChoice::Convex, &closed)?;
+/// assert_eq!(exact.f, 4.718136345368394);
+/// # Ok::<(), vibrissa::VibrissaError>(())
+/// ```
 pub fn solve(
     rod: &Rod,
     alpha: f64,

@@ -198,6 +198,7 @@ pub(crate) fn press<P: Profile>(
         general,
         friction: false,
         check_start: false,
+        slide: false,
     };
     let out: MarchOut = march(&mut st, &mspec, profile, p, Stats::default());
     match (&out.stop, out.range_end, out.last) {

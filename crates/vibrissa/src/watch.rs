@@ -3,7 +3,7 @@
 //! and the event functions that are negative while a contact state holds and reach zero where it
 //! ends (a contact lifts, slips, a new one forms, a lying part peels back, the object slips off).
 
-use crate::chain::{Contact, ContactSet, Geom, Mode};
+use crate::chain::{ContactSet, Geom, Mode};
 use crate::surface::Ground;
 use bvp::Solution;
 
@@ -149,7 +149,7 @@ pub(crate) fn watch(
             ),
             Geom::Point { .. } => {
                 let z = exact(s);
-                let (nl, tl) = point_frame(ct, z[2]);
+                let (tl, nl) = ct.rod_frame(z[2]);
                 let dfx = du.map_or(0.0, |d| -d[o] * ct.n[0] + d[o + 1] * ct.t()[0]);
                 let dfy = du.map_or(0.0, |d| -d[o] * ct.n[1] + d[o + 1] * ct.t()[1]);
                 (
@@ -237,17 +237,6 @@ pub(crate) fn watch(
         last_y,
         phi1: sol.right()[2],
     }
-}
-
-/// The rod's normal (on the side of the contact frame's normal) and tangent at a point object
-/// where the rod's slope is `phi`.
-fn point_frame(ct: &Contact, phi: f64) -> ([f64; 2], [f64; 2]) {
-    let (sp, cp) = phi.sin_cos();
-    let mut nl = [sp, -cp];
-    if nl[0] * ct.n[0] + nl[1] * ct.n[1] < 0.0 {
-        nl = [-sp, cp];
-    }
-    ([nl[0], nl[1]], [-nl[1], nl[0]])
 }
 
 /// Largest height above the surface line (shifted to where the contacts hold it: the line through

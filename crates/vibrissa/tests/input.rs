@@ -303,3 +303,22 @@ proptest! {
         fd_check(&uni, s, &z, &p[..1]);
     }
 }
+
+/// The valueless kinds are plain variants in Rust (`Stiffness::Uniform`, `Precurvature::None`)
+/// and the same tagged tables in files, both ways.
+#[test]
+fn valueless_kinds_keep_their_file_form() {
+    let sc = Scene::default();
+    assert_eq!(sc.stiffness, vibrissa::Stiffness::Uniform);
+    assert_eq!(sc.precurvature, vibrissa::Precurvature::None);
+    let text = toml::to_string(&sc).unwrap();
+    assert!(text.contains("[stiffness]\nkind = \"uniform\""), "{text}");
+    assert!(text.contains("[precurvature]\nkind = \"none\""), "{text}");
+    assert_eq!(toml::from_str::<Scene>(&text).unwrap(), sc);
+    // a linear rest curvature without k1 reads as constant, as before
+    let c: Scene = toml::from_str("precurvature = { kind = \"linear\", k0 = 0.5 }").unwrap();
+    assert_eq!(
+        c.precurvature,
+        vibrissa::Precurvature::Linear { k0: 0.5, k1: 0.0 }
+    );
+}

@@ -8,14 +8,7 @@ use super::Scheme;
 /// Most abscissae of a supported scheme (4-point Lobatto).
 pub(crate) const MAXC: usize = 4;
 
-/// Interior nodes of 5-point Lobatto quadrature on `[0, 1]` and their weights (the end nodes carry
-/// weight 1/20 each but the residual vanishes there by construction).
-pub(crate) const EST_T: [f64; 3] = [
-    0.5 - 0.5 * 0.654_653_670_707_977_1, // sqrt(3/7)
-    0.5,
-    0.5 + 0.5 * 0.654_653_670_707_977_1,
-];
-pub(crate) const EST_W: [f64; 3] = [49.0 / 180.0, 16.0 / 45.0, 49.0 / 180.0];
+pub(crate) use crate::solution::{EST_T, EST_W};
 
 /// A Lobatto IIIA scheme on the unit interval.
 #[derive(Clone, Debug)]

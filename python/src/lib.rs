@@ -1,0 +1,466 @@
+//! `vibrissa._core`: the Python binding of the `vibrissa` library. The Python package
+//! (`python/vibrissa/__init__.py`) wraps it: it turns the rows returned here into numpy columns.
+//!
+//! Results cross over generically: every result struct of the library is converted through its
+//! `Serialize` impl (pythonize), so a field added to `ScanPoint`, `ScanResult`, `Shape`, ... shows
+//! up in Python as a new key (a new column) without binding code. Errors keep the library's
+//! message (its `Display`); input errors are `ValueError`s, failed solves `RuntimeError`s.
+
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use pythonize::{depythonize, pythonize};
+use rayon::prelude::*;
+use serde::Serialize;
+use vibrissa::{
+    BranchChoice, ContactModel, Method, Physical, Precurvature, Rod, ScanOptions, ScanResult,
+    Scene, SolverConfig, StartKind, Stiffness, Surface, Target, VibrissaError,
+};
+
+/// An exception of class `name` of `vibrissa._errors` (pure Python: `InputError` is also a
+/// `ValueError`, `SolveError` a `RuntimeError`, both `vibrissa.Error`s) with `msg`.
+fn raise(name: &str, msg: String) -> PyErr {
+    Python::attach(
+        |py| match py.import("vibrissa._errors").and_then(|m| m.getattr(name)) {
+            Ok(cls) => PyErr::from_type(cls.cast_into().expect("an exception class"), msg),
+            Err(e) => e,
+        },
+    )
+}
+
+/// The library's error as a Python exception with the same message; the input errors are those
+/// the program reports as bad input (exit 2), a surface the rod cannot reach among them.
+fn py_err(e: VibrissaError) -> PyErr {
+    let msg = e.to_string();
+    match e {
+        VibrissaError::OutOfRange { .. }
+        | VibrissaError::InvalidTable { .. }
+        | VibrissaError::InvalidName { .. }
+        | VibrissaError::MethodUnavailable { .. }
+        | VibrissaError::NotMeasurable { .. }
+        | VibrissaError::RangeCutShort { .. }
+        | VibrissaError::NoContact { .. }
+        | VibrissaError::OutOfReach { .. } => raise("InputError", msg),
+        _ => raise("SolveError", msg),
+    }
+}
+
+/// A value from Python that does not fit the scene format, in the format's words.
+fn input_err(what: &str, e: impl std::fmt::Display) -> PyErr {
+    raise(
+        "InputError",
+        format!("{what}: {}", vibrissa::scene::plain_message(&e.to_string())),
+    )
+}
+
+fn input(msg: impl Into<String>) -> PyErr {
+    raise("InputError", msg.into())
+}
+
+fn to_py<'py, T: Serialize + ?Sized>(py: Python<'py>, v: &T) -> PyResult<Bound<'py, PyAny>> {
+    pythonize(py, v).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+}
+
+/// A validated rod (see `vibrissa.Rod` in Python for the arguments).
+#[pyclass(frozen, from_py_object, module = "vibrissa._core", name = "Rod")]
+#[derive(Clone)]
+struct PyRod(Rod);
+
+#[pymethods]
+impl PyRod {
+    #[new]
+    #[pyo3(signature = (taper=None, precurvature=0.0, precurvature_slope=0.0, support_compliance=0.0, *, stiffness=None, precurvature_profile=None, physical=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        taper: Option<f64>,
+        precurvature: f64,
+        precurvature_slope: f64,
+        support_compliance: f64,
+        stiffness: Option<&Bound<'_, PyAny>>,
+        precurvature_profile: Option<&Bound<'_, PyAny>>,
+        physical: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let stiff = match (taper, stiffness) {
+            (Some(_), Some(_)) => return Err(input("give either taper or stiffness, not both")),
+            (Some(ratio), None) => Stiffness::Taper { ratio },
+            (None, Some(s)) => depythonize(s).map_err(|e| input_err("stiffness", e))?,
+            (None, None) => Stiffness::Uniform,
+        };
+        let pre = match precurvature_profile {
+            Some(_) if precurvature != 0.0 || precurvature_slope != 0.0 => {
+                return Err(input("give either precurvature (and precurvature_slope) or precurvature_profile, not both",
+                ))
+            }
+            Some(p) => depythonize(p).map_err(|e| input_err("precurvature_profile", e))?,
+            None if precurvature == 0.0 && precurvature_slope == 0.0 => Precurvature::None,
+            None => Precurvature::Linear {
+                k0: precurvature,
+                k1: precurvature_slope,
+            },
+        };
+        let phys: Option<Physical> = physical
+            .map(|p| depythonize(p).map_err(|e| input_err("physical", e)))
+            .transpose()?;
+        Rod::new(stiff, pre, support_compliance, phys)
+            .map(PyRod)
+            .map_err(py_err)
+    }
+
+    /// The rod's parts as a dict (the scene file's keys: stiffness, precurvature,
+    /// support_compliance, physical).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let r = &self.0;
+        let d = PyDict::new(py);
+        d.set_item("stiffness", to_py(py, r.stiffness())?)?;
+        d.set_item("precurvature", to_py(py, r.precurvature())?)?;
+        d.set_item("support_compliance", r.support_compliance())?;
+        d.set_item("physical", to_py(py, &r.physical())?)?;
+        Ok(d.into_any())
+    }
+
+    /// True for the paper's rod: uniform, straight, clamped (where the closed forms hold).
+    fn is_uniform_clamped(&self) -> bool {
+        self.0.is_uniform_clamped()
+    }
+
+    fn __repr__(&self) -> String {
+        let r = &self.0;
+        format!(
+            "Rod(stiffness={:?}, precurvature={:?}, support_compliance={}, physical={:?})",
+            r.stiffness(),
+            r.precurvature(),
+            r.support_compliance(),
+            r.physical()
+        )
+    }
+}
+
+/// The surface the tip touches (see `vibrissa.Surface` in Python).
+#[pyclass(frozen, from_py_object, module = "vibrissa._core", name = "Surface")]
+#[derive(Clone)]
+struct PySurface(Surface);
+
+#[pymethods]
+impl PySurface {
+    #[new]
+    #[pyo3(signature = (eta=0.75, angle=0.0))]
+    fn new(eta: f64, angle: f64) -> PyResult<Self> {
+        Surface::new(eta, angle).map(PySurface).map_err(py_err)
+    }
+    /// Height of the contact point above the foot (rod lengths).
+    #[getter]
+    fn eta(&self) -> f64 {
+        self.0.eta()
+    }
+    /// Inclination of the surface line (rad).
+    #[getter]
+    fn angle(&self) -> f64 {
+        self.0.angle()
+    }
+    fn __repr__(&self) -> String {
+        format!("Surface(eta={}, angle={})", self.0.eta(), self.0.angle())
+    }
+}
+
+/// A scene (the dict of a scene file's keys, or the text of a TOML file) as `(Rod, Surface)`.
+fn scene_parts(scene: Scene) -> PyResult<(PyRod, PySurface)> {
+    let (rod, surface) = scene.parts().map_err(py_err)?;
+    Ok((PyRod(rod), PySurface(surface)))
+}
+
+/// `(Rod, Surface)` of a scene given as a dict with the keys of a scene file.
+#[pyfunction]
+fn scene_from_dict(scene: &Bound<'_, PyAny>) -> PyResult<(PyRod, PySurface)> {
+    scene_parts(depythonize(scene).map_err(|e| input_err("scene", e))?)
+}
+
+/// `(Rod, Surface)` of a scene file's text (TOML).
+#[pyfunction]
+fn scene_from_toml(text: &str) -> PyResult<(PyRod, PySurface)> {
+    scene_parts(toml::from_str(text).map_err(|e| input_err("scene", e.message()))?)
+}
+
+/// The solver settings from their Python arguments.
+fn config(method: &str, tol: f64, segments: usize, start: &str) -> PyResult<SolverConfig> {
+    let start = match start {
+        "pressed" => StartKind::Pressed,
+        "connected" => StartKind::Connected,
+        _ => {
+            return Err(input(format!(
+                "invalid start '{start}': valid values are pressed, connected"
+            )))
+        }
+    };
+    let cfg = SolverConfig {
+        method: method.parse::<Method>().map_err(py_err)?,
+        tol,
+        segments,
+        rk4_steps: None,
+        start,
+    };
+    cfg.validate().map_err(py_err)?;
+    Ok(cfg)
+}
+
+fn branch(name: &str) -> PyResult<BranchChoice> {
+    match name {
+        "convex" => Ok(BranchChoice::Convex),
+        "flex" => Ok(BranchChoice::Flex),
+        "any" => Ok(BranchChoice::Any),
+        _ => Err(input(format!(
+            "invalid branch '{name}': valid values are convex, flex, any"
+        ))),
+    }
+}
+
+/// One rod under a tip force at angle `alpha` with one tip condition; returns the `Shape` as a
+/// dict plus `shape`, a list of `shape_points` samples (dicts of s, x, y, phi, kappa, m).
+#[pyfunction]
+#[pyo3(signature = (rod, alpha, *, phi1=None, eta=None, tip=None, branch="convex", method="shooting", tol=1e-10, segments=8, shape_points=101, start="pressed"))]
+#[allow(clippy::too_many_arguments)]
+fn solve<'py>(
+    py: Python<'py>,
+    rod: &PyRod,
+    alpha: f64,
+    phi1: Option<f64>,
+    eta: Option<f64>,
+    tip: Option<(f64, f64)>,
+    branch: &str,
+    method: &str,
+    tol: f64,
+    segments: usize,
+    shape_points: usize,
+    start: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let target = match (phi1, eta, tip) {
+        (Some(p), None, None) => Target::Phi1(p),
+        (None, Some(h), None) => Target::Eta(h),
+        (None, None, Some((x1, y1))) => Target::Tip { x1, y1 },
+        _ => {
+            return Err(input(
+                "give exactly one tip condition: phi1, eta or tip = (x1, y1)",
+            ))
+        }
+    };
+    if shape_points < 2 {
+        return Err(input(format!(
+            "shape_points = {shape_points} is outside the valid range [2, inf)"
+        )));
+    }
+    let (b, cfg, rod) = (
+        self::branch(branch)?,
+        config(method, tol, segments, start)?,
+        &rod.0,
+    );
+    let (shape, samples) = py
+        .detach(|| {
+            vibrissa::solve(rod, alpha, target, &b, &cfg).map(|s| {
+                let samples = s.samples(shape_points);
+                (s, samples)
+            })
+        })
+        .map_err(py_err)?;
+    let d = to_py(py, &shape)?;
+    d.set_item("shape", to_py(py, &samples)?)?;
+    Ok(d)
+}
+
+/// Scan options from the Python arguments.
+#[allow(clippy::too_many_arguments)]
+fn scan_options(
+    d_max: f64,
+    points: usize,
+    mu0: Option<f64>,
+    method: &str,
+    tol: f64,
+    segments: usize,
+    shape_points: Option<usize>,
+    (contact, start): (&str, &str),
+) -> PyResult<ScanOptions> {
+    let contact = match contact {
+        "anywhere" => ContactModel::Anywhere,
+        "tip" => ContactModel::Tip,
+        _ => {
+            return Err(input(format!(
+                "invalid contact '{contact}': valid values are anywhere, tip"
+            )))
+        }
+    };
+    let opts = ScanOptions {
+        d_max,
+        points,
+        mu0,
+        solver: config(method, tol, segments, start)?,
+        keep_shapes: shape_points,
+        contact,
+    };
+    opts.validate().map_err(py_err)?;
+    Ok(opts)
+}
+
+/// The stiction scan; returns the `ScanResult` as a dict (`points` and `shapes` as lists of
+/// dicts). `d`: output displacements instead of the uniform grid (`scan_at`).
+#[pyfunction]
+#[pyo3(signature = (rod, surface, *, d_max=0.5, points=201, d=None, mu0=None, method="shooting", tol=1e-10, segments=8, shape_points=None, contact="anywhere", start="pressed"))]
+#[allow(clippy::too_many_arguments)]
+fn scan<'py>(
+    py: Python<'py>,
+    rod: &PyRod,
+    surface: &PySurface,
+    d_max: f64,
+    points: usize,
+    d: Option<Vec<f64>>,
+    mu0: Option<f64>,
+    method: &str,
+    tol: f64,
+    segments: usize,
+    shape_points: Option<usize>,
+    contact: &str,
+    start: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = scan_options(
+        d_max,
+        points,
+        mu0,
+        method,
+        tol,
+        segments,
+        shape_points,
+        (contact, start),
+    )?;
+    let (rod, surface) = (&rod.0, &surface.0);
+    let r = py
+        .detach(|| match &d {
+            Some(ds) => vibrissa::scan_at(rod, surface, &opts, ds),
+            None => vibrissa::scan(rod, surface, &opts),
+        })
+        .map_err(py_err)?;
+    to_py(py, &r)
+}
+
+/// μ0 from the slip displacement `d0`; returns the `Inference` as a dict.
+#[pyfunction]
+#[pyo3(signature = (rod, surface, d0, *, d_max=0.5, points=201, method="shooting", tol=1e-10, segments=8, contact="anywhere", start="pressed"))]
+#[allow(clippy::too_many_arguments)]
+fn infer<'py>(
+    py: Python<'py>,
+    rod: &PyRod,
+    surface: &PySurface,
+    d0: f64,
+    d_max: f64,
+    points: usize,
+    method: &str,
+    tol: f64,
+    segments: usize,
+    contact: &str,
+    start: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = scan_options(
+        d_max,
+        points,
+        None,
+        method,
+        tol,
+        segments,
+        None,
+        (contact, start),
+    )?;
+    let (rod, surface) = (&rod.0, &surface.0);
+    let r = py
+        .detach(|| vibrissa::infer(rod, surface, d0, &opts))
+        .map_err(py_err)?;
+    to_py(py, &r)
+}
+
+/// A scan reduced to its summary: the `ScanResult` without its points and shapes, and its
+/// last point (the start when it has none).
+fn summary(mut r: ScanResult) -> (ScanResult, usize, vibrissa::ScanPoint) {
+    let end = r.points.last().copied().unwrap_or(r.start);
+    let n = r.points.len();
+    r.points = Vec::new();
+    r.shapes = Vec::new();
+    (r, n, end)
+}
+
+/// Scans of many scenes in parallel (rayon, `jobs` threads, the GIL released); one summary dict
+/// per scene in order: the `ScanResult`'s keys with `points` the number of points, `end` its
+/// last point (the start when it has none) and `error` (None, or the message). A failing scene does not stop the
+/// others.
+#[pyfunction]
+#[pyo3(signature = (scenes, *, d_max=0.5, points=201, mu0=None, method="shooting", tol=1e-10, segments=8, jobs=None, contact="anywhere", start="pressed"))]
+#[allow(clippy::too_many_arguments)]
+fn sweep<'py>(
+    py: Python<'py>,
+    scenes: Vec<(PyRod, PySurface)>,
+    d_max: f64,
+    points: usize,
+    mu0: Option<f64>,
+    method: &str,
+    tol: f64,
+    segments: usize,
+    jobs: Option<usize>,
+    contact: &str,
+    start: &str,
+) -> PyResult<Bound<'py, PyList>> {
+    let opts = scan_options(
+        d_max,
+        points,
+        mu0,
+        method,
+        tol,
+        segments,
+        None,
+        (contact, start),
+    )?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.unwrap_or(0))
+        .build()
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let results: Vec<Result<_, String>> = py.detach(|| {
+        pool.install(|| {
+            scenes
+                .par_iter()
+                .map(|(rod, surface)| {
+                    vibrissa::scan(&rod.0, &surface.0, &opts)
+                        .map(summary)
+                        .map_err(|e| e.to_string())
+                })
+                .collect()
+        })
+    });
+    let out = PyList::empty(py);
+    for r in results {
+        let row = match r {
+            Ok((r, n, end)) => {
+                // the summary keys of `ScanResult` (whatever they are), `points` as a count
+                let d = to_py(py, &r)?.cast_into::<PyDict>()?;
+                d.del_item("shapes")?;
+                d.set_item("points", n)?;
+                d.set_item("end", to_py(py, &end)?)?;
+                d.set_item("error", py.None())?;
+                d.into_any()
+            }
+            Err(msg) => {
+                let d = PyDict::new(py);
+                d.set_item("error", msg)?;
+                d.into_any()
+            }
+        };
+        out.append(row)?;
+    }
+    Ok(out)
+}
+
+/// `vibrissa._core`: see the `vibrissa` package.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyRod>()?;
+    m.add_class::<PySurface>()?;
+    m.add_function(wrap_pyfunction!(scene_from_dict, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_from_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(solve, m)?)?;
+    m.add_function(wrap_pyfunction!(scan, m)?)?;
+    m.add_function(wrap_pyfunction!(infer, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    Ok(())
+}

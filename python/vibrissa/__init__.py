@@ -1,0 +1,423 @@
+"""vibrissa: an elastic whisker pressed on a surface, from Python.
+
+The model and its solvers are the Rust library ``vibrissa`` of this repository (the same code
+as the ``vibrissa`` program, so the numbers are the program's to the last digit). Units are
+normalized: length L (rod length), force EI/L^2, moment EI/L (EI at the foot), angles in
+radians; see the repository's README for the model, the columns and their signs.
+
+Example::
+
+    import vibrissa
+    rod = vibrissa.Rod(taper=0.3, precurvature=-0.5, support_compliance=0.1)
+    result = vibrissa.scan(rod, vibrissa.Surface(eta=0.8), points=51)
+    result.points["mu"]      # numpy array, one value per output point
+    result.stop              # {'reason': 'd_max'} or {'reason': 'slip', 'd': ..., 'mu': ...}
+
+Results are plain Python values and numpy arrays: ``scan`` returns a :class:`ScanResult` whose
+``points`` is a dict of columns (numpy arrays; text columns such as ``event`` are lists of
+str or None), ``sweep`` a :class:`Sweep` of one row per scene. Both have ``to_pandas()`` when
+pandas is installed. Every field the library adds to its results appears here as a new key or
+column by itself (the binding converts the library's structs generically).
+
+Errors are :class:`InputError` (also a ``ValueError``) for values outside their range and
+:class:`SolveError` (also a ``RuntimeError``) for failed solves, both :class:`Error`; the
+message is the library's.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._errors import Error, InputError, SolveError
+
+Rod = _core.Rod
+Surface = _core.Surface
+
+__all__ = [
+    "Rod",
+    "Surface",
+    "ScanResult",
+    "Sweep",
+    "Error",
+    "InputError",
+    "SolveError",
+    "load_scene",
+    "scene",
+    "solve",
+    "scan",
+    "infer",
+    "sweep",
+    "grid",
+    "columns",
+]
+
+Column = Union[np.ndarray, List[Any]]
+
+
+def columns(rows: Sequence[Mapping[str, Any]]) -> Dict[str, Column]:
+    """Rows (dicts) to columns, keys in order of first appearance.
+
+    A column of numbers becomes a numpy array (float64, ``None`` as NaN; int64 when every value
+    is an integer); anything else (text, nested values, and a column that is ``None`` in every
+    row, whose type is unknown) stays a list. Nested dicts
+    are flattened with ``_`` (``stop`` → ``stop_reason``, ``stop_d``, ...).
+    """
+    flat = [_flatten(r) for r in rows]
+    keys: Dict[str, None] = {}
+    for r in flat:
+        for k in r:
+            keys.setdefault(k, None)
+    out: Dict[str, Column] = {}
+    for k in keys:
+        out[k] = _column([r.get(k) for r in flat])
+    return out
+
+
+def _flatten(row: Mapping[str, Any], prefix: str = "") -> Dict[str, Any]:
+    out: Dict[str, Any] = {}
+    for k, v in row.items():
+        if isinstance(v, Mapping):
+            out.update(_flatten(v, f"{prefix}{k}_"))
+        else:
+            out[f"{prefix}{k}"] = v
+    return out
+
+
+def _column(values: List[Any]) -> Column:
+    numbers = [v for v in values if v is not None]
+    if not numbers or not all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) for v in numbers
+    ):
+        return values
+    if len(numbers) == len(values) and all(isinstance(v, int) for v in numbers):
+        return np.array(values, dtype=np.int64)
+    return np.array([np.nan if v is None else v for v in values], dtype=np.float64)
+
+
+def _to_pandas(cols: Mapping[str, Column]):
+    try:
+        import pandas as pd
+    except ImportError as e:  # pragma: no cover - depends on the environment
+        raise ImportError("to_pandas() needs pandas: pip install pandas") from e
+    return pd.DataFrame(dict(cols))
+
+
+class ScanResult:
+    """The result of :func:`scan`.
+
+    Attributes:
+        points: dict of columns, one value per output point (``d``, ``mu``, ``normal``,
+            ``alpha``, ``phi1``, ``f``, ``fx``, ``fy``, ``m_base``, ``flex``, ``s_flex``,
+            ``y_max``, ``event``, and any column the library adds). The last point is the
+            event's (``event`` names it) when the scan stopped at one.
+        start: the starting rod (d = 0) as a dict of the same fields.
+        mu_max, mu_at_max, d_at_mu_max: largest ``|mu|`` over the measurable range, its signed
+            value, and where.
+        range_end: what ends the measurable range (``first_maximum``, ``event``, ``d_max``,
+            ``solver_failure``).
+        stop: why the scan stopped: ``{'reason': 'd_max'}``, ``{'reason': 'slip', 'd': ...,
+            'mu': ...}``, ``{'reason': 'penetration', 'd': ..., 's': ..., 'y': ...}``, ...
+        stop_reason: ``stop['reason']``.
+        stats: solver statistics (Newton iterations, right-hand-side evaluations, ...).
+        shapes: with ``shape_points``: dict of arrays of shape (points, shape_points) for
+            ``s``, ``x``, ``y``, ``phi``, ``kappa``, ``m`` (foot frame), else ``None``.
+        raw: everything as the library returned it (nested dicts and lists).
+    """
+
+    def __init__(self, raw: Dict[str, Any]):
+        self.raw = raw
+        self.points: Dict[str, Column] = columns(raw["points"])
+        self.start: Dict[str, Any] = raw["start"]
+        self.eta: float = raw["eta"]
+        self.mu_max: float = raw["mu_max"]
+        self.mu_at_max: float = raw["mu_at_max"]
+        self.d_at_mu_max: float = raw["d_at_mu_max"]
+        self.range_end: str = raw["range_end"]
+        self.stop: Dict[str, Any] = raw["stop"]
+        self.stop_reason: str = raw["stop"]["reason"]
+        self.stats: Dict[str, Any] = raw["stats"]
+        self.shapes: Optional[Dict[str, np.ndarray]] = None
+        if raw["shapes"]:
+            per_point = [columns(sh) for sh in raw["shapes"]]
+            self.shapes = {
+                k: np.array([c[k] for c in per_point]) for k in per_point[0]
+            }
+
+    def __len__(self) -> int:
+        return len(self.raw["points"])
+
+    def to_pandas(self):
+        """The points as a pandas DataFrame (needs pandas)."""
+        return _to_pandas(self.points)
+
+    def __repr__(self) -> str:
+        return (
+            f"ScanResult(eta={self.eta}, points={len(self)}, mu_max={self.mu_max}, "
+            f"d_at_mu_max={self.d_at_mu_max}, stop={self.stop})"
+        )
+
+
+class Sweep:
+    """The result of :func:`sweep`: one row per scene, in the order given.
+
+    ``rows`` are dicts (the scene's own keys when it came from :func:`grid`, then the scan's
+    summary: ``start``, ``end`` (its last point), ``mu_max``, ``d_at_mu_max``, ``range_end``,
+    ``stop``, ``stats``, ``error``); ``columns`` the same flattened into numpy columns
+    (``start_f``, ``end_mu``, ``stop_reason``, ``stats_newton_iters``, ...). A scene whose scan
+    failed has its message in ``error`` and NaN (or None) elsewhere.
+    """
+
+    def __init__(self, rows: List[Dict[str, Any]]):
+        self.rows = rows
+        self.columns: Dict[str, Column] = columns(rows)
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def __getitem__(self, key: str) -> Column:
+        return self.columns[key]
+
+    def to_pandas(self):
+        """The rows as a pandas DataFrame (needs pandas)."""
+        return _to_pandas(self.columns)
+
+    def __repr__(self) -> str:
+        failed = sum(r.get("error") is not None for r in self.rows)
+        return f"Sweep({len(self)} scenes, {failed} with an error)"
+
+
+SceneLike = Union[Tuple[Any, Any], Mapping[str, Any]]
+
+
+def load_scene(path: Union[str, os.PathLike]) -> Tuple[Any, Any]:
+    """``(Rod, Surface)`` of a scene file (TOML, the program's ``--scene`` format)."""
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    try:
+        return _core.scene_from_toml(text)
+    except InputError as e:
+        raise InputError(f"scene file {os.fspath(path)}: {e}") from None
+
+
+# the flags of `vibrissa sweep` and `scan` (grid keys) and where they go in a scene
+_SCENE_KEYS = (
+    "eta",
+    "taper",
+    "precurvature",
+    "precurvature_slope",
+    "support_compliance",
+    "surface_angle",
+)
+
+
+def scene(**keys: Any) -> Tuple[Any, Any]:
+    """``(Rod, Surface)`` from the program's flag names (``eta``, ``taper``, ``precurvature``,
+    ``precurvature_slope``, ``support_compliance``, ``surface_angle``; ``physical`` a dict) or
+    from a scene file's keys (``stiffness``, ``precurvature`` as dicts, ...)."""
+    flags: Dict[str, Any] = {}
+    file_keys: Dict[str, Any] = {}
+    for k, v in keys.items():
+        # `precurvature` is a number as a flag (K0), a table as a file key
+        if k in _SCENE_KEYS and not isinstance(v, Mapping):
+            flags[k] = v
+        else:
+            file_keys[k] = v
+    # flags override the file's keys, as on the command line
+    for k in ("eta", "surface_angle", "support_compliance"):
+        if k in flags:
+            file_keys[k] = flags[k]
+    if flags.get("taper") is not None:
+        file_keys["stiffness"] = {"kind": "taper", "ratio": flags["taper"]}
+    if "precurvature" in flags or "precurvature_slope" in flags:
+        k0, k1 = flags.get("precurvature") or 0.0, flags.get("precurvature_slope") or 0.0
+        file_keys["precurvature"] = (
+            {"kind": "none"} if k0 == 0.0 and k1 == 0.0 else {"kind": "linear", "k0": k0, "k1": k1}
+        )
+    return _core.scene_from_dict(file_keys)
+
+
+def _parts(s: SceneLike) -> Tuple[Any, Any]:
+    if isinstance(s, Mapping):
+        return scene(**s)
+    rod, surface = s
+    return rod, surface
+
+
+def solve(
+    rod: Any,
+    alpha: float,
+    *,
+    phi1: Optional[float] = None,
+    eta: Optional[float] = None,
+    tip: Optional[Tuple[float, float]] = None,
+    branch: str = "convex",
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    shape_points: int = 101,
+    start: str = "pressed",
+) -> Dict[str, Any]:
+    """One rod under a tip force at angle ``alpha`` (rad) with one tip condition: the tip slope
+    ``phi1``, the tip height ``eta`` or the tip position ``tip = (x1, y1)``.
+
+    Returns a dict: ``alpha``, ``f``, ``fx``, ``fy``, ``phi1``, ``x1``, ``y1``, ``m_base``,
+    ``phi0``, ``flex``, ``load_reversals``, ``s_flex`` (None without a flex point), ``y_max``,
+    ``residual``, ``stats``, and ``shape``: a dict of numpy arrays ``s``, ``x``, ``y``,
+    ``phi``, ``kappa``, ``m`` at ``shape_points`` points uniform in s. ``branch``: ``convex``,
+    ``flex`` or ``any``; ``method``: ``shooting``, ``multiple-shooting``, ``collocation``,
+    ``collocation6``, ``analytic``; ``start``: ``pressed`` (the rod loaded from its rest shape)
+    or ``connected`` (the state connected to the straight uniform rod's).
+    """
+    r = _core.solve(
+        rod,
+        alpha,
+        phi1=phi1,
+        eta=eta,
+        tip=tip,
+        branch=branch,
+        method=method,
+        tol=tol,
+        segments=segments,
+        shape_points=shape_points,
+        start=start,
+    )
+    r["shape"] = columns(r["shape"])
+    return r
+
+
+def scan(
+    rod: Any,
+    surface: Any = None,
+    *,
+    d_max: float = 0.5,
+    points: int = 201,
+    d: Optional[Iterable[float]] = None,
+    mu0: Optional[float] = None,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    shape_points: Optional[int] = None,
+    contact: str = "anywhere",
+    start: str = "pressed",
+) -> ScanResult:
+    """The stiction scan: the foot moves right by d from 0 to ``d_max`` while the tip sticks
+    on ``surface`` (default: flat at eta = 0.75); ``points`` output points uniform in d, or the
+    displacements ``d`` (ascending, in [0, d_max]). It stops at the first event (slip at
+    ``|mu| = mu0``, lift-off, a fold in d), located inside the step and returned as the last
+    point; changes of the contact state (``touchdown``, ``peel_back``, ``release``) are points of
+    their own. ``contact``: ``anywhere`` (sides touch and lie down) or ``tip`` (the paper's
+    model: a touching side ends the scan with ``penetration``); ``start``: ``pressed`` or
+    ``connected``. ``shape_points``: keep each point's rod shape (see :class:`ScanResult`).
+    The defaults are the program's (``vibrissa scan``)."""
+    if surface is None:
+        surface = Surface()
+    raw = _core.scan(
+        rod,
+        surface,
+        d_max=d_max,
+        points=points,
+        d=None if d is None else [float(x) for x in d],
+        mu0=mu0,
+        method=method,
+        tol=tol,
+        segments=segments,
+        shape_points=shape_points,
+        contact=contact,
+        start=start,
+    )
+    return ScanResult(raw)
+
+
+def infer(
+    rod: Any,
+    surface: Any,
+    d0: float,
+    *,
+    d_max: float = 0.5,
+    points: int = 201,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    contact: str = "anywhere",
+    start: str = "pressed",
+) -> Dict[str, Any]:
+    """The stiction coefficient mu0 = |mu(d0)| from the slip displacement ``d0`` (as
+    ``vibrissa infer``): a dict with ``mu0``, ``d0``, ``measurable_d`` (the range of d where
+    the answer is unique), ``mu_max``, ``range_end``. A d0 outside the measurable range is an
+    :class:`InputError` that names the range."""
+    r = _core.infer(
+        rod,
+        surface,
+        d0,
+        d_max=d_max,
+        points=points,
+        method=method,
+        tol=tol,
+        segments=segments,
+        contact=contact,
+        start=start,
+    )
+    r["measurable_d"] = tuple(r["measurable_d"])
+    return r
+
+
+def grid(**axes: Union[float, Sequence[float]]) -> List[Dict[str, float]]:
+    """The scenes of a grid, as ``vibrissa sweep`` orders them: row-major with ``eta`` slowest
+    (then ``taper``, ``precurvature``, ``precurvature_slope``, ``support_compliance``,
+    ``surface_angle``). Each axis is a number or a sequence; e.g.
+    ``grid(eta=np.linspace(0.6, 0.9, 4), taper=[1.0, 0.5])``."""
+    unknown = set(axes) - set(_SCENE_KEYS)
+    if unknown:
+        raise InputError(
+            f"unknown grid axis {sorted(unknown)}: the axes are {', '.join(_SCENE_KEYS)}"
+        )
+    names = [k for k in _SCENE_KEYS if k in axes]
+    values = [
+        [float(v) for v in np.atleast_1d(np.asarray(axes[k], dtype=float))] for k in names
+    ]
+    return [dict(zip(names, combo)) for combo in itertools.product(*values)]
+
+
+def sweep(
+    scenes: Iterable[SceneLike],
+    *,
+    d_max: float = 0.5,
+    points: int = 201,
+    mu0: Optional[float] = None,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    jobs: Optional[int] = None,
+    contact: str = "anywhere",
+    start: str = "pressed",
+) -> Sweep:
+    """Scans of many scenes in parallel (``jobs`` threads, default all cores; the GIL is
+    released while they run), one summary row per scene in the order given. ``scenes``:
+    ``(Rod, Surface)`` pairs or dicts of scene keys (e.g. from :func:`grid`). A scene whose
+    values are invalid raises before any work; a scan that fails has its message in the
+    ``error`` column and the others go on."""
+    given = list(scenes)
+    parts = [_parts(s) for s in given]
+    rows = _core.sweep(
+        parts,
+        d_max=d_max,
+        points=points,
+        mu0=mu0,
+        method=method,
+        tol=tol,
+        segments=segments,
+        jobs=jobs,
+        contact=contact,
+        start=start,
+    )
+    out = []
+    for s, r in zip(given, rows):
+        row: Dict[str, Any] = dict(s) if isinstance(s, Mapping) else {}
+        row.update(r)
+        out.append(row)
+    return Sweep(out)

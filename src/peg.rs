@@ -1,0 +1,247 @@
+//! Point objects: `vibrissa solve --peg`, `vibrissa whisk`, `vibrissa locate`.
+
+use crate::cli::{LocateArgs, SolveArgs, WhiskArgs};
+use crate::error::Res;
+use crate::numeric;
+use crate::output::{csv_line, num, AtomicFile, Sink};
+use crate::scene_args::build_scene;
+use serde::Serialize;
+use std::io::{self, Write};
+use std::time::Instant;
+use vibrissa::{PegPoint, StopReason, WhiskOptions};
+
+/// Columns of a point-object row.
+const HEADER: [&str; 11] = [
+    "theta",
+    "s_c",
+    "f",
+    "fx",
+    "fy",
+    "f_axial",
+    "f_transverse",
+    "m_base",
+    "normal",
+    "mu",
+    "event",
+];
+
+fn row(p: &PegPoint) -> Vec<String> {
+    let mut r: Vec<String> = [
+        p.theta,
+        p.s_c,
+        p.f,
+        p.fx,
+        p.fy,
+        p.f_axial,
+        p.f_transverse,
+        p.m_base,
+        p.normal,
+        p.mu,
+    ]
+    .iter()
+    .map(|v| num(*v))
+    .collect();
+    r.push(p.event.map_or("", |e| e.name()).to_string());
+    r
+}
+
+fn options(a: &crate::cli::SolverArgs, scene: &vibrissa::Scene, mu0: Option<f64>) -> WhiskOptions {
+    WhiskOptions {
+        mu0: mu0.filter(|m| m.is_finite()),
+        solver: vibrissa::SolverConfig {
+            start: scene.start,
+            ..numeric::config(a.method, a.tol)
+        },
+        ..WhiskOptions::default()
+    }
+}
+
+/// `vibrissa solve --peg X,Y [--theta A]`: one row (or a JSON object) with the columns of
+/// [`HEADER`], and `--shape-out`.
+pub fn run_solve(a: &SolveArgs) -> Res<()> {
+    let scene = build_scene(&a.scene, None)?;
+    let rod = scene.rod()?;
+    let peg = a.peg.expect("run_solve is called with --peg");
+    let theta = a.theta.unwrap_or(0.0);
+    let opts = WhiskOptions {
+        keep_shapes: a.shape_out.as_ref().map(|_| a.shape_points as usize),
+        ..options(&a.solver, &scene, a.mu0)
+    };
+    let (p, shape) = vibrissa::peg::solve_peg_shape(&rod, [peg.x, peg.y], theta, &opts)?;
+    crate::progress::stop();
+    if let Some(path) = &a.shape_out {
+        let mut f = AtomicFile::create(path)?;
+        csv_line(&mut f, &["s", "x", "y", "phi", "kappa", "m"])?;
+        for q in &shape {
+            csv_line(&mut f, &[q.s, q.x, q.y, q.phi, q.kappa, q.m].map(num))?;
+        }
+        f.commit()?;
+    }
+    let stdout = io::stdout();
+    let mut w = stdout.lock();
+    if a.json {
+        serde_json::to_writer_pretty(&mut w, &p)?;
+        writeln!(w)?;
+    } else {
+        csv_line(&mut w, &HEADER[..10])?;
+        let mut r = row(&p);
+        r.pop();
+        csv_line(&mut w, &r)?;
+    }
+    Ok(())
+}
+
+/// The JSON summary of a whisk.
+#[derive(Serialize)]
+struct WhiskSummary {
+    method: &'static str,
+    peg: [f64; 2],
+    first_touch: f64,
+    s_touch: f64,
+    points: usize,
+    stop: Stop,
+    stats: crate::scan::Work,
+    time_ms: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    csv: Option<String>,
+}
+
+/// Why a whisk stopped: its reason, the foot angle there, in words.
+#[derive(Serialize)]
+struct Stop {
+    reason: String,
+    theta: Option<f64>,
+    detail: String,
+}
+
+/// `vibrissa whisk`.
+pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
+    let t0 = Instant::now();
+    let scene = build_scene(&a.scene, None)?;
+    let rod = scene.rod()?;
+    let opts = WhiskOptions {
+        theta_max: a.theta_max,
+        points: a.points as usize,
+        keep_shapes: a.shapes.as_ref().map(|_| a.shape_points as usize),
+        ..options(&a.solver, &scene, a.mu0)
+    };
+    let r = vibrissa::whisk(&rod, [a.peg.x, a.peg.y], &opts)?;
+    crate::progress::stop();
+    if let StopReason::SolverFailure { .. } = r.stop {
+        return Err(crate::error::solve_fail(format!("whisk: {}", r.stop)));
+    }
+    if let Some(path) = &a.shapes {
+        let mut f = AtomicFile::create(path)?;
+        csv_line(
+            &mut f,
+            &[
+                "point", "theta", "s", "x", "y", "phi", "kappa", "m", "event",
+            ],
+        )?;
+        for (i, (p, sh)) in r.points.iter().zip(&r.shapes).enumerate() {
+            for q in sh {
+                let mut row = vec![i.to_string()];
+                row.extend([p.theta, q.s, q.x, q.y, q.phi, q.kappa, q.m].map(num));
+                row.push(p.event.map_or("", |e| e.name()).to_string());
+                csv_line(&mut f, &row)?;
+            }
+        }
+        f.commit()?;
+    }
+    if a.out.is_some() || !a.json {
+        let mut sink = Sink::open(a.out.as_deref())?;
+        csv_line(&mut sink, &HEADER)?;
+        for p in &r.points {
+            csv_line(&mut sink, &row(p))?;
+        }
+        sink.finish()?;
+    }
+    let (reason, theta) = match &r.stop {
+        StopReason::DMax => ("theta_max", None),
+        StopReason::SlipOff { d } => ("slip_off", Some(*d)),
+        StopReason::LiftOff { d } => ("lift_off", Some(*d)),
+        StopReason::FoldInD { d } => ("fold", Some(*d)),
+        StopReason::ContactChange { d, .. } => ("contact_change", Some(*d)),
+        StopReason::Slip { d, .. } => ("slip", Some(*d)),
+        StopReason::Penetration { d, .. } => ("penetration", Some(*d)),
+        StopReason::SolverFailure { d, .. } => ("solver_failure", Some(*d)),
+    };
+    let summary = WhiskSummary {
+        method: a.solver.method.name(),
+        peg: [a.peg.x, a.peg.y],
+        first_touch: r.first_touch,
+        s_touch: r.s_touch,
+        points: r.points.len(),
+        stop: Stop {
+            reason: reason.to_string(),
+            theta,
+            detail: r.stop.to_string(),
+        },
+        stats: crate::scan::Work {
+            newton_iters: r.stats.newton_iters,
+            rhs_evals: r.stats.rhs_evals,
+            factorizations: r.stats.factorizations,
+        },
+        time_ms: t0.elapsed().as_secs_f64() * 1e3,
+        csv: a.out.as_ref().map(|p| p.display().to_string()),
+    };
+    if a.json {
+        writeln!(io::stdout(), "{}", serde_json::to_string_pretty(&summary)?)?;
+    } else {
+        let line = format!(
+            "whisk against ({}, {}) ({}): first touch at theta = {:.6} (s = {:.6}); {} rows; stopped: {}",
+            a.peg.x,
+            a.peg.y,
+            summary.method,
+            r.first_touch,
+            r.s_touch,
+            r.points.len(),
+            summary.stop.detail
+        );
+        if a.out.is_some() {
+            writeln!(io::stdout(), "{line}")?;
+        } else {
+            crate::progress::note(&line);
+        }
+    }
+    Ok(())
+}
+
+/// The answer of `vibrissa locate`.
+#[derive(Serialize)]
+struct Located {
+    theta: f64,
+    m_base: f64,
+    fx: f64,
+    fy: f64,
+    x: f64,
+    y: f64,
+    s_c: f64,
+}
+
+/// `vibrissa locate`.
+pub fn run_locate(a: &LocateArgs) -> Res<()> {
+    let scene = build_scene(&a.scene, None)?;
+    let rod = scene.rod()?;
+    let cfg = numeric::config(a.solver.method, a.solver.tol);
+    let (x, y, s_c) = vibrissa::locate(&rod, a.theta, a.m_base, [a.fx, a.fy], &cfg)?;
+    let out = Located {
+        theta: a.theta,
+        m_base: a.m_base,
+        fx: a.fx,
+        fy: a.fy,
+        x,
+        y,
+        s_c,
+    };
+    let stdout = io::stdout();
+    let mut w = stdout.lock();
+    if a.json {
+        serde_json::to_writer_pretty(&mut w, &out)?;
+        writeln!(w)?;
+    } else {
+        csv_line(&mut w, &["theta", "m_base", "fx", "fy", "x", "y", "s_c"])?;
+        csv_line(&mut w, &[a.theta, a.m_base, a.fx, a.fy, x, y, s_c].map(num))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,1021 @@
+//! `vibrissa plot`: SVG pictures of the user's own files — a scan (μ and the base signals
+//! against d), its `--shapes` (the rod at chosen points, with the surface), a sweep (a heat map
+//! of one column over two axes) and a drag (the signals of the stick–slip drag, issue 21).
+//!
+//! Columns are read by name, so files with more columns (or in another order) plot the same;
+//! every value of an `event` column is marked (one marker style and legend entry per event
+//! name). Drawing, legend placement and the layout test are those of `figures`.
+
+use crate::cli::{PlotArgs, PlotKind};
+use crate::error::{usage, Res};
+use crate::figures::{
+    panel, render, series, unlabeled, Fig, Kind, Panel, BLUE_, BROWN_, GREEN_, GREY_, NAVY_,
+    ORANGE_, PURPLE_, RED_,
+};
+use crate::output::{num, AtomicFile};
+use plotters::style::RGBColor;
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// A CSV file: header and rows of text fields.
+pub(crate) struct Table {
+    name: String,
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    /// Read a CSV file with a header.
+    pub(crate) fn read(path: &Path) -> Res<Table> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| usage(format!("cannot read {}: {e}", path.display())))?;
+        Table::parse(&path.display().to_string(), &text)
+    }
+
+    /// Parse CSV text (`name` is used in messages).
+    pub(crate) fn parse(name: &str, text: &str) -> Res<Table> {
+        let mut r = csv::ReaderBuilder::new()
+            .flexible(false)
+            .from_reader(text.as_bytes());
+        let header: Vec<String> = r
+            .headers()
+            .map_err(|e| usage(format!("{name}: {e}")))?
+            .iter()
+            .map(str::to_string)
+            .collect();
+        let mut rows = Vec::new();
+        for rec in r.records() {
+            let rec = rec.map_err(|e| usage(format!("{name}: {e}")))?;
+            rows.push(rec.iter().map(str::to_string).collect());
+        }
+        if rows.is_empty() {
+            return Err(usage(format!("{name}: no rows to plot")));
+        }
+        Ok(Table {
+            name: name.to_string(),
+            header,
+            rows,
+        })
+    }
+
+    fn has(&self, col: &str) -> bool {
+        self.header.iter().any(|h| h == col)
+    }
+
+    fn text(&self, col: &str) -> Option<Vec<&str>> {
+        let i = self.header.iter().position(|h| h == col)?;
+        Some(self.rows.iter().map(|r| r[i].as_str()).collect())
+    }
+
+    /// A numeric column: empty fields are NaN (none), `inf`/`-inf` infinite; text is an error.
+    fn num(&self, col: &str) -> Res<Option<Vec<f64>>> {
+        let Some(t) = self.text(col) else {
+            return Ok(None);
+        };
+        t.iter()
+            .enumerate()
+            .map(|(i, v)| {
+                if v.is_empty() {
+                    Ok(f64::NAN)
+                } else {
+                    v.parse::<f64>().map_err(|_| {
+                        usage(format!(
+                            "{}: column {col}, row {}: '{v}' is not a number",
+                            self.name,
+                            i + 2
+                        ))
+                    })
+                }
+            })
+            .collect::<Res<Vec<f64>>>()
+            .map(Some)
+    }
+
+    fn need(&self, col: &str) -> Res<Vec<f64>> {
+        self.num(col)?.ok_or_else(|| {
+            usage(format!(
+                "{}: no column '{col}' (columns: {})",
+                self.name,
+                self.header.join(", ")
+            ))
+        })
+    }
+}
+
+/// The kind of a file from its columns.
+pub(crate) fn detect(t: &Table) -> Res<PlotKind> {
+    Ok(if t.has("point") && t.has("s") && t.has("x_lab") {
+        PlotKind::Shapes
+    } else if t.has("index") && t.has("stop_reason") {
+        PlotKind::Sweep
+    } else if t.has("d") && t.has("phase") {
+        PlotKind::Drag
+    } else if t.has("d") && t.has("mu") {
+        PlotKind::Scan
+    } else {
+        return Err(usage(format!(
+            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase); use --kind to say which",
+            t.name
+        )));
+    })
+}
+
+/// Axis label with its unit for a column of the program's files.
+fn label(col: &str) -> String {
+    let known = match col {
+        "d" => "foot displacement d (L)",
+        "mu" => "friction ratio μ (–)",
+        "normal" => "normal force N (EI/L²)",
+        "fx" => "fx (EI/L²)",
+        "fy" => "fy (EI/L²)",
+        "f" | "f0" => "force f (EI/L²)",
+        "m_base" => "m_base (EI/L)",
+        "alpha" => "force angle α (rad)",
+        "phi1" | "phi1_0" => "tip slope φ1 (rad)",
+        "x_tip" => "tip position x (L, lab frame)",
+        "eta" => "surface height η (L)",
+        "taper" => "taper ratio ρ (–)",
+        "precurvature" => "rest curvature K0 (1/L)",
+        "precurvature_slope" => "rest-curvature slope K1 (1/L²)",
+        "support_compliance" => "support compliance C (L/EI)",
+        "surface_angle" => "surface angle β (rad)",
+        "tol" => "solver tolerance (–)",
+        "mu_max" => "μ_max (–)",
+        "mu_end" => "μ at the last point (–)",
+        "d_at_mu_max" => "d at μ_max (L)",
+        "d_end" => "d at the last point (L)",
+        "points" => "points (–)",
+        "newton_iters" => "Newton iterations (–)",
+        "rhs_evals" => "right-hand-side evaluations (–)",
+        "stop_reason" => "stop reason",
+        _ => "",
+    };
+    if known.is_empty() {
+        col.to_string()
+    } else {
+        known.to_string()
+    }
+}
+
+/// Marker styles and colours of the events, in order of first appearance.
+const EVENT_STYLE: [(Kind, RGBColor); 5] = [
+    (Kind::Cross, RED_),
+    (Kind::Square, PURPLE_),
+    (Kind::Triangle, BROWN_),
+    (Kind::Ring, NAVY_),
+    (Kind::Points, GREEN_),
+];
+
+/// The rows of each event name (in order of first appearance).
+fn events(t: &Table) -> Vec<(String, Vec<usize>)> {
+    let mut out: Vec<(String, Vec<usize>)> = Vec::new();
+    for (i, e) in t.text("event").unwrap_or_default().into_iter().enumerate() {
+        if e.is_empty() {
+            continue;
+        }
+        match out.iter_mut().find(|(n, _)| n == e) {
+            Some((_, rows)) => rows.push(i),
+            None => out.push((e.to_string(), vec![i])),
+        }
+    }
+    out
+}
+
+/// One panel of signals against d: the lines, then every event marked on each line (a marker
+/// where the value is finite; a dashed vertical line where it is not, e.g. μ = ±inf at
+/// lift-off).
+fn signal_panel(
+    title: &str,
+    ylabel: &str,
+    d: &[f64],
+    lines: &[(&str, &[f64], RGBColor)],
+    ev: &[(String, Vec<usize>)],
+) -> Panel {
+    let mut p = panel(title, &label("d"), ylabel);
+    let finite = |v: f64| v.is_finite();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (name, ys, color) in lines {
+        let pts: Vec<(f64, f64)> = d.iter().copied().zip(ys.iter().copied()).collect();
+        for &(_, y) in &pts {
+            if finite(y) {
+                lo = lo.min(y);
+                hi = hi.max(y);
+            }
+        }
+        let s = series(name, Kind::Line, *color, pts);
+        p.series
+            .push(if lines.len() == 1 { unlabeled(s) } else { s });
+    }
+    for (k, (name, rows)) in ev.iter().enumerate() {
+        let (kind, color) = EVENT_STYLE[k % EVENT_STYLE.len()];
+        let mut pts = Vec::new();
+        let mut off = Vec::new();
+        for &r in rows {
+            for (_, ys, _) in lines {
+                if finite(ys[r]) {
+                    pts.push((d[r], ys[r]));
+                } else if d[r].is_finite() {
+                    off.push(d[r]);
+                }
+            }
+        }
+        let count = |n: usize| {
+            if n > 1 {
+                format!(" ({n})")
+            } else {
+                String::new()
+            }
+        };
+        if !pts.is_empty() {
+            p.series.push(series(
+                &format!("{name}{}", count(rows.len())),
+                kind,
+                color,
+                pts,
+            ));
+        }
+        off.dedup();
+        for (j, x) in off.iter().enumerate() {
+            let s = series(
+                &format!("{name} at d = {} (off the scale)", short(*x)),
+                Kind::Dashed,
+                color,
+                vec![(*x, lo), (*x, hi)],
+            );
+            p.series.push(if j == 0 { s } else { unlabeled(s) });
+        }
+    }
+    p
+}
+
+/// A scan or a drag: μ, the tip force (fx, fy and the normal force), the moment at the foot
+/// and, for a drag, the tip position, against d.
+fn signals(t: &Table, title: &str) -> Res<Fig> {
+    let d = t.need("d")?;
+    let ev = events(t);
+    let mut panels = Vec::new();
+    if let Some(mu) = t.num("mu")? {
+        panels.push(signal_panel(
+            "friction ratio",
+            &label("mu"),
+            &d,
+            &[("μ", &mu, BLUE_)],
+            &ev,
+        ));
+    }
+    let (fx, fy, normal) = (t.num("fx")?, t.num("fy")?, t.num("normal")?);
+    let mut forces: Vec<(&str, &[f64], RGBColor)> = Vec::new();
+    if let Some(v) = &fx {
+        forces.push(("fx", v, BLUE_));
+    }
+    if let Some(v) = &fy {
+        forces.push(("fy", v, ORANGE_));
+    }
+    if let Some(v) = &normal {
+        forces.push(("normal force N", v, GREEN_));
+    }
+    if !forces.is_empty() {
+        panels.push(signal_panel(
+            "tip force on the rod (= −force on the foot)",
+            "force (EI/L²)",
+            &d,
+            &forces,
+            &ev,
+        ));
+    }
+    if let Some(m) = t.num("m_base")? {
+        panels.push(signal_panel(
+            "moment at the foot",
+            &label("m_base"),
+            &d,
+            &[("m_base", &m, BLUE_)],
+            &ev,
+        ));
+    }
+    if let Some(x) = t.num("x_tip")? {
+        panels.push(signal_panel(
+            "tip position",
+            &label("x_tip"),
+            &d,
+            &[("x_tip", &x, BLUE_)],
+            &ev,
+        ));
+    }
+    if panels.is_empty() {
+        return Err(usage(format!(
+            "{}: none of the columns mu, fx, fy, normal, m_base, x_tip to plot against d",
+            t.name
+        )));
+    }
+    Ok(Fig {
+        name: String::new(),
+        caption: title.to_string(),
+        panels,
+        w: 520,
+        h: 440,
+    })
+}
+
+/// Colours of successive shapes.
+const SHAPE_COLORS: [RGBColor; 8] = [
+    BLUE_,
+    ORANGE_,
+    GREEN_,
+    PURPLE_,
+    BROWN_,
+    NAVY_,
+    RGBColor(227, 119, 194),
+    RGBColor(23, 190, 207),
+];
+
+/// Shapes: the rod at the chosen points in the lab frame (foot at (d, 0), the tip fixed), the
+/// feet, and the surface line through the tip inclined by `beta`.
+fn shapes(t: &Table, select: Option<&[usize]>, beta: f64) -> Res<Fig> {
+    let point = t.need("point")?;
+    let (d, s, x, y) = (t.need("d")?, t.need("s")?, t.need("x_lab")?, t.need("y")?);
+    let ev = t.text("event");
+    // rows of each point, in file order
+    let mut by_point: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (i, p) in point.iter().enumerate() {
+        if !(p.is_finite() && *p >= 0.0 && p.fract() == 0.0) {
+            return Err(usage(format!(
+                "{}: row {}: point '{p}' is not an index",
+                t.name,
+                i + 2
+            )));
+        }
+        by_point.entry(*p as usize).or_default().push(i);
+    }
+    let all: Vec<usize> = by_point.keys().copied().collect();
+    let chosen: Vec<usize> = match select {
+        Some(sel) => {
+            for p in sel {
+                if !by_point.contains_key(p) {
+                    return Err(usage(format!(
+                        "--select {p}: {} has points {}..={}",
+                        t.name,
+                        all[0],
+                        all[all.len() - 1]
+                    )));
+                }
+            }
+            sel.to_vec()
+        }
+        None => {
+            // six points spread over the file, and every point with an event
+            let n = all.len();
+            let mut c: Vec<usize> = (0..6.min(n))
+                .map(|k| all[if n <= 6 { k } else { k * (n - 1) / 5 }])
+                .collect();
+            if let Some(ev) = &ev {
+                for (&p, rows) in &by_point {
+                    if !ev[rows[0]].is_empty() {
+                        c.push(p);
+                    }
+                }
+            }
+            c.sort_unstable();
+            c.dedup();
+            c
+        }
+    };
+    let mut p = panel(
+        "rod shapes (lab frame: the tip sticks, the foot moves by d)",
+        "x (L)",
+        "y (L)",
+    );
+    p.equal_aspect = true;
+    let mut feet = Vec::new();
+    let (mut xmin, mut xmax) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut tip = None;
+    for (k, pt) in chosen.iter().enumerate() {
+        let rows = &by_point[pt];
+        let pts: Vec<(f64, f64)> = rows.iter().map(|&r| (x[r], y[r])).collect();
+        for q in &pts {
+            xmin = xmin.min(q.0);
+            xmax = xmax.max(q.0);
+        }
+        let r0 = rows[0];
+        let last = *rows
+            .iter()
+            .max_by(|a, b| s[**a].total_cmp(&s[**b]))
+            .unwrap_or(&r0);
+        tip.get_or_insert((x[last], y[last]));
+        feet.push((d[r0], 0.0));
+        let event = ev.as_ref().map_or("", |e| e[r0]);
+        let name = if event.is_empty() {
+            format!("d = {}", short(d[r0]))
+        } else {
+            format!("d = {} ({event})", short(d[r0]))
+        };
+        p.series.push(series(
+            &name,
+            Kind::Line,
+            SHAPE_COLORS[k % SHAPE_COLORS.len()],
+            pts,
+        ));
+    }
+    p.series.push(series("foot", Kind::Square, GREY_, feet));
+    if let Some((tx, ty)) = tip {
+        let pad = 0.15 * (xmax - xmin).max(0.2);
+        let line: Vec<(f64, f64)> = [xmin - pad, xmax + pad]
+            .iter()
+            .map(|&xx| (xx, ty + (xx - tx) * beta.tan()))
+            .collect();
+        p.series.push(series(
+            &format!("surface (β = {} rad)", short(beta)),
+            Kind::Dashed,
+            RGBColor(60, 60, 60),
+            line,
+        ));
+    }
+    Ok(Fig {
+        name: String::new(),
+        caption: format!("{}: {} of {} shapes", t.name, chosen.len(), all.len()),
+        panels: vec![p],
+        w: 760,
+        h: 560,
+    })
+}
+
+/// A number for a label: 4 significant digits.
+fn short(v: f64) -> String {
+    crate::numbers::digits(v, 4)
+}
+
+/// The grid columns of a sweep CSV that can be heat-map axes: the scene's and the tolerance.
+fn sweep_axes() -> impl Iterator<Item = &'static str> {
+    crate::sweep::SCENE_AXES.into_iter().chain(["tol"])
+}
+
+/// Eight colours from dark blue to yellow (viridis stops).
+const SCALE: [RGBColor; 8] = [
+    RGBColor(68, 1, 84),
+    RGBColor(70, 50, 126),
+    RGBColor(54, 92, 141),
+    RGBColor(39, 127, 142),
+    RGBColor(31, 161, 135),
+    RGBColor(74, 193, 109),
+    RGBColor(160, 218, 57),
+    RGBColor(253, 231, 37),
+];
+
+/// A sweep: the column `z` as a heat map over the axes `x` and `y` (the rows selected by
+/// `wheres`, `COL=VALUE`), numeric values in eight equal bins, text values one colour each;
+/// scenes whose scan failed are crossed.
+fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]) -> Res<Fig> {
+    // rows selected by --where
+    let mut keep: Vec<bool> = vec![true; t.rows.len()];
+    let mut fixed = Vec::new();
+    for w in wheres {
+        let (col, val) = w
+            .split_once('=')
+            .ok_or_else(|| usage(format!("--where {w}: expected COL=VALUE")))?;
+        let vals = t
+            .text(col)
+            .ok_or_else(|| usage(format!("--where {w}: {} has no column '{col}'", t.name)))?;
+        let want = val.parse::<f64>().ok();
+        for (k, v) in keep.iter_mut().zip(&vals) {
+            let same = match (want, v.parse::<f64>().ok()) {
+                (Some(a), Some(b)) => a == b,
+                _ => *v == val,
+            };
+            *k &= same;
+        }
+        fixed.push(col.to_string());
+    }
+    let rows: Vec<usize> = (0..t.rows.len()).filter(|&i| keep[i]).collect();
+    if rows.is_empty() {
+        return Err(usage(format!(
+            "--where {}: no row matches",
+            wheres.join(" ")
+        )));
+    }
+    let distinct = |col: &str| -> Res<Vec<f64>> {
+        let v = t.need(col)?;
+        let mut u: Vec<f64> = rows
+            .iter()
+            .map(|&r| v[r])
+            .filter(|v| v.is_finite())
+            .collect();
+        u.sort_by(f64::total_cmp);
+        u.dedup();
+        Ok(u)
+    };
+    let varying: Vec<&str> = sweep_axes()
+        .filter(|c| t.has(c) && distinct(c).is_ok_and(|u| u.len() > 1))
+        .collect();
+    let (xc, yc) =
+        match (x, y) {
+            (Some(x), Some(y)) => (x.to_string(), y.to_string()),
+            _ => {
+                let mut free = varying
+                    .iter()
+                    .filter(|c| Some(**c) != x && Some(**c) != y)
+                    .map(|c| c.to_string());
+                let xc = x.map(str::to_string).or_else(|| free.next());
+                let yc = y.map(str::to_string).or_else(|| free.next());
+                match (xc, yc) {
+                    (Some(a), Some(b)) => (a, b),
+                    _ => {
+                        return Err(usage(format!(
+                        "{}: a heat map needs two axes that vary; varying: {} (give --x and --y)",
+                        t.name,
+                        if varying.is_empty() { "none".into() } else { varying.join(", ") }
+                    )))
+                    }
+                }
+            }
+        };
+    // every other varying axis must be fixed
+    let loose: Vec<&str> = varying
+        .iter()
+        .copied()
+        .filter(|c| *c != xc && *c != yc && !fixed.iter().any(|f| f == c))
+        .collect();
+    if let Some(c) = loose.first() {
+        let u = distinct(c)?;
+        return Err(usage(format!(
+            "{}: {} also {}; choose one value with --where, e.g. --where {c}={}",
+            t.name,
+            loose.join(", "),
+            if loose.len() == 1 { "varies" } else { "vary" },
+            num(u[0])
+        )));
+    }
+    let (xv, yv) = (t.need(&xc)?, t.need(&yc)?);
+    let half = |col: &str| -> Res<f64> {
+        let u = distinct(col)?;
+        let gap = u
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .fold(f64::INFINITY, f64::min);
+        Ok(if gap.is_finite() {
+            0.5 * gap
+        } else {
+            0.05 * u[0].abs().max(1.0)
+        })
+    };
+    let (hw, hh) = (half(&xc)?, half(&yc)?);
+    let failed: Vec<bool> = {
+        let err = t.text("error").unwrap_or_default();
+        let stop = t.text("stop_reason").unwrap_or_default();
+        (0..t.rows.len())
+            .map(|i| {
+                err.get(i).is_some_and(|e| !e.is_empty())
+                    || stop.get(i).is_some_and(|s| *s == "error")
+            })
+            .collect()
+    };
+    let zt = t.text(z).ok_or_else(|| {
+        usage(format!(
+            "{}: no column '{z}' (columns: {})",
+            t.name,
+            t.header.join(", ")
+        ))
+    })?;
+    let mut seen = std::collections::HashSet::new();
+    for &r in &rows {
+        if !seen.insert((xv[r].to_bits(), yv[r].to_bits())) {
+            return Err(usage(format!(
+                "{}: several rows at {xc} = {}, {yc} = {}: fix the other columns with --where (e.g. method or tol)",
+                t.name,
+                num(xv[r]),
+                num(yv[r])
+            )));
+        }
+    }
+    let mut p = panel(&format!("{z} over {xc} and {yc}"), &label(&xc), &label(&yc));
+    let numeric: Option<Vec<f64>> = t.num(z).ok().flatten();
+    match numeric {
+        Some(zv) => {
+            let fin: Vec<f64> = rows
+                .iter()
+                .map(|&r| zv[r])
+                .filter(|v| v.is_finite())
+                .collect();
+            let lo = fin.iter().copied().fold(f64::INFINITY, f64::min);
+            let hi = fin.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let nb = if hi > lo { SCALE.len() } else { 1 };
+            let mut bins: Vec<Vec<(f64, f64)>> = vec![Vec::new(); nb];
+            for &r in &rows {
+                if zv[r].is_finite() && !failed[r] {
+                    let b = if nb == 1 {
+                        0
+                    } else {
+                        (((zv[r] - lo) / (hi - lo) * nb as f64) as usize).min(nb - 1)
+                    };
+                    bins[b].push((xv[r], yv[r]));
+                }
+            }
+            for (b, pts) in bins.into_iter().enumerate() {
+                let (a, c) = if nb == 1 {
+                    (lo, hi)
+                } else {
+                    (
+                        lo + (hi - lo) * b as f64 / nb as f64,
+                        lo + (hi - lo) * (b + 1) as f64 / nb as f64,
+                    )
+                };
+                let name = if nb == 1 {
+                    format!("{z} = {}", short(a))
+                } else {
+                    format!("{z} {} – {}", short(a), short(c))
+                };
+                let color = if nb == 1 { SCALE[4] } else { SCALE[b] };
+                p.series.push(series(&name, Kind::Cell(hw, hh), color, pts));
+            }
+        }
+        None => {
+            let mut cats: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+            for &r in &rows {
+                if failed[r] {
+                    continue;
+                }
+                let v = zt[r].to_string();
+                match cats.iter_mut().find(|(n, _)| *n == v) {
+                    Some((_, pts)) => pts.push((xv[r], yv[r])),
+                    None => cats.push((v, vec![(xv[r], yv[r])])),
+                }
+            }
+            let palette = [BLUE_, ORANGE_, GREEN_, PURPLE_, BROWN_, NAVY_, GREY_, RED_];
+            for (k, (name, pts)) in cats.into_iter().enumerate() {
+                let name = if name.is_empty() {
+                    "(empty)".to_string()
+                } else {
+                    name
+                };
+                p.series.push(series(
+                    &format!("{z}: {name}"),
+                    Kind::Cell(hw, hh),
+                    palette[k % palette.len()],
+                    pts,
+                ));
+            }
+        }
+    }
+    let fails: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|&&r| failed[r])
+        .map(|&r| (xv[r], yv[r]))
+        .collect();
+    p.series.push(series(
+        "scan failed (error)",
+        Kind::Cross,
+        RGBColor(0, 0, 0),
+        fails,
+    ));
+    let mut caption = t.name.clone();
+    if !wheres.is_empty() {
+        caption.push_str(&format!(" ({})", wheres.join(", ")));
+    }
+    Ok(Fig {
+        name: String::new(),
+        caption,
+        panels: vec![p],
+        w: 760,
+        h: 560,
+    })
+}
+
+/// The figure of a file.
+pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
+    let kind = match a.kind {
+        PlotKind::Auto => detect(t)?,
+        k => k,
+    };
+    let mut fig = match kind {
+        PlotKind::Scan => signals(t, &format!("scan {}", t.name))?,
+        PlotKind::Drag => signals(t, &format!("drag {}", t.name))?,
+        PlotKind::Shapes => shapes(t, a.select.as_deref(), a.surface_angle)?,
+        PlotKind::Sweep => sweep(t, a.x.as_deref(), a.y.as_deref(), &a.z, &a.r#where)?,
+        PlotKind::Auto => unreachable!("detected above"),
+    };
+    if let Some(title) = &a.title {
+        fig.caption = title.clone();
+    }
+    Ok(fig)
+}
+
+/// Where the SVG goes: `--out`, else the input with `.svg`.
+pub fn out_path(a: &PlotArgs) -> PathBuf {
+    a.out
+        .clone()
+        .unwrap_or_else(|| a.file.with_extension("svg"))
+}
+
+/// Run `vibrissa plot`.
+pub fn run(a: &PlotArgs) -> Res<()> {
+    let t = Table::read(&a.file)?;
+    let fig = figure(&t, a)?;
+    let (svg, _) = render(&fig)?;
+    let out = out_path(a);
+    let mut f = AtomicFile::create(&out)?;
+    f.write_all(svg.as_bytes())?;
+    f.commit()?;
+    writeln!(std::io::stdout(), "plot written to {}", out.display())?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figures::layout_check::check_panel;
+    use crate::figures::{Mark, Series};
+
+    fn err<T>(r: Res<T>) -> String {
+        match r {
+            Ok(_) => panic!("expected an error"),
+            Err(e) => e.message(),
+        }
+    }
+
+    const SCAN: &str = include_str!("../tests/fixtures/plot/scan.csv");
+    const SHAPES: &str = include_str!("../tests/fixtures/plot/shapes.csv");
+    const SWEEP: &str = include_str!("../tests/fixtures/plot/sweep.csv");
+    const DRAG: &str = include_str!("../tests/fixtures/plot/drag.csv");
+
+    fn args(kind: PlotKind) -> PlotArgs {
+        PlotArgs {
+            file: PathBuf::from("x.csv"),
+            kind,
+            out: None,
+            title: None,
+            select: None,
+            surface_angle: 0.0,
+            x: None,
+            y: None,
+            z: "mu_max".into(),
+            r#where: Vec::new(),
+        }
+    }
+
+    fn fig(name: &str, text: &str, a: &PlotArgs) -> Fig {
+        figure(&Table::parse(name, text).unwrap(), a).unwrap()
+    }
+
+    /// Renders the figure and checks every panel's layout (legends and labels touch no data,
+    /// every point is drawn); returns the layouts.
+    fn checked(f: &Fig) -> Vec<crate::figures::PanelLayout> {
+        let (svg, l) = render(f).unwrap();
+        assert!(svg.starts_with("<svg"), "{}", &svg[..40]);
+        for (p, lay) in f.panels.iter().zip(&l) {
+            check_panel(&f.caption, p, lay);
+        }
+        l
+    }
+
+    fn names(p: &Panel) -> Vec<&str> {
+        p.series
+            .iter()
+            .filter(|s| s.legend && !s.pts.is_empty())
+            .map(|s| s.name.as_str())
+            .collect()
+    }
+
+    #[test]
+    fn every_kind_is_detected_and_drawn_without_covering_data() {
+        for (name, text, kind, panels) in [
+            ("scan.csv", SCAN, PlotKind::Scan, 3),
+            ("shapes.csv", SHAPES, PlotKind::Shapes, 1),
+            ("sweep.csv", SWEEP, PlotKind::Sweep, 1),
+            ("drag.csv", DRAG, PlotKind::Drag, 4),
+        ] {
+            let t = Table::parse(name, text).unwrap();
+            assert_eq!(detect(&t).unwrap(), kind, "{name}");
+            let f = figure(&t, &args(PlotKind::Auto)).unwrap();
+            assert_eq!(f.panels.len(), panels, "{name}");
+            checked(&f);
+        }
+    }
+
+    #[test]
+    fn events_are_marked_on_every_signal() {
+        // the scan stops at penetration: one marker per line of each panel, in the legend
+        let f = fig("scan.csv", SCAN, &args(PlotKind::Auto));
+        for p in &f.panels {
+            let ev: Vec<&Series> = p
+                .series
+                .iter()
+                .filter(|s| s.name == "penetration")
+                .collect();
+            let lines = p.series.iter().filter(|s| s.kind == Kind::Line).count();
+            assert_eq!(ev.len(), 1, "{}", p.title);
+            assert_eq!(ev[0].pts.len(), lines, "{}", p.title);
+            assert!((ev[0].pts[0].0 - 0.07931594116001564).abs() < 1e-15);
+        }
+        // the drag's three slips, in every panel (the tip position too)
+        let f = fig("drag.csv", DRAG, &args(PlotKind::Auto));
+        assert_eq!(f.panels[3].title, "tip position");
+        for p in &f.panels {
+            assert!(
+                names(p).contains(&"slip (3)"),
+                "{}: {:?}",
+                p.title,
+                names(p)
+            );
+        }
+        // axis labels carry units
+        assert_eq!(f.panels[0].xlabel, "foot displacement d (L)");
+        assert_eq!(f.panels[1].ylabel, "force (EI/L²)");
+        assert_eq!(f.panels[2].ylabel, "m_base (EI/L)");
+    }
+
+    #[test]
+    fn columns_are_read_by_name() {
+        // a file with new columns (a contact state and its arc length, as the contact rework
+        // plans) and the columns in another order draws the same curves
+        let t = Table::parse("scan.csv", SCAN).unwrap();
+        let mut order: Vec<usize> = (0..t.header.len()).rev().collect();
+        order.swap(0, 3);
+        let mut text = String::new();
+        let head: Vec<&str> = order.iter().map(|&i| t.header[i].as_str()).collect();
+        text.push_str(&format!("contact,{},s_c\n", head.join(",")));
+        for r in &t.rows {
+            let f: Vec<&str> = order.iter().map(|&i| r[i].as_str()).collect();
+            text.push_str(&format!("tip,{},0.93\n", f.join(",")));
+        }
+        let a = fig("scan.csv", SCAN, &args(PlotKind::Auto));
+        let b = fig("scan.csv", &text, &args(PlotKind::Auto));
+        assert_eq!(a.panels.len(), b.panels.len());
+        for (p, q) in a.panels.iter().zip(&b.panels) {
+            assert_eq!(p.series.len(), q.series.len());
+            for (s, r) in p.series.iter().zip(&q.series) {
+                assert_eq!((&s.name, &s.pts), (&r.name, &r.pts));
+            }
+        }
+    }
+
+    #[test]
+    fn an_event_off_the_scale_is_a_dashed_line() {
+        // lift-off: mu = inf on the event row (the scan writes it so)
+        let mut rows: Vec<String> = SCAN.lines().map(str::to_string).collect();
+        let last = rows.len() - 1;
+        let mut f: Vec<String> = rows[last].split(',').map(str::to_string).collect();
+        f[1] = "inf".into();
+        let n = f.len();
+        f[n - 1] = "lift_off".into();
+        rows[last] = f.join(",");
+        let f = fig(
+            "liftoff.csv",
+            &(rows.join("\n") + "\n"),
+            &args(PlotKind::Auto),
+        );
+        let mu = &f.panels[0];
+        let line = mu
+            .series
+            .iter()
+            .find(|s| s.name.starts_with("lift_off at d = "))
+            .unwrap();
+        assert_eq!(line.kind, Kind::Dashed);
+        assert!(line.pts.iter().all(|q| q.1.is_finite()));
+        // on the other panels the event has finite values: markers
+        assert!(names(&f.panels[1]).contains(&"lift_off"));
+        checked(&f);
+    }
+
+    #[test]
+    fn shapes_draw_the_chosen_points_the_feet_and_the_surface() {
+        let f = fig("shapes.csv", SHAPES, &args(PlotKind::Auto));
+        let p = &f.panels[0];
+        assert!(p.equal_aspect);
+        let n = names(p);
+        // six spread points (0..=16, the last with its event) and the two extra entries
+        assert_eq!(n.len(), 8, "{n:?}");
+        assert!(n[5].ends_with("(penetration)"), "{n:?}");
+        assert_eq!(n[6], "foot");
+        assert_eq!(n[7], "surface (β = 0 rad)");
+        let mut a = args(PlotKind::Auto);
+        a.select = Some(vec![0, 4]);
+        a.surface_angle = -0.1;
+        let f = fig("shapes.csv", SHAPES, &a);
+        let p = &f.panels[0];
+        assert_eq!(
+            names(p),
+            ["d = 0", "d = 0.02", "foot", "surface (β = -0.1 rad)"]
+        );
+        // the surface line passes through the tip, inclined by beta
+        let s = p.series.last().unwrap();
+        let slope = (s.pts[1].1 - s.pts[0].1) / (s.pts[1].0 - s.pts[0].0);
+        assert!((slope - (-0.1f64).tan()).abs() < 1e-12);
+        checked(&f);
+        a.select = Some(vec![99]);
+        let e = err(figure(&Table::parse("shapes.csv", SHAPES).unwrap(), &a));
+        assert!(e.contains("--select 99"), "{e}");
+    }
+
+    #[test]
+    fn sweep_heat_map_bins_values_and_crosses_failures() {
+        let f = fig("sweep.csv", SWEEP, &args(PlotKind::Auto));
+        let p = &f.panels[0];
+        assert_eq!(
+            (p.xlabel.as_str(), p.ylabel.as_str()),
+            ("surface height η (L)", "rest curvature K0 (1/L)")
+        );
+        let cells: usize = p
+            .series
+            .iter()
+            .filter(|s| matches!(s.kind, Kind::Cell(..)))
+            .map(|s| s.pts.len())
+            .sum();
+        let failed = p
+            .series
+            .iter()
+            .find(|s| s.name == "scan failed (error)")
+            .unwrap();
+        let errors = SWEEP.lines().skip(1).filter(|l| !l.ends_with(',')).count();
+        assert_eq!(failed.pts.len(), errors);
+        assert_eq!(cells + errors, 72);
+        // the cells fill the plot: the legend goes beside it, and the check still passes
+        let l = checked(&f);
+        let (pl, lg) = (l[0].plot, l[0].legend.unwrap());
+        assert!(lg.x0 >= pl.x1 || lg.y0 >= pl.y1, "{lg:?} beside {pl:?}");
+        // text columns: one colour per value
+        let mut a = args(PlotKind::Auto);
+        a.z = "stop_reason".into();
+        let f = fig("sweep.csv", SWEEP, &a);
+        let n = names(&f.panels[0]);
+        assert!(
+            n.contains(&"stop_reason: penetration") && n.contains(&"stop_reason: d_max"),
+            "{n:?}"
+        );
+        checked(&f);
+    }
+
+    #[test]
+    fn sweep_needs_two_axes_and_the_others_fixed() {
+        // three varying axes: a taper column added with two values
+        let mut text = String::new();
+        for (i, l) in SWEEP.lines().enumerate() {
+            text.push_str(&if i == 0 {
+                l.to_string()
+            } else {
+                let mut f: Vec<&str> = l.split(',').collect();
+                let v = if i % 2 == 0 { "0.5" } else { "1.0" };
+                f[2] = v;
+                f.join(",")
+            });
+            text.push('\n');
+        }
+        let t3 = Table::parse("sweep3.csv", &text).unwrap();
+        let e = err(figure(&t3, &args(PlotKind::Auto)));
+        // x and y default to the first two varying grid columns, eta and taper
+        assert!(e.contains("precurvature also varies; choose one value with --where, e.g. --where precurvature=-1.0"), "{e}");
+        let mut a = args(PlotKind::Auto);
+        a.r#where = vec!["precurvature=0.5".into()];
+        let f = figure(&t3, &a).unwrap();
+        assert_eq!(f.panels[0].ylabel, "taper ratio ρ (–)");
+        checked(&f);
+        a.r#where = vec!["precurvature=0.7".into()];
+        assert!(err(figure(&t3, &a)).contains("no row matches"));
+        // two rows for one cell (a sweep over two methods, say)
+        let twice = format!("{SWEEP}{}", SWEEP.split_once('\n').unwrap().1);
+        let e = err(figure(
+            &Table::parse("twice.csv", &twice).unwrap(),
+            &args(PlotKind::Auto),
+        ));
+        assert!(e.contains("several rows at eta"), "{e}");
+    }
+
+    #[test]
+    fn the_layout_check_fails_on_a_legend_over_a_cell() {
+        let f = fig("sweep.csv", SWEEP, &args(PlotKind::Auto));
+        let (_, mut l) = render(&f).unwrap();
+        // move the legend onto the first cell: the check must refuse it
+        let cell = l[0]
+            .marks
+            .iter()
+            .find_map(|m| match m {
+                Mark::Area(r) => Some(*r),
+                _ => None,
+            })
+            .unwrap();
+        let lg = l[0].legend.unwrap();
+        l[0].legend = Some(crate::figures::Rect {
+            x0: cell.x0 + 1.0,
+            y0: cell.y0 + 1.0,
+            x1: cell.x0 + 1.0 + (lg.x1 - lg.x0),
+            y1: cell.y0 + 1.0 + (lg.y1 - lg.y0),
+        });
+        let r = std::panic::catch_unwind(|| check_panel("moved", &f.panels[0], &l[0]));
+        assert!(
+            r.is_err(),
+            "a legend over a heat-map cell must fail the check"
+        );
+    }
+
+    #[test]
+    fn files_that_are_not_ours_are_refused() {
+        let t = Table::parse("other.csv", "a,b\n1,2\n").unwrap();
+        let e = err(detect(&t));
+        assert!(e.contains("not a file vibrissa writes"), "{e}");
+        let t = Table::parse("bad.csv", "d,mu\n0,zero\n").unwrap();
+        let e = err(figure(&t, &args(PlotKind::Auto)));
+        assert!(
+            e.contains("column mu, row 2: 'zero' is not a number"),
+            "{e}"
+        );
+        assert!(err(Table::parse("empty.csv", "d,mu\n")).contains("no rows"));
+    }
+}
