@@ -394,8 +394,7 @@ fn unidentifiable(j: &DMatrix<f64>, free: &[Par]) -> Option<Vec<usize>> {
         return Some(zero);
     }
     let mut js = j.clone();
-    for c in 0..n {
-        let nc = norms[c];
+    for (c, nc) in norms.iter().enumerate() {
         js.column_mut(c).scale_mut(1.0 / nc);
     }
     let svd = js.svd(false, true);

@@ -471,6 +471,21 @@ impl<P: Profile> Run<'_, '_, P> {
                 }
                 match self.locate(&hist, lam, p.lam, c) {
                     Ok(pe) => {
+                        let v = c.of_watch(spec.env, &pe.w);
+                        if c == Crossing::Touchdown && v < -JUMP {
+                            // not a root but a jump of the highest free point (one the clearance
+                            // did not see before): no contact to insert there
+                            failure.get_or_insert(StopReason::SolverFailure {
+                                d: lam,
+                                message: format!(
+                                    "{} jumps from {v:.3e} to {:.3e} at d = {}",
+                                    c.describe(),
+                                    c.of_watch(spec.env, &p.w),
+                                    pe.lam
+                                ),
+                            });
+                            continue;
+                        }
                         if found.as_ref().is_none_or(|f| pe.lam < f.pt.lam) {
                             found = Some(Found { cross: c, pt: pe });
                         }
@@ -571,6 +586,10 @@ impl<P: Profile> Run<'_, '_, P> {
         }
     }
 }
+
+/// How far below zero a located touchdown's clearance may lie and still be a root (a rounding
+/// of the rod's heights is ~1e-12; a jump is of the size of the rod's features).
+const JUMP: f64 = 1e-6;
 
 /// An event function's value where its contact state holds strictly (NaN: not known to).
 fn holds(v: f64) -> bool {

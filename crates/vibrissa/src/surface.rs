@@ -784,55 +784,69 @@ pub(crate) fn intern_texture(t: Texture) -> &'static Texture {
 }
 
 /// The largest height `y(s) − h(x(s)) − off` of the rod's free parts above a curved surface and
-/// where, found on the interpolant `sample(s) = (x_lab, y, φ, κ)` at `n + 1` points and refined
-/// on the rod (`exact`, same layout; Newton on the gap's slope `sin φ − h' cos φ`). Points near `skip(s)` (the
-/// contacts) and outside the surface's domain do not count.
+/// where: the maxima are where the exact slope of the gap `sin φ − h' cos φ` turns from rising to
+/// falling between samples of the interpolant `sample(s) = (x_lab, y, φ, κ)` — `n + 1` even
+/// ones and eight times finer within two intervals of each contact at `near` (where a maximum
+/// is born out of a contact and stays narrow) — refined on the rod (`exact`, same layout; Newton
+/// on the slope). Points near `skip(s)` (the contacts) and outside the surface's domain do not
+/// count.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn curve_clearance(
     h: &Height,
     amp: f64,
     off: f64,
     n: usize,
+    near: &[f64],
     sample: &mut dyn FnMut(f64) -> [f64; 4],
     exact: &mut dyn FnMut(f64) -> [f64; 4],
     skip: &dyn Fn(f64) -> bool,
 ) -> (f64, f64) {
     let gap = |z: &[f64; 4]| z[1] - h.jet_scaled(z[0], amp).0 - off;
-    let mut best = (f64::NEG_INFINITY, f64::NAN);
-    let pts: Vec<(f64, [f64; 4])> = (0..=n)
-        .map(|i| {
-            let s = i as f64 / n as f64;
-            (s, sample(s))
+    let slope = |z: &[f64; 4]| {
+        let (sp, cp) = z[2].sin_cos();
+        sp - h.jet_scaled(z[0], amp).1 * cp
+    };
+    let nf = n as f64;
+    let mut ss: Vec<f64> = (0..=n).map(|i| i as f64 / nf).collect();
+    for &c in near {
+        ss.extend((-16..=16).map(|k| c + f64::from(k) / (8.0 * nf)));
+    }
+    ss.retain(|s| (0.0..=1.0).contains(s));
+    ss.sort_by(f64::total_cmp);
+    ss.dedup();
+    let pts: Vec<(f64, [f64; 4], f64)> = ss
+        .into_iter()
+        .map(|s| {
+            let z = sample(s);
+            (s, z, slope(&z))
         })
         .collect();
-    for i in 1..n {
-        let (s, z) = pts[i];
-        let (gp, g, gn) = (gap(&pts[i - 1].1), gap(&z), gap(&pts[i + 1].1));
-        // local maxima of the sampled gap, and any sample already close to the surface
-        if !(g >= gp && g >= gn) {
+    let mut best = (f64::NEG_INFINITY, f64::NAN);
+    for w in pts.windows(2) {
+        let ((sa, za, ga), (sb, zb, gb)) = (w[0], w[1]);
+        if !(ga > 0.0 && gb <= 0.0) {
             continue;
         }
-        if skip(s) || !h.covers(z[0]) {
+        // start on the higher end, Newton on the slope (g'' = κ(cos φ + h' sin φ) − h'' cos² φ)
+        let s0 = if gap(&za) >= gap(&zb) { sa } else { sb };
+        if skip(s0) && skip(sa) && skip(sb) {
             continue;
         }
-        let (mut s1, mut z1) = (s, exact(s));
-        if g > -1e-3 {
-            // Newton on the gap's slope g' = sin φ − h' cos φ (g'' = κ(cos φ + h' sin φ) − h'' cos² φ)
-            for _ in 0..12 {
-                let (_, d, dd) = h.jet_scaled(z1[0], amp);
-                let (sp, cp) = z1[2].sin_cos();
-                let d1 = sp - d * cp;
-                let d2 = z1[3] * (cp + d * sp) - dd * cp * cp;
-                if d2 >= 0.0 || !d2.is_finite() {
-                    break;
-                }
-                let next = (s1 - d1 / d2).clamp(pts[i - 1].0, pts[i + 1].0);
-                let step = (next - s1).abs();
-                s1 = next;
-                z1 = exact(s1);
-                if step < 1e-14 {
-                    break;
-                }
+        let (mut s1, mut z1) = (s0, exact(s0));
+        for _ in 0..16 {
+            let (_, d, dd) = h.jet_scaled(z1[0], amp);
+            let (sp, cp) = z1[2].sin_cos();
+            let d1 = sp - d * cp;
+            let d2 = z1[3] * (cp + d * sp) - dd * cp * cp;
+            if d2 >= 0.0 || !d2.is_finite() {
+                break;
+            }
+            let next = (s1 - d1 / d2).clamp(sa, sb);
+            let step = (next - s1).abs();
+            s1 = next;
+            z1 = exact(s1);
+            if step < 1e-14 {
+                break;
             }
         }
         if skip(s1) || !h.covers(z1[0]) {

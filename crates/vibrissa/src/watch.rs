@@ -364,7 +364,7 @@ fn curve_clearance(
     // samples fine enough for the surface's own waves over the rod's reach
     let n = 256;
     let (mut best, mut at) =
-        crate::surface::curve_clearance(h, amp, off, n, &mut sample, &mut on_rod, &near);
+        crate::surface::curve_clearance(h, amp, off, n, &ss, &mut sample, &mut on_rod, &near);
     let zb = sol.right();
     if !set.tip() && h.covers(zb[0] + xf) {
         let v = zb[1] - hh(zb[0] + xf) - off;
