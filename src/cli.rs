@@ -148,6 +148,12 @@ pub enum Command {
     /// Where a point object touches the rod, from the base signals of one instant (the inverse
     /// of solve --peg).
     Locate(LocateArgs),
+    /// Drag the foot across the surface through every stick-slip cycle: one row per output d,
+    /// plus a row at each slip (before) and where the tip sticks again (after).
+    Drag(DragArgs),
+    /// Estimate mu_s and mu_k (with standard errors) from a measured drag trace: the slips'
+    /// places and the base signals around them, by nonlinear least squares.
+    Fit(FitArgs),
 }
 
 /// Numerical method.
@@ -433,6 +439,98 @@ pub struct LocateArgs {
     /// Contact force on the rod, y component (EI/L^2).
     #[arg(long, value_name = "FY", value_parser = finite_f64)]
     pub fy: f64,
+    #[command(flatten)]
+    pub solver: SolverArgs,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print a JSON object instead of CSV.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `vibrissa drag`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "The slip is quasi-static (docs/model.md, \"The drag\"): at |mu| = mu_s the tip slides, the foot held, to the nearest equilibrium where kinetic friction mu_k holds it, then sticks there. Surfaces other than a line and friction textures come from the scene file's [surface] and [friction] tables (README, \"Scene files\"); the --corrugation flags set a sinusoidal [surface]."
+)]
+pub struct DragArgs {
+    /// Surface height eta (rod lengths), in (eta_, 1) (see scan --help). [default: scene file's, else 0.75]
+    #[arg(long, value_name = "H", value_parser = finite_f64)]
+    pub eta: Option<f64>,
+    /// Largest foot displacement d (rod lengths), in (0, 1000].
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "1")]
+    pub d_max: f64,
+    /// Number of output points, uniform in d from 0 to --d-max, in [2, 1000000] (the slip rows
+    /// come on top).
+    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    pub points: u32,
+    /// Static friction coefficient, in [0, 100]: the stuck tip slips where |mu| reaches it (with
+    /// --mu-k). [default: the scene file's [friction]]
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_s: Option<f64>,
+    /// Kinetic friction coefficient, in [0, --mu-s): the slipping tip stops where the ratio it
+    /// needs falls to it (with --mu-s).
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_k: Option<f64>,
+    /// A sinusoidal corrugation A sin(2 pi x / W + P) on the surface: its amplitude A (rod
+    /// lengths), |A| <= 0.2 (with --corrugation-wavelength; replaces the scene's [surface]).
+    #[arg(long, value_name = "A", value_parser = finite_f64)]
+    pub corrugation_amplitude: Option<f64>,
+    /// The corrugation's wavelength W (rod lengths), in [0.01, 100].
+    #[arg(long, value_name = "W", value_parser = finite_f64)]
+    pub corrugation_wavelength: Option<f64>,
+    /// The corrugation's phase P at x = 0 (rad), in [-1000, 1000]. [default: 0]
+    #[arg(long, value_name = "P", value_parser = finite_f64)]
+    pub corrugation_phase: Option<f64>,
+    /// Also integrate the foot's work over each stick and the work the sliding tip absorbs over
+    /// each slip (the energy balance, in --json's slips; extra solves).
+    #[arg(long)]
+    pub energy_balance: bool,
+    #[command(flatten)]
+    pub solver: SolverArgs,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Write the rows to this CSV file ("-": stdout, not with --json). Without it the CSV goes to
+    /// stdout (unless --json).
+    #[arg(long, value_name = "FILE.csv")]
+    pub out: Option<PathBuf>,
+    /// Write the rod shapes of all rows to this CSV file (columns row, d, s, x, y, x_lab, phi,
+    /// kappa, m, event).
+    #[arg(long, value_name = "FILE.csv")]
+    pub shapes: Option<PathBuf>,
+    /// Points per shape in --shapes, in [2, 100000] (needs --shapes).
+    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    pub shape_points: u32,
+    /// Print the summary as a JSON object on stdout (cycles, mean and spread of the slip lengths,
+    /// force drops and released energies, and every slip).
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `vibrissa fit`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "The trace: a CSV file with a column d and any of fx, fy, m_base. Its slips are the rows whose event column says slip (the state just before) and slip_end (just after), as vibrissa drag writes them; without an event column, a slip is where d does not increase from one row to the next (the foot held while the tip slides): the row before is the state before, the row after the state after."
+)]
+pub struct FitArgs {
+    /// The measured trace (CSV; "-": stdin).
+    #[arg(long, value_name = "FILE.csv")]
+    pub trace: PathBuf,
+    /// Which base signals to fit, a comma list of fx, fy, m_base. [default: every one the trace has]
+    #[arg(long, value_name = "NAMES", value_delimiter = ',')]
+    pub signals: Option<Vec<String>>,
+    /// Use only the slips' places d (no base signals).
+    #[arg(long, conflicts_with = "signals")]
+    pub places_only: bool,
+    /// Also estimate the surface height eta (straight surfaces).
+    #[arg(long)]
+    pub fit_eta: bool,
+    /// Also estimate the surface inclination (straight surfaces).
+    #[arg(long)]
+    pub fit_angle: bool,
+    /// Surface height eta of the model (rod lengths), in (eta_, 1); the start with --fit-eta. [default: scene file's, else 0.75]
+    #[arg(long, value_name = "H", value_parser = finite_f64)]
+    pub eta: Option<f64>,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]

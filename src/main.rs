@@ -1,6 +1,7 @@
 //! `vibrissa`: the command-line program of the vibrissa workspace (see README and `--help`).
 
 mod cli;
+mod drag;
 mod error;
 mod figures;
 mod journal;
@@ -109,6 +110,20 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Locate(a) => {
             scene_args::build_scene(&a.scene, None)?;
         }
+        Command::Drag(a) => {
+            drag::scene(a)?;
+            let mut outs = Vec::new();
+            if let Some(p) = &a.out {
+                outs.push(("--out", p.as_path()));
+            }
+            if let Some(p) = &a.shapes {
+                outs.push(("--shapes", p.as_path()));
+            }
+            outputs::plan(&outs, false)?;
+        }
+        Command::Fit(a) => {
+            scene_args::build_scene(&a.scene, a.eta)?;
+        }
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
@@ -137,6 +152,14 @@ fn run(mut cli: Cli) -> Res<()> {
         Command::Locate(a) => {
             progress::start("locate", false);
             peg::run_locate(a)
+        }
+        Command::Drag(a) => {
+            progress::start("drag", false);
+            drag::run(a)
+        }
+        Command::Fit(a) => {
+            progress::start("fit", false);
+            drag::run_fit(a)
         }
         Command::Figures(a) => {
             progress::start("figures", true);

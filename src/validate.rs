@@ -349,6 +349,8 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Figures(a) => figures(a),
         Command::Whisk(a) => whisk(a),
         Command::Locate(a) => locate(a),
+        Command::Drag(a) => drag(a),
+        Command::Fit(a) => tol(a.solver.tol),
         Command::Plot(a) => check(
             Src::Flag("--surface-angle"),
             a.surface_angle,
@@ -435,6 +437,102 @@ fn scan(a: &mut ScanArgs) -> Res<()> {
     if a.shapes.as_deref().is_some_and(is_stdout) {
         return Err(usage(
             "--shapes - would share stdout with the scan's table or summary; give it a file name",
+        ));
+    }
+    if a.shapes.is_some() {
+        budget(
+            "--points",
+            a.points as u64,
+            "--shape-points",
+            a.shape_points as u64,
+            "shape samples",
+            BYTES_PER_SHAPE_SAMPLE,
+        )?;
+    }
+    Ok(())
+}
+
+/// Largest foot displacement of a drag (the library's limit).
+pub const DRAG_D_MAX: Range =
+    Range::new(0.0, false, vibrissa::drag::MAX_DRAG, true).why("rod lengths");
+/// Static friction coefficient of a drag.
+pub const MU_S: Range = Range::new(0.0, true, 100.0, true);
+/// Amplitude of a corrugation (rod lengths).
+pub const CORRUGATION_AMPLITUDE: Range = Range::new(-0.2, true, 0.2, true).why("rod lengths");
+/// Wavelength of a corrugation (rod lengths).
+pub const CORRUGATION_WAVELENGTH: Range = Range::new(0.01, true, 100.0, true).why("rod lengths");
+/// Phase of a corrugation (rad).
+pub const CORRUGATION_PHASE: Range = Range::new(-1000.0, true, 1000.0, true).why("radians");
+
+fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    check(Src::Flag("--d-max"), a.d_max, &DRAG_D_MAX)?;
+    match (a.mu_s, a.mu_k) {
+        (Some(s), Some(k)) => {
+            check(Src::Flag("--mu-s"), s, &MU_S)?;
+            let r = Range::new(0.0, true, s, false).why(
+                "kinetic friction below static, the upper end is --mu-s: with mu_k = mu_s the tip would slide steadily, without stick-slip",
+            );
+            check(Src::Flag("--mu-k"), k, &r)?;
+        }
+        (Some(_), None) => {
+            return Err(usage(
+                "--mu-s needs --mu-k (the kinetic coefficient the slipping tip stops at)",
+            ))
+        }
+        (None, Some(_)) => {
+            return Err(usage(
+                "--mu-k needs --mu-s (the static coefficient at which the tip slips)",
+            ))
+        }
+        (None, None) => {}
+    }
+    if let Some(v) = a.corrugation_amplitude {
+        check(
+            Src::Flag("--corrugation-amplitude"),
+            v,
+            &CORRUGATION_AMPLITUDE,
+        )?;
+    }
+    if let Some(v) = a.corrugation_wavelength {
+        check(
+            Src::Flag("--corrugation-wavelength"),
+            v,
+            &CORRUGATION_WAVELENGTH,
+        )?;
+    }
+    if let Some(v) = a.corrugation_phase {
+        check(Src::Flag("--corrugation-phase"), v, &CORRUGATION_PHASE)?;
+    }
+    match (a.corrugation_amplitude, a.corrugation_wavelength) {
+        (Some(_), Some(_)) | (None, None) => {}
+        (Some(_), None) => {
+            return Err(usage(
+                "--corrugation-amplitude needs --corrugation-wavelength",
+            ))
+        }
+        (None, Some(_)) => {
+            return Err(usage(
+                "--corrugation-wavelength needs --corrugation-amplitude",
+            ))
+        }
+    }
+    if a.corrugation_phase.is_some() && a.corrugation_amplitude.is_none() {
+        return Err(usage(
+            "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
+        ));
+    }
+    if a.out.as_deref().is_some_and(is_stdout) {
+        if a.json {
+            return Err(usage(
+                "--out - with --json would put the drag's CSV and its JSON summary on the same stdout; give --out a file name",
+            ));
+        }
+        a.out = None;
+    }
+    if a.shapes.as_deref().is_some_and(is_stdout) {
+        return Err(usage(
+            "--shapes - would share stdout with the drag's table or summary; give it a file name",
         ));
     }
     if a.shapes.is_some() {

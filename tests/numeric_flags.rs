@@ -26,6 +26,19 @@ fn base(cmd: &str) -> Vec<(&'static str, &'static str)> {
         // --dry-run checks every value (grid included) without solving
         "sweep" => vec![("--dry-run", ""), ("--points", "3")],
         "figures" => vec![("--only", "3")],
+        "whisk" => vec![("--peg", "0.1,0.4"), ("--points", "3")],
+        "locate" => vec![("--m-base", "0.1"), ("--fx", "-0.2"), ("--fy", "0")],
+        "drag" => vec![
+            ("--mu-s", "0.5"),
+            ("--mu-k", "0.3"),
+            ("--points", "3"),
+            ("--d-max", "0.01"),
+        ],
+        // (made by `vibrissa drag --mu-s 0.5 --mu-k 0.3 --d-max 0.04 --points 2`: two slips)
+        "fit" => vec![
+            ("--trace", "tests/fixtures/drag/trace.csv"),
+            ("--places-only", ""),
+        ],
         // the file to draw (cargo runs tests in the package directory)
         "plot" => vec![
             ("tests/fixtures/plot/shapes.csv", ""),

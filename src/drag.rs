@@ -1,0 +1,411 @@
+//! `vibrissa drag` (the stick–slip drag across a surface) and `vibrissa fit` (μs, μk from a
+//! measured drag trace).
+
+use crate::cli::{DragArgs, FitArgs};
+use crate::error::{solve_fail, usage, Res};
+use crate::numeric;
+use crate::output::{csv_line, num, opt, AtomicFile, Sink};
+use crate::scan::{mu_text, Stop, Work};
+use crate::scene_args::build_scene;
+use serde::Serialize;
+use std::io::{self, Write};
+use std::time::Instant;
+use vibrissa::drag::{DragRow, DragSummary, SlipEvent};
+use vibrissa::fit::{FitOptions, FitResult, Signal, Trace, TraceSlip};
+use vibrissa::surface::SurfaceProfile;
+use vibrissa::{DragOptions, Scene, StopReason};
+
+/// Columns of the drag CSV (`vibrissa plot` reads them by name).
+pub const HEADER: [&str; 14] = [
+    "d",
+    "phase",
+    "x_tip",
+    "y_tip",
+    "mu",
+    "mu_s",
+    "normal",
+    "fx",
+    "fy",
+    "m_base",
+    "contact",
+    "event",
+    "jump",
+    "energy_released",
+];
+
+fn row(r: &DragRow) -> Vec<String> {
+    let mut v = vec![num(r.d), r.phase.name().to_string()];
+    v.extend([r.x_tip, r.y_tip].map(num));
+    v.push(mu_text(r.mu));
+    v.push(mu_text(r.mu_s));
+    v.extend([r.normal, r.fx, r.fy, r.m_base].map(num));
+    v.push(r.contact.name().to_string());
+    v.push(r.event.map_or("", |e| e.name()).to_string());
+    v.push(opt(r.jump));
+    v.push(opt(r.released));
+    v
+}
+
+/// Whether every value of a row may be written (μ is unbounded at lift-off, where N = 0).
+fn finite(r: &DragRow) -> bool {
+    let lift_off = r.event == Some(vibrissa::drag::DragEvent::Contact(vibrissa::Event::LiftOff));
+    [r.d, r.x_tip, r.y_tip, r.normal, r.fx, r.fy, r.m_base]
+        .iter()
+        .all(|v| v.is_finite())
+        && (r.mu.is_finite() || (lift_off && r.mu.is_infinite()))
+        && !r.mu_s.is_nan()
+        && r.jump.is_none_or(f64::is_finite)
+        && r.released.is_none_or(f64::is_finite)
+}
+
+/// The scene of a drag: the file and the scene flags, then the corrugation flags (a sinusoidal
+/// `[surface]`); validated, messages naming the flags.
+pub fn scene(a: &DragArgs) -> Res<Scene> {
+    let mut sc = build_scene(&a.scene, a.eta)?;
+    if let (Some(amplitude), Some(wavelength)) = (a.corrugation_amplitude, a.corrugation_wavelength)
+    {
+        let k = std::f64::consts::TAU / wavelength;
+        let steepest = sc.surface_angle.tan().abs() + amplitude.abs() * k;
+        if steepest >= vibrissa::surface::MAX_PROFILE_SLOPE {
+            return Err(usage(format!(
+                "--corrugation-amplitude {amplitude} with --corrugation-wavelength {wavelength} makes the surface's steepest slope |tan(surface angle)| + 2 pi |A| / W = {} reach 1 (45 degrees, the steepest surface the model takes); |A| must stay below {}",
+                crate::numbers::short(steepest),
+                crate::numbers::short(
+                    ((vibrissa::surface::MAX_PROFILE_SLOPE - sc.surface_angle.tan().abs()) / k)
+                        .max(0.0)
+                )
+            )));
+        }
+        sc.surface = SurfaceProfile::Sine {
+            amplitude,
+            wavelength,
+            phase: a.corrugation_phase.unwrap_or(0.0),
+        };
+        crate::validate::model_check(&sc, a.scene.scene.as_deref())?;
+    }
+    if a.mu_s.is_none() && matches!(sc.friction, vibrissa::surface::FrictionProfile::None {}) {
+        return Err(usage(
+            "no friction: give --mu-s and --mu-k, or a scene file with a [friction] table",
+        ));
+    }
+    Ok(sc)
+}
+
+/// The JSON summary of a drag.
+#[derive(Serialize)]
+struct DragOut<'a> {
+    method: &'static str,
+    eta: f64,
+    mu_s: Option<f64>,
+    mu_k: Option<f64>,
+    rows: usize,
+    #[serde(flatten)]
+    summary: &'a DragSummary,
+    stop: Stop,
+    stop_reason: String,
+    stats: Work,
+    time_ms: f64,
+    slips: &'a [SlipEvent],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    csv: Option<String>,
+}
+
+/// `vibrissa drag`.
+pub fn run(a: &DragArgs) -> Res<()> {
+    let t0 = Instant::now();
+    let sc = scene(a)?;
+    let (rod, surface) = numeric::parts(&sc)?;
+    let opts = DragOptions {
+        d_max: a.d_max,
+        points: a.points as usize,
+        mu_s: a.mu_s,
+        mu_k: a.mu_k,
+        solver: vibrissa::SolverConfig {
+            start: sc.start,
+            ..numeric::config(a.solver.method, a.solver.tol)
+        },
+        keep_shapes: a.shapes.as_ref().map(|_| a.shape_points as usize),
+        contact: sc.contact,
+        energy_balance: a.energy_balance,
+        ..DragOptions::default()
+    };
+    let r = vibrissa::drag(&rod, &surface, &opts)?;
+    crate::progress::stop();
+    if let StopReason::SolverFailure { .. } = r.stop {
+        return Err(solve_fail(format!("drag: {}", r.stop)));
+    }
+    if let Some(bad) = r.rows.iter().find(|p| !finite(p)) {
+        return Err(solve_fail(format!(
+            "drag: non-finite values in the row at d = {}",
+            bad.d
+        )));
+    }
+    if let Some(path) = &a.shapes {
+        let mut f = AtomicFile::create(path)?;
+        csv_line(
+            &mut f,
+            &[
+                "row", "d", "s", "x", "y", "x_lab", "phi", "kappa", "m", "event",
+            ],
+        )?;
+        for (i, (p, sh)) in r.rows.iter().zip(&r.shapes).enumerate() {
+            let event = p.event.map_or("", |e| e.name());
+            for q in sh {
+                let mut v = vec![i.to_string()];
+                v.extend([p.d, q.s, q.x, q.y, q.x + p.d, q.phi, q.kappa, q.m].map(num));
+                v.push(event.to_string());
+                csv_line(&mut f, &v)?;
+            }
+        }
+        f.commit()?;
+    }
+    if a.out.is_some() || !a.json {
+        let mut sink = Sink::open(a.out.as_deref())?;
+        csv_line(&mut sink, &HEADER)?;
+        for p in &r.rows {
+            csv_line(&mut sink, &row(p))?;
+        }
+        sink.finish()?;
+    }
+    let stop = Stop::from(&r.stop);
+    if stop.reason != "d_max" {
+        crate::progress::warn(&format!("the drag stopped early: {}", stop.detail));
+    }
+    let out = DragOut {
+        method: a.solver.method.name(),
+        eta: sc.eta,
+        mu_s: a.mu_s,
+        mu_k: a.mu_k,
+        rows: r.rows.len(),
+        summary: &r.summary,
+        stop_reason: stop.reason.clone(),
+        stop,
+        stats: Work {
+            newton_iters: r.stats.newton_iters,
+            rhs_evals: r.stats.rhs_evals,
+            factorizations: r.stats.factorizations,
+        },
+        time_ms: t0.elapsed().as_secs_f64() * 1e3,
+        slips: &r.slips,
+        csv: a.out.as_ref().map(|p| p.display().to_string()),
+    };
+    if a.json {
+        writeln!(io::stdout(), "{}", serde_json::to_string_pretty(&out)?)?;
+    } else {
+        let s = &r.summary;
+        let line = if s.cycles == 0 {
+            format!(
+                "drag eta = {} ({}): no slip up to d = {}; {} rows; stopped: {}; {:.1} ms",
+                sc.eta, out.method, a.d_max, out.rows, out.stop.detail, out.time_ms
+            )
+        } else {
+            format!(
+                "drag eta = {} ({}): {} slips, first at d = {:.6}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
+                sc.eta,
+                out.method,
+                s.cycles,
+                r.slips[0].d,
+                s.jump_mean,
+                s.jump_std,
+                s.drop_fx_mean,
+                s.drop_fx_std,
+                s.released_mean,
+                s.released_std,
+                out.rows,
+                out.stop.detail,
+                out.time_ms
+            )
+        };
+        match &a.out {
+            Some(p) => writeln!(io::stdout(), "{line}\nCSV written to {}", p.display())?,
+            None => crate::progress::note(&line),
+        }
+    }
+    Ok(())
+}
+
+/// The slips of a trace CSV (see `fit --help`), with the signals `use_sig` (in
+/// [`Signal::ALL`] order) where the file has them.
+pub fn read_trace(text: &str, name: &str, use_sig: &[bool; 3]) -> Res<Trace> {
+    let bad = |m: String| usage(format!("--trace {name}: {m}"));
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let (_, head) = lines.next().ok_or_else(|| bad("empty file".into()))?;
+    let cols: Vec<&str> = head.split(',').map(str::trim).collect();
+    let at = |c: &str| cols.iter().position(|h| *h == c);
+    let d_col = at("d").ok_or_else(|| bad("no column d (the foot displacement)".into()))?;
+    let ev_col = at("event");
+    let sig_col: Vec<Option<usize>> = Signal::ALL
+        .iter()
+        .zip(use_sig)
+        .map(|(s, &u)| if u { at(s.name()) } else { None })
+        .collect();
+    // (line number, d, signals, event)
+    let mut rows = Vec::new();
+    for (i, l) in lines {
+        let f: Vec<&str> = l.split(',').map(str::trim).collect();
+        let value = |c: usize, what: &str| -> Res<Option<f64>> {
+            match f.get(c).copied().unwrap_or("") {
+                "" => Ok(None),
+                t => match t.parse::<f64>() {
+                    Ok(v) if v.is_finite() => Ok(Some(v)),
+                    _ => Err(bad(format!(
+                        "line {}: {what} = '{t}' is not a finite number",
+                        i + 1
+                    ))),
+                },
+            }
+        };
+        let d = value(d_col, "d")?.ok_or_else(|| bad(format!("line {}: no d", i + 1)))?;
+        let mut s = [None; 3];
+        for (k, c) in sig_col.iter().enumerate() {
+            if let Some(c) = *c {
+                s[k] = value(c, Signal::ALL[k].name())?;
+            }
+        }
+        let ev = ev_col
+            .and_then(|c| f.get(c).copied())
+            .unwrap_or("")
+            .to_string();
+        rows.push((i + 1, d, s, ev));
+    }
+    let mut slips = Vec::new();
+    match ev_col {
+        Some(_) => {
+            for (k, r) in rows.iter().enumerate() {
+                if r.3 != "slip" {
+                    continue;
+                }
+                let after = rows[k + 1..]
+                    .iter()
+                    .find(|q| q.3 == "slip_end")
+                    .map_or([None; 3], |q| q.2);
+                slips.push(TraceSlip {
+                    d: r.1,
+                    before: r.2,
+                    after,
+                });
+            }
+        }
+        None => {
+            for w in rows.windows(2) {
+                if w[1].1 <= w[0].1 {
+                    slips.push(TraceSlip {
+                        d: w[0].1,
+                        before: w[0].2,
+                        after: w[1].2,
+                    });
+                }
+            }
+        }
+    }
+    if slips.is_empty() {
+        return Err(bad(
+            "no slip in the trace (rows with event = slip, or, without an event column, a row whose d does not increase)".into(),
+        ));
+    }
+    for w in slips.windows(2) {
+        if w[1].d <= w[0].d {
+            return Err(bad(format!(
+                "the slips at d = {} and d = {} are not in increasing order",
+                w[0].d, w[1].d
+            )));
+        }
+    }
+    Ok(Trace { slips })
+}
+
+/// The answer of `vibrissa fit`.
+#[derive(Serialize)]
+struct FitOut<'a> {
+    method: &'static str,
+    slips: usize,
+    signals: Vec<&'static str>,
+    #[serde(flatten)]
+    fit: &'a FitResult,
+}
+
+/// `vibrissa fit`.
+pub fn run_fit(a: &FitArgs) -> Res<()> {
+    let sc = build_scene(&a.scene, a.eta)?;
+    let name = a.trace.display().to_string();
+    let text = if a.trace.as_os_str() == "-" {
+        io::read_to_string(io::stdin())
+            .map_err(|e| usage(format!("cannot read the trace from stdin (--trace -): {e}")))?
+    } else {
+        std::fs::read_to_string(&a.trace)
+            .map_err(|e| usage(format!("cannot read --trace {name}: {e}")))?
+    };
+    let mut use_sig = [!a.places_only; 3];
+    if let Some(list) = &a.signals {
+        use_sig = [false; 3];
+        for s in list {
+            match Signal::ALL.iter().position(|g| g.name() == s.trim()) {
+                Some(k) => use_sig[k] = true,
+                None => {
+                    return Err(usage(format!(
+                        "--signals: '{s}' is not a base signal (fx, fy, m_base)"
+                    )))
+                }
+            }
+        }
+    }
+    let trace = read_trace(&text, &name, &use_sig)?;
+    let signals: Vec<&'static str> = Signal::ALL
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| {
+            trace
+                .slips
+                .iter()
+                .any(|s| s.before[*k].is_some() || s.after[*k].is_some())
+        })
+        .map(|(_, s)| s.name())
+        .collect();
+    let opts = FitOptions {
+        fit_eta: a.fit_eta,
+        fit_angle: a.fit_angle,
+        solver: vibrissa::SolverConfig {
+            start: sc.start,
+            ..numeric::config(a.solver.method, a.solver.tol)
+        },
+        contact: sc.contact,
+        ..FitOptions::default()
+    };
+    let f = vibrissa::fit(&sc, &trace, &opts)?;
+    crate::progress::stop();
+    if f.params.iter().any(|p| !p.value.is_finite()) {
+        return Err(solve_fail(format!("fit: non-finite estimate: {f}")));
+    }
+    if let Some(m) = &f.message {
+        crate::progress::warn(m);
+    }
+    let out = FitOut {
+        method: a.solver.method.name(),
+        slips: trace.slips.len(),
+        signals,
+        fit: &f,
+    };
+    let stdout = io::stdout();
+    let mut w = stdout.lock();
+    if a.json {
+        serde_json::to_writer_pretty(&mut w, &out)?;
+        writeln!(w)?;
+    } else {
+        csv_line(&mut w, &["parameter", "value", "std_error", "identifiable"])?;
+        for p in &f.params {
+            csv_line(
+                &mut w,
+                &[
+                    p.name.to_string(),
+                    num(p.value),
+                    opt(p.std_error),
+                    p.identifiable.to_string(),
+                ],
+            )?;
+        }
+    }
+    Ok(())
+}

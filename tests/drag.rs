@@ -1,0 +1,351 @@
+//! `vibrissa drag` and `vibrissa fit` end to end (issue 21): the drag's slips where the program's
+//! own scans put them, its rows and summary, its refusals; the fit's recovery and its message
+//! for a trace that cannot determine μk.
+
+mod common;
+use common::*;
+
+/// The displacement at which `vibrissa scan --mu0 MU` stops with a slip.
+fn scan_slip(mu0: &str) -> f64 {
+    let o = ok(&["scan", "--mu0", mu0, "--d-max", "0.5", "--points", "3"]);
+    let (h, rows) = csv(&o.stdout);
+    let ev = h.iter().position(|c| c == "event").unwrap();
+    let r = rows.iter().find(|r| r[ev] == "slip").expect("a slip row");
+    col(&h, r, "d")
+}
+
+/// On the flat surface the first slip is where the scan reaches μs, and every cycle is
+/// Δd = d(μs) − d(μk) long (the scan's prediction, docs/model.md), to 1e-9; each slip row is
+/// followed by the state after it, at the same d, needing μk.
+#[test]
+fn drag_slips_where_the_scans_predict() {
+    let (ds, dk) = (scan_slip("0.5"), scan_slip("0.3"));
+    let period = ds - dk;
+    let o = ok(&[
+        "drag", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.1", "--points", "5",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(
+        h,
+        [
+            "d",
+            "phase",
+            "x_tip",
+            "y_tip",
+            "mu",
+            "mu_s",
+            "normal",
+            "fx",
+            "fy",
+            "m_base",
+            "contact",
+            "event",
+            "jump",
+            "energy_released"
+        ]
+    );
+    let ev = h.iter().position(|c| c == "event").unwrap();
+    let ph = h.iter().position(|c| c == "phase").unwrap();
+    let slips: Vec<usize> = (0..rows.len()).filter(|&i| rows[i][ev] == "slip").collect();
+    let want = ((0.1 - ds) / period).floor() as usize + 1;
+    assert_eq!(slips.len(), want, "{}", o.stdout);
+    for (k, &i) in slips.iter().enumerate() {
+        let r = &rows[i];
+        close(col(&h, r, "d"), ds + k as f64 * period, 1e-9, "slip place");
+        close(col(&h, r, "jump"), period, 1e-9, "tip jump");
+        close(col(&h, r, "mu"), 0.5, 1e-9, "mu before");
+        assert!(col(&h, r, "energy_released") > 0.0);
+        let next = &rows[i + 1];
+        assert_eq!(next[ev], "slip_end");
+        assert_eq!(next[ph], "slip");
+        close(col(&h, next, "d"), col(&h, r, "d"), 0.0, "the foot held");
+        close(col(&h, next, "mu"), 0.3, 1e-9, "mu after");
+        // the tip jumped by the slip length along the flat surface
+        close(
+            col(&h, next, "x_tip") - col(&h, r, "x_tip"),
+            period,
+            1e-9,
+            "x_tip jump",
+        );
+    }
+    // the output displacements are there, in order, stuck within the cone
+    let grid: Vec<f64> = rows
+        .iter()
+        .filter(|r| r[ev].is_empty())
+        .map(|r| col(&h, r, "d"))
+        .collect();
+    assert_eq!(grid.len(), 5);
+    for (k, g) in grid.iter().enumerate() {
+        close(*g, 0.1 * k as f64 / 4.0, 1e-15, "grid d");
+    }
+    for r in &rows {
+        assert!(r[ph] == "stick" || r[ph] == "slip");
+        assert!(col(&h, r, "mu").abs() <= 0.5 + 1e-9);
+    }
+    assert!(o.stderr.contains("slips"), "{}", o.stderr);
+}
+
+/// `--json`: the summary counts the slip rows and averages their columns; every slip with its
+/// signals before and after; the energy balance with `--energy-balance` (the foot's work over a
+/// stick equals the energy's change, the slip's dissipation the released energy, 1e-8: the
+/// library's own check, here through the program).
+#[test]
+fn drag_json_summary_and_energy() {
+    let d = tmpdir("drag-json");
+    let out = d.join("drag.csv");
+    let shapes = d.join("shapes.csv");
+    let o = ok(&[
+        "drag",
+        "--mu-s",
+        "0.5",
+        "--mu-k",
+        "0.3",
+        "--d-max",
+        "0.08",
+        "--points",
+        "3",
+        "--taper",
+        "0.5",
+        "--precurvature",
+        "0.5",
+        "--energy-balance",
+        "--out",
+        out.to_str().unwrap(),
+        "--shapes",
+        shapes.to_str().unwrap(),
+        "--shape-points",
+        "5",
+        "--json",
+    ]);
+    let v = json(&o.stdout);
+    let (h, rows) = csv(&std::fs::read_to_string(&out).unwrap());
+    let ev = h.iter().position(|c| c == "event").unwrap();
+    let slip_rows: Vec<&Vec<String>> = rows.iter().filter(|r| r[ev] == "slip").collect();
+    let n = v["cycles"].as_u64().unwrap() as usize;
+    assert!(n >= 2, "{v}");
+    assert_eq!(slip_rows.len(), n);
+    assert_eq!(v["slips"].as_array().unwrap().len(), n);
+    assert_eq!(v["rows"].as_u64().unwrap() as usize, rows.len());
+    assert_eq!(v["stop_reason"], "d_max");
+    let mean = slip_rows.iter().map(|r| col(&h, r, "jump")).sum::<f64>() / n as f64;
+    close(v["jump_mean"].as_f64().unwrap(), mean, 1e-12, "jump_mean");
+    for (s, r) in v["slips"].as_array().unwrap().iter().zip(&slip_rows) {
+        // (serde_json's parser rounds within an ulp)
+        close(s["d"].as_f64().unwrap(), col(&h, r, "d"), 1e-15, "slip d");
+        close(
+            s["before"]["fx"].as_f64().unwrap(),
+            col(&h, r, "fx"),
+            1e-14,
+            "fx before",
+        );
+        let released = s["released"].as_f64().unwrap();
+        close(
+            s["dissipated"].as_f64().unwrap(),
+            released,
+            1e-8,
+            "slip energy",
+        );
+        let e0 = s["energy_stick"].as_f64().unwrap();
+        let e1 = s["before"]["energy"].as_f64().unwrap();
+        close(s["work"].as_f64().unwrap(), e1 - e0, 1e-8, "stick energy");
+    }
+    // one shape of 5 samples per row
+    let (hs, srows) = csv(&std::fs::read_to_string(&shapes).unwrap());
+    assert_eq!(hs[0], "row");
+    assert_eq!(srows.len(), 5 * rows.len());
+}
+
+/// A corrugation from the flags is the scene file's `[surface]` of kind sine; a two-patch
+/// friction texture from the file slips at each row's own μs.
+#[test]
+fn drag_on_a_corrugation_and_a_texture() {
+    let d = tmpdir("drag-surface");
+    let args = [
+        "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.1", "--points", "3",
+    ];
+    let mut a = vec!["drag"];
+    a.extend(args);
+    a.extend([
+        "--corrugation-amplitude",
+        "0.01",
+        "--corrugation-wavelength",
+        "0.2",
+        "--corrugation-phase",
+        "2",
+    ]);
+    let flags = ok(&a).stdout;
+    let scene = d.join("sine.toml");
+    std::fs::write(
+        &scene,
+        "[surface]\nkind = \"sine\"\namplitude = 0.01\nwavelength = 0.2\nphase = 2\n",
+    )
+    .unwrap();
+    let mut b = vec!["drag", "--scene", scene.to_str().unwrap()];
+    b.extend(args);
+    assert_eq!(ok(&b).stdout, flags);
+    assert!(flags.contains(",slip,"), "{flags}");
+
+    let tex = d.join("patches.toml");
+    std::fs::write(
+        &tex,
+        "[friction]\nkind = \"patches\"\nperiod = 0.1\nx = [0.0, 0.05]\nmu_s = [0.4, 0.7]\nmu_k = [0.3, 0.5]\n",
+    )
+    .unwrap();
+    let o = ok(&[
+        "drag",
+        "--scene",
+        tex.to_str().unwrap(),
+        "--d-max",
+        "0.15",
+        "--points",
+        "4",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    let ev = h.iter().position(|c| c == "event").unwrap();
+    let mut n = 0;
+    for r in rows.iter().filter(|r| r[ev] == "slip") {
+        close(
+            col(&h, r, "mu").abs(),
+            col(&h, r, "mu_s"),
+            1e-9,
+            "slip at mu_s",
+        );
+        n += 1;
+    }
+    assert!(n >= 2, "{}", o.stdout);
+}
+
+/// Refusals: one line naming the flag, exit 2, and a user's file left as it was.
+#[test]
+fn drag_refusals_name_the_flag() {
+    let d = tmpdir("drag-bad");
+    let out = d.join("mine.csv");
+    std::fs::write(&out, "precious\n").unwrap();
+    let o = out.to_str().unwrap();
+    for (args, flag) in [
+        (vec!["--mu-s", "0.5", "--mu-k", "0.6"], "--mu-k 0.6"),
+        (vec!["--mu-s", "0.5", "--mu-k", "0.5"], "--mu-k 0.5"),
+        (vec!["--mu-s", "0.5"], "--mu-s needs --mu-k"),
+        (vec!["--mu-k", "0.2"], "--mu-k needs --mu-s"),
+        (vec![], "no friction"),
+        (
+            vec!["--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "2000"],
+            "--d-max 2000",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--corrugation-amplitude",
+                "0.01",
+            ],
+            "--corrugation-amplitude needs --corrugation-wavelength",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--corrugation-amplitude",
+                "0.05",
+                "--corrugation-wavelength",
+                "0.1",
+            ],
+            "--corrugation-amplitude 0.05 with --corrugation-wavelength 0.1",
+        ),
+    ] {
+        let mut a = vec!["drag", "--out", o];
+        a.extend(args);
+        let line = bad(&a, 2);
+        assert!(line.contains(flag), "{a:?}: {line}");
+        assert_eq!(std::fs::read_to_string(&out).unwrap(), "precious\n");
+    }
+    // the JSON and the CSV on one stdout
+    let line = bad(
+        &[
+            "drag", "--mu-s", "0.5", "--mu-k", "0.3", "--out", "-", "--json",
+        ],
+        2,
+    );
+    assert!(line.contains("--out -"), "{line}");
+}
+
+/// A drag's CSV as the trace: the fit gives back μs and μk (a noiseless trace: to 1e-6), the
+/// same without the event column (slips where d does not increase) and from the slips' places
+/// alone; one slip without the state after it names μk as what it cannot determine.
+#[test]
+fn fit_recovers_the_drag_and_names_what_it_cannot_determine() {
+    let d = tmpdir("fit");
+    let trace = d.join("trace.csv");
+    let t = trace.to_str().unwrap();
+    ok(&[
+        "drag", "--mu-s", "0.5", "--mu-k", "0.2", "--d-max", "0.07", "--points", "2", "--out", t,
+    ]);
+    let text = std::fs::read_to_string(&trace).unwrap();
+    let get = |o: &Out, name: &str| -> (f64, Option<f64>, bool) {
+        let (h, rows) = csv(&o.stdout);
+        let r = rows.iter().find(|r| r[0] == name).unwrap();
+        let se = r[h.iter().position(|c| c == "std_error").unwrap()]
+            .parse()
+            .ok();
+        (col(&h, r, "value"), se, r[3] == "true")
+    };
+    let f = ok(&["fit", "--trace", t]);
+    for (name, want) in [("mu_s", 0.5), ("mu_k", 0.2)] {
+        let (v, se, id) = get(&f, name);
+        close(v, want, 1e-6, name);
+        assert!(id && se.is_some(), "{}", f.stdout);
+    }
+    // the event column dropped: the same slips, found where d does not increase
+    let (h, rows) = csv(&text);
+    let keep: Vec<usize> = ["d", "fx", "m_base"]
+        .iter()
+        .map(|c| h.iter().position(|x| x == c).unwrap())
+        .collect();
+    let plain = d.join("plain.csv");
+    let mut s = String::from("d,fx,m_base\n");
+    for r in &rows {
+        s.push_str(
+            &keep
+                .iter()
+                .map(|&i| r[i].as_str())
+                .collect::<Vec<_>>()
+                .join(","),
+        );
+        s.push('\n');
+    }
+    std::fs::write(&plain, s).unwrap();
+    let g = ok(&["fit", "--trace", plain.to_str().unwrap(), "--json"]);
+    let v = json(&g.stdout);
+    assert_eq!(v["signals"], serde_json::json!(["fx", "m_base"]));
+    let ev = h.iter().position(|c| c == "event").unwrap();
+    let slips = rows.iter().filter(|r| r[ev] == "slip").count();
+    assert_eq!(v["slips"].as_u64().unwrap() as usize, slips);
+    close(v["params"][0]["value"].as_f64().unwrap(), 0.5, 1e-6, "mu_s");
+    close(v["params"][1]["value"].as_f64().unwrap(), 0.2, 1e-6, "mu_k");
+    let p = ok(&["fit", "--trace", t, "--places-only"]);
+    close(get(&p, "mu_k").0, 0.2, 1e-6, "mu_k from the places");
+    // one slip, the state before it only
+    let one = d.join("one.csv");
+    let first: Vec<&str> = text.lines().take(3).collect();
+    assert!(first[2].contains(",slip,"), "{first:?}");
+    std::fs::write(&one, first.join("\n") + "\n").unwrap();
+    let o = ok(&["fit", "--trace", one.to_str().unwrap()]);
+    let (vs, _, ids) = get(&o, "mu_s");
+    let (_, sek, idk) = get(&o, "mu_k");
+    close(vs, 0.5, 1e-6, "mu_s from one slip");
+    assert!(ids && !idk && sek.is_none(), "{}", o.stdout);
+    assert!(
+        o.stderr.contains("mu_k cannot be determined"),
+        "{}",
+        o.stderr
+    );
+    // a trace without slips
+    let none = d.join("none.csv");
+    std::fs::write(&none, "d,fx\n0,1\n0.1,2\n").unwrap();
+    let line = bad(&["fit", "--trace", none.to_str().unwrap()], 2);
+    assert!(line.contains("no slip"), "{line}");
+}
