@@ -1,0 +1,147 @@
+//! The drag's cost (issue 21: a 10-cycle drag at most 10× one uniform 201-point scan, same run):
+//! the paper's uniform rod at η = 0.75 with μs = 0.5, μk = 0.3, on the flat surface (10 slips,
+//! `d_max` half a cycle past the tenth, 201 output points) and on a corrugation (amplitude 0.01,
+//! wavelength 0.5, phase 2: stopped after its tenth slip), against `scan` with its defaults
+//! (d ∈ [0, 0.5], 201 points).
+//!
+//! The table printed first is measured in one interleaved run (round-robin, minimum of the
+//! repetitions) so that the ratios see the same machine load; criterion then times each.
+//!
+//! ```sh
+//! cargo bench -p vibrissa --bench drag
+//! ```
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+use vibrissa::surface::SurfaceProfile;
+use vibrissa::{drag, scan, DragOptions, Rod, ScanOptions, Scene, StopReason, Surface};
+
+enum Job {
+    Scan(ScanOptions),
+    Drag(DragOptions),
+}
+
+struct Case {
+    name: &'static str,
+    rod: Rod,
+    surface: Surface,
+    job: Job,
+}
+
+impl Case {
+    /// Runs it; the number of slips.
+    fn run(&self) -> usize {
+        match &self.job {
+            Job::Scan(o) => {
+                black_box(scan(&self.rod, &self.surface, o).expect("scan"));
+                0
+            }
+            Job::Drag(o) => black_box(drag(&self.rod, &self.surface, o).expect("drag"))
+                .slips
+                .len(),
+        }
+    }
+}
+
+/// The scan's slip displacement at `mu0` on the default scene.
+fn slip_at(rod: &Rod, surface: &Surface, mu0: f64) -> f64 {
+    let o = ScanOptions {
+        mu0: Some(mu0),
+        ..ScanOptions::default()
+    };
+    match scan(rod, surface, &o).expect("scan").stop {
+        StopReason::Slip { d, .. } => d,
+        s => panic!("no slip: {s}"),
+    }
+}
+
+fn cases() -> Vec<Case> {
+    let (rod, flat) = Scene::default().parts().expect("scene");
+    let (ds, dk) = (slip_at(&rod, &flat, 0.5), slip_at(&rod, &flat, 0.3));
+    let cycles = DragOptions {
+        points: 201,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        ..DragOptions::default()
+    };
+    let sine = Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.01,
+            wavelength: 0.5,
+            phase: 2.0,
+        },
+        ..Scene::default()
+    };
+    let corrugated = sine.surface().expect("corrugation");
+    vec![
+        Case {
+            name: "scan, 201 points",
+            rod: rod.clone(),
+            surface: flat,
+            job: Job::Scan(ScanOptions::default()),
+        },
+        Case {
+            name: "drag, flat, 10 cycles",
+            rod: rod.clone(),
+            surface: flat,
+            job: Job::Drag(DragOptions {
+                d_max: ds + 9.5 * (ds - dk),
+                ..cycles.clone()
+            }),
+        },
+        Case {
+            name: "drag, corrugated, 10 cycles",
+            rod,
+            surface: corrugated,
+            job: Job::Drag(DragOptions {
+                d_max: 1.0,
+                max_slips: 10,
+                ..cycles
+            }),
+        },
+    ]
+}
+
+/// Minimum time per run over `reps` round-robin repetitions of all cases.
+fn interleaved(cases: &[Case], reps: usize) -> Vec<Duration> {
+    let mut best = vec![Duration::MAX; cases.len()];
+    for _ in 0..reps {
+        for (c, b) in cases.iter().zip(best.iter_mut()) {
+            let t = Instant::now();
+            c.run();
+            *b = (*b).min(t.elapsed());
+        }
+    }
+    best
+}
+
+fn bench(c: &mut Criterion) {
+    let cases = cases();
+    let times = interleaved(&cases, 15);
+    println!(
+        "\n{:<30} {:>6} {:>10} {:>8}",
+        "case", "slips", "ms", "× scan"
+    );
+    // (the corrugated drag stops at its eleventh slip: max_slips)
+    for (i, case) in cases.iter().enumerate() {
+        println!(
+            "{:<30} {:>6} {:>10.3} {:>8.2}",
+            case.name,
+            case.run(),
+            times[i].as_secs_f64() * 1e3,
+            times[i].as_secs_f64() / times[0].as_secs_f64()
+        );
+    }
+    let mut g = c.benchmark_group("drag");
+    g.sample_size(10);
+    g.warm_up_time(Duration::from_millis(300));
+    g.measurement_time(Duration::from_secs(2));
+    for case in &cases {
+        g.bench_function(case.name, |b| b.iter(|| case.run()));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
