@@ -200,10 +200,11 @@ pub fn run(a: &DragArgs) -> Res<()> {
             )
         } else {
             format!(
-                "drag eta = {} ({}): {} slips, first at d = {:.6}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
+                "drag eta = {} ({}): {} slip{}, first at d = {:.6}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
                 sc.eta,
                 out.method,
                 s.cycles,
+                if s.cycles == 1 { "" } else { "s" },
                 r.slips[0].d,
                 s.jump_mean,
                 s.jump_std,
