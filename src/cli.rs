@@ -494,8 +494,8 @@ pub struct DragArgs {
     /// stdout (unless --json).
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,
-    /// Write the rod shapes of all rows to this CSV file (columns row, d, s, x, y, x_lab, phi,
-    /// kappa, m, event).
+    /// Write the rod shapes of all rows to this CSV file (columns point, d, s, x, y, x_lab, phi,
+    /// kappa, m, event, as scan's: point is the row's index in the drag's CSV).
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000] (needs --shapes).

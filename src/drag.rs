@@ -4,7 +4,7 @@
 use crate::cli::{DragArgs, FitArgs};
 use crate::error::{solve_fail, usage, Res};
 use crate::numeric;
-use crate::output::{csv_line, num, opt, AtomicFile, Sink};
+use crate::output::{csv_line, num, opt, Sink};
 use crate::scan::{mu_text, Stop, Work};
 use crate::scene_args::build_scene;
 use serde::Serialize;
@@ -141,23 +141,13 @@ pub fn run(a: &DragArgs) -> Res<()> {
         )));
     }
     if let Some(path) = &a.shapes {
-        let mut f = AtomicFile::create(path)?;
-        csv_line(
-            &mut f,
-            &[
-                "row", "d", "s", "x", "y", "x_lab", "phi", "kappa", "m", "event",
-            ],
+        crate::scan::write_shape_file(
+            path,
+            r.rows.iter().zip(&r.shapes).map(|(p, sh)| {
+                let rows = sh.iter().map(|q| [q.s, q.x, q.y, q.phi, q.kappa, q.m]);
+                (p.d, p.event.map_or("", |e| e.name()), rows.collect())
+            }),
         )?;
-        for (i, (p, sh)) in r.rows.iter().zip(&r.shapes).enumerate() {
-            let event = p.event.map_or("", |e| e.name());
-            for q in sh {
-                let mut v = vec![i.to_string()];
-                v.extend([p.d, q.s, q.x, q.y, q.x + p.d, q.phi, q.kappa, q.m].map(num));
-                v.push(event.to_string());
-                csv_line(&mut f, &v)?;
-            }
-        }
-        f.commit()?;
     }
     if a.out.is_some() || !a.json {
         let mut sink = Sink::open(a.out.as_deref())?;
@@ -192,13 +182,13 @@ pub fn run(a: &DragArgs) -> Res<()> {
     if a.json {
         writeln!(io::stdout(), "{}", serde_json::to_string_pretty(&out)?)?;
     } else {
-        let s = &r.summary;
-        let line = if s.cycles == 0 {
+        let line = if r.slips.is_empty() {
             format!(
                 "drag eta = {} ({}): no slip up to d = {}; {} rows; stopped: {}; {:.1} ms",
                 sc.eta, out.method, a.d_max, out.rows, out.stop.detail, out.time_ms
             )
         } else {
+            let s = &r.summary;
             format!(
                 "drag eta = {} ({}): {} slip{}, first at d = {:.6}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
                 sc.eta,

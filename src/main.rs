@@ -80,14 +80,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         }
         Command::Scan(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
-            let mut outs = Vec::new();
-            if let Some(p) = &a.out {
-                outs.push(("--out", p.as_path()));
-            }
-            if let Some(p) = &a.shapes {
-                outs.push(("--shapes", p.as_path()));
-            }
-            outputs::plan(&outs, false)?;
+            plan_table(&a.out, &a.shapes)?;
         }
         Command::Infer(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
@@ -98,28 +91,14 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         }
         Command::Whisk(a) => {
             scene_args::build_scene(&a.scene, None)?;
-            let mut outs = Vec::new();
-            if let Some(p) = &a.out {
-                outs.push(("--out", p.as_path()));
-            }
-            if let Some(p) = &a.shapes {
-                outs.push(("--shapes", p.as_path()));
-            }
-            outputs::plan(&outs, false)?;
+            plan_table(&a.out, &a.shapes)?;
         }
         Command::Locate(a) => {
             scene_args::build_scene(&a.scene, None)?;
         }
         Command::Drag(a) => {
             drag::scene(a)?;
-            let mut outs = Vec::new();
-            if let Some(p) = &a.out {
-                outs.push(("--out", p.as_path()));
-            }
-            if let Some(p) = &a.shapes {
-                outs.push(("--shapes", p.as_path()));
-            }
-            outputs::plan(&outs, false)?;
+            plan_table(&a.out, &a.shapes)?;
         }
         Command::Fit(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
@@ -127,6 +106,18 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
+}
+
+/// The files of a command with `--out` and `--shapes` (see `outputs::plan`).
+fn plan_table(out: &Option<std::path::PathBuf>, shapes: &Option<std::path::PathBuf>) -> Res<()> {
+    let mut outs = Vec::new();
+    if let Some(p) = out {
+        outs.push(("--out", p.as_path()));
+    }
+    if let Some(p) = shapes {
+        outs.push(("--shapes", p.as_path()));
+    }
+    outputs::plan(&outs, false)
 }
 
 fn run(mut cli: Cli) -> Res<()> {

@@ -270,6 +270,21 @@ pub fn write_points<W: Write>(w: &mut W, out: &ScanOut, u: Option<Units>) -> Res
 /// Write the shapes CSV: point index, d, then the shape in the foot frame (x, y) and in the lab
 /// frame (x_lab = x + d: the foot started at 0, the tip stays put), and the point's event.
 pub fn write_shapes(path: &std::path::Path, out: &ScanOut) -> Res<()> {
+    write_shape_file(
+        path,
+        out.pts.iter().zip(&out.shapes).map(|(p, sh)| {
+            let rows = sh.iter().map(|q| [q.s, q.x, q.y, q.phi, q.kappa, q.m]);
+            (p.d, p.event.map_or("", |e| e.name()), rows.collect())
+        }),
+    )
+}
+
+/// The shapes file of a scan or a drag (columns point, d, s, x, y, x_lab, phi, kappa, m, event;
+/// `vibrissa plot` reads it): one `(d, event, samples [s, x, y, φ, κ, m])` per point.
+pub fn write_shape_file<'a>(
+    path: &std::path::Path,
+    points: impl Iterator<Item = (f64, &'a str, Vec<[f64; 6]>)>,
+) -> Res<()> {
     let mut f = AtomicFile::create(path)?;
     csv_line(
         &mut f,
@@ -277,11 +292,10 @@ pub fn write_shapes(path: &std::path::Path, out: &ScanOut) -> Res<()> {
             "point", "d", "s", "x", "y", "x_lab", "phi", "kappa", "m", "event",
         ],
     )?;
-    for (i, (p, sh)) in out.pts.iter().zip(&out.shapes).enumerate() {
-        let event = p.event.map_or("", |e| e.name());
-        for q in sh {
+    for (i, (d, event, sh)) in points.enumerate() {
+        for [s, x, y, phi, kappa, m] in sh {
             let mut r = vec![i.to_string()];
-            r.extend([p.d, q.s, q.x, q.y, q.x + p.d, q.phi, q.kappa, q.m].map(num));
+            r.extend([d, s, x, y, x + d, phi, kappa, m].map(num));
             r.push(event.to_string());
             csv_line(&mut f, &r)?;
         }

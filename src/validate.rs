@@ -426,25 +426,46 @@ fn scan(a: &mut ScanArgs) -> Res<()> {
     tol(a.solver.tol)?;
     check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
     mu0(&mut a.mu0)?;
-    if a.out.as_deref().is_some_and(is_stdout) {
-        if a.json {
-            return Err(usage(
-                "--out - with --json would put the scan's CSV and its JSON summary on the same stdout; give --out a file name (the JSON then names it), or leave out --out - (--json alone prints only the summary)",
-            ));
+    table_outputs(
+        "scan",
+        &mut a.out,
+        a.json,
+        a.shapes.as_deref(),
+        a.points,
+        a.shape_points,
+    )
+}
+
+/// The outputs of a command with a table (`--out`, `-` for stdout), a `--json` summary and
+/// `--shapes`: `--out -` means stdout (not with `--json`), `--shapes` needs a file, and the shapes
+/// must fit the memory budget.
+fn table_outputs(
+    what: &str,
+    out: &mut Option<std::path::PathBuf>,
+    json: bool,
+    shapes: Option<&Path>,
+    points: u32,
+    shape_points: u32,
+) -> Res<()> {
+    if out.as_deref().is_some_and(is_stdout) {
+        if json {
+            return Err(usage(format!(
+                "--out - with --json would put the {what}'s CSV and its JSON summary on the same stdout; give --out a file name (the JSON then names it), or leave out --out - (--json alone prints only the summary)"
+            )));
         }
-        a.out = None;
+        *out = None;
     }
-    if a.shapes.as_deref().is_some_and(is_stdout) {
-        return Err(usage(
-            "--shapes - would share stdout with the scan's table or summary; give it a file name",
-        ));
+    if shapes.is_some_and(is_stdout) {
+        return Err(usage(format!(
+            "--shapes - would share stdout with the {what}'s table or summary; give it a file name"
+        )));
     }
-    if a.shapes.is_some() {
+    if shapes.is_some() {
         budget(
             "--points",
-            a.points as u64,
+            points as u64,
             "--shape-points",
-            a.shape_points as u64,
+            shape_points as u64,
             "shape samples",
             BYTES_PER_SHAPE_SAMPLE,
         )?;
@@ -522,30 +543,14 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
             "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
         ));
     }
-    if a.out.as_deref().is_some_and(is_stdout) {
-        if a.json {
-            return Err(usage(
-                "--out - with --json would put the drag's CSV and its JSON summary on the same stdout; give --out a file name",
-            ));
-        }
-        a.out = None;
-    }
-    if a.shapes.as_deref().is_some_and(is_stdout) {
-        return Err(usage(
-            "--shapes - would share stdout with the drag's table or summary; give it a file name",
-        ));
-    }
-    if a.shapes.is_some() {
-        budget(
-            "--points",
-            a.points as u64,
-            "--shape-points",
-            a.shape_points as u64,
-            "shape samples",
-            BYTES_PER_SHAPE_SAMPLE,
-        )?;
-    }
-    Ok(())
+    table_outputs(
+        "drag",
+        &mut a.out,
+        a.json,
+        a.shapes.as_deref(),
+        a.points,
+        a.shape_points,
+    )
 }
 
 fn infer(a: &mut InferArgs) -> Res<()> {

@@ -151,8 +151,20 @@ fn drag_json_summary_and_energy() {
     }
     // one shape of 5 samples per row
     let (hs, srows) = csv(&std::fs::read_to_string(&shapes).unwrap());
-    assert_eq!(hs[0], "row");
+    assert_eq!(hs[0], "point");
     assert_eq!(srows.len(), 5 * rows.len());
+    // the pictures: the sawtooth with every slip marked, the rod at the slips
+    ok(&["plot", out.to_str().unwrap()]);
+    let svg = std::fs::read_to_string(d.join("drag.svg")).unwrap();
+    assert!(svg.contains(&format!("slip ({n})")), "no slip legend");
+    let sel = (0..rows.len())
+        .filter(|&i| rows[i][ev] == "slip")
+        .map(|i| i.to_string())
+        .collect::<Vec<_>>()
+        .join(",");
+    ok(&["plot", shapes.to_str().unwrap(), "--select", &sel]);
+    let svg = std::fs::read_to_string(d.join("shapes.svg")).unwrap();
+    assert!(svg.contains("slip"), "no slip in the shapes' legend");
 }
 
 /// A corrugation from the flags is the scene file's `[surface]` of kind sine; a two-patch

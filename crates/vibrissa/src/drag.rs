@@ -321,9 +321,10 @@ impl fmt::Display for DragResult {
         let s = &self.summary;
         write!(
             f,
-            "{} slips; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy \
+            "{} slip{}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy \
              {:.6e} ± {:.2e}; stopped: {}; {} Newton iterations",
             s.cycles,
+            if s.cycles == 1 { "" } else { "s" },
             s.jump_mean,
             s.jump_std,
             s.drop_fx_mean,
