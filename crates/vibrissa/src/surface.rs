@@ -824,14 +824,25 @@ pub(crate) fn curve_clearance(
     let mut best = (f64::NEG_INFINITY, f64::NAN);
     for w in pts.windows(2) {
         let ((sa, za, ga), (sb, zb, gb)) = (w[0], w[1]);
-        if !(ga > 0.0 && gb <= 0.0) {
-            continue;
-        }
-        // start on the higher end, Newton on the slope (g'' = κ(cos φ + h' sin φ) − h'' cos² φ)
-        let s0 = if gap(&za) >= gap(&zb) { sa } else { sb };
+        let s0 = if ga > 0.0 && gb <= 0.0 {
+            // start on the higher end
+            if gap(&za) >= gap(&zb) {
+                sa
+            } else {
+                sb
+            }
+        } else {
+            // a maximum and a minimum between the same two samples (a pair just born, or
+            // born out of a contact): the cubic through the values and slopes shows them
+            match hermite_max(sb - sa, [gap(&za), ga], [gap(&zb), gb]) {
+                Some(t) => sa + t * (sb - sa),
+                None => continue,
+            }
+        };
         if skip(s0) && skip(sa) && skip(sb) {
             continue;
         }
+        // Newton on the slope (g'' = κ(cos φ + h' sin φ) − h'' cos² φ)
         let (mut s1, mut z1) = (s0, exact(s0));
         for _ in 0..16 {
             let (_, d, dd) = h.jet_scaled(z1[0], amp);
@@ -860,9 +871,50 @@ pub(crate) fn curve_clearance(
     best
 }
 
+/// Where the cubic Hermite interpolant on an interval of length `h` through the values and
+/// slopes `(g, g')` at its ends has a local maximum inside, as a fraction `t ∈ (0, 1)`.
+fn hermite_max(h: f64, [g0, m0]: [f64; 2], [g1, m1]: [f64; 2]) -> Option<f64> {
+    // p'(t) = A t² + B t + C, p''(t) = 2 A t + B
+    let a = 6.0 * (g0 - g1) + 3.0 * h * (m0 + m1);
+    let b = 6.0 * (g1 - g0) - h * (4.0 * m0 + 2.0 * m1);
+    let c = h * m0;
+    let roots: Vec<f64> = if a.abs() <= 1e-300 {
+        (b != 0.0).then(|| -c / b).into_iter().collect()
+    } else {
+        let disc = b * b - 4.0 * a * c;
+        if disc < 0.0 {
+            return None;
+        }
+        // (the stable pair of the quadratic's roots)
+        let q = -0.5 * (b + b.signum() * disc.sqrt());
+        let mut r = vec![q / a];
+        if q != 0.0 {
+            r.push(c / q);
+        }
+        r
+    };
+    roots
+        .into_iter()
+        .find(|&t| t > 0.0 && t < 1.0 && 2.0 * a * t + b < 0.0)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A cubic is its own Hermite interpolant: p(t) = −t³ + 1.5t² − 0.54t falls at both ends
+    /// (p' = −0.54) and has its maximum inside at t = (1 + √0.28)/2 (p' = 0, p'' < 0).
+    #[test]
+    fn hermite_max_finds_a_maximum_between_falling_ends() {
+        let p = |t: f64| -t * t * t + 1.5 * t * t - 0.54 * t;
+        for h in [1.0, 1e-3] {
+            // on [0, h] in s: slopes scale by 1/h
+            let t = hermite_max(h, [p(0.0), -0.54 / h], [p(1.0), -0.54 / h]).unwrap();
+            assert!((t - (1.0 + 0.28f64.sqrt()) / 2.0).abs() < 1e-12, "{t}");
+        }
+        // a monotone cubic has none
+        assert_eq!(hermite_max(1.0, [0.0, -1.0], [-1.0, -1.0]), None);
+    }
 
     #[test]
     fn sine_arc_length_matches_a_fine_sum() {
