@@ -4,7 +4,7 @@
 //! wavelength 0.5, phase 2: stopped after its tenth slip), against `scan` with its defaults
 //! (d ∈ [0, 0.5], 201 points).
 //!
-//! The table printed first is measured in one interleaved run (round-robin, minimum of the
+//! The table printed first is measured in one interleaved run (round-robin, minimum of 40
 //! repetitions) so that the ratios see the same machine load; criterion then times each.
 //!
 //! ```sh
@@ -118,7 +118,7 @@ fn interleaved(cases: &[Case], reps: usize) -> Vec<Duration> {
 
 fn bench(c: &mut Criterion) {
     let cases = cases();
-    let times = interleaved(&cases, 15);
+    let times = interleaved(&cases, 40);
     println!(
         "\n{:<30} {:>6} {:>10} {:>8}",
         "case", "slips", "ms", "× scan"

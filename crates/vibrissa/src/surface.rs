@@ -787,9 +787,10 @@ pub(crate) fn intern_texture(t: Texture) -> &'static Texture {
 /// where: the maxima are where the exact slope of the gap `sin φ − h' cos φ` turns from rising to
 /// falling between samples of the interpolant `sample(s) = (x_lab, y, φ, κ)` — `n + 1` even
 /// ones and eight times finer within two intervals of each contact at `near` (where a maximum
-/// is born out of a contact and stays narrow) — refined on the rod (`exact`, same layout; Newton
-/// on the slope). Points near `skip(s)` (the contacts) and outside the surface's domain do not
-/// count.
+/// is born out of a contact and stays narrow) — or, a maximum and a minimum between the same two
+/// samples, where the cubic through their values and slopes has its maximum; those within 1e-3
+/// of the surface refined on the rod (`exact`, same layout; Newton on the slope). Points near
+/// `skip(s)` (the contacts) and outside the surface's domain do not count.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn curve_clearance(
     h: &Height,
@@ -840,6 +841,14 @@ pub(crate) fn curve_clearance(
             }
         };
         if skip(s0) && skip(sa) && skip(sb) {
+            continue;
+        }
+        let z0 = sample(s0);
+        if gap(&z0) < -1e-3 {
+            // far below the surface the interpolant's error (~1e-8) does not matter
+            if !skip(s0) && h.covers(z0[0]) && gap(&z0) > best.0 {
+                best = (gap(&z0), s0);
+            }
             continue;
         }
         // Newton on the slope (g'' = κ(cos φ + h' sin φ) − h'' cos² φ)
