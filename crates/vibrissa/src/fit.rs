@@ -300,11 +300,14 @@ impl Model<'_> {
     /// signals as zero; a drag that fails gives large residuals, so that a line search backs
     /// off).
     fn residuals(&self, v: [f64; 4]) -> DVector<f64> {
-        let r = match self.drag_at(v) {
-            Ok(r) => r,
-            Err(_) => return DVector::from_element(self.obs.len(), 1e6),
-        };
-        DVector::from_iterator(
+        self.residuals_of(v)
+            .unwrap_or_else(|_| DVector::from_element(self.obs.len(), 1e6))
+    }
+
+    /// The weighted residuals, or why the drag at `v` fails.
+    fn residuals_of(&self, v: [f64; 4]) -> Result<DVector<f64>, VibrissaError> {
+        let r = self.drag_at(v)?;
+        Ok(DVector::from_iterator(
             self.obs.len(),
             self.obs.iter().map(|&(o, y)| {
                 let sig = |k: usize, s: usize, after: bool| -> f64 {
@@ -320,11 +323,11 @@ impl Model<'_> {
                 };
                 (y - m) / self.sigma[o.kind()]
             }),
-        )
+        ))
     }
 
     /// `∂r/∂(natural free parameters)` by central differences.
-    fn jacobian_natural(&self, v: [f64; 4]) -> DMatrix<f64> {
+    fn jacobian_natural(&self, v: [f64; 4]) -> Result<DMatrix<f64>, VibrissaError> {
         let mut j = DMatrix::zeros(self.obs.len(), self.free.len());
         for (c, p) in self.free.iter().enumerate() {
             let i = match p {
@@ -337,10 +340,23 @@ impl Model<'_> {
             let (mut a, mut b) = (v, v);
             a[i] += h;
             b[i] -= h;
-            let col = (self.residuals(a) - self.residuals(b)) / (2.0 * h);
+            // (a failed drag there is an error, not a parameter the signals do not see)
+            let at = |w: [f64; 4]| {
+                self.residuals_of(w)
+                    .map_err(|e| VibrissaError::NoConvergence {
+                        what: format!(
+                            "the fit's derivative in {} (the drag at {} = {})",
+                            p.name(),
+                            p.name(),
+                            w[i]
+                        ),
+                        reason: e.to_string(),
+                    })
+            };
+            let col = (at(a)? - at(b)?) / (2.0 * h);
             j.set_column(c, &col);
         }
-        j
+        Ok(j)
     }
 }
 
@@ -383,7 +399,7 @@ impl Jacobian for Ls<'_, '_> {
 
 /// The parameters carrying the null direction of `j` (columns scaled to unit norm), if its
 /// singular values fall below 1e-7 of the largest.
-fn unidentifiable(j: &DMatrix<f64>, free: &[Par]) -> Option<Vec<usize>> {
+fn unidentifiable(j: &DMatrix<f64>) -> Option<Vec<usize>> {
     let n = j.ncols();
     let norms: Vec<f64> = (0..n).map(|c| j.column(c).norm()).collect();
     // a zero column: that parameter does nothing
@@ -410,7 +426,6 @@ fn unidentifiable(j: &DMatrix<f64>, free: &[Par]) -> Option<Vec<usize>> {
     }
     let vt = svd.v_t?;
     let v = vt.row(imin);
-    let _ = free;
     Some((0..n).filter(|&c| v[c].abs() > 0.3).collect())
 }
 
@@ -549,10 +564,10 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
     };
     let n = model.obs.len();
     // identifiability at the start: hold what the signals do not determine
-    let j0 = model.jacobian_natural(model.base);
+    let j0 = model.jacobian_natural(model.base)?;
     let mut message = None;
     let mut held = Vec::new();
-    if let Some(bad) = unidentifiable(&j0, &model.free) {
+    if let Some(bad) = unidentifiable(&j0) {
         let names: Vec<&str> = bad.iter().map(|&c| model.free[c].name()).collect();
         let slips = trace.slips.len();
         let after = trace
@@ -675,7 +690,7 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
             None => note.to_string(),
         });
     }
-    let j = model.jacobian_natural(v);
+    let j = model.jacobian_natural(v)?;
     let cov = (j.transpose() * &j).try_inverse();
     let mut params = Vec::new();
     for par in [Par::MuS, Par::MuK, Par::Eta, Par::Angle] {

@@ -136,3 +136,55 @@ fn one_slip_names_what_it_cannot_determine() {
         "{f2}"
     );
 }
+
+/// The inclination from a noiseless trace on a surface inclined by 0.05 rad, started at 0.045:
+/// μs, μk and β back to 1e-7.
+#[test]
+fn fit_angle_recovers_the_inclination() {
+    let inclined = Scene {
+        surface_angle: 0.05,
+        ..Scene::default()
+    };
+    let (rod, surface) = inclined.parts().unwrap();
+    let r = drag(
+        &rod,
+        &surface,
+        &DragOptions {
+            d_max: 0.06,
+            points: 2,
+            mu_s: Some(0.5),
+            mu_k: Some(0.2),
+            ..DragOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(r.slips.len() >= 3, "{r}");
+    let t = Trace {
+        slips: r
+            .slips
+            .iter()
+            .map(|e| TraceSlip {
+                d: e.d,
+                before: [Some(e.before.fx), Some(e.before.fy), None],
+                after: [Some(e.after.fx), None, None],
+            })
+            .collect(),
+    };
+    let start = Scene {
+        surface_angle: 0.045,
+        ..Scene::default()
+    };
+    let f = fit(
+        &start,
+        &t,
+        &FitOptions {
+            fit_angle: true,
+            ..FitOptions::default()
+        },
+    )
+    .unwrap();
+    for (name, want) in [("mu_s", 0.5), ("mu_k", 0.2), ("surface_angle", 0.05)] {
+        let p = f.get(name).unwrap();
+        assert!(p.identifiable && (p.value - want).abs() < 1e-7, "{f}");
+    }
+}
