@@ -815,19 +815,20 @@ pub(crate) fn curve_clearance(
     ss.retain(|s| (0.0..=1.0).contains(s));
     ss.sort_by(f64::total_cmp);
     ss.dedup();
-    let pts: Vec<(f64, [f64; 4], f64)> = ss
+    // (s, gap, slope)
+    let pts: Vec<(f64, f64, f64)> = ss
         .into_iter()
         .map(|s| {
             let z = sample(s);
-            (s, z, slope(&z))
+            (s, gap(&z), slope(&z))
         })
         .collect();
     let mut best = (f64::NEG_INFINITY, f64::NAN);
     for w in pts.windows(2) {
-        let ((sa, za, ga), (sb, zb, gb)) = (w[0], w[1]);
+        let ((sa, va, ga), (sb, vb, gb)) = (w[0], w[1]);
         let s0 = if ga > 0.0 && gb <= 0.0 {
             // start on the higher end
-            if gap(&za) >= gap(&zb) {
+            if va >= vb {
                 sa
             } else {
                 sb
@@ -835,7 +836,7 @@ pub(crate) fn curve_clearance(
         } else {
             // a maximum and a minimum between the same two samples (a pair just born, or
             // born out of a contact): the cubic through the values and slopes shows them
-            match hermite_max(sb - sa, [gap(&za), ga], [gap(&zb), gb]) {
+            match hermite_max(sb - sa, [va, ga], [vb, gb]) {
                 Some(t) => sa + t * (sb - sa),
                 None => continue,
             }
@@ -887,8 +888,8 @@ fn hermite_max(h: f64, [g0, m0]: [f64; 2], [g1, m1]: [f64; 2]) -> Option<f64> {
     let a = 6.0 * (g0 - g1) + 3.0 * h * (m0 + m1);
     let b = 6.0 * (g1 - g0) - h * (4.0 * m0 + 2.0 * m1);
     let c = h * m0;
-    let roots: Vec<f64> = if a.abs() <= 1e-300 {
-        (b != 0.0).then(|| -c / b).into_iter().collect()
+    let roots = if a.abs() <= 1e-300 {
+        [(b != 0.0).then(|| -c / b), None]
     } else {
         let disc = b * b - 4.0 * a * c;
         if disc < 0.0 {
@@ -896,14 +897,11 @@ fn hermite_max(h: f64, [g0, m0]: [f64; 2], [g1, m1]: [f64; 2]) -> Option<f64> {
         }
         // (the stable pair of the quadratic's roots)
         let q = -0.5 * (b + b.signum() * disc.sqrt());
-        let mut r = vec![q / a];
-        if q != 0.0 {
-            r.push(c / q);
-        }
-        r
+        [Some(q / a), (q != 0.0).then(|| c / q)]
     };
     roots
         .into_iter()
+        .flatten()
         .find(|&t| t > 0.0 && t < 1.0 && 2.0 * a * t + b < 0.0)
 }
 
