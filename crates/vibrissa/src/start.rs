@@ -28,6 +28,9 @@ use crate::VibrissaError;
 use bvp::Stats;
 use std::f64::consts::FRAC_PI_2;
 
+/// Below this inclination (rad) a straight rod's press starts on the buckled branch.
+const NEARLY_SYMMETRIC: f64 = 0.1;
+
 /// How a press is set up.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PressSpec {
@@ -159,18 +162,46 @@ pub(crate) fn press<P: Profile>(
     // the side a symmetric rod buckles to: the right (the paper's), unless the goal is a tip
     // slope only the left-bent rod reaches
     let left = matches!(spec.goal, Goal::TipSlope(p, _) if p > FRAC_PI_2);
-    let (lam0, u0) = if symmetric {
-        buckled_start(&mut chain, top, ntol, (0.1 * room).min(1e-3), left)?
-    } else if contact.tip {
-        // a small load: at zero load a straight tip's height is stationary under a transverse
-        // force (it falls as the load squared), which no Newton iteration in the height resolves
-        loaded_start(&mut chain, top, ntol, 1e-3)?
-    } else {
-        (0.0, vec![0.0, 0.0, 0.0, s_top])
+    // a straight rod on a nearly horizontal line meets it almost axially: its path passes close
+    // by the buckling point (an imperfect bifurcation), which a march from a small load can step
+    // past onto another branch; it starts on the buckled branch too, bent the way the line's
+    // inclination pushes its tip (to the left for β < 0)
+    let nearly = !symmetric
+        && gb == spec.force_beta
+        && gb.abs() < NEARLY_SYMMETRIC
+        && s_top == 1.0
+        && profile.straight();
+    let first = |chain: &mut Chain<P>, buckled: Option<f64>| -> Result<_, VibrissaError> {
+        let (lam0, u0) = if let Some(drop) = buckled {
+            let left = if nearly { gb < 0.0 } else { left };
+            buckled_start(chain, top, ntol, drop, left)?
+        } else if contact.tip {
+            // a small load: at zero load a straight tip's height is stationary under a transverse
+            // force (it falls as the load squared), which no Newton iteration in the height
+            // resolves
+            loaded_start(chain, top, ntol, 1e-3)?
+        } else {
+            (0.0, vec![0.0, 0.0, 0.0, s_top])
+        };
+        let cv = solve_damped(chain, lam0, &u0, ntol, 40).map_err(|e| VibrissaError::NoStart {
+            reason: format!("the first point of the press did not converge: {e}"),
+        })?;
+        Ok((lam0, cv))
     };
-    let cv = solve_damped(&mut chain, lam0, &u0, ntol, 40).map_err(|e| VibrissaError::NoStart {
-        reason: format!("the first point of the press did not converge: {e}"),
-    })?;
+    let drop = (0.1 * room).min(1e-3);
+    let (lam0, cv) = if symmetric {
+        first(&mut chain, Some(drop))?
+    } else if nearly {
+        // the inclined line's state next to the buckled one: closer the more it is bent (the
+        // inclination's share of the bending smaller); else from a small load after all
+        [drop, 1e-2, 3e-2]
+            .into_iter()
+            .filter(|&dr| dr <= 0.2 * room)
+            .find_map(|dr| first(&mut chain, Some(dr)).ok())
+            .map_or_else(|| first(&mut chain, None), Ok)?
+    } else {
+        first(&mut chain, None)?
+    };
     // a slope goal approached from the side the first point is on
     let goal = match spec.goal {
         Goal::TipSlope(p, _) => {

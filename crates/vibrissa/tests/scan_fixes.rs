@@ -276,3 +276,47 @@ fn fold_in_d_is_found_where_d_is_largest_on_the_branch() {
         "scan fold at d = {d_fold}, reference {d_ref}"
     );
 }
+
+/// The straight rod pressed onto a nearly horizontal line (the press passes close by the
+/// buckling point): its start is the mirror image of the one on the line inclined the other
+/// way (x → −x: the same force, φ → π − φ, to 1e-9), and it tends to the horizontal line's
+/// (bent right) as β → 0+ (|Δf| ≤ 10 β). It used to fail to start for β = 1e-9 or 1e-7 and to
+/// press on to a wrong branch (f = 1767) at β = 1e-4.
+#[test]
+fn press_on_a_nearly_horizontal_line_is_continuous_and_mirror_symmetric() {
+    let start = |beta: f64| {
+        let s = Scene {
+            surface_angle: beta,
+            ..Scene::default()
+        };
+        let (rod, surface) = s.parts().unwrap();
+        let o = ScanOptions {
+            d_max: 0.01,
+            points: 2,
+            ..ScanOptions::default()
+        };
+        scan(&rod, &surface, &o).unwrap().start
+    };
+    let flat = start(0.0);
+    for beta in [1e-9, 1e-7, 1e-4, 1e-3] {
+        let (p, m) = (start(beta), start(-beta));
+        assert!(
+            (p.f - m.f).abs() < 1e-9,
+            "beta {beta}: f {} vs {}",
+            p.f,
+            m.f
+        );
+        assert!(
+            (p.phi1 - (std::f64::consts::PI - m.phi1)).abs() < 1e-9,
+            "beta {beta}: phi1 {} vs {}",
+            p.phi1,
+            m.phi1
+        );
+        assert!(
+            (p.f - flat.f).abs() <= 10.0 * beta && p.phi1 < std::f64::consts::FRAC_PI_2,
+            "beta {beta}: f {} (flat {})",
+            p.f,
+            flat.f
+        );
+    }
+}
