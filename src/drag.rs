@@ -269,8 +269,10 @@ pub fn read_trace(text: &str, name: &str, use_sig: &[bool; 3]) -> Res<Trace> {
                 if r.3 != "slip" {
                     continue;
                 }
+                // the state after it: its slip_end row, before any next slip
                 let after = rows[k + 1..]
                     .iter()
+                    .take_while(|q| q.3 != "slip")
                     .find(|q| q.3 == "slip_end")
                     .map_or([None; 3], |q| q.2);
                 slips.push(TraceSlip {
