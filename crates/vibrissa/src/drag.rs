@@ -184,11 +184,14 @@ pub enum DragEvent {
 }
 
 impl DragEvent {
-    /// The name in CSV and JSON: `slip`, `slip_end`, or the scan's event names.
+    /// The name in CSV and JSON: `slip`, `slip_end`, or the scan's event names (a contact at its
+    /// slip limit where the drag ends without a slip — a side's, or the tip's after `max_slips` —
+    /// is `slip_limit`: `slip` is a slip that happened).
     pub fn name(self) -> &'static str {
         match self {
             DragEvent::Slip => "slip",
             DragEvent::SlipEnd => "slip_end",
+            DragEvent::Contact(Event::Slip) => "slip_limit",
             DragEvent::Contact(e) => e.name(),
         }
     }
