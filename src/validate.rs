@@ -477,7 +477,7 @@ fn table_outputs(
 pub const DRAG_D_MAX: Range =
     Range::new(0.0, false, vibrissa::drag::MAX_DRAG, true).why("rod lengths");
 /// Static friction coefficient of a drag.
-pub const MU_S: Range = Range::new(0.0, true, 100.0, true);
+pub const MU_S: Range = Range::new(0.0, true, vibrissa::drag::MAX_MU_S, true);
 /// Amplitude of a corrugation (rod lengths).
 pub const CORRUGATION_AMPLITUDE: Range = Range::new(-0.2, true, 0.2, true).why("rod lengths");
 /// Wavelength of a corrugation (rod lengths).

@@ -40,6 +40,8 @@ use std::fmt;
 
 /// Largest foot displacement of a drag (rod lengths).
 pub const MAX_DRAG: f64 = 1000.0;
+/// Largest static friction coefficient of a drag.
+pub const MAX_MU_S: f64 = 100.0;
 /// Longest slip the march follows (rod lengths along the surface) before it calls the slip
 /// unbounded.
 pub const MAX_SLIP: f64 = 4.0;
@@ -105,8 +107,8 @@ impl DragOptions {
         match (self.mu_s, self.mu_k) {
             (None, None) => {}
             (Some(s), Some(k)) => {
-                if !(s.is_finite() && (0.0..=100.0).contains(&s)) {
-                    return Err(VibrissaError::range("mu_s", s, "[0, 100]"));
+                if !(s.is_finite() && (0.0..=MAX_MU_S).contains(&s)) {
+                    return Err(VibrissaError::range("mu_s", s, format!("[0, {MAX_MU_S}]")));
                 }
                 if !(k.is_finite() && k >= 0.0 && k < s) {
                     return Err(VibrissaError::range(

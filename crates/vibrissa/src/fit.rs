@@ -28,7 +28,7 @@
 //! from the second (the scan's ratio at `d_1 − (d_2 − d_1)`, the place the flat surface's slip
 //! goes back to), else `0.6 μs`.
 
-use crate::drag::{drag, DragOptions, DragResult};
+use crate::drag::{drag, DragOptions, DragResult, MAX_MU_S};
 use crate::report::{ContactModel, ScanOptions};
 use crate::{Scene, SolverConfig, VibrissaError};
 use argmin::core::{CostFunction, Error as ArgminError, Executor, Jacobian, Operator, State};
@@ -673,6 +673,17 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
         }
     }
     let v = model.natural(&x);
+    if v[0] > 0.99 * MAX_MU_S {
+        // the drag's own limit: nothing in the trace is matched there
+        return Err(VibrissaError::NoConvergence {
+            what: "the least-squares fit".into(),
+            reason: format!(
+                "mu_s ran to {} at the limit {MAX_MU_S}: the trace does not match the scene (its \
+                 eta, surface_angle or rod)",
+                v[0]
+            ),
+        });
+    }
     let used_sigma = model.sigma;
     model.sigma = model.sigma.map(|s| if s.is_nan() { 1.0 } else { s });
     let r = model.residuals(v);
