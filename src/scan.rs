@@ -31,7 +31,7 @@ fn finite(p: &Pt) -> bool {
 }
 
 /// μ as written: `inf`/`-inf` at lift-off, where it is unbounded.
-fn mu_text(mu: f64) -> String {
+pub(crate) fn mu_text(mu: f64) -> String {
     if mu.is_infinite() {
         if mu > 0.0 { "inf" } else { "-inf" }.to_string()
     } else {

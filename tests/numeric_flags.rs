@@ -31,6 +31,8 @@ fn base(cmd: &str) -> Vec<(&'static str, &'static str)> {
             ("tests/fixtures/plot/shapes.csv", ""),
             ("--out", "/dev/null"),
         ],
+        "whisk" => vec![("--peg", "0.1,0.4"), ("--points", "3")],
+        "locate" => vec![("--m-base", "0.1"), ("--fx", "-0.2"), ("--fy", "0")],
         _ => vec![],
     }
 }

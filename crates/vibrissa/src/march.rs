@@ -511,6 +511,13 @@ impl<P: Profile> Run<'_, '_, P> {
                         // N = 0 exactly there: the friction ratio is unbounded
                         pe.w.normal = 0.0;
                         pe.w.mu = f64::INFINITY.copysign(pe.w.mu);
+                        if let Some(c) =
+                            pe.w.contacts
+                                .iter_mut()
+                                .min_by(|a, b| a.normal.total_cmp(&b.normal))
+                        {
+                            c.normal = 0.0;
+                        }
                     }
                     self.range.see(&pe.w);
                     self.range.close(RangeEnd::Event);
@@ -930,7 +937,11 @@ pub(crate) fn scan_point<P: Profile>(
     let mu_peak = w
         .contacts
         .iter()
-        .map(|c| (c.tangential / c.normal).abs())
+        .map(|c| match c.normal {
+            // lift-off: unbounded unless no tangential force is needed
+            0.0 if c.tangential == 0.0 => 0.0,
+            n => (c.tangential / n).abs(),
+        })
         .fold(0.0, f64::max);
     ScanPoint {
         d: p.lam,

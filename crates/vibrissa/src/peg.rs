@@ -295,7 +295,7 @@ fn whisk_with<P: Profile>(
     if theta_t > opts.theta_max {
         return Err(VibrissaError::OutOfReach {
             what: format!(
-                "the object at ({}, {}) is first touched at theta = {theta_t}, beyond theta = {}",
+                "the object at ({}, {}) is first touched at theta = {theta_t}, beyond theta_max = {}",
                 peg[0], peg[1], opts.theta_max
             ),
             reach: opts.theta_max,
@@ -558,12 +558,14 @@ fn locate_with<P: Profile>(
         Some((_, s, z)) => Ok((z[0], z[1], s)),
         None => Err(VibrissaError::OutOfReach {
             what: format!(
-                "the base signals (m_base = {m_base}, force = ({}, {})) fit no contact on the rod: \
-                 the moment does not vanish along it",
+                "the base signals (m_base = {m_base}, fx = {}, fy = {}) fit no contact on the rod: \
+                 the moment does not vanish along it (the reach is its smallest |m|)",
                 force[0], force[1]
             ),
-            reach: 1.0,
-            needed: f64::NAN,
+            reach: (0..ps.len())
+                .map(|i| pz[4 * i + 3].abs())
+                .fold(f64::INFINITY, f64::min),
+            needed: 0.0,
         }),
     }
 }

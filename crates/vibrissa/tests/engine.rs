@@ -310,6 +310,28 @@ fn precurved_rods_solve_on_both_branches() {
     }
 }
 
+/// A rod leaning left (κ0 > 0) pressed straight down bends further left: its tip slope never
+/// falls to a small φ1. The default solve then answers with the state connected to the uniform
+/// rod, the same as asking for that start (python/tests found this scene failing).
+#[test]
+fn slope_goal_out_of_the_press_falls_back_to_the_connected_state() {
+    let s = scene(|s| {
+        s.stiffness = Stiffness::Taper { ratio: 0.5 };
+        s.precurvature = Precurvature::Linear { k0: 0.3, k1: 0.0 };
+    });
+    let m = s.rod().unwrap();
+    let conn = SolverConfig {
+        start: StartKind::Connected,
+        ..SolverConfig::default()
+    };
+    let t = Target::Phi1(0.3);
+    let a = solve(&m, -0.3, t, &BranchChoice::Convex, &SolverConfig::default()).unwrap();
+    let b = solve(&m, -0.3, t, &BranchChoice::Convex, &conn).unwrap();
+    assert_abs_diff_eq!(a.phi1, 0.3, epsilon = 1e-9);
+    assert_abs_diff_eq!(a.f, b.f, epsilon = 1e-9 * b.f);
+    assert_abs_diff_eq!(a.m_base, b.m_base, epsilon = 1e-9);
+}
+
 /// μ_max against the closed form (mpmath-checked crate `elastica`), on coarse and fine grids
 /// (on coarse grids the maximum lies far from the grid points and is located by solves).
 #[test]
