@@ -194,6 +194,12 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
         };
     }
     let unbounded = out.stop.reason == "lift_off" && out.mu_max.is_infinite();
+    if !finite(&out.start) && out.stop.reason == "solver_failure" {
+        return Err(solve_fail(&format!(
+            "the scan failed at its start: {}",
+            out.stop.detail
+        )));
+    }
     if !finite(&out.start) || !(out.mu_max.is_finite() || unbounded) || !out.d_at_mu_max.is_finite()
     {
         return Err(solve_fail(

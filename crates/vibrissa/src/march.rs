@@ -426,7 +426,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     StopReason::ContactChange {
                         d: lam,
                         message: format!(
-                            "the contact state {} does not hold beyond d = {lam}: {} = {v:.3e} after the change",
+                            "the contact state {} does not hold beyond d = {lam}: {} = {v:.3e} after the change, and the state before it ended there: the model has no contact state that continues",
                             set.label(),
                             c.describe()
                         ),

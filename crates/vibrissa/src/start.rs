@@ -164,7 +164,16 @@ pub(crate) fn press<P: Profile>(
     } else if contact.tip {
         // a small load: at zero load a straight tip's height is stationary under a transverse
         // force (it falls as the load squared), which no Newton iteration in the height resolves
-        loaded_start(&mut chain, top, ntol, 1e-3)?
+        // (a soft, curled rod moves far under it: smaller loads until the point is short of
+        // the goal)
+        let mut n0 = 1e-3;
+        loop {
+            let (l, u) = loaded_start(&mut chain, top, ntol, n0)?;
+            if l < 0.5 * room || n0 < 1e-9 {
+                break (l, u);
+            }
+            n0 *= 0.1;
+        }
     } else {
         (0.0, vec![0.0, 0.0, 0.0, s_top])
     };

@@ -341,12 +341,20 @@ impl Crossing {
     /// What the function measures, in words.
     pub fn describe(self) -> String {
         match self {
-            Crossing::Lift(j) => format!("-(normal force of contact {})", j + 1),
-            Crossing::Slip(j) => format!("|T| - mu0 N of contact {}", j + 1),
-            Crossing::Touchdown => "the height of the free rod above the surface".into(),
-            Crossing::TipTangent => "-sin(phi(1) - beta)".into(),
-            Crossing::PeelBack(j) | Crossing::SlipOff(j) => {
-                format!("s - 1 of contact {}", j + 1)
+            Crossing::Lift(j) => format!("-N of contact {} (it would pull)", j + 1),
+            Crossing::Slip(j) => format!("|T| - mu0 N of contact {} (it would slip)", j + 1),
+            Crossing::Touchdown => {
+                "the height of the free rod above the surface (it would cross it)".into()
+            }
+            Crossing::TipTangent => {
+                "-sin(phi(1) - beta) (the tip would turn into the surface)".into()
+            }
+            Crossing::PeelBack(j) => format!(
+                "s - 1 of contact {} (the lying part's inner end would pass the tip)",
+                j + 1
+            ),
+            Crossing::SlipOff(j) => {
+                format!("s - 1 of contact {} (the object would pass the tip)", j + 1)
             }
             Crossing::MuMax => "-d|mu|/dd".into(),
             Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
