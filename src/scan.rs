@@ -195,7 +195,7 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
     }
     let unbounded = out.stop.reason == "lift_off" && out.mu_max.is_infinite();
     if !finite(&out.start) && out.stop.reason == "solver_failure" {
-        return Err(solve_fail(&format!(
+        return Err(solve_fail(format!(
             "the scan failed at its start: {}",
             out.stop.detail
         )));
