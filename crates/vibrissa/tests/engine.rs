@@ -354,6 +354,31 @@ fn mu_max_located_on_coarse_grids() {
     }
 }
 
+/// The documented tolerance range holds at its tight end: the press, its buckled start and the
+/// scan converge at tol 1e-15 (Newton's own tolerance is kept above the rounding of its
+/// residuals) and μ_max agrees with the closed form.
+#[test]
+fn tightest_documented_tolerances_scan() {
+    let cf = elastica::ClosedFormScan::new(0.75)
+        .unwrap()
+        .mu_max()
+        .unwrap();
+    let (rod, surface) = Scene::default().parts().unwrap();
+    for tol in [1e-15, 5e-15, 1e-14] {
+        let o = ScanOptions {
+            points: 6,
+            solver: SolverConfig {
+                tol,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let r = scan(&rod, &surface, &o).unwrap();
+        assert_eq!(r.stop, StopReason::DMax, "tol {tol}");
+        assert_abs_diff_eq!(r.mu_max, cf.mu, epsilon = 1e-10);
+    }
+}
+
 /// `infer` on the measurable range: inside it, μ0 = μ(d0); outside, errors that name the range.
 #[test]
 fn infer_names_the_measurable_range() {
