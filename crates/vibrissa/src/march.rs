@@ -377,12 +377,15 @@ impl<P: Profile> Run<'_, '_, P> {
                 Err(e) => match self.stepper.pass_fold(&hist, target, lam_end) {
                     Passed::Beyond(p) => p,
                     Passed::Fold(lf, pt) => {
+                        // the fold's own point belongs to the measurable range it ends
+                        if let Some(p) = &pt {
+                            self.range.see(&p.w);
+                        }
                         self.range.close(RangeEnd::Event);
                         if let Err(fail) = self.emit(&hist, lf.min(lam_end)) {
                             return (fail, last_of(&hist, self.stepper.set()));
                         }
                         if let Some(p) = pt {
-                            self.range.see(&p.w);
                             self.out.push(
                                 spec,
                                 self.profile,
@@ -510,7 +513,9 @@ impl<P: Profile> Run<'_, '_, P> {
                     if ev == Event::LiftOff {
                         // N = 0 exactly there: the friction ratio is unbounded
                         pe.w.normal = 0.0;
-                        pe.w.mu = f64::INFINITY.copysign(pe.w.mu);
+                        // (its sign the tangential force's: μ itself may have crossed the pole)
+                        let t: f64 = pe.w.contacts.iter().map(|c| c.tangential).sum();
+                        pe.w.mu = f64::INFINITY.copysign(t);
                         if let Some(c) =
                             pe.w.contacts
                                 .iter_mut()
@@ -813,6 +818,11 @@ impl<P: Profile> Run<'_, '_, P> {
         w: &Watch,
         l_stop: f64,
     ) -> Option<Watch> {
+        // μ = ΣT/ΣN has a pole where the total normal force passes zero (lift-off): the sign
+        // change of d|μ|/dλ across it is no maximum
+        if w.normal <= 0.0 {
+            return None;
+        }
         if let (Some(s0), Some(s1)) = (prev.dmu_abs, w.dmu_abs) {
             if !(s0 > 0.0 && s1 <= 0.0) {
                 return None;

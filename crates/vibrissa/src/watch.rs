@@ -267,9 +267,11 @@ fn clearance(
         // no free maximum: the foot's height (always below), so that the function stays finite
         best = (h(0.0, 0.0) - off, 0.0);
     }
-    // the tip, when it is free (its height is a maximum of the free part's end)
+    // the tip, when it is free (its height is a maximum of the free part's end) and not within
+    // the last contact's neighbourhood (a tail of length ℓ → 0 before a peel-back sits
+    // κ0·ℓ²/2 ≤ 4e-13 from the line for ℓ < 5e-7, |κ0| ≤ 3: rounding, no touchdown)
     let tip_contact = set.tip();
-    if !tip_contact && lying_from > 1.0 {
+    if !tip_contact && lying_from > 1.0 && 1.0 - s_last >= 5e-7 {
         let zb = sol.right();
         let v = h(zb[0], zb[1]) - off;
         if v > best.0 {
