@@ -79,14 +79,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         }
         Command::Scan(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
-            let mut outs = Vec::new();
-            if let Some(p) = &a.out {
-                outs.push(("--out", p.as_path()));
-            }
-            if let Some(p) = &a.shapes {
-                outs.push(("--shapes", p.as_path()));
-            }
-            outputs::plan(&outs, false)?;
+            plan_rows_and_shapes(a.out.as_deref(), a.shapes.as_deref())?;
         }
         Command::Infer(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
@@ -97,14 +90,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         }
         Command::Whisk(a) => {
             scene_args::build_scene(&a.scene, None)?;
-            let mut outs = Vec::new();
-            if let Some(p) = &a.out {
-                outs.push(("--out", p.as_path()));
-            }
-            if let Some(p) = &a.shapes {
-                outs.push(("--shapes", p.as_path()));
-            }
-            outputs::plan(&outs, false)?;
+            plan_rows_and_shapes(a.out.as_deref(), a.shapes.as_deref())?;
         }
         Command::Locate(a) => {
             scene_args::build_scene(&a.scene, None)?;
@@ -112,6 +98,21 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
+}
+
+/// Checks the row file (`--out`) and the shapes file (`--shapes`) of a command before it runs.
+fn plan_rows_and_shapes(
+    out: Option<&std::path::Path>,
+    shapes: Option<&std::path::Path>,
+) -> Res<()> {
+    let mut outs = Vec::new();
+    if let Some(p) = out {
+        outs.push(("--out", p));
+    }
+    if let Some(p) = shapes {
+        outs.push(("--shapes", p));
+    }
+    outputs::plan(&outs, false)
 }
 
 fn run(mut cli: Cli) -> Res<()> {

@@ -224,19 +224,29 @@ pub fn solve_peg(
     theta: f64,
     opts: &WhiskOptions,
 ) -> Result<PegPoint, VibrissaError> {
+    at_theta(whisk_to(rod, peg, theta, opts, None)?, theta)
+}
+
+/// The whisk of `opts` up to `theta` alone (shapes of `keep` samples).
+fn whisk_to(
+    rod: &Rod,
+    peg: [f64; 2],
+    theta: f64,
+    opts: &WhiskOptions,
+    keep: Option<usize>,
+) -> Result<WhiskResult, VibrissaError> {
     let o = WhiskOptions {
         theta_max: theta,
-        keep_shapes: None,
+        keep_shapes: keep,
         ..opts.clone()
     };
     o.validate()?;
     check_peg(peg)?;
-    let r = if rod.has_uniform_profile() {
-        whisk_with(rod, Uniform, peg, &o, Some(theta))?
+    if rod.has_uniform_profile() {
+        whisk_with(rod, Uniform, peg, &o, Some(theta))
     } else {
-        whisk_with(rod, rod.profile(1.0), peg, &o, Some(theta))?
-    };
-    at_theta(r, theta)
+        whisk_with(rod, rod.profile(1.0), peg, &o, Some(theta))
+    }
 }
 
 /// [`solve_peg`] and the rod's shape there (`opts.keep_shapes` samples, default 101; frame of
@@ -247,18 +257,7 @@ pub fn solve_peg_shape(
     theta: f64,
     opts: &WhiskOptions,
 ) -> Result<(PegPoint, Vec<ShapePoint>), VibrissaError> {
-    let o = WhiskOptions {
-        theta_max: theta,
-        keep_shapes: Some(opts.keep_shapes.unwrap_or(101)),
-        ..opts.clone()
-    };
-    o.validate()?;
-    check_peg(peg)?;
-    let r = if rod.has_uniform_profile() {
-        whisk_with(rod, Uniform, peg, &o, Some(theta))?
-    } else {
-        whisk_with(rod, rod.profile(1.0), peg, &o, Some(theta))?
-    };
+    let r = whisk_to(rod, peg, theta, opts, Some(opts.keep_shapes.unwrap_or(101)))?;
     let shape = r.shapes.last().cloned().unwrap_or_default();
     let p = at_theta(r, theta)?;
     Ok((p, shape))
