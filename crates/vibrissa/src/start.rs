@@ -376,7 +376,6 @@ fn buckled_start<P: Profile>(
 /// (foot at the origin), the tip stuck where it is, the sides rolling without slip.
 pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64; 2]) {
     let (sb, cb) = beta.sin_cos();
-    let n = [-sb, cb];
     // a point of the pressed line: the last contact point
     let z_last = if p.set.tip() {
         let z = p.pt.sol.right();
@@ -387,7 +386,6 @@ pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64;
         p.pt.sol.eval(s, &mut z);
         [z[0], z[1]]
     };
-    let _ = n;
     let p0 = z_last;
     let along = |z: &[f64]| cb * (z[0] - p0[0]) + sb * (z[1] - p0[1]);
     let contacts = p
