@@ -354,6 +354,24 @@ fn mu_max_located_on_coarse_grids() {
     }
 }
 
+/// A force turned beyond what the pressed rod can hold: the family of states connected to the
+/// press folds (at α ≈ −0.269 for η = 0.95) and keeps winding short of the target; the error
+/// says so and where, instead of "no member reached in 2000 steps".
+#[test]
+fn force_turned_past_the_fold_names_it() {
+    let m = Scene::default().rod().unwrap();
+    let e = solve(
+        &m,
+        -1.2,
+        Target::Eta(0.95),
+        &BranchChoice::Convex,
+        &SolverConfig::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("turns back (a fold) at alpha = -0.26"), "{e}");
+}
+
 /// The documented tolerance range holds at its tight end: the press, its buckled start and the
 /// scan converge at tol 1e-15 (Newton's own tolerance is kept above the rounding of its
 /// residuals) and μ_max agrees with the closed form.
