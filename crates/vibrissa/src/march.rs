@@ -479,6 +479,13 @@ impl<P: Profile> Run<'_, '_, P> {
             }
             if found.is_none() {
                 if let Some(f) = failure {
+                    // a step too long for the event's scale (a light touch changes fast): the
+                    // step again, shorter, before giving up
+                    if p.lam - lam > h_min {
+                        hist.pop();
+                        h = 0.25 * (p.lam - lam);
+                        continue;
+                    }
                     self.range.close(RangeEnd::SolverFailure);
                     return (f, last_of(&hist, self.stepper.set()));
                 }
