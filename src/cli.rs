@@ -651,6 +651,10 @@ pub enum PlotKind {
     /// as scan, plus the tip position x_tip, every slip marked (columns d, phase, x_tip, mu,
     /// normal, fx, fy, m_base, event)
     Drag,
+    /// mu, the contact force and m_base against the foot angle theta, events marked (whisk --out)
+    Whisk,
+    /// the rod at chosen angles in the frame of the unturned foot (whisk --shapes)
+    WhiskShapes,
 }
 
 /// `vibrissa plot`.

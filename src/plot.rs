@@ -107,6 +107,10 @@ impl Table {
 pub(crate) fn detect(t: &Table) -> Res<PlotKind> {
     Ok(if t.has("point") && t.has("s") && t.has("x_lab") {
         PlotKind::Shapes
+    } else if t.has("point") && t.has("s") && t.has("theta") {
+        PlotKind::WhiskShapes
+    } else if t.has("theta") && t.has("s_c") && t.has("m_base") {
+        PlotKind::Whisk
     } else if t.has("index") && t.has("stop_reason") {
         PlotKind::Sweep
     } else if t.has("d") && t.has("phase") {
@@ -115,7 +119,7 @@ pub(crate) fn detect(t: &Table) -> Res<PlotKind> {
         PlotKind::Scan
     } else {
         return Err(usage(format!(
-            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase); use --kind to say which",
+            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase, a whisk theta and s_c, its --shapes point, s and theta); use --kind to say which",
             t.name
         )));
     })
@@ -125,6 +129,7 @@ pub(crate) fn detect(t: &Table) -> Res<PlotKind> {
 fn label(col: &str) -> String {
     let known = match col {
         "d" => "foot displacement d (L)",
+        "theta" => "foot angle θ (rad, clockwise)",
         "mu" => "friction ratio μ (–)",
         "normal" => "normal force N (EI/L²)",
         "fx" => "fx (EI/L²)",
@@ -187,12 +192,12 @@ fn events(t: &Table) -> Vec<(String, Vec<usize>)> {
 /// lift-off).
 fn signal_panel(
     title: &str,
-    ylabel: &str,
+    (xcol, ylabel): (&str, &str),
     d: &[f64],
     lines: &[(&str, &[f64], RGBColor)],
     ev: &[(String, Vec<usize>)],
 ) -> Panel {
-    let mut p = panel(title, &label("d"), ylabel);
+    let mut p = panel(title, &label(xcol), ylabel);
     let finite = |v: f64| v.is_finite();
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for (name, ys, color) in lines {
@@ -238,7 +243,7 @@ fn signal_panel(
         off.dedup();
         for (j, x) in off.iter().enumerate() {
             let s = series(
-                &format!("{name} at d = {} (off the scale)", short(*x)),
+                &format!("{name} at {xcol} = {} (off the scale)", short(*x)),
                 Kind::Dashed,
                 color,
                 vec![(*x, lo), (*x, hi)],
@@ -250,15 +255,17 @@ fn signal_panel(
 }
 
 /// A scan or a drag: μ, the tip force (fx, fy and the normal force), the moment at the foot
-/// and, for a drag, the tip position, against d.
-fn signals(t: &Table, title: &str) -> Res<Fig> {
-    let d = t.need("d")?;
+/// and, for a drag, the tip position, against d (a whisk: the contact force against the foot
+/// angle, `xcol` = "theta").
+fn signals(t: &Table, title: &str, xcol: &str) -> Res<Fig> {
+    let d = t.need(xcol)?;
     let ev = events(t);
     let mut panels = Vec::new();
-    if let Some(mu) = t.num("mu")? {
+    // (a frictionless contact's ratio is Newton's residual, ~1e-13: no panel)
+    if let Some(mu) = t.num("mu")?.filter(|m| m.iter().any(|v| v.abs() > 1e-9)) {
         panels.push(signal_panel(
             "friction ratio",
-            &label("mu"),
+            (xcol, &label("mu")),
             &d,
             &[("μ", &mu, BLUE_)],
             &ev,
@@ -277,8 +284,12 @@ fn signals(t: &Table, title: &str) -> Res<Fig> {
     }
     if !forces.is_empty() {
         panels.push(signal_panel(
-            "tip force on the rod (= −force on the foot)",
-            "force (EI/L²)",
+            if xcol == "theta" {
+                "contact force on the rod (= −force on the foot)"
+            } else {
+                "tip force on the rod (= −force on the foot)"
+            },
+            (xcol, "force (EI/L²)"),
             &d,
             &forces,
             &ev,
@@ -287,7 +298,7 @@ fn signals(t: &Table, title: &str) -> Res<Fig> {
     if let Some(m) = t.num("m_base")? {
         panels.push(signal_panel(
             "moment at the foot",
-            &label("m_base"),
+            (xcol, &label("m_base")),
             &d,
             &[("m_base", &m, BLUE_)],
             &ev,
@@ -296,7 +307,7 @@ fn signals(t: &Table, title: &str) -> Res<Fig> {
     if let Some(x) = t.num("x_tip")? {
         panels.push(signal_panel(
             "tip position",
-            &label("x_tip"),
+            (xcol, &label("x_tip")),
             &d,
             &[("x_tip", &x, BLUE_)],
             &ev,
@@ -304,7 +315,7 @@ fn signals(t: &Table, title: &str) -> Res<Fig> {
     }
     if panels.is_empty() {
         return Err(usage(format!(
-            "{}: none of the columns mu, fx, fy, normal, m_base, x_tip to plot against d",
+            "{}: none of the columns mu, fx, fy, normal, m_base, x_tip to plot against {xcol}",
             t.name
         )));
     }
@@ -331,9 +342,14 @@ const SHAPE_COLORS: [RGBColor; 8] = [
 
 /// Shapes: the rod at the chosen points in the lab frame (foot at (d, 0), the tip fixed), the
 /// feet, and the surface line through the tip inclined by `beta`.
-fn shapes(t: &Table, select: Option<&[usize]>, beta: f64) -> Res<Fig> {
+fn shapes(t: &Table, select: Option<&[usize]>, beta: f64, whisk: bool) -> Res<Fig> {
     let point = t.need("point")?;
-    let (d, s, x, y) = (t.need("d")?, t.need("s")?, t.need("x_lab")?, t.need("y")?);
+    let (pcol, xcol) = if whisk {
+        ("theta", "x")
+    } else {
+        ("d", "x_lab")
+    };
+    let (d, s, x, y) = (t.need(pcol)?, t.need("s")?, t.need(xcol)?, t.need("y")?);
     let ev = t.text("event");
     // rows of each point, in file order
     let mut by_point: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
@@ -381,7 +397,11 @@ fn shapes(t: &Table, select: Option<&[usize]>, beta: f64) -> Res<Fig> {
         }
     };
     let mut p = panel(
-        "rod shapes (lab frame: the tip sticks, the foot moves by d)",
+        if whisk {
+            "rod shapes (frame of the unturned foot: the foot turns by theta)"
+        } else {
+            "rod shapes (lab frame: the tip sticks, the foot moves by d)"
+        },
         "x (L)",
         "y (L)",
     );
@@ -402,12 +422,12 @@ fn shapes(t: &Table, select: Option<&[usize]>, beta: f64) -> Res<Fig> {
             .max_by(|a, b| s[**a].total_cmp(&s[**b]))
             .unwrap_or(&r0);
         tip.get_or_insert((x[last], y[last]));
-        feet.push((d[r0], 0.0));
+        feet.push((if whisk { 0.0 } else { d[r0] }, 0.0));
         let event = ev.as_ref().map_or("", |e| e[r0]);
         let name = if event.is_empty() {
-            format!("d = {}", short(d[r0]))
+            format!("{pcol} = {}", short(d[r0]))
         } else {
-            format!("d = {} ({event})", short(d[r0]))
+            format!("{pcol} = {} ({event})", short(d[r0]))
         };
         p.series.push(series(
             &name,
@@ -417,7 +437,7 @@ fn shapes(t: &Table, select: Option<&[usize]>, beta: f64) -> Res<Fig> {
         ));
     }
     p.series.push(series("foot", Kind::Square, GREY_, feet));
-    if let Some((tx, ty)) = tip {
+    if let Some((tx, ty)) = tip.filter(|_| !whisk) {
         let pad = 0.15 * (xmax - xmin).max(0.2);
         let line: Vec<(f64, f64)> = [xmin - pad, xmax + pad]
             .iter()
@@ -686,9 +706,11 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
         k => k,
     };
     let mut fig = match kind {
-        PlotKind::Scan => signals(t, &format!("scan {}", t.name))?,
-        PlotKind::Drag => signals(t, &format!("drag {}", t.name))?,
-        PlotKind::Shapes => shapes(t, a.select.as_deref(), a.surface_angle)?,
+        PlotKind::Scan => signals(t, &format!("scan {}", t.name), "d")?,
+        PlotKind::Drag => signals(t, &format!("drag {}", t.name), "d")?,
+        PlotKind::Whisk => signals(t, &format!("whisk {}", t.name), "theta")?,
+        PlotKind::Shapes => shapes(t, a.select.as_deref(), a.surface_angle, false)?,
+        PlotKind::WhiskShapes => shapes(t, a.select.as_deref(), a.surface_angle, true)?,
         PlotKind::Sweep => sweep(t, a.x.as_deref(), a.y.as_deref(), &a.z, &a.r#where)?,
         PlotKind::Auto => unreachable!("detected above"),
     };
@@ -735,6 +757,8 @@ mod tests {
     const SHAPES: &str = include_str!("../tests/fixtures/plot/shapes.csv");
     const SWEEP: &str = include_str!("../tests/fixtures/plot/sweep.csv");
     const DRAG: &str = include_str!("../tests/fixtures/plot/drag.csv");
+    const WHISK: &str = include_str!("../tests/fixtures/plot/whisk.csv");
+    const WHISK_SHAPES: &str = include_str!("../tests/fixtures/plot/whisk_shapes.csv");
 
     fn args(kind: PlotKind) -> PlotArgs {
         PlotArgs {
@@ -781,6 +805,8 @@ mod tests {
             ("shapes.csv", SHAPES, PlotKind::Shapes, 1),
             ("sweep.csv", SWEEP, PlotKind::Sweep, 1),
             ("drag.csv", DRAG, PlotKind::Drag, 4),
+            ("whisk.csv", WHISK, PlotKind::Whisk, 3),
+            ("whisk_shapes.csv", WHISK_SHAPES, PlotKind::WhiskShapes, 1),
         ] {
             let t = Table::parse(name, text).unwrap();
             assert_eq!(detect(&t).unwrap(), kind, "{name}");

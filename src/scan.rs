@@ -194,6 +194,12 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
         };
     }
     let unbounded = out.stop.reason == "lift_off" && out.mu_max.is_infinite();
+    if !finite(&out.start) && out.stop.reason == "solver_failure" {
+        return Err(solve_fail(format!(
+            "the scan failed at its start: {}",
+            out.stop.detail
+        )));
+    }
     if !finite(&out.start) || !(out.mu_max.is_finite() || unbounded) || !out.d_at_mu_max.is_finite()
     {
         return Err(solve_fail(
@@ -432,7 +438,8 @@ pub fn run_infer(a: &InferArgs) -> Res<()> {
         d_max_measurable: r.measurable_d.1,
     };
     crate::progress::stop();
-    if !(out.mu0.is_finite() && out.mu_max.is_finite()) {
+    // (μ_max is unbounded where the measurable range ends at lift-off: written as inf)
+    if !(out.mu0.is_finite() && (out.mu_max.is_finite() || out.mu_max == f64::INFINITY)) {
         return Err(solve_fail("the inference produced non-finite values"));
     }
     if a.json {
@@ -458,7 +465,7 @@ pub fn run_infer(a: &InferArgs) -> Res<()> {
                 num(out.eta),
                 num(out.d0),
                 num(out.mu0),
-                num(out.mu_max),
+                mu_text(out.mu_max),
                 num(out.d_min),
                 num(out.d_max_measurable),
             ],

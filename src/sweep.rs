@@ -214,9 +214,13 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
             row.extend([
                 num(o.start.f),
                 num(o.start.phi1),
-                opt(known.then_some(o.mu_max)),
+                if known {
+                    crate::scan::mu_text(o.mu_max)
+                } else {
+                    String::new()
+                },
                 opt(d_at_mu_max),
-                num(last.mu),
+                crate::scan::mu_text(last.mu),
                 num(last.d),
                 o.stop.reason.clone(),
                 o.points.to_string(),

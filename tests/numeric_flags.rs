@@ -21,7 +21,7 @@ fn base(cmd: &str) -> Vec<(&'static str, &'static str)> {
         "solve" => vec![("--alpha", "-0.3"), ("--phi1", "0.3")],
         "scan" => vec![("--points", "3"), ("--d-max", "0.01")],
         // (a surface inclined by −1e-3 has the pressed rod lean left, its measurable range
-        // ending at d = 0.01: a d0 inside every scene's range)
+        // ending at lift-off, d = 0.014: a d0 inside every scene's range)
         "infer" => vec![("--d0", "0.005"), ("--points", "5")],
         // --dry-run checks every value (grid included) without solving
         "sweep" => vec![("--dry-run", ""), ("--points", "3")],

@@ -383,6 +383,10 @@ pub(crate) fn follow_to<C: Curve + ?Sized>(
             return Err(FollowError::TurnedBack { reached });
         }
     }
+    // a curve that turned at `reached` and keeps winding short of it (a closed loop of states)
+    if (reached - arc.last.lam()) * dir > 0.0 {
+        return Err(FollowError::TurnedBack { reached });
+    }
     Err(FollowError::Step {
         at: arc.last.lam(),
         reason: "no member reached in 2000 steps".into(),

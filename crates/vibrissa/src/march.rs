@@ -386,12 +386,15 @@ impl<P: Profile> Run<'_, '_, P> {
                 Err(e) => match self.stepper.pass_fold(&hist, target, lam_end) {
                     Passed::Beyond(p) => p,
                     Passed::Fold(lf, pt) => {
+                        // the fold's own point belongs to the measurable range it ends
+                        if let Some(p) = &pt {
+                            self.range.see(&p.w);
+                        }
                         self.range.close(RangeEnd::Event);
                         if let Err(fail) = self.emit(&hist, lf.min(lam_end)) {
                             return (fail, last_of(&hist, self.stepper.set()));
                         }
                         if let Some(p) = pt {
-                            self.range.see(&p.w);
                             self.out.push(
                                 spec,
                                 self.profile,
@@ -435,7 +438,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     StopReason::ContactChange {
                         d: lam,
                         message: format!(
-                            "the contact state {} does not hold beyond d = {lam}: {} = {v:.3e} after the change",
+                            "the contact state {} does not hold beyond d = {lam}: {} = {v:.3e} after the change, and the state before it ended there: the model has no contact state that continues",
                             set.label(),
                             c.describe()
                         ),
@@ -500,6 +503,13 @@ impl<P: Profile> Run<'_, '_, P> {
             }
             if found.is_none() {
                 if let Some(f) = failure {
+                    // a step too long for the event's scale (a light touch changes fast): the
+                    // step again, shorter, before giving up
+                    if p.lam - lam > h_min {
+                        hist.pop();
+                        h = 0.25 * (p.lam - lam);
+                        continue;
+                    }
                     self.range.close(RangeEnd::SolverFailure);
                     return (f, last_of(&hist, self.stepper.set()));
                 }
@@ -538,7 +548,16 @@ impl<P: Profile> Run<'_, '_, P> {
                     if ev == Event::LiftOff {
                         // N = 0 exactly there: the friction ratio is unbounded
                         pe.w.normal = 0.0;
-                        pe.w.mu = f64::INFINITY.copysign(pe.w.mu);
+                        // (its sign the tangential force's: μ itself may have crossed the pole)
+                        let t: f64 = pe.w.contacts.iter().map(|c| c.tangential).sum();
+                        pe.w.mu = f64::INFINITY.copysign(t);
+                        if let Some(c) =
+                            pe.w.contacts
+                                .iter_mut()
+                                .min_by(|a, b| a.normal.total_cmp(&b.normal))
+                        {
+                            c.normal = 0.0;
+                        }
                     }
                     self.range.see(&pe.w);
                     self.range.close(RangeEnd::Event);
@@ -968,6 +987,11 @@ impl<P: Profile> Run<'_, '_, P> {
         w: &Watch,
         l_stop: f64,
     ) -> Option<Watch> {
+        // μ = ΣT/ΣN has a pole where the total normal force passes zero (lift-off): the sign
+        // change of d|μ|/dλ across it is no maximum
+        if w.normal <= 0.0 {
+            return None;
+        }
         if let (Some(s0), Some(s1)) = (prev.dmu_abs, w.dmu_abs) {
             if !(s0 > 0.0 && s1 <= 0.0) {
                 return None;
@@ -1146,7 +1170,11 @@ pub(crate) fn scan_point<P: Profile>(
     let mu_peak = w
         .contacts
         .iter()
-        .map(|c| (c.tangential / c.normal).abs())
+        .map(|c| match c.normal {
+            // lift-off: unbounded unless no tangential force is needed
+            0.0 if c.tangential == 0.0 => 0.0,
+            n => (c.tangential / n).abs(),
+        })
         .fold(0.0, f64::max);
     ScanPoint {
         d: p.lam,

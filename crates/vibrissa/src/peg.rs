@@ -224,19 +224,29 @@ pub fn solve_peg(
     theta: f64,
     opts: &WhiskOptions,
 ) -> Result<PegPoint, VibrissaError> {
+    at_theta(whisk_to(rod, peg, theta, opts, None)?, theta)
+}
+
+/// The whisk of `opts` up to `theta` alone (shapes of `keep` samples).
+fn whisk_to(
+    rod: &Rod,
+    peg: [f64; 2],
+    theta: f64,
+    opts: &WhiskOptions,
+    keep: Option<usize>,
+) -> Result<WhiskResult, VibrissaError> {
     let o = WhiskOptions {
         theta_max: theta,
-        keep_shapes: None,
+        keep_shapes: keep,
         ..opts.clone()
     };
     o.validate()?;
     check_peg(peg)?;
-    let r = if rod.has_uniform_profile() {
-        whisk_with(rod, Uniform, peg, &o, Some(theta))?
+    if rod.has_uniform_profile() {
+        whisk_with(rod, Uniform, peg, &o, Some(theta))
     } else {
-        whisk_with(rod, rod.profile(1.0), peg, &o, Some(theta))?
-    };
-    at_theta(r, theta)
+        whisk_with(rod, rod.profile(1.0), peg, &o, Some(theta))
+    }
 }
 
 /// [`solve_peg`] and the rod's shape there (`opts.keep_shapes` samples, default 101; frame of
@@ -247,18 +257,7 @@ pub fn solve_peg_shape(
     theta: f64,
     opts: &WhiskOptions,
 ) -> Result<(PegPoint, Vec<ShapePoint>), VibrissaError> {
-    let o = WhiskOptions {
-        theta_max: theta,
-        keep_shapes: Some(opts.keep_shapes.unwrap_or(101)),
-        ..opts.clone()
-    };
-    o.validate()?;
-    check_peg(peg)?;
-    let r = if rod.has_uniform_profile() {
-        whisk_with(rod, Uniform, peg, &o, Some(theta))?
-    } else {
-        whisk_with(rod, rod.profile(1.0), peg, &o, Some(theta))?
-    };
+    let r = whisk_to(rod, peg, theta, opts, Some(opts.keep_shapes.unwrap_or(101)))?;
     let shape = r.shapes.last().cloned().unwrap_or_default();
     let p = at_theta(r, theta)?;
     Ok((p, shape))
@@ -295,7 +294,7 @@ fn whisk_with<P: Profile>(
     if theta_t > opts.theta_max {
         return Err(VibrissaError::OutOfReach {
             what: format!(
-                "the object at ({}, {}) is first touched at theta = {theta_t}, beyond theta = {}",
+                "the object at ({}, {}) is first touched at theta = {theta_t}, beyond theta_max = {}",
                 peg[0], peg[1], opts.theta_max
             ),
             reach: opts.theta_max,
@@ -559,12 +558,14 @@ fn locate_with<P: Profile>(
         Some((_, s, z)) => Ok((z[0], z[1], s)),
         None => Err(VibrissaError::OutOfReach {
             what: format!(
-                "the base signals (m_base = {m_base}, force = ({}, {})) fit no contact on the rod: \
-                 the moment does not vanish along it",
+                "the base signals (m_base = {m_base}, fx = {}, fy = {}) fit no contact on the rod: \
+                 the moment does not vanish along it (the reach is its smallest |m|)",
                 force[0], force[1]
             ),
-            reach: 1.0,
-            needed: f64::NAN,
+            reach: (0..ps.len())
+                .map(|i| pz[4 * i + 3].abs())
+                .fold(f64::INFINITY, f64::min),
+            needed: 0.0,
         }),
     }
 }

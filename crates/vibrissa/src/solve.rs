@@ -228,12 +228,28 @@ fn load<P: Profile>(
     } else {
         profile.clone()
     };
-    let pressed = press(
+    let pressed = match press(
         Shooter::new(first_rod.clone(), if connected { 0.0 } else { c }, tol, 8),
         &general,
         &first_rod,
         &spec,
-    )?;
+    ) {
+        Ok(p) => p,
+        // a rod leaning away from the goal (rest curvature against the slope asked for) never
+        // reaches it by being pressed: the state connected to the uniform rod is the answer
+        Err(_) if !connected => {
+            return load(
+                rod,
+                profile,
+                alpha,
+                target,
+                branch,
+                tol,
+                StartKind::Connected,
+            )
+        }
+        Err(e) => return Err(e),
+    };
     // the condition's own set (slope or height held), at force angle 0
     let (set0, pose) = tip_set(0.0, target);
     let (set0, pose) = match *target {

@@ -179,13 +179,32 @@ pub(crate) fn press<P: Profile>(
             // a small load: at zero load a straight tip's height is stationary under a transverse
             // force (it falls as the load squared), which no Newton iteration in the height
             // resolves
-            loaded_start(chain, top, ntol, 1e-3)?
+            // (a soft, curled rod moves far under it: smaller loads until the point is
+            // short of the goal)
+            let mut n0 = 1e-3;
+            loop {
+                let (l, u) = loaded_start(chain, top, ntol, n0)?;
+                if l < 0.5 * room || n0 < 1e-9 {
+                    break (l, u);
+                }
+                n0 *= 0.1;
+            }
         } else {
             (0.0, vec![0.0, 0.0, 0.0, s_top])
         };
         let cv = solve_damped(chain, lam0, &u0, ntol, 40).map_err(|e| VibrissaError::NoStart {
             reason: format!("the first point of the press did not converge: {e}"),
         })?;
+        // a guess next to the buckling load that converged onto another mode (the third
+        // clamped-free mode, f ≈ 25π²/4, for β ≈ 0.03) is no first point of this press
+        if buckled.is_some() && (cv.u[1] - u0[1]).abs() > 0.5 * u0[1].abs() {
+            return Err(VibrissaError::NoStart {
+                reason: format!(
+                    "the first point of the press converged onto another mode (f = {} from {})",
+                    cv.u[1], u0[1]
+                ),
+            });
+        }
         Ok((lam0, cv))
     };
     let drop = (0.1 * room).min(1e-3);
@@ -217,6 +236,19 @@ pub(crate) fn press<P: Profile>(
         target: Some(goal),
         ground: Default::default(),
     };
+    // a first point far below the march's first step (a tiny load next to the imperfect
+    // bifurcation of a straight rod on a slightly inclined line): walked up to 1e-3 in steps of
+    // 4× first, so that the march's first step cannot land on another mode (β = 0.025…0.03 went
+    // to the third clamped-free mode, f ≈ 70)
+    let (mut lam0, mut cv) = (lam0, cv);
+    let ramp_end = 1e-3f64.min(0.5 * room);
+    while lam0 > 0.0 && lam0 < ramp_end {
+        let next = (4.0 * lam0).min(ramp_end);
+        match solve_damped(&mut chain, next, &cv.u, ntol, 40) {
+            Ok(c) => (lam0, cv) = (next, c),
+            Err(_) => break,
+        }
+    }
     let mut st = OwnStepper { chain, env };
     let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
         reason: format!("the first point of the press: {e}"),
@@ -399,7 +431,6 @@ fn buckled_start<P: Profile>(
 /// (foot at the origin), the tip stuck where it is, the sides rolling without slip.
 pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64; 2]) {
     let (sb, cb) = beta.sin_cos();
-    let n = [-sb, cb];
     // a point of the pressed line: the last contact point
     let z_last = if p.set.tip() {
         let z = p.pt.sol.right();
@@ -410,7 +441,6 @@ pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64;
         p.pt.sol.eval(s, &mut z);
         [z[0], z[1]]
     };
-    let _ = n;
     let p0 = z_last;
     let along = |z: &[f64]| cb * (z[0] - p0[0]) + sb * (z[1] - p0[1]);
     let contacts = p

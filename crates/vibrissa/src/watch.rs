@@ -311,9 +311,11 @@ fn clearance(
         // no free maximum: the foot's height (always below), so that the function stays finite
         best = (h(0.0, 0.0) - off, 0.0);
     }
-    // the tip, when it is free (its height is a maximum of the free part's end)
+    // the tip, when it is free (its height is a maximum of the free part's end) and not within
+    // the last contact's neighbourhood (a tail of length ℓ → 0 before a peel-back sits
+    // κ0·ℓ²/2 ≤ 4e-13 from the line for ℓ < 5e-7, |κ0| ≤ 3: rounding, no touchdown)
     let tip_contact = set.tip();
-    if !tip_contact && lying_from > 1.0 {
+    if !tip_contact && lying_from > 1.0 && 1.0 - s_last >= 5e-7 {
         let zb = sol.right();
         let v = h(zb[0], zb[1]) - off;
         if v > best.0 {
@@ -444,13 +446,23 @@ impl Crossing {
     /// What the function measures, in words.
     pub fn describe(self) -> String {
         match self {
-            Crossing::Lift(j) => format!("-(normal force of contact {})", j + 1),
-            Crossing::Slip(j) => format!("|T| - mu0 N of contact {}", j + 1),
-            Crossing::Stick(j) => format!("mu_k N - dir T of contact {}", j + 1),
-            Crossing::Touchdown => "the height of the free rod above the surface".into(),
-            Crossing::TipTangent => "-sin(phi(1) - beta)".into(),
-            Crossing::PeelBack(j) | Crossing::SlipOff(j) => {
-                format!("s - 1 of contact {}", j + 1)
+            Crossing::Lift(j) => format!("-N of contact {} (it would pull)", j + 1),
+            Crossing::Slip(j) => format!("|T| - mu0 N of contact {} (it would slip)", j + 1),
+            Crossing::Stick(j) => {
+                format!("mu_k N - dir T of contact {} (it would stick again)", j + 1)
+            }
+            Crossing::Touchdown => {
+                "the height of the free rod above the surface (it would cross it)".into()
+            }
+            Crossing::TipTangent => {
+                "-sin(phi(1) - beta) (the tip would turn into the surface)".into()
+            }
+            Crossing::PeelBack(j) => format!(
+                "s - 1 of contact {} (the lying part's inner end would pass the tip)",
+                j + 1
+            ),
+            Crossing::SlipOff(j) => {
+                format!("s - 1 of contact {} (the object would pass the tip)", j + 1)
             }
             Crossing::MuMax => "-d|mu|/dd".into(),
             Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),

@@ -310,6 +310,28 @@ fn precurved_rods_solve_on_both_branches() {
     }
 }
 
+/// A rod leaning left (κ0 > 0) pressed straight down bends further left: its tip slope never
+/// falls to a small φ1. The default solve then answers with the state connected to the uniform
+/// rod, the same as asking for that start (python/tests found this scene failing).
+#[test]
+fn slope_goal_out_of_the_press_falls_back_to_the_connected_state() {
+    let s = scene(|s| {
+        s.stiffness = Stiffness::Taper { ratio: 0.5 };
+        s.precurvature = Precurvature::Linear { k0: 0.3, k1: 0.0 };
+    });
+    let m = s.rod().unwrap();
+    let conn = SolverConfig {
+        start: StartKind::Connected,
+        ..SolverConfig::default()
+    };
+    let t = Target::Phi1(0.3);
+    let a = solve(&m, -0.3, t, &BranchChoice::Convex, &SolverConfig::default()).unwrap();
+    let b = solve(&m, -0.3, t, &BranchChoice::Convex, &conn).unwrap();
+    assert_abs_diff_eq!(a.phi1, 0.3, epsilon = 1e-9);
+    assert_abs_diff_eq!(a.f, b.f, epsilon = 1e-9 * b.f);
+    assert_abs_diff_eq!(a.m_base, b.m_base, epsilon = 1e-9);
+}
+
 /// μ_max against the closed form (mpmath-checked crate `elastica`), on coarse and fine grids
 /// (on coarse grids the maximum lies far from the grid points and is located by solves).
 #[test]
@@ -329,6 +351,49 @@ fn mu_max_located_on_coarse_grids() {
         // μ is flat at its maximum: d is determined to ~sqrt(tol)
         assert_abs_diff_eq!(r.d_at_mu_max, cf.d, epsilon = 1e-6);
         assert_eq!(r.range_end, vibrissa::RangeEnd::FirstMaximum);
+    }
+}
+
+/// A force turned beyond what the pressed rod can hold: the family of states connected to the
+/// press folds (at α ≈ −0.269 for η = 0.95) and keeps winding short of the target; the error
+/// says so and where, instead of "no member reached in 2000 steps".
+#[test]
+fn force_turned_past_the_fold_names_it() {
+    let m = Scene::default().rod().unwrap();
+    let e = solve(
+        &m,
+        -1.2,
+        Target::Eta(0.95),
+        &BranchChoice::Convex,
+        &SolverConfig::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("turns back (a fold) at alpha = -0.26"), "{e}");
+}
+
+/// The documented tolerance range holds at its tight end: the press, its buckled start and the
+/// scan converge at tol 1e-15 (Newton's own tolerance is kept above the rounding of its
+/// residuals) and μ_max agrees with the closed form.
+#[test]
+fn tightest_documented_tolerances_scan() {
+    let cf = elastica::ClosedFormScan::new(0.75)
+        .unwrap()
+        .mu_max()
+        .unwrap();
+    let (rod, surface) = Scene::default().parts().unwrap();
+    for tol in [1e-15, 5e-15, 1e-14] {
+        let o = ScanOptions {
+            points: 6,
+            solver: SolverConfig {
+                tol,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let r = scan(&rod, &surface, &o).unwrap();
+        assert_eq!(r.stop, StopReason::DMax, "tol {tol}");
+        assert_abs_diff_eq!(r.mu_max, cf.mu, epsilon = 1e-10);
     }
 }
 

@@ -249,3 +249,24 @@ fn compliance_zero_to_hundred() {
     }
     assert!(solved >= 3, "{solved}");
 }
+
+/// A very soft curled rod barely touching a high surface (N ≈ 4e-4 at the start: its μ rises to
+/// 0.77 within d = 1e-4). Its first step was too long for the tip-tangency event located in it,
+/// which ended the scan at d = 0 with a solver message; a failed event location now shortens the
+/// step, and the scan runs on (to a snap-through near d = 0.289 on the cluster grid's settings).
+#[test]
+fn light_touch_of_a_soft_curled_rod_scans() {
+    let s = vibrissa::Scene {
+        eta: 0.84,
+        stiffness: vibrissa::Stiffness::Taper { ratio: 0.05 },
+        precurvature: vibrissa::Precurvature::Linear { k0: -1.0, k1: 0.0 },
+        ..vibrissa::Scene::default()
+    };
+    let (rod, surface) = s.parts().unwrap();
+    let r = vibrissa::scan(&rod, &surface, &vibrissa::ScanOptions::default()).unwrap();
+    assert!(
+        r.points.len() > 10 && r.points.last().unwrap().d > 0.1,
+        "{}",
+        r.stop
+    );
+}
