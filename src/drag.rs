@@ -4,7 +4,7 @@
 use crate::cli::{DragArgs, FitArgs};
 use crate::error::{solve_fail, usage, Res};
 use crate::numeric;
-use crate::output::{csv_line, num, opt, Sink};
+use crate::output::{csv_line, num, opt};
 use crate::scan::{mu_text, Stop, Work};
 use crate::scene_args::build_scene;
 use serde::Serialize;
@@ -150,12 +150,7 @@ pub fn run(a: &DragArgs) -> Res<()> {
         )?;
     }
     if a.out.is_some() || !a.json {
-        let mut sink = Sink::open(a.out.as_deref())?;
-        csv_line(&mut sink, &HEADER)?;
-        for p in &r.rows {
-            csv_line(&mut sink, &row(p))?;
-        }
-        sink.finish()?;
+        crate::output::write_table(a.out.as_deref(), &HEADER, &r.rows, row)?;
     }
     let stop = Stop::from(&r.stop);
     if stop.reason != "d_max" {

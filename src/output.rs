@@ -56,6 +56,21 @@ impl Sink {
     }
 }
 
+/// Writes a table (its header, then a row per item) to `path` or stdout (see [`Sink::open`]).
+pub fn write_table<T>(
+    path: Option<&Path>,
+    header: &[&str],
+    items: &[T],
+    row: impl Fn(&T) -> Vec<String>,
+) -> Res<()> {
+    let mut sink = Sink::open(path)?;
+    csv_line(&mut sink, header)?;
+    for p in items {
+        csv_line(&mut sink, &row(p))?;
+    }
+    sink.finish()
+}
+
 impl Write for Sink {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
         match self {

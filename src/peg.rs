@@ -3,7 +3,7 @@
 use crate::cli::{LocateArgs, SolveArgs, WhiskArgs};
 use crate::error::Res;
 use crate::numeric;
-use crate::output::{csv_line, num, AtomicFile, Sink};
+use crate::output::{csv_line, num, AtomicFile};
 use crate::scene_args::build_scene;
 use serde::Serialize;
 use std::io::{self, Write};
@@ -149,12 +149,7 @@ pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
         f.commit()?;
     }
     if a.out.is_some() || !a.json {
-        let mut sink = Sink::open(a.out.as_deref())?;
-        csv_line(&mut sink, &HEADER)?;
-        for p in &r.points {
-            csv_line(&mut sink, &row(p))?;
-        }
-        sink.finish()?;
+        crate::output::write_table(a.out.as_deref(), &HEADER, &r.points, row)?;
     }
     let (reason, theta) = match &r.stop {
         StopReason::DMax => ("theta_max", None),

@@ -475,7 +475,8 @@ impl<P: Profile> Run<'_, '_, P> {
                 match self.locate(&hist, lam, p.lam, c) {
                     Ok(pe) => {
                         let v = c.of_watch(spec.env, &pe.w);
-                        if c == Crossing::Touchdown && v < -JUMP {
+                        if c == Crossing::Touchdown && spec.env.ground.curve.is_some() && v < -JUMP
+                        {
                             // not a root but a jump of the highest free point (one the clearance
                             // did not see before): no contact to insert there
                             failure.get_or_insert(StopReason::SolverFailure {
@@ -606,11 +607,29 @@ impl<P: Profile> Run<'_, '_, P> {
     }
 }
 
-/// How far below zero a located touchdown's clearance may lie and still be a root (a rounding
+/// How far below zero a located touchdown's clearance on a curved surface may lie and still be a root (a rounding
 /// of the rod's heights is ~1e-12; a jump is of the size of the rod's features).
 const JUMP: f64 = 1e-6;
 
 /// An event function's value where its contact state holds strictly (NaN: not known to).
+/// The set with the interior contact `ct` touched down at `s` (in its place along the rod; its
+/// unknowns N, T start at zero), and its unknowns.
+fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64) -> Next {
+    let j = (0..set.contacts.len())
+        .find(|&j| set.s_of(j, u) > s)
+        .unwrap_or(set.contacts.len());
+    let mut ns = set.clone();
+    ns.contacts.insert(j, ct);
+    let o = if j < set.contacts.len() {
+        set.offset(j)
+    } else {
+        u.len()
+    };
+    let mut nu = u.to_vec();
+    nu.splice(o..o, [0.0, 0.0, s]);
+    Next::Switch(Event::Touchdown, ns, nu)
+}
+
 fn holds(v: f64) -> bool {
     v < 0.0
 }
@@ -664,19 +683,7 @@ fn curve_transition(
             let z = pe.w.clear_z;
             let (mode, phi_ref) = rolling(&z, s);
             let ct = Contact::on_curve(false, h, z[0] + xf, mode, phi_ref);
-            let j = (0..set.contacts.len())
-                .find(|&j| set.s_of(j, u) > s)
-                .unwrap_or(set.contacts.len());
-            let mut ns = set.clone();
-            ns.contacts.insert(j, ct);
-            let o = if j < set.contacts.len() {
-                set.offset(j)
-            } else {
-                u.len()
-            };
-            let mut nu = u.clone();
-            nu.splice(o..o, [0.0, 0.0, s]);
-            Next::Switch(Event::Touchdown, ns, nu)
+            touchdown(set, u, ct, s)
         }
         Crossing::TipTangent => {
             let j = set.contacts.len() - 1;
@@ -789,19 +796,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     Mode::Free
                 };
                 let ct = Contact::on_surface(false, p0, beta, mode, phi_ref);
-                let j = (0..set.contacts.len())
-                    .find(|&j| set.s_of(j, u) > s)
-                    .unwrap_or(set.contacts.len());
-                let mut ns = set.clone();
-                ns.contacts.insert(j, ct);
-                let o = if j < set.contacts.len() {
-                    set.offset(j)
-                } else {
-                    u.len()
-                };
-                let mut nu = u.clone();
-                nu.splice(o..o, [0.0, 0.0, s]);
-                Next::Switch(Event::Touchdown, ns, nu)
+                touchdown(set, u, ct, s)
             }
             Crossing::TipTangent => {
                 let j = set.contacts.len() - 1;
