@@ -8,45 +8,12 @@
 //! cargo run --release -p vibrissa --example fit_stats
 //! ```
 
-use vibrissa::fit::{fit, FitOptions, Trace, TraceSlip};
-use vibrissa::{drag, DragOptions, DragResult, Scene};
+use vibrissa::fit::{fit, FitOptions};
+use vibrissa::{drag, DragOptions, Scene};
 
-/// splitmix64 and Box–Muller: a seeded normal sampler without dependencies.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn normal(&mut self) -> f64 {
-        let (a, b) = (self.uniform().max(1e-300), self.uniform());
-        (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-    }
-}
-
-/// The first `n` slips of `r` with noise.
-fn noisy(r: &DragResult, n: usize, rng: &mut Rng) -> Trace {
-    let (sd, sf) = (2e-4, 2e-3);
-    Trace {
-        slips: r.slips[..n]
-            .iter()
-            .map(|e| TraceSlip {
-                d: e.d + sd * rng.normal(),
-                before: [
-                    Some(e.before.fx + sf * rng.normal()),
-                    None,
-                    Some(e.before.m_base + sf * rng.normal()),
-                ],
-                after: [Some(e.after.fx + sf * rng.normal()), None, None],
-            })
-            .collect(),
-    }
-}
+#[path = "../tests/support/noisy_trace.rs"]
+mod noisy_trace;
+use noisy_trace::{noisy, Rng};
 
 fn main() {
     let scene = Scene::default();

@@ -5,23 +5,9 @@
 use vibrissa::fit::{fit, FitOptions, Trace, TraceSlip};
 use vibrissa::{drag, DragOptions, DragResult, Scene};
 
-/// splitmix64 and Box–Muller (the same sampler as the example).
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        (z >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn normal(&mut self) -> f64 {
-        let (a, b) = (self.uniform().max(1e-300), self.uniform());
-        (-2.0 * a.ln()).sqrt() * (std::f64::consts::TAU * b).cos()
-    }
-}
+#[path = "support/noisy_trace.rs"]
+mod noisy_trace;
+use noisy_trace::{noisy, Rng};
 
 fn truth(n: usize) -> DragResult {
     let (rod, surface) = Scene::default().parts().unwrap();
@@ -47,21 +33,7 @@ fn noisy_traces_within_three_standard_errors() {
     let r = truth(6);
     for seed in [3, 11] {
         let mut rng = Rng(seed);
-        let t = Trace {
-            slips: r
-                .slips
-                .iter()
-                .map(|e| TraceSlip {
-                    d: e.d + 2e-4 * rng.normal(),
-                    before: [
-                        Some(e.before.fx + 2e-3 * rng.normal()),
-                        None,
-                        Some(e.before.m_base + 2e-3 * rng.normal()),
-                    ],
-                    after: [Some(e.after.fx + 2e-3 * rng.normal()), None, None],
-                })
-                .collect(),
-        };
+        let t = noisy(&r, r.slips.len(), &mut rng);
         let f = fit(&Scene::default(), &t, &FitOptions::default()).unwrap();
         assert!(f.message.is_none(), "{f}");
         for (name, want) in [("mu_s", 0.5), ("mu_k", 0.3)] {
