@@ -170,10 +170,9 @@ pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
         stop: Stop {
             reason: reason.to_string(),
             theta,
-            // the library's words name the scan's d; a whisk's parameter is the foot angle
             detail: match r.stop {
                 StopReason::DMax => format!("theta_max = {} reached", a.theta_max),
-                _ => r.stop.to_string().replace(" d = ", " theta = "),
+                _ => r.stop.describe("theta"),
             },
         },
         stats: crate::scan::Work {

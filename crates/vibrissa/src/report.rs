@@ -305,24 +305,33 @@ pub enum StopReason {
     },
 }
 
-impl fmt::Display for StopReason {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl StopReason {
+    /// In words, with `param` the name of the marched parameter (`d` for a scan, `theta` for a
+    /// whisk); `Display` is `describe("d")`.
+    pub fn describe(&self, param: &str) -> String {
+        let p = param;
         match self {
-            StopReason::DMax => write!(f, "d_max reached"),
-            StopReason::Slip { d, mu } => write!(f, "slip at d = {d} (mu = {mu})"),
-            StopReason::LiftOff { d } => write!(f, "lift-off at d = {d} (normal force 0)"),
+            StopReason::DMax => format!("{p}_max reached"),
+            StopReason::Slip { d, mu } => format!("slip at {p} = {d} (mu = {mu})"),
+            StopReason::LiftOff { d } => format!("lift-off at {p} = {d} (normal force 0)"),
             StopReason::Penetration { d, s, y } => {
-                write!(f, "penetration at d = {d} (s = {s}, y = {y})")
+                format!("penetration at {p} = {d} (s = {s}, y = {y})")
             }
-            StopReason::FoldInD { d } => write!(f, "fold in d (snap-through) at d = {d}"),
-            StopReason::SlipOff { d } => write!(f, "the object slipped off the tip at {d}"),
+            StopReason::FoldInD { d } => format!("fold in {p} (snap-through) at {p} = {d}"),
+            StopReason::SlipOff { d } => format!("the object slipped off the tip at {d}"),
             StopReason::ContactChange { d, message } => {
-                write!(f, "contact change at d = {d}: {message}")
+                format!("contact change at {p} = {d}: {message}")
             }
             StopReason::SolverFailure { d, message } => {
-                write!(f, "solver failure after d = {d}: {message}")
+                format!("solver failure after {p} = {d}: {message}")
             }
         }
+    }
+}
+
+impl fmt::Display for StopReason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.describe("d"))
     }
 }
 
