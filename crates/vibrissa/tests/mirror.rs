@@ -7,25 +7,33 @@
 use std::f64::consts::PI;
 use vibrissa::{scan, Precurvature, ScanOptions, Scene, SolverConfig, Stiffness};
 
+/// The start of a scan of `scene` (one tiny step) with the solver `solver`.
+fn start_with(scene: &Scene, solver: SolverConfig) -> vibrissa::ScanPoint {
+    let (rod, surface) = scene.parts().unwrap();
+    let o = ScanOptions {
+        d_max: 1e-3,
+        points: 2,
+        solver,
+        ..ScanOptions::default()
+    };
+    scan(&rod, &surface, &o).unwrap().start
+}
+
 fn start(k0: f64, k1: f64, f: impl Fn(&mut Scene)) -> vibrissa::ScanPoint {
     let mut s = Scene {
         precurvature: Precurvature::Linear { k0, k1 },
         ..Scene::default()
     };
     f(&mut s);
-    let (rod, surface) = s.parts().unwrap();
-    let o = ScanOptions {
-        d_max: 1e-3,
-        points: 2,
-        // the two presses are separate discretizations (their meshes adapt to rounding that is
-        // not mirrored): at tol 1e-12 their difference is below the 1e-12 asked for
-        solver: SolverConfig {
+    // the two presses are separate discretizations (their meshes adapt to rounding that is
+    // not mirrored): at tol 1e-12 their difference is below the 1e-12 asked for
+    start_with(
+        &s,
+        SolverConfig {
             tol: 1e-12,
             ..SolverConfig::default()
         },
-        ..ScanOptions::default()
-    };
-    scan(&rod, &surface, &o).unwrap().start
+    )
 }
 
 #[test]
@@ -77,17 +85,13 @@ fn slightly_inclined_lines_press_the_straight_rod_onto_its_first_mode() {
             surface_angle: beta,
             ..Scene::default()
         };
-        let (rod, surface) = s.parts().unwrap();
-        let o = ScanOptions {
-            d_max: 1e-3,
-            points: 2,
-            solver: SolverConfig {
+        start_with(
+            &s,
+            SolverConfig {
                 start: kind,
                 ..SolverConfig::default()
             },
-            ..ScanOptions::default()
-        };
-        scan(&rod, &surface, &o).unwrap().start
+        )
     };
     for beta in [0.01, 0.02, 0.025, 0.03, 0.035, 0.06] {
         let p = start_of(beta, vibrissa::StartKind::Pressed);
