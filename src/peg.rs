@@ -154,7 +154,7 @@ pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
     let (reason, theta) = match &r.stop {
         StopReason::DMax => ("theta_max", None),
         StopReason::SlipOff { d } => ("slip_off", Some(*d)),
-        StopReason::LiftOff { d } => ("lift_off", Some(*d)),
+        StopReason::LiftOff { d, .. } => ("lift_off", Some(*d)),
         StopReason::FoldInD { d } => ("fold", Some(*d)),
         StopReason::ContactChange { d, .. } => ("contact_change", Some(*d)),
         StopReason::Slip { d, .. } => ("slip", Some(*d)),

@@ -55,7 +55,7 @@ impl From<&StopReason> for Stop {
         let (reason, d) = match s {
             StopReason::DMax => ("d_max", None),
             StopReason::Slip { d, .. } => ("slip", Some(*d)),
-            StopReason::LiftOff { d } => ("lift_off", Some(*d)),
+            StopReason::LiftOff { d, .. } => ("lift_off", Some(*d)),
             StopReason::Penetration { d, .. } => ("penetration", Some(*d)),
             StopReason::FoldInD { d } => ("fold_in_d", Some(*d)),
             StopReason::SlipOff { d } => ("slip_off", Some(*d)),

@@ -815,7 +815,7 @@ impl<P: Profile> DragRun<'_, P> {
 /// A stop reason of the slip's march, at the foot's place `d`.
 fn at_foot(stop: StopReason, d: f64) -> StopReason {
     match stop {
-        StopReason::LiftOff { .. } => StopReason::LiftOff { d },
+        StopReason::LiftOff { limit, .. } => StopReason::LiftOff { d, limit },
         StopReason::Penetration { s, y, .. } => StopReason::Penetration { d, s, y },
         StopReason::SlipOff { .. } => StopReason::SlipOff { d },
         StopReason::Slip { mu, .. } => StopReason::ContactChange {

@@ -263,7 +263,7 @@ fn stop_reason(ev: Event, w: &Watch, set: &ContactSet) -> StopReason {
     let d = w.lam;
     match ev {
         Event::Slip => StopReason::Slip { d, mu: w.mu },
-        Event::LiftOff => StopReason::LiftOff { d },
+        Event::LiftOff => StopReason::LiftOff { d, limit: None },
         // a side touching at the start (tip-only model), the tip turning into the surface, or
         // the free rod reaching it
         Event::Penetration => {
@@ -382,6 +382,23 @@ impl<P: Profile> Run<'_, '_, P> {
                 Err(StepError::Failed(_)) if h > h_min => {
                     h *= 0.25;
                     continue;
+                }
+                Err(StepError::Failed(_)) if vanishing_normal(&hist).is_some() => {
+                    // the branch ends where a contact lets go: a lift-off, located by
+                    // extrapolation (no state beyond it brackets the root, and a
+                    // pseudo-arclength crawl towards it costs without end)
+                    let Some((ls, limit, w)) = vanishing_normal(&hist) else {
+                        unreachable!()
+                    };
+                    self.range.see(&w);
+                    self.range.close(RangeEnd::Event);
+                    return (
+                        StopReason::LiftOff {
+                            d: ls,
+                            limit: Some(limit),
+                        },
+                        last_of(&hist, self.stepper.set()),
+                    );
                 }
                 Err(e) => match self.stepper.pass_fold(&hist, target, lam_end) {
                     Passed::Beyond(p) => p,
@@ -605,6 +622,51 @@ impl<P: Profile> Run<'_, '_, P> {
             }
         }
     }
+}
+
+/// The end of a branch at a singular lift-off. A side contact whose normal force vanishes
+/// rolls towards the tip faster and faster (its place `s` grows like a small power of `N`, and
+/// its column of the Jacobian vanishes with `N`), so the corrector stalls short of `N = 0` and
+/// no state beyond exists to bracket the root. When a step fails where the newest points show
+/// the normal force of a contact falling and below `1e-3` of its contact force, its zero is
+/// the secant's, at most `1e-4 (1 + |λ|)` further on. The secant is first order: `|N'|` eases
+/// as `N → 0`, so the zero lies a few percent of that distance further (on the scene of
+/// `tests/scan_fixes.rs`, 11 to 3831 points and every method give lift-offs within 3e-7 of
+/// each other, 6e-6 beyond the last state). Returns the lift-off's `λ`, the evidence, and the
+/// watch there (`N = 0`, `μ` unbounded with the tangential force's sign).
+fn vanishing_normal(hist: &[Pt]) -> Option<(f64, String, Watch)> {
+    let [.., a, b] = hist else {
+        return None;
+    };
+    (0..b.w.contacts.len()).find_map(|j| {
+        let (na, cb) = (a.w.contacts.get(j)?.normal, b.w.contacts[j]);
+        let nb = cb.normal;
+        if !(nb > 0.0 && na > nb && nb <= 1e-3 * nb.hypot(cb.tangential)) {
+            return None;
+        }
+        let dl = nb * (b.lam - a.lam) / (na - nb);
+        if !(dl.is_finite() && dl <= 1e-4 * (1.0 + b.lam.abs())) {
+            return None;
+        }
+        let ls = b.lam + dl;
+        let mut w = b.w.clone();
+        w.lam = ls;
+        w.normal = 0.0;
+        w.mu = f64::INFINITY.copysign(cb.tangential);
+        w.contacts[j].normal = 0.0;
+        Some((
+            ls,
+            format!(
+                "extrapolated: the normal force of contact {} falls to {nb:.3e} at {} (s = {:.6}), \
+                 where the equations stop determining the contact; its zero lies {dl:.2e} \
+                 further on",
+                j + 1,
+                b.lam,
+                cb.s
+            ),
+            w,
+        ))
+    })
 }
 
 /// How far below zero a located touchdown's clearance on a curved surface may lie and still be a root (a rounding

@@ -267,6 +267,11 @@ pub enum StopReason {
     LiftOff {
         /// Displacement.
         d: f64,
+        /// Set where the branch ends at a singular point as the normal force vanishes (no state
+        /// beyond it to bracket the root), so that `d` is extrapolated from the last solved
+        /// states: the evidence, with the distance extrapolated over.
+        #[serde(skip_serializing_if = "Option::is_none")]
+        limit: Option<String>,
     },
     /// The rod crosses the surface at arc length `s` (`y(s) = η` with `s < 1`, or the tip
     /// slope turns downwards at `s = 1`).
@@ -313,7 +318,10 @@ impl StopReason {
         match self {
             StopReason::DMax => format!("{p}_max reached"),
             StopReason::Slip { d, mu } => format!("slip at {p} = {d} (mu = {mu})"),
-            StopReason::LiftOff { d } => format!("lift-off at {p} = {d} (normal force 0)"),
+            StopReason::LiftOff { d, limit: None } => {
+                format!("lift-off at {p} = {d} (normal force 0)")
+            }
+            StopReason::LiftOff { d, limit: Some(l) } => format!("lift-off at {p} = {d} ({l})"),
             StopReason::Penetration { d, s, y } => {
                 format!("penetration at {p} = {d} (s = {s}, y = {y})")
             }

@@ -167,7 +167,7 @@ fn lift_off_is_located() {
     };
     let r = run(&s, &o);
     let d_lift = match r.stop {
-        StopReason::LiftOff { d } => d,
+        StopReason::LiftOff { d, .. } => d,
         ref other => panic!("expected lift-off, got {other}"),
     };
     assert!(d_lift < 1.115);
@@ -200,7 +200,7 @@ fn lift_off_is_located() {
         ),
     );
     match reference.stop {
-        StopReason::LiftOff { d } => assert_abs_diff_eq!(d, d_lift, epsilon = 1e-7),
+        StopReason::LiftOff { d, .. } => assert_abs_diff_eq!(d, d_lift, epsilon = 1e-7),
         ref other => panic!("reference: {other}"),
     }
     // slipping for μ0 = 5 happens before the lift-off, not at it

@@ -150,7 +150,7 @@ fn lift_off_matches_the_rod_with_the_force_along_the_surface() {
     };
     let r = scan(&rod, &surface, &o).unwrap();
     match r.stop {
-        StopReason::LiftOff { d } => assert_abs_diff_eq!(d, q.d, epsilon = 1e-9),
+        StopReason::LiftOff { d, .. } => assert_abs_diff_eq!(d, q.d, epsilon = 1e-9),
         ref other => panic!("expected lift-off, got {other}"),
     }
     let (ev, grid) = r.points.split_last().unwrap();
