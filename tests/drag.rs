@@ -165,6 +165,31 @@ fn drag_json_summary_and_energy() {
     ok(&["plot", shapes.to_str().unwrap(), "--select", &sel]);
     let svg = std::fs::read_to_string(d.join("shapes.svg")).unwrap();
     assert!(svg.contains("slip"), "no slip in the shapes' legend");
+    // the sawtooth and the rod before and after the first slips in one picture
+    let both = d.join("both.svg");
+    ok(&[
+        "plot",
+        out.to_str().unwrap(),
+        "--shapes",
+        shapes.to_str().unwrap(),
+        "--out",
+        both.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&both).unwrap();
+    assert!(svg.contains(&format!("slip ({n})")), "no slip legend");
+    assert!(svg.contains("rod at the slips"), "no shapes panel");
+    // (a shape's legend entry is "d = … (slip)")
+    let drawn = n.min(3);
+    assert_eq!(
+        svg.matches("(slip)").count(),
+        drawn,
+        "shapes before the slips"
+    );
+    assert_eq!(
+        svg.matches("(slip_end)").count(),
+        drawn,
+        "shapes after the slips"
+    );
 }
 
 /// A corrugation from the flags is the scene file's `[surface]` of kind sine; a two-patch
