@@ -382,7 +382,10 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
         serde_json::to_writer_pretty(&mut w, &out)?;
         writeln!(w)?;
     } else {
-        csv_line(&mut w, &["parameter", "value", "std_error", "identifiable"])?;
+        csv_line(
+            &mut w,
+            &["parameter", "value", "std_error", "dof", "identifiable"],
+        )?;
         for p in &f.params {
             csv_line(
                 &mut w,
@@ -390,6 +393,7 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
                     p.name.to_string(),
                     num(p.value),
                     opt(p.std_error),
+                    opt(p.dof),
                     p.identifiable.to_string(),
                 ],
             )?;

@@ -328,7 +328,8 @@ fn fit_recovers_the_drag_and_names_what_it_cannot_determine() {
         let se = r[h.iter().position(|c| c == "std_error").unwrap()]
             .parse()
             .ok();
-        (col(&h, r, "value"), se, r[3] == "true")
+        let id = &r[h.iter().position(|c| c == "identifiable").unwrap()];
+        (col(&h, r, "value"), se, id == "true")
     };
     let f = ok(&["fit", "--trace", t]);
     for (name, want) in [("mu_s", 0.5), ("mu_k", 0.2)] {

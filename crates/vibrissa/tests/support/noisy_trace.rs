@@ -24,9 +24,12 @@ impl Rng {
     }
 }
 
+/// The noise levels of `d`, `fx`, `fy`, `m_base` (`fy` unused), as `FitOptions::sigma`.
+pub const SIGMA: [f64; 4] = [2e-4, 2e-3, 2e-3, 2e-3];
+
 /// The first `n` slips of `r` with noise.
 pub fn noisy(r: &DragResult, n: usize, rng: &mut Rng) -> Trace {
-    let (sd, sf) = (2e-4, 2e-3);
+    let (sd, sf) = (SIGMA[0], SIGMA[1]);
     Trace {
         slips: r.slips[..n]
             .iter()
