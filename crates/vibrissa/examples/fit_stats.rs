@@ -16,12 +16,12 @@
 //! (default 100 trials of 4, 8, 16 and 32 slips; trial `i` of `n` slips draws from seed
 //! `1000 n + i`)
 
-use vibrissa::fit::{fit, FitOptions, FitResult, Trace, TraceSlip};
+use vibrissa::fit::{fit, FitOptions, FitResult, Trace};
 use vibrissa::{drag, DragOptions, Scene};
 
 #[path = "../tests/support/noisy_trace.rs"]
 mod noisy_trace;
-use noisy_trace::{noisy, Rng, SIGMA};
+use noisy_trace::{exact, noisy, places_only, Rng, SIGMA};
 
 /// `ln Γ(x)`, x > 0 (Lanczos, g = 7, 9 terms: 1e-15 relative).
 fn ln_gamma(x: f64) -> f64 {
@@ -201,34 +201,17 @@ fn main() {
     );
     let mut info = Vec::new();
     for &(n, _, _) in &rows {
-        let exact: Vec<TraceSlip> = r.slips[..n]
-            .iter()
-            .map(|e| TraceSlip {
-                d: e.d,
-                before: [Some(e.before.fx), None, Some(e.before.m_base)],
-                after: [Some(e.after.fx), None, None],
-            })
-            .collect();
-        let places: Vec<TraceSlip> = exact
-            .iter()
-            .map(|e| TraceSlip {
-                d: e.d,
-                ..TraceSlip::default()
-            })
-            .collect();
+        let all = exact(&r, n);
+        let places = places_only(&all);
         let no_places = FitOptions {
             sigma: Some([1e3, SIGMA[1], SIGMA[2], SIGMA[3]]),
             ..FitOptions::default()
         };
-        let se = |t: Vec<TraceSlip>, o: &FitOptions| -> [f64; 2] {
-            let f = fit(&scene, &Trace { slips: t }, o).expect("fit");
+        let se = |t: &Trace, o: &FitOptions| -> [f64; 2] {
+            let f = fit(&scene, t, o).expect("fit");
             ["mu_s", "mu_k"].map(|p| f.get(p).and_then(|q| q.std_error).unwrap_or(f64::NAN))
         };
-        let (a, b, c) = (
-            se(exact.clone(), &given),
-            se(exact, &no_places),
-            se(places, &given),
-        );
+        let (a, b, c) = (se(&all, &given), se(&all, &no_places), se(&places, &given));
         println!(
             "{n} | {:.3e}, {:.3e} | {:.3e}, {:.3e} | {:.3e}, {:.3e}",
             a[0], a[1], b[0], b[1], c[0], c[1]

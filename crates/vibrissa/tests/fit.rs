@@ -8,7 +8,7 @@ use vibrissa::{drag, DragOptions, DragResult, Scene};
 
 #[path = "support/noisy_trace.rs"]
 mod noisy_trace;
-use noisy_trace::{noisy, Rng, SIGMA};
+use noisy_trace::{noisy, places_only, Rng, SIGMA};
 
 fn truth(n: usize) -> DragResult {
     let (rod, surface) = Scene::default().parts().unwrap();
@@ -91,17 +91,7 @@ fn noise_levels_are_estimated_over_their_degrees_of_freedom() {
         // least its 6 observations less p, and their sum n − p = 22)
         assert!((4.0..=22.0).contains(&dof), "{name}: dof {dof}");
     }
-    let places = Trace {
-        slips: t
-            .slips
-            .iter()
-            .map(|s| TraceSlip {
-                d: s.d,
-                ..TraceSlip::default()
-            })
-            .collect(),
-    };
-    let f = fit(&Scene::default(), &places, &FitOptions::default()).unwrap();
+    let f = fit(&Scene::default(), &places_only(&t), &FitOptions::default()).unwrap();
     assert!((f.s2 - 1.0).abs() < 5e-3, "{f}");
     for name in ["mu_s", "mu_k"] {
         let dof = f.get(name).unwrap().dof.unwrap();
