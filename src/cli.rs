@@ -676,7 +676,8 @@ pub struct PlotArgs {
     #[arg(long, value_name = "TEXT")]
     pub title: Option<String>,
     /// Shapes: the point indices to draw (the `point` column), a comma list. [default: six
-    /// points spread over the file and every point with an event]
+    /// points spread over the file and every point with an event; a drag's --shapes: its first
+    /// three slips and their ends]
     #[arg(
         long,
         value_name = "LIST",
@@ -685,6 +686,10 @@ pub struct PlotArgs {
         help_heading = "Shapes"
     )]
     pub select: Option<Vec<usize>>,
+    /// Drag: also draw the rod just before and after the first three slips from this file,
+    /// the drag's --shapes (--select chooses other points).
+    #[arg(long, value_name = "SHAPES.csv", help_heading = "Drag")]
+    pub shapes: Option<PathBuf>,
     /// Shapes: inclination of the surface line drawn through the tip (rad), as the scan's --surface-angle.
     #[arg(long, value_name = "B", value_parser = finite_f64, default_value = "0", help_heading = "Shapes")]
     pub surface_angle: f64,

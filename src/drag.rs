@@ -13,33 +13,42 @@ use std::time::Instant;
 use vibrissa::drag::{DragRow, DragSummary, SlipEvent};
 use vibrissa::fit::{FitOptions, FitResult, Signal, Trace, TraceSlip};
 use vibrissa::surface::SurfaceProfile;
-use vibrissa::{DragOptions, Scene, StopReason};
+use vibrissa::{DragOptions, Scene, StopReason, Units};
 
-/// Columns of the drag CSV (`vibrissa plot` reads them by name).
-pub const HEADER: [&str; 14] = [
-    "d",
-    "phase",
-    "x_tip",
-    "y_tip",
-    "mu",
-    "mu_s",
-    "normal",
-    "fx",
-    "fy",
-    "m_base",
-    "contact",
-    "event",
-    "jump",
-    "energy_released",
-];
+/// Columns of the drag CSV (`vibrissa plot` reads them by name); with a physical scene
+/// `d_mm, x_tip_mm, y_tip_mm, normal_N, fx_N, fy_N, m_base_Nm` before `event`, as the scan's.
+pub fn header(physical: bool) -> Vec<&'static str> {
+    let mut h = vec![
+        "d", "phase", "x_tip", "y_tip", "mu", "mu_s", "normal", "fx", "fy", "m_base", "contact",
+    ];
+    if physical {
+        h.extend([
+            "d_mm",
+            "x_tip_mm",
+            "y_tip_mm",
+            "normal_N",
+            "fx_N",
+            "fy_N",
+            "m_base_Nm",
+        ]);
+    }
+    h.extend(["event", "jump", "energy_released"]);
+    h
+}
 
-fn row(r: &DragRow) -> Vec<String> {
+fn row(r: &DragRow, u: Option<Units>) -> Vec<String> {
     let mut v = vec![num(r.d), r.phase.name().to_string()];
     v.extend([r.x_tip, r.y_tip].map(num));
     v.push(mu_text(r.mu));
     v.push(mu_text(r.mu_s));
     v.extend([r.normal, r.fx, r.fy, r.m_base].map(num));
     v.push(r.contact.name().to_string());
+    if let Some(u) = u {
+        let l = u.length_mm;
+        v.extend([r.d * l, r.x_tip * l, r.y_tip * l].map(num));
+        v.extend([r.normal, r.fx, r.fy].map(|f| num(f * u.force_n)));
+        v.push(num(r.m_base * u.moment_nm));
+    }
     v.push(r.event.map_or("", |e| e.name()).to_string());
     v.push(opt(r.jump));
     v.push(opt(r.released));
@@ -150,7 +159,10 @@ pub fn run(a: &DragArgs) -> Res<()> {
         )?;
     }
     if a.out.is_some() || !a.json {
-        crate::output::write_table(a.out.as_deref(), &HEADER, &r.rows, row)?;
+        let u = crate::scene_args::units_of(&sc);
+        crate::output::write_table(a.out.as_deref(), &header(u.is_some()), &r.rows, |p| {
+            row(p, u)
+        })?;
     }
     let stop = Stop::from(&r.stop);
     if stop.reason != "d_max" {
@@ -382,7 +394,10 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
         serde_json::to_writer_pretty(&mut w, &out)?;
         writeln!(w)?;
     } else {
-        csv_line(&mut w, &["parameter", "value", "std_error", "identifiable"])?;
+        csv_line(
+            &mut w,
+            &["parameter", "value", "std_error", "dof", "identifiable"],
+        )?;
         for p in &f.params {
             csv_line(
                 &mut w,
@@ -390,6 +405,7 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
                     p.name.to_string(),
                     num(p.value),
                     opt(p.std_error),
+                    opt(p.dof),
                     p.identifiable.to_string(),
                 ],
             )?;

@@ -340,18 +340,9 @@ const SHAPE_COLORS: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
-/// Shapes: the rod at the chosen points in the lab frame (foot at (d, 0), the tip fixed), the
-/// feet, and the surface line through the tip inclined by `beta`.
-fn shapes(t: &Table, select: Option<&[usize]>, beta: f64, whisk: bool) -> Res<Fig> {
+/// The rows of each point of a shapes file (in file order).
+fn shape_rows(t: &Table) -> Res<BTreeMap<usize, Vec<usize>>> {
     let point = t.need("point")?;
-    let (pcol, xcol) = if whisk {
-        ("theta", "x")
-    } else {
-        ("d", "x_lab")
-    };
-    let (d, s, x, y) = (t.need(pcol)?, t.need("s")?, t.need(xcol)?, t.need("y")?);
-    let ev = t.text("event");
-    // rows of each point, in file order
     let mut by_point: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
     for (i, p) in point.iter().enumerate() {
         if !(p.is_finite() && *p >= 0.0 && p.fract() == 0.0) {
@@ -363,54 +354,57 @@ fn shapes(t: &Table, select: Option<&[usize]>, beta: f64, whisk: bool) -> Res<Fi
         }
         by_point.entry(*p as usize).or_default().push(i);
     }
-    let all: Vec<usize> = by_point.keys().copied().collect();
-    let chosen: Vec<usize> = match select {
-        Some(sel) => {
-            for p in sel {
-                if !by_point.contains_key(p) {
-                    return Err(usage(format!(
-                        "--select {p}: {} has points {}..={}",
-                        t.name,
-                        all[0],
-                        all[all.len() - 1]
-                    )));
-                }
-            }
-            sel.to_vec()
-        }
-        None => {
-            // six points spread over the file, and every point with an event
-            let n = all.len();
-            let mut c: Vec<usize> = (0..6.min(n))
-                .map(|k| all[if n <= 6 { k } else { k * (n - 1) / 5 }])
-                .collect();
-            if let Some(ev) = &ev {
-                for (&p, rows) in &by_point {
-                    if !ev[rows[0]].is_empty() {
-                        c.push(p);
-                    }
-                }
-            }
-            c.sort_unstable();
-            c.dedup();
-            c
-        }
+    Ok(by_point)
+}
+
+/// `--select`, checked against the points of the file, else `default`.
+fn chosen_points(
+    t: &Table,
+    by_point: &BTreeMap<usize, Vec<usize>>,
+    select: Option<&[usize]>,
+    default: impl FnOnce() -> Vec<usize>,
+) -> Res<Vec<usize>> {
+    let Some(sel) = select else {
+        return Ok(default());
     };
-    let mut p = panel(
-        if whisk {
-            "rod shapes (frame of the unturned foot: the foot turns by theta)"
-        } else {
-            "rod shapes (lab frame: the tip sticks, the foot moves by d)"
-        },
-        "x (L)",
-        "y (L)",
-    );
+    for p in sel {
+        if !by_point.contains_key(p) {
+            let all: Vec<usize> = by_point.keys().copied().collect();
+            return Err(usage(format!(
+                "--select {p}: {} has points {}..={}",
+                t.name,
+                all[0],
+                all[all.len() - 1]
+            )));
+        }
+    }
+    Ok(sel.to_vec())
+}
+
+/// The panel of shapes: the rod at the `chosen` points, each in its style (line kind and
+/// colour), in the lab frame (foot at (d, 0)) or, for a whisk, the frame of the unturned foot;
+/// the feet, and (not for a whisk) the surface line through the first shape's tip inclined by
+/// `beta`.
+fn shape_panel(
+    t: &Table,
+    by_point: &BTreeMap<usize, Vec<usize>>,
+    chosen: &[(usize, Kind, RGBColor)],
+    (title, beta, whisk): (&str, f64, bool),
+) -> Res<Panel> {
+    let (pcol, xcol) = if whisk {
+        ("theta", "x")
+    } else {
+        ("d", "x_lab")
+    };
+    let (d, s, x, y) = (t.need(pcol)?, t.need("s")?, t.need(xcol)?, t.need("y")?);
+    let ev = t.text("event");
+    let mut p = panel(title, "x (L)", "y (L)");
     p.equal_aspect = true;
     let mut feet = Vec::new();
     let (mut xmin, mut xmax) = (f64::INFINITY, f64::NEG_INFINITY);
     let mut tip = None;
-    for (k, pt) in chosen.iter().enumerate() {
-        let rows = &by_point[pt];
+    for &(pt, kind, color) in chosen {
+        let rows = &by_point[&pt];
         let pts: Vec<(f64, f64)> = rows.iter().map(|&r| (x[r], y[r])).collect();
         for q in &pts {
             xmin = xmin.min(q.0);
@@ -429,12 +423,7 @@ fn shapes(t: &Table, select: Option<&[usize]>, beta: f64, whisk: bool) -> Res<Fi
         } else {
             format!("{pcol} = {} ({event})", short(d[r0]))
         };
-        p.series.push(series(
-            &name,
-            Kind::Line,
-            SHAPE_COLORS[k % SHAPE_COLORS.len()],
-            pts,
-        ));
+        p.series.push(series(&name, kind, color, pts));
     }
     p.series.push(series("foot", Kind::Square, GREY_, feet));
     if let Some((tx, ty)) = tip.filter(|_| !whisk) {
@@ -450,13 +439,113 @@ fn shapes(t: &Table, select: Option<&[usize]>, beta: f64, whisk: bool) -> Res<Fi
             line,
         ));
     }
+    Ok(p)
+}
+
+/// Shapes: the rod at the chosen points in the lab frame (foot at (d, 0), the tip fixed), the
+/// feet, and the surface line through the tip inclined by `beta`.
+fn shapes(t: &Table, select: Option<&[usize]>, beta: f64, whisk: bool) -> Res<Fig> {
+    let by_point = shape_rows(t)?;
+    let all: Vec<usize> = by_point.keys().copied().collect();
+    let ev = t.text("event");
+    let chosen = chosen_points(t, &by_point, select, || {
+        // six points spread over the file, and every point with an event
+        let n = all.len();
+        let mut c: Vec<usize> = (0..6.min(n))
+            .map(|k| all[if n <= 6 { k } else { k * (n - 1) / 5 }])
+            .collect();
+        if let Some(ev) = &ev {
+            for (&p, rows) in &by_point {
+                if !ev[rows[0]].is_empty() {
+                    c.push(p);
+                }
+            }
+        }
+        c.sort_unstable();
+        c.dedup();
+        c
+    })?;
+    let styled: Vec<(usize, Kind, RGBColor)> = chosen
+        .iter()
+        .enumerate()
+        .map(|(k, &pt)| (pt, Kind::Line, SHAPE_COLORS[k % SHAPE_COLORS.len()]))
+        .collect();
+    let title = if whisk {
+        "rod shapes (frame of the unturned foot: the foot turns by theta)"
+    } else {
+        "rod shapes (lab frame: the tip sticks, the foot moves by d)"
+    };
     Ok(Fig {
         name: String::new(),
         caption: format!("{}: {} of {} shapes", t.name, chosen.len(), all.len()),
-        panels: vec![p],
+        panels: vec![shape_panel(t, &by_point, &styled, (title, beta, whisk))?],
         w: 760,
         h: 560,
     })
+}
+
+/// Slips whose shapes a drag's picture draws by default.
+const DRAG_SHAPE_SLIPS: usize = 3;
+
+/// A drag with its `--shapes` file: the signals against d with the slips marked, and a panel of
+/// the rod just before (solid) and just after (dashed, same colour) each of the first three
+/// slips (`--select` chooses other points).
+fn drag_with_shapes(t: &Table, sh: &Table, select: Option<&[usize]>, beta: f64) -> Res<Fig> {
+    let mut fig = signals(t, &format!("drag {}", t.name), "d")?;
+    let by_point = shape_rows(sh)?;
+    let ev = sh.text("event").ok_or_else(|| {
+        usage(format!(
+            "{}: no column 'event': not the --shapes file of a drag",
+            sh.name
+        ))
+    })?;
+    let event = |pt: &usize| ev[by_point[pt][0]];
+    let chosen = chosen_points(sh, &by_point, select, || {
+        let mut c = Vec::new();
+        let mut slips = 0;
+        for pt in by_point.keys() {
+            match event(pt) {
+                "slip" if slips < DRAG_SHAPE_SLIPS => {
+                    slips += 1;
+                    c.push(*pt);
+                }
+                "slip_end" if slips > 0 && c.len() < 2 * slips => c.push(*pt),
+                _ => {}
+            }
+        }
+        c
+    })?;
+    if chosen.is_empty() {
+        return Err(usage(format!(
+            "{}: no slip to draw (the drag did not slip; --select chooses points)",
+            sh.name
+        )));
+    }
+    // a slip and its end share the colour, the end dashed
+    let mut slips = 0usize;
+    let styled: Vec<(usize, Kind, RGBColor)> = chosen
+        .iter()
+        .map(|pt| {
+            let end = event(pt) == "slip_end";
+            if !end {
+                slips += 1;
+            }
+            let kind = if end { Kind::Dashed } else { Kind::Line };
+            let k = slips.saturating_sub(1) % SHAPE_COLORS.len();
+            (*pt, kind, SHAPE_COLORS[k])
+        })
+        .collect();
+    fig.panels.push(shape_panel(
+        sh,
+        &by_point,
+        &styled,
+        (
+            "rod at the slips (lab frame; before: solid, after: dashed)",
+            beta,
+            false,
+        ),
+    )?);
+    Ok(fig)
 }
 
 /// A number for a label: 4 significant digits.
@@ -705,9 +794,20 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
         PlotKind::Auto => detect(t)?,
         k => k,
     };
+    if a.shapes.is_some() && kind != PlotKind::Drag {
+        return Err(usage(format!(
+            "--shapes: the rod at the slips is drawn with a drag's file; {} is not one",
+            t.name
+        )));
+    }
     let mut fig = match kind {
         PlotKind::Scan => signals(t, &format!("scan {}", t.name), "d")?,
-        PlotKind::Drag => signals(t, &format!("drag {}", t.name), "d")?,
+        PlotKind::Drag => match &a.shapes {
+            Some(path) => {
+                drag_with_shapes(t, &Table::read(path)?, a.select.as_deref(), a.surface_angle)?
+            }
+            None => signals(t, &format!("drag {}", t.name), "d")?,
+        },
         PlotKind::Whisk => signals(t, &format!("whisk {}", t.name), "theta")?,
         PlotKind::Shapes => shapes(t, a.select.as_deref(), a.surface_angle, false)?,
         PlotKind::WhiskShapes => shapes(t, a.select.as_deref(), a.surface_angle, true)?,
@@ -757,6 +857,7 @@ mod tests {
     const SHAPES: &str = include_str!("../tests/fixtures/plot/shapes.csv");
     const SWEEP: &str = include_str!("../tests/fixtures/plot/sweep.csv");
     const DRAG: &str = include_str!("../tests/fixtures/plot/drag.csv");
+    const DRAG_SHAPES: &str = include_str!("../tests/fixtures/plot/drag_shapes.csv");
     const WHISK: &str = include_str!("../tests/fixtures/plot/whisk.csv");
     const WHISK_SHAPES: &str = include_str!("../tests/fixtures/plot/whisk_shapes.csv");
 
@@ -767,6 +868,7 @@ mod tests {
             out: None,
             title: None,
             select: None,
+            shapes: None,
             surface_angle: 0.0,
             x: None,
             y: None,
@@ -929,6 +1031,62 @@ mod tests {
         a.select = Some(vec![99]);
         let e = err(figure(&Table::parse("shapes.csv", SHAPES).unwrap(), &a));
         assert!(e.contains("--select 99"), "{e}");
+    }
+
+    #[test]
+    fn a_drag_with_its_shapes_draws_the_rod_before_and_after_the_slips() {
+        let t = Table::parse("drag.csv", DRAG).unwrap();
+        let sh = Table::parse("drag_shapes.csv", DRAG_SHAPES).unwrap();
+        let f = drag_with_shapes(&t, &sh, None, 0.0).unwrap();
+        // the four signal panels, then the shapes
+        assert_eq!(f.panels.len(), 5);
+        assert_eq!(f.panels[3].title, "tip position");
+        let p = &f.panels[4];
+        assert!(p.equal_aspect);
+        // the three slips of the file (points 8, 14, 20) and their ends, one colour each
+        assert_eq!(
+            names(p),
+            [
+                "d = 0.0358 (slip)",
+                "d = 0.0358 (slip_end)",
+                "d = 0.05661 (slip)",
+                "d = 0.05661 (slip_end)",
+                "d = 0.07743 (slip)",
+                "d = 0.07743 (slip_end)",
+                "foot",
+                "surface (β = 0 rad)"
+            ]
+        );
+        for pair in p.series[..6].chunks(2) {
+            assert_eq!((pair[0].kind, pair[1].kind), (Kind::Line, Kind::Dashed));
+            assert_eq!(pair[0].color, pair[1].color);
+            // the rod from the foot at (d, 0) to the tip on the surface (y = 0.75), 9 samples
+            assert_eq!(pair[0].pts.len(), 9);
+            for s in pair {
+                let (foot, tip) = (s.pts[0], s.pts[8]);
+                assert_eq!(foot.1, 0.0);
+                assert!((tip.1 - 0.75).abs() < 1e-9, "{}: tip {tip:?}", s.name);
+            }
+            // the slip moves the tip forward, the foot stays
+            assert_eq!(pair[0].pts[0], pair[1].pts[0]);
+            assert!(pair[1].pts[8].0 > pair[0].pts[8].0 + 1e-3);
+        }
+        assert_ne!(p.series[0].color, p.series[2].color);
+        checked(&f);
+        // --select chooses; a shapes file without a slip, or --shapes with a scan, is refused
+        let f = drag_with_shapes(&t, &sh, Some(&[0, 9]), 0.0).unwrap();
+        assert_eq!(names(&f.panels[4])[..2], ["d = 0", "d = 0.0358 (slip_end)"]);
+        let e = err(drag_with_shapes(
+            &t,
+            &Table::parse("shapes.csv", SHAPES).unwrap(),
+            None,
+            0.0,
+        ));
+        assert!(e.contains("no slip to draw"), "{e}");
+        let mut a = args(PlotKind::Auto);
+        a.shapes = Some(PathBuf::from("drag_shapes.csv"));
+        let e = err(figure(&Table::parse("scan.csv", SCAN).unwrap(), &a));
+        assert!(e.contains("scan.csv is not one"), "{e}");
     }
 
     #[test]

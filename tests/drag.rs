@@ -165,6 +165,31 @@ fn drag_json_summary_and_energy() {
     ok(&["plot", shapes.to_str().unwrap(), "--select", &sel]);
     let svg = std::fs::read_to_string(d.join("shapes.svg")).unwrap();
     assert!(svg.contains("slip"), "no slip in the shapes' legend");
+    // the sawtooth and the rod before and after the first slips in one picture
+    let both = d.join("both.svg");
+    ok(&[
+        "plot",
+        out.to_str().unwrap(),
+        "--shapes",
+        shapes.to_str().unwrap(),
+        "--out",
+        both.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&both).unwrap();
+    assert!(svg.contains(&format!("slip ({n})")), "no slip legend");
+    assert!(svg.contains("rod at the slips"), "no shapes panel");
+    // (a shape's legend entry is "d = … (slip)")
+    let drawn = n.min(3);
+    assert_eq!(
+        svg.matches("(slip)").count(),
+        drawn,
+        "shapes before the slips"
+    );
+    assert_eq!(
+        svg.matches("(slip_end)").count(),
+        drawn,
+        "shapes after the slips"
+    );
 }
 
 /// A corrugation from the flags is the scene file's `[surface]` of kind sine; a two-patch
@@ -303,7 +328,8 @@ fn fit_recovers_the_drag_and_names_what_it_cannot_determine() {
         let se = r[h.iter().position(|c| c == "std_error").unwrap()]
             .parse()
             .ok();
-        (col(&h, r, "value"), se, r[3] == "true")
+        let id = &r[h.iter().position(|c| c == "identifiable").unwrap()];
+        (col(&h, r, "value"), se, id == "true")
     };
     let f = ok(&["fit", "--trace", t]);
     for (name, want) in [("mu_s", 0.5), ("mu_k", 0.2)] {
@@ -400,4 +426,74 @@ fn a_side_at_its_slip_limit_ends_the_drag() {
         "{}",
         o.stderr
     );
+}
+
+/// A physical scene (`--length-mm`, `--youngs-modulus-gpa`, `--base-diameter-um`) gives the drag
+/// CSV the physical-unit columns before `event`, as the scan's: lengths × L, forces × E I / L²,
+/// the moment × E I / L with `I = π d⁴ / 64` (here L = 30 mm, E = 3 GPa, d = 100 µm), to
+/// 1e-14 relative; the fit reads the same trace as without them.
+#[test]
+fn physical_units_in_the_drag_csv() {
+    let d = tmpdir("drag-units");
+    let (plain, phys) = (d.join("plain.csv"), d.join("phys.csv"));
+    let base = [
+        "drag", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.05", "--points", "3",
+    ];
+    let mut a = base.to_vec();
+    a.extend(["--out", plain.to_str().unwrap()]);
+    ok(&a);
+    let mut a = base.to_vec();
+    a.extend([
+        "--length-mm",
+        "30",
+        "--youngs-modulus-gpa",
+        "3",
+        "--base-diameter-um",
+        "100",
+        "--out",
+        phys.to_str().unwrap(),
+    ]);
+    ok(&a);
+    let (h0, rows0) = csv(&std::fs::read_to_string(&plain).unwrap());
+    let (h, rows) = csv(&std::fs::read_to_string(&phys).unwrap());
+    let (l_m, e_pa, dia_m): (f64, f64, f64) = (0.03, 3e9, 100e-6);
+    let i = std::f64::consts::PI * dia_m.powi(4) / 64.0;
+    let (force, moment) = (e_pa * i / (l_m * l_m), e_pa * i / l_m);
+    // each physical column, the normalized one it scales and the unit, in file order
+    let units = [
+        ("d_mm", "d", 30.0),
+        ("x_tip_mm", "x_tip", 30.0),
+        ("y_tip_mm", "y_tip", 30.0),
+        ("normal_N", "normal", force),
+        ("fx_N", "fx", force),
+        ("fy_N", "fy", force),
+        ("m_base_Nm", "m_base", moment),
+    ];
+    let at = h0.iter().position(|c| c == "event").unwrap();
+    let mut want = h0[..at].to_vec();
+    want.extend(units.iter().map(|u| u.0.to_string()));
+    want.extend(h0[at..].iter().cloned());
+    assert_eq!(h, want);
+    assert_eq!(rows.len(), rows0.len());
+    assert!(rows
+        .iter()
+        .any(|r| r[h.iter().position(|c| c == "event").unwrap()] == "slip"));
+    for (r, r0) in rows.iter().zip(&rows0) {
+        // the normalized columns are those of the drag without units
+        for c in &h0 {
+            let (j, j0) = (
+                h.iter().position(|x| x == c).unwrap(),
+                h0.iter().position(|x| x == c).unwrap(),
+            );
+            assert_eq!(r[j], r0[j0], "{c}");
+        }
+        for (c, of, unit) in units {
+            let want = col(&h, r, of) * unit;
+            close(col(&h, r, c), want, 1e-14 * want.abs().max(1e-300), c);
+        }
+    }
+    // the fit reads d, fx, fy, m_base by name: the same estimate from both files
+    let f0 = ok(&["fit", "--trace", plain.to_str().unwrap()]);
+    let f1 = ok(&["fit", "--trace", phys.to_str().unwrap()]);
+    assert_eq!(f0.stdout, f1.stdout);
 }

@@ -1,76 +1,244 @@
 //! The statistics of `fit` (issue 21): 100 seeded synthetic traces of the paper's scene
 //! (uniform clamped rod, η = 0.75, μs = 0.5, μk = 0.3) with Gaussian noise on the slip places
-//! (σ = 2e-4) and on `fx`, `m_base` before and `fx` after each slip (σ = 2e-3); the share of
-//! trials whose estimate lies within 3 standard errors of the truth, and the root-mean-square
-//! error for traces of 4, 8 and 16 slips (errors should shrink like 1/√n).
+//! (σ = 2e-4) and on `fx`, `m_base` before and `fx` after each slip (σ = 2e-3), fitted twice: with
+//! the noise levels estimated from the residuals (the default) and with them given. For traces of
+//! 4, 8, 16 and 32 slips: the share of trials whose estimate lies within 3 standard errors of the
+//! truth, and (noise levels estimated) within Student's t interval of the same confidence
+//! (99.73 %) with the fit's degrees of freedom; the root-mean-square error, the mean standard
+//! error and the standard error the noise levels give (the errors should shrink like the latter);
+//! and that standard error from the signals alone and from the slip places alone (why it falls
+//! faster than 1/√n: docs/model.md, "The drag").
 //!
 //! ```sh
-//! cargo run --release -p vibrissa --example fit_stats
+//! cargo run --release -p vibrissa --example fit_stats [-- TRIALS [SLIPS...]]
 //! ```
+//!
+//! (default 100 trials of 4, 8, 16 and 32 slips; trial `i` of `n` slips draws from seed
+//! `1000 n + i`)
 
-use vibrissa::fit::{fit, FitOptions};
+use vibrissa::fit::{fit, FitOptions, FitResult, Trace};
 use vibrissa::{drag, DragOptions, Scene};
 
 #[path = "../tests/support/noisy_trace.rs"]
 mod noisy_trace;
-use noisy_trace::{noisy, Rng};
+use noisy_trace::{exact, noisy, places_only, Rng, SIGMA};
+
+/// `ln Γ(x)`, x > 0 (Lanczos, g = 7, 9 terms: 1e-15 relative).
+fn ln_gamma(x: f64) -> f64 {
+    const C: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    let x = x - 1.0;
+    let t = x + 7.5;
+    let s = C[0] + (1..9).map(|i| C[i] / (x + i as f64)).sum::<f64>();
+    0.5 * std::f64::consts::TAU.ln() + (x + 0.5) * t.ln() - t + s.ln()
+}
+
+/// The regularized incomplete beta function `I_x(a, b)` (Lentz's continued fraction).
+fn inc_beta(x: f64, a: f64, b: f64) -> f64 {
+    if x <= 0.0 || x >= 1.0 {
+        return x.clamp(0.0, 1.0);
+    }
+    if x > (a + 1.0) / (a + b + 2.0) {
+        return 1.0 - inc_beta(1.0 - x, b, a);
+    }
+    let front =
+        (ln_gamma(a + b) - ln_gamma(a) - ln_gamma(b) + a * x.ln() + b * (1.0 - x).ln()).exp() / a;
+    let tiny = 1e-300;
+    let (mut c, mut d) = (1.0, 1.0 - (a + b) * x / (a + 1.0));
+    d = 1.0 / if d.abs() < tiny { tiny } else { d };
+    let mut f = d;
+    for m in 1..300 {
+        let m = m as f64;
+        for num in [
+            m * (b - m) * x / ((a + 2.0 * m - 1.0) * (a + 2.0 * m)),
+            -(a + m) * (a + b + m) * x / ((a + 2.0 * m) * (a + 2.0 * m + 1.0)),
+        ] {
+            d = 1.0 + num * d;
+            d = 1.0 / if d.abs() < tiny { tiny } else { d };
+            c = 1.0 + num / c;
+            c = if c.abs() < tiny { tiny } else { c };
+            f *= c * d;
+        }
+        if (c * d - 1.0).abs() < 1e-15 {
+            break;
+        }
+    }
+    front * f
+}
+
+/// `P(|T| > t)` for Student's t with `dof` degrees of freedom.
+fn t_tail(t: f64, dof: f64) -> f64 {
+    inc_beta(dof / (dof + t * t), 0.5 * dof, 0.5)
+}
+
+/// One length's tallies: within 3 SE (μs, μk, both), within the t interval (both), Σ error²,
+/// Σ SE, Σ dof (μs, μk each).
+#[derive(Default)]
+struct Tally {
+    in3: [usize; 3],
+    in_t: usize,
+    e2: [f64; 2],
+    se: [f64; 2],
+    dof: [f64; 2],
+}
+
+impl Tally {
+    fn add(&mut self, f: &FitResult, truth: [f64; 2]) {
+        let mut inside = [false; 2];
+        let mut inside_t = [true; 2];
+        for (i, name) in ["mu_s", "mu_k"].into_iter().enumerate() {
+            let p = f.get(name).expect("fitted");
+            let se = p.std_error.expect("standard error");
+            let e = p.value - truth[i];
+            inside[i] = e.abs() <= 3.0 * se;
+            if let Some(dof) = p.dof {
+                // within the interval of the normal 3-sigma confidence
+                inside_t[i] = t_tail(e.abs() / se, dof) >= 2.699_796e-3;
+                self.dof[i] += dof;
+            }
+            self.e2[i] += e * e;
+            self.se[i] += se;
+        }
+        self.in3[0] += usize::from(inside[0]);
+        self.in3[1] += usize::from(inside[1]);
+        self.in3[2] += usize::from(inside[0] && inside[1]);
+        self.in_t += usize::from(inside_t[0] && inside_t[1]);
+    }
+}
 
 fn main() {
+    // (the tail function against known values: t_1 is Cauchy, P(|T_1| > 1) = 1/2; the normal
+    // limit P(|Z| > 3) = 2.6998e-3)
+    assert!((t_tail(1.0, 1.0) - 0.5).abs() < 1e-12);
+    assert!((t_tail(3.0, 1e7) - 2.699_796e-3).abs() < 1e-8);
     let scene = Scene::default();
     let (rod, surface) = scene.parts().expect("scene");
-    let truth = (0.5, 0.3);
+    let truth = [0.5, 0.3];
     let r = drag(
         &rod,
         &surface,
         &DragOptions {
-            d_max: 0.25,
+            d_max: 0.5,
             points: 2,
-            mu_s: Some(truth.0),
-            mu_k: Some(truth.1),
+            mu_s: Some(truth[0]),
+            mu_k: Some(truth[1]),
+            max_slips: 32,
             ..DragOptions::default()
         },
     )
     .expect("drag");
-    assert!(r.slips.len() >= 16, "{r}");
-    println!("slips | trials | within 3 SE: mu_s, mu_k, both | rms error mu_s, mu_k | mean SE mu_s, mu_k");
-    let mut rms = Vec::new();
-    for n in [4, 8, 16] {
-        let trials = 100;
-        let (mut in_s, mut in_k, mut both) = (0, 0, 0);
-        let (mut e2s, mut e2k, mut ses, mut sek) = (0.0, 0.0, 0.0, 0.0);
+    assert!(r.slips.len() >= 32, "{r}");
+    let given = FitOptions {
+        sigma: Some(SIGMA),
+        ..FitOptions::default()
+    };
+    println!(
+        "slips | trials | sigma estimated: within 3 SE mu_s, mu_k, both; within t(dof) both | \
+         mean dof mu_s, mu_k | sigma given: within 3 SE both | rms error mu_s, mu_k | mean SE \
+         mu_s, mu_k | SE with sigma given mu_s, mu_k"
+    );
+    let args: Vec<u64> = std::env::args()
+        .skip(1)
+        .map(|a| a.parse().expect("usage: fit_stats [TRIALS [SLIPS...]]"))
+        .collect();
+    let trials = args.first().copied().unwrap_or(100);
+    let lengths: Vec<usize> = if args.len() > 1 {
+        args[1..].iter().map(|&n| n as usize).collect()
+    } else {
+        vec![4, 8, 16, 32]
+    };
+    assert!(lengths.iter().all(|&n| (1..=r.slips.len()).contains(&n)));
+    let mut rows = Vec::new();
+    for n in lengths {
+        let (mut est, mut giv) = (Tally::default(), Tally::default());
         for seed in 0..trials {
             let mut rng = Rng(1000 * n as u64 + seed);
             let t = noisy(&r, n, &mut rng);
-            let f = fit(&scene, &t, &FitOptions::default()).expect("fit");
-            let (ps, pk) = (f.get("mu_s").unwrap(), f.get("mu_k").unwrap());
-            let (ss, sk) = (ps.std_error.unwrap(), pk.std_error.unwrap());
-            let (es, ek) = (ps.value - truth.0, pk.value - truth.1);
-            let (a, b) = (es.abs() <= 3.0 * ss, ek.abs() <= 3.0 * sk);
-            in_s += usize::from(a);
-            in_k += usize::from(b);
-            both += usize::from(a && b);
-            e2s += es * es;
-            e2k += ek * ek;
-            ses += ss;
-            sek += sk;
+            est.add(
+                &fit(&scene, &t, &FitOptions::default()).expect("fit"),
+                truth,
+            );
+            giv.add(&fit(&scene, &t, &given).expect("fit"), truth);
         }
         let k = trials as f64;
-        let (rs, rk) = ((e2s / k).sqrt(), (e2k / k).sqrt());
+        let rms = est.e2.map(|e| (e / k).sqrt());
+        let se = est.se.map(|s| s / k);
+        let se_given = giv.se.map(|s| s / k);
         println!(
-            "{n} | {trials} | {in_s}, {in_k}, {both} | {rs:.3e}, {rk:.3e} | {:.3e}, {:.3e}",
-            ses / k,
-            sek / k
+            "{n} | {trials} | {}, {}, {}; {} | {:.1}, {:.1} | {} | {:.3e}, {:.3e} | {:.3e}, {:.3e} \
+             | {:.3e}, {:.3e}",
+            est.in3[0],
+            est.in3[1],
+            est.in3[2],
+            est.in_t,
+            est.dof[0] / k,
+            est.dof[1] / k,
+            giv.in3[2],
+            rms[0],
+            rms[1],
+            se[0],
+            se[1],
+            se_given[0],
+            se_given[1]
         );
-        rms.push((n, rs, rk));
+        rows.push((n, rms, se_given));
     }
-    for w in rms.windows(2) {
+    // where the information comes from: the standard errors of the noiseless trace with the
+    // noise levels given, from every observation, from the signals alone (the places weighted
+    // out by σ_d = 1e3) and from the places alone
+    println!(
+        "slips | SE mu_s, mu_k from all observations | signals only | places only (noiseless \
+         trace, noise levels given)"
+    );
+    let mut info = Vec::new();
+    for &(n, _, _) in &rows {
+        let all = exact(&r, n);
+        let places = places_only(&all);
+        let no_places = FitOptions {
+            sigma: Some([1e3, SIGMA[1], SIGMA[2], SIGMA[3]]),
+            ..FitOptions::default()
+        };
+        let se = |t: &Trace, o: &FitOptions| -> [f64; 2] {
+            let f = fit(&scene, t, o).expect("fit");
+            ["mu_s", "mu_k"].map(|p| f.get(p).and_then(|q| q.std_error).unwrap_or(f64::NAN))
+        };
+        let (a, b, c) = (se(&all, &given), se(&all, &no_places), se(&places, &given));
         println!(
-            "{} -> {} slips: rms error ratio mu_s {:.2}, mu_k {:.2} (1/sqrt(n): {:.2})",
-            w[0].0,
-            w[1].0,
-            w[0].1 / w[1].1,
-            w[0].2 / w[1].2,
-            ((w[1].0 as f64) / (w[0].0 as f64)).sqrt()
+            "{n} | {:.3e}, {:.3e} | {:.3e}, {:.3e} | {:.3e}, {:.3e}",
+            a[0], a[1], b[0], b[1], c[0], c[1]
+        );
+        info.push((n, b, c));
+    }
+    for w in info.windows(2) {
+        let ((n0, b0, c0), (n1, b1, c1)) = (w[0], w[1]);
+        println!(
+            "{n0} -> {n1} slips: standard error ratio, signals only: mu_s {:.3}, mu_k {:.3}; \
+             places only: mu_s {:.3}, mu_k {:.3}",
+            b0[0] / b1[0],
+            b0[1] / b1[1],
+            c0[0] / c1[0],
+            c0[1] / c1[1]
+        );
+    }
+    for w in rows.windows(2) {
+        let ((n0, r0, s0), (n1, r1, s1)) = (w[0], w[1]);
+        println!(
+            "{n0} -> {n1} slips: rms error ratio mu_s {:.2}, mu_k {:.2}; standard error ratio (sigma \
+             given) mu_s {:.2}, mu_k {:.2}; 1/sqrt(n): {:.2}",
+            r0[0] / r1[0],
+            r0[1] / r1[1],
+            s0[0] / s1[0],
+            s0[1] / s1[1],
+            ((n1 as f64) / (n0 as f64)).sqrt()
         );
     }
 }

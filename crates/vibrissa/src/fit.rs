@@ -14,11 +14,27 @@
 //! are minimized by argmin's Gauss–Newton method with a backtracking (Armijo) line search, in
 //! unconstrained coordinates (`μs = e^a`, `μk = μs / (1 + e^−b)`, η and β mapped onto their open
 //! ranges); the Jacobian by central differences of drags. `σ_kind` is each kind's noise level
-//! (`d`, `fx`, `fy`, `m_base`): given, or estimated from the residuals of a first fit with unit
-//! weights (`σ² = Σ r² / (n_kind − p·n_kind/n)`), then the fit repeated with those weights.
+//! (`d`, `fx`, `fy`, `m_base`): given, or estimated. Estimated: a first fit with unit weights,
+//! then, until no level changes by more than 1e-3 (at most 12 rounds), each kind's variance
+//! from its residuals `e_i` (in its own units) over its own degrees of freedom and the fit
+//! repeated with those weights:
+//!
+//! ```text
+//!     σ_k² = Σ_{i in k} e_i² / ν_k,   ν_k = Σ_{i in k} (1 − h_i),   h_i = j_i (JᵀJ)⁻¹ j_iᵀ
+//! ```
+//!
+//! (`h_i` the leverage of observation `i`, `j_i` its row of the weighted Jacobian; the `ν_k` add
+//! up to `n − p`, so the weighted residuals give `s² = 1` at the fixed point. Spreading the `p`
+//! over the kinds by their counts instead underestimates the level of a kind that carries more
+//! of the information, e.g. the slip places.)
 //!
 //! Standard errors: `cov = s² (JᵀJ)⁻¹` with `J` the Jacobian of the weighted residuals with
-//! respect to the natural parameters at the estimate and `s² = Σ r² / (n − p)`. A parameter is
+//! respect to the natural parameters at the estimate and `s² = Σ r² / (n − p)`; with the noise
+//! levels given `cov = (JᵀJ)⁻¹` (they are known; `s²` then checks them). Estimated levels make
+//! the standard error itself an estimate: its degrees of freedom (Welch–Satterthwaite, from the
+//! parts `v_k` of the variance that each kind carries, `ν = (Σ v_k)² / Σ (v_k² / ν_k)`) give the
+//! Student-t interval `value ± t_ν · std_error` (with a few slips, ν is small: 3 standard errors
+//! are then a t interval of less than 99.73 %). A parameter is
 //! not identifiable from the given signals when the column-scaled `J` is rank deficient (singular
 //! value ratio below 1e-7): the parameters carrying the null direction are named, held at their
 //! starting values, and the others fitted (e.g. μk from a trace with one slip and no signals after
@@ -126,6 +142,12 @@ pub struct FitParam {
     /// Its standard error (`None` when not identifiable, or when the observations are as many as
     /// the parameters and no noise levels are given).
     pub std_error: Option<f64>,
+    /// The degrees of freedom of `std_error` when the noise levels are estimated (from the
+    /// kinds' own degrees of freedom by Welch–Satterthwaite): the estimate lies within
+    /// `t_dof(q) · std_error` of the truth with probability `q` (Student's t). `None` when the
+    /// noise levels are given (then the standard error is not itself estimated: normal
+    /// quantiles) or there is no standard error.
+    pub dof: Option<f64>,
     /// Whether the signals determine it.
     pub identifiable: bool,
 }
@@ -141,8 +163,9 @@ pub struct FitResult {
     pub observations: usize,
     /// The noise levels used for `d`, `fx`, `fy`, `m_base` (NaN where unused).
     pub sigma: [f64; 4],
-    /// `s² = Σ r² / (n − p)` of the weighted residuals (≈ 1 when the noise levels fit; NaN when
-    /// `n = p` and no noise levels are given).
+    /// `s² = Σ r² / (n − p)` of the weighted residuals (1 to 1e-3 when the noise levels are
+    /// estimated; with given levels ≈ 1 when they fit the data; NaN when `n = p` and no noise
+    /// levels are given).
     pub s2: f64,
     /// Gauss–Newton iterations (both passes).
     pub iterations: u64,
@@ -397,6 +420,55 @@ impl Jacobian for Ls<'_, '_> {
     }
 }
 
+/// Most rounds of re-estimating the noise levels and refitting.
+const MAX_REWEIGHT: usize = 12;
+/// The rounds stop when no noise level changes by more than this (relative).
+const REWEIGHT_TOL: f64 = 1e-3;
+
+/// The leverages `h_i = j_i (JᵀJ)⁻¹ j_iᵀ` of the rows of `j` (they add up to its columns), and
+/// `(JᵀJ)⁻¹`.
+fn leverages(j: &DMatrix<f64>) -> Result<(DVector<f64>, DMatrix<f64>), VibrissaError> {
+    let m = (j.transpose() * j)
+        .try_inverse()
+        .ok_or_else(|| VibrissaError::NoConvergence {
+            what: "the fit's covariance".into(),
+            reason: format!(
+                "the normal matrix of the {}x{} Jacobian is singular",
+                j.nrows(),
+                j.ncols()
+            ),
+        })?;
+    let h = DVector::from_iterator(
+        j.nrows(),
+        j.row_iter().map(|row| (row * &m * row.transpose())[(0, 0)]),
+    );
+    Ok((h, m))
+}
+
+/// Welch–Satterthwaite degrees of freedom of the variance of parameter `c`: its variance is a
+/// sum over the kinds, `Σ_k v_k` with `v_k = [M J_kᵀ J_k M]_cc`, each part scaling with its
+/// kind's estimated noise variance (`kind_dof[k]` degrees of freedom), so
+/// `dof = (Σ v_k)² / Σ (v_k² / dof_k)`.
+fn satterthwaite(
+    model: &Model<'_>,
+    j: &DMatrix<f64>,
+    m: &DMatrix<f64>,
+    c: usize,
+    kind_dof: &[f64; 4],
+) -> Option<f64> {
+    let g = m.column(c);
+    let mut v = [0.0; 4];
+    for ((o, _), row) in model.obs.iter().zip(j.row_iter()) {
+        v[o.kind()] += (row * g)[(0, 0)].powi(2);
+    }
+    let den: f64 = (0..4)
+        .filter(|&k| v[k] > 0.0)
+        .map(|k| v[k] * v[k] / kind_dof[k].max(1e-3))
+        .sum();
+    let dof = v.iter().sum::<f64>().powi(2) / den;
+    dof.is_finite().then_some(dof)
+}
+
 /// The parameters carrying the null direction of `j` (columns scaled to unit norm), if its
 /// singular values fall below 1e-7 of the largest.
 fn unidentifiable(j: &DMatrix<f64>) -> Option<Vec<usize>> {
@@ -645,30 +717,46 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
     }
     let x0 = model.coords(model.base);
     let mut x = solve(&model, x0, &mut iterations)?;
-    let p = model.free.len() as f64;
+    let mut kind_dof = [f64::NAN; 4];
     if opts.sigma.is_none() && !exact {
-        let v = model.natural(&x);
-        let r = model.residuals(v);
-        let mut sig = [f64::NAN; 4];
-        for (k, s) in sig.iter_mut().enumerate() {
-            let (sum, cnt) = model
-                .obs
-                .iter()
-                .zip(r.iter())
-                .filter(|((o, _), _)| o.kind() == k)
-                .fold((0.0, 0usize), |a, (_, ri)| (a.0 + ri * ri, a.1 + 1));
-            if cnt > 0 {
-                let dof = cnt as f64 - p * cnt as f64 / n as f64;
-                // (residuals of the unit-weight pass are in the kind's own units)
-                *s = (sum / dof.max(1e-3)).sqrt().max(1e-14);
+        // each kind's variance from its residuals over its own degrees of freedom, the
+        // observations less their leverages (so that the kinds' degrees of freedom add up to
+        // n − p); the weights and the fit repeated until the levels settle
+        for _ in 0..MAX_REWEIGHT {
+            let v = model.natural(&x);
+            let r = model.residuals(v);
+            let (h, _) = leverages(&model.jacobian_natural(v)?)?;
+            let mut sig = [f64::NAN; 4];
+            for (k, s) in sig.iter_mut().enumerate() {
+                let (sum, dof, cnt) = model
+                    .obs
+                    .iter()
+                    .zip(r.iter().zip(h.iter()))
+                    .filter(|((o, _), _)| o.kind() == k)
+                    .fold((0.0, 0.0, 0usize), |a, (_, (ri, hi))| {
+                        // (back to the kind's own units)
+                        let e = ri * model.sigma[k];
+                        (a.0 + e * e, a.1 + (1.0 - hi), a.2 + 1)
+                    });
+                if cnt > 0 {
+                    kind_dof[k] = dof;
+                    *s = (sum / dof.max(1e-3)).sqrt().max(1e-14);
+                }
+            }
+            let new = sig.map(|s| if s.is_nan() { 1.0 } else { s });
+            let change = (0..4)
+                .map(|k| (new[k] / model.sigma[k]).ln().abs())
+                .fold(0.0f64, f64::max);
+            model.sigma = new;
+            x = solve(&model, x, &mut iterations)?;
+            if change < REWEIGHT_TOL {
+                break;
             }
         }
-        model.sigma = sig.map(|s| if s.is_nan() { 1.0 } else { s });
-        x = solve(&model, x, &mut iterations)?;
         // report NaN for kinds without observations
-        for (k, s) in sig.iter().enumerate() {
-            if s.is_nan() {
-                model.sigma[k] = f64::NAN;
+        for (s, dof) in model.sigma.iter_mut().zip(kind_dof) {
+            if dof.is_nan() {
+                *s = f64::NAN;
             }
         }
     }
@@ -687,6 +775,7 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
     let used_sigma = model.sigma;
     model.sigma = model.sigma.map(|s| if s.is_nan() { 1.0 } else { s });
     let r = model.residuals(v);
+    let p = model.free.len() as f64;
     let s2 = match (exact, opts.sigma) {
         (false, _) => r.norm_squared() / (n as f64 - p),
         // given noise levels: the weighted residuals have unit variance
@@ -702,19 +791,27 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
         });
     }
     let j = model.jacobian_natural(v)?;
-    let cov = (j.transpose() * &j).try_inverse();
+    // given noise levels are known: the covariance is (JᵀJ)⁻¹ and s² only a check of them;
+    // estimated ones carry s² (1 at the reweighting's fixed point)
+    let scale = if opts.sigma.is_some() { 1.0 } else { s2 };
+    let cov = leverages(&j).ok().map(|(_, m)| m);
     let mut params = Vec::new();
     for par in [Par::MuS, Par::MuK, Par::Eta, Par::Angle] {
         let value = v[par as usize];
         if let Some(c) = model.free.iter().position(|&q| q == par) {
             let se = cov
                 .as_ref()
-                .map(|c2| (s2 * c2[(c, c)]).sqrt())
+                .map(|m| (scale * m[(c, c)]).sqrt())
                 .filter(|s| s.is_finite());
+            let dof = match (&cov, opts.sigma, exact) {
+                (Some(m), None, false) => satterthwaite(&model, &j, m, c, &kind_dof),
+                _ => None,
+            };
             params.push(FitParam {
                 name: par.name(),
                 value,
                 std_error: se,
+                dof,
                 identifiable: true,
             });
         } else if held.contains(&par) {
@@ -722,6 +819,7 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
                 name: par.name(),
                 value,
                 std_error: None,
+                dof: None,
                 identifiable: false,
             });
         }

@@ -1,13 +1,14 @@
 //! `fit` (issue 21): μs and μk from noisy synthetic traces within 3 standard errors (a fast
-//! subset of the 100-trial study `examples/fit_stats.rs`), and a trace with one slip naming the
-//! parameter it cannot determine.
+//! subset of the 100-trial study `examples/fit_stats.rs`), the standard errors against the
+//! spread of the estimates, the noise levels' degrees of freedom, and a trace with one slip
+//! naming the parameter it cannot determine.
 
 use vibrissa::fit::{fit, FitOptions, Trace, TraceSlip};
 use vibrissa::{drag, DragOptions, DragResult, Scene};
 
 #[path = "support/noisy_trace.rs"]
 mod noisy_trace;
-use noisy_trace::{noisy, Rng};
+use noisy_trace::{noisy, places_only, Rng, SIGMA};
 
 fn truth(n: usize) -> DragResult {
     let (rod, surface) = Scene::default().parts().unwrap();
@@ -45,6 +46,56 @@ fn noisy_traces_within_three_standard_errors() {
         // the estimated noise levels are those of the data (within the spread of a few samples)
         assert!(f.sigma[0] > 0.5e-4 && f.sigma[0] < 4e-4, "{f}");
         assert!(f.sigma[2].is_nan());
+    }
+}
+
+/// With the noise levels given, the standard errors are those of the estimates' spread: over 8
+/// seeded traces of 4 slips the mean of the 16 squared errors in standard errors, `z²`, is 1 for
+/// right standard errors; the bounds are the 0.05 % and 99.95 % quantiles of χ²₁₆ / 16 (standard
+/// errors off by a factor 1.7 either way fall outside).
+#[test]
+fn standard_errors_match_the_spread_of_the_estimates() {
+    let r = truth(4);
+    let opts = FitOptions {
+        sigma: Some(SIGMA),
+        ..FitOptions::default()
+    };
+    let mut z2 = Vec::new();
+    for seed in 0..8 {
+        let t = noisy(&r, 4, &mut Rng(4000 + seed));
+        let f = fit(&Scene::default(), &t, &opts).unwrap();
+        for (name, want) in [("mu_s", 0.5), ("mu_k", 0.3)] {
+            let p = f.get(name).unwrap();
+            // (known noise levels: the standard error is not itself estimated)
+            assert!(p.dof.is_none(), "{f}");
+            z2.push(((p.value - want) / p.std_error.unwrap()).powi(2));
+        }
+    }
+    let mean = z2.iter().sum::<f64>() / z2.len() as f64;
+    assert!((0.29..=2.58).contains(&mean), "mean z² {mean}: {z2:?}");
+}
+
+/// Estimated noise levels: each kind's variance over its own degrees of freedom (its
+/// observations less their leverages), so that these add up to n − p and the weighted residuals
+/// give `s² = 1` (to the reweighting's tolerance, 1e-3 in σ); with one kind of observation (the
+/// places only) the standard errors have exactly n − p degrees of freedom.
+#[test]
+fn noise_levels_are_estimated_over_their_degrees_of_freedom() {
+    let r = truth(6);
+    let t = noisy(&r, 6, &mut Rng(3));
+    let f = fit(&Scene::default(), &t, &FitOptions::default()).unwrap();
+    assert!((f.s2 - 1.0).abs() < 5e-3, "{f}");
+    for name in ["mu_s", "mu_k"] {
+        let dof = f.get(name).unwrap().dof.unwrap();
+        // (Welch–Satterthwaite lies between the fewest of one kind's degrees of freedom, at
+        // least its 6 observations less p, and their sum n − p = 22)
+        assert!((4.0..=22.0).contains(&dof), "{name}: dof {dof}");
+    }
+    let f = fit(&Scene::default(), &places_only(&t), &FitOptions::default()).unwrap();
+    assert!((f.s2 - 1.0).abs() < 5e-3, "{f}");
+    for name in ["mu_s", "mu_k"] {
+        let dof = f.get(name).unwrap().dof.unwrap();
+        assert!((dof - 4.0).abs() < 1e-9, "{name}: dof {dof}");
     }
 }
 

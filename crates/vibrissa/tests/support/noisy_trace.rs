@@ -24,20 +24,49 @@ impl Rng {
     }
 }
 
+/// The noise levels of `d`, `fx`, `fy`, `m_base` (`fy` unused), as `FitOptions::sigma`.
+pub const SIGMA: [f64; 4] = [2e-4, 2e-3, 2e-3, 2e-3];
+
 /// The first `n` slips of `r` with noise.
 pub fn noisy(r: &DragResult, n: usize, rng: &mut Rng) -> Trace {
-    let (sd, sf) = (2e-4, 2e-3);
+    with_noise(r, n, |sigma| sigma * rng.normal())
+}
+
+/// The first `n` slips of `r` without noise (the same observations as [`noisy`]).
+#[allow(dead_code)] // (examples/fit_stats.rs)
+pub fn exact(r: &DragResult, n: usize) -> Trace {
+    with_noise(r, n, |_| 0.0)
+}
+
+/// Only the places of the slips of `t`.
+pub fn places_only(t: &Trace) -> Trace {
+    Trace {
+        slips: t
+            .slips
+            .iter()
+            .map(|s| TraceSlip {
+                d: s.d,
+                ..TraceSlip::default()
+            })
+            .collect(),
+    }
+}
+
+/// The first `n` slips of `r`, each observation plus `noise(its σ)` (drawn in the order d, `fx`
+/// and `m_base` before, `fx` after).
+fn with_noise(r: &DragResult, n: usize, mut noise: impl FnMut(f64) -> f64) -> Trace {
+    let (sd, sf) = (SIGMA[0], SIGMA[1]);
     Trace {
         slips: r.slips[..n]
             .iter()
             .map(|e| TraceSlip {
-                d: e.d + sd * rng.normal(),
+                d: e.d + noise(sd),
                 before: [
-                    Some(e.before.fx + sf * rng.normal()),
+                    Some(e.before.fx + noise(sf)),
                     None,
-                    Some(e.before.m_base + sf * rng.normal()),
+                    Some(e.before.m_base + noise(sf)),
                 ],
-                after: [Some(e.after.fx + sf * rng.normal()), None, None],
+                after: [Some(e.after.fx + noise(sf)), None, None],
             })
             .collect(),
     }
