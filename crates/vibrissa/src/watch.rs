@@ -296,7 +296,11 @@ fn clearance(
         // the interpolant measures −sin β·x + cos β·y in the foot frame
         let v0 = v0 + h(0.0, 0.0);
         let (s, v) = if v0 - off > -1e-4 {
-            refine_max(exact, kappa, s0, beta, &h)
+            match refine_max(exact, kappa, s0, beta, &h) {
+                Some(m) => m,
+                // the interpolant's maximum is none of the rod's
+                None => continue,
+            }
         } else {
             (s0, v0)
         };
@@ -387,20 +391,47 @@ fn curve_clearance(
     (best, at, approach)
 }
 
-/// Newton on `φ(s) = β` (the tangent point where the height is largest) from `s0`, on the rod.
+/// The rod's own maximum of the height near the interpolant's maximum `s0`: Newton on
+/// `φ(s) = β` (the tangent point) where the rod is concave at `s0`; else (the interpolant's
+/// error, ~1e-8 in the height, puts its maximum where the rod curves the other way, as near a
+/// tip that turns tangent) the root of `sin(φ − β)` falling through zero nearest `s0` within
+/// `MAX_WINDOW` on either side, on the rod. `None` when the rod has no maximum there.
 fn refine_max(
     exact: &mut dyn FnMut(f64) -> [f64; 4],
     kappa: &dyn Fn(f64, f64) -> f64,
     s0: f64,
     beta: f64,
     h: &dyn Fn(f64, f64) -> f64,
-) -> (f64, f64) {
+) -> Option<(f64, f64)> {
     let mut s = s0;
     let mut z = exact(s);
+    let concave = |s: f64, z: &[f64; 4]| (z[2] - beta).cos() * kappa(s, z[3]);
+    if !(concave(s, &z) < 0.0) {
+        let (a, b) = ((s0 - MAX_WINDOW).max(0.0), (s0 + MAX_WINDOW).min(1.0));
+        let n = 32;
+        let mut g = |s: f64| -> Result<f64, String> { Ok((exact(s)[2] - beta).sin()) };
+        let pts: Vec<(f64, f64)> = (0..=n)
+            .map(|i| {
+                let t = a + (b - a) * i as f64 / n as f64;
+                (t, g(t).unwrap_or(f64::NAN))
+            })
+            .collect();
+        let (lo, hi) = pts
+            .windows(2)
+            .filter(|w| w[0].1 > 0.0 && w[1].1 <= 0.0)
+            .map(|w| (w[0].0, w[1].0))
+            .min_by(|p, q| {
+                let d = |r: &(f64, f64)| (0.5 * (r.0 + r.1) - s0).abs();
+                d(p).total_cmp(&d(q))
+            })?;
+        s = crate::search::root(&mut g, lo, hi, 1e-15).ok()?;
+        z = exact(s);
+        return Some((s, h(z[0], z[1])));
+    }
     for _ in 0..8 {
         // height' = sin(φ − β), height'' = cos(φ − β)·κ
         let g = (z[2] - beta).sin();
-        let dg = (z[2] - beta).cos() * kappa(s, z[3]);
+        let dg = concave(s, &z);
         if dg >= 0.0 || !dg.is_finite() {
             break;
         }
@@ -415,8 +446,11 @@ fn refine_max(
             break;
         }
     }
-    (s, h(z[0], z[1]))
+    Some((s, h(z[0], z[1])))
 }
+
+/// How far from the interpolant's maximum the rod's is looked for when they disagree.
+const MAX_WINDOW: f64 = 0.02;
 
 /// The events of a contact state: functions negative while it holds, zero where it ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
