@@ -178,6 +178,12 @@ impl RkWork {
         self.fd.resize(dims);
     }
 
+    /// Grouped finite differences of `∂F/∂z` for the variational equations
+    /// ([`FdScratch::learn_sparsity`]; call at the start of each solve).
+    pub fn learn_sparsity(&mut self, on: bool) {
+        self.fd.learn_sparsity(on);
+    }
+
     /// The final `z` of the last integration.
     pub fn z(&self) -> &[f64] {
         &self.y[..self.n]

@@ -624,6 +624,8 @@ impl Shooting {
         }
         self.work.resize(dims, segs, a, b, &self.opts.nodes);
         self.work.series = series.then_some(SERIES_START * (b - a));
+        // A regularized singular problem changes form at s = 0: no learned pattern there.
+        self.work.rk.learn_sparsity(!series);
 
         // Warm start: guess values at the segment starts, guess parameters.
         self.u.clear();
