@@ -107,6 +107,8 @@ pub(crate) struct RkWork {
     dfdp: Vec<f64>,
     /// `f(t + h, y_new)` and the three extra stages of the continuous extension (`4n`).
     kx: Vec<f64>,
+    /// Column indices of one row's nonzeros of `∂F/∂z` (`n`).
+    cols: Vec<usize>,
     fd: FdScratch,
 }
 
@@ -123,6 +125,7 @@ fn aug_rhs<P: Bvp + ?Sized>(
     k: usize,
     dfdz: &mut [f64],
     dfdp: &mut [f64],
+    cols: &mut [usize],
     fd: &mut FdScratch,
     stats: &mut Stats,
 ) -> Result<(), BvpError> {
@@ -139,13 +142,18 @@ fn aug_rhs<P: Bvp + ?Sized>(
         for i in 0..n {
             let row = &mut dw[i * m..(i + 1) * m];
             row.fill(0.0);
-            for l in 0..n {
+            // The nonzeros of row i, collected without branches (a test per entry mispredicted
+            // often enough to dominate sparse Jacobians), then one pass over W per nonzero.
+            let mut nnz = 0;
+            for (l, &a) in dfdz[i * n..(i + 1) * n].iter().enumerate() {
+                cols[nnz] = l;
+                nnz += usize::from(a != 0.0);
+            }
+            for &l in &cols[..nnz] {
                 let a = dfdz[i * n + l];
-                if a != 0.0 {
-                    let wl = &w[l * m..(l + 1) * m];
-                    for (r, &x) in row.iter_mut().zip(wl) {
-                        *r += a * x;
-                    }
+                let wl = &w[l * m..(l + 1) * m];
+                for (r, &x) in row.iter_mut().zip(wl) {
+                    *r += a * x;
                 }
             }
             for j in 0..k {
@@ -175,6 +183,8 @@ impl RkWork {
             v.clear();
             v.resize(len, 0.0);
         }
+        self.cols.clear();
+        self.cols.resize(n, 0);
         self.fd.resize(dims);
     }
 
@@ -220,6 +230,7 @@ impl RkWork {
             dfdz,
             dfdp,
             kx,
+            cols,
             fd,
             ..
         } = self;
@@ -233,7 +244,9 @@ impl RkWork {
             }
         }
         let mut f = |s: f64, yy: &[f64], out: &mut [f64], stats: &mut Stats| {
-            aug_rhs(problem, s, yy, p, out, var, n, k, dfdz, dfdp, fd, stats)
+            aug_rhs(
+                problem, s, yy, p, out, var, n, k, dfdz, dfdp, cols, fd, stats,
+            )
         };
 
         // k1 = f(t0, y0); after each accepted step it is re-evaluated at the new point.
