@@ -25,7 +25,8 @@
 //! Lobatto6: the two internal stages are unknowns of the global system (`3n` equations and
 //! unknowns per interval), so every equation stays local to one interval.
 //! The `n + k` boundary conditions `g(z_0, z_N, p) = 0` close the square system. Its Jacobian
-//! (from [`Bvp::rhs_jacobian`] or finite differences, [`crate::fd`]) is block-sparse: each interval
+//! (from [`Bvp::rhs_jacobian`] or forward differences, [`crate::fd`], with the columns of `∂F/∂z`
+//! grouped by its learned sparsity) is block-sparse: each interval
 //! couples only its own unknowns, the right node and `p`; it is factorized by a structured
 //! (almost block diagonal) LU with partial pivoting, interval by interval (`collocation::abd`).
 //! Damped Newton is [`crate::newton::Newton`].
