@@ -183,6 +183,18 @@ impl FdScratch {
         (sp.enabled && sp.learned && sp.ngroups < n).then_some(sp.ngroups)
     }
 
+    /// Grouped differences are on and have not learned a pattern yet.
+    pub(crate) fn wants_pattern(&self) -> bool {
+        self.sparse.enabled && !self.sparse.learned
+    }
+
+    /// The learned pattern of `∂F/∂z` (`n × n` row-major, `true` where nonzero) and its
+    /// version (the relearn count), if grouped differences learned one.
+    pub(crate) fn pattern(&self) -> Option<(&[bool], usize)> {
+        let sp = &self.sparse;
+        (sp.enabled && sp.learned).then_some((&sp.pattern[..], sp.relearned))
+    }
+
     /// How often the learned pattern was found incomplete and relearned since
     /// [`FdScratch::learn_sparsity`].
     pub fn relearned(&self) -> usize {
