@@ -19,7 +19,8 @@
 //! Its Jacobian is assembled from `Φ_j = ∂Z_j/∂z_j` and `Ψ_j = ∂Z_j/∂p`, integrated with the
 //! variational equations by the same Runge–Kutta stages (see below; `∂F/∂z` at every stage,
 //! analytic or by central differences with the columns grouped by its learned sparsity,
-//! [`crate::fd`]), and the boundary Jacobians
+//! [`crate::fd`]; with a learned pattern only the entries of `Φ` it can reach are integrated),
+//! and the boundary Jacobians
 //! `G_a, G_b, G_p` (analytic or finite differences, [`crate::fd`]):
 //!
 //! ```text
