@@ -25,7 +25,8 @@
 //! Lobatto6: the two internal stages are unknowns of the global system (`3n` equations and
 //! unknowns per interval), so every equation stays local to one interval.
 //! The `n + k` boundary conditions `g(z_0, z_N, p) = 0` close the square system. Its Jacobian
-//! (from [`Bvp::rhs_jacobian`] or finite differences, [`crate::fd`]) is block-sparse: each interval
+//! (from [`Bvp::rhs_jacobian`] or forward differences, [`crate::fd`], with the columns of `∂F/∂z`
+//! grouped by its learned sparsity) is block-sparse: each interval
 //! couples only its own unknowns, the right node and `p`; it is factorized by a structured
 //! (almost block diagonal) LU with partial pivoting, interval by interval (`collocation::abd`).
 //! Damped Newton is [`crate::newton::Newton`].
@@ -273,7 +274,10 @@ impl Collocation {
         guess: &Guess,
         observer: &mut dyn FnMut(&Progress<'_>),
     ) -> Result<Solution, BvpError> {
-        match Regular::new(problem)? {
+        let reg = Regular::new(problem)?;
+        // A regularized singular problem changes form at s = 0: no learned pattern there.
+        self.work.fd.learn_sparsity(reg.is_none());
+        match reg {
             Some(reg) => self.solve_plain(&reg, guess, observer),
             None => self.solve_plain(problem, guess, observer),
         }
@@ -787,16 +791,27 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
                         let (p0, pm, p1) = (2 * i, 2 * i + 1, 2 * i + 2);
                         let jm = &w.jz[pm * nn + c * n..pm * nn + (c + 1) * n];
                         let (b0, b1, b2) = (a[2][0], a[2][1], a[2][2]);
+                        // Row c of Jm · (I/2 ± h/8 J_{0,2}), by rows of J_{0,2} and skipping the
+                        // zeros of Jm: O(n · nonzeros of the row) instead of O(n²).
+                        let (m0, m1) = (&mut w.tmp[..n], &mut w.tmp2[..n]);
                         for d in 0..n {
-                            // (Jm · (I/2 ± h/8 J_{0,2}))[c][d]
-                            let mut m0 = 0.5 * jm[d];
-                            let mut m1 = 0.5 * jm[d];
-                            for (e, jme) in jm.iter().enumerate() {
-                                m0 += jme * h / 8.0 * w.jz[p0 * nn + e * n + d];
-                                m1 -= jme * h / 8.0 * w.jz[p1 * nn + e * n + d];
+                            m0[d] = 0.5 * jm[d];
+                            m1[d] = 0.5 * jm[d];
+                        }
+                        for (e, jme) in jm.iter().enumerate() {
+                            let t = jme * h / 8.0;
+                            if t != 0.0 {
+                                let j0 = &w.jz[p0 * nn + e * n..p0 * nn + (e + 1) * n];
+                                let j2 = &w.jz[p1 * nn + e * n..p1 * nn + (e + 1) * n];
+                                for d in 0..n {
+                                    m0[d] += t * j0[d];
+                                    m1[d] -= t * j2[d];
+                                }
                             }
-                            out[d] = -b0 * w.jz[p0 * nn + c * n + d] - b1 * m0;
-                            out[n + d] = -b2 * w.jz[p1 * nn + c * n + d] - b1 * m1;
+                        }
+                        for d in 0..n {
+                            out[d] = -b0 * w.jz[p0 * nn + c * n + d] - b1 * m0[d];
+                            out[n + d] = -b2 * w.jz[p1 * nn + c * n + d] - b1 * m1[d];
                         }
                         out[c] -= 1.0 / h;
                         out[n + c] += 1.0 / h;
@@ -996,10 +1011,7 @@ impl BvpSolver for Collocation {
     }
 
     fn solve<P: Bvp + ?Sized>(&mut self, problem: &P, guess: &Guess) -> Result<Solution, BvpError> {
-        match Regular::new(problem)? {
-            Some(reg) => self.solve_plain(&reg, guess, &mut |_| {}),
-            None => self.solve_plain(problem, guess, &mut |_| {}),
-        }
+        self.solve_observed(problem, guess, &mut |_| {})
     }
 }
 

@@ -23,8 +23,32 @@
 //!   output for NaN/∞ ([`BvpError::NonFinite`] with location `"jacobian"`).
 //!
 //! All work vectors live in [`FdScratch`], so these functions do not allocate.
+//!
+//! # Sparse `∂F/∂z` (grouped columns)
+//!
+//! When a solver switches it on ([`FdScratch::learn_sparsity`]), [`rhs_jacobian_fd`] learns the
+//! sparsity pattern of `∂F/∂z` at its first call: the nonzeros of the full difference quotient
+//! there and of a forward-difference one at a deterministic perturbation of `z` (relative size
+//! `1e-3`, so that entries that vanish only at this `z` — e.g. `∂(z_1 z_2)/∂z_1` at `z_2 = 0` —
+//! are still found). Columns that share no row are grouped greedily (Curtis, Powell & Reid 1974)
+//! and differenced together: one evaluation of `F` (two for central differences) per group
+//! instead of per column, with the same step `h_j` per column as the plain formula. A system of
+//! `n/2` uncoupled second-order equations needs one group instead of `n` columns.
+//!
+//! The pattern is checked at every later call: a row that no column of a group touches must come
+//! out bit-for-bit unchanged (it reads nothing that was perturbed). A change means an entry was
+//! missed (a piecewise `F`, a dependence that vanished at both probes): that Jacobian is
+//! recomputed column by column, its nonzeros are added to the pattern and the columns regrouped.
+//! An entry missed in a row that another column of its group covers cannot be seen that way; it
+//! only slows Newton (a solver's acceptance never rests on the Jacobian). If grouping saves no
+//! evaluation, the plain formula is used.
 
 use crate::{Bvp, BvpError, Dims, Stats};
+
+/// `√ε` and `∛ε` (`f64::EPSILON.cbrt()` is not `const`; the values are checked by a test):
+/// computing them at every step took a seventh of multiple shooting's time on 60 states.
+const SQRT_EPS: f64 = 1.490_116_119_384_765_6e-8;
+const CBRT_EPS: f64 = 6.055_454_452_393_339_5e-6;
 
 /// Finite-difference formula.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize)]
@@ -40,8 +64,8 @@ impl FdScheme {
     /// The increment for variable value `x` (exactly representable: `(x + h) − x == h`).
     pub fn step(self, x: f64) -> f64 {
         let base = match self {
-            FdScheme::Forward => f64::EPSILON.sqrt(),
-            FdScheme::Central => f64::EPSILON.cbrt(),
+            FdScheme::Forward => SQRT_EPS,
+            FdScheme::Central => CBRT_EPS,
         };
         let h = base * x.abs().max(1.0);
         (x + h) - x
@@ -59,7 +83,37 @@ pub struct FdScratch {
     f0: Vec<f64>,
     f1: Vec<f64>,
     f2: Vec<f64>,
+    sparse: Sparsity,
 }
+
+/// Learned sparsity of `∂F/∂z` and its column groups (see the module docs).
+#[derive(Clone, Debug, Default)]
+struct Sparsity {
+    /// Grouped differences switched on ([`FdScratch::learn_sparsity`]).
+    enabled: bool,
+    /// The pattern has been learned (at the first call after switching on).
+    learned: bool,
+    /// `n × n`, row-major: `∂F_i/∂z_j` seen nonzero.
+    pattern: Vec<bool>,
+    /// Number of column groups (grouping is used when `ngroups < n`).
+    ngroups: usize,
+    /// The group of each column.
+    col_group: Vec<usize>,
+    /// `n × n` (first `ngroups` rows used): the column of group `g` that touches row `i`, or
+    /// [`NONE`].
+    owner: Vec<usize>,
+    /// The probe's `n × n` Jacobian.
+    probe: Vec<f64>,
+    /// The unperturbed point and the probe's `F` (`n` each).
+    x0: Vec<f64>,
+    fp: Vec<f64>,
+    /// Column steps of the grouped formula (`h` forward, `h + h⁻` central).
+    steps: Vec<f64>,
+    /// Times the pattern was found incomplete and relearned (for tests and diagnostics).
+    relearned: usize,
+}
+
+const NONE: usize = usize::MAX;
 
 impl FdScratch {
     /// Scratch for a problem with `dims` (central differences).
@@ -91,7 +145,196 @@ impl FdScratch {
             v.clear();
             v.resize(len, 0.0);
         }
+        let sp = &mut self.sparse;
+        if sp.pattern.len() != n * n {
+            sp.learned = false;
+            sp.pattern.clear();
+            sp.pattern.resize(n * n, false);
+            sp.owner.clear();
+            sp.owner.resize(n * n, NONE);
+            sp.col_group.clear();
+            sp.col_group.resize(n, 0);
+            for (v, len) in [
+                (&mut sp.probe, n * n),
+                (&mut sp.x0, n),
+                (&mut sp.fp, n),
+                (&mut sp.steps, n),
+            ] {
+                v.clear();
+                v.resize(len, 0.0);
+            }
+        }
     }
+
+    /// Switches grouped differences of `∂F/∂z` on (`true`) or off for the following calls of
+    /// [`rhs_jacobian_fd`] and forgets any learned pattern: call it at the start of each solve
+    /// (a pattern belongs to one problem). Off by default.
+    pub fn learn_sparsity(&mut self, on: bool) {
+        self.sparse.enabled = on;
+        self.sparse.learned = false;
+        self.sparse.relearned = 0;
+    }
+
+    /// Column groups of the learned pattern of `∂F/∂z` (evaluations of `F` per forward
+    /// difference), if grouped differences are in use.
+    pub fn groups(&self) -> Option<usize> {
+        let sp = &self.sparse;
+        let n = self.x.len();
+        (sp.enabled && sp.learned && sp.ngroups < n).then_some(sp.ngroups)
+    }
+
+    /// Grouped differences are on and have not learned a pattern yet.
+    pub(crate) fn wants_pattern(&self) -> bool {
+        self.sparse.enabled && !self.sparse.learned
+    }
+
+    /// The learned pattern of `∂F/∂z` (`n × n` row-major, `true` where nonzero) and its
+    /// version (the relearn count), if grouped differences learned one.
+    pub(crate) fn pattern(&self) -> Option<(&[bool], usize)> {
+        let sp = &self.sparse;
+        (sp.enabled && sp.learned).then_some((&sp.pattern[..], sp.relearned))
+    }
+
+    /// How often the learned pattern was found incomplete and relearned since
+    /// [`FdScratch::learn_sparsity`].
+    pub fn relearned(&self) -> usize {
+        self.sparse.relearned
+    }
+}
+
+impl Sparsity {
+    /// Adds the nonzeros of `jac` (`n × n`) to the pattern.
+    fn add(&mut self, jac: &[f64]) {
+        for (p, v) in self.pattern.iter_mut().zip(jac) {
+            *p |= *v != 0.0;
+        }
+    }
+
+    /// Greedy grouping of the columns: column `c` joins the first group none of whose columns
+    /// shares a row with it.
+    fn group(&mut self, n: usize) {
+        self.owner.fill(NONE);
+        self.ngroups = 0;
+        for c in 0..n {
+            let rows = |i: &usize| self.pattern[i * n + c];
+            let free = |g: usize| (0..n).filter(rows).all(|i| self.owner[g * n + i] == NONE);
+            let g = (0..self.ngroups).find(|&g| free(g)).unwrap_or(self.ngroups);
+            if g == self.ngroups {
+                self.ngroups += 1;
+            }
+            for i in 0..n {
+                if self.pattern[i * n + c] {
+                    self.owner[g * n + i] = c;
+                }
+            }
+            self.col_group[c] = g;
+        }
+    }
+}
+
+/// The deterministic probe perturbation of variable `j` at value `x` (relative `1e-3`, varying
+/// in size and sign with `j` so that no combination of variables cancels by symmetry).
+fn probe_offset(j: usize, x: f64) -> f64 {
+    let u = ((j + 1) as f64 * 0.618_033_988_749_895).fract();
+    let sign = if j % 2 == 0 { 1.0 } else { -1.0 };
+    sign * (0.5 + u) * 1e-3 * x.abs().max(1.0)
+}
+
+/// Adds the nonzeros of a forward-difference `∂F/∂z` at the probe point (`x` perturbed by
+/// [`probe_offset`]) to the pattern; a probe with NaN/∞ switches grouping off for this solve
+/// (the perturbed point may lie outside `F`'s domain). Returns the evaluations.
+fn probe<P: Bvp + ?Sized>(
+    problem: &P,
+    s: f64,
+    x: &[f64],
+    q: &[f64],
+    work: &mut [f64],
+    sp: &mut Sparsity,
+) -> usize {
+    let n = x.len();
+    for (j, (xp, &xj)) in sp.x0.iter_mut().zip(x).enumerate() {
+        *xp = xj + probe_offset(j, xj);
+    }
+    problem.rhs(s, &sp.x0, q, &mut sp.fp);
+    let mut evals = 1;
+    if sp.fp.iter().all(|v| v.is_finite()) {
+        evals += jacobian(
+            |xx, out| problem.rhs(s, xx, q, out),
+            &mut sp.x0,
+            &mut sp.fp,
+            FdScheme::Forward,
+            &mut sp.probe,
+            work,
+        );
+    }
+    if sp.probe[..n * n].iter().all(|v| v.is_finite()) && sp.fp.iter().all(|v| v.is_finite()) {
+        let probe = std::mem::take(&mut sp.probe);
+        sp.add(&probe[..n * n]);
+        sp.probe = probe;
+    } else {
+        sp.enabled = false;
+    }
+    evals
+}
+
+/// `∂F/∂z` by grouped differences with the learned pattern (`fb` = `F(s, z, p)` for the forward
+/// scheme, scratch for central). Returns the evaluations and whether every row outside the
+/// pattern stayed unchanged (else an entry was missed and `dfdz` is incomplete). `x` is restored
+/// exactly.
+#[allow(clippy::too_many_arguments)]
+fn grouped<P: Bvp + ?Sized>(
+    problem: &P,
+    s: f64,
+    x: &mut [f64],
+    q: &[f64],
+    fb: &mut [f64],
+    f1: &mut [f64],
+    scheme: FdScheme,
+    sp: &mut Sparsity,
+    dfdz: &mut [f64],
+) -> (usize, bool) {
+    let n = x.len();
+    let mut evals = 0;
+    let mut complete = true;
+    dfdz[..n * n].fill(0.0);
+    let Sparsity {
+        col_group,
+        owner,
+        steps,
+        x0,
+        ngroups,
+        ..
+    } = sp;
+    x0[..n].copy_from_slice(x);
+    for g in 0..*ngroups {
+        for c in (0..n).filter(|&c| col_group[c] == g) {
+            let h = scheme.step(x0[c]);
+            x[c] = x0[c] + h;
+            steps[c] = h;
+        }
+        problem.rhs(s, x, q, f1);
+        evals += 1;
+        if scheme == FdScheme::Central {
+            for c in (0..n).filter(|&c| col_group[c] == g) {
+                let hm = x0[c] - (x0[c] - steps[c]);
+                x[c] = x0[c] - hm;
+                steps[c] += hm;
+            }
+            problem.rhs(s, x, q, fb);
+            evals += 1;
+        }
+        x.copy_from_slice(&x0[..n]);
+        for i in 0..n {
+            let c = owner[g * n + i];
+            if c == NONE {
+                // Bit-for-bit unchanged (NaN compares unequal: also a miss).
+                complete &= f1[i] == fb[i];
+            } else {
+                dfdz[i * n + c] = (f1[i] - fb[i]) / steps[c];
+            }
+        }
+    }
+    (evals, complete)
 }
 
 /// Generic Jacobian `jac[i * nx + j] = ∂f_i/∂x_j` of `f: R^nx → R^m` (`m = fx.len()`).
@@ -155,7 +398,12 @@ pub fn rhs_jacobian_fd<P: Bvp + ?Sized>(
     let Dims { n, k } = problem.dims();
     let scheme = scratch.scheme;
     let FdScratch {
-        x, q, f0: fb, f1, ..
+        x,
+        q,
+        f0: fb,
+        f1,
+        sparse: sp,
+        ..
     } = scratch;
     let (x, q, fb, f1) = (&mut x[..n], &mut q[..k], &mut fb[..n], &mut f1[..n]);
     x.copy_from_slice(z);
@@ -170,14 +418,33 @@ pub fn rhs_jacobian_fd<P: Bvp + ?Sized>(
             }
         }
     }
-    evals += jacobian(
-        |xx, out| problem.rhs(s, xx, q, out),
-        x,
-        fb,
-        scheme,
-        dfdz,
-        f1,
-    );
+    let use_groups = sp.enabled && sp.learned && sp.ngroups < n;
+    let mut missed = false;
+    if use_groups {
+        let (e, complete) = grouped(problem, s, x, q, fb, f1, scheme, sp, dfdz);
+        evals += e;
+        missed = !complete;
+    }
+    if !use_groups || missed {
+        evals += jacobian(
+            |xx, out| problem.rhs(s, xx, q, out),
+            x,
+            fb,
+            scheme,
+            dfdz,
+            f1,
+        );
+        if sp.enabled && (!sp.learned || missed) {
+            if missed {
+                sp.relearned += 1;
+            } else {
+                evals += probe(problem, s, x, q, f1, sp);
+            }
+            sp.add(&dfdz[..n * n]);
+            sp.group(n);
+            sp.learned = true;
+        }
+    }
     if k > 0 {
         // Forward: `fb` still holds F(s, z, p); central only used it as scratch.
         evals += jacobian(
@@ -246,6 +513,21 @@ pub fn bc_jacobian_fd<P: Bvp + ?Sized>(
     evals
 }
 
+/// No NaN/∞ in `v`. Without early exit, in four lanes (`x · 0` is `±0` for finite `x`, NaN
+/// otherwise), so that it vectorizes: the `n²` entries of a Jacobian are checked at every
+/// Runge–Kutta stage of multiple shooting.
+pub(crate) fn all_finite(v: &[f64]) -> bool {
+    let mut acc = [0.0f64; 4];
+    let chunks = v.chunks_exact(4);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for (a, x) in acc.iter_mut().zip(c) {
+            *a += x * 0.0;
+        }
+    }
+    acc.iter().sum::<f64>() == 0.0 && rest.iter().all(|x| x.is_finite())
+}
+
 /// `∂F/∂z`, `∂F/∂p` at `(s, z, p)`: analytic if [`Bvp::rhs_jacobian`] returns true, else finite
 /// differences with `scratch.scheme` (`f0` = `F(s, z, p)` if known, saves one evaluation for the
 /// forward scheme). Counts `jac_evals` (+1) and the right-hand-side evaluations in `stats`; returns
@@ -267,11 +549,7 @@ pub fn rhs_jacobian_or_fd<P: Bvp + ?Sized>(
         stats.rhs_evals += rhs_jacobian_fd(problem, s, z, p, f0, dfdz, dfdp, scratch);
     }
     let Dims { n, k } = problem.dims();
-    if dfdz[..n * n]
-        .iter()
-        .chain(&dfdp[..n * k])
-        .all(|v| v.is_finite())
-    {
+    if all_finite(&dfdz[..n * n]) && all_finite(&dfdp[..n * k]) {
         Ok(())
     } else {
         Err(crate::newton::non_finite("jacobian", s))
@@ -299,12 +577,7 @@ pub fn bc_jacobian_or_fd<P: Bvp + ?Sized>(
     }
     let Dims { n, k } = problem.dims();
     let m = n + k;
-    if dga[..m * n]
-        .iter()
-        .chain(&dgb[..m * n])
-        .chain(&dgp[..m * k])
-        .all(|v| v.is_finite())
-    {
+    if all_finite(&dga[..m * n]) && all_finite(&dgb[..m * n]) && all_finite(&dgp[..m * k]) {
         Ok(())
     } else {
         Err(crate::newton::non_finite("jacobian", f64::NAN))
@@ -314,6 +587,108 @@ pub fn bc_jacobian_or_fd<P: Bvp + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `∂F/∂z` of `problem` at `z` with `scratch`; returns it and the evaluations.
+    fn dfdz(problem: &impl Bvp, s: f64, z: &[f64], scratch: &mut FdScratch) -> (Vec<f64>, usize) {
+        let Dims { n, k } = problem.dims();
+        let p = vec![1.0; k];
+        let (mut jz, mut jp) = (vec![0.0; n * n], vec![0.0; n * k]);
+        let e = rhs_jacobian_fd(problem, s, z, &p, None, &mut jz, &mut jp, scratch);
+        (jz, e)
+    }
+
+    #[test]
+    fn grouped_differences_match_column_by_column() {
+        // scipy's big problem, 20 states (10 uncoupled pairs): one group of columns.
+        let big = crate::samples::Big {
+            pairs: 10,
+            params: true,
+        };
+        let n = 20;
+        let z: Vec<f64> = (0..n).map(|i| 0.3 + 0.1 * i as f64).collect();
+        for scheme in [FdScheme::Forward, FdScheme::Central] {
+            let dims = big.dims();
+            let mut plain = FdScratch::with_scheme(dims, scheme);
+            let mut sparse = FdScratch::with_scheme(dims, scheme);
+            sparse.learn_sparsity(true);
+            let (want, e_plain) = dfdz(&big, 0.5, &z, &mut plain);
+            let per_col = if scheme == FdScheme::Forward { 1 } else { 2 };
+            // Forward: F(z) once, then one evaluation per column of z and of p; central two.
+            let own_f = usize::from(scheme == FdScheme::Forward);
+            assert_eq!(e_plain, own_f + per_col * (n + 2));
+            // First call: column by column plus the probe (n + 1 forward evaluations).
+            let (first, e_first) = dfdz(&big, 0.5, &z, &mut sparse);
+            assert_eq!(first, want);
+            assert_eq!(e_first, e_plain + n + 1);
+            assert_eq!(sparse.groups(), Some(1));
+            // Later calls: one group, the same numbers bit for bit.
+            let z2: Vec<f64> = z.iter().map(|v| v * 1.7 - 0.2).collect();
+            let (want2, _) = dfdz(&big, 0.9, &z2, &mut plain);
+            let (got2, e2) = dfdz(&big, 0.9, &z2, &mut sparse);
+            assert_eq!(got2, want2, "{scheme:?}");
+            assert_eq!(e2, own_f + per_col * (1 + 2), "{scheme:?}");
+            assert_eq!(sparse.relearned(), 0);
+        }
+    }
+
+    /// `F = (max(z_1, 0), z_0)`: `∂F_0/∂z_1` vanishes where it is learned (`z_1 < 0`).
+    struct Kink;
+    impl Bvp for Kink {
+        fn dims(&self) -> Dims {
+            Dims { n: 2, k: 0 }
+        }
+        fn interval(&self) -> (f64, f64) {
+            (0.0, 1.0)
+        }
+        fn rhs(&self, _s: f64, z: &[f64], _p: &[f64], dz: &mut [f64]) {
+            dz[0] = z[1].max(0.0);
+            dz[1] = z[0];
+        }
+        fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+            res[0] = za[0];
+            res[1] = zb[0];
+        }
+    }
+
+    #[test]
+    fn a_missed_entry_is_seen_and_relearned() {
+        let mut sp = FdScratch::with_scheme(Kink.dims(), FdScheme::Forward);
+        sp.learn_sparsity(true);
+        let (j, _) = dfdz(&Kink, 0.0, &[1.0, -1.0], &mut sp);
+        assert_eq!(j, [0.0, 0.0, 1.0, 0.0]);
+        assert_eq!(sp.groups(), Some(1), "both columns in one group");
+        // Where z_1 > 0 the group's evaluation changes row 0, which no column of the learned
+        // pattern touches: recomputed column by column and relearned.
+        let (j, _) = dfdz(&Kink, 0.0, &[1.0, 2.0], &mut sp);
+        assert_eq!(sp.relearned(), 1);
+        assert_eq!(j, [0.0, 1.0, 1.0, 0.0]);
+        let (j, e) = dfdz(&Kink, 0.0, &[1.0, 3.0], &mut sp);
+        assert_eq!(
+            (j.as_slice(), e, sp.relearned()),
+            ([0.0, 1.0, 1.0, 0.0].as_slice(), 2, 1)
+        );
+    }
+
+    #[test]
+    fn all_finite_sees_every_position() {
+        for len in 0..11 {
+            let mut v: Vec<f64> = (0..len).map(|i| i as f64 - 3.0).collect();
+            assert!(all_finite(&v));
+            for i in 0..len {
+                for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                    let keep = std::mem::replace(&mut v[i], bad);
+                    assert!(!all_finite(&v), "{len} {i} {bad}");
+                    v[i] = keep;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn step_constants_are_the_roots_of_epsilon() {
+        assert_eq!(SQRT_EPS, f64::EPSILON.sqrt());
+        assert_eq!(CBRT_EPS, f64::EPSILON.cbrt());
+    }
 
     #[test]
     fn generic_jacobian_accuracy() {

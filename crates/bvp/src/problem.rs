@@ -30,7 +30,9 @@ pub struct Dims {
 /// A problem can also be assembled from closures with [`crate::from_fns`].
 ///
 /// The Jacobian methods return `false` when not implemented (the default); solvers then use
-/// finite differences ([`crate::fd`]). Implementations must not allocate: solvers call these in
+/// finite differences ([`crate::fd`]; the collocation and shooting solvers difference the columns
+/// of `∂F/∂z` in groups by the sparsity they learn at a solve's first Jacobian, one evaluation
+/// per group instead of per column). Implementations must not allocate: solvers call these in
 /// their inner loops. Non-finite output is detected by the solvers and reported as
 /// [`crate::BvpError::NonFinite`].
 ///

@@ -107,7 +107,68 @@ pub(crate) struct RkWork {
     dfdp: Vec<f64>,
     /// `f(t + h, y_new)` and the three extra stages of the continuous extension (`4n`).
     kx: Vec<f64>,
+    /// Column indices of one row's nonzeros of `∂F/∂z` (`n`).
+    cols: Vec<usize>,
     fd: FdScratch,
+    reach: Reach,
+}
+
+/// Compressed storage of `Φ` by the learned pattern of `∂F/∂z` (see [`RkWork::integrate`]):
+/// row `i` keeps the columns `i` reaches in the pattern's graph (`i → l` where `∂F_i/∂z_l ≠ 0`),
+/// reflexive and transitive, the only entries `Φ' = F_z Φ`, `Φ(t0) = I` can make nonzero.
+#[derive(Clone, Debug, Default)]
+struct Reach {
+    /// The relearn count of the pattern it was built from; `None`: not built this solve.
+    built: Option<usize>,
+    /// Compression in use (the closure holds fewer than half the `n²` entries).
+    on: bool,
+    /// CSR of the closure: row `i` is `col[ptr[i]..ptr[i + 1]]`, increasing.
+    ptr: Vec<usize>,
+    col: Vec<usize>,
+    /// CSR of the pattern itself (the columns `l` of row `i` with `∂F_i/∂z_l` possibly nonzero).
+    pptr: Vec<usize>,
+    pcol: Vec<usize>,
+    /// Scatter row (`n`), depth-first stack and marks (`n` each).
+    acc: Vec<f64>,
+    stack: Vec<usize>,
+    seen: Vec<bool>,
+    /// The last integration's `W` expanded to `n × (n + k)`, when it was compressed.
+    dense: Vec<f64>,
+    last_compressed: bool,
+}
+
+impl Reach {
+    /// Builds the closure of `pattern` (`n × n`); compression on if it saves half the entries.
+    fn build(&mut self, pattern: &[bool], n: usize, version: usize) {
+        self.built = Some(version);
+        self.pptr.clear();
+        self.pcol.clear();
+        self.pptr.push(0);
+        for i in 0..n {
+            self.pcol.extend((0..n).filter(|&l| pattern[i * n + l]));
+            self.pptr.push(self.pcol.len());
+        }
+        self.ptr.clear();
+        self.col.clear();
+        self.ptr.push(0);
+        for i in 0..n {
+            self.seen.fill(false);
+            self.seen[i] = true;
+            self.stack.clear();
+            self.stack.push(i);
+            while let Some(u) = self.stack.pop() {
+                for l in 0..n {
+                    if pattern[u * n + l] && !self.seen[l] {
+                        self.seen[l] = true;
+                        self.stack.push(l);
+                    }
+                }
+            }
+            self.col.extend((0..n).filter(|&c| self.seen[c]));
+            self.ptr.push(self.col.len());
+        }
+        self.on = 2 * self.col.len() < n * n;
+    }
 }
 
 /// Evaluates the augmented right-hand side `(F, F_z W + [0 | F_p])` at `(s, y)`.
@@ -123,7 +184,9 @@ fn aug_rhs<P: Bvp + ?Sized>(
     k: usize,
     dfdz: &mut [f64],
     dfdp: &mut [f64],
+    cols: &mut [usize],
     fd: &mut FdScratch,
+    reach: Option<&mut Reach>,
     stats: &mut Stats,
 ) -> Result<(), BvpError> {
     let (z, w) = y.split_at(n);
@@ -135,17 +198,21 @@ fn aug_rhs<P: Bvp + ?Sized>(
     }
     if var {
         rhs_jacobian_or_fd(problem, s, z, p, Some(dz), dfdz, dfdp, fd, stats)?;
+        if let Some(r) = reach {
+            compressed_variational(n, k, dfdz, dfdp, r, w, dw);
+            return Ok(());
+        }
         let m = n + k;
         for i in 0..n {
             let row = &mut dw[i * m..(i + 1) * m];
             row.fill(0.0);
-            for l in 0..n {
+            // One pass over W per nonzero of row i.
+            let nnz = row_nonzeros(&dfdz[i * n..(i + 1) * n], cols);
+            for &l in &cols[..nnz] {
                 let a = dfdz[i * n + l];
-                if a != 0.0 {
-                    let wl = &w[l * m..(l + 1) * m];
-                    for (r, &x) in row.iter_mut().zip(wl) {
-                        *r += a * x;
-                    }
+                let wl = &w[l * m..(l + 1) * m];
+                for (r, &x) in row.iter_mut().zip(wl) {
+                    *r += a * x;
                 }
             }
             for j in 0..k {
@@ -154,6 +221,66 @@ fn aug_rhs<P: Bvp + ?Sized>(
         }
     }
     Ok(())
+}
+
+/// The nonzeros of row `i` of `dfdz` into `cols` (without a branch per entry: a test per entry
+/// mispredicted often enough to dominate sparse Jacobians); returns their number.
+fn row_nonzeros(row: &[f64], cols: &mut [usize]) -> usize {
+    let mut nnz = 0;
+    for (l, &a) in row.iter().enumerate() {
+        cols[nnz] = l;
+        nnz += usize::from(a != 0.0);
+    }
+    nnz
+}
+
+/// `(F_z Φ, F_z Ψ + F_p)` with `Φ` compressed by the closure `r.ptr, r.col` (`w = [Φ_c | Ψ]`,
+/// `Ψ` row-major `n × k`), over the pattern's entries of `F_z`: the same sums in the same order
+/// as the dense product, over the entries the closure keeps (`Φ_l`'s columns are among `Φ_i`'s
+/// when `∂F_i/∂z_l ≠ 0`).
+fn compressed_variational(
+    n: usize,
+    k: usize,
+    dfdz: &[f64],
+    dfdp: &[f64],
+    r: &mut Reach,
+    w: &[f64],
+    dw: &mut [f64],
+) {
+    let Reach {
+        ptr,
+        col,
+        pptr,
+        pcol,
+        acc,
+        ..
+    } = r;
+    let nnz_w = ptr[n];
+    let (phi, psi) = w.split_at(nnz_w);
+    let (dphi, dpsi) = dw.split_at_mut(nnz_w);
+    for i in 0..n {
+        let own = ptr[i]..ptr[i + 1];
+        for &c in &col[own.clone()] {
+            acc[c] = 0.0;
+        }
+        let prow = &mut dpsi[i * k..(i + 1) * k];
+        prow.fill(0.0);
+        for &l in &pcol[pptr[i]..pptr[i + 1]] {
+            let a = dfdz[i * n + l];
+            for t in ptr[l]..ptr[l + 1] {
+                acc[col[t]] += a * phi[t];
+            }
+            for (r, &x) in prow.iter_mut().zip(&psi[l * k..(l + 1) * k]) {
+                *r += a * x;
+            }
+        }
+        for t in own {
+            dphi[t] = acc[col[t]];
+        }
+        for (r, &g) in prow.iter_mut().zip(&dfdp[i * k..(i + 1) * k]) {
+            *r += g;
+        }
+    }
 }
 
 impl RkWork {
@@ -175,7 +302,32 @@ impl RkWork {
             v.clear();
             v.resize(len, 0.0);
         }
+        self.cols.clear();
+        self.cols.resize(n, 0);
         self.fd.resize(dims);
+        let r = &mut self.reach;
+        r.built = None;
+        r.on = false;
+        r.last_compressed = false;
+        r.ptr.reserve(n + 1);
+        r.col.reserve(n * n);
+        r.pptr.reserve(n + 1);
+        r.pcol.reserve(n * n);
+        r.stack.reserve(n);
+        r.seen.clear();
+        r.seen.resize(n, false);
+        r.acc.clear();
+        r.acc.resize(n, 0.0);
+        r.dense.clear();
+        r.dense.resize(n * (n + k), 0.0);
+    }
+
+    /// Grouped finite differences of `∂F/∂z` for the variational equations
+    /// ([`FdScratch::learn_sparsity`]; call at the start of each solve).
+    pub fn learn_sparsity(&mut self, on: bool) {
+        self.fd.learn_sparsity(on);
+        self.reach.built = None;
+        self.reach.on = false;
     }
 
     /// The final `z` of the last integration.
@@ -185,11 +337,21 @@ impl RkWork {
 
     /// The final `W = [Φ | Ψ]` (row-major `n × (n + k)`) of the last integration with `var`.
     pub fn w(&self) -> &[f64] {
-        &self.y[self.n..self.n * (1 + self.n + self.k)]
+        if self.reach.last_compressed {
+            &self.reach.dense
+        } else {
+            &self.y[self.n..self.n * (1 + self.n + self.k)]
+        }
     }
 
     /// Integrates from `(t0, z0)` to `t1 > t0`. With `var`, also the variational equations from
     /// `W = [I | 0]`. Accepted step starts are appended to `rec` (the end point is not).
+    ///
+    /// When `∂F/∂z` is differenced with a learned pattern ([`FdScratch::learn_sparsity`]) whose
+    /// closure holds fewer than half of `Φ`'s entries, `Φ` is integrated compressed to that
+    /// closure: the same numbers (the other entries stay exactly zero) at `O(closure)` instead
+    /// of `O(n²)` per stage. If the pattern is relearned during the integration (it missed an
+    /// entry), the integration is repeated with dense `Φ`.
     #[allow(clippy::too_many_arguments)]
     pub fn integrate<P: Bvp + ?Sized>(
         &mut self,
@@ -200,12 +362,79 @@ impl RkWork {
         z0: &[f64],
         var: bool,
         mode: Mode,
+        rec: Option<&mut Recorder<'_>>,
+        stats: &mut Stats,
+    ) -> Result<(), BvpError> {
+        let n = self.n;
+        if var && rec.is_none() {
+            if self.fd.wants_pattern() {
+                // Learn the pattern before the first integration rather than at its first stage,
+                // so that it is compressed too (analytic Jacobians: nothing to learn).
+                let RkWork { dfdz, dfdp, fd, .. } = self;
+                if problem.rhs_jacobian(t0, z0, p, dfdz, dfdp) {
+                    fd.learn_sparsity(false);
+                } else {
+                    stats.rhs_evals +=
+                        crate::fd::rhs_jacobian_fd(problem, t0, z0, p, None, dfdz, dfdp, fd);
+                }
+            }
+            if let Some((pattern, version)) = self.fd.pattern() {
+                if self.reach.built != Some(version) {
+                    self.reach.build(pattern, n, version);
+                }
+                if self.reach.on {
+                    self.integrate_with(problem, p, t0, t1, z0, var, mode, None, true, stats)?;
+                    if self.fd.pattern().map(|x| x.1) == Some(version) {
+                        self.expand();
+                        return Ok(());
+                    }
+                }
+            }
+        }
+        self.integrate_with(problem, p, t0, t1, z0, var, mode, rec, false, stats)
+    }
+
+    /// `W` of a compressed integration into `reach.dense`.
+    fn expand(&mut self) {
+        let (n, k) = (self.n, self.k);
+        let m = n + k;
+        let r = &mut self.reach;
+        let nnz = r.ptr[n];
+        let (phi, psi) = self.y[n..n + nnz + n * k].split_at(nnz);
+        r.dense.fill(0.0);
+        for i in 0..n {
+            let own = r.ptr[i]..r.ptr[i + 1];
+            for (&c, &v) in r.col[own.clone()].iter().zip(&phi[own]) {
+                r.dense[i * m + c] = v;
+            }
+            r.dense[i * m + n..(i + 1) * m].copy_from_slice(&psi[i * k..(i + 1) * k]);
+        }
+        r.last_compressed = true;
+    }
+
+    /// [`RkWork::integrate`] with `Φ` compressed by `reach` (`compress`) or dense.
+    #[allow(clippy::too_many_arguments)]
+    fn integrate_with<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        p: &[f64],
+        t0: f64,
+        t1: f64,
+        z0: &[f64],
+        var: bool,
+        mode: Mode,
         mut rec: Option<&mut Recorder<'_>>,
+        compress: bool,
         stats: &mut Stats,
     ) -> Result<(), BvpError> {
         let (n, k) = (self.n, self.k);
         let m = n + k;
-        let dim = if var { n * (1 + m) } else { n };
+        let dim = match (var, compress) {
+            (false, _) => n,
+            (true, false) => n * (1 + m),
+            (true, true) => n + self.reach.ptr[n] + n * k,
+        };
+        self.reach.last_compressed = false;
         let RkWork {
             y,
             ytmp,
@@ -214,7 +443,9 @@ impl RkWork {
             dfdz,
             dfdp,
             kx,
+            cols,
             fd,
+            reach,
             ..
         } = self;
         let (y, ytmp, ynew) = (&mut y[..dim], &mut ytmp[..dim], &mut ynew[..dim]);
@@ -223,11 +454,20 @@ impl RkWork {
             let w = &mut y[n..];
             w.fill(0.0);
             for i in 0..n {
-                w[i * m + i] = 1.0;
+                if compress {
+                    let t = reach.ptr[i]
+                        + reach.col[reach.ptr[i]..reach.ptr[i + 1]].partition_point(|&c| c < i);
+                    w[t] = 1.0;
+                } else {
+                    w[i * m + i] = 1.0;
+                }
             }
         }
         let mut f = |s: f64, yy: &[f64], out: &mut [f64], stats: &mut Stats| {
-            aug_rhs(problem, s, yy, p, out, var, n, k, dfdz, dfdp, fd, stats)
+            let r = compress.then_some(&mut *reach);
+            aug_rhs(
+                problem, s, yy, p, out, var, n, k, dfdz, dfdp, cols, fd, r, stats,
+            )
         };
 
         // k1 = f(t0, y0); after each accepted step it is re-evaluated at the new point.
@@ -583,6 +823,68 @@ mod tests {
             assert!(tab.e5.iter().sum::<f64>().abs() < 1e-13);
             assert!(tab.e3.iter().sum::<f64>().abs() < 1e-13);
         }
+    }
+
+    /// `W` of one DOP853 integration of `problem` from `z0` with grouped differences (and so
+    /// compressed `Φ`) on or off, and the number of compressed integrations.
+    fn variational(problem: &impl Bvp, z0: &[f64], p: &[f64], sparse: bool) -> (Vec<f64>, bool) {
+        let mut rk = RkWork::default();
+        rk.resize(problem.dims());
+        rk.learn_sparsity(sparse);
+        let mode = Mode::Adaptive {
+            rtol: 1e-6,
+            atol: 1e-6,
+            max_steps: 10_000,
+        };
+        let (a, b) = problem.interval();
+        let mut stats = Stats::default();
+        rk.integrate(problem, p, a, b, z0, true, mode, None, &mut stats)
+            .unwrap();
+        (rk.w().to_vec(), rk.reach.last_compressed)
+    }
+
+    #[test]
+    fn compressed_variational_equations_match_dense_ones() {
+        let big = crate::samples::FiniteDifferences(crate::samples::Big {
+            pairs: 6,
+            params: true,
+        });
+        let z0: Vec<f64> = (0..12).map(|i| 0.2 * i as f64 - 0.5).collect();
+        let (dense, c0) = variational(&big, &z0, &[0.7, 1.3], false);
+        let (sparse, c1) = variational(&big, &z0, &[0.7, 1.3], true);
+        assert!(!c0 && c1);
+        assert_eq!(dense, sparse);
+    }
+
+    /// `F = (z_1, max(z_0, 0) · z_2, 0)`: `∂F_1/∂z_0` vanishes where the pattern is learned
+    /// (`z_0 < 0`) and appears once `z_0` turns positive during the integration.
+    struct Kink;
+    impl Bvp for Kink {
+        fn dims(&self) -> Dims {
+            Dims { n: 3, k: 0 }
+        }
+        fn interval(&self) -> (f64, f64) {
+            (0.0, 2.0)
+        }
+        fn rhs(&self, _s: f64, z: &[f64], _p: &[f64], dz: &mut [f64]) {
+            dz[0] = z[1];
+            dz[1] = z[0].max(0.0) * z[2];
+            dz[2] = 0.0;
+        }
+        fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+            res.copy_from_slice(&[za[0], zb[0], za[2]]);
+        }
+    }
+
+    #[test]
+    fn a_pattern_missed_during_the_integration_falls_back_to_dense() {
+        let z0 = [-0.5, 1.0, 1.0];
+        let (dense, _) = variational(&Kink, &z0, &[], false);
+        let (sparse, compressed) = variational(&Kink, &z0, &[], true);
+        assert!(!compressed, "repeated with dense Φ");
+        assert_eq!(dense, sparse);
+        // ∂z_1(b)/∂z_0(a) is nonzero only through the entry the first pattern missed.
+        assert!(dense[3] != 0.0);
     }
 
     #[test]

@@ -17,7 +17,10 @@
 //! ```
 //!
 //! Its Jacobian is assembled from `Φ_j = ∂Z_j/∂z_j` and `Ψ_j = ∂Z_j/∂p`, integrated with the
-//! variational equations by the same Runge–Kutta stages (see below), and the boundary Jacobians
+//! variational equations by the same Runge–Kutta stages (see below; `∂F/∂z` at every stage,
+//! analytic or by central differences with the columns grouped by its learned sparsity,
+//! [`crate::fd`]; with a learned pattern only the entries of `Φ` it can reach are integrated),
+//! and the boundary Jacobians
 //! `G_a, G_b, G_p` (analytic or finite differences, [`crate::fd`]):
 //!
 //! ```text
@@ -624,6 +627,8 @@ impl Shooting {
         }
         self.work.resize(dims, segs, a, b, &self.opts.nodes);
         self.work.series = series.then_some(SERIES_START * (b - a));
+        // A regularized singular problem changes form at s = 0: no learned pattern there.
+        self.work.rk.learn_sparsity(!series);
 
         // Warm start: guess values at the segment starts, guess parameters.
         self.u.clear();

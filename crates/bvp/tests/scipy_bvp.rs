@@ -381,6 +381,40 @@ fn big_problems_60_states() {
     }
 }
 
+/// Finite differences on the 60-state problems cost what the sparsity of `∂F/∂z` allows: the
+/// states are 30 uncoupled pairs, so the grouped differences need one evaluation of `F` per
+/// Jacobian (two for shooting's central differences) plus the parameter columns, after learning
+/// the pattern once (`3n + 2k + 2` evaluations at most: one Jacobian column by column and the
+/// probe's forward differences). Column by column it was `n` (`2n`) per
+/// Jacobian, 60× more. Same Newton path as with the analytic Jacobians.
+#[test]
+fn big_problem_differences_group_the_uncoupled_columns() {
+    for params in [false, true] {
+        let p = Big { pairs: 30, params };
+        let (fd, guess) = (FiniteDifferences(p), p.guess());
+        let (n, k) = (60, if params { 2 } else { 0 });
+        let compare = |name: &str, per_jacobian: usize, an: Solution, fd: Solution| {
+            let (a, f) = (&an.stats, &fd.stats);
+            assert_eq!(
+                (a.newton_iters, a.nodes, a.jac_evals),
+                (f.newton_iters, f.nodes, f.jac_evals),
+                "{name} params {params}"
+            );
+            let extra = f.rhs_evals - a.rhs_evals;
+            let bound = 3 * n + 2 * k + 2 + per_jacobian * f.jac_evals;
+            assert!(extra <= bound, "{name} params {params}: {extra} > {bound}");
+        };
+        for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
+            let mut c = collocation(scheme, 1000, TOL);
+            let (an, f) = (c.solve(&p, &guess), c.solve(&fd, &guess));
+            compare(&format!("{scheme:?}"), 1 + k, an.unwrap(), f.unwrap());
+        }
+        let mut s = shooting(4);
+        let (an, f) = (s.solve(&p, &guess), s.solve(&fd, &guess));
+        compare("shooting 4", 2 * (1 + k), an.unwrap(), f.unwrap());
+    }
+}
+
 #[test]
 fn shock_layer() {
     let eps = 1e-3;
