@@ -289,6 +289,21 @@ fn clearance(
     // candidates: local maxima of the height on the interpolant, refined on the rod where they
     // come near the surface (far below it the interpolant's error, ~1e-8, does not matter)
     let mut best = (f64::NEG_INFINITY, f64::NAN);
+    // maxima the interpolant hides: where the rod turns nearly parallel to the line within a
+    // step (a dip of φ below β and back inside one long step of the integrator, as before a tip
+    // that turns tangent), sin(φ − β) is sampled on the rod itself
+    let sides: Vec<f64> = set
+        .contacts
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| !c.tip)
+        .map(|(j, _)| set.s_of(j, u))
+        .collect();
+    for (s, v) in hidden_maxima(sol, exact, beta, &h, &sides) {
+        if s > 0.0 && s < 1.0 && !near(s) && v - off > best.0 {
+            best = (v - off, s);
+        }
+    }
     for (s0, v0) in crate::sampling::local_maxima(sol, -sb, cb) {
         if s0 <= 0.0 || near(s0) || s0 >= 1.0 {
             continue;
@@ -448,6 +463,61 @@ fn refine_max(
     }
     Some((s, h(z[0], z[1])))
 }
+
+/// The rod's maxima of the height inside the integrator's steps whose ends are nearly parallel
+/// to the line (`|sin(φ − β)| < HIDDEN_SLOPE` at either end), rising at the start and not
+/// ending at one of the side contacts `sides`: the
+/// lowest `sin(φ − β)` of the step on the rod (Brent's minimizer), and where it is not positive
+/// its fall through zero before it (Brent's root).
+fn hidden_maxima(
+    sol: &Solution,
+    exact: &mut dyn FnMut(f64) -> [f64; 4],
+    beta: f64,
+    h: &dyn Fn(f64, f64) -> f64,
+    sides: &[f64],
+) -> Vec<(f64, f64)> {
+    let n = sol.n;
+    let g_at = |i: usize| (sol.z[i * n + 2] - beta).sin();
+    let mut out = Vec::new();
+    for i in 0..sol.mesh.len().saturating_sub(1) {
+        let (a, b) = (sol.mesh[i], sol.mesh[i + 1]);
+        if b <= a
+            || (g_at(i).abs() >= HIDDEN_SLOPE && g_at(i + 1).abs() >= HIDDEN_SLOPE)
+            || sides.iter().any(|&c| c > a - NEAR && c < b + NEAR)
+        {
+            // (a step that ends at a side contact has the contact's own maximum there, which
+            // a loose tolerance shifts out of its neighbourhood)
+            continue;
+        }
+        // the lowest slope inside (a dip of φ below β and back) or at the end
+        // (rising clearly: not the step that starts at a side contact's own tangent point)
+        let ga = g_at(i);
+        if !(ga > HIDDEN_START) {
+            continue;
+        }
+        let mut g = |s: f64| -> Result<f64, String> { Ok((exact(s)[2] - beta).sin()) };
+        let (lo, glo) = match crate::search::maximize(&mut |s| g(s).map(|v| -v), a, b, 1e-12) {
+            Ok((x, v)) if -v < g_at(i + 1) => (x, -v),
+            _ => (b, g_at(i + 1)),
+        };
+        if glo <= 0.0 {
+            if let Ok(r) = crate::search::root(&mut g, a, lo, 1e-15) {
+                out.push(r);
+            }
+        }
+    }
+    out.into_iter()
+        .map(|r| {
+            let z = exact(r);
+            (r, h(z[0], z[1]))
+        })
+        .collect()
+}
+
+/// Steps whose ends are within this slope of the line are searched on the rod.
+const HIDDEN_SLOPE: f64 = 1e-2;
+/// ... when the slope at their start is above this.
+const HIDDEN_START: f64 = 1e-6;
 
 /// How far from the interpolant's maximum the rod's is looked for when they disagree.
 const MAX_WINDOW: f64 = 0.02;
