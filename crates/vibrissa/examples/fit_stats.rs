@@ -5,7 +5,8 @@
 //! 4, 8, 16 and 32 slips: the share of trials whose estimate lies within 3 standard errors of the
 //! truth, and (noise levels estimated) within Student's t interval of the same confidence
 //! (99.73 %) with the fit's degrees of freedom; the root-mean-square error, the mean standard
-//! error and the standard error the noise levels give (the errors should shrink like the latter);
+//! error and the standard error the noise levels give (the errors should shrink like the latter),
+//! and the estimated standard errors against that and against the rms error (their bias);
 //! and that standard error from the signals alone and from the slip places alone (why it falls
 //! faster than 1/√n: docs/model.md, "The drag").
 //!
