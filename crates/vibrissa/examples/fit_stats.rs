@@ -5,7 +5,8 @@
 //! 4, 8, 16 and 32 slips: the share of trials whose estimate lies within 3 standard errors of the
 //! truth, and (noise levels estimated) within Student's t interval of the same confidence
 //! (99.73 %) with the fit's degrees of freedom; the root-mean-square error, the mean standard
-//! error and the standard error the noise levels give (the errors should shrink like the latter);
+//! error and the standard error the noise levels give (the errors should shrink like the latter),
+//! and the estimated standard errors against that and against the rms error (their bias);
 //! and that standard error from the signals alone and from the slip places alone (why it falls
 //! faster than 1/√n: docs/model.md, "The drag").
 //!
@@ -81,13 +82,14 @@ fn t_tail(t: f64, dof: f64) -> f64 {
 }
 
 /// One length's tallies: within 3 SE (μs, μk, both), within the t interval (both), Σ error²,
-/// Σ SE, Σ dof (μs, μk each).
+/// Σ SE, Σ SE², Σ dof (μs, μk each).
 #[derive(Default)]
 struct Tally {
     in3: [usize; 3],
     in_t: usize,
     e2: [f64; 2],
     se: [f64; 2],
+    se2: [f64; 2],
     dof: [f64; 2],
 }
 
@@ -107,6 +109,7 @@ impl Tally {
             }
             self.e2[i] += e * e;
             self.se[i] += se;
+            self.se2[i] += se * se;
         }
         self.in3[0] += usize::from(inside[0]);
         self.in3[1] += usize::from(inside[1]);
@@ -158,6 +161,7 @@ fn main() {
     };
     assert!(lengths.iter().all(|&n| (1..=r.slips.len()).contains(&n)));
     let mut rows = Vec::new();
+    let mut ratios = Vec::new();
     for n in lengths {
         let (mut est, mut giv) = (Tally::default(), Tally::default());
         for seed in 0..trials {
@@ -191,6 +195,23 @@ fn main() {
             se_given[1]
         );
         rows.push((n, rms, se_given));
+        let rms_se = est.se2.map(|s| (s / k).sqrt());
+        ratios.push((
+            n,
+            [0, 1].map(|i| [se[i] / se_given[i], rms_se[i] / rms[i], se[i] / rms[i]]),
+        ));
+    }
+    // the estimated standard errors against the spread they estimate: the standard error with
+    // the noise levels given (the spread to first order) and the trials' rms error
+    println!(
+        "slips | mean SE / SE with sigma given mu_s, mu_k | rms SE / rms error mu_s, mu_k | mean \
+         SE / rms error mu_s, mu_k (sigma estimated)"
+    );
+    for (n, q) in &ratios {
+        println!(
+            "{n} | {:.3}, {:.3} | {:.3}, {:.3} | {:.3}, {:.3}",
+            q[0][0], q[1][0], q[0][1], q[1][1], q[0][2], q[1][2]
+        );
     }
     // where the information comes from: the standard errors of the noiseless trace with the
     // noise levels given, from every observation, from the signals alone (the places weighted

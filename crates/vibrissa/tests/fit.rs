@@ -87,8 +87,10 @@ fn noise_levels_are_estimated_over_their_degrees_of_freedom() {
     assert!((f.s2 - 1.0).abs() < 5e-3, "{f}");
     for name in ["mu_s", "mu_k"] {
         let dof = f.get(name).unwrap().dof.unwrap();
-        // (Welch–Satterthwaite lies between the fewest of one kind's degrees of freedom, at
-        // least its 6 observations less p, and their sum n − p = 22)
+        // (Satterthwaite's dof `2 (Σ v_k)² / vᵀ C v`, `C = 2 G⁻¹`, is at most n − p = 22 by
+        // Cauchy–Schwarz, as the G_kl add up to n − p; with C diagonal it is at least the
+        // fewest of one kind's degrees of freedom, at least its 6 observations less p, and the
+        // off-diagonal G_kl = Σ H_ij² between kinds are small)
         assert!((4.0..=22.0).contains(&dof), "{name}: dof {dof}");
     }
     let f = fit(&Scene::default(), &places_only(&t), &FitOptions::default()).unwrap();
@@ -96,6 +98,47 @@ fn noise_levels_are_estimated_over_their_degrees_of_freedom() {
     for name in ["mu_s", "mu_k"] {
         let dof = f.get(name).unwrap().dof.unwrap();
         assert!((dof - 4.0).abs() < 1e-9, "{name}: dof {dof}");
+    }
+}
+
+/// Kenward–Roger: the standard errors with estimated noise levels against those of the same fit
+/// with its estimated levels given (the same weights and estimate, `(JᵀJ)⁻¹` without the
+/// correction): with one kind of observation (the places) the correction vanishes and the
+/// ratio of the variances is `s²` (1 to 5e-3; to 1e-6, as the two fits' Jacobians agree to
+/// their estimates' agreement, ~1e-8 here); with the signals too it is `1 + 2Λ_cc / M_cc`,
+/// above 1 (`Λ` is positive semidefinite; at 4 slips with 4–8 observations per kind by more
+/// than the reweighting's 1e-3).
+#[test]
+fn estimated_levels_widen_the_standard_errors_when_kinds_share_the_information() {
+    let r = truth(4);
+    let t = noisy(&r, 4, &mut Rng(4001));
+    for (trace, one_kind) in [(places_only(&t), true), (t.clone(), false)] {
+        let f = fit(&Scene::default(), &trace, &FitOptions::default()).unwrap();
+        let given = FitOptions {
+            sigma: Some(f.sigma.map(|s| if s.is_nan() { 1.0 } else { s })),
+            ..FitOptions::default()
+        };
+        let g = fit(&Scene::default(), &trace, &given).unwrap();
+        for name in ["mu_s", "mu_k"] {
+            let (pe, pg) = (f.get(name).unwrap(), g.get(name).unwrap());
+            assert!(
+                (pe.value - pg.value).abs() < 1e-3 * pg.std_error.unwrap(),
+                "{f}; {g}"
+            );
+            let ratio = (pe.std_error.unwrap() / pg.std_error.unwrap()).powi(2);
+            if one_kind {
+                assert!(
+                    (ratio - f.s2).abs() < 1e-6 && (ratio - 1.0).abs() < 5e-3,
+                    "{name}: variance ratio {ratio}, s² {}",
+                    f.s2
+                );
+            } else {
+                assert!(
+                    ratio > 1.0 + 1e-3,
+                    "{name}: variance ratio {ratio}: {f}; {g}"
+                );
+            }
+        }
     }
 }
 
