@@ -421,7 +421,7 @@ fn refine_max(
     let mut s = s0;
     let mut z = exact(s);
     let concave = |s: f64, z: &[f64; 4]| (z[2] - beta).cos() * kappa(s, z[3]);
-    if !(concave(s, &z) < 0.0) {
+    if concave(s, &z).partial_cmp(&0.0) != Some(std::cmp::Ordering::Less) {
         let (a, b) = ((s0 - MAX_WINDOW).max(0.0), (s0 + MAX_WINDOW).min(1.0));
         let n = 32;
         let mut g = |s: f64| -> Result<f64, String> { Ok((exact(s)[2] - beta).sin()) };
@@ -492,7 +492,7 @@ fn hidden_maxima(
         // the lowest slope inside (a dip of φ below β and back) or at the end
         // (rising clearly: not the step that starts at a side contact's own tangent point)
         let ga = g_at(i);
-        if !(ga > HIDDEN_START) {
+        if ga.partial_cmp(&HIDDEN_START) != Some(std::cmp::Ordering::Greater) {
             continue;
         }
         let mut g = |s: f64| -> Result<f64, String> { Ok((exact(s)[2] - beta).sin()) };
