@@ -628,7 +628,7 @@ impl<P: Profile> Run<'_, '_, P> {
 /// rolls towards the tip faster and faster (its place `s` grows like a small power of `N`, and
 /// its column of the Jacobian vanishes with `N`), so the corrector stalls short of `N = 0` and
 /// no state beyond exists to bracket the root. When a step fails where the newest points show
-/// the normal force of a contact falling and below `1e-3` of its contact force, its zero is
+/// the normal force of the only contact falling and below `1e-3` of its contact force, its zero is
 /// the secant's, at most `1e-4 (1 + |λ|)` further on. The secant is first order: `|N'|` eases
 /// as `N → 0`, so the zero lies a few percent of that distance further (on the scene of
 /// `tests/scan_fixes.rs`, 11 to 3831 points and every method give lift-offs within 3e-7 of
@@ -638,35 +638,30 @@ fn vanishing_normal(hist: &[Pt]) -> Option<(f64, String, Watch)> {
     let [.., a, b] = hist else {
         return None;
     };
-    (0..b.w.contacts.len()).find_map(|j| {
-        let (na, cb) = (a.w.contacts.get(j)?.normal, b.w.contacts[j]);
-        let nb = cb.normal;
-        if !(nb > 0.0 && na > nb && nb <= 1e-3 * nb.hypot(cb.tangential)) {
-            return None;
-        }
-        let dl = nb * (b.lam - a.lam) / (na - nb);
-        if !(dl.is_finite() && dl <= 1e-4 * (1.0 + b.lam.abs())) {
-            return None;
-        }
-        let ls = b.lam + dl;
-        let mut w = b.w.clone();
-        w.lam = ls;
-        w.normal = 0.0;
-        w.mu = f64::INFINITY.copysign(cb.tangential);
-        w.contacts[j].normal = 0.0;
-        Some((
-            ls,
-            format!(
-                "extrapolated: the normal force of contact {} falls to {nb:.3e} at {} (s = {:.6}), \
-                 where the equations stop determining the contact; its zero lies {dl:.2e} \
-                 further on",
-                j + 1,
-                b.lam,
-                cb.s
-            ),
-            w,
-        ))
-    })
+    // (one of several contacts letting go is a change of the contact set, not the end)
+    let ([ca], [cb]) = (&a.w.contacts[..], &b.w.contacts[..]) else {
+        return None;
+    };
+    let (na, nb) = (ca.normal, cb.normal);
+    if !(nb > 0.0 && na > nb && nb <= 1e-3 * nb.hypot(cb.tangential)) {
+        return None;
+    }
+    let dl = nb * (b.lam - a.lam) / (na - nb);
+    if !(dl.is_finite() && dl <= 1e-4 * (1.0 + b.lam.abs())) {
+        return None;
+    }
+    let ls = b.lam + dl;
+    let mut w = b.w.clone();
+    w.lam = ls;
+    w.normal = 0.0;
+    w.mu = f64::INFINITY.copysign(cb.tangential);
+    w.contacts[0].normal = 0.0;
+    let why = format!(
+        "extrapolated: the normal force of the contact falls to {nb:.3e} at {} (s = {:.6}), \
+         where the equations stop determining the contact; its zero lies {dl:.2e} further on",
+        b.lam, cb.s
+    );
+    Some((ls, why, w))
 }
 
 /// How far below zero a located touchdown's clearance on a curved surface may lie and still be a root (a rounding
