@@ -465,10 +465,9 @@ fn refine_max(
 }
 
 /// The rod's maxima of the height inside the integrator's steps whose ends are nearly parallel
-/// to the line (`|sin(φ − β)| < HIDDEN_SLOPE` at either end), rising at the start and not
-/// ending at one of the side contacts `sides`: the
-/// lowest `sin(φ − β)` of the step on the rod (Brent's minimizer), and where it is not positive
-/// its fall through zero before it (Brent's root).
+/// to the line (`|sin(φ − β)| < HIDDEN_SLOPE` at either end), rising at the start and holding
+/// none of the side contacts `sides`: the lowest `sin(φ − β)` of the step on the rod (Brent's
+/// minimizer), and where it is not positive its fall through zero before it (Brent's root).
 fn hidden_maxima(
     sol: &Solution,
     exact: &mut dyn FnMut(f64) -> [f64; 4],
@@ -489,12 +488,12 @@ fn hidden_maxima(
             // a loose tolerance shifts out of its neighbourhood)
             continue;
         }
-        // the lowest slope inside (a dip of φ below β and back) or at the end
-        // (rising clearly: not the step that starts at a side contact's own tangent point)
+        // rising clearly (not the step that starts at a side contact's own tangent point)
         let ga = g_at(i);
         if ga.partial_cmp(&HIDDEN_START) != Some(std::cmp::Ordering::Greater) {
             continue;
         }
+        // the lowest slope inside (a dip of φ below β and back) or at the end
         let mut g = |s: f64| -> Result<f64, String> { Ok((exact(s)[2] - beta).sin()) };
         let (lo, glo) = match crate::search::maximize(&mut |s| g(s).map(|v| -v), a, b, 1e-12) {
             Ok((x, v)) if -v < g_at(i + 1) => (x, -v),
