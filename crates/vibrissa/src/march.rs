@@ -368,8 +368,14 @@ impl<P: Profile> Run<'_, '_, P> {
                     }
                 }
             }
-            let p = match self.stepper.correct(target, &hist, false) {
-                Ok(p) => {
+            let corrected = self.stepper.correct(target, &hist, false);
+            // a failed step where the only contact lets go ends the branch (see vanishing_normal)
+            let vanish = match &corrected {
+                Err(StepError::Failed(_)) => vanishing_normal(&hist),
+                _ => None,
+            };
+            let p = match (corrected, vanish) {
+                (Ok(p), _) => {
                     h = if p.iters <= 2 {
                         (2.0 * h).min(h_max)
                     } else if p.iters <= 4 {
@@ -379,17 +385,14 @@ impl<P: Profile> Run<'_, '_, P> {
                     };
                     p
                 }
-                Err(StepError::Failed(_)) if h > h_min => {
+                (Err(StepError::Failed(_)), _) if h > h_min => {
                     h *= 0.25;
                     continue;
                 }
-                Err(StepError::Failed(_)) if vanishing_normal(&hist).is_some() => {
+                (Err(StepError::Failed(_)), Some((ls, limit, w))) => {
                     // the branch ends where a contact lets go: a lift-off, located by
                     // extrapolation (no state beyond it brackets the root, and a
                     // pseudo-arclength crawl towards it costs without end)
-                    let Some((ls, limit, w)) = vanishing_normal(&hist) else {
-                        unreachable!()
-                    };
                     self.range.see(&w);
                     self.range.close(RangeEnd::Event);
                     return (
@@ -400,7 +403,7 @@ impl<P: Profile> Run<'_, '_, P> {
                         last_of(&hist, self.stepper.set()),
                     );
                 }
-                Err(e) => match self.stepper.pass_fold(&hist, target, lam_end) {
+                (Err(e), _) => match self.stepper.pass_fold(&hist, target, lam_end) {
                     Passed::Beyond(p) => p,
                     Passed::Fold(lf, pt) => {
                         // the fold's own point belongs to the measurable range it ends
