@@ -667,11 +667,11 @@ fn vanishing_normal(hist: &[Pt]) -> Option<(f64, String, Watch)> {
     Some((ls, why, w))
 }
 
-/// How far below zero a located touchdown's clearance on a curved surface may lie and still be a root (a rounding
-/// of the rod's heights is ~1e-12; a jump is of the size of the rod's features).
+/// How far below zero a located touchdown's clearance on a curved surface may lie and still be
+/// a root (a rounding of the rod's heights is ~1e-12; a jump is of the size of the rod's
+/// features).
 const JUMP: f64 = 1e-6;
 
-/// An event function's value where its contact state holds strictly (NaN: not known to).
 /// The set with the interior contact `ct` touched down at `s` (in its place along the rod; its
 /// unknowns N, T start at zero), and its unknowns.
 fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64) -> Next {
@@ -690,6 +690,7 @@ fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64) -> Next {
     Next::Switch(Event::Touchdown, ns, nu)
 }
 
+/// An event function's value where its contact state holds strictly (NaN: not known to).
 fn holds(v: f64) -> bool {
     v < 0.0
 }
