@@ -561,7 +561,8 @@ impl<P: Profile> Stepper for GenericStepper<P> {
             ..ContinuationOptions::default()
         };
         let mut stats = Stats::default();
-        let mut beyond = None;
+        let mut beyond = false;
+        let mut path = Vec::new();
         let mut fold = None;
         let result = (|| {
             let mut cont = match Continuation::new(&self.bvp, &mut self.engine, start, lam0, copts)
@@ -587,8 +588,9 @@ impl<P: Profile> Stepper for GenericStepper<P> {
                     return Passed::Fold(prev, None);
                 }
                 prev = bp.lambda;
+                path.push((bp.lambda, bp.solution));
                 if bp.lambda > target || bp.on_bound {
-                    beyond = Some((bp.lambda, bp.solution));
+                    beyond = true;
                     return Passed::Failed(String::new());
                 }
             }
@@ -602,15 +604,24 @@ impl<P: Profile> Stepper for GenericStepper<P> {
                 q.du = None;
                 q
             });
-            return Passed::Fold(l, pt);
+            return Passed::Fold(l, pt.map(Box::new));
         }
-        match beyond {
-            Some((l, sol)) => match self.point(l, sol) {
-                Ok(p) => Passed::Beyond(p),
-                Err(e) => Passed::Failed(e),
-            },
-            None => result,
+        if !beyond {
+            return result;
         }
+        let k = path.len();
+        let mut pts = Vec::with_capacity(k);
+        for (i, (l, sol)) in path.into_iter().enumerate() {
+            // (a point without a tangent cannot be interpolated through: left out, unless it is
+            // the one beyond the target)
+            match self.point(l, sol) {
+                Ok(p) if p.du.is_some() || i + 1 == k => pts.push(p),
+                Ok(_) => {}
+                Err(e) if i + 1 == k => return Passed::Failed(e),
+                Err(_) => {}
+            }
+        }
+        Passed::Beyond(pts)
     }
 
     fn switch(&mut self, set: ContactSet, lam: f64, u: Vec<f64>) -> Result<Pt, StepError> {

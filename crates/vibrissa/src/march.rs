@@ -48,10 +48,11 @@ pub(crate) struct Pt {
 
 /// Result of the pseudo-arclength fallback.
 pub(crate) enum Passed {
-    /// The branch continues beyond the failed step: a point on it.
-    Beyond(Pt),
+    /// The branch continues beyond the failed step: its points from there on, in increasing
+    /// `λ`, the last one beyond the target (never empty).
+    Beyond(Vec<Pt>),
     /// `λ` has a maximum along the branch here (with the rod there, if it was found).
-    Fold(f64, Option<Pt>),
+    Fold(f64, Option<Box<Pt>>),
     /// Neither.
     Failed(String),
 }
@@ -310,6 +311,7 @@ impl<P: Profile> Run<'_, '_, P> {
         let mut steps = 0usize;
         let max_steps = 10 * spec.grid.len() + 100_000;
         let mut stalled = 0usize;
+        let lam0 = p0.lam;
         let mut hist: Vec<Pt> = vec![p0];
         // event functions that are zero at the last change of the contact set, until they
         // leave zero (on the side where the new state holds)
@@ -318,6 +320,8 @@ impl<P: Profile> Run<'_, '_, P> {
             .filter(|c| !holds(c.of_watch(spec.env, &hist[0].w)))
             .collect();
         let mut pprev: Option<Watch> = None;
+        // points of a pseudo-arclength path still to be taken as steps
+        let mut queue: std::collections::VecDeque<Pt> = std::collections::VecDeque::new();
         loop {
             let prev = hist[hist.len() - 1].clone();
             let lam = prev.lam;
@@ -344,103 +348,137 @@ impl<P: Profile> Run<'_, '_, P> {
                     last_of(&hist, self.stepper.set()),
                 );
             }
-            // next target: at most h ahead, never past the next grid point
-            let mut target = (lam + h).min(lam_end);
-            if let Some(&g) = spec.grid.get(self.out.gi) {
-                if g > lam && g < target {
-                    target = g;
-                }
-            }
-            if lam_end - target < 1e-3 * h {
-                target = lam_end;
-            }
-            // an event the predictor sees coming within the step: step to just past it (the
-            // event is then located on a short step, and the march pays no full step beyond it)
             let armed: Vec<Crossing> = Crossing::all(spec.env, self.stepper.set())
                 .into_iter()
                 .filter(|c| !pending.contains(c))
                 .collect();
-            for &c in &armed {
-                if let Some(ds) = self.predicted_crossing(&hist, lam, target, c) {
-                    // (not when it is as good as here: the step would not move)
-                    if ds - lam > h_min {
-                        target = ds + 1e-6 * (target - ds);
+            let queued = queue.pop_front();
+            let from_queue = queued.is_some();
+            let p = if let Some(q) = queued {
+                q
+            } else {
+                // the first step from the start predicts a change of at most a quarter of the
+                // state's size (1 + its largest component): a start near a bifurcation has a
+                // steep branch, and Newton from a longer linear prediction lands on whichever
+                // branch is nearest (a higher Euler mode)
+                if let (true, Some(du)) = (hist.len() == 1 && lam == lam0, &prev.du) {
+                    let rate = du.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    let size = 1.0 + prev.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    if rate * h > 0.25 * size {
+                        h = (0.25 * size / rate).max(h_min);
                     }
                 }
-            }
-            let corrected = self.stepper.correct(target, &hist, false);
-            // a failed step where the only contact lets go ends the branch (see vanishing_normal)
-            let vanish = match &corrected {
-                Err(StepError::Failed(_)) => vanishing_normal(&hist),
-                _ => None,
-            };
-            let p = match (corrected, vanish) {
-                (Ok(p), _) => {
-                    h = if p.iters <= 2 {
-                        (2.0 * h).min(h_max)
-                    } else if p.iters <= 4 {
-                        (1.25 * h).min(h_max)
-                    } else {
-                        0.5 * h
-                    };
-                    p
+                // next target: at most h ahead, never past the next grid point
+                let mut target = (lam + h).min(lam_end);
+                if let Some(&g) = spec.grid.get(self.out.gi) {
+                    if g > lam && g < target {
+                        target = g;
+                    }
                 }
-                (Err(StepError::Failed(_)), _) if h > h_min => {
-                    h *= 0.25;
-                    continue;
+                if lam_end - target < 1e-3 * h {
+                    target = lam_end;
                 }
-                (Err(StepError::Failed(_)), Some((ls, limit, w))) => {
-                    // the branch ends where a contact lets go: a lift-off, located by
-                    // extrapolation (no state beyond it brackets the root, and a
-                    // pseudo-arclength crawl towards it costs without end)
-                    self.range.see(&w);
-                    self.range.close(RangeEnd::Event);
-                    return (
-                        StopReason::LiftOff {
-                            d: ls,
-                            limit: Some(limit),
-                        },
-                        last_of(&hist, self.stepper.set()),
-                    );
-                }
-                (Err(e), _) => match self.stepper.pass_fold(&hist, target, lam_end) {
-                    Passed::Beyond(p) => p,
-                    Passed::Fold(lf, pt) => {
-                        // the fold's own point belongs to the measurable range it ends
-                        if let Some(p) = &pt {
-                            self.range.see(&p.w);
+                // an event the predictor sees coming within the step: step to just past it (the
+                // event is then located on a short step, and the march pays no full step beyond it)
+                for &c in &armed {
+                    if let Some(ds) = self.predicted_crossing(&hist, lam, target, c) {
+                        // (not when it is as good as here: the step would not move)
+                        if ds - lam > h_min {
+                            target = ds + 1e-6 * (target - ds);
                         }
+                    }
+                }
+                let corrected = self.stepper.correct(target, &hist, false);
+                // a failed step where the only contact lets go ends the branch (see vanishing_normal)
+                let vanish = match &corrected {
+                    Err(StepError::Failed(_)) => vanishing_normal(&hist),
+                    _ => None,
+                };
+                match (corrected, vanish) {
+                    (Ok(p), _) => {
+                        h = if p.iters <= 2 {
+                            (2.0 * h).min(h_max)
+                        } else if p.iters <= 4 {
+                            (1.25 * h).min(h_max)
+                        } else {
+                            0.5 * h
+                        };
+                        p
+                    }
+                    (Err(StepError::Failed(_)), _) if h > h_min => {
+                        h *= 0.25;
+                        continue;
+                    }
+                    (Err(StepError::Failed(_)), Some((ls, limit, w))) => {
+                        // the branch ends where a contact lets go: a lift-off, located by
+                        // extrapolation (no state beyond it brackets the root, and a
+                        // pseudo-arclength crawl towards it costs without end)
+                        self.range.see(&w);
                         self.range.close(RangeEnd::Event);
-                        if let Err(fail) = self.emit(&hist, lf.min(lam_end)) {
-                            return (fail, last_of(&hist, self.stepper.set()));
-                        }
-                        if let Some(p) = pt {
-                            self.out.push(
-                                spec,
-                                self.profile,
-                                self.stepper.set(),
-                                &p,
-                                Some(Event::FoldInD),
-                            );
-                            let set = self.stepper.set().clone();
-                            return (StopReason::FoldInD { d: lf }, Some((set, p)));
-                        }
                         return (
-                            StopReason::FoldInD { d: lf },
-                            last_of(&hist, self.stepper.set()),
-                        );
-                    }
-                    Passed::Failed(msg) => {
-                        self.range.close(RangeEnd::SolverFailure);
-                        return (
-                            StopReason::SolverFailure {
-                                d: lam,
-                                message: format!("natural step to {target}: {e}; {msg}"),
+                            StopReason::LiftOff {
+                                d: ls,
+                                limit: Some(limit),
                             },
                             last_of(&hist, self.stepper.set()),
                         );
                     }
-                },
+                    (Err(e), _) => match self.stepper.pass_fold(&hist, target, lam_end) {
+                        Passed::Beyond(ps) => {
+                            // every point of the path, each taken as a step: a branch too steep
+                            // for natural steps (near a bifurcation) is not a polynomial in λ
+                            // between far points, and events inside it are found on it
+                            let mut ps = ps.into_iter();
+                            let Some(first) = ps.next() else {
+                                self.range.close(RangeEnd::SolverFailure);
+                                let message = format!(
+                                    "natural step to {target}: {e}; pseudo-arclength passed it \
+                                     without a point"
+                                );
+                                let d = lam;
+                                let stop = StopReason::SolverFailure { d, message };
+                                return (stop, last_of(&hist, self.stepper.set()));
+                            };
+                            queue.extend(ps);
+                            first
+                        }
+                        Passed::Fold(lf, pt) => {
+                            // the fold's own point belongs to the measurable range it ends
+                            if let Some(p) = &pt {
+                                self.range.see(&p.w);
+                            }
+                            self.range.close(RangeEnd::Event);
+                            if let Err(fail) = self.emit(&hist, lf.min(lam_end)) {
+                                return (fail, last_of(&hist, self.stepper.set()));
+                            }
+                            if let Some(p) = pt {
+                                self.out.push(
+                                    spec,
+                                    self.profile,
+                                    self.stepper.set(),
+                                    &p,
+                                    Some(Event::FoldInD),
+                                );
+                                let set = self.stepper.set().clone();
+                                return (StopReason::FoldInD { d: lf }, Some((set, *p)));
+                            }
+                            return (
+                                StopReason::FoldInD { d: lf },
+                                last_of(&hist, self.stepper.set()),
+                            );
+                        }
+                        Passed::Failed(msg) => {
+                            self.range.close(RangeEnd::SolverFailure);
+                            return (
+                                StopReason::SolverFailure {
+                                    d: lam,
+                                    message: format!("natural step to {target}: {e}; {msg}"),
+                                },
+                                last_of(&hist, self.stepper.set()),
+                            );
+                        }
+                    },
+                }
             };
             // a change of contact set holds only if its new event functions leave zero inwards
             let mut wrong = None;
@@ -466,7 +504,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     last_of(&hist, &set),
                 );
             }
-            if p.lam - lam <= 1e-12 * (1.0 + lam.abs()) {
+            if !from_queue && p.lam - lam <= 1e-12 * (1.0 + lam.abs()) {
                 stalled += 1;
                 if stalled > 50 {
                     self.range.close(RangeEnd::SolverFailure);
@@ -528,6 +566,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     // step again, shorter, before giving up
                     if p.lam - lam > h_min {
                         hist.pop();
+                        queue.clear();
                         h = 0.25 * (p.lam - lam);
                         continue;
                     }
@@ -603,6 +642,7 @@ impl<P: Profile> Run<'_, '_, P> {
                                 .filter(|c| !holds(c.of_watch(spec.env, &q.w)))
                                 .collect();
                             hist = vec![q];
+                            queue.clear();
                             pprev = None;
                         }
                         Err(e) => {

@@ -115,8 +115,10 @@ impl<P: Profile> OwnStepper<P> {
         };
         let mut arc = Arc::new(start, 1.0, steps, tol)?;
         let n = last.u.len();
+        let mut path = Vec::new();
         for _ in 0..5000 {
             let (prev, tprev) = arc.step(&mut self.chain)?;
+            path.push(arc.last.clone());
             if arc.tau[n] <= 0.0 && tprev[n] > 0.0 {
                 let b = arc.last.clone();
                 let span = tprev.dot(&(&b.v - &prev.v));
@@ -141,15 +143,22 @@ impl<P: Profile> OwnStepper<P> {
                     q.du = None;
                     q
                 });
-                return Ok(Passed::Fold(lam, pt));
+                return Ok(Passed::Fold(lam, pt.map(Box::new)));
             }
             if arc.last.lam() > target || arc.last.lam() >= lam_end {
-                let p = arc.last.clone();
-                let lam = p.lam();
-                return match self.point(lam, p.converged()) {
-                    Ok(q) if q.du.is_some() => Ok(Passed::Beyond(q)),
-                    _ => Err(ShotFailure::Singular { iteration: 0 }),
-                };
+                let mut pts = Vec::with_capacity(path.len());
+                for a in path {
+                    // (a point without a tangent cannot be interpolated through: left out,
+                    // unless it is the one beyond the target)
+                    match self.point(a.lam(), a.converged()) {
+                        Ok(q) if q.du.is_some() => pts.push(q),
+                        _ if a.lam() > target || a.lam() >= lam_end => {
+                            return Err(ShotFailure::Singular { iteration: 0 })
+                        }
+                        _ => {}
+                    }
+                }
+                return Ok(Passed::Beyond(pts));
             }
         }
         Ok(Passed::Failed(format!(

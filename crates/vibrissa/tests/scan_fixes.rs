@@ -419,3 +419,66 @@ fn a_dip_before_a_nearly_tangent_tip_is_seen_on_the_rod() {
         );
     }
 }
+
+#[test]
+fn a_straight_rod_on_a_free_support_buckles_in_its_first_mode() {
+    // Grid 2 of docs/robustness.md: a straight uniform rod on a nearly free support (compliance
+    // 20) starts nearly straight (f0 = 0.05). Dragging the foot shortens the chord, so the rod
+    // buckles: f rises from 0.05 to near the first Euler load within d ~ 1e-4, a branch so steep
+    // that the shooter's first step, predicted along the start's tangent, landed on a higher
+    // mode (f = 25π² or 9π², 2–4 flex points) and multiple shooting on yet another. Every
+    // method must follow the branch connected to the start: the first mode (no flex point at
+    // the first rows, f ≈ 9.3 at d = 0.0025) and the same forces (collocation at the default
+    // tolerance is within 1e-6 of the shooters in f and 2e-5 in μ on this nearly straight rod;
+    // 4e-10 and 1e-8 at tol 1e-11).
+    for beta in [0.0, 0.3] {
+        let scene = Scene {
+            eta: 0.9,
+            support_compliance: 20.0,
+            surface_angle: beta,
+            ..Scene::default()
+        };
+        let (rod, surface) = scene.parts().unwrap();
+        let run = |method| {
+            let o = ScanOptions {
+                d_max: 0.05,
+                points: 21,
+                solver: SolverConfig {
+                    method,
+                    ..SolverConfig::default()
+                },
+                ..ScanOptions::default()
+            };
+            let r = scan(&rod, &surface, &o).unwrap();
+            check_points(&r, &o);
+            assert_eq!(r.stop, StopReason::DMax, "{method:?}");
+            r
+        };
+        let s = run(vibrissa::Method::Shooting);
+        for p in &s.points[1..4] {
+            assert_eq!(
+                p.flex, 0,
+                "beta {beta}: d {} f {} flex {}",
+                p.d, p.f, p.flex
+            );
+            assert!(p.f > 8.0 && p.f < 12.0, "beta {beta}: d {} f {}", p.d, p.f);
+        }
+        for m in [
+            vibrissa::Method::MultipleShooting,
+            vibrissa::Method::Collocation6,
+        ] {
+            let o = run(m);
+            for (a, b) in s.points.iter().zip(&o.points) {
+                assert!(
+                    (a.f - b.f).abs() < 1e-5 * (1.0 + a.f) && (a.mu - b.mu).abs() < 1e-4,
+                    "beta {beta}, {m:?} at d {}: f {} against {}, mu {} against {}",
+                    a.d,
+                    a.f,
+                    b.f,
+                    a.mu,
+                    b.mu
+                );
+            }
+        }
+    }
+}
