@@ -114,7 +114,7 @@ pub(crate) enum LinError {
 #[derive(Debug, Default)]
 pub(crate) struct AbdSystem {
     layout: Option<Layout>,
-    /// Block values, in the layout order (see [`Layout`]); the assembly writes here.
+    /// Block values, in the layout order (see [`Layout`]); the assembly writes every entry.
     pub blocks: Vec<f64>,
     /// Factored windows, `wrows × wcols` row-major each.
     win: Vec<f64>,
@@ -221,6 +221,21 @@ fn put(set: &mut [u64], b: usize, on: bool) {
     }
 }
 
+/// Calls `f(c, x)` for the nonzero entries `x = row[c]`, in order (runs of zeros skipped eight
+/// at a time; NaN counts as nonzero).
+fn nonzeros(row: &[f64], mut f: impl FnMut(usize, f64)) {
+    for (q, sub) in row.chunks(8).enumerate() {
+        // Bits without the sign: -0.0 is zero too.
+        if sub.iter().fold(0u64, |a, x| a | (x.to_bits() << 1)) != 0 {
+            for (b, &x) in sub.iter().enumerate() {
+                if x != 0.0 {
+                    f(8 * q + b, x);
+                }
+            }
+        }
+    }
+}
+
 /// Nonzero patterns of the row-major `rows × cols` matrix `w` (with `mag`: of either, the
 /// magnitudes' support can outgrow the values' by cancellation): `rpat` by rows (`words(cols)`
 /// words each), `cpat` by columns `< ne` (`words(rows)` words each).
@@ -301,11 +316,17 @@ fn eliminate(
         }
         piv[j] = p;
         if p != j {
-            let (a, b) = w.split_at_mut(p * cols);
-            a[j * cols..(j + 1) * cols].swap_with_slice(&mut b[..cols]);
-            if let Some(m) = mag.as_deref_mut() {
-                let (a, b) = m.split_at_mut(p * cols);
-                a[j * cols..(j + 1) * cols].swap_with_slice(&mut b[..cols]);
+            // Only the two rows' nonzeros (the magnitudes' too) need to move.
+            for k in 0..rw {
+                let mut u = rpat[j * rw + k] | rpat[p * rw + k];
+                while u != 0 {
+                    let c = k * 64 + u.trailing_zeros() as usize;
+                    u &= u - 1;
+                    w.swap(j * cols + c, p * cols + c);
+                    if let Some(m) = mag.as_deref_mut() {
+                        m.swap(j * cols + c, p * cols + c);
+                    }
+                }
             }
             let (a, b) = rpat.split_at_mut(p * rw);
             a[j * rw..(j + 1) * rw].swap_with_slice(&mut b[..rw]);
@@ -395,7 +416,9 @@ impl AbdSystem {
         Self::default()
     }
 
-    /// Makes `layout` current and zeroes the block values; sizes the buffers for a new layout.
+    /// Makes `layout` current and sizes the buffers for a new layout. The block values are left
+    /// as they were (zeros where new): the assembly writes every entry (zeroing 1 MB of blocks
+    /// for 60 states was a visible part of a factorization).
     pub fn prepare(&mut self, l: Layout) -> Result<(), LinError> {
         self.factored = false;
         if l.nodes < 2 || l.n == 0 || l.stride < l.n {
@@ -427,7 +450,7 @@ impl AbdSystem {
             resize(&mut self.t, l.wrows());
             resize(&mut self.v, 2 * l.n + l.k);
         }
-        resize(&mut self.blocks, l.block_len());
+        self.blocks.resize(l.block_len(), 0.0);
         Ok(())
     }
 
@@ -445,12 +468,17 @@ impl AbdSystem {
         for i in 0..l.intervals() {
             let blk = &self.blocks[i * s * w..(i + 1) * s * w];
             for row in blk.chunks_exact(w) {
-                for (c, &x) in row[..s + n].iter().enumerate() {
-                    upd(i * s + c, x);
-                }
-                for (e, &x) in row[s + n..].iter().enumerate() {
-                    upd(l.pcol() + e, x);
-                }
+                // Zeros change no maximum.
+                nonzeros(row, |c, x| {
+                    upd(
+                        if c < s + n {
+                            i * s + c
+                        } else {
+                            l.pcol() + c - s - n
+                        },
+                        x,
+                    )
+                });
             }
         }
         for row in self.blocks[l.bc_offset()..].chunks_exact(2 * n + k) {
@@ -486,7 +514,7 @@ impl AbdSystem {
     fn factor_windows(&mut self, l: Layout, track: bool) -> Result<(), LinError> {
         let (n, s, m) = (l.n, l.stride, l.carry());
         let (w, wr, wc) = (l.width(), l.wrows(), l.wcols());
-        let (slot, rw) = (wr * wc, words(wc));
+        let (slot, rw, cw) = (wr * wc, words(wc), words(wr));
         for i in 0..l.intervals() {
             let (done, rest) = self.win.split_at_mut(i * slot);
             let cur = &mut rest[..slot];
@@ -507,46 +535,57 @@ impl AbdSystem {
                 }
                 mcur = Some(mc);
             }
+            // Entries outside the patterns are zero: clear the last factorization's, then
+            // write and mark the new nonzeros (a window is mostly zeros for large systems).
+            let (pdone, prest) = self.rpat.split_at_mut(i * wr * rw);
+            let rpat = &mut prest[..wr * rw];
+            for (r, pat) in rpat.chunks_exact_mut(rw).enumerate() {
+                for c in ones(pat, 0, wc) {
+                    cur[r * wc + c] = 0.0;
+                }
+                pat.fill(0);
+            }
+            let cpat = &mut self.cpat[..s * cw];
+            cpat.fill(0);
+            let mut set = |r: usize, c: usize, x: f64| {
+                cur[r * wc + c] = x;
+                put(&mut rpat[r * rw..(r + 1) * rw], c, true);
+                if c < s {
+                    put(&mut cpat[c * cw..(c + 1) * cw], r, true);
+                }
+            };
             if i == 0 {
                 // Boundary rows [g_a | g_b | g_p]: z_0 is eliminated here, z_N is the border.
                 for (r, src) in self.blocks[l.bc_offset()..]
                     .chunks_exact(2 * n + l.k)
                     .enumerate()
                 {
-                    let dst = &mut cur[r * wc..(r + 1) * wc];
-                    dst[..n].copy_from_slice(&src[..n]);
-                    dst[n..s + n].fill(0.0);
-                    dst[s + n..].copy_from_slice(&src[n..]);
+                    nonzeros(src, |c, x| set(r, if c < n { c } else { s + c }, x));
                 }
             } else {
                 // Rows left over from the previous window: z_i → eliminated columns.
-                let prev = &done[(i - 1) * slot..];
+                let (prev, ppat) = (&done[(i - 1) * slot..], &pdone[(i - 1) * wr * rw..]);
                 for r in 0..m {
-                    let src = &prev[(s + r) * wc..(s + r + 1) * wc];
-                    let dst = &mut cur[r * wc..(r + 1) * wc];
-                    dst[..n].copy_from_slice(&src[s..s + n]);
-                    dst[n..s + n].fill(0.0);
-                    dst[s + n..].copy_from_slice(&src[s + n..]);
+                    let pat = &ppat[(s + r) * rw..(s + r + 1) * rw];
+                    for c in ones(pat, s, wc) {
+                        let x = prev[(s + r) * wc + c];
+                        set(r, if c < s + n { c - s } else { c }, x);
+                    }
                 }
             }
             let blk = &self.blocks[i * s * w..(i + 1) * s * w];
             for (r, src) in blk.chunks_exact(w).enumerate() {
-                let dst = &mut cur[(m + r) * wc..(m + r + 1) * wc];
-                dst[..s + n].copy_from_slice(&src[..s + n]);
-                dst[s + n..s + 2 * n].fill(0.0);
-                dst[s + 2 * n..].copy_from_slice(&src[s + n..]);
+                nonzeros(src, |c, x| set(m + r, if c < s + n { c } else { c + n }, x));
             }
             if let Some(mc) = mcur.as_deref_mut() {
-                for (r, row) in cur.chunks_exact(wc).enumerate() {
-                    if i == 0 || r >= m {
-                        for (x, v) in mc[r * wc..(r + 1) * wc].iter_mut().zip(row) {
-                            *x = v.abs();
-                        }
+                // New rows start at |a|; the patterns cover the magnitudes' support too.
+                for r in (if i == 0 { 0 } else { m })..wr {
+                    let row = &mut mc[r * wc..(r + 1) * wc];
+                    for c in ones(&rpat[r * rw..(r + 1) * rw], 0, wc) {
+                        row[c] = cur[r * wc + c].abs();
                     }
                 }
             }
-            let rpat = &mut self.rpat[i * wr * rw..(i + 1) * wr * rw];
-            scan(cur, mcur.as_deref(), wr, wc, s, rpat, &mut self.cpat);
             eliminate(
                 cur,
                 mcur,
@@ -556,7 +595,7 @@ impl AbdSystem {
                 &mut self.piv[i * s..(i + 1) * s],
                 &self.colmax[i * s..(i + 1) * s],
                 rpat,
-                &mut self.cpat,
+                cpat,
                 &mut self.idx,
             )?;
         }
