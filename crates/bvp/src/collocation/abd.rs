@@ -425,6 +425,11 @@ impl AbdSystem {
             return Err(LinError::Singular);
         }
         if self.layout != Some(l) {
+            // Windows of the same shape (only the mesh changed) stay where they were, zero
+            // outside their patterns: kept, not zeroed again (megabytes for 60 states).
+            let same_shape = self
+                .layout
+                .is_some_and(|o| (o.n, o.k, o.stride) == (l.n, l.k, l.stride));
             self.layout = Some(l);
             let (fd, dim) = (l.carry(), l.dim());
             let wlen = l.intervals() * l.wrows() * l.wcols();
@@ -435,11 +440,18 @@ impl AbdSystem {
                 || dim > self.colmax.capacity()
                 || l.wrows() > self.t.capacity();
             self.buffer_growths += usize::from(grows);
-            resize(&mut self.win, wlen);
+            let plen = l.intervals() * l.wrows() * words(l.wcols());
+            if same_shape {
+                // Never shrunk: a mesh that shrinks and grows again would zero its tail anew.
+                self.win.resize(wlen.max(self.win.len()), 0.0);
+                self.rpat.resize(plen.max(self.rpat.len()), 0);
+            } else {
+                resize(&mut self.win, wlen);
+                resize(&mut self.rpat, plen);
+            }
             resize(&mut self.piv, l.intervals() * l.stride);
             resize(&mut self.fin, fd * fd);
             resize(&mut self.fpiv, fd);
-            resize(&mut self.rpat, l.intervals() * l.wrows() * words(l.wcols()));
             resize(&mut self.frpat, fd * words(fd));
             resize(
                 &mut self.cpat,
