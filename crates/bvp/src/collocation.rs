@@ -308,6 +308,8 @@ struct Work {
     tmp: Vec<f64>,
     tmp2: Vec<f64>,
     fe: Vec<f64>,
+    /// Nonzero columns of a row of `∂F/∂z` (Lobatto4's condensation).
+    nz: Vec<usize>,
 }
 
 impl Default for Work {
@@ -327,6 +329,7 @@ impl Default for Work {
             tmp: Vec::new(),
             tmp2: Vec::new(),
             fe: Vec::new(),
+            nz: Vec::new(),
         }
     }
 }
@@ -798,8 +801,10 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
                             m0[d] = 0.5 * jm[d];
                             m1[d] = 0.5 * jm[d];
                         }
-                        for (e, jme) in jm.iter().enumerate() {
-                            let t = jme * h / 8.0;
+                        w.nz.clear();
+                        w.nz.extend((0..n).filter(|&e| jm[e] != 0.0));
+                        for &e in &w.nz {
+                            let t = jm[e] * h / 8.0;
                             if t != 0.0 {
                                 let j0 = &w.jz[p0 * nn + e * n..p0 * nn + (e + 1) * n];
                                 let j2 = &w.jz[p1 * nn + e * n..p1 * nn + (e + 1) * n];
@@ -817,8 +822,9 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
                         out[n + c] += 1.0 / h;
                         for e in 0..k {
                             let mut dm = w.jp[pm * nk + c * k + e];
-                            for (d, jmd) in jm.iter().enumerate() {
-                                dm -= jmd * h / 8.0
+                            // Zeros of Jm add nothing: O(nonzeros) per entry, not O(n).
+                            for &d in &w.nz {
+                                dm -= jm[d] * h / 8.0
                                     * (w.jp[p1 * nk + d * k + e] - w.jp[p0 * nk + d * k + e]);
                             }
                             out[2 * n + e] = -b0 * w.jp[p0 * nk + c * k + e]

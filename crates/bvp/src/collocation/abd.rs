@@ -23,8 +23,11 @@
 //! (Wright 1993, SIAM J. Sci. Comput. 14, 231–238, gives BVP matrices with exponential growth;
 //! pivoting caps it once a carried entry outgrows the interval rows' `1/h`).
 //!
-//! Cost per interval `O(stride² (stride + 2n + k))`, storage the windows, `(n + k + stride) ×
-//! (stride + 2n + k)` each. Buffers are sized in [`AbdSystem::prepare`]; factorizations and
+//! Cost per interval `O(stride² (stride + 2n + k))` for dense blocks, storage the windows,
+//! `(n + k + stride) × (stride + 2n + k)` each. The eliminations and substitutions visit only
+//! the nonzeros (bit-set patterns of rows and columns kept through fill-in, [`eliminate`]):
+//! the same operations in the same order as dense, so the same factors, at a cost that follows
+//! the fill-in instead of the window's size (uncoupled states: linear in `n` per row). Buffers are sized in [`AbdSystem::prepare`]; factorizations and
 //! solves on the same layout never allocate.
 //!
 //! # Singularity
@@ -111,12 +114,19 @@ pub(crate) enum LinError {
 #[derive(Debug, Default)]
 pub(crate) struct AbdSystem {
     layout: Option<Layout>,
-    /// Block values, in the layout order (see [`Layout`]); the assembly writes here.
+    /// Block values, in the layout order (see [`Layout`]); the assembly writes every entry.
     pub blocks: Vec<f64>,
     /// Factored windows, `wrows × wcols` row-major each.
     win: Vec<f64>,
     /// Row interchanges of each window (`stride` slots each), LAPACK style.
     piv: Vec<usize>,
+    /// Nonzero patterns of the factored windows' rows (`words(wcols)` each), of the final
+    /// system's rows, and (scratch) of the columns being eliminated; see [`eliminate`].
+    rpat: Vec<u64>,
+    frpat: Vec<u64>,
+    cpat: Vec<u64>,
+    /// Pivot row's nonzero columns (scratch of [`eliminate`]).
+    idx: Vec<usize>,
     /// Final dense system for `(z_N, p)` and its interchanges.
     fin: Vec<f64>,
     fpiv: Vec<usize>,
@@ -146,11 +156,136 @@ fn resize<T: Clone + Default>(v: &mut Vec<T>, len: usize) {
     v.resize(len, T::default());
 }
 
+/// Words of a bit set of `bits` bits.
+fn words(bits: usize) -> usize {
+    bits.div_ceil(64)
+}
+
+/// The set bits of `set` in `lo..hi`, ascending (`hi ≤ 64 · set.len()`).
+struct Ones<'a> {
+    set: &'a [u64],
+    word: usize,
+    cur: u64,
+    hi: usize,
+}
+
+fn ones(set: &[u64], lo: usize, hi: usize) -> Ones<'_> {
+    if lo >= hi {
+        // Empty (`hi = 0` ends the iteration at once).
+        return Ones {
+            set,
+            word: 0,
+            cur: 0,
+            hi: 0,
+        };
+    }
+    Ones {
+        set,
+        word: lo / 64,
+        cur: set[lo / 64] & (!0u64 << (lo % 64)),
+        hi,
+    }
+}
+
+impl Iterator for Ones<'_> {
+    type Item = usize;
+    fn next(&mut self) -> Option<usize> {
+        loop {
+            if self.cur != 0 {
+                let b = self.word * 64 + self.cur.trailing_zeros() as usize;
+                if b >= self.hi {
+                    return None;
+                }
+                self.cur &= self.cur - 1;
+                return Some(b);
+            }
+            self.word += 1;
+            if self.word * 64 >= self.hi {
+                return None;
+            }
+            self.cur = self.set[self.word];
+        }
+    }
+}
+
+fn has(set: &[u64], b: usize) -> bool {
+    set[b / 64] >> (b % 64) & 1 == 1
+}
+
+fn put(set: &mut [u64], b: usize, on: bool) {
+    let bit = 1u64 << (b % 64);
+    if on {
+        set[b / 64] |= bit;
+    } else {
+        set[b / 64] &= !bit;
+    }
+}
+
+/// Calls `f(c, x)` for the nonzero entries `x = row[c]`, in order (runs of zeros skipped eight
+/// at a time; NaN counts as nonzero).
+fn nonzeros(row: &[f64], mut f: impl FnMut(usize, f64)) {
+    for (q, sub) in row.chunks(8).enumerate() {
+        // Bits without the sign: -0.0 is zero too.
+        if sub.iter().fold(0u64, |a, x| a | (x.to_bits() << 1)) != 0 {
+            for (b, &x) in sub.iter().enumerate() {
+                if x != 0.0 {
+                    f(8 * q + b, x);
+                }
+            }
+        }
+    }
+}
+
+/// Nonzero patterns of the row-major `rows × cols` matrix `w` (with `mag`: of either, the
+/// magnitudes' support can outgrow the values' by cancellation): `rpat` by rows (`words(cols)`
+/// words each), `cpat` by columns `< ne` (`words(rows)` words each).
+fn scan(
+    w: &[f64],
+    mag: Option<&[f64]>,
+    rows: usize,
+    cols: usize,
+    ne: usize,
+    rpat: &mut [u64],
+    cpat: &mut [u64],
+) {
+    let (rw, cw) = (words(cols), words(rows));
+    cpat[..ne * cw].fill(0);
+    let bits = |chunk: &[f64]| {
+        chunk
+            .iter()
+            .enumerate()
+            .fold(0u64, |m, (b, &x)| m | (u64::from(x != 0.0) << b))
+    };
+    for r in 0..rows {
+        let pat = &mut rpat[r * rw..(r + 1) * rw];
+        for (k, chunk) in w[r * cols..(r + 1) * cols].chunks(64).enumerate() {
+            pat[k] = bits(chunk);
+        }
+        if let Some(m) = mag {
+            for (k, chunk) in m[r * cols..(r + 1) * cols].chunks(64).enumerate() {
+                pat[k] |= bits(chunk);
+            }
+        }
+        for c in ones(pat, 0, ne) {
+            put(&mut cpat[c * cw..(c + 1) * cw], r, true);
+        }
+    }
+}
+
 /// Gaussian elimination with partial pivoting of the first `ne` columns of the row-major
 /// `rows × cols` matrix `w`, updating all columns. Multipliers are stored below the diagonal.
 /// Pivot test: with `mag` (the `|L||U|` magnitudes of `w`'s entries, updated alongside),
 /// `|u_jj| ≤ PIVOT_TOL · m_jj`; without, `|u_jj| ≤ PIVOT_TOL · scale[j]` (`scale[j]` the size
 /// of column `j`). See the module docs.
+///
+/// Sparse: only the entries in the patterns of [`scan`] are visited (pivot candidates by the
+/// column's pattern, updates by the pivot row's), which the elimination keeps up to date (fill-in
+/// sets bits, interchanges swap them); entries outside them are exactly zero. The operations on
+/// the nonzeros, their order and the pivots are those of the dense elimination, so the factors
+/// are the same to the bit. Why: a large system's blocks are mostly zeros (`∂F/∂z` of 60
+/// uncoupled pairs, scipy's test problem), and walking the columns of a dense window (a cache
+/// line per row) was most of the time.
+#[allow(clippy::too_many_arguments)]
 fn eliminate(
     w: &mut [f64],
     mut mag: Option<&mut [f64]>,
@@ -159,11 +294,15 @@ fn eliminate(
     ne: usize,
     piv: &mut [usize],
     scale: &[f64],
+    rpat: &mut [u64],
+    cpat: &mut [u64],
+    idx: &mut Vec<usize>,
 ) -> Result<(), LinError> {
+    let (rw, cw) = (words(cols), words(rows));
     for j in 0..ne {
         let mut p = j;
         let mut best = w[j * cols + j].abs();
-        for r in j + 1..rows {
+        for r in ones(&cpat[j * cw..(j + 1) * cw], j + 1, rows) {
             let v = w[r * cols + j].abs();
             if v > best {
                 best = v;
@@ -177,34 +316,76 @@ fn eliminate(
         }
         piv[j] = p;
         if p != j {
-            for c in 0..cols {
-                w.swap(j * cols + c, p * cols + c);
+            // Only the two rows' nonzeros (the magnitudes' too) need to move.
+            for k in 0..rw {
+                let mut u = rpat[j * rw + k] | rpat[p * rw + k];
+                while u != 0 {
+                    let c = k * 64 + u.trailing_zeros() as usize;
+                    u &= u - 1;
+                    w.swap(j * cols + c, p * cols + c);
+                    if let Some(m) = mag.as_deref_mut() {
+                        m.swap(j * cols + c, p * cols + c);
+                    }
+                }
             }
-            if let Some(m) = mag.as_deref_mut() {
-                for c in 0..cols {
-                    m.swap(j * cols + c, p * cols + c);
+            let (a, b) = rpat.split_at_mut(p * rw);
+            a[j * rw..(j + 1) * rw].swap_with_slice(&mut b[..rw]);
+            // Column patterns from the pivot column on (those left of it are not read again).
+            for k in j / 64..words(ne) {
+                let mut u = rpat[j * rw + k] | rpat[p * rw + k];
+                if k == j / 64 {
+                    u &= !0u64 << (j % 64);
+                }
+                while u != 0 {
+                    let c = k * 64 + u.trailing_zeros() as usize;
+                    u &= u - 1;
+                    if c >= ne {
+                        break;
+                    }
+                    let col = &mut cpat[c * cw..(c + 1) * cw];
+                    let (bj, bp) = (has(col, j), has(col, p));
+                    put(col, j, bp);
+                    put(col, p, bj);
                 }
             }
         }
-        let (top, bottom) = w.split_at_mut((j + 1) * cols);
-        let prow = &top[j * cols..];
-        let inv = 1.0 / prow[j];
-        for (r, row) in bottom[..(rows - j - 1) * cols]
-            .chunks_exact_mut(cols)
-            .enumerate()
-        {
+        idx.clear();
+        idx.extend(ones(&rpat[j * rw..(j + 1) * rw], j + 1, cols));
+        let inv = 1.0 / w[j * cols + j];
+        let (cdone, crest) = cpat.split_at_mut((j + 1) * cw);
+        for r in ones(&cdone[j * cw..], j + 1, rows) {
+            let (top, bottom) = w.split_at_mut(r * cols);
+            let (prow, row) = (&top[j * cols..(j + 1) * cols], &mut bottom[..cols]);
             let l = row[j] * inv;
             row[j] = l;
-            if l != 0.0 {
-                for (x, u) in row[j + 1..].iter_mut().zip(&prow[j + 1..]) {
-                    *x -= l * u;
+            if l == 0.0 {
+                continue;
+            }
+            for &c in idx.iter() {
+                row[c] -= l * prow[c];
+            }
+            if let Some(m) = mag.as_deref_mut() {
+                let (mt, mb) = m.split_at_mut(r * cols);
+                let (mp, mr) = (&mt[j * cols..(j + 1) * cols], &mut mb[..cols]);
+                for &c in idx.iter() {
+                    mr[c] += l.abs() * mp[c];
                 }
-                if let Some(m) = mag.as_deref_mut() {
-                    let (mt, mb) = m.split_at_mut((j + 1) * cols);
-                    let mrow = &mut mb[r * cols..(r + 1) * cols];
-                    for (x, u) in mrow[j + 1..].iter_mut().zip(&mt[j * cols + j + 1..]) {
-                        *x += l.abs() * u;
+            }
+            // Fill-in: row r takes the pivot row's pattern right of the pivot.
+            for k in (j + 1) / 64..rw {
+                let mut new = rpat[j * rw + k] & !rpat[r * rw + k];
+                if k == (j + 1) / 64 {
+                    new &= !0u64 << ((j + 1) % 64);
+                }
+                rpat[r * rw + k] |= new;
+                while new != 0 {
+                    let c = k * 64 + new.trailing_zeros() as usize;
+                    new &= new - 1;
+                    if c >= ne {
+                        break;
                     }
+                    let at = (c - j - 1) * cw;
+                    put(&mut crest[at..at + cw], r, true);
                 }
             }
         }
@@ -213,18 +394,20 @@ fn eliminate(
 }
 
 /// Applies the interchanges and then the multipliers of [`eliminate`] to a right-hand side
-/// (`P A = L U` with whole rows swapped, so all interchanges come first).
-fn forward(w: &[f64], rows: usize, cols: usize, piv: &[usize], t: &mut [f64]) {
+/// (`P A = L U` with whole rows swapped, so all interchanges come first); by rows, over the
+/// nonzeros of `rpat` (the same subtractions in the same order as by columns).
+fn forward(w: &[f64], rows: usize, cols: usize, piv: &[usize], rpat: &[u64], t: &mut [f64]) {
     for (j, &p) in piv.iter().enumerate() {
         t.swap(j, p);
     }
-    for j in 0..piv.len() {
-        let tj = t[j];
-        if tj != 0.0 {
-            for r in j + 1..rows {
-                t[r] -= w[r * cols + j] * tj;
-            }
+    let rw = words(cols);
+    for r in 1..rows {
+        let row = &w[r * cols..(r + 1) * cols];
+        let mut acc = t[r];
+        for j in ones(&rpat[r * rw..(r + 1) * rw], 0, r.min(piv.len())) {
+            acc -= row[j] * t[j];
         }
+        t[r] = acc;
     }
 }
 
@@ -233,13 +416,20 @@ impl AbdSystem {
         Self::default()
     }
 
-    /// Makes `layout` current and zeroes the block values; sizes the buffers for a new layout.
+    /// Makes `layout` current and sizes the buffers for a new layout. The block values are left
+    /// as they were (zeros where new): the assembly writes every entry (zeroing 1 MB of blocks
+    /// for 60 states was a visible part of a factorization).
     pub fn prepare(&mut self, l: Layout) -> Result<(), LinError> {
         self.factored = false;
         if l.nodes < 2 || l.n == 0 || l.stride < l.n {
             return Err(LinError::Singular);
         }
         if self.layout != Some(l) {
+            // Windows of the same shape (only the mesh changed) stay where they were, zero
+            // outside their patterns: kept, not zeroed again (megabytes for 60 states).
+            let same_shape = self
+                .layout
+                .is_some_and(|o| (o.n, o.k, o.stride) == (l.n, l.k, l.stride));
             self.layout = Some(l);
             let (fd, dim) = (l.carry(), l.dim());
             let wlen = l.intervals() * l.wrows() * l.wcols();
@@ -250,16 +440,29 @@ impl AbdSystem {
                 || dim > self.colmax.capacity()
                 || l.wrows() > self.t.capacity();
             self.buffer_growths += usize::from(grows);
-            resize(&mut self.win, wlen);
+            let plen = l.intervals() * l.wrows() * words(l.wcols());
+            if same_shape {
+                // Never shrunk: a mesh that shrinks and grows again would zero its tail anew.
+                self.win.resize(wlen.max(self.win.len()), 0.0);
+                self.rpat.resize(plen.max(self.rpat.len()), 0);
+            } else {
+                resize(&mut self.win, wlen);
+                resize(&mut self.rpat, plen);
+            }
             resize(&mut self.piv, l.intervals() * l.stride);
             resize(&mut self.fin, fd * fd);
             resize(&mut self.fpiv, fd);
+            resize(&mut self.frpat, fd * words(fd));
+            resize(
+                &mut self.cpat,
+                (l.stride * words(l.wrows())).max(fd * words(fd)),
+            );
             resize(&mut self.colmax, dim);
             resize(&mut self.fscale, fd);
             resize(&mut self.t, l.wrows());
             resize(&mut self.v, 2 * l.n + l.k);
         }
-        resize(&mut self.blocks, l.block_len());
+        self.blocks.resize(l.block_len(), 0.0);
         Ok(())
     }
 
@@ -277,12 +480,17 @@ impl AbdSystem {
         for i in 0..l.intervals() {
             let blk = &self.blocks[i * s * w..(i + 1) * s * w];
             for row in blk.chunks_exact(w) {
-                for (c, &x) in row[..s + n].iter().enumerate() {
-                    upd(i * s + c, x);
-                }
-                for (e, &x) in row[s + n..].iter().enumerate() {
-                    upd(l.pcol() + e, x);
-                }
+                // Zeros change no maximum.
+                nonzeros(row, |c, x| {
+                    upd(
+                        if c < s + n {
+                            i * s + c
+                        } else {
+                            l.pcol() + c - s - n
+                        },
+                        x,
+                    )
+                });
             }
         }
         for row in self.blocks[l.bc_offset()..].chunks_exact(2 * n + k) {
@@ -318,11 +526,10 @@ impl AbdSystem {
     fn factor_windows(&mut self, l: Layout, track: bool) -> Result<(), LinError> {
         let (n, s, m) = (l.n, l.stride, l.carry());
         let (w, wr, wc) = (l.width(), l.wrows(), l.wcols());
-        let slot = wr * wc;
+        let (slot, rw, cw) = (wr * wc, words(wc), words(wr));
         for i in 0..l.intervals() {
             let (done, rest) = self.win.split_at_mut(i * slot);
             let cur = &mut rest[..slot];
-            cur.fill(0.0);
             let mut mcur = None;
             if track {
                 // Carried rows keep the magnitudes of their history; new rows start at |a|.
@@ -340,38 +547,54 @@ impl AbdSystem {
                 }
                 mcur = Some(mc);
             }
+            // Entries outside the patterns are zero: clear the last factorization's, then
+            // write and mark the new nonzeros (a window is mostly zeros for large systems).
+            let (pdone, prest) = self.rpat.split_at_mut(i * wr * rw);
+            let rpat = &mut prest[..wr * rw];
+            for (r, pat) in rpat.chunks_exact_mut(rw).enumerate() {
+                for c in ones(pat, 0, wc) {
+                    cur[r * wc + c] = 0.0;
+                }
+                pat.fill(0);
+            }
+            let cpat = &mut self.cpat[..s * cw];
+            cpat.fill(0);
+            let mut set = |r: usize, c: usize, x: f64| {
+                cur[r * wc + c] = x;
+                put(&mut rpat[r * rw..(r + 1) * rw], c, true);
+                if c < s {
+                    put(&mut cpat[c * cw..(c + 1) * cw], r, true);
+                }
+            };
             if i == 0 {
                 // Boundary rows [g_a | g_b | g_p]: z_0 is eliminated here, z_N is the border.
                 for (r, src) in self.blocks[l.bc_offset()..]
                     .chunks_exact(2 * n + l.k)
                     .enumerate()
                 {
-                    let dst = &mut cur[r * wc..(r + 1) * wc];
-                    dst[..n].copy_from_slice(&src[..n]);
-                    dst[s + n..].copy_from_slice(&src[n..]);
+                    nonzeros(src, |c, x| set(r, if c < n { c } else { s + c }, x));
                 }
             } else {
                 // Rows left over from the previous window: z_i → eliminated columns.
-                let prev = &done[(i - 1) * slot..];
+                let (prev, ppat) = (&done[(i - 1) * slot..], &pdone[(i - 1) * wr * rw..]);
                 for r in 0..m {
-                    let src = &prev[(s + r) * wc..(s + r + 1) * wc];
-                    let dst = &mut cur[r * wc..(r + 1) * wc];
-                    dst[..n].copy_from_slice(&src[s..s + n]);
-                    dst[s + n..].copy_from_slice(&src[s + n..]);
+                    let pat = &ppat[(s + r) * rw..(s + r + 1) * rw];
+                    for c in ones(pat, s, wc) {
+                        let x = prev[(s + r) * wc + c];
+                        set(r, if c < s + n { c - s } else { c }, x);
+                    }
                 }
             }
             let blk = &self.blocks[i * s * w..(i + 1) * s * w];
             for (r, src) in blk.chunks_exact(w).enumerate() {
-                let dst = &mut cur[(m + r) * wc..(m + r + 1) * wc];
-                dst[..s + n].copy_from_slice(&src[..s + n]);
-                dst[s + 2 * n..].copy_from_slice(&src[s + n..]);
+                nonzeros(src, |c, x| set(m + r, if c < s + n { c } else { c + n }, x));
             }
             if let Some(mc) = mcur.as_deref_mut() {
-                for (r, row) in cur.chunks_exact(wc).enumerate() {
-                    if i == 0 || r >= m {
-                        for (x, v) in mc[r * wc..(r + 1) * wc].iter_mut().zip(row) {
-                            *x = v.abs();
-                        }
+                // New rows start at |a|; the patterns cover the magnitudes' support too.
+                for r in (if i == 0 { 0 } else { m })..wr {
+                    let row = &mut mc[r * wc..(r + 1) * wc];
+                    for c in ones(&rpat[r * rw..(r + 1) * rw], 0, wc) {
+                        row[c] = cur[r * wc + c].abs();
                     }
                 }
             }
@@ -383,6 +606,9 @@ impl AbdSystem {
                 s,
                 &mut self.piv[i * s..(i + 1) * s],
                 &self.colmax[i * s..(i + 1) * s],
+                rpat,
+                cpat,
+                &mut self.idx,
             )?;
         }
         // Final system in (z_N, p): the last carry, its two z_N column blocks added.
@@ -410,7 +636,27 @@ impl AbdSystem {
             }
             mfin = Some(&mut self.mfin[..]);
         }
-        eliminate(&mut self.fin, mfin, m, m, m, &mut self.fpiv, &self.fscale)
+        scan(
+            &self.fin,
+            mfin.as_deref(),
+            m,
+            m,
+            m,
+            &mut self.frpat,
+            &mut self.cpat,
+        );
+        eliminate(
+            &mut self.fin,
+            mfin,
+            m,
+            m,
+            m,
+            &mut self.fpiv,
+            &self.fscale,
+            &mut self.frpat,
+            &mut self.cpat,
+            &mut self.idx,
+        )
     }
 
     /// Solves `A x = rhs` in place with the last factorization; non-finite output means singular.
@@ -424,7 +670,7 @@ impl AbdSystem {
         }
         let (n, s, m) = (l.n, l.stride, l.carry());
         let (wr, wc) = (l.wrows(), l.wcols());
-        let slot = wr * wc;
+        let (slot, rw) = (wr * wc, words(wc));
         let t = &mut self.t;
         // Forward: the carried rows' right-hand side goes from window to window (at first the
         // boundary rows'); the pivot rows' land on their eliminated unknowns' slots.
@@ -435,13 +681,14 @@ impl AbdSystem {
             }
             t[m..m + s].copy_from_slice(&rhs[i * s..(i + 1) * s]);
             let w = &self.win[i * slot..(i + 1) * slot];
-            forward(w, wr, wc, &self.piv[i * s..(i + 1) * s], &mut t[..wr]);
+            let rpat = &self.rpat[i * wr * rw..(i + 1) * wr * rw];
+            forward(w, wr, wc, &self.piv[i * s..(i + 1) * s], rpat, &mut t[..wr]);
             rhs[i * s..(i + 1) * s].copy_from_slice(&t[..s]);
         }
         let v = &mut self.v;
         v[..m].copy_from_slice(&t[s..s + m]);
-        forward(&self.fin, m, m, &self.fpiv, &mut v[..m]);
-        back(&self.fin, m, m, m, &mut v[..m], &[]);
+        forward(&self.fin, m, m, &self.fpiv, &self.frpat, &mut v[..m]);
+        back(&self.fin, m, m, m, &self.frpat, &mut v[..m], &[]);
         rhs[l.bcrow()..].copy_from_slice(&v[..m]);
         // Back substitution, known (z_{i+1}, z_N, p) gathered in v.
         let (zn, p) = rhs[l.bcrow()..].split_at(n);
@@ -450,7 +697,8 @@ impl AbdSystem {
         for i in (0..l.intervals()).rev() {
             v[..n].copy_from_slice(&rhs[(i + 1) * s..(i + 1) * s + n]);
             let w = &self.win[i * slot..(i + 1) * slot];
-            back(w, wc, s, s, &mut rhs[i * s..(i + 1) * s], v);
+            let rpat = &self.rpat[i * wr * rw..(i + 1) * wr * rw];
+            back(w, wc, s, s, rpat, &mut rhs[i * s..(i + 1) * s], v);
         }
         if rhs.iter().all(|x| x.is_finite()) {
             Ok(())
@@ -460,17 +708,27 @@ impl AbdSystem {
     }
 }
 
-/// Back substitution with the `ne × ne` upper triangle of `w` (row stride `cols`), whose columns
-/// from `known_at` on multiply the known values `known`: `x ← U⁻¹ (x − W_k known)`.
-fn back(w: &[f64], cols: usize, ne: usize, known_at: usize, x: &mut [f64], known: &[f64]) {
+/// Back substitution with the `ne × ne` upper triangle of `w` (row stride `cols`, nonzero
+/// patterns `rpat`), whose columns from `known_at` on multiply the known values `known`:
+/// `x ← U⁻¹ (x − W_k known)`.
+fn back(
+    w: &[f64],
+    cols: usize,
+    ne: usize,
+    known_at: usize,
+    rpat: &[u64],
+    x: &mut [f64],
+    known: &[f64],
+) {
+    let rw = words(cols);
     for j in (0..ne).rev() {
-        let row = &w[j * cols..(j + 1) * cols];
+        let (row, pat) = (&w[j * cols..(j + 1) * cols], &rpat[j * rw..(j + 1) * rw]);
         let mut acc = x[j];
-        for (u, xl) in row[j + 1..ne].iter().zip(&x[j + 1..ne]) {
-            acc -= u * xl;
+        for c in ones(pat, j + 1, ne) {
+            acc -= row[c] * x[c];
         }
-        for (u, kv) in row[known_at..].iter().zip(known) {
-            acc -= u * kv;
+        for c in ones(pat, known_at, cols) {
+            acc -= row[c] * known[c - known_at];
         }
         x[j] = acc / row[j];
     }
@@ -535,16 +793,22 @@ mod tests {
         Collocation,
         /// Every block entry random: pivots often come from the carried rows.
         Random,
+        /// Collocation-like with most O(1) entries zero (the patterns of [`eliminate`]).
+        Sparse,
     }
 
     /// Fills random blocks; `separated`: the first `n − 1` boundary rows see only `z_0`, the
     /// others only `z_N` and `p`.
     fn fill(l: Layout, kind: Kind, separated: bool, rng: &mut Rng, blocks: &mut [f64]) {
-        for x in blocks.iter_mut() {
+        for (e, x) in blocks.iter_mut().enumerate() {
             *x = rng.next();
+            // Boundary rows kept full: the sparse ones would often be singular.
+            if kind == Kind::Sparse && e < l.bc_offset() && x.abs() > 0.2 {
+                *x = 0.0;
+            }
         }
         let w = l.width();
-        if kind == Kind::Collocation {
+        if kind != Kind::Random {
             let h = 1.0 / l.intervals() as f64;
             for i in 0..l.intervals() {
                 for r in 0..l.stride {
@@ -645,6 +909,25 @@ mod tests {
             }
         }
         eprintln!("worst relative difference from dense LU: {worst:e}");
+    }
+
+    #[test]
+    fn matches_dense_lu_on_sparse_blocks() {
+        // Scaled up: patterns of several words (rows and columns beyond 64).
+        for (t, l) in layouts().into_iter().filter(|l| l.nodes <= 7).enumerate() {
+            let l = Layout {
+                n: 9 * l.n,
+                stride: 9 * l.stride,
+                ..l
+            };
+            for separated in [false, true] {
+                let d = compare(l, Kind::Sparse, separated, 2000 + t as u64);
+                assert!(
+                    d <= 1e-9,
+                    "{l:?} separated {separated}: relative difference {d:e}"
+                );
+            }
+        }
     }
 
     #[test]
@@ -870,5 +1153,76 @@ mod tests {
         assert_eq!(s.buffer_growths, 1);
         s.prepare(l(51)).unwrap();
         assert_eq!(s.buffer_growths, 2);
+    }
+
+    #[test]
+    fn ones_visits_the_set_bits_of_a_range() {
+        let set = [!0u64, !0u64, 0x7f];
+        assert!(ones(&set, 0, 135).eq(0..135));
+        assert!(ones(&set, 60, 70).eq(60..70));
+        assert!(ones(&set, 81, 135).eq(81..135));
+        assert_eq!(ones(&set, 81, 81).count(), 0);
+        assert_eq!(ones(&set, 100, 81).count(), 0);
+        assert!(ones(&[0b1010, 0, 1], 0, 129).eq([1, 3, 128]));
+    }
+
+    #[test]
+    fn sparse_elimination_is_dense_elimination_to_the_bit() {
+        // Several words per row and column; about 10 % nonzeros plus the diagonal.
+        let (rows, cols, ne) = (108, 135, 81);
+        let mut rng = Rng(5);
+        let mut w = vec![0.0; rows * cols];
+        for (e, x) in w.iter_mut().enumerate() {
+            let v = rng.next();
+            if v.abs() < 0.1 || e / cols == e % cols {
+                *x = v;
+            }
+        }
+        // Reference: the dense GEPP that the sparse one replaced.
+        let mut d = w.clone();
+        let mut dpiv = vec![0; ne];
+        for j in 0..ne {
+            let mut p = j;
+            for r in j + 1..rows {
+                if d[r * cols + j].abs() > d[p * cols + j].abs() {
+                    p = r;
+                }
+            }
+            dpiv[j] = p;
+            for c in 0..cols {
+                d.swap(j * cols + c, p * cols + c);
+            }
+            let inv = 1.0 / d[j * cols + j];
+            for r in j + 1..rows {
+                let l = d[r * cols + j] * inv;
+                d[r * cols + j] = l;
+                if l != 0.0 {
+                    for c in j + 1..cols {
+                        d[r * cols + c] -= l * d[j * cols + c];
+                    }
+                }
+            }
+        }
+        let (rw, cw) = (words(cols), words(rows));
+        let (mut rpat, mut cpat) = (vec![0; rows * rw], vec![0; ne * cw]);
+        scan(&w, None, rows, cols, ne, &mut rpat, &mut cpat);
+        let mut piv = vec![0; ne];
+        let scale = vec![0.0; ne];
+        let mut idx = Vec::new();
+        eliminate(
+            &mut w, None, rows, cols, ne, &mut piv, &scale, &mut rpat, &mut cpat, &mut idx,
+        )
+        .unwrap();
+        assert_eq!(piv, dpiv);
+        for r in 0..rows {
+            for c in 0..cols {
+                let (x, y) = (w[r * cols + c], d[r * cols + c]);
+                assert!(x == y || (x == 0.0 && y == 0.0), "({r}, {c}): {x} vs {y}");
+                assert!(
+                    x == 0.0 || has(&rpat[r * rw..], c),
+                    "({r}, {c}) not in the pattern"
+                );
+            }
+        }
     }
 }
