@@ -606,18 +606,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 }
                 Next::Stop(ev) => {
                     if ev == Event::LiftOff {
-                        // N = 0 exactly there: the friction ratio is unbounded
-                        pe.w.normal = 0.0;
-                        // (its sign the tangential force's: μ itself may have crossed the pole)
-                        let t: f64 = pe.w.contacts.iter().map(|c| c.tangential).sum();
-                        pe.w.mu = f64::INFINITY.copysign(t);
-                        if let Some(c) =
-                            pe.w.contacts
-                                .iter_mut()
-                                .min_by(|a, b| a.normal.total_cmp(&b.normal))
-                        {
-                            c.normal = 0.0;
-                        }
+                        lifted(&mut pe.w);
                     }
                     self.range.see(&pe.w);
                     self.range.close(RangeEnd::Event);
@@ -696,15 +685,29 @@ fn vanishing_normal(hist: &[Pt]) -> Option<(f64, String, Watch)> {
     let ls = b.lam + dl;
     let mut w = b.w.clone();
     w.lam = ls;
-    w.normal = 0.0;
-    w.mu = f64::INFINITY.copysign(cb.tangential);
-    w.contacts[0].normal = 0.0;
+    lifted(&mut w);
     let why = format!(
         "extrapolated: the normal force of the contact falls to {nb:.3e} at {} (s = {:.6}), \
          where the equations stop determining the contact; its zero lies {dl:.2e} further on",
         b.lam, cb.s
     );
     Some((ls, why, w))
+}
+
+/// The watch `w` at a lift-off: the normal force of the contact letting go (the one with the
+/// least) and the total are 0 exactly there, so the friction ratio is unbounded, with the
+/// tangential force's sign (μ itself may have crossed the pole).
+fn lifted(w: &mut Watch) {
+    w.normal = 0.0;
+    let t: f64 = w.contacts.iter().map(|c| c.tangential).sum();
+    w.mu = f64::INFINITY.copysign(t);
+    if let Some(c) = w
+        .contacts
+        .iter_mut()
+        .min_by(|a, b| a.normal.total_cmp(&b.normal))
+    {
+        c.normal = 0.0;
+    }
 }
 
 /// How far below zero a located touchdown's clearance on a curved surface may lie and still be
