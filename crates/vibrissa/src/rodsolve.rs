@@ -172,11 +172,37 @@ pub(crate) fn solve_damped<C: Curve + ?Sized>(
     })
 }
 
+/// Whether the residuals `rns` of a Newton iteration towards `tol` have stalled: the last
+/// `STALL` of them did not halve the best before them, which is still far above `tol`. Beyond
+/// a fold (no solution) the residual wanders at a level (1e-7 to 1e-2 on the README's grid)
+/// without falling, where a converging iteration (quadratic, or a chord iteration whose Jacobian
+/// is renewed when it slows) falls by far more. Near `tol` the iteration is left its
+/// iterations: where a contact's equations become singular (a side contact letting go) it
+/// creeps at 1e-10 and still gets through.
+fn stalled(rns: &[f64], tol: f64) -> bool {
+    let k = rns.len();
+    if k <= STALL {
+        return false;
+    }
+    let before = rns[..k - STALL]
+        .iter()
+        .cloned()
+        .fold(f64::INFINITY, f64::min);
+    let recent = rns[k - STALL..]
+        .iter()
+        .cloned()
+        .fold(f64::INFINITY, f64::min);
+    recent > 0.5 * before && before > 1e4 * tol
+}
+
+/// The iterations [`stalled`] looks back over.
+const STALL: usize = 4;
+
 /// Chord Newton from a good prediction `u0` (the marches' corrector): the Jacobian of the first
 /// iterate is kept while the residual falls by 10× per iteration, so from a good predictor a
 /// point costs one shot with and one without sensitivities. With `fresh` (or when the iterate
 /// moved more than `1e-5`) the returned Jacobian is recomputed at the solution: tangents and
-/// the events that use them need it exact.
+/// the events that use them need it exact. An iteration that [`stalled`] gives up early.
 pub(crate) fn correct_chord<C: Curve + ?Sized>(
     ch: &mut C,
     lam: f64,
@@ -193,6 +219,7 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
         let mut rn_prev = f64::INFINITY;
         let mut refined = false;
         let mut last_step = f64::INFINITY;
+        let mut rns = Vec::with_capacity(max_iter + 1);
         for it in 0..=max_iter {
             let need = lu.is_none();
             let e = ch
@@ -242,7 +269,8 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
                     iterations: it,
                 });
             }
-            if it == max_iter {
+            rns.push(rn);
+            if it == max_iter || stalled(&rns, tol) {
                 return Err(ShotFailure::NoConvergence {
                     iteration: it,
                     residual: rn,
@@ -275,4 +303,32 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
         }
     }
     Err(ShotFailure::MeshLimit { steps: MAX_STEPS })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stalled;
+
+    /// Residual sequences of the corrector (tol 1e-12) on the README grid's slowest scene
+    /// (η 0.5, taper 0.05, κ0 = 0, a fold in d at 0.46983) and on the side contact letting go of
+    /// `tests/scan_fixes.rs` (η 0.6, taper 0.1, β −0.3).
+    #[test]
+    fn stalls_beyond_a_fold_but_not_while_converging_or_creeping_near_tol() {
+        let when = |rns: &[f64]| (1..=rns.len()).find(|&k| stalled(&rns[..k], 1e-12));
+        // beyond the fold: given up after 5 of 13 iterations
+        let fold = [
+            3.0e-3, 1.6e-3, 7.4e-2, 1.7e-2, 4.9e-3, 1.9e-3, 3.6e-3, 1.7e-3, 5.7e-2, 1.4e-2, 4.0e-3,
+        ];
+        assert_eq!(when(&fold), Some(5));
+        let hover = [3.4e-7, 1.2e-7, 1.5e-7, 1.0e-7, 4.0e-7, 1.3e-7, 1.2e-7];
+        assert_eq!(when(&hover), Some(6));
+        // converging in 6 iterations
+        let ok = [2.2e-2, 3.4e-3, 2.3e-4, 3.2e-5, 2.9e-8, 5.5e-11, 1.1e-13];
+        assert_eq!(when(&ok), None);
+        // creeping near tol where the contact's equations turn singular: left to max_iter
+        let creep = [
+            7.9e-5, 1.6e-5, 1.7e-6, 6.4e-9, 5.1e-11, 3.2e-9, 2.1e-9, 1.2e-9, 2.9e-9,
+        ];
+        assert_eq!(when(&creep), None);
+    }
 }
