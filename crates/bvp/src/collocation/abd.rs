@@ -1358,6 +1358,47 @@ mod tests {
     }
 
     #[test]
+    fn packed_rows_read_as_the_dense_ones() {
+        // Patterns over several words, entries at word boundaries: ranks and lookups.
+        let (rows, cols) = (3, 135);
+        let rw = words(cols);
+        let mut w = vec![0.0; rows * cols];
+        for (r, cs) in [[0, 63, 64], [1, 127, 128], [5, 70, 134]]
+            .iter()
+            .enumerate()
+        {
+            for (t, &c) in cs.iter().enumerate() {
+                w[r * cols + c] = (10 * r + t + 1) as f64;
+            }
+        }
+        let (mut rpat, mut cpat) = (vec![0; rows * rw], vec![0; 0]);
+        scan(&w, None, rows, cols, 0, &mut rpat, &mut cpat);
+        let (mut vals, mut roff) = (Vec::new(), Vec::new());
+        for r in 0..rows {
+            roff.push(vals.len());
+            let row = &w[r * cols..(r + 1) * cols];
+            vals.extend(ones(&rpat[r * rw..(r + 1) * rw], 0, cols).map(|c| row[c]));
+        }
+        let (d, p) = (
+            Dense { w: &w, cols },
+            Packed {
+                vals: &vals,
+                roff: &roff,
+            },
+        );
+        for r in 0..rows {
+            let pat = &rpat[r * rw..(r + 1) * rw];
+            for c in 0..cols {
+                assert_eq!(d.at(r, pat, c), p.at(r, pat, c), "({r}, {c})");
+                assert_eq!(rank(pat, c), ones(pat, 0, c).count());
+            }
+            for (lo, hi) in [(0, cols), (1, 64), (64, 129), (65, cols), (cols, cols)] {
+                assert!(d.entries(r, pat, lo, hi).eq(p.entries(r, pat, lo, hi)));
+            }
+        }
+    }
+
+    #[test]
     fn sparse_elimination_is_dense_elimination_to_the_bit() {
         // Several words per row and column; about 10 % nonzeros plus the diagonal.
         let (rows, cols, ne) = (108, 135, 81);
