@@ -365,8 +365,9 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
         let npts = tab.q * (mesh.len() - 1) + 1;
         resize(&mut w.ypts, npts * n);
         resize(&mut w.fpts, npts * n);
-        resize(&mut w.jz, npts * n * n);
-        resize(&mut w.jp, npts * n * k);
+        // The points of one interval (see `linearize`).
+        resize(&mut w.jz, (tab.q + 1) * n * n);
+        resize(&mut w.jp, (tab.q + 1) * n * k);
         resize(&mut w.ga, (n + k) * n);
         resize(&mut w.gb, (n + k) * n);
         resize(&mut w.gp, (n + k) * k);
@@ -738,51 +739,56 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
         let pc = self.lay.pcol();
         let p = &u[pc..pc + k];
         let (nn, nk) = (n * n, n * k);
-        // Jacobians of F at every point.
-        for pt in 0..self.npts() {
-            let (i, j) = self.point(pt);
-            let s = self.abscissa(i, j);
-            let w = &mut *self.w;
-            rhs_jacobian_or_fd(
-                self.prob,
-                s,
-                &w.ypts[pt * n..(pt + 1) * n],
-                p,
-                Some(&w.fpts[pt * n..(pt + 1) * n]),
-                &mut w.jz[pt * nn..(pt + 1) * nn],
-                &mut w.jp[pt * nk..(pt + 1) * nk],
-                &mut w.fd,
-                stats,
-            )?;
-        }
+        // The LU is replaced from here on, even if a Jacobian below fails.
+        self.factored = false;
         self.w.sys.prepare(self.lay).map_err(|_| singular())?;
-        let width = self.lay.width();
         let rows = self.row_range();
-        let first = *rows.start();
         let last = self.npts() - 1;
         let internal = self.tab.internal;
         let a = self.tab.a;
         let lay = self.lay;
         let w = &mut *self.w;
-        let blocks = &mut w.sys.blocks;
         for i in 0..lay.intervals() {
+            // Jacobians of F at the interval's points, in slots 0..=q (the left end's is the
+            // last interval's right end): one interval's, not every point's (`n²` doubles
+            // each, mostly zeros for a large system, that a fresh solver pays in page faults).
+            if i > 0 {
+                w.jz.copy_within(q * nn..(q + 1) * nn, 0);
+                w.jp.copy_within(q * nk..(q + 1) * nk, 0);
+            }
+            for j in usize::from(i > 0)..=q {
+                let pt = q * i + j;
+                let s = if j == q {
+                    self.mesh[i + 1]
+                } else {
+                    self.mesh[i] + self.tab.c[j] * (self.mesh[i + 1] - self.mesh[i])
+                };
+                rhs_jacobian_or_fd(
+                    self.prob,
+                    s,
+                    &w.ypts[pt * n..(pt + 1) * n],
+                    p,
+                    Some(&w.fpts[pt * n..(pt + 1) * n]),
+                    &mut w.jz[j * nn..(j + 1) * nn],
+                    &mut w.jp[j * nk..(j + 1) * nk],
+                    &mut w.fd,
+                    stats,
+                )?;
+            }
             let h = self.mesh[i + 1] - self.mesh[i];
-            let base = i * lay.stride * width;
+            // Rows in order (abscissa `rr`, then component `c`), as `push_row` expects.
             for rr in rows.clone() {
                 for c in 0..n {
-                    let row = base + ((rr - first) * n + c) * width;
-                    let out = &mut blocks[row..row + width];
+                    let out = w.sys.row_mut();
                     out.fill(0.0);
                     if internal {
                         // ∂/∂Y_j = (δ_rj − δ_0j) I / h − a_rj J_j; ∂/∂p = −Σ a_rj Jp_j.
                         for j in 0..=q {
-                            let jz =
-                                &w.jz[(q * i + j) * nn + c * n..(q * i + j) * nn + (c + 1) * n];
+                            let jz = &w.jz[j * nn + c * n..j * nn + (c + 1) * n];
                             for (d, v) in jz.iter().enumerate() {
                                 out[j * n + d] -= a[rr][j] * v;
                             }
-                            let jp =
-                                &w.jp[(q * i + j) * nk + c * k..(q * i + j) * nk + (c + 1) * k];
+                            let jp = &w.jp[j * nk + c * k..j * nk + (c + 1) * k];
                             for (e, v) in jp.iter().enumerate() {
                                 out[lay.stride + n + e] -= a[rr][j] * v;
                             }
@@ -791,7 +797,8 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
                         out[rr * n + c] += 1.0 / h;
                     } else {
                         // Condensed midpoint: Y_1 = (z0 + z1)/2 − h (f2 − f0)/8.
-                        let (p0, pm, p1) = (2 * i, 2 * i + 1, 2 * i + 2);
+                        // Slots of the left end, the midpoint and the right end.
+                        let (p0, pm, p1) = (0, 1, 2);
                         let jm = &w.jz[pm * nn + c * n..pm * nn + (c + 1) * n];
                         let (b0, b1, b2) = (a[2][0], a[2][1], a[2][2]);
                         // Row c of Jm · (I/2 ± h/8 J_{0,2}), by rows of J_{0,2} and skipping the
@@ -832,6 +839,7 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
                                 - b1 * dm;
                         }
                     }
+                    w.sys.push_row();
                 }
             }
         }
@@ -850,9 +858,8 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
             stats,
         )?;
         let bw = 2 * n + k;
-        let off = lay.bc_offset();
         for rb in 0..m {
-            let row = &mut blocks[off + rb * bw..off + (rb + 1) * bw];
+            let row = &mut w.sys.bc[rb * bw..(rb + 1) * bw];
             row[..n].copy_from_slice(&w.ga[rb * n..(rb + 1) * n]);
             row[n..2 * n].copy_from_slice(&w.gb[rb * n..(rb + 1) * n]);
             row[2 * n..].copy_from_slice(&w.gp[rb * k..(rb + 1) * k]);

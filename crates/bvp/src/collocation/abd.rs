@@ -23,12 +23,15 @@
 //! (Wright 1993, SIAM J. Sci. Comput. 14, 231–238, gives BVP matrices with exponential growth;
 //! pivoting caps it once a carried entry outgrows the interval rows' `1/h`).
 //!
-//! Cost per interval `O(stride² (stride + 2n + k))` for dense blocks, storage the windows,
-//! `(n + k + stride) × (stride + 2n + k)` each. The eliminations and substitutions visit only
-//! the nonzeros (bit-set patterns of rows and columns kept through fill-in, [`eliminate`]):
-//! the same operations in the same order as dense, so the same factors, at a cost that follows
-//! the fill-in instead of the window's size (uncoupled states: linear in `n` per row). Buffers are sized in [`AbdSystem::prepare`]; factorizations and
-//! solves on the same layout never allocate.
+//! Cost per interval `O(stride² (stride + 2n + k))` for dense blocks. The eliminations and
+//! substitutions visit only the nonzeros (bit-set patterns of rows and columns kept through
+//! fill-in, [`eliminate`]): the same operations in the same order as dense, so the same
+//! factors, at a cost that follows the fill-in instead of the window's size (uncoupled states:
+//! linear in `n` per row). Storage follows the nonzeros too: the assembled rows and the
+//! factored windows are kept packed (their nonzeros and patterns); only two windows are dense,
+//! `(n + k + stride) × (stride + 2n + k)` each, the one being eliminated and the one before.
+//! Buffers are sized in [`AbdSystem::prepare`] (the packed ones reserved for the dense bound,
+//! untouched until used); factorizations and solves on the same layout never allocate.
 //!
 //! # Singularity
 //!
@@ -82,11 +85,13 @@ impl Layout {
     pub fn bcrow(&self) -> usize {
         self.intervals() * self.stride
     }
-    /// Offset of the boundary block in the block-value array.
+    /// Offset of the boundary block in a dense block-value array (the tests' format).
+    #[cfg(test)]
     pub fn bc_offset(&self) -> usize {
         self.intervals() * self.stride * self.width()
     }
-    /// Length of the block-value array.
+    /// Length of a dense block-value array: interval rows, then the boundary block.
+    #[cfg(test)]
     pub fn block_len(&self) -> usize {
         self.bc_offset() + (self.n + self.k) * (2 * self.n + self.k)
     }
@@ -114,10 +119,29 @@ pub(crate) enum LinError {
 #[derive(Debug, Default)]
 pub(crate) struct AbdSystem {
     layout: Option<Layout>,
-    /// Block values, in the layout order (see [`Layout`]); the assembly writes every entry.
-    pub blocks: Vec<f64>,
-    /// Factored windows, `wrows × wcols` row-major each.
+    /// Boundary block `[g_a | g_b | g_p]`, `(n + k) × (2n + k)` row-major; the assembly writes
+    /// every entry.
+    pub bc: Vec<f64>,
+    /// The interval rows (`width` each, see [`Layout`]), packed as [`AbdSystem::push_row`]
+    /// stores them: row `e`'s nonzeros are `bcol`/`bval` from `boff[e]` to `boff[e + 1]`.
+    /// Why packed: dense, they were mostly zeros for a large system (0.9 MB for 60 states and
+    /// 16 intervals), paid by a fresh solver in page faults.
+    bcol: Vec<u32>,
+    bval: Vec<f64>,
+    boff: Vec<usize>,
+    /// The row being assembled (dense, `width`), see [`AbdSystem::row_mut`].
+    row: Vec<f64>,
+    /// Two dense `wrows × wcols` row-major windows (the one being eliminated and the previous
+    /// one, whose carried rows it takes), zero outside `spat`. Why only two: a window of a large
+    /// system is mostly zeros, and per-interval dense windows (2.8 MB for 60 states and 16
+    /// intervals) cost a fresh solver a page fault per 4 KB, more than the elimination itself.
     win: Vec<f64>,
+    /// Nonzero patterns of the two windows of `win` (`words(wcols)` per row).
+    spat: Vec<u64>,
+    /// Factored windows, packed: the entries of each row in `rpat` in column order, row `r` of
+    /// interval `i` from `roff[i * wrows + r]`.
+    vals: Vec<f64>,
+    roff: Vec<usize>,
     /// Row interchanges of each window (`stride` slots each), LAPACK style.
     piv: Vec<usize>,
     /// Nonzero patterns of the factored windows' rows (`words(wcols)` each), of the final
@@ -396,18 +420,94 @@ fn eliminate(
 /// Applies the interchanges and then the multipliers of [`eliminate`] to a right-hand side
 /// (`P A = L U` with whole rows swapped, so all interchanges come first); by rows, over the
 /// nonzeros of `rpat` (the same subtractions in the same order as by columns).
-fn forward(w: &[f64], rows: usize, cols: usize, piv: &[usize], rpat: &[u64], t: &mut [f64]) {
+fn forward(w: &impl Rows, rows: usize, cols: usize, piv: &[usize], rpat: &[u64], t: &mut [f64]) {
     for (j, &p) in piv.iter().enumerate() {
         t.swap(j, p);
     }
     let rw = words(cols);
     for r in 1..rows {
-        let row = &w[r * cols..(r + 1) * cols];
+        let pat = &rpat[r * rw..(r + 1) * rw];
         let mut acc = t[r];
-        for j in ones(&rpat[r * rw..(r + 1) * rw], 0, r.min(piv.len())) {
-            acc -= row[j] * t[j];
+        for (j, x) in w.entries(r, pat, 0, r.min(piv.len())) {
+            acc -= x * t[j];
         }
         t[r] = acc;
+    }
+}
+
+/// Rows of a factored matrix whose entries outside the nonzero patterns are zero.
+trait Rows {
+    /// `(column, value)` of row `r`'s entries in `pat` (its pattern) within `lo..hi`.
+    fn entries<'a>(
+        &'a self,
+        r: usize,
+        pat: &'a [u64],
+        lo: usize,
+        hi: usize,
+    ) -> impl Iterator<Item = (usize, f64)> + 'a;
+    /// Entry `(r, c)` (zero outside the pattern `pat` of row `r`).
+    fn at(&self, r: usize, pat: &[u64], c: usize) -> f64;
+}
+
+/// A dense row-major matrix.
+struct Dense<'a> {
+    w: &'a [f64],
+    cols: usize,
+}
+
+impl Rows for Dense<'_> {
+    fn entries<'a>(
+        &'a self,
+        r: usize,
+        pat: &'a [u64],
+        lo: usize,
+        hi: usize,
+    ) -> impl Iterator<Item = (usize, f64)> + 'a {
+        let row = &self.w[r * self.cols..(r + 1) * self.cols];
+        ones(pat, lo, hi).map(move |c| (c, row[c]))
+    }
+    fn at(&self, r: usize, _: &[u64], c: usize) -> f64 {
+        self.w[r * self.cols + c]
+    }
+}
+
+/// Packed rows: the entries of row `r` in its pattern, in column order, from `roff[r]`.
+struct Packed<'a> {
+    vals: &'a [f64],
+    roff: &'a [usize],
+}
+
+/// Set bits of `pat` below `c`.
+fn rank(pat: &[u64], c: usize) -> usize {
+    let (q, b) = (c / 64, c % 64);
+    let full: u32 = pat[..q.min(pat.len())].iter().map(|x| x.count_ones()).sum();
+    let part = if b > 0 && q < pat.len() {
+        (pat[q] & ((1u64 << b) - 1)).count_ones()
+    } else {
+        0
+    };
+    (full + part) as usize
+}
+
+impl Rows for Packed<'_> {
+    fn entries<'a>(
+        &'a self,
+        r: usize,
+        pat: &'a [u64],
+        lo: usize,
+        hi: usize,
+    ) -> impl Iterator<Item = (usize, f64)> + 'a {
+        let at = self.roff[r] + rank(pat, lo);
+        ones(pat, lo, hi)
+            .zip(&self.vals[at..])
+            .map(|(c, &x)| (c, x))
+    }
+    fn at(&self, r: usize, pat: &[u64], c: usize) -> f64 {
+        if has(pat, c) {
+            self.vals[self.roff[r] + rank(pat, c)]
+        } else {
+            0.0
+        }
     }
 }
 
@@ -416,9 +516,8 @@ impl AbdSystem {
         Self::default()
     }
 
-    /// Makes `layout` current and sizes the buffers for a new layout. The block values are left
-    /// as they were (zeros where new): the assembly writes every entry (zeroing 1 MB of blocks
-    /// for 60 states was a visible part of a factorization).
+    /// Makes `layout` current, sizes the buffers for a new layout and forgets the stored rows:
+    /// the assembly pushes every interval row and writes every entry of `bc`.
     pub fn prepare(&mut self, l: Layout) -> Result<(), LinError> {
         self.factored = false;
         if l.nodes < 2 || l.n == 0 || l.stride < l.n {
@@ -426,29 +525,42 @@ impl AbdSystem {
         }
         if self.layout != Some(l) {
             // Windows of the same shape (only the mesh changed) stay where they were, zero
-            // outside their patterns: kept, not zeroed again (megabytes for 60 states).
+            // outside their patterns: kept, not zeroed again.
             let same_shape = self
                 .layout
                 .is_some_and(|o| (o.n, o.k, o.stride) == (l.n, l.k, l.stride));
             self.layout = Some(l);
             let (fd, dim) = (l.carry(), l.dim());
             let wlen = l.intervals() * l.wrows() * l.wcols();
-            let grows = l.block_len() > self.blocks.capacity()
-                || wlen > self.win.capacity()
+            let blen = l.intervals() * l.stride * l.width();
+            let grows = blen > self.bval.capacity()
+                || wlen > self.vals.capacity()
                 || l.intervals() * l.stride > self.piv.capacity()
                 || fd * fd > self.fin.capacity()
                 || dim > self.colmax.capacity()
                 || l.wrows() > self.t.capacity();
             self.buffer_growths += usize::from(grows);
             let plen = l.intervals() * l.wrows() * words(l.wcols());
-            if same_shape {
-                // Never shrunk: a mesh that shrinks and grows again would zero its tail anew.
-                self.win.resize(wlen.max(self.win.len()), 0.0);
-                self.rpat.resize(plen.max(self.rpat.len()), 0);
-            } else {
-                resize(&mut self.win, wlen);
-                resize(&mut self.rpat, plen);
+            if !same_shape {
+                resize(&mut self.win, 2 * l.wrows() * l.wcols());
+                resize(&mut self.spat, 2 * l.wrows() * words(l.wcols()));
             }
+            // The packed factors' and rows' bounds (all dense), reserved but untouched: fresh
+            // allocations, not reallocations that would copy (touch) the old ones.
+            if wlen > self.vals.capacity() {
+                self.vals = Vec::with_capacity(wlen);
+            }
+            if blen > self.bval.capacity() {
+                self.bval = Vec::with_capacity(blen);
+                self.bcol = Vec::with_capacity(blen);
+            }
+            if l.intervals() * l.stride >= self.boff.capacity() {
+                self.boff = Vec::with_capacity(l.intervals() * l.stride + 1);
+            }
+            resize(&mut self.bc, l.carry() * (2 * l.n + l.k));
+            resize(&mut self.row, l.width());
+            resize(&mut self.rpat, plen);
+            resize(&mut self.roff, l.intervals() * l.wrows());
             resize(&mut self.piv, l.intervals() * l.stride);
             resize(&mut self.fin, fd * fd);
             resize(&mut self.fpiv, fd);
@@ -462,14 +574,39 @@ impl AbdSystem {
             resize(&mut self.t, l.wrows());
             resize(&mut self.v, 2 * l.n + l.k);
         }
-        self.blocks.resize(l.block_len(), 0.0);
+        self.clear_rows();
         Ok(())
+    }
+
+    fn clear_rows(&mut self) {
+        self.bcol.clear();
+        self.bval.clear();
+        self.boff.clear();
+        self.boff.push(0);
+    }
+
+    /// The next interval row to assemble (rows in order: interval `i`'s row `r` is the
+    /// `i * stride + r`-th), dense with `width` entries, to be written in full and then stored
+    /// by [`AbdSystem::push_row`].
+    pub fn row_mut(&mut self) -> &mut [f64] {
+        &mut self.row
+    }
+
+    /// Stores the row written in [`AbdSystem::row_mut`] by its nonzeros (`x != 0.0`, NaN
+    /// included: those [`nonzeros`] visits, so the factorization sees the same entries).
+    pub fn push_row(&mut self) {
+        let (cols, vals) = (&mut self.bcol, &mut self.bval);
+        nonzeros(&self.row, |c, x| {
+            // Widths are far below 2³²: `width` doubles of a dense row would not fit otherwise.
+            cols.push(c as u32);
+            vals.push(x);
+        });
+        self.boff.push(vals.len());
     }
 
     /// Column maxima of the assembled matrix; `false` if a value is not finite.
     fn column_maxima(&mut self, l: Layout) -> bool {
         let (n, k, s) = (l.n, l.k, l.stride);
-        let w = l.width();
         let cm = &mut self.colmax;
         cm.fill(0.0);
         let mut finite = true;
@@ -478,10 +615,11 @@ impl AbdSystem {
             cm[c] = cm[c].max(x.abs());
         };
         for i in 0..l.intervals() {
-            let blk = &self.blocks[i * s * w..(i + 1) * s * w];
-            for row in blk.chunks_exact(w) {
-                // Zeros change no maximum.
-                nonzeros(row, |c, x| {
+            for e in i * s..(i + 1) * s {
+                // Zeros (not stored) change no maximum.
+                let at = self.boff[e]..self.boff[e + 1];
+                for (&c, &x) in self.bcol[at.clone()].iter().zip(&self.bval[at]) {
+                    let c = c as usize;
                     upd(
                         if c < s + n {
                             i * s + c
@@ -490,10 +628,10 @@ impl AbdSystem {
                         },
                         x,
                     )
-                });
+                }
             }
         }
-        for row in self.blocks[l.bc_offset()..].chunks_exact(2 * n + k) {
+        for row in self.bc.chunks_exact(2 * n + k) {
             for c in 0..n {
                 upd(c, row[c]);
                 upd(l.bcrow() + c, row[n + c]);
@@ -505,16 +643,17 @@ impl AbdSystem {
         finite
     }
 
-    /// Structured LU of the matrix whose block values are in `self.blocks`.
+    /// Structured LU of the matrix whose rows were stored by [`AbdSystem::push_row`] and whose
+    /// boundary block is in `bc`.
     pub fn factor(&mut self) -> Result<(), LinError> {
         self.factored = false;
         let l = self.layout.ok_or(LinError::Singular)?;
-        if self.blocks.len() != l.block_len() || !self.column_maxima(l) {
+        if self.boff.len() != l.intervals() * l.stride + 1 || !self.column_maxima(l) {
             return Err(LinError::Singular);
         }
         if self.factor_windows(l, false).is_err() {
             // A suspect pivot: decide with the magnitudes it was computed from (module docs).
-            resize(&mut self.mwin, self.win.len());
+            resize(&mut self.mwin, l.intervals() * l.wrows() * l.wcols());
             resize(&mut self.mfin, self.fin.len());
             self.factor_windows(l, true)?;
         }
@@ -525,11 +664,18 @@ impl AbdSystem {
     /// The window eliminations and the final system; `track`: with `|L||U|` magnitudes.
     fn factor_windows(&mut self, l: Layout, track: bool) -> Result<(), LinError> {
         let (n, s, m) = (l.n, l.stride, l.carry());
-        let (w, wr, wc) = (l.width(), l.wrows(), l.wcols());
+        let (wr, wc) = (l.wrows(), l.wcols());
         let (slot, rw, cw) = (wr * wc, words(wc), words(wr));
+        self.vals.clear();
         for i in 0..l.intervals() {
-            let (done, rest) = self.win.split_at_mut(i * slot);
-            let cur = &mut rest[..slot];
+            // Window i in scratch i % 2, the previous window in the other.
+            let (wa, wb) = self.win.split_at_mut(slot);
+            let (pa, pb) = self.spat.split_at_mut(wr * rw);
+            let ((cur, prev), (rpat, ppat)) = if i % 2 == 0 {
+                ((wa, &*wb), (pa, &*pb))
+            } else {
+                ((wb, &*wa), (pb, &*pa))
+            };
             let mut mcur = None;
             if track {
                 // Carried rows keep the magnitudes of their history; new rows start at |a|.
@@ -547,10 +693,8 @@ impl AbdSystem {
                 }
                 mcur = Some(mc);
             }
-            // Entries outside the patterns are zero: clear the last factorization's, then
+            // Entries outside the patterns are zero: clear the window this scratch held, then
             // write and mark the new nonzeros (a window is mostly zeros for large systems).
-            let (pdone, prest) = self.rpat.split_at_mut(i * wr * rw);
-            let rpat = &mut prest[..wr * rw];
             for (r, pat) in rpat.chunks_exact_mut(rw).enumerate() {
                 for c in ones(pat, 0, wc) {
                     cur[r * wc + c] = 0.0;
@@ -568,15 +712,11 @@ impl AbdSystem {
             };
             if i == 0 {
                 // Boundary rows [g_a | g_b | g_p]: z_0 is eliminated here, z_N is the border.
-                for (r, src) in self.blocks[l.bc_offset()..]
-                    .chunks_exact(2 * n + l.k)
-                    .enumerate()
-                {
+                for (r, src) in self.bc.chunks_exact(2 * n + l.k).enumerate() {
                     nonzeros(src, |c, x| set(r, if c < n { c } else { s + c }, x));
                 }
             } else {
                 // Rows left over from the previous window: z_i → eliminated columns.
-                let (prev, ppat) = (&done[(i - 1) * slot..], &pdone[(i - 1) * wr * rw..]);
                 for r in 0..m {
                     let pat = &ppat[(s + r) * rw..(s + r + 1) * rw];
                     for c in ones(pat, s, wc) {
@@ -585,9 +725,12 @@ impl AbdSystem {
                     }
                 }
             }
-            let blk = &self.blocks[i * s * w..(i + 1) * s * w];
-            for (r, src) in blk.chunks_exact(w).enumerate() {
-                nonzeros(src, |c, x| set(m + r, if c < s + n { c } else { c + n }, x));
+            for r in 0..s {
+                let at = self.boff[i * s + r]..self.boff[i * s + r + 1];
+                for (&c, &x) in self.bcol[at.clone()].iter().zip(&self.bval[at]) {
+                    let c = c as usize;
+                    set(m + r, if c < s + n { c } else { c + n }, x);
+                }
             }
             if let Some(mc) = mcur.as_deref_mut() {
                 // New rows start at |a|; the patterns cover the magnitudes' support too.
@@ -610,9 +753,17 @@ impl AbdSystem {
                 cpat,
                 &mut self.idx,
             )?;
+            // Keep the factors: the pattern and the entries in it, packed.
+            self.rpat[i * wr * rw..(i + 1) * wr * rw].copy_from_slice(rpat);
+            for r in 0..wr {
+                self.roff[i * wr + r] = self.vals.len();
+                let row = &cur[r * wc..(r + 1) * wc];
+                self.vals
+                    .extend(ones(&rpat[r * rw..(r + 1) * rw], 0, wc).map(|c| row[c]));
+            }
         }
         // Final system in (z_N, p): the last carry, its two z_N column blocks added.
-        let last = &self.win[(l.intervals() - 1) * slot..];
+        let last = &self.win[(l.intervals() - 1) % 2 * slot..];
         for r in 0..m {
             let src = &last[(s + r) * wc..(s + r + 1) * wc];
             let dst = &mut self.fin[r * m..(r + 1) * m];
@@ -670,7 +821,7 @@ impl AbdSystem {
         }
         let (n, s, m) = (l.n, l.stride, l.carry());
         let (wr, wc) = (l.wrows(), l.wcols());
-        let (slot, rw) = (wr * wc, words(wc));
+        let rw = words(wc);
         let t = &mut self.t;
         // Forward: the carried rows' right-hand side goes from window to window (at first the
         // boundary rows'); the pivot rows' land on their eliminated unknowns' slots.
@@ -680,15 +831,29 @@ impl AbdSystem {
                 t.copy_within(s..s + m, 0);
             }
             t[m..m + s].copy_from_slice(&rhs[i * s..(i + 1) * s]);
-            let w = &self.win[i * slot..(i + 1) * slot];
+            let rows = Packed {
+                vals: &self.vals,
+                roff: &self.roff[i * wr..(i + 1) * wr],
+            };
             let rpat = &self.rpat[i * wr * rw..(i + 1) * wr * rw];
-            forward(w, wr, wc, &self.piv[i * s..(i + 1) * s], rpat, &mut t[..wr]);
+            forward(
+                &rows,
+                wr,
+                wc,
+                &self.piv[i * s..(i + 1) * s],
+                rpat,
+                &mut t[..wr],
+            );
             rhs[i * s..(i + 1) * s].copy_from_slice(&t[..s]);
         }
         let v = &mut self.v;
         v[..m].copy_from_slice(&t[s..s + m]);
-        forward(&self.fin, m, m, &self.fpiv, &self.frpat, &mut v[..m]);
-        back(&self.fin, m, m, m, &self.frpat, &mut v[..m], &[]);
+        let fin = Dense {
+            w: &self.fin,
+            cols: m,
+        };
+        forward(&fin, m, m, &self.fpiv, &self.frpat, &mut v[..m]);
+        back(&fin, m, m, m, &self.frpat, &mut v[..m], &[]);
         rhs[l.bcrow()..].copy_from_slice(&v[..m]);
         // Back substitution, known (z_{i+1}, z_N, p) gathered in v.
         let (zn, p) = rhs[l.bcrow()..].split_at(n);
@@ -696,9 +861,12 @@ impl AbdSystem {
         v[2 * n..].copy_from_slice(p);
         for i in (0..l.intervals()).rev() {
             v[..n].copy_from_slice(&rhs[(i + 1) * s..(i + 1) * s + n]);
-            let w = &self.win[i * slot..(i + 1) * slot];
+            let rows = Packed {
+                vals: &self.vals,
+                roff: &self.roff[i * wr..(i + 1) * wr],
+            };
             let rpat = &self.rpat[i * wr * rw..(i + 1) * wr * rw];
-            back(w, wc, s, s, rpat, &mut rhs[i * s..(i + 1) * s], v);
+            back(&rows, wc, s, s, rpat, &mut rhs[i * s..(i + 1) * s], v);
         }
         if rhs.iter().all(|x| x.is_finite()) {
             Ok(())
@@ -712,7 +880,7 @@ impl AbdSystem {
 /// patterns `rpat`), whose columns from `known_at` on multiply the known values `known`:
 /// `x ← U⁻¹ (x − W_k known)`.
 fn back(
-    w: &[f64],
+    w: &impl Rows,
     cols: usize,
     ne: usize,
     known_at: usize,
@@ -722,15 +890,15 @@ fn back(
 ) {
     let rw = words(cols);
     for j in (0..ne).rev() {
-        let (row, pat) = (&w[j * cols..(j + 1) * cols], &rpat[j * rw..(j + 1) * rw]);
+        let pat = &rpat[j * rw..(j + 1) * rw];
         let mut acc = x[j];
-        for c in ones(pat, j + 1, ne) {
-            acc -= row[c] * x[c];
+        for (c, v) in w.entries(j, pat, j + 1, ne) {
+            acc -= v * x[c];
         }
-        for c in ones(pat, known_at, cols) {
-            acc -= row[c] * known[c - known_at];
+        for (c, v) in w.entries(j, pat, known_at, cols) {
+            acc -= v * known[c - known_at];
         }
-        x[j] = acc / row[j];
+        x[j] = acc / w.at(j, pat, j);
     }
 }
 
@@ -749,6 +917,17 @@ mod tests {
             let u = self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11;
             u as f64 / (1u64 << 52) as f64 - 1.0
         }
+    }
+
+    /// Stores dense block values (interval rows, then the boundary block; `Layout::block_len`)
+    /// as the assembly does: rows by [`AbdSystem::push_row`], the boundary block in `bc`.
+    fn load(s: &mut AbdSystem, l: Layout, blocks: &[f64]) {
+        s.clear_rows();
+        for row in blocks[..l.bc_offset()].chunks_exact(l.width()) {
+            s.row_mut().copy_from_slice(row);
+            s.push_row();
+        }
+        s.bc.copy_from_slice(&blocks[l.bc_offset()..]);
     }
 
     /// The assembled matrix, row-major `dim × dim`, from the block values (the layout's map,
@@ -840,8 +1019,10 @@ mod tests {
     fn compare_with(s: &mut AbdSystem, l: Layout, kind: Kind, separated: bool, seed: u64) -> f64 {
         let mut rng = Rng(seed);
         s.prepare(l).unwrap();
-        fill(l, kind, separated, &mut rng, &mut s.blocks);
-        let a = dense(l, &s.blocks);
+        let mut blocks = vec![0.0; l.block_len()];
+        fill(l, kind, separated, &mut rng, &mut blocks);
+        load(s, l, &blocks);
+        let a = dense(l, &blocks);
         let dim = l.dim();
         let b: Vec<f64> = (0..dim).map(|_| rng.next()).collect();
         let mut lu = DenseLu::new(dim);
@@ -983,13 +1164,15 @@ mod tests {
             let mut rng = Rng(11);
             let mut s = AbdSystem::new();
             s.prepare(l).unwrap();
-            fill(l, Kind::Collocation, false, &mut rng, &mut s.blocks);
+            let mut blocks = vec![0.0; l.block_len()];
+            fill(l, Kind::Collocation, false, &mut rng, &mut blocks);
+            load(&mut s, l, &blocks);
             let b: Vec<f64> = (0..l.dim()).map(|_| rng.next()).collect();
             let mut x = b.clone();
             s.factor().unwrap();
             s.solve(&mut x).unwrap();
             let mut ax = vec![0.0; l.dim()];
-            let anorm = block_matvec(l, &s.blocks, &x, &mut ax);
+            let anorm = block_matvec(l, &blocks, &x, &mut ax);
             let res = ax
                 .iter()
                 .zip(&b)
@@ -1012,9 +1195,9 @@ mod tests {
         };
         let mut s = AbdSystem::new();
         s.prepare(l).unwrap();
-        assert_eq!(s.blocks.len(), l.block_len());
+        assert_eq!(l.block_len(), 6);
         // interval blocks: [d/dy_i, d/dy_{i+1}]; bc block: [d/dy0, d/dyN]
-        s.blocks.copy_from_slice(&[-1.0, 1.0, -1.0, 1.0, 1.0, 0.0]);
+        load(&mut s, l, &[-1.0, 1.0, -1.0, 1.0, 1.0, 0.0]);
         s.factor().unwrap();
         let mut x = vec![1.0, 1.0, 2.0];
         s.solve(&mut x).unwrap();
@@ -1036,20 +1219,22 @@ mod tests {
         // (a) Two equal boundary rows; (b) an internal-stage column zero; (c) a NaN.
         for case in 0..3 {
             s.prepare(l).unwrap();
-            fill(l, Kind::Collocation, false, &mut rng, &mut s.blocks);
+            let mut blocks = vec![0.0; l.block_len()];
+            fill(l, Kind::Collocation, false, &mut rng, &mut blocks);
             match case {
                 0 => {
-                    let (r0, r1) = s.blocks[l.bc_offset()..].split_at_mut(bw);
+                    let (r0, r1) = blocks[l.bc_offset()..].split_at_mut(bw);
                     r1[..bw].copy_from_slice(r0);
                 }
                 1 => {
                     let w = l.width();
                     for r in 0..l.stride {
-                        s.blocks[(3 * l.stride + r) * w + l.n + 1] = 0.0;
+                        blocks[(3 * l.stride + r) * w + l.n + 1] = 0.0;
                     }
                 }
-                _ => s.blocks[5] = f64::NAN,
+                _ => blocks[5] = f64::NAN,
             }
+            load(&mut s, l, &blocks);
             assert!(s.factor().is_err(), "case {case}");
             assert!(s.solve(&mut vec![1.0; l.dim()]).is_err(), "case {case}");
         }
@@ -1061,18 +1246,20 @@ mod tests {
             stride: 2,
         };
         s.prepare(l).unwrap();
+        let mut blocks = vec![0.0; l.block_len()];
         for i in 0..4 {
             let h = 0.25;
             // (z_{i+1} - z_i)/h - [z2; 0] averaged: rows [-1/h, -1/2, 1/h, -1/2], [0, -1/h, 0, 1/h].
-            let b = &mut s.blocks[i * 8..(i + 1) * 8];
+            let b = &mut blocks[i * 8..(i + 1) * 8];
             b.copy_from_slice(&[-1.0 / h, -0.5, 1.0 / h, -0.5, 0.0, -1.0 / h, 0.0, 1.0 / h]);
         }
-        s.blocks[32..].copy_from_slice(&[0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+        blocks[32..].copy_from_slice(&[0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]);
+        load(&mut s, l, &blocks);
         assert!(s.factor().is_err());
     }
 
-    /// A small collocation system (5 nodes, n = 2, k = 1) with random blocks.
-    fn small_random_system() -> (Layout, AbdSystem) {
+    /// A small collocation system (5 nodes, n = 2, k = 1) with random blocks (also returned).
+    fn small_random_system() -> (Layout, AbdSystem, Vec<f64>) {
         let l = Layout {
             nodes: 5,
             n: 2,
@@ -1081,24 +1268,27 @@ mod tests {
         };
         let mut s = AbdSystem::new();
         s.prepare(l).unwrap();
-        fill(l, Kind::Collocation, false, &mut Rng(3), &mut s.blocks);
-        (l, s)
+        let mut blocks = vec![0.0; l.block_len()];
+        fill(l, Kind::Collocation, false, &mut Rng(3), &mut blocks);
+        load(&mut s, l, &blocks);
+        (l, s, blocks)
     }
 
     #[test]
     fn pivot_test_is_relative_per_column() {
         // Scaling one unknown (a column) by 1e-200 leaves the system solvable.
-        let (l, mut s) = small_random_system();
+        let (l, mut s, mut blocks) = small_random_system();
         let w = l.width();
         for i in 0..l.intervals() {
             for r in 0..l.stride {
-                s.blocks[(i * l.stride + r) * w + w - 1] *= 1e-200;
+                blocks[(i * l.stride + r) * w + w - 1] *= 1e-200;
             }
         }
         let bw = 2 * l.n + l.k;
         for r in 0..l.n + l.k {
-            s.blocks[l.bc_offset() + r * bw + bw - 1] *= 1e-200;
+            blocks[l.bc_offset() + r * bw + bw - 1] *= 1e-200;
         }
+        load(&mut s, l, &blocks);
         s.factor().expect("scaled column is not singular");
         let mut x = vec![1.0; l.dim()];
         s.solve(&mut x).unwrap();
@@ -1109,13 +1299,14 @@ mod tests {
         // Scaling the boundary rows by 1e-20 leaves the system solvable, with the same solution.
         // Those rows reach the final system (the boundary conditions at both ends), whose pivots
         // then fall far below 1e-14 of the interval rows' column maxima: once reported singular.
-        let (l, mut s) = small_random_system();
+        let (l, mut s, mut blocks) = small_random_system();
         s.factor().unwrap();
         let mut want = vec![1.0; l.dim()];
         s.solve(&mut want).unwrap();
-        for v in &mut s.blocks[l.bc_offset()..] {
+        for v in &mut blocks[l.bc_offset()..] {
             *v *= 1e-20;
         }
+        load(&mut s, l, &blocks);
         s.factor().expect("row-scaled system is not singular");
         let mut x = vec![1.0; l.dim()];
         x[l.bcrow()..].iter_mut().for_each(|v| *v *= 1e-20);
@@ -1164,6 +1355,47 @@ mod tests {
         assert_eq!(ones(&set, 81, 81).count(), 0);
         assert_eq!(ones(&set, 100, 81).count(), 0);
         assert!(ones(&[0b1010, 0, 1], 0, 129).eq([1, 3, 128]));
+    }
+
+    #[test]
+    fn packed_rows_read_as_the_dense_ones() {
+        // Patterns over several words, entries at word boundaries: ranks and lookups.
+        let (rows, cols) = (3, 135);
+        let rw = words(cols);
+        let mut w = vec![0.0; rows * cols];
+        for (r, cs) in [[0, 63, 64], [1, 127, 128], [5, 70, 134]]
+            .iter()
+            .enumerate()
+        {
+            for (t, &c) in cs.iter().enumerate() {
+                w[r * cols + c] = (10 * r + t + 1) as f64;
+            }
+        }
+        let (mut rpat, mut cpat) = (vec![0; rows * rw], vec![0; 0]);
+        scan(&w, None, rows, cols, 0, &mut rpat, &mut cpat);
+        let (mut vals, mut roff) = (Vec::new(), Vec::new());
+        for r in 0..rows {
+            roff.push(vals.len());
+            let row = &w[r * cols..(r + 1) * cols];
+            vals.extend(ones(&rpat[r * rw..(r + 1) * rw], 0, cols).map(|c| row[c]));
+        }
+        let (d, p) = (
+            Dense { w: &w, cols },
+            Packed {
+                vals: &vals,
+                roff: &roff,
+            },
+        );
+        for r in 0..rows {
+            let pat = &rpat[r * rw..(r + 1) * rw];
+            for c in 0..cols {
+                assert_eq!(d.at(r, pat, c), p.at(r, pat, c), "({r}, {c})");
+                assert_eq!(rank(pat, c), ones(pat, 0, c).count());
+            }
+            for (lo, hi) in [(0, cols), (1, 64), (64, 129), (65, cols), (cols, cols)] {
+                assert!(d.entries(r, pat, lo, hi).eq(p.entries(r, pat, lo, hi)));
+            }
+        }
     }
 
     #[test]
