@@ -379,7 +379,8 @@ impl<P: Profile> Run<'_, '_, P> {
                     target = lam_end;
                 }
                 // an event the predictor sees coming within the step: step to just past it (the
-                // event is then located on a short step, and the march pays no full step beyond it)
+                // event is then located on a short step, and the march pays no full step beyond
+                // it)
                 for &c in &armed {
                     if let Some(ds) = self.predicted_crossing(&hist, lam, target, c) {
                         // (not when it is as good as here: the step would not move)
@@ -389,7 +390,8 @@ impl<P: Profile> Run<'_, '_, P> {
                     }
                 }
                 let corrected = self.stepper.correct(target, &hist, false);
-                // a failed step where the only contact lets go ends the branch (see vanishing_normal)
+                // a failed step where the only contact lets go ends the branch (see
+                // vanishing_normal)
                 let vanish = match &corrected {
                     Err(StepError::Failed(_)) => vanishing_normal(&hist),
                     _ => None,
