@@ -216,7 +216,6 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
         let mut lu = None;
         let mut jac0: Option<(DMatrix<f64>, DVector<f64>)> = None;
         let mut is_fresh = false;
-        let mut rn_prev = f64::INFINITY;
         let mut refined = false;
         let mut last_step = f64::INFINITY;
         let mut rns = Vec::with_capacity(max_iter + 1);
@@ -276,7 +275,7 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
                     residual: rn,
                 });
             }
-            if rn > 0.1 * rn_prev {
+            if matches!(rns[..], [.., before, _] if rn > 0.1 * before) {
                 // slow chord convergence: a fresh Jacobian here
                 let e2 = ch
                     .eval(&u, lam, true)
@@ -286,7 +285,6 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
                 jac0 = Some((j, e2.r_lam.unwrap_or_else(|| DVector::zeros(0))));
                 is_fresh = false;
             }
-            rn_prev = rn;
             let du = lu
                 .as_ref()
                 .and_then(|l| l.solve(&(-&e.r)))
