@@ -507,6 +507,19 @@ impl<P: Profile> Chain<P> {
         })
     }
 
+    /// The exact tangent `du/dλ = −J⁻¹ ∂R/∂λ` of the contact set `set` at `(u, λ)`, the chain's
+    /// own set kept (a change of set checks the new state's first direction before solving it);
+    /// `None` where the shot fails or `J` is singular.
+    pub fn tangent_in(&mut self, set: ContactSet, u: &[f64], lam: f64) -> Option<Vec<f64>> {
+        let own = std::mem::replace(&mut self.set, set);
+        let e = self.eval(u, lam, true);
+        self.set = own;
+        let e = e.ok()?;
+        let x = e.jac?.lu().solve(&(-e.r_lam?))?;
+        x.iter()
+            .all(|v| v.is_finite())
+            .then(|| x.iter().copied().collect())
+    }
     /// Refines the meshes of the loaded segments whose last shot was over tolerance.
     pub fn refine(&mut self) -> bool {
         let k = self.set.contacts.len().max(1);

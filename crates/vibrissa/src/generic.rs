@@ -630,6 +630,10 @@ impl<P: Profile> Stepper for GenericStepper<P> {
         Ok(self.first(lam, &u)?)
     }
 
+    fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>> {
+        self.chain.tangent_in(set.clone(), u, lam)
+    }
+
     fn stats(&self) -> Stats {
         let mut s = self.stats.clone();
         s.accumulate(&self.chain.sh.stats);

@@ -101,6 +101,9 @@ pub(crate) trait Stepper {
     fn pass_fold(&mut self, hist: &[Pt], target: f64, lam_end: f64) -> Passed;
     /// Changes the contact set at `λ` and corrects `u` (the old state in the new unknowns) there.
     fn switch(&mut self, set: ContactSet, lam: f64, u: Vec<f64>) -> Result<Pt, StepError>;
+    /// The exact tangent of the contact set `set` at `(u, λ)` on the rod's own shooter, before
+    /// the stepper is switched to it.
+    fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>>;
     /// Work done so far.
     fn stats(&self) -> Stats;
     /// Largest natural step in `λ`.
@@ -492,7 +495,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 !holds(v)
             });
             if let Some((c, v)) = wrong {
-                self.range.close(RangeEnd::SolverFailure);
+                self.range.close(RangeEnd::Event);
                 let set = self.stepper.set().clone();
                 return (
                     StopReason::ContactChange {
@@ -617,6 +620,15 @@ impl<P: Profile> Run<'_, '_, P> {
                 }
                 Next::Switch(ev, new_set, u) => {
                     self.out.push(spec, self.profile, &set, &pe, Some(ev));
+                    if new_set.contacts.len() > set.contacts.len() {
+                        let du = self.stepper.tangent_in(&new_set, pe.lam, &u);
+                        let mu0 = spec.env.mu0;
+                        if let Some(message) = forming_slip(&set, &new_set, &u, du, mu0) {
+                            self.range.close(RangeEnd::Event);
+                            let stop = StopReason::ContactChange { d: pe.lam, message };
+                            return (stop, Some((set, pe)));
+                        }
+                    }
                     let rising = pe.w.dmu_abs;
                     match self.stepper.switch(new_set.clone(), pe.lam, u) {
                         Ok(q) => {
@@ -733,6 +745,76 @@ fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64) -> Next {
     let mut nu = u.to_vec();
     nu.splice(o..o, [0.0, 0.0, s]);
     Next::Switch(Event::Touchdown, ns, nu)
+}
+
+/// The friction ratio `|T|/N` that no dry surface provides: a side contact that needs more from
+/// the moment it forms slips at once (without `μ0`; with it, `μ0` is the bound). Dry friction
+/// coefficients of real surfaces lie below ~2 (rubber on glass ~1–4), so the bound leaves a
+/// margin of five; the contacts it stops need 10²–10⁴.
+const FORMING_FRICTION_LIMIT: f64 = 10.0;
+
+/// Why a contact that has just formed beside others cannot hold: the friction ratio it needs
+/// from the moment it forms, `|dT/dλ| / (dN/dλ)` on the new state's exact tangent, exceeds `μ0`
+/// (or, without it, [`FORMING_FRICTION_LIMIT`]). This happens where a side touches down next to
+/// a contact that does not slip (the stuck tip): the segment between them is trapped, its chord
+/// minus its length is frozen by the two no-slip conditions, and keeping it so as the rod is
+/// dragged takes equal and opposite tangential forces, large because they bend the nearly
+/// straight segment only through its sag (10²–10⁴ times the new normal force). On any real
+/// surface the side slips at once, and a sliding side contact is not in the scan's model. `None`
+/// where the new contact is not in a no-slip mode, does not load, or needs less.
+fn forming_slip(
+    old: &ContactSet,
+    new: &ContactSet,
+    u: &[f64],
+    du: Option<Vec<f64>>,
+    mu0: Option<f64>,
+) -> Option<String> {
+    let j = new
+        .contacts
+        .iter()
+        .position(|c| !old.contacts.contains(c))?;
+    if !matches!(new.contacts[j].mode, Mode::Stuck(_) | Mode::Rolling(_)) {
+        return None;
+    }
+    let du = du?;
+    let o = new.offset(j);
+    let (dn, dt) = (du[o], du[o + 1]);
+    let ratio = (dt / dn).abs();
+    let limit = mu0.unwrap_or(FORMING_FRICTION_LIMIT);
+    // (a contact that does not load pulls: the pending check says so)
+    let slips = dn > 0.0 && ratio > limit;
+    if !slips {
+        return None;
+    }
+    let s = new.s_of(j, u);
+    let bound = match mu0 {
+        Some(m) => format!("mu0 = {m}"),
+        None => format!("any dry surface provides ({FORMING_FRICTION_LIMIT})"),
+    };
+    let neighbour = [j.checked_sub(1), Some(j + 1)]
+        .into_iter()
+        .flatten()
+        .filter(|&k| k < new.contacts.len())
+        .filter(|&k| matches!(new.contacts[k].mode, Mode::Stuck(_) | Mode::Rolling(_)))
+        .map(|k| {
+            let name = if new.contacts[k].tip {
+                "stuck tip"
+            } else {
+                "rolling side"
+            };
+            (new.s_of(k, u), name)
+        })
+        .min_by(|a, b| (a.0 - s).abs().total_cmp(&(b.0 - s).abs()));
+    let trap = match neighbour {
+        Some((sk, name)) => format!(
+            " (with the {name} at s = {sk:.6} it traps a segment of length {:.3e} that neither end lets slip)",
+            (sk - s).abs()
+        ),
+        None => String::new(),
+    };
+    Some(format!(
+        "a side contact forms at s = {s:.6}{trap} and needs a friction ratio |T|/N = {ratio:.3e} from the moment it forms, more than {bound}: it slips at once, and a sliding side contact is not in the scan's model"
+    ))
 }
 
 /// An event function's value where its contact state holds strictly (NaN: not known to).

@@ -237,6 +237,10 @@ impl<P: Profile> Stepper for OwnStepper<P> {
         self.correct_from(lam, &u, None, true)
     }
 
+    fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>> {
+        self.chain.tangent_in(set.clone(), u, lam)
+    }
+
     fn stats(&self) -> Stats {
         self.chain.sh.stats.clone()
     }

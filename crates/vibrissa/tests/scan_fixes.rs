@@ -482,3 +482,69 @@ fn a_straight_rod_on_a_free_support_buckles_in_its_first_mode() {
         }
     }
 }
+
+#[test]
+fn a_side_touching_down_beside_the_stuck_tip_slips_at_once() {
+    // The last seed of tests/contact.proptest-regressions. At d = 0.00111 a side touches down
+    // 0.008 from the stuck tip. Rolling without slip there, it traps the segment to the tip, and
+    // the pair of tangential forces that keeps the segment's chord-minus-length frozen grows like
+    // its length over its sag: |T|/N = 1.7e4 from the moment the side forms. The scan used to go
+    // on into that near-indeterminate state and end where the grid led it: a solver failure at
+    // d = 0.001484 (11 and 201 points) or 0.001505 (2001), or a fold at 0.0011170. Now every
+    // method and grid ends at the touchdown with the named reason, with or without μ0.
+    let scene = Scene {
+        eta: 0.6203844701008809,
+        stiffness: Stiffness::Taper {
+            ratio: 0.5148359272362121,
+        },
+        precurvature: vibrissa::Precurvature::Linear {
+            k0: -0.39926453253733313,
+            k1: 0.4989796992390289,
+        },
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let mut d_ref = None;
+    for method in [
+        vibrissa::Method::Shooting,
+        vibrissa::Method::MultipleShooting,
+        vibrissa::Method::Collocation4,
+        vibrissa::Method::Collocation6,
+    ] {
+        for points in [11, 2001] {
+            for mu0 in [None, Some(0.5)] {
+                let o = ScanOptions {
+                    points,
+                    mu0,
+                    solver: SolverConfig {
+                        method,
+                        ..SolverConfig::default()
+                    },
+                    ..ScanOptions::default()
+                };
+                let r = scan(&rod, &surface, &o).unwrap();
+                check_points(&r, &o);
+                let what = format!("{method:?}, {points} points, mu0 {mu0:?}: {}", r.stop);
+                let StopReason::ContactChange { d, message } = &r.stop else {
+                    panic!("{what}");
+                };
+                // the touchdown row, located to the tolerance whatever the method
+                let last = r.points.last().unwrap();
+                assert_eq!(last.event, Some(Event::Touchdown), "{what}");
+                assert_eq!(last.d, *d, "{what}");
+                let d0 = *d_ref.get_or_insert(*d);
+                assert!((d - d0).abs() <= 1e-9, "{what}: d {d} against {d0}");
+                assert!((d - 0.00111040).abs() < 1e-8, "{what}");
+                assert_eq!(r.range_end, vibrissa::RangeEnd::Event, "{what}");
+                assert!(message.contains("traps a segment"), "{what}");
+                let ratio: f64 = message
+                    .split("|T|/N = ")
+                    .nth(1)
+                    .and_then(|t| t.split_whitespace().next())
+                    .and_then(|t| t.parse().ok())
+                    .unwrap_or_else(|| panic!("{what}: no ratio"));
+                assert!(ratio > 1e4 && ratio < 3e4, "{what}: ratio {ratio}");
+            }
+        }
+    }
+}
