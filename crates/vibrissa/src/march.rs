@@ -21,7 +21,7 @@ use crate::sampling::flex_and_reversals;
 use crate::search;
 use crate::shape::{shape_from, ShapePoint};
 use crate::surface::Meter;
-use crate::watch::{Crossing, Env, Watch};
+use crate::watch::{Crossing, Env, Watch, SIDE_FRICTION_LIMIT};
 use bvp::{Solution, Stats};
 
 /// A converged point of the branch.
@@ -618,6 +618,12 @@ impl<P: Profile> Run<'_, '_, P> {
                     self.out.push(spec, self.profile, &set, &pe, Some(ev));
                     return (stop_reason(ev, &pe.w, &set), Some((set, pe)));
                 }
+                Next::Limit(message) => {
+                    self.range.see(&pe.w);
+                    self.range.close(RangeEnd::Event);
+                    let stop = StopReason::ContactChange { d: pe.lam, message };
+                    return (stop, Some((set, pe)));
+                }
                 Next::Switch(ev, new_set, u) => {
                     self.out.push(spec, self.profile, &set, &pe, Some(ev));
                     if new_set.contacts.len() > set.contacts.len() {
@@ -747,15 +753,9 @@ fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64) -> Next {
     Next::Switch(Event::Touchdown, ns, nu)
 }
 
-/// The friction ratio `|T|/N` that no dry surface provides: a side contact that needs more from
-/// the moment it forms slips at once (without `μ0`; with it, `μ0` is the bound). Dry friction
-/// coefficients of real surfaces lie below ~2 (rubber on glass ~1–4), so the bound leaves a
-/// margin of five; the contacts it stops need 10²–10⁴.
-const FORMING_FRICTION_LIMIT: f64 = 10.0;
-
 /// Why a contact that has just formed beside others cannot hold: the friction ratio it needs
 /// from the moment it forms, `|dT/dλ| / (dN/dλ)` on the new state's exact tangent, exceeds `μ0`
-/// (or, without it, [`FORMING_FRICTION_LIMIT`]). This happens where a side touches down next to
+/// (or, without it, [`SIDE_FRICTION_LIMIT`]). This happens where a side touches down next to
 /// a contact that does not slip (the stuck tip): the segment between them is trapped, its chord
 /// minus its length is frozen by the two no-slip conditions, and keeping it so as the rod is
 /// dragged takes equal and opposite tangential forces, large because they bend the nearly
@@ -780,7 +780,7 @@ fn forming_slip(
     let o = new.offset(j);
     let (dn, dt) = (du[o], du[o + 1]);
     let ratio = (dt / dn).abs();
-    let limit = mu0.unwrap_or(FORMING_FRICTION_LIMIT);
+    let limit = mu0.unwrap_or(SIDE_FRICTION_LIMIT);
     // (a contact that does not load pulls: the pending check says so)
     let slips = dn > 0.0 && ratio > limit;
     if !slips {
@@ -789,7 +789,7 @@ fn forming_slip(
     let s = new.s_of(j, u);
     let bound = match mu0 {
         Some(m) => format!("mu0 = {m}"),
-        None => format!("any dry surface provides ({FORMING_FRICTION_LIMIT})"),
+        None => format!("any dry surface provides ({SIDE_FRICTION_LIMIT})"),
     };
     let neighbour = [j.checked_sub(1), Some(j + 1)]
         .into_iter()
@@ -840,6 +840,8 @@ enum Next {
     Switch(Event, ContactSet, Vec<f64>),
     /// The march reached its target.
     Done,
+    /// The march ends at a limit of the model (a contact change; the evidence).
+    Limit(String),
 }
 
 /// The contact set after a touchdown, the tip lying down, or a peel-back on a curved surface (as
@@ -942,6 +944,19 @@ impl<P: Profile> Run<'_, '_, P> {
                 let mut ns = set.clone();
                 ns.contacts[j].mode = Mode::Sliding(c.tangential / c.normal);
                 Next::Switch(Event::Slip, ns, u.clone())
+            }
+            // a contact that traps the rod reaches the bound of dry friction (no μ0)
+            Crossing::Slip(j) if env.mu0.is_none() && env.ground.texture.is_none() => {
+                let c = pe.w.contacts[j];
+                let name = if set.contacts[j].tip {
+                    "tip"
+                } else {
+                    "side contact"
+                };
+                Next::Limit(format!(
+                    "the {name} at s = {:.6} would slip: with another contact that does not slip it traps the rod between them, and the friction ratio it needs, |T|/N, reached {} (the bound of dry friction without mu0); a sliding contact beside another is not in the scan's model",
+                    c.s, c.mu_s
+                ))
             }
             Crossing::Slip(_) => Next::Stop(Event::Slip),
             // the end of a slip: the march in the slip's parameter reached its goal

@@ -96,6 +96,33 @@ pub(crate) struct RodView<'a> {
     pub straight: bool,
 }
 
+/// The friction ratio `|T|/N` that no dry surface provides (real dry friction coefficients lie
+/// below ~2; rubber on glass reaches 1–4): without μ0 it is the slip limit of the contacts of a
+/// set that traps the rod between two contacts that do not slip (docs/model.md).
+pub(crate) const SIDE_FRICTION_LIMIT: f64 = 10.0;
+
+/// Whether a contact on the surface traps the rod: it holds without slip and so does another
+/// surface contact of the set (the segment between them carries a pair of tangential forces
+/// that nothing in the model bounds).
+pub(crate) fn trapping(set: &ContactSet, j: usize) -> bool {
+    let holds = |c: &crate::chain::Contact| {
+        matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_))
+            && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
+    };
+    holds(&set.contacts[j]) && set.contacts.iter().filter(|c| holds(c)).count() >= 2
+}
+
+/// The slip threshold `|T|/N` of contact `j` off a friction texture: μ0, or without it unbounded
+/// (a lone contact's ratio is what a scan measures), except in a set that traps the rod between
+/// two contacts that do not slip: [`SIDE_FRICTION_LIMIT`].
+pub(crate) fn slip_limit(env: &Env, set: &ContactSet, j: usize) -> f64 {
+    match env.mu0 {
+        Some(m) => m,
+        None if trapping(set, j) => SIDE_FRICTION_LIMIT,
+        None => f64::INFINITY,
+    }
+}
+
 /// The watch of the point `(λ, u)` with tangent `du` on the rod `rod`.
 pub(crate) fn watch(
     env: &Env,
@@ -168,7 +195,7 @@ pub(crate) fn watch(
         let tex = env.ground.friction_at(x, side);
         let mu_s = match (ct.tip, tex) {
             (false, Some((ms, _))) => ms,
-            _ => env.mu0.unwrap_or(f64::INFINITY),
+            _ => slip_limit(env, set, j),
         };
         contacts.push(ContactForce {
             normal: nrm,
@@ -581,7 +608,7 @@ impl Crossing {
             let sliding = env.ground.slide.is_some() && c.tip;
             if sliding {
                 v.push(Crossing::Stick(j));
-            } else if (env.mu0.is_some() || env.ground.texture.is_some())
+            } else if (slip_limit(env, set, j).is_finite() || env.ground.texture.is_some())
                 && matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_))
             {
                 v.push(Crossing::Slip(j));
@@ -635,7 +662,7 @@ impl Crossing {
                 if line(j) && (set.contacts[j].tip || env.ground.texture.is_none()) =>
             {
                 let o = set.offset(j);
-                Some(u[o + 1].abs() - env.mu0.unwrap_or(f64::INFINITY) * u[o])
+                Some(u[o + 1].abs() - slip_limit(env, set, j) * u[o])
             }
             Crossing::Stick(j) if line(j) => {
                 let mu_k = match (env.ground.texture, env.ground.slide) {
