@@ -372,15 +372,9 @@ fn a_side_contact_letting_go_at_the_tip_ends_in_an_extrapolated_lift_off() {
     assert!(spread < 5e-7, "lift-offs {ds:?}");
 }
 
-#[test]
-fn a_dip_before_a_nearly_tangent_tip_is_seen_on_the_rod() {
-    // κ0 = −0.40 + 0.50 s, taper 0.51, η 0.62 (a seed of tests/contact.rs): as the tip turns
-    // nearly tangent to the line, the rod's slope dips below the line's and back inside one
-    // long step of the shooter's integrator, and the cubic through the step's ends hides the
-    // maximum there. The shooter saw it 2.4e-5 later in d, when it was 8.8e-7 beyond the line.
-    // Collocation (fine meshes there) locates the crossing at d = 0.00111039989, s = 0.99182
-    // (both orders and multiple shooting within 3e-13 of each other): the shooter must agree.
-    let scene = Scene {
+/// The last seed of tests/contact.proptest-regressions: κ0 = −0.40 + 0.50 s, taper 0.51, η 0.62.
+fn seed_scene() -> Scene {
+    Scene {
         eta: 0.6203844701008809,
         stiffness: Stiffness::Taper {
             ratio: 0.5148359272362121,
@@ -390,7 +384,18 @@ fn a_dip_before_a_nearly_tangent_tip_is_seen_on_the_rod() {
             k1: 0.4989796992390289,
         },
         ..Scene::default()
-    };
+    }
+}
+
+#[test]
+fn a_dip_before_a_nearly_tangent_tip_is_seen_on_the_rod() {
+    // κ0 = −0.40 + 0.50 s, taper 0.51, η 0.62 (a seed of tests/contact.rs): as the tip turns
+    // nearly tangent to the line, the rod's slope dips below the line's and back inside one
+    // long step of the shooter's integrator, and the cubic through the step's ends hides the
+    // maximum there. The shooter saw it 2.4e-5 later in d, when it was 8.8e-7 beyond the line.
+    // Collocation (fine meshes there) locates the crossing at d = 0.00111039989, s = 0.99182
+    // (both orders and multiple shooting within 3e-13 of each other): the shooter must agree.
+    let scene = seed_scene();
     let (rod, surface) = scene.parts().unwrap();
     let at = |method| {
         let o = ScanOptions {
@@ -487,22 +492,12 @@ fn a_straight_rod_on_a_free_support_buckles_in_its_first_mode() {
 fn a_side_touching_down_beside_the_stuck_tip_slips_at_once() {
     // The last seed of tests/contact.proptest-regressions. At d = 0.00111 a side touches down
     // 0.008 from the stuck tip. Rolling without slip there, it traps the segment to the tip, and
-    // the pair of tangential forces that keeps the segment's chord-minus-length frozen grows like
-    // its length over its sag: |T|/N = 1.7e4 from the moment the side forms. The scan used to go
+    // the pair of tangential forces that keeps the segment's chord-minus-length frozen needs
+    // |T|/N = 1.7e4 from the moment the side forms (docs/model.md). The scan used to go
     // on into that near-indeterminate state and end where the grid led it: a solver failure at
     // d = 0.001484 (11 and 201 points) or 0.001505 (2001), or a fold at 0.0011170. Now every
     // method and grid ends at the touchdown with the named reason, with or without μ0.
-    let scene = Scene {
-        eta: 0.6203844701008809,
-        stiffness: Stiffness::Taper {
-            ratio: 0.5148359272362121,
-        },
-        precurvature: vibrissa::Precurvature::Linear {
-            k0: -0.39926453253733313,
-            k1: 0.4989796992390289,
-        },
-        ..Scene::default()
-    };
+    let scene = seed_scene();
     let (rod, surface) = scene.parts().unwrap();
     let mut d_ref = None;
     for method in [
