@@ -524,6 +524,15 @@ impl<P: Profile> Run<'_, '_, P> {
             } else {
                 stalled = 0;
             }
+            // a point a rounding away from the newest (a step that ended a rounding short of a
+            // grid value, then the grid value) replaces it: the interpolant through two such
+            // points is degenerate
+            if hist
+                .last()
+                .is_some_and(|q| (p.lam - q.lam).abs() <= 1e-13 * (1.0 + q.lam.abs()))
+            {
+                hist.pop();
+            }
             hist.push(p.clone());
             if hist.len() > 4 {
                 hist.remove(0);
@@ -959,6 +968,10 @@ impl<P: Profile> Run<'_, '_, P> {
                 ))
             }
             Crossing::Slip(_) => Next::Stop(Event::Slip),
+            Crossing::Lie(j) => Next::Limit(format!(
+                "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
+                pe.w.contacts[j].s
+            )),
             // the end of a slip: the march in the slip's parameter reached its goal
             Crossing::Stick(_) => Next::Done,
             Crossing::SlipOff(_) => Next::Stop(Event::SlipOff),

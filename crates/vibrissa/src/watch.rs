@@ -48,6 +48,10 @@ pub(crate) struct ContactForce {
     pub mu_s: f64,
     /// μk there during a slip (`inf` otherwise).
     pub mu_k: f64,
+    /// Where it is a side on the line with a contact beyond it: the height's second derivative
+    /// along the rod there, `cos(φ − β) κ` (negative while the rod curves away from the line on
+    /// both sides; zero where it begins to lie along it). NaN elsewhere.
+    pub curv: f64,
 }
 
 /// Per-point quantities of a march.
@@ -110,6 +114,14 @@ pub(crate) fn trapping(set: &ContactSet, j: usize) -> bool {
             && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
     };
     holds(&set.contacts[j]) && set.contacts.iter().filter(|c| holds(c)).count() >= 2
+}
+
+/// Whether contact `j` is a side on a surface line with another contact beyond it (the last
+/// contact's curvature is its rest curvature, `m = 0` there, and a straight rest beyond it lies
+/// on the line by design).
+fn lies_inside(set: &ContactSet, j: usize) -> bool {
+    let c = &set.contacts[j];
+    !c.tip && matches!(c.geom, Geom::Line { .. }) && j + 1 < set.contacts.len()
 }
 
 /// The slip threshold `|T|/N` of contact `j` off a friction texture: μ0, or without it unbounded
@@ -204,6 +216,13 @@ pub(crate) fn watch(
             x,
             mu_s,
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
+            curv: match ct.geom {
+                Geom::Line { beta, .. } if lies_inside(set, j) => {
+                    let z = exact(s);
+                    (z[2] - beta).cos() * kappa(s, z[3])
+                }
+                _ => f64::NAN,
+            },
         });
     }
     let mu = if nsum != 0.0 { tsum / nsum } else { 0.0 };
@@ -566,6 +585,9 @@ pub(crate) enum Crossing {
     PeelBack(usize),
     /// The point object at contact `j` reaches the tip.
     SlipOff(usize),
+    /// The side contact `j` (with another beyond it) begins to lie along the line: the rod's
+    /// curvature there, relative to the line, falls to zero.
+    Lie(usize),
     /// `|μ|` stops rising (its first maximum).
     MuMax,
     /// The last contact point reaches the target height (the end of a press).
@@ -578,6 +600,10 @@ impl Crossing {
         match self {
             Crossing::Lift(j) => format!("-N of contact {} (it would pull)", j + 1),
             Crossing::Slip(j) => format!("|T| - mu0 N of contact {} (it would slip)", j + 1),
+            Crossing::Lie(j) => format!(
+                "cos(phi - beta) kappa at contact {} (it would lie along the surface)",
+                j + 1
+            ),
             Crossing::Stick(j) => {
                 format!("mu_k N - dir T of contact {} (it would stick again)", j + 1)
             }
@@ -613,6 +639,9 @@ impl Crossing {
             {
                 v.push(Crossing::Slip(j));
             }
+            if lies_inside(set, j) {
+                v.push(Crossing::Lie(j));
+            }
             match (c.geom, c.tip) {
                 (Geom::Line { .. } | Geom::Curve { .. }, true) => v.push(Crossing::TipTangent),
                 (Geom::Line { .. } | Geom::Curve { .. }, false) => v.push(Crossing::PeelBack(j)),
@@ -637,6 +666,7 @@ impl Crossing {
                 let c = w.contacts[j];
                 c.tangential.abs() - c.mu_s * c.normal
             }
+            Crossing::Lie(j) => w.contacts[j].curv,
             Crossing::Stick(j) => {
                 // signed along the slip: it rises through zero once where μk holds the tip
                 let c = w.contacts[j];

@@ -625,3 +625,130 @@ fn a_rod_trapped_between_two_contacts_that_do_not_slip_ends_at_the_bound_of_dry_
         }
     }
 }
+
+#[test]
+fn a_side_contact_that_begins_to_lie_along_the_surface_is_named() {
+    // The third grid of docs/robustness.md. Where the rod's curvature at a side contact (with
+    // another contact beyond it) falls to zero, the rod beyond the side runs along the line: a
+    // lying stretch pressed by a distributed force, which the model (point contacts) does not
+    // have. Before, the clearance search met the rod lying within 3e-14 of the line next to the
+    // contact: a second contact 2e-4 away and a fold in an ill-conditioned state, "locating the
+    // fold: Newton did not converge" for the mirror image, or a new contact at s = 0 whose state
+    // gave NaN. Now both ends are the named event, the press's mirror images agree, and a scan
+    // ends there whatever its grid and method.
+    let press = |sign: f64, c: f64| {
+        let scene = Scene {
+            eta: 0.7,
+            stiffness: Stiffness::Taper { ratio: 0.2 },
+            precurvature: vibrissa::Precurvature::Linear {
+                k0: 0.3 * sign,
+                k1: -0.2 * sign,
+            },
+            surface_angle: 0.2 * sign,
+            support_compliance: c,
+            ..Scene::default()
+        };
+        let (rod, surface) = scene.parts().unwrap();
+        match scan(&rod, &surface, &ScanOptions::default()) {
+            Err(vibrissa::VibrissaError::NoStart { reason }) => reason,
+            other => panic!("sign {sign}, c {c}: {other:?}"),
+        }
+    };
+    let depth = |reason: &str| -> f64 {
+        assert!(
+            reason.contains("begins to lie along the surface"),
+            "{reason}"
+        );
+        assert!(reason.contains("s = 0.896447"), "{reason}");
+        reason
+            .split("at depth = ")
+            .nth(1)
+            .and_then(|t| t.split(':').next())
+            .and_then(|t| t.parse().ok())
+            .unwrap_or_else(|| panic!("no depth: {reason}"))
+    };
+    for (c, at) in [(0.0, 0.3049804), (0.5, 0.3567969)] {
+        let (a, b) = (depth(&press(1.0, c)), depth(&press(-1.0, c)));
+        assert!((a - b).abs() <= 1e-9, "c {c}: mirror images at {a} and {b}");
+        assert!((a - at).abs() < 1e-6, "c {c}: depth {a}");
+    }
+    // a scan: η 0.55, ρ 0.5, the same rest curvature
+    let scene = Scene {
+        eta: 0.55,
+        stiffness: Stiffness::Taper { ratio: 0.5 },
+        precurvature: vibrissa::Precurvature::Linear { k0: 0.3, k1: -0.2 },
+        surface_angle: 0.2,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let mut first = None;
+    for method in [vibrissa::Method::Shooting, vibrissa::Method::Collocation4] {
+        for points in [11, 2001] {
+            let o = ScanOptions {
+                points,
+                solver: SolverConfig {
+                    method,
+                    ..SolverConfig::default()
+                },
+                ..ScanOptions::default()
+            };
+            let r = scan(&rod, &surface, &o).unwrap();
+            check_points(&r, &o);
+            let what = format!("{method:?}, {points} points: {}", r.stop);
+            let StopReason::ContactChange { d, message } = &r.stop else {
+                panic!("{what}");
+            };
+            assert!(
+                message.contains("begins to lie along the surface"),
+                "{what}"
+            );
+            let d0 = *first.get_or_insert(*d);
+            assert!((d - d0).abs() <= 1e-9, "{what}: d {d} against {d0}");
+            assert!((d - 0.01237503).abs() < 1e-8, "{what}");
+        }
+    }
+}
+
+#[test]
+fn the_first_maximum_does_not_depend_on_a_step_a_rounding_short_of_a_grid_value() {
+    // Found by the grid-independence property test (tests/contact.rs, 150 cases). At 11 points
+    // a step ended at d = 0.09999999999999999 and the grid value 0.1 followed it: the branch
+    // polynomial through two points 1.4e-17 apart was degenerate, the maximum's location failed
+    // ("singular Jacobian"), and μ_max was the next step's |μ|, 9.5e-9 low and 4e-5 late in d.
+    let scene = Scene {
+        eta: 0.8888009720576433,
+        stiffness: Stiffness::Taper {
+            ratio: 0.5121607776438095,
+        },
+        precurvature: vibrissa::Precurvature::Linear {
+            k0: -0.1952370553073565,
+            k1: 0.0,
+        },
+        support_compliance: 0.4820804246028914,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let run = |points| {
+        let o = ScanOptions {
+            points,
+            ..ScanOptions::default()
+        };
+        scan(&rod, &surface, &o).unwrap()
+    };
+    let f = run(2001);
+    for points in [11, 201] {
+        let r = run(points);
+        assert!(
+            (r.mu_max - f.mu_max).abs() <= 1e-9 * f.mu_max,
+            "{points} points: mu_max {} against {}",
+            r.mu_max,
+            f.mu_max
+        );
+        assert!(
+            (r.d_at_mu_max - f.d_at_mu_max).abs() <= 1e-9,
+            "{points} points: at d {} against {}",
+            r.d_at_mu_max,
+            f.d_at_mu_max
+        );
+    }
+}
