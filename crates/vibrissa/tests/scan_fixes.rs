@@ -55,6 +55,29 @@ fn check_points(r: &ScanResult, o: &ScanOptions) {
     }
 }
 
+/// A scan of `rod` on `surface` with the method, grid and μ0 given (the rest default), its rows
+/// checked against the output contract.
+fn run_checked(
+    rod: &Rod,
+    surface: &vibrissa::Surface,
+    method: vibrissa::Method,
+    points: usize,
+    mu0: Option<f64>,
+) -> ScanResult {
+    let o = ScanOptions {
+        points,
+        mu0,
+        solver: SolverConfig {
+            method,
+            ..SolverConfig::default()
+        },
+        ..ScanOptions::default()
+    };
+    let r = scan(rod, surface, &o).unwrap();
+    check_points(&r, &o);
+    r
+}
+
 #[test]
 fn table_profile_costs_about_as_much_as_the_uniform_branch() {
     // b ≡ 1 written as a table: the same rod as the paper's. One natural step per grid point
@@ -508,17 +531,7 @@ fn a_side_touching_down_beside_the_stuck_tip_slips_at_once() {
     ] {
         for points in [11, 2001] {
             for mu0 in [None, Some(0.5)] {
-                let o = ScanOptions {
-                    points,
-                    mu0,
-                    solver: SolverConfig {
-                        method,
-                        ..SolverConfig::default()
-                    },
-                    ..ScanOptions::default()
-                };
-                let r = scan(&rod, &surface, &o).unwrap();
-                check_points(&r, &o);
+                let r = run_checked(&rod, &surface, method, points, mu0);
                 let what = format!("{method:?}, {points} points, mu0 {mu0:?}: {}", r.stop);
                 let StopReason::ContactChange { d, message } = &r.stop else {
                     panic!("{what}");
@@ -565,20 +578,7 @@ fn a_rod_trapped_between_two_contacts_that_do_not_slip_ends_at_the_bound_of_dry_
         let (rod, surface) = scene.parts().unwrap();
         let mut first = None;
         for method in [vibrissa::Method::Shooting, vibrissa::Method::Collocation4] {
-            let run = |points, mu0| {
-                let o = ScanOptions {
-                    points,
-                    mu0,
-                    solver: SolverConfig {
-                        method,
-                        ..SolverConfig::default()
-                    },
-                    ..ScanOptions::default()
-                };
-                let r = scan(&rod, &surface, &o).unwrap();
-                check_points(&r, &o);
-                r
-            };
+            let run = |points, mu0| run_checked(&rod, &surface, method, points, mu0);
             let mut at = None;
             for points in [11, 2001] {
                 let r = run(points, None);
@@ -684,16 +684,7 @@ fn a_side_contact_that_begins_to_lie_along_the_surface_is_named() {
     let mut first = None;
     for method in [vibrissa::Method::Shooting, vibrissa::Method::Collocation4] {
         for points in [11, 2001] {
-            let o = ScanOptions {
-                points,
-                solver: SolverConfig {
-                    method,
-                    ..SolverConfig::default()
-                },
-                ..ScanOptions::default()
-            };
-            let r = scan(&rod, &surface, &o).unwrap();
-            check_points(&r, &o);
+            let r = run_checked(&rod, &surface, method, points, None);
             let what = format!("{method:?}, {points} points: {}", r.stop);
             let StopReason::ContactChange { d, message } = &r.stop else {
                 panic!("{what}");
