@@ -557,6 +557,18 @@ fn a_side_touching_down_beside_the_stuck_tip_slips_at_once() {
     }
 }
 
+/// Rest curvature 0.3 − 0.2 s on a surface inclined by 0.2 (the third grid of
+/// docs/robustness.md).
+fn graded_scene(eta: f64, taper: f64) -> Scene {
+    Scene {
+        eta,
+        stiffness: Stiffness::Taper { ratio: taper },
+        precurvature: vibrissa::Precurvature::Linear { k0: 0.3, k1: -0.2 },
+        surface_angle: 0.2,
+        ..Scene::default()
+    }
+}
+
 #[test]
 fn a_rod_trapped_between_two_contacts_that_do_not_slip_ends_at_the_bound_of_dry_friction() {
     // Rest curvature 0.3 − 0.2 s on a surface inclined by 0.2 (a grid over the slope of the rest
@@ -568,13 +580,7 @@ fn a_rod_trapped_between_two_contacts_that_do_not_slip_ends_at_the_bound_of_dry_
     // such a set now ends where a contact's ratio reaches 10 (no dry surface provides more):
     // `contact_change`, located as an event, at the same d as the slip of a scan with μ0 = 10.
     for (taper, which, d_stop) in [(1.0, "side contact", 1.13921e-5), (0.2, "tip", 2.07522e-4)] {
-        let scene = Scene {
-            eta: if taper == 1.0 { 0.55 } else { 0.85 },
-            stiffness: Stiffness::Taper { ratio: taper },
-            precurvature: vibrissa::Precurvature::Linear { k0: 0.3, k1: -0.2 },
-            surface_angle: 0.2,
-            ..Scene::default()
-        };
+        let scene = graded_scene(if taper == 1.0 { 0.55 } else { 0.85 }, taper);
         let (rod, surface) = scene.parts().unwrap();
         let mut first = None;
         for method in [vibrissa::Method::Shooting, vibrissa::Method::Collocation4] {
@@ -673,13 +679,7 @@ fn a_side_contact_that_begins_to_lie_along_the_surface_is_named() {
         assert!((a - at).abs() < 1e-6, "c {c}: depth {a}");
     }
     // a scan: η 0.55, ρ 0.5, the same rest curvature
-    let scene = Scene {
-        eta: 0.55,
-        stiffness: Stiffness::Taper { ratio: 0.5 },
-        precurvature: vibrissa::Precurvature::Linear { k0: 0.3, k1: -0.2 },
-        surface_angle: 0.2,
-        ..Scene::default()
-    };
+    let scene = graded_scene(0.55, 0.5);
     let (rod, surface) = scene.parts().unwrap();
     let mut first = None;
     for method in [vibrissa::Method::Shooting, vibrissa::Method::Collocation4] {
