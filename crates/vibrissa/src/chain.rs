@@ -520,6 +520,7 @@ impl<P: Profile> Chain<P> {
             .all(|v| v.is_finite())
             .then(|| x.iter().copied().collect())
     }
+
     /// Refines the meshes of the loaded segments whose last shot was over tolerance.
     pub fn refine(&mut self) -> bool {
         let k = self.set.contacts.len().max(1);

@@ -60,9 +60,8 @@ pub(crate) struct Pressed<P: Profile> {
     pub stats: Stats,
 }
 
-/// Why a press ends without reaching its goal.
-/// (the press marches in its depth, how far the line has moved along its normal past first
-/// touch, not in d)
+/// Why a press ends without reaching its goal (the press marches in its depth, how far the line
+/// has moved along its normal past first touch, not in d).
 fn press_failed(what: &str, stop: &StopReason) -> VibrissaError {
     VibrissaError::NoStart {
         reason: format!("{what}: {}", stop.describe("depth")),

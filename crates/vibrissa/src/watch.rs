@@ -108,7 +108,7 @@ pub(crate) const SIDE_FRICTION_LIMIT: f64 = 10.0;
 /// Whether a contact on the surface traps the rod: it holds without slip and so does another
 /// surface contact of the set (the segment between them carries a pair of tangential forces
 /// that nothing in the model bounds).
-pub(crate) fn trapping(set: &ContactSet, j: usize) -> bool {
+fn trapping(set: &ContactSet, j: usize) -> bool {
     let holds = |c: &crate::chain::Contact| {
         matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_))
             && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
