@@ -61,6 +61,14 @@ pub(crate) enum Mode {
     Sliding(f64),
 }
 
+impl Mode {
+    /// Whether it holds without slip (stuck or rolling): its tangential force is whatever the
+    /// equilibrium needs, bounded only by a slip threshold.
+    pub fn no_slip(self) -> bool {
+        matches!(self, Mode::Stuck(_) | Mode::Rolling(_))
+    }
+}
+
 /// One contact.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Contact {

@@ -628,7 +628,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     return (stop_reason(ev, &pe.w, &set), Some((set, pe)));
                 }
                 Next::Limit(message) => {
-                    self.range.see(&pe.w);
+                    // (the event point is already in the range: seen where it was found)
                     self.range.close(RangeEnd::Event);
                     let stop = StopReason::ContactChange { d: pe.lam, message };
                     return (stop, Some((set, pe)));
@@ -782,7 +782,7 @@ fn forming_slip(
         .contacts
         .iter()
         .position(|c| !old.contacts.contains(c))?;
-    if !matches!(new.contacts[j].mode, Mode::Stuck(_) | Mode::Rolling(_)) {
+    if !new.contacts[j].mode.no_slip() {
         return None;
     }
     let du = du?;
@@ -804,7 +804,7 @@ fn forming_slip(
         .into_iter()
         .flatten()
         .filter(|&k| k < new.contacts.len())
-        .filter(|&k| matches!(new.contacts[k].mode, Mode::Stuck(_) | Mode::Rolling(_)))
+        .filter(|&k| new.contacts[k].mode.no_slip())
         .map(|k| {
             let name = if new.contacts[k].tip {
                 "stuck tip"

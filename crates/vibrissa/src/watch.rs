@@ -110,8 +110,7 @@ pub(crate) const SIDE_FRICTION_LIMIT: f64 = 10.0;
 /// that nothing in the model bounds).
 fn trapping(set: &ContactSet, j: usize) -> bool {
     let holds = |c: &crate::chain::Contact| {
-        matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_))
-            && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
+        c.mode.no_slip() && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
     };
     holds(&set.contacts[j]) && set.contacts.iter().filter(|c| holds(c)).count() >= 2
 }
@@ -635,7 +634,7 @@ impl Crossing {
             if sliding {
                 v.push(Crossing::Stick(j));
             } else if (slip_limit(env, set, j).is_finite() || env.ground.texture.is_some())
-                && matches!(c.mode, Mode::Stuck(_) | Mode::Rolling(_))
+                && c.mode.no_slip()
             {
                 v.push(Crossing::Slip(j));
             }
