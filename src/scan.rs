@@ -106,6 +106,9 @@ pub struct ScanOut {
     pub stats: Work,
     /// wall time in ms
     pub time_ms: f64,
+    /// why the scan ran on the rod's own shooter instead of the requested method
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub handover: Option<String>,
     /// the points
     #[serde(skip)]
     pub pts: Vec<Pt>,
@@ -149,7 +152,13 @@ pub fn run_scan(scene: &Scene, spec: &ScanSpec) -> Res<ScanOut> {
     };
     let r = vibrissa::scan(&rod, &surface, &opts)?;
     let mut out = ScanOut {
-        method: spec.method.name(),
+        // the method that computed the points
+        method: if r.handover.is_some() {
+            MethodArg::Shooting.name()
+        } else {
+            spec.method.name()
+        },
+        handover: r.handover.clone(),
         eta: r.eta,
         start: r.start,
         mu_max: r.mu_max,
@@ -381,6 +390,9 @@ pub fn run(a: &ScanArgs) -> Res<()> {
     }
     if out.stop.reason != "d_max" {
         crate::progress::warn(&format!("the scan stopped early: {}", out.stop.detail));
+    }
+    if let Some(h) = &out.handover {
+        crate::progress::warn(h);
     }
     if a.json {
         let v = json_summary(&out, a.out.as_deref());

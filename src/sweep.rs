@@ -195,6 +195,10 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
         run_scan(&sc, &spec)
     });
     let ms = t0.elapsed().as_secs_f64() * 1e3;
+    if let Ok(Ok(o)) = &result {
+        // the method that computed the row (a handover to the rod's own shooter shows here)
+        row[7] = o.method.to_string();
+    }
     let physical = base.physical.is_some();
     let units = if physical { units_of(&sc) } else { None };
     let blank = |row: &mut Vec<String>| {

@@ -808,3 +808,43 @@ fn plot_draws_each_kind_of_file() {
     );
     assert!(e.contains("--surface-angle 1 is outside"), "{e}");
 }
+
+#[test]
+fn a_handover_to_the_own_shooter_is_said() {
+    // A trapped start multiple shooting cannot take (docs/robustness.md, third grid): `scan`
+    // warns and names the method that ran; a sweep row carries it in `method`.
+    let scene = [
+        "--eta",
+        "0.55",
+        "--precurvature",
+        "0.3",
+        "--precurvature-slope",
+        "-0.2",
+        "--surface-angle",
+        "0.2",
+        "--method",
+        "multiple-shooting",
+    ];
+    let dir = tmpdir("handover");
+    let out = dir.join("scan.csv");
+    let mut args = vec!["scan", "--out", out.to_str().unwrap()];
+    args.extend(scene);
+    let o = ok(&args);
+    assert!(
+        o.stderr.contains("the scan ran on the rod's own shooter"),
+        "{}",
+        o.stderr
+    );
+    assert!(o.stdout.contains("(shooting)"), "{}", o.stdout);
+    let mut args = vec!["sweep", "--points", "11"];
+    args.extend(scene);
+    let o = ok(&args);
+    let (h, rows) = csv(&o.stdout);
+    let m = h.iter().position(|c| c == "method").unwrap();
+    let s = h.iter().position(|c| c == "stop_reason").unwrap();
+    assert_eq!(rows.len(), 1);
+    assert_eq!(
+        (rows[0][m].as_str(), rows[0][s].as_str()),
+        ("shooting", "contact_change")
+    );
+}

@@ -78,6 +78,17 @@ def test_scan_returns_columns_events_and_stop_reasons():
     # the rod touches the surface at its tip: y(1) = eta for every shape
     np.testing.assert_allclose(r.shapes["y"][:, -1], 0.75, atol=1e-9)
     assert len(r) == 2 and "slip" in repr(r)
+    assert r.handover is None
+
+
+def test_a_handover_to_the_own_shooter_is_said():
+    # a start that traps the rod between a side and the tip (docs/robustness.md, third grid)
+    rod, surface = vibrissa.scene(
+        eta=0.55, precurvature=0.3, precurvature_slope=-0.2, surface_angle=0.2
+    )
+    r = vibrissa.scan(rod, surface, points=11, method="multiple-shooting")
+    assert r.stop_reason == "contact_change"
+    assert "the scan ran on the rod's own shooter" in r.handover
 
 
 def test_scan_at_given_displacements():

@@ -124,6 +124,9 @@ class ScanResult:
             'mu': ...}``, ``{'reason': 'penetration', 'd': ..., 's': ..., 'y': ...}``, ...
         stop_reason: ``stop['reason']``.
         stats: solver statistics (Newton iterations, right-hand-side evaluations, ...).
+        handover: ``None``, or why the scan ran on the rod's own shooter instead of the
+            requested method (a start that traps the rod between two contacts that do not
+            slip, where the method's Newton matrix is singular at its accuracy).
         shapes: with ``shape_points``: dict of arrays of shape (points, shape_points) for
             ``s``, ``x``, ``y``, ``phi``, ``kappa``, ``m`` (foot frame), else ``None``.
         raw: everything as the library returned it (nested dicts and lists).
@@ -141,6 +144,7 @@ class ScanResult:
         self.stop: Dict[str, Any] = raw["stop"]
         self.stop_reason: str = raw["stop"]["reason"]
         self.stats: Dict[str, Any] = raw["stats"]
+        self.handover: Optional[str] = raw.get("handover")
         self.shapes: Optional[Dict[str, np.ndarray]] = None
         if raw["shapes"]:
             per_point = [columns(sh) for sh in raw["shapes"]]

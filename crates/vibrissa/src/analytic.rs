@@ -252,5 +252,6 @@ pub(crate) fn scan_analytic(
         stop,
         stats: bvp::Stats::default(),
         shapes,
+        handover: None,
     })
 }

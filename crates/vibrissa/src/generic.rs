@@ -259,6 +259,8 @@ pub(crate) struct GenericStepper<P: Profile> {
     pub chain: Chain<P>,
     /// The method's last solution.
     last: Option<Solution>,
+    /// Whether the method's last failure was a singular Newton matrix.
+    pub singular: bool,
 }
 
 // the solver's own error, passed through unboxed as crate `bvp` returns it
@@ -289,6 +291,7 @@ impl<P: Profile> GenericStepper<P> {
                 family,
             ),
             last: None,
+            singular: false,
         })
     }
 
@@ -297,6 +300,7 @@ impl<P: Profile> GenericStepper<P> {
         match &r {
             Ok(s) => self.stats.accumulate(&s.stats),
             Err(e) => {
+                self.singular = matches!(e, bvp::BvpError::SingularJacobian { .. });
                 if let Some(st) = e.stats() {
                     self.stats.accumulate(st);
                 }

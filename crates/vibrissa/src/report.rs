@@ -370,6 +370,11 @@ pub struct ScanResult {
     pub stats: bvp::Stats,
     /// Shapes of the output points (if `keep_shapes`).
     pub shapes: Vec<Vec<ShapePoint>>,
+    /// Set when the requested generic method could not start and the scan ran on the rod's own
+    /// shooter instead: why (its Newton matrix is singular at its accuracy in a start that traps
+    /// the rod between two contacts that do not slip, see docs/robustness.md). `None`: the
+    /// requested method computed every point.
+    pub handover: Option<String>,
 }
 
 /// What ends the measurable range `[0, d_at_mu_max]`: the first monotone stretch of `|μ(d)|`.

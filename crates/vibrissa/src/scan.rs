@@ -130,31 +130,54 @@ fn scan_with<P: Profile>(
         reason: e,
     };
     let c = rod.support_compliance();
-    let out = if opts.solver.own_shooter_tol().is_some() {
-        let mut sh = start.sh.clone();
-        sh.stats = Default::default();
-        let chain = Chain::new(sh, set, Family::Drag);
-        let mut st = OwnStepper {
-            chain,
-            env: env.clone(),
-        };
-        let p0 = st
-            .correct_from(0.0, &start.pt.u, None, true)
-            .map_err(|e| start_failed(e.to_string()))?;
-        march(&mut st, &spec, &profile, p0, start.stats.clone())
-    } else {
+    let mut handover = None;
+    let generic = 'generic: {
+        if opts.solver.own_shooter_tol().is_some() {
+            break 'generic None;
+        }
         let mut st = GenericStepper::new(
             profile.clone(),
             c,
-            set,
+            set.clone(),
             Family::Drag,
             env.clone(),
             &opts.solver,
         )?;
-        let p0 = st
-            .first(0.0, &start.pt.u)
-            .map_err(|e| start_failed(e.to_string()))?;
-        march(&mut st, &spec, &profile, p0, start.stats.clone())
+        match st.first(0.0, &start.pt.u) {
+            Ok(p0) => Some(march(&mut st, &spec, &profile, p0, start.stats.clone())),
+            // A rod trapped between two contacts that do not slip: the tangential forces of the
+            // segment between them are nearly indeterminate (the inextensible segment only
+            // bends under them), and a method whose check finds its Newton matrix singular at
+            // its accuracy hands the scan to the rod's own shooter (docs/robustness.md).
+            Err(_) if st.singular && crate::watch::traps(&set) => {
+                handover = Some(format!(
+                    "the Newton matrix of {} is singular at its accuracy in the start {}, which \
+                     traps the rod between two contacts that do not slip (the tangential forces \
+                     between them are nearly indeterminate): the scan ran on the rod's own \
+                     shooter",
+                    opts.solver.method.name(),
+                    set.label()
+                ));
+                None
+            }
+            Err(e) => return Err(start_failed(e)),
+        }
+    };
+    let out = match generic {
+        Some(out) => out,
+        None => {
+            let mut sh = start.sh.clone();
+            sh.stats = Default::default();
+            let chain = Chain::new(sh, set, Family::Drag);
+            let mut st = OwnStepper {
+                chain,
+                env: env.clone(),
+            };
+            let p0 = st
+                .correct_from(0.0, &start.pt.u, None, true)
+                .map_err(|e| start_failed(e.to_string()))?;
+            march(&mut st, &spec, &profile, p0, start.stats.clone())
+        }
     };
     let start_point = out
         .points
@@ -179,6 +202,7 @@ fn scan_with<P: Profile>(
         stop: out.stop,
         stats: out.stats,
         shapes: out.shapes,
+        handover,
     })
 }
 

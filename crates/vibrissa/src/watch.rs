@@ -115,6 +115,11 @@ fn trapping(set: &ContactSet, j: usize) -> bool {
     holds(&set.contacts[j]) && set.contacts.iter().filter(|c| holds(c)).count() >= 2
 }
 
+/// Whether the set traps the rod between two surface contacts that do not slip.
+pub(crate) fn traps(set: &ContactSet) -> bool {
+    (0..set.contacts.len()).any(|j| trapping(set, j))
+}
+
 /// Whether contact `j` is a side on a surface line with another contact beyond it (the last
 /// contact's curvature is its rest curvature, `m = 0` there, and a straight rest beyond it lies
 /// on the line by design).

@@ -48,19 +48,75 @@ proptest! {
             prop_assert!(p.normal > 0.0, "pulled at d = {}: N = {}", p.d, p.normal);
             prop_assert!(p.mu.abs() <= p.mu_peak + 1e-12, "d = {}: |mu| {} > mu_peak {}", p.d, p.mu, p.mu_peak);
             if let Some(m) = mu0 {
-                prop_assert!(p.mu_peak <= m + 1e-9, "d = {}: a contact needs {} > mu0 = {m}", p.d, p.mu_peak);
+                prop_assert!(p.mu_peak <= m + ratio_tol(p), "d = {}: a contact needs {} > mu0 = {m}", p.d, p.mu_peak);
             }
         }
         if let Some(ev) = r.points.last().filter(|p| p.event.is_some()) {
             match ev.event {
                 Some(Event::Slip) => {
                     let m = mu0.unwrap();
-                    prop_assert!((ev.mu_peak - m).abs() < 1e-9, "slip row mu_peak {}", ev.mu_peak);
+                    prop_assert!((ev.mu_peak - m).abs() < ratio_tol(ev), "slip row mu_peak {}", ev.mu_peak);
                 }
                 Some(Event::LiftOff) => prop_assert!(ev.normal == 0.0),
                 _ => {}
             }
         }
+    }
+}
+
+/// How well a row's friction ratio is determined: 1e-9 with one contact; with two (in a scan
+/// both hold without slip, and the segment between them carries a nearly indeterminate pair of
+/// tangential forces) 5e-8: on the scene of
+/// `a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio` the slip row's ratio is
+/// 4.6e-9, 1.8e-8 and 6.5e-9 off μ0 at tol 1e-10, 1e-11 and 1e-12 (the event function scatters
+/// by 1e-9 over λ steps of 1e-13 there).
+fn ratio_tol(p: &vibrissa::ScanPoint) -> f64 {
+    if p.contact.name().contains('+') {
+        5e-8
+    } else {
+        1e-9
+    }
+}
+
+#[test]
+fn a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio() {
+    // Found by the property test (1 case in ~300): side+tip from the start, the side slips at
+    // d = 3.797e-4 with its ratio 4.6e-9 below μ0 (the test asked for 1e-9).
+    let mu0 = 0.3047897780415233;
+    let scene = Scene {
+        eta: 0.5,
+        stiffness: Stiffness::Taper {
+            ratio: 0.2546355076966698,
+        },
+        precurvature: Precurvature::Linear {
+            k0: 0.15640310972623728,
+            k1: -0.48454719233092025,
+        },
+        support_compliance: 0.861187433436653,
+        surface_angle: -0.24846025346123243,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    for tol in [1e-10, 1e-12] {
+        let o = ScanOptions {
+            points: 21,
+            mu0: Some(mu0),
+            solver: SolverConfig {
+                tol,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let r = scan(&rod, &surface, &o).unwrap();
+        let ev = r.points.last().unwrap();
+        assert_eq!(ev.event, Some(Event::Slip), "tol {tol}: {}", r.stop);
+        assert_eq!(ev.contact.name(), "side+tip");
+        assert!((ev.d - 3.797347e-4).abs() < 1e-9, "tol {tol}: d {}", ev.d);
+        assert!(
+            (ev.mu_peak - mu0).abs() < ratio_tol(ev),
+            "tol {tol}: {}",
+            ev.mu_peak
+        );
     }
 }
 

@@ -743,3 +743,35 @@ fn the_first_maximum_does_not_depend_on_a_step_a_rounding_short_of_a_grid_value(
         );
     }
 }
+
+#[test]
+fn a_generic_method_that_cannot_start_a_trapped_rod_hands_it_to_the_own_shooter() {
+    // The scene of the trapped-rod test above (grid 3 of docs/robustness.md): pressed, the rod
+    // touches at a side 0.06 before the tip; dragged with both holding, the segment between them
+    // is nearly indeterminate under a pair of tangential forces. Multiple shooting's conditioning
+    // check measures ‖J⁻¹‖ · rtol > 1 at d = 0 and the scan start failed with "singular Jacobian"
+    // (12 scenes of grid 3); the scan now runs on the rod's own shooter and says so. Collocation
+    // starts it itself, and agrees.
+    let (rod, surface) = graded_scene(0.55, 1.0).parts().unwrap();
+    let run = |method| run_checked(&rod, &surface, method, 201, None);
+    let own = run(vibrissa::Method::Shooting);
+    let ms = run(vibrissa::Method::MultipleShooting);
+    let coll = run(vibrissa::Method::Collocation4);
+    assert_eq!(own.handover, None);
+    assert_eq!(coll.handover, None);
+    let why = ms.handover.as_deref().expect("a handover");
+    assert!(
+        why.contains("multiple-shooting") && why.contains("traps the rod"),
+        "{why}"
+    );
+    let stop_d = |r: &ScanResult| match &r.stop {
+        StopReason::ContactChange { d, message } if message.contains("reached 10") => *d,
+        s => panic!("{s}"),
+    };
+    // the own shooter's scan, point for point
+    assert_eq!(stop_d(&ms), stop_d(&own));
+    assert_eq!(ms.points, own.points);
+    assert!((stop_d(&ms) - 1.13921e-5).abs() < 1e-9 + 1e-5 * 1.13921e-5);
+    // (collocation, independently: 8.5e-11 apart, measured)
+    assert!((stop_d(&coll) - stop_d(&own)).abs() < 1e-9);
+}
