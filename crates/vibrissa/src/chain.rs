@@ -515,6 +515,18 @@ impl<P: Profile> Chain<P> {
         })
     }
 
+    /// Whether the equilibrium at `(u, λ)` is singular to working precision: the smallest
+    /// singular value of `∂R/∂u` at most `n·ε` times the largest (the usual numerical rank).
+    pub fn singular_to_precision(&mut self, u: &[f64], lam: f64) -> bool {
+        let Some(j) = self.eval(u, lam, true).ok().and_then(|e| e.jac) else {
+            return false;
+        };
+        let sv = j.singular_values();
+        let big = sv.iter().fold(0.0f64, |m, &v| m.max(v));
+        let small = sv.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+        small <= sv.len() as f64 * f64::EPSILON * big
+    }
+
     /// The exact tangent `du/dλ = −J⁻¹ ∂R/∂λ` of the contact set `set` at `(u, λ)`, the chain's
     /// own set kept (a change of set checks the new state's first direction before solving it);
     /// `None` where the shot fails or `J` is singular.

@@ -638,6 +638,10 @@ impl<P: Profile> Stepper for GenericStepper<P> {
         self.chain.tangent_in(set.clone(), u, lam)
     }
 
+    fn singular_at(&mut self, lam: f64, u: &[f64]) -> bool {
+        self.chain.singular_to_precision(u, lam)
+    }
+
     fn stats(&self) -> Stats {
         let mut s = self.stats.clone();
         s.accumulate(&self.chain.sh.stats);

@@ -104,6 +104,9 @@ pub(crate) trait Stepper {
     /// The exact tangent of the contact set `set` at `(u, λ)` on the rod's own shooter, before
     /// the stepper is switched to it.
     fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>>;
+    /// Whether the equilibrium of the current set at `(u, λ)` is singular to working precision
+    /// (on the rod's own shooter).
+    fn singular_at(&mut self, lam: f64, u: &[f64]) -> bool;
     /// Work done so far.
     fn stats(&self) -> Stats;
     /// Largest natural step in `λ`.
@@ -201,6 +204,13 @@ pub(crate) fn march<P: Profile>(
         None
     };
     let mut last = None;
+    // a start that traps the rod between contacts whose equilibrium is singular to working
+    // precision: the tangential pair between them has no determined value (the corrections
+    // return any of a line of states, |T|/N of 1e3 on a frictionless press)
+    let indeterminate = start_event.is_none()
+        && spec.check_start
+        && crate::watch::traps(stepper.set())
+        && stepper.singular_at(p0.lam, &p0.u);
     let stop = if let Some(ev) = start_event {
         // the start itself is not a valid state (the rod crosses the surface, is pulled, or
         // slips): it is reported as the event, never as a grid row
@@ -209,6 +219,34 @@ pub(crate) fn march<P: Profile>(
         let s = stop_reason(ev, &p0.w, stepper.set());
         last = Some((stepper.set().clone(), p0));
         s
+    } else if indeterminate {
+        let set = stepper.set().clone();
+        let at: Vec<String> = (0..set.contacts.len())
+            .map(|j| format!("{:.6}", set.s_of(j, &p0.u)))
+            .collect();
+        let mut run = Run {
+            stepper,
+            spec,
+            profile,
+            out: &mut out,
+            range: &mut range,
+        };
+        // the start itself is a state (frictionless, T = 0): its grid row
+        let emitted = run.emit(std::slice::from_ref(&p0), p0.lam);
+        range.close(RangeEnd::Event);
+        let d = p0.lam;
+        last = Some((set.clone(), p0));
+        emitted.err().unwrap_or(StopReason::ContactChange {
+            d,
+            message: format!(
+                "the start {} traps the rod between contacts at s = {} that hold without slip, \
+                 and its equilibrium is singular to working precision: the pair of tangential \
+                 forces between them is indeterminate; the point-contact model does not resolve \
+                 it",
+                set.label(),
+                at.join(" and ")
+            ),
+        })
     } else {
         let mut run = Run {
             stepper,
@@ -655,9 +693,14 @@ impl<P: Profile> Run<'_, '_, P> {
                                 self.range.see(&q.w);
                                 self.range.close(RangeEnd::FirstMaximum);
                             }
+                            // (one within rounding of zero too: its side is noise, and an armed
+                            // one would cross back at once, an event the grid decides)
                             pending = Crossing::all(spec.env, &new_set)
                                 .into_iter()
-                                .filter(|c| !holds(c.of_watch(spec.env, &q.w)))
+                                .filter(|c| {
+                                    let v = c.of_watch(spec.env, &q.w);
+                                    !holds(v) || v.abs() <= AT_ZERO
+                                })
                                 .collect();
                             hist = vec![q];
                             queue.clear();
@@ -743,6 +786,8 @@ fn lifted(w: &mut Watch) {
 /// a root (a rounding of the rod's heights is ~1e-12; a jump is of the size of the rod's
 /// features).
 const JUMP: f64 = 1e-6;
+/// An event function this close to zero right after a change of contact set is at zero.
+const AT_ZERO: f64 = 1e-12;
 
 /// The set with the interior contact `ct` touched down at `s` (in its place along the rod; its
 /// unknowns N, T start at zero), and its unknowns.

@@ -241,6 +241,10 @@ impl<P: Profile> Stepper for OwnStepper<P> {
         self.chain.tangent_in(set.clone(), u, lam)
     }
 
+    fn singular_at(&mut self, lam: f64, u: &[f64]) -> bool {
+        self.chain.singular_to_precision(u, lam)
+    }
+
     fn stats(&self) -> Stats {
         self.chain.sh.stats.clone()
     }

@@ -120,6 +120,91 @@ fn a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio() {
     }
 }
 
+#[test]
+fn a_start_whose_trapped_pair_is_indeterminate_is_named() {
+    // Found by the property test (1 case in ~4000): pressed, the rod touches at a side 6.9e-4
+    // before the tip, its tip slope 1.1e-5 from the surface's. With both holding, the equilibrium's
+    // Jacobian has a zero singular value (the other five 0.096–78): the correction at d = 0
+    // returned a tangential pair with |T|/N = 1121 on a frictionless press (a start row above
+    // μ0), and the scan ended in a solver message at d = 4.9e-8. The trapped starts of the third
+    // grid (docs/robustness.md) have σ_min/σ_max ≥ 2e-14 and scan.
+    let scene = Scene {
+        eta: 0.8413669277962146,
+        stiffness: Stiffness::Taper {
+            ratio: 0.16943620646015384,
+        },
+        precurvature: Precurvature::Linear {
+            k0: -0.2573809280260109,
+            k1: 0.3228532552789773,
+        },
+        support_compliance: 0.9131006102450641,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    for method in [
+        vibrissa::Method::Shooting,
+        vibrissa::Method::MultipleShooting,
+    ] {
+        let o = ScanOptions {
+            points: 21,
+            mu0: Some(0.7224091749390847),
+            solver: SolverConfig {
+                method,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let r = scan(&rod, &surface, &o).unwrap();
+        let vibrissa::StopReason::ContactChange { d, message } = &r.stop else {
+            panic!("{method:?}: {}", r.stop);
+        };
+        assert_eq!(*d, 0.0);
+        assert!(
+            message.contains("singular to working precision"),
+            "{message}"
+        );
+        // the start's own row: the frictionless press, no tangential force
+        assert_eq!(r.points.len(), 1);
+        let p = &r.points[0];
+        assert_eq!((p.d, p.event, p.contact.name()), (0.0, None, "side+tip"));
+        assert!(p.mu_peak < 1e-9, "{method:?}: mu_peak {}", p.mu_peak);
+    }
+}
+
+#[test]
+fn a_lying_end_that_peels_back_to_the_tip_ends_the_same_way_on_every_grid() {
+    // Found by the property test (1 case in ~1000): the rod's end lies on the surface and the
+    // lying part's inner end reaches the tip at d = 0.3353793043. The tip alone would turn into
+    // the surface there; its tip-tangent function is ±1e-14 at the switch, and its sign (set by
+    // the grid) decided whether the march stopped ("tip does not hold") or lay down again at once
+    // (a touchdown row, then "side does not hold"). A function within 1e-12 of zero at a change
+    // is now at zero: every grid has the peel-back row and the same stop.
+    let scene = Scene {
+        eta: 0.9236573154463448,
+        stiffness: Stiffness::Taper {
+            ratio: 0.10923509292023136,
+        },
+        precurvature: Precurvature::Linear {
+            k0: -0.015525374084602602,
+            k1: 0.0,
+        },
+        ..Scene::default()
+    };
+    for n in [11, 201, 2001] {
+        let r = scan_at(&scene, n).unwrap();
+        let events: Vec<_> = r.points.iter().filter_map(|p| p.event).collect();
+        assert_eq!(events, [Event::PeelBack], "{n} points");
+        let vibrissa::StopReason::ContactChange { d, message } = &r.stop else {
+            panic!("{n} points: {}", r.stop);
+        };
+        assert!(
+            message.contains("the contact state tip does not hold"),
+            "{message}"
+        );
+        assert!((d - 0.3353793043).abs() < 1e-9, "{n} points: d {d}");
+    }
+}
+
 /// Found by the property test: near d = 0.39 this rod turns S-shaped at its tip and rises above
 /// the surface at s ≈ 0.967 while the tip still arrives from below, a maximum inside one mesh
 /// interval whose end slopes have the same sign. The scan stops there with penetration, and no
