@@ -125,8 +125,8 @@ class ScanResult:
         stop_reason: ``stop['reason']``.
         stats: solver statistics (Newton iterations, right-hand-side evaluations, ...).
         handover: ``None``, or why the scan ran on the rod's own shooter instead of the
-            requested method (a start that traps the rod between two contacts that do not
-            slip, where the method's Newton matrix is singular at its accuracy).
+            requested method (in a state that traps the rod between two contacts that do not
+            slip, the method could not start or its march failed).
         shapes: with ``shape_points``: dict of arrays of shape (points, shape_points) for
             ``s``, ``x``, ``y``, ``phi``, ``kappa``, ``m`` (foot frame), else ``None``.
         raw: everything as the library returned it (nested dicts and lists).

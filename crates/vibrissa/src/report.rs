@@ -370,10 +370,10 @@ pub struct ScanResult {
     pub stats: bvp::Stats,
     /// Shapes of the output points (if `keep_shapes`).
     pub shapes: Vec<Vec<ShapePoint>>,
-    /// Set when the requested generic method could not start and the scan ran on the rod's own
-    /// shooter instead: why (its Newton matrix is singular at its accuracy in a start that traps
-    /// the rod between two contacts that do not slip, see docs/robustness.md). `None`: the
-    /// requested method computed every point.
+    /// Set when the scan ran on the rod's own shooter instead of the requested generic method:
+    /// why. In a state that traps the rod between two contacts that do not slip, the method's
+    /// Newton matrix was singular at its accuracy at the start, or its march ended in a solver
+    /// failure (docs/robustness.md). `None`: the requested method computed every point.
     pub handover: Option<String>,
 }
 

@@ -5,7 +5,9 @@ use crate::chain::{Chain, Family};
 use crate::generic::GenericStepper;
 use crate::march::{march, Spec};
 use crate::profile::{Profile, Uniform};
-use crate::report::{ContactModel, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult};
+use crate::report::{
+    ContactModel, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason,
+};
 use crate::solve::Method;
 use crate::stepper::OwnStepper;
 use crate::{Rod, Surface, VibrissaError};
@@ -144,7 +146,27 @@ fn scan_with<P: Profile>(
             &opts.solver,
         )?;
         match st.first(0.0, &start.pt.u) {
-            Ok(p0) => Some(march(&mut st, &spec, &profile, p0, start.stats.clone())),
+            Ok(p0) => {
+                let out = march(&mut st, &spec, &profile, p0, start.stats.clone());
+                // the same in the march: a solver failure in a state that traps the rod, where
+                // the method's corrections scatter along the nearly indeterminate pair
+                match (&out.stop, &out.last) {
+                    (StopReason::SolverFailure { d, message }, Some((set, _)))
+                        if crate::watch::traps(set) =>
+                    {
+                        handover = Some(format!(
+                            "{} failed at d = {d} in the state {}, which traps the rod between \
+                             two contacts that do not slip (the tangential forces between them \
+                             are nearly indeterminate): {message}; the scan ran on the rod's own \
+                             shooter",
+                            opts.solver.method.name(),
+                            set.label()
+                        ));
+                        None
+                    }
+                    _ => Some(out),
+                }
+            }
             // A rod trapped between two contacts that do not slip: the tangential forces of the
             // segment between them are nearly indeterminate (the inextensible segment only
             // bends under them), and a method whose check finds its Newton matrix singular at

@@ -750,8 +750,8 @@ fn a_generic_method_that_cannot_start_a_trapped_rod_hands_it_to_the_own_shooter(
     // touches at a side 0.06 before the tip; dragged with both holding, the segment between them
     // is nearly indeterminate under a pair of tangential forces. Multiple shooting's conditioning
     // check measures ‖J⁻¹‖ · rtol > 1 at d = 0 and the scan start failed with "singular Jacobian"
-    // (12 scenes of grid 3); the scan now runs on the rod's own shooter and says so. Collocation
-    // starts it itself, and agrees.
+    // (12 scenes of grid 3); the scan now runs on the rod's own shooter and says so. Lobatto IIIA
+    // of order 4 starts it itself, and agrees.
     let (rod, surface) = graded_scene(0.55, 1.0).parts().unwrap();
     let run = |method| run_checked(&rod, &surface, method, 201, None);
     let own = run(vibrissa::Method::Shooting);
@@ -774,4 +774,10 @@ fn a_generic_method_that_cannot_start_a_trapped_rod_hands_it_to_the_own_shooter(
     assert!((stop_d(&ms) - 1.13921e-5).abs() < 1e-9 + 1e-5 * 1.13921e-5);
     // (collocation, independently: 8.5e-11 apart, measured)
     assert!((stop_d(&coll) - stop_d(&own)).abs() < 1e-9);
+    // Lobatto IIIA of order 6 starts it, but its corrections scatter along the pair by 2e-5
+    // while it locates the bound (the branch check rejects them): the failed march hands over
+    let c6 = run(vibrissa::Method::Collocation6);
+    let why = c6.handover.as_deref().expect("a handover");
+    assert!(why.contains("collocation6 failed at d = "), "{why}");
+    assert_eq!(c6.points, own.points);
 }
