@@ -168,8 +168,16 @@ pub fn run(a: &DragArgs) -> Res<()> {
     if stop.reason != "d_max" {
         crate::progress::warn(&format!("the drag stopped early: {}", stop.detail));
     }
+    if let Some(h) = &r.handover {
+        crate::progress::warn(h);
+    }
     let out = DragOut {
-        method: a.solver.method.name(),
+        // the method that computed the rows
+        method: if r.handover.is_some() {
+            crate::cli::MethodArg::Shooting.name()
+        } else {
+            a.solver.method.name()
+        },
         eta: sc.eta,
         mu_s: a.mu_s,
         mu_k: a.mu_k,
@@ -192,7 +200,13 @@ pub fn run(a: &DragArgs) -> Res<()> {
         let line = if r.slips.is_empty() {
             format!(
                 "drag eta = {} ({}): no slip up to d = {}; {} rows; stopped: {}; {:.1} ms",
-                sc.eta, out.method, a.d_max, out.rows, out.stop.detail, out.time_ms
+                sc.eta,
+                out.method,
+                // where the drag ended (d_max only when it got there)
+                out.stop.d.unwrap_or(a.d_max),
+                out.rows,
+                out.stop.detail,
+                out.time_ms
             )
         } else {
             let s = &r.summary;

@@ -319,6 +319,10 @@ pub struct DragResult {
     /// Shapes of the rows (if `keep_shapes`).
     #[serde(skip)]
     pub shapes: Vec<Vec<ShapePoint>>,
+    /// Set when the drag ran on the rod's own shooter instead of the requested generic method:
+    /// why (as [`crate::ScanResult::handover`]: its Newton matrix singular at its accuracy in a
+    /// start that traps the rod). `None`: the requested method computed every row.
+    pub handover: Option<String>,
 }
 
 impl fmt::Display for DragResult {
@@ -475,29 +479,51 @@ fn drag_with<P: Profile>(
             }
         })
         .collect();
-    let mut st: Box<dyn DragStepper> = if opts.solver.own_shooter_tol().is_some() {
+    let own = || -> Box<dyn DragStepper> {
         let mut sh = start.sh.clone();
         sh.stats = Default::default();
         Box::new(OwnStepper {
             chain: Chain::new(sh, set.clone(), Family::Drag),
             env: base.clone(),
         })
+    };
+    let start_failed = |reason: String| VibrissaError::NoConvergence {
+        what: "drag start (correction at d = 0)".into(),
+        reason,
+    };
+    let mut handover = None;
+    let (mut st, p) = if opts.solver.own_shooter_tol().is_some() {
+        let mut st = own();
+        let p = st.first(0.0, &start.pt.u).map_err(start_failed)?;
+        (st, p)
     } else {
-        Box::new(GenericStepper::new(
+        let mut g = GenericStepper::new(
             profile.clone(),
             rod.support_compliance(),
             set.clone(),
             Family::Drag,
             base.clone(),
             &opts.solver,
-        )?)
+        )?;
+        match g.first(0.0, &start.pt.u) {
+            Ok(p) => (Box::new(g) as Box<dyn DragStepper>, p),
+            // as the scan's start (crate::scan): a trapped start the method cannot take
+            Err(_) if g.singular && crate::watch::traps(&set) => {
+                handover = Some(format!(
+                    "the Newton matrix of {} is singular at its accuracy in the start {}, which \
+                     traps the rod between two contacts that do not slip (the tangential forces \
+                     between them are nearly indeterminate): the drag ran on the rod's own \
+                     shooter",
+                    opts.solver.method.name(),
+                    set.label()
+                ));
+                let mut st = own();
+                let p = st.first(0.0, &start.pt.u).map_err(start_failed)?;
+                (st, p)
+            }
+            Err(e) => return Err(start_failed(e)),
+        }
     };
-    let p = st
-        .first(0.0, &start.pt.u)
-        .map_err(|e| VibrissaError::NoConvergence {
-            what: "drag start (correction at d = 0)".into(),
-            reason: e,
-        })?;
     let mut run = DragRun {
         st: st.as_mut(),
         profile: &profile,
@@ -522,6 +548,7 @@ fn drag_with<P: Profile>(
         stop,
         stats,
         shapes,
+        handover,
     })
 }
 
@@ -665,6 +692,30 @@ impl<P: Profile> DragRun<'_, P> {
                     slide: false,
                 };
                 let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
+                if let (StopReason::SolverFailure { message, .. }, true) =
+                    (&sout.stop, crate::watch::traps(&sset))
+                {
+                    // a tip that slips beside a contact that does not slip: the pair of
+                    // tangential forces between them, nearly indeterminate, jumps with μs → μk
+                    // (Newton from the stuck state diverged at the slide's first step)
+                    let sides: Vec<String> = w
+                        .contacts
+                        .iter()
+                        .enumerate()
+                        .filter(|&(j, _)| j != jt)
+                        .map(|(_, c)| format!("{:.6}", c.s))
+                        .collect();
+                    return StopReason::ContactChange {
+                        d: d_s,
+                        message: format!(
+                            "the tip slips beside the contact at s = {} ({}), which does not slip: \
+                             the rod between them is trapped, and the slide of such a tip is not \
+                             followed ({message})",
+                            sides.join(", "),
+                            sset.label()
+                        ),
+                    };
+                }
                 self.collect(&sout, Phase::Slip, Some(d_s), mu_s);
                 dissipated += sout.metered;
                 let Some((eset, qe)) = sout.last else {

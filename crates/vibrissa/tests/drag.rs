@@ -301,6 +301,61 @@ fn two_patch_texture() {
     assert!(at_edge >= 1);
 }
 
+#[test]
+fn a_tip_that_slips_beside_a_side_that_holds_is_named() {
+    // A scene of the third grid (docs/robustness.md): pressed into side+tip with the side 0.1
+    // before the tip. At μs = 0.5 the tip slips first, at d = 6.07e-6 (the slip of the single
+    // scan at μ0 = 0.5). The slide then starts with the pair of tangential forces between side
+    // and tip, nearly indeterminate, jumping with μs → μk, and Newton from the stuck state
+    // diverged (residual 3e3): the drag ended in a solver message. It is named now.
+    let s = scene(|s| {
+        s.eta = 0.55;
+        s.stiffness = Stiffness::Taper { ratio: 0.5 };
+        s.precurvature = Precurvature::Linear { k0: -0.3, k1: 0.2 };
+        s.support_compliance = 0.5;
+        s.surface_angle = -0.2;
+    });
+    let r = run(&s, &uniform(0.5, 0.3, 0.01));
+    let StopReason::ContactChange { d, message } = &r.stop else {
+        panic!("{}", r.stop);
+    };
+    assert!(
+        message.contains("the tip slips beside the contact at s = 0.898"),
+        "{message}"
+    );
+    assert!((d - scan_slip(&s, 0.5)).abs() < 1e-12, "{d}");
+}
+
+#[test]
+fn a_trapped_start_multiple_shooting_cannot_take_is_handed_to_the_own_shooter() {
+    // The scene of scan_fixes' trapped-rod test: multiple shooting's Newton matrix is singular
+    // at its accuracy in the side+tip start (the drag start failed with "singular Jacobian").
+    let s = scene(|s| {
+        s.eta = 0.55;
+        s.precurvature = Precurvature::Linear { k0: 0.3, k1: -0.2 };
+        s.surface_angle = 0.2;
+    });
+    let own = run(&s, &uniform(0.5, 0.3, 0.01));
+    let ms = run(
+        &s,
+        &DragOptions {
+            solver: SolverConfig {
+                method: Method::MultipleShooting,
+                ..SolverConfig::default()
+            },
+            ..uniform(0.5, 0.3, 0.01)
+        },
+    );
+    assert_eq!(own.handover, None);
+    let why = ms.handover.as_deref().expect("a handover");
+    assert!(
+        why.contains("the drag ran on the rod's own shooter"),
+        "{why}"
+    );
+    assert_eq!(ms.stop, own.stop);
+    assert_eq!(ms.rows.len(), own.rows.len());
+}
+
 /// No row has the rod above the profile, and no stuck row needs more than μs (random
 /// corrugations, textures and rods).
 mod property {
