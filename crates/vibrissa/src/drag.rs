@@ -509,14 +509,7 @@ fn drag_with<P: Profile>(
             Ok(p) => (Box::new(g) as Box<dyn DragStepper>, p),
             // as the scan's start (crate::scan): a trapped start the method cannot take
             Err(_) if g.singular && crate::watch::traps(&set) => {
-                handover = Some(format!(
-                    "the Newton matrix of {} is singular at its accuracy in the start {}, which \
-                     traps the rod between two contacts that do not slip (the tangential forces \
-                     between them are nearly indeterminate): the drag ran on the rod's own \
-                     shooter",
-                    opts.solver.method.name(),
-                    set.label()
-                ));
+                handover = Some(crate::scan::trapped_start(opts.solver.method, &set, "drag"));
                 let mut st = own();
                 let p = st.first(0.0, &start.pt.u).map_err(start_failed)?;
                 (st, p)

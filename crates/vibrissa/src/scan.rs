@@ -172,14 +172,7 @@ fn scan_with<P: Profile>(
             // bends under them), and a method whose check finds its Newton matrix singular at
             // its accuracy hands the scan to the rod's own shooter (docs/robustness.md).
             Err(_) if st.singular && crate::watch::traps(&set) => {
-                handover = Some(format!(
-                    "the Newton matrix of {} is singular at its accuracy in the start {}, which \
-                     traps the rod between two contacts that do not slip (the tangential forces \
-                     between them are nearly indeterminate): the scan ran on the rod's own \
-                     shooter",
-                    opts.solver.method.name(),
-                    set.label()
-                ));
+                handover = Some(trapped_start(opts.solver.method, &set, "scan"));
                 None
             }
             Err(e) => return Err(start_failed(e)),
@@ -226,6 +219,18 @@ fn scan_with<P: Profile>(
         shapes: out.shapes,
         handover,
     })
+}
+
+/// Why a `what` (scan, drag) ran on the rod's own shooter: `method`'s Newton matrix is singular
+/// at its accuracy in the start `set`, which traps the rod.
+pub(crate) fn trapped_start(method: Method, set: &crate::chain::ContactSet, what: &str) -> String {
+    format!(
+        "the Newton matrix of {} is singular at its accuracy in the start {}, which traps the rod \
+         between two contacts that do not slip (the tangential forces between them are nearly \
+         indeterminate): the {what} ran on the rod's own shooter",
+        method.name(),
+        set.label()
+    )
 }
 
 /// Infers μ0 from the displacement `d0` at which the tip slipped: `μ0 = |μ(d0)|` for `d0` in
