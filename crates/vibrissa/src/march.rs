@@ -219,11 +219,8 @@ pub(crate) fn march<P: Profile>(
         let s = stop_reason(ev, &p0.w, stepper.set());
         last = Some((stepper.set().clone(), p0));
         s
-    } else if indeterminate {
+    } else {
         let set = stepper.set().clone();
-        let at: Vec<String> = (0..set.contacts.len())
-            .map(|j| format!("{:.6}", set.s_of(j, &p0.u)))
-            .collect();
         let mut run = Run {
             stepper,
             spec,
@@ -231,33 +228,31 @@ pub(crate) fn march<P: Profile>(
             out: &mut out,
             range: &mut range,
         };
-        // the start itself is a state (frictionless, T = 0): its grid row
-        let emitted = run.emit(std::slice::from_ref(&p0), p0.lam);
-        range.close(RangeEnd::Event);
-        let d = p0.lam;
-        last = Some((set.clone(), p0));
-        emitted.err().unwrap_or(StopReason::ContactChange {
-            d,
-            message: format!(
+        if indeterminate {
+            let at: Vec<String> = (0..set.contacts.len())
+                .map(|j| format!("{:.6}", set.s_of(j, &p0.u)))
+                .collect();
+            // the start itself is a state (frictionless, T = 0): its grid row
+            let emitted = run.emit(std::slice::from_ref(&p0), p0.lam);
+            run.range.close(RangeEnd::Event);
+            let d = p0.lam;
+            let message = format!(
                 "the start {} traps the rod between contacts at s = {} that hold without slip, \
                  and its equilibrium is singular to working precision: the pair of tangential \
                  forces between them is indeterminate; the point-contact model does not resolve \
                  it",
                 set.label(),
                 at.join(" and ")
-            ),
-        })
-    } else {
-        let mut run = Run {
-            stepper,
-            spec,
-            profile,
-            out: &mut out,
-            range: &mut range,
-        };
-        let (s, l) = run.run(p0);
-        last = l.or(last);
-        s
+            );
+            last = Some((set, p0));
+            emitted
+                .err()
+                .unwrap_or(StopReason::ContactChange { d, message })
+        } else {
+            let (s, l) = run.run(p0);
+            last = l.or(last);
+            s
+        }
     };
     stats.accumulate(&stepper.stats());
     if let Some((_, p)) = &last {
