@@ -759,6 +759,21 @@ impl<P: Profile> DragRun<'_, P> {
             };
             // the tip sticks where it stopped; the next stick phase
             let lam_s = qe.lam;
+            if crate::watch::traps(&sset) && lam_s < self.opts.solver.tol {
+                // a slide shorter than the tolerance beside a side that holds: the trapped pair
+                // relaxes from μs to μk over it, and the tip creeps in such slips (40000 of
+                // 1e-11 each over d = 0.1 on a grid-3 scene, 500 s), unresolved
+                return StopReason::ContactChange {
+                    d: d_s,
+                    message: format!(
+                        "the tip slid {lam_s:.1e} (less than the tolerance {:e}) beside a contact \
+                         that does not slip ({}): trapped between them it creeps in such slips, \
+                         which are not followed",
+                        self.opts.solver.tol,
+                        sset.label()
+                    ),
+                };
+            }
             let mut nset = eset.clone();
             if let Mode::Stuck(a) = nset.contacts[je].mode {
                 nset.contacts[je].mode = Mode::Stuck(a + dir * lam_s);

@@ -327,6 +327,27 @@ fn a_tip_that_slips_beside_a_side_that_holds_is_named() {
 }
 
 #[test]
+fn a_tip_that_creeps_beside_a_side_that_holds_is_named() {
+    // The mirror image of the scene above (κ0, κ1, β → −κ0, −κ1, −β). The tip slips at
+    // d = 6.08e-6, slides 1.1e-11 (the trapped pair relaxes from μs to μk over that), sticks,
+    // and slips again 2.4e-6 later: 40000 such slips over d = 0.1 took 500 s. A slide shorter
+    // than the tolerance beside a side that holds now ends the drag, named.
+    let s = scene(|s| {
+        s.eta = 0.55;
+        s.stiffness = Stiffness::Taper { ratio: 0.5 };
+        s.precurvature = Precurvature::Linear { k0: 0.3, k1: -0.2 };
+        s.support_compliance = 0.5;
+        s.surface_angle = 0.2;
+    });
+    let r = run(&s, &uniform(0.5, 0.3, 0.1));
+    let StopReason::ContactChange { d, message } = &r.stop else {
+        panic!("{}", r.stop);
+    };
+    assert!(message.contains("it creeps in such slips"), "{message}");
+    assert!((d - scan_slip(&s, 0.5)).abs() < 1e-12, "{d}");
+}
+
+#[test]
 fn a_trapped_start_multiple_shooting_cannot_take_is_handed_to_the_own_shooter() {
     // The scene of scan_fixes' trapped-rod test: multiple shooting's Newton matrix is singular
     // at its accuracy in the side+tip start (the drag start failed with "singular Jacobian").
