@@ -126,8 +126,8 @@ fn a_start_whose_trapped_pair_is_indeterminate_is_named() {
     // before the tip, its tip slope 1.1e-5 from the surface's. With both holding, the equilibrium's
     // Jacobian has a zero singular value (the other five 0.096–78): the correction at d = 0
     // returned a tangential pair with |T|/N = 1121 on a frictionless press (a start row above
-    // μ0), and the scan ended in a solver message at d = 4.9e-8. The trapped starts of the third
-    // grid (docs/robustness.md) have σ_min/σ_max ≥ 2e-14 and scan.
+    // μ0), and the scan ended in a solver message at d = 4.9e-8. The 36 trapped starts of the
+    // third grid (docs/robustness.md) scan as before (four measured: σ_min/σ_max 2e-14–5e-11).
     let scene = Scene {
         eta: 0.8413669277962146,
         stiffness: Stiffness::Taper {
