@@ -522,9 +522,7 @@ impl<P: Profile> Chain<P> {
             return false;
         };
         let sv = j.singular_values();
-        let big = sv.iter().fold(0.0f64, |m, &v| m.max(v));
-        let small = sv.iter().fold(f64::INFINITY, |m, &v| m.min(v));
-        small <= sv.len() as f64 * f64::EPSILON * big
+        sv.min() <= sv.len() as f64 * f64::EPSILON * sv.max()
     }
 
     /// The exact tangent `du/dλ = −J⁻¹ ∂R/∂λ` of the contact set `set` at `(u, λ)`, the chain's

@@ -154,13 +154,15 @@ fn scan_with<P: Profile>(
                     (StopReason::SolverFailure { d, message }, Some((set, _)))
                         if crate::watch::traps(set) =>
                     {
-                        handover = Some(format!(
-                            "{} failed at d = {d} in the state {}, which traps the rod between \
-                             two contacts that do not slip (the tangential forces between them \
-                             are nearly indeterminate): {message}; the scan ran on the rod's own \
-                             shooter",
-                            opts.solver.method.name(),
-                            set.label()
+                        let failure = format!(
+                            "{} failed at d = {d} in the state",
+                            opts.solver.method.name()
+                        );
+                        handover = Some(self::handover(
+                            &failure,
+                            set,
+                            &format!("{message}; "),
+                            "scan",
                         ));
                         None
                     }
@@ -221,16 +223,29 @@ fn scan_with<P: Profile>(
     })
 }
 
-/// Why a `what` (scan, drag) ran on the rod's own shooter: `method`'s Newton matrix is singular
-/// at its accuracy in the start `set`, which traps the rod.
-pub(crate) fn trapped_start(method: Method, set: &crate::chain::ContactSet, what: &str) -> String {
+/// Why a `run` (scan, drag) ran on the rod's own shooter: the generic method's `failure` in the
+/// contact state `set`, which traps the rod, and its own message (`detail`, "" or "…; ").
+pub(crate) fn handover(
+    failure: &str,
+    set: &crate::chain::ContactSet,
+    detail: &str,
+    run: &str,
+) -> String {
     format!(
-        "the Newton matrix of {} is singular at its accuracy in the start {}, which traps the rod \
-         between two contacts that do not slip (the tangential forces between them are nearly \
-         indeterminate): the {what} ran on the rod's own shooter",
-        method.name(),
+        "{failure} {}, which traps the rod between two contacts that do not slip (the tangential \
+         forces between them are nearly indeterminate): {detail}the {run} ran on the rod's own \
+         shooter",
         set.label()
     )
+}
+
+/// [`handover`] at a start whose Newton matrix `method` finds singular at its accuracy.
+pub(crate) fn trapped_start(method: Method, set: &crate::chain::ContactSet, run: &str) -> String {
+    let failure = format!(
+        "the Newton matrix of {} is singular at its accuracy in the start",
+        method.name()
+    );
+    handover(&failure, set, "", run)
 }
 
 /// Infers μ0 from the displacement `d0` at which the tip slipped: `μ0 = |μ(d0)|` for `d0` in

@@ -105,19 +105,20 @@ pub(crate) struct RodView<'a> {
 /// set that traps the rod between two contacts that do not slip (docs/model.md).
 pub(crate) const SIDE_FRICTION_LIMIT: f64 = 10.0;
 
-/// Whether a contact on the surface traps the rod: it holds without slip and so does another
-/// surface contact of the set (the segment between them carries a pair of tangential forces
-/// that nothing in the model bounds).
-fn trapping(set: &ContactSet, j: usize) -> bool {
-    let holds = |c: &crate::chain::Contact| {
-        c.mode.no_slip() && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
-    };
-    holds(&set.contacts[j]) && set.contacts.iter().filter(|c| holds(c)).count() >= 2
+/// Whether a contact holds without slip on the surface (a line or a curve).
+fn holds_on_surface(c: &crate::chain::Contact) -> bool {
+    c.mode.no_slip() && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
 }
 
-/// Whether the set traps the rod between two surface contacts that do not slip.
+/// Whether the set traps the rod between two surface contacts that do not slip (the segment
+/// between them carries a pair of tangential forces that nothing in the model bounds).
 pub(crate) fn traps(set: &ContactSet) -> bool {
-    (0..set.contacts.len()).any(|j| trapping(set, j))
+    set.contacts.iter().filter(|c| holds_on_surface(c)).count() >= 2
+}
+
+/// Whether contact `j` is one of the contacts that trap the rod.
+fn trapping(set: &ContactSet, j: usize) -> bool {
+    holds_on_surface(&set.contacts[j]) && traps(set)
 }
 
 /// Whether contact `j` is a side on a surface line with another contact beyond it (the last
