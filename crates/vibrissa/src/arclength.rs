@@ -13,6 +13,7 @@
 use crate::chain::Curve;
 use crate::rodsolve::{at_floor, max_abs, Converged, ShotFailure};
 use crate::shooter::MAX_STEPS;
+use bvp::Solution;
 use nalgebra::{DMatrix, DVector};
 
 /// A converged point of a curve.
@@ -28,6 +29,9 @@ pub(crate) struct ArcPoint {
     pub residual: f64,
     /// Newton iterations it took.
     pub iterations: usize,
+    /// The method's own solution there, when a generic method of crate `bvp` corrected it
+    /// (`None` on the rod's own shooter).
+    pub raw: Option<Solution>,
 }
 
 impl ArcPoint {
@@ -67,6 +71,7 @@ impl ArcPoint {
             r_lam: c.r_lam.clone(),
             residual: c.residual,
             iterations: c.iterations,
+            raw: None,
         }
     }
     /// The unit tangent, oriented along `along` (or with `dλ > 0` when `along` is `None`).
@@ -155,6 +160,7 @@ pub(crate) fn correct<C: Curve + ?Sized>(
                     r_lam,
                     residual: rn,
                     iterations: it,
+                    raw: None,
                 });
             }
             // a corrector that does not contract is off the curve: the caller shortens the step
@@ -188,6 +194,34 @@ pub(crate) fn correct<C: Curve + ?Sized>(
         }
     }
     Err(ShotFailure::MeshLimit { steps: MAX_STEPS })
+}
+
+/// What a pseudo-arclength path corrects on: the point of a curve `R(u, λ) = 0` on the
+/// hyperplane `normal·(v − pred) = 0` of `v = (u, λ)`, from the prediction `pred` next to the
+/// converged point `near` (a generic method starts its solve from `near`'s solution).
+pub(crate) trait OnPlane {
+    /// The corrected point.
+    fn on_plane(
+        &mut self,
+        near: &ArcPoint,
+        pred: &DVector<f64>,
+        normal: &DVector<f64>,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<ArcPoint, ShotFailure>;
+}
+
+impl<C: Curve + ?Sized> OnPlane for C {
+    fn on_plane(
+        &mut self,
+        _near: &ArcPoint,
+        pred: &DVector<f64>,
+        normal: &DVector<f64>,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<ArcPoint, ShotFailure> {
+        correct(self, pred, normal, tol, max_iter)
+    }
 }
 
 /// The member at `λ = lam` from the prediction `u`.
@@ -257,19 +291,21 @@ impl Arc {
 
     /// One accepted step along the curve (the step size shrinks on failures and grows after easy
     /// steps); returns the previous point and its tangent.
-    pub fn step<C: Curve + ?Sized>(
+    pub fn step<C: OnPlane + ?Sized>(
         &mut self,
         cv: &mut C,
     ) -> Result<(ArcPoint, DVector<f64>), ShotFailure> {
         loop {
             let ds = self.steps.ds;
             let pred = &self.last.v + &self.tau * ds;
-            let attempt = correct(cv, &pred, &self.tau, self.tol, ARC_ITER).and_then(|p| {
-                let t = p
-                    .tangent(Some(&self.tau))
-                    .ok_or(ShotFailure::Singular { iteration: 0 })?;
-                Ok((p, t))
-            });
+            let attempt = cv
+                .on_plane(&self.last, &pred, &self.tau, self.tol, ARC_ITER)
+                .and_then(|p| {
+                    let t = p
+                        .tangent(Some(&self.tau))
+                        .ok_or(ShotFailure::Singular { iteration: 0 })?;
+                    Ok((p, t))
+                });
             match attempt {
                 // the tangent turned by less than ~25° and the corrector moved less than a third
                 // of the step: the same branch, resolved
@@ -304,7 +340,7 @@ impl Arc {
 
 /// The point between `a` (tangent `ta`) and `b` at arclength `sigma` along `ta` from `a`
 /// (`0 ≤ sigma ≤ ta·(b − a)`), predicted linearly between them.
-pub(crate) fn between<C: Curve + ?Sized>(
+pub(crate) fn between<C: OnPlane + ?Sized>(
     cv: &mut C,
     a: &ArcPoint,
     ta: &DVector<f64>,
@@ -317,7 +353,7 @@ pub(crate) fn between<C: Curve + ?Sized>(
     let pred = &a.v + (&b.v - &a.v) * w;
     // the hyperplane ta·(v − a) = sigma through the prediction
     let shifted = &pred + ta * (sigma - ta.dot(&(&pred - &a.v)));
-    correct(cv, &shifted, ta, tol, 2 * ARC_ITER)
+    cv.on_plane(a, &shifted, ta, tol, 2 * ARC_ITER)
 }
 
 /// Why [`follow_to`] did not reach its member.

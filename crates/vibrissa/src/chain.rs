@@ -174,6 +174,17 @@ impl ContactSet {
     pub fn tip(&self) -> bool {
         self.contacts.last().is_some_and(|c| c.tip)
     }
+    /// Whether the tip alone touches a surface (the paper's tip-only contact state, label `tip`).
+    pub fn tip_only(&self) -> bool {
+        matches!(
+            self.contacts[..],
+            [Contact {
+                tip: true,
+                geom: Geom::Line { .. } | Geom::Slope { .. } | Geom::Curve { .. },
+                ..
+            }]
+        )
+    }
     /// The label of the state: `tip`, `side`, `tip+side`, `point`, … in order along the rod.
     pub fn label(&self) -> String {
         if self.contacts.is_empty() {
@@ -537,6 +548,33 @@ impl<P: Profile> Chain<P> {
         x.iter()
             .all(|v| v.is_finite())
             .then(|| x.iter().copied().collect())
+    }
+
+    /// `E = ∫ ½ b m² ds + ½ c m(0)²` of the rod at `(u, λ)` on the chain's own shooter (the unloaded
+    /// rest beyond the last contact has `m ≡ 0`).
+    pub fn elastic_energy(&mut self, u: &[f64], lam: f64) -> Option<f64> {
+        for _ in 0..32 {
+            let e = self.eval(u, lam, false).ok()?;
+            if e.err <= 1.0 {
+                break;
+            }
+            if !self.refine() {
+                return None;
+            }
+        }
+        let nseg = self.set.contacts.len().max(1);
+        let mut total = 0.5 * self.sh.compliance * u[0] * u[0];
+        for k in 0..nseg {
+            let (ps, _, _) = self.sh.path(k);
+            let ps = ps.to_vec();
+            for w in ps.windows(2) {
+                total += crate::surface::gauss10(w[0], w[1], |s| {
+                    let m = self.sh.state_at(k, s)[3];
+                    0.5 * self.sh.profile.b(s) * m * m
+                });
+            }
+        }
+        total.is_finite().then_some(total)
     }
 
     /// Refines the meshes of the loaded segments whose last shot was over tolerance.

@@ -25,15 +25,17 @@
 
 use crate::chain::{Chain, ContactSet, Family, Mode};
 use crate::config::SolverConfig;
-use crate::generic::GenericStepper;
-use crate::march::{march, scan_point, Pt, Spec, Stepper};
+use crate::engine::{Begin, FirstPoint};
+use crate::events::Crossing;
+use crate::march::{march, Spec};
 use crate::profile::{Profile, Uniform};
+use crate::record::scan_point;
 use crate::report::{ContactLabel, ContactModel, Event, StopReason};
 use crate::shape::{shape_from, ShapePoint};
 use crate::solve::Method;
-use crate::stepper::OwnStepper;
+use crate::stepper::{Pt, Stepper};
 use crate::surface::{gauss10, Meter, Slide};
-use crate::watch::{Crossing, Env};
+use crate::watch::Env;
 use crate::{Rod, Surface, VibrissaError};
 use serde::Serialize;
 use std::fmt;
@@ -346,71 +348,6 @@ impl fmt::Display for DragResult {
     }
 }
 
-/// A stepper the drag can move between its phases.
-trait DragStepper: Stepper {
-    /// Sets the family and the march's view for the next phase.
-    fn phase(&mut self, family: Family, env: &Env);
-    /// The elastic energy of the point at `(u, λ)`.
-    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64>;
-    /// The first point, at `λ`, from the unknowns `u`.
-    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String>;
-}
-
-impl<P: Profile> DragStepper for OwnStepper<P> {
-    fn phase(&mut self, family: Family, env: &Env) {
-        self.chain.family = family;
-        self.env = env.clone();
-    }
-    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64> {
-        elastic_energy(&mut self.chain, u, lam)
-    }
-    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String> {
-        self.correct_from(lam, u, None, true)
-            .map_err(|e| e.to_string())
-    }
-}
-
-impl<P: Profile> DragStepper for GenericStepper<P> {
-    fn phase(&mut self, family: Family, env: &Env) {
-        self.bvp.family = family;
-        self.chain.family = family;
-        self.env = env.clone();
-    }
-    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64> {
-        elastic_energy(&mut self.chain, u, lam)
-    }
-    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String> {
-        GenericStepper::first(self, lam, u)
-    }
-}
-
-/// `E = ∫ ½ b m² ds + ½ c m(0)²` of the rod at `(u, λ)` on the chain's own shooter (the unloaded
-/// rest beyond the last contact has `m ≡ 0`).
-pub(crate) fn elastic_energy<P: Profile>(chain: &mut Chain<P>, u: &[f64], lam: f64) -> Option<f64> {
-    for _ in 0..32 {
-        let e = chain.eval(u, lam, false).ok()?;
-        if e.err <= 1.0 {
-            break;
-        }
-        if !chain.refine() {
-            return None;
-        }
-    }
-    let nseg = chain.set.contacts.len().max(1);
-    let mut total = 0.5 * chain.sh.compliance * u[0] * u[0];
-    for k in 0..nseg {
-        let (ps, _, _) = chain.sh.path(k);
-        let ps = ps.to_vec();
-        for w in ps.windows(2) {
-            total += gauss10(w[0], w[1], |s| {
-                let m = chain.sh.state_at(k, s)[3];
-                0.5 * chain.sh.profile.b(s) * m * m
-            });
-        }
-    }
-    total.is_finite().then_some(total)
-}
-
 /// The coefficients of a drag: uniform, or the surface's texture.
 #[derive(Clone, Copy, Debug)]
 struct Friction {
@@ -479,44 +416,21 @@ fn drag_with<P: Profile>(
             }
         })
         .collect();
-    let own = || -> Box<dyn DragStepper> {
-        let mut sh = start.sh.clone();
-        sh.stats = Default::default();
-        Box::new(OwnStepper {
-            chain: Chain::new(sh, set.clone(), Family::Drag),
-            env: base.clone(),
-        })
-    };
-    let start_failed = |reason: String| VibrissaError::NoConvergence {
+    let mut sh = start.sh.clone();
+    sh.stats = Default::default();
+    let begun = Begin {
+        chain: Chain::new(sh, set, Family::Drag),
+        env: base.clone(),
+        solver: &opts.solver,
+        lam: 0.0,
+        u: start.pt.u.clone(),
+        first: FirstPoint::Correct,
+        run: "drag",
+        hand_over: true,
         what: "drag start (correction at d = 0)".into(),
-        reason,
-    };
-    let mut handover = None;
-    let (mut st, p) = if opts.solver.own_shooter_tol().is_some() {
-        let mut st = own();
-        let p = st.first(0.0, &start.pt.u).map_err(start_failed)?;
-        (st, p)
-    } else {
-        let mut g = GenericStepper::new(
-            profile.clone(),
-            rod.support_compliance(),
-            set.clone(),
-            Family::Drag,
-            base.clone(),
-            &opts.solver,
-        )?;
-        match g.first(0.0, &start.pt.u) {
-            Ok(p) => (Box::new(g) as Box<dyn DragStepper>, p),
-            // as the scan's start (crate::scan): a trapped start the method cannot take
-            Err(_) if g.singular && crate::watch::traps(&set) => {
-                handover = Some(crate::scan::trapped_start(opts.solver.method, &set, "drag"));
-                let mut st = own();
-                let p = st.first(0.0, &start.pt.u).map_err(start_failed)?;
-                (st, p)
-            }
-            Err(e) => return Err(start_failed(e)),
-        }
-    };
+    }
+    .begin()?;
+    let (mut st, p, handover) = (begun.stepper, begun.p0, begun.handover);
     let mut run = DragRun {
         st: st.as_mut(),
         profile: &profile,
@@ -546,7 +460,7 @@ fn drag_with<P: Profile>(
 }
 
 struct DragRun<'a, P: Profile> {
-    st: &'a mut dyn DragStepper,
+    st: &'a mut dyn Stepper,
     profile: &'a P,
     general: &'a crate::profile::General,
     opts: &'a DragOptions,

@@ -12,16 +12,19 @@
 //! same problem; tangents and the fold test come from one shot of the own shooter at the
 //! method's unknowns.
 
+use crate::arclength::ArcPoint;
 use crate::chain::{conditions, Chain, ContactSet, Family};
 use crate::config::{Engine, SolverConfig};
-use crate::march::{interpolate, Passed, Pt, StepError, Stepper};
+use crate::control::{corrector_tol, GENERIC_H_MAX};
 use crate::profile::Profile;
+use crate::rodsolve::ShotFailure;
 use crate::shooter::{rhs, Shooter};
-use crate::stepper::same_branch;
+use crate::stepper::{interpolate, same_branch, Pt, StepError, Stepper};
 use crate::watch::{watch, Env, RodView};
 use crate::VibrissaError;
-use bvp::continuation::{Continuation, ContinuationOptions, FoldKind, Member, ParamBvp};
+use bvp::continuation::{Arclength, Member, ParamBvp};
 use bvp::{BvpSolver, Dims, Guess, Solution, Stats};
+use nalgebra::DVector;
 use std::f64::consts::FRAC_PI_2;
 
 /// The contact chain in family `family` as a `bvp` problem with parameter `λ`.
@@ -249,6 +252,9 @@ impl<P: Profile> ParamBvp for ChainBvp<P> {
     }
 }
 
+/// `∂R/∂u` and `∂R/∂λ` of the own shooter.
+type Jacobians = (nalgebra::DMatrix<f64>, nalgebra::DVector<f64>);
+
 /// The stepper on a generic method of crate `bvp`.
 pub(crate) struct GenericStepper<P: Profile> {
     pub bvp: ChainBvp<P>,
@@ -259,8 +265,6 @@ pub(crate) struct GenericStepper<P: Profile> {
     pub chain: Chain<P>,
     /// The method's last solution.
     last: Option<Solution>,
-    /// Whether the method's last failure was a singular Newton matrix.
-    pub singular: bool,
 }
 
 // the solver's own error, passed through unboxed as crate `bvp` returns it
@@ -291,40 +295,27 @@ impl<P: Profile> GenericStepper<P> {
                 family,
             ),
             last: None,
-            singular: false,
         })
     }
 
-    fn solve(&mut self, lam: f64, guess: &Guess) -> Result<Solution, bvp::BvpError> {
-        let r = self.engine.solve(&Member::new(&self.bvp, lam), guess);
-        match &r {
-            Ok(s) => self.stats.accumulate(&s.stats),
-            Err(e) => {
-                self.singular = matches!(e, bvp::BvpError::SingularJacobian { .. });
-                if let Some(st) = e.stats() {
-                    self.stats.accumulate(st);
-                }
-            }
-        }
-        r
+    /// The method's solve at `λ` from `guess`.
+    fn solve_at(&mut self, lam: f64, guess: &Guess) -> Result<Solution, StepError> {
+        let problem = Member::new(&self.bvp, lam);
+        solve_counted(&mut self.engine, &mut self.stats, &problem, guess).map_err(StepError::Method)
     }
 
     /// The first point: the method's solve at `λ` from the shooter's rod at the unknowns `u`.
-    pub fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, String> {
+    fn start_at(&mut self, lam: f64, u: &[f64]) -> Result<Pt, StepError> {
         // the own shooter's rod as the guess
-        let e = self
-            .chain
-            .eval(u, lam, false)
-            .map_err(|e| format!("{e:?}"))?;
-        let _ = e;
+        self.chain.eval(u, lam, false).map_err(StepError::Guess)?;
         let guess = self.stacked_guess(u);
-        let sol = self.solve(lam, &guess).map_err(|e| e.to_string())?;
+        let sol = self.solve_at(lam, &guess)?;
         self.point(lam, sol)
     }
 
     /// The method's own last solution when it is one segment (the tip alone touches): the rod on
     /// `[0, 1]` with `params = [f, α]` of the contact force.
-    pub fn own_solution(&self) -> Option<Solution> {
+    fn own_solution(&self) -> Option<Solution> {
         let sol = self.last.as_ref()?;
         if sol.n != 4 {
             return None;
@@ -360,14 +351,12 @@ impl<P: Profile> GenericStepper<P> {
         }
     }
 
-    /// The branch point of the method's solution `sol` at `λ`: the whole rod (the method's
-    /// segments, then the unloaded rest by the own shooter), the tangent and `det J` from one
-    /// shot with sensitivities.
-    fn point(&mut self, lam: f64, sol: Solution) -> Result<Pt, String> {
-        let u = self.bvp.u_of(sol.left()[3], &sol.params);
+    /// `∂R/∂u` and `∂R/∂λ` of the own shooter at the method's unknowns `u` (its meshes refined
+    /// until the shot is within tolerance, at most 8 times); `None` where they are not known.
+    fn own_jacobians(&mut self, u: &[f64], lam: f64) -> Result<Option<Jacobians>, StepError> {
         let mut ev = None;
         for _ in 0..8 {
-            match self.chain.eval(&u, lam, true) {
+            match self.chain.eval(u, lam, true) {
                 Ok(e) if e.err > 1.0 => {
                     if !self.chain.refine() {
                         break;
@@ -377,10 +366,18 @@ impl<P: Profile> GenericStepper<P> {
                     ev = Some(e);
                     break;
                 }
-                Err(e) => return Err(format!("the rod at the method's unknowns: {e:?}")),
+                Err(e) => return Err(StepError::Rod(e)),
             }
         }
-        let (du, det) = match ev.and_then(|e| e.jac.zip(e.r_lam)) {
+        Ok(ev.and_then(|e| e.jac.zip(e.r_lam)))
+    }
+
+    /// The branch point of the method's solution `sol` at `λ`: the whole rod (the method's
+    /// segments, then the unloaded rest by the own shooter), the tangent and `det J` from one
+    /// shot with sensitivities.
+    fn point(&mut self, lam: f64, sol: Solution) -> Result<Pt, StepError> {
+        let u = self.bvp.u_of(sol.left()[3], &sol.params);
+        let (du, det) = match self.own_jacobians(&u, lam)? {
             Some((j, l)) => {
                 let det = j.determinant();
                 let du = j
@@ -531,6 +528,77 @@ impl<P: Profile> GenericStepper<P> {
     }
 }
 
+/// `engine`'s solve of `problem` from `guess`, its work added to `stats` (a failed solve's too).
+fn solve_counted<B: bvp::Bvp + ?Sized>(
+    engine: &mut Engine,
+    stats: &mut Stats,
+    problem: &B,
+    guess: &Guess,
+) -> Result<Solution, Box<bvp::BvpError>> {
+    let r = engine.solve(problem, guess);
+    match &r {
+        Ok(s) => stats.accumulate(&s.stats),
+        Err(e) => {
+            if let Some(st) = e.stats() {
+                stats.accumulate(st);
+            }
+        }
+    }
+    r.map_err(Box::new)
+}
+
+impl<P: Profile> GenericStepper<P> {
+    /// The pseudo-arclength corrector as the method's own problem: the chain's conditions plus
+    /// `normal·(v − pred) = 0` with `λ` an unknown parameter (crate `bvp`'s [`Arclength`], in its
+    /// coordinates `(z(a), z(b), p, λ)`, where `v = (m(0), p, λ)` and `m(0) = z_4(a)`), solved from
+    /// the method's solution `base`; the point with the own shooter's Jacobians at its unknowns.
+    fn solve_on_plane(
+        &mut self,
+        base: &Solution,
+        pred: &DVector<f64>,
+        normal: &DVector<f64>,
+    ) -> Result<ArcPoint, ShotFailure> {
+        let Dims { n, k } = self.bvp.dims();
+        let m = 2 * n + k + 1;
+        let (mut tangent, mut anchor) = (vec![0.0; m], vec![0.0; m]);
+        // v = (m(0), p, λ) in the coordinates (z(a), z(b), p, λ): m(0) is z_4(a)
+        let slots = std::iter::once(3).chain((0..=k).map(|j| 2 * n + j));
+        for (i, slot) in slots.enumerate() {
+            tangent[slot] = normal[i];
+            anchor[slot] = pred[i];
+        }
+        let method = |e: bvp::BvpError| ShotFailure::Method(Box::new(e));
+        let problem = Arclength::new(&self.bvp, tangent, anchor, 1.0).map_err(method)?;
+        let guess = Guess {
+            n,
+            mesh: base.mesh.clone(),
+            z: base.z.clone(),
+            dz: None,
+            params: pred.iter().skip(1).copied().collect(),
+        };
+        let mut raw = solve_counted(&mut self.engine, &mut self.stats, &problem, &guess)
+            .map_err(ShotFailure::Method)?;
+        let lam = raw.params[k];
+        raw.params.truncate(k);
+        let u = self.bvp.u_of(raw.left()[3], &raw.params);
+        let (jac, r_lam) = self
+            .own_jacobians(&u, lam)
+            .ok()
+            .flatten()
+            .ok_or(ShotFailure::NoRod)?;
+        let mut v = DVector::from_vec(u);
+        v = v.push(lam);
+        Ok(ArcPoint {
+            v,
+            jac,
+            r_lam,
+            residual: raw.stats.residual,
+            iterations: raw.stats.newton_iters,
+            raw: Some(raw),
+        })
+    }
+}
+
 impl<P: Profile> Stepper for GenericStepper<P> {
     fn set(&self) -> &ContactSet {
         &self.bvp.set
@@ -538,100 +606,27 @@ impl<P: Profile> Stepper for GenericStepper<P> {
 
     fn correct(&mut self, lam: f64, hist: &[Pt], _fresh: bool) -> Result<Pt, StepError> {
         let (ug, _) = interpolate(hist, lam);
-        let g = Self::guess_at(hist, lam, ug[1..].to_vec())
-            .ok_or_else(|| StepError::Failed("no previous solution".into()))?;
-        let sol = self.solve(lam, &g).map_err(|e| e.to_string())?;
+        let g = Self::guess_at(hist, lam, ug[1..].to_vec()).ok_or(StepError::NoPrevious)?;
+        let sol = self.solve_at(lam, &g)?;
         let p = self.point(lam, sol)?;
         same_branch(&hist[hist.len() - 1], &ug, &p, self.chain.sh.tol)?;
         Ok(p)
     }
 
-    fn pass_fold(&mut self, hist: &[Pt], target: f64, lam_end: f64) -> Passed {
-        let last = &hist[hist.len() - 1];
-        let lam0 = last.lam;
-        let Some(start) = last.raw.clone() else {
-            return Passed::Failed("no solution at the last point".into());
-        };
-        let copts = ContinuationOptions {
-            ds: 1e-3,
-            ds_min: 1e-9,
-            ds_max: 0.05,
-            max_steps: 2000,
-            lambda_min: lam0 - 0.25,
-            lambda_max: lam_end,
-            detect_folds: true,
-            fold_tol: 1e-10,
-            history: 4,
-            ..ContinuationOptions::default()
-        };
-        let mut stats = Stats::default();
-        let mut beyond = false;
-        let mut path = Vec::new();
-        let mut fold = None;
-        let result = (|| {
-            let mut cont = match Continuation::new(&self.bvp, &mut self.engine, start, lam0, copts)
-            {
-                Ok(c) => c,
-                Err(e) => return Passed::Failed(e.to_string()),
-            };
-            let _ = cont.next(); // the start, already converged
-            let mut prev = lam0;
-            for item in cont.by_ref() {
-                let bp = match item {
-                    Ok(bp) => bp,
-                    Err(e) => return Passed::Failed(format!("pseudo-arclength: {e}")),
-                };
-                stats.accumulate(&bp.stats);
-                if let Some(f) = bp.fold {
-                    if f.kind == FoldKind::Max {
-                        fold = Some((f.lambda, f.solution));
-                        return Passed::Failed(String::new());
-                    }
-                }
-                if bp.lambda < prev {
-                    return Passed::Fold(prev, None);
-                }
-                prev = bp.lambda;
-                path.push((bp.lambda, bp.solution));
-                if bp.lambda > target || bp.on_bound {
-                    beyond = true;
-                    return Passed::Failed(String::new());
-                }
-            }
-            Passed::Failed(format!(
-                "pseudo-arclength continuation did not pass {target} (last {prev})"
-            ))
-        })();
-        self.stats.accumulate(&stats);
-        if let Some((l, sol)) = fold {
-            let pt = self.point(l, sol).ok().map(|mut q| {
-                q.du = None;
-                q
-            });
-            return Passed::Fold(l, pt.map(Box::new));
-        }
-        if !beyond {
-            return result;
-        }
-        let k = path.len();
-        let mut pts = Vec::with_capacity(k);
-        for (i, (l, sol)) in path.into_iter().enumerate() {
-            // (a point without a tangent cannot be interpolated through: left out, unless it is
-            // the one beyond the target)
-            match self.point(l, sol) {
-                Ok(p) if p.du.is_some() || i + 1 == k => pts.push(p),
-                Ok(_) => {}
-                Err(e) if i + 1 == k => return Passed::Failed(e),
-                Err(_) => {}
-            }
-        }
-        Passed::Beyond(pts)
+    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, StepError> {
+        self.start_at(lam, u)
     }
 
     fn switch(&mut self, set: ContactSet, lam: f64, u: Vec<f64>) -> Result<Pt, StepError> {
         self.bvp.set = set.clone();
         self.chain.set = set;
-        Ok(self.first(lam, &u)?)
+        self.start_at(lam, &u)
+    }
+
+    fn phase(&mut self, family: Family, env: &Env) {
+        self.bvp.family = family;
+        self.chain.family = family;
+        self.env = env.clone();
     }
 
     fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>> {
@@ -642,6 +637,10 @@ impl<P: Profile> Stepper for GenericStepper<P> {
         self.chain.singular_to_precision(u, lam)
     }
 
+    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64> {
+        self.chain.elastic_energy(u, lam)
+    }
+
     fn stats(&self) -> Stats {
         let mut s = self.stats.clone();
         s.accumulate(&self.chain.sh.stats);
@@ -649,10 +648,54 @@ impl<P: Profile> Stepper for GenericStepper<P> {
     }
 
     fn h_max(&self) -> f64 {
-        0.05
+        GENERIC_H_MAX
     }
 
     fn foot_x(&self, lam: f64) -> f64 {
         self.bvp.family.pose(lam).0.xf
+    }
+
+    fn method_solution(&self) -> Option<Solution> {
+        self.own_solution()
+    }
+
+    fn corrector_tol(&self) -> f64 {
+        corrector_tol(self.chain.sh.tol)
+    }
+
+    fn arc_start(&mut self, last: &Pt, _tol: f64) -> Result<ArcPoint, ShotFailure> {
+        let raw = last.raw.clone().ok_or(ShotFailure::NoRod)?;
+        let (jac, r_lam) = self
+            .own_jacobians(&last.u, last.lam)
+            .ok()
+            .flatten()
+            .ok_or(ShotFailure::NoRod)?;
+        let mut v = DVector::from_vec(last.u.clone());
+        v = v.push(last.lam);
+        Ok(ArcPoint {
+            v,
+            jac,
+            r_lam,
+            residual: raw.stats.residual,
+            iterations: last.iters,
+            raw: Some(raw),
+        })
+    }
+
+    fn on_plane(
+        &mut self,
+        near: &ArcPoint,
+        pred: &DVector<f64>,
+        normal: &DVector<f64>,
+        _tol: f64,
+        _max_iter: usize,
+    ) -> Result<ArcPoint, ShotFailure> {
+        let base = near.raw.as_ref().ok_or(ShotFailure::NoRod)?;
+        self.solve_on_plane(base, pred, normal)
+    }
+
+    fn arc_point(&mut self, a: &ArcPoint) -> Result<Pt, StepError> {
+        let raw = a.raw.clone().ok_or(StepError::NoPrevious)?;
+        self.point(a.lam(), raw)
     }
 }

@@ -6,11 +6,12 @@
 //! a straight rod vertically onto a corrugation folds: the frictionless tip snaps down a slope.)
 
 use crate::chain::{Chain, Contact, ContactSet, Family, Geom, Mode};
-use crate::march::{march, Spec, Stepper};
+use crate::march::{march, Spec};
+use crate::own::OwnStepper;
 use crate::profile::Profile;
 use crate::report::StopReason;
 use crate::start::Pressed;
-use crate::stepper::OwnStepper;
+use crate::stepper::Stepper;
 use crate::surface::{Ground, Height};
 use crate::watch::Env;
 use crate::{Rod, Surface, VibrissaError};

@@ -60,23 +60,30 @@
 #![warn(missing_docs)]
 
 // Modules import downward only (tests/layering.rs checks it): kind, parts, search → profile,
-// error → config, rod → scene; equations → shooter → rodsolve → arclength; sampling → shape →
-// solve → report → march → stepper → analytic → scan.
+// error → config, rod → scene; equations → shooter → rodsolve → arclength → chain; sampling →
+// shape → report → watch → stepper (the step contract) → events, fold, record → own, generic →
+// march (the driver) → engine (the one way in) → start, ground → scan, drag, peg, solve.
 mod analytic;
 mod arclength;
 mod chain;
 mod config;
+mod control;
 pub mod drag;
+mod engine;
 pub mod equations;
 mod error;
+mod events;
 pub mod fit;
+mod fold;
 mod generic;
 mod ground;
 mod kind;
 mod march;
+mod own;
 mod parts;
 pub mod peg;
 pub mod profile;
+mod record;
 pub mod report;
 mod rod;
 mod rodsolve;

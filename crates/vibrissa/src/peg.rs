@@ -14,7 +14,8 @@
 
 use crate::chain::{Chain, Contact, ContactSet, Family, Geom, Mode};
 use crate::config::SolverConfig;
-use crate::generic::GenericStepper;
+use crate::control::corrector_tol;
+use crate::engine::{Begin, FirstPoint};
 use crate::march::{march, Spec};
 use crate::profile::{Profile, Uniform};
 use crate::report::{Event, StopReason};
@@ -22,7 +23,6 @@ use crate::rodsolve::solve_damped;
 use crate::search;
 use crate::shape::ShapePoint;
 use crate::shooter::Shooter;
-use crate::stepper::{corrector_tol, OwnStepper};
 use crate::watch::Env;
 use crate::{Rod, VibrissaError};
 use bvp::Stats;
@@ -175,7 +175,8 @@ fn first_touch<P: Profile>(
         if (dist(za) - rp) * (dist(zb) - rp) > 0.0 {
             continue;
         }
-        let mut f = |s: f64| -> Result<f64, String> { Ok(dist(&sh.state_at(0, s)) - rp) };
+        let mut f =
+            |s: f64| -> Result<f64, std::convert::Infallible> { Ok(dist(&sh.state_at(0, s)) - rp) };
         let Ok(s) = search::root(&mut f, ps[i], ps[i + 1], 1e-15) else {
             continue;
         };
@@ -356,42 +357,31 @@ fn whisk_with<P: Profile>(
         // contact point moves along the rod
         chain.set.contacts[0].mode = stick_or_slide(&mut chain, theta_t, &u0, s_t, mu0);
     }
-    let set = chain.set.clone();
     let cv = solve_damped(&mut chain, theta_t, &u0, ntol, 30).map_err(|e| {
         VibrissaError::NoConvergence {
             what: format!("the rod at first touch (theta = {theta_t})"),
             reason: e.to_string(),
         }
     })?;
-    let out = if opts.solver.own_shooter_tol().is_some() {
-        let mut st = OwnStepper {
-            chain,
-            env: env.clone(),
-        };
-        let p0 = st
-            .point(theta_t, cv)
-            .map_err(|e| VibrissaError::NoConvergence {
-                what: "the rod at first touch".into(),
-                reason: e.to_string(),
-            })?;
-        march(&mut st, &spec, &profile, p0, Stats::default())
-    } else {
-        let mut st = GenericStepper::new(
-            profile.clone(),
-            c,
-            set,
-            Family::Turn,
-            env.clone(),
-            &opts.solver,
-        )?;
-        let p0 = st
-            .first(theta_t, &cv.u)
-            .map_err(|e| VibrissaError::NoConvergence {
-                what: "the rod at first touch".into(),
-                reason: e,
-            })?;
-        march(&mut st, &spec, &profile, p0, Stats::default())
-    };
+    let mut begun = Begin {
+        chain,
+        env: env.clone(),
+        solver: &opts.solver,
+        lam: theta_t,
+        u: cv.u.clone(),
+        first: FirstPoint::Converged(cv),
+        run: "whisk",
+        hand_over: false,
+        what: "the rod at first touch".into(),
+    }
+    .begin()?;
+    let out = march(
+        &mut *begun.stepper,
+        &spec,
+        &profile,
+        begun.p0,
+        Stats::default(),
+    );
     let points = out
         .points
         .iter()
@@ -540,7 +530,7 @@ fn locate_with<P: Profile>(
         if ma * mb > 0.0 || ma == 0.0 && i > 0 {
             continue;
         }
-        let mut f = |s: f64| -> Result<f64, String> { Ok(sh.state_at(0, s)[3]) };
+        let mut f = |s: f64| -> Result<f64, std::convert::Infallible> { Ok(sh.state_at(0, s)[3]) };
         let Ok(s) = search::root(&mut f, ps[i], ps[i + 1], 1e-15) else {
             continue;
         };

@@ -7,7 +7,7 @@
 use crate::parts::{Precurvature, Stiffness};
 
 /// Reciprocal bending stiffness `b(s)` and pre-curvature `κ0(s)` of a rod.
-pub trait Profile: Clone + Send + Sync {
+pub trait Profile: Clone + Send + Sync + 'static {
     /// True when `b ≡ 1` and `κ0 ≡ 0` (lets the compiler drop the profile entirely).
     const UNIFORM: bool;
     /// `b(s)`.

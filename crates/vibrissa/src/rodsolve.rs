@@ -17,6 +17,10 @@ pub(crate) enum ShotFailure {
     NoConvergence { iteration: usize, residual: f64 },
     /// The mesh needed more than [`MAX_STEPS`] steps.
     MeshLimit { steps: usize },
+    /// A generic method's solve of the same problem failed (the fold passage on crate `bvp`).
+    Method(Box<bvp::BvpError>),
+    /// The own shooter has no rod, or no Jacobian, at a generic method's unknowns.
+    NoRod,
 }
 
 impl std::fmt::Display for ShotFailure {
@@ -34,6 +38,10 @@ impl std::fmt::Display for ShotFailure {
             ),
             ShotFailure::MeshLimit { steps } => {
                 write!(f, "the integration needs more than {steps} steps")
+            }
+            ShotFailure::Method(e) => write!(f, "{e}"),
+            ShotFailure::NoRod => {
+                f.write_str("the own shooter has no rod at the method's unknowns")
             }
         }
     }

@@ -154,7 +154,7 @@ impl<'a> Sampler<'a> {
             return s_of((a.0, t));
         }
         let (sa, sb) = (s_of(a), s_of(b));
-        let mut g = |s: f64| -> Result<f64, String> { Ok(self.at(s, a.0).0) };
+        let mut g = |s: f64| -> Result<f64, std::convert::Infallible> { Ok(self.at(s, a.0).0) };
         // the ends bracket the root: Brent cannot fail here, take the midpoint if it does
         crate::search::root(&mut g, sa, sb, 1e-14).unwrap_or(0.5 * (sa + sb))
     }
@@ -188,7 +188,9 @@ impl<'a> Sampler<'a> {
                     count += 1;
                     if first.is_none() {
                         let hint = self.at(sp, 0).1;
-                        let mut g = |c: f64| -> Result<f64, String> { Ok(val(c, hint).0) };
+                        let mut g = |c: f64| -> Result<f64, std::convert::Infallible> {
+                            Ok(val(c, hint).0)
+                        };
                         // the samples bracket the root: Brent cannot fail here, bisect if it does
                         first = Some(
                             crate::search::root(&mut g, sp, s, 1e-14).unwrap_or(0.5 * (sp + s)),

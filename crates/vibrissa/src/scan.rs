@@ -2,14 +2,11 @@
 //! choice of stepper; the march itself is in module `march`.
 
 use crate::chain::{Chain, Family};
-use crate::generic::GenericStepper;
-use crate::march::{march, Spec};
+use crate::engine::{Begin, FirstPoint};
+use crate::march::Spec;
 use crate::profile::{Profile, Uniform};
-use crate::report::{
-    ContactModel, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult, StopReason,
-};
+use crate::report::{ContactModel, Inference, RangeEnd, ScanOptions, ScanPoint, ScanResult};
 use crate::solve::Method;
-use crate::stepper::OwnStepper;
 use crate::{Rod, Surface, VibrissaError};
 
 /// Runs the stiction scan. Errors only for invalid input or when it cannot even start;
@@ -127,75 +124,20 @@ fn scan_with<P: Profile>(
         check_start: true,
         slide: false,
     };
-    let start_failed = |e: String| VibrissaError::NoConvergence {
+    let mut sh = start.sh.clone();
+    sh.stats = Default::default();
+    let begin = Begin {
+        chain: Chain::new(sh, set, Family::Drag),
+        env: env.clone(),
+        solver: &opts.solver,
+        lam: 0.0,
+        u: start.pt.u.clone(),
+        first: FirstPoint::Correct,
+        run: "scan",
+        hand_over: true,
         what: "scan start (correction at d = 0)".into(),
-        reason: e,
     };
-    let c = rod.support_compliance();
-    let mut handover = None;
-    let generic = 'generic: {
-        if opts.solver.own_shooter_tol().is_some() {
-            break 'generic None;
-        }
-        let mut st = GenericStepper::new(
-            profile.clone(),
-            c,
-            set.clone(),
-            Family::Drag,
-            env.clone(),
-            &opts.solver,
-        )?;
-        match st.first(0.0, &start.pt.u) {
-            Ok(p0) => {
-                let out = march(&mut st, &spec, &profile, p0, start.stats.clone());
-                // the same in the march: a solver failure in a state that traps the rod, where
-                // the method's corrections scatter along the nearly indeterminate pair
-                match (&out.stop, &out.last) {
-                    (StopReason::SolverFailure { d, message }, Some((set, _)))
-                        if crate::watch::traps(set) =>
-                    {
-                        let failure = format!(
-                            "{} failed at d = {d} in the state",
-                            opts.solver.method.name()
-                        );
-                        handover = Some(self::handover(
-                            &failure,
-                            set,
-                            &format!("{message}; "),
-                            "scan",
-                        ));
-                        None
-                    }
-                    _ => Some(out),
-                }
-            }
-            // A rod trapped between two contacts that do not slip: the tangential forces of the
-            // segment between them are nearly indeterminate (the inextensible segment only
-            // bends under them), and a method whose check finds its Newton matrix singular at
-            // its accuracy hands the scan to the rod's own shooter (docs/robustness.md).
-            Err(_) if st.singular && crate::watch::traps(&set) => {
-                handover = Some(trapped_start(opts.solver.method, &set, "scan"));
-                None
-            }
-            Err(e) => return Err(start_failed(e)),
-        }
-    };
-    let out = match generic {
-        Some(out) => out,
-        None => {
-            let mut sh = start.sh.clone();
-            sh.stats = Default::default();
-            let chain = Chain::new(sh, set, Family::Drag);
-            let mut st = OwnStepper {
-                chain,
-                env: env.clone(),
-            };
-            let p0 = st
-                .correct_from(0.0, &start.pt.u, None, true)
-                .map_err(|e| start_failed(e.to_string()))?;
-            march(&mut st, &spec, &profile, p0, start.stats.clone())
-        }
-    };
+    let (out, handover) = begin.march(&spec, &profile, &start.stats)?;
     let start_point = out
         .points
         .first()
@@ -221,31 +163,6 @@ fn scan_with<P: Profile>(
         shapes: out.shapes,
         handover,
     })
-}
-
-/// Why a `run` (scan, drag) ran on the rod's own shooter: the generic method's `failure` in the
-/// contact state `set`, which traps the rod, and its own message (`detail`, "" or "…; ").
-pub(crate) fn handover(
-    failure: &str,
-    set: &crate::chain::ContactSet,
-    detail: &str,
-    run: &str,
-) -> String {
-    format!(
-        "{failure} {}, which traps the rod between two contacts that do not slip (the tangential \
-         forces between them are nearly indeterminate): {detail}the {run} ran on the rod's own \
-         shooter",
-        set.label()
-    )
-}
-
-/// [`handover`] at a start whose Newton matrix `method` finds singular at its accuracy.
-pub(crate) fn trapped_start(method: Method, set: &crate::chain::ContactSet, run: &str) -> String {
-    let failure = format!(
-        "the Newton matrix of {} is singular at its accuracy in the start",
-        method.name()
-    );
-    handover(&failure, set, "", run)
 }
 
 /// Infers μ0 from the displacement `d0` at which the tip slipped: `μ0 = |μ(d0)|` for `d0` in

@@ -13,7 +13,7 @@ pub use crate::config::{Method, SolverConfig, StartKind, Target};
 use crate::arclength::{self, ArcPoint};
 use crate::chain::{Chain, Contact, ContactSet, Family, Geom, Mode, Pose};
 use crate::config::NEWTON_TOL_MAX;
-use crate::generic::GenericStepper;
+use crate::engine::{Begin, FirstPoint};
 use crate::profile::{Profile, Uniform};
 use crate::rodsolve::solve_damped;
 use crate::shape::{shape_from, shape_from_elastica, BranchChoice, Shape};
@@ -150,40 +150,44 @@ fn solve_with<P: Profile>(
             })?
         }
     };
-    let mut stats = chain.sh.stats.clone();
-    let sol = if cfg.own_shooter_tol().is_some() {
-        let mut sol = chain.path(&cv.u);
-        sol.stats = Stats {
-            nodes: sol.mesh.len(),
-            residual: cv.residual,
-            ..stats
-        };
-        sol
-    } else {
-        // the method's own solution of the same problem, from the shooter's rod
-        let env = Env {
-            line: None,
-            mu0: None,
-            compound: false,
-            target: None,
-            ground: Default::default(),
-        };
-        let mut g = GenericStepper::new(profile.clone(), c, set, Family::Fixed(pose), env, cfg)?;
-        let p = g
-            .first(0.0, &cv.u)
-            .map_err(|e| VibrissaError::NoConvergence {
-                what: context(),
-                reason: e,
-            })?;
-        stats.accumulate(&g.stats);
-        let mut sol = g.own_solution().unwrap_or(p.sol);
-        sol.stats = Stats {
+    let (residual, load) = (cv.residual, chain.sh.stats.clone());
+    let generic = cfg.own_shooter_tol().is_none();
+    // the method's own solution of the same problem, from the shooter's rod
+    let env = Env {
+        line: None,
+        mu0: None,
+        compound: false,
+        target: None,
+        ground: Default::default(),
+    };
+    let begun = Begin {
+        chain,
+        env,
+        solver: cfg,
+        lam: 0.0,
+        u: cv.u.clone(),
+        first: FirstPoint::Converged(cv),
+        run: "solve",
+        hand_over: false,
+        what: context(),
+    }
+    .begin()?;
+    let mut sol = begun.stepper.method_solution().unwrap_or(begun.p0.sol);
+    sol.stats = if generic {
+        let mut stats = load;
+        stats.accumulate(&begun.stepper.stats());
+        Stats {
             nodes: sol.mesh.len(),
             residual: sol.stats.residual,
             error_estimate: sol.stats.error_estimate,
             ..stats
-        };
-        sol
+        }
+    } else {
+        Stats {
+            nodes: sol.mesh.len(),
+            residual,
+            ..begun.stepper.stats()
+        }
     };
     let f = sol.params[0];
     let a = sol.params[1];

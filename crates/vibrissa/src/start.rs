@@ -16,13 +16,15 @@
 
 use crate::chain::{Chain, Contact, ContactSet, Family, Geom, Mode};
 use crate::config::StartKind;
-use crate::march::{march, MarchOut, Pt, Spec};
+use crate::control::corrector_tol;
+use crate::march::{march, MarchOut, Spec};
+use crate::own::OwnStepper;
 use crate::profile::{General, Profile};
 use crate::report::{RangeEnd, StopReason};
 use crate::rodsolve::solve_damped;
 use crate::search;
 use crate::shooter::Shooter;
-use crate::stepper::{corrector_tol, OwnStepper};
+use crate::stepper::Pt;
 use crate::watch::{Env, Goal};
 use crate::VibrissaError;
 use bvp::Stats;
@@ -93,7 +95,8 @@ fn rest_top<P: Profile>(sh: &mut Shooter<P>, beta: f64, tip_only: bool) -> (f64,
         let g = |z: &[f64]| (z[2] - beta).sin();
         let (za, zb) = (&pz[4 * i..4 * i + 4], &pz[4 * i + 4..4 * i + 8]);
         if g(za) > 0.0 && g(zb) <= 0.0 && (za[2] - beta).cos() > 0.0 {
-            let mut f = |s: f64| -> Result<f64, String> { Ok(g(&sh.state_at(0, s))) };
+            let mut f =
+                |s: f64| -> Result<f64, std::convert::Infallible> { Ok(g(&sh.state_at(0, s))) };
             if let Ok(s) = search::root(&mut f, ps[i], ps[i + 1], 1e-15) {
                 let z = sh.state_at(0, s);
                 if s < 1.0 && h(&z) > best.0 {
@@ -378,7 +381,7 @@ fn buckled_start<P: Profile>(
             reason: "the straight rod does not buckle under an axial tip load".into(),
         });
     }
-    let mut g = |f: f64| -> Result<f64, String> { Ok(straight_stiffness(sh, f)) };
+    let mut g = |f: f64| -> Result<f64, std::convert::Infallible> { Ok(straight_stiffness(sh, f)) };
     let f_cr = search::root(&mut g, lo, hi, 1e-14 * hi).map_err(|e| VibrissaError::NoStart {
         reason: format!("the buckling load: {e}"),
     })?;

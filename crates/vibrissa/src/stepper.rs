@@ -1,170 +1,202 @@
-//! The [`Stepper`]s of the march.
+//! The step contract of the marches: a [`Stepper`] predicts and corrects branch points of a
+//! contact chain in its family parameter `λ`; the driver loop (module `march`) owns the steps,
+//! the events and what is recorded.
 //!
-//! - [`OwnStepper`]: the rod's own shooter on the contact chain ([`crate::chain`]) for every
-//!   profile and contact set: quintic Hermite predictor through the last three points and their
-//!   exact tangents `u' = −J⁻¹ ∂R/∂λ`, chord Newton. A sign change of `det J` between neighbours
-//!   means the corrector crossed a fold: rejected, and passed or located by pseudo-arclength.
-//! - [`GenericStepper`] (module `generic`): any method of crate `bvp` (multiple shooting,
-//!   collocation) on the same chain, its points' tangents from the shooter.
+//! Two steppers fulfil it on the same chain: the rod's own shooter (module `own`) and any method
+//! of crate `bvp` (module `generic`). Each supplies a correction at a given `λ` (natural steps)
+//! and a correction on a hyperplane of `(u, λ)` (the fold passage of module `fold`, one loop for
+//! both); tangents and the fold test come from the own shooter's exact sensitivities either way.
 
-use crate::arclength::{self, Arc, Steps};
-use crate::chain::{Chain, ContactSet};
-use crate::config::NEWTON_TOL_MAX;
-use crate::march::{interpolate, Passed, Pt, StepError, Stepper};
-use crate::profile::Profile;
-use crate::rodsolve::{correct_chord, Converged, ShotFailure};
-use crate::search;
-use crate::watch::{watch, Env, RodView};
-use bvp::Stats;
+use crate::arclength::ArcPoint;
+use crate::chain::{ContactSet, EvalError, Family};
+use crate::rodsolve::ShotFailure;
+use crate::search::RootError;
+use crate::watch::{Env, Watch};
+use bvp::{Solution, Stats};
+use nalgebra::DVector;
+use std::fmt;
 
-/// Newton iterations per point before a natural step is given up.
-const MAX_ITER: usize = 12;
-
-/// The stepper on the rod's own shooter.
-pub(crate) struct OwnStepper<P: Profile> {
-    pub chain: Chain<P>,
-    pub env: Env,
+/// A converged point of the branch.
+#[derive(Clone, Debug)]
+pub(crate) struct Pt {
+    /// Family parameter.
+    pub lam: f64,
+    /// The unknowns of the contact set.
+    pub u: Vec<f64>,
+    /// Exact tangent `du/dλ`, where the stepper has one.
+    pub du: Option<Vec<f64>>,
+    /// `det ∂R/∂u` (its sign changes at a fold in `λ`), where the stepper has it.
+    pub det: Option<f64>,
+    /// Newton iterations it took.
+    pub iters: usize,
+    /// The whole rod (`params = [f, α]` of the total contact force).
+    pub sol: Solution,
+    /// What the march watches there.
+    pub w: Watch,
+    /// The method's own solution, when it is not the rod's own shooter (the generic methods'
+    /// stacked segments; their guesses come from it).
+    pub raw: Option<Solution>,
 }
 
-/// The Newton tolerance of the marches' corrector for the integration tolerance `tol`.
-///
-/// The chord iteration converges linearly: stopping it at a hundredth of `tol` keeps Newton's
-/// share of the error below the discretization's and the contact conditions (a point on the
-/// surface, a side tangent to it) to ~1e-12 at the default tolerance, so that no row has the
-/// rod beyond the surface by more than that. And never above 1e-9: the predictor extrapolates
-/// the last points and the branch checks compare corrections with the change over a step, so a
-/// point left with a residual of 1e-4 is noise that shrinking steps amplify (the paper scan at
-/// tol 1e-3 stopped at d = 0.16 with steps of 1e-7 and "corrections" of 4).
-/// And never below 1e-15: residuals of order one carry rounding of ~1e-16, which no iteration
-/// removes (the press's first point at tol 5e-15 stalled at 1.1e-16 against 5e-17).
-pub(crate) fn corrector_tol(tol: f64) -> f64 {
-    (0.01 * tol).clamp(NEWTON_TOL_MIN, NEWTON_TOL_MAX)
+/// Why a correction was refused.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum StepError {
+    /// The corrector landed across a fold in `λ` (`det J` changed sign, and the tangent agrees):
+    /// pass or locate it by pseudo-arclength rather than by shorter natural steps.
+    CrossedFold,
+    /// The own shooter's Newton iteration failed.
+    Shot(ShotFailure),
+    /// The correction converged where `J` is singular: no tangent.
+    NoTangent,
+    /// The tangent in `(u, λ)` turned by this many degrees over the step (more than ~30°: the
+    /// step was too long for the branch's curvature).
+    Turned(f64),
+    /// The corrector moved this far from the prediction (another branch).
+    Jumped(f64),
+    /// The generic method's solve failed.
+    Method(Box<bvp::BvpError>),
+    /// No method solution to guess from.
+    NoPrevious,
+    /// The own shooter has no rod at the unknowns it was given (the first point's guess).
+    Guess(EvalError),
+    /// The own shooter has no rod at the generic method's unknowns.
+    Rod(EvalError),
 }
 
-/// The smallest Newton tolerance: a few units of rounding on residuals of order one.
-const NEWTON_TOL_MIN: f64 = 1e-15;
-
-impl<P: Profile> OwnStepper<P> {
-    /// The branch point of a converged solve at `λ` (the shooter's paths hold it).
-    pub(crate) fn point(&mut self, lam: f64, cv: Converged) -> Result<Pt, StepError> {
-        let du = cv.tangent();
-        let det = cv.det();
-        let sol = self.chain.path(&cv.u);
-        let xf = self.chain.family.pose(lam).0.xf;
-        let chain = &self.chain;
-        let w = watch(
-            &self.env,
-            &chain.set,
-            lam,
-            &cv.u,
-            du.as_deref(),
-            RodView {
-                sol: &sol,
-                xf,
-                exact: &mut |s| chain.state_at(s),
-                kappa: &|s, m| chain.sh.profile.kappa(s, m),
-                straight: chain.sh.profile.straight(),
-            },
-        );
-        Ok(Pt {
-            lam,
-            u: cv.u,
-            du,
-            det: Some(det),
-            iters: cv.iterations,
-            sol,
-            w,
-            raw: None,
-        })
+impl StepError {
+    /// Whether a shorter natural step may succeed (anything but a crossed fold).
+    pub fn shorter_may_help(&self) -> bool {
+        !matches!(self, StepError::CrossedFold)
     }
+    /// Whether the generic method found its Newton matrix singular at its accuracy.
+    pub fn singular_method(&self) -> bool {
+        matches!(self, StepError::Method(e) if matches!(**e, bvp::BvpError::SingularJacobian { .. }))
+    }
+}
 
-    /// The point at `λ` from the prediction `u`.
-    pub(crate) fn correct_from(
+impl fmt::Display for StepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            StepError::CrossedFold => f.write_str("the corrector crossed a fold"),
+            StepError::Shot(e) => write!(f, "{e}"),
+            StepError::NoTangent => f.write_str("singular Jacobian at the solution"),
+            StepError::Turned(deg) => write!(f, "the branch turned by {deg:.0}° over the step"),
+            StepError::Jumped(corr) => write!(
+                f,
+                "the corrector moved {corr:.3e} from the prediction (another branch?)"
+            ),
+            StepError::Method(e) => write!(f, "{e}"),
+            StepError::NoPrevious => f.write_str("no previous solution"),
+            StepError::Guess(e) => write!(f, "{e:?}"),
+            StepError::Rod(e) => write!(f, "the rod at the method's unknowns: {e:?}"),
+        }
+    }
+}
+
+impl From<ShotFailure> for StepError {
+    fn from(e: ShotFailure) -> Self {
+        StepError::Shot(e)
+    }
+}
+
+/// Result of the fold passage.
+pub(crate) enum Passed {
+    /// The branch continues beyond the failed step: its points from there on, in increasing
+    /// `λ`, the last one beyond the target (never empty).
+    Beyond(Vec<Pt>),
+    /// `λ` has a maximum along the branch here (with the rod there, if it was found).
+    Fold(f64, Option<Box<Pt>>),
+    /// Neither.
+    Failed(FoldFailure),
+}
+
+/// Why the fold passage neither passed nor located a fold.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum FoldFailure {
+    /// A pseudo-arclength step (or the start on the curve) failed.
+    Arc(ShotFailure),
+    /// The root of `dλ/dσ` between the points that straddle the fold was not found.
+    Locating(RootError<ShotFailure>),
+    /// The target was not passed within the step budget (the last `λ` reached).
+    Budget {
+        target: f64,
+        steps: usize,
+        last: f64,
+    },
+}
+
+impl fmt::Display for FoldFailure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FoldFailure::Arc(e) => write!(f, "pseudo-arclength: {e}"),
+            FoldFailure::Locating(e) => write!(f, "locating the fold: {e}"),
+            FoldFailure::Budget {
+                target,
+                steps,
+                last,
+            } => write!(
+                f,
+                "pseudo-arclength did not pass {target} in {steps} steps (last {last})"
+            ),
+        }
+    }
+}
+
+/// Prediction and correction of branch points (the method-specific part of a march).
+pub(crate) trait Stepper {
+    /// The current contact set.
+    fn set(&self) -> &ContactSet;
+    /// The point at `λ` from the history `hist` (newest last; `λ` ahead of it or inside its
+    /// span); rejects corrections that land on another branch. With `fresh` the tangent is exact
+    /// at the point (events that use it).
+    fn correct(&mut self, lam: f64, hist: &[Pt], fresh: bool) -> Result<Pt, StepError>;
+    /// The first point of a march at `λ` from the own shooter's converged unknowns `u`.
+    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, StepError>;
+    /// Changes the contact set at `λ` and corrects `u` (the old state in the new unknowns) there.
+    fn switch(&mut self, set: ContactSet, lam: f64, u: Vec<f64>) -> Result<Pt, StepError>;
+    /// Sets the family and the march's view for the next phase (a drag's stick and slip).
+    fn phase(&mut self, family: Family, env: &Env);
+    /// The exact tangent of the contact set `set` at `(u, λ)` on the rod's own shooter, before
+    /// the stepper is switched to it.
+    fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>>;
+    /// Whether the equilibrium of the current set at `(u, λ)` is singular to working precision
+    /// (on the rod's own shooter).
+    fn singular_at(&mut self, lam: f64, u: &[f64]) -> bool;
+    /// The elastic energy of the rod at `(u, λ)` (on the rod's own shooter).
+    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64>;
+    /// Work done so far.
+    fn stats(&self) -> Stats;
+    /// Largest natural step in `λ`.
+    fn h_max(&self) -> f64;
+    /// The foot's x in the lab frame at `λ` (for along-surface anchors).
+    fn foot_x(&self, lam: f64) -> f64;
+    /// The method's own last solution of a one-segment chain (the tip alone touches): the rod on
+    /// `[0, 1]` with `params = [f, α]`; `None` on the rod's own shooter.
+    fn method_solution(&self) -> Option<Solution> {
+        None
+    }
+    /// The Newton tolerance of the fold passage's corrections.
+    fn corrector_tol(&self) -> f64;
+    /// The newest point as the start of a pseudo-arclength path.
+    fn arc_start(&mut self, last: &Pt, tol: f64) -> Result<ArcPoint, ShotFailure>;
+    /// The point of the branch on the hyperplane `normal·(v − pred) = 0` of `v = (u, λ)`, from
+    /// the prediction `pred` next to the converged point `near`.
+    fn on_plane(
         &mut self,
-        lam: f64,
-        u: &[f64],
-        newest: Option<&Pt>,
-        fresh: bool,
-    ) -> Result<Pt, StepError> {
-        let tol = corrector_tol(self.chain.sh.tol);
-        let cv = correct_chord(&mut self.chain, lam, u, tol, MAX_ITER, fresh)
-            .map_err(|e| e.to_string())?;
-        let p = self.point(lam, cv)?;
-        if p.du.is_none() {
-            return Err(StepError::Failed(
-                "singular Jacobian at the solution".into(),
-            ));
-        }
-        if let Some(last) = newest {
-            same_branch(last, u, &p, self.chain.sh.tol)?;
-        }
-        Ok(p)
-    }
-
-    /// Pseudo-arclength from the newest point until the branch passes `target` (or `lam_end`) or
-    /// turns back in `λ`; the fold is located as the root of `dλ/dσ` between the two points that
-    /// straddle it.
-    fn follow(&mut self, hist: &[Pt], target: f64, lam_end: f64) -> Result<Passed, ShotFailure> {
-        let tol = corrector_tol(self.chain.sh.tol);
-        let last = &hist[hist.len() - 1];
-        let start = arclength::at_lambda(&mut self.chain, &last.u, last.lam, tol, 16)?;
-        let steps = Steps {
-            ds: 1e-3,
-            ds_min: 1e-10,
-            ds_max: 0.05,
-        };
-        let mut arc = Arc::new(start, 1.0, steps, tol)?;
-        let n = last.u.len();
-        let mut path = Vec::new();
-        for _ in 0..5000 {
-            let (prev, tprev) = arc.step(&mut self.chain)?;
-            path.push(arc.last.clone());
-            if arc.tau[n] <= 0.0 && tprev[n] > 0.0 {
-                let b = arc.last.clone();
-                let span = tprev.dot(&(&b.v - &prev.v));
-                let ch = &mut self.chain;
-                let mut slope = |sigma: f64| -> Result<f64, String> {
-                    let p = arclength::between(ch, &prev, &tprev, &b, sigma, tol)
-                        .map_err(|e| e.to_string())?;
-                    p.tangent(Some(&tprev))
-                        .map(|t| t[n])
-                        .ok_or_else(|| "singular tangent".to_string())
-                };
-                let sigma = match search::root(&mut slope, 0.0, span, 1e-14 * (1.0 + span)) {
-                    Ok(x) => x,
-                    Err(e) => {
-                        return Ok(Passed::Failed(format!("locating the fold: {e}")));
-                    }
-                };
-                let p = arclength::between(&mut self.chain, &prev, &tprev, &b, sigma, tol)?;
-                let lam = p.lam();
-                let pt = self.point(lam, p.converged()).ok().map(|mut q| {
-                    // at the fold du/dλ is unbounded: no tangent
-                    q.du = None;
-                    q
-                });
-                return Ok(Passed::Fold(lam, pt.map(Box::new)));
-            }
-            if arc.last.lam() > target || arc.last.lam() >= lam_end {
-                let mut pts = Vec::with_capacity(path.len());
-                for a in path {
-                    // (a point without a tangent cannot be interpolated through: left out,
-                    // unless it is the one beyond the target)
-                    match self.point(a.lam(), a.converged()) {
-                        Ok(q) if q.du.is_some() => pts.push(q),
-                        _ if a.lam() > target || a.lam() >= lam_end => {
-                            return Err(ShotFailure::Singular { iteration: 0 })
-                        }
-                        _ => {}
-                    }
-                }
-                return Ok(Passed::Beyond(pts));
-            }
-        }
-        Ok(Passed::Failed(format!(
-            "pseudo-arclength did not pass {target} in 5000 steps (last {})",
-            arc.last.lam()
-        )))
+        near: &ArcPoint,
+        pred: &DVector<f64>,
+        normal: &DVector<f64>,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<ArcPoint, ShotFailure>;
+    /// A converged point of a pseudo-arclength path as a branch point.
+    fn arc_point(&mut self, a: &ArcPoint) -> Result<Pt, StepError>;
+    /// The branch between the points of `hist` as a polynomial in `λ` (from their exact
+    /// tangents): `(u, du/dλ)` at `λ`.
+    fn interpolant(&self, hist: &[Pt], lam: f64) -> Option<(Vec<f64>, Vec<f64>)> {
+        hist.iter()
+            .all(|p| p.du.is_some())
+            .then(|| interpolate(hist, lam))
     }
 }
 
@@ -188,10 +220,7 @@ pub(crate) fn same_branch(last: &Pt, pred: &[f64], p: &Pt, tol: f64) -> Result<(
         let (ta, tb) = (unit(a), unit(b));
         let cos: f64 = ta.iter().zip(&tb).map(|(x, y)| x * y).sum();
         if cos < 0.85 {
-            return Err(StepError::Failed(format!(
-                "the branch turned by {:.0}° over the step",
-                cos.clamp(-1.0, 1.0).acos().to_degrees()
-            )));
+            return Err(StepError::Turned(cos.clamp(-1.0, 1.0).acos().to_degrees()));
         }
     }
     let corr = max_diff(&p.u, pred);
@@ -202,9 +231,7 @@ pub(crate) fn same_branch(last: &Pt, pred: &[f64], p: &Pt, tol: f64) -> Result<(
     if !(corr <= 0.5 * change.max(1e-3 * scale * (p.lam - last.lam).abs().min(1.0))
         || corr < tol.max(1e-9) * scale)
     {
-        return Err(StepError::Failed(format!(
-            "the corrector moved {corr:.3e} from the prediction (another branch?)"
-        )));
+        return Err(StepError::Jumped(corr));
     }
     Ok(())
 }
@@ -215,45 +242,48 @@ fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
 }
 
-impl<P: Profile> Stepper for OwnStepper<P> {
-    fn set(&self) -> &ContactSet {
-        &self.chain.set
-    }
-
-    fn correct(&mut self, lam: f64, hist: &[Pt], fresh: bool) -> Result<Pt, StepError> {
-        let u = interpolate(hist, lam).0;
-        self.correct_from(lam, &u, hist.last(), fresh)
-    }
-
-    fn pass_fold(&mut self, hist: &[Pt], target: f64, lam_end: f64) -> Passed {
-        match self.follow(hist, target, lam_end) {
-            Ok(p) => p,
-            Err(e) => Passed::Failed(format!("pseudo-arclength: {e}")),
+/// Predictor from the last (at most three) points to `λ`: the Hermite polynomial through their
+/// values and tangents (degree 5 with three points) where all have tangents, else Lagrange; and
+/// its derivative.
+pub(crate) fn interpolate(hist: &[Pt], lam: f64) -> (Vec<f64>, Vec<f64>) {
+    let m = hist.len().min(3);
+    let pts = &hist[hist.len() - m..];
+    let hermite = pts.iter().all(|p| p.du.is_some());
+    let n = pts[pts.len() - 1].u.len();
+    let (mut u, mut du) = (vec![0.0; n], vec![0.0; n]);
+    for i in 0..n {
+        // divided differences, nodes newest first (confluent pairs with tangents)
+        let mut z = [0.0; 6];
+        let mut q = [[0.0; 6]; 6];
+        let mut len = 0;
+        for p in pts.iter().rev() {
+            let reps = if hermite { 2 } else { 1 };
+            for r in 0..reps {
+                z[len] = p.lam;
+                q[len][0] = p.u[i];
+                if r == 1 {
+                    q[len][1] = p.du.as_ref().map_or(0.0, |du| du[i]);
+                } else if len > 0 {
+                    q[len][1] = (q[len][0] - q[len - 1][0]) / (z[len] - z[len - 1]);
+                }
+                len += 1;
+            }
         }
+        for k in 2..len {
+            for j in k..len {
+                q[j][k] = (q[j][k - 1] - q[j - 1][k - 1]) / (z[j] - z[j - k]);
+            }
+        }
+        // Newton form and its derivative (product rule on the nested factors)
+        let (mut v, mut dv, mut w, mut dw) = (0.0, 0.0, 1.0, 0.0);
+        for k in 0..len {
+            v += q[k][k] * w;
+            dv += q[k][k] * dw;
+            dw = dw * (lam - z[k]) + w;
+            w *= lam - z[k];
+        }
+        u[i] = v;
+        du[i] = dv;
     }
-
-    fn switch(&mut self, set: ContactSet, lam: f64, u: Vec<f64>) -> Result<Pt, StepError> {
-        self.chain.set = set;
-        self.correct_from(lam, &u, None, true)
-    }
-
-    fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>> {
-        self.chain.tangent_in(set.clone(), u, lam)
-    }
-
-    fn singular_at(&mut self, lam: f64, u: &[f64]) -> bool {
-        self.chain.singular_to_precision(u, lam)
-    }
-
-    fn stats(&self) -> Stats {
-        self.chain.sh.stats.clone()
-    }
-
-    fn h_max(&self) -> f64 {
-        0.01
-    }
-
-    fn foot_x(&self, lam: f64) -> f64 {
-        self.chain.family.pose(lam).0.xf
-    }
+    (u, du)
 }

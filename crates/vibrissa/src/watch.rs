@@ -124,7 +124,7 @@ fn trapping(set: &ContactSet, j: usize) -> bool {
 /// Whether contact `j` is a side on a surface line with another contact beyond it (the last
 /// contact's curvature is its rest curvature, `m = 0` there, and a straight rest beyond it lies
 /// on the line by design).
-fn lies_inside(set: &ContactSet, j: usize) -> bool {
+pub(crate) fn lies_inside(set: &ContactSet, j: usize) -> bool {
     let c = &set.contacts[j];
     !c.tip && matches!(c.geom, Geom::Line { .. }) && j + 1 < set.contacts.len()
 }
@@ -475,7 +475,8 @@ fn refine_max(
     if concave(s, &z).partial_cmp(&0.0) != Some(std::cmp::Ordering::Less) {
         let (a, b) = ((s0 - MAX_WINDOW).max(0.0), (s0 + MAX_WINDOW).min(1.0));
         let n = 32;
-        let mut g = |s: f64| -> Result<f64, String> { Ok((exact(s)[2] - beta).sin()) };
+        let mut g =
+            |s: f64| -> Result<f64, std::convert::Infallible> { Ok((exact(s)[2] - beta).sin()) };
         let pts: Vec<(f64, f64)> = (0..=n)
             .map(|i| {
                 let t = a + (b - a) * i as f64 / n as f64;
@@ -545,7 +546,8 @@ fn hidden_maxima(
             continue;
         }
         // the lowest slope inside (a dip of φ below β and back) or at the end
-        let mut g = |s: f64| -> Result<f64, String> { Ok((exact(s)[2] - beta).sin()) };
+        let mut g =
+            |s: f64| -> Result<f64, std::convert::Infallible> { Ok((exact(s)[2] - beta).sin()) };
         let (lo, glo) = match crate::search::maximize(&mut |s| g(s).map(|v| -v), a, b, 1e-12) {
             Ok((x, v)) if -v < g_at(i + 1) => (x, -v),
             _ => (b, g_at(i + 1)),
@@ -571,146 +573,3 @@ const HIDDEN_START: f64 = 1e-6;
 
 /// How far from the interpolant's maximum the rod's is looked for when they disagree.
 const MAX_WINDOW: f64 = 0.02;
-
-/// The events of a contact state: functions negative while it holds, zero where it ends.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum Crossing {
-    /// Contact `j`'s normal force falls to 0.
-    Lift(usize),
-    /// Contact `j` (stuck or rolling) needs `|T| = μ0 N`.
-    Slip(usize),
-    /// The sliding contact `j` needs no more than `dir·T = μk N` (the end of a slip; `dir` the
-    /// way it slides).
-    Stick(usize),
-    /// A free part of the rod reaches the surface.
-    Touchdown,
-    /// The tip, touching the surface, turns tangent to it.
-    TipTangent,
-    /// The rolling contact `j` reaches the tip (the lying part peels back).
-    PeelBack(usize),
-    /// The point object at contact `j` reaches the tip.
-    SlipOff(usize),
-    /// The side contact `j` (with another beyond it) begins to lie along the line: the rod's
-    /// curvature there, relative to the line, falls to zero.
-    Lie(usize),
-    /// `|μ|` stops rising (its first maximum).
-    MuMax,
-    /// The last contact point reaches the target height (the end of a press).
-    Target(Goal),
-}
-
-impl Crossing {
-    /// What the function measures, in words.
-    pub fn describe(self) -> String {
-        match self {
-            Crossing::Lift(j) => format!("-N of contact {} (it would pull)", j + 1),
-            Crossing::Slip(j) => format!("|T| - mu0 N of contact {} (it would slip)", j + 1),
-            Crossing::Lie(j) => format!(
-                "cos(phi - beta) kappa at contact {} (it would lie along the surface)",
-                j + 1
-            ),
-            Crossing::Stick(j) => {
-                format!("mu_k N - dir T of contact {} (it would stick again)", j + 1)
-            }
-            Crossing::Touchdown => {
-                "the height of the free rod above the surface (it would cross it)".into()
-            }
-            Crossing::TipTangent => {
-                "-sin(phi(1) - beta) (the tip would turn into the surface)".into()
-            }
-            Crossing::PeelBack(j) => format!(
-                "s - 1 of contact {} (the lying part's inner end would pass the tip)",
-                j + 1
-            ),
-            Crossing::SlipOff(j) => {
-                format!("s - 1 of contact {} (the object would pass the tip)", j + 1)
-            }
-            Crossing::MuMax => "-d|mu|/dd".into(),
-            Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
-            Crossing::Target(Goal::TipSlope(p, _)) => format!("phi(1) - {p}"),
-        }
-    }
-
-    /// The event functions of a contact set.
-    pub fn all(env: &Env, set: &ContactSet) -> Vec<Crossing> {
-        let mut v = Vec::new();
-        for (j, c) in set.contacts.iter().enumerate() {
-            v.push(Crossing::Lift(j));
-            let sliding = env.ground.slide.is_some() && c.tip;
-            if sliding {
-                v.push(Crossing::Stick(j));
-            } else if (slip_limit(env, set, j).is_finite() || env.ground.texture.is_some())
-                && c.mode.no_slip()
-            {
-                v.push(Crossing::Slip(j));
-            }
-            if lies_inside(set, j) {
-                v.push(Crossing::Lie(j));
-            }
-            match (c.geom, c.tip) {
-                (Geom::Line { .. } | Geom::Curve { .. }, true) => v.push(Crossing::TipTangent),
-                (Geom::Line { .. } | Geom::Curve { .. }, false) => v.push(Crossing::PeelBack(j)),
-                (Geom::Point { .. }, false) => v.push(Crossing::SlipOff(j)),
-                _ => {}
-            }
-        }
-        if env.line.is_some() || env.ground.curve.is_some() {
-            v.push(Crossing::Touchdown);
-        }
-        if let Some(h) = env.target {
-            v.push(Crossing::Target(h));
-        }
-        v
-    }
-
-    /// Its value at a watched point.
-    pub fn of_watch(self, env: &Env, w: &Watch) -> f64 {
-        match self {
-            Crossing::Lift(j) => -w.contacts[j].normal,
-            Crossing::Slip(j) => {
-                let c = w.contacts[j];
-                c.tangential.abs() - c.mu_s * c.normal
-            }
-            Crossing::Lie(j) => w.contacts[j].curv,
-            Crossing::Stick(j) => {
-                // signed along the slip: it rises through zero once where μk holds the tip
-                let c = w.contacts[j];
-                let dir = env.ground.slide.map_or(1.0, |s| s.dir);
-                c.mu_k * c.normal - dir * c.tangential
-            }
-            Crossing::Touchdown => w.clear,
-            Crossing::TipTangent => -w.tip_approach,
-            Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
-            Crossing::MuMax => -w.dmu_abs.unwrap_or(f64::NAN),
-            Crossing::Target(Goal::Height(h, sign)) => sign * (h - w.last_y),
-            Crossing::Target(Goal::TipSlope(p, sign)) => sign * (p - w.phi1),
-        }
-    }
-
-    /// Whether the value depends on the unknowns alone on a surface (so the branch polynomial
-    /// predicts it).
-    pub fn of_u(self, env: &Env, set: &ContactSet, u: &[f64]) -> Option<f64> {
-        let line = |j: usize| matches!(set.contacts[j].geom, Geom::Line { .. });
-        match self {
-            Crossing::Lift(j) if line(j) => Some(-u[set.offset(j)]),
-            Crossing::Slip(j)
-                if line(j) && (set.contacts[j].tip || env.ground.texture.is_none()) =>
-            {
-                let o = set.offset(j);
-                Some(u[o + 1].abs() - slip_limit(env, set, j) * u[o])
-            }
-            Crossing::Stick(j) if line(j) => {
-                let mu_k = match (env.ground.texture, env.ground.slide) {
-                    (None, Some(sl)) => sl.mu_k,
-                    (Some(t), Some(_)) => t.uniform_mu_k()?,
-                    _ => return None,
-                };
-                let o = set.offset(j);
-                let dir = env.ground.slide.map_or(1.0, |s| s.dir);
-                Some(mu_k * u[o] - dir * u[o + 1])
-            }
-            Crossing::PeelBack(j) | Crossing::SlipOff(j) => Some(set.s_of(j, u) - 1.0),
-            _ => None,
-        }
-    }
-}

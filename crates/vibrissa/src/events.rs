@@ -1,0 +1,772 @@
+//! The events of a march, in one place: what they are (functions of a branch point, negative
+//! while a contact state holds and zero where it ends: a contact lifts, slips, a free part of the
+//! rod touches the surface, the tip turns tangent to it, a lying part peels back, an object
+//! slips off the tip, `|μ|` stops rising, a press reaches its goal), where they are located
+//! inside a step (on the branch polynomial refined by solves, or by Brent's method on solves),
+//! and what follows each (the next contact set, or the end).
+//!
+//! An event is an outcome of a step: the driver (module `march`) backs up to the located point,
+//! applies what [`transition`] says (a new contact set: touchdown, peel-back, release, a contact
+//! that slides on; or the end) and continues in the same step sequence.
+
+use crate::chain::{Contact, ContactSet, Geom, Mode};
+use crate::report::{Event, StopReason};
+use crate::search::{self, RootError};
+use crate::stepper::{Pt, StepError, Stepper};
+use crate::watch::{lies_inside, slip_limit, Env, Goal, Watch, SIDE_FRICTION_LIMIT};
+
+/// The events of a contact state: functions negative while it holds, zero where it ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Crossing {
+    /// Contact `j`'s normal force falls to 0.
+    Lift(usize),
+    /// Contact `j` (stuck or rolling) needs `|T| = μ0 N`.
+    Slip(usize),
+    /// The sliding contact `j` needs no more than `dir·T = μk N` (the end of a slip; `dir` the
+    /// way it slides).
+    Stick(usize),
+    /// A free part of the rod reaches the surface.
+    Touchdown,
+    /// The tip, touching the surface, turns tangent to it.
+    TipTangent,
+    /// The rolling contact `j` reaches the tip (the lying part peels back).
+    PeelBack(usize),
+    /// The point object at contact `j` reaches the tip.
+    SlipOff(usize),
+    /// The side contact `j` (with another beyond it) begins to lie along the line: the rod's
+    /// curvature there, relative to the line, falls to zero.
+    Lie(usize),
+    /// `|μ|` stops rising (its first maximum).
+    MuMax,
+    /// The last contact point reaches the target height (the end of a press).
+    Target(Goal),
+}
+
+impl Crossing {
+    /// What the function measures, in words.
+    pub fn describe(self) -> String {
+        match self {
+            Crossing::Lift(j) => format!("-N of contact {} (it would pull)", j + 1),
+            Crossing::Slip(j) => format!("|T| - mu0 N of contact {} (it would slip)", j + 1),
+            Crossing::Lie(j) => format!(
+                "cos(phi - beta) kappa at contact {} (it would lie along the surface)",
+                j + 1
+            ),
+            Crossing::Stick(j) => {
+                format!("mu_k N - dir T of contact {} (it would stick again)", j + 1)
+            }
+            Crossing::Touchdown => {
+                "the height of the free rod above the surface (it would cross it)".into()
+            }
+            Crossing::TipTangent => {
+                "-sin(phi(1) - beta) (the tip would turn into the surface)".into()
+            }
+            Crossing::PeelBack(j) => format!(
+                "s - 1 of contact {} (the lying part's inner end would pass the tip)",
+                j + 1
+            ),
+            Crossing::SlipOff(j) => {
+                format!("s - 1 of contact {} (the object would pass the tip)", j + 1)
+            }
+            Crossing::MuMax => "-d|mu|/dd".into(),
+            Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
+            Crossing::Target(Goal::TipSlope(p, _)) => format!("phi(1) - {p}"),
+        }
+    }
+
+    /// The event functions of a contact set.
+    pub fn all(env: &Env, set: &ContactSet) -> Vec<Crossing> {
+        let mut v = Vec::new();
+        for (j, c) in set.contacts.iter().enumerate() {
+            v.push(Crossing::Lift(j));
+            let sliding = env.ground.slide.is_some() && c.tip;
+            if sliding {
+                v.push(Crossing::Stick(j));
+            } else if (slip_limit(env, set, j).is_finite() || env.ground.texture.is_some())
+                && c.mode.no_slip()
+            {
+                v.push(Crossing::Slip(j));
+            }
+            if lies_inside(set, j) {
+                v.push(Crossing::Lie(j));
+            }
+            match (c.geom, c.tip) {
+                (Geom::Line { .. } | Geom::Curve { .. }, true) => v.push(Crossing::TipTangent),
+                (Geom::Line { .. } | Geom::Curve { .. }, false) => v.push(Crossing::PeelBack(j)),
+                (Geom::Point { .. }, false) => v.push(Crossing::SlipOff(j)),
+                _ => {}
+            }
+        }
+        if env.line.is_some() || env.ground.curve.is_some() {
+            v.push(Crossing::Touchdown);
+        }
+        if let Some(h) = env.target {
+            v.push(Crossing::Target(h));
+        }
+        v
+    }
+
+    /// Its value at a watched point.
+    pub fn of_watch(self, env: &Env, w: &Watch) -> f64 {
+        match self {
+            Crossing::Lift(j) => -w.contacts[j].normal,
+            Crossing::Slip(j) => {
+                let c = w.contacts[j];
+                c.tangential.abs() - c.mu_s * c.normal
+            }
+            Crossing::Lie(j) => w.contacts[j].curv,
+            Crossing::Stick(j) => {
+                // signed along the slip: it rises through zero once where μk holds the tip
+                let c = w.contacts[j];
+                let dir = env.ground.slide.map_or(1.0, |s| s.dir);
+                c.mu_k * c.normal - dir * c.tangential
+            }
+            Crossing::Touchdown => w.clear,
+            Crossing::TipTangent => -w.tip_approach,
+            Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
+            Crossing::MuMax => -w.dmu_abs.unwrap_or(f64::NAN),
+            Crossing::Target(Goal::Height(h, sign)) => sign * (h - w.last_y),
+            Crossing::Target(Goal::TipSlope(p, sign)) => sign * (p - w.phi1),
+        }
+    }
+
+    /// Whether the value depends on the unknowns alone on a surface (so the branch polynomial
+    /// predicts it).
+    pub fn of_u(self, env: &Env, set: &ContactSet, u: &[f64]) -> Option<f64> {
+        let line = |j: usize| matches!(set.contacts[j].geom, Geom::Line { .. });
+        match self {
+            Crossing::Lift(j) if line(j) => Some(-u[set.offset(j)]),
+            Crossing::Slip(j)
+                if line(j) && (set.contacts[j].tip || env.ground.texture.is_none()) =>
+            {
+                let o = set.offset(j);
+                Some(u[o + 1].abs() - slip_limit(env, set, j) * u[o])
+            }
+            Crossing::Stick(j) if line(j) => {
+                let mu_k = match (env.ground.texture, env.ground.slide) {
+                    (None, Some(sl)) => sl.mu_k,
+                    (Some(t), Some(_)) => t.uniform_mu_k()?,
+                    _ => return None,
+                };
+                let o = set.offset(j);
+                let dir = env.ground.slide.map_or(1.0, |s| s.dir);
+                Some(mu_k * u[o] - dir * u[o + 1])
+            }
+            Crossing::PeelBack(j) | Crossing::SlipOff(j) => Some(set.s_of(j, u) - 1.0),
+            _ => None,
+        }
+    }
+}
+
+/// An event already true at the start.
+pub(crate) fn start_event(env: &Env, set: &ContactSet, w: &Watch) -> Option<Event> {
+    if set.contacts.is_empty() {
+        return None;
+    }
+    if w.clear > 0.0 || w.tip_approach < 0.0 || (!env.compound && !set.tip_only()) {
+        // a start that crosses the surface, or (the paper's tip-only model) touches it with
+        // its side
+        return Some(Event::Penetration);
+    }
+    if w.contacts.iter().any(|c| c.normal <= 0.0) {
+        return Some(Event::LiftOff);
+    }
+    if let Some(m) = env.mu0 {
+        if w.contacts
+            .iter()
+            .any(|c| c.tangential.abs() >= m * c.normal)
+        {
+            return Some(Event::Slip);
+        }
+    }
+    None
+}
+
+pub(crate) fn stop_reason(ev: Event, w: &Watch, set: &ContactSet) -> StopReason {
+    let d = w.lam;
+    match ev {
+        Event::Slip => StopReason::Slip { d, mu: w.mu },
+        Event::LiftOff => StopReason::LiftOff { d, limit: None },
+        // a side touching at the start (tip-only model), the tip turning into the surface, or
+        // the free rod reaching it
+        Event::Penetration => {
+            let (s, y) = if let Some(j) = set.contacts.iter().position(|c| !c.tip) {
+                (w.contacts[j].s, w.last_y)
+            } else if w.tip_approach < 0.0 || w.tip_approach.abs() < w.clear.abs() {
+                (1.0, w.last_y)
+            } else {
+                (w.clear_s, w.clear_z[1])
+            };
+            StopReason::Penetration { d, s, y }
+        }
+        Event::FoldInD => StopReason::FoldInD { d },
+        Event::SlipOff => StopReason::SlipOff { d },
+        Event::Touchdown | Event::PeelBack | Event::Release => StopReason::ContactChange {
+            d,
+            message: format!("{} in state {}", ev.name(), set.label()),
+        },
+    }
+}
+
+/// The end of a branch at a singular lift-off. A side contact whose normal force vanishes
+/// rolls towards the tip faster and faster (its place `s` grows like a small power of `N`, and
+/// its column of the Jacobian vanishes with `N`), so the corrector stalls short of `N = 0` and
+/// no state beyond exists to bracket the root. When a step fails where the newest points show
+/// the normal force of the only contact falling and below `1e-3` of its contact force, its zero is
+/// the secant's, at most `1e-4 (1 + |λ|)` further on. The secant is first order: `|N'|` eases
+/// as `N → 0`, so the zero lies a few percent of that distance further (on the scene of
+/// `tests/scan_fixes.rs`, 11 to 3831 points and every method give lift-offs within 3e-7 of
+/// each other, 6e-6 beyond the last state). Returns the lift-off's `λ`, the evidence, and the
+/// watch there (`N = 0`, `μ` unbounded with the tangential force's sign).
+pub(crate) fn vanishing_normal(hist: &[Pt]) -> Option<(f64, String, Watch)> {
+    let [.., a, b] = hist else {
+        return None;
+    };
+    // (one of several contacts letting go is a change of the contact set, not the end)
+    let ([ca], [cb]) = (&a.w.contacts[..], &b.w.contacts[..]) else {
+        return None;
+    };
+    let (na, nb) = (ca.normal, cb.normal);
+    if !(nb > 0.0 && na > nb && nb <= 1e-3 * nb.hypot(cb.tangential)) {
+        return None;
+    }
+    let dl = nb * (b.lam - a.lam) / (na - nb);
+    if !(dl.is_finite() && dl <= 1e-4 * (1.0 + b.lam.abs())) {
+        return None;
+    }
+    let ls = b.lam + dl;
+    let mut w = b.w.clone();
+    w.lam = ls;
+    lifted(&mut w);
+    let why = format!(
+        "extrapolated: the normal force of the contact falls to {nb:.3e} at {} (s = {:.6}), \
+         where the equations stop determining the contact; its zero lies {dl:.2e} further on",
+        b.lam, cb.s
+    );
+    Some((ls, why, w))
+}
+
+/// The watch `w` at a lift-off: the normal force of the contact letting go (the one with the
+/// least) and the total are 0 exactly there, so the friction ratio is unbounded, with the
+/// tangential force's sign (μ itself may have crossed the pole).
+pub(crate) fn lifted(w: &mut Watch) {
+    w.normal = 0.0;
+    let t: f64 = w.contacts.iter().map(|c| c.tangential).sum();
+    w.mu = f64::INFINITY.copysign(t);
+    if let Some(c) = w
+        .contacts
+        .iter_mut()
+        .min_by(|a, b| a.normal.total_cmp(&b.normal))
+    {
+        c.normal = 0.0;
+    }
+}
+
+/// How far below zero a located touchdown's clearance on a curved surface may lie and still be
+/// a root (a rounding of the rod's heights is ~1e-12; a jump is of the size of the rod's
+/// features).
+pub(crate) const JUMP: f64 = 1e-6;
+/// An event function this close to zero right after a change of contact set is at zero.
+pub(crate) const AT_ZERO: f64 = 1e-12;
+
+/// The set with the interior contact `ct` touched down at `s` (in its place along the rod; its
+/// unknowns N, T start at zero), and its unknowns.
+fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64) -> Next {
+    let j = (0..set.contacts.len())
+        .find(|&j| set.s_of(j, u) > s)
+        .unwrap_or(set.contacts.len());
+    let mut ns = set.clone();
+    ns.contacts.insert(j, ct);
+    let o = if j < set.contacts.len() {
+        set.offset(j)
+    } else {
+        u.len()
+    };
+    let mut nu = u.to_vec();
+    nu.splice(o..o, [0.0, 0.0, s]);
+    Next::Switch(Event::Touchdown, ns, nu)
+}
+
+/// Why a contact that has just formed beside others cannot hold: the friction ratio it needs
+/// from the moment it forms, `|dT/dλ| / (dN/dλ)` on the new state's exact tangent, exceeds `μ0`
+/// (or, without it, [`SIDE_FRICTION_LIMIT`]). This happens where a side touches down next to
+/// a contact that does not slip (the stuck tip): the segment between them is trapped, its chord
+/// minus its length is frozen by the two no-slip conditions, and keeping it so as the rod is
+/// dragged takes equal and opposite tangential forces, large because they bend the nearly
+/// straight segment only through its sag (10²–10⁴ times the new normal force). On any real
+/// surface the side slips at once, and a sliding side contact is not in the scan's model. `None`
+/// where the new contact is not in a no-slip mode, does not load, or needs less.
+pub(crate) fn forming_slip(
+    old: &ContactSet,
+    new: &ContactSet,
+    u: &[f64],
+    du: Option<Vec<f64>>,
+    mu0: Option<f64>,
+) -> Option<String> {
+    let j = new
+        .contacts
+        .iter()
+        .position(|c| !old.contacts.contains(c))?;
+    if !new.contacts[j].mode.no_slip() {
+        return None;
+    }
+    let du = du?;
+    let o = new.offset(j);
+    let (dn, dt) = (du[o], du[o + 1]);
+    let ratio = (dt / dn).abs();
+    let limit = mu0.unwrap_or(SIDE_FRICTION_LIMIT);
+    // (a contact that does not load pulls: the pending check says so)
+    let slips = dn > 0.0 && ratio > limit;
+    if !slips {
+        return None;
+    }
+    let s = new.s_of(j, u);
+    let bound = match mu0 {
+        Some(m) => format!("mu0 = {m}"),
+        None => format!("any dry surface provides ({SIDE_FRICTION_LIMIT})"),
+    };
+    let neighbour = [j.checked_sub(1), Some(j + 1)]
+        .into_iter()
+        .flatten()
+        .filter(|&k| k < new.contacts.len())
+        .filter(|&k| new.contacts[k].mode.no_slip())
+        .map(|k| {
+            let name = if new.contacts[k].tip {
+                "stuck tip"
+            } else {
+                "rolling side"
+            };
+            (new.s_of(k, u), name)
+        })
+        .min_by(|a, b| (a.0 - s).abs().total_cmp(&(b.0 - s).abs()));
+    let trap = match neighbour {
+        Some((sk, name)) => format!(
+            " (with the {name} at s = {sk:.6} it traps a segment of length {:.3e} that neither end lets slip)",
+            (sk - s).abs()
+        ),
+        None => String::new(),
+    };
+    Some(format!(
+        "a side contact forms at s = {s:.6}{trap} and needs a friction ratio |T|/N = {ratio:.3e} from the moment it forms, more than {bound}: it slips at once, and a sliding side contact is not in the scan's model"
+    ))
+}
+
+/// An event function's value where its contact state holds strictly (NaN: not known to).
+pub(crate) fn holds(v: f64) -> bool {
+    v < 0.0
+}
+
+/// Its value where the event has happened (zero included).
+pub(crate) fn ended(v: f64) -> bool {
+    v >= 0.0
+}
+
+/// Its value beyond the event (NaN: not known to be).
+pub(crate) fn beyond(v: f64) -> bool {
+    v > 0.0
+}
+
+/// What follows an event.
+pub(crate) enum Next {
+    /// The march ends with this event.
+    Stop(Event),
+    /// The contact set changes (the event, the new set, the old state in its unknowns).
+    Switch(Event, ContactSet, Vec<f64>),
+    /// The march reached its target.
+    Done,
+    /// The march ends at a limit of the model (a contact change; the evidence).
+    Limit(String),
+}
+
+/// The contact set after a touchdown, the tip lying down, or a peel-back on a curved surface (as
+/// on a line, with the surface's arc length for the places and its local frame for the forces).
+fn curve_transition(
+    h: &'static crate::surface::Height,
+    set: &ContactSet,
+    cross: Crossing,
+    pe: &Pt,
+    xf: f64,
+    friction: bool,
+) -> Next {
+    let u = &pe.u;
+    let rolling = |z: &[f64], s: f64| -> (Mode, f64) {
+        let x = z[0] + xf;
+        let th = h.angle(x).0;
+        let phi_ref = crate::chain::slope_on(th, z[2]);
+        let dir = (phi_ref - th).cos().round();
+        let mode = if friction {
+            Mode::Rolling(h.sigma(x).0 - dir * s)
+        } else {
+            Mode::Free
+        };
+        (mode, phi_ref)
+    };
+    match cross {
+        Crossing::Touchdown => {
+            let s = pe.w.clear_s;
+            let z = pe.w.clear_z;
+            let (mode, phi_ref) = rolling(&z, s);
+            let ct = Contact::on_curve(false, h, z[0] + xf, mode, phi_ref);
+            touchdown(set, u, ct, s)
+        }
+        Crossing::TipTangent => {
+            let j = set.contacts.len() - 1;
+            let zb = pe.sol.right();
+            let (mode, phi_ref) = rolling(zb, 1.0);
+            let mut ns = set.clone();
+            // the force keeps its frame (the unknowns carry over)
+            ns.contacts[j] = Contact {
+                tip: false,
+                mode,
+                phi_ref,
+                ..set.contacts[j]
+            };
+            let mut nu = u.clone();
+            nu.push(1.0);
+            Next::Switch(Event::Touchdown, ns, nu)
+        }
+        Crossing::PeelBack(j) => {
+            let o = set.offset(j);
+            let mut ns = set.clone();
+            let mut nu = u.clone();
+            if set.tip() {
+                // the rolling contact reaches the touching tip: one contact there (its force
+                // expressed in the tip's frame)
+                let jt = set.contacts.len() - 1;
+                let ot = set.offset(jt);
+                let f = set.contacts[j].force(u[o], u[o + 1]);
+                let ct = set.contacts[jt];
+                let t = ct.t();
+                nu[ot] -= f[0] * ct.n[0] + f[1] * ct.n[1];
+                nu[ot + 1] += f[0] * t[0] + f[1] * t[1];
+                nu.drain(o..o + 3);
+                ns.contacts.remove(j);
+            } else {
+                let zb = pe.sol.right();
+                let mode = if friction {
+                    Mode::Stuck(h.sigma(zb[0] + xf).0)
+                } else {
+                    Mode::Free
+                };
+                ns.contacts[j] = Contact {
+                    tip: true,
+                    mode,
+                    ..set.contacts[j]
+                };
+                nu.remove(o + 2);
+            }
+            Next::Switch(Event::PeelBack, ns, nu)
+        }
+        _ => Next::Stop(Event::Penetration),
+    }
+}
+
+/// How a march treats the contacts it changes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Rules {
+    /// New contacts hold by friction (stuck, rolling) rather than slide freely (the press).
+    pub friction: bool,
+    /// A stuck contact that reaches `|T| = μ0 N` slides on (`T = ±μ0 N`) instead of ending the
+    /// march (a whisk against an object).
+    pub slide: bool,
+}
+
+/// The contact set after the event `cross` at the point `pe` (foot at `xf`), or the end.
+pub(crate) fn transition(
+    env: &Env,
+    rules: Rules,
+    set: &ContactSet,
+    cross: Crossing,
+    pe: &Pt,
+    xf: f64,
+) -> Next {
+    let friction = rules.friction;
+    let u = &pe.u;
+    let along = |z: &[f64], beta: f64, p0: [f64; 2]| {
+        let (sb, cb) = beta.sin_cos();
+        cb * (z[0] + xf - p0[0]) + sb * (z[1] - p0[1])
+    };
+    match cross {
+            Crossing::Slip(j) if rules.slide => {
+                let c = pe.w.contacts[j];
+                let mut ns = set.clone();
+                ns.contacts[j].mode = Mode::Sliding(c.tangential / c.normal);
+                Next::Switch(Event::Slip, ns, u.clone())
+            }
+            // a contact that traps the rod reaches the bound of dry friction (no μ0)
+            Crossing::Slip(j) if env.mu0.is_none() && env.ground.texture.is_none() => {
+                let c = pe.w.contacts[j];
+                let name = if set.contacts[j].tip {
+                    "tip"
+                } else {
+                    "side contact"
+                };
+                Next::Limit(format!(
+                    "the {name} at s = {:.6} would slip: with another contact that does not slip it traps the rod between them, and the friction ratio it needs, |T|/N, reached {} (the bound of dry friction without mu0); a sliding contact beside another is not in the scan's model",
+                    c.s, c.mu_s
+                ))
+            }
+            Crossing::Slip(_) => Next::Stop(Event::Slip),
+            Crossing::Lie(j) => Next::Limit(format!(
+                "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
+                pe.w.contacts[j].s
+            )),
+            // the end of a slip: the march in the slip's parameter reached its goal
+            Crossing::Stick(_) => Next::Done,
+            Crossing::SlipOff(_) => Next::Stop(Event::SlipOff),
+            Crossing::MuMax => Next::Stop(Event::FoldInD),
+            Crossing::Target(_) => Next::Done,
+            Crossing::Lift(j) => {
+                if set.contacts.len() == 1 {
+                    return Next::Stop(Event::LiftOff);
+                }
+                let mut ns = set.clone();
+                ns.contacts.remove(j);
+                let o = set.offset(j);
+                let mut nu = u.clone();
+                nu.drain(o..o + set.contacts[j].unknowns());
+                Next::Switch(Event::Release, ns, nu)
+            }
+            Crossing::Touchdown | Crossing::TipTangent if !env.compound => {
+                Next::Stop(Event::Penetration)
+            }
+            Crossing::Touchdown | Crossing::TipTangent | Crossing::PeelBack(_)
+                if env.ground.curve.is_some() =>
+            {
+                match env.ground.curve {
+                    Some(h) => curve_transition(h, set, cross, pe, xf, friction),
+                    None => Next::Stop(Event::Penetration),
+                }
+            }
+            Crossing::Touchdown => {
+                let Some((p0, beta)) = env.line else {
+                    return Next::Stop(Event::Penetration);
+                };
+                let s = pe.w.clear_s;
+                let z = pe.w.clear_z;
+                let phi_ref = crate::chain::slope_on(beta, z[2]);
+                let mode = if friction {
+                    Mode::Rolling(along(&z, beta, p0) - (phi_ref - beta).cos().round() * s)
+                } else {
+                    Mode::Free
+                };
+                let ct = Contact::on_surface(false, p0, beta, mode, phi_ref);
+                touchdown(set, u, ct, s)
+            }
+            Crossing::TipTangent => {
+                let j = set.contacts.len() - 1;
+                let ct = set.contacts[j];
+                let Geom::Line { p0, beta } = ct.geom else {
+                    return Next::Stop(Event::Penetration);
+                };
+                let zb = pe.sol.right();
+                let phi_ref = crate::chain::slope_on(beta, zb[2]);
+                let mode = if friction {
+                    Mode::Rolling(along(zb, beta, p0) - (phi_ref - beta).cos().round())
+                } else {
+                    Mode::Free
+                };
+                let mut ns = set.clone();
+                ns.contacts[j] = Contact::on_surface(false, p0, beta, mode, phi_ref);
+                let mut nu = u.clone();
+                nu.push(1.0);
+                Next::Switch(Event::Touchdown, ns, nu)
+            }
+            Crossing::PeelBack(j) => {
+                let ct = set.contacts[j];
+                let Geom::Line { p0, beta } = ct.geom else {
+                    return Next::Stop(Event::SlipOff);
+                };
+                let o = set.offset(j);
+                let mut ns = set.clone();
+                let mut nu = u.clone();
+                if set.tip() {
+                    // the rolling contact reaches the touching tip: one contact there
+                    let ot = set.offset(set.contacts.len() - 1);
+                    nu[ot] += u[o];
+                    nu[ot + 1] += u[o + 1];
+                    nu.drain(o..o + 3);
+                    ns.contacts.remove(j);
+                } else {
+                    let zb = pe.sol.right();
+                    let mode = if friction {
+                        Mode::Stuck(along(zb, beta, p0))
+                    } else {
+                        Mode::Free
+                    };
+                    ns.contacts[j] = Contact::on_surface(true, p0, beta, mode, 0.0);
+                    nu.remove(o + 2);
+                }
+                Next::Switch(Event::PeelBack, ns, nu)
+            }
+        }
+}
+
+/// Why an event could not be located inside its step.
+pub(crate) type LocateError = RootError<StepError>;
+
+/// Where the branch polynomial, extrapolated from the last points, predicts `c` to reach 0
+/// within `(a, b]` (`None` without a polynomial, or when it does not).
+pub(crate) fn predicted_crossing(
+    st: &dyn Stepper,
+    env: &Env,
+    hist: &[Pt],
+    (a, b): (f64, f64),
+    c: Crossing,
+) -> Option<f64> {
+    let set = st.set();
+    let on_poly = |lam: f64| -> Result<f64, NoValue> {
+        let (u, _) = st.interpolant(hist, lam).ok_or(NoValue)?;
+        c.of_u(env, set, &u).ok_or(NoValue)
+    };
+    let (ga, gb) = (on_poly(a).ok()?, on_poly(b).ok()?);
+    if !(ga < 0.0 && gb >= 0.0) {
+        return None;
+    }
+    let mut f = on_poly;
+    search::root(&mut f, a, b, 1e-15 * (1.0 + b.abs())).ok()
+}
+
+/// No polynomial through the history, or an event function that is not one of the unknowns.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct NoValue;
+
+impl std::fmt::Display for NoValue {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("no polynomial")
+    }
+}
+
+/// The first `λ` in `[a, b]` where `c` reaches 0 (`c(a) < 0 ≤ c(b)`). Where the stepper has
+/// the branch as a polynomial and `c` depends on the unknowns alone: Brent's method on that
+/// polynomial, refined by Newton steps with solves — one or two solves. Otherwise Brent's
+/// method on solves within the step (the event function evaluated on the rod).
+pub(crate) fn locate(
+    st: &mut dyn Stepper,
+    env: &Env,
+    hist: &[Pt],
+    (a, b): (f64, f64),
+    c: Crossing,
+) -> Result<Pt, LocateError> {
+    let fresh = c == Crossing::MuMax;
+    let set = st.set().clone();
+    let poly_val = |st: &dyn Stepper, lam: f64| -> Option<f64> {
+        let (u, du) = st.interpolant(hist, lam)?;
+        match c {
+            Crossing::MuMax => Some(-mu_slope(&set, &u, &du)),
+            _ => c.of_u(env, &set, &u),
+        }
+    };
+    if poly_val(&*st, a).is_some() {
+        let on_poly: &dyn Stepper = &*st;
+        let mut poly = |lam: f64| poly_val(on_poly, lam).ok_or(NoValue);
+        if let Ok(mut lam) = search::root(&mut poly, a, b, 1e-15 * (1.0 + b.abs())) {
+            let eps = 1e-6 * (b - a);
+            for _ in 0..4 {
+                let p = st.correct(lam, hist, fresh).map_err(RootError::Caller)?;
+                let slope = match (poly_val(&*st, lam + eps), poly_val(&*st, lam - eps)) {
+                    (Some(gp), Some(gm)) => (gp - gm) / (2.0 * eps),
+                    _ => break,
+                };
+                let step = c.of_watch(env, &p.w) / slope;
+                if !step.is_finite() || !(a..=b).contains(&(lam - step)) {
+                    break;
+                }
+                if step.abs() <= 1e-13 * (1.0 + lam.abs()) {
+                    return Ok(p);
+                }
+                lam -= step;
+            }
+        }
+    }
+    let mut eval = |lam: f64| -> Result<f64, StepError> {
+        let p = st.correct(lam, hist, fresh)?;
+        Ok(c.of_watch(env, &p.w))
+    };
+    let lam = search::root(&mut eval, a, b, 1e-13 * (1.0 + b.abs()))?;
+    let p = st.correct(lam, hist, fresh).map_err(RootError::Caller)?;
+    inside(st, env, hist, a, p, c, fresh).map_err(RootError::Caller)
+}
+
+/// The located event point on the side where the old state still holds (`c ≤ 0`): a root to
+/// ~1e-13 in λ may lie a rounding beyond it (a free part ~1e-12 above the surface); then λ
+/// moves back by twice the secant step towards `a`, doubling until the point is inside.
+fn inside(
+    st: &mut dyn Stepper,
+    env: &Env,
+    hist: &[Pt],
+    a: f64,
+    p: Pt,
+    c: Crossing,
+    fresh: bool,
+) -> Result<Pt, StepError> {
+    let g = c.of_watch(env, &p.w);
+    if !beyond(g) {
+        return Ok(p);
+    }
+    let ga = hist
+        .iter()
+        .find(|q| q.lam == a)
+        .map_or(-1.0, |q| c.of_watch(env, &q.w));
+    let secant = g * (p.lam - a) / (g - ga);
+    for k in 0..8 {
+        let lam = (p.lam - 2.0 * secant * f64::from(1 << k)).max(a);
+        let q = st.correct(lam, hist, fresh)?;
+        if !beyond(c.of_watch(env, &q.w)) {
+            return Ok(q);
+        }
+    }
+    Ok(p)
+}
+
+/// The first maximum of `|μ|` in `(prev.λ, l_stop]`, if there is one: the root of `d|μ|/dλ`
+/// where tangents are known, else (three-point pattern) Brent's maximizer.
+pub(crate) fn first_max(
+    st: &mut dyn Stepper,
+    env: &Env,
+    hist: &[Pt],
+    (prev, pprev): (&Watch, Option<&Watch>),
+    w: &Watch,
+    l_stop: f64,
+) -> Option<Watch> {
+    // μ = ΣT/ΣN has a pole where the total normal force passes zero (lift-off): the sign
+    // change of d|μ|/dλ across it is no maximum
+    if w.normal <= 0.0 {
+        return None;
+    }
+    if let (Some(s0), Some(s1)) = (prev.dmu_abs, w.dmu_abs) {
+        if !(s0 > 0.0 && s1 <= 0.0) {
+            return None;
+        }
+        let p = locate(st, env, hist, (prev.lam, w.lam), Crossing::MuMax).ok()?;
+        return (p.lam <= l_stop).then_some(p.w);
+    }
+    let pp = pprev?;
+    if !(prev.mu.abs() > pp.mu.abs() && prev.mu.abs() >= w.mu.abs()) {
+        return None;
+    }
+    let mut eval =
+        |lam: f64| -> Result<f64, StepError> { Ok(st.correct(lam, hist, false)?.w.mu.abs()) };
+    let (lam, _) = search::maximize(&mut eval, pp.lam, w.lam.min(l_stop), 1e-12).ok()?;
+    Some(st.correct(lam, hist, false).ok()?.w)
+}
+
+/// `d|μ|/dλ` of the total friction ratio from the unknowns and their tangent (surface
+/// contacts; the unknowns are the forces in the surface frame).
+fn mu_slope(set: &ContactSet, u: &[f64], du: &[f64]) -> f64 {
+    let (mut n, mut t, mut dn, mut dt) = (0.0, 0.0, 0.0, 0.0);
+    for j in 0..set.contacts.len() {
+        let o = set.offset(j);
+        n += u[o];
+        t += u[o + 1];
+        dn += du[o];
+        dt += du[o + 1];
+    }
+    let mu = t / n;
+    let dmu = (dt * n - t * dn) / (n * n);
+    if mu == 0.0 {
+        dmu.abs()
+    } else {
+        mu.signum() * dmu
+    }
+}

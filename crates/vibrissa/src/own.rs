@@ -1,0 +1,148 @@
+//! The [`Stepper`] on the rod's own shooter, for every profile and contact set: quintic Hermite
+//! predictor through the last three points and their exact tangents `u' = −J⁻¹ ∂R/∂λ`, chord
+//! Newton. A sign change of `det J` between neighbours means the corrector crossed a fold:
+//! rejected, and passed or located by the fold passage (module `fold`), whose corrections on a
+//! hyperplane of `(u, λ)` are the bordered Newton of module `arclength` on the same chain.
+
+use crate::arclength::{self, ArcPoint};
+use crate::chain::{Chain, ContactSet, Family};
+use crate::control::{corrector_tol, MAX_ITER, OWN_H_MAX};
+use crate::profile::Profile;
+use crate::rodsolve::{correct_chord, Converged, ShotFailure};
+use crate::stepper::{interpolate, same_branch, Pt, StepError, Stepper};
+use crate::watch::{watch, Env, RodView};
+use bvp::Stats;
+use nalgebra::DVector;
+
+/// The stepper on the rod's own shooter.
+pub(crate) struct OwnStepper<P: Profile> {
+    pub chain: Chain<P>,
+    pub env: Env,
+}
+
+impl<P: Profile> OwnStepper<P> {
+    /// The branch point of a converged solve at `λ` (the shooter's paths hold it).
+    pub(crate) fn point(&mut self, lam: f64, cv: Converged) -> Result<Pt, StepError> {
+        let du = cv.tangent();
+        let det = cv.det();
+        let sol = self.chain.path(&cv.u);
+        let xf = self.chain.family.pose(lam).0.xf;
+        let chain = &self.chain;
+        let w = watch(
+            &self.env,
+            &chain.set,
+            lam,
+            &cv.u,
+            du.as_deref(),
+            RodView {
+                sol: &sol,
+                xf,
+                exact: &mut |s| chain.state_at(s),
+                kappa: &|s, m| chain.sh.profile.kappa(s, m),
+                straight: chain.sh.profile.straight(),
+            },
+        );
+        Ok(Pt {
+            lam,
+            u: cv.u,
+            du,
+            det: Some(det),
+            iters: cv.iterations,
+            sol,
+            w,
+            raw: None,
+        })
+    }
+
+    /// The point at `λ` from the prediction `u`.
+    pub(crate) fn correct_from(
+        &mut self,
+        lam: f64,
+        u: &[f64],
+        newest: Option<&Pt>,
+        fresh: bool,
+    ) -> Result<Pt, StepError> {
+        let tol = corrector_tol(self.chain.sh.tol);
+        let cv = correct_chord(&mut self.chain, lam, u, tol, MAX_ITER, fresh)?;
+        let p = self.point(lam, cv)?;
+        if p.du.is_none() {
+            return Err(StepError::NoTangent);
+        }
+        if let Some(last) = newest {
+            same_branch(last, u, &p, self.chain.sh.tol)?;
+        }
+        Ok(p)
+    }
+}
+
+impl<P: Profile> Stepper for OwnStepper<P> {
+    fn set(&self) -> &ContactSet {
+        &self.chain.set
+    }
+
+    fn correct(&mut self, lam: f64, hist: &[Pt], fresh: bool) -> Result<Pt, StepError> {
+        let u = interpolate(hist, lam).0;
+        self.correct_from(lam, &u, hist.last(), fresh)
+    }
+
+    fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, StepError> {
+        self.correct_from(lam, u, None, true)
+    }
+
+    fn switch(&mut self, set: ContactSet, lam: f64, u: Vec<f64>) -> Result<Pt, StepError> {
+        self.chain.set = set;
+        self.correct_from(lam, &u, None, true)
+    }
+
+    fn phase(&mut self, family: Family, env: &Env) {
+        self.chain.family = family;
+        self.env = env.clone();
+    }
+
+    fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>> {
+        self.chain.tangent_in(set.clone(), u, lam)
+    }
+
+    fn singular_at(&mut self, lam: f64, u: &[f64]) -> bool {
+        self.chain.singular_to_precision(u, lam)
+    }
+
+    fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64> {
+        self.chain.elastic_energy(u, lam)
+    }
+
+    fn stats(&self) -> Stats {
+        self.chain.sh.stats.clone()
+    }
+
+    fn h_max(&self) -> f64 {
+        OWN_H_MAX
+    }
+
+    fn foot_x(&self, lam: f64) -> f64 {
+        self.chain.family.pose(lam).0.xf
+    }
+
+    fn corrector_tol(&self) -> f64 {
+        corrector_tol(self.chain.sh.tol)
+    }
+
+    fn arc_start(&mut self, last: &Pt, tol: f64) -> Result<ArcPoint, ShotFailure> {
+        arclength::at_lambda(&mut self.chain, &last.u, last.lam, tol, 16)
+    }
+
+    fn on_plane(
+        &mut self,
+        _near: &ArcPoint,
+        pred: &DVector<f64>,
+        normal: &DVector<f64>,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<ArcPoint, ShotFailure> {
+        arclength::correct(&mut self.chain, pred, normal, tol, max_iter)
+    }
+
+    fn arc_point(&mut self, a: &ArcPoint) -> Result<Pt, StepError> {
+        self.point(a.lam(), a.converged())
+    }
+}

@@ -1,0 +1,213 @@
+//! What a march records (module `march` drives, this module observes): the output rows on the
+//! grid and at events, their shapes and tip states, the first maximum of `|μ|` and what ended the
+//! measurable range, and the work integrated along the branch (the drag's energy balance).
+
+use crate::chain::{ContactSet, Geom};
+use crate::profile::{General, Profile};
+use crate::report::{ContactLabel, Event, RangeEnd, ScanPoint};
+use crate::sampling::flex_and_reversals;
+use crate::shape::{shape_from, ShapePoint};
+use crate::stepper::{Pt, Stepper};
+use crate::surface::Meter;
+use crate::watch::{Env, Watch};
+
+/// The first maximum of `|μ|` and what ended the range, once known.
+pub(crate) struct RangeTracker {
+    pub best: (f64, f64, f64),
+    pub end: Option<RangeEnd>,
+}
+
+impl RangeTracker {
+    /// Takes the point `w` into the range while it is open.
+    pub fn see(&mut self, w: &Watch) {
+        if self.end.is_none() && w.mu.abs() >= self.best.0 {
+            self.best = (w.mu.abs(), w.mu, w.lam);
+        }
+    }
+    /// Closes the range with `end` (the first close counts).
+    pub fn close(&mut self, end: RangeEnd) {
+        if self.end.is_none() {
+            self.end = Some(end);
+        }
+    }
+}
+
+/// `∫ rate dλ` of the work `m` from `a` to `b` on the branch (points of `hist`'s span):
+/// the Hermite-corrected trapezoid, halved with solves at the midpoints until the halves agree
+/// with the whole to 1e-11 (its error falls 16-fold per halving: the halves' sum is then
+/// extrapolated).
+pub(crate) fn meter_between(
+    st: &mut dyn Stepper,
+    env: &Env,
+    m: Meter,
+    hist: &[Pt],
+    (a, b): (&Pt, &Pt),
+    depth: u32,
+) -> f64 {
+    let ends = |st: &dyn Stepper, a: &Pt, b: &Pt| {
+        let set = st.set();
+        metered(m, env, set, (a, st.foot_x(a.lam)), (b, st.foot_x(b.lam)))
+    };
+    let whole = ends(&*st, a, b);
+    if depth >= 16 || b.lam - a.lam <= 1e-13 * (1.0 + b.lam.abs()) {
+        return whole;
+    }
+    let Ok(mid) = st.correct(0.5 * (a.lam + b.lam), hist, true) else {
+        return whole;
+    };
+    let halves = ends(&*st, a, &mid) + ends(&*st, &mid, b);
+    if (halves - whole).abs() <= 1e-11 * (1.0 + whole.abs()) {
+        return halves + (halves - whole) / 15.0;
+    }
+    meter_between(st, env, m, hist, (a, &mid), depth + 1)
+        + meter_between(st, env, m, hist, (&mid, b), depth + 1)
+}
+
+/// The rate of the work `m` at the point `p` (foot at `xf`) and its slope in `λ`.
+fn meter_rate(m: Meter, env: &Env, set: &ContactSet, p: &Pt, xf: f64) -> (f64, f64) {
+    let zero = vec![0.0; p.u.len()];
+    let du = p.du.as_deref().unwrap_or(&zero);
+    match m {
+        Meter::Foot => {
+            let (mut r, mut dr) = (0.0, 0.0);
+            for (j, ct) in set.contacts.iter().enumerate() {
+                let o = set.offset(j);
+                r -= ct.force(p.u[o], p.u[o + 1])[0];
+                dr -= ct.force(du[o], du[o + 1])[0];
+            }
+            (r, dr)
+        }
+        Meter::Slide => {
+            let dir = env.ground.slide.map_or(1.0, |s| s.dir);
+            let Some(j) = set.contacts.iter().position(|c| c.tip) else {
+                return (0.0, 0.0);
+            };
+            let ct = set.contacts[j];
+            let o = set.offset(j);
+            let f = ct.force(p.u[o], p.u[o + 1]);
+            let df = ct.force(du[o], du[o + 1]);
+            // the unit tangent along +σ at the tip and its turn per unit arc length
+            let (e, de) = match ct.geom {
+                Geom::Curve { h } => {
+                    let x = p.sol.right()[0] + xf;
+                    let (_, d, dd) = h.jet(x);
+                    let w = (1.0 + d * d).sqrt();
+                    let kappa = dd / (w * w * w);
+                    ([1.0 / w, d / w], [-d / w * kappa, kappa / w])
+                }
+                Geom::Line { beta, .. } => ([beta.cos(), beta.sin()], [0.0, 0.0]),
+                _ => return (0.0, 0.0),
+            };
+            let r = -dir * (f[0] * e[0] + f[1] * e[1]);
+            let dr = -dir * (df[0] * e[0] + df[1] * e[1]) - (f[0] * de[0] + f[1] * de[1]);
+            (r, dr)
+        }
+    }
+}
+
+/// `∫ rate dλ` between two points of one branch: the trapezoid with the end-slope correction
+/// (exact for cubics; Hermite data from the exact tangents).
+fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) -> f64 {
+    let h = b.0.lam - a.0.lam;
+    if h == 0.0 {
+        return 0.0;
+    }
+    let (ra, da) = meter_rate(m, env, set, a.0, a.1);
+    let (rb, db) = meter_rate(m, env, set, b.0, b.1);
+    0.5 * h * (ra + rb) + h * h / 12.0 * (da - db)
+}
+
+/// The output point of a branch point.
+pub(crate) fn scan_point<P: Profile>(
+    p: &Pt,
+    set: &ContactSet,
+    profile: &P,
+    event: Option<Event>,
+) -> ScanPoint {
+    let w = &p.w;
+    let (fx, fy) = (w.force[0], w.force[1]);
+    let f = (fx * fx + fy * fy).sqrt();
+    let alpha = fx.atan2(-fy);
+    let (flex, s_flex, _) = flex_and_reversals(&p.sol, profile);
+    let s_c = set
+        .contacts
+        .iter()
+        .position(|c| !c.tip)
+        .map(|j| set.s_of(j, &p.u));
+    let mu_peak = w
+        .contacts
+        .iter()
+        .map(|c| match c.normal {
+            // lift-off: unbounded unless no tangential force is needed
+            0.0 if c.tangential == 0.0 => 0.0,
+            n => (c.tangential / n).abs(),
+        })
+        .fold(0.0, f64::max);
+    ScanPoint {
+        d: p.lam,
+        mu: w.mu,
+        normal: w.normal,
+        mu_peak,
+        alpha,
+        phi1: p.sol.right()[2],
+        f,
+        fx,
+        fy,
+        m_base: p.sol.left()[3],
+        flex,
+        s_flex,
+        y_max: w.y_max,
+        contact: ContactLabel::of(set),
+        s_c,
+        event,
+    }
+}
+
+/// What a march records: the output points on the grid, filled as the march passes them, and
+/// the event points, with their shapes and tip states, and the metered work.
+pub(crate) struct Output<'a, P: Profile> {
+    pub points: Vec<ScanPoint>,
+    pub shapes: Vec<Vec<ShapePoint>>,
+    /// The next grid point to emit.
+    pub gi: usize,
+    pub tips: Vec<[f64; 4]>,
+    pub metered: f64,
+    /// Each row's shape sampled at this many points, if kept.
+    pub keep_shapes: Option<usize>,
+    /// The rod's profile (flex points of the rows, shapes).
+    pub profile: &'a P,
+    pub general: &'a General,
+}
+
+impl<'a, P: Profile> Output<'a, P> {
+    /// An empty record for `rows` rows, starting at grid point `gi`.
+    pub fn new(
+        rows: usize,
+        gi: usize,
+        keep_shapes: Option<usize>,
+        profile: &'a P,
+        general: &'a General,
+    ) -> Self {
+        Output {
+            points: Vec::with_capacity(rows),
+            shapes: Vec::new(),
+            gi,
+            tips: Vec::with_capacity(rows),
+            metered: 0.0,
+            keep_shapes,
+            profile,
+            general,
+        }
+    }
+
+    /// Records the point `p` of the contact set `set` (with its event, if it is one).
+    pub fn push(&mut self, set: &ContactSet, p: &Pt, event: Option<Event>) {
+        self.points.push(scan_point(p, set, self.profile, event));
+        let zb = p.sol.right();
+        self.tips.push([zb[0], zb[1], zb[2], zb[3]]);
+        if let Some(ns) = self.keep_shapes {
+            let shape = shape_from(p.sol.clone(), 0.0, self.general.clone());
+            self.shapes.push(shape.samples(ns));
+        }
+    }
+}
