@@ -78,7 +78,7 @@ fn cases() -> Vec<Case> {
         Case {
             name: "scan, 201 points",
             rod: rod.clone(),
-            surface: flat,
+            surface: flat.clone(),
             job: Job::Scan(ScanOptions::default()),
         },
         Case {

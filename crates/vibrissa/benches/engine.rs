@@ -182,7 +182,7 @@ fn table(cases: &[Case]) {
         let part = Case {
             name: "uniform, d up to the slip",
             rod: cases[0].rod.clone(),
-            surface: cases[0].surface,
+            surface: cases[0].surface.clone(),
             opts: ScanOptions {
                 d_max: 0.5 * (covered - 1) as f64 / 200.0 + 0.0025,
                 points: covered + 1,
@@ -193,7 +193,7 @@ fn table(cases: &[Case]) {
             Case {
                 name: "slip",
                 rod: cases[0].rod.clone(),
-                surface: cases[0].surface,
+                surface: cases[0].surface.clone(),
                 opts: cases[cases.len() - 1].opts.clone(),
             },
             part,

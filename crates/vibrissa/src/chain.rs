@@ -31,9 +31,10 @@ use crate::shooter::Shooter;
 use bvp::Solution;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::FRAC_PI_2;
+use std::sync::Arc;
 
 /// What a contact touches.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Geom {
     /// The surface line through `p0` (lab frame) inclined by `beta`, shifted along its normal by
     /// the pose's offset `h`.
@@ -43,7 +44,7 @@ pub(crate) enum Geom {
     /// No obstacle: the tip's slope is held at `phi1` (a single solve's tip condition).
     Slope { phi1: f64 },
     /// A curved surface `y = h(x)` (lab frame), shifted up by the pose's offset `h`.
-    Curve { h: &'static crate::surface::Height },
+    Curve { h: Arc<crate::surface::Height> },
 }
 
 /// How a contact holds.
@@ -70,7 +71,7 @@ impl Mode {
 }
 
 /// One contact.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Contact {
     /// At the tip (`s = 1`), else at an unknown interior arc length.
     pub tip: bool,
@@ -128,7 +129,7 @@ impl Contact {
     /// there; `phi_ref` the rod's slope there if it lies tangent, `θ(x) + kπ`).
     pub fn on_curve(
         tip: bool,
-        h: &'static crate::surface::Height,
+        h: &Arc<crate::surface::Height>,
         x: f64,
         mode: Mode,
         phi_ref: f64,
@@ -136,7 +137,7 @@ impl Contact {
         let th = h.angle(x).0;
         Contact {
             tip,
-            geom: Geom::Curve { h },
+            geom: Geom::Curve { h: h.clone() },
             mode,
             n: [-th.sin(), th.cos()],
             phi_ref,
@@ -192,7 +193,7 @@ impl ContactSet {
         }
         self.contacts
             .iter()
-            .map(|c| match (c.geom, c.tip) {
+            .map(|c| match (&c.geom, c.tip) {
                 (Geom::Line { .. } | Geom::Slope { .. } | Geom::Curve { .. }, true) => "tip",
                 (Geom::Line { .. } | Geom::Slope { .. } | Geom::Curve { .. }, false) => "side",
                 (Geom::Point { .. }, _) => "point",
@@ -468,10 +469,10 @@ impl<P: Profile> Chain<P> {
             };
             cur = Sens { z: shot.z, d: next };
             // the contact's conditions
-            let ct = set.contacts[k];
+            let ct = &set.contacts[k];
             let o = set.offset(k);
             let z = cur.z;
-            let cs = conditions(&ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
+            let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
             for i in 0..cs.rows {
                 r[row] = cs.val[i];
                 if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
@@ -769,7 +770,7 @@ pub(crate) fn conditions(
     let (nn, tt) = (own[0], own[1]);
     let friction =
         |cs: &mut Conds, ratio: f64| cs.push(tt - ratio * nn, [0.0; 4], [-ratio, 1.0, 0.0], 0.0);
-    match ct.geom {
+    match &ct.geom {
         Geom::Line { p0, beta } => {
             let (sb, cb) = beta.sin_cos();
             let nv = [-sb, cb];
@@ -935,7 +936,7 @@ fn curve_conditions(
 /// The force `(N, T)` of a contact resolved on the local normal and tangent of a curved surface at
 /// lab `x` (for a line: the unknowns themselves).
 pub(crate) fn local_forces(ct: &Contact, nn: f64, tt: f64, x: f64) -> (f64, f64) {
-    match ct.geom {
+    match &ct.geom {
         Geom::Curve { h } => {
             let f = ct.force(nn, tt);
             let (st, c) = h.angle(x).0.sin_cos();

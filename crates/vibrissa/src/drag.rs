@@ -34,11 +34,12 @@ use crate::report::{ContactLabel, ContactModel, Event, StopReason};
 use crate::shape::{shape_from, ShapePoint};
 use crate::solve::Method;
 use crate::stepper::{Pt, Stepper};
-use crate::surface::{gauss10, Meter, Slide};
+use crate::surface::{Meter, Slide};
 use crate::watch::Env;
 use crate::{Rod, Surface, VibrissaError};
 use serde::Serialize;
 use std::fmt;
+use std::sync::Arc;
 
 /// Largest foot displacement of a drag (rod lengths).
 pub const MAX_DRAG: f64 = 1000.0;
@@ -349,15 +350,15 @@ impl fmt::Display for DragResult {
 }
 
 /// The coefficients of a drag: uniform, or the surface's texture.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Friction {
     uniform: Option<(f64, f64)>,
-    texture: Option<&'static crate::surface::Texture>,
+    texture: Option<Arc<crate::surface::Texture>>,
 }
 
 impl Friction {
     fn at(&self, x: f64, side: f64) -> (f64, f64) {
-        match (self.uniform, self.texture) {
+        match (self.uniform, &self.texture) {
             (Some(p), _) => p,
             (None, Some(t)) => t.at(x, side),
             _ => (f64::INFINITY, f64::INFINITY),
@@ -372,7 +373,7 @@ pub fn drag(rod: &Rod, surface: &Surface, opts: &DragOptions) -> Result<DragResu
     opts.validate()?;
     let fr = Friction {
         uniform: opts.mu_s.zip(opts.mu_k),
-        texture: surface.texture(),
+        texture: surface.texture_shared(),
     };
     if fr.uniform.is_none() && fr.texture.is_none() {
         return Err(VibrissaError::range(
@@ -404,7 +405,7 @@ fn drag_with<P: Profile>(
     base.ground.texture = if fr.uniform.is_some() {
         None
     } else {
-        fr.texture
+        fr.texture.clone()
     };
     let n = opts.points;
     let grid: Vec<f64> = (0..n)
@@ -476,7 +477,7 @@ struct DragRun<'a, P: Profile> {
 /// The tip's contact in a set: the last one, if it is the tip and stuck.
 fn stuck_tip(set: &ContactSet) -> Option<usize> {
     let j = set.contacts.len().checked_sub(1)?;
-    let c = set.contacts[j];
+    let c = &set.contacts[j];
     (c.tip && matches!(c.mode, Mode::Stuck(_))).then_some(j)
 }
 
@@ -568,7 +569,7 @@ impl<P: Profile> DragRun<'_, P> {
             let mut mu_s_next = None;
             let (eset, qe) = loop {
                 let (_, mu_k) = self.fr.at(x_now, dir);
-                let boundary = self.fr.texture.and_then(|t| t.next_boundary(x_now, dir));
+                let boundary = (self.fr.texture.as_ref()).and_then(|t| t.next_boundary(x_now, dir));
                 let lam_end = match boundary {
                     Some(xb) if self.fr.uniform.is_none() => {
                         (clam + self.arc(x_now, xb).abs()).min(MAX_SLIP)

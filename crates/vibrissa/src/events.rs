@@ -14,6 +14,7 @@ use crate::report::{Event, StopReason};
 use crate::search::{self, RootError};
 use crate::stepper::{Pt, StepError, Stepper};
 use crate::watch::{lies_inside, slip_limit, Env, Goal, Watch, SIDE_FRICTION_LIMIT};
+use std::sync::Arc;
 
 /// The events of a contact state: functions negative while it holds, zero where it ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,7 +91,7 @@ impl Crossing {
             if lies_inside(set, j) {
                 v.push(Crossing::Lie(j));
             }
-            match (c.geom, c.tip) {
+            match (&c.geom, c.tip) {
                 (Geom::Line { .. } | Geom::Curve { .. }, true) => v.push(Crossing::TipTangent),
                 (Geom::Line { .. } | Geom::Curve { .. }, false) => v.push(Crossing::PeelBack(j)),
                 (Geom::Point { .. }, false) => v.push(Crossing::SlipOff(j)),
@@ -143,7 +144,7 @@ impl Crossing {
                 Some(u[o + 1].abs() - slip_limit(env, set, j) * u[o])
             }
             Crossing::Stick(j) if line(j) => {
-                let mu_k = match (env.ground.texture, env.ground.slide) {
+                let mu_k = match (&env.ground.texture, env.ground.slide) {
                     (None, Some(sl)) => sl.mu_k,
                     (Some(t), Some(_)) => t.uniform_mu_k()?,
                     _ => return None,
@@ -381,7 +382,7 @@ pub(crate) enum Next {
 /// The contact set after a touchdown, the tip lying down, or a peel-back on a curved surface (as
 /// on a line, with the surface's arc length for the places and its local frame for the forces).
 fn curve_transition(
-    h: &'static crate::surface::Height,
+    h: &Arc<crate::surface::Height>,
     set: &ContactSet,
     cross: Crossing,
     pe: &Pt,
@@ -419,7 +420,7 @@ fn curve_transition(
                 tip: false,
                 mode,
                 phi_ref,
-                ..set.contacts[j]
+                ..set.contacts[j].clone()
             };
             let mut nu = u.clone();
             nu.push(1.0);
@@ -435,7 +436,7 @@ fn curve_transition(
                 let jt = set.contacts.len() - 1;
                 let ot = set.offset(jt);
                 let f = set.contacts[j].force(u[o], u[o + 1]);
-                let ct = set.contacts[jt];
+                let ct = &set.contacts[jt];
                 let t = ct.t();
                 nu[ot] -= f[0] * ct.n[0] + f[1] * ct.n[1];
                 nu[ot + 1] += f[0] * t[0] + f[1] * t[1];
@@ -451,7 +452,7 @@ fn curve_transition(
                 ns.contacts[j] = Contact {
                     tip: true,
                     mode,
-                    ..set.contacts[j]
+                    ..set.contacts[j].clone()
                 };
                 nu.remove(o + 2);
             }
@@ -533,7 +534,7 @@ pub(crate) fn transition(
             Crossing::Touchdown | Crossing::TipTangent | Crossing::PeelBack(_)
                 if env.ground.curve.is_some() =>
             {
-                match env.ground.curve {
+                match &env.ground.curve {
                     Some(h) => curve_transition(h, set, cross, pe, xf, friction),
                     None => Next::Stop(Event::Penetration),
                 }
@@ -555,7 +556,7 @@ pub(crate) fn transition(
             }
             Crossing::TipTangent => {
                 let j = set.contacts.len() - 1;
-                let ct = set.contacts[j];
+                let ct = &set.contacts[j];
                 let Geom::Line { p0, beta } = ct.geom else {
                     return Next::Stop(Event::Penetration);
                 };
@@ -573,7 +574,7 @@ pub(crate) fn transition(
                 Next::Switch(Event::Touchdown, ns, nu)
             }
             Crossing::PeelBack(j) => {
-                let ct = set.contacts[j];
+                let ct = &set.contacts[j];
                 let Geom::Line { p0, beta } = ct.geom else {
                     return Next::Stop(Event::SlipOff);
                 };

@@ -16,6 +16,7 @@ use crate::surface::{Ground, Height};
 use crate::watch::Env;
 use crate::{Rod, Surface, VibrissaError};
 use bvp::Stats;
+use std::sync::Arc;
 
 /// The march's view of a surface: the line (through `p0`, inclination β) or the curve, the
 /// texture.
@@ -29,8 +30,8 @@ pub(crate) fn env_of(surface: &Surface, p0: [f64; 2], mu0: Option<f64>, compound
         compound,
         target: None,
         ground: Ground {
-            curve: surface.profile(),
-            texture: surface.texture(),
+            curve: surface.profile_shared(),
+            texture: surface.texture_shared(),
             ..Ground::default()
         },
     }
@@ -45,7 +46,7 @@ pub(crate) fn start<P: Profile>(
     kind: crate::StartKind,
     tol: f64,
 ) -> Result<(Pressed<P>, ContactSet, [f64; 2]), VibrissaError> {
-    match surface.profile() {
+    match surface.profile_shared() {
         None => {
             let start = crate::start::scan_start(rod, profile, surface, kind, tol)?;
             let (set, p0) = crate::start::stuck(&start, surface.angle());
@@ -60,8 +61,8 @@ pub(crate) fn start<P: Profile>(
                         .into(),
                 });
             }
-            let pressed = curve_start(rod, profile, surface, h, tol)?;
-            let (set, u) = stuck(&pressed, h, 0.0);
+            let pressed = curve_start(rod, profile, surface, &h, tol)?;
+            let (set, u) = stuck(&pressed, &h, 0.0);
             let p0 = {
                 let z = pressed.pt.sol.right();
                 [z[0], z[1]]
@@ -83,7 +84,7 @@ fn curve_start<P: Profile>(
     rod: &Rod,
     profile: &P,
     surface: &Surface,
-    h: &'static Height,
+    h: &Arc<Height>,
     tol: f64,
 ) -> Result<Pressed<P>, VibrissaError> {
     let line = Surface::new(surface.eta(), surface.angle())?;
@@ -97,7 +98,7 @@ fn curve_start<P: Profile>(
             .contacts
             .iter()
             .map(|c| Contact {
-                geom: Geom::Curve { h },
+                geom: Geom::Curve { h: h.clone() },
                 ..*c
             })
             .collect(),
@@ -110,7 +111,7 @@ fn curve_start<P: Profile>(
             compound: true,
             target: None,
             ground: Ground {
-                curve: Some(h),
+                curve: Some(h.clone()),
                 grow: true,
                 ..Ground::default()
             },
@@ -177,7 +178,7 @@ fn curve_start<P: Profile>(
 /// contact set and the unknowns in it.
 pub(crate) fn stuck<P: Profile>(
     p: &Pressed<P>,
-    h: &'static Height,
+    h: &Arc<Height>,
     xf: f64,
 ) -> (ContactSet, Vec<f64>) {
     let mut u = p.pt.u.clone();
@@ -201,7 +202,7 @@ pub(crate) fn stuck<P: Profile>(
                 let dir = (c.phi_ref - th).cos().round();
                 Contact {
                     mode: Mode::Rolling(h.sigma(x).0 - dir * s),
-                    ..*c
+                    ..c.clone()
                 }
             }
         })

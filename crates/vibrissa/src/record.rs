@@ -82,12 +82,12 @@ fn meter_rate(m: Meter, env: &Env, set: &ContactSet, p: &Pt, xf: f64) -> (f64, f
             let Some(j) = set.contacts.iter().position(|c| c.tip) else {
                 return (0.0, 0.0);
             };
-            let ct = set.contacts[j];
+            let ct = &set.contacts[j];
             let o = set.offset(j);
             let f = ct.force(p.u[o], p.u[o + 1]);
             let df = ct.force(du[o], du[o + 1]);
             // the unit tangent along +σ at the tip and its turn per unit arc length
-            let (e, de) = match ct.geom {
+            let (e, de) = match &ct.geom {
                 Geom::Curve { h } => {
                     let x = p.sol.right()[0] + xf;
                     let (_, d, dd) = h.jet(x);

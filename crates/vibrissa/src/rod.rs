@@ -5,6 +5,7 @@ use crate::parts::{Physical, Precurvature, Stiffness};
 use crate::profile::General;
 use crate::VibrissaError;
 use std::f64::consts::FRAC_PI_4;
+use std::sync::Arc;
 
 /// Physical units of a rod with [`Physical`] dimensions.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -324,16 +325,20 @@ impl Rod {
 
 /// The surface the tip touches: the height `eta` of the contact point above the foot (in rod
 /// lengths) and the inclination `angle` β of the surface line (rad, 0 = horizontal).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+///
+/// A curved profile and a friction texture are held by shared ownership: every contact and
+/// march that refers to them holds a count, and the memory goes with the last one (a fit or a
+/// sweep that tries 10⁵ surfaces does not keep them).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct Surface {
     eta: f64,
     angle: f64,
     /// A curved profile (none: the straight line through the contact point).
     #[serde(skip_serializing_if = "Option::is_none")]
-    profile: Option<&'static crate::surface::Height>,
+    profile: Option<Arc<crate::surface::Height>>,
     /// A friction profile.
     #[serde(skip_serializing_if = "Option::is_none")]
-    texture: Option<&'static crate::surface::Texture>,
+    texture: Option<Arc<crate::surface::Texture>>,
 }
 
 impl Surface {
@@ -387,8 +392,7 @@ impl Surface {
         self,
         p: &crate::surface::SurfaceProfile,
     ) -> Result<Surface, VibrissaError> {
-        let profile = crate::surface::Height::new(p, self.eta, self.angle)?
-            .map(crate::surface::intern_height);
+        let profile = crate::surface::Height::new(p, self.eta, self.angle)?.map(Arc::new);
         Ok(Surface { profile, ..self })
     }
     /// The surface with the friction profile `f` (see [`crate::surface`]).
@@ -396,15 +400,23 @@ impl Surface {
         self,
         f: &crate::surface::FrictionProfile,
     ) -> Result<Surface, VibrissaError> {
-        let texture = crate::surface::Texture::new(f)?.map(crate::surface::intern_texture);
+        let texture = crate::surface::Texture::new(f)?.map(Arc::new);
         Ok(Surface { texture, ..self })
     }
     /// The curved height profile, if not a straight line.
-    pub fn profile(&self) -> Option<&'static crate::surface::Height> {
-        self.profile
+    pub fn profile(&self) -> Option<&crate::surface::Height> {
+        self.profile.as_deref()
     }
     /// The friction profile, if any.
-    pub fn texture(&self) -> Option<&'static crate::surface::Texture> {
-        self.texture
+    pub fn texture(&self) -> Option<&crate::surface::Texture> {
+        self.texture.as_deref()
+    }
+    /// The curved height profile, shared.
+    pub(crate) fn profile_shared(&self) -> Option<Arc<crate::surface::Height>> {
+        self.profile.clone()
+    }
+    /// The friction profile, shared.
+    pub(crate) fn texture_shared(&self) -> Option<Arc<crate::surface::Texture>> {
+        self.texture.clone()
     }
 }

@@ -152,7 +152,7 @@ pub(crate) fn press<P: Profile>(
         contact.phi_ref = crate::chain::slope_on(gb, z_top[2]);
     }
     let set = ContactSet {
-        contacts: vec![contact],
+        contacts: vec![contact.clone()],
     };
     let family = Family::Press { h0: top };
     let mut chain = Chain::new(sh, set, family);
@@ -306,7 +306,7 @@ fn loaded_start<P: Profile>(
     tol: f64,
     n0: f64,
 ) -> Result<(f64, Vec<f64>), VibrissaError> {
-    let ct = chain.set.contacts[0];
+    let ct = chain.set.contacts[0].clone();
     let g = ct.force(n0, 0.0);
     let c = chain.sh.compliance;
     let mut m0 = 0.0;

@@ -31,7 +31,7 @@
 
 use crate::VibrissaError;
 use serde::{Deserialize, Serialize};
-use std::sync::Mutex;
+use std::sync::Arc;
 
 /// The surface's shape in a scene file (`[surface]`). Heights are relative to `eta` and add to
 /// the inclination `surface_angle` (`h(x) = eta + x·tan(surface_angle) + shape(x)`), except for
@@ -716,10 +716,10 @@ impl Texture {
 /// What a march knows of the surface besides a straight line: the curved profile the contacts
 /// touch, the friction texture, and whether this march is a slip (the tip sliding, its end where
 /// the needed friction ratio falls to μk).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct Ground {
-    pub curve: Option<&'static Height>,
-    pub texture: Option<&'static Texture>,
+    pub curve: Option<Arc<Height>>,
+    pub texture: Option<Arc<Texture>>,
     pub slide: Option<Slide>,
     /// Integrate the work along the march (the drag's energy balance).
     pub meter: Option<Meter>,
@@ -749,38 +749,13 @@ pub(crate) struct Slide {
 impl Ground {
     /// `(μs, μk)` at lab `x` from the texture, else `None`.
     pub fn friction_at(&self, x: f64, side: f64) -> Option<(f64, f64)> {
-        self.texture.map(|t| t.at(x, side))
+        self.texture.as_ref().map(|t| t.at(x, side))
     }
     /// μk at `x` during the slide (`None` outside one).
     pub fn mu_k_at(&self, x: f64) -> Option<f64> {
         let s = self.slide?;
         Some(self.friction_at(x, s.dir).map_or(s.mu_k, |p| p.1))
     }
-}
-
-/// The one shared copy of a profile: contacts refer to it by a `'static` reference, so that they
-/// stay plain values. Equal profiles share one copy (repeated runs do not grow the store).
-pub(crate) fn intern_height(h: Height) -> &'static Height {
-    static STORE: Mutex<Vec<&'static Height>> = Mutex::new(Vec::new());
-    let mut v = STORE.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(&old) = v.iter().find(|&&o| *o == h) {
-        return old;
-    }
-    let new: &'static Height = Box::leak(Box::new(h));
-    v.push(new);
-    new
-}
-
-/// As [`intern_height`], for textures.
-pub(crate) fn intern_texture(t: Texture) -> &'static Texture {
-    static STORE: Mutex<Vec<&'static Texture>> = Mutex::new(Vec::new());
-    let mut v = STORE.lock().unwrap_or_else(|e| e.into_inner());
-    if let Some(&old) = v.iter().find(|&&o| *o == t) {
-        return old;
-    }
-    let new: &'static Texture = Box::leak(Box::new(t));
-    v.push(new);
-    new
 }
 
 /// The largest height `y(s) − h(x(s)) − off` of the rod's free parts above a curved surface and

@@ -241,7 +241,7 @@ pub(crate) fn watch(
                 mu.signum() * dmu
             }
         });
-    let (clear, clear_s, tip_approach) = match (env.line, env.ground.curve) {
+    let (clear, clear_s, tip_approach) = match (env.line, &env.ground.curve) {
         (_, Some(h)) => {
             let amp = if env.ground.grow { lam } else { 1.0 };
             curve_clearance(set, u, (h, amp), sol, xf, exact, kappa)
@@ -392,12 +392,15 @@ fn clearance(
             best = (v, 1.0);
         }
     }
-    let approach =
-        if tip_contact && matches!(set.contacts.last().map(|c| c.geom), Some(Geom::Line { .. })) {
-            (sol.right()[2] - beta).sin()
-        } else {
-            f64::NAN
-        };
+    let approach = if tip_contact
+        && matches!(
+            set.contacts.last().map(|c| &c.geom),
+            Some(Geom::Line { .. })
+        ) {
+        (sol.right()[2] - beta).sin()
+    } else {
+        f64::NAN
+    };
     (best.0, best.1, approach)
 }
 
