@@ -311,6 +311,9 @@ pub(crate) struct Chain<P: Profile> {
 /// [`Chain::breakpoints`]).
 pub(crate) const OVERSHOOT: f64 = 0.05;
 
+/// The Jacobian's rows and `∂R/∂λ`, where they are asked for.
+type Rows<'a> = (Option<&'a mut DMatrix<f64>>, Option<&'a mut DVector<f64>>);
+
 /// The state at a breakpoint and its sensitivities (4 rows × n + 1 columns; the last is λ).
 #[derive(Clone, Debug)]
 struct Sens {
@@ -402,95 +405,14 @@ impl<P: Profile> Chain<P> {
                 return Err(EvalError::NonFinite);
             }
             let next = if var {
-                let mut d = DMatrix::zeros(4, nc);
-                // start position carried over; start (φ, m) through the columns
-                for col in 0..nc {
-                    d[(0, col)] += cur.d[(0, col)];
-                    d[(1, col)] += cur.d[(1, col)];
-                    if first {
-                        let w = cur.d[(3, col)];
-                        for i in 0..4 {
-                            d[(i, col)] += shot.col[0][i] * w;
-                        }
-                    } else {
-                        let (wp, wm) = (cur.d[(2, col)], cur.d[(3, col)]);
-                        for i in 0..4 {
-                            d[(i, col)] += shot.col[0][i] * wp + shot.col[1][i] * wm;
-                        }
-                    }
-                }
-                // the force columns: contacts j ≥ k
-                let (qx, qy) = (shot.ncol - 2, shot.ncol - 1);
-                for j in k..set.contacts.len() {
-                    let ct = &set.contacts[j];
-                    let o = set.offset(j);
-                    let t = ct.t();
-                    for (col, dfx, dfy) in [(o, -ct.n[0], -ct.n[1]), (o + 1, t[0], t[1])] {
-                        for i in 0..4 {
-                            d[(i, col)] += shot.col[qx][i] * dfx + shot.col[qy][i] * dfy;
-                        }
-                    }
-                }
-                // moving ends, by central differences of the discrete end state (the mesh laid
-                // on the moved segment): exact to ~1e-10, so Newton converges as with exact
-                // derivatives whatever the integration tolerance
-                let moving_b = !set.contacts[k].tip;
-                let moving_a = k > 0 && !set.contacts[k - 1].tip;
-                if moving_b || moving_a {
-                    let dlt = 1e-5 * (b - a);
-                    let diff = |lo: [f64; 4], hi: [f64; 4]| {
-                        [0, 1, 2, 3].map(|i| (hi[i] - lo[i]) / (2.0 * dlt))
-                    };
-                    if moving_b {
-                        let col = set.offset(k) + 2;
-                        let dz = diff(
-                            self.sh.end_state(k, a, b - dlt, cur.z, g),
-                            self.sh.end_state(k, a, b + dlt, cur.z, g),
-                        );
-                        for i in 0..4 {
-                            d[(i, col)] += dz[i];
-                        }
-                    }
-                    if moving_a {
-                        // the start state stays where it is: only the segment's span moves
-                        let col = set.offset(k - 1) + 2;
-                        let dz = diff(
-                            self.sh.end_state(k, a - dlt, b, cur.z, g),
-                            self.sh.end_state(k, a + dlt, b, cur.z, g),
-                        );
-                        for i in 0..4 {
-                            d[(i, col)] += dz[i];
-                        }
-                    }
-                }
-                d
+                self.carry(k, (a, b), &cur, &shot, g, first)
             } else {
                 DMatrix::zeros(4, 0)
             };
             cur = Sens { z: shot.z, d: next };
             // the contact's conditions
-            let ct = &set.contacts[k];
-            let o = set.offset(k);
-            let z = cur.z;
-            let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
-            for i in 0..cs.rows {
-                r[row] = cs.val[i];
-                if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
-                    let dz = &cur.d;
-                    for col in 0..nc {
-                        let mut g: f64 = (0..4).map(|q| cs.dz[i][q] * dz[(q, col)]).sum();
-                        if col >= o && col < o + ct.unknowns() {
-                            g += cs.down[i][col - o];
-                        }
-                        if col < n {
-                            j[(row, col)] = g;
-                        } else {
-                            l[row] = g + cs.dlam[i];
-                        }
-                    }
-                }
-                row += 1;
-            }
+            let rows = (jac.as_mut(), rl.as_mut());
+            row = self.conditions_of(k, u, (&pose, &dpose), &cur, (&mut r, rows), row);
             a = b;
         }
         // the free end of the loaded part: m(s_L) = 0 (with no contact: m(1) = 0 on the rest shape)
@@ -525,6 +447,123 @@ impl<P: Profile> Chain<P> {
             r_lam: rl,
             err,
         })
+    }
+
+    /// The sensitivities of the end state of segment `k` on `[a, b]` (the shot `shot` from the
+    /// start `cur` under the force `g`; `first`: the foot's segment with its compliance folded
+    /// into the first column) with respect to the unknowns and `λ`.
+    fn carry(
+        &self,
+        k: usize,
+        (a, b): (f64, f64),
+        cur: &Sens,
+        shot: &crate::shooter::SegShot,
+        g: [f64; 2],
+        first: bool,
+    ) -> DMatrix<f64> {
+        let set = &self.set;
+        let nc = set.n() + 1;
+        let mut d = DMatrix::zeros(4, nc);
+        // start position carried over; start (φ, m) through the columns
+        for col in 0..nc {
+            d[(0, col)] += cur.d[(0, col)];
+            d[(1, col)] += cur.d[(1, col)];
+            if first {
+                let w = cur.d[(3, col)];
+                for i in 0..4 {
+                    d[(i, col)] += shot.col[0][i] * w;
+                }
+            } else {
+                let (wp, wm) = (cur.d[(2, col)], cur.d[(3, col)]);
+                for i in 0..4 {
+                    d[(i, col)] += shot.col[0][i] * wp + shot.col[1][i] * wm;
+                }
+            }
+        }
+        // the force columns: contacts j ≥ k
+        let (qx, qy) = (shot.ncol - 2, shot.ncol - 1);
+        for j in k..set.contacts.len() {
+            let ct = &set.contacts[j];
+            let o = set.offset(j);
+            let t = ct.t();
+            for (col, dfx, dfy) in [(o, -ct.n[0], -ct.n[1]), (o + 1, t[0], t[1])] {
+                for i in 0..4 {
+                    d[(i, col)] += shot.col[qx][i] * dfx + shot.col[qy][i] * dfy;
+                }
+            }
+        }
+        // moving ends, by central differences of the discrete end state (the mesh laid on the
+        // moved segment): exact to ~1e-10, so Newton converges as with exact derivatives
+        // whatever the integration tolerance
+        let moving_b = !set.contacts[k].tip;
+        let moving_a = k > 0 && !set.contacts[k - 1].tip;
+        if moving_b || moving_a {
+            let dlt = 1e-5 * (b - a);
+            let diff =
+                |lo: [f64; 4], hi: [f64; 4]| [0, 1, 2, 3].map(|i| (hi[i] - lo[i]) / (2.0 * dlt));
+            if moving_b {
+                let col = set.offset(k) + 2;
+                let dz = diff(
+                    self.sh.end_state(k, a, b - dlt, cur.z, g),
+                    self.sh.end_state(k, a, b + dlt, cur.z, g),
+                );
+                for i in 0..4 {
+                    d[(i, col)] += dz[i];
+                }
+            }
+            if moving_a {
+                // the start state stays where it is: only the segment's span moves
+                let col = set.offset(k - 1) + 2;
+                let dz = diff(
+                    self.sh.end_state(k, a - dlt, b, cur.z, g),
+                    self.sh.end_state(k, a + dlt, b, cur.z, g),
+                );
+                for i in 0..4 {
+                    d[(i, col)] += dz[i];
+                }
+            }
+        }
+        d
+    }
+
+    /// Contact `k`'s conditions at the end state `cur` of its segment, written into the
+    /// residual (and, where they are asked for, the Jacobian's rows and `∂R/∂λ`) from `row` on;
+    /// the next free row.
+    fn conditions_of(
+        &self,
+        k: usize,
+        u: &[f64],
+        (pose, dpose): (&Pose, &Pose),
+        cur: &Sens,
+        (r, (jac, rl)): (&mut DVector<f64>, Rows<'_>),
+        mut row: usize,
+    ) -> usize {
+        let set = &self.set;
+        let (n, nc) = (set.n(), set.n() + 1);
+        let ct = &set.contacts[k];
+        let o = set.offset(k);
+        let z = cur.z;
+        let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], pose, dpose);
+        let mut rows = jac.zip(rl);
+        for i in 0..cs.rows {
+            r[row] = cs.val[i];
+            if let Some((j, l)) = rows.as_mut() {
+                let dz = &cur.d;
+                for col in 0..nc {
+                    let mut g: f64 = (0..4).map(|q| cs.dz[i][q] * dz[(q, col)]).sum();
+                    if col >= o && col < o + ct.unknowns() {
+                        g += cs.down[i][col - o];
+                    }
+                    if col < n {
+                        j[(row, col)] = g;
+                    } else {
+                        l[row] = g + cs.dlam[i];
+                    }
+                }
+            }
+            row += 1;
+        }
+        row
     }
 
     /// Whether the equilibrium at `(u, λ)` is singular to working precision: the smallest

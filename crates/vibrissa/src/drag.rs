@@ -486,7 +486,11 @@ impl<P: Profile> DragRun<'_, P> {
         StopReason::SolverFailure { d, message }
     }
 
-    /// The phases, from the stuck start `p` at `d = 0`; why the drag stopped.
+    /// The phases, from the stuck start `p` at `d = 0`; why the drag stopped. Each phase is a
+    /// march of the one engine on the same stepper, started from the point where the last one
+    /// ended: a stick (the foot moves, the tip stuck) until the tip reaches its slip limit, then
+    /// the slip (the foot held, the tip's place moved along the surface) until kinetic friction
+    /// holds it, where the next stick starts.
     fn run(&mut self, mut p: Pt) -> StopReason {
         let mut first = true;
         // the tip's static coefficient after a slip (the patch it stopped in, or ahead of it)
@@ -496,257 +500,290 @@ impl<P: Profile> DragRun<'_, P> {
             None => return Self::failure(0.0, "the elastic energy of the start".into()),
         };
         loop {
-            let d = p.lam;
-            // the stick phase
-            let x_tip = p.sol.right()[0] + d;
-            let mu_s = carry.take().unwrap_or_else(|| self.fr.at(x_tip, 1.0).0);
-            let mut env = self.base.clone();
-            env.mu0 = Some(mu_s);
-            env.ground.meter = self.opts.energy_balance.then_some(Meter::Foot);
-            self.st.phase(Family::Drag, &env);
-            let gi = if first {
-                0
-            } else {
-                self.grid.partition_point(|&g| g <= d)
+            let stuck = match self.stick(p, first, carry.take()) {
+                Ok(s) => s,
+                Err(stop) => return stop,
             };
-            let spec = Spec {
-                env: &env,
-                grid: &self.grid[gi..],
-                lam_end: self.opts.d_max,
+            first = false;
+            let slid = match self.slide(&stuck) {
+                Ok(s) => s,
+                Err(stop) => return stop,
+            };
+            match self.stick_again(&stuck, slid, e_stick) {
+                Ok((pa, e_after, mu_s_next)) => {
+                    e_stick = e_after;
+                    carry = Some(mu_s_next);
+                    p = pa;
+                }
+                Err(stop) => return stop,
+            }
+        }
+    }
+
+    /// The stick phase from `p` (the start if `first`; `carry`: the tip's μs after a slip): the
+    /// march in `d` until the tip reaches its slip limit (`Err`: the drag ends there or before).
+    fn stick(&mut self, p: Pt, first: bool, carry: Option<f64>) -> Result<Stuck, StopReason> {
+        let d = p.lam;
+        let x_tip = p.sol.right()[0] + d;
+        let mu_s = carry.unwrap_or_else(|| self.fr.at(x_tip, 1.0).0);
+        let mut env = self.base.clone();
+        env.mu0 = Some(mu_s);
+        env.ground.meter = self.opts.energy_balance.then_some(Meter::Foot);
+        self.st.phase(Family::Drag, &env);
+        let gi = if first {
+            0
+        } else {
+            self.grid.partition_point(|&g| g <= d)
+        };
+        let spec = Spec {
+            env: &env,
+            grid: &self.grid[gi..],
+            lam_end: self.opts.d_max,
+            keep_shapes: self.opts.keep_shapes,
+            general: self.general,
+            friction: true,
+            check_start: first,
+            slide: false,
+        };
+        let out = march(&mut *self.st, &spec, self.profile, p, Default::default());
+        self.collect(&out, Phase::Stick, None, mu_s);
+        let Some((sset, pe)) = out.last else {
+            return Err(out.stop);
+        };
+        match out.stop {
+            StopReason::Slip { .. } => {}
+            other => return Err(other),
+        }
+        // which contact slips: the tip (a cycle), or a side (not modelled: the end)
+        let w = &pe.w;
+        let worst = (0..w.contacts.len())
+            .map(|j| (j, Crossing::Slip(j).of_watch(&env, w)))
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        let tip = stuck_tip(&sset);
+        let (Some(jt), true) = (tip, worst.map(|w| w.0) == tip) else {
+            let s = worst.map_or(f64::NAN, |(j, _)| w.contacts[j].s);
+            return Err(StopReason::ContactChange {
+                d: pe.lam,
+                message: format!(
+                    "the contact at s = {s} ({}) reached its slip limit; a side sliding on the \
+                     surface is not modelled (only the stuck tip slips)",
+                    sset.label()
+                ),
+            });
+        };
+        if self.slips.len() >= self.opts.max_slips {
+            return Err(StopReason::ContactChange {
+                d: pe.lam,
+                message: format!("max_slips = {} reached", self.opts.max_slips),
+            });
+        }
+        let Some(e_before) = self.st.energy(&pe.u, pe.lam) else {
+            return Err(Self::failure(
+                pe.lam,
+                "the elastic energy before a slip".into(),
+            ));
+        };
+        let dir = w.contacts[jt].tangential.signum();
+        Ok(Stuck {
+            d,
+            jt,
+            dir,
+            e_before,
+            work: out.metered,
+            mu_s,
+            set: sset,
+            pe,
+        })
+    }
+
+    /// The slip after the stick `s`: a march in the tip's slide at the held foot, in pieces
+    /// between the texture's patch boundaries (μk uniform in each; at a boundary the tip sticks
+    /// if the patch ahead holds it), until kinetic friction holds the tip.
+    fn slide(&mut self, s: &Stuck) -> Result<Slid, StopReason> {
+        let (d_s, dir, jt) = (s.pe.lam, s.dir, s.jt);
+        let w = &s.pe.w;
+        let (mut cset, mut cu, mut clam) = (s.set.clone(), s.pe.u.clone(), 0.0);
+        let mut x_now = w.contacts[jt].x;
+        let mut dissipated = 0.0;
+        loop {
+            let (_, mu_k) = self.fr.at(x_now, dir);
+            let boundary = (self.fr.texture.as_ref()).and_then(|t| t.next_boundary(x_now, dir));
+            let lam_end = match boundary {
+                Some(xb) if self.fr.uniform.is_none() => {
+                    (clam + self.arc(x_now, xb).abs()).min(MAX_SLIP)
+                }
+                _ => MAX_SLIP,
+            };
+            let mut senv = self.base.clone();
+            senv.ground.slide = Some(Slide { dir, mu_k });
+            senv.ground.meter = self.opts.energy_balance.then_some(Meter::Slide);
+            if boundary.is_some() {
+                // μk is this patch's until the boundary
+                senv.ground.texture = None;
+            }
+            // (the point again, watched with this piece's μk)
+            self.st.phase(Family::Slide { xf: d_s, dir }, &senv);
+            let q = match self.st.switch(cset.clone(), clam, cu.clone()) {
+                Ok(q) => q,
+                Err(e) => return Err(Self::failure(d_s, format!("the slip at {clam}: {e}"))),
+            };
+            let sspec = Spec {
+                env: &senv,
+                grid: &[],
+                lam_end,
                 keep_shapes: self.opts.keep_shapes,
                 general: self.general,
                 friction: true,
-                check_start: first,
+                check_start: false,
                 slide: false,
             };
-            first = false;
-            let out = march(&mut *self.st, &spec, self.profile, p, Default::default());
-            self.collect(&out, Phase::Stick, None, mu_s);
-            let Some((sset, pe)) = out.last else {
-                return out.stop;
+            let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
+            if let (StopReason::SolverFailure { message, .. }, true) =
+                (&sout.stop, crate::watch::traps(&s.set))
+            {
+                return Err(trapped_slide(s, message));
+            }
+            self.collect(&sout, Phase::Slip, Some(d_s), s.mu_s);
+            dissipated += sout.metered;
+            let Some((eset, qe)) = sout.last else {
+                return Err(sout.stop);
             };
-            match out.stop {
-                StopReason::Slip { .. } => {}
-                other => return other,
-            }
-            // which contact slips: the tip (a cycle), or a side (not modelled: the end)
-            let w = &pe.w;
-            let worst = (0..w.contacts.len())
-                .map(|j| (j, Crossing::Slip(j).of_watch(&env, w)))
-                .max_by(|a, b| a.1.total_cmp(&b.1));
-            let tip = stuck_tip(&sset);
-            if worst.map(|w| w.0) != tip || tip.is_none() {
-                let s = worst.map_or(f64::NAN, |(j, _)| w.contacts[j].s);
-                return StopReason::ContactChange {
-                    d: pe.lam,
-                    message: format!(
-                        "the contact at s = {s} ({}) reached its slip limit; a side sliding on the \
-                         surface is not modelled (only the stuck tip slips)",
-                        sset.label()
-                    ),
-                };
-            }
-            let jt = tip.unwrap_or(0);
-            if self.slips.len() >= self.opts.max_slips {
-                return StopReason::ContactChange {
-                    d: pe.lam,
-                    message: format!("max_slips = {} reached", self.opts.max_slips),
-                };
-            }
-            let e_before = match self.st.energy(&pe.u, pe.lam) {
-                Some(e) => e,
-                None => return Self::failure(pe.lam, "the elastic energy before a slip".into()),
-            };
-            let work = out.metered;
-            let dir = w.contacts[jt].tangential.signum();
-            let d_s = pe.lam;
-            // the slip: a march in the tip's slide at the held foot, in pieces between the
-            // texture's patch boundaries (μk uniform in each; at a boundary the tip sticks if the
-            // patch ahead holds it)
-            let (mut cset, mut cu, mut clam) = (sset.clone(), pe.u.clone(), 0.0);
-            let mut x_now = w.contacts[jt].x;
-            let mut dissipated = 0.0;
-            let mut mu_s_next = None;
-            let (eset, qe) = loop {
-                let (_, mu_k) = self.fr.at(x_now, dir);
-                let boundary = (self.fr.texture.as_ref()).and_then(|t| t.next_boundary(x_now, dir));
-                let lam_end = match boundary {
-                    Some(xb) if self.fr.uniform.is_none() => {
-                        (clam + self.arc(x_now, xb).abs()).min(MAX_SLIP)
-                    }
-                    _ => MAX_SLIP,
-                };
-                let mut senv = self.base.clone();
-                senv.ground.slide = Some(Slide { dir, mu_k });
-                senv.ground.meter = self.opts.energy_balance.then_some(Meter::Slide);
-                if boundary.is_some() {
-                    // μk is this patch's until the boundary
-                    senv.ground.texture = None;
+            match &sout.stop {
+                StopReason::DMax if qe.lam < lam_end * (1.0 - 1e-14) => {
+                    return Ok(Slid::new(eset, qe, dissipated, None))
                 }
-                // (the point again, watched with this piece's μk)
-                self.st.phase(Family::Slide { xf: d_s, dir }, &senv);
-                let q = match self.st.switch(cset.clone(), clam, cu.clone()) {
-                    Ok(q) => q,
-                    Err(e) => return Self::failure(d_s, format!("the slip at {clam}: {e}")),
-                };
-                let sspec = Spec {
-                    env: &senv,
-                    grid: &[],
-                    lam_end,
-                    keep_shapes: self.opts.keep_shapes,
-                    general: self.general,
-                    friction: true,
-                    check_start: false,
-                    slide: false,
-                };
-                let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
-                if let (StopReason::SolverFailure { message, .. }, true) =
-                    (&sout.stop, crate::watch::traps(&sset))
-                {
-                    // a tip that slips beside a contact that does not slip: the pair of
-                    // tangential forces between them, nearly indeterminate, jumps with μs → μk
-                    // (Newton from the stuck state diverged at the slide's first step)
-                    let sides: Vec<String> = w
-                        .contacts
-                        .iter()
-                        .enumerate()
-                        .filter(|&(j, _)| j != jt)
-                        .map(|(_, c)| format!("{:.6}", c.s))
-                        .collect();
-                    return StopReason::ContactChange {
+                StopReason::DMax if lam_end >= MAX_SLIP => {
+                    return Err(StopReason::ContactChange {
                         d: d_s,
                         message: format!(
-                            "the tip slips beside the contact at s = {} ({}), which does not slip: \
-                             the rod between them is trapped, and the slide of such a tip is not \
-                             followed ({message})",
-                            sides.join(", "),
-                            sset.label()
+                            "the tip slid {MAX_SLIP} rod lengths along the surface without \
+                             reaching an equilibrium where mu_k holds it"
                         ),
+                    })
+                }
+                StopReason::DMax => {
+                    // at a patch boundary: the patch ahead holds the tip, or it slides on
+                    let (ms, mk) = self.fr.at(qe.sol.right()[0] + d_s, dir);
+                    let Some(j) = stuck_tip(&eset) else {
+                        return Ok(Slid::new(eset, qe, dissipated, None));
                     };
-                }
-                self.collect(&sout, Phase::Slip, Some(d_s), mu_s);
-                dissipated += sout.metered;
-                let Some((eset, qe)) = sout.last else {
-                    return sout.stop;
-                };
-                match &sout.stop {
-                    StopReason::DMax if qe.lam < lam_end * (1.0 - 1e-14) => break (eset, qe),
-                    StopReason::DMax if lam_end >= MAX_SLIP => {
-                        return StopReason::ContactChange {
-                            d: d_s,
-                            message: format!(
-                                "the tip slid {MAX_SLIP} rod lengths along the surface without \
-                                 reaching an equilibrium where mu_k holds it"
-                            ),
-                        }
+                    let c = qe.w.contacts[j];
+                    if dir * c.tangential <= mk * c.normal {
+                        return Ok(Slid::new(eset, qe, dissipated, Some(ms)));
                     }
-                    StopReason::DMax => {
-                        // at a patch boundary: the patch ahead holds the tip, or it slides on
-                        let (ms, mk) = self.fr.at(qe.sol.right()[0] + d_s, dir);
-                        let Some(j) = stuck_tip(&eset) else {
-                            break (eset, qe);
-                        };
-                        let c = qe.w.contacts[j];
-                        if dir * c.tangential <= mk * c.normal {
-                            mu_s_next = Some(ms);
-                            break (eset, qe);
-                        }
-                        x_now = c.x;
-                        (cset, cu, clam) = (eset, qe.u, qe.lam);
-                    }
-                    StopReason::FoldInD { d } => {
-                        return StopReason::ContactChange {
-                            d: d_s,
-                            message: format!(
-                                "the slip does not end quasi-statically: the tip's equilibria \
-                                 fold back after it slid {d} (a snap)"
-                            ),
-                        }
-                    }
-                    other => return at_foot(other.clone(), d_s),
+                    x_now = c.x;
+                    (cset, cu, clam) = (eset, qe.u, qe.lam);
                 }
-            };
-            let Some(je) = stuck_tip(&eset) else {
-                return StopReason::ContactChange {
-                    d: d_s,
-                    message: format!("the slip ended without a stuck tip ({})", eset.label()),
-                };
-            };
-            // the tip sticks where it stopped; the next stick phase
-            let lam_s = qe.lam;
-            if crate::watch::traps(&sset) && lam_s < self.opts.solver.tol {
-                // a slide shorter than the tolerance beside a side that holds: the trapped pair
-                // relaxes from μs to μk over it, and the tip creeps in such slips (40000 of
-                // 1e-11 each over d = 0.1 on a grid-3 scene, 500 s), unresolved
-                return StopReason::ContactChange {
-                    d: d_s,
-                    message: format!(
-                        "the tip slid {lam_s:.1e} (less than the tolerance {:e}) beside a contact \
-                         that does not slip ({}): trapped between them it creeps in such slips, \
-                         which are not followed",
-                        self.opts.solver.tol,
-                        sset.label()
-                    ),
-                };
-            }
-            let mut nset = eset.clone();
-            if let Mode::Stuck(a) = nset.contacts[je].mode {
-                nset.contacts[je].mode = Mode::Stuck(a + dir * lam_s);
-            }
-            self.st.phase(Family::Drag, &self.base);
-            let pa = match self.st.switch(nset.clone(), d_s, qe.u.clone()) {
-                Ok(q) => q,
-                Err(e) => return Self::failure(d_s, format!("the stuck state after a slip: {e}")),
-            };
-            let e_after = match self.st.energy(&pa.u, pa.lam) {
-                Some(e) => e,
-                None => return Self::failure(d_s, "the elastic energy after a slip".into()),
-            };
-            let sig = |q: &Pt, e: f64| -> Signals {
-                Signals {
-                    mu: q.w.mu,
-                    normal: q.w.normal,
-                    fx: q.w.force[0],
-                    fy: q.w.force[1],
-                    m_base: q.sol.left()[3],
-                    x_tip: q.sol.right()[0] + d_s,
-                    energy: e,
+                StopReason::FoldInD { d } => {
+                    return Err(StopReason::ContactChange {
+                        d: d_s,
+                        message: format!(
+                            "the slip does not end quasi-statically: the tip's equilibria \
+                             fold back after it slid {d} (a snap)"
+                        ),
+                    })
                 }
-            };
-            let ev = SlipEvent {
-                d: d_s,
-                d_stick: d,
-                jump: dir * lam_s,
-                released: e_before - e_after,
-                dissipated: self.opts.energy_balance.then_some(dissipated),
-                work: self.opts.energy_balance.then_some(work),
-                energy_stick: e_stick,
-                before: sig(&pe, e_before),
-                after: sig(&pa, e_after),
-            };
-            // the slip row (just before) carries the jump and the energy; then the state after
-            if let Some(r) = self.slip_row(ev.d) {
-                r.phase = Phase::Slip;
-                r.event = Some(DragEvent::Slip);
-                r.jump = Some(ev.jump);
-                r.released = Some(ev.released);
+                other => return Err(at_foot(other.clone(), d_s)),
             }
-            let mu_s_next = mu_s_next.unwrap_or_else(|| self.fr.at(ev.after.x_tip, dir).0);
-            let sp = scan_point(&pa, &nset, self.profile, None);
-            self.rows.push(DragRow {
-                phase: Phase::Slip,
-                event: Some(DragEvent::SlipEnd),
-                ..row_of(&sp, pa.sol.right(), d_s, mu_s_next)
-            });
-            if let Some(ns) = self.opts.keep_shapes {
-                let shape = shape_from(pa.sol.clone(), 0.0, self.general.clone());
-                self.shapes.push(shape.samples(ns));
-            }
-            self.slips.push(ev);
-            e_stick = e_after;
-            carry = Some(mu_s_next);
-            p = pa;
         }
+    }
+
+    /// The tip sticks where the slip `slid` after the stick `s` stopped: the next stick's first
+    /// point, the slip recorded (its row, the state after, the energy released); with the
+    /// elastic energy there and the tip's μs for the next stick.
+    fn stick_again(
+        &mut self,
+        s: &Stuck,
+        slid: Slid,
+        e_stick: f64,
+    ) -> Result<(Pt, f64, f64), StopReason> {
+        let (d_s, dir) = (s.pe.lam, s.dir);
+        let Slid {
+            set: eset,
+            pe: qe,
+            dissipated,
+            mu_s_next,
+        } = slid;
+        let Some(je) = stuck_tip(&eset) else {
+            return Err(StopReason::ContactChange {
+                d: d_s,
+                message: format!("the slip ended without a stuck tip ({})", eset.label()),
+            });
+        };
+        // the tip sticks where it stopped; the next stick phase
+        let lam_s = qe.lam;
+        if crate::watch::traps(&s.set) && lam_s < self.opts.solver.tol {
+            // a slide shorter than the tolerance beside a side that holds: the trapped pair
+            // relaxes from μs to μk over it, and the tip creeps in such slips (40000 of
+            // 1e-11 each over d = 0.1 on a grid-3 scene, 500 s), unresolved
+            return Err(StopReason::ContactChange {
+                d: d_s,
+                message: format!(
+                    "the tip slid {lam_s:.1e} (less than the tolerance {:e}) beside a contact \
+                     that does not slip ({}): trapped between them it creeps in such slips, \
+                     which are not followed",
+                    self.opts.solver.tol,
+                    s.set.label()
+                ),
+            });
+        }
+        let mut nset = eset.clone();
+        if let Mode::Stuck(a) = nset.contacts[je].mode {
+            nset.contacts[je].mode = Mode::Stuck(a + dir * lam_s);
+        }
+        self.st.phase(Family::Drag, &self.base);
+        let pa = match self.st.switch(nset.clone(), d_s, qe.u.clone()) {
+            Ok(q) => q,
+            Err(e) => {
+                let message = format!("the stuck state after a slip: {e}");
+                return Err(Self::failure(d_s, message));
+            }
+        };
+        let Some(e_after) = self.st.energy(&pa.u, pa.lam) else {
+            return Err(Self::failure(d_s, "the elastic energy after a slip".into()));
+        };
+        let sig = |q: &Pt, e: f64| -> Signals {
+            Signals {
+                mu: q.w.mu,
+                normal: q.w.normal,
+                fx: q.w.force[0],
+                fy: q.w.force[1],
+                m_base: q.sol.left()[3],
+                x_tip: q.sol.right()[0] + d_s,
+                energy: e,
+            }
+        };
+        let ev = SlipEvent {
+            d: d_s,
+            d_stick: s.d,
+            jump: dir * lam_s,
+            released: s.e_before - e_after,
+            dissipated: self.opts.energy_balance.then_some(dissipated),
+            work: self.opts.energy_balance.then_some(s.work),
+            energy_stick: e_stick,
+            before: sig(&s.pe, s.e_before),
+            after: sig(&pa, e_after),
+        };
+        // the slip row (just before) carries the jump and the energy; then the state after
+        if let Some(r) = self.slip_row(ev.d) {
+            r.phase = Phase::Slip;
+            r.event = Some(DragEvent::Slip);
+            r.jump = Some(ev.jump);
+            r.released = Some(ev.released);
+        }
+        let mu_s_next = mu_s_next.unwrap_or_else(|| self.fr.at(ev.after.x_tip, dir).0);
+        let sp = scan_point(&pa, &nset, self.profile, None);
+        self.rows.push(DragRow {
+            phase: Phase::Slip,
+            event: Some(DragEvent::SlipEnd),
+            ..row_of(&sp, pa.sol.right(), d_s, mu_s_next)
+        });
+        if let Some(ns) = self.opts.keep_shapes {
+            let shape = shape_from(pa.sol.clone(), 0.0, self.general.clone());
+            self.shapes.push(shape.samples(ns));
+        }
+        self.slips.push(ev);
+        Ok((pa, e_after, mu_s_next))
     }
 
     /// Arc length along the surface from lab `x0` to `x1`.
@@ -783,6 +820,63 @@ impl<P: Profile> DragRun<'_, P> {
                 self.shapes.push(sh.clone());
             }
         }
+    }
+}
+
+/// The end of a stick phase at the tip's slip limit.
+struct Stuck {
+    /// Where the stick began.
+    d: f64,
+    /// The tip's contact, and the way it slips along the surface.
+    jt: usize,
+    dir: f64,
+    /// The elastic energy at the slip, and the foot's work over the stick.
+    e_before: f64,
+    work: f64,
+    /// The tip's static coefficient in the stick.
+    mu_s: f64,
+    /// The state at the slip.
+    set: ContactSet,
+    pe: Pt,
+}
+
+/// The end of a slip: the state where kinetic friction holds the tip, the work the sliding
+/// contact absorbed, and the static coefficient of the patch ahead where it stopped at a patch
+/// boundary.
+struct Slid {
+    set: ContactSet,
+    pe: Pt,
+    dissipated: f64,
+    mu_s_next: Option<f64>,
+}
+
+impl Slid {
+    fn new(set: ContactSet, pe: Pt, dissipated: f64, mu_s_next: Option<f64>) -> Slid {
+        Slid {
+            set,
+            pe,
+            dissipated,
+            mu_s_next,
+        }
+    }
+}
+
+/// A tip that slips beside a contact that does not slip: the pair of tangential forces between
+/// them, nearly indeterminate, jumps with μs → μk (Newton from the stuck state diverged at the
+/// slide's first step); the slide's solver `message`.
+fn trapped_slide(s: &Stuck, message: &str) -> StopReason {
+    let sides: Vec<String> = (s.pe.w.contacts.iter().enumerate())
+        .filter(|&(j, _)| j != s.jt)
+        .map(|(_, c)| format!("{:.6}", c.s))
+        .collect();
+    StopReason::ContactChange {
+        d: s.pe.lam,
+        message: format!(
+            "the tip slips beside the contact at s = {} ({}), which does not slip: the rod \
+             between them is trapped, and the slide of such a tip is not followed ({message})",
+            sides.join(", "),
+            s.set.label()
+        ),
     }
 }
 

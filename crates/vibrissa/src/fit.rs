@@ -627,6 +627,123 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
                 .into(),
         });
     }
+    let obs = observations(trace)?;
+    if let Some(s) = opts.sigma {
+        if let Some(i) = (0..4).find(|&i| !(s[i].is_finite() && s[i] > 0.0)) {
+            return Err(VibrissaError::range(
+                ["sigma.d", "sigma.fx", "sigma.fy", "sigma.m_base"][i],
+                s[i],
+                "(0, inf)",
+            ));
+        }
+    }
+    let (mu_s0, mu_k0) = match opts.guess {
+        Some(g) => g,
+        None => start_values(&rod, &surface, trace, opts)?,
+    };
+    if !(mu_s0 > 0.0 && mu_k0 >= 0.0 && mu_k0 < mu_s0) {
+        return Err(VibrissaError::range(
+            "guess mu_k",
+            mu_k0,
+            format!("[0, mu_s = {mu_s0}) with mu_s > 0"),
+        ));
+    }
+    let mut free = vec![Par::MuS, Par::MuK];
+    if opts.fit_eta {
+        free.push(Par::Eta);
+    }
+    if opts.fit_angle {
+        free.push(Par::Angle);
+    }
+    let d_last = trace.slips[trace.slips.len() - 1].d;
+    let mut model = Model {
+        scene,
+        trace,
+        obs,
+        sigma: [1.0; 4],
+        free,
+        base: [
+            mu_s0,
+            mu_k0.max(1e-6 * mu_s0),
+            scene.eta,
+            scene.surface_angle,
+        ],
+        opts,
+        d_max: (2.0 * d_last + 0.5).min(crate::drag::MAX_DRAG),
+        drags: RefCell::new(0),
+    };
+    let n = model.obs.len();
+    let (mut message, held) = hold_unidentifiable(&mut model)?;
+    if model.free.len() > n {
+        return Err(VibrissaError::InvalidTable {
+            name: "trace".into(),
+            reason: format!(
+                "{n} observations for {} parameters: the fit needs at least as many observations \
+                 as parameters",
+                model.free.len()
+            ),
+        });
+    }
+    // no residual degrees of freedom: the estimate fits exactly, its spread is unknown unless
+    // the noise levels are given
+    let exact = model.free.len() == n;
+    let mut iterations = 0;
+    // pass 1 with unit weights (or the given noise levels), then with estimated levels
+    if let Some(s) = opts.sigma {
+        model.sigma = s;
+    }
+    let x0 = model.coords(model.base);
+    let mut x = gauss_newton(&model, x0, &mut iterations)?;
+    let mut kind_dof = [f64::NAN; 4];
+    let kinds: Vec<usize> = model.obs.iter().map(|(o, _)| o.kind()).collect();
+    if opts.sigma.is_none() && !exact {
+        (x, kind_dof) = reweight(&mut model, x, &kinds, &mut iterations)?;
+    }
+    let v = model.natural(&x);
+    if v[0] > 0.99 * MAX_MU_S {
+        // the drag's own limit: nothing in the trace is matched there
+        return Err(VibrissaError::NoConvergence {
+            what: "the least-squares fit".into(),
+            reason: format!(
+                "mu_s ran to {} at the limit {MAX_MU_S}: the trace does not match the scene (its \
+                 eta, surface_angle or rod)",
+                v[0]
+            ),
+        });
+    }
+    let used_sigma = model.sigma;
+    model.sigma = model.sigma.map(|s| if s.is_nan() { 1.0 } else { s });
+    let r = model.residuals(v);
+    let p = model.free.len() as f64;
+    let s2 = match (exact, opts.sigma) {
+        (false, _) => r.norm_squared() / (n as f64 - p),
+        // given noise levels: the weighted residuals have unit variance
+        (true, Some(_)) => 1.0,
+        (true, None) => f64::NAN,
+    };
+    if exact && opts.sigma.is_none() {
+        let note = "as many observations as parameters: the estimate fits them exactly and its \
+                    standard error needs the noise levels (sigma)";
+        message = Some(match message {
+            Some(m) => format!("{m}; {note}"),
+            None => note.to_string(),
+        });
+    }
+    let params = estimates(&model, v, (&kinds, &kind_dof), s2, exact, &held)?;
+    let drags = *model.drags.borrow();
+    Ok(FitResult {
+        params,
+        message,
+        observations: n,
+        sigma: used_sigma,
+        s2,
+        iterations,
+        drags,
+    })
+}
+
+/// The observations of `trace`: each slip's place and the signals given around it, checked.
+fn observations(trace: &Trace) -> Result<Vec<(Obs, f64)>, VibrissaError> {
     if trace.slips.is_empty() {
         return Err(VibrissaError::InvalidTable {
             name: "trace".into(),
@@ -663,236 +780,177 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
             }
         }
     }
-    if let Some(s) = opts.sigma {
-        if let Some(i) = (0..4).find(|&i| !(s[i].is_finite() && s[i] > 0.0)) {
-            return Err(VibrissaError::range(
-                ["sigma.d", "sigma.fx", "sigma.fy", "sigma.m_base"][i],
-                s[i],
-                "(0, inf)",
-            ));
-        }
+    Ok(obs)
+}
+
+/// The start: μs (and μk) read off the scan at the first slips.
+fn start_values(
+    rod: &crate::Rod,
+    surface: &crate::Surface,
+    trace: &Trace,
+    opts: &FitOptions,
+) -> Result<(f64, f64), VibrissaError> {
+    let d1 = trace.slips[0].d;
+    let d2 = trace.slips.get(1).map(|s| s.d);
+    let back = d2.map(|d2| d1 - (d2 - d1)).filter(|&b| b > 0.0);
+    let mut at = vec![d1];
+    if let Some(b) = back {
+        at.insert(0, b);
     }
-    // the start: μs (and μk) read off the scan at the first slips
-    let (mu_s0, mu_k0) = match opts.guess {
-        Some(g) => g,
-        None => {
-            let d1 = trace.slips[0].d;
-            let d2 = trace.slips.get(1).map(|s| s.d);
-            let back = d2.map(|d2| d1 - (d2 - d1)).filter(|&b| b > 0.0);
-            let mut at = vec![d1];
-            if let Some(b) = back {
-                at.insert(0, b);
-            }
-            let o = ScanOptions {
-                d_max: (1.05 * d1).clamp(1e-3, 1.999),
-                points: 2,
-                solver: opts.solver.clone(),
-                contact: opts.contact,
-                ..ScanOptions::default()
-            };
-            let r = crate::scan_at(&rod, &surface, &o, &at)?;
-            let grid: Vec<f64> = r
-                .points
-                .iter()
-                .filter(|p| p.event.is_none())
-                .map(|p| p.mu.abs())
-                .collect();
-            match (grid.len(), back) {
-                (2, Some(_)) => (grid[1], grid[0].min(0.95 * grid[1])),
-                (n, _) if n >= 1 => (grid[n - 1], 0.6 * grid[n - 1]),
-                _ => {
-                    return Err(VibrissaError::NoConvergence {
-                        what: "the fit's starting values (the scan to the first slip)".into(),
-                        reason: r.stop.to_string(),
-                    })
-                }
-            }
-        }
+    let o = ScanOptions {
+        d_max: (1.05 * d1).clamp(1e-3, 1.999),
+        points: 2,
+        solver: opts.solver.clone(),
+        contact: opts.contact,
+        ..ScanOptions::default()
     };
-    if !(mu_s0 > 0.0 && mu_k0 >= 0.0 && mu_k0 < mu_s0) {
-        return Err(VibrissaError::range(
-            "guess mu_k",
-            mu_k0,
-            format!("[0, mu_s = {mu_s0}) with mu_s > 0"),
-        ));
+    let r = crate::scan_at(rod, surface, &o, &at)?;
+    let grid: Vec<f64> = r
+        .points
+        .iter()
+        .filter(|p| p.event.is_none())
+        .map(|p| p.mu.abs())
+        .collect();
+    match (grid.len(), back) {
+        (2, Some(_)) => Ok((grid[1], grid[0].min(0.95 * grid[1]))),
+        (n, _) if n >= 1 => Ok((grid[n - 1], 0.6 * grid[n - 1])),
+        _ => Err(VibrissaError::NoConvergence {
+            what: "the fit's starting values (the scan to the first slip)".into(),
+            reason: r.stop.to_string(),
+        }),
     }
-    let mut free = vec![Par::MuS, Par::MuK];
-    if opts.fit_eta {
-        free.push(Par::Eta);
-    }
-    if opts.fit_angle {
-        free.push(Par::Angle);
-    }
-    let d_last = trace.slips[trace.slips.len() - 1].d;
-    let mut model = Model {
-        scene,
-        trace,
-        obs,
-        sigma: [1.0; 4],
-        free,
-        base: [
-            mu_s0,
-            mu_k0.max(1e-6 * mu_s0),
-            scene.eta,
-            scene.surface_angle,
-        ],
-        opts,
-        d_max: (2.0 * d_last + 0.5).min(crate::drag::MAX_DRAG),
-        drags: RefCell::new(0),
-    };
-    let n = model.obs.len();
-    // identifiability at the start: hold what the signals do not determine
+}
+
+/// Identifiability at the start: the parameters the signals do not determine are held at their
+/// starting values (the last of them, μk before μs); the message saying so, and the held ones.
+fn hold_unidentifiable(model: &mut Model<'_>) -> Result<(Option<String>, Vec<Par>), VibrissaError> {
     let j0 = model.jacobian_natural(model.base)?;
-    let mut message = None;
     let mut held = Vec::new();
-    if let Some(bad) = unidentifiable(&j0) {
-        let names: Vec<&str> = bad.iter().map(|&c| model.free[c].name()).collect();
-        let slips = trace.slips.len();
-        let after = trace
-            .slips
-            .iter()
-            .any(|s| s.after.iter().any(Option::is_some));
-        let why = if slips == 1 && !after {
-            "the trace has one slip and no signals after it, so nothing in it depends on where \
-             the slip ends"
-                .to_string()
-        } else {
-            "the given signals do not change along that direction of the parameters".to_string()
-        };
-        message = Some(format!(
-            "{} cannot be determined from this trace ({why}); held at the starting value",
-            names.join(" and ")
-        ));
-        // hold the last of them (μk before μs)
-        let mut drop: Vec<usize> = bad.clone();
-        drop.sort_unstable();
-        if drop.len() == model.free.len() {
-            drop.remove(0);
-        }
-        for &c in drop.iter().rev() {
-            held.push(model.free.remove(c));
-        }
-    }
-    if model.free.len() > n {
-        return Err(VibrissaError::InvalidTable {
-            name: "trace".into(),
-            reason: format!(
-                "{n} observations for {} parameters: the fit needs at least as many observations \
-                 as parameters",
-                model.free.len()
-            ),
-        });
-    }
-    // no residual degrees of freedom: the estimate fits exactly, its spread is unknown unless
-    // the noise levels are given
-    let exact = model.free.len() == n;
-    let mut iterations = 0;
-    let solve =
-        |model: &Model<'_>, x0: Vec<f64>, iters: &mut u64| -> Result<Vec<f64>, VibrissaError> {
-            let ls = BacktrackingLineSearch::new(ArmijoCondition::new(1e-6).map_err(|e| {
-                VibrissaError::NoConvergence {
-                    what: "fit".into(),
-                    reason: e.to_string(),
-                }
-            })?);
-            let solver = GaussNewtonLS::new(ls).with_tolerance(1e-10).map_err(|e| {
-                VibrissaError::NoConvergence {
-                    what: "fit".into(),
-                    reason: e.to_string(),
-                }
-            })?;
-            let res = Executor::new(Ls(model), solver)
-                .configure(|s| s.param(DVector::from_vec(x0)).max_iters(opts.max_iter))
-                .run()
-                .map_err(|e| VibrissaError::NoConvergence {
-                    what: "the least-squares fit (Gauss-Newton)".into(),
-                    reason: e.to_string(),
-                })?;
-            *iters += res.state.get_iter();
-            let best = res.state.get_best_param().cloned().ok_or_else(|| {
-                VibrissaError::NoConvergence {
-                    what: "the least-squares fit (Gauss-Newton)".into(),
-                    reason: "no estimate".into(),
-                }
-            })?;
-            Ok(best.iter().copied().collect())
-        };
-    // pass 1 with unit weights (or the given noise levels), then with estimated levels
-    if let Some(s) = opts.sigma {
-        model.sigma = s;
-    }
-    let x0 = model.coords(model.base);
-    let mut x = solve(&model, x0, &mut iterations)?;
-    let mut kind_dof = [f64::NAN; 4];
-    let kinds: Vec<usize> = model.obs.iter().map(|(o, _)| o.kind()).collect();
-    if opts.sigma.is_none() && !exact {
-        // each kind's variance from its residuals over its own degrees of freedom, the
-        // observations less their leverages (so that the kinds' degrees of freedom add up to
-        // n − p); the weights and the fit repeated until the levels settle
-        for _ in 0..MAX_REWEIGHT {
-            let v = model.natural(&x);
-            let r = model.residuals(v);
-            let (h, _) = leverages(&model.jacobian_natural(v)?)?;
-            // (back to the kinds' own units)
-            let e =
-                DVector::from_iterator(n, r.iter().zip(&kinds).map(|(ri, &k)| ri * model.sigma[k]));
-            let (sig, dof) = kind_levels(&kinds, &e, &h);
-            kind_dof = dof;
-            let new = sig.map(|s| if s.is_nan() { 1.0 } else { s });
-            let change = (0..4)
-                .map(|k| (new[k] / model.sigma[k]).ln().abs())
-                .fold(0.0f64, f64::max);
-            model.sigma = new;
-            x = solve(&model, x, &mut iterations)?;
-            if change < REWEIGHT_TOL {
-                break;
-            }
-        }
-        // report NaN for kinds without observations
-        for (s, dof) in model.sigma.iter_mut().zip(kind_dof) {
-            if dof.is_nan() {
-                *s = f64::NAN;
-            }
-        }
-    }
-    let v = model.natural(&x);
-    if v[0] > 0.99 * MAX_MU_S {
-        // the drag's own limit: nothing in the trace is matched there
-        return Err(VibrissaError::NoConvergence {
-            what: "the least-squares fit".into(),
-            reason: format!(
-                "mu_s ran to {} at the limit {MAX_MU_S}: the trace does not match the scene (its \
-                 eta, surface_angle or rod)",
-                v[0]
-            ),
-        });
-    }
-    let used_sigma = model.sigma;
-    model.sigma = model.sigma.map(|s| if s.is_nan() { 1.0 } else { s });
-    let r = model.residuals(v);
-    let p = model.free.len() as f64;
-    let s2 = match (exact, opts.sigma) {
-        (false, _) => r.norm_squared() / (n as f64 - p),
-        // given noise levels: the weighted residuals have unit variance
-        (true, Some(_)) => 1.0,
-        (true, None) => f64::NAN,
+    let Some(bad) = unidentifiable(&j0) else {
+        return Ok((None, held));
     };
-    if exact && opts.sigma.is_none() {
-        let note = "as many observations as parameters: the estimate fits them exactly and its \
-                    standard error needs the noise levels (sigma)";
-        message = Some(match message {
-            Some(m) => format!("{m}; {note}"),
-            None => note.to_string(),
-        });
+    let trace = model.trace;
+    let names: Vec<&str> = bad.iter().map(|&c| model.free[c].name()).collect();
+    let slips = trace.slips.len();
+    let after = trace
+        .slips
+        .iter()
+        .any(|s| s.after.iter().any(Option::is_some));
+    let why = if slips == 1 && !after {
+        "the trace has one slip and no signals after it, so nothing in it depends on where the \
+         slip ends"
+            .to_string()
+    } else {
+        "the given signals do not change along that direction of the parameters".to_string()
+    };
+    let message = format!(
+        "{} cannot be determined from this trace ({why}); held at the starting value",
+        names.join(" and ")
+    );
+    // hold the last of them (μk before μs)
+    let mut drop: Vec<usize> = bad.clone();
+    drop.sort_unstable();
+    if drop.len() == model.free.len() {
+        drop.remove(0);
     }
+    for &c in drop.iter().rev() {
+        held.push(model.free.remove(c));
+    }
+    Ok((Some(message), held))
+}
+
+/// Gauss–Newton with an Armijo line search (argmin) from `x0`; its iterations added to `iters`.
+fn gauss_newton(
+    model: &Model<'_>,
+    x0: Vec<f64>,
+    iters: &mut u64,
+) -> Result<Vec<f64>, VibrissaError> {
+    let setup = |e: ArgminError| VibrissaError::NoConvergence {
+        what: "fit".into(),
+        reason: e.to_string(),
+    };
+    let ls = BacktrackingLineSearch::new(ArmijoCondition::new(1e-6).map_err(setup)?);
+    let solver = GaussNewtonLS::new(ls)
+        .with_tolerance(1e-10)
+        .map_err(setup)?;
+    let res = Executor::new(Ls(model), solver)
+        .configure(|s| {
+            s.param(DVector::from_vec(x0))
+                .max_iters(model.opts.max_iter)
+        })
+        .run()
+        .map_err(|e| VibrissaError::NoConvergence {
+            what: "the least-squares fit (Gauss-Newton)".into(),
+            reason: e.to_string(),
+        })?;
+    *iters += res.state.get_iter();
+    let best = res
+        .state
+        .get_best_param()
+        .cloned()
+        .ok_or_else(|| VibrissaError::NoConvergence {
+            what: "the least-squares fit (Gauss-Newton)".into(),
+            reason: "no estimate".into(),
+        })?;
+    Ok(best.iter().copied().collect())
+}
+
+/// The fit with estimated noise levels: each kind's variance from its residuals over its own
+/// degrees of freedom, the observations less their leverages (so that the kinds' degrees of
+/// freedom add up to n − p); the weights and the fit repeated until the levels settle. The
+/// estimate and the kinds' degrees of freedom (NaN levels for kinds without observations).
+fn reweight(
+    model: &mut Model<'_>,
+    mut x: Vec<f64>,
+    kinds: &[usize],
+    iterations: &mut u64,
+) -> Result<(Vec<f64>, [f64; 4]), VibrissaError> {
+    let n = model.obs.len();
+    let mut kind_dof = [f64::NAN; 4];
+    for _ in 0..MAX_REWEIGHT {
+        let v = model.natural(&x);
+        let r = model.residuals(v);
+        let (h, _) = leverages(&model.jacobian_natural(v)?)?;
+        // (back to the kinds' own units)
+        let e = DVector::from_iterator(n, r.iter().zip(kinds).map(|(ri, &k)| ri * model.sigma[k]));
+        let (sig, dof) = kind_levels(kinds, &e, &h);
+        kind_dof = dof;
+        let new = sig.map(|s| if s.is_nan() { 1.0 } else { s });
+        let change = (0..4)
+            .map(|k| (new[k] / model.sigma[k]).ln().abs())
+            .fold(0.0f64, f64::max);
+        model.sigma = new;
+        x = gauss_newton(model, x, iterations)?;
+        if change < REWEIGHT_TOL {
+            break;
+        }
+    }
+    // report NaN for kinds without observations
+    for (s, dof) in model.sigma.iter_mut().zip(kind_dof) {
+        if dof.is_nan() {
+            *s = f64::NAN;
+        }
+    }
+    Ok((x, kind_dof))
+}
+
+/// The estimates at `v` with their standard errors: given noise levels are known, and the
+/// covariance is (JᵀJ)⁻¹ with s² only a check of them; estimated ones carry s² (1 at the
+/// reweighting's fixed point) and Kenward–Roger's correction for having been estimated, with
+/// its degrees of freedom. Held parameters are reported as not identifiable.
+fn estimates(
+    model: &Model<'_>,
+    v: [f64; 4],
+    (kinds, kind_dof): (&[usize], &[f64; 4]),
+    s2: f64,
+    exact: bool,
+    held: &[Par],
+) -> Result<Vec<FitParam>, VibrissaError> {
     let j = model.jacobian_natural(v)?;
-    // given noise levels are known: the covariance is (JᵀJ)⁻¹ and s² only a check of them;
-    // estimated ones carry s² (1 at the reweighting's fixed point) and Kenward–Roger's
-    // correction for having been estimated, with its degrees of freedom
     let m = leverages(&j).ok().map(|(_, m)| m);
-    let (cov, dofs) = match (m, opts.sigma, exact) {
+    let (cov, dofs) = match (m, model.opts.sigma, exact) {
         (Some(m), None, false) => {
-            let a = adjusted_covariance(&kinds, &j, &m, &kind_dof);
+            let a = adjusted_covariance(kinds, &j, &m, kind_dof);
             (Some(a.cov * s2), a.dof)
         }
         // (no residual degrees of freedom: no noise level, no standard error)
@@ -924,16 +982,7 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
             });
         }
     }
-    let drags = *model.drags.borrow();
-    Ok(FitResult {
-        params,
-        message,
-        observations: n,
-        sigma: used_sigma,
-        s2,
-        iterations,
-        drags,
-    })
+    Ok(params)
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ use crate::march::{march, MarchOut, Spec};
 use crate::own::OwnStepper;
 use crate::profile::{General, Profile};
 use crate::report::{RangeEnd, StopReason};
-use crate::rodsolve::solve_damped;
+use crate::rodsolve::{solve_damped, Converged};
 use crate::search;
 use crate::shooter::Shooter;
 use crate::stepper::Pt;
@@ -121,16 +121,33 @@ fn straight_stiffness<P: Profile>(sh: &mut Shooter<P>, f: f64) -> f64 {
     f64::NAN
 }
 
-/// The press of `spec` on the rod of `sh` (tolerance `tol`), from first touch to the goal.
-pub(crate) fn press<P: Profile>(
-    mut sh: Shooter<P>,
-    general: &General,
+/// Where a press first touches and how it starts.
+struct Touch {
+    /// The rest shape's height along the line's normal at first touch, and where.
+    top: f64,
+    s_top: f64,
+    /// The first contact (frictionless, its force normal to the force line).
+    contact: Contact,
+    /// The line's inclination.
+    gb: f64,
+    /// A straight rod on a horizontal line: it starts on the buckled branch.
+    symmetric: bool,
+    /// A straight rod on a nearly horizontal line (an imperfect bifurcation).
+    nearly: bool,
+    /// A symmetric rod buckles to the left (a tip slope goal only the left-bent rod reaches).
+    left: bool,
+    /// How far the goal lies: the first point must be short of it.
+    room: f64,
+}
+
+/// First touch of the press `spec` on the rest shape of `sh`, or why the rod never touches.
+fn first_touch<P: Profile>(
+    sh: &mut Shooter<P>,
     profile: &P,
     spec: &PressSpec,
-) -> Result<Pressed<P>, VibrissaError> {
-    let tol = sh.tol;
+) -> Result<Touch, VibrissaError> {
     let gb = spec.geom_beta;
-    let (top, s_top, z_top) = rest_top(&mut sh, gb, !spec.sides);
+    let (top, s_top, z_top) = rest_top(sh, gb, !spec.sides);
     let symmetric = gb == 0.0 && spec.force_beta == 0.0 && s_top == 1.0 && profile.straight();
     if let Goal::Height(eta, _) = spec.goal {
         if z_top[1] <= eta {
@@ -144,28 +161,16 @@ pub(crate) fn press<P: Profile>(
             });
         }
     }
-    let p0 = [0.0, 0.0];
     let n_force = [-spec.force_beta.sin(), spec.force_beta.cos()];
-    let mut contact = Contact::on_surface(s_top >= 1.0, p0, gb, Mode::Free, 0.0);
+    let mut contact = Contact::on_surface(s_top >= 1.0, [0.0, 0.0], gb, Mode::Free, 0.0);
     contact.n = n_force;
     if !contact.tip {
         contact.phi_ref = crate::chain::slope_on(gb, z_top[2]);
     }
-    let set = ContactSet {
-        contacts: vec![contact.clone()],
-    };
-    let family = Family::Press { h0: top };
-    let mut chain = Chain::new(sh, set, family);
-    let ntol = corrector_tol(tol);
-    // the first point: at first touch (N = 0), or on the buckled branch of a symmetric rod
-    // how far the goal lies: the first point must be short of it
     let room = match spec.goal {
         Goal::Height(eta, _) => (z_top[1] - eta).max(1e-12),
         Goal::TipSlope(..) => 1.0,
     };
-    // the side a symmetric rod buckles to: the right (the paper's), unless the goal is a tip
-    // slope only the left-bent rod reaches
-    let left = matches!(spec.goal, Goal::TipSlope(p, _) if p > FRAC_PI_2);
     // a straight rod on a nearly horizontal line meets it almost axially: its path passes close
     // by the buckling point (an imperfect bifurcation), which a march from a small load can step
     // past onto another branch; it starts on the buckled branch too, bent the way the line's
@@ -175,56 +180,115 @@ pub(crate) fn press<P: Profile>(
         && gb.abs() < NEARLY_SYMMETRIC
         && s_top == 1.0
         && profile.straight();
-    let first = |chain: &mut Chain<P>, buckled: Option<f64>| -> Result<_, VibrissaError> {
-        let (lam0, u0) = if let Some(drop) = buckled {
-            let left = if nearly { gb < 0.0 } else { left };
-            buckled_start(chain, top, ntol, drop, left)?
-        } else if contact.tip {
-            // a small load: at zero load a straight tip's height is stationary under a transverse
-            // force (it falls as the load squared), which no Newton iteration in the height
-            // resolves
-            // (a soft, curled rod moves far under it: smaller loads until the point is
-            // short of the goal)
-            let mut n0 = 1e-3;
-            loop {
-                let (l, u) = loaded_start(chain, top, ntol, n0)?;
-                if l < 0.5 * room || n0 < 1e-9 {
-                    break (l, u);
-                }
-                n0 *= 0.1;
+    Ok(Touch {
+        top,
+        s_top,
+        contact,
+        gb,
+        symmetric,
+        nearly,
+        // the side a symmetric rod buckles to: the right (the paper's), unless the goal is a
+        // tip slope only the left-bent rod reaches
+        left: matches!(spec.goal, Goal::TipSlope(p, _) if p > FRAC_PI_2),
+        room,
+    })
+}
+
+/// A first point of the press: on the buckled branch with the tip lowered by about `buckled`,
+/// else at first touch (a side) or under a small tip load (the tip).
+fn press_point<P: Profile>(
+    chain: &mut Chain<P>,
+    t: &Touch,
+    ntol: f64,
+    buckled: Option<f64>,
+) -> Result<(f64, Converged), VibrissaError> {
+    let (lam0, u0) = if let Some(drop) = buckled {
+        let left = if t.nearly { t.gb < 0.0 } else { t.left };
+        buckled_start(chain, t.top, ntol, drop, left)?
+    } else if t.contact.tip {
+        // a small load: at zero load a straight tip's height is stationary under a transverse
+        // force (it falls as the load squared), which no Newton iteration in the height
+        // resolves
+        // (a soft, curled rod moves far under it: smaller loads until the point is
+        // short of the goal)
+        let mut n0 = 1e-3;
+        loop {
+            let (l, u) = loaded_start(chain, t.top, ntol, n0)?;
+            if l < 0.5 * t.room || n0 < 1e-9 {
+                break (l, u);
             }
-        } else {
-            (0.0, vec![0.0, 0.0, 0.0, s_top])
-        };
-        let cv = solve_damped(chain, lam0, &u0, ntol, 40).map_err(|e| VibrissaError::NoStart {
-            reason: format!("the first point of the press did not converge: {e}"),
-        })?;
-        // a guess next to the buckling load that converged onto another mode (the third
-        // clamped-free mode, f ≈ 25π²/4, for β ≈ 0.03) is no first point of this press
-        if buckled.is_some() && (cv.u[1] - u0[1]).abs() > 0.5 * u0[1].abs() {
-            return Err(VibrissaError::NoStart {
-                reason: format!(
-                    "the first point of the press converged onto another mode (f = {} from {})",
-                    cv.u[1], u0[1]
-                ),
-            });
+            n0 *= 0.1;
         }
-        Ok((lam0, cv))
+    } else {
+        (0.0, vec![0.0, 0.0, 0.0, t.s_top])
     };
-    let drop = (0.1 * room).min(1e-3);
-    let (lam0, cv) = if symmetric {
-        first(&mut chain, Some(drop))?
-    } else if nearly {
+    let cv = solve_damped(chain, lam0, &u0, ntol, 40).map_err(|e| VibrissaError::NoStart {
+        reason: format!("the first point of the press did not converge: {e}"),
+    })?;
+    // a guess next to the buckling load that converged onto another mode (the third
+    // clamped-free mode, f ≈ 25π²/4, for β ≈ 0.03) is no first point of this press
+    if buckled.is_some() && (cv.u[1] - u0[1]).abs() > 0.5 * u0[1].abs() {
+        return Err(VibrissaError::NoStart {
+            reason: format!(
+                "the first point of the press converged onto another mode (f = {} from {})",
+                cv.u[1], u0[1]
+            ),
+        });
+    }
+    Ok((lam0, cv))
+}
+
+/// The press's first point (at first touch (N = 0), or on the buckled branch of a symmetric
+/// rod), walked up to a depth of 1e-3 (or half the room) in steps of 4×: a first point far
+/// below the march's first step (a tiny load next to the imperfect bifurcation of a straight
+/// rod on a slightly inclined line) would let the march's first step land on another mode
+/// (β = 0.025…0.03 went to the third clamped-free mode, f ≈ 70).
+fn press_start<P: Profile>(
+    chain: &mut Chain<P>,
+    t: &Touch,
+    ntol: f64,
+) -> Result<(f64, Converged), VibrissaError> {
+    let drop = (0.1 * t.room).min(1e-3);
+    let (mut lam0, mut cv) = if t.symmetric {
+        press_point(chain, t, ntol, Some(drop))?
+    } else if t.nearly {
         // the inclined line's state next to the buckled one: closer the more it is bent (the
         // inclination's share of the bending smaller); else from a small load after all
         [drop, 1e-2, 3e-2]
             .into_iter()
-            .filter(|&dr| dr <= 0.2 * room)
-            .find_map(|dr| first(&mut chain, Some(dr)).ok())
-            .map_or_else(|| first(&mut chain, None), Ok)?
+            .filter(|&dr| dr <= 0.2 * t.room)
+            .find_map(|dr| press_point(chain, t, ntol, Some(dr)).ok())
+            .map_or_else(|| press_point(chain, t, ntol, None), Ok)?
     } else {
-        first(&mut chain, None)?
+        press_point(chain, t, ntol, None)?
     };
+    let ramp_end = 1e-3f64.min(0.5 * t.room);
+    while lam0 > 0.0 && lam0 < ramp_end {
+        let next = (4.0 * lam0).min(ramp_end);
+        match solve_damped(chain, next, &cv.u, ntol, 40) {
+            Ok(c) => (lam0, cv) = (next, c),
+            Err(_) => break,
+        }
+    }
+    Ok((lam0, cv))
+}
+
+/// The press of `spec` on the rod of `sh` (tolerance `tol`), from first touch to the goal.
+pub(crate) fn press<P: Profile>(
+    mut sh: Shooter<P>,
+    general: &General,
+    profile: &P,
+    spec: &PressSpec,
+) -> Result<Pressed<P>, VibrissaError> {
+    let tol = sh.tol;
+    let t = first_touch(&mut sh, profile, spec)?;
+    let (p0, top) = ([0.0, 0.0], t.top);
+    let set = ContactSet {
+        contacts: vec![t.contact.clone()],
+    };
+    let mut chain = Chain::new(sh, set, Family::Press { h0: top });
+    let ntol = corrector_tol(tol);
+    let (lam0, cv) = press_start(&mut chain, &t, ntol)?;
     // a slope goal approached from the side the first point is on
     let goal = match spec.goal {
         Goal::TipSlope(p, _) => {
@@ -234,25 +298,12 @@ pub(crate) fn press<P: Profile>(
         g => g,
     };
     let env = Env {
-        line: spec.sides.then_some((p0, gb)),
+        line: spec.sides.then_some((p0, t.gb)),
         mu0: None,
         compound: spec.sides,
         target: Some(goal),
         ground: Default::default(),
     };
-    // a first point far below the march's first step (a tiny load next to the imperfect
-    // bifurcation of a straight rod on a slightly inclined line): walked up to 1e-3 in steps of
-    // 4× first, so that the march's first step cannot land on another mode (β = 0.025…0.03 went
-    // to the third clamped-free mode, f ≈ 70)
-    let (mut lam0, mut cv) = (lam0, cv);
-    let ramp_end = 1e-3f64.min(0.5 * room);
-    while lam0 > 0.0 && lam0 < ramp_end {
-        let next = (4.0 * lam0).min(ramp_end);
-        match solve_damped(&mut chain, next, &cv.u, ntol, 40) {
-            Ok(c) => (lam0, cv) = (next, c),
-            Err(_) => break,
-        }
-    }
     let mut st = OwnStepper { chain, env };
     let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
         reason: format!("the first point of the press: {e}"),
