@@ -32,7 +32,7 @@ impl Fail {
             Fail::Closed => "output closed by its reader",
         };
         // the model prints f64 with `{}`: 1e300 would be a 300-digit decimal
-        crate::numbers::shorten_numbers(&one_line(m))
+        crate::number_text::shorten_numbers(&one_line(m))
     }
 }
 
@@ -59,22 +59,27 @@ pub fn solve_fail(msg: impl Into<String>) -> Fail {
 
 impl From<elastica::ElasticaError> for Fail {
     fn from(e: elastica::ElasticaError) -> Fail {
-        use elastica::ElasticaError as E;
-        let msg = e.to_string();
-        match e {
-            E::AlphaOutOfRange { .. }
-            | E::Phi1OutOfRange { .. }
-            | E::EtaOutOfRange { .. }
-            | E::NotFinite { .. }
-            | E::OutOfRange { .. }
-            | E::NoFlexPhase { .. } => Fail::Usage(msg),
-            _ => Fail::Solve(msg),
+        if e.is_input() {
+            Fail::Usage(e.to_string())
+        } else {
+            Fail::Solve(e.to_string())
+        }
+    }
+}
+
+/// The library's errors as the library classifies them: input (exit 2) or a failed solve.
+impl From<vibrissa::VibrissaError> for Fail {
+    fn from(e: vibrissa::VibrissaError) -> Fail {
+        if e.is_input() {
+            Fail::Usage(e.to_string())
+        } else {
+            Fail::Solve(e.to_string())
         }
     }
 }
 
 /// An output failure: [`Fail::Closed`] when its I/O cause is a broken pipe, else [`Fail::Solve`].
-/// File outputs name themselves (`writing --out x.csv: ...`, see `outputs`); every other file
+/// File outputs name themselves (`writing --out x.csv: ...`, see `output_files`); every other file
 /// operation maps its error with its path, so an unnamed I/O error is a write to stdout.
 fn output_fail(io_kind: Option<std::io::ErrorKind>, e: impl fmt::Display) -> Fail {
     if io_kind == Some(std::io::ErrorKind::BrokenPipe) {

@@ -4,15 +4,15 @@
 //!
 //! Columns are read by name, so files with more columns (or in another order) plot the same;
 //! every value of an `event` column is marked (one marker style and legend entry per event
-//! name). Drawing, legend placement and the layout test are those of `figures`.
+//! name). Drawing, legend placement and the layout test are those of `chart`.
 
-use crate::cli::{PlotArgs, PlotKind};
-use crate::error::{usage, Res};
-use crate::figures::{
+use crate::chart::{
     panel, render, series, unlabeled, Fig, Kind, Panel, BLUE_, BROWN_, GREEN_, GREY_, NAVY_,
     ORANGE_, PURPLE_, RED_,
 };
-use crate::output::{num, AtomicFile};
+use crate::cli::{PlotArgs, PlotKind};
+use crate::error::{usage, Res};
+use crate::table::{num, AtomicFile};
 use plotters::style::RGBColor;
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -550,7 +550,7 @@ fn drag_with_shapes(t: &Table, sh: &Table, select: Option<&[usize]>, beta: f64) 
 
 /// A number for a label: 4 significant digits.
 fn short(v: f64) -> String {
-    crate::numbers::digits(v, 4)
+    crate::number_text::digits(v, 4)
 }
 
 /// The grid columns of a sweep CSV that can be heat-map axes: the scene's and the tolerance.
@@ -843,8 +843,8 @@ pub fn run(a: &PlotArgs) -> Res<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figures::layout_check::check_panel;
-    use crate::figures::{Mark, Series};
+    use crate::chart::layout_check::check_panel;
+    use crate::chart::{Mark, Series};
 
     fn err<T>(r: Res<T>) -> String {
         match r {
@@ -883,7 +883,7 @@ mod tests {
 
     /// Renders the figure and checks every panel's layout (legends and labels touch no data,
     /// every point is drawn); returns the layouts.
-    fn checked(f: &Fig) -> Vec<crate::figures::PanelLayout> {
+    fn checked(f: &Fig) -> Vec<crate::chart::PanelLayout> {
         let (svg, l) = render(f).unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..40]);
         for (p, lay) in f.panels.iter().zip(&l) {
@@ -1176,7 +1176,7 @@ mod tests {
             })
             .unwrap();
         let lg = l[0].legend.unwrap();
-        l[0].legend = Some(crate::figures::Rect {
+        l[0].legend = Some(crate::chart::Rect {
             x0: cell.x0 + 1.0,
             y0: cell.y0 + 1.0,
             x1: cell.x0 + 1.0 + (lg.x1 - lg.x0),

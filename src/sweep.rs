@@ -1,25 +1,25 @@
 //! `vibrissa sweep`: a grid of stiction scans over scene parameters, in parallel (rayon), with
 //! rows streamed in grid order through a bounded reorder buffer, and `--shard K/N`.
 
-use crate::cli::{MethodArg, Shard, SweepArgs};
+use crate::cli::{Shard, SweepArgs};
 use crate::error::{one_line, solve_fail, usage, Fail, Res};
 use crate::journal;
-use crate::numbers::{short, Axis};
-use crate::output::{csv_line, num, opt, Sink};
-use crate::outputs;
-use crate::scan::{run_scan, ScanSpec};
+use crate::number_text::{short, Axis};
+use crate::output_files;
+use crate::present::mu_text;
+use crate::scan::run_scan;
 use crate::scene_args::{
     apply_overrides, apply_physical, physical_src, read_scene_file, units_of, Units,
 };
+use crate::table::{csv_line, num, opt, Sink};
 use crate::validate::{self, SceneSrc, Src};
-use clap::ValueEnum;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::io::{IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
-use vibrissa::{Precurvature, RangeEnd, Scene, Stiffness};
+use vibrissa::{Method, Precurvature, RangeEnd, ScanOptions, Scene, SolverConfig, Stiffness};
 
 /// Set while a sweep runs: a panic inside one scene becomes that scene's error row, and the
 /// panic hook stays quiet.
@@ -34,7 +34,7 @@ struct Cell {
     k1: Option<f64>,
     c: Option<f64>,
     beta: Option<f64>,
-    method: MethodArg,
+    method: Method,
     tol: f64,
     /// `None`: never slips
     mu0: Option<f64>,
@@ -48,7 +48,7 @@ struct Cell {
 struct Grid<'a> {
     /// eta, taper, precurvature, precurvature slope, compliance, surface angle
     scene: [Option<&'a Axis>; 6],
-    method: Vec<MethodArg>,
+    method: Vec<Method>,
     tol: &'a Axis,
     mu0: Option<&'a Axis>,
     d_max: &'a Axis,
@@ -182,17 +182,20 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     row.push(opt(cell.mu0));
     row.push(num(cell.d_max));
     row.push(cell.points.to_string());
-    let spec = ScanSpec {
-        method: cell.method,
-        tol: cell.tol,
+    let opts = ScanOptions {
         d_max: cell.d_max,
         points: cell.points as usize,
         mu0: cell.mu0,
-        shape_points: 0,
+        solver: SolverConfig {
+            method: cell.method,
+            tol: cell.tol,
+            ..SolverConfig::default()
+        },
+        ..ScanOptions::default()
     };
     let result = std::panic::catch_unwind(|| -> Res<_> {
         sc.validate()?;
-        run_scan(&sc, &spec)
+        run_scan(&sc, opts)
     });
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     if let Ok(Ok(o)) = &result {
@@ -211,25 +214,26 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     };
     let err = match result {
         Ok(Ok(o)) => {
-            let last = o.pts.last().copied().unwrap_or(o.start);
+            let r = &o.result;
+            let last = r.points.last().copied().unwrap_or(r.start);
             let failed = o.stop.reason == SOLVER_FAILURE;
-            let known = max_is_known(failed, o.range_end, o.d_at_mu_max, last.d);
-            let d_at_mu_max = known.then_some(o.d_at_mu_max);
+            let known = max_is_known(failed, r.range_end, r.d_at_mu_max, last.d);
+            let d_at_mu_max = known.then_some(r.d_at_mu_max);
             row.extend([
-                num(o.start.f),
-                num(o.start.phi1),
+                num(r.start.f),
+                num(r.start.phi1),
                 if known {
-                    crate::scan::mu_text(o.mu_max)
+                    mu_text(r.mu_max)
                 } else {
                     String::new()
                 },
                 opt(d_at_mu_max),
-                crate::scan::mu_text(last.mu),
+                mu_text(last.mu),
                 num(last.d),
                 o.stop.reason.clone(),
-                o.points.to_string(),
-                o.stats.newton_iters.to_string(),
-                o.stats.rhs_evals.to_string(),
+                r.points.len().to_string(),
+                r.stats.newton_iters.to_string(),
+                r.stats.rhs_evals.to_string(),
             ]);
             if physical {
                 let u = units.unwrap_or(Units {
@@ -238,14 +242,14 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
                     length_mm: f64::NAN,
                 });
                 row.extend([
-                    num(o.start.f * u.force_n),
+                    num(r.start.f * u.force_n),
                     opt(d_at_mu_max.map(|d| d * u.length_mm)),
                     num(last.d * u.length_mm),
                 ]);
             }
             if failed {
                 // the scan's rows up to the failure are results; the scene is not
-                crate::numbers::shorten_numbers(&one_line(&o.stop.detail))
+                crate::number_text::shorten_numbers(&one_line(&o.stop.detail))
             } else {
                 String::new()
             }
@@ -399,7 +403,7 @@ pub fn run(a: &SweepArgs) -> Res<()> {
         .method
         .split(',')
         .map(|m| {
-            MethodArg::from_str(m.trim(), false).map_err(|_| {
+            m.trim().parse::<Method>().map_err(|_| {
                 usage(format!(
                     "--method '{}': valid values are shooting, multiple-shooting, collocation, collocation6, analytic",
                     m.trim()
@@ -439,11 +443,11 @@ pub fn run(a: &SweepArgs) -> Res<()> {
         validate::BYTES_PER_SCAN_POINT,
     )?;
     if let Some(p) = &a.out {
-        outputs::plan(&[("--out", p)], a.dry_run)?;
+        output_files::plan(&[("--out", p)], a.dry_run)?;
     }
     // a sweep written to a file keeps its finished rows in a journal next to it
     let journal_path = match &a.out {
-        Some(p) => outputs::file_target("--out", p)?.map(|t| journal::path_of(&t)),
+        Some(p) => output_files::file_target("--out", p)?.map(|t| journal::path_of(&t)),
         None => None,
     };
     let id = identity(&base);
@@ -518,7 +522,7 @@ pub fn run(a: &SweepArgs) -> Res<()> {
                 None => 0,
             };
             let jr = journal::Journal::open(j, &id, len)?;
-            outputs::note_on_signal(format!(
+            output_files::note_on_signal(format!(
                 "sweep interrupted: its finished rows are kept in {}; the same command resumes it",
                 j.display()
             ));
@@ -571,7 +575,7 @@ pub fn run(a: &SweepArgs) -> Res<()> {
                 let r = write(&mut sink, &l).and_then(|_| match journal.as_mut() {
                     Some(j) => j
                         .append(&l)
-                        .map_err(|e| outputs::named(&j.path().display().to_string(), e)),
+                        .map_err(|e| output_files::named(&j.path().display().to_string(), e)),
                     None => Ok(()),
                 });
                 if let Err(e) = r {
@@ -613,7 +617,7 @@ pub fn run(a: &SweepArgs) -> Res<()> {
     if let Some(j) = journal {
         let path = j.path().to_path_buf();
         j.close().map_err(kept)?;
-        outputs::remove_after_commit(path);
+        output_files::remove_after_commit(path);
     }
     let rows = resumed.rows + done;
     let failed = resumed.failed + failed;
@@ -636,7 +640,7 @@ pub fn run(a: &SweepArgs) -> Res<()> {
     if rows > 0 && failed == rows {
         // the file is written (every row says why its scene failed), and the exit code says
         // that no scene has a result
-        outputs::commit_all()?;
+        output_files::commit_all()?;
         let which = if n > 1 {
             format!("of shard {k}/{n} ")
         } else {
@@ -676,12 +680,12 @@ mod tests {
 
     #[test]
     fn grid_order_is_the_column_order() {
-        let ax = |s: &str| crate::numbers::parse_axis(s).unwrap();
+        let ax = |s: &str| crate::number_text::parse_axis(s).unwrap();
         let (eta, tol, d_max, points) = (ax("0.7,0.8"), ax("1e-10"), ax("0.1,0.2"), ax("3:5:2"));
-        let mu0 = crate::numbers::parse_axis_or_inf("0.5,inf").unwrap();
+        let mu0 = crate::number_text::parse_axis_or_inf("0.5,inf").unwrap();
         let g = Grid {
             scene: [Some(&eta), None, None, None, None, None],
-            method: vec![MethodArg::Shooting],
+            method: vec![Method::Shooting],
             tol: &tol,
             mu0: Some(&mu0),
             d_max: &d_max,

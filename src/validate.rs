@@ -5,7 +5,7 @@
 
 use crate::cli::{Command, FiguresArgs, InferArgs, ScanArgs, SolveArgs, SweepArgs};
 use crate::error::{usage, Fail, Res};
-use crate::numbers::{digits, digits_to_decide, short};
+use crate::number_text::{digits, digits_to_decide, short};
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 use vibrissa::{Precurvature, Scene, Stiffness};
@@ -704,8 +704,8 @@ pub fn explain(f: Fail) -> Fail {
 /// Library errors rendered with short numbers (the model prints `{}` of an `f64`).
 pub fn shorten(f: Fail) -> Fail {
     match f {
-        Fail::Usage(m) => Fail::Usage(crate::numbers::shorten_numbers(&m)),
-        Fail::Solve(m) => Fail::Solve(crate::numbers::shorten_numbers(&m)),
+        Fail::Usage(m) => Fail::Usage(crate::number_text::shorten_numbers(&m)),
+        Fail::Solve(m) => Fail::Solve(crate::number_text::shorten_numbers(&m)),
         Fail::Closed => Fail::Closed,
     }
 }

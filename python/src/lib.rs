@@ -28,21 +28,16 @@ fn raise(name: &str, msg: String) -> PyErr {
     )
 }
 
-/// The library's error as a Python exception with the same message; the input errors are those
-/// the program reports as bad input (exit 2), a surface the rod cannot reach among them.
+/// The library's error as a Python exception with the same message; the input errors are the
+/// library's ([`VibrissaError::is_input`]), those the program reports as bad input (exit 2), a
+/// surface the rod cannot reach among them.
 fn py_err(e: VibrissaError) -> PyErr {
-    let msg = e.to_string();
-    match e {
-        VibrissaError::OutOfRange { .. }
-        | VibrissaError::InvalidTable { .. }
-        | VibrissaError::InvalidName { .. }
-        | VibrissaError::MethodUnavailable { .. }
-        | VibrissaError::NotMeasurable { .. }
-        | VibrissaError::RangeCutShort { .. }
-        | VibrissaError::NoContact { .. }
-        | VibrissaError::OutOfReach { .. } => raise("InputError", msg),
-        _ => raise("SolveError", msg),
-    }
+    let class = if e.is_input() {
+        "InputError"
+    } else {
+        "SolveError"
+    };
+    raise(class, e.to_string())
 }
 
 /// A value from Python that does not fit the scene format, in the format's words.
@@ -182,15 +177,7 @@ fn scene_from_toml(text: &str) -> PyResult<(PyRod, PySurface)> {
 
 /// The solver settings from their Python arguments.
 fn config(method: &str, tol: f64, segments: usize, start: &str) -> PyResult<SolverConfig> {
-    let start = match start {
-        "pressed" => StartKind::Pressed,
-        "connected" => StartKind::Connected,
-        _ => {
-            return Err(input(format!(
-                "invalid start '{start}': valid values are pressed, connected"
-            )))
-        }
-    };
+    let start = start.parse::<StartKind>().map_err(py_err)?;
     let cfg = SolverConfig {
         method: method.parse::<Method>().map_err(py_err)?,
         tol,
@@ -203,14 +190,7 @@ fn config(method: &str, tol: f64, segments: usize, start: &str) -> PyResult<Solv
 }
 
 fn branch(name: &str) -> PyResult<BranchChoice> {
-    match name {
-        "convex" => Ok(BranchChoice::Convex),
-        "flex" => Ok(BranchChoice::Flex),
-        "any" => Ok(BranchChoice::Any),
-        _ => Err(input(format!(
-            "invalid branch '{name}': valid values are convex, flex, any"
-        ))),
-    }
+    name.parse::<BranchChoice>().map_err(py_err)
 }
 
 /// One rod under a tip force at angle `alpha` with one tip condition; returns the `Shape` as a
@@ -277,15 +257,7 @@ fn scan_options(
     shape_points: Option<usize>,
     (contact, start): (&str, &str),
 ) -> PyResult<ScanOptions> {
-    let contact = match contact {
-        "anywhere" => ContactModel::Anywhere,
-        "tip" => ContactModel::Tip,
-        _ => {
-            return Err(input(format!(
-                "invalid contact '{contact}': valid values are anywhere, tip"
-            )))
-        }
-    };
+    let contact = contact.parse::<ContactModel>().map_err(py_err)?;
     let opts = ScanOptions {
         d_max,
         points,

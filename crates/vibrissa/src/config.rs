@@ -47,6 +47,20 @@ impl Method {
             Method::Analytic => "analytic",
         }
     }
+    /// What the method is, in one line (the program's `--help` lists it).
+    pub fn help(self) -> &'static str {
+        match self {
+            Method::Shooting => {
+                "single shooting (adaptive Runge-Kutta, Newton on the unknown initial values)"
+            }
+            Method::MultipleShooting => "multiple shooting (several segments)",
+            Method::Collocation4 => "Lobatto IIIA collocation of order 4 with mesh adaptation",
+            Method::Collocation6 => "Lobatto IIIA collocation of order 6 with mesh adaptation",
+            Method::Analytic => {
+                "closed-form elliptic-integral solution (uniform clamped straight rod only)"
+            }
+        }
+    }
 }
 
 impl fmt::Display for Method {
@@ -239,6 +253,39 @@ pub enum Target {
         /// Tip y.
         y1: f64,
     },
+}
+
+impl StartKind {
+    /// Every start.
+    pub const ALL: [StartKind; 2] = [StartKind::Pressed, StartKind::Connected];
+    /// The name in scene files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            StartKind::Pressed => "pressed",
+            StartKind::Connected => "connected",
+        }
+    }
+    /// What the start is, in one line (the program's `--help` lists it).
+    pub fn help(self) -> &'static str {
+        match self {
+            StartKind::Pressed => "pressed onto the surface from the rest shape",
+            StartKind::Connected => "connected to the pressed straight uniform rod",
+        }
+    }
+}
+
+impl FromStr for StartKind {
+    type Err = VibrissaError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        StartKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| VibrissaError::InvalidName {
+                name: "start",
+                value: s.to_string(),
+                valid: "pressed, connected",
+            })
+    }
 }
 
 /// Which equilibrium a scan or a solve starts from.

@@ -53,6 +53,39 @@ pub enum ContactModel {
     Tip,
 }
 
+impl ContactModel {
+    /// Every model.
+    pub const ALL: [ContactModel; 2] = [ContactModel::Anywhere, ContactModel::Tip];
+    /// The name in scene files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactModel::Anywhere => "anywhere",
+            ContactModel::Tip => "tip",
+        }
+    }
+    /// What the model is, in one line (the program's `--help` lists it).
+    pub fn help(self) -> &'static str {
+        match self {
+            ContactModel::Anywhere => "anywhere along the rod (the paper's compound constraint)",
+            ContactModel::Tip => "the tip alone (the paper's model)",
+        }
+    }
+}
+
+impl std::str::FromStr for ContactModel {
+    type Err = VibrissaError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        ContactModel::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| VibrissaError::InvalidName {
+                name: "contact",
+                value: s.to_string(),
+                valid: "anywhere, tip",
+            })
+    }
+}
+
 impl Default for ScanOptions {
     fn default() -> Self {
         ScanOptions {
@@ -311,6 +344,34 @@ pub enum StopReason {
 }
 
 impl StopReason {
+    /// The reason's name in CSV and JSON (`d_max`, `slip`, `lift_off`, `penetration`,
+    /// `fold_in_d`, `slip_off`, `contact_change`, `solver_failure`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            StopReason::DMax => "d_max",
+            StopReason::Slip { .. } => "slip",
+            StopReason::LiftOff { .. } => "lift_off",
+            StopReason::Penetration { .. } => "penetration",
+            StopReason::FoldInD { .. } => "fold_in_d",
+            StopReason::SlipOff { .. } => "slip_off",
+            StopReason::ContactChange { .. } => "contact_change",
+            StopReason::SolverFailure { .. } => "solver_failure",
+        }
+    }
+    /// Where the march stopped (its parameter: `d`, or the foot angle of a whisk); `None` at
+    /// the end of the range.
+    pub fn at(&self) -> Option<f64> {
+        match self {
+            StopReason::DMax => None,
+            StopReason::Slip { d, .. }
+            | StopReason::LiftOff { d, .. }
+            | StopReason::Penetration { d, .. }
+            | StopReason::FoldInD { d }
+            | StopReason::SlipOff { d }
+            | StopReason::ContactChange { d, .. }
+            | StopReason::SolverFailure { d, .. } => Some(*d),
+        }
+    }
     /// In words, with `param` the name of the marched parameter (`d` for a scan, `theta` for a
     /// whisk); `Display` is `describe("d")`.
     pub fn describe(&self, param: &str) -> String {
