@@ -639,45 +639,33 @@ where
     .map_err(pe)
 }
 
-fn draw_panel<DB: DrawingBackend>(
+/// A chart laid out in a panel: the chart, its series in pixels, what they mark, and where the
+/// legend goes (if the panel has one).
+type Laid<'a, DB> = (Chart<'a, DB>, Vec<Vec<(f64, f64)>>, Vec<Mark>, Option<Rect>);
+
+/// Lay out the chart below the title: the legend inside the plot area if there is an empty
+/// place, else beside it (narrow legends) or below it (wide ones); the plot area shrinks to make
+/// room.
+fn lay_out<'a, DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     p: &Panel,
-) -> Res<PanelLayout>
+    whole: &Rect,
+) -> Res<Laid<'a, DB>>
 where
     DB::ErrorType: 'static,
 {
-    let whole = {
-        let (xs, ys) = area.get_pixel_range();
-        Rect {
-            x0: xs.start as f64,
-            y0: ys.start as f64,
-            x1: xs.end as f64,
-            y1: ys.end as f64,
-        }
-    };
-    // the panel title, then the chart below it
-    let (w, _) = area.dim_in_pixel();
-    text(
-        area,
-        &p.title,
-        20.0,
-        BLACK,
-        Pos::new(HPos::Center, VPos::Top),
-        (whole.x0 + 0.5 * w as f64, whole.y0 + u(8.0) as f64),
-    )?;
-    let (_, area) = area.split_vertically(u(36.0));
     let (xr0, yr0) = data_ranges(p);
     let legend_wh = legend_size(p);
     // legend inside the plot area if there is an empty place, else beside it (narrow legends)
     // or below it (wide ones); the plot area shrinks to make room
     let (mut right, mut bottom) = (u(12.0), u(12.0));
     let mut inside = true;
-    let (mut chart, px, marks, legend) = loop {
-        let mut chart = build(&area, right, bottom, xr0, yr0)?;
+    let laid = loop {
+        let mut chart = build(area, right, bottom, xr0, yr0)?;
         if p.equal_aspect {
             let r = plot_rect(&chart);
             let (xr, yr) = equal_aspect(xr0, yr0, r.x1 - r.x0, r.y1 - r.y0);
-            chart = build(&area, right, bottom, xr, yr)?;
+            chart = build(area, right, bottom, xr, yr)?;
         }
         let plot = plot_rect(&chart);
         let (px, marks) = to_pixels(&chart, p);
@@ -705,20 +693,20 @@ where
         };
         break (chart, px, marks, Some(r));
     };
-    let plot = plot_rect(&chart);
-    chart
-        .configure_mesh()
-        .x_desc(p.xlabel.as_str())
-        .y_desc(p.ylabel.as_str())
-        .axis_desc_style(font(16.0))
-        .label_style(font(13.0))
-        .light_line_style(RGBColor(238, 238, 238).stroke_width(u(0.5) as u32))
-        .bold_line_style(RGBColor(205, 205, 205).stroke_width(u(1.0) as u32))
-        .axis_style(BLACK.stroke_width(u(1.0) as u32))
-        .set_all_tick_mark_size(u(5.0))
-        .draw()
-        .map_err(pe)?;
-    // series in pixel space, on the plot area (clipped to it)
+    Ok(laid)
+}
+
+/// Draw the series on the plot area (clipped to it): cells first, as they fill areas that other
+/// series may mark.
+fn draw_series<DB: DrawingBackend>(
+    chart: &Chart<'_, DB>,
+    p: &Panel,
+    px: &[Vec<(f64, f64)>],
+    marks: &[Mark],
+) -> Res<()>
+where
+    DB::ErrorType: 'static,
+{
     let pa = chart.plotting_area().strip_coord_spec();
     let base = pa.get_base_pixel();
     let rel = |v: &[(f64, f64)]| -> Vec<(i32, i32)> {
@@ -726,9 +714,8 @@ where
             .map(|&(x, y)| (x as i32 - base.0, y as i32 - base.1))
             .collect()
     };
-    // cells first: they fill areas that other series may mark
     let mut cells = 0;
-    for m in &marks {
+    for m in marks {
         if let Mark::Area(r) = m {
             let col = cell_color(p, cells);
             cells += 1;
@@ -742,7 +729,7 @@ where
             .map_err(pe)?;
         }
     }
-    for (s, v) in p.series.iter().zip(&px) {
+    for (s, v) in p.series.iter().zip(px) {
         if matches!(s.kind, Kind::Cell(..)) {
             continue;
         }
@@ -754,46 +741,67 @@ where
             }
         }
     }
-    let mut taken: Vec<Rect> = Vec::new();
-    if let Some(r) = legend {
-        let ab = area.get_base_pixel();
-        let rr = |x: f64, y: f64| (x.round() as i32 - ab.0, y.round() as i32 - ab.1);
-        area.draw(&Rectangle::new(
-            [rr(r.x0, r.y0), rr(r.x1, r.y1)],
-            WHITE.mix(0.9).filled(),
-        ))
-        .map_err(pe)?;
-        area.draw(&Rectangle::new(
-            [rr(r.x0, r.y0), rr(r.x1, r.y1)],
-            RGBColor(170, 170, 170).stroke_width(u(1.0) as u32),
-        ))
-        .map_err(pe)?;
-        let pad = 7.0 * S as f64;
-        for (i, s) in legend_entries(p).iter().enumerate() {
-            let yc = r.y0 + pad + (i as f64 + 0.5) * ROW_PX * S as f64 - 2.0 * S as f64;
-            let x = r.x0 + pad;
-            if s.kind.is_line() {
-                let ends = vec![rr(x, yc), rr(x + GLYPH_PX * S as f64, yc)];
-                line(&area, s.kind, s.color, ends)?;
-            } else {
-                marker(
-                    &area,
-                    s.kind,
-                    s.color,
-                    rr(x + 0.5 * GLYPH_PX * S as f64, yc),
-                )?;
-            }
-            text(
-                &area,
-                &s.name,
-                LEGEND_FONT,
-                BLACK,
-                Pos::new(HPos::Left, VPos::Center),
-                (x + (GLYPH_PX + 6.0) * S as f64, yc),
-            )?;
+    Ok(())
+}
+
+/// Draw the legend in its box `r` of the panel's area.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+    r: &Rect,
+) -> Res<()>
+where
+    DB::ErrorType: 'static,
+{
+    let ab = area.get_base_pixel();
+    let rr = |x: f64, y: f64| (x.round() as i32 - ab.0, y.round() as i32 - ab.1);
+    area.draw(&Rectangle::new(
+        [rr(r.x0, r.y0), rr(r.x1, r.y1)],
+        WHITE.mix(0.9).filled(),
+    ))
+    .map_err(pe)?;
+    area.draw(&Rectangle::new(
+        [rr(r.x0, r.y0), rr(r.x1, r.y1)],
+        RGBColor(170, 170, 170).stroke_width(u(1.0) as u32),
+    ))
+    .map_err(pe)?;
+    let pad = 7.0 * S as f64;
+    for (i, s) in legend_entries(p).iter().enumerate() {
+        let yc = r.y0 + pad + (i as f64 + 0.5) * ROW_PX * S as f64 - 2.0 * S as f64;
+        let x = r.x0 + pad;
+        if s.kind.is_line() {
+            let ends = vec![rr(x, yc), rr(x + GLYPH_PX * S as f64, yc)];
+            line(area, s.kind, s.color, ends)?;
+        } else {
+            marker(area, s.kind, s.color, rr(x + 0.5 * GLYPH_PX * S as f64, yc))?;
         }
-        taken.push(r);
+        text(
+            area,
+            &s.name,
+            LEGEND_FONT,
+            BLACK,
+            Pos::new(HPos::Left, VPos::Center),
+            (x + (GLYPH_PX + 6.0) * S as f64, yc),
+        )?;
     }
+    Ok(())
+}
+
+/// The tags placed (text and box) and the texts that found no place.
+type Tags = (Vec<(String, Rect)>, Vec<String>);
+
+/// Place and draw the series' tags where they cover neither data nor what is `taken`; returns
+/// the placed tags and the texts that found no place.
+fn draw_tags<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    (chart, plot): (&Chart<'_, DB>, &Rect),
+    p: &Panel,
+    marks: &[Mark],
+    taken: &mut Vec<Rect>,
+) -> Res<Tags>
+where
+    DB::ErrorType: 'static,
+{
     let mut tags = Vec::new();
     let mut untagged = Vec::new();
     for s in &p.series {
@@ -807,10 +815,10 @@ where
                 (b.0 as f64, b.1 as f64)
             })
             .collect();
-        match place_tag(&t.text, &anchors, &plot, &marks, &taken) {
+        match place_tag(&t.text, &anchors, plot, marks, taken) {
             Some(r) => {
                 text(
-                    &area,
+                    area,
                     &t.text,
                     TAG_FONT,
                     RGBColor(40, 40, 40),
@@ -823,6 +831,57 @@ where
             None => untagged.push(t.text.clone()),
         }
     }
+    Ok((tags, untagged))
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    p: &Panel,
+) -> Res<PanelLayout>
+where
+    DB::ErrorType: 'static,
+{
+    let whole = {
+        let (xs, ys) = area.get_pixel_range();
+        Rect {
+            x0: xs.start as f64,
+            y0: ys.start as f64,
+            x1: xs.end as f64,
+            y1: ys.end as f64,
+        }
+    };
+    // the panel title, then the chart below it
+    let (w, _) = area.dim_in_pixel();
+    text(
+        area,
+        &p.title,
+        20.0,
+        BLACK,
+        Pos::new(HPos::Center, VPos::Top),
+        (whole.x0 + 0.5 * w as f64, whole.y0 + u(8.0) as f64),
+    )?;
+    let (_, area) = area.split_vertically(u(36.0));
+    let (mut chart, px, marks, legend) = lay_out(&area, p, &whole)?;
+    let plot = plot_rect(&chart);
+    chart
+        .configure_mesh()
+        .x_desc(p.xlabel.as_str())
+        .y_desc(p.ylabel.as_str())
+        .axis_desc_style(font(16.0))
+        .label_style(font(13.0))
+        .light_line_style(RGBColor(238, 238, 238).stroke_width(u(0.5) as u32))
+        .bold_line_style(RGBColor(205, 205, 205).stroke_width(u(1.0) as u32))
+        .axis_style(BLACK.stroke_width(u(1.0) as u32))
+        .set_all_tick_mark_size(u(5.0))
+        .draw()
+        .map_err(pe)?;
+    draw_series(&chart, p, &px, &marks)?;
+    let mut taken: Vec<Rect> = Vec::new();
+    if let Some(r) = legend {
+        draw_legend(&area, p, &r)?;
+        taken.push(r);
+    }
+    let (tags, untagged) = draw_tags(&area, (&chart, &plot), p, &marks, &mut taken)?;
     Ok(PanelLayout {
         area: whole,
         plot,
