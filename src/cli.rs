@@ -10,7 +10,44 @@ use clap::builder::TypedValueParser;
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::any::TypeId;
 use std::path::PathBuf;
-use vibrissa::{BranchChoice, ContactModel, Method, SolverConfig, StartKind};
+use std::sync::LazyLock;
+use vibrissa::{
+    limits, BranchChoice, ContactModel, Method, ScanOptions, SolverConfig, StartKind, WhiskOptions,
+};
+
+/// The library's defaults as `--help` shows them (`1e-10`, `0.5`, `201`): clap's default values
+/// are text that lives as long as the program.
+struct Defaults {
+    tol: String,
+    d_max: String,
+    points: String,
+    theta_max: String,
+    whisk_points: String,
+    shape_points: String,
+    solve_shape_points: String,
+}
+
+static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
+    // the shorter of the plain and the scientific spelling
+    let shown = |v: f64| {
+        let (plain, sci) = (format!("{v}"), format!("{v:e}"));
+        if sci.len() < plain.len() {
+            sci
+        } else {
+            plain
+        }
+    };
+    let (scan, whisk) = (ScanOptions::default(), WhiskOptions::default());
+    Defaults {
+        tol: shown(scan.solver.tol),
+        d_max: shown(scan.d_max),
+        points: scan.points.to_string(),
+        theta_max: shown(whisk.theta_max),
+        whisk_points: whisk.points.to_string(),
+        shape_points: limits::DEFAULT_SHAPE_POINTS.to_string(),
+        solve_shape_points: limits::DEFAULT_SOLVE_SHAPE_POINTS.to_string(),
+    }
+});
 
 /// Parse a finite `f64` (NaN and infinities are refused).
 pub fn finite_f64(s: &str) -> Result<f64, String> {
@@ -70,9 +107,9 @@ pub struct Shard {
 }
 
 /// Most output points of a scan (the model's limit).
-pub const MAX_POINTS: u64 = 1_000_000;
+pub const MAX_POINTS: u64 = limits::POINTS.hi as u64;
 /// Most points of one shape.
-pub const MAX_SHAPE_POINTS: u64 = 100_000;
+pub const MAX_SHAPE_POINTS: u64 = limits::SHAPE_POINTS.hi as u64;
 /// Most worker threads asked for (more are capped at a multiple of the cores, with a warning).
 pub const MAX_JOBS: u64 = 65_536;
 
@@ -255,7 +292,7 @@ pub struct SolverArgs {
     pub method: Method,
     /// Tolerance of the numerical solver (local error / collocation residual), in [1e-15, 1e-2];
     /// Newton always iterates to min(tol, 1e-9).
-    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = DEFAULTS.tol.as_str())]
     pub tol: f64,
 }
 
@@ -313,7 +350,7 @@ pub struct SolveArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shape_out: Option<PathBuf>,
     /// Number of points of --shape-out, uniform in s, in [2, 1000000] (needs --shape-out).
-    #[arg(long, value_name = "N", default_value = "101", value_parser = solve_shape_points, requires = "shape_out")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.solve_shape_points.as_str(), value_parser = solve_shape_points, requires = "shape_out")]
     pub shape_points: u32,
     /// Make it an error when the rod crosses the surface line through its tip (inclined by
     /// --surface-angle): some point with s < 1 above it, or the tip arriving from above. Without
@@ -329,10 +366,10 @@ pub struct ScanArgs {
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
     /// Largest foot displacement d (rod lengths), in (0, 2).
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = DEFAULTS.d_max.as_str())]
     pub d_max: f64,
     /// Number of output points, uniform in d from 0 to --d-max, in [2, 1000000].
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.points.as_str(), value_parser = points)]
     pub points: u32,
     /// Stiction coefficient, in [0, inf]: stop where |mu| reaches it (the tip slips, backwards for
     /// mu = mu0, forwards for mu = -mu0; mu = F.t/N = tan(beta - alpha) is the signed friction
@@ -353,7 +390,7 @@ pub struct ScanArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000]; --points × --shape-points × 100 bytes must fit in 1 GB (needs --shapes).
-    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.shape_points.as_str(), value_parser = shape_points, requires = "shapes")]
     pub shape_points: u32,
     /// Print the summary as a JSON object on stdout.
     #[arg(long)]
@@ -370,10 +407,10 @@ pub struct InferArgs {
     #[arg(long, value_name = "D", value_parser = finite_f64)]
     pub d0: f64,
     /// Largest foot displacement the underlying scan explores (rod lengths), in (0, 2).
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = DEFAULTS.d_max.as_str())]
     pub d_max: f64,
     /// Points of the underlying scan, in [2, 1000000].
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.points.as_str(), value_parser = points)]
     pub points: u32,
     #[command(flatten)]
     pub solver: SolverArgs,
@@ -391,10 +428,10 @@ pub struct WhiskArgs {
     #[arg(long, value_name = "X,Y", value_parser = point)]
     pub peg: Point,
     /// Largest foot angle (rad, clockwise), in (-pi/2, pi/2); the rows run from first touch.
-    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = "1")]
+    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = DEFAULTS.theta_max.as_str())]
     pub theta_max: f64,
     /// Number of output angles, uniform from first touch to --theta-max, in [2, 1000000].
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.whisk_points.as_str(), value_parser = points)]
     pub points: u32,
     /// Stiction coefficient at the object, in [0, inf): the contact sticks while |T| <= mu0 N,
     /// then slides with |T| = mu0 N. [default: frictionless]
@@ -413,7 +450,7 @@ pub struct WhiskArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000] (needs --shapes).
-    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.shape_points.as_str(), value_parser = shape_points, requires = "shapes")]
     pub shape_points: u32,
     /// Print the summary as a JSON object on stdout.
     #[arg(long)]
@@ -495,7 +532,7 @@ pub struct DragArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000] (needs --shapes).
-    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.shape_points.as_str(), value_parser = shape_points, requires = "shapes")]
     pub shape_points: u32,
     /// Print the summary as a JSON object on stdout (cycles, mean and spread of the slip lengths,
     /// force drops and released energies, and every slip).
@@ -574,17 +611,17 @@ pub struct SweepArgs {
     )]
     pub method: String,
     /// Solver tolerances (LIST), each in [1e-15, 1e-2].
-    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "1e-10")]
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = DEFAULTS.tol.as_str())]
     pub tol: Axis,
     /// Stiction coefficients at which the scans stop (slip) (LIST), each in [0, inf]; inf (in a
     /// comma list) never slips. [default: none]
     #[arg(long, value_name = "LIST", value_parser = axis_or_inf)]
     pub mu0: Option<Axis>,
     /// Largest foot displacements of the scans (LIST, rod lengths), each in (0, 2).
-    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "0.5")]
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = DEFAULTS.d_max.as_str())]
     pub d_max: Axis,
     /// Points per scan (LIST), whole numbers in [2, 1000000] (as scan).
-    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "201")]
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = DEFAULTS.points.as_str())]
     pub points: Axis,
     /// Worker threads; more than 4 per core are capped, with a warning. [default: all cores]
     #[arg(long, value_name = "N", value_parser = jobs)]
@@ -624,7 +661,7 @@ pub struct FiguresArgs {
     #[arg(long, default_value = Method::default().name(), value_parser = numerical_method())]
     pub method: Method,
     /// Solver tolerance for the numerical curves, in [1e-15, 1e-2].
-    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = DEFAULTS.tol.as_str())]
     pub tol: f64,
 }
 

@@ -19,6 +19,7 @@ use std::io::{IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
+use vibrissa::limits;
 use vibrissa::{Method, Precurvature, RangeEnd, ScanOptions, Scene, SolverConfig, Stiffness};
 
 /// Set while a sweep runs: a panic inside one scene becomes that scene's error row, and the
@@ -332,20 +333,20 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
     validate::scene(&probe, &src)?;
     validate::model_check(&probe, a.scene.as_deref())?;
     for (x, f, r) in [
-        (&a.eta, "--eta", validate::eta_range()),
-        (&a.taper, "--taper", validate::TAPER),
-        (&a.precurvature, "--precurvature", validate::PRECURVATURE),
+        (&a.eta, "--eta", limits::eta()),
+        (&a.taper, "--taper", limits::TAPER),
+        (&a.precurvature, "--precurvature", limits::PRECURVATURE),
         (
             &a.precurvature_slope,
             "--precurvature-slope",
-            validate::PRECURVATURE_SLOPE,
+            limits::PRECURVATURE_SLOPE,
         ),
         (
             &a.support_compliance,
             "--support-compliance",
-            validate::SUPPORT_COMPLIANCE,
+            limits::SUPPORT_COMPLIANCE,
         ),
-        (&a.surface_angle, "--surface-angle", validate::SURFACE_ANGLE),
+        (&a.surface_angle, "--surface-angle", limits::SURFACE_ANGLE),
     ] {
         if let Some(x) = x {
             // the ends of a range suffice: its other values lie between them
@@ -364,10 +365,12 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
         let (lo0, hi0) = ext(&a.precurvature, b0);
         let (lo1, hi1) = ext(&a.precurvature_slope, b1);
         for end in [lo0 + lo1, hi0 + hi1] {
-            if !validate::PRECURVATURE.contains(end) {
+            if !limits::PRECURVATURE.contains(end) {
                 return Err(usage(format!(
-                    "--precurvature K0 + --precurvature-slope K1 reaches {} (the rest curvature at the tip), outside the valid range [-3, 3] (1/L)",
-                    short(end)
+                    "--precurvature K0 + --precurvature-slope K1 reaches {} (the rest curvature at the tip), outside the valid range {} ({})",
+                    short(end),
+                    limits::PRECURVATURE.text(6),
+                    limits::PRECURVATURE.unit
                 )));
             }
         }
@@ -454,7 +457,7 @@ impl Plan {
             "--points",
             most_points,
             "scan points",
-            validate::BYTES_PER_SCAN_POINT,
+            limits::BYTES_PER_SCAN_POINT,
         )?;
         if let Some(p) = &a.out {
             output_files::plan(&[("--out", p)], a.dry_run)?;

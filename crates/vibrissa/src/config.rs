@@ -1,5 +1,6 @@
 //! Solver settings: the method, its tolerance, the engine built from them, the tip condition.
 
+use crate::limits;
 use crate::VibrissaError;
 use bvp::{
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Integrator, NewtonOptions,
@@ -126,22 +127,13 @@ impl SolverConfig {
     pub(crate) fn own_shooter_tol(&self) -> Option<f64> {
         (self.method == Method::Shooting && self.rk4_steps.is_none()).then_some(self.tol)
     }
-    /// Checks the values: `tol ∈ [1e-15, 1e-2]`, `segments ∈ [1, 10000]`, `rk4_steps ≥ 1`.
+    /// Checks the values against [`limits`](crate::limits): `tol ∈ [1e-15, 1e-2]`,
+    /// `segments ∈ [1, 10000]`, `rk4_steps ∈ [1, 1e7]`.
     pub fn validate(&self) -> Result<(), VibrissaError> {
-        if !(self.tol >= 1e-15 && self.tol <= 1e-2) {
-            return Err(VibrissaError::range("tol", self.tol, "[1e-15, 1e-2]"));
-        }
-        if !(1..=10_000).contains(&self.segments) {
-            return Err(VibrissaError::range(
-                "segments",
-                self.segments as f64,
-                "[1, 10000]",
-            ));
-        }
+        limits::TOL.check("tol", self.tol)?;
+        limits::SEGMENTS.check_count("segments", self.segments)?;
         if let Some(n) = self.rk4_steps {
-            if !(1..=10_000_000).contains(&n) {
-                return Err(VibrissaError::range("rk4_steps", n as f64, "[1, 1e7]"));
-            }
+            limits::RK4_STEPS.check_count("rk4_steps", n)?;
         }
         Ok(())
     }

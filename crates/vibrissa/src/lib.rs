@@ -60,7 +60,7 @@
 #![warn(missing_docs)]
 
 // Modules import downward only (tests/layering.rs checks it): kind, parts, search → profile,
-// error → config, rod → scene; equations → shooter → rodsolve → arclength; sampling → shape →
+// error → limits → config, rod → scene; equations → shooter → rodsolve → arclength; sampling → shape →
 // solve → report → march → stepper → analytic → scan.
 mod analytic;
 mod arclength;
@@ -73,6 +73,7 @@ pub mod fit;
 mod generic;
 mod ground;
 mod kind;
+pub mod limits;
 mod march;
 mod parts;
 pub mod peg;

@@ -17,6 +17,7 @@
 //! reaches 0 (where `|μ|` grows without bound).
 
 use crate::config::SolverConfig;
+use crate::limits;
 use crate::shape::ShapePoint;
 use crate::VibrissaError;
 use serde::Serialize;
@@ -89,8 +90,8 @@ impl std::str::FromStr for ContactModel {
 impl Default for ScanOptions {
     fn default() -> Self {
         ScanOptions {
-            d_max: 0.5,
-            points: 201,
+            d_max: ScanOptions::DEFAULT_D_MAX,
+            points: ScanOptions::DEFAULT_POINTS,
             mu0: None,
             solver: SolverConfig::default(),
             keep_shapes: None,
@@ -100,27 +101,21 @@ impl Default for ScanOptions {
 }
 
 impl ScanOptions {
-    /// Checks: `d_max ∈ (0, 2)`, `points ∈ [2, 1e6]`, `mu0 ≥ 0` finite, `keep_shapes ≥ 2`.
+    /// The default largest foot displacement (rod lengths).
+    pub const DEFAULT_D_MAX: f64 = 0.5;
+    /// The default number of output points (`d` in steps of 0.0025 to the default `d_max`).
+    pub const DEFAULT_POINTS: usize = 201;
+
+    /// Checks against [`limits`](crate::limits): `d_max ∈ (0, 2)`, `points ∈ [2, 1e6]`,
+    /// `mu0 ≥ 0` finite, `keep_shapes ∈ [2, 1e5]`, the solver.
     pub fn validate(&self) -> Result<(), VibrissaError> {
-        if !(self.d_max > 0.0 && self.d_max < 2.0) {
-            return Err(VibrissaError::range("d_max", self.d_max, "(0, 2)"));
-        }
-        if !(2..=1_000_000).contains(&self.points) {
-            return Err(VibrissaError::range(
-                "points",
-                self.points as f64,
-                "[2, 1000000]",
-            ));
-        }
+        limits::D_MAX.check("d_max", self.d_max)?;
+        limits::POINTS.check_count("points", self.points)?;
         if let Some(mu0) = self.mu0 {
-            if !(mu0.is_finite() && mu0 >= 0.0) {
-                return Err(VibrissaError::range("mu0", mu0, "[0, inf)"));
-            }
+            limits::MU0.check("mu0", mu0)?;
         }
         if let Some(n) = self.keep_shapes {
-            if !(2..=100_000).contains(&n) {
-                return Err(VibrissaError::range("keep_shapes", n as f64, "[2, 100000]"));
-            }
+            limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
         }
         self.solver.validate()
     }
