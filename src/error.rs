@@ -116,5 +116,35 @@ impl From<serde_json::Error> for Fail {
     }
 }
 
+/// A hint in the user's terms for solver failures whose message is the model's own words (the
+/// library's errors are mapped to [`Fail`] above; this adds what the user can do).
+pub fn explain(f: Fail) -> Fail {
+    let hint = |m: &str| -> Option<&'static str> {
+        if m.contains("pulled at the tip (f < 0)") {
+            Some("only a pulling force reaches this tip position, a surface cannot pull; in a scan the surface is then above the tip of the rod's rest shape: lower --eta or change the pre-curvature")
+        } else if m.contains("homotopy from the uniform clamped rod failed") {
+            Some("the start solve is followed from the paper's straight uniform rod to this scene and could not reach it; the scene may have no pushed contact at this height (try another --eta), or try another --method")
+        } else {
+            None
+        }
+    };
+    match f {
+        Fail::Solve(m) => match hint(&m) {
+            Some(h) => Fail::Solve(format!("{m} ({h})")),
+            None => Fail::Solve(m),
+        },
+        other => other,
+    }
+}
+
+/// Library errors rendered with short numbers (the model prints `{}` of an `f64`).
+pub fn shorten(f: Fail) -> Fail {
+    match f {
+        Fail::Usage(m) => Fail::Usage(crate::number_text::shorten_numbers(&m)),
+        Fail::Solve(m) => Fail::Solve(crate::number_text::shorten_numbers(&m)),
+        Fail::Closed => Fail::Closed,
+    }
+}
+
 /// Result alias of the program.
 pub type Res<T> = Result<T, Fail>;

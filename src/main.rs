@@ -200,7 +200,7 @@ fn main() {
             Err(e)
         }
     };
-    if let Err(e) = r.map_err(validate::explain) {
+    if let Err(e) = r.map_err(error::explain) {
         progress::note(&format!("error: {}", e.message()));
         std::process::exit(e.code());
     }

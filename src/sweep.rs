@@ -257,7 +257,7 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
         }
         Ok(Err(e)) => {
             blank(&mut row);
-            validate::shorten(e).message()
+            crate::error::shorten(e).message()
         }
         Err(p) => {
             let msg = p
