@@ -405,11 +405,12 @@ fn grid(a: &SweepArgs) -> Res<Grid<'_>> {
         .method
         .split(',')
         .map(|m| {
-            m.trim().parse::<Method>().map_err(|_| {
-                usage(format!(
-                    "--method '{}': valid values are shooting, multiple-shooting, collocation, collocation6, analytic",
-                    m.trim()
-                ))
+            m.trim().parse::<Method>().map_err(|e| match e {
+                // the library's list of names, in the flag's words
+                vibrissa::VibrissaError::InvalidName { value, valid, .. } => {
+                    usage(format!("--method '{value}': valid values are {valid}"))
+                }
+                e => e.into(),
             })
         })
         .collect::<Res<Vec<_>>>()?;

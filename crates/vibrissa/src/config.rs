@@ -113,8 +113,8 @@ impl Default for SolverConfig {
     fn default() -> Self {
         SolverConfig {
             method: Method::Shooting,
-            tol: 1e-10,
-            segments: 8,
+            tol: SolverConfig::DEFAULT_TOL,
+            segments: SolverConfig::DEFAULT_SEGMENTS,
             rk4_steps: None,
             start: StartKind::Pressed,
         }
@@ -122,6 +122,11 @@ impl Default for SolverConfig {
 }
 
 impl SolverConfig {
+    /// The default tolerance.
+    pub const DEFAULT_TOL: f64 = 1e-10;
+    /// The default number of segments of multiple shooting.
+    pub const DEFAULT_SEGMENTS: usize = 8;
+
     /// The tolerance of the rod's own shooter when this configuration is plain single shooting
     /// with the adaptive integrator (which the shooter replaces), else `None`.
     pub(crate) fn own_shooter_tol(&self) -> Option<f64> {
