@@ -1,9 +1,11 @@
 //! Command-line definitions (clap derive). Every flag says its unit, range and default.
 //!
 //! Numbers are parsed here only for their spelling (every form Rust's `f64` parser accepts,
-//! negative ones included: `-1e-3`, `-.5`, `-0.1:0.1:3`, `-1,0,1`); their ranges are checked by
-//! `validate`, the same for every command. Depends on clap, std and `number_text` only (the
-//! end-to-end tests include this file to list every numeric flag).
+//! negative ones included: `-1e-3`, `-.5`, `-0.1:0.1:3`, `-1,0,1`); their ranges are the
+//! library's (`vibrissa::limits`), checked by `validate`, the same for every command. Named values
+//! (methods, branches, contact models, starts) are the library's enums, parsed by their names,
+//! and the defaults shown are the library's. Depends on clap, std, the library and
+//! `number_text` only (the end-to-end tests include this file to list every numeric flag).
 
 use crate::number_text::{self, Axis};
 use clap::builder::TypedValueParser;
@@ -491,6 +493,7 @@ pub struct DragArgs {
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
     /// Largest foot displacement d (rod lengths), in (0, 1000].
+    // (the program's default, shorter than the library's DragOptions::default(): 2)
     #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "1")]
     pub d_max: f64,
     /// Number of output points, uniform in d from 0 to --d-max, in [2, 1000000] (the slip rows
