@@ -1,34 +1,74 @@
 //! Command-line definitions (clap derive). Every flag says its unit, range and default.
 //!
 //! Numbers are parsed here only for their spelling (every form Rust's `f64` parser accepts,
-//! negative ones included: `-1e-3`, `-.5`, `-0.1:0.1:3`, `-1,0,1`); their ranges are checked by
-//! `validate`, the same for every command. Depends on clap, std and `numbers` only (the
-//! end-to-end tests include this file to list every numeric flag).
+//! negative ones included: `-1e-3`, `-.5`, `-0.1:0.1:3`, `-1,0,1`); their ranges are the
+//! library's (`vibrissa::limits`), checked by `validate`, the same for every command. Named values
+//! (methods, branches, contact models, starts) are the library's enums, parsed by their names,
+//! and the defaults shown are the library's. Depends on clap, std, the library and
+//! `number_text` only (the end-to-end tests include this file to list every numeric flag).
 
-use crate::numbers::{self, Axis};
+use crate::number_text::{self, Axis};
 use clap::builder::TypedValueParser;
 use clap::{Args, CommandFactory, Parser, Subcommand, ValueEnum};
 use std::any::TypeId;
 use std::path::PathBuf;
+use std::sync::LazyLock;
+use vibrissa::{
+    limits, BranchChoice, ContactModel, Method, ScanOptions, SolverConfig, StartKind, WhiskOptions,
+};
+
+/// The library's defaults as `--help` shows them (`1e-10`, `0.5`, `201`): clap's default values
+/// are text that lives as long as the program.
+struct Defaults {
+    tol: String,
+    d_max: String,
+    points: String,
+    theta_max: String,
+    whisk_points: String,
+    shape_points: String,
+    solve_shape_points: String,
+}
+
+static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
+    // the shorter of the plain and the scientific spelling
+    let shown = |v: f64| {
+        let (plain, sci) = (format!("{v}"), format!("{v:e}"));
+        if sci.len() < plain.len() {
+            sci
+        } else {
+            plain
+        }
+    };
+    let (scan, whisk) = (ScanOptions::default(), WhiskOptions::default());
+    Defaults {
+        tol: shown(scan.solver.tol),
+        d_max: shown(scan.d_max),
+        points: scan.points.to_string(),
+        theta_max: shown(whisk.theta_max),
+        whisk_points: whisk.points.to_string(),
+        shape_points: limits::DEFAULT_SHAPE_POINTS.to_string(),
+        solve_shape_points: limits::DEFAULT_SOLVE_SHAPE_POINTS.to_string(),
+    }
+});
 
 /// Parse a finite `f64` (NaN and infinities are refused).
 pub fn finite_f64(s: &str) -> Result<f64, String> {
-    numbers::finite_f64(s)
+    number_text::finite_f64(s)
 }
 
 /// Parse an `f64` that may be `inf` (no limit); NaN refused.
 pub fn f64_or_inf(s: &str) -> Result<f64, String> {
-    numbers::number_or_inf(s)
+    number_text::number_or_inf(s)
 }
 
 /// Parse a grid axis (`a:b:n` or a comma list).
 pub fn axis(s: &str) -> Result<Axis, String> {
-    numbers::parse_axis(s)
+    number_text::parse_axis(s)
 }
 
 /// Parse a grid axis whose lists may hold `inf` (`--mu0 0.5,1,inf`).
 pub fn axis_or_inf(s: &str) -> Result<Axis, String> {
-    numbers::parse_axis_or_inf(s)
+    number_text::parse_axis_or_inf(s)
 }
 
 /// Parse a point `X,Y` (two finite numbers).
@@ -36,8 +76,8 @@ pub fn point(s: &str) -> Result<Point, String> {
     let parts: Vec<&str> = s.split(',').collect();
     match parts.as_slice() {
         [x, y] => Ok(Point {
-            x: numbers::finite_f64(x.trim())?,
-            y: numbers::finite_f64(y.trim())?,
+            x: number_text::finite_f64(x.trim())?,
+            y: number_text::finite_f64(y.trim())?,
         }),
         _ => Err(format!(
             "'{s}' is not a point X,Y (two numbers separated by a comma)"
@@ -56,7 +96,7 @@ pub struct Point {
 
 /// Parse a shard `K/N`.
 pub fn shard(s: &str) -> Result<Shard, String> {
-    numbers::parse_shard(s).map(|(k, n)| Shard { k, n })
+    number_text::parse_shard(s).map(|(k, n)| Shard { k, n })
 }
 
 /// Shard `k` of `n` (1-based).
@@ -69,30 +109,71 @@ pub struct Shard {
 }
 
 /// Most output points of a scan (the model's limit).
-pub const MAX_POINTS: u64 = 1_000_000;
+pub const MAX_POINTS: u64 = limits::POINTS.hi as u64;
 /// Most points of one shape.
-pub const MAX_SHAPE_POINTS: u64 = 100_000;
+pub const MAX_SHAPE_POINTS: u64 = limits::SHAPE_POINTS.hi as u64;
 /// Most worker threads asked for (more are capped at a multiple of the cores, with a warning).
 pub const MAX_JOBS: u64 = 65_536;
 
 fn points(s: &str) -> Result<u32, String> {
-    numbers::count(s, 2, MAX_POINTS)
+    number_text::count(s, 2, MAX_POINTS)
 }
 fn shape_points(s: &str) -> Result<u32, String> {
-    numbers::count(s, 2, MAX_SHAPE_POINTS)
+    number_text::count(s, 2, MAX_SHAPE_POINTS)
 }
 fn solve_shape_points(s: &str) -> Result<u32, String> {
-    numbers::count(s, 2, 1_000_000)
+    number_text::count(s, 2, 1_000_000)
 }
-/// The numerical methods (every [`MethodArg`] but `analytic`), with their help texts.
-fn numerical_method() -> impl clap::builder::TypedValueParser<Value = MethodArg> {
-    let values: Vec<clap::builder::PossibleValue> = MethodArg::value_variants()
-        .iter()
-        .filter(|m| **m != MethodArg::Analytic)
-        .filter_map(|m| m.to_possible_value())
+/// Values named by the library (`name`, with its one-line `help` that `--help` lists), parsed
+/// by the library's `FromStr`.
+fn named<T>(
+    values: impl IntoIterator<Item = (&'static str, &'static str)>,
+) -> impl TypedValueParser<Value = T>
+where
+    T: std::str::FromStr + Clone + Send + Sync + 'static,
+    T::Err: std::error::Error + Send + Sync + 'static,
+{
+    let values: Vec<clap::builder::PossibleValue> = values
+        .into_iter()
+        .map(|(name, help)| clap::builder::PossibleValue::new(name).help(help))
         .collect();
-    clap::builder::PossibleValuesParser::new(values)
-        .map(|s| MethodArg::from_str(&s, false).unwrap_or(MethodArg::Shooting))
+    clap::builder::PossibleValuesParser::new(values).try_map(|s| s.parse::<T>())
+}
+
+/// Every method of the library.
+fn method() -> impl TypedValueParser<Value = Method> {
+    named(Method::ALL.map(|m| (m.name(), m.help())))
+}
+
+/// The numerical methods (every method but `analytic`).
+fn numerical_method() -> impl TypedValueParser<Value = Method> {
+    named(
+        Method::ALL
+            .into_iter()
+            .filter(|m| *m != Method::Analytic)
+            .map(|m| (m.name(), m.help())),
+    )
+}
+
+fn branch() -> impl TypedValueParser<Value = BranchChoice> {
+    named(BranchChoice::NAMED.map(|b| (b.name(), b.help())))
+}
+
+fn contact() -> impl TypedValueParser<Value = ContactModel> {
+    named(ContactModel::ALL.map(|c| (c.name(), c.help())))
+}
+
+fn start() -> impl TypedValueParser<Value = StartKind> {
+    named(StartKind::ALL.map(|k| (k.name(), k.help())))
+}
+
+/// The long help of sweep's `--method`: the library's methods, one a line.
+fn method_list() -> String {
+    let mut h = String::from("Methods, a comma list of:");
+    for m in Method::ALL {
+        h.push_str(&format!("\n- {:<19}{}", format!("{}:", m.name()), m.help()));
+    }
+    h
 }
 
 fn point_index(s: &str) -> Result<usize, String> {
@@ -102,7 +183,7 @@ fn point_index(s: &str) -> Result<usize, String> {
 }
 
 fn jobs(s: &str) -> Result<u32, String> {
-    numbers::count(s, 1, MAX_JOBS)
+    number_text::count(s, 1, MAX_JOBS)
 }
 
 /// The `vibrissa` program.
@@ -156,46 +237,6 @@ pub enum Command {
     Fit(FitArgs),
 }
 
-/// Numerical method.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum MethodArg {
-    /// single shooting (adaptive Runge-Kutta, Newton on the unknown initial values)
-    Shooting,
-    /// multiple shooting (several segments)
-    MultipleShooting,
-    /// Lobatto IIIA collocation of order 4 with mesh adaptation
-    Collocation,
-    /// Lobatto IIIA collocation of order 6 with mesh adaptation
-    Collocation6,
-    /// closed-form elliptic-integral solution (uniform clamped straight rod only)
-    Analytic,
-}
-
-impl MethodArg {
-    /// The name used on the command line and in CSV files.
-    pub fn name(self) -> &'static str {
-        match self {
-            MethodArg::Shooting => "shooting",
-            MethodArg::MultipleShooting => "multiple-shooting",
-            MethodArg::Collocation => "collocation",
-            MethodArg::Collocation6 => "collocation6",
-            MethodArg::Analytic => "analytic",
-        }
-    }
-}
-
-/// Branch of the solution family for `solve`.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BranchArg {
-    /// no load reversal: the bending moment m(s) keeps its sign (the paper's convex rod)
-    Convex,
-    /// one load reversal: m(s) changes sign once (the paper's one-flex rod)
-    Flex,
-    /// whatever the solution connected to the uniform rod's convex one is (see load_reversals)
-    Any,
-}
-
 /// Physical dimensions: with all three (or a scene file's `[physical]`), physical-unit columns.
 #[derive(Args, Debug, Clone, Default)]
 pub struct PhysicalArgs {
@@ -234,45 +275,39 @@ pub struct SceneArgs {
     /// Where the rod may touch the surface: anywhere (the rod stays below the surface line
     /// everywhere; sides touch and lie down) or the tip alone (the paper's model: a touching side
     /// ends the scan with penetration). [default: scene file's, else anywhere]
-    #[arg(long, value_enum, value_name = "MODEL", help_heading = "Scene")]
-    pub contact: Option<ContactArg>,
+    #[arg(long, value_parser = contact(), value_name = "MODEL", help_heading = "Scene")]
+    pub contact: Option<ContactModel>,
     /// The state a scan starts from: pressed (the rod pressed onto the surface from its rest
     /// shape) or connected (the tip-loaded state connected to the pressed straight uniform rod).
     /// [default: scene file's, else pressed]
-    #[arg(long, value_enum, value_name = "START", help_heading = "Scene")]
-    pub start: Option<StartArg>,
+    #[arg(long, value_parser = start(), value_name = "START", help_heading = "Scene")]
+    pub start: Option<StartKind>,
     #[command(flatten)]
     pub physical: PhysicalArgs,
-}
-
-/// Contact model.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ContactArg {
-    /// anywhere along the rod (the paper's compound constraint)
-    Anywhere,
-    /// the tip alone (the paper's model)
-    Tip,
-}
-
-/// Start of a scan.
-#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StartArg {
-    /// pressed onto the surface from the rest shape
-    Pressed,
-    /// connected to the pressed straight uniform rod
-    Connected,
 }
 
 /// Solver flags shared by solve, scan and infer.
 #[derive(Args, Debug, Clone)]
 pub struct SolverArgs {
     /// Numerical method ("analytic" only for the uniform clamped straight rod).
-    #[arg(long, value_enum, default_value = "shooting")]
-    pub method: MethodArg,
+    #[arg(long, value_parser = method(), default_value = Method::default().name())]
+    pub method: Method,
     /// Tolerance of the numerical solver (local error / collocation residual), in [1e-15, 1e-2];
     /// Newton always iterates to min(tol, 1e-9).
-    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = DEFAULTS.tol.as_str())]
     pub tol: f64,
+}
+
+impl SolverArgs {
+    /// The library's settings of these flags, starting from `start`.
+    pub fn config(&self, start: StartKind) -> SolverConfig {
+        SolverConfig {
+            method: self.method,
+            tol: self.tol,
+            start,
+            ..SolverConfig::default()
+        }
+    }
 }
 
 /// `vibrissa solve`.
@@ -304,8 +339,8 @@ pub struct SolveArgs {
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
     /// Solution family.
-    #[arg(long, value_enum, default_value = "convex")]
-    pub branch: BranchArg,
+    #[arg(long, value_parser = branch(), default_value = BranchChoice::default().name())]
+    pub branch: BranchChoice,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]
@@ -317,7 +352,7 @@ pub struct SolveArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shape_out: Option<PathBuf>,
     /// Number of points of --shape-out, uniform in s, in [2, 1000000] (needs --shape-out).
-    #[arg(long, value_name = "N", default_value = "101", value_parser = solve_shape_points, requires = "shape_out")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.solve_shape_points.as_str(), value_parser = solve_shape_points, requires = "shape_out")]
     pub shape_points: u32,
     /// Make it an error when the rod crosses the surface line through its tip (inclined by
     /// --surface-angle): some point with s < 1 above it, or the tip arriving from above. Without
@@ -333,10 +368,10 @@ pub struct ScanArgs {
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
     /// Largest foot displacement d (rod lengths), in (0, 2).
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = DEFAULTS.d_max.as_str())]
     pub d_max: f64,
     /// Number of output points, uniform in d from 0 to --d-max, in [2, 1000000].
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.points.as_str(), value_parser = points)]
     pub points: u32,
     /// Stiction coefficient, in [0, inf]: stop where |mu| reaches it (the tip slips, backwards for
     /// mu = mu0, forwards for mu = -mu0; mu = F.t/N = tan(beta - alpha) is the signed friction
@@ -357,7 +392,7 @@ pub struct ScanArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000]; --points × --shape-points × 100 bytes must fit in 1 GB (needs --shapes).
-    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.shape_points.as_str(), value_parser = shape_points, requires = "shapes")]
     pub shape_points: u32,
     /// Print the summary as a JSON object on stdout.
     #[arg(long)]
@@ -374,10 +409,10 @@ pub struct InferArgs {
     #[arg(long, value_name = "D", value_parser = finite_f64)]
     pub d0: f64,
     /// Largest foot displacement the underlying scan explores (rod lengths), in (0, 2).
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.5")]
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = DEFAULTS.d_max.as_str())]
     pub d_max: f64,
     /// Points of the underlying scan, in [2, 1000000].
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.points.as_str(), value_parser = points)]
     pub points: u32,
     #[command(flatten)]
     pub solver: SolverArgs,
@@ -395,10 +430,10 @@ pub struct WhiskArgs {
     #[arg(long, value_name = "X,Y", value_parser = point)]
     pub peg: Point,
     /// Largest foot angle (rad, clockwise), in (-pi/2, pi/2); the rows run from first touch.
-    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = "1")]
+    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = DEFAULTS.theta_max.as_str())]
     pub theta_max: f64,
     /// Number of output angles, uniform from first touch to --theta-max, in [2, 1000000].
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.whisk_points.as_str(), value_parser = points)]
     pub points: u32,
     /// Stiction coefficient at the object, in [0, inf): the contact sticks while |T| <= mu0 N,
     /// then slides with |T| = mu0 N. [default: frictionless]
@@ -417,7 +452,7 @@ pub struct WhiskArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000] (needs --shapes).
-    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.shape_points.as_str(), value_parser = shape_points, requires = "shapes")]
     pub shape_points: u32,
     /// Print the summary as a JSON object on stdout.
     #[arg(long)]
@@ -458,6 +493,7 @@ pub struct DragArgs {
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
     /// Largest foot displacement d (rod lengths), in (0, 1000].
+    // (the program's default, shorter than the library's DragOptions::default(): 2)
     #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "1")]
     pub d_max: f64,
     /// Number of output points, uniform in d from 0 to --d-max, in [2, 1000000] (the slip rows
@@ -499,7 +535,7 @@ pub struct DragArgs {
     #[arg(long, value_name = "FILE.csv")]
     pub shapes: Option<PathBuf>,
     /// Points per shape in --shapes, in [2, 100000] (needs --shapes).
-    #[arg(long, value_name = "N", default_value = "41", value_parser = shape_points, requires = "shapes")]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.shape_points.as_str(), value_parser = shape_points, requires = "shapes")]
     pub shape_points: u32,
     /// Print the summary as a JSON object on stdout (cycles, mean and spread of the slip lengths,
     /// force drops and released energies, and every slip).
@@ -573,27 +609,22 @@ pub struct SweepArgs {
     #[arg(
         long,
         value_name = "LIST",
-        default_value = "shooting",
-        long_help = "Methods, a comma list of:\n\
-- shooting:          single shooting (adaptive Runge-Kutta, Newton on the unknown initial values)\n\
-- multiple-shooting: multiple shooting (several segments)\n\
-- collocation:       Lobatto IIIA collocation of order 4 with mesh adaptation\n\
-- collocation6:      Lobatto IIIA collocation of order 6 with mesh adaptation\n\
-- analytic:          closed-form elliptic-integral solution (uniform clamped straight rod only)"
+        default_value = Method::default().name(),
+        long_help = method_list()
     )]
     pub method: String,
     /// Solver tolerances (LIST), each in [1e-15, 1e-2].
-    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "1e-10")]
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = DEFAULTS.tol.as_str())]
     pub tol: Axis,
     /// Stiction coefficients at which the scans stop (slip) (LIST), each in [0, inf]; inf (in a
     /// comma list) never slips. [default: none]
     #[arg(long, value_name = "LIST", value_parser = axis_or_inf)]
     pub mu0: Option<Axis>,
     /// Largest foot displacements of the scans (LIST, rod lengths), each in (0, 2).
-    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "0.5")]
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = DEFAULTS.d_max.as_str())]
     pub d_max: Axis,
     /// Points per scan (LIST), whole numbers in [2, 1000000] (as scan).
-    #[arg(long, value_name = "LIST", value_parser = axis, default_value = "201")]
+    #[arg(long, value_name = "LIST", value_parser = axis, default_value = DEFAULTS.points.as_str())]
     pub points: Axis,
     /// Worker threads; more than 4 per core are capped, with a warning. [default: all cores]
     #[arg(long, value_name = "N", value_parser = jobs)]
@@ -630,10 +661,10 @@ pub struct FiguresArgs {
     pub only: Option<String>,
     /// Numerical method for the numerical curves (the closed forms are always overlaid, so
     /// "analytic" is not offered).
-    #[arg(long, default_value = "shooting", value_parser = numerical_method())]
-    pub method: MethodArg,
+    #[arg(long, default_value = Method::default().name(), value_parser = numerical_method())]
+    pub method: Method,
     /// Solver tolerance for the numerical curves, in [1e-15, 1e-2].
-    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1e-10")]
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = DEFAULTS.tol.as_str())]
     pub tol: f64,
 }
 

@@ -3,10 +3,9 @@
 
 use crate::cli::{DragArgs, FitArgs};
 use crate::error::{solve_fail, usage, Res};
-use crate::numeric;
-use crate::output::{csv_line, num, opt};
-use crate::scan::{mu_text, Stop, Work};
+use crate::present::{mu_text, Stop, Work};
 use crate::scene_args::build_scene;
+use crate::table::{csv_line, num, opt};
 use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
@@ -78,8 +77,8 @@ pub fn scene(a: &DragArgs) -> Res<Scene> {
         if steepest >= vibrissa::surface::MAX_PROFILE_SLOPE {
             return Err(usage(format!(
                 "--corrugation-amplitude {amplitude} with --corrugation-wavelength {wavelength} makes the surface's steepest slope |tan(surface angle)| + 2 pi |A| / W = {} reach 1 (45 degrees, the steepest surface the model takes); |A| must stay below {}",
-                crate::numbers::short(steepest),
-                crate::numbers::short(
+                crate::number_text::short(steepest),
+                crate::number_text::short(
                     ((vibrissa::surface::MAX_PROFILE_SLOPE - sc.surface_angle.tan().abs()) / k)
                         .max(0.0)
                 )
@@ -112,7 +111,7 @@ struct DragOut<'a> {
     summary: &'a DragSummary,
     stop: Stop,
     stop_reason: String,
-    stats: Work,
+    stats: Work<'a>,
     time_ms: f64,
     slips: &'a [SlipEvent],
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -123,16 +122,13 @@ struct DragOut<'a> {
 pub fn run(a: &DragArgs) -> Res<()> {
     let t0 = Instant::now();
     let sc = scene(a)?;
-    let (rod, surface) = numeric::parts(&sc)?;
+    let (rod, surface) = sc.parts()?;
     let opts = DragOptions {
         d_max: a.d_max,
         points: a.points as usize,
         mu_s: a.mu_s,
         mu_k: a.mu_k,
-        solver: vibrissa::SolverConfig {
-            start: sc.start,
-            ..numeric::config(a.solver.method, a.solver.tol)
-        },
+        solver: a.solver.config(sc.start),
         keep_shapes: a.shapes.as_ref().map(|_| a.shape_points as usize),
         contact: sc.contact,
         energy_balance: a.energy_balance,
@@ -150,17 +146,17 @@ pub fn run(a: &DragArgs) -> Res<()> {
         )));
     }
     if let Some(path) = &a.shapes {
-        crate::scan::write_shape_file(
+        crate::present::write_shape_file(
             path,
-            r.rows.iter().zip(&r.shapes).map(|(p, sh)| {
-                let rows = sh.iter().map(|q| [q.s, q.x, q.y, q.phi, q.kappa, q.m]);
-                (p.d, p.event.map_or("", |e| e.name()), rows.collect())
-            }),
+            r.rows
+                .iter()
+                .zip(&r.shapes)
+                .map(|(p, sh)| (p.d, p.event.map_or("", |e| e.name()), sh.as_slice())),
         )?;
     }
     if a.out.is_some() || !a.json {
         let u = crate::scene_args::units_of(&sc);
-        crate::output::write_table(a.out.as_deref(), &header(u.is_some()), &r.rows, |p| {
+        crate::table::write_table(a.out.as_deref(), &header(u.is_some()), &r.rows, |p| {
             row(p, u)
         })?;
     }
@@ -174,7 +170,7 @@ pub fn run(a: &DragArgs) -> Res<()> {
     let out = DragOut {
         // the method that computed the rows
         method: if r.handover.is_some() {
-            crate::cli::MethodArg::Shooting.name()
+            vibrissa::Method::Shooting.name()
         } else {
             a.solver.method.name()
         },
@@ -185,11 +181,7 @@ pub fn run(a: &DragArgs) -> Res<()> {
         summary: &r.summary,
         stop_reason: stop.reason.clone(),
         stop,
-        stats: Work {
-            newton_iters: r.stats.newton_iters,
-            rhs_evals: r.stats.rhs_evals,
-            factorizations: r.stats.factorizations,
-        },
+        stats: Work(&r.stats),
         time_ms: t0.elapsed().as_secs_f64() * 1e3,
         slips: &r.slips,
         csv: a.out.as_ref().map(|p| p.display().to_string()),
@@ -381,10 +373,7 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
     let opts = FitOptions {
         fit_eta: a.fit_eta,
         fit_angle: a.fit_angle,
-        solver: vibrissa::SolverConfig {
-            start: sc.start,
-            ..numeric::config(a.solver.method, a.solver.tol)
-        },
+        solver: a.solver.config(sc.start),
         contact: sc.contact,
         ..FitOptions::default()
     };

@@ -32,7 +32,7 @@ impl Fail {
             Fail::Closed => "output closed by its reader",
         };
         // the model prints f64 with `{}`: 1e300 would be a 300-digit decimal
-        crate::numbers::shorten_numbers(&one_line(m))
+        crate::number_text::shorten_numbers(&one_line(m))
     }
 }
 
@@ -59,22 +59,27 @@ pub fn solve_fail(msg: impl Into<String>) -> Fail {
 
 impl From<elastica::ElasticaError> for Fail {
     fn from(e: elastica::ElasticaError) -> Fail {
-        use elastica::ElasticaError as E;
-        let msg = e.to_string();
-        match e {
-            E::AlphaOutOfRange { .. }
-            | E::Phi1OutOfRange { .. }
-            | E::EtaOutOfRange { .. }
-            | E::NotFinite { .. }
-            | E::OutOfRange { .. }
-            | E::NoFlexPhase { .. } => Fail::Usage(msg),
-            _ => Fail::Solve(msg),
+        if e.is_input() {
+            Fail::Usage(e.to_string())
+        } else {
+            Fail::Solve(e.to_string())
+        }
+    }
+}
+
+/// The library's errors as the library classifies them: input (exit 2) or a failed solve.
+impl From<vibrissa::VibrissaError> for Fail {
+    fn from(e: vibrissa::VibrissaError) -> Fail {
+        if e.is_input() {
+            Fail::Usage(e.to_string())
+        } else {
+            Fail::Solve(e.to_string())
         }
     }
 }
 
 /// An output failure: [`Fail::Closed`] when its I/O cause is a broken pipe, else [`Fail::Solve`].
-/// File outputs name themselves (`writing --out x.csv: ...`, see `outputs`); every other file
+/// File outputs name themselves (`writing --out x.csv: ...`, see `output_files`); every other file
 /// operation maps its error with its path, so an unnamed I/O error is a write to stdout.
 fn output_fail(io_kind: Option<std::io::ErrorKind>, e: impl fmt::Display) -> Fail {
     if io_kind == Some(std::io::ErrorKind::BrokenPipe) {
@@ -108,6 +113,36 @@ impl From<csv::Error> for Fail {
 impl From<serde_json::Error> for Fail {
     fn from(e: serde_json::Error) -> Fail {
         output_fail(e.io_error_kind(), e)
+    }
+}
+
+/// A hint in the user's terms for solver failures whose message is the model's own words (the
+/// library's errors are mapped to [`Fail`] above; this adds what the user can do).
+pub fn explain(f: Fail) -> Fail {
+    let hint = |m: &str| -> Option<&'static str> {
+        if m.contains("pulled at the tip (f < 0)") {
+            Some("only a pulling force reaches this tip position, a surface cannot pull; in a scan the surface is then above the tip of the rod's rest shape: lower --eta or change the pre-curvature")
+        } else if m.contains("homotopy from the uniform clamped rod failed") {
+            Some("the start solve is followed from the paper's straight uniform rod to this scene and could not reach it; the scene may have no pushed contact at this height (try another --eta), or try another --method")
+        } else {
+            None
+        }
+    };
+    match f {
+        Fail::Solve(m) => match hint(&m) {
+            Some(h) => Fail::Solve(format!("{m} ({h})")),
+            None => Fail::Solve(m),
+        },
+        other => other,
+    }
+}
+
+/// Library errors rendered with short numbers (the model prints `{}` of an `f64`).
+pub fn shorten(f: Fail) -> Fail {
+    match f {
+        Fail::Usage(m) => Fail::Usage(crate::number_text::shorten_numbers(&m)),
+        Fail::Solve(m) => Fail::Solve(crate::number_text::shorten_numbers(&m)),
+        Fail::Closed => Fail::Closed,
     }
 }
 

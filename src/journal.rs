@@ -2,7 +2,7 @@
 //! sweep is (its command line and its base scene) and the rows it has finished, in grid order,
 //! each handed to the system as soon as it is written (synced to disk every few seconds). A
 //! sweep that is killed (a cluster's time limit sends SIGTERM; Ctrl-C; an I/O error) leaves the
-//! journal behind while its output file stays as it was (the output policy of `outputs`); the
+//! journal behind while its output file stays as it was (the output policy of `output_files`); the
 //! same command then checks that the journal describes the same sweep, copies its rows and
 //! computes only the rest, so the final file is byte-identical to an uninterrupted run. The
 //! journal is removed once the output file is in place.

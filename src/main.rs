@@ -1,21 +1,22 @@
 //! `vibrissa`: the command-line program of the vibrissa workspace (see README and `--help`).
 
+mod chart;
 mod cli;
 mod drag;
 mod error;
 mod figures;
 mod journal;
-mod numbers;
-mod numeric;
-mod output;
-mod outputs;
+mod number_text;
+mod output_files;
 mod peg;
 mod plot;
+mod present;
 mod progress;
 mod scan;
 mod scene_args;
 mod solve;
 mod sweep;
+mod table;
 mod validate;
 
 use clap::error::ErrorKind;
@@ -75,7 +76,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Solve(a) => {
             scene_args::build_scene(&a.scene, None)?;
             if let Some(p) = &a.shape_out {
-                outputs::plan(&[("--shape-out", p)], false)?;
+                output_files::plan(&[("--shape-out", p)], false)?;
             }
         }
         Command::Scan(a) => {
@@ -87,7 +88,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         }
         Command::Plot(a) => {
             let out = plot::out_path(a);
-            outputs::plan(&[("--out", out.as_path())], false)?;
+            output_files::plan(&[("--out", out.as_path())], false)?;
         }
         Command::Whisk(a) => {
             scene_args::build_scene(&a.scene, None)?;
@@ -108,7 +109,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
     Ok(())
 }
 
-/// The files of a command with `--out` and `--shapes` (see `outputs::plan`).
+/// The files of a command with `--out` and `--shapes` (see `output_files::plan`).
 fn plan_table(out: &Option<std::path::PathBuf>, shapes: &Option<std::path::PathBuf>) -> Res<()> {
     let mut outs = Vec::new();
     if let Some(p) = out {
@@ -117,7 +118,7 @@ fn plan_table(out: &Option<std::path::PathBuf>, shapes: &Option<std::path::PathB
     if let Some(p) = shapes {
         outs.push(("--shapes", p.as_path()));
     }
-    outputs::plan(&outs, false)
+    output_files::plan(&outs, false)
 }
 
 fn run(mut cli: Cli) -> Res<()> {
@@ -125,7 +126,11 @@ fn run(mut cli: Cli) -> Res<()> {
     match &cli.command {
         Command::Solve(a) => {
             progress::start("solve", false);
-            solve::run(a)
+            if a.peg.is_some() {
+                peg::run_solve(a)
+            } else {
+                solve::run(a)
+            }
         }
         Command::Scan(a) => {
             progress::start("scan", false);
@@ -176,7 +181,7 @@ fn main() {
         if sweep::QUIET_PANICS.load(std::sync::atomic::Ordering::SeqCst) {
             return;
         }
-        outputs::abort_if_free();
+        output_files::abort_if_free();
         let msg = info
             .payload()
             .downcast_ref::<&str>()
@@ -189,13 +194,13 @@ fn main() {
     progress::stop();
     let r = match r {
         // the reader of stdout went away: the command's files are complete, keep them
-        Ok(()) | Err(Fail::Closed) => outputs::commit_all(),
+        Ok(()) | Err(Fail::Closed) => output_files::commit_all(),
         Err(e) => {
-            outputs::abort_all();
+            output_files::abort_all();
             Err(e)
         }
     };
-    if let Err(e) = r.map_err(validate::explain) {
+    if let Err(e) = r.map_err(error::explain) {
         progress::note(&format!("error: {}", e.message()));
         std::process::exit(e.code());
     }

@@ -2,9 +2,9 @@
 
 use crate::cli::{LocateArgs, SolveArgs, WhiskArgs};
 use crate::error::Res;
-use crate::numeric;
-use crate::output::{csv_line, num, AtomicFile};
+use crate::present::{Cell, Row, Work};
 use crate::scene_args::build_scene;
+use crate::table::{csv_line, num, AtomicFile};
 use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
@@ -48,10 +48,7 @@ fn row(p: &PegPoint) -> Vec<String> {
 fn options(a: &crate::cli::SolverArgs, scene: &vibrissa::Scene, mu0: Option<f64>) -> WhiskOptions {
     WhiskOptions {
         mu0: mu0.filter(|m| m.is_finite()),
-        solver: vibrissa::SolverConfig {
-            start: scene.start,
-            ..numeric::config(a.method, a.tol)
-        },
+        solver: a.config(scene.start),
         ..WhiskOptions::default()
     }
 }
@@ -70,12 +67,7 @@ pub fn run_solve(a: &SolveArgs) -> Res<()> {
     let (p, shape) = vibrissa::peg::solve_peg_shape(&rod, [peg.x, peg.y], theta, &opts)?;
     crate::progress::stop();
     if let Some(path) = &a.shape_out {
-        let mut f = AtomicFile::create(path)?;
-        csv_line(&mut f, &["s", "x", "y", "phi", "kappa", "m"])?;
-        for q in &shape {
-            csv_line(&mut f, &[q.s, q.x, q.y, q.phi, q.kappa, q.m].map(num))?;
-        }
-        f.commit()?;
+        crate::present::write_shape(path, &shape)?;
     }
     let stdout = io::stdout();
     let mut w = stdout.lock();
@@ -93,14 +85,14 @@ pub fn run_solve(a: &SolveArgs) -> Res<()> {
 
 /// The JSON summary of a whisk.
 #[derive(Serialize)]
-struct WhiskSummary {
+struct WhiskSummary<'a> {
     method: &'static str,
     peg: [f64; 2],
     first_touch: f64,
     s_touch: f64,
     points: usize,
     stop: Stop,
-    stats: crate::scan::Work,
+    stats: Work<'a>,
     time_ms: f64,
     #[serde(skip_serializing_if = "Option::is_none")]
     csv: Option<String>,
@@ -149,17 +141,13 @@ pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
         f.commit()?;
     }
     if a.out.is_some() || !a.json {
-        crate::output::write_table(a.out.as_deref(), &HEADER, &r.points, row)?;
+        crate::table::write_table(a.out.as_deref(), &HEADER, &r.points, row)?;
     }
-    let (reason, theta) = match &r.stop {
-        StopReason::DMax => ("theta_max", None),
-        StopReason::SlipOff { d } => ("slip_off", Some(*d)),
-        StopReason::LiftOff { d, .. } => ("lift_off", Some(*d)),
-        StopReason::FoldInD { d } => ("fold", Some(*d)),
-        StopReason::ContactChange { d, .. } => ("contact_change", Some(*d)),
-        StopReason::Slip { d, .. } => ("slip", Some(*d)),
-        StopReason::Penetration { d, .. } => ("penetration", Some(*d)),
-        StopReason::SolverFailure { d, .. } => ("solver_failure", Some(*d)),
+    // a whisk marches in theta: its own names for the end of the range and a fold
+    let reason = match &r.stop {
+        StopReason::DMax => "theta_max",
+        StopReason::FoldInD { .. } => "fold",
+        other => other.name(),
     };
     let summary = WhiskSummary {
         method: a.solver.method.name(),
@@ -169,17 +157,13 @@ pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
         points: r.points.len(),
         stop: Stop {
             reason: reason.to_string(),
-            theta,
+            theta: r.stop.at(),
             detail: match r.stop {
                 StopReason::DMax => format!("theta_max = {} reached", a.theta_max),
                 _ => r.stop.describe("theta"),
             },
         },
-        stats: crate::scan::Work {
-            newton_iters: r.stats.newton_iters,
-            rhs_evals: r.stats.rhs_evals,
-            factorizations: r.stats.factorizations,
-        },
+        stats: Work(&r.stats),
         time_ms: t0.elapsed().as_secs_f64() * 1e3,
         csv: a.out.as_ref().map(|p| p.display().to_string()),
     };
@@ -205,41 +189,31 @@ pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
     Ok(())
 }
 
-/// The answer of `vibrissa locate`.
-#[derive(Serialize)]
-struct Located {
-    theta: f64,
-    m_base: f64,
-    fx: f64,
-    fy: f64,
-    x: f64,
-    y: f64,
-    s_c: f64,
-}
-
 /// `vibrissa locate`.
 pub fn run_locate(a: &LocateArgs) -> Res<()> {
     let scene = build_scene(&a.scene, None)?;
     let rod = scene.rod()?;
-    let cfg = numeric::config(a.solver.method, a.solver.tol);
+    // (the scene's start does not enter: the rod is solved through the contact found)
+    let cfg = a.solver.config(Default::default());
     let (x, y, s_c) = vibrissa::locate(&rod, a.theta, a.m_base, [a.fx, a.fy], &cfg)?;
-    let out = Located {
-        theta: a.theta,
-        m_base: a.m_base,
-        fx: a.fx,
-        fy: a.fy,
-        x,
-        y,
-        s_c,
-    };
+    let out = Row([
+        ("theta", a.theta),
+        ("m_base", a.m_base),
+        ("fx", a.fx),
+        ("fy", a.fy),
+        ("x", x),
+        ("y", y),
+        ("s_c", s_c),
+    ]
+    .map(|(k, v)| (k, Cell::Num(v)))
+    .into());
     let stdout = io::stdout();
     let mut w = stdout.lock();
     if a.json {
         serde_json::to_writer_pretty(&mut w, &out)?;
         writeln!(w)?;
     } else {
-        csv_line(&mut w, &["theta", "m_base", "fx", "fy", "x", "y", "s_c"])?;
-        csv_line(&mut w, &[a.theta, a.m_base, a.fx, a.fy, x, y, s_c].map(num))?;
+        out.write_csv(&mut w)?;
     }
     Ok(())
 }

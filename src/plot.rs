@@ -4,15 +4,15 @@
 //!
 //! Columns are read by name, so files with more columns (or in another order) plot the same;
 //! every value of an `event` column is marked (one marker style and legend entry per event
-//! name). Drawing, legend placement and the layout test are those of `figures`.
+//! name). Drawing, legend placement and the layout test are those of `chart`.
 
-use crate::cli::{PlotArgs, PlotKind};
-use crate::error::{usage, Res};
-use crate::figures::{
+use crate::chart::{
     panel, render, series, unlabeled, Fig, Kind, Panel, BLUE_, BROWN_, GREEN_, GREY_, NAVY_,
     ORANGE_, PURPLE_, RED_,
 };
-use crate::output::{num, AtomicFile};
+use crate::cli::{PlotArgs, PlotKind};
+use crate::error::{usage, Res};
+use crate::table::{num, AtomicFile};
 use plotters::style::RGBColor;
 use std::collections::BTreeMap;
 use std::io::Write;
@@ -550,7 +550,7 @@ fn drag_with_shapes(t: &Table, sh: &Table, select: Option<&[usize]>, beta: f64) 
 
 /// A number for a label: 4 significant digits.
 fn short(v: f64) -> String {
-    crate::numbers::digits(v, 4)
+    crate::number_text::digits(v, 4)
 }
 
 /// The grid columns of a sweep CSV that can be heat-map axes: the scene's and the tolerance.
@@ -570,11 +570,8 @@ const SCALE: [RGBColor; 8] = [
     RGBColor(253, 231, 37),
 ];
 
-/// A sweep: the column `z` as a heat map over the axes `x` and `y` (the rows selected by
-/// `wheres`, `COL=VALUE`), numeric values in eight equal bins, text values one colour each;
-/// scenes whose scan failed are crossed.
-fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]) -> Res<Fig> {
-    // rows selected by --where
+/// The rows of a sweep file that `wheres` (`COL=VALUE`) select, and the columns they fix.
+fn selected_rows(t: &Table, wheres: &[String]) -> Res<(Vec<usize>, Vec<String>)> {
     let mut keep: Vec<bool> = vec![true; t.rows.len()];
     let mut fixed = Vec::new();
     for w in wheres {
@@ -601,19 +598,32 @@ fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]
             wheres.join(" ")
         )));
     }
-    let distinct = |col: &str| -> Res<Vec<f64>> {
-        let v = t.need(col)?;
-        let mut u: Vec<f64> = rows
-            .iter()
-            .map(|&r| v[r])
-            .filter(|v| v.is_finite())
-            .collect();
-        u.sort_by(f64::total_cmp);
-        u.dedup();
-        Ok(u)
-    };
+    Ok((rows, fixed))
+}
+
+/// The distinct finite values of column `col` over `rows`, in increasing order.
+fn distinct(t: &Table, rows: &[usize], col: &str) -> Res<Vec<f64>> {
+    let v = t.need(col)?;
+    let mut u: Vec<f64> = rows
+        .iter()
+        .map(|&r| v[r])
+        .filter(|v| v.is_finite())
+        .collect();
+    u.sort_by(f64::total_cmp);
+    u.dedup();
+    Ok(u)
+}
+
+/// The heat map's axes: `x` and `y` as given, else the grid columns that vary, in order; every
+/// other varying column must be fixed by `--where`.
+fn heat_axes(
+    t: &Table,
+    rows: &[usize],
+    (x, y): (Option<&str>, Option<&str>),
+    fixed: &[String],
+) -> Res<(String, String)> {
     let varying: Vec<&str> = sweep_axes()
-        .filter(|c| t.has(c) && distinct(c).is_ok_and(|u| u.len() > 1))
+        .filter(|c| t.has(c) && distinct(t, rows, c).is_ok_and(|u| u.len() > 1))
         .collect();
     let (xc, yc) =
         match (x, y) {
@@ -644,7 +654,7 @@ fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]
         .filter(|c| *c != xc && *c != yc && !fixed.iter().any(|f| f == c))
         .collect();
     if let Some(c) = loose.first() {
-        let u = distinct(c)?;
+        let u = distinct(t, rows, c)?;
         return Err(usage(format!(
             "{}: {} also {}; choose one value with --where, e.g. --where {c}={}",
             t.name,
@@ -653,30 +663,127 @@ fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]
             num(u[0])
         )));
     }
-    let (xv, yv) = (t.need(&xc)?, t.need(&yc)?);
-    let half = |col: &str| -> Res<f64> {
-        let u = distinct(col)?;
-        let gap = u
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .fold(f64::INFINITY, f64::min);
-        Ok(if gap.is_finite() {
-            0.5 * gap
-        } else {
-            0.05 * u[0].abs().max(1.0)
+    Ok((xc, yc))
+}
+
+/// Half the smallest gap between the values of `col` (a cell's half width).
+fn half_gap(t: &Table, rows: &[usize], col: &str) -> Res<f64> {
+    let u = distinct(t, rows, col)?;
+    let gap = u
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min);
+    Ok(if gap.is_finite() {
+        0.5 * gap
+    } else {
+        0.05 * u[0].abs().max(1.0)
+    })
+}
+
+/// The rows whose scene failed (an error, or the stop reason `error`).
+fn failed_rows(t: &Table) -> Vec<bool> {
+    let err = t.text("error").unwrap_or_default();
+    let stop = t.text("stop_reason").unwrap_or_default();
+    (0..t.rows.len())
+        .map(|i| {
+            err.get(i).is_some_and(|e| !e.is_empty()) || stop.get(i).is_some_and(|s| *s == "error")
         })
-    };
-    let (hw, hh) = (half(&xc)?, half(&yc)?);
-    let failed: Vec<bool> = {
-        let err = t.text("error").unwrap_or_default();
-        let stop = t.text("stop_reason").unwrap_or_default();
-        (0..t.rows.len())
-            .map(|i| {
-                err.get(i).is_some_and(|e| !e.is_empty())
-                    || stop.get(i).is_some_and(|s| *s == "error")
-            })
-            .collect()
-    };
+        .collect()
+}
+
+/// The cells of a heat map: where each row lies, its cell's half sizes, and which rows failed.
+struct Cells<'a> {
+    rows: &'a [usize],
+    xv: &'a [f64],
+    yv: &'a [f64],
+    half: (f64, f64),
+    failed: &'a [bool],
+}
+
+impl Cells<'_> {
+    /// A numeric column in eight equal bins (one when all values are equal).
+    fn binned(&self, p: &mut Panel, z: &str, zv: &[f64]) {
+        let (rows, xv, yv, failed) = (self.rows, self.xv, self.yv, self.failed);
+        let (hw, hh) = self.half;
+        let fin: Vec<f64> = rows
+            .iter()
+            .map(|&r| zv[r])
+            .filter(|v| v.is_finite())
+            .collect();
+        let lo = fin.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = fin.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let nb = if hi > lo { SCALE.len() } else { 1 };
+        let mut bins: Vec<Vec<(f64, f64)>> = vec![Vec::new(); nb];
+        for &r in rows {
+            if zv[r].is_finite() && !failed[r] {
+                let b = if nb == 1 {
+                    0
+                } else {
+                    (((zv[r] - lo) / (hi - lo) * nb as f64) as usize).min(nb - 1)
+                };
+                bins[b].push((xv[r], yv[r]));
+            }
+        }
+        for (b, pts) in bins.into_iter().enumerate() {
+            let (a, c) = if nb == 1 {
+                (lo, hi)
+            } else {
+                (
+                    lo + (hi - lo) * b as f64 / nb as f64,
+                    lo + (hi - lo) * (b + 1) as f64 / nb as f64,
+                )
+            };
+            let name = if nb == 1 {
+                format!("{z} = {}", short(a))
+            } else {
+                format!("{z} {} – {}", short(a), short(c))
+            };
+            let color = if nb == 1 { SCALE[4] } else { SCALE[b] };
+            p.series.push(series(&name, Kind::Cell(hw, hh), color, pts));
+        }
+    }
+
+    /// A text column, one colour per value.
+    fn categories(&self, p: &mut Panel, z: &str, zt: &[&str]) {
+        let (rows, xv, yv, failed) = (self.rows, self.xv, self.yv, self.failed);
+        let (hw, hh) = self.half;
+        let mut cats: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+        for &r in rows {
+            if failed[r] {
+                continue;
+            }
+            let v = zt[r].to_string();
+            match cats.iter_mut().find(|(n, _)| *n == v) {
+                Some((_, pts)) => pts.push((xv[r], yv[r])),
+                None => cats.push((v, vec![(xv[r], yv[r])])),
+            }
+        }
+        let palette = [BLUE_, ORANGE_, GREEN_, PURPLE_, BROWN_, NAVY_, GREY_, RED_];
+        for (k, (name, pts)) in cats.into_iter().enumerate() {
+            let name = if name.is_empty() {
+                "(empty)".to_string()
+            } else {
+                name
+            };
+            p.series.push(series(
+                &format!("{z}: {name}"),
+                Kind::Cell(hw, hh),
+                palette[k % palette.len()],
+                pts,
+            ));
+        }
+    }
+}
+
+/// A sweep: the column `z` as a heat map over the axes `x` and `y` (the rows selected by
+/// `wheres`, `COL=VALUE`), numeric values in eight equal bins, text values one colour each;
+/// scenes whose scan failed are crossed.
+fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]) -> Res<Fig> {
+    let (rows, fixed) = selected_rows(t, wheres)?;
+    let (xc, yc) = heat_axes(t, &rows, (x, y), &fixed)?;
+    let (xv, yv) = (t.need(&xc)?, t.need(&yc)?);
+    let (hw, hh) = (half_gap(t, &rows, &xc)?, half_gap(t, &rows, &yc)?);
+    let failed = failed_rows(t);
     let zt = t.text(z).ok_or_else(|| {
         usage(format!(
             "{}: no column '{z}' (columns: {})",
@@ -696,73 +803,16 @@ fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]
         }
     }
     let mut p = panel(&format!("{z} over {xc} and {yc}"), &label(&xc), &label(&yc));
-    let numeric: Option<Vec<f64>> = t.num(z).ok().flatten();
-    match numeric {
-        Some(zv) => {
-            let fin: Vec<f64> = rows
-                .iter()
-                .map(|&r| zv[r])
-                .filter(|v| v.is_finite())
-                .collect();
-            let lo = fin.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = fin.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            let nb = if hi > lo { SCALE.len() } else { 1 };
-            let mut bins: Vec<Vec<(f64, f64)>> = vec![Vec::new(); nb];
-            for &r in &rows {
-                if zv[r].is_finite() && !failed[r] {
-                    let b = if nb == 1 {
-                        0
-                    } else {
-                        (((zv[r] - lo) / (hi - lo) * nb as f64) as usize).min(nb - 1)
-                    };
-                    bins[b].push((xv[r], yv[r]));
-                }
-            }
-            for (b, pts) in bins.into_iter().enumerate() {
-                let (a, c) = if nb == 1 {
-                    (lo, hi)
-                } else {
-                    (
-                        lo + (hi - lo) * b as f64 / nb as f64,
-                        lo + (hi - lo) * (b + 1) as f64 / nb as f64,
-                    )
-                };
-                let name = if nb == 1 {
-                    format!("{z} = {}", short(a))
-                } else {
-                    format!("{z} {} – {}", short(a), short(c))
-                };
-                let color = if nb == 1 { SCALE[4] } else { SCALE[b] };
-                p.series.push(series(&name, Kind::Cell(hw, hh), color, pts));
-            }
-        }
-        None => {
-            let mut cats: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
-            for &r in &rows {
-                if failed[r] {
-                    continue;
-                }
-                let v = zt[r].to_string();
-                match cats.iter_mut().find(|(n, _)| *n == v) {
-                    Some((_, pts)) => pts.push((xv[r], yv[r])),
-                    None => cats.push((v, vec![(xv[r], yv[r])])),
-                }
-            }
-            let palette = [BLUE_, ORANGE_, GREEN_, PURPLE_, BROWN_, NAVY_, GREY_, RED_];
-            for (k, (name, pts)) in cats.into_iter().enumerate() {
-                let name = if name.is_empty() {
-                    "(empty)".to_string()
-                } else {
-                    name
-                };
-                p.series.push(series(
-                    &format!("{z}: {name}"),
-                    Kind::Cell(hw, hh),
-                    palette[k % palette.len()],
-                    pts,
-                ));
-            }
-        }
+    let cells = Cells {
+        rows: &rows,
+        xv: &xv,
+        yv: &yv,
+        half: (hw, hh),
+        failed: &failed,
+    };
+    match t.num(z).ok().flatten() {
+        Some(zv) => cells.binned(&mut p, z, &zv),
+        None => cells.categories(&mut p, z, &zt),
     }
     let fails: Vec<(f64, f64)> = rows
         .iter()
@@ -843,8 +893,8 @@ pub fn run(a: &PlotArgs) -> Res<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figures::layout_check::check_panel;
-    use crate::figures::{Mark, Series};
+    use crate::chart::layout_check::check_panel;
+    use crate::chart::{Mark, Series};
 
     fn err<T>(r: Res<T>) -> String {
         match r {
@@ -883,7 +933,7 @@ mod tests {
 
     /// Renders the figure and checks every panel's layout (legends and labels touch no data,
     /// every point is drawn); returns the layouts.
-    fn checked(f: &Fig) -> Vec<crate::figures::PanelLayout> {
+    fn checked(f: &Fig) -> Vec<crate::chart::PanelLayout> {
         let (svg, l) = render(f).unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..40]);
         for (p, lay) in f.panels.iter().zip(&l) {
@@ -1176,7 +1226,7 @@ mod tests {
             })
             .unwrap();
         let lg = l[0].legend.unwrap();
-        l[0].legend = Some(crate::figures::Rect {
+        l[0].legend = Some(crate::chart::Rect {
             x0: cell.x0 + 1.0,
             y0: cell.y0 + 1.0,
             x1: cell.x0 + 1.0 + (lg.x1 - lg.x0),

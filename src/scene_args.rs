@@ -109,16 +109,10 @@ pub fn build_scene_unchecked(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
     );
     apply_physical(&mut sc, &a.physical)?;
     if let Some(c) = a.contact {
-        sc.contact = match c {
-            crate::cli::ContactArg::Anywhere => vibrissa::ContactModel::Anywhere,
-            crate::cli::ContactArg::Tip => vibrissa::ContactModel::Tip,
-        };
+        sc.contact = c;
     }
     if let Some(s) = a.start {
-        sc.start = match s {
-            crate::cli::StartArg::Pressed => vibrissa::StartKind::Pressed,
-            crate::cli::StartArg::Connected => vibrissa::StartKind::Connected,
-        };
+        sc.start = s;
     }
     Ok(sc)
 }

@@ -1,211 +1,118 @@
 //! `vibrissa solve`: one rod, one load.
 
-use crate::cli::{BranchArg, SolveArgs};
-use crate::error::{usage, Res};
-use crate::numeric;
-use crate::output::{csv_line, num, opt, AtomicFile};
-use crate::scene_args::{build_scene, Units};
+use crate::cli::SolveArgs;
+use crate::error::{solve_fail, usage, Res};
+use crate::present::{Cell, Object, Row};
+use crate::scene_args::build_scene;
+use serde::ser::{SerializeMap, Serializer};
 use serde::Serialize;
 use std::io::Write;
+use vibrissa::{Clearance, Shape, Target, Units};
 
-/// One point of a rod shape.
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct ShapeRow {
-    /// arc length
-    pub s: f64,
-    /// position
-    pub x: f64,
-    /// position
-    pub y: f64,
-    /// slope angle
-    pub phi: f64,
-    /// curvature phi'
-    pub kappa: f64,
-    /// internal moment
-    pub m: f64,
+/// A solve as the program presents it: the library's [`Shape`] with what was asked (method,
+/// branch) and how the rod lies against the surface line through its tip.
+struct Solved<'a> {
+    args: &'a SolveArgs,
+    shape: Shape,
+    clearance: Clearance,
+    units: Option<Units>,
 }
 
-/// Result of one solve.
-#[derive(Clone, Debug, Serialize)]
-pub struct SolveOut {
-    /// method used
-    pub method: &'static str,
-    /// requested branch
-    pub branch: &'static str,
-    /// force angle
-    pub alpha: f64,
-    /// tip slope
-    pub phi1: f64,
-    /// force magnitude
-    pub f: f64,
-    /// f sin(alpha)
-    pub fx: f64,
-    /// -f cos(alpha)
-    pub fy: f64,
-    /// tip x
-    pub x1: f64,
-    /// tip y
-    pub y1: f64,
-    /// m(0)
-    pub m_base: f64,
-    /// number of flex points (sign changes of the curvature)
-    pub flex: usize,
-    /// sign changes of the bending moment m(s): the branch (0 convex, 1 flex)
-    pub load_reversals: usize,
-    /// arc length of the (first) flex point
-    pub s_flex: Option<f64>,
-    /// max over s of y(s)
-    pub y_max: f64,
-    /// residual of the solve (see README)
-    pub residual: f64,
-    /// the rod crosses the surface line through its tip (see `clearance`)
-    pub penetration: bool,
-    /// how the rod lies against that line: largest height above it over s < 1 and where, and
-    /// sin(phi1 - beta)
-    pub clearance: vibrissa::Clearance,
-    /// physical-unit values, when the scene has dimensions
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub physical: Option<PhysicalOut>,
-    /// shape (not serialized into the row)
-    #[serde(skip)]
-    pub shape: Vec<ShapeRow>,
-}
+impl Solved<'_> {
+    /// The columns of the row, in order (the CSV's, and the JSON object's keys).
+    fn columns(&self) -> Row {
+        let sh = &self.shape;
+        Row(vec![
+            ("method", Cell::Name(self.args.solver.method.name())),
+            ("branch", Cell::Name(self.args.branch.name())),
+            ("alpha", Cell::Num(sh.alpha)),
+            ("phi1", Cell::Num(sh.phi1)),
+            ("f", Cell::Num(sh.f)),
+            ("fx", Cell::Num(sh.fx)),
+            ("fy", Cell::Num(sh.fy)),
+            ("x1", Cell::Num(sh.x1)),
+            ("y1", Cell::Num(sh.y1)),
+            ("m_base", Cell::Num(sh.m_base)),
+            ("flex", Cell::Count(sh.flex)),
+            ("load_reversals", Cell::Count(sh.load_reversals)),
+            ("s_flex", Cell::Opt(sh.s_flex)),
+            ("y_max", Cell::Num(sh.y_max)),
+            ("residual", Cell::Num(sh.residual)),
+            ("penetration", Cell::Flag(self.clearance.penetrates())),
+        ])
+    }
 
-/// Physical-unit columns.
-#[derive(Clone, Debug, Serialize)]
-pub struct PhysicalOut {
-    /// force in N
-    pub f_n: f64,
-    /// x force in N
-    pub fx_n: f64,
-    /// y force in N
-    pub fy_n: f64,
-    /// m(0) in N*m
-    pub m_base_nm: f64,
-    /// tip x in mm
-    pub x1_mm: f64,
-    /// tip y in mm
-    pub y1_mm: f64,
-}
+    /// The physical-unit columns (scenes with dimensions): the CSV's names; the JSON's are the
+    /// same in lower case.
+    fn physical(&self) -> Option<[(&'static str, f64); 6]> {
+        let (u, sh) = (self.units?, &self.shape);
+        Some([
+            ("f_N", sh.f * u.force_n),
+            ("fx_N", sh.fx * u.force_n),
+            ("fy_N", sh.fy * u.force_n),
+            ("m_base_Nm", sh.m_base * u.moment_nm),
+            ("x1_mm", sh.x1 * u.length_mm),
+            ("y1_mm", sh.y1 * u.length_mm),
+        ])
+    }
 
-/// CLI name of a branch.
-pub fn branch_name(b: BranchArg) -> &'static str {
-    match b {
-        BranchArg::Convex => "convex",
-        BranchArg::Flex => "flex",
-        BranchArg::Any => "any",
+    fn write_csv<W: Write>(&self, w: &mut W) -> Res<()> {
+        let mut row = self.columns();
+        for (name, v) in self.physical().iter().flatten() {
+            row.0.push((name, Cell::Num(*v)));
+        }
+        row.write_csv(w)
     }
 }
 
-/// Fill the physical-unit columns.
-pub fn add_units(o: &mut SolveOut, u: Option<Units>) {
-    o.physical = u.map(|u| PhysicalOut {
-        f_n: o.f * u.force_n,
-        fx_n: o.fx * u.force_n,
-        fy_n: o.fy * u.force_n,
-        m_base_nm: o.m_base * u.moment_nm,
-        x1_mm: o.x1 * u.length_mm,
-        y1_mm: o.y1 * u.length_mm,
-    });
+impl Serialize for Solved<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(None)?;
+        for (k, v) in &self.columns().0 {
+            m.serialize_entry(k, v)?;
+        }
+        m.serialize_entry("clearance", &self.clearance)?;
+        if let Some(p) = self.physical() {
+            let lower: Vec<(String, f64)> = p.iter().map(|(k, v)| (k.to_lowercase(), *v)).collect();
+            m.serialize_entry("physical", &Object(&lower))?;
+        }
+        m.end()
+    }
 }
 
-/// Header of the solve CSV.
-pub fn header(physical: bool) -> Vec<&'static str> {
-    let mut h = vec![
-        "method",
-        "branch",
-        "alpha",
-        "phi1",
-        "f",
-        "fx",
-        "fy",
-        "x1",
-        "y1",
-        "m_base",
-        "flex",
-        "load_reversals",
-        "s_flex",
-        "y_max",
-        "residual",
-        "penetration",
-    ];
-    if physical {
-        h.extend(["f_N", "fx_N", "fy_N", "m_base_Nm", "x1_mm", "y1_mm"]);
-    }
-    h
-}
-
-/// Fields of the solve CSV row.
-pub fn row(o: &SolveOut) -> Vec<String> {
-    let mut r = vec![
-        o.method.to_string(),
-        o.branch.to_string(),
-        num(o.alpha),
-        num(o.phi1),
-        num(o.f),
-        num(o.fx),
-        num(o.fy),
-        num(o.x1),
-        num(o.y1),
-        num(o.m_base),
-        o.flex.to_string(),
-        o.load_reversals.to_string(),
-        opt(o.s_flex),
-        num(o.y_max),
-        num(o.residual),
-        u8::from(o.penetration).to_string(),
-    ];
-    if let Some(p) = &o.physical {
-        r.extend(
-            [p.f_n, p.fx_n, p.fy_n, p.m_base_nm, p.x1_mm, p.y1_mm]
-                .into_iter()
-                .map(num),
-        );
-    }
-    r
-}
-
-/// Write a shape CSV atomically.
-pub fn write_shape(path: &std::path::Path, shape: &[ShapeRow]) -> Res<()> {
-    let mut f = AtomicFile::create(path)?;
-    csv_line(&mut f, &["s", "x", "y", "phi", "kappa", "m"])?;
-    for p in shape {
-        csv_line(&mut f, &[p.s, p.x, p.y, p.phi, p.kappa, p.m].map(num))?;
-    }
-    f.commit()
-}
-
-/// Run `vibrissa solve`.
-pub fn run(a: &SolveArgs) -> Res<()> {
-    if a.peg.is_some() {
-        return crate::peg::run_solve(a);
-    }
-    let scene = build_scene(&a.scene, None)?;
-    let npts = if a.shape_out.is_some() {
-        a.shape_points as usize
+/// The penetration of a solved rod in words.
+fn penetration(c: &Clearance) -> String {
+    if c.height > 0.0 {
+        format!(
+            "the rod rises {:.3e} above the surface line through its tip at s = {:.6}",
+            c.height, c.s
+        )
     } else {
-        0
-    };
-    let mut out = numeric::solve(&scene, a, npts)?;
-    crate::progress::stop();
-    if out.residual.is_nan() || !out.f.is_finite() {
-        return Err(crate::error::solve_fail(
-            "the solver returned a non-finite result",
-        ));
+        format!(
+            "the tip arrives from above the surface line (sin(phi1 - surface angle) = {:.3e})",
+            c.tip_approach
+        )
     }
-    if out.penetration {
-        let c = &out.clearance;
-        let what = if c.height > 0.0 {
-            format!(
-                "the rod rises {:.3e} above the surface line through its tip at s = {:.6}",
-                c.height, c.s
-            )
-        } else {
-            format!(
-                "the tip arrives from above the surface line (sin(phi1 - surface angle) = {:.3e})",
-                c.tip_approach
-            )
-        };
+}
+
+/// Run `vibrissa solve` with a tip condition (`--peg`: `peg::run_solve`).
+pub fn run(a: &SolveArgs) -> Res<()> {
+    let scene = build_scene(&a.scene, None)?;
+    let rod = scene.rod()?;
+    let target = match (a.phi1, a.eta) {
+        (Some(p), _) => Target::Phi1(p),
+        (None, Some(h)) => Target::Eta(h),
+        (None, None) => return Err(usage("give --phi1 or --eta")),
+    };
+    let cfg = a.solver.config(scene.start);
+    let shape = vibrissa::solve(&rod, a.alpha.unwrap_or(0.0), target, &a.branch, &cfg)?;
+    let clearance = shape.clearance(scene.surface_angle);
+    crate::progress::stop();
+    if shape.residual.is_nan() || !shape.f.is_finite() {
+        return Err(solve_fail("the solver returned a non-finite result"));
+    }
+    if clearance.penetrates() {
+        let what = penetration(&clearance);
         if a.require_contact {
             return Err(usage(format!(
                 "no contact at the tip only: {what} (--require-contact)"
@@ -213,18 +120,22 @@ pub fn run(a: &SolveArgs) -> Res<()> {
         }
         eprintln!("warning: penetration: {what}");
     }
-    add_units(&mut out, scene.rod()?.units());
     if let Some(p) = &a.shape_out {
-        write_shape(p, &out.shape)?;
+        crate::present::write_shape(p, &shape.samples(a.shape_points as usize))?;
     }
+    let out = Solved {
+        args: a,
+        units: rod.units(),
+        shape,
+        clearance,
+    };
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     if a.json {
         serde_json::to_writer_pretty(&mut w, &out)?;
         writeln!(w)?;
     } else {
-        csv_line(&mut w, &header(out.physical.is_some()))?;
-        csv_line(&mut w, &row(&out))?;
+        out.write_csv(&mut w)?;
     }
     Ok(())
 }

@@ -1,25 +1,26 @@
 //! `vibrissa sweep`: a grid of stiction scans over scene parameters, in parallel (rayon), with
 //! rows streamed in grid order through a bounded reorder buffer, and `--shard K/N`.
 
-use crate::cli::{MethodArg, Shard, SweepArgs};
+use crate::cli::{Shard, SweepArgs};
 use crate::error::{one_line, solve_fail, usage, Fail, Res};
 use crate::journal;
-use crate::numbers::{short, Axis};
-use crate::output::{csv_line, num, opt, Sink};
-use crate::outputs;
-use crate::scan::{run_scan, ScanSpec};
+use crate::number_text::{short, Axis};
+use crate::output_files;
+use crate::present::mu_text;
+use crate::scan::run_scan;
 use crate::scene_args::{
     apply_overrides, apply_physical, physical_src, read_scene_file, units_of, Units,
 };
+use crate::table::{csv_line, num, opt, Sink};
 use crate::validate::{self, SceneSrc, Src};
-use clap::ValueEnum;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::io::{IsTerminal, Write};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
-use vibrissa::{Precurvature, RangeEnd, Scene, Stiffness};
+use vibrissa::limits;
+use vibrissa::{Method, Precurvature, RangeEnd, ScanOptions, Scene, SolverConfig, Stiffness};
 
 /// Set while a sweep runs: a panic inside one scene becomes that scene's error row, and the
 /// panic hook stays quiet.
@@ -34,7 +35,7 @@ struct Cell {
     k1: Option<f64>,
     c: Option<f64>,
     beta: Option<f64>,
-    method: MethodArg,
+    method: Method,
     tol: f64,
     /// `None`: never slips
     mu0: Option<f64>,
@@ -48,7 +49,7 @@ struct Cell {
 struct Grid<'a> {
     /// eta, taper, precurvature, precurvature slope, compliance, surface angle
     scene: [Option<&'a Axis>; 6],
-    method: Vec<MethodArg>,
+    method: Vec<Method>,
     tol: &'a Axis,
     mu0: Option<&'a Axis>,
     d_max: &'a Axis,
@@ -182,17 +183,20 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     row.push(opt(cell.mu0));
     row.push(num(cell.d_max));
     row.push(cell.points.to_string());
-    let spec = ScanSpec {
-        method: cell.method,
-        tol: cell.tol,
+    let opts = ScanOptions {
         d_max: cell.d_max,
         points: cell.points as usize,
         mu0: cell.mu0,
-        shape_points: 0,
+        solver: SolverConfig {
+            method: cell.method,
+            tol: cell.tol,
+            ..SolverConfig::default()
+        },
+        ..ScanOptions::default()
     };
     let result = std::panic::catch_unwind(|| -> Res<_> {
         sc.validate()?;
-        run_scan(&sc, &spec)
+        run_scan(&sc, opts)
     });
     let ms = t0.elapsed().as_secs_f64() * 1e3;
     if let Ok(Ok(o)) = &result {
@@ -211,25 +215,26 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     };
     let err = match result {
         Ok(Ok(o)) => {
-            let last = o.pts.last().copied().unwrap_or(o.start);
+            let r = &o.result;
+            let last = r.points.last().copied().unwrap_or(r.start);
             let failed = o.stop.reason == SOLVER_FAILURE;
-            let known = max_is_known(failed, o.range_end, o.d_at_mu_max, last.d);
-            let d_at_mu_max = known.then_some(o.d_at_mu_max);
+            let known = max_is_known(failed, r.range_end, r.d_at_mu_max, last.d);
+            let d_at_mu_max = known.then_some(r.d_at_mu_max);
             row.extend([
-                num(o.start.f),
-                num(o.start.phi1),
+                num(r.start.f),
+                num(r.start.phi1),
                 if known {
-                    crate::scan::mu_text(o.mu_max)
+                    mu_text(r.mu_max)
                 } else {
                     String::new()
                 },
                 opt(d_at_mu_max),
-                crate::scan::mu_text(last.mu),
+                mu_text(last.mu),
                 num(last.d),
                 o.stop.reason.clone(),
-                o.points.to_string(),
-                o.stats.newton_iters.to_string(),
-                o.stats.rhs_evals.to_string(),
+                r.points.len().to_string(),
+                r.stats.newton_iters.to_string(),
+                r.stats.rhs_evals.to_string(),
             ]);
             if physical {
                 let u = units.unwrap_or(Units {
@@ -238,21 +243,21 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
                     length_mm: f64::NAN,
                 });
                 row.extend([
-                    num(o.start.f * u.force_n),
+                    num(r.start.f * u.force_n),
                     opt(d_at_mu_max.map(|d| d * u.length_mm)),
                     num(last.d * u.length_mm),
                 ]);
             }
             if failed {
                 // the scan's rows up to the failure are results; the scene is not
-                crate::numbers::shorten_numbers(&one_line(&o.stop.detail))
+                crate::number_text::shorten_numbers(&one_line(&o.stop.detail))
             } else {
                 String::new()
             }
         }
         Ok(Err(e)) => {
             blank(&mut row);
-            validate::shorten(e).message()
+            crate::error::shorten(e).message()
         }
         Err(p) => {
             let msg = p
@@ -328,20 +333,20 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
     validate::scene(&probe, &src)?;
     validate::model_check(&probe, a.scene.as_deref())?;
     for (x, f, r) in [
-        (&a.eta, "--eta", validate::eta_range()),
-        (&a.taper, "--taper", validate::TAPER),
-        (&a.precurvature, "--precurvature", validate::PRECURVATURE),
+        (&a.eta, "--eta", limits::eta()),
+        (&a.taper, "--taper", limits::TAPER),
+        (&a.precurvature, "--precurvature", limits::PRECURVATURE),
         (
             &a.precurvature_slope,
             "--precurvature-slope",
-            validate::PRECURVATURE_SLOPE,
+            limits::PRECURVATURE_SLOPE,
         ),
         (
             &a.support_compliance,
             "--support-compliance",
-            validate::SUPPORT_COMPLIANCE,
+            limits::SUPPORT_COMPLIANCE,
         ),
-        (&a.surface_angle, "--surface-angle", validate::SURFACE_ANGLE),
+        (&a.surface_angle, "--surface-angle", limits::SURFACE_ANGLE),
     ] {
         if let Some(x) = x {
             // the ends of a range suffice: its other values lie between them
@@ -360,10 +365,12 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
         let (lo0, hi0) = ext(&a.precurvature, b0);
         let (lo1, hi1) = ext(&a.precurvature_slope, b1);
         for end in [lo0 + lo1, hi0 + hi1] {
-            if !validate::PRECURVATURE.contains(end) {
+            if !limits::PRECURVATURE.contains(end) {
                 return Err(usage(format!(
-                    "--precurvature K0 + --precurvature-slope K1 reaches {} (the rest curvature at the tip), outside the valid range [-3, 3] (1/L)",
-                    short(end)
+                    "--precurvature K0 + --precurvature-slope K1 reaches {} (the rest curvature at the tip), outside the valid range {} ({})",
+                    short(end),
+                    limits::PRECURVATURE.text(6),
+                    limits::PRECURVATURE.unit
                 )));
             }
         }
@@ -392,22 +399,22 @@ fn identity(base: &Scene) -> journal::Identity {
     id
 }
 
-/// Run `vibrissa sweep`.
-pub fn run(a: &SweepArgs) -> Res<()> {
-    let base = base_scene(a)?;
+/// The grid of a sweep: its axes from the flags (the methods parsed here).
+fn grid(a: &SweepArgs) -> Res<Grid<'_>> {
     let methods = a
         .method
         .split(',')
         .map(|m| {
-            MethodArg::from_str(m.trim(), false).map_err(|_| {
-                usage(format!(
-                    "--method '{}': valid values are shooting, multiple-shooting, collocation, collocation6, analytic",
-                    m.trim()
-                ))
+            m.trim().parse::<Method>().map_err(|e| match e {
+                // the library's list of names, in the flag's words
+                vibrissa::VibrissaError::InvalidName { value, valid, .. } => {
+                    usage(format!("--method '{value}': valid values are {valid}"))
+                }
+                e => e.into(),
             })
         })
         .collect::<Res<Vec<_>>>()?;
-    let grid = Grid {
+    Ok(Grid {
         scene: [
             a.eta.as_ref(),
             a.taper.as_ref(),
@@ -421,39 +428,61 @@ pub fn run(a: &SweepArgs) -> Res<()> {
         mu0: a.mu0.as_ref(),
         d_max: &a.d_max,
         points: &a.points,
-    };
-    let total = validate::grid_size(&grid.lens())?;
-    let Shard { k, n } = a.shard.unwrap_or(Shard { k: 1, n: 1 });
-    // shard k gets the k-th contiguous block: concatenation keeps the grid order
-    let lo = ((k - 1) as u128 * total as u128 / n as u128) as u64;
-    let hi = (k as u128 * total as u128 / n as u128) as u64;
-    let jobs = validate::jobs(a.jobs, hi - lo);
-    // each worker holds one scan of --points points
-    let most_points = a.points.min_max().1 as u64;
-    validate::budget(
-        "--jobs",
-        jobs as u64,
-        "--points",
-        most_points,
-        "scan points",
-        validate::BYTES_PER_SCAN_POINT,
-    )?;
-    if let Some(p) = &a.out {
-        outputs::plan(&[("--out", p)], a.dry_run)?;
+    })
+}
+
+/// This process's part of the grid and how it runs: shard `k` of `n` gets the rows `lo..hi`
+/// (the `k`-th contiguous block: concatenation keeps the grid order), on `jobs` threads; a
+/// file output keeps its finished rows in `journal`.
+struct Plan {
+    total: u64,
+    k: u64,
+    n: u64,
+    lo: u64,
+    hi: u64,
+    jobs: usize,
+    journal: Option<std::path::PathBuf>,
+}
+
+impl Plan {
+    fn new(a: &SweepArgs, total: u64) -> Res<Plan> {
+        let Shard { k, n } = a.shard.unwrap_or(Shard { k: 1, n: 1 });
+        let lo = ((k - 1) as u128 * total as u128 / n as u128) as u64;
+        let hi = (k as u128 * total as u128 / n as u128) as u64;
+        let jobs = validate::jobs(a.jobs, hi - lo);
+        // each worker holds one scan of --points points
+        let most_points = a.points.min_max().1 as u64;
+        validate::budget(
+            "--jobs",
+            jobs as u64,
+            "--points",
+            most_points,
+            "scan points",
+            limits::BYTES_PER_SCAN_POINT,
+        )?;
+        if let Some(p) = &a.out {
+            output_files::plan(&[("--out", p)], a.dry_run)?;
+        }
+        let journal = match &a.out {
+            Some(p) => output_files::file_target("--out", p)?.map(|t| journal::path_of(&t)),
+            None => None,
+        };
+        Ok(Plan {
+            total,
+            k,
+            n,
+            lo,
+            hi,
+            jobs,
+            journal,
+        })
     }
-    // a sweep written to a file keeps its finished rows in a journal next to it
-    let journal_path = match &a.out {
-        Some(p) => outputs::file_target("--out", p)?.map(|t| journal::path_of(&t)),
-        None => None,
-    };
-    let id = identity(&base);
-    let mut found = match &journal_path {
-        Some(j) => journal::find(j, &id)?,
-        None => None,
-    };
-    if a.dry_run {
+
+    /// `--dry-run`: the grid, this shard and what a journal holds, on stderr.
+    fn report(&self, found: Option<&mut journal::Found>) -> Res<()> {
+        let (total, k, n, lo, hi, jobs) = (self.total, self.k, self.n, self.lo, self.hi, self.jobs);
         let mut resume = String::new();
-        if let (Some(f), Some(j)) = (found.as_mut(), &journal_path) {
+        if let (Some(f), Some(j)) = (found, &self.journal) {
             let (done, _) = f.rows(lo, hi, |_| Ok(()))?;
             resume = format!(
                 "; resumes from {}: {} of {} rows done",
@@ -466,81 +495,130 @@ pub fn run(a: &SweepArgs) -> Res<()> {
             "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes); {jobs} threads{resume}",
             hi - lo
         ));
-        return Ok(());
+        Ok(())
     }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(jobs)
-        .build()
-        .map_err(|e| solve_fail(format!("cannot start {jobs} worker threads: {e}")))?;
-    let mut sink = Sink::open(a.out.as_deref())?;
-    let physical = base.physical.is_some();
-    let t0 = Instant::now();
-    let show_bar = std::io::stderr().is_terminal();
-    let bar = if show_bar {
-        let b = indicatif::ProgressBar::new(hi - lo);
-        if let Ok(style) = indicatif::ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:40}] {pos}/{len} scenes (eta {eta})",
-        ) {
-            b.set_style(style.progress_chars("=> "));
-        }
-        b
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
-    // rows written to the terminal must not share the bar's line
-    let to_terminal = show_bar && a.out.is_none() && std::io::stdout().is_terminal();
-    let write = |sink: &mut Sink, text: &str| -> std::io::Result<()> {
-        if to_terminal {
-            bar.suspend(|| {
+}
+
+/// Where the rows go: the output (a file or stdout), the progress bar on a terminal's stderr,
+/// the journal.
+struct Rows {
+    sink: Sink,
+    bar: indicatif::ProgressBar,
+    show_bar: bool,
+    /// rows written to the terminal must not share the bar's line
+    to_terminal: bool,
+    journal: Option<journal::Journal>,
+}
+
+impl Rows {
+    fn open(a: &SweepArgs, n: u64) -> Res<Rows> {
+        let sink = Sink::open(a.out.as_deref())?;
+        let show_bar = std::io::stderr().is_terminal();
+        let bar = if show_bar {
+            let b = indicatif::ProgressBar::new(n);
+            if let Ok(style) = indicatif::ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:40}] {pos}/{len} scenes (eta {eta})",
+            ) {
+                b.set_style(style.progress_chars("=> "));
+            }
+            b
+        } else {
+            indicatif::ProgressBar::hidden()
+        };
+        Ok(Rows {
+            sink,
+            bar,
+            show_bar,
+            to_terminal: show_bar && a.out.is_none() && std::io::stdout().is_terminal(),
+            journal: None,
+        })
+    }
+
+    /// Text to the output (around the bar on a terminal).
+    fn write(&mut self, text: &str) -> std::io::Result<()> {
+        let sink = &mut self.sink;
+        if self.to_terminal {
+            self.bar.suspend(|| {
                 sink.write_all(text.as_bytes())?;
                 sink.flush()
             })
         } else {
             sink.write_all(text.as_bytes())
         }
-    };
-    if k == 1 && !a.no_header {
-        write(
-            &mut sink,
-            &csv_string(&to_strings(&header(a.timing, physical))),
-        )?;
     }
-    // the journal's rows go to the output as they were; the rest is computed
-    let mut resumed = journal::Finished::default();
-    let mut journal = match &journal_path {
-        Some(j) => {
-            let len = match found.as_mut() {
-                Some(f) => {
-                    let (done, len) = f.rows(lo, hi, |row| Ok(write(&mut sink, row)?))?;
+
+    /// A computed row: to the output and the journal.
+    fn put(&mut self, line: &str) -> std::io::Result<()> {
+        self.write(line)?;
+        match self.journal.as_mut() {
+            Some(j) => j
+                .append(line)
+                .map_err(|e| output_files::named(&j.path().display().to_string(), e)),
+            None => Ok(()),
+        }
+    }
+
+    /// The header (shard 1 only), the journal's finished rows as they were, and the journal
+    /// opened for the rest: the rows resumed.
+    fn start(
+        &mut self,
+        a: &SweepArgs,
+        plan: &Plan,
+        id: &journal::Identity,
+        found: Option<journal::Found>,
+        physical: bool,
+    ) -> Res<journal::Finished> {
+        if plan.k == 1 && !a.no_header {
+            self.write(&csv_string(&to_strings(&header(a.timing, physical))))?;
+        }
+        let mut resumed = journal::Finished::default();
+        if let Some(j) = &plan.journal {
+            let len = match found {
+                Some(mut f) => {
+                    let (done, len) = f.rows(plan.lo, plan.hi, |row| Ok(self.write(row)?))?;
                     resumed = done;
                     len
                 }
                 None => 0,
             };
-            let jr = journal::Journal::open(j, &id, len)?;
-            outputs::note_on_signal(format!(
+            self.journal = Some(journal::Journal::open(j, id, len)?);
+            output_files::note_on_signal(format!(
                 "sweep interrupted: its finished rows are kept in {}; the same command resumes it",
                 j.display()
             ));
-            Some(jr)
         }
-        None => None,
-    };
-    drop(found);
-    bar.set_position(resumed.rows);
-    QUIET_PANICS.store(true, Ordering::SeqCst);
+        self.bar.set_position(resumed.rows);
+        Ok(resumed)
+    }
+}
+
+/// What the computed part of a sweep gave: rows written, rows with an error, and the output's
+/// failure if it failed or closed (the workers stop then).
+struct Computed {
+    done: u64,
+    failed: u64,
+    write_err: Option<std::io::Error>,
+}
+
+/// Compute the rows `first..hi` on `pool` and write them in grid order: the workers send each
+/// row as it is done, a bounded reorder buffer (`window` rows) passes them on in order.
+fn compute(
+    rows: &mut Rows,
+    pool: rayon::ThreadPool,
+    (grid, base, a): (&Grid, &Scene, &SweepArgs),
+    (first, hi): (u64, u64),
+    jobs: usize,
+) -> Computed {
     // set when the output failed or closed: workers skip the remaining scenes
     let stop = AtomicBool::new(false);
-    // bounded window: at most `window` rows wait in the reorder buffer
     let window = (jobs as u64 * 32).max(64);
     let (tx, rx) = mpsc::sync_channel::<(u64, String, bool)>(window as usize);
-    let first = lo + resumed.rows;
-    let grid = &grid;
-    let base = &base;
     let stop = &stop;
-    let mut write_err = None;
-    let mut failed = 0u64;
-    let mut done = 0u64;
+    let mut c = Computed {
+        done: 0,
+        failed: 0,
+        write_err: None,
+    };
     std::thread::scope(|s| {
         s.spawn(move || {
             pool.install(|| {
@@ -568,27 +646,21 @@ pub fn run(a: &SweepArgs) -> Res<()> {
         for (i, line, bad) in rx.iter() {
             buf.insert(i, (line, bad));
             while let Some((l, bad)) = buf.remove(&next) {
-                let r = write(&mut sink, &l).and_then(|_| match journal.as_mut() {
-                    Some(j) => j
-                        .append(&l)
-                        .map_err(|e| outputs::named(&j.path().display().to_string(), e)),
-                    None => Ok(()),
-                });
-                if let Err(e) = r {
-                    write_err = Some(e);
+                if let Err(e) = rows.put(&l) {
+                    c.write_err = Some(e);
                     break;
                 }
-                failed += bad as u64;
-                done += 1;
+                c.failed += bad as u64;
+                c.done += 1;
                 next += 1;
-                bar.inc(1);
+                rows.bar.inc(1);
             }
-            if write_err.is_none() && !to_terminal {
-                if let Err(e) = sink.flush() {
-                    write_err = Some(e);
+            if c.write_err.is_none() && !rows.to_terminal {
+                if let Err(e) = rows.sink.flush() {
+                    c.write_err = Some(e);
                 }
             }
-            if write_err.is_some() {
+            if c.write_err.is_some() {
                 // stop promptly: no more scenes, and the workers' sends fail from now on
                 stop.store(true, Ordering::Relaxed);
                 break;
@@ -596,27 +668,79 @@ pub fn run(a: &SweepArgs) -> Res<()> {
         }
         drop(rx);
     });
+    c
+}
+
+/// Run `vibrissa sweep`.
+pub fn run(a: &SweepArgs) -> Res<()> {
+    let base = base_scene(a)?;
+    let grid = grid(a)?;
+    let plan = Plan::new(a, validate::grid_size(&grid.lens())?)?;
+    let id = identity(&base);
+    let mut found = match &plan.journal {
+        Some(j) => journal::find(j, &id)?,
+        None => None,
+    };
+    if a.dry_run {
+        return plan.report(found.as_mut());
+    }
+    let jobs = plan.jobs;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs)
+        .build()
+        .map_err(|e| solve_fail(format!("cannot start {jobs} worker threads: {e}")))?;
+    let mut rows = Rows::open(a, plan.hi - plan.lo)?;
+    let t0 = Instant::now();
+    // the journal's rows go to the output as they were; the rest is computed
+    let resumed = rows.start(a, &plan, &id, found, base.physical.is_some())?;
+    QUIET_PANICS.store(true, Ordering::SeqCst);
+    let c = compute(
+        &mut rows,
+        pool,
+        (&grid, &base, a),
+        (plan.lo + resumed.rows, plan.hi),
+        jobs,
+    );
     QUIET_PANICS.store(false, Ordering::SeqCst);
-    bar.finish_and_clear();
-    let kept = |f: Fail| match (&f, &journal_path) {
+    rows.bar.finish_and_clear();
+    finish(a, &plan, rows, resumed, c, t0)
+}
+
+/// Complete the output and the journal, and say how the sweep went: on a terminal the count,
+/// and an error when every scene failed.
+fn finish(
+    a: &SweepArgs,
+    plan: &Plan,
+    rows: Rows,
+    resumed: journal::Finished,
+    c: Computed,
+    t0: Instant,
+) -> Res<()> {
+    let kept = |f: Fail| match (&f, &plan.journal) {
         (Fail::Solve(m), Some(j)) => solve_fail(format!(
             "{m}; the {} finished rows are kept in {}: the same command resumes the sweep",
-            resumed.rows + done,
+            resumed.rows + c.done,
             j.display()
         )),
         _ => f,
     };
-    if let Some(e) = write_err {
+    if let Some(e) = c.write_err {
         return Err(kept(e.into()));
     }
+    let Rows {
+        sink,
+        journal,
+        show_bar,
+        ..
+    } = rows;
     sink.finish().map_err(kept)?;
     if let Some(j) = journal {
         let path = j.path().to_path_buf();
         j.close().map_err(kept)?;
-        outputs::remove_after_commit(path);
+        output_files::remove_after_commit(path);
     }
-    let rows = resumed.rows + done;
-    let failed = resumed.failed + failed;
+    let total = resumed.rows + c.done;
+    let failed = resumed.failed + c.failed;
     let dest = match &a.out {
         Some(p) => format!("; written to {}", p.display()),
         None => String::new(),
@@ -628,22 +752,22 @@ pub fn run(a: &SweepArgs) -> Res<()> {
             String::new()
         };
         crate::progress::note(&format!(
-            "sweep: {rows} scenes in {:.1} s ({} solved, {failed} with an error{from}){dest}",
+            "sweep: {total} scenes in {:.1} s ({} solved, {failed} with an error{from}){dest}",
             t0.elapsed().as_secs_f64(),
-            rows - failed
+            total - failed
         ));
     }
-    if rows > 0 && failed == rows {
+    if total > 0 && failed == total {
         // the file is written (every row says why its scene failed), and the exit code says
         // that no scene has a result
-        outputs::commit_all()?;
-        let which = if n > 1 {
-            format!("of shard {k}/{n} ")
+        output_files::commit_all()?;
+        let which = if plan.n > 1 {
+            format!("of shard {}/{} ", plan.k, plan.n)
         } else {
             String::new()
         };
         return Err(solve_fail(format!(
-            "every scene {which}failed ({rows} of {rows} rows have an error; the error column says why){dest}"
+            "every scene {which}failed ({total} of {total} rows have an error; the error column says why){dest}"
         )));
     }
     Ok(())
@@ -676,12 +800,12 @@ mod tests {
 
     #[test]
     fn grid_order_is_the_column_order() {
-        let ax = |s: &str| crate::numbers::parse_axis(s).unwrap();
+        let ax = |s: &str| crate::number_text::parse_axis(s).unwrap();
         let (eta, tol, d_max, points) = (ax("0.7,0.8"), ax("1e-10"), ax("0.1,0.2"), ax("3:5:2"));
-        let mu0 = crate::numbers::parse_axis_or_inf("0.5,inf").unwrap();
+        let mu0 = crate::number_text::parse_axis_or_inf("0.5,inf").unwrap();
         let g = Grid {
             scene: [Some(&eta), None, None, None, None, None],
-            method: vec![MethodArg::Shooting],
+            method: vec![Method::Shooting],
             tol: &tol,
             mu0: Some(&mu0),
             d_max: &d_max,

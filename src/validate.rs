@@ -1,13 +1,15 @@
-//! One validation layer for every command: the same range for the same quantity, whether it
-//! comes from a flag, a sweep axis or a scene file; messages name what the user typed (the flag,
-//! or the file and its key), the value with enough digits to see why it is outside, and the
-//! range. Also the limits on sizes (grid, memory) and threads.
+//! The program's side of validation: the library's ranges ([`vibrissa::limits`]) checked where
+//! the user typed the value, whether a flag, a sweep axis or a scene file, with messages that
+//! name what was typed (the flag, or the file and its key), the value with enough digits to see
+//! why it is outside, the range and why; which flags go together, the outputs, and the limits on
+//! sizes (grid, memory) and threads.
 
 use crate::cli::{Command, FiguresArgs, InferArgs, ScanArgs, SolveArgs, SweepArgs};
 use crate::error::{usage, Fail, Res};
-use crate::numbers::{digits, digits_to_decide, short};
-use std::f64::consts::{FRAC_PI_2, PI};
+use crate::number_text::{digits, short};
+use std::f64::consts::PI;
 use std::path::Path;
+use vibrissa::limits::{self, Range};
 use vibrissa::{Precurvature, Scene, Stiffness};
 
 /// Where a value came from, for the message.
@@ -21,179 +23,30 @@ pub enum Src<'a> {
     Default,
 }
 
-/// A closed or open interval, with its symbolic form and what it means.
-#[derive(Clone, Copy, Debug)]
-pub struct Range {
-    /// lower end
-    pub lo: f64,
-    /// whether `lo` itself is allowed
-    pub lo_closed: bool,
-    /// upper end
-    pub hi: f64,
-    /// whether `hi` itself is allowed
-    pub hi_closed: bool,
-    /// symbolic form, e.g. `(-pi/4, pi/4)`, or empty
-    pub symbol: &'static str,
-    /// why the range is what it is, or empty
-    pub why: &'static str,
-}
-
-impl Range {
-    const fn new(lo: f64, lo_closed: bool, hi: f64, hi_closed: bool) -> Range {
-        Range {
-            lo,
-            lo_closed,
-            hi,
-            hi_closed,
-            symbol: "",
-            why: "",
-        }
-    }
-    const fn sym(mut self, symbol: &'static str) -> Range {
-        self.symbol = symbol;
-        self
-    }
-    const fn why(mut self, why: &'static str) -> Range {
-        self.why = why;
-        self
-    }
-
-    /// Whether `v` is inside (NaN never is).
-    pub fn contains(&self, v: f64) -> bool {
-        let lo = if self.lo_closed {
-            v >= self.lo
-        } else {
-            v > self.lo
-        };
-        let hi = if self.hi_closed {
-            v <= self.hi
-        } else {
-            v < self.hi
-        };
-        lo && hi
-    }
-
-    fn show(&self, p: usize) -> String {
-        let end = |v: f64| {
-            if v.is_infinite() {
-                if v > 0.0 {
-                    "inf".to_string()
-                } else {
-                    "-inf".to_string()
-                }
-            } else {
-                digits(v, p)
-            }
-        };
-        let num = format!(
-            "{}{}, {}{}",
-            if self.lo_closed { '[' } else { '(' },
-            end(self.lo),
-            end(self.hi),
-            if self.hi_closed { ']' } else { ')' }
-        );
-        if self.symbol.is_empty() {
-            num
-        } else {
-            format!("{} = {num}", self.symbol)
-        }
-    }
-}
-
-/// Surface height of the paper's scan.
-pub fn eta_range() -> Range {
-    let (_, lo) = elastica::lower_limit();
-    Range::new(lo, false, 1.0, false).sym("(eta_, 1)").why(
-        "eta_ = 0.456946581044463625... is the tip height of the uniform clamped rod pushed straight down (alpha = 0) with a horizontal tip (phi1 = 0); on a lower surface the scan would start with the rod crossing it",
-    )
-}
-/// Taper ratio in [0.01, 1] (`vibrissa::MIN_TAPER`): below 0.01 the tip is 10^8 times more flexible than
-/// the foot, beyond what the solvers resolve and beyond real whiskers (0.02-0.2).
-pub const TAPER: Range = Range::new(vibrissa::MIN_TAPER, true, 1.0, true)
-    .why("tip/base radius ratio; real whiskers have 0.02-0.2, and below 0.01 the tip would be over 10^8 times more flexible than the foot");
-/// Pre-curvature at the foot (1/L): whiskers have |k0| < 2; 3 rad is a rest shape bent through
-/// 172 degrees. The rest curvature K0 + K1 s stays in this range along the rod.
-pub const PRECURVATURE: Range = Range::new(
-    -vibrissa::MAX_PRECURVATURE,
-    true,
-    vibrissa::MAX_PRECURVATURE,
-    true,
-)
-    .why("1/L; the rest curvature K0 + K1 s must stay within [-3, 3] along the rod: whiskers have |K0| < 2, and 3 already bends the rest shape through 172 degrees");
-/// Pre-curvature slope (1/L²): with |K0| <= 3 and |K0 + K1| <= 3, |K1| <= 6.
-pub const PRECURVATURE_SLOPE: Range = Range::new(
-    -2.0 * vibrissa::MAX_PRECURVATURE,
-    true,
-    2.0 * vibrissa::MAX_PRECURVATURE,
-    true,
-)
-.why("1/L^2; the rest curvature K0 + K1 s must stay within [-3, 3] along the rod");
-/// Support compliance (the library's range).
-pub const SUPPORT_COMPLIANCE: Range = Range::new(0.0, true, vibrissa::MAX_COMPLIANCE, true).why(
-    "L/(EI); 0 is a clamp, and with 1000 the foot turns a thousand times more than the rod bends: a hinge",
-);
-/// Surface inclination.
-pub const SURFACE_ANGLE: Range = Range::new(
-    -vibrissa::MAX_SURFACE_ANGLE,
-    false,
-    vibrissa::MAX_SURFACE_ANGLE,
-    false,
-)
-.sym("(-pi/4, pi/4)")
-.why("radians");
-/// Solver tolerance.
-pub const TOL: Range = Range::new(1e-15, true, 1e-2, true);
-/// Largest foot displacement of a scan.
-pub const D_MAX: Range = Range::new(0.0, false, 2.0, false).why("rod lengths");
-/// Stiction coefficient (`inf`: never slips).
-pub const MU0: Range = Range::new(0.0, true, f64::INFINITY, true);
-/// Force angle of `solve`: the surface pushes on the tip (fy = -f cos(alpha) < 0).
-pub const ALPHA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
-    .sym("(-pi/2, pi/2)")
-    .why("radians; the contact pushes the tip down, fy = -f cos(alpha) < 0");
-/// Tip slope of `solve`.
-pub const PHI1: Range = Range::new(-PI, true, PI, true)
-    .sym("[-pi, pi]")
-    .why("radians");
-/// Tip height target of `solve`.
-pub const TIP_HEIGHT: Range = Range::new(-1.0, false, 1.0, false).why("rod lengths");
-/// Physical dimensions.
-pub const POSITIVE: Range = Range::new(0.0, false, f64::INFINITY, false);
-/// Table values of a tabulated stiffness profile `b(s)` (flexibility relative to EI at the foot).
-pub const TABLE_B: Range = Range::new(vibrissa::MIN_B, true, vibrissa::MAX_B, true);
-/// Unit factors of the physical-unit columns: beyond this the columns would overflow or vanish.
-pub const UNIT: Range = Range::new(1e-150, true, 1e150, true);
-
-/// Most scenes of one sweep grid (the product of the axis lengths).
-pub const MAX_SCENES: u64 = 1_000_000_000;
-/// Memory budget of the values a command holds at once (bytes).
-pub const MEMORY_BUDGET: u64 = 1 << 30;
-/// Memory per shape sample of `scan --shapes` (measured: 1e6 samples, 100 MB resident).
-pub const BYTES_PER_SHAPE_SAMPLE: u64 = 100;
-/// Memory per scan point (measured: a 1e5-point scan, 22 MB resident above start-up).
-pub const BYTES_PER_SCAN_POINT: u64 = 250;
-/// `--jobs` above this many threads per core is capped (with a warning).
-pub const JOBS_PER_CORE: usize = 4;
-
-/// Check `v` against `r`; the message names the source and shows the range.
+/// Check `v` against `r`; the message names the source and shows the range and why.
 pub fn check(src: Src, v: f64, r: &Range) -> Res<()> {
+    check_why(src, v, r, r.explanation())
+}
+
+/// [`check`] with the reason `why` in the message (a range whose end is another flag's value).
+pub fn check_why(src: Src, v: f64, r: &Range, why: &str) -> Res<()> {
     if r.contains(v) {
         return Ok(());
     }
-    let p = digits_to_decide(v, &[r.lo, r.hi]);
+    let p = r.digits_for(v);
     let who = match src {
         Src::Flag(f) => format!("{f} {}", digits(v, p)),
         Src::File(path, key) => format!("scene file {}: {key} = {}", path.display(), digits(v, p)),
         Src::Default => format!("the default value {}", digits(v, p)),
     };
-    let why = if r.why.is_empty() {
+    let why = if why.is_empty() {
         String::new()
     } else {
-        format!(" ({})", r.why)
+        format!(" ({why})")
     };
     Err(usage(format!(
         "{who} is outside the valid range {}{why}",
-        r.show(p)
+        r.text(p)
     )))
 }
 
@@ -230,25 +83,33 @@ impl SceneSrc<'_> {
 
 /// Check every value of a scene.
 pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
-    check(src.of(src.eta, "eta"), sc.eta, &eta_range())?;
+    check(src.of(src.eta, "eta"), sc.eta, &limits::eta())?;
     match &sc.stiffness {
         Stiffness::Uniform => {}
         Stiffness::Taper { ratio } => {
-            check(src.of(src.taper, "stiffness.ratio"), *ratio, &TAPER)?;
+            check(src.of(src.taper, "stiffness.ratio"), *ratio, &limits::TAPER)?;
         }
         Stiffness::Table { b, .. } => {
             for v in b {
-                check(src.of(None, "stiffness.b"), *v, &TABLE_B)?;
+                check(src.of(None, "stiffness.b"), *v, &limits::TABLE_B)?;
             }
         }
     }
     match &sc.precurvature {
         Precurvature::None => {}
         Precurvature::Linear { k0, k1 } => {
-            check(src.of(src.k0, "precurvature.k0"), *k0, &PRECURVATURE)?;
-            check(src.of(src.k1, "precurvature.k1"), *k1, &PRECURVATURE_SLOPE)?;
+            check(
+                src.of(src.k0, "precurvature.k0"),
+                *k0,
+                &limits::PRECURVATURE,
+            )?;
+            check(
+                src.of(src.k1, "precurvature.k1"),
+                *k1,
+                &limits::PRECURVATURE_SLOPE,
+            )?;
             let end = k0 + k1;
-            if !PRECURVATURE.contains(end) {
+            if !limits::PRECURVATURE.contains(end) {
                 let who = match (src.k0.or(src.k1), src.file) {
                     (Some(_), _) | (None, None) => {
                         "--precurvature K0 + --precurvature-slope K1".to_string()
@@ -261,26 +122,28 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
                     }
                 };
                 return Err(usage(format!(
-                    "{who} = {} (the rest curvature at the tip) is outside the valid range [-3, 3] (1/L)",
-                    short(end)
+                    "{who} = {} (the rest curvature at the tip) is outside the valid range {} ({})",
+                    short(end),
+                    limits::PRECURVATURE.text(6),
+                    limits::PRECURVATURE.unit
                 )));
             }
         }
         Precurvature::Table { k, .. } => {
             for v in k {
-                check(src.of(None, "precurvature.k"), *v, &PRECURVATURE)?;
+                check(src.of(None, "precurvature.k"), *v, &limits::PRECURVATURE)?;
             }
         }
     }
     check(
         src.of(src.c, "support_compliance"),
         sc.support_compliance,
-        &SUPPORT_COMPLIANCE,
+        &limits::SUPPORT_COMPLIANCE,
     )?;
     check(
         src.of(src.beta, "surface_angle"),
         sc.surface_angle,
-        &SURFACE_ANGLE,
+        &limits::SURFACE_ANGLE,
     )?;
     if let Some(p) = &sc.physical {
         let keys = [
@@ -290,7 +153,7 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
         ];
         let vals = [p.length_mm, p.youngs_modulus_gpa, p.base_diameter_um];
         for i in 0..3 {
-            check(src.of(src.physical[i], keys[i]), vals[i], &POSITIVE)?;
+            check(src.of(src.physical[i], keys[i]), vals[i], &limits::PHYSICAL)?;
         }
         // in logarithms: the factors alone may overflow (E in Pa = GPa·1e9, d in m = µm·1e-6)
         let ln10 = std::f64::consts::LN_10;
@@ -305,17 +168,18 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
             ("the moment unit EI/L", "N m", log_ei - log_l),
         ] {
             let v = log_v.exp();
-            if !(log_v >= UNIT.lo.ln() && log_v <= UNIT.hi.ln()) {
+            if !(log_v >= limits::UNIT.lo.ln() && log_v <= limits::UNIT.hi.ln()) {
                 let shown = if v.is_finite() && v > 0.0 {
                     short(v)
                 } else {
                     format!("1e{:.0}", log_v / std::f64::consts::LN_10)
                 };
                 return Err(usage(format!(
-                    "the physical dimensions (length {} mm, Young's modulus {} GPa, base diameter {} um) give {name} = {shown} {unit}, outside [1e-150, 1e150]: the physical-unit columns would overflow or vanish",
+                    "the physical dimensions (length {} mm, Young's modulus {} GPa, base diameter {} um) give {name} = {shown} {unit}, outside {}: the physical-unit columns would overflow or vanish",
                     short(p.length_mm),
                     short(p.youngs_modulus_gpa),
-                    short(p.base_diameter_um)
+                    short(p.base_diameter_um),
+                    limits::UNIT.text(6)
                 )));
             }
         }
@@ -324,12 +188,18 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
 }
 
 fn tol(t: f64) -> Res<()> {
-    check(Src::Flag("--tol"), t, &TOL)
+    check(Src::Flag("--tol"), t, &limits::TOL)
 }
+
+/// `--mu0`: the library's range, and `inf` (never slips: no threshold).
+const MU0_FLAG: Range = Range {
+    hi_closed: true,
+    ..limits::MU0
+};
 
 fn mu0(m: &mut Option<f64>) -> Res<()> {
     if let Some(v) = *m {
-        check(Src::Flag("--mu0"), v, &MU0)?;
+        check(Src::Flag("--mu0"), v, &MU0_FLAG)?;
         if v == f64::INFINITY {
             // never slips: the same as no threshold
             *m = None;
@@ -354,7 +224,7 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Plot(a) => check(
             Src::Flag("--surface-angle"),
             a.surface_angle,
-            &SURFACE_ANGLE,
+            &limits::SURFACE_ANGLE,
         ),
     }
 }
@@ -363,7 +233,7 @@ fn solve(a: &mut SolveArgs) -> Res<()> {
     tol(a.solver.tol)?;
     if let Some(p) = a.peg {
         peg(p)?;
-        check(Src::Flag("--theta"), a.theta.unwrap_or(0.0), &THETA)?;
+        check(Src::Flag("--theta"), a.theta.unwrap_or(0.0), &limits::THETA)?;
         mu0(&mut a.mu0)?;
     } else if a.phi1.is_none() && a.eta.is_none() {
         return Err(usage(
@@ -371,13 +241,13 @@ fn solve(a: &mut SolveArgs) -> Res<()> {
         ));
     }
     if let Some(al) = a.alpha {
-        check(Src::Flag("--alpha"), al, &ALPHA)?;
+        check(Src::Flag("--alpha"), al, &limits::ALPHA)?;
     }
     if let Some(p) = a.phi1 {
-        check(Src::Flag("--phi1"), p, &PHI1)?;
+        check(Src::Flag("--phi1"), p, &limits::PHI1)?;
     }
     if let Some(h) = a.eta {
-        check(Src::Flag("--eta"), h, &TIP_HEIGHT)?;
+        check(Src::Flag("--eta"), h, &limits::TIP_HEIGHT)?;
     }
     if a.shape_out.as_deref().is_some_and(is_stdout) {
         return Err(usage(
@@ -386,11 +256,6 @@ fn solve(a: &mut SolveArgs) -> Res<()> {
     }
     Ok(())
 }
-
-/// Foot angle of a whisk (rad): within a quarter turn either way.
-pub const THETA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
-    .sym("(-pi/2, pi/2)")
-    .why("the foot turned clockwise, within a quarter turn");
 
 /// A point object: inside the reach of the rod (distance from the foot in (0, 1)).
 fn peg(p: crate::cli::Point) -> Res<()> {
@@ -407,7 +272,7 @@ fn peg(p: crate::cli::Point) -> Res<()> {
 fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
     tol(a.solver.tol)?;
     peg(a.peg)?;
-    check(Src::Flag("--theta-max"), a.theta_max, &THETA)?;
+    check(Src::Flag("--theta-max"), a.theta_max, &limits::THETA)?;
     mu0(&mut a.mu0)?;
     if a.out.as_deref().is_some_and(is_stdout) && a.json {
         return Err(usage(
@@ -419,12 +284,12 @@ fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
 
 fn locate(a: &mut crate::cli::LocateArgs) -> Res<()> {
     tol(a.solver.tol)?;
-    check(Src::Flag("--theta"), a.theta, &THETA)
+    check(Src::Flag("--theta"), a.theta, &limits::THETA)
 }
 
 fn scan(a: &mut ScanArgs) -> Res<()> {
     tol(a.solver.tol)?;
-    check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
+    check(Src::Flag("--d-max"), a.d_max, &limits::D_MAX)?;
     mu0(&mut a.mu0)?;
     table_outputs(
         "scan",
@@ -467,34 +332,23 @@ fn table_outputs(
             "--shape-points",
             shape_points as u64,
             "shape samples",
-            BYTES_PER_SHAPE_SAMPLE,
+            limits::BYTES_PER_SHAPE_SAMPLE,
         )?;
     }
     Ok(())
 }
 
-/// Largest foot displacement of a drag (the library's limit).
-pub const DRAG_D_MAX: Range =
-    Range::new(0.0, false, vibrissa::drag::MAX_DRAG, true).why("rod lengths");
-/// Static friction coefficient of a drag.
-pub const MU_S: Range = Range::new(0.0, true, vibrissa::drag::MAX_MU_S, true);
-/// Amplitude of a corrugation (rod lengths).
-pub const CORRUGATION_AMPLITUDE: Range = Range::new(-0.2, true, 0.2, true).why("rod lengths");
-/// Wavelength of a corrugation (rod lengths).
-pub const CORRUGATION_WAVELENGTH: Range = Range::new(0.01, true, 100.0, true).why("rod lengths");
-/// Phase of a corrugation (rad).
-pub const CORRUGATION_PHASE: Range = Range::new(-1000.0, true, 1000.0, true).why("radians");
-
 fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
     tol(a.solver.tol)?;
-    check(Src::Flag("--d-max"), a.d_max, &DRAG_D_MAX)?;
+    check(Src::Flag("--d-max"), a.d_max, &limits::DRAG_D_MAX)?;
     match (a.mu_s, a.mu_k) {
         (Some(s), Some(k)) => {
-            check(Src::Flag("--mu-s"), s, &MU_S)?;
-            let r = Range::new(0.0, true, s, false).why(
-                "kinetic friction below static, the upper end is --mu-s: with mu_k = mu_s the tip would slide steadily, without stick-slip",
+            check(Src::Flag("--mu-s"), s, &limits::MU_S)?;
+            let why = format!(
+                "kinetic friction below static, the upper end is --mu-s: {}",
+                limits::STICK_SLIP
             );
-            check(Src::Flag("--mu-k"), k, &r)?;
+            check_why(Src::Flag("--mu-k"), k, &limits::kinetic_friction(s), &why)?;
         }
         (Some(_), None) => {
             return Err(usage(
@@ -512,18 +366,22 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
         check(
             Src::Flag("--corrugation-amplitude"),
             v,
-            &CORRUGATION_AMPLITUDE,
+            &limits::CORRUGATION_AMPLITUDE,
         )?;
     }
     if let Some(v) = a.corrugation_wavelength {
         check(
             Src::Flag("--corrugation-wavelength"),
             v,
-            &CORRUGATION_WAVELENGTH,
+            &limits::CORRUGATION_WAVELENGTH,
         )?;
     }
     if let Some(v) = a.corrugation_phase {
-        check(Src::Flag("--corrugation-phase"), v, &CORRUGATION_PHASE)?;
+        check(
+            Src::Flag("--corrugation-phase"),
+            v,
+            &limits::CORRUGATION_PHASE,
+        )?;
     }
     match (a.corrugation_amplitude, a.corrugation_wavelength) {
         (Some(_), Some(_)) | (None, None) => {}
@@ -555,9 +413,9 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
 
 fn infer(a: &mut InferArgs) -> Res<()> {
     tol(a.solver.tol)?;
-    check(Src::Flag("--d-max"), a.d_max, &D_MAX)?;
-    let r = Range::new(0.0, true, a.d_max, true).why("rod lengths; the upper end is --d-max");
-    check(Src::Flag("--d0"), a.d0, &r)
+    check(Src::Flag("--d-max"), a.d_max, &limits::D_MAX)?;
+    let why = "rod lengths; the upper end is --d-max";
+    check_why(Src::Flag("--d0"), a.d0, &limits::d0(a.d_max), why)
 }
 
 fn sweep_flags(a: &mut SweepArgs) -> Res<()> {
@@ -566,11 +424,11 @@ fn sweep_flags(a: &mut SweepArgs) -> Res<()> {
         tol(t)?;
     }
     for v in a.d_max.extremes() {
-        check(Src::Flag("--d-max"), v, &D_MAX)?;
+        check(Src::Flag("--d-max"), v, &limits::D_MAX)?;
     }
     if let Some(m) = &a.mu0 {
         for v in m.extremes() {
-            check(Src::Flag("--mu0"), v, &MU0)?;
+            check(Src::Flag("--mu0"), v, &MU0_FLAG)?;
         }
     }
     if let Some(v) = a.points.first_fraction() {
@@ -581,16 +439,16 @@ fn sweep_flags(a: &mut SweepArgs) -> Res<()> {
         )));
     }
     // whole numbers, shown as such (as scan's --points: [2, 1000000])
-    let max = crate::cli::MAX_POINTS;
     for v in a.points.extremes() {
-        if !(2.0..=max as f64).contains(&v) {
+        if !limits::POINTS.contains(v) {
             let shown = if v.abs() < 1e15 {
                 format!("{}", v as i64)
             } else {
                 short(v)
             };
             return Err(usage(format!(
-                "--points {shown} is outside the valid range [2, {max}] (points per scan)"
+                "--points {shown} is outside the valid range {} (points per scan)",
+                limits::POINTS.text(6)
             )));
         }
     }
@@ -609,11 +467,12 @@ pub fn is_stdout(p: &Path) -> bool {
     p.as_os_str() == "-"
 }
 
-/// `a × b` items of `bytes` each within [`MEMORY_BUDGET`], else an error naming the product.
+/// `a × b` items of `bytes` each within the memory budget ([`limits::MEMORY_BUDGET`]), else an
+/// error naming the product.
 pub fn budget(fa: &str, a: u64, fb: &str, b: u64, what: &str, bytes: u64) -> Res<()> {
     let prod = a.saturating_mul(b);
     let need = prod.saturating_mul(bytes);
-    if need > MEMORY_BUDGET {
+    if need > limits::MEMORY_BUDGET {
         return Err(usage(format!(
             "{fa} {a} × {fb} {b} = {} {what} to hold in memory at once, about {} GB at {bytes} bytes each, more than the budget of 1 GB; lower one of them",
             short(prod as f64),
@@ -623,14 +482,14 @@ pub fn budget(fa: &str, a: u64, fb: &str, b: u64, what: &str, bytes: u64) -> Res
     Ok(())
 }
 
-/// Number of grid points: the product of the axis lengths, checked against [`MAX_SCENES`] by
-/// arithmetic (the grid itself is never built).
+/// Number of grid points: the product of the axis lengths, checked against
+/// [`limits::MAX_SCENES`] by arithmetic (the grid itself is never built).
 pub fn grid_size(axes: &[(&str, u64)]) -> Res<u64> {
     let mut n: u64 = 1;
     let mut overflow = false;
     for &(_, len) in axes {
         match n.checked_mul(len) {
-            Some(m) if m <= MAX_SCENES => n = m,
+            Some(m) if m <= limits::MAX_SCENES => n = m,
             _ => {
                 overflow = true;
                 break;
@@ -648,15 +507,16 @@ pub fn grid_size(axes: &[(&str, u64)]) -> Res<u64> {
             "the grid has {} = {} scenes, more than the limit of {}; split it into several sweeps",
             sizes.join(" × "),
             short(total),
-            short(MAX_SCENES as f64)
+            short(limits::MAX_SCENES as f64)
         )));
     }
     Ok(n)
 }
 
-/// Worker threads: `asked` (default: the cores), capped at [`JOBS_PER_CORE`] per core with a
-/// warning, and at the number of scenes.
+/// Worker threads: `asked` (default: the cores), capped at [`limits::JOBS_PER_CORE`] per core
+/// with a warning, and at the number of scenes.
 pub fn jobs(asked: Option<u32>, scenes: u64) -> usize {
+    use limits::JOBS_PER_CORE;
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     let cap = JOBS_PER_CORE * cores;
     let mut j = asked.map_or(cores, |j| j as usize);
@@ -672,42 +532,12 @@ pub fn jobs(asked: Option<u32>, scenes: u64) -> usize {
 /// The model's own check of a scene (tables and the rest), its message prefixed with the file.
 pub fn model_check(sc: &Scene, file: Option<&Path>) -> Res<()> {
     sc.validate().map_err(|e| {
-        let f = shorten(e.into());
+        let f = crate::error::shorten(e.into());
         match (file, f) {
             (Some(p), Fail::Usage(m)) => usage(format!("scene file {}: {m}", p.display())),
             (_, f) => f,
         }
     })
-}
-
-/// A hint in the user's terms for solver failures whose message is the model's own words (the
-/// model's error types are mapped to [`Fail`] in `numeric`; this adds what the user can do).
-pub fn explain(f: Fail) -> Fail {
-    let hint = |m: &str| -> Option<&'static str> {
-        if m.contains("pulled at the tip (f < 0)") {
-            Some("only a pulling force reaches this tip position, a surface cannot pull; in a scan the surface is then above the tip of the rod's rest shape: lower --eta or change the pre-curvature")
-        } else if m.contains("homotopy from the uniform clamped rod failed") {
-            Some("the start solve is followed from the paper's straight uniform rod to this scene and could not reach it; the scene may have no pushed contact at this height (try another --eta), or try another --method")
-        } else {
-            None
-        }
-    };
-    match f {
-        Fail::Solve(m) => match hint(&m) {
-            Some(h) => Fail::Solve(format!("{m} ({h})")),
-            None => Fail::Solve(m),
-        },
-        other => other,
-    }
-}
-
-/// Library errors rendered with short numbers (the model prints `{}` of an `f64`).
-pub fn shorten(f: Fail) -> Fail {
-    match f {
-        Fail::Usage(m) => Fail::Usage(crate::numbers::shorten_numbers(&m)),
-        Fail::Solve(m) => Fail::Solve(crate::numbers::shorten_numbers(&m)),
-        Fail::Closed => Fail::Closed,
-    }
 }
 
 /// Scene-file check that serde cannot do: keys that do not belong to the table's `kind` (serde

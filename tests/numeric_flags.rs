@@ -4,8 +4,8 @@
 //! here), so a new numeric flag is covered without editing this test.
 
 #[allow(dead_code)]
-#[path = "../src/numbers.rs"]
-mod numbers;
+#[path = "../src/number_text.rs"]
+mod number_text;
 
 #[allow(dead_code)]
 #[path = "../src/cli.rs"]
@@ -62,7 +62,7 @@ fn spellings(a: &clap::Arg) -> &'static [&'static str] {
     let t = a.get_value_parser().type_id();
     if t == std::any::TypeId::of::<u32>() {
         &["-1", "-0", "-1e-3", "-.5"]
-    } else if t == std::any::TypeId::of::<numbers::Axis>() {
+    } else if t == std::any::TypeId::of::<number_text::Axis>() {
         &["-0.1:0.1:3", "-1,0,1", "-.5", "-1e-3", "-5e-1,-.25", "-inf"]
     } else if t == std::any::TypeId::of::<cli::Shard>() {
         &["-1/3", "-1"]

@@ -1,4 +1,4 @@
-//! The output policy (src/outputs.rs), end to end: whole-command atomic files, symbolic links
+//! The output policy (src/output_files.rs), end to end: whole-command atomic files, symbolic links
 //! written through, devices and FIFOs written in place, long names, permissions kept, cleanup
 //! on SIGINT/SIGTERM, I/O errors that name the output, and a sweep that stops when its reader
 //! goes away or its output fails.

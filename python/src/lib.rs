@@ -28,21 +28,16 @@ fn raise(name: &str, msg: String) -> PyErr {
     )
 }
 
-/// The library's error as a Python exception with the same message; the input errors are those
-/// the program reports as bad input (exit 2), a surface the rod cannot reach among them.
+/// The library's error as a Python exception with the same message; the input errors are the
+/// library's ([`VibrissaError::is_input`]), those the program reports as bad input (exit 2), a
+/// surface the rod cannot reach among them.
 fn py_err(e: VibrissaError) -> PyErr {
-    let msg = e.to_string();
-    match e {
-        VibrissaError::OutOfRange { .. }
-        | VibrissaError::InvalidTable { .. }
-        | VibrissaError::InvalidName { .. }
-        | VibrissaError::MethodUnavailable { .. }
-        | VibrissaError::NotMeasurable { .. }
-        | VibrissaError::RangeCutShort { .. }
-        | VibrissaError::NoContact { .. }
-        | VibrissaError::OutOfReach { .. } => raise("InputError", msg),
-        _ => raise("SolveError", msg),
-    }
+    let class = if e.is_input() {
+        "InputError"
+    } else {
+        "SolveError"
+    };
+    raise(class, e.to_string())
 }
 
 /// A value from Python that does not fit the scene format, in the format's words.
@@ -182,15 +177,7 @@ fn scene_from_toml(text: &str) -> PyResult<(PyRod, PySurface)> {
 
 /// The solver settings from their Python arguments.
 fn config(method: &str, tol: f64, segments: usize, start: &str) -> PyResult<SolverConfig> {
-    let start = match start {
-        "pressed" => StartKind::Pressed,
-        "connected" => StartKind::Connected,
-        _ => {
-            return Err(input(format!(
-                "invalid start '{start}': valid values are pressed, connected"
-            )))
-        }
-    };
+    let start = start.parse::<StartKind>().map_err(py_err)?;
     let cfg = SolverConfig {
         method: method.parse::<Method>().map_err(py_err)?,
         tol,
@@ -203,20 +190,13 @@ fn config(method: &str, tol: f64, segments: usize, start: &str) -> PyResult<Solv
 }
 
 fn branch(name: &str) -> PyResult<BranchChoice> {
-    match name {
-        "convex" => Ok(BranchChoice::Convex),
-        "flex" => Ok(BranchChoice::Flex),
-        "any" => Ok(BranchChoice::Any),
-        _ => Err(input(format!(
-            "invalid branch '{name}': valid values are convex, flex, any"
-        ))),
-    }
+    name.parse::<BranchChoice>().map_err(py_err)
 }
 
 /// One rod under a tip force at angle `alpha` with one tip condition; returns the `Shape` as a
 /// dict plus `shape`, a list of `shape_points` samples (dicts of s, x, y, phi, kappa, m).
 #[pyfunction]
-#[pyo3(signature = (rod, alpha, *, phi1=None, eta=None, tip=None, branch="convex", method="shooting", tol=1e-10, segments=8, shape_points=101, start="pressed"))]
+#[pyo3(signature = (rod, alpha, *, phi1=None, eta=None, tip=None, branch="convex", method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, shape_points=vibrissa::limits::DEFAULT_SOLVE_SHAPE_POINTS, start="pressed"))]
 #[allow(clippy::too_many_arguments)]
 fn solve<'py>(
     py: Python<'py>,
@@ -265,6 +245,18 @@ fn solve<'py>(
     Ok(d)
 }
 
+/// The library's defaults of a scan and its solver (`ScanOptions::default()`) and the samples
+/// of a solved shape: the package's signatures read them (one source of the defaults).
+#[pyfunction]
+fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    let d = to_py(py, &ScanOptions::default())?;
+    d.set_item(
+        "solve_shape_points",
+        vibrissa::limits::DEFAULT_SOLVE_SHAPE_POINTS,
+    )?;
+    Ok(d)
+}
+
 /// Scan options from the Python arguments.
 #[allow(clippy::too_many_arguments)]
 fn scan_options(
@@ -277,15 +269,7 @@ fn scan_options(
     shape_points: Option<usize>,
     (contact, start): (&str, &str),
 ) -> PyResult<ScanOptions> {
-    let contact = match contact {
-        "anywhere" => ContactModel::Anywhere,
-        "tip" => ContactModel::Tip,
-        _ => {
-            return Err(input(format!(
-                "invalid contact '{contact}': valid values are anywhere, tip"
-            )))
-        }
-    };
+    let contact = contact.parse::<ContactModel>().map_err(py_err)?;
     let opts = ScanOptions {
         d_max,
         points,
@@ -301,7 +285,7 @@ fn scan_options(
 /// The stiction scan; returns the `ScanResult` as a dict (`points` and `shapes` as lists of
 /// dicts). `d`: output displacements instead of the uniform grid (`scan_at`).
 #[pyfunction]
-#[pyo3(signature = (rod, surface, *, d_max=0.5, points=201, d=None, mu0=None, method="shooting", tol=1e-10, segments=8, shape_points=None, contact="anywhere", start="pressed"))]
+#[pyo3(signature = (rod, surface, *, d_max=ScanOptions::DEFAULT_D_MAX, points=ScanOptions::DEFAULT_POINTS, d=None, mu0=None, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, shape_points=None, contact="anywhere", start="pressed"))]
 #[allow(clippy::too_many_arguments)]
 fn scan<'py>(
     py: Python<'py>,
@@ -340,7 +324,7 @@ fn scan<'py>(
 
 /// μ0 from the slip displacement `d0`; returns the `Inference` as a dict.
 #[pyfunction]
-#[pyo3(signature = (rod, surface, d0, *, d_max=0.5, points=201, method="shooting", tol=1e-10, segments=8, contact="anywhere", start="pressed"))]
+#[pyo3(signature = (rod, surface, d0, *, d_max=ScanOptions::DEFAULT_D_MAX, points=ScanOptions::DEFAULT_POINTS, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, contact="anywhere", start="pressed"))]
 #[allow(clippy::too_many_arguments)]
 fn infer<'py>(
     py: Python<'py>,
@@ -387,7 +371,7 @@ fn summary(mut r: ScanResult) -> (ScanResult, usize, vibrissa::ScanPoint) {
 /// last point (the start when it has none) and `error` (None, or the message). A failing scene does not stop the
 /// others.
 #[pyfunction]
-#[pyo3(signature = (scenes, *, d_max=0.5, points=201, mu0=None, method="shooting", tol=1e-10, segments=8, jobs=None, contact="anywhere", start="pressed"))]
+#[pyo3(signature = (scenes, *, d_max=ScanOptions::DEFAULT_D_MAX, points=ScanOptions::DEFAULT_POINTS, mu0=None, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, jobs=None, contact="anywhere", start="pressed"))]
 #[allow(clippy::too_many_arguments)]
 fn sweep<'py>(
     py: Python<'py>,
@@ -458,6 +442,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySurface>()?;
     m.add_function(wrap_pyfunction!(scene_from_dict, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(defaults, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(scan, m)?)?;
     m.add_function(wrap_pyfunction!(infer, m)?)?;

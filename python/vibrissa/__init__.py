@@ -38,6 +38,10 @@ from ._errors import Error, InputError, SolveError
 Rod = _core.Rod
 Surface = _core.Surface
 
+# the library's defaults (vibrissa::ScanOptions, SolverConfig): one source for the signatures
+_DEFAULTS = _core.defaults()
+_SOLVER = _DEFAULTS["solver"]
+
 __all__ = [
     "Rod",
     "Surface",
@@ -260,11 +264,11 @@ def solve(
     eta: Optional[float] = None,
     tip: Optional[Tuple[float, float]] = None,
     branch: str = "convex",
-    method: str = "shooting",
-    tol: float = 1e-10,
-    segments: int = 8,
-    shape_points: int = 101,
-    start: str = "pressed",
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+    shape_points: int = _DEFAULTS["solve_shape_points"],
+    start: str = _SOLVER["start"],
 ) -> Dict[str, Any]:
     """One rod under a tip force at angle ``alpha`` (rad) with one tip condition: the tip slope
     ``phi1``, the tip height ``eta`` or the tip position ``tip = (x1, y1)``.
@@ -298,16 +302,16 @@ def scan(
     rod: Any,
     surface: Any = None,
     *,
-    d_max: float = 0.5,
-    points: int = 201,
+    d_max: float = _DEFAULTS["d_max"],
+    points: int = _DEFAULTS["points"],
     d: Optional[Iterable[float]] = None,
     mu0: Optional[float] = None,
-    method: str = "shooting",
-    tol: float = 1e-10,
-    segments: int = 8,
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
     shape_points: Optional[int] = None,
-    contact: str = "anywhere",
-    start: str = "pressed",
+    contact: str = _DEFAULTS["contact"],
+    start: str = _SOLVER["start"],
 ) -> ScanResult:
     """The stiction scan: the foot moves right by d from 0 to ``d_max`` while the tip sticks
     on ``surface`` (default: flat at eta = 0.75); ``points`` output points uniform in d, or the
@@ -342,13 +346,13 @@ def infer(
     surface: Any,
     d0: float,
     *,
-    d_max: float = 0.5,
-    points: int = 201,
-    method: str = "shooting",
-    tol: float = 1e-10,
-    segments: int = 8,
-    contact: str = "anywhere",
-    start: str = "pressed",
+    d_max: float = _DEFAULTS["d_max"],
+    points: int = _DEFAULTS["points"],
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+    contact: str = _DEFAULTS["contact"],
+    start: str = _SOLVER["start"],
 ) -> Dict[str, Any]:
     """The stiction coefficient mu0 = |mu(d0)| from the slip displacement ``d0`` (as
     ``vibrissa infer``): a dict with ``mu0``, ``d0``, ``measurable_d`` (the range of d where
@@ -390,15 +394,15 @@ def grid(**axes: Union[float, Sequence[float]]) -> List[Dict[str, float]]:
 def sweep(
     scenes: Iterable[SceneLike],
     *,
-    d_max: float = 0.5,
-    points: int = 201,
+    d_max: float = _DEFAULTS["d_max"],
+    points: int = _DEFAULTS["points"],
     mu0: Optional[float] = None,
-    method: str = "shooting",
-    tol: float = 1e-10,
-    segments: int = 8,
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
     jobs: Optional[int] = None,
-    contact: str = "anywhere",
-    start: str = "pressed",
+    contact: str = _DEFAULTS["contact"],
+    start: str = _SOLVER["start"],
 ) -> Sweep:
     """Scans of many scenes in parallel (``jobs`` threads, default all cores; the GIL is
     released while they run), one summary row per scene in the order given. ``scenes``:

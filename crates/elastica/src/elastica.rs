@@ -1,60 +1,12 @@
 //! The uniform clamped rod with a tip force: closed-form solutions of sections 2.1.1 and 2.1.2.
 
-use crate::ellint::{f_e_sc, half_pi_plus, jacobi_am_reduced, Modulus};
+use crate::branch::Branch;
+use crate::ellint::{f_e_sc, half_pi_plus, jacobi_am_reduced, modulus_checked, Modulus};
 use crate::error::{finite, ElasticaError};
 use crate::roots::brent_root;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 use std::sync::OnceLock;
-
-/// Which family of elastica: without inflection (2.1.1) or with one flex point (2.1.2).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Branch {
-    /// Right-handed rod, curvature `<= 0` all along (section 2.1.1, force from (2.8)).
-    Convex,
-    /// One flex point at `s_b`: curvature `> 0` before it, `< 0` after (section 2.1.2, (2.15)).
-    OneFlex,
-}
-
-impl Branch {
-    /// Admissible `alpha` range of the branch: `[-pi/2, 0]` (convex, non-empty `phi1` range only
-    /// for `alpha >= -pi/4`) and `[-pi/4, 0]` (one flex, (2.13)).
-    pub fn alpha_range(self) -> (f64, f64) {
-        match self {
-            Branch::Convex => (-FRAC_PI_2, 0.0),
-            Branch::OneFlex => (-FRAC_PI_4, 0.0),
-        }
-    }
-}
-
-/// Tolerance on `phi1 <= pi/2 + 2 alpha`: a caller who computes `pi/2 + 2 alpha` in floating
-/// point may exceed the exact bound by a few ulp; such `phi1` are taken as the turning point.
-const TURNING_TOL: f64 = 4.0 * f64::EPSILON;
-
-/// Validate `(branch, alpha, phi1)` and compute the elliptic data.
-pub(crate) fn modulus_checked(
-    branch: Branch,
-    alpha: f64,
-    phi1: f64,
-) -> Result<Modulus, ElasticaError> {
-    finite("alpha", alpha)?;
-    finite("phi1", phi1)?;
-    let (min, max) = branch.alpha_range();
-    if !(min..=max).contains(&alpha) {
-        return Err(ElasticaError::AlphaOutOfRange { alpha, min, max });
-    }
-    let delta = half_pi_plus(1.0, &[2.0 * alpha, -phi1]);
-    if phi1 < 0.0 || delta < -TURNING_TOL {
-        return Err(ElasticaError::Phi1OutOfRange {
-            phi1,
-            min: 0.0,
-            max: FRAC_PI_2 + 2.0 * alpha,
-            branch,
-        });
-    }
-    let eps = half_pi_plus(1.0, &[-phi1]);
-    Modulus::new(alpha, phi1, delta, eps)
-}
 
 /// One point of an elastica: arc length, position, slope and curvature (= internal moment).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -14,6 +14,7 @@
 //! `m = (1 - sin(phi1 - alpha))/2 <= 1/2` always (because `phi1 >= 0 >= alpha`), so `m -> 1` does
 //! not occur in the elastica itself; the tests still document `ellip`'s behaviour there.
 
+use crate::branch::Branch;
 use crate::error::{finite, ElasticaError};
 use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 
@@ -349,10 +350,39 @@ impl Modulus {
     }
 }
 
+/// Tolerance on `phi1 <= pi/2 + 2 alpha`: a caller who computes `pi/2 + 2 alpha` in floating
+/// point may exceed the exact bound by a few ulp; such `phi1` are taken as the turning point.
+const TURNING_TOL: f64 = 4.0 * f64::EPSILON;
+
+/// Validate `(branch, alpha, phi1)` and compute the elliptic data.
+pub(crate) fn modulus_checked(
+    branch: Branch,
+    alpha: f64,
+    phi1: f64,
+) -> Result<Modulus, ElasticaError> {
+    finite("alpha", alpha)?;
+    finite("phi1", phi1)?;
+    let (min, max) = branch.alpha_range();
+    if !(min..=max).contains(&alpha) {
+        return Err(ElasticaError::AlphaOutOfRange { alpha, min, max });
+    }
+    let delta = half_pi_plus(1.0, &[2.0 * alpha, -phi1]);
+    if phi1 < 0.0 || delta < -TURNING_TOL {
+        return Err(ElasticaError::Phi1OutOfRange {
+            phi1,
+            min: 0.0,
+            max: FRAC_PI_2 + 2.0 * alpha,
+            branch,
+        });
+    }
+    let eps = half_pi_plus(1.0, &[-phi1]);
+    Modulus::new(alpha, phi1, delta, eps)
+}
+
 /// Validate the general (branch-free) domain of the paper's integrals: `alpha in [-pi/2, 0]`,
 /// `phi1 in [0, pi/2 + 2 alpha]`, and `phi in [phi1, phi_b]`.
 fn modulus_for(phi: f64, phi1: f64, alpha: f64) -> Result<Modulus, ElasticaError> {
-    let md = crate::elastica::modulus_checked(crate::Branch::Convex, alpha, phi1)?;
+    let md = modulus_checked(Branch::Convex, alpha, phi1)?;
     finite("phi", phi)?;
     let phib = md.phi_b();
     if phi < phi1 || phi > phib {

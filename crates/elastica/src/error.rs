@@ -1,6 +1,6 @@
 //! The crate's error type.
 
-use crate::Branch;
+use crate::branch::Branch;
 
 /// Everything that can go wrong in this crate. Every variant carries the offending value and,
 /// where there is one, the valid range, so that the message alone tells the caller what to fix.
@@ -111,6 +111,23 @@ pub enum ElasticaError {
     /// An error reported by the `ellip` crate.
     #[error("elliptic integral: {0}")]
     Ellip(&'static str),
+}
+
+impl ElasticaError {
+    /// Whether the error is about the input (a value outside the closed forms' domain, or a
+    /// scan height without the phase asked for) rather than a failed computation: the caller's
+    /// to fix by changing the input.
+    pub fn is_input(&self) -> bool {
+        matches!(
+            self,
+            ElasticaError::AlphaOutOfRange { .. }
+                | ElasticaError::Phi1OutOfRange { .. }
+                | ElasticaError::EtaOutOfRange { .. }
+                | ElasticaError::NotFinite { .. }
+                | ElasticaError::OutOfRange { .. }
+                | ElasticaError::NoFlexPhase { .. }
+        )
+    }
 }
 
 /// Check that `value` is finite.

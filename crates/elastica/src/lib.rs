@@ -51,15 +51,17 @@
 //! * [`ElasticaError`]: typed errors; nothing here returns NaN or panics on bad input.
 #![warn(missing_docs)]
 
+mod branch;
 mod elastica;
 pub mod ellint;
 mod error;
 pub mod roots;
 mod scan;
 
+pub use branch::Branch;
 pub use elastica::{
-    convex_force, flex_force, lower_limit, solve_eta, solve_eta_all, turning_point, Branch,
-    Elastica, ShapePoint,
+    convex_force, flex_force, lower_limit, solve_eta, solve_eta_all, turning_point, Elastica,
+    ShapePoint,
 };
 pub use error::ElasticaError;
 pub use scan::{ClosedFormScan, Phase0End, ScanPoint};

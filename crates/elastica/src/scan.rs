@@ -10,7 +10,8 @@
 //! (`phase1_upper_at_phi1`), which only pseudo-arclength continuation (crate `vibrissa`) follows
 //! in `d`.
 
-use crate::elastica::{solve_eta, Branch, Elastica};
+use crate::branch::Branch;
+use crate::elastica::{solve_eta, Elastica};
 use crate::error::{finite, ElasticaError};
 use crate::roots::{brent_max, brent_root};
 use crate::{ellint::half_pi_plus, lower_limit};

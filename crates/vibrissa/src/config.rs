@@ -1,5 +1,6 @@
 //! Solver settings: the method, its tolerance, the engine built from them, the tip condition.
 
+use crate::limits;
 use crate::VibrissaError;
 use bvp::{
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Integrator, NewtonOptions,
@@ -45,6 +46,20 @@ impl Method {
             Method::Collocation4 => "collocation",
             Method::Collocation6 => "collocation6",
             Method::Analytic => "analytic",
+        }
+    }
+    /// What the method is, in one line (the program's `--help` lists it).
+    pub fn help(self) -> &'static str {
+        match self {
+            Method::Shooting => {
+                "single shooting (adaptive Runge-Kutta, Newton on the unknown initial values)"
+            }
+            Method::MultipleShooting => "multiple shooting (several segments)",
+            Method::Collocation4 => "Lobatto IIIA collocation of order 4 with mesh adaptation",
+            Method::Collocation6 => "Lobatto IIIA collocation of order 6 with mesh adaptation",
+            Method::Analytic => {
+                "closed-form elliptic-integral solution (uniform clamped straight rod only)"
+            }
         }
     }
 }
@@ -98,8 +113,8 @@ impl Default for SolverConfig {
     fn default() -> Self {
         SolverConfig {
             method: Method::Shooting,
-            tol: 1e-10,
-            segments: 8,
+            tol: SolverConfig::DEFAULT_TOL,
+            segments: SolverConfig::DEFAULT_SEGMENTS,
             rk4_steps: None,
             start: StartKind::Pressed,
         }
@@ -107,27 +122,23 @@ impl Default for SolverConfig {
 }
 
 impl SolverConfig {
+    /// The default tolerance.
+    pub const DEFAULT_TOL: f64 = 1e-10;
+    /// The default number of segments of multiple shooting.
+    pub const DEFAULT_SEGMENTS: usize = 8;
+
     /// The tolerance of the rod's own shooter when this configuration is plain single shooting
     /// with the adaptive integrator (which the shooter replaces), else `None`.
     pub(crate) fn own_shooter_tol(&self) -> Option<f64> {
         (self.method == Method::Shooting && self.rk4_steps.is_none()).then_some(self.tol)
     }
-    /// Checks the values: `tol ∈ [1e-15, 1e-2]`, `segments ∈ [1, 10000]`, `rk4_steps ≥ 1`.
+    /// Checks the values against [`limits`](crate::limits): `tol ∈ [1e-15, 1e-2]`,
+    /// `segments ∈ [1, 10000]`, `rk4_steps ∈ [1, 1e7]`.
     pub fn validate(&self) -> Result<(), VibrissaError> {
-        if !(self.tol >= 1e-15 && self.tol <= 1e-2) {
-            return Err(VibrissaError::range("tol", self.tol, "[1e-15, 1e-2]"));
-        }
-        if !(1..=10_000).contains(&self.segments) {
-            return Err(VibrissaError::range(
-                "segments",
-                self.segments as f64,
-                "[1, 10000]",
-            ));
-        }
+        limits::TOL.check("tol", self.tol)?;
+        limits::SEGMENTS.check_count("segments", self.segments)?;
         if let Some(n) = self.rk4_steps {
-            if !(1..=10_000_000).contains(&n) {
-                return Err(VibrissaError::range("rk4_steps", n as f64, "[1, 1e7]"));
-            }
+            limits::RK4_STEPS.check_count("rk4_steps", n)?;
         }
         Ok(())
     }
@@ -239,6 +250,39 @@ pub enum Target {
         /// Tip y.
         y1: f64,
     },
+}
+
+impl StartKind {
+    /// Every start.
+    pub const ALL: [StartKind; 2] = [StartKind::Pressed, StartKind::Connected];
+    /// The name in scene files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            StartKind::Pressed => "pressed",
+            StartKind::Connected => "connected",
+        }
+    }
+    /// What the start is, in one line (the program's `--help` lists it).
+    pub fn help(self) -> &'static str {
+        match self {
+            StartKind::Pressed => "pressed onto the surface from the rest shape",
+            StartKind::Connected => "connected to the pressed straight uniform rod",
+        }
+    }
+}
+
+impl FromStr for StartKind {
+    type Err = VibrissaError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        StartKind::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| VibrissaError::InvalidName {
+                name: "start",
+                value: s.to_string(),
+                valid: "pressed, connected",
+            })
+    }
 }
 
 /// Which equilibrium a scan or a solve starts from.

@@ -41,10 +41,10 @@ use serde::Serialize;
 use std::fmt;
 use std::sync::Arc;
 
-/// Largest foot displacement of a drag (rod lengths).
-pub const MAX_DRAG: f64 = 1000.0;
-/// Largest static friction coefficient of a drag.
-pub const MAX_MU_S: f64 = 100.0;
+/// Largest foot displacement of a drag (rod lengths; [`limits::DRAG_D_MAX`](crate::limits)).
+pub const MAX_DRAG: f64 = crate::limits::DRAG_D_MAX.hi;
+/// Largest static friction coefficient of a drag ([`limits::MU_S`](crate::limits)).
+pub const MAX_MU_S: f64 = crate::limits::MU_S.hi;
 /// Longest slip the march follows (rod lengths along the surface) before it calls the slip
 /// unbounded.
 pub const MAX_SLIP: f64 = 4.0;
@@ -91,38 +91,17 @@ impl Default for DragOptions {
 }
 
 impl DragOptions {
-    /// Checks every value; the error names it and its valid range.
+    /// Checks every value against [`limits`](crate::limits); the error names it and its valid
+    /// range. Kinetic friction stays below static ([`limits::kinetic_friction`]).
     pub fn validate(&self) -> Result<(), VibrissaError> {
-        if !(self.d_max > 0.0 && self.d_max <= MAX_DRAG) {
-            return Err(VibrissaError::range(
-                "d_max",
-                self.d_max,
-                format!("(0, {MAX_DRAG}] rod lengths"),
-            ));
-        }
-        if !(2..=1_000_000).contains(&self.points) {
-            return Err(VibrissaError::range(
-                "points",
-                self.points as f64,
-                "[2, 1000000]",
-            ));
-        }
+        use crate::limits;
+        limits::DRAG_D_MAX.check("d_max", self.d_max)?;
+        limits::POINTS.check_count("points", self.points)?;
         match (self.mu_s, self.mu_k) {
             (None, None) => {}
             (Some(s), Some(k)) => {
-                if !(s.is_finite() && (0.0..=MAX_MU_S).contains(&s)) {
-                    return Err(VibrissaError::range("mu_s", s, format!("[0, {MAX_MU_S}]")));
-                }
-                if !(k.is_finite() && k >= 0.0 && k < s) {
-                    return Err(VibrissaError::range(
-                        "mu_k",
-                        k,
-                        format!(
-                            "[0, mu_s = {s}) (kinetic friction below static: with mu_k = mu_s \
-                             the tip would slide steadily, no stick-slip)"
-                        ),
-                    ));
-                }
+                limits::MU_S.check("mu_s", s)?;
+                limits::kinetic_friction(s).check("mu_k", k)?;
             }
             (s, _) => {
                 return Err(VibrissaError::range(
@@ -133,17 +112,9 @@ impl DragOptions {
             }
         }
         if let Some(n) = self.keep_shapes {
-            if !(2..=100_000).contains(&n) {
-                return Err(VibrissaError::range("keep_shapes", n as f64, "[2, 100000]"));
-            }
+            limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
         }
-        if !(1..=1_000_000).contains(&self.max_slips) {
-            return Err(VibrissaError::range(
-                "max_slips",
-                self.max_slips as f64,
-                "[1, 1000000]",
-            ));
-        }
+        limits::MAX_SLIPS.check_count("max_slips", self.max_slips)?;
         if self.solver.method == Method::Analytic {
             return Err(VibrissaError::MethodUnavailable {
                 method: "analytic".into(),

@@ -131,6 +131,26 @@ pub enum VibrissaError {
 }
 
 impl VibrissaError {
+    /// Whether the error is the caller's to fix by changing the input: a value outside its
+    /// range, a malformed table or name, a method this scene does not have, a displacement
+    /// outside the measurable range, a surface or object the rod does not reach (and a closed
+    /// form refused for its input). The others are failures of a computation on valid input.
+    /// The program reports the first kind as bad input (exit 2), Python raises `InputError`.
+    pub fn is_input(&self) -> bool {
+        match self {
+            VibrissaError::OutOfRange { .. }
+            | VibrissaError::InvalidTable { .. }
+            | VibrissaError::MethodUnavailable { .. }
+            | VibrissaError::NotMeasurable { .. }
+            | VibrissaError::RangeCutShort { .. }
+            | VibrissaError::NoContact { .. }
+            | VibrissaError::OutOfReach { .. }
+            | VibrissaError::InvalidName { .. } => true,
+            VibrissaError::Elastica { source, .. } => source.is_input(),
+            _ => false,
+        }
+    }
+
     pub(crate) fn range(name: impl Into<String>, value: f64, range: impl Into<String>) -> Self {
         VibrissaError::OutOfRange {
             name: name.into(),

@@ -60,9 +60,9 @@
 #![warn(missing_docs)]
 
 // Modules import downward only (tests/layering.rs checks it): kind, parts, search → profile,
-// error → config, rod → scene; equations → shooter → rodsolve → arclength → chain; sampling →
-// shape → report → watch → stepper (the step contract) → events, fold, record → own, generic →
-// march (the driver) → engine (the one way in) → start, ground → scan, drag, peg, solve.
+// error → limits → config, rod → scene; equations → shooter → rodsolve → arclength → chain;
+// sampling → shape → report → watch → stepper (the step contract) → events, fold, record → own,
+// generic → march (the driver) → engine (the one way in) → start, ground → scan, drag, peg, solve.
 mod analytic;
 mod arclength;
 mod chain;
@@ -78,6 +78,7 @@ mod fold;
 mod generic;
 mod ground;
 mod kind;
+pub mod limits;
 mod march;
 mod own;
 mod parts;

@@ -89,31 +89,17 @@ impl Default for WhiskOptions {
 }
 
 impl WhiskOptions {
-    /// Checks: `theta_max ∈ (−π/2, π/2)`, `points ∈ [2, 1e6]`, `mu0 ≥ 0` finite, the solver.
+    /// Checks against [`limits`](crate::limits): `theta_max ∈ (−π/2, π/2)`,
+    /// `points ∈ [2, 1e6]`, `mu0 ≥ 0` finite, `keep_shapes ∈ [2, 1e5]`, the solver.
     pub fn validate(&self) -> Result<(), VibrissaError> {
-        if !(self.theta_max.is_finite() && self.theta_max.abs() < FRAC_PI_2) {
-            return Err(VibrissaError::range(
-                "theta_max",
-                self.theta_max,
-                "(-pi/2, pi/2)",
-            ));
-        }
-        if !(2..=1_000_000).contains(&self.points) {
-            return Err(VibrissaError::range(
-                "points",
-                self.points as f64,
-                "[2, 1000000]",
-            ));
-        }
+        use crate::limits;
+        limits::THETA.check("theta_max", self.theta_max)?;
+        limits::POINTS.check_count("points", self.points)?;
         if let Some(m) = self.mu0 {
-            if !(m.is_finite() && m >= 0.0) {
-                return Err(VibrissaError::range("mu0", m, "[0, inf)"));
-            }
+            limits::MU0.check("mu0", m)?;
         }
         if let Some(n) = self.keep_shapes {
-            if !(2..=100_000).contains(&n) {
-                return Err(VibrissaError::range("keep_shapes", n as f64, "[2, 100000]"));
-            }
+            limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
         }
         self.solver.validate()
     }

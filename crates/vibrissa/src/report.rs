@@ -17,6 +17,7 @@
 //! reaches 0 (where `|μ|` grows without bound).
 
 use crate::config::SolverConfig;
+use crate::limits;
 use crate::shape::ShapePoint;
 use crate::VibrissaError;
 use serde::Serialize;
@@ -53,11 +54,44 @@ pub enum ContactModel {
     Tip,
 }
 
+impl ContactModel {
+    /// Every model.
+    pub const ALL: [ContactModel; 2] = [ContactModel::Anywhere, ContactModel::Tip];
+    /// The name in scene files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactModel::Anywhere => "anywhere",
+            ContactModel::Tip => "tip",
+        }
+    }
+    /// What the model is, in one line (the program's `--help` lists it).
+    pub fn help(self) -> &'static str {
+        match self {
+            ContactModel::Anywhere => "anywhere along the rod (the paper's compound constraint)",
+            ContactModel::Tip => "the tip alone (the paper's model)",
+        }
+    }
+}
+
+impl std::str::FromStr for ContactModel {
+    type Err = VibrissaError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        ContactModel::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| VibrissaError::InvalidName {
+                name: "contact",
+                value: s.to_string(),
+                valid: "anywhere, tip",
+            })
+    }
+}
+
 impl Default for ScanOptions {
     fn default() -> Self {
         ScanOptions {
-            d_max: 0.5,
-            points: 201,
+            d_max: ScanOptions::DEFAULT_D_MAX,
+            points: ScanOptions::DEFAULT_POINTS,
             mu0: None,
             solver: SolverConfig::default(),
             keep_shapes: None,
@@ -67,27 +101,21 @@ impl Default for ScanOptions {
 }
 
 impl ScanOptions {
-    /// Checks: `d_max ∈ (0, 2)`, `points ∈ [2, 1e6]`, `mu0 ≥ 0` finite, `keep_shapes ≥ 2`.
+    /// The default largest foot displacement (rod lengths).
+    pub const DEFAULT_D_MAX: f64 = 0.5;
+    /// The default number of output points (`d` in steps of 0.0025 to the default `d_max`).
+    pub const DEFAULT_POINTS: usize = 201;
+
+    /// Checks against [`limits`](crate::limits): `d_max ∈ (0, 2)`, `points ∈ [2, 1e6]`,
+    /// `mu0 ≥ 0` finite, `keep_shapes ∈ [2, 1e5]`, the solver.
     pub fn validate(&self) -> Result<(), VibrissaError> {
-        if !(self.d_max > 0.0 && self.d_max < 2.0) {
-            return Err(VibrissaError::range("d_max", self.d_max, "(0, 2)"));
-        }
-        if !(2..=1_000_000).contains(&self.points) {
-            return Err(VibrissaError::range(
-                "points",
-                self.points as f64,
-                "[2, 1000000]",
-            ));
-        }
+        limits::D_MAX.check("d_max", self.d_max)?;
+        limits::POINTS.check_count("points", self.points)?;
         if let Some(mu0) = self.mu0 {
-            if !(mu0.is_finite() && mu0 >= 0.0) {
-                return Err(VibrissaError::range("mu0", mu0, "[0, inf)"));
-            }
+            limits::MU0.check("mu0", mu0)?;
         }
         if let Some(n) = self.keep_shapes {
-            if !(2..=100_000).contains(&n) {
-                return Err(VibrissaError::range("keep_shapes", n as f64, "[2, 100000]"));
-            }
+            limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
         }
         self.solver.validate()
     }
@@ -311,6 +339,34 @@ pub enum StopReason {
 }
 
 impl StopReason {
+    /// The reason's name in CSV and JSON (`d_max`, `slip`, `lift_off`, `penetration`,
+    /// `fold_in_d`, `slip_off`, `contact_change`, `solver_failure`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            StopReason::DMax => "d_max",
+            StopReason::Slip { .. } => "slip",
+            StopReason::LiftOff { .. } => "lift_off",
+            StopReason::Penetration { .. } => "penetration",
+            StopReason::FoldInD { .. } => "fold_in_d",
+            StopReason::SlipOff { .. } => "slip_off",
+            StopReason::ContactChange { .. } => "contact_change",
+            StopReason::SolverFailure { .. } => "solver_failure",
+        }
+    }
+    /// Where the march stopped (its parameter: `d`, or the foot angle of a whisk); `None` at
+    /// the end of the range.
+    pub fn at(&self) -> Option<f64> {
+        match self {
+            StopReason::DMax => None,
+            StopReason::Slip { d, .. }
+            | StopReason::LiftOff { d, .. }
+            | StopReason::Penetration { d, .. }
+            | StopReason::FoldInD { d }
+            | StopReason::SlipOff { d }
+            | StopReason::ContactChange { d, .. }
+            | StopReason::SolverFailure { d, .. } => Some(*d),
+        }
+    }
     /// In words, with `param` the name of the marched parameter (`d` for a scan, `theta` for a
     /// whisk); `Display` is `describe("d")`.
     pub fn describe(&self, param: &str) -> String {

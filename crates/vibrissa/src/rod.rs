@@ -1,10 +1,10 @@
 //! The rod (stiffness profile, rest curvature, support; no surface) and the surface its tip
 //! touches, each validated once; physical units.
 
+use crate::limits::{self, Range};
 use crate::parts::{Physical, Precurvature, Stiffness};
 use crate::profile::General;
 use crate::VibrissaError;
-use std::f64::consts::FRAC_PI_4;
 use std::sync::Arc;
 
 /// Physical units of a rod with [`Physical`] dimensions.
@@ -21,19 +21,19 @@ pub struct Units {
 /// Largest rest curvature `|κ0(s)|` (1/L): 3 already bends the rest shape through 172°; whiskers
 /// have `|κ0| < 2`. More curled rods touch a surface above them only when pulled, or start on
 /// branches that pressing cannot reach.
-pub const MAX_PRECURVATURE: f64 = 3.0;
+pub const MAX_PRECURVATURE: f64 = limits::PRECURVATURE.hi;
 /// Largest support compliance `c` (L/EI): with `c = 1000` the foot turns a thousand times more
 /// than the rod bends, a hinge for every purpose (μ_max within 0.2 % of `c = 10⁴`).
-pub const MAX_COMPLIANCE: f64 = 1e3;
+pub const MAX_COMPLIANCE: f64 = limits::SUPPORT_COMPLIANCE.hi;
 /// Smallest taper ratio ρ (tip/base radius): the tip is `ρ⁻⁴ = 10⁸` times more flexible than the
 /// foot; real whiskers have 0.02–0.2.
-pub const MIN_TAPER: f64 = 0.01;
+pub const MIN_TAPER: f64 = limits::TAPER.lo;
 /// Range `[MIN_B, MAX_B]` of a tabulated reciprocal stiffness `b` (relative to the foot).
-pub const MIN_B: f64 = 1e-8;
+pub const MIN_B: f64 = limits::TABLE_B.lo;
 /// See [`MIN_B`].
-pub const MAX_B: f64 = 1e8;
+pub const MAX_B: f64 = limits::TABLE_B.hi;
 /// Largest surface inclination `|β|` (rad, exclusive).
-pub const MAX_SURFACE_ANGLE: f64 = FRAC_PI_4;
+pub const MAX_SURFACE_ANGLE: f64 = limits::SURFACE_ANGLE.hi;
 
 /// A validated rod: reciprocal bending stiffness `b(s)`, rest curvature `κ0(s)`, support
 /// compliance `c` (`φ(0) = π/2 + c·m(0)`; 0 is a clamp), optional physical dimensions. It carries
@@ -110,27 +110,9 @@ impl RodBuilder {
     }
 }
 
-fn finite_within(name: &str, v: f64, bound: f64) -> Result<(), VibrissaError> {
-    if v.is_finite() && v.abs() <= bound {
-        Ok(())
-    } else {
-        Err(VibrissaError::range(
-            name,
-            v,
-            format!("[-{bound}, {bound}] (1/L)"),
-        ))
-    }
-}
-
 /// Checks a piecewise-linear table: equal lengths ≥ 2, finite, `s` strictly increasing, covering
-/// `[0, 1]`; values `valid` (described by `range`).
-fn check_table(
-    name: &str,
-    s: &[f64],
-    v: &[f64],
-    valid: impl Fn(f64) -> bool,
-    range: &str,
-) -> Result<(), VibrissaError> {
+/// `[0, 1]`; values in `valid`.
+fn check_table(name: &str, s: &[f64], v: &[f64], valid: &Range) -> Result<(), VibrissaError> {
     let bad = |reason: String| VibrissaError::InvalidTable {
         name: name.to_string(),
         reason,
@@ -154,9 +136,14 @@ fn check_table(
                 "entry {i} (s = {si}, value = {vi}) is not finite"
             )));
         }
-        if !valid(vi) {
+        if !valid.contains(vi) {
+            let unit = match valid.unit {
+                "" => String::new(),
+                u => format!(" ({u})"),
+            };
             return Err(bad(format!(
-                "value {vi} at s = {si} (entry {i}) is outside the valid range {range}"
+                "value {vi} at s = {si} (entry {i}) is outside the valid range {}{unit}",
+                valid.text(6)
             )));
         }
         if i > 0 && si <= s[i - 1] {
@@ -204,54 +191,28 @@ impl Rod {
     ) -> Result<Rod, VibrissaError> {
         match &stiffness {
             Stiffness::Uniform => {}
-            Stiffness::Taper { ratio } => {
-                if !(*ratio >= MIN_TAPER && *ratio <= 1.0) {
-                    return Err(VibrissaError::range(
-                        "taper ratio",
-                        *ratio,
-                        format!("[{MIN_TAPER}, 1]"),
-                    ));
-                }
-            }
-            Stiffness::Table { s, b } => check_table(
-                "stiffness",
-                s,
-                b,
-                |v| (MIN_B..=MAX_B).contains(&v),
-                &format!("[{MIN_B:e}, {MAX_B:e}]"),
-            )?,
+            Stiffness::Taper { ratio } => limits::TAPER.check("taper ratio", *ratio)?,
+            Stiffness::Table { s, b } => check_table("stiffness", s, b, &limits::TABLE_B)?,
         }
         match &precurvature {
             Precurvature::None => {}
             Precurvature::Linear { k0, k1 } => {
-                finite_within("precurvature k0", *k0, MAX_PRECURVATURE)?;
-                finite_within("precurvature k0 + k1", k0 + k1, MAX_PRECURVATURE)?;
+                limits::PRECURVATURE.check("precurvature k0", *k0)?;
+                limits::PRECURVATURE.check("precurvature k0 + k1", k0 + k1)?;
             }
-            Precurvature::Table { s, k } => check_table(
-                "precurvature",
-                s,
-                k,
-                |v| v.abs() <= MAX_PRECURVATURE,
-                &format!("[-{MAX_PRECURVATURE}, {MAX_PRECURVATURE}] (1/L)"),
-            )?,
+            Precurvature::Table { s, k } => {
+                check_table("precurvature", s, k, &limits::PRECURVATURE)?
+            }
         }
         let c = support_compliance;
-        if !(c.is_finite() && (0.0..=MAX_COMPLIANCE).contains(&c)) {
-            return Err(VibrissaError::range(
-                "support compliance",
-                c,
-                format!("[0, {MAX_COMPLIANCE}] (L/EI)"),
-            ));
-        }
+        limits::SUPPORT_COMPLIANCE.check("support compliance", c)?;
         if let Some(p) = &physical {
             for (name, v) in [
                 ("length_mm", p.length_mm),
                 ("youngs_modulus_gpa", p.youngs_modulus_gpa),
                 ("base_diameter_um", p.base_diameter_um),
             ] {
-                if !(v.is_finite() && v > 0.0) {
-                    return Err(VibrissaError::range(name, v, "(0, inf)"));
-                }
+                limits::PHYSICAL.check(name, v)?;
             }
         }
         let uniform_profile = crate::profile::is_uniform(&stiffness, &precurvature);
@@ -267,13 +228,9 @@ impl Rod {
                 ("force unit EI/L^2 (N)", u.force_n),
                 ("moment unit EI/L (N m)", u.moment_nm),
             ] {
-                if !(v.is_finite() && v > 0.0) {
-                    return Err(VibrissaError::range(
-                        name,
-                        v,
-                        "(0, inf): the physical dimensions over- or underflow",
-                    ));
-                }
+                limits::UNIT
+                    .unit("the physical dimensions over- or underflow")
+                    .check(name, v)?;
             }
         }
         Ok(rod)
@@ -352,21 +309,8 @@ impl Surface {
     /// # Ok::<(), vibrissa::VibrissaError>(())
     /// ```
     pub fn new(eta: f64, angle: f64) -> Result<Surface, VibrissaError> {
-        let (_, eta_low) = elastica::lower_limit();
-        if !(eta > eta_low && eta < 1.0) {
-            return Err(VibrissaError::range(
-                "eta",
-                eta,
-                format!("({eta_low:.17}, 1) (eta_, the lowest start height of the uniform rod, to the rod length)"),
-            ));
-        }
-        if !(angle.is_finite() && angle.abs() < MAX_SURFACE_ANGLE) {
-            return Err(VibrissaError::range(
-                "surface angle",
-                angle,
-                "(-pi/4, pi/4) radians",
-            ));
-        }
+        limits::eta().check("eta", eta)?;
+        limits::SURFACE_ANGLE.check("surface angle", angle)?;
         Ok(Surface {
             eta,
             angle,

@@ -173,6 +173,27 @@ pub enum BranchChoice {
 }
 
 impl BranchChoice {
+    /// The branches that have a name (every one but a guess).
+    pub const NAMED: [BranchChoice; 3] =
+        [BranchChoice::Convex, BranchChoice::Flex, BranchChoice::Any];
+    /// The name on the command line and in Python (`guess` for a given shape).
+    pub fn name(&self) -> &'static str {
+        match self {
+            BranchChoice::Convex => "convex",
+            BranchChoice::Flex => "flex",
+            BranchChoice::Any => "any",
+            BranchChoice::Guess(_) => "guess",
+        }
+    }
+    /// What the branch is, in one line (the program's `--help` lists it).
+    pub fn help(&self) -> &'static str {
+        match self {
+            BranchChoice::Convex => "no load reversal: the bending moment m(s) keeps its sign (the paper's convex rod)",
+            BranchChoice::Flex => "one load reversal: m(s) changes sign once (the paper's one-flex rod)",
+            BranchChoice::Any => "whatever the solution connected to the uniform rod's convex one is (see load_reversals)",
+            BranchChoice::Guess(_) => "start from the given shape (no branch check)",
+        }
+    }
     /// Load reversals the branch must have (`None`: no requirement).
     pub fn load_reversals(&self) -> Option<usize> {
         match self {
@@ -180,6 +201,20 @@ impl BranchChoice {
             BranchChoice::Flex => Some(1),
             BranchChoice::Any | BranchChoice::Guess(_) => None,
         }
+    }
+}
+
+impl std::str::FromStr for BranchChoice {
+    type Err = crate::VibrissaError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        BranchChoice::NAMED
+            .into_iter()
+            .find(|b| b.name() == s)
+            .ok_or_else(|| crate::VibrissaError::InvalidName {
+                name: "branch",
+                value: s.to_string(),
+                valid: "convex, flex, any",
+            })
     }
 }
 

@@ -1,8 +1,8 @@
 //! Output helpers: number formatting, CSV rows, the table sink (stdout or a file of the output
-//! policy in `outputs`).
+//! policy in `output_files`).
 
 use crate::error::Res;
-use crate::outputs::{self, Out};
+use crate::output_files::{self, Out};
 use std::io::{self, BufWriter, Write};
 use std::path::Path;
 
@@ -23,11 +23,11 @@ pub fn opt(v: Option<f64>) -> String {
     v.map(num).unwrap_or_default()
 }
 
-/// A file output of the program, written by the output policy (see `outputs`): a temporary
+/// A file output of the program, written by the output policy (see `output_files`): a temporary
 /// renamed into place when the whole command succeeded, or a device written in place.
 pub type AtomicFile = Out;
 
-/// Where a table goes: a file (see `outputs`) or stdout.
+/// Where a table goes: a file (see `output_files`) or stdout.
 pub enum Sink {
     /// standard output, block-buffered (stdout alone is line-buffered: one system call per row)
     Stdout(BufWriter<io::StdoutLock<'static>>),
@@ -39,7 +39,7 @@ impl Sink {
     /// Open `path`, or stdout when `None` or `-` (clears the progress spinner first).
     pub fn open(path: Option<&Path>) -> Res<Sink> {
         Ok(match path {
-            Some(p) if p.as_os_str() != "-" => Sink::File(outputs::open(p)?),
+            Some(p) if p.as_os_str() != "-" => Sink::File(output_files::open(p)?),
             _ => {
                 crate::progress::stop();
                 Sink::Stdout(BufWriter::with_capacity(64 * 1024, io::stdout().lock()))
@@ -50,7 +50,7 @@ impl Sink {
     /// Complete the output (the file is renamed into place when the command succeeded).
     pub fn finish(self) -> Res<()> {
         match self {
-            Sink::Stdout(mut s) => Ok(s.flush().map_err(|e| outputs::named("stdout", e))?),
+            Sink::Stdout(mut s) => Ok(s.flush().map_err(|e| output_files::named("stdout", e))?),
             Sink::File(f) => f.finish(),
         }
     }
@@ -74,19 +74,21 @@ pub fn write_table<T>(
 impl Write for Sink {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
         match self {
-            Sink::Stdout(s) => s.write(buf).map_err(|e| outputs::named("stdout", e)),
+            Sink::Stdout(s) => s.write(buf).map_err(|e| output_files::named("stdout", e)),
             Sink::File(f) => f.write(buf),
         }
     }
     fn write_all(&mut self, buf: &[u8]) -> io::Result<()> {
         match self {
-            Sink::Stdout(s) => s.write_all(buf).map_err(|e| outputs::named("stdout", e)),
+            Sink::Stdout(s) => s
+                .write_all(buf)
+                .map_err(|e| output_files::named("stdout", e)),
             Sink::File(f) => f.write_all(buf),
         }
     }
     fn flush(&mut self) -> io::Result<()> {
         match self {
-            Sink::Stdout(s) => s.flush().map_err(|e| outputs::named("stdout", e)),
+            Sink::Stdout(s) => s.flush().map_err(|e| output_files::named("stdout", e)),
             Sink::File(f) => f.flush(),
         }
     }

@@ -2,9 +2,11 @@
 //! (`a:b:n` ranges computed from integer steps, comma lists), shards, and short numbers in
 //! messages that still have enough digits to show why a value is outside its range.
 //!
-//! Depends on `std` only (the end-to-end tests include it together with `cli.rs`).
+//! Depends on `std` and the library's [`vibrissa::limits::digits`] only (the end-to-end tests
+//! include it together with `cli.rs`).
 
 use std::fmt::Write as _;
+pub use vibrissa::limits::digits;
 
 /// Parse a number as Rust's `f64` parser does (`-1e-3`, `-.5`, `+5E-1`, `inf`, `-infinity`),
 /// after trimming spaces. The message names the text, not the flag (clap adds the flag).
@@ -326,84 +328,12 @@ pub fn short(v: f64) -> String {
     digits(v, 6)
 }
 
-/// `v` with `p` significant digits, trailing zeros removed, scientific for very small or large.
-pub fn digits(v: f64, p: usize) -> String {
-    if !v.is_finite() {
-        return if v.is_nan() {
-            "NaN".into()
-        } else if v > 0.0 {
-            "inf".into()
-        } else {
-            "-inf".into()
-        };
-    }
-    if v == 0.0 {
-        return "0".into();
-    }
-    let p = p.clamp(1, 17);
-    let sci = format!("{:.*e}", p - 1, v);
-    let (mant, exp) = sci.split_once('e').unwrap_or((&sci, "0"));
-    let exp: i32 = exp.parse().unwrap_or(0);
-    let mant = if mant.contains('.') {
-        mant.trim_end_matches('0').trim_end_matches('.')
-    } else {
-        mant
-    };
-    if (-4..6).contains(&exp) {
-        // plain decimal from the rounded mantissa
-        let neg = mant.starts_with('-');
-        let ds: String = mant.chars().filter(|c| c.is_ascii_digit()).collect();
-        let mut out = String::new();
-        if neg {
-            out.push('-');
-        }
-        if exp < 0 {
-            out.push_str("0.");
-            for _ in 0..(-exp - 1) {
-                out.push('0');
-            }
-            out.push_str(&ds);
-        } else {
-            let int_len = exp as usize + 1;
-            if ds.len() <= int_len {
-                out.push_str(&ds);
-                for _ in ds.len()..int_len {
-                    out.push('0');
-                }
-            } else {
-                out.push_str(&ds[..int_len]);
-                out.push('.');
-                out.push_str(&ds[int_len..]);
-            }
-        }
-        out
-    } else {
-        format!("{mant}e{exp}")
-    }
-}
-
 /// The shortest digits that read back as `v`, in the form of [`digits`] (`1e300`, `0.75`).
 pub fn shortest(v: f64) -> String {
     let sci = format!("{v:e}");
     let mant = sci.split('e').next().unwrap_or("");
     let p = mant.chars().filter(|c| c.is_ascii_digit()).count();
     digits(v, p.max(1))
-}
-
-/// Significant digits needed so that `v` and every bound print differently (at least 6).
-pub fn digits_to_decide(v: f64, bounds: &[f64]) -> usize {
-    let mut p = 6;
-    while p < 17 {
-        let sv = digits(v, p);
-        if bounds
-            .iter()
-            .all(|&b| b == v || !b.is_finite() || digits(b, p) != sv)
-        {
-            break;
-        }
-        p += 1;
-    }
-    p
 }
 
 /// Rewrite every long decimal in a message (more than 20 characters, as Rust's `{}` prints
@@ -437,6 +367,7 @@ pub fn shorten_numbers(msg: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use vibrissa::limits::digits_to_decide;
 
     #[test]
     fn every_spelling() {
