@@ -368,9 +368,14 @@ fn drag_with<P: Profile>(
     fr: Friction,
 ) -> Result<DragResult, VibrissaError> {
     let general = rod.profile(1.0);
-    let tol = opts.solver.tol;
     let compound = opts.contact == ContactModel::Anywhere;
-    let (start, set, p0) = crate::ground::start(rod, &profile, surface, opts.solver.start, tol)?;
+    let (start, set, p0) = crate::ground::start(
+        rod,
+        &profile,
+        surface,
+        opts.solver.start,
+        opts.solver.start_tol(),
+    )?;
     let mut base = crate::ground::env_of(surface, p0, None, compound);
     // uniform coefficients: no texture (the thresholds are μ0 and the slide's μk)
     base.ground.texture = if fr.uniform.is_some() {
