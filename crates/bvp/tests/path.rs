@@ -245,8 +245,9 @@ fn solve_member_falls_back_to_continuation() {
 }
 
 /// The dense output of each method is what its docs say: Lobatto4 its collocation cubic
-/// (`Dense::Hermite`, whose residual its error control measures), Lobatto6 the quintic Hermite,
-/// RK4 shooting the cubic, DOP853 its own extension.
+/// (`Dense::Hermite`, whose residual its error control measures), Lobatto6 the quintic Hermite
+/// with `z''` from inside each interval (`Dense::QuinticIntervals`), RK4 shooting the cubic,
+/// DOP853 its own extension.
 #[test]
 fn dense_output_kinds() {
     let b = Bratu { lambda: 1.0 };
@@ -257,7 +258,7 @@ fn dense_output_kinds() {
     let sol = lobatto(Scheme::Lobatto6, 1e-6)
         .solve(&b, &b.guess())
         .unwrap();
-    assert!(matches!(sol.dense, Dense::Quintic { .. }));
+    assert!(matches!(sol.dense, Dense::QuinticIntervals { .. }));
     let rk4 = Shooting::new(ShootingOptions {
         integrator: bvp::Integrator::Rk4 { steps: 100 },
         ..ShootingOptions::default()

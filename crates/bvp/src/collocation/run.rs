@@ -1,0 +1,406 @@
+//! One collocation solve across its mesh passes: Newton on a mesh, then error control,
+//! the conditioning check, the check of the returned interpolant, refinement and coarsening
+//! (see the module docs of [`crate::collocation`]), each step a method of [`Run`].
+
+use super::{
+    adapt_mesh, attach_stats, bisect, fill_unknowns, snapshot, with_total_stats,
+    CollocationOptions, Disc, Progress, Snapshot, Tableau, MAX_COARSEN, MAX_ILL_REFINES,
+    MAX_RETRIES,
+};
+use crate::newton::{attach, homotopy, Newton};
+use crate::{Bvp, BvpError, Check, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
+
+/// What the solve does after a mesh pass (one value per pass: its size does not matter).
+#[allow(clippy::large_enum_variant)]
+pub(super) enum Next {
+    /// Solve again, on `Run::mesh` from `Run::u`.
+    Again,
+    /// The outcome of the solve.
+    Done(Result<Solution, BvpError>),
+}
+
+/// What a pass needs besides the state: options, tableau, dimensions, the guess.
+pub(super) struct Ctx<'c> {
+    pub opts: &'c CollocationOptions,
+    /// Newton's options with the residual threshold of the module docs.
+    pub nopts: NewtonOptions,
+    pub tab: &'c Tableau,
+    pub dims: Dims,
+    pub guess: &'c Guess,
+}
+
+/// The state of one solve across its mesh passes.
+pub(super) struct Run {
+    /// The mesh of the next pass (empty while a pass runs on it).
+    pub mesh: Vec<f64>,
+    /// The unknowns (starting values of the next pass, then its solution).
+    pub u: Vec<f64>,
+    /// The solution the current starting values were interpolated from.
+    source: Option<Snapshot>,
+    /// An accepted solution while a coarser mesh is tried.
+    best: Option<Solution>,
+    retries: usize,
+    coarsenings: usize,
+    ill_refines: usize,
+    homotopy_tried: bool,
+    /// The collocation polynomial's scaled RMS residual per interval.
+    rms: Vec<f64>,
+    pub stats: Stats,
+}
+
+/// The largest entry; NaN counts as infinite (a residual that could not be evaluated fails).
+fn max_of(v: &[f64]) -> f64 {
+    v.iter().fold(
+        0.0_f64,
+        |m, x| if x.is_nan() { f64::INFINITY } else { m.max(*x) },
+    )
+}
+
+impl Run {
+    /// The starting mesh and values from the guess.
+    pub fn start(cx: &Ctx<'_>, mesh: Vec<f64>) -> Result<Run, BvpError> {
+        let stats = Stats::default();
+        if mesh.len() > cx.opts.max_nodes {
+            return Err(BvpError::MeshLimit {
+                max_nodes: cx.opts.max_nodes,
+                needed: mesh.len(),
+                residual: f64::NAN,
+                stats,
+            });
+        }
+        let mut u = Vec::new();
+        let guess = cx.guess;
+        fill_unknowns(
+            cx.tab,
+            &mesh,
+            cx.dims,
+            &guess.params,
+            |s, o| guess.eval(s, o),
+            &mut u,
+        );
+        Ok(Run {
+            mesh,
+            u,
+            source: None,
+            best: None,
+            retries: 0,
+            coarsenings: 0,
+            ill_refines: 0,
+            homotopy_tried: false,
+            rms: Vec::new(),
+            stats,
+        })
+    }
+
+    /// The pass limit is reached: the accepted solution if there is one, else `MeshLimit`.
+    pub fn out_of_passes(self, cx: &Ctx<'_>) -> Result<Solution, BvpError> {
+        if let Some(sol) = self.best {
+            return Ok(with_total_stats(sol, &self.stats));
+        }
+        let mut stats = self.stats;
+        stats.nodes = self.mesh.len();
+        Err(BvpError::MeshLimit {
+            max_nodes: cx.opts.max_nodes,
+            needed: self.mesh.len(),
+            residual: stats.error_estimate.unwrap_or(f64::NAN),
+            stats,
+        })
+    }
+
+    /// Moves to the mesh `fine`, interpolating the solution on `mesh` (its collocation
+    /// polynomials).
+    fn move_to<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &Disc<'_, P>,
+        mesh: &[f64],
+        fine: Vec<f64>,
+    ) {
+        let snap = snapshot(disc, mesh, &self.u);
+        snap.fill(cx.tab, cx.dims, &fine, &mut self.u);
+        self.source = Some(snap);
+        self.mesh = fine;
+    }
+
+    /// The accepted solution kept while a coarser mesh was tried, if any.
+    fn keep_best(&mut self) -> Option<Next> {
+        let sol = self.best.take()?;
+        Some(Next::Done(Ok(with_total_stats(sol, &self.stats))))
+    }
+
+    /// Damped Newton on this mesh; the first time it fails (stall, iteration limit), the Newton
+    /// homotopy from the same starting values.
+    pub fn newton<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        newton: &mut Newton,
+        disc: &mut Disc<'_, P>,
+    ) -> Result<(), BvpError> {
+        let start = (!self.homotopy_tried).then(|| self.u.clone());
+        let mut res = newton.solve(disc, &mut self.u, &cx.nopts, &mut self.stats);
+        if let (Err(BvpError::Stalled { .. } | BvpError::MaxIterations { .. }), Some(u0)) =
+            (&res, start)
+        {
+            if disc.non_finite.is_none() && cx.opts.homotopy {
+                self.homotopy_tried = true;
+                let mut uh = u0;
+                let mut hstats = self.stats.clone();
+                if homotopy(newton, disc, &mut uh, &cx.nopts, &mut hstats).is_ok() {
+                    self.u = uh;
+                    res = Ok(());
+                }
+                self.stats = hstats;
+            }
+        }
+        res
+    }
+
+    /// Newton failed on `mesh` with `e`: refine where the unconverged iterate's residual is large
+    /// and restart from that iterate (as solve_bvp does: a coarse mesh that cannot resolve a
+    /// layer often has no nearby discrete solution at all), bisect, or report.
+    pub fn after_failure<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        mut e: BvpError,
+    ) -> Next {
+        let failed = matches!(e, BvpError::Stalled { .. } | BvpError::MaxIterations { .. });
+        if let (true, Some((location, s))) = (failed, disc.non_finite) {
+            // Newton was blocked by NaN/∞ of the problem: report that, it is the cause.
+            e = BvpError::NonFinite {
+                location,
+                s,
+                stats: self.stats.clone(),
+            };
+        }
+        if let Some(next) = self.keep_best() {
+            // A coarsening attempt failed: keep the accepted solution.
+            return next;
+        }
+        let retry = failed && disc.non_finite.is_none() && cx.opts.adapt;
+        let retry = retry && self.retries < MAX_RETRIES;
+        let max_nodes = cx.opts.max_nodes;
+        if retry
+            && disc
+                .estimate(&self.u, &mut self.rms, &mut self.stats)
+                .is_ok()
+        {
+            let mut fine = adapt_mesh(mesh, &self.rms, cx.opts.tol, true, false);
+            if fine.len() == mesh.len() {
+                fine = bisect(mesh);
+            }
+            if fine.len() <= max_nodes {
+                self.retries += 1;
+                self.move_to(cx, disc, mesh, fine);
+                return Next::Again;
+            }
+        }
+        if retry && 2 * mesh.len() - 1 <= max_nodes {
+            self.retries += 1;
+            let fine = bisect(mesh);
+            match &self.source {
+                Some(snap) => snap.fill(cx.tab, cx.dims, &fine, &mut self.u),
+                None => fill_unknowns(
+                    cx.tab,
+                    &fine,
+                    cx.dims,
+                    &cx.guess.params,
+                    |s, o| cx.guess.eval(s, o),
+                    &mut self.u,
+                ),
+            }
+            self.mesh = fine;
+            return Next::Again;
+        }
+        Next::Done(Err(attach_stats(e, &self.stats)))
+    }
+
+    /// Newton converged on `mesh`: error control, the conditioning check, and acceptance or
+    /// refinement.
+    pub fn after_newton<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        observer: &mut dyn FnMut(&Progress<'_>),
+    ) -> Next {
+        if let Err(e) = disc.estimate(&self.u, &mut self.rms, &mut self.stats) {
+            return Next::Done(Err(attach(e, self.stats.newton_iters, &self.stats)));
+        }
+        let bcres = disc.bc_residual(&self.u, &mut self.stats);
+        let max_rms = max_of(&self.rms);
+        self.stats.error_estimate = Some(max_rms);
+        observer(&Progress {
+            pass: self.stats.mesh_passes,
+            mesh,
+            newton_iters: self.stats.newton_iters,
+            newton_converged: true,
+            residual: self.stats.residual,
+            residuals: &self.rms,
+        });
+        let opts = cx.opts;
+        let met = max_rms <= opts.tol && bcres <= opts.bc_tol();
+        if met && opts.adapt {
+            if let Some(next) = self.ill_conditioned(cx, disc, mesh, max_rms.max(bcres)) {
+                return next;
+            }
+        }
+        if !opts.adapt || met {
+            return self.accept(cx, disc, mesh);
+        }
+        if let Some(next) = self.keep_best() {
+            // The coarsened mesh missed the tolerance: keep the accepted solution.
+            return next;
+        }
+        let new_mesh = adapt_mesh(mesh, &self.rms, opts.tol, true, opts.coarsen);
+        if new_mesh == mesh {
+            // Residual met but the boundary conditions are not: Newton is at its floor.
+            return Next::Done(Err(BvpError::Stalled {
+                iteration: self.stats.newton_iters,
+                residual: bcres,
+                stats: self.stats.clone(),
+            }));
+        }
+        if new_mesh.len() > opts.max_nodes {
+            return Next::Done(Err(BvpError::MeshLimit {
+                max_nodes: opts.max_nodes,
+                needed: new_mesh.len(),
+                residual: max_rms,
+                stats: self.stats.clone(),
+            }));
+        }
+        self.move_to(cx, disc, mesh, new_mesh);
+        Next::Again
+    }
+
+    /// The conditioning check (module docs) of a solution whose residuals are of size `r`:
+    /// `None` if it passes. Those residuals may move the solution by `amp` times their size;
+    /// beyond the size of the solution itself no digit is right: the problem is numerically
+    /// singular here (e.g. it has no solution and the mesh only picks one of huge amplitude),
+    /// reported as a singular Jacobian. The defect, not `tol`: a well-posed layer problem has
+    /// `amp ~ 1/ε` in `y'` on any mesh (Cash–Mazzia 3 at ε = 1e-4: 4.8e4), so `amp·tol` can
+    /// exceed the solution's size while the error is tiny.
+    fn ill_conditioned<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        r: f64,
+    ) -> Option<Next> {
+        let amp = match disc.amplification(&self.u, &mut self.stats) {
+            Ok(amp) => amp,
+            Err(e) => return Some(Next::Done(Err(attach_stats(e, &self.stats)))),
+        };
+        let size = self.u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if amp * r <= 1.0 + size {
+            return None;
+        }
+        if let Some(next) = self.keep_best() {
+            return Some(next);
+        }
+        // A mesh that barely meets the tolerance can fail this by itself: bisect (from this
+        // solution) a few times before reporting; the defect falls like h^order, the
+        // amplification of a nearly singular problem grows.
+        if self.ill_refines < MAX_ILL_REFINES && 2 * mesh.len() - 1 <= cx.opts.max_nodes {
+            self.ill_refines += 1;
+            self.move_to(cx, disc, mesh, bisect(mesh));
+            return Some(Next::Again);
+        }
+        self.stats.nodes = mesh.len();
+        Some(Next::Done(Err(BvpError::SingularJacobian {
+            iteration: self.stats.newton_iters,
+            stats: self.stats.clone(),
+        })))
+    }
+
+    /// The solution on `mesh` met the error control: build the returned object and check it
+    /// (the residual of the returned interpolant at interior points of every interval, as
+    /// scipy does; its maximum is `stats.error_estimate`). If it misses `tol`, refine where it
+    /// does (or report `Inaccurate` at the node limit); else try a coarser mesh or return it.
+    fn accept<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+    ) -> Next {
+        let opts = cx.opts;
+        let (sol, check) = returned(cx, disc, mesh, &self.u, &self.rms, &mut self.stats);
+        let worst = max_of(&check);
+        if opts.adapt && worst > opts.tol {
+            if let Some(next) = self.keep_best() {
+                return next;
+            }
+            let both: Vec<f64> = self
+                .rms
+                .iter()
+                .zip(&check)
+                .map(|(a, b)| a.max(*b))
+                .collect();
+            let fine = adapt_mesh(mesh, &both, opts.tol, true, false);
+            if fine.len() > opts.max_nodes {
+                return Next::Done(Err(BvpError::Inaccurate {
+                    check: Check::ErrorEstimate,
+                    value: worst,
+                    tol: opts.tol,
+                    stats: sol.stats,
+                }));
+            }
+            self.move_to(cx, disc, mesh, fine);
+            return Next::Again;
+        }
+        if opts.adapt && opts.coarsen && self.coarsenings < MAX_COARSEN {
+            let coarse = adapt_mesh(mesh, &self.rms, opts.tol, false, true);
+            if coarse.len() * 10 <= mesh.len() * 9 {
+                self.coarsenings += 1;
+                self.move_to(cx, disc, mesh, coarse);
+                self.best = Some(sol);
+                return Next::Again;
+            }
+        }
+        Next::Done(Ok(sol))
+    }
+}
+
+/// The returned object of the solution `u` on `mesh` and the scaled RMS residual of its dense
+/// output per interval. Lobatto4 returns its collocation cubic (`Dense::Hermite`), whose residual
+/// is `rms` itself; Lobatto6 the quintic of [`Dense::QuinticIntervals`], whose residual is
+/// measured here ([`Solution::residuals`]'s formula, three evaluations of `F` per interval).
+/// `stats.error_estimate` becomes the largest residual of the returned object.
+fn returned<P: Bvp + ?Sized>(
+    cx: &Ctx<'_>,
+    disc: &mut Disc<'_, P>,
+    mesh: &[f64],
+    u: &[f64],
+    rms: &[f64],
+    stats: &mut Stats,
+) -> (Solution, Vec<f64>) {
+    let (z, dz) = disc.nodal();
+    let params = u[disc.lay.pcol()..].to_vec();
+    let dense = if cx.tab.internal {
+        Dense::QuinticIntervals {
+            d2z: disc.second_derivatives(&params, &z, &dz, stats),
+        }
+    } else {
+        Dense::Hermite
+    };
+    let mut sol = Solution {
+        n: cx.dims.n,
+        mesh: mesh.to_vec(),
+        z,
+        dz,
+        params,
+        status: Status::Converged,
+        stats: Stats::default(),
+        dense,
+    };
+    let check = if cx.tab.internal {
+        stats.rhs_evals += 3 * (mesh.len() - 1);
+        sol.residuals_of(disc.prob)
+    } else {
+        rms.to_vec()
+    };
+    stats.error_estimate = Some(max_of(&check));
+    sol.stats = stats.clone();
+    (sol, check)
+}
