@@ -636,6 +636,25 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
         d2
     }
 
+    /// The second derivatives of the collocation polynomial at both ends of interval `i`
+    /// (points current) into `out` (`2n`: left end, right end): with them the quintic Hermite of
+    /// [`Dense::QuinticIntervals`] is that polynomial itself (it reproduces degree ≤ 5).
+    fn collocation_second_derivatives(&self, i: usize, out: &mut [f64]) {
+        let (n, q) = (self.lay.n, self.tab.q);
+        let h = self.mesh[i + 1] - self.mesh[i];
+        for (end, t) in [(0, 0.0), (1, 1.0)] {
+            let mut sec = [0.0; MAXC];
+            self.tab.second(t, &mut sec);
+            for c in 0..n {
+                let mut v = 0.0;
+                for j in 0..=q {
+                    v += sec[j] * self.w.fpts[(q * i + j) * n + c];
+                }
+                out[end * n + c] = v / h;
+            }
+        }
+    }
+
     /// Nodal values and slopes (node-major) of the current points.
     fn nodal(&self) -> (Vec<f64>, Vec<f64>) {
         let (n, q) = (self.lay.n, self.tab.q);
