@@ -134,6 +134,26 @@ impl Scheme {
     }
 }
 
+/// What the error control of [`Collocation`] holds to `tol` (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub enum ErrorControl {
+    /// The scaled RMS residual of the returned interpolant per interval (bvp4c, scipy's
+    /// `solve_bvp`). The error is that residual propagated by the problem: at most its size
+    /// times the conditioning of the problem, which can be large (a periodic epidemic model at
+    /// tol 1e-4: residual 8.5e-5, error 5.6e-3). The default.
+    #[default]
+    Residual,
+    /// The residual as above, and then the true error of the returned solution, estimated
+    /// against a more accurate reference (Lobatto4: Lobatto6 on the same mesh; Lobatto6:
+    /// Lobatto6 on the halved mesh), componentwise `|S − R| / (1 + |R|)` at the nodes and three
+    /// interior points of every interval, must meet `tol`; while it does not, the residual
+    /// tolerance is lowered and the mesh refined. As bvp5c, which controls the true error. The
+    /// estimate is asymptotically correct (the reference's error is `O(h)` resp. `1/64` of it),
+    /// not a bound; `stats.error_estimate` is it. Costs one more Newton solve per accepted mesh,
+    /// and the meshes a tighter residual needs.
+    Error,
+}
+
 /// Options of [`Collocation`].
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
 pub struct CollocationOptions {
@@ -161,6 +181,9 @@ pub struct CollocationOptions {
     /// Newton options. `max_iter`, `step_tol`, `min_damping`, `step_residual_tol` apply as given;
     /// the residual threshold is `min(newton.tol, tol / 20, bc_tol)`.
     pub newton: NewtonOptions,
+    /// What the error control holds to `tol`: the residual (default) or the estimated true
+    /// error ([`ErrorControl`]). Coarsening after acceptance is off with `Error`.
+    pub control: ErrorControl,
     /// Globalization: when damped Newton fails on the first mesh, solve the Newton homotopy
     /// `R(u) − τ R(u₀) = 0` from `τ = 1` to `0` on that mesh (see [`crate::newton::homotopy`])
     /// before refining. Default `true`.
@@ -178,6 +201,7 @@ impl Default for CollocationOptions {
             adapt: true,
             coarsen: true,
             newton: NewtonOptions::default(),
+            control: ErrorControl::Residual,
             homotopy: true,
         }
     }

@@ -67,7 +67,7 @@ pub mod shooting;
 pub mod tableau;
 pub mod testset;
 
-pub use collocation::{Collocation, CollocationOptions, Progress, Scheme};
+pub use collocation::{Collocation, CollocationOptions, ErrorControl, Progress, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Check, Status};
 pub use newton::{Damping, NewtonOptions};

@@ -4,8 +4,8 @@
 
 use super::{
     adapt_mesh, attach_stats, bisect, fill_unknowns, snapshot, with_total_stats,
-    CollocationOptions, Disc, Progress, Snapshot, Tableau, MAX_COARSEN, MAX_ILL_REFINES,
-    MAX_RETRIES,
+    CollocationOptions, Disc, ErrorControl, Progress, Scheme, Snapshot, Tableau, MAX_COARSEN,
+    MAX_ILL_REFINES, MAX_RETRIES,
 };
 use crate::newton::{attach, homotopy, Newton};
 use crate::{Bvp, BvpError, Check, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
@@ -49,6 +49,9 @@ pub(super) struct Run {
     seed: Option<Guess>,
     /// The collocation polynomial's scaled RMS residual per interval.
     rms: Vec<f64>,
+    /// The residual tolerance in force: `tol`, lowered by error control
+    /// ([`super::ErrorControl::Error`]) until the estimated error meets `tol`.
+    res_tol: f64,
     pub stats: Stats,
 }
 
@@ -94,6 +97,7 @@ impl Run {
             seeded: false,
             seed: None,
             rms: Vec::new(),
+            res_tol: cx.opts.tol,
             stats,
         })
     }
@@ -143,7 +147,9 @@ impl Run {
         disc: &mut Disc<'_, P>,
     ) -> Result<(), BvpError> {
         let start = (!self.homotopy_tried).then(|| self.u.clone());
-        let mut res = newton.solve(disc, &mut self.u, &cx.nopts, &mut self.stats);
+        let mut nopts = cx.nopts.clone();
+        nopts.tol = nopts.tol.min(self.res_tol / 20.0);
+        let mut res = newton.solve(disc, &mut self.u, &nopts, &mut self.stats);
         if let (Err(BvpError::Stalled { .. } | BvpError::MaxIterations { .. }), Some(u0)) =
             (&res, start)
         {
@@ -151,7 +157,7 @@ impl Run {
                 self.homotopy_tried = true;
                 let mut uh = u0;
                 let mut hstats = self.stats.clone();
-                if homotopy(newton, disc, &mut uh, &cx.nopts, &mut hstats).is_ok() {
+                if homotopy(newton, disc, &mut uh, &nopts, &mut hstats).is_ok() {
                     self.u = uh;
                     res = Ok(());
                 }
@@ -198,7 +204,7 @@ impl Run {
                 .estimate(&self.u, &mut self.rms, &mut self.stats)
                 .is_ok()
         {
-            let mut fine = adapt_mesh(mesh, &self.rms, cx.opts.tol, true, false);
+            let mut fine = adapt_mesh(mesh, &self.rms, self.res_tol, true, false);
             if fine.len() == mesh.len() {
                 fine = bisect(mesh);
             }
@@ -239,7 +245,7 @@ impl Run {
     /// `O(h⁴)` of Lobatto6's discrete solution on that mesh. Returns whether it restarted.
     fn seed_from_lobatto4<P: Bvp + ?Sized>(&mut self, cx: &Ctx<'_>, problem: &P) -> bool {
         let opts = CollocationOptions {
-            scheme: super::Scheme::Lobatto4,
+            scheme: Scheme::Lobatto4,
             tol: cx.opts.tol.max(1e-3),
             bc_tol: Some(cx.opts.bc_tol().max(1e-3)),
             ..cx.opts.clone()
@@ -297,7 +303,7 @@ impl Run {
             residuals: &self.rms,
         });
         let opts = cx.opts;
-        let met = max_rms <= opts.tol && bcres <= opts.bc_tol();
+        let met = max_rms <= self.res_tol && bcres <= opts.bc_tol();
         if met && opts.adapt {
             if let Some(next) = self.ill_conditioned(cx, disc, mesh, max_rms.max(bcres)) {
                 return next;
@@ -310,7 +316,7 @@ impl Run {
             // The coarsened mesh missed the tolerance: keep the accepted solution.
             return next;
         }
-        let new_mesh = adapt_mesh(mesh, &self.rms, opts.tol, true, opts.coarsen);
+        let new_mesh = adapt_mesh(mesh, &self.rms, self.res_tol, true, opts.coarsen);
         if new_mesh == mesh {
             // Residual met but the boundary conditions are not: Newton is at its floor.
             return Next::Done(Err(BvpError::Stalled {
@@ -382,9 +388,16 @@ impl Run {
         mesh: &[f64],
     ) -> Next {
         let opts = cx.opts;
-        let (sol, check) = returned(cx, disc, mesh, &self.u, &self.rms, &mut self.stats);
+        let (sol, check) = returned(
+            cx,
+            disc,
+            mesh,
+            &self.u,
+            (&self.rms, self.res_tol),
+            &mut self.stats,
+        );
         let worst = max_of(&check);
-        if opts.adapt && worst > opts.tol {
+        if opts.adapt && worst > self.res_tol {
             if let Some(next) = self.keep_best() {
                 return next;
             }
@@ -394,20 +407,23 @@ impl Run {
                 .zip(&check)
                 .map(|(a, b)| a.max(*b))
                 .collect();
-            let fine = adapt_mesh(mesh, &both, opts.tol, true, false);
+            let fine = adapt_mesh(mesh, &both, self.res_tol, true, false);
             if fine.len() > opts.max_nodes {
                 return Next::Done(Err(BvpError::Inaccurate {
                     check: Check::ErrorEstimate,
                     value: worst,
-                    tol: opts.tol,
+                    tol: self.res_tol,
                     stats: sol.stats,
                 }));
             }
             self.move_to(cx, disc, mesh, fine);
             return Next::Again;
         }
+        if opts.adapt && opts.control == ErrorControl::Error {
+            return self.control_error(cx, disc, mesh, sol);
+        }
         if opts.adapt && opts.coarsen && self.coarsenings < MAX_COARSEN {
-            let coarse = adapt_mesh(mesh, &self.rms, opts.tol, false, true);
+            let coarse = adapt_mesh(mesh, &self.rms, self.res_tol, false, true);
             if coarse.len() * 10 <= mesh.len() * 9 {
                 self.coarsenings += 1;
                 self.move_to(cx, disc, mesh, coarse);
@@ -417,6 +433,112 @@ impl Run {
         }
         Next::Done(Ok(sol))
     }
+}
+
+impl Run {
+    /// Error control ([`ErrorControl::Error`]) of `sol`, which met the residual tolerance in
+    /// force on `mesh`: its error is estimated against a reference ([`error_estimate`]); if it
+    /// meets `tol`, `sol` is returned with that estimate. Otherwise the residual tolerance is
+    /// lowered by the factor the error missed by (halved again, between 1/1000 and 1/2: the error
+    /// is the residual propagated by the problem's Green's function, proportional to it) and the
+    /// mesh refined where the residual exceeds it or the estimated error exceeds `tol`.
+    fn control_error<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        mut sol: Solution,
+    ) -> Next {
+        let tol = cx.opts.tol;
+        let est = error_estimate(cx, disc.prob, &sol, self.res_tol);
+        if let Some(st) = &est.1 {
+            self.stats.accumulate(st);
+        }
+        let errs = est.0;
+        let worst = errs.as_ref().map_or(f64::INFINITY, |e| max_of(e));
+        if worst <= tol {
+            self.stats.error_estimate = Some(worst);
+            sol.stats = self.stats.clone();
+            return Next::Done(Ok(sol));
+        }
+        self.res_tol *= (0.5 * tol / worst).clamp(1e-3, 0.5);
+        let marks: Vec<f64> = match &errs {
+            Some(e) => self
+                .rms
+                .iter()
+                .zip(e)
+                .map(|(r, e)| r.max(self.res_tol * e / tol))
+                .collect(),
+            None => self.rms.clone(),
+        };
+        let fine = adapt_mesh(mesh, &marks, self.res_tol, true, false);
+        if fine.len() > cx.opts.max_nodes {
+            return Next::Done(Err(BvpError::MeshLimit {
+                max_nodes: cx.opts.max_nodes,
+                needed: fine.len(),
+                residual: worst,
+                stats: self.stats.clone(),
+            }));
+        }
+        self.move_to(cx, disc, mesh, fine);
+        Next::Again
+    }
+}
+
+/// The estimated error of `sol` per interval (max over its ends and the interior points
+/// `EST_T` of `|S_c − R_c| / (1 + |R_c|)`, every component `c`) against a reference `R` of
+/// higher accuracy on the same problem, and the reference solve's statistics. Lobatto4: `R` is
+/// Lobatto6 on the same mesh (order 6 against 4 at the nodes, 5 against 4 between them);
+/// Lobatto6: `R` is Lobatto6 on the halved mesh (64× more accurate). So `|S − R|` is the error
+/// of `S` to a relative `O(h)` resp. `1/64`: an asymptotically correct estimate, not a bound.
+/// `None` if the reference solve fails.
+fn error_estimate<P: Bvp + ?Sized>(
+    cx: &Ctx<'_>,
+    problem: &P,
+    sol: &Solution,
+    res_tol: f64,
+) -> (Option<Vec<f64>>, Option<Stats>) {
+    let mesh = if cx.tab.internal {
+        bisect(&sol.mesh)
+    } else {
+        sol.mesh.clone()
+    };
+    let opts = CollocationOptions {
+        scheme: Scheme::Lobatto6,
+        adapt: false,
+        coarsen: false,
+        control: ErrorControl::Residual,
+        tol: res_tol,
+        max_nodes: mesh.len().max(cx.opts.max_nodes),
+        ..cx.opts.clone()
+    };
+    let Ok(mut solver) = super::Collocation::new(opts) else {
+        return (None, None);
+    };
+    let mut guess = Guess::from(sol);
+    if mesh.len() != sol.mesh.len() {
+        guess = Guess::from_fn(sol.n, mesh, sol.params.clone(), |s, z| sol.eval(s, z));
+    }
+    let reference = match solver.solve_plain(problem, &guess, &mut |_| {}) {
+        Ok(r) => r,
+        Err(e) => return (None, e.stats().cloned()),
+    };
+    let n = sol.n;
+    let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+    let mut errs = Vec::with_capacity(sol.mesh.len() - 1);
+    for w in sol.mesh.windows(2) {
+        let mut e = 0.0_f64;
+        for t in [0.0, super::EST_T[0], super::EST_T[1], super::EST_T[2], 1.0] {
+            let s = w[0] + t * (w[1] - w[0]);
+            sol.eval(s, &mut a);
+            reference.eval(s, &mut b);
+            for c in 0..n {
+                e = e.max((a[c] - b[c]).abs() / (1.0 + b[c].abs()));
+            }
+        }
+        errs.push(e);
+    }
+    (Some(errs), Some(reference.stats))
 }
 
 /// The returned object of the solution `u` on `mesh` and the scaled RMS residual of its dense
@@ -429,7 +551,7 @@ fn returned<P: Bvp + ?Sized>(
     disc: &mut Disc<'_, P>,
     mesh: &[f64],
     u: &[f64],
-    rms: &[f64],
+    (rms, res_tol): (&[f64], f64),
     stats: &mut Stats,
 ) -> (Solution, Vec<f64>) {
     let (z, dz) = disc.nodal();
@@ -454,7 +576,7 @@ fn returned<P: Bvp + ?Sized>(
     let check = if cx.tab.internal {
         stats.rhs_evals += 3 * (mesh.len() - 1);
         let mut check = sol.residuals_of(disc.prob);
-        if fall_back_to_the_quartic(cx, disc, &mut sol, &check) {
+        if fall_back_to_the_quartic(cx, disc, &mut sol, &check, res_tol) {
             stats.rhs_evals += 3 * (mesh.len() - 1);
             check = sol.residuals_of(disc.prob);
         }
@@ -478,6 +600,7 @@ fn fall_back_to_the_quartic<P: Bvp + ?Sized>(
     disc: &Disc<'_, P>,
     sol: &mut Solution,
     check: &[f64],
+    tol: f64,
 ) -> bool {
     let n = cx.dims.n;
     let Dense::QuinticIntervals { d2z } = &mut sol.dense else {
@@ -485,7 +608,7 @@ fn fall_back_to_the_quartic<P: Bvp + ?Sized>(
     };
     let mut changed = false;
     for (i, &r) in check.iter().enumerate() {
-        if r > cx.opts.tol || r.is_nan() {
+        if r > tol || r.is_nan() {
             disc.collocation_second_derivatives(i, &mut d2z[2 * i * n..2 * (i + 1) * n]);
             changed = true;
         }
