@@ -34,6 +34,10 @@
 //! ([`Dense`]), parameters, [`Stats`]) or a
 //! [`BvpError`] that says why the solve failed and carries the statistics gathered so far.
 //!
+//! [`multipoint`] solves problems with interfaces at interior points ([`multipoint::MultipointBvp`],
+//! conditions across the interfaces, `F` per region) with any solver, and returns one solution
+//! per region.
+//!
 //! [`solve_by_continuation`] ([`path`]) solves a hard member of a [`ParamBvp`] family by walking
 //! the parameter from an easy value, with any solver.
 //!
@@ -58,6 +62,7 @@ pub mod continuation;
 pub mod fd;
 pub mod fixed;
 pub mod linalg;
+pub mod multipoint;
 pub mod newton;
 #[cfg(feature = "ode_solvers")]
 pub mod odes;
