@@ -68,8 +68,8 @@ fn unsplit() -> impl Bvp {
 }
 
 /// Method `m` of [`NAMES`] at `tol` (shooting: DOP853 at `tol/100`, as the test-set study).
-fn solve_with<P: Bvp>(m: usize, tol: f64, p: &P, g: &Guess) -> Result<Solution, BvpError> {
-    match m {
+fn solve_with<P: Bvp>(m: usize, tol: f64, p: &P, g: &Guess) -> Result<Solution, Box<BvpError>> {
+    let r = match m {
         0 | 1 => Collocation::new(CollocationOptions {
             scheme: if m == 0 {
                 Scheme::Lobatto4
@@ -92,7 +92,8 @@ fn solve_with<P: Bvp>(m: usize, tol: f64, p: &P, g: &Guess) -> Result<Solution, 
         })
         .unwrap()
         .solve(p, g),
-    }
+    };
+    r.map_err(Box::new)
 }
 
 const NAMES: [&str; 4] = ["Lobatto4", "Lobatto6", "shooting", "shooting 8"];
