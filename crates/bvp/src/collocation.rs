@@ -75,6 +75,25 @@
 //! local refinement does not reduce (Cash–Mazzia 5 and 11 at ε = 1e-4, tol 1e-8, ran into the
 //! node limit).
 
+//! # Error control mode
+//!
+//! With [`ErrorControl::Error`] (as bvp5c) a solution that met the residual control is also
+//! compared with a reference of higher accuracy: Lobatto6 solved on the same mesh from it
+//! (Lobatto4), or Lobatto6 on the halved mesh (Lobatto6). The estimate
+//! `e_i = max |S_c − R_c| / (1 + |R_c|)` over the ends and the three interior points of interval
+//! `i` is the error of `S` to a relative `O(h)` (resp. `1/64`): asymptotically correct, not a
+//! bound. If `max e_i > tol`, the residual tolerance is multiplied by
+//! `clamp(tol / (2 max e_i), 1e-3, 1/2)` (the error is the residual propagated by the problem's
+//! Green's function) and the mesh refined where the residual exceeds it or `e_i > tol`.
+//! `stats.error_estimate` is `max e_i`; coarsening after acceptance is off.
+//!
+//! # Lobatto6 from a poor guess
+//!
+//! When Lobatto6's damped Newton and the homotopy fail on the first mesh, Lobatto4 is solved
+//! from the same guess at `max(tol, 1e-3)` and Lobatto6 restarts on its mesh from its solution
+//! (Lobatto6's Newton has the smaller region of convergence: Falkner–Skan from the bvp4c
+//! tutorial's guess). If Lobatto4 fails too, Lobatto6 goes on refining as below.
+//!
 //! # Newton thresholds and failures
 //!
 //! Collocation rows are divided by `h_i` (units of `z'`) and scaled by `1 + max |F_c|` over their
