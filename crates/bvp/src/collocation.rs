@@ -89,8 +89,10 @@
 //!
 //! # Lobatto6 from a poor guess
 //!
-//! When Lobatto6's damped Newton and the homotopy fail on the first mesh, Lobatto4 is solved
-//! from the same guess at `max(tol, 1e-3)` and Lobatto6 restarts on its mesh from its solution
+//! When Lobatto6's damped Newton and the homotopy fail on the first mesh of a guess without
+//! slopes (not one made from a solution), Lobatto4 is solved from the same guess at
+//! `max(tol, 1e-3)` (a cheap attempt: at most 6 mesh passes and 500 nodes, no homotopy) and
+//! Lobatto6 restarts on its mesh from its solution
 //! (Lobatto6's Newton has the smaller region of convergence: Falkner–Skan from the bvp4c
 //! tutorial's guess). If Lobatto4 fails too, Lobatto6 goes on refining as below.
 //!
