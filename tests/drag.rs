@@ -403,29 +403,26 @@ fn fit_recovers_the_drag_and_names_what_it_cannot_determine() {
     assert!(line.contains("no slip"), "{line}");
 }
 
-/// A side contact at its slip limit ends the drag (only the tip slides): its row is `slip_limit`,
-/// not a `slip` a fit would read, and the stop is a warning, not an error.
+/// A side contact at its slip limit slides (issue 31): its slips are `slip` rows a fit reads, the
+/// contact column says `side`, and the drag reaches d_max without a warning.
 #[test]
-fn a_side_at_its_slip_limit_ends_the_drag() {
+fn a_side_at_its_slip_limit_slides() {
     let o = ok(&["drag", "--mu-s", "0.5", "--mu-k", "0.3", "--eta", "0.46"]);
     let (h, rows) = csv(&o.stdout);
     let ev = h.iter().position(|c| c == "event").unwrap();
-    let last = rows.last().unwrap();
-    assert_eq!(last[ev], "slip_limit", "{}", o.stdout);
-    assert_eq!(last[h.iter().position(|c| c == "contact").unwrap()], "side");
-    close(
-        col(&h, last, "mu"),
-        0.5,
-        1e-9,
-        "the side's ratio at its limit",
-    );
-    assert!(rows.iter().all(|r| r[ev] != "slip"));
-    assert!(
-        o.stderr
-            .contains("a side sliding on the surface is not modelled"),
-        "{}",
-        o.stderr
-    );
+    let contact = h.iter().position(|c| c == "contact").unwrap();
+    let slips: Vec<_> = rows.iter().filter(|r| r[ev] == "slip").collect();
+    assert!(slips.len() >= 10, "{}", o.stdout);
+    assert!(slips.iter().all(|r| r[contact] == "side"));
+    for r in &slips {
+        close(
+            col(&h, r, "mu").abs(),
+            0.5,
+            1e-9,
+            "the side's ratio at its limit",
+        );
+    }
+    assert!(!o.stderr.contains("warning"), "{}", o.stderr);
 }
 
 /// A physical scene (`--length-mm`, `--youngs-modulus-gpa`, `--base-diameter-um`) gives the drag

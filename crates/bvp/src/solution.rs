@@ -337,11 +337,16 @@ impl fmt::Display for Solution {
 /// Locates the interval of `mesh` holding `s` (clamped), by bisection.
 pub(crate) fn locate(mesh: &[f64], s: f64) -> usize {
     let last = mesh.len() - 1;
+    // at an end, the interval of positive length nearest it (a path whose end segment has
+    // shrunk to a point, e.g. a side contact at the tip, has a repeated end node: 0/0 there)
     if s <= mesh[0] {
-        return 0;
+        return (0..last).find(|&i| mesh[i + 1] > mesh[i]).unwrap_or(0);
     }
     if s >= mesh[last] {
-        return last.saturating_sub(1);
+        return (0..last)
+            .rev()
+            .find(|&i| mesh[i + 1] > mesh[i])
+            .unwrap_or(last.saturating_sub(1));
     }
     let (mut lo, mut hi) = (0, last);
     while hi - lo > 1 {

@@ -234,15 +234,23 @@ pub(crate) enum Family {
     Slope,
     /// Nothing moves with λ (a fixed scene; a homotopy of the rod itself sets the shooter).
     Fixed(Pose),
-    /// The foot held at `xf` while the stuck contact slides along the surface by `dir·λ` (a slip:
-    /// its anchor moves, in arc length).
-    Slide { xf: f64, dir: f64 },
+    /// The foot held at `xf` while the contact `driver` slides along the surface by `dir·λ` (a
+    /// slip: the anchor of a stuck tip, or the rolling invariant of a side, moves by that much in
+    /// arc length); the other contacts keep their modes.
+    Slide { xf: f64, dir: f64, driver: usize },
     /// A curved surface's shape grown from its straight trend (`λ = 0`, lifted by `off0`) to
     /// itself (`λ = 1`): `flat = 1 − λ`, `h = (1 − λ)·off0`.
     Grow { off0: f64 },
 }
 
 impl Family {
+    /// Whether the pose's slide moves contact `k` (a slip moves its driver only).
+    pub fn moves(&self, k: usize) -> bool {
+        match *self {
+            Family::Slide { driver, .. } => driver == k,
+            _ => true,
+        }
+    }
     /// The pose at `λ` and its derivative in `λ`.
     pub fn pose(&self, lam: f64) -> (Pose, Pose) {
         let z = Pose::default();
@@ -252,7 +260,7 @@ impl Family {
             Family::Turn => (Pose { theta: lam, ..z }, Pose { theta: 1.0, ..z }),
             Family::Slope => (Pose { phi: lam, ..z }, Pose { phi: 1.0, ..z }),
             Family::Fixed(p) => (p, z),
-            Family::Slide { xf, dir } => (
+            Family::Slide { xf, dir, .. } => (
                 Pose {
                     xf,
                     slide: dir * lam,
@@ -305,6 +313,8 @@ pub(crate) struct Chain<P: Profile> {
     pub family: Family,
     /// The breakpoints of the last evaluation.
     bps: Vec<f64>,
+    /// The last evaluation with sensitivities: `∂z(s_k)/∂(u, λ)` at each breakpoint (4 × (n + 1)).
+    zs: Vec<DMatrix<f64>>,
 }
 
 /// How far past the tip a contact's arc length may go inside a solve (see
@@ -329,6 +339,7 @@ impl<P: Profile> Chain<P> {
             set,
             family,
             bps: Vec::new(),
+            zs: Vec::new(),
         }
     }
 
@@ -357,6 +368,9 @@ impl<P: Profile> Chain<P> {
         let (pose, dpose) = self.family.pose(lam);
         let bps = self.breakpoints(u)?;
         self.bps.clone_from(&bps);
+        if var {
+            self.zs.clear();
+        }
         let c = self.sh.compliance;
         let m0 = u[0];
         // forces and their resultants beyond each breakpoint
@@ -410,6 +424,9 @@ impl<P: Profile> Chain<P> {
                 DMatrix::zeros(4, 0)
             };
             cur = Sens { z: shot.z, d: next };
+            if var {
+                self.zs.push(cur.d.clone());
+            }
             // the contact's conditions
             let rows = (jac.as_mut(), rl.as_mut());
             row = self.conditions_of(k, u, (&pose, &dpose), &cur, (&mut r, rows), row);
@@ -543,7 +560,14 @@ impl<P: Profile> Chain<P> {
         let ct = &set.contacts[k];
         let o = set.offset(k);
         let z = cur.z;
-        let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], pose, dpose);
+        // (a slip moves its driver's place only)
+        let still = |p: &Pose| Pose { slide: 0.0, ..*p };
+        let (pose, dpose) = if self.family.moves(k) {
+            (*pose, *dpose)
+        } else {
+            (still(pose), still(dpose))
+        };
+        let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
         let mut rows = jac.zip(rl);
         for i in 0..cs.rows {
             r[row] = cs.val[i];
@@ -564,6 +588,26 @@ impl<P: Profile> Chain<P> {
             row += 1;
         }
         row
+    }
+
+    /// The rates `dz(s_k)/dλ` of the contact points' states along the branch with tangent `du`
+    /// at `(u, λ)` (total derivatives: a contact point moving along the rod included), in the
+    /// foot's frame, from one evaluation with sensitivities; `None` where it fails.
+    pub fn contact_rates(&mut self, u: &[f64], lam: f64, du: &[f64]) -> Option<Vec<[f64; 4]>> {
+        self.eval(u, lam, true).ok()?;
+        let n = du.len();
+        let rates = self
+            .zs
+            .iter()
+            .map(|d| {
+                let mut r = [0.0; 4];
+                for (i, ri) in r.iter_mut().enumerate() {
+                    *ri = d[(i, n)] + (0..n).map(|c| d[(i, c)] * du[c]).sum::<f64>();
+                }
+                r
+            })
+            .collect();
+        Some(rates)
     }
 
     /// Whether the equilibrium at `(u, λ)` is singular to working precision: the smallest
@@ -836,10 +880,10 @@ pub(crate) fn conditions(
                     // the rod runs along the line forwards or backwards (its slope β or β + π)
                     let dir = (ct.phi_ref - beta).cos().round();
                     cs.push(
-                        along - dir * own[2] - k,
+                        along - dir * own[2] - k - pose.slide,
                         da,
                         [0.0, 0.0, -dir],
-                        e[0] * dpose.xf,
+                        e[0] * dpose.xf - dpose.slide,
                     )
                 }
                 Mode::Free => friction(&mut cs, 0.0),
@@ -940,10 +984,10 @@ fn curve_conditions(
         Mode::Rolling(k) => {
             let dir = kpi.cos().round();
             cs.push(
-                sg - dir * own[2] - k,
+                sg - dir * own[2] - k - pose.slide,
                 [dsg, 0.0, 0.0, 0.0],
                 [0.0, 0.0, -dir],
-                dsg * dpose.xf,
+                dsg * dpose.xf - dpose.slide,
             )
         }
         Mode::Free | Mode::Sliding(_) => {

@@ -232,16 +232,22 @@ pub struct SlipEvent {
     pub d: f64,
     /// Where the stick phase before it began.
     pub d_stick: f64,
-    /// Arc length the tip slips along the surface (+ towards +x).
+    /// Arc length the slipping contact slides along the surface (+ towards +x).
     pub jump: f64,
+    /// Where along the rod the slip began: the arc length of the contact that reached its slip
+    /// limit (1: the tip).
+    pub s_slip: f64,
     /// Elastic energy released, `E_before − E_after`.
     pub released: f64,
     /// The work the sliding contact absorbs, `∫ T dσ` (equal to `released`: the energy balance
     /// of the slip); with `energy_balance`.
     pub dissipated: Option<f64>,
     /// The foot's work over the stick phase before, `∫ −F_x dd` (equal to the energy's change
-    /// over it); with `energy_balance`.
+    /// over it plus `friction`); with `energy_balance`.
     pub work: Option<f64>,
+    /// The work contacts sliding with kinetic friction absorbed over the stick phase before (0
+    /// where every contact held); with `energy_balance`.
+    pub friction: Option<f64>,
     /// Elastic energy at the start of that stick phase.
     pub energy_stick: f64,
     /// The signals just before the slip.
@@ -383,6 +389,8 @@ fn drag_with<P: Profile>(
     } else {
         fr.texture.clone()
     };
+    // a contact that forms needing more than μs slides with μk from the start
+    base.ground.mu_k = fr.uniform.map(|(_, k)| k);
     let n = opts.points;
     let grid: Vec<f64> = (0..n)
         .map(|i| {
@@ -450,13 +458,6 @@ struct DragRun<'a, P: Profile> {
     slips: Vec<SlipEvent>,
 }
 
-/// The tip's contact in a set: the last one, if it is the tip and stuck.
-fn stuck_tip(set: &ContactSet) -> Option<usize> {
-    let j = set.contacts.len().checked_sub(1)?;
-    let c = &set.contacts[j];
-    (c.tip && matches!(c.mode, Mode::Stuck(_))).then_some(j)
-}
-
 impl<P: Profile> DragRun<'_, P> {
     fn failure(d: f64, message: String) -> StopReason {
         StopReason::SolverFailure { d, message }
@@ -497,7 +498,8 @@ impl<P: Profile> DragRun<'_, P> {
     }
 
     /// The stick phase from `p` (the start if `first`; `carry`: the tip's μs after a slip): the
-    /// march in `d` until the tip reaches its slip limit (`Err`: the drag ends there or before).
+    /// march in `d` until a contact reaches its slip limit (`Err`: the drag ends there or
+    /// before). Contacts that formed sliding slide on with kinetic friction until they halt.
     fn stick(&mut self, p: Pt, first: bool, carry: Option<f64>) -> Result<Stuck, StopReason> {
         let d = p.lam;
         let x_tip = p.sol.right()[0] + d;
@@ -530,23 +532,7 @@ impl<P: Profile> DragRun<'_, P> {
             StopReason::Slip { .. } => {}
             other => return Err(other),
         }
-        // which contact slips: the tip (a cycle), or a side (not modelled: the end)
-        let w = &pe.w;
-        let worst = (0..w.contacts.len())
-            .map(|j| (j, Crossing::Slip(j).of_watch(&env, w)))
-            .max_by(|a, b| a.1.total_cmp(&b.1));
-        let tip = stuck_tip(&sset);
-        let (Some(jt), true) = (tip, worst.map(|w| w.0) == tip) else {
-            let s = worst.map_or(f64::NAN, |(j, _)| w.contacts[j].s);
-            return Err(StopReason::ContactChange {
-                d: pe.lam,
-                message: format!(
-                    "the contact at s = {s} ({}) reached its slip limit; a side sliding on the \
-                     surface is not modelled (only the stuck tip slips)",
-                    sset.label()
-                ),
-            });
-        };
+        let driver = slipping(&env, &sset, &pe);
         if self.slips.len() >= self.opts.max_slips {
             return Err(StopReason::ContactChange {
                 d: pe.lam,
@@ -559,10 +545,10 @@ impl<P: Profile> DragRun<'_, P> {
                 "the elastic energy before a slip".into(),
             ));
         };
-        let dir = w.contacts[jt].tangential.signum();
+        let dir = pe.w.contacts[driver].tangential.signum();
         Ok(Stuck {
             d,
-            jt,
+            driver,
             dir,
             e_before,
             work: out.metered,
@@ -572,15 +558,44 @@ impl<P: Profile> DragRun<'_, P> {
         })
     }
 
-    /// The slip after the stick `s`: a march in the tip's slide at the held foot, in pieces
-    /// between the texture's patch boundaries (μk uniform in each; at a boundary the tip sticks
-    /// if the patch ahead holds it), until kinetic friction holds the tip.
+    /// The slip after the stick `s`: the slipping contact slides (the foot held) until kinetic
+    /// friction holds it; a contact that reaches its own slip limit on the way slips in turn
+    /// (the first one held where it is) before the first one goes on.
     fn slide(&mut self, s: &Stuck) -> Result<Slid, StopReason> {
-        let (d_s, dir, jt) = (s.pe.lam, s.dir, s.jt);
-        let w = &s.pe.w;
-        let (mut cset, mut cu, mut clam) = (s.set.clone(), s.pe.u.clone(), 0.0);
-        let mut x_now = w.contacts[jt].x;
         let mut dissipated = 0.0;
+        let (set, pe, slid, mu_s_next) = self.slide_driver(
+            s,
+            (s.driver, s.dir),
+            (s.set.clone(), s.pe.clone()),
+            &mut dissipated,
+            0,
+        )?;
+        Ok(Slid {
+            set,
+            pe,
+            dissipated,
+            mu_s_next,
+            slid,
+        })
+    }
+
+    /// The slide of contact `j` the way `dir` from the state `(set, q0)` at the held foot, in
+    /// pieces between the texture's patch boundaries (μk uniform in each; at a boundary the
+    /// contact sticks if the patch ahead holds it), until μk holds it: the state there (the
+    /// slide added to the contact's place), how far it slid, and the static coefficient ahead
+    /// where it stopped at a patch boundary. The work friction absorbs is added to `dissipated`.
+    fn slide_driver(
+        &mut self,
+        s: &Stuck,
+        (j, dir): (usize, f64),
+        (mut cset, q0): (ContactSet, Pt),
+        dissipated: &mut f64,
+        depth: usize,
+    ) -> Result<(ContactSet, Pt, f64, Option<f64>), StopReason> {
+        let d_s = s.pe.lam;
+        let (mut cu, mut clam) = (q0.u.clone(), 0.0);
+        let mut x_now = q0.w.contacts[j].x;
+        let mut slid = 0.0;
         loop {
             let (_, mu_k) = self.fr.at(x_now, dir);
             let boundary = (self.fr.texture.as_ref()).and_then(|t| t.next_boundary(x_now, dir));
@@ -591,18 +606,32 @@ impl<P: Profile> DragRun<'_, P> {
                 _ => MAX_SLIP,
             };
             let mut senv = self.base.clone();
-            senv.ground.slide = Some(Slide { dir, mu_k });
+            senv.mu0 = Some(s.mu_s);
+            senv.ground.slide = Some(Slide {
+                dir,
+                mu_k,
+                driver: j,
+            });
             senv.ground.meter = self.opts.energy_balance.then_some(Meter::Slide);
             if boundary.is_some() {
                 // μk is this patch's until the boundary
                 senv.ground.texture = None;
             }
             // (the point again, watched with this piece's μk)
-            self.st.phase(Family::Slide { xf: d_s, dir }, &senv);
+            let family = Family::Slide {
+                xf: d_s,
+                dir,
+                driver: j,
+            };
+            self.st.phase(family, &senv);
             let q = match self.st.switch(cset.clone(), clam, cu.clone()) {
                 Ok(q) => q,
                 Err(e) => return Err(Self::failure(d_s, format!("the slip at {clam}: {e}"))),
             };
+            if depth > 0 && clam == 0.0 && Crossing::Stick(j).of_watch(&senv, &q.w) >= 0.0 {
+                // a contact that resumes its slide where μk already holds it
+                return Ok((cset, q, slid, None));
+            }
             let sspec = Spec {
                 env: &senv,
                 grid: &[],
@@ -620,42 +649,69 @@ impl<P: Profile> DragRun<'_, P> {
                 return Err(trapped_slide(s, message));
             }
             self.collect(&sout, Phase::Slip, Some(d_s), s.mu_s);
-            dissipated += sout.metered;
+            *dissipated += sout.metered[1];
             let Some((eset, qe)) = sout.last else {
                 return Err(sout.stop);
             };
             match &sout.stop {
                 StopReason::DMax if qe.lam < lam_end * (1.0 - 1e-14) => {
-                    return Ok(Slid::new(eset, qe, dissipated, None))
+                    let slid = slid + qe.lam - clam;
+                    return Ok((moved(eset, j, dir * qe.lam), qe, slid, None));
                 }
                 StopReason::DMax if lam_end >= MAX_SLIP => {
                     return Err(StopReason::ContactChange {
                         d: d_s,
                         message: format!(
-                            "the tip slid {MAX_SLIP} rod lengths along the surface without \
-                             reaching an equilibrium where mu_k holds it"
+                            "the contact at s = {:.6} slid {MAX_SLIP} rod lengths along the \
+                             surface without reaching an equilibrium where mu_k holds it",
+                            qe.w.contacts[j].s
                         ),
                     })
                 }
                 StopReason::DMax => {
-                    // at a patch boundary: the patch ahead holds the tip, or it slides on
-                    let (ms, mk) = self.fr.at(qe.sol.right()[0] + d_s, dir);
-                    let Some(j) = stuck_tip(&eset) else {
-                        return Ok(Slid::new(eset, qe, dissipated, None));
-                    };
+                    // at a patch boundary: the patch ahead holds the contact, or it slides on
                     let c = qe.w.contacts[j];
+                    let (ms, mk) = self.fr.at(c.x, dir);
                     if dir * c.tangential <= mk * c.normal {
-                        return Ok(Slid::new(eset, qe, dissipated, Some(ms)));
+                        let slid = slid + qe.lam - clam;
+                        return Ok((moved(eset, j, dir * qe.lam), qe, slid, Some(ms)));
                     }
                     x_now = c.x;
+                    slid += qe.lam - clam;
                     (cset, cu, clam) = (eset, qe.u, qe.lam);
                 }
+                StopReason::Slip { .. } if depth < MAX_NESTED => {
+                    // another contact reached its slip limit: this one holds where it is while
+                    // that one slips, then goes on
+                    let k = slipping(&senv, &eset, &qe);
+                    let held = moved(eset, j, dir * qe.lam);
+                    slid += qe.lam - clam;
+                    let dir_k = qe.w.contacts[k].tangential.signum();
+                    let (mut kset, kq, _, _) =
+                        self.slide_driver(s, (k, dir_k), (held, qe), dissipated, depth + 1)?;
+                    x_now = kq.w.contacts[j].x;
+                    // where μk holds it, it goes on sliding with this one as long as this one's
+                    // slide pushes it its way (its friction is μk N already: no jump); else it
+                    // halts at once (two contacts that would take turns in ever shorter slips
+                    // slide together)
+                    if let (Some(c), Some(w)) = (kset.contacts.get_mut(k), kq.w.contacts.get(k)) {
+                        if c.mode.no_slip() {
+                            c.mode = Mode::Sliding(dir_k * self.fr.at(w.x, dir_k).1);
+                        }
+                    }
+                    (cset, cu, clam) = (kset, kq.u.clone(), 0.0);
+                    if Crossing::Stick(j).of_watch(&senv, &kq.w) >= 0.0 {
+                        return Ok((cset, kq, slid, None));
+                    }
+                }
+                StopReason::Slip { .. } => return Err(jammed(d_s, &qe, &eset)),
                 StopReason::FoldInD { d } => {
                     return Err(StopReason::ContactChange {
                         d: d_s,
                         message: format!(
-                            "the slip does not end quasi-statically: the tip's equilibria \
-                             fold back after it slid {d} (a snap)"
+                            "the slip does not end quasi-statically: the equilibria fold back \
+                             after the contact at s = {:.6} slid {d} (a snap)",
+                            q0.w.contacts[j].s
                         ),
                     })
                 }
@@ -664,8 +720,8 @@ impl<P: Profile> DragRun<'_, P> {
         }
     }
 
-    /// The tip sticks where the slip `slid` after the stick `s` stopped: the next stick's first
-    /// point, the slip recorded (its row, the state after, the energy released); with the
+    /// The contacts stick where the slip `slid` after the stick `s` stopped: the next stick's
+    /// first point, the slip recorded (its row, the state after, the energy released); with the
     /// elastic energy there and the tip's μs for the next stick.
     fn stick_again(
         &mut self,
@@ -679,15 +735,8 @@ impl<P: Profile> DragRun<'_, P> {
             pe: qe,
             dissipated,
             mu_s_next,
+            slid: lam_s,
         } = slid;
-        let Some(je) = stuck_tip(&eset) else {
-            return Err(StopReason::ContactChange {
-                d: d_s,
-                message: format!("the slip ended without a stuck tip ({})", eset.label()),
-            });
-        };
-        // the tip sticks where it stopped; the next stick phase
-        let lam_s = qe.lam;
         if crate::watch::traps(&s.set) && lam_s < self.opts.solver.tol {
             // a slide shorter than the tolerance beside a side that holds: the trapped pair
             // relaxes from μs to μk over it, and the tip creeps in such slips (40000 of
@@ -703,9 +752,12 @@ impl<P: Profile> DragRun<'_, P> {
                 ),
             });
         }
+        // every contact holds where it stopped (the sliding ones: μk holds them)
         let mut nset = eset.clone();
-        if let Mode::Stuck(a) = nset.contacts[je].mode {
-            nset.contacts[je].mode = Mode::Stuck(a + dir * lam_s);
+        for k in 0..nset.contacts.len() {
+            if crate::events::is_slider(&nset.contacts[k]) {
+                nset = crate::events::held(&nset, k, &qe, d_s);
+            }
         }
         self.st.phase(Family::Drag, &self.base);
         let pa = match self.st.switch(nset.clone(), d_s, qe.u.clone()) {
@@ -729,13 +781,16 @@ impl<P: Profile> DragRun<'_, P> {
                 energy: e,
             }
         };
+        let balance = self.opts.energy_balance;
         let ev = SlipEvent {
             d: d_s,
             d_stick: s.d,
             jump: dir * lam_s,
+            s_slip: s.pe.w.contacts[s.driver].s,
             released: s.e_before - e_after,
-            dissipated: self.opts.energy_balance.then_some(dissipated),
-            work: self.opts.energy_balance.then_some(s.work),
+            dissipated: balance.then_some(dissipated),
+            work: balance.then_some(s.work[0]),
+            friction: balance.then_some(s.work[1]),
             energy_stick: e_stick,
             before: sig(&s.pe, s.e_before),
             after: sig(&pa, e_after),
@@ -799,16 +854,17 @@ impl<P: Profile> DragRun<'_, P> {
     }
 }
 
-/// The end of a stick phase at the tip's slip limit.
+/// The end of a stick phase at a contact's slip limit.
 struct Stuck {
     /// Where the stick began.
     d: f64,
-    /// The tip's contact, and the way it slips along the surface.
-    jt: usize,
+    /// The contact that slips, and the way it slips along the surface.
+    driver: usize,
     dir: f64,
-    /// The elastic energy at the slip, and the foot's work over the stick.
+    /// The elastic energy at the slip, and the works over the stick: the foot's and what
+    /// sliding contacts absorbed.
     e_before: f64,
-    work: f64,
+    work: [f64; 2],
     /// The tip's static coefficient in the stick.
     mu_s: f64,
     /// The state at the slip.
@@ -824,16 +880,50 @@ struct Slid {
     pe: Pt,
     dissipated: f64,
     mu_s_next: Option<f64>,
+    /// How far the slipping contact slid.
+    slid: f64,
 }
 
-impl Slid {
-    fn new(set: ContactSet, pe: Pt, dissipated: f64, mu_s_next: Option<f64>) -> Slid {
-        Slid {
-            set,
-            pe,
-            dissipated,
-            mu_s_next,
-        }
+/// How deep slips may nest (a contact that reaches its limit while another slides slips in
+/// turn) before the set is called jammed.
+const MAX_NESTED: usize = 8;
+
+/// The contact of `set` at its slip limit at `pe` (the one furthest beyond it).
+fn slipping(env: &Env, set: &ContactSet, pe: &Pt) -> usize {
+    let w = &pe.w;
+    (0..set.contacts.len())
+        .filter(|&j| set.contacts[j].mode.no_slip())
+        .map(|j| (j, Crossing::Slip(j).of_watch(env, w)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(set.contacts.len().saturating_sub(1), |w| w.0)
+}
+
+/// `set` with contact `j`'s place (a stuck tip's anchor, a rolling side's invariant) moved by
+/// `by` along the surface: where a slide left it.
+fn moved(set: ContactSet, j: usize, by: f64) -> ContactSet {
+    let mut set = set;
+    set.contacts[j].mode = match set.contacts[j].mode {
+        Mode::Stuck(a) => Mode::Stuck(a + by),
+        Mode::Rolling(k) => Mode::Rolling(k + by),
+        m => m,
+    };
+    set
+}
+
+/// A set that jams: contacts keep reaching their slip limits while others slip (no quasi-static
+/// motion consistent with friction within the nesting bound).
+fn jammed(d: f64, qe: &Pt, set: &ContactSet) -> StopReason {
+    let at: Vec<String> = (qe.w.contacts.iter())
+        .map(|c| format!("{:.6}", c.s))
+        .collect();
+    StopReason::ContactChange {
+        d,
+        message: format!(
+            "the contact set {} jams: its contacts (at s = {}) reach their slip limits in turn \
+             {MAX_NESTED} deep within one slip, with no quasi-static motion that friction allows",
+            set.label(),
+            at.join(", ")
+        ),
     }
 }
 
@@ -842,7 +932,7 @@ impl Slid {
 /// slide's first step); the slide's solver `message`.
 fn trapped_slide(s: &Stuck, message: &str) -> StopReason {
     let sides: Vec<String> = (s.pe.w.contacts.iter().enumerate())
-        .filter(|&(j, _)| j != s.jt)
+        .filter(|&(j, _)| j != s.driver)
         .map(|(_, c)| format!("{:.6}", c.s))
         .collect();
     StopReason::ContactChange {
@@ -862,13 +952,7 @@ fn at_foot(stop: StopReason, d: f64) -> StopReason {
         StopReason::LiftOff { limit, .. } => StopReason::LiftOff { d, limit },
         StopReason::Penetration { s, y, .. } => StopReason::Penetration { d, s, y },
         StopReason::SlipOff { .. } => StopReason::SlipOff { d },
-        StopReason::Slip { mu, .. } => StopReason::ContactChange {
-            d,
-            message: format!(
-                "a side contact reached its slip limit (mu = {mu}) while the tip slipped; a side \
-                 sliding on the surface is not modelled"
-            ),
-        },
+        StopReason::Jam { message, .. } => StopReason::Jam { d, message },
         StopReason::ContactChange { message, .. } => StopReason::ContactChange {
             d,
             message: format!("during a slip: {message}"),

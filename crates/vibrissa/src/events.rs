@@ -37,6 +37,9 @@ pub(crate) enum Crossing {
     /// The side contact `j` (with another beyond it) begins to lie along the line: the rod's
     /// curvature there, relative to the line, falls to zero.
     Lie(usize),
+    /// The contact `j`, sliding with kinetic friction, comes to rest: its slip rate falls to zero
+    /// (it would reverse against its friction).
+    Halt(usize),
     /// `|μ|` stops rising (its first maximum).
     MuMax,
     /// The last contact point reaches the target height (the end of a press).
@@ -69,6 +72,10 @@ impl Crossing {
             Crossing::SlipOff(j) => {
                 format!("s - 1 of contact {} (the object would pass the tip)", j + 1)
             }
+            Crossing::Halt(j) => format!(
+                "-dir v of contact {} (its slip would reverse against its friction)",
+                j + 1
+            ),
             Crossing::MuMax => "-d|mu|/dd".into(),
             Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
             Crossing::Target(Goal::TipSlope(p, _)) => format!("phi(1) - {p}"),
@@ -80,9 +87,10 @@ impl Crossing {
         let mut v = Vec::new();
         for (j, c) in set.contacts.iter().enumerate() {
             v.push(Crossing::Lift(j));
-            let sliding = env.ground.slide.is_some() && c.tip;
-            if sliding {
+            if env.ground.slide.is_some_and(|s| s.driver == j) {
                 v.push(Crossing::Stick(j));
+            } else if is_slider(c) {
+                v.push(Crossing::Halt(j));
             } else if (slip_limit(env, set, j).is_finite() || env.ground.texture.is_some())
                 && c.mode.no_slip()
             {
@@ -116,6 +124,11 @@ impl Crossing {
                 c.tangential.abs() - c.mu_s * c.normal
             }
             Crossing::Lie(j) => w.contacts[j].curv,
+            Crossing::Halt(j) => {
+                // the friction opposes the slip: T > 0 for a slip towards +x
+                let c = w.contacts[j];
+                -c.slide_dir * c.slip
+            }
             Crossing::Stick(j) => {
                 // signed along the slip: it rises through zero once where μk holds the tip
                 let c = w.contacts[j];
@@ -157,6 +170,48 @@ impl Crossing {
             _ => None,
         }
     }
+}
+
+/// The set with contact `j` holding where it is at `pe` (foot at `xf`): a tip stuck at its place
+/// along the surface, a side rolling from there on (its invariant, place along the surface less
+/// its place along the rod, at today's value).
+pub(crate) fn held(set: &ContactSet, j: usize, pe: &Pt, xf: f64) -> ContactSet {
+    let ct = &set.contacts[j];
+    let s = set.s_of(j, &pe.u);
+    let z = if ct.tip {
+        let r = pe.sol.right();
+        [r[0], r[1], r[2], r[3]]
+    } else {
+        let mut z = [0.0; 4];
+        pe.sol.eval(s, &mut z);
+        z
+    };
+    let x = z[0] + xf;
+    let (sigma, dir) = match &ct.geom {
+        Geom::Line { p0, beta } => {
+            let (sb, cb) = beta.sin_cos();
+            let along = cb * (x - p0[0]) + sb * (z[1] - p0[1]);
+            (along, (ct.phi_ref - beta).cos().round())
+        }
+        Geom::Curve { h } => {
+            let th = h.angle(x).0;
+            let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
+            (h.sigma(x).0, kpi.cos().round())
+        }
+        _ => return set.clone(),
+    };
+    let mut ns = set.clone();
+    ns.contacts[j].mode = if ct.tip {
+        Mode::Stuck(sigma)
+    } else {
+        Mode::Rolling(sigma - dir * s)
+    };
+    ns
+}
+
+/// Whether a contact slides on the surface with a given friction ratio (a passive slider).
+pub(crate) fn is_slider(c: &Contact) -> bool {
+    matches!(c.mode, Mode::Sliding(_)) && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
 }
 
 /// An event already true at the start.
@@ -202,10 +257,12 @@ pub(crate) fn stop_reason(ev: Event, w: &Watch, set: &ContactSet) -> StopReason 
         }
         Event::FoldInD => StopReason::FoldInD { d },
         Event::SlipOff => StopReason::SlipOff { d },
-        Event::Touchdown | Event::PeelBack | Event::Release => StopReason::ContactChange {
-            d,
-            message: format!("{} in state {}", ev.name(), set.label()),
-        },
+        Event::Touchdown | Event::PeelBack | Event::Release | Event::Halt => {
+            StopReason::ContactChange {
+                d,
+                message: format!("{} in state {}", ev.name(), set.label()),
+            }
+        }
     }
 }
 
@@ -301,7 +358,7 @@ pub(crate) fn forming_slip(
     old: &ContactSet,
     new: &ContactSet,
     u: &[f64],
-    du: Option<Vec<f64>>,
+    du: Option<&[f64]>,
     mu0: Option<f64>,
 ) -> Option<String> {
     let j = new
@@ -350,6 +407,25 @@ pub(crate) fn forming_slip(
     Some(format!(
         "a side contact forms at s = {s:.6}{trap} and needs a friction ratio |T|/N = {ratio:.3e} from the moment it forms, more than {bound}: it slips at once, and a sliding side contact is not in the scan's model"
     ))
+}
+
+/// The set `new` (a contact just formed beside those of `old`) with the new contact sliding from
+/// the start with kinetic friction `mu_k`, its friction the way its tangential force grows on
+/// the new state's tangent `du`; `None` where that is not known.
+pub(crate) fn sliding_from_start(
+    old: &ContactSet,
+    new: &ContactSet,
+    du: Option<Vec<f64>>,
+    mu_k: f64,
+) -> Option<ContactSet> {
+    let j = new
+        .contacts
+        .iter()
+        .position(|c| !old.contacts.contains(c))?;
+    let dt = du?[new.offset(j) + 1];
+    let mut ns = new.clone();
+    ns.contacts[j].mode = Mode::Sliding(if dt < 0.0 { -mu_k } else { mu_k });
+    Some(ns)
 }
 
 /// An event function's value where its contact state holds strictly (NaN: not known to).
@@ -515,6 +591,7 @@ pub(crate) fn transition(
             // the end of a slip: the march in the slip's parameter reached its goal
             Crossing::Stick(_) => Next::Done,
             Crossing::SlipOff(_) => Next::Stop(Event::SlipOff),
+            Crossing::Halt(j) => Next::Switch(Event::Halt, held(set, j, pe, xf), u.clone()),
             Crossing::MuMax => Next::Stop(Event::FoldInD),
             Crossing::Target(_) => Next::Done,
             Crossing::Lift(j) => {

@@ -20,7 +20,7 @@ use crate::profile::Profile;
 use crate::rodsolve::ShotFailure;
 use crate::shooter::{rhs, Shooter};
 use crate::stepper::{interpolate, same_branch, Pt, StepError, Stepper};
-use crate::watch::{watch, Env, RodView};
+use crate::watch::{fill_slip, has_slider, watch, Env, RodView};
 use crate::VibrissaError;
 use bvp::continuation::{Arclength, Member, ParamBvp};
 use bvp::{BvpSolver, Dims, Guess, Solution, Stats};
@@ -405,7 +405,7 @@ impl<P: Profile> GenericStepper<P> {
             sol.eval(sig, &mut zz);
             [zz[4 * k], zz[4 * k + 1], zz[4 * k + 2], zz[4 * k + 3]]
         };
-        let w = watch(
+        let mut w = watch(
             &self.env,
             &self.bvp.set,
             lam,
@@ -419,6 +419,12 @@ impl<P: Profile> GenericStepper<P> {
                 straight: profile.straight(),
             },
         );
+        if let (true, Some(d)) = (has_slider(&self.bvp.set), du.as_deref()) {
+            let foot = self.bvp.family.pose(lam).1.xf;
+            if let Some(r) = self.chain.contact_rates(&u, lam, d) {
+                fill_slip(&mut w, &self.bvp.set, (&u, d), &r, foot);
+            }
+        }
         self.last = Some(sol.clone());
         Ok(Pt {
             lam,

@@ -16,8 +16,8 @@
 use crate::chain::ContactSet;
 use crate::control::StepControl;
 use crate::events::{
-    ended, first_max, forming_slip, holds, lifted, locate, predicted_crossing, start_event,
-    stop_reason, transition, vanishing_normal, Crossing, Next, Rules, AT_ZERO, JUMP,
+    ended, first_max, forming_slip, holds, lifted, locate, predicted_crossing, sliding_from_start,
+    start_event, stop_reason, transition, vanishing_normal, Crossing, Next, Rules, AT_ZERO, JUMP,
 };
 use crate::fold;
 use crate::profile::{General, Profile};
@@ -63,8 +63,9 @@ pub(crate) struct MarchOut {
     pub stats: Stats,
     /// The tip state `z(1)` (foot frame) of each output point.
     pub tips: Vec<[f64; 4]>,
-    /// The work integrated along the march (`env.ground.meter`; 0 without one).
-    pub metered: f64,
+    /// The works integrated along the march (`env.ground.meter`; 0 without one): the foot's and
+    /// what friction absorbed at the sliding contacts.
+    pub metered: [f64; 2],
 }
 
 /// Runs the march from the point `p0` (λ = `p0.lam`) over the grid.
@@ -267,8 +268,17 @@ impl<P: Profile> Run<'_, '_, P> {
             Ok(next) => next,
             Err(flow) => return flow,
         };
-        if let Some(stop) = self.check_pending(w, &p, lam) {
-            return end(stop);
+        match self.check_pending(w, &p, lam) {
+            Some(Pending::Stop(stop)) => return end(stop),
+            // a sliding contact that reverses from the state's first point halts there: the
+            // event at the start, as a step's (its held state then decides on)
+            Some(Pending::AtStart(Crossing::Halt(j))) => {
+                let (set, u) = (self.stepper.set().clone(), prev.u.clone());
+                let next = self.reversed(&set, j, &prev);
+                return self.switch(w, (Event::Halt, set, prev), next, u);
+            }
+            Some(Pending::AtStart(c)) => return self.on_event(w, c, prev),
+            None => {}
         }
         if let Some(stop) = self.check_stall(w, &p, lam, from_queue) {
             return end(stop);
@@ -416,7 +426,7 @@ impl<P: Profile> Run<'_, '_, P> {
 
     /// A change of contact set holds only if its new event functions leave zero inwards: the end
     /// where one leaves it outwards at the new point `p`.
-    fn check_pending(&mut self, w: &mut Walk, p: &Pt, lam: f64) -> Option<StopReason> {
+    fn check_pending(&mut self, w: &mut Walk, p: &Pt, lam: f64) -> Option<Pending> {
         let env = self.spec.env;
         let mut wrong = None;
         w.pending.retain(|&c| {
@@ -427,15 +437,53 @@ impl<P: Profile> Run<'_, '_, P> {
             !holds(v)
         });
         let (c, v) = wrong?;
+        if matches!(c, Crossing::Halt(_)) && w.hist.len() == 1 {
+            w.pending.clear();
+            return Some(Pending::AtStart(c));
+        }
         self.range.close(RangeEnd::Event);
-        Some(StopReason::ContactChange {
+        if env.ground.slide.is_some() {
+            // in a slip (the foot held) the impasse is friction's: the slip cannot go on
+            // quasi-statically
+            return Some(Pending::Stop(StopReason::Jam {
+                d: lam,
+                message: format!(
+                    "the slip cannot go on quasi-statically: the contact state {} does not hold \
+                     beyond {lam:.6e} of the slip ({} = {v:.3e}), and the state before it ended \
+                     there: no contact state consistent with Coulomb friction continues it (the \
+                     slip turns dynamic)",
+                    self.stepper.set().label(),
+                    c.describe()
+                ),
+            }));
+        }
+        Some(Pending::Stop(StopReason::ContactChange {
             d: lam,
             message: format!(
                 "the contact state {} does not hold beyond d = {lam}: {} = {v:.3e} after the change, and the state before it ended there: the model has no contact state that continues",
                 self.stepper.set().label(),
                 c.describe()
             ),
-        })
+        }))
+    }
+
+    /// The state after the sliding contact `j` of `set` reverses from the first point `p`: it
+    /// holds where it is, unless holding it leaves the march no way on (the held state's tangent
+    /// singular or beyond `HOLD_MAX`, as for a side trapped a short stretch behind a sliding
+    /// tip, which must move with it): then it slides the other way.
+    fn reversed(&mut self, set: &ContactSet, j: usize, p: &Pt) -> ContactSet {
+        let xf = self.stepper.foot_x(p.lam);
+        let hold = crate::events::held(set, j, p, xf);
+        let way_on = (self.stepper.tangent_in(&hold, p.lam, &p.u))
+            .is_some_and(|t| t.iter().all(|v| v.abs() < HOLD_MAX));
+        if way_on {
+            return hold;
+        }
+        let mut back = set.clone();
+        if let crate::chain::Mode::Sliding(r) = back.contacts[j].mode {
+            back.contacts[j].mode = crate::chain::Mode::Sliding(-r);
+        }
+        back
     }
 
     /// The end after too many steps in a row without progress in `λ`.
@@ -487,7 +535,9 @@ impl<P: Profile> Run<'_, '_, P> {
         if let Some(m) = env.ground.meter {
             let upto = found.as_ref().map_or(&p, |f| &f.pt).clone();
             let st = &mut *self.stepper;
-            self.out.metered += meter_between(st, env, m, &w.hist, (prev, &upto), 0);
+            let done = meter_between(st, env, m, &w.hist, (prev, &upto), 0);
+            self.out.metered[0] += done[0];
+            self.out.metered[1] += done[1];
         }
         if self.range.end.is_none() {
             let ws = (&prev.w, w.pprev.as_ref());
@@ -597,17 +647,28 @@ impl<P: Profile> Run<'_, '_, P> {
         &mut self,
         w: &mut Walk,
         (ev, set, pe): (Event, ContactSet, Pt),
-        new_set: ContactSet,
+        mut new_set: ContactSet,
         u: Vec<f64>,
     ) -> Flow {
         let env = self.spec.env;
         self.out.push(&set, &pe, Some(ev));
         if new_set.contacts.len() > set.contacts.len() {
             let du = self.stepper.tangent_in(&new_set, pe.lam, &u);
-            if let Some(message) = forming_slip(&set, &new_set, &u, du, env.mu0) {
-                self.range.close(RangeEnd::Event);
-                let stop = StopReason::ContactChange { d: pe.lam, message };
-                return Flow::End(stop, Some(Box::new((set, pe))));
+            if let Some(message) = forming_slip(&set, &new_set, &u, du.as_deref(), env.mu0) {
+                // with kinetic friction (a drag) the new contact slides from the start; without
+                // it (a scan) the scan ends there
+                match env
+                    .ground
+                    .mu_k
+                    .and_then(|mk| sliding_from_start(&set, &new_set, du, mk))
+                {
+                    Some(slid) => new_set = slid,
+                    None => {
+                        self.range.close(RangeEnd::Event);
+                        let stop = StopReason::ContactChange { d: pe.lam, message };
+                        return Flow::End(stop, Some(Box::new((set, pe))));
+                    }
+                }
             }
         }
         let rising = pe.w.dmu_abs;
@@ -738,3 +799,14 @@ impl std::fmt::Display for BridgeError {
         }
     }
 }
+
+/// A new contact state's event that its first step found beyond zero.
+enum Pending {
+    /// The state does not hold: the march ends.
+    Stop(StopReason),
+    /// The event happens at the state's first point.
+    AtStart(Crossing),
+}
+
+/// The largest rate `|du/dλ|` of a held state's tangent that still lets the march go on from it.
+const HOLD_MAX: f64 = 1e6;

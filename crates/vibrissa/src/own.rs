@@ -10,7 +10,7 @@ use crate::control::{corrector_tol, MAX_ITER, OWN_H_MAX};
 use crate::profile::Profile;
 use crate::rodsolve::{correct_chord, Converged, ShotFailure};
 use crate::stepper::{interpolate, same_branch, Pt, StepError, Stepper};
-use crate::watch::{watch, Env, RodView};
+use crate::watch::{fill_slip, has_slider, watch, Env, RodView};
 use bvp::Stats;
 use nalgebra::DVector;
 
@@ -28,7 +28,7 @@ impl<P: Profile> OwnStepper<P> {
         let sol = self.chain.path(&cv.u);
         let xf = self.chain.family.pose(lam).0.xf;
         let chain = &self.chain;
-        let w = watch(
+        let mut w = watch(
             &self.env,
             &chain.set,
             lam,
@@ -42,6 +42,12 @@ impl<P: Profile> OwnStepper<P> {
                 straight: chain.sh.profile.straight(),
             },
         );
+        if let (true, Some(d)) = (has_slider(&self.chain.set), du.as_deref()) {
+            let foot = self.chain.family.pose(lam).1.xf;
+            if let Some(r) = self.chain.contact_rates(&cv.u, lam, d) {
+                fill_slip(&mut w, &self.chain.set, (&cv.u, d), &r, foot);
+            }
+        }
         Ok(Pt {
             lam,
             u: cv.u,

@@ -2,7 +2,7 @@
 //! grid and at events, their shapes and tip states, the first maximum of `|μ|` and what ended the
 //! measurable range, and the work integrated along the branch (the drag's energy balance).
 
-use crate::chain::{ContactSet, Geom};
+use crate::chain::{ContactSet, Geom, Mode};
 use crate::profile::{General, Profile};
 use crate::report::{ContactLabel, Event, RangeEnd, ScanPoint};
 use crate::sampling::flex_and_reversals;
@@ -32,10 +32,10 @@ impl RangeTracker {
     }
 }
 
-/// `∫ rate dλ` of the work `m` from `a` to `b` on the branch (points of `hist`'s span):
-/// the Hermite-corrected trapezoid, halved with solves at the midpoints until the halves agree
-/// with the whole to 1e-11 (its error falls 16-fold per halving: the halves' sum is then
-/// extrapolated).
+/// The works `m` meters from `a` to `b` on the branch (points of `hist`'s span), `[foot,
+/// friction]`: the Hermite-corrected trapezoid, halved with solves at the midpoints until the
+/// halves agree with the whole to 1e-11 (its error falls 16-fold per halving: the halves' sum is
+/// then extrapolated).
 pub(crate) fn meter_between(
     st: &mut dyn Stepper,
     env: &Env,
@@ -43,7 +43,7 @@ pub(crate) fn meter_between(
     hist: &[Pt],
     (a, b): (&Pt, &Pt),
     depth: u32,
-) -> f64 {
+) -> [f64; 2] {
     let ends = |st: &dyn Stepper, a: &Pt, b: &Pt| {
         let set = st.set();
         metered(m, env, set, (a, st.foot_x(a.lam)), (b, st.foot_x(b.lam)))
@@ -55,66 +55,107 @@ pub(crate) fn meter_between(
     let Ok(mid) = st.correct(0.5 * (a.lam + b.lam), hist, true) else {
         return whole;
     };
-    let halves = ends(&*st, a, &mid) + ends(&*st, &mid, b);
-    if (halves - whole).abs() <= 1e-11 * (1.0 + whole.abs()) {
-        return halves + (halves - whole) / 15.0;
+    let (h1, h2) = (ends(&*st, a, &mid), ends(&*st, &mid, b));
+    let halves = [h1[0] + h2[0], h1[1] + h2[1]];
+    let agree = (0..2).all(|i| (halves[i] - whole[i]).abs() <= 1e-11 * (1.0 + whole[i].abs()));
+    if agree {
+        return [0, 1].map(|i| halves[i] + (halves[i] - whole[i]) / 15.0);
     }
-    meter_between(st, env, m, hist, (a, &mid), depth + 1)
-        + meter_between(st, env, m, hist, (&mid, b), depth + 1)
+    let l = meter_between(st, env, m, hist, (a, &mid), depth + 1);
+    let r = meter_between(st, env, m, hist, (&mid, b), depth + 1);
+    [l[0] + r[0], l[1] + r[1]]
 }
 
-/// The rate of the work `m` at the point `p` (foot at `xf`) and its slope in `λ`.
-fn meter_rate(m: Meter, env: &Env, set: &ContactSet, p: &Pt, xf: f64) -> (f64, f64) {
+/// The rate of the foot's work at the point `p` and its slope in `λ`: `−ΣF_x` (the foot carries
+/// minus the total contact force).
+fn foot_rate(set: &ContactSet, p: &Pt) -> (f64, f64) {
     let zero = vec![0.0; p.u.len()];
     let du = p.du.as_deref().unwrap_or(&zero);
-    match m {
-        Meter::Foot => {
-            let (mut r, mut dr) = (0.0, 0.0);
-            for (j, ct) in set.contacts.iter().enumerate() {
-                let o = set.offset(j);
-                r -= ct.force(p.u[o], p.u[o + 1])[0];
-                dr -= ct.force(du[o], du[o + 1])[0];
-            }
-            (r, dr)
-        }
-        Meter::Slide => {
-            let dir = env.ground.slide.map_or(1.0, |s| s.dir);
-            let Some(j) = set.contacts.iter().position(|c| c.tip) else {
-                return (0.0, 0.0);
-            };
-            let ct = &set.contacts[j];
-            let o = set.offset(j);
-            let f = ct.force(p.u[o], p.u[o + 1]);
-            let df = ct.force(du[o], du[o + 1]);
-            // the unit tangent along +σ at the tip and its turn per unit arc length
-            let (e, de) = match &ct.geom {
-                Geom::Curve { h } => {
-                    let x = p.sol.right()[0] + xf;
-                    let (_, d, dd) = h.jet(x);
-                    let w = (1.0 + d * d).sqrt();
-                    let kappa = dd / (w * w * w);
-                    ([1.0 / w, d / w], [-d / w * kappa, kappa / w])
-                }
-                Geom::Line { beta, .. } => ([beta.cos(), beta.sin()], [0.0, 0.0]),
-                _ => return (0.0, 0.0),
-            };
-            let r = -dir * (f[0] * e[0] + f[1] * e[1]);
-            let dr = -dir * (df[0] * e[0] + df[1] * e[1]) - (f[0] * de[0] + f[1] * de[1]);
-            (r, dr)
-        }
+    let (mut r, mut dr) = (0.0, 0.0);
+    for (j, ct) in set.contacts.iter().enumerate() {
+        let o = set.offset(j);
+        r -= ct.force(p.u[o], p.u[o + 1])[0];
+        dr -= ct.force(du[o], du[o + 1])[0];
     }
+    (r, dr)
 }
 
-/// `∫ rate dλ` between two points of one branch: the trapezoid with the end-slope correction
-/// (exact for cubics; Hermite data from the exact tangents).
-fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) -> f64 {
+/// The rate of the work the driving contact `j` of a slip absorbs (`dir·T`, its place moving by
+/// `dir·λ` along the surface) at `p` (foot at `xf`) and its slope in `λ`.
+fn driver_rate(env: &Env, set: &ContactSet, j: usize, p: &Pt, xf: f64) -> (f64, f64) {
+    let zero = vec![0.0; p.u.len()];
+    let du = p.du.as_deref().unwrap_or(&zero);
+    let dir = env.ground.slide.map_or(1.0, |s| s.dir);
+    let ct = &set.contacts[j];
+    let o = set.offset(j);
+    let f = ct.force(p.u[o], p.u[o + 1]);
+    let df = ct.force(du[o], du[o + 1]);
+    // the unit tangent along +σ at the contact and its turn per unit arc length
+    let (e, de) = match &ct.geom {
+        Geom::Curve { h } => {
+            let x = if ct.tip {
+                p.sol.right()[0] + xf
+            } else {
+                p.w.contacts[j].x
+            };
+            let (_, d, dd) = h.jet(x);
+            let w = (1.0 + d * d).sqrt();
+            let kappa = dd / (w * w * w);
+            ([1.0 / w, d / w], [-d / w * kappa, kappa / w])
+        }
+        Geom::Line { beta, .. } => ([beta.cos(), beta.sin()], [0.0, 0.0]),
+        _ => return (0.0, 0.0),
+    };
+    let r = -dir * (f[0] * e[0] + f[1] * e[1]);
+    let dr = -dir * (df[0] * e[0] + df[1] * e[1]) - (f[0] * de[0] + f[1] * de[1]);
+    (r, dr)
+}
+
+/// The trapezoid with the end-slope correction of `∫ g` over a step of `h` from the values and
+/// slopes at its ends (exact for cubics).
+fn corrected((ga, da): (f64, f64), (gb, db): (f64, f64), h: f64) -> f64 {
+    0.5 * h * (ga + gb) + h * h / 12.0 * (da - db)
+}
+
+/// The works of `m` between two points of one branch, `[foot, friction]`: the foot's in a stick,
+/// the driving contact's in a slip, and every contact sliding passively in either
+/// (`ratio·∫N dq` over its slip coordinate `q`, `dN/dq` from the rates).
+fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) -> [f64; 2] {
     let h = b.0.lam - a.0.lam;
     if h == 0.0 {
-        return 0.0;
+        return [0.0, 0.0];
     }
-    let (ra, da) = meter_rate(m, env, set, a.0, a.1);
-    let (rb, db) = meter_rate(m, env, set, b.0, b.1);
-    0.5 * h * (ra + rb) + h * h / 12.0 * (da - db)
+    let mut out = [0.0, 0.0];
+    match m {
+        Meter::Foot => out[0] = corrected(foot_rate(set, a.0), foot_rate(set, b.0), h),
+        Meter::Slide => {
+            if let Some(j) = env.ground.slide.map(|s| s.driver) {
+                let (ra, rb) = (
+                    driver_rate(env, set, j, a.0, a.1),
+                    driver_rate(env, set, j, b.0, b.1),
+                );
+                out[1] = corrected(ra, rb, h);
+            }
+        }
+    }
+    for (k, ct) in set.contacts.iter().enumerate() {
+        let Mode::Sliding(ratio) = ct.mode else {
+            continue;
+        };
+        if env.ground.slide.is_some_and(|s| s.driver == k) || !is_surface(ct) {
+            continue;
+        }
+        let (ca, cb) = (&a.0.w.contacts[k], &b.0.w.contacts[k]);
+        let hq = cb.q - ca.q;
+        let end = |c: &crate::watch::ContactForce| (c.normal, c.dnormal / c.slip);
+        out[1] += ratio * corrected(end(ca), end(cb), hq);
+    }
+    out
+}
+
+/// Whether a contact touches the surface (a line or a curve).
+fn is_surface(ct: &crate::chain::Contact) -> bool {
+    matches!(ct.geom, Geom::Line { .. } | Geom::Curve { .. })
 }
 
 /// The output point of a branch point.
@@ -171,7 +212,7 @@ pub(crate) struct Output<'a, P: Profile> {
     /// The next grid point to emit.
     pub gi: usize,
     pub tips: Vec<[f64; 4]>,
-    pub metered: f64,
+    pub metered: [f64; 2],
     /// Each row's shape sampled at this many points, if kept.
     pub keep_shapes: Option<usize>,
     /// The rod's profile (flex points of the rows, shapes).
@@ -193,7 +234,7 @@ impl<'a, P: Profile> Output<'a, P> {
             shapes: Vec::new(),
             gi,
             tips: Vec::with_capacity(rows),
-            metered: 0.0,
+            metered: [0.0, 0.0],
             keep_shapes,
             profile,
             general,

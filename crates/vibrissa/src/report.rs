@@ -255,11 +255,14 @@ pub enum Event {
     Release,
     /// The point object slips off the tip. Ends a whisk.
     SlipOff,
+    /// A contact sliding with kinetic friction comes to rest (its slip rate reached zero) and
+    /// holds again. The march goes on.
+    Halt,
 }
 
 impl Event {
     /// The name used in CSV and JSON (`slip`, `lift_off`, `penetration`, `fold_in_d`,
-    /// `touchdown`, `peel_back`, `release`, `slip_off`).
+    /// `touchdown`, `peel_back`, `release`, `slip_off`, `halt`).
     pub fn name(self) -> &'static str {
         match self {
             Event::Slip => "slip",
@@ -270,11 +273,15 @@ impl Event {
             Event::PeelBack => "peel_back",
             Event::Release => "release",
             Event::SlipOff => "slip_off",
+            Event::Halt => "halt",
         }
     }
     /// Whether the event ends the march.
     pub fn ends(self) -> bool {
-        !matches!(self, Event::Touchdown | Event::PeelBack | Event::Release)
+        !matches!(
+            self,
+            Event::Touchdown | Event::PeelBack | Event::Release | Event::Halt
+        )
     }
 }
 
@@ -329,6 +336,15 @@ pub enum StopReason {
         /// What changed, and why the new state does not hold.
         message: String,
     },
+    /// A slip has no quasi-static continuation: no contact state consistent with Coulomb
+    /// friction goes on from where it stands (the slip turns dynamic; the evidence in the
+    /// message): a physical stop.
+    Jam {
+        /// Where (the foot's place).
+        d: f64,
+        /// Which contacts, and which condition fails.
+        message: String,
+    },
     /// The solver failed.
     SolverFailure {
         /// Last displacement reached.
@@ -340,7 +356,7 @@ pub enum StopReason {
 
 impl StopReason {
     /// The reason's name in CSV and JSON (`d_max`, `slip`, `lift_off`, `penetration`,
-    /// `fold_in_d`, `slip_off`, `contact_change`, `solver_failure`).
+    /// `fold_in_d`, `slip_off`, `contact_change`, `jam`, `solver_failure`).
     pub fn name(&self) -> &'static str {
         match self {
             StopReason::DMax => "d_max",
@@ -350,6 +366,7 @@ impl StopReason {
             StopReason::FoldInD { .. } => "fold_in_d",
             StopReason::SlipOff { .. } => "slip_off",
             StopReason::ContactChange { .. } => "contact_change",
+            StopReason::Jam { .. } => "jam",
             StopReason::SolverFailure { .. } => "solver_failure",
         }
     }
@@ -364,6 +381,7 @@ impl StopReason {
             | StopReason::FoldInD { d }
             | StopReason::SlipOff { d }
             | StopReason::ContactChange { d, .. }
+            | StopReason::Jam { d, .. }
             | StopReason::SolverFailure { d, .. } => Some(*d),
         }
     }
@@ -386,6 +404,7 @@ impl StopReason {
             StopReason::ContactChange { d, message } => {
                 format!("contact change at {p} = {d}: {message}")
             }
+            StopReason::Jam { d, message } => format!("jam at {p} = {d}: {message}"),
             StopReason::SolverFailure { d, message } => {
                 format!("solver failure after {p} = {d}: {message}")
             }

@@ -721,6 +721,9 @@ pub(crate) struct Ground {
     pub curve: Option<Arc<Height>>,
     pub texture: Option<Arc<Texture>>,
     pub slide: Option<Slide>,
+    /// Kinetic friction off a texture (a drag's μk): a contact that forms needing more than μs
+    /// slides with it, and a contact that slides passively during a slip carries it.
+    pub mu_k: Option<f64>,
     /// Integrate the work along the march (the drag's energy balance).
     pub meter: Option<Meter>,
     /// The march grows the curve's shape: its amplitude is `λ` (the start on a curve).
@@ -740,10 +743,12 @@ pub(crate) enum Meter {
 /// A slip in progress.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Slide {
-    /// The direction the tip slides along the surface (`+1`: towards +x).
+    /// The direction the driving contact slides along the surface (`+1`: towards +x).
     pub dir: f64,
     /// μk when there is no texture.
     pub mu_k: f64,
+    /// The contact whose slide is the march's parameter.
+    pub driver: usize,
 }
 
 impl Ground {

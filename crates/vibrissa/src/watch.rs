@@ -52,6 +52,18 @@ pub(crate) struct ContactForce {
     /// along the rod there, `cos(φ − β) κ` (negative while the rod curves away from the line on
     /// both sides; zero where it begins to lie along it). NaN elsewhere.
     pub curv: f64,
+    /// The slip rate of the rod at the contact against the surface, `dσ/dλ` of the material
+    /// point there (arc length along the surface, `+` towards `+x`): where the contact slides
+    /// (its rate decides when it halts and what its friction dissipates). NaN where not known.
+    pub slip: f64,
+    /// The way a contact sliding with a set friction ratio slides (the sign of the ratio: its
+    /// friction `T` has that sign, and so has its slip), 0 for the others.
+    pub slide_dir: f64,
+    /// Where a contact slides: its slip coordinate, the place along the surface less its place
+    /// along the rod (`σ − dir·s`, the invariant of rolling), and `dN/dλ` of its normal force
+    /// (the friction work it absorbs is `ratio·∫N dq`). NaN where not known.
+    pub q: f64,
+    pub dnormal: f64,
 }
 
 /// Per-point quantities of a march.
@@ -221,6 +233,13 @@ pub(crate) fn watch(
             x,
             mu_s,
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
+            slip: f64::NAN,
+            slide_dir: match ct.mode {
+                Mode::Sliding(r) => r.signum(),
+                _ => 0.0,
+            },
+            q: f64::NAN,
+            dnormal: f64::NAN,
             curv: match ct.geom {
                 Geom::Line { beta, .. } if lies_inside(set, j) => {
                     let z = exact(s);
@@ -576,3 +595,66 @@ const HIDDEN_START: f64 = 1e-6;
 
 /// How far from the interpolant's maximum the rod's is looked for when they disagree.
 const MAX_WINDOW: f64 = 0.02;
+
+/// Whether the set has a contact sliding on the surface (its slip rate is watched).
+pub(crate) fn has_slider(set: &ContactSet) -> bool {
+    set.contacts.iter().any(|c| {
+        matches!(c.mode, Mode::Sliding(_))
+            && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
+    })
+}
+
+/// The slip rates of the surface contacts (`ContactForce::slip`) from the rates of the contact
+/// points' states `rates` (`dz(s_k)/dλ` in the foot's frame, a moving contact point's motion
+/// along the rod included), the tangent `du` and the foot's rate `foot` (`dx_f/dλ`): the rate of
+/// the contact point along the surface less its motion along the rod (`dir·ds/dλ`, `dir` the
+/// way the rod runs along the surface there), so the material point's slip.
+pub(crate) fn fill_slip(
+    w: &mut Watch,
+    set: &ContactSet,
+    (u, du): (&[f64], &[f64]),
+    rates: &[[f64; 4]],
+    foot: f64,
+) {
+    for (j, ct) in set.contacts.iter().enumerate() {
+        let Some(r) = rates.get(j) else {
+            continue;
+        };
+        let vx = r[0] + foot;
+        let x = w.contacts[j].x;
+        let o = set.offset(j);
+        // the place along the surface and its rate, the way the rod runs along it, the normal
+        // force's rate in the surface's local frame
+        let (place, along, dir, dn) = match &ct.geom {
+            Geom::Line { p0, beta } => {
+                let (sb, cb) = beta.sin_cos();
+                // (on the line through p0: its height follows from x)
+                let place = (x - p0[0]) / cb;
+                (
+                    place,
+                    cb * vx + sb * r[1],
+                    (ct.phi_ref - beta).cos().round(),
+                    du[o],
+                )
+            }
+            Geom::Curve { h } => {
+                let (th, dth) = h.angle(x);
+                let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
+                let (sg, dsg) = h.sigma(x);
+                // N_loc = Fx sin θ − Fy cos θ: through the unknowns and through θ(x)
+                let f = ct.force(du[o], du[o + 1]);
+                let f0 = ct.force(u[o], u[o + 1]);
+                let (st, c) = th.sin_cos();
+                let dn = f[0] * st - f[1] * c + (f0[0] * c + f0[1] * st) * dth * vx;
+                (sg, dsg * vx, kpi.cos().round(), dn)
+            }
+            _ => continue,
+        };
+        let s = w.contacts[j].s;
+        let moving = if ct.tip { 0.0 } else { dir * du[o + 2] };
+        let c = &mut w.contacts[j];
+        c.slip = along - moving;
+        c.q = place - if ct.tip { 0.0 } else { dir * s };
+        c.dnormal = dn;
+    }
+}

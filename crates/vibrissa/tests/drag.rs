@@ -215,6 +215,77 @@ fn energy_balance_of_every_phase() {
     }
 }
 
+/// Every contact slides (issue 31). At η 0.46 the rod meets the surface at s ≈ 0.94 before its tip
+/// does, and that side contact reaches its slip limit first: it slides with μk until μk holds it
+/// (its ratio |T|/N = μk after each slip, 1e-9), again and again up to d_max. The energy balance
+/// with a sliding side: what the slip releases is what the sliding contact absorbs, and a
+/// stick's foot work is the elastic energy's change plus what passive sliders absorb (1e-8).
+#[test]
+fn a_side_contact_slides() {
+    let o = DragOptions {
+        energy_balance: true,
+        ..uniform(0.5, 0.3, 0.1)
+    };
+    let r = run(&scene(|s| s.eta = 0.46), &o);
+    assert_eq!(r.stop, StopReason::DMax, "{r}");
+    assert!(r.slips.len() >= 10, "{r}");
+    for (k, e) in r.slips.iter().enumerate() {
+        assert!(
+            e.s_slip > 0.9 && e.s_slip < 0.99,
+            "slip {k} at s = {}",
+            e.s_slip
+        );
+        assert!(
+            (e.before.mu.abs() - 0.5).abs() < 1e-9,
+            "slip {k}: {:?}",
+            e.before
+        );
+        assert!(
+            (e.after.mu.abs() - 0.3).abs() < 1e-9,
+            "slip {k}: {:?}",
+            e.after
+        );
+        let diss = e.dissipated.unwrap();
+        assert!(
+            (diss - e.released).abs() < 1e-8,
+            "slip {k}: {diss} vs {}",
+            e.released
+        );
+        let stick = e.work.unwrap() - e.friction.unwrap();
+        let de = e.before.energy - e.energy_stick;
+        assert!((stick - de).abs() < 1e-8, "stick {k}: {stick} vs {de}");
+    }
+}
+
+/// A slip with no quasi-static continuation is a named physical stop (a jam), not a missing
+/// contact state: on the paper's rod over a corrugation of amplitude 0.001 and wavelength 0.02,
+/// a side contact forms 0.011 behind the tip and slides backwards while the foot advances; when
+/// the tip slips, that side's slip reverses, and with the reversed friction its normal force
+/// falls to zero within 1e-4 of slip, where the free rod would cross the surface.
+#[test]
+fn a_slip_without_a_quasi_static_continuation_jams() {
+    let s = scene(|s| {
+        s.surface = SurfaceProfile::Sine {
+            amplitude: 0.001,
+            wavelength: 0.02,
+            phase: 0.0,
+        }
+    });
+    let r = run(&s, &uniform(0.5, 0.3, 0.3));
+    assert!(r.slips.len() >= 2, "{r}");
+    match &r.stop {
+        StopReason::Jam { d, message } => {
+            assert!(*d > 0.27 && *d < 0.28, "{d}");
+            assert!(
+                message.contains("side+tip") || message.contains("tip"),
+                "{message}"
+            );
+        }
+        other => panic!("not a jam: {other}"),
+    }
+    assert_eq!(r.stop.name(), "jam");
+}
+
 /// Multiple shooting and both collocations run the drag's stick and slip states: the same slips
 /// as the rod's own shooter.
 #[test]
