@@ -362,45 +362,7 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
         }
         (None, None) => {}
     }
-    if let Some(v) = a.corrugation_amplitude {
-        check(
-            Src::Flag("--corrugation-amplitude"),
-            v,
-            &limits::CORRUGATION_AMPLITUDE,
-        )?;
-    }
-    if let Some(v) = a.corrugation_wavelength {
-        check(
-            Src::Flag("--corrugation-wavelength"),
-            v,
-            &limits::CORRUGATION_WAVELENGTH,
-        )?;
-    }
-    if let Some(v) = a.corrugation_phase {
-        check(
-            Src::Flag("--corrugation-phase"),
-            v,
-            &limits::CORRUGATION_PHASE,
-        )?;
-    }
-    match (a.corrugation_amplitude, a.corrugation_wavelength) {
-        (Some(_), Some(_)) | (None, None) => {}
-        (Some(_), None) => {
-            return Err(usage(
-                "--corrugation-amplitude needs --corrugation-wavelength",
-            ))
-        }
-        (None, Some(_)) => {
-            return Err(usage(
-                "--corrugation-wavelength needs --corrugation-amplitude",
-            ))
-        }
-    }
-    if a.corrugation_phase.is_some() && a.corrugation_amplitude.is_none() {
-        return Err(usage(
-            "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
-        ));
-    }
+    crate::texture::check_flags(&a.texture)?;
     table_outputs(
         "drag",
         &mut a.out,

@@ -270,15 +270,15 @@ mod tests {
         // Gauss–Jordan
         for p in 0..m {
             let piv = a[p][p];
-            for j in 0..=m {
-                a[p][j] /= piv;
-            }
-            for i in 0..m {
-                if i != p {
-                    let f = a[i][p];
-                    for j in 0..=m {
-                        a[i][j] -= f * a[p][j];
-                    }
+            let row: Vec<f64> = a[p].iter().map(|v| v / piv).collect();
+            for (i, ai) in a.iter_mut().enumerate() {
+                if i == p {
+                    ai.clone_from(&row);
+                    continue;
+                }
+                let f = ai[p];
+                for (v, r) in ai.iter_mut().zip(&row) {
+                    *v -= f * r;
                 }
             }
         }

@@ -600,7 +600,7 @@ fn grating(
     limits::GRATING_OFFSET.check("surface.offset", offset)?;
     let g = crate::grating::Grating::new(period, depth, flank_angle, ridge_radius, offset, slope)?;
     let steepest = slope.abs() + g.flank_angle.tan();
-    if !(steepest < MAX_PROFILE_SLOPE) {
+    if steepest.is_nan() || steepest >= MAX_PROFILE_SLOPE {
         let (key, value) = match flank_angle {
             Some(a) => ("surface.flank_angle", a),
             None => ("surface.depth", g.depth),
