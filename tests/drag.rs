@@ -444,7 +444,7 @@ fn drag_refusals_name_the_flag() {
                 "--grating-ridge-radius",
                 "0.01",
             ],
-            "--grating-period needs --grating-depth, --grating-flank-angle or both",
+            "--grating-period with --grating-ridge-radius needs --grating-depth, --grating-flank-angle or both",
         ),
         (
             vec![

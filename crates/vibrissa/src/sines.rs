@@ -66,12 +66,14 @@ pub(crate) struct Sines {
 
 impl Sines {
     /// The sum of `amplitude[i]·sin(2π x / wavelength[i] + phase[i])` (`phase` empty: all 0) on
-    /// the trend `tan β = trend`, validated; errors name the scene key.
+    /// the trend `tan β = trend`, validated (its steepest slope below `max_slope`); errors name
+    /// the scene key.
     pub fn new(
         amplitude: &[f64],
         wavelength: &[f64],
         phase: &[f64],
         trend: f64,
+        max_slope: f64,
     ) -> Result<Sines, VibrissaError> {
         let n = amplitude.len();
         if n != wavelength.len() || !(phase.is_empty() || phase.len() == n) {
@@ -99,13 +101,14 @@ impl Sines {
             k.push(std::f64::consts::TAU / wavelength[i]);
             steepest += amplitude[i].abs() * k[i];
         }
-        if steepest >= crate::surface::MAX_PROFILE_SLOPE {
+        if steepest.is_nan() || steepest >= max_slope {
             return Err(VibrissaError::InvalidTable {
                 name: "surface".into(),
                 reason: format!(
                     "the sum of sines' steepest slope |tan(surface_angle)| + sum of 2 pi \
-                     |amplitude| / wavelength = {steepest:.6} must stay below 1 (45 degrees); \
-                     lower the amplitudes"
+                     |amplitude| / wavelength = {steepest:.6} must stay below {max_slope} \
+                     ({:.0} degrees); lower the amplitudes",
+                    max_slope.atan().to_degrees()
                 ),
             });
         }

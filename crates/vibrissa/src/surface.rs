@@ -341,7 +341,11 @@ impl Height {
                 phase,
             } => (
                 Shape::Sines(crate::sines::Sines::new(
-                    amplitude, wavelength, phase, slope,
+                    amplitude,
+                    wavelength,
+                    phase,
+                    slope,
+                    MAX_PROFILE_SLOPE,
                 )?),
                 f64::NEG_INFINITY,
                 f64::INFINITY,
@@ -599,6 +603,22 @@ fn grating(
     limits::GRATING_RIDGE_RADIUS.check("surface.ridge_radius", ridge_radius)?;
     limits::GRATING_OFFSET.check("surface.offset", offset)?;
     let g = crate::grating::Grating::new(period, depth, flank_angle, ridge_radius, offset, slope)?;
+    if let (None, Some(a)) = (depth, flank_angle) {
+        // the rounded triangle's own depth
+        if !limits::GRATING_DEPTH.contains(g.depth) {
+            return Err(VibrissaError::range(
+                "surface.flank_angle",
+                a,
+                format!(
+                    "angles whose rounded triangle of period {period} is at most {} deep (this \
+                     one is {:.6}); give a smaller flank_angle, or the depth too (then with \
+                     flat lands)",
+                    limits::GRATING_DEPTH.hi,
+                    g.depth
+                ),
+            ));
+        }
+    }
     let steepest = slope.abs() + g.flank_angle.tan();
     if steepest.is_nan() || steepest >= MAX_PROFILE_SLOPE {
         let (key, value) = match flank_angle {

@@ -3,6 +3,7 @@
 //! a drag over each.
 
 use std::f64::consts::TAU;
+use vibrissa::drag::Phase;
 use vibrissa::surface::{Height, SurfaceProfile};
 use vibrissa::{drag, DragOptions, DragResult, Scene, StopReason, VibrissaError};
 
@@ -249,6 +250,12 @@ fn a_grating_is_refused_with_the_key_to_change() {
     assert!(msg(grating(0.05, Some(0.01), None, 1.0), 0.0).starts_with("surface.ridge_radius"));
     assert!(msg(grating(0.005, Some(0.001), None, 0.01), 0.0).starts_with("surface.period"));
     assert!(msg(grating(0.1, Some(0.5), None, 0.01), 0.0).starts_with("surface.depth = 0.5"));
+    // the rounded triangle of a long period is too deep: 50 tan 0.3 = 15.5
+    let e = msg(grating(100.0, None, Some(0.3), 0.01), 0.0);
+    assert!(
+        e.starts_with("surface.flank_angle = 0.3") && e.contains("15.46"),
+        "{e}"
+    );
     let e = height(grating(0.1, None, None, 0.01), 0.75, 0.0).unwrap_err();
     assert!(matches!(e, VibrissaError::InvalidTable { .. }), "{e}");
 }
@@ -406,14 +413,15 @@ fn a_measured_profile_is_refused_with_the_reason() {
     );
 }
 
-/// The paper's rod (η 0.75, μs 0.5, μk 0.3) dragged over a scene's surface to `d_max`.
+/// The paper's rod (η 0.75, μs 0.5, μk 0.3) dragged over a scene's surface to `d_max`; no
+/// point of a row's rod above the profile (1e-8), no stuck row beyond μs.
 fn drag_over(p: SurfaceProfile, d_max: f64) -> DragResult {
     let s = Scene {
         surface: p,
         ..Scene::default()
     };
     let (rod, surface) = s.parts().unwrap();
-    drag(
+    let r = drag(
         &rod,
         &surface,
         &DragOptions {
@@ -421,10 +429,23 @@ fn drag_over(p: SurfaceProfile, d_max: f64) -> DragResult {
             points: 21,
             mu_s: Some(0.5),
             mu_k: Some(0.3),
+            keep_shapes: Some(201),
             ..DragOptions::default()
         },
     )
-    .unwrap()
+    .unwrap();
+    let h = surface.profile().unwrap();
+    assert_eq!(r.rows.len(), r.shapes.len());
+    for (row, shape) in r.rows.iter().zip(&r.shapes) {
+        for p in shape {
+            let gap = p.y - h.h(p.x + row.d);
+            assert!(gap < 1e-8, "d = {}: s = {} is {gap:.3e} above", row.d, p.s);
+        }
+        if row.phase == Phase::Stick && row.event.is_none() {
+            assert!(row.mu.abs() <= row.mu_s + 1e-9, "{row:?}");
+        }
+    }
+    r
 }
 
 /// A drag over a sum of sines reaches d_max with stick–slip; over one term the drag is the
