@@ -483,10 +483,56 @@ pub struct LocateArgs {
     pub json: bool,
 }
 
+/// The surface textures of a drag from flags (each replaces the scene's `[surface]`; one kind at
+/// a time): a corrugation or a sum of sines, a grating, a measured profile.
+#[derive(Args, Debug, Default)]
+pub struct TextureArgs {
+    /// A sinusoidal corrugation A sin(2 pi x / W + P) on the surface: its amplitude A (rod
+    /// lengths), |A| <= 0.2 (with --corrugation-wavelength; replaces the scene's [surface]). A
+    /// comma list A1,A2,... with as many wavelengths (and phases, or none) is a sum of sines.
+    #[arg(long, value_name = "A", value_parser = finite_f64, value_delimiter = ',')]
+    pub corrugation_amplitude: Vec<f64>,
+    /// The corrugation's wavelength W (rod lengths), in [0.01, 100] (a list: one per amplitude).
+    #[arg(long, value_name = "W", value_parser = finite_f64, value_delimiter = ',')]
+    pub corrugation_wavelength: Vec<f64>,
+    /// The corrugation's phase P at x = 0 (rad), in [-1000, 1000] (a list: one per amplitude).
+    /// [default: 0]
+    #[arg(long, value_name = "P", value_parser = finite_f64, value_delimiter = ',')]
+    pub corrugation_phase: Vec<f64>,
+    /// A grating on the surface (straight flanks, round ridges and grooves; replaces the
+    /// scene's [surface]): its period (rod lengths), in [0.01, 100], with --grating-ridge-radius
+    /// and --grating-depth, --grating-flank-angle or both (then with flat lands).
+    #[arg(long, value_name = "P", value_parser = finite_f64)]
+    pub grating_period: Option<f64>,
+    /// The grating's peak-to-valley depth (rod lengths), in (0, 0.4]; alone, the rounded
+    /// triangle of this depth.
+    #[arg(long, value_name = "D", value_parser = finite_f64)]
+    pub grating_depth: Option<f64>,
+    /// The grating's flank angle against its mean line (rad), in (0, pi/2), and with the
+    /// surface angle below 45 degrees; alone, the rounded triangle of this angle.
+    #[arg(long, value_name = "ANGLE", value_parser = finite_f64)]
+    pub grating_flank_angle: Option<f64>,
+    /// The radius of the grating's ridges and grooves (rod lengths), in (0, 100] (a sharp
+    /// corner has no tangent).
+    #[arg(long, value_name = "R", value_parser = finite_f64)]
+    pub grating_ridge_radius: Option<f64>,
+    /// Lab x of the middle of a ridge (rod lengths), in [-1000, 1000]. [default: 0]
+    #[arg(long, value_name = "X", value_parser = finite_f64)]
+    pub grating_offset: Option<f64>,
+    /// A measured height profile on the surface: a file of two columns x, h (rod lengths; any
+    /// spacing and order; replaces the scene's [surface]), smoothed to --profile-tolerance.
+    #[arg(long, value_name = "FILE")]
+    pub surface_profile: Option<PathBuf>,
+    /// The measured profile's smoothing: the smoothest cubic spline within this of every
+    /// sample (rod lengths), in [0, 0.1]; 0 interpolates.
+    #[arg(long, value_name = "T", value_parser = finite_f64)]
+    pub profile_tolerance: Option<f64>,
+}
+
 /// `vibrissa drag`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "The slip is quasi-static (docs/model.md, \"The drag\"): at |mu| = mu_s the tip slides, the foot held, to the nearest equilibrium where kinetic friction mu_k holds it, then sticks there. Surfaces other than a line and friction textures come from the scene file's [surface] and [friction] tables (README, \"Scene files\"); the --corrugation flags set a sinusoidal [surface]."
+    after_help = "The slip is quasi-static (docs/model.md, \"The drag\"): at |mu| = mu_s the tip slides, the foot held, to the nearest equilibrium where kinetic friction mu_k holds it, then sticks there. Surfaces other than a line and friction textures come from the scene file's [surface] and [friction] tables (README, \"Scene files\"); the --corrugation flags set a sinusoidal [surface] (or a sum of sines), the --grating flags a grating, --surface-profile a measured profile."
 )]
 pub struct DragArgs {
     /// Surface height eta (rod lengths), in (eta_, 1) (see scan --help). [default: scene file's, else 0.75]
@@ -508,16 +554,8 @@ pub struct DragArgs {
     /// needs falls to it (with --mu-s).
     #[arg(long, value_name = "MU", value_parser = finite_f64)]
     pub mu_k: Option<f64>,
-    /// A sinusoidal corrugation A sin(2 pi x / W + P) on the surface: its amplitude A (rod
-    /// lengths), |A| <= 0.2 (with --corrugation-wavelength; replaces the scene's [surface]).
-    #[arg(long, value_name = "A", value_parser = finite_f64)]
-    pub corrugation_amplitude: Option<f64>,
-    /// The corrugation's wavelength W (rod lengths), in [0.01, 100].
-    #[arg(long, value_name = "W", value_parser = finite_f64)]
-    pub corrugation_wavelength: Option<f64>,
-    /// The corrugation's phase P at x = 0 (rad), in [-1000, 1000]. [default: 0]
-    #[arg(long, value_name = "P", value_parser = finite_f64)]
-    pub corrugation_phase: Option<f64>,
+    #[command(flatten)]
+    pub texture: TextureArgs,
     /// Also integrate the foot's work over each stick and the work the sliding tip absorbs over
     /// each slip (the energy balance, in --json's slips; extra solves).
     #[arg(long)]

@@ -11,7 +11,6 @@ use std::io::{self, Write};
 use std::time::Instant;
 use vibrissa::drag::{DragRow, DragSummary, SlipEvent};
 use vibrissa::fit::{FitOptions, FitResult, Signal, Trace, TraceSlip};
-use vibrissa::surface::SurfaceProfile;
 use vibrissa::{DragOptions, Scene, StopReason, Units};
 
 /// Columns of the drag CSV (`vibrissa plot` reads them by name); with a physical scene
@@ -66,31 +65,12 @@ fn finite(r: &DragRow) -> bool {
         && r.released.is_none_or(f64::is_finite)
 }
 
-/// The scene of a drag: the file and the scene flags, then the corrugation flags (a sinusoidal
-/// `[surface]`); validated, messages naming the flags.
+/// The scene of a drag: the file and the scene flags, then the texture flags (a corrugation, a
+/// sum of sines, a grating or a measured profile as the `[surface]`); validated, messages naming
+/// the flags.
 pub fn scene(a: &DragArgs) -> Res<Scene> {
     let mut sc = build_scene(&a.scene, a.eta)?;
-    if let (Some(amplitude), Some(wavelength)) = (a.corrugation_amplitude, a.corrugation_wavelength)
-    {
-        let k = std::f64::consts::TAU / wavelength;
-        let steepest = sc.surface_angle.tan().abs() + amplitude.abs() * k;
-        if steepest >= vibrissa::surface::MAX_PROFILE_SLOPE {
-            return Err(usage(format!(
-                "--corrugation-amplitude {amplitude} with --corrugation-wavelength {wavelength} makes the surface's steepest slope |tan(surface angle)| + 2 pi |A| / W = {} reach 1 (45 degrees, the steepest surface the model takes); |A| must stay below {}",
-                crate::number_text::short(steepest),
-                crate::number_text::short(
-                    ((vibrissa::surface::MAX_PROFILE_SLOPE - sc.surface_angle.tan().abs()) / k)
-                        .max(0.0)
-                )
-            )));
-        }
-        sc.surface = SurfaceProfile::Sine {
-            amplitude,
-            wavelength,
-            phase: a.corrugation_phase.unwrap_or(0.0),
-        };
-        crate::validate::model_check(&sc, a.scene.scene.as_deref())?;
-    }
+    crate::texture::apply(&a.texture, &mut sc)?;
     if a.mu_s.is_none() && matches!(sc.friction, vibrissa::surface::FrictionProfile::None {}) {
         return Err(usage(
             "no friction: give --mu-s and --mu-k, or a scene file with a [friction] table",

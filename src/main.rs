@@ -17,6 +17,7 @@ mod scene_args;
 mod solve;
 mod sweep;
 mod table;
+mod texture;
 mod validate;
 
 use clap::error::ErrorKind;

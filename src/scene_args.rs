@@ -58,6 +58,15 @@ pub fn read_scene_file(path: &Path) -> Res<Scene> {
             vibrissa::scene::plain_message(e.message())
         ))
     })?;
+    let mut sc = sc;
+    // a measured profile's file is named from the scene file's directory
+    if let vibrissa::surface::SurfaceProfile::Measured { file, .. } = &mut sc.surface {
+        if file.is_relative() && path.as_os_str() != "-" {
+            if let Some(dir) = path.parent() {
+                *file = dir.join(&*file);
+            }
+        }
+    }
     Ok(sc)
 }
 

@@ -362,45 +362,7 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
         }
         (None, None) => {}
     }
-    if let Some(v) = a.corrugation_amplitude {
-        check(
-            Src::Flag("--corrugation-amplitude"),
-            v,
-            &limits::CORRUGATION_AMPLITUDE,
-        )?;
-    }
-    if let Some(v) = a.corrugation_wavelength {
-        check(
-            Src::Flag("--corrugation-wavelength"),
-            v,
-            &limits::CORRUGATION_WAVELENGTH,
-        )?;
-    }
-    if let Some(v) = a.corrugation_phase {
-        check(
-            Src::Flag("--corrugation-phase"),
-            v,
-            &limits::CORRUGATION_PHASE,
-        )?;
-    }
-    match (a.corrugation_amplitude, a.corrugation_wavelength) {
-        (Some(_), Some(_)) | (None, None) => {}
-        (Some(_), None) => {
-            return Err(usage(
-                "--corrugation-amplitude needs --corrugation-wavelength",
-            ))
-        }
-        (None, Some(_)) => {
-            return Err(usage(
-                "--corrugation-wavelength needs --corrugation-amplitude",
-            ))
-        }
-    }
-    if a.corrugation_phase.is_some() && a.corrugation_amplitude.is_none() {
-        return Err(usage(
-            "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
-        ));
-    }
+    texture(&a.texture)?;
     table_outputs(
         "drag",
         &mut a.out,
@@ -409,6 +371,160 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
         a.points,
         a.shape_points,
     )
+}
+
+/// The flags' own values against their ranges, and which go together.
+pub fn texture(a: &crate::cli::TextureArgs) -> Res<()> {
+    for (vals, flag, r) in [
+        (
+            &a.corrugation_amplitude,
+            "--corrugation-amplitude",
+            &limits::CORRUGATION_AMPLITUDE,
+        ),
+        (
+            &a.corrugation_wavelength,
+            "--corrugation-wavelength",
+            &limits::CORRUGATION_WAVELENGTH,
+        ),
+        (
+            &a.corrugation_phase,
+            "--corrugation-phase",
+            &limits::CORRUGATION_PHASE,
+        ),
+    ] {
+        for &v in vals {
+            check(Src::Flag(flag), v, r)?;
+        }
+    }
+    for (v, flag, r) in [
+        (
+            a.grating_period,
+            "--grating-period",
+            &limits::GRATING_PERIOD,
+        ),
+        (a.grating_depth, "--grating-depth", &limits::GRATING_DEPTH),
+        (
+            a.grating_flank_angle,
+            "--grating-flank-angle",
+            &limits::GRATING_FLANK_ANGLE,
+        ),
+        (
+            a.grating_ridge_radius,
+            "--grating-ridge-radius",
+            &limits::GRATING_RIDGE_RADIUS,
+        ),
+        (
+            a.grating_offset,
+            "--grating-offset",
+            &limits::GRATING_OFFSET,
+        ),
+        (
+            a.profile_tolerance,
+            "--profile-tolerance",
+            &limits::PROFILE_TOLERANCE,
+        ),
+    ] {
+        if let Some(v) = v {
+            check(Src::Flag(flag), v, r)?;
+        }
+    }
+    let (na, nw, np) = (
+        a.corrugation_amplitude.len(),
+        a.corrugation_wavelength.len(),
+        a.corrugation_phase.len(),
+    );
+    match (na, nw) {
+        (0, 0) => {}
+        (_, 0) => {
+            return Err(usage(
+                "--corrugation-amplitude needs --corrugation-wavelength",
+            ))
+        }
+        (0, _) => {
+            return Err(usage(
+                "--corrugation-wavelength needs --corrugation-amplitude",
+            ))
+        }
+        (na, nw) if na != nw => {
+            return Err(usage(format!(
+                "--corrugation-amplitude has {na} values and --corrugation-wavelength {nw}: one wavelength per amplitude (a sum of sines)"
+            )))
+        }
+        _ => {}
+    }
+    if np > 0 && na == 0 {
+        return Err(usage(
+            "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
+        ));
+    }
+    if np > 0 && np != na {
+        return Err(usage(format!(
+            "--corrugation-phase has {np} values and --corrugation-amplitude {na}: one phase per amplitude, or none"
+        )));
+    }
+    if !limits::SINES_TERMS.contains_count(na.max(1)) {
+        return Err(usage(format!(
+            "--corrugation-amplitude has {na} values: a sum of at most {} sines",
+            limits::SINES_TERMS.hi
+        )));
+    }
+    let grating = [
+        a.grating_depth,
+        a.grating_flank_angle,
+        a.grating_ridge_radius,
+        a.grating_offset,
+    ]
+    .iter()
+    .any(Option::is_some);
+    if grating || a.grating_period.is_some() {
+        let given: Vec<&str> = [
+            (a.grating_period, "--grating-period"),
+            (a.grating_depth, "--grating-depth"),
+            (a.grating_flank_angle, "--grating-flank-angle"),
+            (a.grating_ridge_radius, "--grating-ridge-radius"),
+            (a.grating_offset, "--grating-offset"),
+        ]
+        .iter()
+        .filter(|g| g.0.is_some())
+        .map(|g| g.1)
+        .collect();
+        let who = given.join(" with ");
+        if a.grating_period.is_none() || a.grating_ridge_radius.is_none() {
+            return Err(usage(format!(
+                "{who} needs --grating-period and --grating-ridge-radius (a grating's period and the radius of its ridges and grooves)"
+            )));
+        }
+        if a.grating_depth.is_none() && a.grating_flank_angle.is_none() {
+            return Err(usage(format!(
+                "{who} needs --grating-depth, --grating-flank-angle or both"
+            )));
+        }
+    }
+    match (&a.surface_profile, a.profile_tolerance) {
+        (Some(_), None) => {
+            return Err(usage(
+                "--surface-profile needs --profile-tolerance (the largest deviation of the smoothed profile from a sample; 0 interpolates)",
+            ))
+        }
+        (None, Some(_)) => return Err(usage("--profile-tolerance needs --surface-profile")),
+        _ => {}
+    }
+    let kinds: Vec<&str> = [
+        (na > 0, "--corrugation-amplitude"),
+        (a.grating_period.is_some(), "--grating-period"),
+        (a.surface_profile.is_some(), "--surface-profile"),
+    ]
+    .iter()
+    .filter(|k| k.0)
+    .map(|k| k.1)
+    .collect();
+    if kinds.len() > 1 {
+        return Err(usage(format!(
+            "{} each set the surface: give one of them",
+            kinds.join(" and ")
+        )));
+    }
+    Ok(())
 }
 
 fn infer(a: &mut InferArgs) -> Res<()> {

@@ -252,6 +252,90 @@ fn drag_on_a_corrugation_and_a_texture() {
     assert!(n >= 2, "{}", o.stdout);
 }
 
+/// The textures from flags are the scene file's `[surface]` tables (issue 31): a sum of sines, a
+/// grating, a measured profile (its file named from the scene file's directory); each drag
+/// slips and reaches d_max.
+#[test]
+fn drag_on_the_textures_from_flags_and_files() {
+    let d = tmpdir("drag-textures");
+    let mut profile = String::from("x h\n");
+    for i in 0..=600 {
+        let x = -0.5 + f64::from(i) * 0.004;
+        profile.push_str(&format!(
+            "{x} {}\n",
+            0.01 * (x * std::f64::consts::TAU / 0.2 + 2.0).sin()
+        ));
+    }
+    std::fs::write(d.join("profile.txt"), profile).unwrap();
+    let args = [
+        "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.12", "--points", "3",
+    ];
+    for (flags, table) in [
+        (
+            vec![
+                "--corrugation-amplitude",
+                "0.006,0.002",
+                "--corrugation-wavelength",
+                "0.2,0.07",
+                "--corrugation-phase",
+                "2,0.5",
+            ],
+            "kind = \"sines\"\namplitude = [0.006, 0.002]\nwavelength = [0.2, 0.07]\nphase = [2, 0.5]\n",
+        ),
+        (
+            vec![
+                "--grating-period",
+                "0.05",
+                "--grating-depth",
+                "0.003",
+                "--grating-ridge-radius",
+                "0.01",
+            ],
+            "kind = \"grating\"\nperiod = 0.05\ndepth = 0.003\nridge_radius = 0.01\n",
+        ),
+        (
+            vec![
+                "--surface-profile",
+                d.join("profile.txt").to_str().unwrap(),
+                "--profile-tolerance",
+                "1e-7",
+            ],
+            "kind = \"measured\"\nfile = \"profile.txt\"\ntolerance = 1e-7\n",
+        ),
+    ] {
+        let mut a = vec!["drag"];
+        a.extend(args);
+        a.extend(flags.iter().copied());
+        let from_flags = ok(&a).stdout;
+        assert!(from_flags.contains(",slip,"), "{flags:?}: {from_flags}");
+        let scene = d.join("scene.toml");
+        std::fs::write(&scene, format!("[surface]\n{table}")).unwrap();
+        let mut b = vec!["drag", "--scene", scene.to_str().unwrap()];
+        b.extend(args);
+        assert_eq!(ok(&b).stdout, from_flags, "{flags:?}");
+    }
+    // a key that is not the kind's
+    let scene = d.join("odd.toml");
+    std::fs::write(
+        &scene,
+        "[surface]\nkind = \"grating\"\nperiod = 0.05\ndepth = 0.003\nridge_radius = 0.01\nwavelength = 1\n",
+    )
+    .unwrap();
+    let line = bad(
+        &[
+            "drag",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--mu-s",
+            "0.5",
+            "--mu-k",
+            "0.3",
+        ],
+        2,
+    );
+    assert!(line.contains("wavelength"), "{line}");
+}
+
 /// Refusals: one line naming the flag, exit 2, and a user's file left as it was.
 #[test]
 fn drag_refusals_name_the_flag() {
@@ -292,6 +376,116 @@ fn drag_refusals_name_the_flag() {
                 "0.1",
             ],
             "--corrugation-amplitude 0.05 with --corrugation-wavelength 0.1",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--corrugation-amplitude",
+                "0.01,0.006",
+                "--corrugation-wavelength",
+                "0.1,0.1",
+            ],
+            "--corrugation-amplitude 0.01,0.006 with --corrugation-wavelength 0.1,0.1 makes the surface's steepest slope |tan(surface angle)| + the sum of 2 pi |A| / W = 1.00531",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--corrugation-amplitude",
+                "0.01,0.006",
+                "--corrugation-wavelength",
+                "0.1",
+            ],
+            "--corrugation-amplitude has 2 values and --corrugation-wavelength 1",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--grating-period",
+                "0.1",
+                "--grating-flank-angle",
+                "0.8",
+                "--grating-ridge-radius",
+                "0.01",
+            ],
+            "--grating-flank-angle = 0.8 is outside the valid range a grating whose steepest slope",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--grating-period",
+                "0.1",
+                "--grating-depth",
+                "0.01",
+                "--grating-ridge-radius",
+                "0",
+            ],
+            "--grating-ridge-radius 0 is outside the valid range (0, 100]",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--grating-period",
+                "0.1",
+                "--grating-ridge-radius",
+                "0.01",
+            ],
+            "--grating-period with --grating-ridge-radius needs --grating-depth, --grating-flank-angle or both",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--surface-profile",
+                "no-such-profile.csv",
+            ],
+            "--surface-profile needs --profile-tolerance",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--surface-profile",
+                "no-such-profile.csv",
+                "--profile-tolerance",
+                "0",
+            ],
+            "--surface-profile: cannot read no-such-profile.csv",
+        ),
+        (
+            vec![
+                "--mu-s",
+                "0.5",
+                "--mu-k",
+                "0.3",
+                "--surface-profile",
+                "p.csv",
+                "--profile-tolerance",
+                "0",
+                "--corrugation-amplitude",
+                "0.01",
+                "--corrugation-wavelength",
+                "0.2",
+            ],
+            "--corrugation-amplitude and --surface-profile each set the surface",
         ),
     ] {
         let mut a = vec!["drag", "--out", o];

@@ -62,7 +62,8 @@
 // Modules import downward only (tests/layering.rs checks it): kind, parts, search → profile,
 // error → limits → config, rod → scene; equations → shooter → rodsolve → arclength → chain;
 // sampling → shape → report → watch → stepper (the step contract) → events, fold, record → own,
-// generic → march (the driver) → engine (the one way in) → start, ground → scan, drag, peg, solve.
+// generic → march (the driver) → engine (the one way in) → start, ground → scan, drag, peg, solve;
+// the surface's shapes: gauss → grating, sines; limits → measured → surface → chain.
 mod analytic;
 mod arclength;
 mod chain;
@@ -75,11 +76,14 @@ mod error;
 mod events;
 pub mod fit;
 mod fold;
+mod gauss;
 mod generic;
+mod grating;
 mod ground;
 mod kind;
 pub mod limits;
 mod march;
+mod measured;
 mod own;
 mod parts;
 pub mod peg;
@@ -94,6 +98,7 @@ pub mod scene;
 mod search;
 mod shape;
 mod shooter;
+mod sines;
 pub mod solve;
 mod start;
 mod stepper;

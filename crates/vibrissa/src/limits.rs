@@ -251,6 +251,31 @@ pub const CORRUGATION_WAVELENGTH: Range = Range::new(0.01, true, 100.0, true).un
 /// Phase of a corrugation at `x = 0`.
 pub const CORRUGATION_PHASE: Range = Range::new(-1000.0, true, 1000.0, true).unit("radians");
 
+/// Terms of a sum of sines (`[surface] kind = "sines"`).
+pub const SINES_TERMS: Range = Range::count(1, 64);
+/// Period of a grating (as a corrugation's wavelength).
+pub const GRATING_PERIOD: Range = Range::new(0.01, true, 100.0, true).unit("rod lengths");
+/// Peak-to-valley depth of a grating (twice a corrugation's largest amplitude).
+pub const GRATING_DEPTH: Range = Range::new(0.0, false, 0.4, true).unit("rod lengths");
+/// Flank angle of a grating, against the grating's mean line (the steepest slope also keeps
+/// below the profiles' limit with the surface angle added).
+pub const GRATING_FLANK_ANGLE: Range = Range::new(0.0, false, FRAC_PI_2, false)
+    .symbol("(0, pi/2)")
+    .unit("radians");
+/// Radius of a grating's ridges and grooves: a sharp corner (0) has no tangent, and the contact
+/// conditions need one.
+pub const GRATING_RIDGE_RADIUS: Range = Range::new(0.0, false, 100.0, true).unit("rod lengths").why(
+    "rod lengths; a sharp corner (0) has no tangent, and the contact conditions need the surface's tangent everywhere",
+);
+/// Lab x of the middle of a grating's ridge.
+pub const GRATING_OFFSET: Range = Range::new(-1000.0, true, 1000.0, true).unit("rod lengths");
+/// Largest deviation of a smoothed measured profile from its samples.
+pub const PROFILE_TOLERANCE: Range = Range::new(0.0, true, 0.1, true).unit(
+    "rod lengths; the smoothed profile passes within this of every measured height (0: through them)",
+);
+/// Samples of a measured profile (or a table): a spline needs 3.
+pub const PROFILE_POINTS: Range = Range::count(3, 100_000);
+
 /// Samples of a shape kept with each point of a scan, a whisk or a drag unless asked otherwise.
 pub const DEFAULT_SHAPE_POINTS: usize = 41;
 /// Samples of one solved shape unless asked otherwise.

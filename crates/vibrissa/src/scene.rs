@@ -42,8 +42,8 @@ pub struct Scene {
     pub contact: crate::ContactModel,
     /// The state a scan starts from: `pressed` (default) or `connected`.
     pub start: crate::StartKind,
-    /// The surface's shape: `line` (default), `sine`, `circle`, `table` (module
-    /// [`crate::surface`]).
+    /// The surface's shape: `line` (default), `sine`, `circle`, `table`, `sines`, `grating`,
+    /// `measured` (module [`crate::surface`]).
     pub surface: crate::surface::SurfaceProfile,
     /// The friction along the surface: `none` (default: the command's coefficients), `uniform`,
     /// `table`, `patches`.

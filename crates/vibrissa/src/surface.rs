@@ -9,6 +9,9 @@
 //!            circle     R − √(R² − (x − x0)²)                   (the lower arc of a cylinder of
 //!                                                               radius R resting at (x0, η))
 //!            table      natural cubic spline through (x_i, y_i)  (C², zero curvature at the ends)
+//!            sines      Σ A_i·sin(2πx/λ_i + φ_i)                 (a sum of sines, module `sines`)
+//!            grating    flanks ±α, round ridges and grooves     (module `grating`)
+//!            measured   the smoothing spline of a file's samples (module `measured`)
 //! ```
 //!
 //! The rod stays below the surface (`y ≤ h(x)` on its free parts). The surface's unit normal into
@@ -21,7 +24,8 @@
 //!
 //! Slopes are limited to `|h'| < 1` (45°, as the straight surface's inclination): the circle and
 //! the table end where the surface ends (a contact that reaches the end stops the march), and a
-//! corrugation with `|tan β| + 2πA/λ ≥ 1` is refused.
+//! corrugation with `|tan β| + 2πA/λ ≥ 1` is refused (a sum of sines with `|tan β| + Σ 2π|A_i|/λ_i
+//! ≥ 1`, a grating with `|tan β| + tan α ≥ 1`; a measured profile as a table, after smoothing).
 //!
 //! Friction profiles give the static and kinetic coefficients `μs(x) ≥ μk(x) ≥ 0` at the lab
 //! position of a contact point: uniform, a table (piecewise linear in `x`, constant beyond its
@@ -69,6 +73,54 @@ pub enum SurfaceProfile {
         x: Vec<f64>,
         /// Heights relative to `eta`.
         y: Vec<f64>,
+    },
+    /// A sum of sines `Σ amplitude[i]·sin(2π x / wavelength[i] + phase[i])`: a texture's
+    /// spectrum, or a corrugation with its harmonics. Each term's ranges are the corrugation's;
+    /// the steepest slope `|tan(surface_angle)| + Σ 2π|amplitude[i]|/wavelength[i]` stays below
+    /// 1 (45°).
+    Sines {
+        /// Amplitudes (rod lengths), each in `[-0.2, 0.2]`; 1 to 64 terms.
+        amplitude: Vec<f64>,
+        /// Wavelengths (rod lengths), each in `[0.01, 100]`.
+        wavelength: Vec<f64>,
+        /// Phases (rad) at `x = 0`, one per term or none (all 0).
+        #[serde(default)]
+        phase: Vec<f64>,
+    },
+    /// A periodic grating: straight flanks at ±`flank_angle` joined by circular arcs of radius
+    /// `ridge_radius` at the ridges and grooves (a rounded triangle), with flat lands between
+    /// when both the depth and the flank angle are given and leave room for them (module
+    /// docs of `grating` in the repository). Its mean height is `eta`; a ridge (the part nearest
+    /// the rod, its lowest point at `eta − depth/2`) is centred at `x = offset`. The flank's
+    /// slope with the surface angle's, `|tan(surface_angle)| + tan(flank_angle)`, stays below 1.
+    Grating {
+        /// Period (rod lengths), in `[0.01, 100]`.
+        period: f64,
+        /// Peak-to-valley depth (rod lengths), in `(0, 0.4]`; without it, the rounded triangle
+        /// of `flank_angle`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        depth: Option<f64>,
+        /// Flank angle against the mean line (rad), in `(0, pi/2)`; without it, the rounded
+        /// triangle of `depth`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        flank_angle: Option<f64>,
+        /// Radius of the ridges and grooves (rod lengths), in `(0, 100]`, small enough to fit.
+        ridge_radius: f64,
+        /// Lab `x` of the middle of a ridge (rod lengths), in `[-1000, 1000]`.
+        #[serde(default)]
+        offset: f64,
+    },
+    /// A measured height profile: the samples `x, h` of a file (two columns, any spacing and
+    /// order; module docs of `measured` in the repository), smoothed by the smoothest natural
+    /// cubic spline within `tolerance` of every sample (Reinsch's smoothing spline); the surface
+    /// ends at the file's first and last `x`. Slopes as a table's.
+    Measured {
+        /// The file (a relative path: from the working directory; the program takes it from
+        /// the scene file's directory).
+        file: std::path::PathBuf,
+        /// Largest deviation of the smoothed profile from a sample (rod lengths), in `[0, 0.1]`;
+        /// 0 interpolates.
+        tolerance: f64,
     },
 }
 
@@ -178,6 +230,8 @@ enum Shape {
         y: Vec<f64>,
         m: Vec<f64>,
     },
+    Sines(crate::sines::Sines),
+    Grating(Box<crate::grating::Grating>),
 }
 
 /// A resolved height profile (see the module docs): `h`, `h'`, `h''`, its arc length and where
@@ -281,6 +335,46 @@ impl Height {
                 let (lo, hi) = (x[0], x[x.len() - 1]);
                 (shape, lo, hi)
             }
+            SurfaceProfile::Sines {
+                amplitude,
+                wavelength,
+                phase,
+            } => (
+                Shape::Sines(crate::sines::Sines::new(
+                    amplitude,
+                    wavelength,
+                    phase,
+                    slope,
+                    MAX_PROFILE_SLOPE,
+                )?),
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+            ),
+            &SurfaceProfile::Grating {
+                period,
+                depth,
+                flank_angle,
+                ridge_radius,
+                offset,
+            } => (
+                Shape::Grating(Box::new(grating(
+                    period,
+                    depth,
+                    flank_angle,
+                    ridge_radius,
+                    offset,
+                    slope,
+                )?)),
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+            ),
+            SurfaceProfile::Measured { file, tolerance } => {
+                crate::limits::PROFILE_TOLERANCE.check("surface.tolerance", *tolerance)?;
+                let (x, y) = crate::measured::read_profile(file)?;
+                let (g, _) = crate::measured::smooth(&x, &y, *tolerance);
+                let shape = spline(&x, &g)?;
+                (shape, x[0], x[x.len() - 1])
+            }
         };
         if !(eta.is_finite() && slope.is_finite()) {
             return Err(VibrissaError::range("eta", eta, "finite"));
@@ -367,6 +461,8 @@ impl Height {
                 let dd = a * m[i] + b * m[i + 1];
                 (v, d, dd)
             }
+            Shape::Sines(s) => s.jet(x),
+            Shape::Grating(g) => g.jet(x),
         };
         (
             self.eta + self.slope * x + amp * v,
@@ -434,6 +530,8 @@ impl Height {
                 self.set_panels(p);
                 return;
             }
+            // their own arc lengths
+            Shape::Sines(_) | Shape::Grating(_) => return,
         };
         let p: Vec<f64> = (0..=n).map(|i| a + (b - a) * i as f64 / n as f64).collect();
         self.set_panels(p);
@@ -461,8 +559,10 @@ impl Height {
     /// Arc length `σ(x)` along the surface from `x = 0` (signed), and `dσ/dx = √(1 + h'²)`.
     pub fn sigma(&self, x: f64) -> (f64, f64) {
         let abs = |x: f64| -> f64 {
-            match self.shape {
-                Shape::Sine { k, .. } => {
+            match &self.shape {
+                Shape::Sines(s) => s.arc(x),
+                Shape::Grating(g) => g.arc(x),
+                &Shape::Sine { k, .. } => {
                     let period = std::f64::consts::TAU / k;
                     let n = (x / period).floor();
                     n * self.period_arc + self.arc_in(x - n * period)
@@ -480,6 +580,62 @@ impl Height {
         };
         (abs(x) - abs(0.0), self.speed(x))
     }
+}
+
+/// The grating of a scene's `[surface]` on the trend `tan β = slope`, validated (the ranges of
+/// module `limits`, then the fit of its pieces and its steepest slope); errors name the key.
+fn grating(
+    period: f64,
+    depth: Option<f64>,
+    flank_angle: Option<f64>,
+    ridge_radius: f64,
+    offset: f64,
+    slope: f64,
+) -> Result<crate::grating::Grating, VibrissaError> {
+    use crate::limits;
+    limits::GRATING_PERIOD.check("surface.period", period)?;
+    if let Some(d) = depth {
+        limits::GRATING_DEPTH.check("surface.depth", d)?;
+    }
+    if let Some(a) = flank_angle {
+        limits::GRATING_FLANK_ANGLE.check("surface.flank_angle", a)?;
+    }
+    limits::GRATING_RIDGE_RADIUS.check("surface.ridge_radius", ridge_radius)?;
+    limits::GRATING_OFFSET.check("surface.offset", offset)?;
+    let g = crate::grating::Grating::new(period, depth, flank_angle, ridge_radius, offset, slope)?;
+    if let (None, Some(a)) = (depth, flank_angle) {
+        // the rounded triangle's own depth
+        if !limits::GRATING_DEPTH.contains(g.depth) {
+            return Err(VibrissaError::range(
+                "surface.flank_angle",
+                a,
+                format!(
+                    "angles whose rounded triangle of period {period} is at most {} deep (this \
+                     one is {:.6}); give a smaller flank_angle, or the depth too (then with \
+                     flat lands)",
+                    limits::GRATING_DEPTH.hi,
+                    g.depth
+                ),
+            ));
+        }
+    }
+    let steepest = slope.abs() + g.flank_angle.tan();
+    if steepest.is_nan() || steepest >= MAX_PROFILE_SLOPE {
+        let (key, value) = match flank_angle {
+            Some(a) => ("surface.flank_angle", a),
+            None => ("surface.depth", g.depth),
+        };
+        return Err(VibrissaError::range(
+            key,
+            value,
+            format!(
+                "a grating whose steepest slope |tan(surface_angle)| + tan(flank_angle) = \
+                 {steepest:.6} (flank_angle {:.6} rad) stays below 1 (45 degrees)",
+                g.flank_angle
+            ),
+        ));
+    }
+    Ok(g)
 }
 
 /// The natural cubic spline through a table (second derivatives `m`, zero at the ends).
