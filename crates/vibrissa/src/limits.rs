@@ -251,6 +251,13 @@ pub const CORRUGATION_WAVELENGTH: Range = Range::new(0.01, true, 100.0, true).un
 /// Phase of a corrugation at `x = 0`.
 pub const CORRUGATION_PHASE: Range = Range::new(-1000.0, true, 1000.0, true).unit("radians");
 
+/// Modes asked for at once (issue 32).
+pub const MODE_COUNT: Range = Range::count(1, 50);
+/// Tolerance of the modes' integrations along the rod.
+pub const MODE_TOL: Range = Range::new(1e-14, true, 1e-6, true);
+/// Radius of gyration of the foot's section over the rod length (rotary inertia `g0²/b`).
+pub const ROTARY_INERTIA: Range = Range::new(0.0, true, 0.1, true).unit("rod lengths");
+
 /// Samples of a shape kept with each point of a scan, a whisk or a drag unless asked otherwise.
 pub const DEFAULT_SHAPE_POINTS: usize = 41;
 /// Samples of one solved shape unless asked otherwise.
