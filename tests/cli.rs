@@ -848,3 +848,48 @@ fn a_handover_to_the_own_shooter_is_said() {
         ("shooting", "contact_change")
     );
 }
+
+/// `vibrissa modes`: the uniform clamped rod's frequencies β_n² (cos β cosh β = −1, Blevins,
+/// *Formulas for natural frequency and mode shape*, table 8-1), pinned `tan β = tanh β`; a
+/// compressive tip load beyond Euler's π²/4 is unstable (ω² < 0, `stable` 0, ω empty); bad
+/// values are one line on stderr.
+#[test]
+fn modes_of_the_uniform_rod() {
+    let o = ok(&["modes"]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(h, ["n", "omega2", "omega", "stable"]);
+    assert_eq!(rows.len(), 3);
+    for (r, beta) in rows
+        .iter()
+        .zip([1.87510406871196f64, 4.69409113297418, 7.85475743823761])
+    {
+        close(
+            col(&h, r, "omega"),
+            beta * beta,
+            1e-10 * beta * beta,
+            "omega",
+        );
+        assert_eq!(r[3], "1");
+    }
+    let o = ok(&["modes", "--tip", "pinned", "--count", "1"]);
+    let (h, rows) = csv(&o.stdout);
+    let b = 3.92660231204792f64;
+    close(
+        col(&h, &rows[0], "omega"),
+        b * b,
+        1e-10 * b * b,
+        "pinned omega",
+    );
+    let o = ok(&["modes", "--fy", "-2.6", "--count", "1"]);
+    let (_, rows) = csv(&o.stdout);
+    assert!(rows[0][1].parse::<f64>().unwrap() < 0.0, "{:?}", rows[0]);
+    assert_eq!((rows[0][2].as_str(), rows[0][3].as_str()), ("", "0"));
+    let e = bad(&["modes", "--count", "0"], 2);
+    assert!(e.contains("--count"), "{e}");
+    let e = bad(&["modes", "--tip", "sliding", "--tip-angle", "2"], 2);
+    assert!(e.contains("--tip-angle"), "{e}");
+    let o = ok(&["modes", "--json", "--count", "1", "--points", "5"]);
+    let v: serde_json::Value = serde_json::from_str(&o.stdout).unwrap();
+    assert_eq!(v["modes"][0]["shape"].as_array().unwrap().len(), 5);
+    assert_eq!(v["stable"], true);
+}

@@ -255,6 +255,10 @@ pub const CORRUGATION_PHASE: Range = Range::new(-1000.0, true, 1000.0, true).uni
 pub const MODE_COUNT: Range = Range::count(1, 50);
 /// Tolerance of the modes' integrations along the rod.
 pub const MODE_TOL: Range = Range::new(1e-14, true, 1e-6, true);
+/// Inclination of the line a sliding tip moves on in the modes (rad).
+pub const TIP_ANGLE: Range = Range::new(-FRAC_PI_2, true, FRAC_PI_2, true)
+    .symbol("[-pi/2, pi/2]")
+    .unit("radians");
 /// Radius of gyration of the foot's section over the rod length (rotary inertia `g0²/b`).
 pub const ROTARY_INERTIA: Range = Range::new(0.0, true, 0.1, true).unit("rod lengths");
 
