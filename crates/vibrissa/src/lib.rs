@@ -69,6 +69,7 @@ mod chain;
 mod config;
 mod control;
 pub mod drag;
+pub mod dynamics;
 mod engine;
 pub mod equations;
 mod error;
