@@ -3,7 +3,7 @@
 //! ends in a fold (snap-through).
 
 use vibrissa::modes::{modes, modes_of_point, BaseLoad, ModeOptions, TipCondition};
-use vibrissa::{scan, Rod, ScanOptions, Scene, StopReason};
+use vibrissa::{scan, Rod, ScanOptions, Scene, Stiffness, StopReason};
 
 /// The conical rod (taper 0.7 and 0.3, and the uniform rod), free and pinned tip, three modes
 /// each: the reference solves the displacement form `(EI w'')'' = ω² ρA w` by Taylor series in
@@ -43,7 +43,8 @@ fn tapered_rod_against_reference() {
 
 /// The paper's rod at η = 0.95 pushed until `d` folds (snap-through, the scan's `fold_in_d`):
 /// with the tip stuck, `ω₁² > 0` on every row the march calls stable (measured: 1846 at d = 0,
-/// 1870 at d = 0.05, then falling to 521 at d = 0.5), and `|ω₁²| ≤ 1e-6` at the located fold.
+/// 1870 at d = 0.05, then falling to 521 at d = 0.5), and `|ω₁²| ≤ 1e-6` at the located fold
+/// (measured −4.8e-8 at d = 0.53604).
 #[test]
 fn first_frequency_vanishes_at_the_fold() {
     let (rod, surface) = Scene {
@@ -68,6 +69,43 @@ fn first_frequency_vanishes_at_the_fold() {
         let m = modes_of_point(&rod, &surface, p, &mo).unwrap();
         let w2 = m.modes[0].omega2;
         assert!(m.stable && w2 > 0.0, "d = {}: {m}", p.d);
+    }
+    let m = modes_of_point(&rod, &surface, last, &mo).unwrap();
+    eprintln!("fold at d = {}: {m}", last.d);
+    assert!(
+        m.modes[0].omega2.abs() <= 1e-6,
+        "at the fold d = {}: {m}",
+        last.d
+    );
+}
+
+/// A tapered rod (ratio 0.5) at η = 0.95 pushed until `d` folds: the same as the paper's rod,
+/// `ω₁² > 0` on every row and `|ω₁²| ≤ 1e-6` at the located fold (measured −1.5e-8 at
+/// d = 0.47242).
+#[test]
+fn first_frequency_vanishes_at_the_fold_of_a_tapered_rod() {
+    let (rod, surface) = Scene {
+        eta: 0.95,
+        stiffness: Stiffness::Taper { ratio: 0.5 },
+        ..Scene::default()
+    }
+    .parts()
+    .unwrap();
+    let o = ScanOptions {
+        d_max: 1.0,
+        points: 11,
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    assert!(matches!(r.stop, StopReason::FoldInD { .. }), "{}", r.stop);
+    let mo = ModeOptions {
+        count: 1,
+        ..ModeOptions::default()
+    };
+    let (last, rows) = r.points.split_last().unwrap();
+    for p in rows {
+        let m = modes_of_point(&rod, &surface, p, &mo).unwrap();
+        assert!(m.stable && m.modes[0].omega2 > 0.0, "d = {}: {m}", p.d);
     }
     let m = modes_of_point(&rod, &surface, last, &mo).unwrap();
     eprintln!("fold at d = {}: {m}", last.d);
