@@ -400,6 +400,11 @@ pub struct ScanArgs {
     /// Print the summary as a JSON object on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Add the column omega1_sq: the lowest omega^2 of each row's state with the tip stuck
+    /// (vibrissa modes); < 0 is an unstable state (a warning says where), 0 at a fold in d;
+    /// empty where a side touches.
+    #[arg(long)]
+    pub modes: bool,
 }
 
 /// `vibrissa infer`.

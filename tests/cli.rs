@@ -893,3 +893,25 @@ fn modes_of_the_uniform_rod() {
     assert_eq!(v["modes"][0]["shape"].as_array().unwrap().len(), 5);
     assert_eq!(v["stable"], true);
 }
+
+/// `scan --modes`: the lowest ω² of each row with the tip stuck, positive on the rows of the
+/// paper's rod at η = 0.95 and 0 (to 1e-6) at the fold in d where the scan stops; without the
+/// flag the columns are unchanged.
+#[test]
+fn scan_modes_column() {
+    let args = ["scan", "--eta", "0.95", "--d-max", "0.6", "--points", "7"];
+    let (h0, _) = csv(&ok(&args).stdout);
+    assert!(!h0.iter().any(|c| c == "omega1_sq"));
+    let mut with = args.to_vec();
+    with.push("--modes");
+    let (h, rows) = csv(&ok(&with).stdout);
+    assert_eq!(h.len(), h0.len() + 1);
+    assert_eq!(h[h.len() - 2], "omega1_sq");
+    assert_eq!(h.last().unwrap(), "event");
+    let (last, rest) = rows.split_last().unwrap();
+    for r in rest {
+        assert!(col(&h, r, "omega1_sq") > 0.0, "{r:?}");
+    }
+    assert_eq!(last.last().unwrap(), "fold_in_d");
+    assert!(col(&h, last, "omega1_sq").abs() <= 1e-6, "{last:?}");
+}
