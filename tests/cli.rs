@@ -915,3 +915,27 @@ fn scan_modes_column() {
     assert_eq!(last.last().unwrap(), "fold_in_d");
     assert!(col(&h, last, "omega1_sq").abs() <= 1e-6, "{last:?}");
 }
+
+/// `vibrissa modes` on a scene with dimensions adds the frequency in Hz: the textbook cantilever
+/// `f₁ = β₁²/(2π) √(EI/(ρA L⁴))` (Blevins, table 8-1) with `I = πd⁴/64`, `A = πd²/4` and
+/// keratin's ρ = 1250 kg/m³.
+#[test]
+fn modes_in_hertz() {
+    let o = ok(&[
+        "modes",
+        "--count",
+        "1",
+        "--length-mm",
+        "45",
+        "--youngs-modulus-gpa",
+        "3.3",
+        "--base-diameter-um",
+        "180",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(h.last().unwrap(), "f_Hz");
+    let (l, d, e, rho) = (0.045f64, 180e-6f64, 3.3e9, 1250.0);
+    let (i, a) = (PI * d.powi(4) / 64.0, PI * d * d / 4.0);
+    let f1 = 1.87510406871196f64.powi(2) / (2.0 * PI) * (e * i / (rho * a * l.powi(4))).sqrt();
+    close(col(&h, &rows[0], "f_Hz"), f1, 1e-10 * f1, "f_Hz");
+}
