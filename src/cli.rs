@@ -235,6 +235,9 @@ pub enum Command {
     /// Estimate mu_s and mu_k (with standard errors) from a measured drag trace: the slips'
     /// places and the base signals around them, by nonlinear least squares.
     Fit(FitArgs),
+    /// Natural frequencies of a static state given by its foot values (the free, unloaded rod by
+    /// default): one row per mode, omega^2 < 0 meaning the state is unstable.
+    Modes(ModesArgs),
 }
 
 /// Physical dimensions: with all three (or a scene file's `[physical]`), physical-unit columns.
@@ -397,6 +400,11 @@ pub struct ScanArgs {
     /// Print the summary as a JSON object on stdout.
     #[arg(long)]
     pub json: bool,
+    /// Add the column omega1_sq: the lowest omega^2 of each row's state with the tip stuck
+    /// (vibrissa modes); < 0 is an unstable state (a warning says where), 0 at a fold in d;
+    /// empty where a side touches.
+    #[arg(long)]
+    pub modes: bool,
 }
 
 /// `vibrissa infer`.
@@ -527,6 +535,66 @@ pub struct TextureArgs {
     /// sample (rod lengths), in [0, 0.1]; 0 interpolates.
     #[arg(long, value_name = "T", value_parser = finite_f64)]
     pub profile_tolerance: Option<f64>,
+}
+
+/// How the tip is held in `vibrissa modes`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModesTip {
+    /// free (a load on it is a dead load)
+    Free,
+    /// pinned, or stuck on a surface by friction
+    Pinned,
+    /// sliding without friction on a line inclined by --tip-angle
+    Sliding,
+}
+
+fn mode_count(s: &str) -> Result<u32, String> {
+    number_text::count(
+        s,
+        limits::MODE_COUNT.lo as u64,
+        limits::MODE_COUNT.hi as u64,
+    )
+}
+
+fn mode_shape_points(s: &str) -> Result<u32, String> {
+    number_text::count(s, 0, MAX_SHAPE_POINTS)
+}
+
+/// `vibrissa modes`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "The state is fixed by its foot values (as in locate, with the foot unturned): the rod integrated from the foot with m(0) = --m-base under the contact force (--fx, --fy) at the tip. Time unit sqrt(rho A(0) L^4 / EI(0)): the uniform clamped rod has omega_n = beta_n^2 (3.5160, 22.034, 61.697). docs/model.md, \"The rod in time\"."
+)]
+pub struct ModesArgs {
+    /// Base moment m_base = m(0) (EI/L) of the static state.
+    #[arg(long, value_name = "M", value_parser = finite_f64, default_value = "0")]
+    pub m_base: f64,
+    /// Contact force on the rod at the tip, x component (EI/L^2).
+    #[arg(long, value_name = "FX", value_parser = finite_f64, default_value = "0")]
+    pub fx: f64,
+    /// Contact force on the rod at the tip, y component (EI/L^2).
+    #[arg(long, value_name = "FY", value_parser = finite_f64, default_value = "0")]
+    pub fy: f64,
+    /// How the tip is held in the state and its vibrations.
+    #[arg(long, value_enum, default_value = "free")]
+    pub tip: ModesTip,
+    /// Inclination of the line a sliding tip moves on (rad), in [-pi/2, pi/2].
+    #[arg(long, value_name = "A", value_parser = finite_f64, default_value = "0")]
+    pub tip_angle: f64,
+    /// Number of modes, lowest first, in [1, 50].
+    #[arg(long, value_name = "N", default_value = "3", value_parser = mode_count)]
+    pub count: u32,
+    /// Radius of gyration of the foot's section over the length (rotary inertia), in [0, 0.1]. [default: 0, Euler-Bernoulli]
+    #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
+    pub rotary_inertia: f64,
+    /// Points of each mode shape in the --json output, uniform in s (0: none), in [0, 1000000].
+    #[arg(long, value_name = "N", default_value = "0", value_parser = mode_shape_points)]
+    pub points: u32,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print a JSON object instead of CSV.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `vibrissa drag`.

@@ -6,6 +6,7 @@ mod drag;
 mod error;
 mod figures;
 mod journal;
+mod modes;
 mod number_text;
 mod output_files;
 mod peg;
@@ -105,6 +106,9 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Fit(a) => {
             scene_args::build_scene(&a.scene, a.eta)?;
         }
+        Command::Modes(a) => {
+            scene_args::build_scene(&a.scene, None)?;
+        }
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
@@ -163,6 +167,10 @@ fn run(mut cli: Cli) -> Res<()> {
             figures::run(a)
         }
         Command::Plot(a) => plot::run(a),
+        Command::Modes(a) => {
+            progress::start("modes", false);
+            modes::run(a)
+        }
     }
 }
 

@@ -140,6 +140,12 @@ impl Row {
         csv_line(w, &head)?;
         csv_line(w, &row)
     }
+
+    /// The row only (the next row of a table whose header [`Row::write_csv`] wrote).
+    pub fn write_values<W: std::io::Write>(&self, w: &mut W) -> Res<()> {
+        let row: Vec<String> = self.0.iter().map(|c| c.1.text()).collect();
+        csv_line(w, &row)
+    }
 }
 
 impl Serialize for Row {

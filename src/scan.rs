@@ -138,13 +138,56 @@ pub fn row(p: &ScanPoint, u: Option<Units>) -> Vec<String> {
     r
 }
 
-/// Write the scan points as CSV.
-pub fn write_points<W: Write>(w: &mut W, points: &[ScanPoint], u: Option<Units>) -> Res<()> {
-    csv_line(w, &header(u.is_some()))?;
-    for p in points {
-        csv_line(w, &row(p, u))?;
+/// Write the scan points as CSV; with `modes`, the column `omega1_sq` before `event`.
+pub fn write_points<W: Write>(
+    w: &mut W,
+    points: &[ScanPoint],
+    u: Option<Units>,
+    modes: Option<&[Option<f64>]>,
+) -> Res<()> {
+    let mut h = header(u.is_some());
+    if modes.is_some() {
+        h.insert(h.len() - 1, "omega1_sq");
+    }
+    csv_line(w, &h)?;
+    for (i, p) in points.iter().enumerate() {
+        let mut r = row(p, u);
+        if let Some(m) = modes {
+            r.insert(r.len() - 1, opt(m.get(i).copied().flatten()));
+        }
+        csv_line(w, &r)?;
     }
     Ok(())
+}
+
+/// The lowest ω² of each point's state with the tip stuck (`None` where a side touches).
+fn lowest_modes(scene: &Scene, points: &[ScanPoint]) -> Res<Vec<Option<f64>>> {
+    let (rod, surface) = scene.parts()?;
+    let o = vibrissa::modes::ModeOptions {
+        count: 1,
+        ..Default::default()
+    };
+    let mut out = Vec::with_capacity(points.len());
+    let mut unstable = Vec::new();
+    for p in points {
+        if p.contact.name() != "tip" {
+            out.push(None);
+            continue;
+        }
+        let m = vibrissa::modes::modes_of_point(&rod, &surface, p, &o)?;
+        let w2 = m.modes[0].omega2;
+        if w2 < 0.0 && p.event != Some(vibrissa::Event::FoldInD) {
+            unstable.push(p.d);
+        }
+        out.push(Some(w2));
+    }
+    if let Some(d) = unstable.first() {
+        crate::progress::warn(&format!(
+            "{} rows are unstable (omega1_sq < 0), the first at d = {d}",
+            unstable.len()
+        ));
+    }
+    Ok(out)
 }
 
 /// Write the shapes CSV: point index, d, then the shape in the foot frame (x, y) and in the lab
@@ -251,9 +294,14 @@ pub fn run(a: &ScanArgs) -> Res<()> {
     if let Some(p) = &a.shapes {
         write_shapes(p, &out.result)?;
     }
+    let modes = if a.modes {
+        Some(lowest_modes(&scene, &out.result.points)?)
+    } else {
+        None
+    };
     if a.out.is_some() || !a.json {
         let mut sink = Sink::open(a.out.as_deref())?;
-        write_points(&mut sink, &out.result.points, u)?;
+        write_points(&mut sink, &out.result.points, u, modes.as_deref())?;
         sink.finish()?;
     }
     if out.stop.reason != "d_max" {

@@ -221,6 +221,14 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Locate(a) => locate(a),
         Command::Drag(a) => drag(a),
         Command::Fit(a) => tol(a.solver.tol),
+        Command::Modes(a) => {
+            check(Src::Flag("--tip-angle"), a.tip_angle, &limits::TIP_ANGLE)?;
+            check(
+                Src::Flag("--rotary-inertia"),
+                a.rotary_inertia,
+                &limits::ROTARY_INERTIA,
+            )
+        }
         Command::Plot(a) => check(
             Src::Flag("--surface-angle"),
             a.surface_angle,

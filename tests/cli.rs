@@ -848,3 +848,94 @@ fn a_handover_to_the_own_shooter_is_said() {
         ("shooting", "contact_change")
     );
 }
+
+/// `vibrissa modes`: the uniform clamped rod's frequencies β_n² (cos β cosh β = −1, Blevins,
+/// *Formulas for natural frequency and mode shape*, table 8-1), pinned `tan β = tanh β`; a
+/// compressive tip load beyond Euler's π²/4 is unstable (ω² < 0, `stable` 0, ω empty); bad
+/// values are one line on stderr.
+#[test]
+fn modes_of_the_uniform_rod() {
+    let o = ok(&["modes"]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(h, ["n", "omega2", "omega", "stable"]);
+    assert_eq!(rows.len(), 3);
+    for (r, beta) in rows
+        .iter()
+        .zip([1.87510406871196f64, 4.69409113297418, 7.85475743823761])
+    {
+        close(
+            col(&h, r, "omega"),
+            beta * beta,
+            1e-10 * beta * beta,
+            "omega",
+        );
+        assert_eq!(r[3], "1");
+    }
+    let o = ok(&["modes", "--tip", "pinned", "--count", "1"]);
+    let (h, rows) = csv(&o.stdout);
+    let b = 3.92660231204792f64;
+    close(
+        col(&h, &rows[0], "omega"),
+        b * b,
+        1e-10 * b * b,
+        "pinned omega",
+    );
+    let o = ok(&["modes", "--fy", "-2.6", "--count", "1"]);
+    let (_, rows) = csv(&o.stdout);
+    assert!(rows[0][1].parse::<f64>().unwrap() < 0.0, "{:?}", rows[0]);
+    assert_eq!((rows[0][2].as_str(), rows[0][3].as_str()), ("", "0"));
+    let e = bad(&["modes", "--count", "0"], 2);
+    assert!(e.contains("--count"), "{e}");
+    let e = bad(&["modes", "--tip", "sliding", "--tip-angle", "2"], 2);
+    assert!(e.contains("--tip-angle"), "{e}");
+    let o = ok(&["modes", "--json", "--count", "1", "--points", "5"]);
+    let v: serde_json::Value = serde_json::from_str(&o.stdout).unwrap();
+    assert_eq!(v["modes"][0]["shape"].as_array().unwrap().len(), 5);
+    assert_eq!(v["stable"], true);
+}
+
+/// `scan --modes`: the lowest ω² of each row with the tip stuck, positive on the rows of the
+/// paper's rod at η = 0.95 and 0 (to 1e-6) at the fold in d where the scan stops; without the
+/// flag the columns are unchanged.
+#[test]
+fn scan_modes_column() {
+    let args = ["scan", "--eta", "0.95", "--d-max", "0.6", "--points", "7"];
+    let (h0, _) = csv(&ok(&args).stdout);
+    assert!(!h0.iter().any(|c| c == "omega1_sq"));
+    let mut with = args.to_vec();
+    with.push("--modes");
+    let (h, rows) = csv(&ok(&with).stdout);
+    assert_eq!(h.len(), h0.len() + 1);
+    assert_eq!(h[h.len() - 2], "omega1_sq");
+    assert_eq!(h.last().unwrap(), "event");
+    let (last, rest) = rows.split_last().unwrap();
+    for r in rest {
+        assert!(col(&h, r, "omega1_sq") > 0.0, "{r:?}");
+    }
+    assert_eq!(last.last().unwrap(), "fold_in_d");
+    assert!(col(&h, last, "omega1_sq").abs() <= 1e-6, "{last:?}");
+}
+
+/// `vibrissa modes` on a scene with dimensions adds the frequency in Hz: the textbook cantilever
+/// `f₁ = β₁²/(2π) √(EI/(ρA L⁴))` (Blevins, table 8-1) with `I = πd⁴/64`, `A = πd²/4` and
+/// keratin's ρ = 1250 kg/m³.
+#[test]
+fn modes_in_hertz() {
+    let o = ok(&[
+        "modes",
+        "--count",
+        "1",
+        "--length-mm",
+        "45",
+        "--youngs-modulus-gpa",
+        "3.3",
+        "--base-diameter-um",
+        "180",
+    ]);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(h.last().unwrap(), "f_Hz");
+    let (l, d, e, rho) = (0.045f64, 180e-6f64, 3.3e9, 1250.0);
+    let (i, a) = (PI * d.powi(4) / 64.0, PI * d * d / 4.0);
+    let f1 = 1.87510406871196f64.powi(2) / (2.0 * PI) * (e * i / (rho * a * l.powi(4))).sqrt();
+    close(col(&h, &rows[0], "f_Hz"), f1, 1e-10 * f1, "f_Hz");
+}

@@ -275,6 +275,16 @@ pub const PROFILE_TOLERANCE: Range = Range::new(0.0, true, 0.1, true).unit(
 );
 /// Samples of a measured profile (or a table): a spline needs 3.
 pub const PROFILE_POINTS: Range = Range::count(3, 100_000);
+/// Modes asked for at once (issue 32).
+pub const MODE_COUNT: Range = Range::count(1, 50);
+/// Tolerance of the modes' integrations along the rod.
+pub const MODE_TOL: Range = Range::new(1e-14, true, 1e-6, true);
+/// Inclination of the line a sliding tip moves on in the modes (rad).
+pub const TIP_ANGLE: Range = Range::new(-FRAC_PI_2, true, FRAC_PI_2, true)
+    .symbol("[-pi/2, pi/2]")
+    .unit("radians");
+/// Radius of gyration of the foot's section over the rod length (rotary inertia `g0²/b`).
+pub const ROTARY_INERTIA: Range = Range::new(0.0, true, 0.1, true).unit("rod lengths");
 
 /// Samples of a shape kept with each point of a scan, a whisk or a drag unless asked otherwise.
 pub const DEFAULT_SHAPE_POINTS: usize = 41;

@@ -1,0 +1,126 @@
+//! The rod in time (issue 32), measured: the uniform clamped–free rod released from its rest
+//! shape with a velocity in the first mode's shape (Blevins, table 8-1), followed by
+//! `vibrissa::dynamics::free` (Rothe's method: Newmark in time, Lobatto collocation in s).
+//!
+//! For each collocation scheme and time step: the wall time, the largest collocation mesh,
+//! Newton iterations, the period read off the tip's upward zero crossing against 2π/β₁²
+//! (Newmark lengthens it by about (ωΔt)²/12; the scheme's exact discrete period is
+//! πΔt/atan(ωΔt/2)), the frequency through that dispersion, and the energy drift; then
+//! Richardson's extrapolation of the period and long runs (many periods; a large amplitude).
+//!
+//! Run: `cargo run -p vibrissa --example free_oscillation` (about two minutes on one core).
+
+use std::f64::consts::PI;
+use std::time::Instant;
+use vibrissa::dynamics::{free, DynamicsOptions, DynamicsResult};
+use vibrissa::Rod;
+
+const BETA1: f64 = 1.87510406871196;
+
+fn mode1(amp: f64) -> impl Fn(f64) -> [f64; 2] {
+    let b = BETA1;
+    let sigma = (b.cosh() + b.cos()) / (b.sinh() + b.sin());
+    let w = move |s: f64| (b * s).cosh() - (b * s).cos() - sigma * ((b * s).sinh() - (b * s).sin());
+    let w1 = w(1.0);
+    move |s| [amp * w(s) / w1, 0.0]
+}
+
+/// The first upward zero crossing of the tip's x after `after`, by cubic Hermite interpolation
+/// with the tip's velocity.
+fn upward_crossing(r: &DynamicsResult, after: f64) -> f64 {
+    for w in r.samples.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        if a.t > after && a.tip_x < 0.0 && b.tip_x >= 0.0 {
+            let h = b.t - a.t;
+            let p = |u: f64| {
+                let (u2, u3) = (u * u, u * u * u);
+                (2.0 * u3 - 3.0 * u2 + 1.0) * a.tip_x
+                    + (u3 - 2.0 * u2 + u) * h * a.tip_vx
+                    + (-2.0 * u3 + 3.0 * u2) * b.tip_x
+                    + (u3 - u2) * h * b.tip_vx
+            };
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..100 {
+                let m = 0.5 * (lo + hi);
+                if p(m) < 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            return a.t + 0.5 * (lo + hi) * h;
+        }
+    }
+    f64::NAN
+}
+
+fn drift(r: &DynamicsResult) -> f64 {
+    let e0 = r.samples[0].kinetic + r.samples[0].elastic;
+    r.samples.iter().fold(0.0f64, |m, p| {
+        m.max(((p.kinetic + p.elastic + p.dissipated) / e0 - 1.0).abs())
+    })
+}
+
+fn main() -> Result<(), vibrissa::VibrissaError> {
+    let rod = Rod::uniform();
+    let w1 = BETA1 * BETA1;
+    let period = 2.0 * PI / w1;
+    println!("uniform clamped-free rod, first mode, tip velocity amplitude 1e-4; T = 2 pi / beta1^2 = {period}");
+    println!("scheme   steps/T  time_s  max_nodes  newton  period_err  newmark_pred  omega_err(dispersion)  energy_drift");
+    for scheme in [bvp::Scheme::Lobatto4, bvp::Scheme::Lobatto6] {
+        let mut prev: Option<f64> = None;
+        for n in [25usize, 50, 100, 200] {
+            let dt = period / n as f64;
+            let o = DynamicsOptions {
+                dt,
+                t_end: 1.2 * period,
+                scheme,
+                ..DynamicsOptions::default()
+            };
+            let t0 = Instant::now();
+            let r = free(&rod, &mode1(1e-4), &o)?;
+            let el = t0.elapsed().as_secs_f64();
+            let tp = upward_crossing(&r, 0.6 * period);
+            let pred = PI * dt / (w1 * dt / 2.0).atan();
+            let k = n / 4;
+            let x: Vec<f64> = r.samples.iter().map(|p| p.tip_x).collect();
+            let wh = ((x[k + 1] + x[k - 1]) / (2.0 * x[k])).acos() / dt;
+            let w = 2.0 / dt * (wh * dt / 2.0).tan();
+            println!(
+                "{scheme:?} {n:7} {el:7.2} {:10} {:7} {:11.3e} {:13.3e} {:22.3e} {:13.3e}",
+                r.stats.max_nodes,
+                r.stats.newton_iterations,
+                tp / period - 1.0,
+                pred / period - 1.0,
+                w / w1 - 1.0,
+                drift(&r)
+            );
+            if let Some(p) = prev {
+                // second order: (4 T(dt/2) − T(dt))/3
+                let rich = (4.0 * tp - p) / 3.0;
+                println!(
+                    "    Richardson with the previous row: period error {:.3e}",
+                    rich / period - 1.0
+                );
+            }
+            prev = Some(tp);
+        }
+    }
+    for (amp, periods, n) in [(1e-4, 20.0, 50usize), (0.3, 3.0, 100)] {
+        let o = DynamicsOptions {
+            dt: period / n as f64,
+            t_end: periods * period,
+            ..DynamicsOptions::default()
+        };
+        let t0 = Instant::now();
+        let r = free(&rod, &mode1(amp), &o)?;
+        println!(
+            "tip velocity amplitude {amp}: {periods} periods at {n} steps per period: energy drift {:.3e} ({} steps, {:.1} s, largest mesh {})",
+            drift(&r),
+            r.stats.steps,
+            t0.elapsed().as_secs_f64(),
+            r.stats.max_nodes
+        );
+    }
+    Ok(())
+}
