@@ -6,20 +6,23 @@
 //! (`CashMazzia::extended`: growth like 1/ε, fourth order) are included.
 //!
 //! ```text
-//! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR]
+//! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR] [-- --guarded]
 //! ```
 //!
 //! Writes `DIR/bvp.csv` (one row per case and method) and `DIR/summary.md` (per method: converged
 //! count, fine-grid error against tol, nodes, time; beside scipy's `solve_bvp` when
 //! `DIR/scipy.csv` from `scipy_testset.py` is present). Default DIR: `data/bvp_testset`.
+//! `--guarded`: every collocation case is also run with the guard of residual control
+//! (`ErrorControl::Guarded`) right after it, into `DIR/bvp_guarded.csv` (column `guard`: the
+//! guard's estimate) and a table of converged counts and total times of both in `summary.md`.
 //!
 //! Error: `max |y − y_exact| / (1 + |y_exact|)` over a fine grid (2001 equal points plus 9 inside
 //! every mesh interval of the solution) and, separately, over the solution's mesh nodes.
 
 use bvp::testset::CashMazzia;
 use bvp::{
-    solve_member, BvpError, BvpSolver, Collocation, CollocationOptions, Integrator, PathOptions,
-    Scheme, Shooting, ShootingOptions, Solution,
+    solve_member, BvpError, BvpSolver, Collocation, CollocationOptions, ErrorControl, Integrator,
+    PathOptions, Scheme, Shooting, ShootingOptions, Solution,
 };
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -54,6 +57,15 @@ enum Solver {
     Shoot(Box<Shooting>),
 }
 
+impl Solver {
+    fn guard_error(&self) -> Option<f64> {
+        match self {
+            Solver::Coll(s) => s.guard_error(),
+            Solver::Shoot(_) => None,
+        }
+    }
+}
+
 impl BvpSolver for Solver {
     fn solve<P: bvp::Bvp + ?Sized>(
         &mut self,
@@ -79,7 +91,7 @@ impl BvpSolver for Solver {
     }
 }
 
-fn solver(m: Method, tol: f64) -> Solver {
+fn solver(m: Method, tol: f64, control: ErrorControl) -> Solver {
     match m {
         Method::Lobatto4 | Method::Lobatto6 => Solver::Coll(Box::new(
             Collocation::new(CollocationOptions {
@@ -89,6 +101,7 @@ fn solver(m: Method, tol: f64) -> Solver {
                     Scheme::Lobatto6
                 },
                 tol,
+                control,
                 ..CollocationOptions::default()
             })
             .expect("valid options"),
@@ -155,21 +168,32 @@ struct Row {
     pointwise: f64,
     node_error: f64,
     estimate: f64,
+    /// With `ErrorControl::Guarded`: the guard's estimate of the true error
+    /// (`Collocation::guard_error`).
+    guard: f64,
+    /// The error's variant (`Fold`, `MeshLimit`, …) of a failed case, else empty.
+    kind: String,
     nodes: usize,
     time: f64,
 }
 
-fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
+fn run_case(
+    p: &CashMazzia,
+    (eps, tol): (f64, f64),
+    (m, cont): (Method, bool),
+    control: ErrorControl,
+) -> Row {
     if std::env::var("BVP_DEBUG").is_ok() {
         eprintln!("CASE {} {eps:e} {tol:e} {}", p.id(), m.name());
     }
     let guess = p.guess(eps, GUESS_NODES);
     let mut best = f64::INFINITY;
     let mut result = None;
+    let mut guard = None;
     let t_all = Instant::now();
     // Repeat fast solves for a steadier time (minimum of the repeats).
     for _ in 0..20 {
-        let mut s = solver(m, tol);
+        let mut s = solver(m, tol, control);
         let t = Instant::now();
         let r = if cont {
             // Direct first, continuation from EPS_EASY if that fails (bvp::solve_member).
@@ -179,6 +203,7 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
             s.solve(&p.at(eps), &guess)
         };
         best = best.min(t.elapsed().as_secs_f64());
+        guard = s.guard_error();
         let done = t_all.elapsed().as_secs_f64() > 0.05;
         result = Some(r);
         if done {
@@ -186,7 +211,11 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
         }
     }
     let r = result.expect("at least one run");
-    let method = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
+    let mut method = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
+    if control == ErrorControl::Guarded {
+        method.push_str(" (guarded)");
+    }
+    let guard = guard.unwrap_or(f64::NAN);
     match r {
         Ok(sol) => {
             let (error, pointwise, node_error) = errors(p, eps, &sol);
@@ -200,6 +229,8 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
                 pointwise,
                 node_error,
                 estimate: sol.stats.error_estimate.unwrap_or(f64::NAN),
+                guard,
+                kind: String::new(),
                 nodes: sol.len(),
                 time: best,
             }
@@ -214,6 +245,12 @@ fn run_case(p: &CashMazzia, eps: f64, tol: f64, m: Method, cont: bool) -> Row {
             pointwise: f64::NAN,
             node_error: f64::NAN,
             estimate: e.stats().and_then(|s| s.error_estimate).unwrap_or(f64::NAN),
+            guard,
+            kind: format!("{e:?}")
+                .split([' ', '{', '('])
+                .next()
+                .unwrap_or("")
+                .to_string(),
             nodes: e.stats().map_or(0, |s| s.nodes),
             time: best,
         },
@@ -261,6 +298,9 @@ fn read_scipy(path: &std::path::Path) -> HashMap<Key, ScipyRow> {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let quick = args.iter().any(|a| a == "--quick");
+    // Each collocation case also with the guard of residual control, right after it (same
+    // machine state): rows in `bvp_guarded.csv`, totals in the summary.
+    let guarded = args.iter().any(|a| a == "--guarded");
     let only: Option<String> = args
         .iter()
         .position(|a| a == "--methods")
@@ -291,7 +331,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     } else {
         CashMazzia::all().chain(CashMazzia::extended()).collect()
     };
-    let mut rows = Vec::new();
+    let (mut rows, mut base) = (Vec::new(), Vec::new());
     for &(m, cont) in &methods {
         let name = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
         if let Some(o) = &only {
@@ -303,34 +343,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for p in &problems {
             for &eps in &EPS {
                 for &tol in &TOLS {
-                    rows.push(run_case(p, eps, tol, m, cont));
+                    rows.push(run_case(p, (eps, tol), (m, cont), ErrorControl::Residual));
+                    if guarded && matches!(m, Method::Lobatto4 | Method::Lobatto6) {
+                        let control = ErrorControl::Guarded;
+                        base.push(run_case(p, (eps, tol), (m, cont), control));
+                    }
                 }
             }
         }
         eprintln!("{name}: {:.1} s", t.elapsed().as_secs_f64());
     }
 
-    let mut csv = String::from(
-        "problem,eps,tol,method,status,error,node_error,nodes,time_s,pointwise_error,estimate\n",
-    );
-    for r in &rows {
-        writeln!(
-            csv,
-            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e},{:.3e},{:.3e}",
-            r.id,
-            r.eps,
-            r.tol,
-            r.method,
-            r.status,
-            r.error,
-            r.node_error,
-            r.nodes,
-            r.time,
-            r.pointwise,
-            r.estimate
-        )?;
+    std::fs::write(dir.join("bvp.csv"), csv_of(&rows)?)?;
+    if guarded {
+        std::fs::write(dir.join("bvp_guarded.csv"), csv_of(&base)?)?;
     }
-    std::fs::write(dir.join("bvp.csv"), csv)?;
 
     // Summary.
     let scipy = read_scipy(&dir.join("scipy.csv"));
@@ -428,7 +455,70 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             writeln!(md, "{}", summary(name, &rs))?;
         }
     }
+    if guarded {
+        writeln!(
+            md,
+            "\n### the guard of residual control (`ErrorControl::Guarded`; all {} problems, each case run by default and guarded back to back)\n",
+            problems.len()
+        )?;
+        writeln!(
+            md,
+            "| solver | converged default / guarded | total time default / guarded (s) |"
+        )?;
+        writeln!(md, "|---|---|---|")?;
+        let mut names: Vec<&str> = Vec::new();
+        for r in &base {
+            let name = r.method.trim_end_matches(" (guarded)");
+            if !names.contains(&name) {
+                names.push(name);
+            }
+        }
+        for name in names {
+            let plain: Vec<&Row> = rows.iter().filter(|r| r.method == name).collect();
+            let guarded: Vec<&Row> = base
+                .iter()
+                .filter(|r| r.method.trim_end_matches(" (guarded)") == name)
+                .collect();
+            let conv = |v: &[&Row]| v.iter().filter(|r| r.status == "Converged").count();
+            let time = |v: &[&Row]| v.iter().map(|r| r.time).sum::<f64>();
+            writeln!(
+                md,
+                "| {name} | {} / {} | {:.2} / {:.2} |",
+                conv(&plain),
+                conv(&guarded),
+                time(&plain),
+                time(&guarded)
+            )?;
+        }
+    }
     std::fs::write(dir.join("summary.md"), &md)?;
     print!("{md}");
     Ok(())
+}
+
+/// The rows as CSV.
+fn csv_of(rows: &[Row]) -> Result<String, std::fmt::Error> {
+    let mut csv = String::from(
+        "problem,eps,tol,method,status,error,node_error,nodes,time_s,pointwise_error,estimate,guard,error_kind\n",
+    );
+    for r in rows {
+        writeln!(
+            csv,
+            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e},{:.3e},{:.3e},{:.3e},{}",
+            r.id,
+            r.eps,
+            r.tol,
+            r.method,
+            r.status,
+            r.error,
+            r.node_error,
+            r.nodes,
+            r.time,
+            r.pointwise,
+            r.estimate,
+            r.guard,
+            r.kind
+        )?;
+    }
+    Ok(csv)
 }

@@ -126,6 +126,10 @@ use argmin::solver::brent::BrentOpt;
 use std::cell::RefCell;
 use std::collections::VecDeque;
 
+/// Pseudo-arclength steps that may confirm a fold met by natural continuation
+/// ([`Continuation::confirm_fold`]).
+const CONFIRM_STEPS: usize = 8;
+
 /// The likely cause of a corrector failure at `ds_min`, for [`BvpError::Continuation`]: a fold
 /// only where the corrector's Newton failed to converge (natural continuation cannot pass one);
 /// non-finite values, integration or mesh limits and inaccurate solutions are their own cause.
@@ -1030,8 +1034,9 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
         })
     }
 
-    fn wrap(&self, e: BvpError, ds: f64) -> BvpError {
-        if let (Method::Natural, Some(fold)) = (self.opts.method, self.fold_ahead()) {
+    fn wrap(&mut self, e: BvpError, ds: f64) -> BvpError {
+        let candidate = self.opts.method == Method::Natural && self.fold_ahead().is_some();
+        if let Some(fold) = candidate.then(|| self.confirm_fold()).flatten() {
             return BvpError::Fold {
                 step: self.step + 1,
                 lambda: self.history.back().map_or(self.lambda0, |n| n.lambda),
@@ -1046,6 +1051,41 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
             hint: failure_hint(self.opts.method, &e),
             source: Box::new(e),
         }
+    }
+
+    /// Natural continuation failed at `ds_min` where the last three points suggest a fold just
+    /// ahead ([`Self::fold_ahead`]): is it one? Up to [`CONFIRM_STEPS`] pseudo-arclength steps
+    /// from the last two points (first step the last chord's length, `ds_min` a sixteenth of
+    /// it) look for `λ` turning back: where its increments change sign, the fold is located as
+    /// pseudo-arclength continuation locates its folds (to `fold_tol`) and its `λ` returned.
+    /// `None` if the steps fail or `λ` does not turn (a singular member, a layer that the solver
+    /// cannot follow, a branch that steepens without turning): not a fold. The iterator's state
+    /// is restored either way.
+    fn confirm_fold(&mut self) -> Option<f64> {
+        let h = &self.history;
+        let span = h[h.len() - 1].sigma - h[h.len() - 2].sigma;
+        if !(span > 0.0 && span.is_finite()) {
+            return None;
+        }
+        let saved = (self.history.clone(), self.step, self.ds, self.opts.clone());
+        self.opts.method = Method::PseudoArclength;
+        self.opts.detect_folds = true;
+        self.opts.ds_min = span / 16.0;
+        self.opts.ds_max = self.opts.ds_max.max(4.0 * span);
+        self.opts.max_steps = self.step + CONFIRM_STEPS;
+        self.ds = span;
+        let mut fold = None;
+        while let Ok(Some(point)) = self.advance() {
+            if let Some(f) = point.fold {
+                fold = Some(f.lambda);
+                break;
+            }
+            if point.on_bound {
+                break;
+            }
+        }
+        (self.history, self.step, self.ds, self.opts) = saved;
+        fold
     }
 
     /// A fold ahead of the last three points `A, B, C`, by the quadratic `λ(σ)` through them

@@ -164,8 +164,10 @@ pub enum BvpError {
     },
     /// Natural continuation met a fold (a limit point in `λ`), which it cannot pass: its last
     /// step failed at the smallest step length and its last three points show `λ` turning back
-    /// ahead of them (`fold`: the extremum of the quadratic `λ(σ)` through them, `σ` the
-    /// arclength). Whatever the corrector's own error was (a stall, NaN/∞ past the fold).
+    /// ahead of them, and up to 8 pseudo-arclength steps from there find `λ` turning back (`fold`:
+    /// the fold they locate). Whatever the corrector's own error was (a stall, NaN/∞ past the
+    /// fold). Where the steps fail or `λ` does not turn (a singular member, a layer the solver
+    /// cannot follow) the failure is [`BvpError::Continuation`].
     #[error(
         "natural continuation met a fold at lambda ≈ {fold:.6} (last point lambda = {lambda}, \
          step {step}); it cannot pass a fold in lambda: use PseudoArclength (the corrector: \

@@ -84,6 +84,10 @@
 //! Globalization is local: damped Newton only finds the solution the guess is attracted to. Single
 //! shooting can fail where the initial-value problem is sensitive (see
 //! [`crate::samples::Cantilever::guess`]); more segments, a better guess or continuation help.
+//! The guess is read only at the segment starts (and its parameters): single shooting uses its
+//! values at `a` alone, not its shape, so a guess shaped like one solution can lead to another
+//! ([`Shooting::guess_points`] is 1); multiple shooting samples the shape at its `M` segment
+//! starts.
 //!
 //! The solver owns its work buffers: repeated solves of problems of the same size do not allocate
 //! except for the returned [`Solution`].
@@ -387,6 +391,15 @@ impl Shooting {
     /// The options.
     pub fn options(&self) -> &ShootingOptions {
         &self.opts
+    }
+
+    /// How many points of a guess a solve reads: its segment starts (the module docs). 1 for
+    /// single shooting, which uses only the guess's values at `a` and its parameters, not its
+    /// shape: a guess shaped like one solution may lead to another. (Not a field of
+    /// [`Stats`]: every [`BvpError`] carries a `Stats`, which has no room left under the size
+    /// of an error that clippy accepts.)
+    pub fn guess_points(&self) -> usize {
+        self.opts.segment_count()
     }
 }
 

@@ -56,16 +56,23 @@ fn error(sol: &Solution, reference: &[(f64, [f64; 3])]) -> f64 {
 }
 
 fn solve(scheme: Scheme, tol: f64, control: ErrorControl) -> Solution {
+    solve_guarded(scheme, tol, control).0
+}
+
+/// The solution and the guard's estimate ([`Collocation::guard_error`]).
+fn solve_guarded(scheme: Scheme, tol: f64, control: ErrorControl) -> (Solution, Option<f64>) {
     let guess = Guess::constant(0.0, 1.0, 5, &[0.01, 0.01, 0.01], vec![]);
-    Collocation::new(CollocationOptions {
+    let mut solver = Collocation::new(CollocationOptions {
         scheme,
         tol,
         control,
         ..CollocationOptions::default()
     })
-    .unwrap()
-    .solve(&measles(), &guess)
-    .unwrap_or_else(|e| panic!("{scheme:?} tol {tol:e} {control:?}: {e}"))
+    .unwrap();
+    let sol = solver
+        .solve(&measles(), &guess)
+        .unwrap_or_else(|e| panic!("{scheme:?} tol {tol:e} {control:?}: {e}"));
+    (sol, solver.guard_error())
 }
 
 /// Error control: the true error meets `tol`, and the estimate is within a factor 2 of it.
@@ -87,12 +94,13 @@ fn error_control_meets_tol_on_the_periodic_problem() {
 }
 
 /// Residual control (the default) holds what it says on this problem: the residual of the
-/// returned interpolant meets `tol` and is the reported estimate. (Its error is not bounded by
-/// `tol` here: 5.2e-3 for Lobatto4 at tol 1e-4, 9.5e-4 for Lobatto6; measured, not asserted.)
+/// returned interpolant meets `tol` and is the reported estimate. Its error is not bounded by
+/// `tol` here (measured, not asserted: 5.2e-3 for Lobatto4 at tol 1e-4, 9.5e-4 for Lobatto6);
+/// the guard (next test) or error control bound it.
 #[test]
 fn residual_control_meets_the_residual() {
     for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
-        let sol = solve(scheme, 1e-4, ErrorControl::Residual);
+        let (sol, guard) = solve_guarded(scheme, 1e-4, ErrorControl::Residual);
         let worst = sol
             .residuals(&measles())
             .iter()
@@ -103,5 +111,26 @@ fn residual_control_meets_the_residual() {
             (worst - est).abs() <= 1e-3 * est,
             "{scheme:?}: {worst:.3e} vs {est:.3e}"
         );
+        assert_eq!(guard, None);
     }
+}
+
+/// Residual control with its guard (`ErrorControl::Guarded`): the guard's estimate of the true
+/// error (deferred correction) exceeds `tol` where the residual is met with a large error (Lobatto4 at
+/// tol 1e-4: estimate 3.2e-3 for an error of 5.2e-3), the solve goes on under error control, and
+/// every success is within `tol` of the reference (measured at tol 1e-3 / 1e-4 / 1e-6: Lobatto4
+/// 2.0e-4 / 1.9e-5 / 2.4e-7, Lobatto6 1.1e-5 / 9.5e-6 / 2.2e-7).
+#[test]
+fn guarded_residual_control_meets_tol_on_the_periodic_problem() {
+    let reference = reference();
+    for tol in [1e-3, 1e-4, 1e-6] {
+        for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
+            let (sol, guard) = solve_guarded(scheme, tol, ErrorControl::Guarded);
+            let err = error(&sol, &reference);
+            assert!(err <= tol, "{scheme:?} tol {tol:e}: error {err:.3e}");
+            assert!(guard.is_some(), "{scheme:?} tol {tol:e}");
+        }
+    }
+    let guard = solve_guarded(Scheme::Lobatto4, 1e-4, ErrorControl::Guarded).1;
+    assert!(guard.unwrap() > 1e-3, "guard {guard:?}");
 }

@@ -346,3 +346,65 @@ fn invalid_options_rejected() {
         Err(BvpError::Dimension { .. })
     ));
 }
+
+/// Issue 34: single shooting reads the guess only at `a` and says so. `y'' = −|y|`, `y(0) = 0`,
+/// `y(4) = −2` (bvp4c's `twobvp`) has two solutions (closed forms: `A sin x` on `[0, π]` then
+/// `−A sinh(x − π)`, `A = 2 / sinh(4 − π)`; and `−2 sinh x / sinh 4`). A guess with the first
+/// one's shape but the second one's start values: single shooting returns the second
+/// (`Shooting::guess_points() == 1`); 8-segment shooting reads the shape at its segment starts
+/// and returns the first.
+#[test]
+fn single_shooting_says_it_used_only_the_start_values() {
+    let pi = std::f64::consts::PI;
+    let amp = 2.0 / (4.0 - pi).sinh();
+    let positive = move |x: f64| {
+        if x <= pi {
+            [amp * x.sin(), amp * x.cos()]
+        } else {
+            [-amp * (x - pi).sinh(), -amp * (x - pi).cosh()]
+        }
+    };
+    let negative = |x: f64| {
+        let c = -2.0 / 4.0_f64.sinh();
+        [c * x.sinh(), c * x.cosh()]
+    };
+    let problem = bvp::from_fns(
+        2,
+        (0.0, 4.0),
+        |_s, z, _p, dz| {
+            dz[0] = z[1];
+            dz[1] = -z[0].abs();
+        },
+        |za, zb, _p, r| {
+            r[0] = za[0];
+            r[1] = zb[0] + 2.0;
+        },
+    );
+    let mesh: Vec<f64> = (0..=40).map(|i| 0.1 * i as f64).collect();
+    let guess = Guess::from_fn(2, mesh, vec![], |x, z| {
+        z.copy_from_slice(&if x == 0.0 { negative(x) } else { positive(x) })
+    });
+    let error = |sol: &Solution, exact: &dyn Fn(f64) -> [f64; 2]| {
+        (0..=400).fold(0.0_f64, |m, i| {
+            let x = 0.01 * i as f64;
+            let (s, e) = (sol.at(x), exact(x));
+            m.max((s[0] - e[0]).abs().max((s[1] - e[1]).abs()))
+        })
+    };
+    let mut shooter = Shooting::new(adaptive(1e-10, 1)).unwrap();
+    assert_eq!(shooter.guess_points(), 1);
+    let single = shooter.solve(&problem, &guess).unwrap();
+    assert!(
+        error(&single, &negative) < 1e-7,
+        "{}",
+        error(&single, &negative)
+    );
+    let mut shooter = Shooting::new(adaptive(1e-10, 8)).unwrap();
+    assert_eq!(shooter.guess_points(), 8);
+    let multiple = shooter.solve(&problem, &guess).unwrap();
+    assert!(
+        error(&multiple, &positive) < 1e-7,
+        "{}",
+        error(&multiple, &positive)
+    );
+}

@@ -688,3 +688,29 @@ fn singular_member_is_reported_with_analytic_and_fd_jacobians() {
         }
     }
 }
+
+/// Issue 34: continuation that fails on its way to a member that is not a fold is not reported
+/// as one. Problem 17 at ε = 0.01 is a singular member (above), reached by natural continuation
+/// from ε = 0.1 by `solve_member`: the last points before the failure looked like a fold
+/// ahead, and this used to be `BvpError::Fold` (Lobatto6 and single shooting); the fold is now
+/// confirmed by pseudo-arclength steps first, and `λ` does not turn back here.
+#[test]
+fn a_singular_member_met_by_continuation_is_not_a_fold() {
+    let p = CashMazzia::new(17).unwrap();
+    let mut solver = lobatto(Scheme::Lobatto6, 1e-4);
+    let r = bvp::solve_member(
+        &p,
+        &mut solver,
+        &p.guess(0.01, 101),
+        0.01,
+        0.1,
+        &PathOptions::default(),
+    );
+    match r {
+        Err(bvp::BvpError::Continuation { source, .. }) => assert!(
+            matches!(*source, bvp::BvpError::SingularJacobian { .. }),
+            "{source:?}"
+        ),
+        other => panic!("{:?}", other.map(|r| r.solution.len())),
+    }
+}

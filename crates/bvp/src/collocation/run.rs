@@ -56,6 +56,11 @@ pub(super) struct Run {
     /// The residual tolerance in force: `tol`, lowered by error control
     /// ([`super::ErrorControl::Error`]) until the estimated error meets `tol`.
     res_tol: f64,
+    /// The error control in force: the option's, or `Error` once the guard of `Guarded` found
+    /// an estimated error above `tol` ([`Run::guard`]).
+    control: ErrorControl,
+    /// The guard's first estimate ([`super::Collocation::guard_error`]).
+    pub guard: Option<f64>,
     pub stats: Stats,
 }
 
@@ -102,6 +107,8 @@ impl Run {
             seed: None,
             rms: Vec::new(),
             res_tol: cx.opts.tol,
+            control: cx.opts.control,
+            guard: None,
             stats,
         })
     }
@@ -403,7 +410,7 @@ impl Run {
         mesh: &[f64],
     ) -> Next {
         let opts = cx.opts;
-        let (sol, check) = returned(
+        let (sol, check, d2z) = returned(
             cx,
             disc,
             mesh,
@@ -434,7 +441,12 @@ impl Run {
             self.move_to(cx, disc, mesh, fine);
             return Next::Again;
         }
-        if opts.adapt && opts.control == ErrorControl::Error {
+        if opts.adapt && self.control == ErrorControl::Guarded {
+            if let Some(next) = self.guard(cx, disc, mesh, &sol, d2z.as_deref()) {
+                return next;
+            }
+        }
+        if opts.adapt && self.control == ErrorControl::Error {
             return self.control_error(cx, disc, mesh, sol);
         }
         if opts.adapt && opts.coarsen && self.coarsenings < MAX_COARSEN {
@@ -451,6 +463,34 @@ impl Run {
 }
 
 impl Run {
+    /// The guard of residual control (`collocation::guard`): the true error of `sol` (which met
+    /// the residual tolerance on `mesh`) estimated by deferred correction, into `self.guard`.
+    /// `None` if it meets `tol` (or cannot be formed): `sol` goes on as accepted. Else the solve
+    /// switches to [`ErrorControl::Error`] from here on (the first estimate is kept).
+    fn guard<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        sol: &Solution,
+        d2z: Option<&[f64]>,
+    ) -> Option<Next> {
+        let est = disc.guard(&self.u, sol, d2z, &mut self.stats);
+        let previous = std::mem::replace(&mut self.guard, est);
+        let est = est?;
+        if est <= cx.opts.tol {
+            return None;
+        }
+        if let Some(next) = self.keep_best() {
+            // A coarser mesh tried after an accepted one (which met the guard): keep that one,
+            // and its estimate.
+            self.guard = previous;
+            return Some(next);
+        }
+        self.control = ErrorControl::Error;
+        Some(self.control_error(cx, disc, mesh, sol.clone()))
+    }
+
     /// Error control ([`ErrorControl::Error`]) of `sol`, which met the residual tolerance in
     /// force on `mesh`: its error is estimated against a reference ([`error_estimate`]); if it
     /// meets `tol`, `sol` is returned with that estimate. Otherwise the residual tolerance is
@@ -568,15 +608,16 @@ fn returned<P: Bvp + ?Sized>(
     u: &[f64],
     (rms, res_tol): (&[f64], f64),
     stats: &mut Stats,
-) -> (Solution, Vec<f64>) {
+) -> (Solution, Vec<f64>, Option<Vec<f64>>) {
     let (z, dz) = disc.nodal();
     let params = u[disc.lay.pcol()..].to_vec();
-    let dense = if cx.tab.internal {
-        Dense::QuinticIntervals {
-            d2z: disc.second_derivatives(&params, &z, &dz, stats),
-        }
-    } else {
-        Dense::Hermite
+    let one_sided = cx
+        .tab
+        .internal
+        .then(|| disc.second_derivatives(&params, &z, &dz, stats));
+    let dense = match &one_sided {
+        Some(d2z) => Dense::QuinticIntervals { d2z: d2z.clone() },
+        None => Dense::Hermite,
     };
     let mut sol = Solution {
         n: cx.dims.n,
@@ -601,7 +642,7 @@ fn returned<P: Bvp + ?Sized>(
     };
     stats.error_estimate = Some(max_of(&check));
     sol.stats = stats.clone();
-    (sol, check)
+    (sol, check, one_sided)
 }
 
 /// Lobatto6: on every interval where the quintic's residual `check` exceeds `tol`, the returned
