@@ -113,7 +113,7 @@ pub const MAX_POINTS: u64 = limits::POINTS.hi as u64;
 /// Most points of one shape.
 pub const MAX_SHAPE_POINTS: u64 = limits::SHAPE_POINTS.hi as u64;
 /// Most worker threads asked for (more are capped at a multiple of the cores, with a warning).
-pub const MAX_JOBS: u64 = 65_536;
+pub const MAX_JOBS: u64 = vibrissa::limits::JOBS.hi as u64;
 
 fn points(s: &str) -> Result<u32, String> {
     number_text::count(s, 2, MAX_POINTS)
@@ -483,6 +483,21 @@ pub struct LocateArgs {
     pub json: bool,
 }
 
+/// A sinusoidal corrugation of the surface (drag and fit).
+#[derive(Args, Debug, Clone, Default)]
+pub struct CorrugationArgs {
+    /// A sinusoidal corrugation A sin(2 pi x / W + P) on the surface: its amplitude A (rod
+    /// lengths), |A| <= 0.2 (with --corrugation-wavelength; replaces the scene's [surface]).
+    #[arg(long, value_name = "A", value_parser = finite_f64)]
+    pub corrugation_amplitude: Option<f64>,
+    /// The corrugation's wavelength W (rod lengths), in [0.01, 100].
+    #[arg(long, value_name = "W", value_parser = finite_f64)]
+    pub corrugation_wavelength: Option<f64>,
+    /// The corrugation's phase P at x = 0 (rad), in [-1000, 1000]. [default: 0]
+    #[arg(long, value_name = "P", value_parser = finite_f64)]
+    pub corrugation_phase: Option<f64>,
+}
+
 /// `vibrissa drag`.
 #[derive(Args, Debug)]
 #[command(
@@ -508,16 +523,8 @@ pub struct DragArgs {
     /// needs falls to it (with --mu-s).
     #[arg(long, value_name = "MU", value_parser = finite_f64)]
     pub mu_k: Option<f64>,
-    /// A sinusoidal corrugation A sin(2 pi x / W + P) on the surface: its amplitude A (rod
-    /// lengths), |A| <= 0.2 (with --corrugation-wavelength; replaces the scene's [surface]).
-    #[arg(long, value_name = "A", value_parser = finite_f64)]
-    pub corrugation_amplitude: Option<f64>,
-    /// The corrugation's wavelength W (rod lengths), in [0.01, 100].
-    #[arg(long, value_name = "W", value_parser = finite_f64)]
-    pub corrugation_wavelength: Option<f64>,
-    /// The corrugation's phase P at x = 0 (rad), in [-1000, 1000]. [default: 0]
-    #[arg(long, value_name = "P", value_parser = finite_f64)]
-    pub corrugation_phase: Option<f64>,
+    #[command(flatten)]
+    pub corrugation: CorrugationArgs,
     /// Also integrate the foot's work over each stick and the work the sliding tip absorbs over
     /// each slip (the energy balance, in --json's slips; extra solves).
     #[arg(long)]
@@ -567,6 +574,15 @@ pub struct FitArgs {
     /// Surface height eta of the model (rod lengths), in (eta_, 1); the start with --fit-eta. [default: scene file's, else 0.75]
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
+    /// Starting static friction coefficient of the fit, in [0, 100] (with --mu-k). [default:
+    /// read off the first slips]
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_s: Option<f64>,
+    /// Starting kinetic friction coefficient, in [0, --mu-s) (with --mu-s).
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_k: Option<f64>,
+    #[command(flatten)]
+    pub corrugation: CorrugationArgs,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]

@@ -220,7 +220,7 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Whisk(a) => whisk(a),
         Command::Locate(a) => locate(a),
         Command::Drag(a) => drag(a),
-        Command::Fit(a) => tol(a.solver.tol),
+        Command::Fit(a) => fit(a),
         Command::Plot(a) => check(
             Src::Flag("--surface-angle"),
             a.surface_angle,
@@ -341,7 +341,21 @@ fn table_outputs(
 fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
     tol(a.solver.tol)?;
     check(Src::Flag("--d-max"), a.d_max, &limits::DRAG_D_MAX)?;
-    match (a.mu_s, a.mu_k) {
+    friction(a.mu_s, a.mu_k)?;
+    corrugation(&a.corrugation)?;
+    table_outputs(
+        "drag",
+        &mut a.out,
+        a.json,
+        a.shapes.as_deref(),
+        a.points,
+        a.shape_points,
+    )
+}
+
+/// `--mu-s` with `--mu-k` (both or neither), kinetic below static.
+fn friction(mu_s: Option<f64>, mu_k: Option<f64>) -> Res<()> {
+    match (mu_s, mu_k) {
         (Some(s), Some(k)) => {
             check(Src::Flag("--mu-s"), s, &limits::MU_S)?;
             let why = format!(
@@ -362,6 +376,11 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
         }
         (None, None) => {}
     }
+    Ok(())
+}
+
+/// The corrugation flags: each in its range, amplitude and wavelength together.
+fn corrugation(a: &crate::cli::CorrugationArgs) -> Res<()> {
     if let Some(v) = a.corrugation_amplitude {
         check(
             Src::Flag("--corrugation-amplitude"),
@@ -401,14 +420,13 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
             "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
         ));
     }
-    table_outputs(
-        "drag",
-        &mut a.out,
-        a.json,
-        a.shapes.as_deref(),
-        a.points,
-        a.shape_points,
-    )
+    Ok(())
+}
+
+fn fit(a: &mut crate::cli::FitArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    friction(a.mu_s, a.mu_k)?;
+    corrugation(&a.corrugation)
 }
 
 fn infer(a: &mut InferArgs) -> Res<()> {

@@ -12,9 +12,16 @@ use pyo3::types::{PyDict, PyList};
 use pythonize::{depythonize, pythonize};
 use rayon::prelude::*;
 use serde::Serialize;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc::{channel, RecvTimeoutError};
+use std::sync::Arc;
+use std::time::Duration;
+use vibrissa::fit::{FitOptions, Signal, Trace};
+use vibrissa::surface::{FrictionProfile, SurfaceProfile};
 use vibrissa::{
-    BranchChoice, ContactModel, Method, Physical, Precurvature, Rod, ScanOptions, ScanResult,
-    Scene, SolverConfig, StartKind, Stiffness, Surface, Target, VibrissaError,
+    BranchChoice, ContactModel, DragOptions, Method, Physical, Precurvature, Rod, ScanOptions,
+    ScanResult, Scene, SolverConfig, StartKind, Stiffness, Surface, Target, Units, VibrissaError,
+    WhiskOptions,
 };
 
 /// An exception of class `name` of `vibrissa._errors` (pure Python: `InputError` is also a
@@ -130,37 +137,131 @@ impl PyRod {
     }
 }
 
-/// The surface the tip touches (see `vibrissa.Surface` in Python).
+/// The surface the tip touches, with the scene's settings that go with it (see
+/// `vibrissa.Surface` in Python): its profile and friction texture as given (a scene's
+/// `[surface]` and `[friction]` tables), and the scene's `contact` and `start` (None: not set,
+/// the functions' defaults).
 #[pyclass(frozen, from_py_object, module = "vibrissa._core", name = "Surface")]
 #[derive(Clone)]
-struct PySurface(Surface);
+struct PySurface {
+    s: Surface,
+    profile: SurfaceProfile,
+    friction: FrictionProfile,
+    contact: Option<ContactModel>,
+    start: Option<StartKind>,
+}
 
 #[pymethods]
 impl PySurface {
     #[new]
-    #[pyo3(signature = (eta=0.75, angle=0.0))]
-    fn new(eta: f64, angle: f64) -> PyResult<Self> {
-        Surface::new(eta, angle).map(PySurface).map_err(py_err)
+    #[pyo3(signature = (eta=0.75, angle=0.0, *, profile=None, friction=None, contact=None, start=None))]
+    fn new(
+        eta: f64,
+        angle: f64,
+        profile: Option<&Bound<'_, PyAny>>,
+        friction: Option<&Bound<'_, PyAny>>,
+        contact: Option<&str>,
+        start: Option<&str>,
+    ) -> PyResult<Self> {
+        let profile: SurfaceProfile = profile
+            .map(|p| depythonize(p).map_err(|e| input_err("profile", e)))
+            .transpose()?
+            .unwrap_or_default();
+        let friction: FrictionProfile = friction
+            .map(|p| depythonize(p).map_err(|e| input_err("friction", e)))
+            .transpose()?
+            .unwrap_or_default();
+        let scene = Scene {
+            eta,
+            surface_angle: angle,
+            surface: profile,
+            friction,
+            ..Scene::default()
+        };
+        let mut out = surface_of(&scene)?;
+        out.contact = contact
+            .map(|c| c.parse::<ContactModel>().map_err(py_err))
+            .transpose()?;
+        out.start = start
+            .map(|c| c.parse::<StartKind>().map_err(py_err))
+            .transpose()?;
+        Ok(out)
     }
     /// Height of the contact point above the foot (rod lengths).
     #[getter]
     fn eta(&self) -> f64 {
-        self.0.eta()
+        self.s.eta()
     }
     /// Inclination of the surface line (rad).
     #[getter]
     fn angle(&self) -> f64 {
-        self.0.angle()
+        self.s.angle()
+    }
+    /// The profile as a dict (the scene file's `[surface]`).
+    #[getter]
+    fn profile<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.profile)
+    }
+    /// The friction texture as a dict (the scene file's `[friction]`).
+    #[getter]
+    fn friction<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.friction)
+    }
+    /// The scene's contact model (`anywhere`, `tip`), or None.
+    #[getter]
+    fn contact(&self) -> Option<&'static str> {
+        self.contact.map(ContactModel::name)
+    }
+    /// The scene's start (`pressed`, `connected`), or None.
+    #[getter]
+    fn start(&self) -> Option<&'static str> {
+        self.start.map(StartKind::name)
     }
     fn __repr__(&self) -> String {
-        format!("Surface(eta={}, angle={})", self.0.eta(), self.0.angle())
+        format!(
+            "Surface(eta={}, angle={}, profile={:?}, friction={:?}, contact={:?}, start={:?})",
+            self.s.eta(),
+            self.s.angle(),
+            self.profile,
+            self.friction,
+            self.contact(),
+            self.start()
+        )
     }
 }
 
-/// A scene (the dict of a scene file's keys, or the text of a TOML file) as `(Rod, Surface)`.
+/// The surface of a scene, its contact and start set.
+fn surface_of(scene: &Scene) -> PyResult<PySurface> {
+    Ok(PySurface {
+        s: scene.surface().map_err(py_err)?,
+        profile: scene.surface.clone(),
+        friction: scene.friction.clone(),
+        contact: Some(scene.contact),
+        start: Some(scene.start),
+    })
+}
+
+/// The scene of a rod and a surface (what `fit` varies).
+fn scene_of(rod: &Rod, surface: &PySurface, contact: ContactModel, start: StartKind) -> Scene {
+    Scene {
+        eta: surface.s.eta(),
+        stiffness: rod.stiffness().clone(),
+        precurvature: rod.precurvature().clone(),
+        support_compliance: rod.support_compliance(),
+        surface_angle: surface.s.angle(),
+        physical: rod.physical(),
+        contact,
+        start,
+        surface: surface.profile.clone(),
+        friction: surface.friction.clone(),
+    }
+}
+
+/// A scene (the dict of a scene file's keys, or the text of a TOML file) as `(Rod, Surface)`,
+/// the surface carrying the scene's contact and start.
 fn scene_parts(scene: Scene) -> PyResult<(PyRod, PySurface)> {
-    let (rod, surface) = scene.parts().map_err(py_err)?;
-    Ok((PyRod(rod), PySurface(surface)))
+    let rod = scene.rod().map_err(py_err)?;
+    Ok((PyRod(rod), surface_of(&scene)?))
 }
 
 /// `(Rod, Surface)` of a scene given as a dict with the keys of a scene file.
@@ -193,6 +294,77 @@ fn branch(name: &str) -> PyResult<BranchChoice> {
     name.parse::<BranchChoice>().map_err(py_err)
 }
 
+/// The contact model and start: the arguments, else the surface's scene, else the library's.
+fn settings(
+    surface: &PySurface,
+    contact: Option<&str>,
+    start: Option<&str>,
+) -> PyResult<(ContactModel, StartKind)> {
+    let c = match contact {
+        Some(c) => c.parse::<ContactModel>().map_err(py_err)?,
+        None => surface.contact.unwrap_or_default(),
+    };
+    let s = match start {
+        Some(s) => s.parse::<StartKind>().map_err(py_err)?,
+        None => surface.start.unwrap_or_default(),
+    };
+    Ok((c, s))
+}
+
+/// How often a running computation looks for Ctrl-C.
+const SIGNAL_POLL: Duration = Duration::from_millis(50);
+
+/// Runs `work` on a thread of its own with the GIL released, looking for Ctrl-C (Python's
+/// signal handlers) every [`SIGNAL_POLL`]: `KeyboardInterrupt` comes within a tenth of a second.
+/// `cancel` is then set: work that reads it (a sweep, between scenes) stops at the next scene;
+/// a scan, drag or whisk in flight runs to its end on its thread and its result is dropped (the
+/// march has no cancellation hook yet).
+fn interruptible<T: Send + 'static>(
+    py: Python<'_>,
+    cancel: Arc<AtomicBool>,
+    work: impl FnOnce() -> T + Send + 'static,
+) -> PyResult<T> {
+    let (tx, rx) = channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(work());
+    });
+    loop {
+        match py.detach(|| rx.recv_timeout(SIGNAL_POLL)) {
+            Ok(v) => return Ok(v),
+            Err(RecvTimeoutError::Timeout) => {
+                if let Err(e) = py.check_signals() {
+                    cancel.store(true, Ordering::SeqCst);
+                    return Err(e);
+                }
+            }
+            Err(RecvTimeoutError::Disconnected) => {
+                return Err(PyRuntimeError::new_err(
+                    "the computation's thread ended without a result",
+                ))
+            }
+        }
+    }
+}
+
+/// `mu0` as the program takes it: `inf` is no threshold (never slips).
+fn threshold(mu0: Option<f64>) -> Option<f64> {
+    mu0.filter(|m| *m != f64::INFINITY)
+}
+
+/// The rod's physical units as a dict (`length_mm`, `force_n`, `moment_nm`), or None.
+fn units_dict<'py>(py: Python<'py>, u: Option<Units>) -> PyResult<Bound<'py, PyAny>> {
+    match u {
+        None => Ok(py.None().into_bound(py)),
+        Some(u) => {
+            let d = PyDict::new(py);
+            d.set_item("length_mm", u.length_mm)?;
+            d.set_item("force_n", u.force_n)?;
+            d.set_item("moment_nm", u.moment_nm)?;
+            Ok(d.into_any())
+        }
+    }
+}
+
 /// One rod under a tip force at angle `alpha` with one tip condition; returns the `Shape` as a
 /// dict plus `shape`, a list of `shape_points` samples (dicts of s, x, y, phi, kappa, m).
 #[pyfunction]
@@ -222,11 +394,9 @@ fn solve<'py>(
             ))
         }
     };
-    if shape_points < 2 {
-        return Err(input(format!(
-            "shape_points = {shape_points} is outside the valid range [2, inf)"
-        )));
-    }
+    vibrissa::limits::SHAPE_POINTS
+        .check_count("shape_points", shape_points)
+        .map_err(py_err)?;
     let (b, cfg, rod) = (
         self::branch(branch)?,
         config(method, tol, segments, start)?,

@@ -113,6 +113,7 @@ impl DragOptions {
         }
         if let Some(n) = self.keep_shapes {
             limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
+            limits::check_shapes("keep_shapes", n, self.points)?;
         }
         limits::MAX_SLIPS.check_count("max_slips", self.max_slips)?;
         if self.solver.method == Method::Analytic {

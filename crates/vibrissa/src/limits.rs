@@ -204,6 +204,9 @@ pub const RK4_STEPS: Range = Range::count(1, 10_000_000);
 pub const D_MAX: Range = Range::new(0.0, false, 2.0, false).unit("rod lengths");
 /// Output points of a scan, a whisk or a drag.
 pub const POINTS: Range = Range::count(2, 1_000_000);
+/// Output displacements given to a scan as a list (`scan_at`): at least one (an empty list has
+/// no point to measure over).
+pub const OUTPUT_DISPLACEMENTS: Range = Range::count(1, 1_000_000);
 /// Samples of one kept shape.
 pub const SHAPE_POINTS: Range = Range::count(2, 100_000);
 /// Stiction coefficient μ0 (finite; no threshold is `None`).
@@ -266,6 +269,27 @@ pub const BYTES_PER_SHAPE_SAMPLE: u64 = 100;
 pub const BYTES_PER_SCAN_POINT: u64 = 250;
 /// Worker threads per core beyond which more are not useful (a request is capped there).
 pub const JOBS_PER_CORE: usize = 4;
+/// Worker threads a sweep may be asked for (more than [`JOBS_PER_CORE`] per core are capped).
+pub const JOBS: Range = Range::count(1, 65_536);
+
+/// `Ok` when `outputs` kept shapes of `samples` samples each fit [`MEMORY_BUDGET`]; else
+/// [`VibrissaError::OutOfRange`] naming `name` (the samples per shape) and the most that fit.
+pub fn check_shapes(name: &str, samples: usize, outputs: usize) -> Result<(), VibrissaError> {
+    let need = samples as f64 * outputs as f64 * BYTES_PER_SHAPE_SAMPLE as f64;
+    if need <= MEMORY_BUDGET as f64 {
+        return Ok(());
+    }
+    let most = MEMORY_BUDGET / (outputs.max(1) as u64 * BYTES_PER_SHAPE_SAMPLE);
+    Err(VibrissaError::OutOfRange {
+        name: name.to_string(),
+        value: samples as f64,
+        range: format!(
+            "[2, {most}] with {outputs} output points ({BYTES_PER_SHAPE_SAMPLE} bytes per shape \
+             sample; the shapes must fit the memory budget of {} GB)",
+            MEMORY_BUDGET as f64 / 1e9
+        ),
+    })
+}
 
 /// `v` with `p` significant digits, trailing zeros removed, scientific below 1e-4 and from 1e6
 /// on (`digits(1e300, 6) = "1e300"`, never a 300-digit decimal).
