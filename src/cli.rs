@@ -704,6 +704,21 @@ pub enum PlotKind {
     WhiskShapes,
 }
 
+impl PlotKind {
+    /// What kind of file it is, in words (`scan`, `drag`, `whisk shapes`, ...).
+    pub fn kind_name(self) -> &'static str {
+        match self {
+            PlotKind::Auto => "detected",
+            PlotKind::Scan => "scan",
+            PlotKind::Shapes => "scan shapes",
+            PlotKind::Sweep => "sweep",
+            PlotKind::Drag => "drag",
+            PlotKind::Whisk => "whisk",
+            PlotKind::WhiskShapes => "whisk shapes",
+        }
+    }
+}
+
 /// `vibrissa plot`.
 #[derive(Args, Debug)]
 #[command(

@@ -269,8 +269,23 @@ fn peg(p: crate::cli::Point) -> Res<()> {
     Ok(())
 }
 
+/// The scene flags a point object has no use for (it has no surface): refused, not ignored.
+fn no_surface(a: &crate::cli::SceneArgs, what: &str) -> Res<()> {
+    let given = [
+        (a.surface_angle.is_some(), "--surface-angle"),
+        (a.contact.is_some(), "--contact"),
+    ];
+    match given.iter().find(|g| g.0) {
+        Some((_, flag)) => Err(usage(format!(
+            "{flag} does not apply to {what}: a point object has no surface (its place is --peg, friction at it --mu0)"
+        ))),
+        None => Ok(()),
+    }
+}
+
 fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
     tol(a.solver.tol)?;
+    no_surface(&a.scene, "whisk")?;
     peg(a.peg)?;
     check(Src::Flag("--theta-max"), a.theta_max, &limits::THETA)?;
     mu0(&mut a.mu0)?;
@@ -284,6 +299,7 @@ fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
 
 fn locate(a: &mut crate::cli::LocateArgs) -> Res<()> {
     tol(a.solver.tol)?;
+    no_surface(&a.scene, "locate")?;
     check(Src::Flag("--theta"), a.theta, &limits::THETA)
 }
 

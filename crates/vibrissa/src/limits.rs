@@ -233,6 +233,11 @@ pub const THETA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
     .unit("radians")
     .why("the foot turned clockwise, within a quarter turn");
 
+/// The program's (and Python's) foot displacement a drag goes to unless asked otherwise (shorter
+/// than [`DragOptions::default`](crate::DragOptions)'s 2: a few slips, quickly).
+pub const DEFAULT_DRAG_D_MAX: f64 = 1.0;
+/// The program's (and Python's) output points of a drag unless asked otherwise.
+pub const DEFAULT_DRAG_POINTS: usize = 201;
 /// Largest foot displacement of a drag.
 pub const DRAG_D_MAX: Range = Range::new(0.0, false, 1000.0, true).unit("rod lengths");
 /// Static friction coefficient μs of a drag.
@@ -251,6 +256,13 @@ pub const MAX_SLIPS: Range = Range::count(1, 1_000_000);
 pub const CORRUGATION_AMPLITUDE: Range = Range::new(-0.2, true, 0.2, true).unit("rod lengths");
 /// Wavelength of a corrugation.
 pub const CORRUGATION_WAVELENGTH: Range = Range::new(0.01, true, 100.0, true).unit("rod lengths");
+/// Period of a friction texture of patches: as a corrugation's wavelength (issue 33: a period
+/// of 1e-9 was accepted and the drag, an event at every patch boundary, never ended).
+pub const FRICTION_PERIOD: Range = Range::new(0.01, true, 1000.0, true).unit("rod lengths").why(
+    "rod lengths; each patch boundary the tip passes is an event of the drag: a finer texture than 0.01 would take without end, and the model's tip is a point",
+);
+/// Width of one friction patch.
+pub const PATCH_WIDTH: Range = Range::new(1e-3, true, f64::INFINITY, false).unit("rod lengths");
 /// Phase of a corrugation at `x = 0`.
 pub const CORRUGATION_PHASE: Range = Range::new(-1000.0, true, 1000.0, true).unit("radians");
 
