@@ -51,22 +51,51 @@
 //! mesh is also coarsened (up to 8 times) while that removes at least 10 % of the nodes, and the
 //! coarse solution is kept only if it still meets `tol`. Newton failures: see below.
 //!
-//! # Dense output
+//! # Dense output, and the check of what is returned
 //!
 //! The returned [`Solution`] holds the mesh nodes, `z` and `dz = F(s_i, z_i, p)` there.
 //! Lobatto4 returns its collocation polynomial itself, the cubic Hermite interpolant of `z`,
 //! `dz` ([`crate::Dense::Hermite`], as bvp4c and `solve_bvp` do): the residual its error control
 //! measures is that of the returned interpolant (`Solution::residuals` reproduces the estimate),
 //! and scipy's residual assertions hold on it. Between nodes it is less accurate than at them
-//! (within 10·tol on the test set, up to 50× its nodal error). Lobatto6 returns the quintic
-//! Hermite interpolant of `z`, `dz` and `z'' = d/ds F(s, z(s), p)` at the nodes (a central
-//! difference along the tangent `(1, F)`, two evaluations of `F` per node,
-//! [`crate::Dense::Quintic`], order 6; its quartic collocation polynomial is of order 5 between
-//! nodes): the error on a fine grid stays within 10× the nodal error (`tests/testset.rs`), and
-//! the residual estimate is that of the quartic. A quintic for Lobatto4 was tried: its residual
-//! is dominated by the derivative of the global error, which local refinement does not reduce
-//! (Cash–Mazzia 5 and 11 at ε = 1e-4, tol 1e-8, ran into the node limit).
+//! (within 10·tol on the test set, up to 50× its nodal error). Lobatto6 returns on each interval
+//! the quintic Hermite interpolant of `z`, `dz` and `z'' = d/ds F(s, z(s), p)` at its two ends,
+//! each `z''` a one-sided difference of `F` along the tangent `(1, F)` *into* the interval
+//! ([`crate::Dense::QuinticIntervals`], order 6; its quartic collocation polynomial is of order
+//! 5 between nodes). `F` is evaluated only inside `[a, b]` and never across a node, so a kink of
+//! `F` at a node or at an end of the interval costs no accuracy (a central difference across the
+//! node did: 3.6e-5 at tol 1e-8 on `y'' = −|y|`, `y(0) = 0`, `tests/interpolant.rs`).
+//!
+//! Before a solution is returned, the residual of the returned interpolant is measured at the
+//! interior Lobatto points of every interval (the formula of `ρ_i` above, as scipy checks its
+//! cubic; for Lobatto4 it is `ρ_i` itself): if it exceeds `tol` anywhere, those intervals are
+//! refined and the solve goes on (at the node limit: [`BvpError::Inaccurate`]).
+//! `stats.error_estimate` is its maximum, the residual of the object returned. A quintic for
+//! Lobatto4 was tried: its residual is dominated by the derivative of the global error, which
+//! local refinement does not reduce (Cash–Mazzia 5 and 11 at ε = 1e-4, tol 1e-8, ran into the
+//! node limit).
 
+//! # Error control mode
+//!
+//! With [`ErrorControl::Error`] (as bvp5c) a solution that met the residual control is also
+//! compared with a reference of higher accuracy: Lobatto6 solved on the same mesh from it
+//! (Lobatto4), or Lobatto6 on the halved mesh (Lobatto6). The estimate
+//! `e_i = max |S_c − R_c| / (1 + |R_c|)` over the ends and the three interior points of interval
+//! `i` is the error of `S` to a relative `O(h)` (resp. `1/64`): asymptotically correct, not a
+//! bound. If `max e_i > tol`, the residual tolerance is multiplied by
+//! `clamp(tol / (2 max e_i), 1e-3, 1/2)` (the error is the residual propagated by the problem's
+//! Green's function) and the mesh refined where the residual exceeds it or `e_i > tol`.
+//! `stats.error_estimate` is `max e_i`; coarsening after acceptance is off.
+//!
+//! # Lobatto6 from a poor guess
+//!
+//! When Lobatto6's damped Newton and the homotopy fail on the first mesh of a guess without
+//! slopes (not one made from a solution), Lobatto4 is solved from the same guess at
+//! `max(tol, 1e-3)` (a cheap attempt: at most 6 mesh passes and 500 nodes, no homotopy) and
+//! Lobatto6 restarts on its mesh from its solution
+//! (Lobatto6's Newton has the smaller region of convergence: Falkner–Skan from the bvp4c
+//! tutorial's guess). If Lobatto4 fails too, Lobatto6 goes on refining as below.
+//!
 //! # Newton thresholds and failures
 //!
 //! Collocation rows are divided by `h_i` (units of `z'`) and scaled by `1 + max |F_c|` over their
@@ -95,14 +124,16 @@
 #![allow(clippy::needless_range_loop)]
 
 mod abd;
+mod run;
 mod tableau;
 
 use crate::fd::{bc_jacobian_or_fd, rhs_jacobian_or_fd, FdScheme, FdScratch};
-use crate::newton::{attach, homotopy, non_finite, singular, Newton, NewtonSystem};
+use crate::newton::{attach, non_finite, singular, Newton, NewtonSystem};
 use crate::singular::Regular;
 use crate::solution::locate;
-use crate::{Bvp, BvpError, BvpSolver, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
+use crate::{Bvp, BvpError, BvpSolver, Dims, Guess, NewtonOptions, Solution, Stats};
 use abd::{AbdSystem, Layout};
+use run::{Ctx, Next, Run};
 use tableau::{Tableau, EST_T, EST_W, MAXC};
 
 /// Collocation scheme.
@@ -122,6 +153,26 @@ impl Scheme {
             Scheme::Lobatto6 => 6,
         }
     }
+}
+
+/// What the error control of [`Collocation`] holds to `tol` (see the module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub enum ErrorControl {
+    /// The scaled RMS residual of the returned interpolant per interval (bvp4c, scipy's
+    /// `solve_bvp`). The error is that residual propagated by the problem: at most its size
+    /// times the conditioning of the problem, which can be large (a periodic epidemic model at
+    /// tol 1e-4: residual 8.5e-5, error 5.6e-3). The default.
+    #[default]
+    Residual,
+    /// The residual as above, and then the true error of the returned solution, estimated
+    /// against a more accurate reference (Lobatto4: Lobatto6 on the same mesh; Lobatto6:
+    /// Lobatto6 on the halved mesh), componentwise `|S − R| / (1 + |R|)` at the nodes and three
+    /// interior points of every interval, must meet `tol`; while it does not, the residual
+    /// tolerance is lowered and the mesh refined. As bvp5c, which controls the true error. The
+    /// estimate is asymptotically correct (the reference's error is `O(h)` resp. `1/64` of it),
+    /// not a bound; `stats.error_estimate` is it. Costs one more Newton solve per accepted mesh,
+    /// and the meshes a tighter residual needs.
+    Error,
 }
 
 /// Options of [`Collocation`].
@@ -151,6 +202,9 @@ pub struct CollocationOptions {
     /// Newton options. `max_iter`, `step_tol`, `min_damping`, `step_residual_tol` apply as given;
     /// the residual threshold is `min(newton.tol, tol / 20, bc_tol)`.
     pub newton: NewtonOptions,
+    /// What the error control holds to `tol`: the residual (default) or the estimated true
+    /// error ([`ErrorControl`]). Coarsening after acceptance is off with `Error`.
+    pub control: ErrorControl,
     /// Globalization: when damped Newton fails on the first mesh, solve the Newton homotopy
     /// `R(u) − τ R(u₀) = 0` from `τ = 1` to `0` on that mesh (see [`crate::newton::homotopy`])
     /// before refining. Default `true`.
@@ -168,6 +222,7 @@ impl Default for CollocationOptions {
             adapt: true,
             coarsen: true,
             newton: NewtonOptions::default(),
+            control: ErrorControl::Residual,
             homotopy: true,
         }
     }
@@ -582,9 +637,15 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
         Ok(best)
     }
 
-    /// `z'' = d/ds F(s, z(s), p)` at the nodes by a central difference along the solution's
-    /// tangent `(1, F)`, step `∛ε · h` (h the shorter adjacent interval): error `O(ε^⅔)`
-    /// relative, far below the 6th-order nodal accuracy once multiplied by `h²` in the quintic.
+    /// `z'' = d/ds F(s, z(s), p)` at both ends of every interval, each from inside its
+    /// interval ([`Dense::QuinticIntervals`]): along the solution's tangent `(1, F)`,
+    /// `g(δ) = F(s ± δ, z ± δ F, p)` has `g'(0) = z''` exactly (the tangent's `O(δ²)` departure
+    /// from the solution enters only `g''`), and the one-sided second-order difference
+    /// `(−3 g(0) + 4 g(δ) − g(2δ)) / 2δ` with `δ = ∛ε · h` has a relative error `O(ε^⅔)`, far
+    /// below the 6th-order nodal accuracy once multiplied by `h²` in the quintic. `F` is never
+    /// evaluated outside `[a, b]` or across a node: a central difference there averaged the two
+    /// sides of a kink of `F` at a node (or read `F` outside the interval at its ends), which cost
+    /// the interpolant 3 800× the tolerance on `y'' = −|y|`, `y(0) = 0`.
     fn second_derivatives(
         &mut self,
         p: &[f64],
@@ -594,36 +655,49 @@ impl<'a, P: Bvp + ?Sized> Disc<'a, P> {
     ) -> Vec<f64> {
         let n = self.lay.n;
         let m = self.mesh;
-        let mut d2 = vec![0.0; z.len()];
-        let mut fm = vec![0.0; n];
-        for i in 0..m.len() {
-            let hl = if i > 0 {
-                m[i] - m[i - 1]
-            } else {
-                f64::INFINITY
-            };
-            let hr = if i + 1 < m.len() {
-                m[i + 1] - m[i]
-            } else {
-                f64::INFINITY
-            };
-            let d = f64::EPSILON.cbrt() * hl.min(hr);
-            let (zi, fi) = (&z[i * n..(i + 1) * n], &dz[i * n..(i + 1) * n]);
-            for c in 0..n {
-                self.w.tmp[c] = zi[c] + d * fi[c];
-                self.w.tmp2[c] = zi[c] - d * fi[c];
-            }
-            self.prob.rhs(m[i] + d, &self.w.tmp, p, &mut self.w.fe);
-            self.prob.rhs(m[i] - d, &self.w.tmp2, p, &mut fm);
-            stats.rhs_evals += 2;
-            for c in 0..n {
-                let v = (self.w.fe[c] - fm[c]) / (2.0 * d);
-                // NaN/∞ (e.g. F undefined just outside [a, b]): fall back to 0, i.e. the
-                // quintic degrades to a Hermite-like interpolant there.
-                d2[i * n + c] = if v.is_finite() { v } else { 0.0 };
+        let mut d2 = vec![0.0; 2 * n * (m.len() - 1)];
+        let (mut g1, mut g2) = (vec![0.0; n], vec![0.0; n]);
+        for i in 0..m.len() - 1 {
+            let d = f64::EPSILON.cbrt() * (m[i + 1] - m[i]);
+            for (end, node, sign) in [(0, i, 1.0), (1, i + 1, -1.0)] {
+                let (zi, fi) = (&z[node * n..(node + 1) * n], &dz[node * n..(node + 1) * n]);
+                for (step, g) in [(d, &mut g1), (2.0 * d, &mut g2)] {
+                    let tmp = &mut self.w.tmp;
+                    for c in 0..n {
+                        tmp[c] = zi[c] + sign * step * fi[c];
+                    }
+                    self.prob.rhs(m[node] + sign * step, tmp, p, g);
+                }
+                stats.rhs_evals += 2;
+                let out = &mut d2[(2 * i + end) * n..(2 * i + end + 1) * n];
+                for c in 0..n {
+                    let v = sign * (-3.0 * fi[c] + 4.0 * g1[c] - g2[c]) / (2.0 * d);
+                    // NaN/∞ inside the interval (F undefined there): fall back to 0, i.e.
+                    // the quintic degrades to a Hermite-like interpolant there.
+                    out[c] = if v.is_finite() { v } else { 0.0 };
+                }
             }
         }
         d2
+    }
+
+    /// The second derivatives of the collocation polynomial at both ends of interval `i`
+    /// (points current) into `out` (`2n`: left end, right end): with them the quintic Hermite of
+    /// [`Dense::QuinticIntervals`] is that polynomial itself (it reproduces degree ≤ 5).
+    fn collocation_second_derivatives(&self, i: usize, out: &mut [f64]) {
+        let (n, q) = (self.lay.n, self.tab.q);
+        let h = self.mesh[i + 1] - self.mesh[i];
+        for (end, t) in [(0, 0.0), (1, 1.0)] {
+            let mut sec = [0.0; MAXC];
+            self.tab.second(t, &mut sec);
+            for c in 0..n {
+                let mut v = 0.0;
+                for j in 0..=q {
+                    v += sec[j] * self.w.fpts[(q * i + j) * n + c];
+                }
+                out[end * n + c] = v / h;
+            }
+        }
     }
 
     /// Nodal values and slopes (node-major) of the current points.
@@ -1029,7 +1103,8 @@ impl BvpSolver for Collocation {
 }
 
 impl Collocation {
-    /// [`BvpSolver::solve`] of a problem without a singular term.
+    /// [`BvpSolver::solve`] of a problem without a singular term: mesh passes ([`run::Run`])
+    /// until one returns.
     fn solve_plain<P: Bvp + ?Sized>(
         &mut self,
         problem: &P,
@@ -1037,254 +1112,47 @@ impl Collocation {
         observer: &mut dyn FnMut(&Progress<'_>),
     ) -> Result<Solution, BvpError> {
         guess.validate(problem.dims(), problem.interval())?;
-        let dims = problem.dims();
-        let n = dims.n;
         let (a, b) = problem.interval();
         let opts = self.opts.clone();
         let mut nopts = opts.newton.clone();
-        let bc_tol = opts.bc_tol();
-        nopts.tol = nopts.tol.min(opts.tol / 20.0).min(bc_tol);
-
-        let mut stats = Stats::default();
-        let mut mesh = self.initial_mesh(guess, a, b);
-        if mesh.len() > opts.max_nodes {
-            return Err(BvpError::MeshLimit {
-                max_nodes: opts.max_nodes,
-                needed: mesh.len(),
-                residual: f64::NAN,
-                stats,
-            });
-        }
-        let mut u = Vec::new();
-        fill_unknowns(
-            &self.tab,
-            &mesh,
-            dims,
-            &guess.params,
-            |s, o| guess.eval(s, o),
-            &mut u,
-        );
-        let mut source: Option<Snapshot> = None;
-        let mut best: Option<Solution> = None;
-        let mut retries = 0;
-        let mut coarsenings = 0;
-        let mut ill_refines = 0;
-        let mut homotopy_tried = false;
-        let mut rms = Vec::new();
-
+        nopts.tol = nopts.tol.min(opts.tol / 20.0).min(opts.bc_tol());
+        let mesh = self.initial_mesh(guess, a, b);
+        let cx = Ctx {
+            opts: &opts,
+            nopts,
+            tab: &self.tab,
+            dims: problem.dims(),
+            guess,
+        };
+        let mut run = Run::start(&cx, mesh)?;
         loop {
-            if stats.mesh_passes >= opts.max_mesh_passes {
-                if let Some(sol) = best {
-                    return Ok(with_total_stats(sol, &stats));
-                }
-                stats.nodes = mesh.len();
-                return Err(BvpError::MeshLimit {
-                    max_nodes: opts.max_nodes,
-                    needed: mesh.len(),
-                    residual: stats.error_estimate.unwrap_or(f64::NAN),
-                    stats,
-                });
+            if run.stats.mesh_passes >= opts.max_mesh_passes {
+                return run.out_of_passes(&cx);
             }
-            stats.mesh_passes += 1;
-            stats.nodes = mesh.len();
+            run.stats.mesh_passes += 1;
+            let mesh = std::mem::take(&mut run.mesh);
+            run.stats.nodes = mesh.len();
             let mut disc = Disc::new(problem, &self.tab, &mesh, &mut self.work);
-            let start = (!homotopy_tried).then(|| u.clone());
-            let mut res = self.newton.solve(&mut disc, &mut u, &nopts, &mut stats);
-            if let (Err(BvpError::Stalled { .. } | BvpError::MaxIterations { .. }), Some(u0)) =
-                (&res, start)
-            {
-                if disc.non_finite.is_none() && opts.homotopy {
-                    // Globalization: the Newton homotopy from the starting values on this mesh.
-                    homotopy_tried = true;
-                    let mut uh = u0;
-                    let mut hstats = stats.clone();
-                    if homotopy(&mut self.newton, &mut disc, &mut uh, &nopts, &mut hstats).is_ok() {
-                        u = uh;
-                        res = Ok(());
-                    }
-                    stats = hstats;
+            let next = match run.newton(&cx, &mut self.newton, &mut disc) {
+                Err(e) => {
+                    observer(&Progress {
+                        pass: run.stats.mesh_passes,
+                        mesh: &mesh,
+                        newton_iters: run.stats.newton_iters,
+                        newton_converged: false,
+                        residual: run.stats.residual,
+                        residuals: &[],
+                    });
+                    run.after_failure(&cx, &mut disc, &mesh, e)
                 }
+                Ok(()) => run.after_newton(&cx, &mut disc, &mesh, observer),
+            };
+            if run.mesh.is_empty() {
+                run.mesh = mesh;
             }
-            if let Err(mut e) = res {
-                observer(&Progress {
-                    pass: stats.mesh_passes,
-                    mesh: &mesh,
-                    newton_iters: stats.newton_iters,
-                    newton_converged: false,
-                    residual: stats.residual,
-                    residuals: &[],
-                });
-                let failed = matches!(e, BvpError::Stalled { .. } | BvpError::MaxIterations { .. });
-                if let (true, Some((location, s))) = (failed, disc.non_finite) {
-                    // Newton was blocked by NaN/∞ of the problem: report that, it is the cause.
-                    e = BvpError::NonFinite {
-                        location,
-                        s,
-                        stats: stats.clone(),
-                    };
-                }
-                let retry = failed && disc.non_finite.is_none();
-                if let Some(sol) = best {
-                    // A coarsening attempt failed: keep the accepted solution.
-                    return Ok(with_total_stats(sol, &stats));
-                }
-                if retry && opts.adapt && retries < MAX_RETRIES {
-                    // Refine where the unconverged iterate's residual is large and restart from
-                    // that iterate (as solve_bvp does): a coarse mesh that cannot resolve a layer
-                    // often has no nearby discrete solution at all.
-                    if disc.estimate(&u, &mut rms, &mut stats).is_ok() {
-                        let mut fine = adapt_mesh(&mesh, &rms, opts.tol, true, false);
-                        if fine.len() == mesh.len() {
-                            fine = bisect(&mesh);
-                        }
-                        if fine.len() <= opts.max_nodes {
-                            retries += 1;
-                            let snap = snapshot(&disc, &mesh, &u);
-                            snap.fill(&self.tab, dims, &fine, &mut u);
-                            source = Some(snap);
-                            mesh = fine;
-                            continue;
-                        }
-                    }
-                }
-                if retry
-                    && opts.adapt
-                    && retries < MAX_RETRIES
-                    && 2 * mesh.len() - 1 <= opts.max_nodes
-                {
-                    retries += 1;
-                    mesh = bisect(&mesh);
-                    match &source {
-                        Some(snap) => snap.fill(&self.tab, dims, &mesh, &mut u),
-                        None => fill_unknowns(
-                            &self.tab,
-                            &mesh,
-                            dims,
-                            &guess.params,
-                            |s, o| guess.eval(s, o),
-                            &mut u,
-                        ),
-                    }
-                    continue;
-                }
-                return Err(attach_stats(e, &stats));
+            if let Next::Done(result) = next {
+                return result;
             }
-            let est = disc.estimate(&u, &mut rms, &mut stats);
-            if let Err(e) = est {
-                return Err(attach(e, stats.newton_iters, &stats));
-            }
-            let bcres = disc.bc_residual(&u, &mut stats);
-            let max_rms = rms.iter().fold(0.0_f64, |m, v| m.max(*v));
-            stats.error_estimate = Some(max_rms);
-            observer(&Progress {
-                pass: stats.mesh_passes,
-                mesh: &mesh,
-                newton_iters: stats.newton_iters,
-                newton_converged: true,
-                residual: stats.residual,
-                residuals: &rms,
-            });
-            let mut converged = max_rms <= opts.tol && bcres <= bc_tol;
-            if converged && opts.adapt {
-                // Conditioning: this solution's residuals (the estimated defect, the boundary
-                // residual) may move it by `amp` times their size. Beyond the size of the
-                // solution itself no digit is right: the problem is numerically singular here
-                // (e.g. it has no solution and the mesh only picks one of huge amplitude),
-                // reported as a singular Jacobian. The defect, not `tol`: a well-posed layer
-                // problem has `amp ~ 1/ε` in `y'` on any mesh (Cash–Mazzia 3 at ε = 1e-4:
-                // 4.8e4), so `amp·tol` can exceed the solution's size while the error is tiny.
-                let amp = disc
-                    .amplification(&u, &mut stats)
-                    .map_err(|e| attach_stats(e, &stats))?;
-                let size = u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-                if amp * max_rms.max(bcres) > 1.0 + size {
-                    converged = false;
-                    if best.is_none() {
-                        // A mesh that barely meets the tolerance can fail this by itself:
-                        // bisect (from this solution) a few times before reporting; the
-                        // defect falls like h^order, the amplification of a nearly singular
-                        // problem grows.
-                        if ill_refines < MAX_ILL_REFINES && 2 * mesh.len() - 1 <= opts.max_nodes {
-                            ill_refines += 1;
-                            let fine = bisect(&mesh);
-                            let snap = snapshot(&disc, &mesh, &u);
-                            snap.fill(&self.tab, dims, &fine, &mut u);
-                            source = Some(snap);
-                            mesh = fine;
-                            continue;
-                        }
-                        stats.nodes = mesh.len();
-                        return Err(BvpError::SingularJacobian {
-                            iteration: stats.newton_iters,
-                            stats,
-                        });
-                    }
-                }
-            }
-            if !opts.adapt || converged {
-                let (z, dz) = disc.nodal();
-                let params = u[disc.lay.pcol()..].to_vec();
-                // Both schemes: the quintic Hermite of the nodes (their cubic / quartic
-                // collocation polynomials are less accurate between nodes than at them).
-                let dense = if self.tab.internal {
-                    Dense::Quintic {
-                        d2z: disc.second_derivatives(&params, &z, &dz, &mut stats),
-                    }
-                } else {
-                    Dense::Hermite
-                };
-                let sol = Solution {
-                    n,
-                    mesh: mesh.clone(),
-                    z,
-                    dz,
-                    params,
-                    status: Status::Converged,
-                    stats: stats.clone(),
-                    dense,
-                };
-                if !opts.adapt {
-                    return Ok(sol);
-                }
-                if opts.coarsen && coarsenings < MAX_COARSEN {
-                    let coarse = adapt_mesh(&mesh, &rms, opts.tol, false, true);
-                    if coarse.len() * 10 <= mesh.len() * 9 {
-                        coarsenings += 1;
-                        let snap = snapshot(&disc, &mesh, &u);
-                        snap.fill(&self.tab, dims, &coarse, &mut u);
-                        source = Some(snap);
-                        mesh = coarse;
-                        best = Some(sol);
-                        continue;
-                    }
-                }
-                return Ok(sol);
-            }
-            if let Some(sol) = best {
-                // The coarsened mesh missed the tolerance: keep the accepted solution.
-                return Ok(with_total_stats(sol, &stats));
-            }
-            let new_mesh = adapt_mesh(&mesh, &rms, opts.tol, true, opts.coarsen);
-            if new_mesh == mesh {
-                // Residual met but the boundary conditions are not: Newton is at its floor.
-                return Err(BvpError::Stalled {
-                    iteration: stats.newton_iters,
-                    residual: bcres,
-                    stats,
-                });
-            }
-            if new_mesh.len() > opts.max_nodes {
-                return Err(BvpError::MeshLimit {
-                    max_nodes: opts.max_nodes,
-                    needed: new_mesh.len(),
-                    residual: max_rms,
-                    stats,
-                });
-            }
-            let snap = snapshot(&disc, &mesh, &u);
-            snap.fill(&self.tab, dims, &new_mesh, &mut u);
-            source = Some(snap);
-            mesh = new_mesh;
         }
     }
 }

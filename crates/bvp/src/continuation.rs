@@ -51,9 +51,12 @@
 //!   no tangent); from then on the secant through the last two points is the tangent.
 //! - Natural continuation steps `λ` by `±ds` and corrects with `λ` fixed; its predictor is the
 //!   secant in `λ`. It cannot pass a fold: there the solves fail, the step shrinks to `ds_min` and
-//!   the iterator returns [`BvpError::Continuation`] with the solver's error and, when Newton
-//!   failed to converge (stall, iteration limit, singular matrix), a "fold?" hint (none for
-//!   non-finite values, integration or mesh limits).
+//!   the iterator returns [`BvpError::Fold`] with the fold's estimated `λ` when the last three
+//!   points show `λ` turning back just ahead (the extremum of the quadratic `λ(σ)` through them;
+//!   whatever the corrector's error: a stall, NaN/∞ past the fold), else
+//!   [`BvpError::Continuation`] with the solver's error and, when Newton failed to converge
+//!   (stall, iteration limit, singular matrix), a "fold?" hint (none for non-finite values,
+//!   integration or mesh limits).
 //! - Step control: a step is rejected (and `ds` halved) if the corrector fails or if the angle
 //!   between the new and the previous secant exceeds `max_angle` (so a step cannot jump to
 //!   another part of the branch); at `ds = ds_min` the angle test is waived and a corrector
@@ -1028,6 +1031,14 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
     }
 
     fn wrap(&self, e: BvpError, ds: f64) -> BvpError {
+        if let (Method::Natural, Some(fold)) = (self.opts.method, self.fold_ahead()) {
+            return BvpError::Fold {
+                step: self.step + 1,
+                lambda: self.history.back().map_or(self.lambda0, |n| n.lambda),
+                fold,
+                source: Box::new(e),
+            };
+        }
         BvpError::Continuation {
             step: self.step + 1,
             lambda: self.history.back().map_or(self.lambda0, |n| n.lambda),
@@ -1035,6 +1046,34 @@ impl<'a, P: ParamBvp + ?Sized, S: BvpSolver> Continuation<'a, P, S> {
             hint: failure_hint(self.opts.method, &e),
             source: Box::new(e),
         }
+    }
+
+    /// A fold ahead of the last three points `A, B, C`, by the quadratic `λ(σ)` through them
+    /// (`σ` the arclength): concave in the direction of travel, with its extremum `σ*` beyond `B`
+    /// and within twice the span `σ_C − σ_A` of `C` (a nearly straight path has its extremum far
+    /// away and is no fold). Returns `λ(σ*)`.
+    fn fold_ahead(&self) -> Option<f64> {
+        let h = &self.history;
+        if h.len() < 3 {
+            return None;
+        }
+        let (a, b, c) = (&h[h.len() - 3], &h[h.len() - 2], &h[h.len() - 1]);
+        let (sa, sb, sc) = (a.sigma, b.sigma, c.sigma);
+        if !(sa < sb && sb < sc) {
+            return None;
+        }
+        let f_ab = (b.lambda - a.lambda) / (sb - sa);
+        let f_bc = (c.lambda - b.lambda) / (sc - sb);
+        let f_abc = (f_bc - f_ab) / (sc - sa);
+        let dir = (c.lambda - b.lambda).signum();
+        if f_abc * dir >= 0.0 || f_abc.is_nan() {
+            return None;
+        }
+        let star = 0.5 * (sa + sb) - f_ab / (2.0 * f_abc);
+        if !(star >= sb && star - sc <= 2.0 * (sc - sa)) {
+            return None;
+        }
+        Some(a.lambda + f_ab * (star - sa) + f_abc * (star - sa) * (star - sb))
     }
 
     fn advance(&mut self) -> Result<Option<BranchPoint>, BvpError> {

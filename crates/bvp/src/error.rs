@@ -162,6 +162,26 @@ pub enum BvpError {
         #[source]
         source: Box<BvpError>,
     },
+    /// Natural continuation met a fold (a limit point in `λ`), which it cannot pass: its last
+    /// step failed at the smallest step length and its last three points show `λ` turning back
+    /// ahead of them (`fold`: the extremum of the quadratic `λ(σ)` through them, `σ` the
+    /// arclength). Whatever the corrector's own error was (a stall, NaN/∞ past the fold).
+    #[error(
+        "natural continuation met a fold at lambda ≈ {fold:.6} (last point lambda = {lambda}, \
+         step {step}); it cannot pass a fold in lambda: use PseudoArclength (the corrector: \
+         {source})"
+    )]
+    Fold {
+        /// Index of the branch point that could not be computed.
+        step: usize,
+        /// Parameter value of the last accepted point.
+        lambda: f64,
+        /// Estimated parameter value of the fold.
+        fold: f64,
+        /// The solver's error at the last attempt.
+        #[source]
+        source: Box<BvpError>,
+    },
     /// [`crate::solve_by_continuation`] took every step it could and stopped short of its
     /// target: `continuation.max_steps` ran out, or the branch turned back (a fold in the
     /// parameter) and ended on the starting side.
@@ -243,7 +263,7 @@ impl BvpError {
             BvpError::MeshLimit { .. } => Status::MeshLimit,
             BvpError::StepSizeTooSmall { .. } => Status::StepSizeTooSmall,
             BvpError::Continuation { source, .. } => source.status(),
-            BvpError::PathEnded { .. } => Status::PathEnded,
+            BvpError::PathEnded { .. } | BvpError::Fold { .. } => Status::PathEnded,
             BvpError::Inaccurate { .. } => Status::Inaccurate,
         }
     }
@@ -262,7 +282,7 @@ impl BvpError {
             | BvpError::StepSizeTooSmall { stats, .. }
             | BvpError::PathEnded { stats, .. }
             | BvpError::Inaccurate { stats, .. } => Some(stats),
-            BvpError::Continuation { source, .. } => source.stats(),
+            BvpError::Continuation { source, .. } | BvpError::Fold { source, .. } => source.stats(),
         }
     }
 }

@@ -240,12 +240,20 @@ fn probe_offset(j: usize, x: f64) -> f64 {
     sign * (0.5 + u) * 1e-3 * x.abs().max(1.0)
 }
 
+/// Where in `[a, b]` the probe evaluates `F`: a generic interior point (golden section), not the
+/// abscissa of the first Jacobian, which is usually an end of the interval where a term of `F`
+/// may vanish (a singular term `−2 z₁/s` written as `0` at `s = 0`: learned there alone, the
+/// pattern missed `∂F₁/∂z₁` and Newton stalled on 707 nodes).
+fn probe_abscissa(interval: (f64, f64)) -> f64 {
+    let (a, b) = interval;
+    a + 0.618_033_988_749_895 * (b - a)
+}
+
 /// Adds the nonzeros of a forward-difference `∂F/∂z` at the probe point (`x` perturbed by
-/// [`probe_offset`]) to the pattern; a probe with NaN/∞ switches grouping off for this solve
-/// (the perturbed point may lie outside `F`'s domain). Returns the evaluations.
+/// [`probe_offset`], at [`probe_abscissa`]) to the pattern; a probe with NaN/∞ switches grouping
+/// off for this solve (the perturbed point may lie outside `F`'s domain). Returns the evaluations.
 fn probe<P: Bvp + ?Sized>(
     problem: &P,
-    s: f64,
     x: &[f64],
     q: &[f64],
     work: &mut [f64],
@@ -255,6 +263,7 @@ fn probe<P: Bvp + ?Sized>(
     for (j, (xp, &xj)) in sp.x0.iter_mut().zip(x).enumerate() {
         *xp = xj + probe_offset(j, xj);
     }
+    let s = probe_abscissa(problem.interval());
     problem.rhs(s, &sp.x0, q, &mut sp.fp);
     let mut evals = 1;
     if sp.fp.iter().all(|v| v.is_finite()) {
@@ -438,7 +447,7 @@ pub fn rhs_jacobian_fd<P: Bvp + ?Sized>(
             if missed {
                 sp.relearned += 1;
             } else {
-                evals += probe(problem, s, x, q, f1, sp);
+                evals += probe(problem, x, q, f1, sp);
             }
             sp.add(&dfdz[..n * n]);
             sp.group(n);

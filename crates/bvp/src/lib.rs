@@ -34,6 +34,14 @@
 //! ([`Dense`]), parameters, [`Stats`]) or a
 //! [`BvpError`] that says why the solve failed and carries the statistics gathered so far.
 //!
+//! [`multipoint`] solves problems with interfaces at interior points ([`multipoint::MultipointBvp`],
+//! conditions across the interfaces, `F` per region) with any solver, and returns one solution
+//! per region.
+//!
+//! [`extend`]: a guess on another interval from a solution (`Guess::extended`, as MATLAB's
+//! `bvpinit(sol, [a b])`; `Guess::rescaled`), and continuation in the interval's right end
+//! ([`IntervalFamily`]).
+//!
 //! [`solve_by_continuation`] ([`path`]) solves a hard member of a [`ParamBvp`] family by walking
 //! the parameter from an easy value, with any solver.
 //!
@@ -55,9 +63,11 @@ mod stats;
 pub mod collocation;
 pub mod complex;
 pub mod continuation;
+pub mod extend;
 pub mod fd;
 pub mod fixed;
 pub mod linalg;
+pub mod multipoint;
 pub mod newton;
 #[cfg(feature = "ode_solvers")]
 pub mod odes;
@@ -67,9 +77,10 @@ pub mod shooting;
 pub mod tableau;
 pub mod testset;
 
-pub use collocation::{Collocation, CollocationOptions, Progress, Scheme};
+pub use collocation::{Collocation, CollocationOptions, ErrorControl, Progress, Scheme};
 pub use continuation::{BranchPoint, Continuation, ContinuationOptions, Fold, FoldKind, ParamBvp};
 pub use error::{BvpError, Check, Status};
+pub use extend::IntervalFamily;
 pub use newton::{Damping, NewtonOptions};
 pub use path::{solve_by_continuation, solve_member, PathOptions, PathSolution, Scale};
 pub use problem::{from_fns, Bvp, Dims, FnBvp, SingularTerm};

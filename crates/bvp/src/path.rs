@@ -375,6 +375,17 @@ fn walk_family<P: ParamBvp + ?Sized, S: BvpSolver>(
             hint,
             source,
         },
+        BvpError::Fold {
+            step,
+            lambda,
+            fold,
+            source,
+        } if log => BvpError::Fold {
+            step,
+            lambda: sign * lambda.exp(),
+            fold: sign * fold.exp(),
+            source,
+        },
         BvpError::PathEnded {
             lambda,
             steps,

@@ -13,9 +13,20 @@ pub enum Dense {
     #[default]
     Hermite,
     /// Quintic Hermite on `z`, `dz` and `d2z ≈ z''` at the nodes (node-major, like `z`): order 6,
-    /// C². Lobatto6 (its own quartic collocation polynomial is of order 5 between nodes).
+    /// C². For solutions built by hand; Lobatto6 returned it until issue 34, with `z''` from a
+    /// central difference across each node, which is wrong next to a node where `F` has a kink
+    /// (see [`Dense::QuinticIntervals`]).
     Quintic {
         /// Second derivatives at the nodes, `d/ds F(s, z(s), p)`.
+        d2z: Vec<f64>,
+    },
+    /// Quintic Hermite on `z`, `dz` and `z''` taken from inside each interval: `2n` values per
+    /// interval (interval-major), `z''` at its left end, then at its right end, each a one-sided
+    /// difference of `F` along the solution's tangent into the interval. Order 6 and C¹ (C² where
+    /// `F` is smooth across a node); `F` is never evaluated outside `[a, b]` or across a node, so
+    /// a kink of `F` at a node (or at an end) costs no accuracy. Lobatto6.
+    QuinticIntervals {
+        /// `z''` at the ends of each interval, `[left (n), right (n)]` per interval.
         d2z: Vec<f64>,
     },
     /// DOP853's continuous extension of order 7 (Hairer's `contd8`) on every step: `7n`
@@ -92,25 +103,16 @@ impl Solution {
         match &self.dense {
             Dense::Quintic { d2z } if ok(d2z.len(), self.mesh.len()) => {
                 let i = locate(&self.mesh, s);
-                let h = self.mesh[i + 1] - self.mesh[i];
-                let t = ((s - self.mesh[i]) / h).clamp(0.0, 1.0);
-                let (t2, t3) = (t * t, t * t * t);
-                let (t4, t5) = (t3 * t, t3 * t2);
-                let h0 = 1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5;
-                let h1 = 1.0 - h0;
-                let g0 = h * (t - 6.0 * t3 + 8.0 * t4 - 3.0 * t5);
-                let g1 = h * (-4.0 * t3 + 7.0 * t4 - 3.0 * t5);
-                let k0 = 0.5 * h * h * (t2 - 3.0 * t3 + 3.0 * t4 - t5);
-                let k1 = 0.5 * h * h * (t3 - 2.0 * t4 + t5);
-                let (a, b) = (i * n, (i + 1) * n);
-                for j in 0..n {
-                    out[j] = h0 * self.z[a + j]
-                        + h1 * self.z[b + j]
-                        + g0 * self.dz[a + j]
-                        + g1 * self.dz[b + j]
-                        + k0 * d2z[a + j]
-                        + k1 * d2z[b + j];
-                }
+                let (d0, d1) = (&d2z[i * n..(i + 1) * n], &d2z[(i + 1) * n..(i + 2) * n]);
+                self.quintic(i, s, d0, d1, false, out);
+            }
+            Dense::QuinticIntervals { d2z } if ok(d2z.len(), 2 * (self.mesh.len() - 1)) => {
+                let i = locate(&self.mesh, s);
+                let (d0, d1) = (
+                    &d2z[2 * i * n..(2 * i + 1) * n],
+                    &d2z[(2 * i + 1) * n..(2 * i + 2) * n],
+                );
+                self.quintic(i, s, d0, d1, false, out);
             }
             Dense::Dop853 { coef } if ok(coef.len(), 7 * (self.mesh.len() - 1)) => {
                 let i = locate(&self.mesh, s);
@@ -185,21 +187,11 @@ impl Solution {
         let ok = |len: usize, per: usize| len == per * n;
         match &self.dense {
             Dense::Quintic { d2z } if ok(d2z.len(), nodes) => {
-                let (t2, t3, t4) = (t * t, t * t * t, t * t * t * t);
-                // d/dt of the basis of `eval`, then divided by h.
-                let h0 = -30.0 * t2 + 60.0 * t3 - 30.0 * t4;
-                let g0 = h * (1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4);
-                let g1 = h * (-12.0 * t2 + 28.0 * t3 - 15.0 * t4);
-                let k0 = 0.5 * h * h * (2.0 * t - 9.0 * t2 + 12.0 * t3 - 5.0 * t4);
-                let k1 = 0.5 * h * h * (3.0 * t2 - 8.0 * t3 + 5.0 * t4);
-                for j in 0..n {
-                    out[j] = (h0 * (self.z[a + j] - self.z[b + j])
-                        + g0 * self.dz[a + j]
-                        + g1 * self.dz[b + j]
-                        + k0 * d2z[a + j]
-                        + k1 * d2z[b + j])
-                        / h;
-                }
+                self.quintic(i, s, &d2z[a..b], &d2z[b..b + n], true, out);
+            }
+            Dense::QuinticIntervals { d2z } if ok(d2z.len(), 2 * (nodes - 1)) => {
+                let (d0, d1) = (&d2z[2 * a..2 * a + n], &d2z[2 * a + n..2 * b]);
+                self.quintic(i, s, d0, d1, true, out);
             }
             Dense::Dop853 { coef } if ok(coef.len(), 7 * (nodes - 1)) => {
                 let u = 1.0 - t;
@@ -229,6 +221,48 @@ impl Solution {
         }
     }
 
+    /// The quintic Hermite interpolant on interval `i` with second derivatives `d0`, `d1` at its
+    /// ends: its value at `s` (clamped to the interval), or its derivative (`derivative`).
+    fn quintic(&self, i: usize, s: f64, d0: &[f64], d1: &[f64], derivative: bool, out: &mut [f64]) {
+        let n = self.n;
+        let h = self.mesh[i + 1] - self.mesh[i];
+        let t = ((s - self.mesh[i]) / h).clamp(0.0, 1.0);
+        let (t2, t3) = (t * t, t * t * t);
+        let (t4, t5) = (t3 * t, t3 * t2);
+        let (a, b) = (i * n, (i + 1) * n);
+        // Basis functions of z_a, z_b, h z'_a, h z'_b, h² z''_a, h² z''_b (value), or their
+        // d/dt divided by h (derivative).
+        let w = if derivative {
+            let h0 = (-30.0 * t2 + 60.0 * t3 - 30.0 * t4) / h;
+            [
+                h0,
+                -h0,
+                1.0 - 18.0 * t2 + 32.0 * t3 - 15.0 * t4,
+                -12.0 * t2 + 28.0 * t3 - 15.0 * t4,
+                0.5 * h * (2.0 * t - 9.0 * t2 + 12.0 * t3 - 5.0 * t4),
+                0.5 * h * (3.0 * t2 - 8.0 * t3 + 5.0 * t4),
+            ]
+        } else {
+            let h0 = 1.0 - 10.0 * t3 + 15.0 * t4 - 6.0 * t5;
+            [
+                h0,
+                1.0 - h0,
+                h * (t - 6.0 * t3 + 8.0 * t4 - 3.0 * t5),
+                h * (-4.0 * t3 + 7.0 * t4 - 3.0 * t5),
+                0.5 * h * h * (t2 - 3.0 * t3 + 3.0 * t4 - t5),
+                0.5 * h * h * (t3 - 2.0 * t4 + t5),
+            ]
+        };
+        for j in 0..n {
+            out[j] = w[0] * self.z[a + j]
+                + w[1] * self.z[b + j]
+                + w[2] * self.dz[a + j]
+                + w[3] * self.dz[b + j]
+                + w[4] * d0[j]
+                + w[5] * d1[j];
+        }
+    }
+
     /// Convenience: the first derivative at `s` into a new vector ([`Solution::eval_derivative`]).
     pub fn derivative_at(&self, s: f64) -> Vec<f64> {
         let mut out = vec![0.0; self.n];
@@ -249,7 +283,7 @@ impl Solution {
         }
     }
 
-    fn residuals_of<P: crate::Bvp + ?Sized>(&self, problem: &P) -> Vec<f64> {
+    pub(crate) fn residuals_of<P: crate::Bvp + ?Sized>(&self, problem: &P) -> Vec<f64> {
         let n = self.n;
         let (mut y, mut dy, mut f) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut out = Vec::with_capacity(self.mesh.len().saturating_sub(1));

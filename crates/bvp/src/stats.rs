@@ -26,7 +26,10 @@ pub struct Stats {
     /// Max-norm of the final nonlinear residual (boundary and continuity/collocation conditions;
     /// collocation rows divided by `1 + |F|`, see [`crate::newton::NewtonSystem::residual_scale`]).
     pub residual: f64,
-    /// Estimated error of the solution (collocation: max scaled residual of the ODE between nodes).
+    /// Estimated error of the solution as returned (collocation: the max scaled RMS residual of
+    /// the returned interpolant over the mesh intervals, or with
+    /// [`crate::ErrorControl::Error`] its estimated true error; shooting: see
+    /// [`crate::Shooting`]).
     pub error_estimate: Option<f64>,
 }
 

@@ -502,3 +502,42 @@ fn malformed_input_is_an_error_not_a_panic() {
     let r = solver(Scheme::Lobatto4, 1e-6).solve(&Eigen, &g);
     assert!(matches!(r, Err(BvpError::Dimension { .. })), "{r:?}");
 }
+
+/// Issue 34: Lobatto6 converges from the bvp4c tutorial's Falkner–Skan guess `(f, f', f'') ≡
+/// (0, 0, 1)` on 5 nodes of `[0, ∞ = 6]` (and `[0, 10]`), `β = 0.5`, like Lobatto4: its Newton
+/// failed on the first mesh (damped and homotopy), it restarts from Lobatto4's solution at
+/// `max(tol, 1e-3)` (it stalled on 8 299 nodes after 4.7 s). `f''(0) = 0.927680` (Falkner–Skan
+/// tables, e.g. White, *Viscous Fluid Flow*, β = 0.5; the same to 1e-8 on `[0, 6]` and
+/// `[0, 10]` here).
+#[test]
+fn lobatto6_from_the_falkner_skan_tutorial_guess() {
+    for inf in [6.0, 10.0] {
+        let beta = 0.5;
+        let p = bvp::from_fns(
+            3,
+            (0.0, inf),
+            move |_s, f, _p, df| {
+                df[0] = f[1];
+                df[1] = f[2];
+                df[2] = -f[0] * f[2] - beta * (1.0 - f[1] * f[1]);
+            },
+            |fa, fb, _p, r| {
+                r[0] = fa[0];
+                r[1] = fa[1];
+                r[2] = fb[1] - 1.0;
+            },
+        );
+        let guess = Guess::constant(0.0, inf, 5, &[0.0, 0.0, 1.0], vec![]);
+        for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
+            let sol = solver(scheme, 1e-6)
+                .solve(&p, &guess)
+                .unwrap_or_else(|e| panic!("{scheme:?} on [0, {inf}]: {e}"));
+            let fpp = sol.node(0)[2];
+            assert!(
+                (fpp - 0.927680).abs() < 1e-5,
+                "{scheme:?} on [0, {inf}]: {fpp}"
+            );
+            assert!(sol.len() < 100, "{scheme:?}: {} nodes", sol.len());
+        }
+    }
+}

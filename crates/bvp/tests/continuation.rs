@@ -332,16 +332,25 @@ fn natural_continuation_stops_at_fold() {
     }
     let err = err.expect("natural continuation must fail at the fold");
     eprintln!("natural continuation stopped after λ = {last_lambda}: {err}");
-    assert!(matches!(err, BvpError::Continuation { .. }), "{err}");
-    assert!(err.to_string().contains("fold?"), "{err}");
-    assert!(
-        matches!(
-            err.status(),
-            Status::Stalled | Status::SingularJacobian | Status::MaxIterations | Status::NonFinite
-        ),
-        "{:?}",
-        err.status()
-    );
+    // Reported as the fold it is, with its parameter value (issue 34).
+    match &err {
+        BvpError::Fold { fold, source, .. } => {
+            assert!((fold - LAMBDA_C).abs() < 1e-4, "{err}");
+            assert!(
+                matches!(
+                    source.status(),
+                    Status::Stalled
+                        | Status::SingularJacobian
+                        | Status::MaxIterations
+                        | Status::NonFinite
+                ),
+                "{:?}",
+                source.status()
+            );
+        }
+        e => panic!("{e}"),
+    }
+    assert_eq!(err.status(), Status::PathEnded);
     // It got close to the fold (within a few ds_min steps in λ; λ_c − λ ~ ds² near a fold).
     assert!(
         LAMBDA_C - last_lambda < 1e-2,

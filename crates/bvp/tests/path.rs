@@ -91,31 +91,65 @@ fn non_finite_failures_are_not_called_folds() {
     assert!(!err.to_string().contains("fold"), "{err}");
 }
 
-/// A real fold (Bratu at λ* = 3.5138) still gets the hint.
+/// A real fold (Bratu at λ* = 3.513830719, Bratu's closed form via `θ = √(2λ) cosh(θ/4)`) met by
+/// natural continuation is reported as `BvpError::Fold` with its estimated parameter value, by
+/// shooting and both collocation schemes, linear and logarithmic walks (issue 34: a collocation
+/// walk used to end in "non-finite value in rhs").
 #[test]
-fn stalls_at_a_fold_are_called_folds() {
-    let mut opts = PathOptions::default();
-    opts.continuation = ContinuationOptions {
-        method: Method::Natural,
-        ds_min: 1e-3,
-        ..opts.continuation
-    };
-    let mut solver = Shooting::new(ShootingOptions::default()).unwrap();
-    let err = solve_by_continuation(
-        &BratuFamily,
-        &mut solver,
-        &Bratu { lambda: 1.0 }.guess(),
-        1.0,
-        4.0,
-        &opts,
-    )
-    .unwrap_err();
-    match &err {
-        BvpError::Continuation { lambda, hint, .. } => {
-            assert!(*lambda > 3.4 && *lambda < 3.52, "{err}");
-            assert!(hint.contains("fold"), "{err}");
+fn folds_met_by_natural_continuation_are_reported_as_folds() {
+    for scale in [bvp::Scale::Linear, bvp::Scale::Log] {
+        let mut opts = PathOptions {
+            scale,
+            ..PathOptions::default()
+        };
+        opts.continuation = ContinuationOptions {
+            method: Method::Natural,
+            ds_min: 1e-3,
+            ..opts.continuation
+        };
+        for method in 0..3 {
+            let guess = Bratu { lambda: 1.0 }.guess();
+            let err = match method {
+                0 => solve_by_continuation(
+                    &BratuFamily,
+                    &mut Shooting::new(ShootingOptions::default()).unwrap(),
+                    &guess,
+                    1.0,
+                    4.0,
+                    &opts,
+                ),
+                m => solve_by_continuation(
+                    &BratuFamily,
+                    &mut lobatto(
+                        if m == 1 {
+                            Scheme::Lobatto4
+                        } else {
+                            Scheme::Lobatto6
+                        },
+                        1e-6,
+                    ),
+                    &guess,
+                    1.0,
+                    4.0,
+                    &opts,
+                ),
+            }
+            .unwrap_err();
+            match &err {
+                BvpError::Fold { lambda, fold, .. } => {
+                    assert!(
+                        *lambda > 3.4 && *lambda < 3.5139,
+                        "{scale:?} {method}: {err}"
+                    );
+                    assert!(
+                        (fold - 3.513830719).abs() < 1e-4,
+                        "{scale:?} {method}: {err}"
+                    );
+                    assert_eq!(err.status(), Status::PathEnded);
+                }
+                e => panic!("{scale:?} {method}: {e}"),
+            }
         }
-        e => panic!("{e}"),
     }
 }
 
@@ -245,8 +279,9 @@ fn solve_member_falls_back_to_continuation() {
 }
 
 /// The dense output of each method is what its docs say: Lobatto4 its collocation cubic
-/// (`Dense::Hermite`, whose residual its error control measures), Lobatto6 the quintic Hermite,
-/// RK4 shooting the cubic, DOP853 its own extension.
+/// (`Dense::Hermite`, whose residual its error control measures), Lobatto6 the quintic Hermite
+/// with `z''` from inside each interval (`Dense::QuinticIntervals`), RK4 shooting the cubic,
+/// DOP853 its own extension.
 #[test]
 fn dense_output_kinds() {
     let b = Bratu { lambda: 1.0 };
@@ -257,7 +292,7 @@ fn dense_output_kinds() {
     let sol = lobatto(Scheme::Lobatto6, 1e-6)
         .solve(&b, &b.guess())
         .unwrap();
-    assert!(matches!(sol.dense, Dense::Quintic { .. }));
+    assert!(matches!(sol.dense, Dense::QuinticIntervals { .. }));
     let rk4 = Shooting::new(ShootingOptions {
         integrator: bvp::Integrator::Rk4 { steps: 100 },
         ..ShootingOptions::default()

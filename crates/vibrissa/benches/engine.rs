@@ -100,6 +100,7 @@ fn cases() -> Vec<Case> {
         ),
         ("surface -0.3", s(&|x| x.surface_angle = -0.3), full.clone()),
         ("surface +0.3", s(&|x| x.surface_angle = 0.3), full.clone()),
+        ("surface +0.2", s(&|x| x.surface_angle = 0.2), full.clone()),
         (
             "taper 0.1 eta 0.97",
             s(&|x| {

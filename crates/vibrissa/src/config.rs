@@ -132,6 +132,13 @@ impl SolverConfig {
     pub(crate) fn own_shooter_tol(&self) -> Option<f64> {
         (self.method == Method::Shooting && self.rk4_steps.is_none()).then_some(self.tol)
     }
+    /// The tolerance of the start's press (the rod pressed onto the surface): the run's own on
+    /// the rod's own shooter; for a generic method, which solves its first point itself from
+    /// the press's rod, no looser than 1e-8, so that the guess (and the adaptive mesh the
+    /// method grows from it) does not coarsen with the method's tolerance.
+    pub(crate) fn start_tol(&self) -> f64 {
+        self.own_shooter_tol().unwrap_or(self.tol.min(1e-8))
+    }
     /// Checks the values against [`limits`](crate::limits): `tol ∈ [1e-15, 1e-2]`,
     /// `segments ∈ [1, 10000]`, `rk4_steps ∈ [1, 1e7]`.
     pub fn validate(&self) -> Result<(), VibrissaError> {

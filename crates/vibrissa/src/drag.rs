@@ -373,9 +373,14 @@ fn drag_with<P: Profile>(
     fr: Friction,
 ) -> Result<DragResult, VibrissaError> {
     let general = rod.profile(1.0);
-    let tol = opts.solver.tol;
     let compound = opts.contact == ContactModel::Anywhere;
-    let (start, set, p0) = crate::ground::start(rod, &profile, surface, opts.solver.start, tol)?;
+    let (start, set, p0) = crate::ground::start(
+        rod,
+        &profile,
+        surface,
+        opts.solver.start,
+        opts.solver.start_tol(),
+    )?;
     surface.check_on(p0[0])?;
     let mut base = crate::ground::env_of(surface, p0, None, compound);
     // uniform coefficients: no texture (the thresholds are μ0 and the slide's μk)
@@ -558,17 +563,19 @@ impl<P: Profile> DragRun<'_, P> {
         let spacing = (self.slips[n - 1].d - self.slips[0].d) / (n - 1) as f64;
         let left = self.opts.max_slips.saturating_sub(n);
         let ahead = (self.opts.d_max - d) / spacing;
-        (spacing < MIN_SLIP_SPACING && !(ahead <= left as f64)).then(|| StopReason::ContactChange {
-            d,
-            message: format!(
-                "the slips come {} apart in d, so about {} more to d_max = {} would exceed \
+        (spacing < MIN_SLIP_SPACING && (ahead.is_nan() || ahead > left as f64)).then(|| {
+            StopReason::ContactChange {
+                d,
+                message: format!(
+                    "the slips come {} apart in d, so about {} more to d_max = {} would exceed \
                  max_slips = {} (kinetic friction this close to static makes the slips as \
                  short; widen mu_s - mu_k or shorten the drag)",
-                crate::limits::digits(spacing, 3),
-                crate::limits::digits(ahead, 3),
-                self.opts.d_max,
-                self.opts.max_slips
-            ),
+                    crate::limits::digits(spacing, 3),
+                    crate::limits::digits(ahead, 3),
+                    self.opts.d_max,
+                    self.opts.max_slips
+                ),
+            }
         })
     }
 

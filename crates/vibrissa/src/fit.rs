@@ -1091,7 +1091,7 @@ fn consistency(model: &Model<'_>, x: &[f64], iters: &mut u64) -> Option<Consiste
         f,
         dof: (d1, d2),
         p_value,
-        consistent: exact || !(p_value < CONSISTENCY_LEVEL),
+        consistent: exact || p_value.is_nan() || p_value >= CONSISTENCY_LEVEL,
     })
 }
 
@@ -1186,7 +1186,7 @@ fn inc_beta(x: f64, a: f64, b: f64) -> f64 {
 
 /// `P(F > f)` for Fisher's F with `(d1, d2)` degrees of freedom (1 for f NaN or below 0).
 fn f_tail(f: f64, d1: f64, d2: f64) -> f64 {
-    if !(f > 0.0) {
+    if f.is_nan() || f <= 0.0 {
         return if f.is_infinite() { 0.0 } else { 1.0 };
     }
     if f.is_infinite() {

@@ -290,7 +290,7 @@ impl<P: Profile> GenericStepper<P> {
             env,
             stats: Stats::default(),
             chain: Chain::new(
-                Shooter::new(profile, compliance, cfg.tol.min(1e-8), 8),
+                Shooter::with_steps(profile, compliance, cfg.tol.min(1e-8), 8),
                 set,
                 family,
             ),

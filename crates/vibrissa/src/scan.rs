@@ -121,8 +121,13 @@ fn scan_with<P: Profile>(
     let eta = surface.eta();
     let general = rod.profile(1.0);
     let compound = opts.contact == ContactModel::Anywhere;
-    let tol = opts.solver.tol;
-    let (start, set, p0) = crate::ground::start(rod, &profile, surface, opts.solver.start, tol)?;
+    let (start, set, p0) = crate::ground::start(
+        rod,
+        &profile,
+        surface,
+        opts.solver.start,
+        opts.solver.start_tol(),
+    )?;
     surface.check_on(p0[0])?;
     // a friction profile without a given μ0: the static coefficient where the tip sticks
     let mu0 = opts.mu0.or_else(|| {

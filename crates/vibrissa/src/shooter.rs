@@ -76,6 +76,24 @@ impl SegMesh {
     }
 }
 
+/// The tolerance the shooters' starting meshes are laid out for (the default of
+/// [`crate::SolverConfig::tol`]).
+const MESH_TOL: f64 = 1e-10;
+
+/// The first mesh's steps for `steps` at [`MESH_TOL`] and the tolerance `tol`: DOP853's local
+/// error falls as `h⁸`, so a mesh that meets `MESH_TOL` with `n` steps meets a looser `tol` with
+/// `n·(MESH_TOL/tol)^(1/8)` (at least 2); a tighter one starts from `n` and refines. Either way
+/// every shot whose error estimate exceeds `tol` is refined before a point is accepted, so this
+/// only saves the work a loose tolerance does not need (at 1e-4 a quarter of the steps).
+pub(crate) fn initial_steps(steps: usize, tol: f64) -> usize {
+    let n = steps.max(1);
+    if tol <= MESH_TOL {
+        return n;
+    }
+    let scaled = (n as f64 * (MESH_TOL / tol).powf(0.125)).ceil() as usize;
+    scaled.clamp(2.min(n), n)
+}
+
 /// The fixed-mesh integrator of one rod, segment by segment, with its recorded path.
 #[derive(Clone, Debug)]
 pub(crate) struct Shooter<P: Profile> {
@@ -91,8 +109,22 @@ pub(crate) struct Shooter<P: Profile> {
 }
 
 impl<P: Profile> Shooter<P> {
-    /// A shooter whose segments start with `steps` equal steps.
+    /// A shooter whose segments start with `steps` equal steps at the default tolerance (fewer
+    /// at a looser `tol`, see [`initial_steps`]).
     pub fn new(profile: P, compliance: f64, tol: f64, steps: usize) -> Self {
+        Shooter {
+            profile,
+            compliance,
+            tol,
+            segs: vec![SegMesh::uniform(initial_steps(steps, tol))],
+            stats: Stats::default(),
+        }
+    }
+
+    /// A shooter whose segments start with exactly `steps` equal steps whatever the tolerance
+    /// (the generic methods' reference for tangents and the fold test, which must not coarsen
+    /// with the method's own tolerance).
+    pub fn with_steps(profile: P, compliance: f64, tol: f64, steps: usize) -> Self {
         Shooter {
             profile,
             compliance,
@@ -382,18 +414,63 @@ impl<P: Profile> Shooter<P> {
     /// sensitivities or a record (the profile read directly): the differences in the segment's
     /// ends that move with the contacts.
     pub fn end_state(&self, k: usize, a: f64, b: f64, z0: [f64; 4], g: [f64; 2]) -> [f64; 4] {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
+                return unsafe { self.end_state_avx2(k, a, b, z0, g) };
+            }
+        }
+        self.end_state_impl(k, a, b, z0, g)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn end_state_avx2(
+        &self,
+        k: usize,
+        a: f64,
+        b: f64,
+        z0: [f64; 4],
+        g: [f64; 2],
+    ) -> [f64; 4] {
+        self.end_state_impl(k, a, b, z0, g)
+    }
+
+    #[inline(always)]
+    fn end_state_impl(&self, k: usize, a: f64, b: f64, z0: [f64; 4], g: [f64; 2]) -> [f64; 4] {
         let nodes = &self.segs[k].nodes;
         let mut z = z0;
         for w in nodes.windows(2) {
             let s0 = a + (b - a) * w[0];
-            z = self.step(z, s0, (b - a) * (w[1] - w[0]), g);
+            z = self.step_impl(z, s0, (b - a) * (w[1] - w[0]), g);
         }
         z
     }
 
     /// One DOP853 step of size `h` from `z0` at `s0` (no sensitivities, the profile read
-    /// directly).
+    /// directly). On AVX2 machines it runs in the AVX2 build of the same code, as the shots do:
+    /// the same operations in the same order (no reassociation, no contraction), so the same bits,
+    /// with `round` of the slope reduction a single instruction instead of a call.
     fn step(&self, z0: [f64; 4], s0: f64, h: f64, g: [f64; 2]) -> [f64; 4] {
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
+                return unsafe { self.step_avx2(z0, s0, h, g) };
+            }
+        }
+        self.step_impl(z0, s0, h, g)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn step_avx2(&self, z0: [f64; 4], s0: f64, h: f64, g: [f64; 2]) -> [f64; 4] {
+        self.step_impl(z0, s0, h, g)
+    }
+
+    #[inline(always)]
+    fn step_impl(&self, z0: [f64; 4], s0: f64, h: f64, g: [f64; 2]) -> [f64; 4] {
         if h == 0.0 {
             return z0;
         }

@@ -574,6 +574,10 @@ pub(crate) fn scan_start<P: Profile>(
                     }
                 })
                 .map_err(|e| {
+                    // the caller's to fix (a surface the rod does not reach): as it is
+                    if e.is_input() {
+                        return e;
+                    }
                     let reason = match e {
                         VibrissaError::NoStart { reason } => reason,
                         e => e.to_string(),

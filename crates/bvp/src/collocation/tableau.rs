@@ -91,6 +91,19 @@ impl Tableau {
             der[j] = vd;
         }
     }
+
+    /// Weights of the second derivative of the collocation polynomial at `t ∈ [0, 1]`:
+    /// `S''(t) = Σ_j sec[j] f_j / h`.
+    pub(crate) fn second(&self, t: f64, sec: &mut [f64; MAXC]) {
+        for (j, out) in sec.iter_mut().enumerate().take(self.m()) {
+            let (mut v, mut tp) = (0.0, 1.0);
+            for e in 1..self.m() {
+                v += e as f64 * self.lc[j][e] * tp;
+                tp *= t;
+            }
+            *out = v;
+        }
+    }
 }
 
 #[cfg(test)]
@@ -135,6 +148,30 @@ mod tests {
                     "a[{}][{j}]",
                     r + 1
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn second_derivative_weights_differentiate_the_polynomial() {
+        for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
+            let t = Tableau::new(scheme);
+            // f_j = values of a cubic at the abscissae: S' is that cubic, S'' its derivative.
+            let g = |x: f64| 1.0 - 2.0 * x + 3.0 * x * x - 0.5 * x * x * x;
+            let dg = |x: f64| -2.0 + 6.0 * x - 1.5 * x * x;
+            let f: Vec<f64> = (0..t.m()).map(|j| g(t.c[j])).collect();
+            for x in [0.0, 0.3, 1.0] {
+                let mut sec = [0.0; MAXC];
+                t.second(x, &mut sec);
+                let v: f64 = (0..t.m()).map(|j| sec[j] * f[j]).sum();
+                let want = if t.m() == 4 {
+                    dg(x)
+                } else {
+                    // Lobatto4: S' is the quadratic through the three values.
+                    let (a, b, c) = (f[0], f[1], f[2]);
+                    (-3.0 * a + 4.0 * b - c) * (1.0 - x) + (a - 4.0 * b + 3.0 * c) * x
+                };
+                assert!((v - want).abs() < 1e-12, "{scheme:?} t {x}: {v} vs {want}");
             }
         }
     }

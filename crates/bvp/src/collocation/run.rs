@@ -1,0 +1,632 @@
+//! One collocation solve across its mesh passes: Newton on a mesh, then error control,
+//! the conditioning check, the check of the returned interpolant, refinement and coarsening
+//! (see the module docs of [`crate::collocation`]), each step a method of [`Run`].
+
+use super::{
+    adapt_mesh, attach_stats, bisect, fill_unknowns, snapshot, with_total_stats,
+    CollocationOptions, Disc, ErrorControl, Progress, Scheme, Snapshot, Tableau, MAX_COARSEN,
+    MAX_ILL_REFINES, MAX_RETRIES,
+};
+use crate::newton::{attach, homotopy, Newton};
+use crate::{Bvp, BvpError, Check, Dense, Dims, Guess, NewtonOptions, Solution, Stats, Status};
+
+/// Limits of the Lobatto4 solve that seeds a failed Lobatto6 ([`Run::seed_from_lobatto4`]).
+const SEED_MAX_NODES: usize = 500;
+const SEED_MAX_PASSES: usize = 6;
+
+/// What the solve does after a mesh pass (one value per pass: its size does not matter).
+#[allow(clippy::large_enum_variant)]
+pub(super) enum Next {
+    /// Solve again, on `Run::mesh` from `Run::u`.
+    Again,
+    /// The outcome of the solve.
+    Done(Result<Solution, BvpError>),
+}
+
+/// What a pass needs besides the state: options, tableau, dimensions, the guess.
+pub(super) struct Ctx<'c> {
+    pub opts: &'c CollocationOptions,
+    /// Newton's options with the residual threshold of the module docs.
+    pub nopts: NewtonOptions,
+    pub tab: &'c Tableau,
+    pub dims: Dims,
+    pub guess: &'c Guess,
+}
+
+/// The state of one solve across its mesh passes.
+pub(super) struct Run {
+    /// The mesh of the next pass (empty while a pass runs on it).
+    pub mesh: Vec<f64>,
+    /// The unknowns (starting values of the next pass, then its solution).
+    pub u: Vec<f64>,
+    /// The solution the current starting values were interpolated from.
+    source: Option<Snapshot>,
+    /// An accepted solution while a coarser mesh is tried.
+    best: Option<Solution>,
+    retries: usize,
+    coarsenings: usize,
+    ill_refines: usize,
+    homotopy_tried: bool,
+    /// Lobatto6 restarted from Lobatto4's solution ([`Run::seed_from_lobatto4`]).
+    seeded: bool,
+    /// The starting values in place of the guess after such a restart.
+    seed: Option<Guess>,
+    /// The collocation polynomial's scaled RMS residual per interval.
+    rms: Vec<f64>,
+    /// The residual tolerance in force: `tol`, lowered by error control
+    /// ([`super::ErrorControl::Error`]) until the estimated error meets `tol`.
+    res_tol: f64,
+    pub stats: Stats,
+}
+
+/// The largest entry; NaN counts as infinite (a residual that could not be evaluated fails).
+fn max_of(v: &[f64]) -> f64 {
+    v.iter().fold(
+        0.0_f64,
+        |m, x| if x.is_nan() { f64::INFINITY } else { m.max(*x) },
+    )
+}
+
+impl Run {
+    /// The starting mesh and values from the guess.
+    pub fn start(cx: &Ctx<'_>, mesh: Vec<f64>) -> Result<Run, BvpError> {
+        let stats = Stats::default();
+        if mesh.len() > cx.opts.max_nodes {
+            return Err(BvpError::MeshLimit {
+                max_nodes: cx.opts.max_nodes,
+                needed: mesh.len(),
+                residual: f64::NAN,
+                stats,
+            });
+        }
+        let mut u = Vec::new();
+        let guess = cx.guess;
+        fill_unknowns(
+            cx.tab,
+            &mesh,
+            cx.dims,
+            &guess.params,
+            |s, o| guess.eval(s, o),
+            &mut u,
+        );
+        Ok(Run {
+            mesh,
+            u,
+            source: None,
+            best: None,
+            retries: 0,
+            coarsenings: 0,
+            ill_refines: 0,
+            homotopy_tried: false,
+            seeded: false,
+            seed: None,
+            rms: Vec::new(),
+            res_tol: cx.opts.tol,
+            stats,
+        })
+    }
+
+    /// The pass limit is reached: the accepted solution if there is one, else `MeshLimit`.
+    pub fn out_of_passes(self, cx: &Ctx<'_>) -> Result<Solution, BvpError> {
+        if let Some(sol) = self.best {
+            return Ok(with_total_stats(sol, &self.stats));
+        }
+        let mut stats = self.stats;
+        stats.nodes = self.mesh.len();
+        Err(BvpError::MeshLimit {
+            max_nodes: cx.opts.max_nodes,
+            needed: self.mesh.len(),
+            residual: stats.error_estimate.unwrap_or(f64::NAN),
+            stats,
+        })
+    }
+
+    /// Moves to the mesh `fine`, interpolating the solution on `mesh` (its collocation
+    /// polynomials).
+    fn move_to<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &Disc<'_, P>,
+        mesh: &[f64],
+        fine: Vec<f64>,
+    ) {
+        let snap = snapshot(disc, mesh, &self.u);
+        snap.fill(cx.tab, cx.dims, &fine, &mut self.u);
+        self.source = Some(snap);
+        self.mesh = fine;
+    }
+
+    /// The accepted solution kept while a coarser mesh was tried, if any.
+    fn keep_best(&mut self) -> Option<Next> {
+        let sol = self.best.take()?;
+        Some(Next::Done(Ok(with_total_stats(sol, &self.stats))))
+    }
+
+    /// Damped Newton on this mesh; the first time it fails (stall, iteration limit), the Newton
+    /// homotopy from the same starting values.
+    pub fn newton<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        newton: &mut Newton,
+        disc: &mut Disc<'_, P>,
+    ) -> Result<(), BvpError> {
+        let start = (!self.homotopy_tried).then(|| self.u.clone());
+        let mut nopts = cx.nopts.clone();
+        nopts.tol = nopts.tol.min(self.res_tol / 20.0);
+        let mut res = newton.solve(disc, &mut self.u, &nopts, &mut self.stats);
+        if let (Err(BvpError::Stalled { .. } | BvpError::MaxIterations { .. }), Some(u0)) =
+            (&res, start)
+        {
+            if disc.non_finite.is_none() && cx.opts.homotopy {
+                self.homotopy_tried = true;
+                let mut uh = u0;
+                let mut hstats = self.stats.clone();
+                if homotopy(newton, disc, &mut uh, &nopts, &mut hstats).is_ok() {
+                    self.u = uh;
+                    res = Ok(());
+                }
+                self.stats = hstats;
+            }
+        }
+        res
+    }
+
+    /// Newton failed on `mesh` with `e`: refine where the unconverged iterate's residual is large
+    /// and restart from that iterate (as solve_bvp does: a coarse mesh that cannot resolve a
+    /// layer often has no nearby discrete solution at all), bisect, or report.
+    pub fn after_failure<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        mut e: BvpError,
+    ) -> Next {
+        let failed = matches!(e, BvpError::Stalled { .. } | BvpError::MaxIterations { .. });
+        if let (true, Some((location, s))) = (failed, disc.non_finite) {
+            // Newton was blocked by NaN/∞ of the problem: report that, it is the cause.
+            e = BvpError::NonFinite {
+                location,
+                s,
+                stats: self.stats.clone(),
+            };
+        }
+        if let Some(next) = self.keep_best() {
+            // A coarsening attempt failed: keep the accepted solution.
+            return next;
+        }
+        let retry = failed && disc.non_finite.is_none() && cx.opts.adapt;
+        // Not from a guess with slopes: those come from solutions (continuation's predictor, a
+        // warm start), close enough that a failure there is the member's, not the guess's (the
+        // restart cost Cash–Mazzia 104 at ε = 1e-4 +40 % inside continuation).
+        let poor_guess = cx.guess.dz.is_none();
+        if retry && self.retries == 0 && cx.tab.internal && !self.seeded && poor_guess {
+            self.seeded = true;
+            if self.seed_from_lobatto4(cx, disc.prob) {
+                return Next::Again;
+            }
+        }
+        let retry = retry && self.retries < MAX_RETRIES;
+        let max_nodes = cx.opts.max_nodes;
+        if retry
+            && disc
+                .estimate(&self.u, &mut self.rms, &mut self.stats)
+                .is_ok()
+        {
+            let mut fine = adapt_mesh(mesh, &self.rms, self.res_tol, true, false);
+            if fine.len() == mesh.len() {
+                fine = bisect(mesh);
+            }
+            if fine.len() <= max_nodes {
+                self.retries += 1;
+                self.move_to(cx, disc, mesh, fine);
+                return Next::Again;
+            }
+        }
+        if retry && 2 * mesh.len() - 1 <= max_nodes {
+            self.retries += 1;
+            let fine = bisect(mesh);
+            match &self.source {
+                Some(snap) => snap.fill(cx.tab, cx.dims, &fine, &mut self.u),
+                None => {
+                    let guess = self.seed.as_ref().unwrap_or(cx.guess);
+                    fill_unknowns(
+                        cx.tab,
+                        &fine,
+                        cx.dims,
+                        &guess.params,
+                        |s, o| guess.eval(s, o),
+                        &mut self.u,
+                    )
+                }
+            }
+            self.mesh = fine;
+            return Next::Again;
+        }
+        Next::Done(Err(attach_stats(e, &self.stats)))
+    }
+
+    /// Lobatto6's Newton failed on its first mesh (damped, then the homotopy): Lobatto4 from the
+    /// same guess at `max(tol, 1e-3)` and, if it converges, Lobatto6 restarted on its mesh from
+    /// its solution. Lobatto6's Newton has a smaller region of convergence from a poor guess
+    /// (Falkner–Skan from the tutorial's guess `(0, 0, 1)`: Lobatto6 stalled on 8 299 nodes
+    /// after 4.7 s where Lobatto4 converges in 0.7 ms); Lobatto4's solution is within its
+    /// `O(h⁴)` of Lobatto6's discrete solution on that mesh. Returns whether it restarted.
+    fn seed_from_lobatto4<P: Bvp + ?Sized>(&mut self, cx: &Ctx<'_>, problem: &P) -> bool {
+        // A seed is worth only a cheap solve: no homotopy (Lobatto6 tried one), few passes and
+        // nodes (Falkner–Skan: 5 passes, 69 nodes). Cash–Mazzia 104 at ε = 1e-4 spent 2 s in an
+        // unbounded Lobatto4 seed that did not help, +20 % on the whole Lobatto6 study.
+        let opts = CollocationOptions {
+            scheme: Scheme::Lobatto4,
+            tol: cx.opts.tol.max(1e-3),
+            bc_tol: Some(cx.opts.bc_tol().max(1e-3)),
+            max_nodes: cx.opts.max_nodes.min(SEED_MAX_NODES),
+            max_mesh_passes: SEED_MAX_PASSES,
+            homotopy: false,
+            control: ErrorControl::Residual,
+            ..cx.opts.clone()
+        };
+        let Ok(mut l4) = super::Collocation::new(opts) else {
+            return false;
+        };
+        let result = l4.solve_plain(problem, cx.guess, &mut |_| {});
+        let sol = match result {
+            Ok(sol) => sol,
+            Err(e) => {
+                if let Some(st) = e.stats() {
+                    self.stats.accumulate(st);
+                }
+                return false;
+            }
+        };
+        self.stats.accumulate(&sol.stats);
+        let seed = Guess::from(&sol);
+        fill_unknowns(
+            cx.tab,
+            &sol.mesh,
+            cx.dims,
+            &seed.params,
+            |s, o| seed.eval(s, o),
+            &mut self.u,
+        );
+        self.mesh = sol.mesh;
+        self.source = None;
+        self.seed = Some(seed);
+        true
+    }
+
+    /// Newton converged on `mesh`: error control, the conditioning check, and acceptance or
+    /// refinement.
+    pub fn after_newton<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        observer: &mut dyn FnMut(&Progress<'_>),
+    ) -> Next {
+        if let Err(e) = disc.estimate(&self.u, &mut self.rms, &mut self.stats) {
+            return Next::Done(Err(attach(e, self.stats.newton_iters, &self.stats)));
+        }
+        let bcres = disc.bc_residual(&self.u, &mut self.stats);
+        let max_rms = max_of(&self.rms);
+        self.stats.error_estimate = Some(max_rms);
+        observer(&Progress {
+            pass: self.stats.mesh_passes,
+            mesh,
+            newton_iters: self.stats.newton_iters,
+            newton_converged: true,
+            residual: self.stats.residual,
+            residuals: &self.rms,
+        });
+        let opts = cx.opts;
+        let met = max_rms <= self.res_tol && bcres <= opts.bc_tol();
+        if met && opts.adapt {
+            if let Some(next) = self.ill_conditioned(cx, disc, mesh, max_rms.max(bcres)) {
+                return next;
+            }
+        }
+        if !opts.adapt || met {
+            return self.accept(cx, disc, mesh);
+        }
+        if let Some(next) = self.keep_best() {
+            // The coarsened mesh missed the tolerance: keep the accepted solution.
+            return next;
+        }
+        let new_mesh = adapt_mesh(mesh, &self.rms, self.res_tol, true, opts.coarsen);
+        if new_mesh == mesh {
+            // Residual met but the boundary conditions are not: Newton is at its floor.
+            return Next::Done(Err(BvpError::Stalled {
+                iteration: self.stats.newton_iters,
+                residual: bcres,
+                stats: self.stats.clone(),
+            }));
+        }
+        if new_mesh.len() > opts.max_nodes {
+            return Next::Done(Err(BvpError::MeshLimit {
+                max_nodes: opts.max_nodes,
+                needed: new_mesh.len(),
+                residual: max_rms,
+                stats: self.stats.clone(),
+            }));
+        }
+        self.move_to(cx, disc, mesh, new_mesh);
+        Next::Again
+    }
+
+    /// The conditioning check (module docs) of a solution whose residuals are of size `r`:
+    /// `None` if it passes. Those residuals may move the solution by `amp` times their size;
+    /// beyond the size of the solution itself no digit is right: the problem is numerically
+    /// singular here (e.g. it has no solution and the mesh only picks one of huge amplitude),
+    /// reported as a singular Jacobian. The defect, not `tol`: a well-posed layer problem has
+    /// `amp ~ 1/ε` in `y'` on any mesh (Cash–Mazzia 3 at ε = 1e-4: 4.8e4), so `amp·tol` can
+    /// exceed the solution's size while the error is tiny.
+    fn ill_conditioned<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        r: f64,
+    ) -> Option<Next> {
+        let amp = match disc.amplification(&self.u, &mut self.stats) {
+            Ok(amp) => amp,
+            Err(e) => return Some(Next::Done(Err(attach_stats(e, &self.stats)))),
+        };
+        let size = self.u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if amp * r <= 1.0 + size {
+            return None;
+        }
+        if let Some(next) = self.keep_best() {
+            return Some(next);
+        }
+        // A mesh that barely meets the tolerance can fail this by itself: bisect (from this
+        // solution) a few times before reporting; the defect falls like h^order, the
+        // amplification of a nearly singular problem grows.
+        if self.ill_refines < MAX_ILL_REFINES && 2 * mesh.len() - 1 <= cx.opts.max_nodes {
+            self.ill_refines += 1;
+            self.move_to(cx, disc, mesh, bisect(mesh));
+            return Some(Next::Again);
+        }
+        self.stats.nodes = mesh.len();
+        Some(Next::Done(Err(BvpError::SingularJacobian {
+            iteration: self.stats.newton_iters,
+            stats: self.stats.clone(),
+        })))
+    }
+
+    /// The solution on `mesh` met the error control: build the returned object and check it
+    /// (the residual of the returned interpolant at interior points of every interval, as
+    /// scipy does; its maximum is `stats.error_estimate`). If it misses `tol`, refine where it
+    /// does (or report `Inaccurate` at the node limit); else try a coarser mesh or return it.
+    fn accept<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+    ) -> Next {
+        let opts = cx.opts;
+        let (sol, check) = returned(
+            cx,
+            disc,
+            mesh,
+            &self.u,
+            (&self.rms, self.res_tol),
+            &mut self.stats,
+        );
+        let worst = max_of(&check);
+        if opts.adapt && worst > self.res_tol {
+            if let Some(next) = self.keep_best() {
+                return next;
+            }
+            let both: Vec<f64> = self
+                .rms
+                .iter()
+                .zip(&check)
+                .map(|(a, b)| a.max(*b))
+                .collect();
+            let fine = adapt_mesh(mesh, &both, self.res_tol, true, false);
+            if fine.len() > opts.max_nodes {
+                return Next::Done(Err(BvpError::Inaccurate {
+                    check: Check::ErrorEstimate,
+                    value: worst,
+                    tol: self.res_tol,
+                    stats: sol.stats,
+                }));
+            }
+            self.move_to(cx, disc, mesh, fine);
+            return Next::Again;
+        }
+        if opts.adapt && opts.control == ErrorControl::Error {
+            return self.control_error(cx, disc, mesh, sol);
+        }
+        if opts.adapt && opts.coarsen && self.coarsenings < MAX_COARSEN {
+            let coarse = adapt_mesh(mesh, &self.rms, self.res_tol, false, true);
+            if coarse.len() * 10 <= mesh.len() * 9 {
+                self.coarsenings += 1;
+                self.move_to(cx, disc, mesh, coarse);
+                self.best = Some(sol);
+                return Next::Again;
+            }
+        }
+        Next::Done(Ok(sol))
+    }
+}
+
+impl Run {
+    /// Error control ([`ErrorControl::Error`]) of `sol`, which met the residual tolerance in
+    /// force on `mesh`: its error is estimated against a reference ([`error_estimate`]); if it
+    /// meets `tol`, `sol` is returned with that estimate. Otherwise the residual tolerance is
+    /// lowered by the factor the error missed by (halved again, between 1/1000 and 1/2: the error
+    /// is the residual propagated by the problem's Green's function, proportional to it) and the
+    /// mesh refined where the residual exceeds it or the estimated error exceeds `tol`.
+    fn control_error<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        mut sol: Solution,
+    ) -> Next {
+        let tol = cx.opts.tol;
+        let est = error_estimate(cx, disc.prob, &sol, self.res_tol);
+        if let Some(st) = &est.1 {
+            self.stats.accumulate(st);
+        }
+        let errs = est.0;
+        let worst = errs.as_ref().map_or(f64::INFINITY, |e| max_of(e));
+        if worst <= tol {
+            self.stats.error_estimate = Some(worst);
+            sol.stats = self.stats.clone();
+            return Next::Done(Ok(sol));
+        }
+        self.res_tol *= (0.5 * tol / worst).clamp(1e-3, 0.5);
+        let marks: Vec<f64> = match &errs {
+            Some(e) => self
+                .rms
+                .iter()
+                .zip(e)
+                .map(|(r, e)| r.max(self.res_tol * e / tol))
+                .collect(),
+            None => self.rms.clone(),
+        };
+        let fine = adapt_mesh(mesh, &marks, self.res_tol, true, false);
+        if fine.len() > cx.opts.max_nodes {
+            return Next::Done(Err(BvpError::MeshLimit {
+                max_nodes: cx.opts.max_nodes,
+                needed: fine.len(),
+                residual: worst,
+                stats: self.stats.clone(),
+            }));
+        }
+        self.move_to(cx, disc, mesh, fine);
+        Next::Again
+    }
+}
+
+/// The estimated error of `sol` per interval (max over its ends and the interior points
+/// `EST_T` of `|S_c − R_c| / (1 + |R_c|)`, every component `c`) against a reference `R` of
+/// higher accuracy on the same problem, and the reference solve's statistics. Lobatto4: `R` is
+/// Lobatto6 on the same mesh (order 6 against 4 at the nodes, 5 against 4 between them);
+/// Lobatto6: `R` is Lobatto6 on the halved mesh (64× more accurate). So `|S − R|` is the error
+/// of `S` to a relative `O(h)` resp. `1/64`: an asymptotically correct estimate, not a bound.
+/// `None` if the reference solve fails.
+fn error_estimate<P: Bvp + ?Sized>(
+    cx: &Ctx<'_>,
+    problem: &P,
+    sol: &Solution,
+    res_tol: f64,
+) -> (Option<Vec<f64>>, Option<Stats>) {
+    let mesh = if cx.tab.internal {
+        bisect(&sol.mesh)
+    } else {
+        sol.mesh.clone()
+    };
+    let opts = CollocationOptions {
+        scheme: Scheme::Lobatto6,
+        adapt: false,
+        coarsen: false,
+        control: ErrorControl::Residual,
+        tol: res_tol,
+        max_nodes: mesh.len().max(cx.opts.max_nodes),
+        ..cx.opts.clone()
+    };
+    let Ok(mut solver) = super::Collocation::new(opts) else {
+        return (None, None);
+    };
+    let mut guess = Guess::from(sol);
+    if mesh.len() != sol.mesh.len() {
+        guess = Guess::from_fn(sol.n, mesh, sol.params.clone(), |s, z| sol.eval(s, z));
+    }
+    let reference = match solver.solve_plain(problem, &guess, &mut |_| {}) {
+        Ok(r) => r,
+        Err(e) => return (None, e.stats().cloned()),
+    };
+    let n = sol.n;
+    let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
+    let mut errs = Vec::with_capacity(sol.mesh.len() - 1);
+    for w in sol.mesh.windows(2) {
+        let mut e = 0.0_f64;
+        for t in [0.0, super::EST_T[0], super::EST_T[1], super::EST_T[2], 1.0] {
+            let s = w[0] + t * (w[1] - w[0]);
+            sol.eval(s, &mut a);
+            reference.eval(s, &mut b);
+            for c in 0..n {
+                e = e.max((a[c] - b[c]).abs() / (1.0 + b[c].abs()));
+            }
+        }
+        errs.push(e);
+    }
+    (Some(errs), Some(reference.stats))
+}
+
+/// The returned object of the solution `u` on `mesh` and the scaled RMS residual of its dense
+/// output per interval. Lobatto4 returns its collocation cubic (`Dense::Hermite`), whose residual
+/// is `rms` itself; Lobatto6 the quintic of [`Dense::QuinticIntervals`], whose residual is
+/// measured here ([`Solution::residuals`]'s formula, three evaluations of `F` per interval).
+/// `stats.error_estimate` becomes the largest residual of the returned object.
+fn returned<P: Bvp + ?Sized>(
+    cx: &Ctx<'_>,
+    disc: &mut Disc<'_, P>,
+    mesh: &[f64],
+    u: &[f64],
+    (rms, res_tol): (&[f64], f64),
+    stats: &mut Stats,
+) -> (Solution, Vec<f64>) {
+    let (z, dz) = disc.nodal();
+    let params = u[disc.lay.pcol()..].to_vec();
+    let dense = if cx.tab.internal {
+        Dense::QuinticIntervals {
+            d2z: disc.second_derivatives(&params, &z, &dz, stats),
+        }
+    } else {
+        Dense::Hermite
+    };
+    let mut sol = Solution {
+        n: cx.dims.n,
+        mesh: mesh.to_vec(),
+        z,
+        dz,
+        params,
+        status: Status::Converged,
+        stats: Stats::default(),
+        dense,
+    };
+    let check = if cx.tab.internal {
+        stats.rhs_evals += 3 * (mesh.len() - 1);
+        let mut check = sol.residuals_of(disc.prob);
+        if fall_back_to_the_quartic(cx, disc, &mut sol, &check, res_tol) {
+            stats.rhs_evals += 3 * (mesh.len() - 1);
+            check = sol.residuals_of(disc.prob);
+        }
+        check
+    } else {
+        rms.to_vec()
+    };
+    stats.error_estimate = Some(max_of(&check));
+    sol.stats = stats.clone();
+    (sol, check)
+}
+
+/// Lobatto6: on every interval where the quintic's residual `check` exceeds `tol`, the returned
+/// object becomes the collocation quartic itself (the quintic with the quartic's second
+/// derivatives at the interval's ends), whose residual the error control met. The quintic is of
+/// order 6 between nodes, the quartic of order 5, but in layers at tight tolerances the quintic's
+/// residual can exceed the quartic's (Cash–Mazzia 3, 5, 6, 7, 11–14 at ε = 1e-4, tol 1e-8).
+/// Returns whether any interval changed.
+fn fall_back_to_the_quartic<P: Bvp + ?Sized>(
+    cx: &Ctx<'_>,
+    disc: &Disc<'_, P>,
+    sol: &mut Solution,
+    check: &[f64],
+    tol: f64,
+) -> bool {
+    let n = cx.dims.n;
+    let Dense::QuinticIntervals { d2z } = &mut sol.dense else {
+        return false;
+    };
+    let mut changed = false;
+    for (i, &r) in check.iter().enumerate() {
+        if r > tol || r.is_nan() {
+            disc.collocation_second_derivatives(i, &mut d2z[2 * i * n..2 * (i + 1) * n]);
+            changed = true;
+        }
+    }
+    changed
+}
