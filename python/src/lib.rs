@@ -255,7 +255,7 @@ fn scene_of(rod: &Rod, surface: &PySurface, contact: ContactModel, start: StartK
         precurvature: rod.precurvature().clone(),
         support_compliance: rod.support_compliance(),
         surface_angle: surface.s.angle(),
-        physical: rod.physical(),
+        physical: rod.physical().cloned(),
         contact,
         start,
         surface: surface.profile.clone(),
@@ -334,8 +334,15 @@ fn interruptible<T: Send + 'static>(
     std::thread::spawn(move || {
         let _ = tx.send(work());
     });
+    let mut rx = rx;
     loop {
-        match py.detach(|| rx.recv_timeout(SIGNAL_POLL)) {
+        // (the receiver is not Sync: it moves into the GIL-free closure and back)
+        let (got, back) = py.detach(move || {
+            let got = rx.recv_timeout(SIGNAL_POLL);
+            (got, rx)
+        });
+        rx = back;
+        match got {
             Ok(v) => return Ok(v),
             Err(RecvTimeoutError::Timeout) => {
                 if let Err(e) = py.check_signals() {
