@@ -112,6 +112,32 @@ fn long_runs_are_bounded_and_inputs_meaningful() {
     assert_eq!(v["stop_reason"], "contact_change", "{}", o.stdout);
     assert!(v["cycles"].as_u64().unwrap() <= 3, "{}", o.stdout);
     assert!(o.stderr.contains("would exceed max_slips"), "{}", o.stderr);
+    // a threshold below the solver's noise in mu (the start's |mu| ~ 1e-22): the tip slips at
+    // d = 0 (was: "locating the Slip(0) event: no sign change")
+    let o = ok(&["scan", "--mu0", "1e-300", "--points", "5", "--json"]);
+    let v = json(&o.stdout);
+    assert_eq!(v["stop"]["reason"], "slip", "{}", o.stdout);
+    assert_eq!(v["stop"]["d"], 0.0, "{}", o.stdout);
+    let o = ok(&[
+        "drag", "--mu-s", "1e-300", "--mu-k", "0", "--points", "5", "--json",
+    ]);
+    let v = json(&o.stdout);
+    assert_eq!(v["stop"]["d"], 0.0, "{}", o.stdout);
+    assert_eq!(v["slips"][0]["d"], 0.0, "{}", o.stdout);
+    assert!(o.stderr.contains("the slips come 0 apart"), "{}", o.stderr);
+    // a hinge (support compliance at its limit): the pressed start is past mu_s already, and
+    // the drag ends at once naming the snap (was: solver internals)
+    let o = ok(&[
+        "drag",
+        "--support-compliance",
+        "1000",
+        "--mu-s",
+        "0.5",
+        "--mu-k",
+        "0.3",
+        "--json",
+    ]);
+    assert!(o.stderr.contains("a snap"), "{}", o.stderr);
     // a circle whose end lies before the pressed tip is refused (was replaced by its end
     // tangent without a word), and a drag stops where the tip leaves one
     let f = file(

@@ -566,15 +566,25 @@ impl<P: Profile> DragRun<'_, P> {
         (spacing < MIN_SLIP_SPACING && (ahead.is_nan() || ahead > left as f64)).then(|| {
             StopReason::ContactChange {
                 d,
-                message: format!(
-                    "the slips come {} apart in d, so about {} more to d_max = {} would exceed \
-                 max_slips = {} (kinetic friction this close to static makes the slips as \
-                 short; widen mu_s - mu_k or shorten the drag)",
-                    crate::limits::digits(spacing, 3),
-                    crate::limits::digits(ahead, 3),
-                    self.opts.d_max,
-                    self.opts.max_slips
-                ),
+                message: if ahead.is_finite() {
+                    format!(
+                        "the slips come {} apart in d, so about {} more to d_max = {} would \
+                         exceed max_slips = {} (kinetic friction this close to static makes \
+                         the slips as short; widen mu_s - mu_k or shorten the drag)",
+                        crate::limits::digits(spacing, 3),
+                        crate::limits::digits(ahead, 3),
+                        self.opts.d_max,
+                        self.opts.max_slips
+                    )
+                } else {
+                    // (μs below the solver's noise in μ, 1e-300: each slip ends where it began)
+                    format!(
+                        "the slips come 0 apart in d: the tip slips again where it stopped, and \
+                         no number of slips reaches d_max = {} (kinetic friction this close to \
+                         static; widen mu_s - mu_k)",
+                        self.opts.d_max
+                    )
+                },
             }
         })
     }
