@@ -104,13 +104,25 @@ def test_fit_equals_the_program(program):
             vibrissa.fit(trace)
 
 
-def test_a_corrugated_trace_on_a_flat_surface_is_a_misfit():
+def test_the_corrugated_trace_of_issue_33():
+    """The issue's noise-free trace (a drag over the corrugated surface, 15 slips): fitted on its
+    surface, mu_s and mu_k to 1e-6 with standard errors and no message (was 0.5933 and 0.4683
+    with standard errors 0.031 and 0.042); fitted on a flat surface, no standard error and the
+    messages."""
     rod, surface = vibrissa.scene(surface={"kind": "sine", "amplitude": 0.005, "wavelength": 0.1})
     assert surface.profile == {"kind": "sine", "amplitude": 0.005, "wavelength": 0.1, "phase": 0.0}
     d = vibrissa.drag(rod, surface, mu_s=0.5, mu_k=0.3, d_max=0.3, points=61)
+    assert len(d.slips) == 15
+    f = vibrissa.fit(d, rod, surface)
+    assert f["message"] is None, f["message"]
+    assert f["consistency"]["consistent"]
+    for p, want in zip(f["params"], (0.5, 0.3)):
+        assert abs(p["value"] - want) < 1e-6, p
+        assert p["std_error"] is not None and p["std_error"] < 1e-6, p
     flat = vibrissa.fit(d)
     assert all(p["std_error"] is None for p in flat["params"])
     assert "tips lie off a straight line" in flat["message"]
+    assert "does not fit the whole trace" in flat["message"]
     assert not flat["consistency"]["consistent"]
 
 
@@ -184,6 +196,51 @@ def test_ctrl_c_interrupts_a_sweep_within_a_second():
         vibrissa.sweep(scenes, points=201, jobs=2)
     late = time.perf_counter() - sent[0]
     assert late < 1.0, f"KeyboardInterrupt {late:.2f} s after Ctrl-C"
+
+
+def interrupted_within_a_second(run, after=0.3):
+    """SIGINT `after` seconds into `run()`: KeyboardInterrupt comes within a second of it."""
+    sent = []
+
+    def interrupt():
+        sent.append(time.perf_counter())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(after, interrupt)
+    timer.start()
+    done = []
+    with pytest.raises(KeyboardInterrupt):
+        run()
+        done.append(True)
+        timer.join()  # the interrupt arrives here instead, and the test fails below
+    assert not done, "the run ended before the interrupt"
+    late = time.perf_counter() - sent[0]
+    assert late < 1.0, f"KeyboardInterrupt {late:.2f} s after Ctrl-C"
+
+
+def test_ctrl_c_interrupts_a_scan_and_a_drag_within_a_second():
+    """One long scan (60 000 points, seconds of work) and one long drag: Ctrl-C is honoured
+    within a second (the march finishes on its own thread; its result is dropped)."""
+    rod, surface = vibrissa.Rod(taper=0.3), vibrissa.Surface(0.9)
+    interrupted_within_a_second(
+        lambda: vibrissa.scan(rod, surface, points=60000, d_max=1.0)
+    )
+    interrupted_within_a_second(
+        lambda: vibrissa.drag(vibrissa.Rod(), mu_s=0.5, mu_k=0.3, d_max=1.0, points=60000)
+    )
+
+
+def test_a_threshold_below_the_solvers_noise_slips_at_once(program):
+    # the start's |mu| is of order 1e-22: mu0 = 1e-300 slips at d = 0 (was a failure to locate
+    # the slip), as in the program
+    r = vibrissa.scan(vibrissa.Rod(), points=5, mu0=1e-300)
+    assert r.stop_reason == "slip" and r.stop["d"] == 0.0
+    out = json.loads(program("scan", "--mu0", "1e-300", "--points", "5", "--json"))
+    assert (out["stop"]["reason"], out["stop"]["d"]) == (r.stop_reason, r.stop["d"])
+    assert out["mu_max"] == r.mu_max
+    d = vibrissa.drag(vibrissa.Rod(), mu_s=1e-300, mu_k=0.0, points=5)
+    assert d.slips[0]["d"] == 0.0 and d.stop["d"] == 0.0
+    assert "the slips come 0 apart" in d.stop["message"]
 
 
 def test_the_regressions_of_the_pressed_start():
