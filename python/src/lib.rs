@@ -793,6 +793,52 @@ fn whisk<'py>(
     Ok(out)
 }
 
+/// The rod against a point object at `peg = (x, y)` with the foot turned to `theta`
+/// (`vibrissa solve --peg`): the whisk's point there as a dict (`event` by name), with `shape`
+/// (a list of `shape_points` samples, frame of the unturned foot) and the physical columns of a
+/// rod with physical dimensions.
+#[pyfunction]
+#[pyo3(signature = (rod, peg, theta=0.0, *, mu0=None, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, shape_points=vibrissa::limits::DEFAULT_SOLVE_SHAPE_POINTS))]
+#[allow(clippy::too_many_arguments)]
+fn solve_peg<'py>(
+    py: Python<'py>,
+    rod: &PyRod,
+    peg: (f64, f64),
+    theta: f64,
+    mu0: Option<f64>,
+    method: &str,
+    tol: f64,
+    segments: usize,
+    shape_points: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    vibrissa::limits::THETA
+        .check("theta", theta)
+        .map_err(py_err)?;
+    let opts = WhiskOptions {
+        mu0: threshold(mu0),
+        solver: config(method, tol, segments, StartKind::default())?,
+        keep_shapes: Some(shape_points),
+        ..WhiskOptions::default()
+    };
+    opts.validate().map_err(py_err)?;
+    let rod = rod.0.clone();
+    let units = rod.units();
+    let (p, shape) = interruptible(py, Arc::default(), move || {
+        vibrissa::peg::solve_peg_shape(&rod, [peg.0, peg.1], theta, &opts)
+    })?
+    .map_err(py_err)?;
+    let d = to_py(py, &p)?.cast_into::<PyDict>()?;
+    d.set_item("event", p.event.map(|e| e.name()))?;
+    if let Some(u) = units {
+        d.set_item("f_N", p.f * u.force_n)?;
+        d.set_item("fx_N", p.fx * u.force_n)?;
+        d.set_item("fy_N", p.fy * u.force_n)?;
+        d.set_item("m_base_Nm", p.m_base * u.moment_nm)?;
+    }
+    d.set_item("shape", to_py(py, &shape)?)?;
+    Ok(d.into_any())
+}
+
 /// Where the object is from the base signals of one instant (`vibrissa locate`): a dict with
 /// `theta`, `m_base`, `fx`, `fy`, `x`, `y`, `s_c` (and `x_mm`, `y_mm` with physical units).
 #[pyfunction]
@@ -935,6 +981,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(drag, m)?)?;
     m.add_function(wrap_pyfunction!(whisk, m)?)?;
     m.add_function(wrap_pyfunction!(locate, m)?)?;
+    m.add_function(wrap_pyfunction!(solve_peg, m)?)?;
     m.add_function(wrap_pyfunction!(fit, m)?)?;
     Ok(())
 }

@@ -73,6 +73,21 @@ def test_whisk_and_locate_equal_the_program(program):
     summary = json.loads(program(*args, "--json"))
     assert summary["stop"]["reason"] == py["stop_reason"]
     assert summary["first_touch"] == py["first_touch"]
+    # solve --peg: the whisk's point at one foot angle, and its shape
+    args = ["solve", "--scene", sc, "--peg", "0.4,0.7", "--theta", "0.2", "--mu0", "0.3", "--shape-points", "11"]
+    with tempfile.TemporaryDirectory() as tmp:
+        shape_path = os.path.join(tmp, "shape.csv")
+        row = read_csv(program(*args, "--shape-out", shape_path))[0]
+        shape_rows = read_csv(open(shape_path).read())
+    peg = vibrissa.solve_peg(rod, (0.4, 0.7), 0.2, mu0=0.3, shape_points=11)
+    for k, v in row.items():
+        if k == "event":
+            assert (peg[k] or "") == v, k
+        else:
+            same(peg[k], number(v), k)
+    check_rows(peg["shape"], shape_rows, " ".join(args) + " --shape-out")
+    with pytest.raises(vibrissa.InputError):
+        vibrissa.solve_peg(rod, (0.4, 0.7), 2.0)
     args = ["locate", "--scene", sc, "--theta", "0.2", "--m-base", "-0.3", "--fx", "0.5", "--fy", "-0.2"]
     row = read_csv(program(*args))[0]
     loc = vibrissa.locate(rod, 0.2, -0.3, 0.5, -0.2)

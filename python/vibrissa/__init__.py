@@ -62,6 +62,7 @@ __all__ = [
     "DragResult",
     "whisk",
     "locate",
+    "solve_peg",
     "fit",
 ]
 
@@ -593,6 +594,38 @@ def whisk(
         shape_points=shape_points,
     )
     r["points"] = columns(r["points"])
+    return r
+
+
+def solve_peg(
+    rod: Any,
+    peg: Tuple[float, float],
+    theta: float = 0.0,
+    *,
+    mu0: Optional[float] = None,
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+    shape_points: int = _DEFAULTS["solve_shape_points"],
+) -> Dict[str, Any]:
+    """The rod against a point object at ``peg = (x, y)`` with the foot turned to ``theta``
+    (as ``vibrissa solve --peg X,Y --theta A``): a dict with the whisk's columns at ``theta``
+    (``theta``, ``s_c``, ``f``, ``fx``, ``fy``, ``f_axial``, ``f_transverse``, ``m_base``,
+    ``normal``, ``mu``, ``event``; with a physical rod ``f_N``, ``fx_N``, ``fy_N``,
+    ``m_base_Nm``) and ``shape``: a dict of numpy arrays ``s``, ``x``, ``y``, ``phi``,
+    ``kappa``, ``m`` (frame of the unturned foot). An object the turned rod does not touch is
+    an :class:`InputError` that says so."""
+    r = _core.solve_peg(
+        rod,
+        (float(peg[0]), float(peg[1])),
+        theta,
+        mu0=mu0,
+        method=method,
+        tol=tol,
+        segments=segments,
+        shape_points=shape_points,
+    )
+    r["shape"] = columns(r["shape"])
     return r
 
 

@@ -133,6 +133,17 @@ def whisk(
     segments: int = 8,
     shape_points: Optional[int] = None,
 ) -> Dict[str, Any]: ...
+def solve_peg(
+    rod: Rod,
+    peg: Tuple[float, float],
+    theta: float = 0.0,
+    *,
+    mu0: Optional[float] = None,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    shape_points: int = 101,
+) -> Dict[str, Any]: ...
 def locate(
     rod: Rod,
     theta: float,
