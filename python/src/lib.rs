@@ -443,6 +443,29 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     Ok(d)
 }
 
+/// The library's ranges (`vibrissa::limits::named()`) as a dict: name -> `lo`, `lo_closed`,
+/// `hi`, `hi_closed`, `text` (as the error messages write it), `unit`, `why`; and the size
+/// limits `memory_budget_bytes`, `jobs_per_core`, `max_scenes`.
+#[pyfunction]
+fn limits(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
+    let out = PyDict::new(py);
+    for (name, r) in vibrissa::limits::named() {
+        let d = PyDict::new(py);
+        d.set_item("lo", r.lo)?;
+        d.set_item("lo_closed", r.lo_closed)?;
+        d.set_item("hi", r.hi)?;
+        d.set_item("hi_closed", r.hi_closed)?;
+        d.set_item("text", r.text(6))?;
+        d.set_item("unit", r.unit)?;
+        d.set_item("why", r.why)?;
+        out.set_item(name, d)?;
+    }
+    out.set_item("memory_budget_bytes", vibrissa::limits::MEMORY_BUDGET)?;
+    out.set_item("jobs_per_core", vibrissa::limits::JOBS_PER_CORE)?;
+    out.set_item("max_scenes", vibrissa::limits::MAX_SCENES)?;
+    Ok(out.into_any())
+}
+
 /// Scan options from the Python arguments.
 #[allow(clippy::too_many_arguments)]
 fn scan_options(
@@ -974,6 +997,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene_from_dict, m)?)?;
     m.add_function(wrap_pyfunction!(scene_from_toml, m)?)?;
     m.add_function(wrap_pyfunction!(defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(limits, m)?)?;
     m.add_function(wrap_pyfunction!(solve, m)?)?;
     m.add_function(wrap_pyfunction!(scan, m)?)?;
     m.add_function(wrap_pyfunction!(infer, m)?)?;

@@ -6,6 +6,7 @@ the regressions of the pressed start are fixed."""
 import json
 import math
 import os
+import re
 import signal
 import tempfile
 import threading
@@ -163,6 +164,14 @@ def test_the_program_refuses_what_python_refuses():
         cases[0]()
     with pytest.raises(vibrissa.InputError, match="memory budget"):
         cases[1]()
+    # the ranges as data, the library's: the messages quote them
+    lim = vibrissa.limits()
+    assert (lim["shape_points"]["lo"], lim["shape_points"]["hi"]) == (2, 100000)
+    assert lim["shape_points"]["text"] == "[2, 100000]"
+    assert lim["alpha"]["text"].startswith("(-pi/2, pi/2)") and not lim["alpha"]["hi_closed"]
+    assert lim["jobs"]["hi"] == 65536 and lim["memory_budget_bytes"] == 2**30
+    with pytest.raises(vibrissa.InputError, match=re.escape(lim["alpha"]["text"])):
+        cases[6]()
     # mu0 = inf is no threshold, as in the program
     a = vibrissa.scan(vibrissa.Rod(), points=5, mu0=math.inf)
     b = vibrissa.scan(vibrissa.Rod(), points=5)

@@ -63,6 +63,7 @@ __all__ = [
     "whisk",
     "locate",
     "solve_peg",
+    "limits",
     "fit",
 ]
 
@@ -234,6 +235,16 @@ _SWEEP_NAMES = {
 }
 
 SceneLike = Union[Tuple[Any, Any], Mapping[str, Any]]
+
+
+def limits() -> Dict[str, Any]:
+    """The valid ranges, the library's (``vibrissa::limits``, the program's too): a dict from
+    the value's name (``eta``, ``taper``, ``tol``, ``points``, ``shape_points``, ``alpha``,
+    ``mu_s``, ``jobs``, ...) to ``lo``, ``lo_closed``, ``hi``, ``hi_closed``, ``text`` (as the
+    error messages write it), ``unit`` and ``why``; and the size limits
+    ``memory_budget_bytes`` (kept shapes and scan points), ``jobs_per_core`` and
+    ``max_scenes``. A value outside its range raises :class:`InputError` with that text."""
+    return _core.limits()
 
 
 def load_scene(path: Union[str, os.PathLike]) -> Tuple[Any, Any]:

@@ -133,6 +133,7 @@ def whisk(
     segments: int = 8,
     shape_points: Optional[int] = None,
 ) -> Dict[str, Any]: ...
+def limits() -> Dict[str, Any]: ...
 def solve_peg(
     rod: Rod,
     peg: Tuple[float, float],

@@ -284,6 +284,43 @@ pub const JOBS_PER_CORE: usize = 4;
 /// Worker threads a sweep may be asked for (more than [`JOBS_PER_CORE`] per core are capped).
 pub const JOBS: Range = Range::count(1, 65_536);
 
+/// The fixed ranges by the name of the value they bound (the scene file's key or the option's
+/// field), for front ends that list them (Python's `vibrissa.limits()`). Not listed: the ranges
+/// that depend on another value ([`d0`]: the scan's `d_max`; [`kinetic_friction`]: `mu_s`).
+pub fn named() -> Vec<(&'static str, Range)> {
+    vec![
+        ("eta", eta()),
+        ("taper", TAPER),
+        ("precurvature", PRECURVATURE),
+        ("precurvature_slope", PRECURVATURE_SLOPE),
+        ("support_compliance", SUPPORT_COMPLIANCE),
+        ("surface_angle", SURFACE_ANGLE),
+        ("table_b", TABLE_B),
+        ("physical", PHYSICAL),
+        ("tol", TOL),
+        ("segments", SEGMENTS),
+        ("rk4_steps", RK4_STEPS),
+        ("d_max", D_MAX),
+        ("points", POINTS),
+        ("d", OUTPUT_DISPLACEMENTS),
+        ("shape_points", SHAPE_POINTS),
+        ("mu0", MU0),
+        ("alpha", ALPHA),
+        ("phi1", PHI1),
+        ("tip_height", TIP_HEIGHT),
+        ("theta", THETA),
+        ("drag_d_max", DRAG_D_MAX),
+        ("mu_s", MU_S),
+        ("max_slips", MAX_SLIPS),
+        ("corrugation_amplitude", CORRUGATION_AMPLITUDE),
+        ("corrugation_wavelength", CORRUGATION_WAVELENGTH),
+        ("corrugation_phase", CORRUGATION_PHASE),
+        ("friction_period", FRICTION_PERIOD),
+        ("patch_width", PATCH_WIDTH),
+        ("jobs", JOBS),
+    ]
+}
+
 /// `Ok` when `outputs` kept shapes of `samples` samples each fit [`MEMORY_BUDGET`]; else
 /// [`VibrissaError::OutOfRange`] naming `name` (the samples per shape) and the most that fit.
 pub fn check_shapes(name: &str, samples: usize, outputs: usize) -> Result<(), VibrissaError> {
@@ -376,6 +413,20 @@ pub fn digits_to_decide(v: f64, bounds: &[f64]) -> usize {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn named_ranges_are_unique_and_ordered() {
+        let all = named();
+        let mut names: Vec<&str> = all.iter().map(|(n, _)| *n).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), all.len());
+        for (n, r) in &all {
+            assert!(r.lo <= r.hi, "{n}");
+        }
+        let (_, sp) = all.iter().find(|(n, _)| *n == "shape_points").unwrap();
+        assert_eq!(*sp, SHAPE_POINTS);
+    }
+
     use super::*;
 
     #[test]
