@@ -466,6 +466,15 @@ fn limits(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     Ok(out.into_any())
 }
 
+/// The kept shapes within the library's memory budget (`limits::check_shapes`, as the
+/// options' `validate` checks them), the error naming this package's argument `shape_points`.
+fn shapes_fit(shape_points: Option<usize>, outputs: usize) -> PyResult<()> {
+    match shape_points {
+        Some(n) => vibrissa::limits::check_shapes("shape_points", n, outputs).map_err(py_err),
+        None => Ok(()),
+    }
+}
+
 /// Scan options from the Python arguments.
 #[allow(clippy::too_many_arguments)]
 fn scan_options(
@@ -486,6 +495,7 @@ fn scan_options(
         keep_shapes: shape_points,
         contact,
     };
+    shapes_fit(shape_points, opts.points)?;
     opts.validate().map_err(py_err)?;
     Ok(opts)
 }
@@ -729,6 +739,7 @@ fn drag<'py>(
         energy_balance,
         ..DragOptions::default()
     };
+    shapes_fit(shape_points, opts.points)?;
     opts.validate().map_err(py_err)?;
     let (rod, surface) = (rod.0.clone(), surface.s.clone());
     let units = rod.units();
@@ -777,6 +788,7 @@ fn whisk<'py>(
         solver: config(method, tol, segments, StartKind::default())?,
         keep_shapes: shape_points,
     };
+    shapes_fit(shape_points, opts.points)?;
     opts.validate().map_err(py_err)?;
     let rod = rod.0.clone();
     let units = rod.units();
@@ -843,6 +855,7 @@ fn solve_peg<'py>(
         keep_shapes: Some(shape_points),
         ..WhiskOptions::default()
     };
+    shapes_fit(Some(shape_points), 1)?;
     opts.validate().map_err(py_err)?;
     let rod = rod.0.clone();
     let units = rod.units();
