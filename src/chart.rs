@@ -908,9 +908,26 @@ fn cell_color(p: &Panel, mut i: usize) -> RGBColor {
     BLACK
 }
 
+/// Most panels side by side: more go on further rows (issue 33: a drag's five panels in one row
+/// made a picture 2600 px wide and 480 high).
+pub(crate) const PANELS_PER_ROW: usize = 3;
+
+/// The rows and columns of `n` panels.
+pub(crate) fn panel_grid(n: usize) -> (usize, usize) {
+    let cols = n.clamp(1, PANELS_PER_ROW);
+    (n.div_ceil(cols).max(1), cols)
+}
+
+/// The size of a figure's picture (output pixels): its panels on [`panel_grid`], the caption
+/// above.
+pub(crate) fn picture_size(fig: &Fig) -> (u32, u32) {
+    let (rows, cols) = panel_grid(fig.panels.len());
+    (fig.w * cols as u32, fig.h * rows as u32 + 40)
+}
+
 /// Draw a figure into an SVG string; returns it with the layout of each panel.
 pub(crate) fn render(fig: &Fig) -> Res<(String, Vec<PanelLayout>)> {
-    let (w, h) = (fig.w * fig.panels.len() as u32, fig.h + 40);
+    let (w, h) = picture_size(fig);
     let mut svg = String::new();
     let mut layouts = Vec::new();
     {
@@ -927,7 +944,7 @@ pub(crate) fn render(fig: &Fig) -> Res<(String, Vec<PanelLayout>)> {
         )?;
         let (_, body) = root.split_vertically(u(40.0));
         for (a, p) in body
-            .split_evenly((1, fig.panels.len()))
+            .split_evenly(panel_grid(fig.panels.len()))
             .iter()
             .zip(&fig.panels)
         {

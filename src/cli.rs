@@ -113,7 +113,7 @@ pub const MAX_POINTS: u64 = limits::POINTS.hi as u64;
 /// Most points of one shape.
 pub const MAX_SHAPE_POINTS: u64 = limits::SHAPE_POINTS.hi as u64;
 /// Most worker threads asked for (more are capped at a multiple of the cores, with a warning).
-pub const MAX_JOBS: u64 = 65_536;
+pub const MAX_JOBS: u64 = vibrissa::limits::JOBS.hi as u64;
 
 fn points(s: &str) -> Result<u32, String> {
     number_text::count(s, 2, MAX_POINTS)
@@ -673,6 +673,15 @@ pub struct FitArgs {
     /// Surface height eta of the model (rod lengths), in (eta_, 1); the start with --fit-eta. [default: scene file's, else 0.75]
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
+    /// Starting static friction coefficient of the fit, in [0, 100] (with --mu-k). [default:
+    /// read off the first slips]
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_s: Option<f64>,
+    /// Starting kinetic friction coefficient, in [0, --mu-s) (with --mu-s).
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_k: Option<f64>,
+    #[command(flatten)]
+    pub texture: TextureArgs,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]
@@ -792,6 +801,21 @@ pub enum PlotKind {
     Whisk,
     /// the rod at chosen angles in the frame of the unturned foot (whisk --shapes)
     WhiskShapes,
+}
+
+impl PlotKind {
+    /// What kind of file it is, in words (`scan`, `drag`, `whisk shapes`, ...).
+    pub fn kind_name(self) -> &'static str {
+        match self {
+            PlotKind::Auto => "detected",
+            PlotKind::Scan => "scan",
+            PlotKind::Shapes => "scan shapes",
+            PlotKind::Sweep => "sweep",
+            PlotKind::Drag => "drag",
+            PlotKind::Whisk => "whisk",
+            PlotKind::WhiskShapes => "whisk shapes",
+        }
+    }
 }
 
 /// `vibrissa plot`.

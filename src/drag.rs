@@ -10,7 +10,7 @@ use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
 use vibrissa::drag::{DragRow, DragSummary, SlipEvent};
-use vibrissa::fit::{FitOptions, FitResult, Signal, Trace, TraceSlip};
+use vibrissa::fit::{FitOptions, FitResult, Signal, Trace};
 use vibrissa::{DragOptions, Scene, StopReason, Units};
 
 /// Columns of the drag CSV (`vibrissa plot` reads them by name); with a physical scene
@@ -208,99 +208,15 @@ pub fn run(a: &DragArgs) -> Res<()> {
     Ok(())
 }
 
-/// The slips of a trace CSV (see `fit --help`), with the signals `use_sig` (in
-/// [`Signal::ALL`] order) where the file has them.
+/// The slips of a trace CSV (see `fit --help`; the library's [`Trace::from_csv`]), with the
+/// signals `use_sig` (in [`Signal::ALL`] order) where the file has them.
 pub fn read_trace(text: &str, name: &str, use_sig: &[bool; 3]) -> Res<Trace> {
-    let bad = |m: String| usage(format!("--trace {name}: {m}"));
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty());
-    let (_, head) = lines.next().ok_or_else(|| bad("empty file".into()))?;
-    let cols: Vec<&str> = head.split(',').map(str::trim).collect();
-    let at = |c: &str| cols.iter().position(|h| *h == c);
-    let d_col = at("d").ok_or_else(|| bad("no column d (the foot displacement)".into()))?;
-    let ev_col = at("event");
-    let sig_col: Vec<Option<usize>> = Signal::ALL
-        .iter()
-        .zip(use_sig)
-        .map(|(s, &u)| if u { at(s.name()) } else { None })
-        .collect();
-    // (line number, d, signals, event)
-    let mut rows = Vec::new();
-    for (i, l) in lines {
-        let f: Vec<&str> = l.split(',').map(str::trim).collect();
-        let value = |c: usize, what: &str| -> Res<Option<f64>> {
-            match f.get(c).copied().unwrap_or("") {
-                "" => Ok(None),
-                t => match t.parse::<f64>() {
-                    Ok(v) if v.is_finite() => Ok(Some(v)),
-                    _ => Err(bad(format!(
-                        "line {}: {what} = '{t}' is not a finite number",
-                        i + 1
-                    ))),
-                },
-            }
-        };
-        let d = value(d_col, "d")?.ok_or_else(|| bad(format!("line {}: no d", i + 1)))?;
-        let mut s = [None; 3];
-        for (k, c) in sig_col.iter().enumerate() {
-            if let Some(c) = *c {
-                s[k] = value(c, Signal::ALL[k].name())?;
-            }
+    Trace::from_csv(text, *use_sig).map_err(|e| match e {
+        vibrissa::VibrissaError::InvalidTable { reason, .. } => {
+            usage(format!("--trace {name}: {reason}"))
         }
-        let ev = ev_col
-            .and_then(|c| f.get(c).copied())
-            .unwrap_or("")
-            .to_string();
-        rows.push((i + 1, d, s, ev));
-    }
-    let mut slips = Vec::new();
-    match ev_col {
-        Some(_) => {
-            for (k, r) in rows.iter().enumerate() {
-                if r.3 != "slip" {
-                    continue;
-                }
-                // the state after it: its slip_end row, before any next slip
-                let after = rows[k + 1..]
-                    .iter()
-                    .take_while(|q| q.3 != "slip")
-                    .find(|q| q.3 == "slip_end")
-                    .map_or([None; 3], |q| q.2);
-                slips.push(TraceSlip {
-                    d: r.1,
-                    before: r.2,
-                    after,
-                });
-            }
-        }
-        None => {
-            for w in rows.windows(2) {
-                if w[1].1 <= w[0].1 {
-                    slips.push(TraceSlip {
-                        d: w[0].1,
-                        before: w[0].2,
-                        after: w[1].2,
-                    });
-                }
-            }
-        }
-    }
-    if slips.is_empty() {
-        return Err(bad(
-            "no slip in the trace (rows with event = slip, or, without an event column, a row whose d does not increase)".into(),
-        ));
-    }
-    for w in slips.windows(2) {
-        if w[1].d <= w[0].d {
-            return Err(bad(format!(
-                "the slips at d = {} and d = {} are not in increasing order",
-                w[0].d, w[1].d
-            )));
-        }
-    }
-    Ok(Trace { slips })
+        e => e.into(),
+    })
 }
 
 /// The answer of `vibrissa fit`.
@@ -315,7 +231,8 @@ struct FitOut<'a> {
 
 /// `vibrissa fit`.
 pub fn run_fit(a: &FitArgs) -> Res<()> {
-    let sc = build_scene(&a.scene, a.eta)?;
+    let mut sc = build_scene(&a.scene, a.eta)?;
+    crate::texture::apply(&a.texture, &mut sc)?;
     let name = a.trace.display().to_string();
     let text = if a.trace.as_os_str() == "-" {
         io::read_to_string(io::stdin())
@@ -353,6 +270,7 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
     let opts = FitOptions {
         fit_eta: a.fit_eta,
         fit_angle: a.fit_angle,
+        guess: a.mu_s.zip(a.mu_k),
         solver: a.solver.config(sc.start),
         contact: sc.contact,
         ..FitOptions::default()

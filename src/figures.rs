@@ -621,7 +621,12 @@ mod tests {
         for fig in &figs {
             let (svg, layouts) = render(fig).unwrap();
             // shown at the output size, drawn S times finer
-            let (w, h) = (fig.w * fig.panels.len() as u32, fig.h + 40);
+            let (w, h) = crate::chart::picture_size(fig);
+            assert!(
+                fig.panels.len() <= crate::chart::PANELS_PER_ROW,
+                "{}",
+                fig.name
+            );
             let head = format!(
                 "<svg width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {} {}\"",
                 w * S as u32,

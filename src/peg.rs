@@ -8,7 +8,7 @@ use crate::table::{csv_line, num, AtomicFile};
 use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
-use vibrissa::{PegPoint, StopReason, WhiskOptions};
+use vibrissa::{PegPoint, StopReason, Units, WhiskOptions};
 
 /// Columns of a point-object row.
 const HEADER: [&str; 11] = [
@@ -24,6 +24,40 @@ const HEADER: [&str; 11] = [
     "mu",
     "event",
 ];
+
+/// The physical columns of a whisk with a physical scene (as the scan's).
+const PHYSICAL: [&str; 4] = ["f_N", "fx_N", "fy_N", "m_base_Nm"];
+
+/// The columns of a whisk's rows: [`HEADER`], the physical ones before `event`.
+fn header(units: Option<Units>) -> Vec<&'static str> {
+    let mut h = HEADER[..10].to_vec();
+    if units.is_some() {
+        h.extend(PHYSICAL);
+    }
+    h.push("event");
+    h
+}
+
+/// A whisk's row: [`row`], the physical columns before `event`, and a fold named as a whisk's
+/// (it marches in theta: `fold`, as its stop reason, not the scan's `fold_in_d`).
+fn whisk_row(p: &PegPoint, units: Option<Units>) -> Vec<String> {
+    let mut r = row(p);
+    r.pop();
+    if let Some(u) = units {
+        r.extend([p.f * u.force_n, p.fx * u.force_n, p.fy * u.force_n].map(num));
+        r.push(num(p.m_base * u.moment_nm));
+    }
+    r.push(p.event.map_or("", event_name).to_string());
+    r
+}
+
+/// An event's name in a whisk's rows.
+pub fn event_name(e: vibrissa::Event) -> &'static str {
+    match e {
+        vibrissa::Event::FoldInD => "fold",
+        e => e.name(),
+    }
+}
 
 fn row(p: &PegPoint) -> Vec<String> {
     let mut r: Vec<String> = [
@@ -134,14 +168,17 @@ pub fn run_whisk(a: &WhiskArgs) -> Res<()> {
             for q in sh {
                 let mut row = vec![i.to_string()];
                 row.extend([p.theta, q.s, q.x, q.y, q.phi, q.kappa, q.m].map(num));
-                row.push(p.event.map_or("", |e| e.name()).to_string());
+                row.push(p.event.map_or("", event_name).to_string());
                 csv_line(&mut f, &row)?;
             }
         }
         f.commit()?;
     }
     if a.out.is_some() || !a.json {
-        crate::table::write_table(a.out.as_deref(), &HEADER, &r.points, row)?;
+        let units = crate::scene_args::units_of(&scene);
+        crate::table::write_table(a.out.as_deref(), &header(units), &r.points, |p| {
+            whisk_row(p, units)
+        })?;
     }
     // a whisk marches in theta: its own names for the end of the range and a fold
     let reason = match &r.stop {
@@ -196,7 +233,7 @@ pub fn run_locate(a: &LocateArgs) -> Res<()> {
     // (the scene's start does not enter: the rod is solved through the contact found)
     let cfg = a.solver.config(Default::default());
     let (x, y, s_c) = vibrissa::locate(&rod, a.theta, a.m_base, [a.fx, a.fy], &cfg)?;
-    let out = Row([
+    let mut cells: Vec<(&'static str, Cell)> = [
         ("theta", a.theta),
         ("m_base", a.m_base),
         ("fx", a.fx),
@@ -206,7 +243,13 @@ pub fn run_locate(a: &LocateArgs) -> Res<()> {
         ("s_c", s_c),
     ]
     .map(|(k, v)| (k, Cell::Num(v)))
-    .into());
+    .into();
+    if let Some(u) = rod.units() {
+        // the object's place in mm (the signals are given in the model's units)
+        cells.push(("x_mm", Cell::Num(x * u.length_mm)));
+        cells.push(("y_mm", Cell::Num(y * u.length_mm)));
+    }
+    let out = Row(cells);
     let stdout = io::stdout();
     let mut w = stdout.lock();
     if a.json {

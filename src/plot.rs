@@ -535,7 +535,7 @@ fn drag_with_shapes(t: &Table, sh: &Table, select: Option<&[usize]>, beta: f64) 
             (*pt, kind, SHAPE_COLORS[k])
         })
         .collect();
-    fig.panels.push(shape_panel(
+    let mut panel = shape_panel(
         sh,
         &by_point,
         &styled,
@@ -544,8 +544,54 @@ fn drag_with_shapes(t: &Table, sh: &Table, select: Option<&[usize]>, beta: f64) 
             beta,
             false,
         ),
-    )?);
+    )?;
+    if let Some(path) = curved_surface(t)? {
+        // a curved surface: the drag's file does not describe it, but its tips lie on it (issue
+        // 33: a flat line was drawn under a corrugated drag)
+        if panel
+            .series
+            .last()
+            .is_some_and(|s| s.name.starts_with("surface"))
+        {
+            panel.series.pop();
+        }
+        panel.series.push(series(
+            "surface (where the tip touched: x_tip, y_tip)",
+            Kind::Dashed,
+            RGBColor(60, 60, 60),
+            path,
+        ));
+    }
+    fig.panels.push(panel);
     Ok(fig)
+}
+
+/// The tips of a drag's rows sorted along x, when they are not on one straight line (a
+/// corrugated or curved surface; more than 1e-9 off the line through the first and last).
+fn curved_surface(t: &Table) -> Res<Option<Vec<(f64, f64)>>> {
+    let (Some(x), Some(y)) = (t.num("x_tip")?, t.num("y_tip")?) else {
+        return Ok(None);
+    };
+    let mut pts: Vec<(f64, f64)> = x
+        .into_iter()
+        .zip(y)
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts.dedup_by(|a, b| a.0 == b.0);
+    let (Some(&a), Some(&b)) = (pts.first(), pts.last()) else {
+        return Ok(None);
+    };
+    let slope = if b.0 > a.0 {
+        (b.1 - a.1) / (b.0 - a.0)
+    } else {
+        0.0
+    };
+    let off = pts
+        .iter()
+        .map(|p| (p.1 - a.1 - slope * (p.0 - a.0)).abs())
+        .fold(0.0, f64::max);
+    Ok((pts.len() > 2 && off > 1e-9).then_some(pts))
 }
 
 /// A number for a label: 4 significant digits.
@@ -844,6 +890,27 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
         PlotKind::Auto => detect(t)?,
         k => k,
     };
+    if kind != PlotKind::Sweep {
+        // (the sweep's axes; a scan's, a drag's or a whisk's plot has its own: refused, not
+        // ignored, naming the column when the file has none of that name, issue 33)
+        let given = [("--x", a.x.as_deref()), ("--y", a.y.as_deref())];
+        if let Some((flag, Some(col))) = given.into_iter().find(|g| g.1.is_some()) {
+            let has = t.has(col);
+            return Err(usage(format!(
+                "{flag} {col}: {}; {flag} chooses an axis of a sweep's plot, and {} is a {} file, whose plot has its own axes",
+                if has { "a column of the file" } else { "no such column in the file" },
+                t.name,
+                kind.kind_name()
+            )));
+        }
+        if !a.r#where.is_empty() {
+            return Err(usage(format!(
+                "--where applies to a sweep's file; {} is a {} file",
+                t.name,
+                kind.kind_name()
+            )));
+        }
+    }
     if a.shapes.is_some() && kind != PlotKind::Drag {
         return Err(usage(format!(
             "--shapes: the rod at the slips is drawn with a drag's file; {} is not one",

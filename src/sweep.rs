@@ -492,8 +492,9 @@ impl Plan {
             );
         }
         crate::progress::note(&format!(
-            "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes); {jobs} threads{resume}",
-            hi - lo
+            "sweep: {total} scenes; shard {k}/{n}: rows {lo}..{hi} ({} scenes); {jobs} thread{}{resume}",
+            hi - lo,
+            if jobs == 1 { "" } else { "s" }
         ));
         Ok(())
     }

@@ -220,7 +220,7 @@ pub fn command(cmd: &mut Command) -> Res<()> {
         Command::Whisk(a) => whisk(a),
         Command::Locate(a) => locate(a),
         Command::Drag(a) => drag(a),
-        Command::Fit(a) => tol(a.solver.tol),
+        Command::Fit(a) => fit(a),
         Command::Modes(a) => {
             check(Src::Flag("--tip-angle"), a.tip_angle, &limits::TIP_ANGLE)?;
             check(
@@ -277,8 +277,23 @@ fn peg(p: crate::cli::Point) -> Res<()> {
     Ok(())
 }
 
+/// The scene flags a point object has no use for (it has no surface): refused, not ignored.
+fn no_surface(a: &crate::cli::SceneArgs, what: &str) -> Res<()> {
+    let given = [
+        (a.surface_angle.is_some(), "--surface-angle"),
+        (a.contact.is_some(), "--contact"),
+    ];
+    match given.iter().find(|g| g.0) {
+        Some((_, flag)) => Err(usage(format!(
+            "{flag} does not apply to {what}: a point object has no surface (its place is --peg, friction at it --mu0)"
+        ))),
+        None => Ok(()),
+    }
+}
+
 fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
     tol(a.solver.tol)?;
+    no_surface(&a.scene, "whisk")?;
     peg(a.peg)?;
     check(Src::Flag("--theta-max"), a.theta_max, &limits::THETA)?;
     mu0(&mut a.mu0)?;
@@ -292,6 +307,7 @@ fn whisk(a: &mut crate::cli::WhiskArgs) -> Res<()> {
 
 fn locate(a: &mut crate::cli::LocateArgs) -> Res<()> {
     tol(a.solver.tol)?;
+    no_surface(&a.scene, "locate")?;
     check(Src::Flag("--theta"), a.theta, &limits::THETA)
 }
 
@@ -349,7 +365,21 @@ fn table_outputs(
 fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
     tol(a.solver.tol)?;
     check(Src::Flag("--d-max"), a.d_max, &limits::DRAG_D_MAX)?;
-    match (a.mu_s, a.mu_k) {
+    friction(a.mu_s, a.mu_k)?;
+    texture(&a.texture)?;
+    table_outputs(
+        "drag",
+        &mut a.out,
+        a.json,
+        a.shapes.as_deref(),
+        a.points,
+        a.shape_points,
+    )
+}
+
+/// `--mu-s` with `--mu-k` (both or neither), kinetic below static.
+fn friction(mu_s: Option<f64>, mu_k: Option<f64>) -> Res<()> {
+    match (mu_s, mu_k) {
         (Some(s), Some(k)) => {
             check(Src::Flag("--mu-s"), s, &limits::MU_S)?;
             let why = format!(
@@ -370,15 +400,13 @@ fn drag(a: &mut crate::cli::DragArgs) -> Res<()> {
         }
         (None, None) => {}
     }
-    texture(&a.texture)?;
-    table_outputs(
-        "drag",
-        &mut a.out,
-        a.json,
-        a.shapes.as_deref(),
-        a.points,
-        a.shape_points,
-    )
+    Ok(())
+}
+
+fn fit(a: &mut crate::cli::FitArgs) -> Res<()> {
+    tol(a.solver.tol)?;
+    friction(a.mu_s, a.mu_k)?;
+    texture(&a.texture)
 }
 
 /// The flags' own values against their ranges, and which go together.

@@ -58,6 +58,13 @@ __all__ = [
     "sweep",
     "grid",
     "columns",
+    "drag",
+    "DragResult",
+    "whisk",
+    "locate",
+    "solve_peg",
+    "limits",
+    "fit",
 ]
 
 Column = Union[np.ndarray, List[Any]]
@@ -149,6 +156,15 @@ class ScanResult:
         self.stop_reason: str = raw["stop"]["reason"]
         self.stats: Dict[str, Any] = raw["stats"]
         self.handover: Optional[str] = raw.get("handover")
+        self.units: Optional[Dict[str, float]] = raw.get("units")
+        if self.units:
+            # the program's physical columns (vibrissa scan with a physical scene)
+            u = self.units
+            p = self.points
+            p["d_mm"] = np.asarray(p["d"]) * u["length_mm"]
+            for k in ("f", "fx", "fy"):
+                p[f"{k}_N"] = np.asarray(p[k]) * u["force_n"]
+            p["m_base_Nm"] = np.asarray(p["m_base"]) * u["moment_nm"]
         self.shapes: Optional[Dict[str, np.ndarray]] = None
         if raw["shapes"]:
             per_point = [columns(sh) for sh in raw["shapes"]]
@@ -183,6 +199,15 @@ class Sweep:
     def __init__(self, rows: List[Dict[str, Any]]):
         self.rows = rows
         self.columns: Dict[str, Column] = columns(rows)
+        c = self.columns
+        # the program's names (vibrissa sweep's CSV) for the same values
+        for prog, here in _SWEEP_NAMES.items():
+            if here in c:
+                c[prog] = c[here]
+        if "units_length_mm" in c:
+            c["f0_N"] = np.asarray(c["start_f"]) * np.asarray(c["units_force_n"], dtype=float)
+            for k in ("d_at_mu_max", "d_end"):
+                c[f"{k}_mm"] = np.asarray(c[k]) * np.asarray(c["units_length_mm"], dtype=float)
 
     def __len__(self) -> int:
         return len(self.rows)
@@ -199,11 +224,33 @@ class Sweep:
         return f"Sweep({len(self)} scenes, {failed} with an error)"
 
 
+# the program's sweep columns and where the same value is here
+_SWEEP_NAMES = {
+    "f0": "start_f",
+    "phi1_0": "start_phi1",
+    "mu_end": "end_mu",
+    "d_end": "end_d",
+    "newton_iters": "stats_newton_iters",
+    "rhs_evals": "stats_rhs_evals",
+}
+
 SceneLike = Union[Tuple[Any, Any], Mapping[str, Any]]
 
 
+def limits() -> Dict[str, Any]:
+    """The valid ranges, the library's (``vibrissa::limits``, the program's too): a dict from
+    the value's name (``eta``, ``taper``, ``tol``, ``points``, ``shape_points``, ``alpha``,
+    ``mu_s``, ``jobs``, ...) to ``lo``, ``lo_closed``, ``hi``, ``hi_closed``, ``text`` (as the
+    error messages write it), ``unit`` and ``why``; and the size limits
+    ``memory_budget_bytes`` (kept shapes and scan points), ``jobs_per_core`` and
+    ``max_scenes``. A value outside its range raises :class:`InputError` with that text."""
+    return _core.limits()
+
+
 def load_scene(path: Union[str, os.PathLike]) -> Tuple[Any, Any]:
-    """``(Rod, Surface)`` of a scene file (TOML, the program's ``--scene`` format)."""
+    """``(Rod, Surface)`` of a scene file (TOML, the program's ``--scene`` format). The surface
+    carries the file's ``[surface]``, ``[friction]``, ``contact`` and ``start``: the functions
+    use them unless told otherwise, so the same file gives the program's answers."""
     with open(path, encoding="utf-8") as f:
         text = f.read()
     try:
@@ -310,8 +357,8 @@ def scan(
     tol: float = _SOLVER["tol"],
     segments: int = _SOLVER["segments"],
     shape_points: Optional[int] = None,
-    contact: str = _DEFAULTS["contact"],
-    start: str = _SOLVER["start"],
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
 ) -> ScanResult:
     """The stiction scan: the foot moves right by d from 0 to ``d_max`` while the tip sticks
     on ``surface`` (default: flat at eta = 0.75); ``points`` output points uniform in d, or the
@@ -351,8 +398,8 @@ def infer(
     method: str = _SOLVER["method"],
     tol: float = _SOLVER["tol"],
     segments: int = _SOLVER["segments"],
-    contact: str = _DEFAULTS["contact"],
-    start: str = _SOLVER["start"],
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
 ) -> Dict[str, Any]:
     """The stiction coefficient mu0 = |mu(d0)| from the slip displacement ``d0`` (as
     ``vibrissa infer``): a dict with ``mu0``, ``d0``, ``measurable_d`` (the range of d where
@@ -401,8 +448,8 @@ def sweep(
     tol: float = _SOLVER["tol"],
     segments: int = _SOLVER["segments"],
     jobs: Optional[int] = None,
-    contact: str = _DEFAULTS["contact"],
-    start: str = _SOLVER["start"],
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
 ) -> Sweep:
     """Scans of many scenes in parallel (``jobs`` threads, default all cores; the GIL is
     released while they run), one summary row per scene in the order given. ``scenes``:
@@ -429,3 +476,237 @@ def sweep(
         row.update(r)
         out.append(row)
     return Sweep(out)
+
+
+class DragResult:
+    """The result of :func:`drag`.
+
+    Attributes:
+        rows: dict of columns with the program's names (``vibrissa drag``'s CSV): ``d``,
+            ``phase``, ``x_tip``, ``y_tip``, ``mu``, ``mu_s``, ``normal``, ``fx``, ``fy``,
+            ``m_base``, ``contact``, (with a physical rod ``d_mm``, ``x_tip_mm``, ``y_tip_mm``,
+            ``normal_N``, ``fx_N``, ``fy_N``, ``m_base_Nm``), ``event``, ``jump``,
+            ``energy_released``.
+        slips: one dict per slip (``d``, ``jump``, ``released``, ``before``, ``after``, ...).
+        summary: means and spreads over the slips (``cycles``, ``jump_mean``, ...).
+        stop, stop_reason: why the drag stopped.
+        stats, handover, units: as for :class:`ScanResult`.
+        raw: everything as the library returned it.
+    """
+
+    def __init__(self, raw: Dict[str, Any]):
+        self.raw = raw
+        self.rows: Dict[str, Column] = columns(raw["rows"])
+        self.slips: List[Dict[str, Any]] = raw["slips"]
+        self.summary: Dict[str, Any] = raw["summary"]
+        self.stop: Any = raw["stop"]
+        self.stop_reason: str = raw["stop_reason"]
+        self.stats: Dict[str, Any] = raw["stats"]
+        self.handover: Optional[str] = raw["handover"]
+        self.units: Optional[Dict[str, float]] = raw["units"]
+
+    def __len__(self) -> int:
+        return len(self.raw["rows"])
+
+    def to_csv(self) -> str:
+        """The rows as the program's CSV text (what :func:`fit` reads)."""
+        keys = list(self.rows)
+        lines = [",".join(keys)]
+        for r in self.raw["rows"]:
+            lines.append(",".join("" if r[k] is None else _text(r[k]) for k in keys))
+        return "\n".join(lines) + "\n"
+
+    def to_pandas(self):
+        """The rows as a pandas DataFrame (needs pandas)."""
+        return _to_pandas(self.rows)
+
+    def __repr__(self) -> str:
+        return (
+            f"DragResult(rows={len(self)}, slips={len(self.slips)}, "
+            f"stop_reason={self.stop_reason!r})"
+        )
+
+
+def _text(v: Any) -> str:
+    if isinstance(v, float):
+        return repr(v) if v == v and abs(v) != float("inf") else ("inf" if v > 0 else "-inf")
+    return str(v)
+
+
+def drag(
+    rod: Any,
+    surface: Any = None,
+    *,
+    mu_s: Optional[float] = None,
+    mu_k: Optional[float] = None,
+    d_max: float = _DEFAULTS["drag_d_max"],
+    points: int = _DEFAULTS["drag_points"],
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+    shape_points: Optional[int] = None,
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
+    energy_balance: bool = False,
+) -> DragResult:
+    """The drag (as ``vibrissa drag``): the foot moves from 0 to ``d_max`` across ``surface``;
+    the tip sticks until ``|mu|`` reaches ``mu_s``, slips to where ``mu_k`` holds it, and sticks
+    again. ``mu_s`` with ``mu_k`` (``mu_k < mu_s``), or neither: the surface's ``friction``
+    texture. The defaults are the program's; the values are checked as the program checks them
+    (the library's limits). Ctrl-C interrupts it."""
+    if surface is None:
+        surface = Surface()
+    return DragResult(
+        _core.drag(
+            rod,
+            surface,
+            mu_s=mu_s,
+            mu_k=mu_k,
+            d_max=d_max,
+            points=points,
+            method=method,
+            tol=tol,
+            segments=segments,
+            shape_points=shape_points,
+            contact=contact,
+            start=start,
+            energy_balance=energy_balance,
+        )
+    )
+
+
+def whisk(
+    rod: Any,
+    peg: Tuple[float, float],
+    *,
+    theta_max: float = _DEFAULTS["whisk"]["theta_max"],
+    points: int = _DEFAULTS["whisk"]["points"],
+    mu0: Optional[float] = None,
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+    shape_points: Optional[int] = None,
+) -> Dict[str, Any]:
+    """The whisk (as ``vibrissa whisk``): the foot turns clockwise from first touch to
+    ``theta_max`` against a point object at ``peg = (x, y)`` (frame of the unturned foot).
+    A dict: ``first_touch``, ``s_touch``, ``points`` (columns ``theta``, ``s_c``, ``f``, ``fx``,
+    ``fy``, ``f_axial``, ``f_transverse``, ``m_base``, ``normal``, ``mu``, ``event``; with a
+    physical rod ``f_N``, ``fx_N``, ``fy_N``, ``m_base_Nm``), ``stop``, ``stop_reason``,
+    ``stats``, ``units``. ``mu0``: stiction at the object (None or inf: frictionless)."""
+    r = _core.whisk(
+        rod,
+        (float(peg[0]), float(peg[1])),
+        theta_max=theta_max,
+        points=points,
+        mu0=mu0,
+        method=method,
+        tol=tol,
+        segments=segments,
+        shape_points=shape_points,
+    )
+    r["points"] = columns(r["points"])
+    return r
+
+
+def solve_peg(
+    rod: Any,
+    peg: Tuple[float, float],
+    theta: float = 0.0,
+    *,
+    mu0: Optional[float] = None,
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+    shape_points: int = _DEFAULTS["solve_shape_points"],
+) -> Dict[str, Any]:
+    """The rod against a point object at ``peg = (x, y)`` with the foot turned to ``theta``
+    (as ``vibrissa solve --peg X,Y --theta A``): a dict with the whisk's columns at ``theta``
+    (``theta``, ``s_c``, ``f``, ``fx``, ``fy``, ``f_axial``, ``f_transverse``, ``m_base``,
+    ``normal``, ``mu``, ``event``; with a physical rod ``f_N``, ``fx_N``, ``fy_N``,
+    ``m_base_Nm``) and ``shape``: a dict of numpy arrays ``s``, ``x``, ``y``, ``phi``,
+    ``kappa``, ``m`` (frame of the unturned foot). An object the turned rod does not touch is
+    an :class:`InputError` that says so."""
+    r = _core.solve_peg(
+        rod,
+        (float(peg[0]), float(peg[1])),
+        theta,
+        mu0=mu0,
+        method=method,
+        tol=tol,
+        segments=segments,
+        shape_points=shape_points,
+    )
+    r["shape"] = columns(r["shape"])
+    return r
+
+
+def locate(
+    rod: Any,
+    theta: float,
+    m_base: float,
+    fx: float,
+    fy: float,
+    *,
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+) -> Dict[str, float]:
+    """Where a point object is from the base signals of one instant (as ``vibrissa locate``):
+    a dict with ``theta``, ``m_base``, ``fx``, ``fy``, ``x``, ``y``, ``s_c`` (and ``x_mm``,
+    ``y_mm`` with a physical rod)."""
+    return _core.locate(
+        rod, theta, m_base, fx, fy, method=method, tol=tol, segments=segments
+    )
+
+
+def fit(
+    trace: Any,
+    rod: Any = None,
+    surface: Any = None,
+    *,
+    signals: Optional[Sequence[str]] = None,
+    fit_eta: bool = False,
+    fit_angle: bool = False,
+    mu_s: Optional[float] = None,
+    mu_k: Optional[float] = None,
+    sigma: Optional[Sequence[float]] = None,
+    method: str = _SOLVER["method"],
+    tol: float = _SOLVER["tol"],
+    segments: int = _SOLVER["segments"],
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
+) -> Dict[str, Any]:
+    """μs and μk (and with ``fit_eta``/``fit_angle`` the surface's height and inclination)
+    from a drag trace (as ``vibrissa fit``). ``trace``: a :class:`DragResult`, a path to a
+    CSV file, or the CSV text (``vibrissa drag``'s columns: ``d`` and any of ``fx``, ``fy``,
+    ``m_base``, ``x_tip``, ``y_tip``, ``event``). ``rod``, ``surface``: the scene the trace
+    was measured in (default: the paper's rod on a flat surface at 0.75; fit a corrugated
+    trace with its corrugated surface). ``mu_s``, ``mu_k``: the start (default: read off the
+    first slips); ``sigma``: the noise levels of ``d``, ``fx``, ``fy``, ``m_base`` (default
+    estimated). A dict: ``params`` (``name``, ``value``, ``std_error``, ``dof``,
+    ``identifiable``), ``message`` (None, or what limits the answer: a misfit has no standard
+    error), ``consistency``, ``sigma``, ``s2``, ``observations``, ``slips``, ``signals``, ...
+    """
+    if isinstance(trace, DragResult):
+        text = trace.to_csv()
+    elif isinstance(trace, os.PathLike) or (isinstance(trace, str) and "\n" not in trace):
+        with open(trace, encoding="utf-8") as f:
+            text = f.read()
+    else:
+        text = str(trace)
+    return _core.fit(
+        text,
+        Rod() if rod is None else rod,
+        Surface() if surface is None else surface,
+        signals=None if signals is None else list(signals),
+        fit_eta=fit_eta,
+        fit_angle=fit_angle,
+        mu_s=mu_s,
+        mu_k=mu_k,
+        sigma=None if sigma is None else [float(x) for x in sigma],
+        method=method,
+        tol=tol,
+        segments=segments,
+        contact=contact,
+        start=start,
+    )

@@ -17,16 +17,36 @@ class Rod:
         physical: Optional[Mapping[str, float]] = None,
     ) -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
+    def units(self) -> Optional[Dict[str, float]]: ...
     def is_uniform_clamped(self) -> bool: ...
 
 class Surface:
-    """The surface line the tip touches: height eta (rod lengths) and inclination angle (rad)."""
+    """The surface the tip touches: height eta (rod lengths), inclination angle (rad), its
+    profile and friction texture (the scene file's [surface] and [friction] tables), and the
+    scene's contact and start (None: the functions' defaults)."""
 
-    def __init__(self, eta: float = 0.75, angle: float = 0.0) -> None: ...
+    def __init__(
+        self,
+        eta: float = 0.75,
+        angle: float = 0.0,
+        *,
+        profile: Optional[Mapping[str, Any]] = None,
+        friction: Optional[Mapping[str, Any]] = None,
+        contact: Optional[str] = None,
+        start: Optional[str] = None,
+    ) -> None: ...
     @property
     def eta(self) -> float: ...
     @property
     def angle(self) -> float: ...
+    @property
+    def profile(self) -> Dict[str, Any]: ...
+    @property
+    def friction(self) -> Dict[str, Any]: ...
+    @property
+    def contact(self) -> Optional[str]: ...
+    @property
+    def start(self) -> Optional[str]: ...
 
 def scene_from_dict(scene: Mapping[str, Any]) -> Tuple[Rod, Surface]: ...
 def scene_from_toml(text: str) -> Tuple[Rod, Surface]: ...
@@ -56,8 +76,8 @@ def scan(
     tol: float = 1e-10,
     segments: int = 8,
     shape_points: Optional[int] = None,
-    contact: str = "anywhere",
-    start: str = "pressed",
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def infer(
     rod: Rod,
@@ -69,8 +89,8 @@ def infer(
     method: str = "shooting",
     tol: float = 1e-10,
     segments: int = 8,
-    contact: str = "anywhere",
-    start: str = "pressed",
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def sweep(
     scenes: Sequence[Tuple[Rod, Surface]],
@@ -82,6 +102,74 @@ def sweep(
     tol: float = 1e-10,
     segments: int = 8,
     jobs: Optional[int] = None,
-    contact: str = "anywhere",
-    start: str = "pressed",
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
 ) -> List[Dict[str, Any]]: ...
+def drag(
+    rod: Rod,
+    surface: Surface,
+    *,
+    mu_s: Optional[float] = None,
+    mu_k: Optional[float] = None,
+    d_max: float = 1.0,
+    points: int = 201,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    shape_points: Optional[int] = None,
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
+    energy_balance: bool = False,
+) -> Dict[str, Any]: ...
+def whisk(
+    rod: Rod,
+    peg: Tuple[float, float],
+    *,
+    theta_max: float = 1.0,
+    points: int = 201,
+    mu0: Optional[float] = None,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    shape_points: Optional[int] = None,
+) -> Dict[str, Any]: ...
+def limits() -> Dict[str, Any]: ...
+def solve_peg(
+    rod: Rod,
+    peg: Tuple[float, float],
+    theta: float = 0.0,
+    *,
+    mu0: Optional[float] = None,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    shape_points: int = 101,
+) -> Dict[str, Any]: ...
+def locate(
+    rod: Rod,
+    theta: float,
+    m_base: float,
+    fx: float,
+    fy: float,
+    *,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+) -> Dict[str, float]: ...
+def fit(
+    csv: str,
+    rod: Rod,
+    surface: Surface,
+    *,
+    signals: Optional[Sequence[str]] = None,
+    fit_eta: bool = False,
+    fit_angle: bool = False,
+    mu_s: Optional[float] = None,
+    mu_k: Optional[float] = None,
+    sigma: Optional[Sequence[float]] = None,
+    method: str = "shooting",
+    tol: float = 1e-10,
+    segments: int = 8,
+    contact: Optional[str] = None,
+    start: Optional[str] = None,
+) -> Dict[str, Any]: ...

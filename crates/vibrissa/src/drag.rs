@@ -49,6 +49,10 @@ pub const MAX_MU_S: f64 = crate::limits::MU_S.hi;
 /// unbounded.
 pub const MAX_SLIP: f64 = 4.0;
 
+/// Slips closer together in `d` than this (rod lengths) that would run past `max_slips` end the
+/// drag at once instead of at the cap (kinetic friction within about 1e-5 of static).
+pub const MIN_SLIP_SPACING: f64 = 1e-6;
+
 /// Options of [`drag`].
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -113,6 +117,7 @@ impl DragOptions {
         }
         if let Some(n) = self.keep_shapes {
             limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
+            limits::check_shapes("keep_shapes", n, self.points)?;
         }
         limits::MAX_SLIPS.check_count("max_slips", self.max_slips)?;
         if self.solver.method == Method::Analytic {
@@ -382,6 +387,7 @@ fn drag_with<P: Profile>(
         opts.solver.start,
         opts.solver.start_tol(),
     )?;
+    surface.check_on(p0[0])?;
     let mut base = crate::ground::env_of(surface, p0, None, compound);
     // uniform coefficients: no texture (the thresholds are μ0 and the slide's μk)
     base.ground.texture = if fr.uniform.is_some() {
@@ -430,7 +436,8 @@ fn drag_with<P: Profile>(
         slips: Vec::new(),
     };
     let stop = run.run(p);
-    let (rows, shapes, slips) = (run.rows, run.shapes, run.slips);
+    let (mut rows, mut shapes, mut slips) = (run.rows, run.shapes, run.slips);
+    let stop = off_surface(surface, &mut rows, &mut shapes, &mut slips).unwrap_or(stop);
     let mut stats = start.stats.clone();
     stats.accumulate(&st.stats());
     Ok(DragResult {
@@ -441,6 +448,41 @@ fn drag_with<P: Profile>(
         stats,
         shapes,
         handover,
+    })
+}
+
+/// A surface that ends (a circle at its 45° points, a table at its ends): the rows from the
+/// first whose tip lies beyond an end are dropped (the march continues the surface along its
+/// end tangent only to keep the solver's iterates finite, issue 33), with the slips past it,
+/// and the drag's stop says where the tip left the surface.
+fn off_surface(
+    surface: &Surface,
+    rows: &mut Vec<DragRow>,
+    shapes: &mut Vec<Vec<ShapePoint>>,
+    slips: &mut Vec<SlipEvent>,
+) -> Option<StopReason> {
+    let h = surface.profile()?;
+    let k = rows.iter().position(|r| !h.covers(r.x_tip))?;
+    let (lo, hi) = h.domain();
+    let x = rows[k].x_tip;
+    let (d_in, d) = (k.checked_sub(1).map_or(0.0, |j| rows[j].d), rows[k].d);
+    rows.truncate(k);
+    shapes.truncate(k);
+    slips.retain(|e| e.d < d && e.after.x_tip >= lo && e.after.x_tip <= hi);
+    if let Some(last) = rows.last_mut() {
+        // (a slip row whose end was dropped is no longer a slip of the trace)
+        if last.event == Some(DragEvent::Slip) {
+            rows.pop();
+            shapes.truncate(rows.len());
+        }
+    }
+    Some(StopReason::ContactChange {
+        d: d_in,
+        message: format!(
+            "the tip left the surface at its end (x = {}; it was at x = {x} at d = {d}): the \
+             surface ends where its slope reaches 45 degrees (a circle) or at its table's ends",
+            if x > hi { hi } else { lo }
+        ),
     })
 }
 
@@ -481,6 +523,10 @@ impl<P: Profile> DragRun<'_, P> {
                 Ok(s) => s,
                 Err(stop) => return stop,
             };
+            // (a phase that left the surface's end: the rest would run on its end tangent)
+            if self.off_end() {
+                return StopReason::DMax;
+            }
             first = false;
             let slid = match self.slide(&stuck) {
                 Ok(s) => s,
@@ -495,6 +541,53 @@ impl<P: Profile> DragRun<'_, P> {
                 Err(stop) => return stop,
             }
         }
+    }
+
+    /// Whether the last row's tip lies beyond an end of the surface (the stop is then
+    /// [`off_surface`]'s, which replaces the one returned here).
+    fn off_end(&self) -> bool {
+        let (Some(h), Some(r)) = (self.surface.profile(), self.rows.last()) else {
+            return false;
+        };
+        !h.covers(r.x_tip)
+    }
+
+    /// From the third slip on: slips spaced less than [`MIN_SLIP_SPACING`] apart in `d` whose
+    /// count to `d_max` would exceed the `max_slips` left end the drag now, with the reason
+    /// (issue 33: μk = 0.4999999999 for μs = 0.5 ran 100 000 slips of no length, 11 s, to the
+    /// cap). Slips further apart run to `max_slips` as asked (a fit's drags stop there).
+    fn too_many_slips(&self, d: f64) -> Option<StopReason> {
+        let n = self.slips.len();
+        if n < 2 {
+            return None;
+        }
+        let spacing = (self.slips[n - 1].d - self.slips[0].d) / (n - 1) as f64;
+        let left = self.opts.max_slips.saturating_sub(n);
+        let ahead = (self.opts.d_max - d) / spacing;
+        (spacing < MIN_SLIP_SPACING && (ahead.is_nan() || ahead > left as f64)).then(|| {
+            StopReason::ContactChange {
+                d,
+                message: if ahead.is_finite() {
+                    format!(
+                        "the slips come {} apart in d, so about {} more to d_max = {} would \
+                         exceed max_slips = {} (kinetic friction this close to static makes \
+                         the slips as short; widen mu_s - mu_k or shorten the drag)",
+                        crate::limits::digits(spacing, 3),
+                        crate::limits::digits(ahead, 3),
+                        self.opts.d_max,
+                        self.opts.max_slips
+                    )
+                } else {
+                    // (μs below the solver's noise in μ, 1e-300: each slip ends where it began)
+                    format!(
+                        "the slips come 0 apart in d: the tip slips again where it stopped, and \
+                         no number of slips reaches d_max = {} (kinetic friction this close to \
+                         static; widen mu_s - mu_k)",
+                        self.opts.d_max
+                    )
+                },
+            }
+        })
     }
 
     /// The stick phase from `p` (the start if `first`; `carry`: the tip's μs after a slip): the
@@ -533,6 +626,9 @@ impl<P: Profile> DragRun<'_, P> {
             other => return Err(other),
         }
         let driver = slipping(&env, &sset, &pe);
+        if let Some(stop) = self.too_many_slips(pe.lam) {
+            return Err(stop);
+        }
         if self.slips.len() >= self.opts.max_slips {
             return Err(StopReason::ContactChange {
                 d: pe.lam,

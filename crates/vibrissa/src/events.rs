@@ -761,7 +761,16 @@ pub(crate) fn locate(
         let p = st.correct(lam, hist, fresh)?;
         Ok(c.of_watch(env, &p.w))
     };
-    let lam = search::root(&mut eval, a, b, 1e-13 * (1.0 + b.abs()))?;
+    let lam = match search::root(&mut eval, a, b, 1e-13 * (1.0 + b.abs())) {
+        Ok(lam) => lam,
+        // the function at the step's start, solved again, within rounding of zero on the ended
+        // side (a threshold below the solver's noise: a drag with mu_s = 1e-300 on a flat
+        // surface, whose start has |mu| of order 1e-22): the event is at the start
+        Err(RootError::NoBracket { fa, .. }) if ended(fa) && fa <= AT_ZERO => {
+            return st.correct(a, hist, fresh).map_err(RootError::Caller);
+        }
+        Err(e) => return Err(e),
+    };
     let p = st.correct(lam, hist, fresh).map_err(RootError::Caller)?;
     inside(st, env, hist, a, p, c, fresh).map_err(RootError::Caller)
 }

@@ -111,6 +111,137 @@ pub struct TraceSlip {
 pub struct Trace {
     /// The slips.
     pub slips: Vec<TraceSlip>,
+    /// The tip positions `(x_tip, y_tip)` of the trace's rows, where it has them (empty: not
+    /// measured). On a straight surface they lie on one line; [`fit`] says when they do not
+    /// (a curved or corrugated surface fitted as a straight one).
+    pub tips: Vec<[f64; 2]>,
+}
+
+/// A table's error about the trace.
+fn bad_trace(reason: String) -> VibrissaError {
+    VibrissaError::InvalidTable {
+        name: "trace".into(),
+        reason,
+    }
+}
+
+impl Trace {
+    /// The slips of a trace CSV: a header with a column `d` and any of `fx`, `fy`, `m_base`
+    /// (those of `use_sig`, in [`Signal::ALL`] order), `x_tip`, `y_tip`, `event`. Its slips are
+    /// the rows whose `event` is `slip` (the state just before) with the next `slip_end` row
+    /// (just after), as [`crate::drag()`]'s rows are written; without an `event` column, a slip
+    /// is where `d` does not increase from one row to the next. Every row has the header's
+    /// fields (a row cut short is refused, not read as missing values); an empty field is a
+    /// value not measured.
+    pub fn from_csv(text: &str, use_sig: [bool; 3]) -> Result<Trace, VibrissaError> {
+        let mut lines = text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty());
+        let (_, head) = lines.next().ok_or_else(|| bad_trace("empty file".into()))?;
+        let cols: Vec<&str> = head.split(',').map(str::trim).collect();
+        let at = |c: &str| cols.iter().position(|h| *h == c);
+        let d_col =
+            at("d").ok_or_else(|| bad_trace("no column d (the foot displacement)".into()))?;
+        let ev_col = at("event");
+        let tip_col = at("x_tip").zip(at("y_tip"));
+        let sig_col: Vec<Option<usize>> = Signal::ALL
+            .iter()
+            .zip(use_sig)
+            .map(|(s, u)| if u { at(s.name()) } else { None })
+            .collect();
+        let mut rows = Vec::new();
+        let mut tips = Vec::new();
+        for (i, l) in lines {
+            let f: Vec<&str> = l.split(',').map(str::trim).collect();
+            if f.len() != cols.len() {
+                return Err(bad_trace(format!(
+                    "line {} has {} fields, the header {}: a row cut short or run together is \
+                     not read",
+                    i + 1,
+                    f.len(),
+                    cols.len()
+                )));
+            }
+            let value = |c: usize, what: &str| -> Result<Option<f64>, VibrissaError> {
+                match f[c] {
+                    "" => Ok(None),
+                    t => match t.parse::<f64>() {
+                        Ok(v) if v.is_finite() => Ok(Some(v)),
+                        _ => Err(bad_trace(format!(
+                            "line {}: {what} = '{t}' is not a finite number",
+                            i + 1
+                        ))),
+                    },
+                }
+            };
+            let d = value(d_col, "d")?.ok_or_else(|| bad_trace(format!("line {}: no d", i + 1)))?;
+            let mut s = [None; 3];
+            for (k, c) in sig_col.iter().enumerate() {
+                if let Some(c) = *c {
+                    s[k] = value(c, Signal::ALL[k].name())?;
+                }
+            }
+            if let Some((cx, cy)) = tip_col {
+                if let (Some(x), Some(y)) = (value(cx, "x_tip")?, value(cy, "y_tip")?) {
+                    tips.push([x, y]);
+                }
+            }
+            let ev = ev_col.map_or("", |c| f[c]).to_string();
+            rows.push((d, s, ev));
+        }
+        let slips = slips_of(&rows, ev_col.is_some());
+        if slips.is_empty() {
+            return Err(bad_trace(
+                "no slip in the trace (rows with event = slip, or, without an event column, a row \
+                 whose d does not increase)"
+                    .into(),
+            ));
+        }
+        for w in slips.windows(2) {
+            if w[1].d <= w[0].d {
+                return Err(bad_trace(format!(
+                    "the slips at d = {} and d = {} are not in increasing order",
+                    w[0].d, w[1].d
+                )));
+            }
+        }
+        Ok(Trace { slips, tips })
+    }
+}
+
+/// The slips of the rows `(d, signals, event)`: by their events, or where d does not increase.
+fn slips_of(rows: &[(f64, [Option<f64>; 3], String)], events: bool) -> Vec<TraceSlip> {
+    let mut slips = Vec::new();
+    if events {
+        for (k, r) in rows.iter().enumerate() {
+            if r.2 != "slip" {
+                continue;
+            }
+            // the state after it: its slip_end row, before any next slip
+            let after = rows[k + 1..]
+                .iter()
+                .take_while(|q| q.2 != "slip")
+                .find(|q| q.2 == "slip_end")
+                .map_or([None; 3], |q| q.1);
+            slips.push(TraceSlip {
+                d: r.0,
+                before: r.1,
+                after,
+            });
+        }
+    } else {
+        for w in rows.windows(2) {
+            if w[1].0 <= w[0].0 {
+                slips.push(TraceSlip {
+                    d: w[0].0,
+                    before: w[0].1,
+                    after: w[1].1,
+                });
+            }
+        }
+    }
+    slips
 }
 
 /// Options of [`fit`].
@@ -181,6 +312,9 @@ pub struct FitResult {
     /// estimated; with given levels ≈ 1 when they fit the data; NaN when `n = p` and no noise
     /// levels are given).
     pub s2: f64,
+    /// Whether the residuals are consistent with the noise along the whole trace (from 4
+    /// slips on); when not, the message says so and no parameter has a standard error.
+    pub consistency: Option<Consistency>,
     /// Gauss–Newton iterations (both passes).
     pub iterations: u64,
     /// Drags computed.
@@ -611,6 +745,94 @@ fn unidentifiable(j: &DMatrix<f64>) -> Option<Vec<usize>> {
 /// Errors for invalid input (fewer than one slip, non-finite values), when the start cannot be
 /// guessed, or when Gauss–Newton fails.
 pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult, VibrissaError> {
+    let (mut model, mut message, held) = setup(scene, trace, opts)?;
+    let n = model.obs.len();
+    // no residual degrees of freedom: the estimate fits exactly, its spread is unknown unless
+    // the noise levels are given
+    let exact = model.free.len() == n;
+    let mut iterations = 0;
+    // pass 1 with unit weights (or the given noise levels), then with estimated levels
+    if let Some(s) = opts.sigma {
+        model.sigma = s;
+    }
+    let mut x = global_minimum(&model, &mut iterations)?;
+    let mut kind_dof = [f64::NAN; 4];
+    let kinds: Vec<usize> = model.obs.iter().map(|(o, _)| o.kind()).collect();
+    if opts.sigma.is_none() && !exact {
+        (x, kind_dof) = reweight(&mut model, x, &kinds, &mut iterations)?;
+    }
+    let v = model.natural(&x);
+    if v[0] > 0.99 * MAX_MU_S {
+        // the drag's own limit: nothing in the trace is matched there
+        return Err(VibrissaError::NoConvergence {
+            what: "the least-squares fit".into(),
+            reason: format!(
+                "mu_s ran to {} at the limit {MAX_MU_S}: the trace does not match the scene (its \
+                 eta, surface_angle or rod)",
+                v[0]
+            ),
+        });
+    }
+    let used_sigma = model.sigma;
+    model.sigma = model.sigma.map(|s| if s.is_nan() { 1.0 } else { s });
+    let r = model.residuals(v);
+    let p = model.free.len() as f64;
+    let s2 = match (exact, opts.sigma) {
+        (false, _) => r.norm_squared() / (n as f64 - p),
+        // given noise levels: the weighted residuals have unit variance
+        (true, Some(_)) => 1.0,
+        (true, None) => f64::NAN,
+    };
+    let note = |message: &mut Option<String>, note: String| {
+        *message = Some(match message.take() {
+            Some(m) => format!("{m}; {note}"),
+            None => note,
+        });
+    };
+    if exact && opts.sigma.is_none() {
+        note(
+            &mut message,
+            "as many observations as parameters: the estimate fits them exactly and its standard \
+             error needs the noise levels (sigma)"
+                .into(),
+        );
+    }
+    if let Some(t) = tips_off_line(scene, trace) {
+        note(&mut message, t);
+    }
+    let consistency = consistency(&model, &x, &mut iterations);
+    let misfit = consistency.as_ref().is_some_and(|c| !c.consistent);
+    if let Some(c) = consistency.as_ref().filter(|c| !c.consistent) {
+        note(&mut message, c.to_string());
+    }
+    let mut params = estimates(&model, v, (&kinds, &kind_dof), s2, exact, &held)?;
+    if misfit {
+        // (a standard error describes the noise about a model that fits; this one does not)
+        for p in &mut params {
+            p.std_error = None;
+            p.dof = None;
+        }
+    }
+    let drags = *model.drags.borrow();
+    Ok(FitResult {
+        params,
+        message,
+        observations: n,
+        sigma: used_sigma,
+        s2,
+        consistency,
+        iterations,
+        drags,
+    })
+}
+
+/// The checked input of [`fit`] as its least-squares model at the starting values, the
+/// parameters the signals do not determine held (with the message saying so).
+fn setup<'a>(
+    scene: &'a Scene,
+    trace: &'a Trace,
+    opts: &'a FitOptions,
+) -> Result<(Model<'a>, Option<String>, Vec<Par>), VibrissaError> {
     if !(1..=1000).contains(&opts.max_iter) {
         return Err(VibrissaError::range(
             "max_iter",
@@ -655,7 +877,6 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
     if opts.fit_angle {
         free.push(Par::Angle);
     }
-    let d_last = trace.slips[trace.slips.len() - 1].d;
     let mut model = Model {
         scene,
         trace,
@@ -669,11 +890,11 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
             scene.surface_angle,
         ],
         opts,
-        d_max: (2.0 * d_last + 0.5).min(crate::drag::MAX_DRAG),
+        d_max: reach(trace),
         drags: RefCell::new(0),
     };
     let n = model.obs.len();
-    let (mut message, held) = hold_unidentifiable(&mut model)?;
+    let (message, held) = hold_unidentifiable(&mut model)?;
     if model.free.len() > n {
         return Err(VibrissaError::InvalidTable {
             name: "trace".into(),
@@ -684,62 +905,294 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
             ),
         });
     }
-    // no residual degrees of freedom: the estimate fits exactly, its spread is unknown unless
-    // the noise levels are given
-    let exact = model.free.len() == n;
-    let mut iterations = 0;
-    // pass 1 with unit weights (or the given noise levels), then with estimated levels
-    if let Some(s) = opts.sigma {
-        model.sigma = s;
+    Ok((model, message, held))
+}
+
+/// How far the model's drags go for `trace`: well past its last slip.
+fn reach(trace: &Trace) -> f64 {
+    let d_last = trace.slips[trace.slips.len() - 1].d;
+    (2.0 * d_last + 0.5).min(crate::drag::MAX_DRAG)
+}
+
+/// The first `k` slips of the model's trace, as a trace of their own.
+fn prefix(trace: &Trace, k: usize) -> Trace {
+    Trace {
+        slips: trace.slips[..k].to_vec(),
+        tips: Vec::new(),
     }
+}
+
+impl<'a> Model<'a> {
+    /// The same problem (parameters, weights, held values) on another trace, e.g. a prefix.
+    fn on<'b>(&self, trace: &'b Trace) -> Result<Model<'b>, VibrissaError>
+    where
+        'a: 'b,
+    {
+        Ok(Model {
+            scene: self.scene,
+            trace,
+            obs: observations(trace)?,
+            sigma: self.sigma,
+            free: self.free.clone(),
+            base: self.base,
+            opts: self.opts,
+            d_max: reach(trace),
+            drags: RefCell::new(0),
+        })
+    }
+
+    /// The weighted residual sum of squares at free coordinates `x`.
+    fn cost(&self, x: &[f64]) -> f64 {
+        self.residuals(self.natural(x)).norm_squared()
+    }
+}
+
+/// The lengths of the prefixes the continuation fits: 2, 4, 8, ... slips, below `n`.
+fn prefix_lengths(n: usize) -> Vec<usize> {
+    std::iter::successors(Some(2usize), |k| Some(2 * k))
+        .take_while(|&k| k < n)
+        .collect()
+}
+
+/// The global strategy of the fit: the least-squares minimum from the starting values, and the
+/// one reached by continuation in the trace's length (the first 2, 4, 8, ... slips fitted in
+/// turn, each from the last estimate, then the whole trace). The second follows the minimum
+/// that a short trace determines unambiguously as slips are added; the first can end in a
+/// minimum where the model's slips are shifted against the trace's by a whole period of a
+/// corrugation (issue 33: a noise-free corrugated trace fitted to μs 0.5933 for 0.5). The lower
+/// of the two.
+fn global_minimum(model: &Model<'_>, iters: &mut u64) -> Result<Vec<f64>, VibrissaError> {
     let x0 = model.coords(model.base);
-    let mut x = gauss_newton(&model, x0, &mut iterations)?;
-    let mut kind_dof = [f64::NAN; 4];
-    let kinds: Vec<usize> = model.obs.iter().map(|(o, _)| o.kind()).collect();
-    if opts.sigma.is_none() && !exact {
-        (x, kind_dof) = reweight(&mut model, x, &kinds, &mut iterations)?;
+    let direct = gauss_newton(model, x0.clone(), iters);
+    let mut x = x0;
+    let mut prefix_drags = 0;
+    for k in prefix_lengths(model.trace.slips.len()) {
+        let sub = prefix(model.trace, k);
+        let m = model.on(&sub)?;
+        if m.obs.len() <= m.free.len() {
+            continue;
+        }
+        let step = gauss_newton(&m, x.clone(), iters);
+        prefix_drags += *m.drags.borrow();
+        match step {
+            Ok(y) => x = y,
+            // (the longer prefixes, or the direct fit, go on from the last good estimate)
+            Err(_) => break,
+        }
     }
-    let v = model.natural(&x);
-    if v[0] > 0.99 * MAX_MU_S {
-        // the drag's own limit: nothing in the trace is matched there
-        return Err(VibrissaError::NoConvergence {
-            what: "the least-squares fit".into(),
-            reason: format!(
-                "mu_s ran to {} at the limit {MAX_MU_S}: the trace does not match the scene (its \
-                 eta, surface_angle or rod)",
-                v[0]
-            ),
-        });
-    }
-    let used_sigma = model.sigma;
-    model.sigma = model.sigma.map(|s| if s.is_nan() { 1.0 } else { s });
-    let r = model.residuals(v);
-    let p = model.free.len() as f64;
-    let s2 = match (exact, opts.sigma) {
-        (false, _) => r.norm_squared() / (n as f64 - p),
-        // given noise levels: the weighted residuals have unit variance
-        (true, Some(_)) => 1.0,
-        (true, None) => f64::NAN,
+    *model.drags.borrow_mut() += prefix_drags;
+    let continued = if prefix_lengths(model.trace.slips.len()).is_empty() {
+        None
+    } else {
+        gauss_newton(model, x, iters).ok()
     };
-    if exact && opts.sigma.is_none() {
-        let note = "as many observations as parameters: the estimate fits them exactly and its \
-                    standard error needs the noise levels (sigma)";
-        message = Some(match message {
-            Some(m) => format!("{m}; {note}"),
-            None => note.to_string(),
-        });
+    match (direct, continued) {
+        (Ok(a), Some(b)) => Ok(if model.cost(&b) < model.cost(&a) {
+            b
+        } else {
+            a
+        }),
+        (Ok(a), None) => Ok(a),
+        (Err(_), Some(b)) => Ok(b),
+        (Err(e), None) => Err(e),
     }
-    let params = estimates(&model, v, (&kinds, &kind_dof), s2, exact, &held)?;
-    let drags = *model.drags.borrow();
-    Ok(FitResult {
-        params,
-        message,
-        observations: n,
-        sigma: used_sigma,
-        s2,
-        iterations,
-        drags,
+}
+
+/// The significance level below which [`Consistency`] calls the trace not fitted.
+pub const CONSISTENCY_LEVEL: f64 = 1e-3;
+
+/// Whether the residuals are consistent with the noise levels throughout the trace: a
+/// predictive (Chow) test of the fit to the first half of the slips against the fit to all of
+/// them, with the same weights. With a model that fits, the weighted residuals of the later
+/// observations are of the same size as those of the earlier:
+///
+/// ```text
+///     F = ((S − S₁) / (n − n₁)) / (S₁ / (n₁ − p))  ~  F(n − n₁, n₁ − p),
+/// ```
+///
+/// `S`, `S₁` the weighted residual sums of squares of the whole fit and of the half's own fit.
+/// A model that matches the first slips but not the later ones (a local minimum, the wrong
+/// surface) gives residuals far larger than the noise the first half shows. The statistic is
+/// invariant to a common scale of the weights, so it holds with estimated noise levels too.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Consistency {
+    /// Slips of the first part.
+    pub prefix_slips: usize,
+    /// `F`.
+    pub f: f64,
+    /// Its degrees of freedom `(n − n₁, n₁ − p)`.
+    pub dof: (f64, f64),
+    /// `P(F' > F)` under a fitting model.
+    pub p_value: f64,
+    /// `p_value ≥` [`CONSISTENCY_LEVEL`], or the residuals at the solver's own accuracy.
+    pub consistent: bool,
+}
+
+impl fmt::Display for Consistency {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.consistent {
+            write!(
+                f,
+                "the residuals are consistent along the trace (F = {:.3} on {} and {} degrees of \
+                 freedom against its first {} slips, p = {:.3})",
+                self.f, self.dof.0, self.dof.1, self.prefix_slips, self.p_value
+            )
+        } else {
+            write!(
+                f,
+                "the model does not fit the whole trace: the residuals after its first {} slips \
+                 are {} times the noise those show (F = {} on {} and {} degrees of \
+                 freedom, p = {:.2e}); the estimate is a misfit (a local minimum, or a surface or \
+                 rod other than the trace's) and has no standard error",
+                self.prefix_slips,
+                crate::limits::digits(self.f.sqrt(), 3),
+                crate::limits::digits(self.f, 4),
+                self.dof.0,
+                self.dof.1,
+                self.p_value
+            )
+        }
+    }
+}
+
+/// Relative size below which residuals are the solver's (a noise-free trace fitted exactly).
+const EXACT_RESIDUAL: f64 = 1e-7;
+
+/// The [`Consistency`] check at the estimate `x` (weights as fitted); `None` below 4 slips or
+/// when the first half has no residual degrees of freedom.
+fn consistency(model: &Model<'_>, x: &[f64], iters: &mut u64) -> Option<Consistency> {
+    let slips = model.trace.slips.len();
+    if slips < 4 {
+        return None;
+    }
+    let k = slips / 2;
+    let sub = prefix(model.trace, k);
+    let m = model.on(&sub).ok()?;
+    let (n, n1, p) = (model.obs.len(), m.obs.len(), model.free.len());
+    if n1 <= p {
+        return None;
+    }
+    let x1 = gauss_newton(&m, x.to_vec(), iters).ok()?;
+    *model.drags.borrow_mut() += *m.drags.borrow();
+    let (s, s1) = (model.cost(x), m.cost(&x1));
+    let (d1, d2) = ((n - n1) as f64, (n1 - p) as f64);
+    let f = ((s - s1).max(0.0) / d1) / (s1 / d2);
+    let p_value = f_tail(f, d1, d2);
+    // the residuals' own size against the observations': at the solver's accuracy the trace is
+    // fitted exactly and the ratio is that of rounding errors
+    let scale = model
+        .obs
+        .iter()
+        .map(|(o, y)| (y / model.sigma[o.kind()]).powi(2))
+        .sum::<f64>();
+    let exact = s <= EXACT_RESIDUAL * EXACT_RESIDUAL * scale;
+    Some(Consistency {
+        prefix_slips: k,
+        f,
+        dof: (d1, d2),
+        p_value,
+        consistent: exact || p_value.is_nan() || p_value >= CONSISTENCY_LEVEL,
     })
+}
+
+/// On a straight surface, how far the trace's tips lie off one line: a message when they
+/// visibly do (rms over 1e-6 rod lengths about their least-squares line), as a corrugated or
+/// curved surface's tips would.
+fn tips_off_line(scene: &Scene, trace: &Trace) -> Option<String> {
+    if !matches!(scene.surface, crate::surface::SurfaceProfile::Line {}) || trace.tips.len() < 3 {
+        return None;
+    }
+    let n = trace.tips.len() as f64;
+    let (mx, my) = trace
+        .tips
+        .iter()
+        .fold((0.0, 0.0), |a, t| (a.0 + t[0] / n, a.1 + t[1] / n));
+    let (mut sxx, mut sxy, mut syy) = (0.0, 0.0, 0.0);
+    for t in &trace.tips {
+        let (dx, dy) = (t[0] - mx, t[1] - my);
+        sxx += dx * dx;
+        sxy += dx * dy;
+        syy += dy * dy;
+    }
+    // the smallest eigenvalue of the scatter matrix: the squared distances to the best line
+    let tr = sxx + syy;
+    let det = sxx * syy - sxy * sxy;
+    let off = (0.5 * tr - (0.25 * tr * tr - det).max(0.0).sqrt()).max(0.0);
+    let rms = (off / n).sqrt();
+    (rms > TIP_LINE_TOL).then(|| {
+        format!(
+            "the trace's tips lie off a straight line by {rms:.3e} rod lengths (rms), but the \
+             fit's surface is straight: give the surface the trace was measured on (the scene's \
+             [surface], or --corrugation-amplitude and --corrugation-wavelength)"
+        )
+    })
+}
+
+/// The tips' distance from one line (rms, rod lengths) above which [`fit`] says they are not on
+/// a straight surface.
+pub const TIP_LINE_TOL: f64 = 1e-6;
+
+/// `ln Γ(x)`, x > 0 (Lanczos, g = 7, 9 terms: 1e-15 relative).
+fn ln_gamma(x: f64) -> f64 {
+    const C: [f64; 9] = [
+        0.999_999_999_999_809_9,
+        676.520_368_121_885_1,
+        -1_259.139_216_722_402_8,
+        771.323_428_777_653_1,
+        -176.615_029_162_140_6,
+        12.507_343_278_686_905,
+        -0.138_571_095_265_720_12,
+        9.984_369_578_019_572e-6,
+        1.505_632_735_149_311_6e-7,
+    ];
+    let x = x - 1.0;
+    let t = x + 7.5;
+    let s = C[0] + (1..9).map(|i| C[i] / (x + i as f64)).sum::<f64>();
+    0.5 * std::f64::consts::TAU.ln() + (x + 0.5) * t.ln() - t + s.ln()
+}
+
+/// The regularized incomplete beta function `I_x(a, b)` (Lentz's continued fraction).
+fn inc_beta(x: f64, a: f64, b: f64) -> f64 {
+    if x <= 0.0 || x >= 1.0 {
+        return x.clamp(0.0, 1.0);
+    }
+    if x > (a + 1.0) / (a + b + 2.0) {
+        return 1.0 - inc_beta(1.0 - x, b, a);
+    }
+    let front =
+        (ln_gamma(a + b) - ln_gamma(a) - ln_gamma(b) + a * x.ln() + b * (1.0 - x).ln()).exp() / a;
+    let tiny = 1e-300;
+    let (mut c, mut d) = (1.0, 1.0 - (a + b) * x / (a + 1.0));
+    d = 1.0 / if d.abs() < tiny { tiny } else { d };
+    let mut f = d;
+    for m in 1..300 {
+        let m = m as f64;
+        for num in [
+            m * (b - m) * x / ((a + 2.0 * m - 1.0) * (a + 2.0 * m)),
+            -(a + m) * (a + b + m) * x / ((a + 2.0 * m) * (a + 2.0 * m + 1.0)),
+        ] {
+            d = 1.0 + num * d;
+            d = 1.0 / if d.abs() < tiny { tiny } else { d };
+            c = 1.0 + num / c;
+            c = if c.abs() < tiny { tiny } else { c };
+            f *= c * d;
+        }
+        if (c * d - 1.0).abs() < 1e-15 {
+            break;
+        }
+    }
+    front * f
+}
+
+/// `P(F > f)` for Fisher's F with `(d1, d2)` degrees of freedom (1 for f NaN or below 0).
+fn f_tail(f: f64, d1: f64, d2: f64) -> f64 {
+    if f.is_nan() || f <= 0.0 {
+        return if f.is_infinite() { 0.0 } else { 1.0 };
+    }
+    if f.is_infinite() {
+        return 0.0;
+    }
+    inc_beta(d2 / (d2 + d1 * f), 0.5 * d2, 0.5 * d1)
 }
 
 /// The observations of `trace`: each slip's place and the signals given around it, checked.

@@ -204,6 +204,9 @@ pub const RK4_STEPS: Range = Range::count(1, 10_000_000);
 pub const D_MAX: Range = Range::new(0.0, false, 2.0, false).unit("rod lengths");
 /// Output points of a scan, a whisk or a drag.
 pub const POINTS: Range = Range::count(2, 1_000_000);
+/// Output displacements given to a scan as a list (`scan_at`): at least one (an empty list has
+/// no point to measure over).
+pub const OUTPUT_DISPLACEMENTS: Range = Range::count(1, 1_000_000);
 /// Samples of one kept shape.
 pub const SHAPE_POINTS: Range = Range::count(2, 100_000);
 /// Stiction coefficient μ0 (finite; no threshold is `None`).
@@ -230,6 +233,11 @@ pub const THETA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
     .unit("radians")
     .why("the foot turned clockwise, within a quarter turn");
 
+/// The program's (and Python's) foot displacement a drag goes to unless asked otherwise (shorter
+/// than [`DragOptions::default`](crate::DragOptions)'s 2: a few slips, quickly).
+pub const DEFAULT_DRAG_D_MAX: f64 = 1.0;
+/// The program's (and Python's) output points of a drag unless asked otherwise.
+pub const DEFAULT_DRAG_POINTS: usize = 201;
 /// Largest foot displacement of a drag.
 pub const DRAG_D_MAX: Range = Range::new(0.0, false, 1000.0, true).unit("rod lengths");
 /// Static friction coefficient μs of a drag.
@@ -248,6 +256,13 @@ pub const MAX_SLIPS: Range = Range::count(1, 1_000_000);
 pub const CORRUGATION_AMPLITUDE: Range = Range::new(-0.2, true, 0.2, true).unit("rod lengths");
 /// Wavelength of a corrugation.
 pub const CORRUGATION_WAVELENGTH: Range = Range::new(0.01, true, 100.0, true).unit("rod lengths");
+/// Period of a friction texture of patches: as a corrugation's wavelength (issue 33: a period
+/// of 1e-9 was accepted and the drag, an event at every patch boundary, never ended).
+pub const FRICTION_PERIOD: Range = Range::new(0.01, true, 1000.0, true).unit("rod lengths").why(
+    "rod lengths; each patch boundary the tip passes is an event of the drag: a finer texture than 0.01 would take without end, and the model's tip is a point",
+);
+/// Width of one friction patch.
+pub const PATCH_WIDTH: Range = Range::new(1e-3, true, f64::INFINITY, false).unit("rod lengths");
 /// Phase of a corrugation at `x = 0`.
 pub const CORRUGATION_PHASE: Range = Range::new(-1000.0, true, 1000.0, true).unit("radians");
 
@@ -301,6 +316,64 @@ pub const BYTES_PER_SHAPE_SAMPLE: u64 = 100;
 pub const BYTES_PER_SCAN_POINT: u64 = 250;
 /// Worker threads per core beyond which more are not useful (a request is capped there).
 pub const JOBS_PER_CORE: usize = 4;
+/// Worker threads a sweep may be asked for (more than [`JOBS_PER_CORE`] per core are capped).
+pub const JOBS: Range = Range::count(1, 65_536);
+
+/// The fixed ranges by the name of the value they bound (the scene file's key or the option's
+/// field), for front ends that list them (Python's `vibrissa.limits()`). Not listed: the ranges
+/// that depend on another value ([`d0`]: the scan's `d_max`; [`kinetic_friction`]: `mu_s`).
+pub fn named() -> Vec<(&'static str, Range)> {
+    vec![
+        ("eta", eta()),
+        ("taper", TAPER),
+        ("precurvature", PRECURVATURE),
+        ("precurvature_slope", PRECURVATURE_SLOPE),
+        ("support_compliance", SUPPORT_COMPLIANCE),
+        ("surface_angle", SURFACE_ANGLE),
+        ("table_b", TABLE_B),
+        ("physical", PHYSICAL),
+        ("tol", TOL),
+        ("segments", SEGMENTS),
+        ("rk4_steps", RK4_STEPS),
+        ("d_max", D_MAX),
+        ("points", POINTS),
+        ("d", OUTPUT_DISPLACEMENTS),
+        ("shape_points", SHAPE_POINTS),
+        ("mu0", MU0),
+        ("alpha", ALPHA),
+        ("phi1", PHI1),
+        ("tip_height", TIP_HEIGHT),
+        ("theta", THETA),
+        ("drag_d_max", DRAG_D_MAX),
+        ("mu_s", MU_S),
+        ("max_slips", MAX_SLIPS),
+        ("corrugation_amplitude", CORRUGATION_AMPLITUDE),
+        ("corrugation_wavelength", CORRUGATION_WAVELENGTH),
+        ("corrugation_phase", CORRUGATION_PHASE),
+        ("friction_period", FRICTION_PERIOD),
+        ("patch_width", PATCH_WIDTH),
+        ("jobs", JOBS),
+    ]
+}
+
+/// `Ok` when `outputs` kept shapes of `samples` samples each fit [`MEMORY_BUDGET`]; else
+/// [`VibrissaError::OutOfRange`] naming `name` (the samples per shape) and the most that fit.
+pub fn check_shapes(name: &str, samples: usize, outputs: usize) -> Result<(), VibrissaError> {
+    let need = samples as f64 * outputs as f64 * BYTES_PER_SHAPE_SAMPLE as f64;
+    if need <= MEMORY_BUDGET as f64 {
+        return Ok(());
+    }
+    let most = MEMORY_BUDGET / (outputs.max(1) as u64 * BYTES_PER_SHAPE_SAMPLE);
+    Err(VibrissaError::OutOfRange {
+        name: name.to_string(),
+        value: samples as f64,
+        range: format!(
+            "[2, {most}] with {outputs} output points ({BYTES_PER_SHAPE_SAMPLE} bytes per shape \
+             sample; the shapes must fit the memory budget of {} GB)",
+            MEMORY_BUDGET as f64 / 1e9
+        ),
+    })
+}
 
 /// `v` with `p` significant digits, trailing zeros removed, scientific below 1e-4 and from 1e6
 /// on (`digits(1e300, 6) = "1e300"`, never a 300-digit decimal).
@@ -375,6 +448,20 @@ pub fn digits_to_decide(v: f64, bounds: &[f64]) -> usize {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn named_ranges_are_unique_and_ordered() {
+        let all = named();
+        let mut names: Vec<&str> = all.iter().map(|(n, _)| *n).collect();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), all.len());
+        for (n, r) in &all {
+            assert!(r.lo <= r.hi, "{n}");
+        }
+        let (_, sp) = all.iter().find(|(n, _)| *n == "shape_points").unwrap();
+        assert_eq!(*sp, SHAPE_POINTS);
+    }
+
     use super::*;
 
     #[test]

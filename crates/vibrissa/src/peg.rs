@@ -100,6 +100,7 @@ impl WhiskOptions {
         }
         if let Some(n) = self.keep_shapes {
             limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
+            limits::check_shapes("keep_shapes", n, self.points)?;
         }
         self.solver.validate()
     }
@@ -281,8 +282,12 @@ fn whisk_with<P: Profile>(
     if theta_t > opts.theta_max {
         return Err(VibrissaError::OutOfReach {
             what: format!(
-                "the object at ({}, {}) is first touched at theta = {theta_t}, beyond theta_max = {}",
-                peg[0], peg[1], opts.theta_max
+                "the object at ({}, {}) is first touched at theta = {theta_t}, beyond {} = {}",
+                peg[0],
+                peg[1],
+                // (solve --peg asks for one angle, theta; a whisk turns to theta_max)
+                if only.is_some() { "theta" } else { "theta_max" },
+                opts.theta_max
             ),
             reach: opts.theta_max,
             needed: theta_t,
@@ -343,6 +348,9 @@ fn whisk_with<P: Profile>(
         // contact point moves along the rod
         chain.set.contacts[0].mode = stick_or_slide(&mut chain, theta_t, &u0, s_t, mu0);
     }
+    // (friction that cannot hold the contact from first touch on: it slides at once, the whisk's
+    // stick-to-slide event at its first point, issue 33)
+    let slides_at_once = matches!(chain.set.contacts[0].mode, Mode::Sliding(_));
     let cv = solve_damped(&mut chain, theta_t, &u0, ntol, 30).map_err(|e| {
         VibrissaError::NoConvergence {
             what: format!("the rod at first touch (theta = {theta_t})"),
@@ -368,7 +376,7 @@ fn whisk_with<P: Profile>(
         begun.p0,
         Stats::default(),
     );
-    let points = out
+    let points: Vec<PegPoint> = out
         .points
         .iter()
         .map(|p| {
@@ -389,6 +397,15 @@ fn whisk_with<P: Profile>(
             }
         })
         .collect();
+    let mut points = points;
+    if let Some(first) = points
+        .first_mut()
+        .filter(|p| only.is_none() && p.theta == theta_t)
+    {
+        if slides_at_once && first.event.is_none() {
+            first.event = Some(Event::Slip);
+        }
+    }
     Ok(WhiskResult {
         first_touch: theta_t,
         s_touch: s_t,

@@ -116,6 +116,7 @@ impl ScanOptions {
         }
         if let Some(n) = self.keep_shapes {
             limits::SHAPE_POINTS.check_count("keep_shapes", n)?;
+            limits::check_shapes("keep_shapes", n, self.points)?;
         }
         self.solver.validate()
     }

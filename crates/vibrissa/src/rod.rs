@@ -318,6 +318,28 @@ impl Surface {
             texture: None,
         })
     }
+    /// `Ok` when the lab `x` of a start's contact lies where the surface exists (a circle
+    /// between its 45° points, a table between its ends); else an error naming the surface's
+    /// ends (issue 33: a circle whose lowest point is far from the pressed tip was replaced by
+    /// its end tangent without a word, and the drag marched minutes on it).
+    pub fn check_on(&self, x: f64) -> Result<(), VibrissaError> {
+        let Some(h) = self.profile() else {
+            return Ok(());
+        };
+        if h.covers(x) {
+            return Ok(());
+        }
+        let (lo, hi) = h.domain();
+        Err(VibrissaError::OutOfRange {
+            name: "the start's contact point x".into(),
+            value: x,
+            range: format!(
+                "[{lo}, {hi}], where the surface exists (a circle ends where its slope reaches 45 \
+                 degrees, a table at its ends): move the surface under the pressed tip (a \
+                 circle's x0, a table's x)"
+            ),
+        })
+    }
     /// A horizontal surface at height `eta`.
     pub fn flat(eta: f64) -> Result<Surface, VibrissaError> {
         Surface::new(eta, 0.0)

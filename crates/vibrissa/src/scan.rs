@@ -58,6 +58,12 @@ pub fn scan_at(
     d: &[f64],
 ) -> Result<ScanResult, VibrissaError> {
     opts.validate()?;
+    // (an empty list would give a μ_max over no point; the output points' own limits)
+    crate::limits::OUTPUT_DISPLACEMENTS
+        .check_count("the number of output displacements d", d.len())?;
+    if let Some(n) = opts.keep_shapes {
+        crate::limits::check_shapes("keep_shapes", n, d.len())?;
+    }
     for (i, &di) in d.iter().enumerate() {
         if !(di >= 0.0 && di <= opts.d_max) {
             return Err(VibrissaError::range(
@@ -75,6 +81,16 @@ pub fn scan_at(
         }
     }
     scan_impl(rod, surface, opts, d)
+}
+
+/// The scan to its end without output points (its start, events and measurable range).
+fn scan_probe(
+    rod: &Rod,
+    surface: &Surface,
+    opts: &ScanOptions,
+) -> Result<ScanResult, VibrissaError> {
+    opts.validate()?;
+    scan_impl(rod, surface, opts, &[])
 }
 
 fn scan_impl(
@@ -112,6 +128,7 @@ fn scan_with<P: Profile>(
         opts.solver.start,
         opts.solver.start_tol(),
     )?;
+    surface.check_on(p0[0])?;
     // a friction profile without a given μ0: the static coefficient where the tip sticks
     let mu0 = opts.mu0.or_else(|| {
         surface
@@ -205,7 +222,7 @@ pub fn infer(
         keep_shapes: None,
         ..opts.clone()
     };
-    let probe = scan_at(rod, surface, &o, &[])?;
+    let probe = scan_probe(rod, surface, &o)?;
     let max = probe.d_at_mu_max;
     match probe.range_end {
         RangeEnd::FirstMaximum | RangeEnd::Event => {}
@@ -215,7 +232,7 @@ pub fn infer(
                 d_max: 1.999,
                 ..o.clone()
             };
-            let full = scan_at(rod, surface, &wide, &[]).ok().and_then(|w| {
+            let full = scan_probe(rod, surface, &wide).ok().and_then(|w| {
                 matches!(w.range_end, RangeEnd::FirstMaximum | RangeEnd::Event)
                     .then(|| (w.d_at_mu_max, range_end_text(&w)))
             });

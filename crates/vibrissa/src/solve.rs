@@ -270,7 +270,14 @@ fn load<P: Profile>(
                 reason: e.to_string(),
             }
         })?;
-    let (chain, u) = crate::start::turn_force(chain, &first.u, 0.0, alpha, ntol)?;
+    // At alpha = 0 the force is square to the held condition's line of symmetry: the curve
+    // of the condition's parameter passes the flex solution where it meets its mirror image,
+    // and the continuation in flex_of finds only the convex ones there (issue 33: solve
+    // --alpha 0 --phi1 0.3 --branch flex failed for every numerical method). The flex solution
+    // is found at a slightly tilted force and turned back.
+    let detour = branch.load_reversals() == Some(1) && alpha <= 0.0 && alpha > -FLEX_DETOUR;
+    let turned = if detour { -FLEX_DETOUR } else { alpha };
+    let (chain, u) = crate::start::turn_force(chain, &first.u, 0.0, turned, ntol)?;
     let (mut chain, mut u) = (chain, u);
     if connected {
         let p1 = profile.clone();
@@ -286,6 +293,9 @@ fn load<P: Profile>(
     }
     if branch.load_reversals() == Some(1) {
         (chain, u) = flex_of(chain, &u, target, ntol)?;
+        if detour {
+            (chain, u) = crate::start::turn_force(chain, &u, turned, alpha, ntol)?;
+        }
     }
     if let Target::Tip { x1, y1 } = *target {
         // move the tip along its line to x1, the force angle free
@@ -322,6 +332,10 @@ fn load<P: Profile>(
     }
     Ok(u)
 }
+
+/// The force angle below 0 at which the flex solution of a force angle in `(-FLEX_DETOUR, 0]`
+/// is found (see [`load`]); -0.01 and -0.001 are found directly.
+const FLEX_DETOUR: f64 = 0.01;
 
 /// From the convex solution `u` of `target` on `chain` (fixed force angle), the one-flex
 /// solution of the same condition: the curve of the condition's parameter (tip slope, or height)
@@ -421,11 +435,10 @@ pub(crate) fn check_branch(shape: &Shape, branch: &BranchChoice) -> Result<(), V
         _ => Ok(()),
     }
 }
+/// The force angle against [`limits::ALPHA`](crate::limits::ALPHA), the program's range (the
+/// contact pushes the tip down); was `[-pi, pi]` here while the program refused `|alpha| >= pi/2`.
 fn check_alpha(alpha: f64) -> Result<(), VibrissaError> {
-    if !(alpha.is_finite() && (-PI..=PI).contains(&alpha)) {
-        return Err(VibrissaError::range("alpha", alpha, "[-pi, pi]"));
-    }
-    Ok(())
+    crate::limits::ALPHA.check("alpha", alpha)
 }
 fn check_target(target: &Target) -> Result<(), VibrissaError> {
     match *target {

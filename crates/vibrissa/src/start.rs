@@ -465,10 +465,18 @@ fn buckled_start<P: Profile>(
         }
         None
     };
-    let eps0 = 1e-2;
-    let (_, y0) = solve_f(chain, eps0).ok_or_else(|| VibrissaError::NoStart {
-        reason: "no buckled state next to the critical load".into(),
-    })?;
+    // (a rod whose tip is far more flexible than its foot, e.g. taper 0.01, turns its tip through
+    // a large angle already at m(0) = 1e-2, beyond where this Newton in f converges: smaller
+    // deflections first, issue 33)
+    let (eps0, y0) = [1e-2, 1e-3, 1e-4, 1e-5]
+        .into_iter()
+        .find_map(|e| solve_f(chain, e).map(|(_, y)| (e, y)))
+        .ok_or_else(|| VibrissaError::NoStart {
+            reason: format!(
+                "no buckled state next to the critical load f = {f_cr:.6e} (Newton in f from \
+                 m(0) = 1e-2 down to 1e-5 did not converge)"
+            ),
+        })?;
     // the amplitude for the tip drop asked for (the drop grows as ε²)
     let drop0 = top - y0;
     let eps = if drop0 > 0.0 {
@@ -522,6 +530,9 @@ pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64;
     (ContactSet { contacts }, p0)
 }
 
+/// The tolerance of a second press when the first, at a looser tolerance, fails.
+const PRESS_TOL: f64 = 1e-8;
+
 /// The start of a scan: the pressed (or connected) state at `d = 0`.
 pub(crate) fn scan_start<P: Profile>(
     rod: &crate::Rod,
@@ -535,19 +546,51 @@ pub(crate) fn scan_start<P: Profile>(
     let general = rod.profile(1.0);
     let ntol = corrector_tol(tol);
     match kind {
-        StartKind::Pressed => press(
-            Shooter::new(profile.clone(), c, tol, 8),
-            &general,
-            profile,
-            // pressed as it is, sides touching where they do (the tip-only model then has no
-            // valid start: the scan reports the penetration at d = 0)
-            &PressSpec {
-                geom_beta: beta,
-                force_beta: beta,
-                sides: true,
-                goal: Goal::Height(eta, 1.0),
-            },
-        ),
+        StartKind::Pressed => {
+            let at = |tol: f64| {
+                press(
+                    Shooter::new(profile.clone(), c, tol, 8),
+                    &general,
+                    profile,
+                    // pressed as it is, sides touching where they do (the tip-only model then
+                    // has no valid start: the scan reports the penetration at d = 0)
+                    &PressSpec {
+                        geom_beta: beta,
+                        force_beta: beta,
+                        sides: true,
+                        goal: Goal::Height(eta, 1.0),
+                    },
+                )
+            };
+            // a loose tolerance can lose the press at a change of its contacts (issue 33: tol
+            // 1e-2, taper 0.1, eta 0.6 ended in a residual NaN at a touchdown): the press again
+            // at PRESS_TOL, then what to do
+            at(tol)
+                .or_else(|e| {
+                    if tol > PRESS_TOL {
+                        at(PRESS_TOL)
+                    } else {
+                        Err(e)
+                    }
+                })
+                .map_err(|e| {
+                    // the caller's to fix (a surface the rod does not reach): as it is
+                    if e.is_input() {
+                        return e;
+                    }
+                    let reason = match e {
+                        VibrissaError::NoStart { reason } => reason,
+                        e => e.to_string(),
+                    };
+                    VibrissaError::NoStart {
+                        reason: format!(
+                            "{reason}; the connected start (--start connected, start = \
+                             \"connected\") follows the state connected to the pressed straight \
+                             uniform rod instead and may have one"
+                        ),
+                    }
+                })
+        }
         StartKind::Connected => {
             // the uniform clamped rod pressed down at its tip to height eta, the force turned to
             // the surface's normal, then the rod's deviations grown to the scene's rod

@@ -134,7 +134,7 @@ pub enum FrictionProfile {
     Uniform {
         /// Static coefficient μs.
         mu_s: f64,
-        /// Kinetic coefficient μk ≤ μs.
+        /// Kinetic coefficient μk < μs.
         mu_k: f64,
     },
     /// Tables at lab positions `x` (strictly increasing), piecewise linear, constant beyond the
@@ -144,13 +144,13 @@ pub enum FrictionProfile {
         x: Vec<f64>,
         /// μs at each.
         mu_s: Vec<f64>,
-        /// μk at each (≤ μs).
+        /// μk at each (< μs).
         mu_k: Vec<f64>,
     },
     /// A periodic texture of patches: patch `i` covers `[x_i, x_{i+1})` of each period
     /// (`0 = x_0 < x_1 < … < period`), shifted by `offset`.
     Patches {
-        /// Period (rod lengths).
+        /// Period (rod lengths), in `[0.01, 1000]`; each patch at least 1e-3 wide.
         period: f64,
         /// Patch starts within the period, from 0, strictly increasing, below `period`.
         x: Vec<f64>,
@@ -710,21 +710,19 @@ impl Texture {
             } else {
                 format!("[{i}]")
             };
-            if !(s.is_finite() && (0.0..=100.0).contains(&s)) {
-                return Err(VibrissaError::range(
-                    format!("friction.mu_s{at}"),
-                    s,
-                    "[0, 100]",
-                ));
-            }
-            if !(k.is_finite() && k >= 0.0 && k <= s) {
-                return Err(VibrissaError::range(
-                    format!("friction.mu_k{at}"),
-                    k,
-                    format!("[0, mu_s{at} = {s}] (kinetic friction at most static)"),
-                ));
-            }
-            Ok(())
+            crate::limits::MU_S.check(&format!("friction.mu_s{at}"), s)?;
+            // as the flags --mu-s, --mu-k (issue 33: mu_k = mu_s was accepted from a file, and
+            // the drag then slips without end by zero lengths)
+            crate::limits::kinetic_friction(s)
+                .check(&format!("friction.mu_k{at}"), k)
+                .map_err(|e| match e {
+                    VibrissaError::OutOfRange { name, value, .. } => VibrissaError::OutOfRange {
+                        name,
+                        value,
+                        range: format!("[0, mu_s{at} = {s}) ({})", crate::limits::STICK_SLIP),
+                    },
+                    e => e,
+                })
         };
         let lists = |x: &[f64], s: &[f64], k: &[f64]| -> Result<(), VibrissaError> {
             if x.is_empty() || x.len() != s.len() || x.len() != k.len() {
@@ -761,13 +759,7 @@ impl Texture {
                 mu_k,
                 offset,
             } => {
-                if !(period.is_finite() && *period > 0.0 && *period <= 1e3) {
-                    return Err(VibrissaError::range(
-                        "friction.period",
-                        *period,
-                        "(0, 1000] rod lengths",
-                    ));
-                }
+                crate::limits::FRICTION_PERIOD.check("friction.period", *period)?;
                 if !offset.is_finite() {
                     return Err(VibrissaError::range("friction.offset", *offset, "finite"));
                 }
@@ -782,6 +774,9 @@ impl Texture {
                     });
                 }
                 for i in 0..x.len() {
+                    let width = x.get(i + 1).unwrap_or(period) - x[i];
+                    crate::limits::PATCH_WIDTH
+                        .check(&format!("friction patch {i}'s width"), width)?;
                     if mu_k[i] >= mu_s[i] {
                         return Err(VibrissaError::range(
                             format!("friction.mu_k[{i}]"),

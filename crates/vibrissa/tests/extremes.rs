@@ -116,15 +116,29 @@ fn alpha_quarter_and_half_pi() {
     )) {
         assert!((s.f - e.f).abs() < 1e-7 * e.f, "{} vs {}", s.f, e.f);
     }
-    // α = −π/2 (horizontal tip load to −x): Mattiasson (1981) table, P = 1 and 2, θ = tip
+    // α = −π/2 itself is outside the force angles of the model (limits::ALPHA, (−π/2, π/2):
+    // the contact pushes the tip down), refused as by the program
+    let e = solve(
+        &paper(),
+        -FRAC_PI_2,
+        Target::Phi1(FRAC_PI_2 + 0.46135),
+        &BranchChoice::Convex,
+        &cfg(),
+    )
+    .unwrap_err();
+    assert!(e.is_input(), "{e}");
+    assert!(e.to_string().contains("(-pi/2, pi/2)"), "{e}");
+    // a hair inside it (1e-12 rad: the answers move by about 1e-12, far below the table's 5
+    // digits), the horizontal tip load to −x: Mattiasson (1981) table, P = 1 and 2, θ = tip
     // rotation; the rod bends to the left, φ1 = π/2 + θ (5 printed digits)
+    let horizontal = -FRAC_PI_2 + 1e-12;
     for (p, theta, w, u) in [
         (1.0, 0.46135, 0.30172, 0.05643),
         (2.0, 0.78175, 0.49346, 0.16064),
     ] {
         let s = finite_or_typed(solve(
             &paper(),
-            -FRAC_PI_2,
+            horizontal,
             Target::Phi1(FRAC_PI_2 + theta),
             &BranchChoice::Convex,
             &cfg(),
@@ -137,7 +151,7 @@ fn alpha_quarter_and_half_pi() {
     // the one-flex family does not exist below −π/4: typed error
     let r = solve(
         &paper(),
-        -FRAC_PI_2,
+        horizontal,
         Target::Phi1(0.3),
         &BranchChoice::Flex,
         &cfg(),

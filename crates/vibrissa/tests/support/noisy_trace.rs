@@ -41,6 +41,7 @@ pub fn exact(r: &DragResult, n: usize) -> Trace {
 /// Only the places of the slips of `t`.
 pub fn places_only(t: &Trace) -> Trace {
     Trace {
+        tips: Vec::new(),
         slips: t
             .slips
             .iter()
@@ -57,6 +58,7 @@ pub fn places_only(t: &Trace) -> Trace {
 fn with_noise(r: &DragResult, n: usize, mut noise: impl FnMut(f64) -> f64) -> Trace {
     let (sd, sf) = (SIGMA[0], SIGMA[1]);
     Trace {
+        tips: Vec::new(),
         slips: r.slips[..n]
             .iter()
             .map(|e| TraceSlip {
