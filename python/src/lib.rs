@@ -291,6 +291,7 @@ fn config_named(method: &str, tol: f64, segments: usize, start: &str) -> PyResul
         segments,
         rk4_steps: None,
         start,
+        cancel: Default::default(),
     };
     cfg.validate().map_err(py_err)?;
     Ok(cfg)
@@ -322,9 +323,8 @@ const SIGNAL_POLL: Duration = Duration::from_millis(50);
 
 /// Runs `work` on a thread of its own with the GIL released, looking for Ctrl-C (Python's
 /// signal handlers) every [`SIGNAL_POLL`]: `KeyboardInterrupt` comes within a tenth of a second.
-/// `cancel` is then set: work that reads it (a sweep, between scenes) stops at the next scene;
-/// a scan, drag or whisk in flight runs to its end on its thread and its result is dropped (the
-/// march has no cancellation hook yet).
+/// `cancel` is then set: a scan, drag, whisk or fit whose configuration holds it stops at its
+/// next step (`StopReason::Cancelled`), a sweep at its next scene, and the result is dropped.
 fn interruptible<T: Send + 'static>(
     py: Python<'_>,
     cancel: Arc<AtomicBool>,
@@ -357,6 +357,13 @@ fn interruptible<T: Send + 'static>(
             }
         }
     }
+}
+
+/// A fresh cancellation flag set into `solver`: Ctrl-C stops the run at its next step.
+fn cancel_on(solver: &mut vibrissa::SolverConfig) -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    solver.cancel = vibrissa::Cancel::new(flag.clone());
+    flag
 }
 
 /// `mu0` as the program takes it: `inf` is no threshold (never slips).
@@ -527,7 +534,7 @@ fn scan<'py>(
     start: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let settings = settings(surface, contact, start)?;
-    let opts = scan_options(
+    let mut opts = scan_options(
         d_max,
         points,
         mu0,
@@ -539,7 +546,7 @@ fn scan<'py>(
     )?;
     let (rod, surface) = (rod.0.clone(), surface.s.clone());
     let units = rod.units();
-    let r = interruptible(py, Arc::default(), move || match &d {
+    let r = interruptible(py, cancel_on(&mut opts.solver), move || match &d {
         Some(ds) => vibrissa::scan_at(&rod, &surface, &opts, ds),
         None => vibrissa::scan(&rod, &surface, &opts),
     })?
@@ -567,9 +574,9 @@ fn infer<'py>(
     start: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let settings = settings(surface, contact, start)?;
-    let opts = scan_options(d_max, points, None, method, tol, segments, None, settings)?;
+    let mut opts = scan_options(d_max, points, None, method, tol, segments, None, settings)?;
     let (rod, surface) = (rod.0.clone(), surface.s.clone());
-    let r = interruptible(py, Arc::default(), move || {
+    let r = interruptible(py, cancel_on(&mut opts.solver), move || {
         vibrissa::infer(&rod, &surface, d0, &opts)
     })?
     .map_err(py_err)?;
@@ -619,17 +626,19 @@ fn sweep<'py>(
     contact: Option<&str>,
     start: Option<&str>,
 ) -> PyResult<Bound<'py, PyList>> {
+    let cancel = Arc::new(AtomicBool::new(false));
     let mut runs = Vec::with_capacity(scenes.len());
     for (rod, surface) in scenes {
         let settings = settings(&surface, contact, start)?;
-        let opts = scan_options(d_max, points, mu0, method, tol, segments, None, settings)?;
+        let mut opts = scan_options(d_max, points, mu0, method, tol, segments, None, settings)?;
+        // (a scene in flight stops at its next step too)
+        opts.solver.cancel = vibrissa::Cancel::new(cancel.clone());
         runs.push((rod.0, surface.s, opts));
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(workers(jobs, runs.len())?)
         .build()
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
-    let cancel = Arc::new(AtomicBool::new(false));
     let stop = cancel.clone();
     let results: Vec<(Option<Units>, Result<_, String>)> = interruptible(py, cancel, move || {
         pool.install(|| {
@@ -728,7 +737,7 @@ fn drag<'py>(
     energy_balance: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (contact, start) = settings(surface, contact, start)?;
-    let opts = DragOptions {
+    let mut opts = DragOptions {
         d_max,
         points,
         mu_s,
@@ -743,7 +752,7 @@ fn drag<'py>(
     opts.validate().map_err(py_err)?;
     let (rod, surface) = (rod.0.clone(), surface.s.clone());
     let units = rod.units();
-    let r = interruptible(py, Arc::default(), move || {
+    let r = interruptible(py, cancel_on(&mut opts.solver), move || {
         vibrissa::drag(&rod, &surface, &opts)
     })?
     .map_err(py_err)?;
@@ -781,7 +790,7 @@ fn whisk<'py>(
     segments: usize,
     shape_points: Option<usize>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let opts = WhiskOptions {
+    let mut opts = WhiskOptions {
         theta_max,
         points,
         mu0: threshold(mu0),
@@ -792,7 +801,7 @@ fn whisk<'py>(
     opts.validate().map_err(py_err)?;
     let rod = rod.0.clone();
     let units = rod.units();
-    let r = interruptible(py, Arc::default(), move || {
+    let r = interruptible(py, cancel_on(&mut opts.solver), move || {
         vibrissa::whisk(&rod, [peg.0, peg.1], &opts)
     })?
     .map_err(py_err)?;
@@ -849,7 +858,7 @@ fn solve_peg<'py>(
     vibrissa::limits::THETA
         .check("theta", theta)
         .map_err(py_err)?;
-    let opts = WhiskOptions {
+    let mut opts = WhiskOptions {
         mu0: threshold(mu0),
         solver: config(method, tol, segments, StartKind::default())?,
         keep_shapes: Some(shape_points),
@@ -859,7 +868,7 @@ fn solve_peg<'py>(
     opts.validate().map_err(py_err)?;
     let rod = rod.0.clone();
     let units = rod.units();
-    let (p, shape) = interruptible(py, Arc::default(), move || {
+    let (p, shape) = interruptible(py, cancel_on(&mut opts.solver), move || {
         vibrissa::peg::solve_peg_shape(&rod, [peg.0, peg.1], theta, &opts)
     })?
     .map_err(py_err)?;
@@ -971,7 +980,7 @@ fn fit<'py>(
     let trace = Trace::from_csv(csv, use_sig).map_err(py_err)?;
     let (contact, start) = settings(surface, contact, start)?;
     let scene = scene_of(&rod.0, surface, contact, start);
-    let opts = FitOptions {
+    let mut opts = FitOptions {
         fit_eta,
         fit_angle,
         guess,
@@ -992,7 +1001,7 @@ fn fit<'py>(
         })
         .map(|(_, s)| s.name())
         .collect();
-    let f = interruptible(py, Arc::default(), move || {
+    let f = interruptible(py, cancel_on(&mut opts.solver), move || {
         vibrissa::fit(&scene, &trace, &opts)
     })?
     .map_err(py_err)?;

@@ -107,6 +107,33 @@ pub struct SolverConfig {
     /// loaded at its tip) from its rest shape (default), or the state connected to the straight
     /// uniform rod pressed the same way (the homotopy in the rod's deviations).
     pub start: StartKind,
+    /// A flag another thread may set to stop the run at its next step (a scan, drag or whisk
+    /// then ends with [`crate::StopReason::Cancelled`], its rows so far kept). Default: none.
+    #[serde(skip)]
+    pub cancel: Cancel,
+}
+
+/// A cancellation flag shared with another thread (Ctrl-C in Python): not part of a
+/// configuration's value (any two compare equal; never serialized).
+#[derive(Clone, Debug, Default)]
+pub struct Cancel(Option<std::sync::Arc<std::sync::atomic::AtomicBool>>);
+
+impl Cancel {
+    /// A run stops at its next step once `flag` is set.
+    pub fn new(flag: std::sync::Arc<std::sync::atomic::AtomicBool>) -> Self {
+        Cancel(Some(flag))
+    }
+
+    /// Whether the run was asked to stop.
+    pub fn is_set(&self) -> bool {
+        (self.0.as_ref()).is_some_and(|f| f.load(std::sync::atomic::Ordering::Relaxed))
+    }
+}
+
+impl PartialEq for Cancel {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
 }
 
 impl Default for SolverConfig {
@@ -117,6 +144,7 @@ impl Default for SolverConfig {
             segments: SolverConfig::DEFAULT_SEGMENTS,
             rk4_steps: None,
             start: StartKind::Pressed,
+            cancel: Cancel::default(),
         }
     }
 }

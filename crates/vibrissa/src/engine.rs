@@ -68,6 +68,7 @@ impl<P: Profile + 'static> Begin<'_, P> {
         let mut st = OwnStepper {
             chain: self.chain,
             env: self.env,
+            cancel: self.solver.cancel.clone(),
         };
         let p = match self.first {
             FirstPoint::Correct => st.first(self.lam, &self.u),

@@ -265,6 +265,7 @@ pub(crate) struct GenericStepper<P: Profile> {
     pub chain: Chain<P>,
     /// The method's last solution.
     last: Option<Solution>,
+    cancel: crate::config::Cancel,
 }
 
 // the solver's own error, passed through unboxed as crate `bvp` returns it
@@ -295,6 +296,7 @@ impl<P: Profile> GenericStepper<P> {
                 family,
             ),
             last: None,
+            cancel: cfg.cancel.clone(),
         })
     }
 
@@ -663,6 +665,10 @@ impl<P: Profile> Stepper for GenericStepper<P> {
 
     fn method_solution(&self) -> Option<Solution> {
         self.own_solution()
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.is_set()
     }
 
     fn corrector_tol(&self) -> f64 {

@@ -116,6 +116,7 @@ fn curve_start<P: Profile>(
                 ..Ground::default()
             },
         },
+        cancel: Default::default(),
     };
     let fail = |what: &str, e: &dyn std::fmt::Display| VibrissaError::NoStart {
         reason: format!("growing the surface profile from its straight trend: {what}: {e}"),

@@ -109,6 +109,7 @@ mod stepper;
 pub mod surface;
 mod watch;
 
+pub use config::Cancel;
 pub use drag::{drag, DragOptions, DragResult};
 pub use error::VibrissaError;
 pub use fit::{fit, FitOptions, FitResult, Trace, TraceSlip};

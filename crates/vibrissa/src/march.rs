@@ -251,6 +251,13 @@ impl<P: Profile> Run<'_, '_, P> {
             }
             return end(StopReason::DMax);
         }
+        if self.stepper.cancelled() {
+            self.range.close(RangeEnd::SolverFailure);
+            if let Err(fail) = self.emit(&w.hist, lam) {
+                return end(fail);
+            }
+            return end(StopReason::Cancelled { d: lam });
+        }
         w.steps += 1;
         if w.steps > w.max_steps {
             self.range.close(RangeEnd::SolverFailure);

@@ -18,6 +18,7 @@ use nalgebra::DVector;
 pub(crate) struct OwnStepper<P: Profile> {
     pub chain: Chain<P>,
     pub env: Env,
+    pub cancel: crate::config::Cancel,
 }
 
 impl<P: Profile> OwnStepper<P> {
@@ -127,6 +128,10 @@ impl<P: Profile> Stepper for OwnStepper<P> {
 
     fn foot_x(&self, lam: f64) -> f64 {
         self.chain.family.pose(lam).0.xf
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.is_set()
     }
 
     fn corrector_tol(&self) -> f64 {

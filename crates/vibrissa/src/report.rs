@@ -346,6 +346,11 @@ pub enum StopReason {
         /// Which contacts, and which condition fails.
         message: String,
     },
+    /// The run was cancelled (its configuration's [`crate::Cancel`] set) at `d`.
+    Cancelled {
+        /// Last value of the parameter reached.
+        d: f64,
+    },
     /// The solver failed.
     SolverFailure {
         /// Last displacement reached.
@@ -357,7 +362,7 @@ pub enum StopReason {
 
 impl StopReason {
     /// The reason's name in CSV and JSON (`d_max`, `slip`, `lift_off`, `penetration`,
-    /// `fold_in_d`, `slip_off`, `contact_change`, `jam`, `solver_failure`).
+    /// `fold_in_d`, `slip_off`, `contact_change`, `jam`, `cancelled`, `solver_failure`).
     pub fn name(&self) -> &'static str {
         match self {
             StopReason::DMax => "d_max",
@@ -368,6 +373,7 @@ impl StopReason {
             StopReason::SlipOff { .. } => "slip_off",
             StopReason::ContactChange { .. } => "contact_change",
             StopReason::Jam { .. } => "jam",
+            StopReason::Cancelled { .. } => "cancelled",
             StopReason::SolverFailure { .. } => "solver_failure",
         }
     }
@@ -383,6 +389,7 @@ impl StopReason {
             | StopReason::SlipOff { d }
             | StopReason::ContactChange { d, .. }
             | StopReason::Jam { d, .. }
+            | StopReason::Cancelled { d }
             | StopReason::SolverFailure { d, .. } => Some(*d),
         }
     }
@@ -406,6 +413,7 @@ impl StopReason {
                 format!("contact change at {p} = {d}: {message}")
             }
             StopReason::Jam { d, message } => format!("jam at {p} = {d}: {message}"),
+            StopReason::Cancelled { d } => format!("cancelled at {p} = {d}"),
             StopReason::SolverFailure { d, message } => {
                 format!("solver failure after {p} = {d}: {message}")
             }

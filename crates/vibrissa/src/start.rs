@@ -304,7 +304,11 @@ pub(crate) fn press<P: Profile>(
         target: Some(goal),
         ground: Default::default(),
     };
-    let mut st = OwnStepper { chain, env };
+    let mut st = OwnStepper {
+        chain,
+        env,
+        cancel: Default::default(),
+    };
     let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
         reason: format!("the first point of the press: {e}"),
     })?;
@@ -635,6 +639,7 @@ pub(crate) fn scan_start<P: Profile>(
                     target: None,
                     ground: Default::default(),
                 },
+                cancel: Default::default(),
             };
             // the shooter's paths hold the point at t = 1 (the last correction)
             let pt = st.point(0.0, end).map_err(|e| VibrissaError::NoStart {

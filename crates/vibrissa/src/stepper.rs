@@ -177,6 +177,8 @@ pub(crate) trait Stepper {
     }
     /// The Newton tolerance of the fold passage's corrections.
     fn corrector_tol(&self) -> f64;
+    /// Whether the run was asked to stop (its configuration's [`crate::Cancel`]).
+    fn cancelled(&self) -> bool;
     /// The newest point as the start of a pseudo-arclength path.
     fn arc_start(&mut self, last: &Pt, tol: f64) -> Result<ArcPoint, ShotFailure>;
     /// The point of the branch on the hyperplane `normal·(v − pred) = 0` of `v = (u, λ)`, from

@@ -286,6 +286,41 @@ fn a_slip_without_a_quasi_static_continuation_jams() {
     assert_eq!(r.stop.name(), "jam");
 }
 
+/// A run asked to stop (its configuration's `Cancel` set, as Python's Ctrl-C does) ends at its
+/// next step with `StopReason::Cancelled`, the rows before it kept; with the flag clear the same
+/// runs are unchanged (the flag is no part of the configuration's value).
+#[test]
+fn a_cancelled_run_stops_at_its_next_step() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Arc;
+    let flag = Arc::new(AtomicBool::new(true));
+    let solver = SolverConfig {
+        cancel: vibrissa::Cancel::new(flag.clone()),
+        ..SolverConfig::default()
+    };
+    let (rod, surface) = Scene::default().parts().unwrap();
+    let so = ScanOptions {
+        solver: solver.clone(),
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &so).unwrap();
+    assert_eq!(r.stop, StopReason::Cancelled { d: 0.0 });
+    assert_eq!(r.stop.name(), "cancelled");
+    let o = DragOptions {
+        solver: solver.clone(),
+        ..uniform(0.5, 0.3, 0.1)
+    };
+    let d = drag(&rod, &surface, &o).unwrap();
+    assert!(matches!(d.stop, StopReason::Cancelled { .. }), "{}", d.stop);
+    assert!(d.slips.is_empty());
+    flag.store(false, Ordering::Relaxed);
+    assert_eq!(o.solver, SolverConfig::default());
+    let free = drag(&rod, &surface, &o).unwrap();
+    let plain = run(&Scene::default(), &uniform(0.5, 0.3, 0.1));
+    assert_eq!(free.stop, StopReason::DMax);
+    assert_eq!(free.rows, plain.rows);
+}
+
 /// Multiple shooting and both collocations run the drag's stick and slip states: the same slips
 /// as the rod's own shooter.
 #[test]

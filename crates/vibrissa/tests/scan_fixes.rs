@@ -37,6 +37,7 @@ fn check_points(r: &ScanResult, o: &ScanOptions) {
         StopReason::FoldInD { d } => (*d, Some(Event::FoldInD)),
         StopReason::SlipOff { d } => (*d, Some(Event::SlipOff)),
         StopReason::ContactChange { d, .. } | StopReason::Jam { d, .. } => (*d, None),
+        StopReason::Cancelled { d } => (*d, None),
         StopReason::SolverFailure { d, .. } => (*d - 1e-300, None),
     };
     let grid_points = r.points.iter().filter(|p| p.event.is_none()).count();
