@@ -199,7 +199,7 @@ mu = F.t/N = tan(beta - alpha) is the signed friction ratio the contact must sup
 N = f cos(alpha - beta) >= 0 the normal force; mu > 0 holds the tip back against the drag), the tip slips where |mu| \
 reaches mu0 and lifts off where N reaches 0. m_base = m(0) is the internal moment at the foot (the paper's clamp moment is m0 = -m_base).\n\n\
 Exit codes: 0 success (also when the reader closes stdout early), 1 solver or I/O failure, 2 bad input. \
-Output files appear only when the whole command succeeded (see README, \"Output files\")."
+Output files appear only when the whole command succeeded (see docs/reference.md, \"Exit codes, errors and output files\")."
 )]
 pub struct Cli {
     /// The command to run.
@@ -257,7 +257,7 @@ pub struct PhysicalArgs {
 /// Scene flags of solve, scan and infer; they override the values of `--scene`.
 #[derive(Args, Debug, Clone, Default)]
 pub struct SceneArgs {
-    /// Scene file (TOML, the fields of vibrissa::Scene; see README "Scene files"; "-": stdin; read once, so a pipe or FIFO works). Flags override its values.
+    /// Scene file (TOML, the fields of vibrissa::Scene; see docs/reference.md, "Scene files"; "-": stdin; read once, so a pipe or FIFO works). Flags override its values.
     #[arg(long, value_name = "FILE.toml", help_heading = "Scene")]
     pub scene: Option<PathBuf>,
     /// Conical taper: tip/base radius ratio RHO in [0.01, 1]; b(s) = (1 - (1 - RHO) s)^-4. [default: 1, uniform]
@@ -600,7 +600,7 @@ pub struct ModesArgs {
 /// `vibrissa drag`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "The slip is quasi-static (docs/model.md, \"The drag\"): at |mu| = mu_s the tip slides, the foot held, to the nearest equilibrium where kinetic friction mu_k holds it, then sticks there. Surfaces other than a line and friction textures come from the scene file's [surface] and [friction] tables (README, \"Scene files\"); the --corrugation flags set a sinusoidal [surface] (or a sum of sines), the --grating flags a grating, --surface-profile a measured profile."
+    after_help = "The slip is quasi-static (docs/model.md, \"The drag\"): at |mu| = mu_s the tip slides, the foot held, to the nearest equilibrium where kinetic friction mu_k holds it, then sticks there. Surfaces other than a line and friction textures come from the scene file's [surface] and [friction] tables (docs/reference.md, \"Scene files\"); the --corrugation flags set a sinusoidal [surface] (or a sum of sines), the --grating flags a grating, --surface-profile a measured profile."
 )]
 pub struct DragArgs {
     /// Surface height eta (rod lengths), in (eta_, 1) (see scan --help). [default: scene file's, else 0.75]
@@ -756,7 +756,7 @@ pub struct SweepArgs {
     #[arg(long)]
     pub timing: bool,
     /// Output CSV file ("-": stdout). A file gets a journal, FILE.journal, with the finished rows:
-    /// after a kill the same command resumes the sweep (see README, "A sweep's journal").
+    /// after a kill the same command resumes the sweep (see docs/reference.md, "A sweep's journal").
     /// [default: stdout]
     #[arg(long, value_name = "FILE.csv")]
     pub out: Option<PathBuf>,

@@ -541,7 +541,7 @@ fn help_documents_every_flag() {
     }
 }
 
-/// Statements of `--help` that README relies on.
+/// Statements of `--help` that README.md and docs/reference.md rely on.
 #[test]
 fn help_states_ranges_and_requirements() {
     let h = ok(&["solve", "--help"]).stdout;

@@ -285,7 +285,7 @@ fn mu0_d_max_and_points_are_axes() {
             "/0.1/6"
         ]
     );
-    // mu0 = 0.3 slips before d = 0.021, where 0.5 does (README), inside both ranges
+    // mu0 = 0.3 slips before d = 0.021, where 0.5 does (docs/reference.md, scan), inside both ranges
     assert!(rows[..4].iter().all(|r| cell(r, "stop_reason") == "slip"));
     assert!(rows[4..].iter().all(|r| cell(r, "stop_reason") == "d_max"));
     for (args, want) in [

@@ -1,7 +1,9 @@
-//! README.md's console examples are run and compared with what they show, so they cannot drift,
-//! and the SLURM example line of the sweep section runs as written.
+//! The console examples of README.md and of the command reference, docs/reference.md, are run
+//! and compared with what they show, so they cannot drift, and the SLURM example line of the
+//! sweep section (docs/reference.md) runs as written. Every other markdown file under docs/ is
+//! checked to have no console block, so an example moved there is not left unchecked.
 //!
-//! Every ```` ```console ```` block of README.md is a session: lines starting with `$ ` are
+//! Every ```` ```console ```` block of these documents is a session: lines starting with `$ ` are
 //! commands, the lines up to the next command are the output the block shows. Each block runs in
 //! a fresh empty directory (files one command writes are there for the next). Supported commands:
 //! `vibrissa ARGS` (the built binary; arguments split at spaces, no quoting) and `cat FILE`.
@@ -17,24 +19,29 @@
 //!
 //! After a deliberate change of the program's output, `README_BLESS=1 cargo test --test readme`
 //! rewrites the shown output of every example with what the program prints (a block ending in
-//! `...` keeps as many lines as it showed) instead of comparing; review the diff of README.md.
+//! `...` keeps as many lines as it showed) instead of comparing; review the diff of the documents.
 
 mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
+/// The documents whose console blocks are run, each with the least number of blocks and of
+/// commands it must hold (so that a parser finding nothing, or a lost block, fails).
+const DOCUMENTS: [(&str, usize, usize); 2] = [("README.md", 5, 8), ("docs/reference.md", 9, 18)];
+
 /// One `$ command` of a console block and the output lines shown under it.
 #[derive(Debug)]
 struct Example {
-    /// line number of the command in README.md (1-based)
+    /// the document (path relative to the repository root) and the command's line in it (1-based)
+    doc: String,
     line: usize,
     command: String,
     shown: Vec<String>,
 }
 
-/// The console blocks of a markdown text, each a list of examples.
-fn console_blocks(md: &str) -> Vec<Vec<Example>> {
+/// The console blocks of the markdown text of document `doc`, each a list of examples.
+fn console_blocks(doc: &str, md: &str) -> Vec<Vec<Example>> {
     let mut blocks = Vec::new();
     let mut cur: Option<Vec<Example>> = None;
     for (i, l) in md.lines().enumerate() {
@@ -46,6 +53,7 @@ fn console_blocks(md: &str) -> Vec<Vec<Example>> {
             Some(b) => {
                 if let Some(c) = t.strip_prefix("$ ") {
                     b.push(Example {
+                        doc: doc.to_string(),
                         line: i + 1,
                         command: c.trim().to_string(),
                         shown: Vec::new(),
@@ -53,13 +61,13 @@ fn console_blocks(md: &str) -> Vec<Vec<Example>> {
                 } else {
                     let e = b
                         .last_mut()
-                        .unwrap_or_else(|| panic!("README.md:{}: output before any `$ `", i + 1));
+                        .unwrap_or_else(|| panic!("{doc}:{}: output before any `$ `", i + 1));
                     e.shown.push(t.to_string());
                 }
             }
         }
     }
-    assert!(cur.is_none(), "README.md: unterminated console block");
+    assert!(cur.is_none(), "{doc}: unterminated console block");
     blocks
 }
 
@@ -67,7 +75,8 @@ fn console_blocks(md: &str) -> Vec<Vec<Example>> {
 fn run(dir: &Path, ex: &Example) -> String {
     assert!(
         !ex.command.contains(['"', '\'', '|', '>', '<', '&', '$']),
-        "README.md:{}: quoting, pipes and redirections are not supported here: {}",
+        "{}:{}: quoting, pipes and redirections are not supported here: {}",
+        ex.doc,
         ex.line,
         ex.command
     );
@@ -88,7 +97,8 @@ fn run(dir: &Path, ex: &Example) -> String {
             std::fs::remove_file(&out).unwrap();
             assert!(
                 status.code().is_some(),
-                "README.md:{}: killed by a signal",
+                "{}:{}: killed by a signal",
+                ex.doc,
                 ex.line
             );
             text
@@ -97,12 +107,12 @@ fn run(dir: &Path, ex: &Example) -> String {
             .iter()
             .map(|f| {
                 std::fs::read_to_string(dir.join(f))
-                    .unwrap_or_else(|e| panic!("README.md:{}: cat {f}: {e}", ex.line))
+                    .unwrap_or_else(|e| panic!("{}:{}: cat {f}: {e}", ex.doc, ex.line))
             })
             .collect(),
         w => panic!(
-            "README.md:{}: unsupported command `{w}` in a console block (vibrissa, cat)",
-            ex.line
+            "{}:{}: unsupported command `{w}` in a console block (vibrissa, cat)",
+            ex.doc, ex.line
         ),
     }
 }
@@ -164,77 +174,118 @@ fn block_matches(shown: &[String], got: &[&str]) -> bool {
     }
 }
 
-fn readme() -> String {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The text of a document, by its path relative to the repository root.
+fn document(doc: &str) -> String {
+    let p = root().join(doc);
     std::fs::read_to_string(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
-fn block_dir(k: usize) -> PathBuf {
+fn block_dir(d: usize, k: usize) -> PathBuf {
     let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("readme-{}-{k}", std::process::id()));
+        .join(format!("readme-{}-{d}-{k}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
 }
 
 #[test]
-fn readme_console_examples_show_what_the_program_prints() {
-    let md = readme();
-    let blocks = console_blocks(&md);
-    assert!(
-        blocks.len() >= 5,
-        "README.md has {} console blocks",
-        blocks.len()
-    );
+fn console_examples_show_what_the_program_prints() {
     let bless = std::env::var("README_BLESS").is_ok_and(|v| v == "1");
-    let mut lines: Vec<String> = md.lines().map(String::from).collect();
     let mut failures = Vec::new();
-    // (line of the command, shown lines, printed lines) for README_BLESS
-    let mut blessed: Vec<(usize, usize, Vec<String>)> = Vec::new();
-    let mut ran = 0;
-    for (k, block) in blocks.iter().enumerate() {
-        let dir = block_dir(k);
-        for ex in block {
-            let got = run(&dir, ex);
-            let got_lines: Vec<&str> = got.lines().collect();
-            ran += 1;
-            if bless {
-                let mut new: Vec<String> = got_lines.iter().map(|l| l.to_string()).collect();
-                if ex.shown.last().is_some_and(|l| l.trim() == "...") {
-                    new.truncate(ex.shown.len() - 1);
-                    new.push("...".into());
+    for (d, (doc, min_blocks, min_commands)) in DOCUMENTS.into_iter().enumerate() {
+        let md = document(doc);
+        let blocks = console_blocks(doc, &md);
+        assert!(
+            blocks.len() >= min_blocks,
+            "{doc} has {} console blocks, expected at least {min_blocks}",
+            blocks.len()
+        );
+        let mut lines: Vec<String> = md.lines().map(String::from).collect();
+        // (line of the command, shown lines, printed lines) for README_BLESS
+        let mut blessed: Vec<(usize, usize, Vec<String>)> = Vec::new();
+        let mut ran = 0;
+        for (k, block) in blocks.iter().enumerate() {
+            let dir = block_dir(d, k);
+            for ex in block {
+                let got = run(&dir, ex);
+                let got_lines: Vec<&str> = got.lines().collect();
+                ran += 1;
+                if bless {
+                    let mut new: Vec<String> = got_lines.iter().map(|l| l.to_string()).collect();
+                    if ex.shown.last().is_some_and(|l| l.trim() == "...") {
+                        new.truncate(ex.shown.len() - 1);
+                        new.push("...".into());
+                    }
+                    blessed.push((ex.line, ex.shown.len(), new));
+                    continue;
                 }
-                blessed.push((ex.line, ex.shown.len(), new));
-                continue;
+                if !block_matches(&ex.shown, &got_lines) {
+                    failures.push(format!(
+                        "{doc}:{}: $ {}\n--- shown\n{}\n--- printed\n{}",
+                        ex.line,
+                        ex.command,
+                        ex.shown.join("\n"),
+                        got.trim_end()
+                    ));
+                }
             }
-            if !block_matches(&ex.shown, &got_lines) {
-                failures.push(format!(
-                    "README.md:{}: $ {}\n--- shown\n{}\n--- printed\n{}",
-                    ex.line,
-                    ex.command,
-                    ex.shown.join("\n"),
-                    got.trim_end()
-                ));
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+        assert!(
+            ran >= min_commands,
+            "only {ran} commands found in {doc}, expected at least {min_commands}"
+        );
+        if bless {
+            // from the last example, so that earlier line numbers stay valid
+            for (line, n, new) in blessed.into_iter().rev() {
+                lines.splice(line..line + n, new);
             }
+            std::fs::write(root().join(doc), lines.join("\n") + "\n").unwrap();
         }
-        let _ = std::fs::remove_dir_all(&dir);
-    }
-    assert!(ran >= 8, "only {ran} README commands found");
-    if bless {
-        // from the last example, so that earlier line numbers stay valid
-        for (line, n, new) in blessed.into_iter().rev() {
-            lines.splice(line..line + n, new);
-        }
-        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("README.md");
-        std::fs::write(&p, lines.join("\n") + "\n").unwrap();
-        return;
     }
     assert!(
         failures.is_empty(),
-        "{} README example(s) disagree with the program:\n\n{}",
+        "{} console example(s) disagree with the program:\n\n{}",
         failures.len(),
         failures.join("\n\n")
     );
+}
+
+/// Every markdown file under docs/ with a console block is one of `DOCUMENTS`: an example moved
+/// into another document would otherwise never run.
+#[test]
+fn every_console_block_is_checked() {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|x| x == "md") {
+                out.push(p);
+            }
+        }
+    }
+    let mut files = Vec::new();
+    walk(&root().join("docs"), &mut files);
+    assert!(files.len() >= 4, "docs/ has {} markdown files", files.len());
+    for f in files {
+        let rel = f
+            .strip_prefix(root())
+            .unwrap()
+            .to_str()
+            .unwrap()
+            .replace('\\', "/");
+        let text = std::fs::read_to_string(&f).unwrap();
+        let n = console_blocks(&rel, &text).len();
+        assert!(
+            n == 0 || DOCUMENTS.iter().any(|(doc, _, _)| *doc == rel),
+            "{rel} has {n} console block(s) that tests/readme.rs does not run: add it to DOCUMENTS"
+        );
+    }
 }
 
 /// The matcher can fail: changed values, words, row counts and timings are told apart.
@@ -268,7 +319,7 @@ fn the_comparison_tells_changes_from_noise() {
     assert!(!block_matches(&exact, &["a"]));
     // blocks and commands are found
     let md = "text\n```console\n$ vibrissa x\nout 1\n$ cat f\nrow\n```\n```sh\n$ no\n```\n";
-    let b = console_blocks(md);
+    let b = console_blocks("x.md", md);
     assert_eq!(b.len(), 1);
     assert_eq!(b[0].len(), 2);
     assert_eq!(b[0][0].command, "vibrissa x");
@@ -276,13 +327,13 @@ fn the_comparison_tells_changes_from_noise() {
     assert_eq!(b[0][1].line, 5);
 }
 
-/// The SLURM array example of the sweep section, run as written for one array task (task 25
+/// The SLURM array example of the sweep section (docs/reference.md), run as written for one array task (task 25
 /// of 50: the cheapest in a debug build, 0.6 s against 8 s for task 50), with the variables
 /// SLURM would set. Its grid values are exact decimals.
 #[test]
-fn readme_slurm_line_runs_as_written() {
-    let readme = readme();
-    let block = readme
+fn slurm_line_runs_as_written() {
+    let reference = document("docs/reference.md");
+    let block = reference
         .split("```sh")
         .find(|b| b.contains("#SBATCH"))
         .expect("the SLURM example");

@@ -3,7 +3,8 @@
 The model and its solvers are the Rust library ``vibrissa`` of this repository (the same code
 as the ``vibrissa`` program, so the numbers are the program's to the last digit). Units are
 normalized: length L (rod length), force EI/L^2, moment EI/L (EI at the foot), angles in
-radians; see the repository's README for the model, the columns and their signs.
+radians; see the repository's docs/model.md for the model and docs/reference.md for the
+columns and their signs.
 
 Example::
 

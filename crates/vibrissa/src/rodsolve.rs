@@ -182,11 +182,11 @@ pub(crate) fn solve_damped<C: Curve + ?Sized>(
 
 /// Whether the residuals `rns` of a Newton iteration towards `tol` have stalled: the last
 /// `STALL` of them did not halve the best before them, which is still far above `tol`. Beyond
-/// a fold (no solution) the residual wanders at a level (1e-7 to 1e-2 on the README's grid)
-/// without falling, where a converging iteration (quadratic, or a chord iteration whose Jacobian
-/// is renewed when it slows) falls by far more. Near `tol` the iteration is left its
-/// iterations: where a contact's equations become singular (a side contact letting go) it
-/// creeps at 1e-10 and still gets through.
+/// a fold (no solution) the residual wanders at a level (1e-7 to 1e-2 on the cluster grid of
+/// docs/reference.md) without falling, where a converging iteration (quadratic, or a chord
+/// iteration whose Jacobian is renewed when it slows) falls by far more. Near `tol` the
+/// iteration is left its iterations: where a contact's equations become singular (a side
+/// contact letting go) it creeps at 1e-10 and still gets through.
 fn stalled(rns: &[f64], tol: f64) -> bool {
     let k = rns.len();
     if k <= STALL {
@@ -315,7 +315,7 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
 mod tests {
     use super::stalled;
 
-    /// Residual sequences of the corrector (tol 1e-12) on the README grid's slowest scene
+    /// Residual sequences of the corrector (tol 1e-12) on the cluster grid's slowest scene
     /// (η 0.5, taper 0.05, κ0 = 0, a fold in d at 0.46983) and on the side contact letting go of
     /// `tests/scan_fixes.rs` (η 0.6, taper 0.1, β −0.3).
     #[test]
