@@ -206,9 +206,27 @@ def test_sweep_has_the_programs_columns_and_units():
     assert math.isnan(c["f0_N"][1])  # the second scene has no physical dimensions
 
 
-def test_ctrl_c_interrupts_a_sweep_within_a_second():
+@pytest.fixture
+def sigint():
+    """Python's own SIGINT handler for the test: a process started with SIGINT ignored (a
+    background job of a non-interactive shell) would otherwise never see the interrupt."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
+def idle_after_interrupt():
+    """The CPU the process spends in the half second after the interrupt: the cancelled work
+    stops at its next step instead of finishing on its threads."""
+    t0 = time.process_time()
+    time.sleep(0.5)
+    return time.process_time() - t0
+
+
+def test_ctrl_c_interrupts_a_sweep_within_a_second(sigint):
     """SIGINT half a second into a sweep that would take far longer: KeyboardInterrupt comes
-    within a second of it (the scenes in flight finish on their threads, the rest never start)."""
+    within a second of it, the scenes in flight stop at their next step and the rest never
+    start."""
     scenes = vibrissa.grid(eta=[0.6 + 0.001 * i for i in range(300)], taper=[0.3, 0.5, 1.0])
     sent = []
 
@@ -222,6 +240,8 @@ def test_ctrl_c_interrupts_a_sweep_within_a_second():
         vibrissa.sweep(scenes, points=201, jobs=2)
     late = time.perf_counter() - sent[0]
     assert late < 1.0, f"KeyboardInterrupt {late:.2f} s after Ctrl-C"
+    cpu = idle_after_interrupt()
+    assert cpu < 0.05, f"{cpu:.3f} s of CPU after the interrupt"
 
 
 def interrupted_within_a_second(run, after=0.3):
@@ -242,11 +262,13 @@ def interrupted_within_a_second(run, after=0.3):
     assert not done, "the run ended before the interrupt"
     late = time.perf_counter() - sent[0]
     assert late < 1.0, f"KeyboardInterrupt {late:.2f} s after Ctrl-C"
+    cpu = idle_after_interrupt()
+    assert cpu < 0.05, f"{cpu:.3f} s of CPU after the interrupt"
 
 
-def test_ctrl_c_interrupts_a_scan_and_a_drag_within_a_second():
+def test_ctrl_c_interrupts_a_scan_and_a_drag_within_a_second(sigint):
     """One long scan (60 000 points, seconds of work) and one long drag: Ctrl-C is honoured
-    within a second (the march finishes on its own thread; its result is dropped)."""
+    within a second, and the march stops at its next step (its result is dropped)."""
     rod, surface = vibrissa.Rod(taper=0.3), vibrissa.Surface(0.9)
     interrupted_within_a_second(
         lambda: vibrissa.scan(rod, surface, points=60000, d_max=1.0)
