@@ -349,8 +349,8 @@ impl Friction {
 }
 
 /// Drags the foot from `d = 0` to `opts.d_max` across `surface`, through every slip. Errors only
-/// for invalid input or when it cannot start; events that end it (lift-off, a fold, a side
-/// reaching its slip limit, a solver failure) end it with their [`StopReason`].
+/// for invalid input or when it cannot start; events that end it (lift-off, a fold, a jam of
+/// the slip, a solver failure, a cancellation) end it with their [`StopReason`].
 pub fn drag(rod: &Rod, surface: &Surface, opts: &DragOptions) -> Result<DragResult, VibrissaError> {
     opts.validate()?;
     let fr = Friction {
