@@ -70,6 +70,11 @@ impl Mode {
     }
 }
 
+/// Whether a contact slides on the surface with a given friction ratio (a passive slider).
+pub(crate) fn is_slider(c: &Contact) -> bool {
+    matches!(c.mode, Mode::Sliding(_)) && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
+}
+
 /// One contact.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Contact {
@@ -652,7 +657,7 @@ impl<P: Profile> Chain<P> {
             let (ps, _, _) = self.sh.path(k);
             let ps = ps.to_vec();
             for w in ps.windows(2) {
-                total += crate::surface::gauss10(w[0], w[1], |s| {
+                total += crate::gauss::gauss10(w[0], w[1], |s| {
                     let m = self.sh.state_at(k, s)[3];
                     0.5 * self.sh.profile.b(s) * m * m
                 });

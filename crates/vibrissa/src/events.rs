@@ -127,7 +127,7 @@ impl Crossing {
             Crossing::Halt(j) => {
                 // the friction opposes the slip: T > 0 for a slip towards +x
                 let c = w.contacts[j];
-                -c.slide_dir * c.slip
+                -c.slide.dir * c.slide.slip
             }
             Crossing::Stick(j) => {
                 // signed along the slip: it rises through zero once where μk holds the tip
@@ -209,10 +209,7 @@ pub(crate) fn held(set: &ContactSet, j: usize, pe: &Pt, xf: f64) -> ContactSet {
     ns
 }
 
-/// Whether a contact slides on the surface with a given friction ratio (a passive slider).
-pub(crate) fn is_slider(c: &Contact) -> bool {
-    matches!(c.mode, Mode::Sliding(_)) && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
-}
+pub(crate) use crate::chain::is_slider;
 
 /// An event already true at the start.
 pub(crate) fn start_event(env: &Env, set: &ContactSet, w: &Watch) -> Option<Event> {

@@ -1,4 +1,4 @@
-//! Quadrature of the surface profiles: 10-point Gauss–Legendre on a panel.
+//! Quadrature of the surface profiles and the rod's energy: 10-point Gauss–Legendre on a panel.
 
 const GL_X: [f64; 10] = [
     -0.973_906_528_517_171_7,

@@ -63,7 +63,8 @@
 // error → limits → config, rod → scene; equations → shooter → rodsolve → arclength → chain;
 // sampling → shape → report → watch → stepper (the step contract) → events, fold, record → own,
 // generic → march (the driver) → engine (the one way in) → start, ground → scan, drag, peg, solve;
-// the surface's shapes: gauss → grating, sines; limits → measured → surface → chain.
+// the surface's shapes: gauss (quadrature) → grating, sines, surface, chain; limits → measured →
+// surface → chain.
 mod analytic;
 mod arclength;
 mod chain;

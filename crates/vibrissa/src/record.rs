@@ -146,8 +146,8 @@ fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) 
             continue;
         }
         let (ca, cb) = (&a.0.w.contacts[k], &b.0.w.contacts[k]);
-        let hq = cb.q - ca.q;
-        let end = |c: &crate::watch::ContactForce| (c.normal, c.dnormal / c.slip);
+        let hq = cb.slide.q - ca.slide.q;
+        let end = |c: &crate::watch::ContactForce| (c.normal, c.slide.dnormal / c.slide.slip);
         out[1] += ratio * corrected(end(ca), end(cb), hq);
     }
     out

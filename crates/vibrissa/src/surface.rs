@@ -179,41 +179,6 @@ impl Default for FrictionProfile {
 /// Largest slope `|h'|` of a profile (45°, as the straight surface's inclination).
 pub const MAX_PROFILE_SLOPE: f64 = 1.0;
 
-const GL_X: [f64; 10] = [
-    -0.973_906_528_517_171_7,
-    -0.865_063_366_688_984_5,
-    -0.679_409_568_299_024_4,
-    -0.433_395_394_129_247_2,
-    -0.148_874_338_981_631_2,
-    0.148_874_338_981_631_2,
-    0.433_395_394_129_247_2,
-    0.679_409_568_299_024_4,
-    0.865_063_366_688_984_5,
-    0.973_906_528_517_171_7,
-];
-const GL_W: [f64; 10] = [
-    0.066_671_344_308_688_14,
-    0.149_451_349_150_580_6,
-    0.219_086_362_515_982_04,
-    0.269_266_719_309_996_35,
-    0.295_524_224_714_752_87,
-    0.295_524_224_714_752_87,
-    0.269_266_719_309_996_35,
-    0.219_086_362_515_982_04,
-    0.149_451_349_150_580_6,
-    0.066_671_344_308_688_14,
-];
-
-/// 10-point Gauss–Legendre of `f` on `[a, b]`.
-pub(crate) fn gauss10(a: f64, b: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let (c, r) = (0.5 * (a + b), 0.5 * (b - a));
-    r * GL_X
-        .iter()
-        .zip(&GL_W)
-        .map(|(x, w)| w * f(c + r * x))
-        .sum::<f64>()
-}
-
 #[derive(Clone, Debug, PartialEq, Serialize)]
 enum Shape {
     Sine {
@@ -543,7 +508,7 @@ impl Height {
     fn set_panels(&mut self, p: Vec<f64>) {
         let mut cum = vec![0.0; p.len()];
         for i in 1..p.len() {
-            cum[i] = cum[i - 1] + gauss10(p[i - 1], p[i], |x| self.speed(x));
+            cum[i] = cum[i - 1] + crate::gauss::gauss10(p[i - 1], p[i], |x| self.speed(x));
         }
         self.panels = p;
         self.cum = cum;
@@ -553,7 +518,7 @@ impl Height {
     fn arc_in(&self, x: f64) -> f64 {
         let p = &self.panels;
         let i = p.partition_point(|&t| t <= x).clamp(1, p.len() - 1) - 1;
-        self.cum[i] + gauss10(p[i], x, |t| self.speed(t))
+        self.cum[i] + crate::gauss::gauss10(p[i], x, |t| self.speed(t))
     }
 
     /// Arc length `σ(x)` along the surface from `x = 0` (signed), and `dσ/dx = √(1 + h'²)`.

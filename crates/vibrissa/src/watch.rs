@@ -52,18 +52,35 @@ pub(crate) struct ContactForce {
     /// along the rod there, `cos(φ − β) κ` (negative while the rod curves away from the line on
     /// both sides; zero where it begins to lie along it). NaN elsewhere.
     pub curv: f64,
+    /// How a contact slides on the surface (filled where the set has a sliding contact).
+    pub slide: SlideRate,
+}
+
+/// A surface contact's slip along the branch (module `events`' halt, `record`'s friction work).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SlideRate {
     /// The slip rate of the rod at the contact against the surface, `dσ/dλ` of the material
     /// point there (arc length along the surface, `+` towards `+x`): where the contact slides
     /// (its rate decides when it halts and what its friction dissipates). NaN where not known.
     pub slip: f64,
     /// The way a contact sliding with a set friction ratio slides (the sign of the ratio: its
     /// friction `T` has that sign, and so has its slip), 0 for the others.
-    pub slide_dir: f64,
+    pub dir: f64,
     /// Where a contact slides: its slip coordinate, the place along the surface less its place
     /// along the rod (`σ − dir·s`, the invariant of rolling), and `dN/dλ` of its normal force
     /// (the friction work it absorbs is `ratio·∫N dq`). NaN where not known.
     pub q: f64,
     pub dnormal: f64,
+}
+
+impl SlideRate {
+    /// Not known (no sliding contact in the set, or its rates not found).
+    const UNKNOWN: SlideRate = SlideRate {
+        slip: f64::NAN,
+        dir: 0.0,
+        q: f64::NAN,
+        dnormal: f64::NAN,
+    };
 }
 
 /// Per-point quantities of a march.
@@ -233,13 +250,7 @@ pub(crate) fn watch(
             x,
             mu_s,
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
-            slip: f64::NAN,
-            slide_dir: match ct.mode {
-                Mode::Sliding(r) => r.signum(),
-                _ => 0.0,
-            },
-            q: f64::NAN,
-            dnormal: f64::NAN,
+            slide: SlideRate::UNKNOWN,
             curv: match ct.geom {
                 Geom::Line { beta, .. } if lies_inside(set, j) => {
                     let z = exact(s);
@@ -598,10 +609,7 @@ const MAX_WINDOW: f64 = 0.02;
 
 /// Whether the set has a contact sliding on the surface (its slip rate is watched).
 pub(crate) fn has_slider(set: &ContactSet) -> bool {
-    set.contacts.iter().any(|c| {
-        matches!(c.mode, Mode::Sliding(_))
-            && matches!(c.geom, Geom::Line { .. } | Geom::Curve { .. })
-    })
+    set.contacts.iter().any(crate::chain::is_slider)
 }
 
 /// The slip rates of the surface contacts (`ContactForce::slip`) from the rates of the contact
@@ -653,8 +661,14 @@ pub(crate) fn fill_slip(
         let s = w.contacts[j].s;
         let moving = if ct.tip { 0.0 } else { dir * du[o + 2] };
         let c = &mut w.contacts[j];
-        c.slip = along - moving;
-        c.q = place - if ct.tip { 0.0 } else { dir * s };
-        c.dnormal = dn;
+        c.slide = SlideRate {
+            slip: along - moving,
+            dir: match ct.mode {
+                Mode::Sliding(r) => r.signum(),
+                _ => 0.0,
+            },
+            q: place - if ct.tip { 0.0 } else { dir * s },
+            dnormal: dn,
+        };
     }
 }
