@@ -411,6 +411,77 @@ fn fit(a: &mut crate::cli::FitArgs) -> Res<()> {
 
 /// The flags' own values against their ranges, and which go together.
 pub fn texture(a: &crate::cli::TextureArgs) -> Res<()> {
+    texture_ranges(a)?;
+    let (na, nw, np) = (
+        a.corrugation_amplitude.len(),
+        a.corrugation_wavelength.len(),
+        a.corrugation_phase.len(),
+    );
+    match (na, nw) {
+        (0, 0) => {}
+        (_, 0) => {
+            return Err(usage(
+                "--corrugation-amplitude needs --corrugation-wavelength",
+            ))
+        }
+        (0, _) => {
+            return Err(usage(
+                "--corrugation-wavelength needs --corrugation-amplitude",
+            ))
+        }
+        (na, nw) if na != nw => {
+            return Err(usage(format!(
+                "--corrugation-amplitude has {na} values and --corrugation-wavelength {nw}: one wavelength per amplitude (a sum of sines)"
+            )))
+        }
+        _ => {}
+    }
+    if np > 0 && na == 0 {
+        return Err(usage(
+            "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
+        ));
+    }
+    if np > 0 && np != na {
+        return Err(usage(format!(
+            "--corrugation-phase has {np} values and --corrugation-amplitude {na}: one phase per amplitude, or none"
+        )));
+    }
+    if !limits::SINES_TERMS.contains_count(na.max(1)) {
+        return Err(usage(format!(
+            "--corrugation-amplitude has {na} values: a sum of at most {} sines",
+            limits::SINES_TERMS.hi
+        )));
+    }
+    grating_flags(a)?;
+    match (&a.surface_profile, a.profile_tolerance) {
+        (Some(_), None) => {
+            return Err(usage(
+                "--surface-profile needs --profile-tolerance (the largest deviation of the smoothed profile from a sample; 0 interpolates)",
+            ))
+        }
+        (None, Some(_)) => return Err(usage("--profile-tolerance needs --surface-profile")),
+        _ => {}
+    }
+    let kinds: Vec<&str> = [
+        (na > 0, "--corrugation-amplitude"),
+        (a.grating_period.is_some(), "--grating-period"),
+        (a.surface_profile.is_some(), "--surface-profile"),
+    ]
+    .iter()
+    .filter(|k| k.0)
+    .map(|k| k.1)
+    .collect();
+    if kinds.len() > 1 {
+        return Err(usage(format!(
+            "{} each set the surface: give one of them",
+            kinds.join(" and ")
+        )));
+    }
+    Ok(())
+}
+
+/// Each texture flag's value in its range.
+fn texture_ranges(a: &crate::cli::TextureArgs) -> Res<()> {
     for (vals, flag, r) in [
         (
             &a.corrugation_amplitude,
@@ -464,46 +535,11 @@ pub fn texture(a: &crate::cli::TextureArgs) -> Res<()> {
             check(Src::Flag(flag), v, r)?;
         }
     }
-    let (na, nw, np) = (
-        a.corrugation_amplitude.len(),
-        a.corrugation_wavelength.len(),
-        a.corrugation_phase.len(),
-    );
-    match (na, nw) {
-        (0, 0) => {}
-        (_, 0) => {
-            return Err(usage(
-                "--corrugation-amplitude needs --corrugation-wavelength",
-            ))
-        }
-        (0, _) => {
-            return Err(usage(
-                "--corrugation-wavelength needs --corrugation-amplitude",
-            ))
-        }
-        (na, nw) if na != nw => {
-            return Err(usage(format!(
-                "--corrugation-amplitude has {na} values and --corrugation-wavelength {nw}: one wavelength per amplitude (a sum of sines)"
-            )))
-        }
-        _ => {}
-    }
-    if np > 0 && na == 0 {
-        return Err(usage(
-            "--corrugation-phase needs --corrugation-amplitude and --corrugation-wavelength",
-        ));
-    }
-    if np > 0 && np != na {
-        return Err(usage(format!(
-            "--corrugation-phase has {np} values and --corrugation-amplitude {na}: one phase per amplitude, or none"
-        )));
-    }
-    if !limits::SINES_TERMS.contains_count(na.max(1)) {
-        return Err(usage(format!(
-            "--corrugation-amplitude has {na} values: a sum of at most {} sines",
-            limits::SINES_TERMS.hi
-        )));
-    }
+    Ok(())
+}
+
+/// The grating's flags that go together: period and ridge radius, with a depth or a flank angle.
+fn grating_flags(a: &crate::cli::TextureArgs) -> Res<()> {
     let grating = [
         a.grating_depth,
         a.grating_flank_angle,
@@ -535,30 +571,6 @@ pub fn texture(a: &crate::cli::TextureArgs) -> Res<()> {
                 "{who} needs --grating-depth, --grating-flank-angle or both"
             )));
         }
-    }
-    match (&a.surface_profile, a.profile_tolerance) {
-        (Some(_), None) => {
-            return Err(usage(
-                "--surface-profile needs --profile-tolerance (the largest deviation of the smoothed profile from a sample; 0 interpolates)",
-            ))
-        }
-        (None, Some(_)) => return Err(usage("--profile-tolerance needs --surface-profile")),
-        _ => {}
-    }
-    let kinds: Vec<&str> = [
-        (na > 0, "--corrugation-amplitude"),
-        (a.grating_period.is_some(), "--grating-period"),
-        (a.surface_profile.is_some(), "--surface-profile"),
-    ]
-    .iter()
-    .filter(|k| k.0)
-    .map(|k| k.1)
-    .collect();
-    if kinds.len() > 1 {
-        return Err(usage(format!(
-            "{} each set the surface: give one of them",
-            kinds.join(" and ")
-        )));
     }
     Ok(())
 }

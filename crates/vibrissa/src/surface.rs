@@ -216,6 +216,47 @@ pub struct Height {
     period_arc: f64,
 }
 
+/// A sine corrugation's shape, its parameters and steepest slope (with the surface's own slope
+/// `slope`) checked; errors name the scene key.
+fn sine(amplitude: f64, wavelength: f64, phase: f64, slope: f64) -> Result<Shape, VibrissaError> {
+    if !(amplitude.is_finite() && amplitude.abs() <= 0.2) {
+        return Err(VibrissaError::range(
+            "surface.amplitude",
+            amplitude,
+            "[-0.2, 0.2] rod lengths",
+        ));
+    }
+    if !(wavelength.is_finite() && (0.01..=100.0).contains(&wavelength)) {
+        return Err(VibrissaError::range(
+            "surface.wavelength",
+            wavelength,
+            "[0.01, 100] rod lengths",
+        ));
+    }
+    if !phase.is_finite() {
+        return Err(VibrissaError::range("surface.phase", phase, "finite"));
+    }
+    let k = std::f64::consts::TAU / wavelength;
+    let steepest = slope.abs() + amplitude.abs() * k;
+    if steepest >= MAX_PROFILE_SLOPE {
+        return Err(VibrissaError::range(
+            "surface.amplitude",
+            amplitude,
+            format!(
+                "|amplitude| < {:.6} for this wavelength and surface_angle (the \
+                     steepest slope |tan(surface_angle)| + 2 pi |amplitude| / wavelength \
+                     = {steepest:.6} must stay below 1, 45 degrees)",
+                ((MAX_PROFILE_SLOPE - slope.abs()) / k).max(0.0)
+            ),
+        ));
+    }
+    Ok(Shape::Sine {
+        a: amplitude,
+        k,
+        phase,
+    })
+}
+
 impl Height {
     /// The profile of `p` at base height `eta` and inclination `beta` (`None` for a line);
     /// errors name the scene key.
@@ -227,48 +268,11 @@ impl Height {
                 amplitude,
                 wavelength,
                 phase,
-            } => {
-                if !(amplitude.is_finite() && amplitude.abs() <= 0.2) {
-                    return Err(VibrissaError::range(
-                        "surface.amplitude",
-                        amplitude,
-                        "[-0.2, 0.2] rod lengths",
-                    ));
-                }
-                if !(wavelength.is_finite() && (0.01..=100.0).contains(&wavelength)) {
-                    return Err(VibrissaError::range(
-                        "surface.wavelength",
-                        wavelength,
-                        "[0.01, 100] rod lengths",
-                    ));
-                }
-                if !phase.is_finite() {
-                    return Err(VibrissaError::range("surface.phase", phase, "finite"));
-                }
-                let k = std::f64::consts::TAU / wavelength;
-                let steepest = slope.abs() + amplitude.abs() * k;
-                if steepest >= MAX_PROFILE_SLOPE {
-                    return Err(VibrissaError::range(
-                        "surface.amplitude",
-                        amplitude,
-                        format!(
-                            "|amplitude| < {:.6} for this wavelength and surface_angle (the \
-                             steepest slope |tan(surface_angle)| + 2 pi |amplitude| / wavelength \
-                             = {steepest:.6} must stay below 1, 45 degrees)",
-                            ((MAX_PROFILE_SLOPE - slope.abs()) / k).max(0.0)
-                        ),
-                    ));
-                }
-                (
-                    Shape::Sine {
-                        a: amplitude,
-                        k,
-                        phase,
-                    },
-                    f64::NEG_INFINITY,
-                    f64::INFINITY,
-                )
-            }
+            } => (
+                sine(amplitude, wavelength, phase, slope)?,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+            ),
             &SurfaceProfile::Circle { radius, x0 } => {
                 if !(radius.is_finite() && (0.05..=1000.0).contains(&radius)) {
                     return Err(VibrissaError::range(
