@@ -1,0 +1,57 @@
+//! The rod in time against a peer (issue 32): the uniform clamped–free rod released from its rest
+//! shape with a velocity in the first mode's shape (tip amplitude 1e-4), followed for 1.2 periods
+//! by `vibrissa::dynamics::free` (Newmark in time, Lobatto6 collocation in s), at 25, 50 and 100
+//! steps per period; and the pair 50 + 100 whose Richardson extrapolation gives the period to
+//! 1e-6 (measured 6.8e-7, docs/dependencies.md). The period errors of the single runs are
+//! Newmark's own, `πΔt/atan(ωΔt/2)` against `2π/ω`: 5.2e-3, 1.3e-3, 3.3e-4.
+//!
+//! The peer, PyElastica, is timed by `benches/pyelastica_free.py` on the same rod, start and
+//! period measurement; docs/performance.md sets the two error-against-time curves side by side.
+//!
+//! ```sh
+//! cargo bench -p vibrissa --bench dynamics
+//! ```
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::f64::consts::PI;
+use std::hint::black_box;
+use std::time::Duration;
+use vibrissa::dynamics::{free, DynamicsOptions};
+use vibrissa::Rod;
+
+const BETA1: f64 = 1.87510406871196;
+
+/// The first clamped–free mode (Blevins, table 8-1), scaled to `amp` at the tip.
+fn mode1(amp: f64) -> impl Fn(f64) -> [f64; 2] {
+    let b = BETA1;
+    let sigma = (b.cosh() + b.cos()) / (b.sinh() + b.sin());
+    let w = move |s: f64| (b * s).cosh() - (b * s).cos() - sigma * ((b * s).sinh() - (b * s).sin());
+    let w1 = w(1.0);
+    move |s| [amp * w(s) / w1, 0.0]
+}
+
+fn oscillate(steps_per_period: usize) -> usize {
+    let period = 2.0 * PI / (BETA1 * BETA1);
+    let o = DynamicsOptions {
+        dt: period / steps_per_period as f64,
+        t_end: 1.2 * period,
+        ..DynamicsOptions::default()
+    };
+    let r = free(&Rod::uniform(), &mode1(1e-4), &o).expect("free oscillation");
+    black_box(r.samples.len())
+}
+
+fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("free_oscillation");
+    g.sample_size(10).measurement_time(Duration::from_secs(10));
+    for n in [25, 50, 100] {
+        g.bench_function(format!("{n}_steps_per_period"), |b| b.iter(|| oscillate(n)));
+    }
+    g.bench_function("period_to_1e-6_richardson_50_100", |b| {
+        b.iter(|| oscillate(50) + oscillate(100))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
