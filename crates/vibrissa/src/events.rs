@@ -325,8 +325,17 @@ pub(crate) const JUMP: f64 = 1e-6;
 pub(crate) const AT_ZERO: f64 = 1e-12;
 
 /// The set with the interior contact `ct` touched down at `s` (in its place along the rod; its
-/// unknowns N, T start at zero), and its unknowns.
-fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64) -> Next {
+/// unknowns N, T start at zero), and its unknowns. A touchdown at the free tip (`s = 1`: the
+/// clearance's largest value at the rod's end, where the rod is not tangent to the surface)
+/// is a tip contact, `tip` (a corner on the surface, no tangency condition).
+fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64, tip: Contact) -> Next {
+    if s >= 1.0 && !set.tip() {
+        let mut ns = set.clone();
+        ns.contacts.push(tip);
+        let mut nu = u.to_vec();
+        nu.extend([0.0, 0.0]);
+        return Next::Switch(Event::Touchdown, ns, nu);
+    }
     let j = (0..set.contacts.len())
         .find(|&j| set.s_of(j, u) > s)
         .unwrap_or(set.contacts.len());
@@ -481,7 +490,13 @@ fn curve_transition(
             let z = pe.w.clear_z;
             let (mode, phi_ref) = rolling(&z, s);
             let ct = Contact::on_curve(false, h, z[0] + xf, mode, phi_ref);
-            touchdown(set, u, ct, s)
+            let xb = pe.sol.right()[0] + xf;
+            let stuck = if friction {
+                Mode::Stuck(h.sigma(xb).0)
+            } else {
+                Mode::Free
+            };
+            touchdown(set, u, ct, s, Contact::on_curve(true, h, xb, stuck, 0.0))
         }
         Crossing::TipTangent => {
             let j = set.contacts.len() - 1;
@@ -626,7 +641,12 @@ pub(crate) fn transition(
                     Mode::Free
                 };
                 let ct = Contact::on_surface(false, p0, beta, mode, phi_ref);
-                touchdown(set, u, ct, s)
+                let stuck = if friction {
+                    Mode::Stuck(along(pe.sol.right(), beta, p0))
+                } else {
+                    Mode::Free
+                };
+                touchdown(set, u, ct, s, Contact::on_surface(true, p0, beta, stuck, 0.0))
             }
             Crossing::TipTangent => {
                 let j = set.contacts.len() - 1;

@@ -286,6 +286,37 @@ fn a_slip_without_a_quasi_static_continuation_jams() {
     assert_eq!(r.stop.name(), "jam");
 }
 
+/// The free tip touching down on a corrugation during a slip (the rod held by a side contact
+/// near the tip) is a tip contact — a corner on the surface — not a side contact at `s = 1`,
+/// which would need the rod tangent there: before, the new state's Newton diverged and the drag
+/// stopped with "touchdown (side to side+side): the new contact state does not hold: Newton did
+/// not converge". With the tip stuck, the slip ends in a snap (the equilibria fold back), a
+/// physical stop, after the same six slips.
+#[test]
+fn a_tip_touching_down_in_a_slip_is_a_tip_contact() {
+    let s = scene(|s| {
+        s.surface = SurfaceProfile::Sine {
+            amplitude: 0.02,
+            wavelength: 0.2,
+            phase: 0.0,
+        }
+    });
+    let o = DragOptions {
+        points: 31,
+        ..uniform(0.5, 0.3, 0.3)
+    };
+    let r = run(&s, &o);
+    assert_eq!(r.slips.len(), 6, "{r}");
+    match &r.stop {
+        StopReason::FoldInD { d } => assert!((d - 0.016585816).abs() < 1e-6, "{d}"),
+        StopReason::ContactChange { d, message } => {
+            assert!((d - 0.016585816).abs() < 1e-6, "{d}");
+            assert!(message.contains("fold back"), "{message}");
+        }
+        other => panic!("not a snap: {other}"),
+    }
+}
+
 /// A run asked to stop (its configuration's `Cancel` set, as Python's Ctrl-C does) ends at its
 /// next step with `StopReason::Cancelled`, the rows before it kept; with the flag clear the same
 /// runs are unchanged (the flag is no part of the configuration's value).
