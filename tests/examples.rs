@@ -70,3 +70,28 @@ fn continuation_around_the_fold() {
         upper.at(0.5)[0]
     );
 }
+
+#[path = "../examples/many_surfaces.rs"]
+mod many_surfaces;
+
+/// The many-surfaces sweep, short: 40 distinct corrugations each scanned to d_max (the example
+/// itself runs 10⁵ and prints the RSS; here other tests share the process, so its RSS is not
+/// asserted).
+#[test]
+fn many_surfaces_sweep_runs_every_surface() {
+    let mut reports = 0;
+    let sweep = many_surfaces::run(40, 10, |_, _, _| reports += 1).unwrap();
+    assert_eq!(reports, 5);
+    assert_eq!(
+        sweep.rss.iter().map(|r| r.0).collect::<Vec<_>>(),
+        [0, 10, 20, 30, 40]
+    );
+    assert!(sweep.rss.iter().all(|r| r.1 > 0));
+    assert!(sweep.rhs_evals > 0);
+    // every scan pushed the foot on with the tip stuck (the flat surface's mu(0.02) is 0.49)
+    assert!(
+        sweep.mu_max.is_finite() && sweep.mu_max > 0.0,
+        "{}",
+        sweep.mu_max
+    );
+}

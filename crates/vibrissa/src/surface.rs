@@ -1121,4 +1121,55 @@ mod tests {
         assert!((t.next_boundary(0.16, -1.0).unwrap() - 0.15).abs() < 1e-15);
         assert!((t.next_boundary(0.35, 1.0).unwrap() - 0.45).abs() < 1e-15);
     }
+
+    /// Nothing keeps a surface's shared parts once the caller drops it (issue 35: a sweep over
+    /// 10⁵ surfaces runs in constant memory): a scan and a drag over a corrugation with a
+    /// friction texture hold no count of its profile or texture after they return (no cache,
+    /// no result refers to them), and dropping the surface frees both.
+    #[test]
+    fn a_dropped_surface_leaves_nothing_behind() {
+        use std::sync::Arc;
+        let scene = crate::Scene {
+            surface: SurfaceProfile::Sine {
+                amplitude: 0.01,
+                wavelength: 0.5,
+                phase: 2.0,
+            },
+            friction: FrictionProfile::Uniform {
+                mu_s: 0.5,
+                mu_k: 0.3,
+            },
+            ..crate::Scene::default()
+        };
+        let (rod, surface) = scene.parts().unwrap();
+        let profile = Arc::downgrade(&surface.profile_shared().unwrap());
+        let texture = Arc::downgrade(&surface.texture_shared().unwrap());
+        let scan = crate::scan(
+            &rod,
+            &surface,
+            &crate::ScanOptions {
+                d_max: 0.05,
+                points: 3,
+                ..crate::ScanOptions::default()
+            },
+        )
+        .unwrap();
+        let drag = crate::drag(
+            &rod,
+            &surface,
+            &crate::DragOptions {
+                d_max: 0.1,
+                points: 3,
+                ..crate::DragOptions::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(scan.stop, crate::StopReason::DMax, "{}", scan.stop);
+        assert!(!drag.slips.is_empty(), "{}", drag.stop);
+        // only the surface itself holds them
+        assert_eq!(profile.strong_count(), 1);
+        assert_eq!(texture.strong_count(), 1);
+        drop(surface);
+        assert!(profile.upgrade().is_none() && texture.upgrade().is_none());
+    }
 }
