@@ -93,7 +93,7 @@ fn error_control_meets_tol_on_the_periodic_problem() {
     }
 }
 
-/// Residual control (the default before `Confirmed`) holds what it says on this problem: the residual of the
+/// Residual control (the default) holds what it says on this problem: the residual of the
 /// returned interpolant meets `tol` and is the reported estimate. Its error is not bounded by
 /// `tol` here (measured, not asserted: 5.2e-3 for Lobatto4 at tol 1e-4, 9.5e-4 for Lobatto6);
 /// the guard (next test) or error control bound it.
@@ -135,18 +135,14 @@ fn guarded_residual_control_meets_tol_on_the_periodic_problem() {
     assert!(guard.unwrap() > 1e-3, "guard {guard:?}");
 }
 
-/// The default (`ErrorControl::Confirmed`): the guard's alarm is confirmed against error
-/// control's reference before the solve goes on under error control, so every success is
-/// within 10·tol of the reference (measured at tol 1e-3 / 1e-4 / 1e-6: Lobatto4 2.0e-4 /
-/// 1.9e-5 / 2.4e-7, Lobatto6 1.1e-5 / 9.5e-6 / 2.2e-7; with `Residual` Lobatto4 at 1e-4 is
-/// 5.2e-3 off). At tol 1e-4 Lobatto4's alarm is confirmed (guard 3.2e-3, reference 6.3e-3).
+/// Residual control whose guard's alarms are confirmed (`ErrorControl::Confirmed`): an alarm
+/// is checked against error control's reference before the solve goes on under error control,
+/// so every success is within 10·tol of the reference (measured at tol 1e-3 / 1e-4 / 1e-6:
+/// Lobatto4 2.0e-4 / 1.9e-5 / 2.4e-7, Lobatto6 1.1e-5 / 9.5e-6 / 2.2e-7; with `Residual`
+/// Lobatto4 at 1e-4 is 5.2e-3 off). At tol 1e-4 Lobatto4's alarm is confirmed (guard 3.2e-3,
+/// reference 6.3e-3).
 #[test]
-fn default_control_is_within_ten_tol_on_the_periodic_problem() {
-    assert_eq!(ErrorControl::default(), ErrorControl::Confirmed);
-    assert_eq!(
-        CollocationOptions::default().control,
-        ErrorControl::Confirmed
-    );
+fn confirmed_control_is_within_ten_tol_on_the_periodic_problem() {
     let reference = reference();
     for tol in [1e-3, 1e-4, 1e-6] {
         for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
@@ -154,6 +150,7 @@ fn default_control_is_within_ten_tol_on_the_periodic_problem() {
             let mut solver = Collocation::new(CollocationOptions {
                 scheme,
                 tol,
+                control: ErrorControl::Confirmed,
                 ..CollocationOptions::default()
             })
             .unwrap();
