@@ -6,15 +6,19 @@
 //! (`CashMazzia::extended`: growth like 1/ε, fourth order) are included.
 //!
 //! ```text
-//! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR] [-- --guarded]
+//! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR] [-- --methods A,B]
+//!     [-- --guarded | --confirmed]
 //! ```
 //!
 //! Writes `DIR/bvp.csv` (one row per case and method) and `DIR/summary.md` (per method: converged
 //! count, fine-grid error against tol, nodes, time; beside scipy's `solve_bvp` when
 //! `DIR/scipy.csv` from `scipy_testset.py` is present). Default DIR: `data/bvp_testset`.
-//! `--guarded`: every collocation case is also run with the guard of residual control
-//! (`ErrorControl::Guarded`) right after it, into `DIR/bvp_guarded.csv` (column `guard`: the
-//! guard's estimate) and a table of converged counts and total times of both in `summary.md`.
+//! Collocation runs with the default control (`ErrorControl::Residual`). `--guarded` /
+//! `--confirmed`: every collocation case is also run with `ErrorControl::Guarded` /
+//! `ErrorControl::Confirmed` right after it (same machine state), into `DIR/bvp_guarded.csv` /
+//! `DIR/bvp_confirmed.csv` (columns `guard`: the guard's estimate, `confirmation`: the
+//! estimate that checked its alarm) and a table of converged counts, counts within 10·tol and
+//! total times of both in `summary.md`. `--methods`: only these (e.g. `lobatto4,lobatto6+cont`).
 //!
 //! Error: `max |y − y_exact| / (1 + |y_exact|)` over a fine grid (2001 equal points plus 9 inside
 //! every mesh interval of the solution) and, separately, over the solution's mesh nodes.
@@ -64,6 +68,12 @@ impl Solver {
             Solver::Shoot(_) => None,
         }
     }
+    fn confirmation(&self) -> Option<f64> {
+        match self {
+            Solver::Coll(s) => s.confirmation(),
+            Solver::Shoot(_) => None,
+        }
+    }
 }
 
 impl BvpSolver for Solver {
@@ -87,6 +97,12 @@ impl BvpSolver for Solver {
         match self {
             Solver::Coll(s) => s.set_tolerance(tol),
             Solver::Shoot(s) => s.set_tolerance(tol),
+        }
+    }
+    fn set_walking(&mut self, walking: bool) -> bool {
+        match self {
+            Solver::Coll(s) => s.set_walking(walking),
+            Solver::Shoot(s) => s.set_walking(walking),
         }
     }
 }
@@ -171,6 +187,9 @@ struct Row {
     /// With `ErrorControl::Guarded`: the guard's estimate of the true error
     /// (`Collocation::guard_error`).
     guard: f64,
+    /// With `ErrorControl::Confirmed`: the estimate that checked the guard's alarm
+    /// (`Collocation::confirmation`).
+    confirmation: f64,
     /// The error's variant (`Fold`, `MeshLimit`, …) of a failed case, else empty.
     kind: String,
     nodes: usize,
@@ -189,7 +208,7 @@ fn run_case(
     let guess = p.guess(eps, GUESS_NODES);
     let mut best = f64::INFINITY;
     let mut result = None;
-    let mut guard = None;
+    let (mut guard, mut confirmation) = (None, None);
     let t_all = Instant::now();
     // Repeat fast solves for a steadier time (minimum of the repeats).
     for _ in 0..20 {
@@ -204,6 +223,7 @@ fn run_case(
         };
         best = best.min(t.elapsed().as_secs_f64());
         guard = s.guard_error();
+        confirmation = s.confirmation();
         let done = t_all.elapsed().as_secs_f64() > 0.05;
         result = Some(r);
         if done {
@@ -212,10 +232,11 @@ fn run_case(
     }
     let r = result.expect("at least one run");
     let mut method = format!("{}{}", m.name(), if cont { "+cont" } else { "" });
-    if control == ErrorControl::Guarded {
-        method.push_str(" (guarded)");
+    if control != ErrorControl::default() {
+        write!(method, " ({})", control_name(control)).expect("a String");
     }
     let guard = guard.unwrap_or(f64::NAN);
+    let confirmation = confirmation.unwrap_or(f64::NAN);
     match r {
         Ok(sol) => {
             let (error, pointwise, node_error) = errors(p, eps, &sol);
@@ -230,6 +251,7 @@ fn run_case(
                 node_error,
                 estimate: sol.stats.error_estimate.unwrap_or(f64::NAN),
                 guard,
+                confirmation,
                 kind: String::new(),
                 nodes: sol.len(),
                 time: best,
@@ -246,6 +268,7 @@ fn run_case(
             node_error: f64::NAN,
             estimate: e.stats().and_then(|s| s.error_estimate).unwrap_or(f64::NAN),
             guard,
+            confirmation,
             kind: format!("{e:?}")
                 .split([' ', '{', '('])
                 .next()
@@ -254,6 +277,16 @@ fn run_case(
             nodes: e.stats().map_or(0, |s| s.nodes),
             time: best,
         },
+    }
+}
+
+/// The name of a control in method names and file names.
+fn control_name(control: ErrorControl) -> &'static str {
+    match control {
+        ErrorControl::Residual => "residual",
+        ErrorControl::Guarded => "guarded",
+        ErrorControl::Confirmed => "confirmed",
+        ErrorControl::Error => "error",
     }
 }
 
@@ -298,9 +331,15 @@ fn read_scipy(path: &std::path::Path) -> HashMap<Key, ScipyRow> {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let quick = args.iter().any(|a| a == "--quick");
-    // Each collocation case also with the guard of residual control, right after it (same
-    // machine state): rows in `bvp_guarded.csv`, totals in the summary.
-    let guarded = args.iter().any(|a| a == "--guarded");
+    // Each collocation case also with another control, right after it (same machine state):
+    // rows in `bvp_<control>.csv`, totals in the summary.
+    let second = if args.iter().any(|a| a == "--guarded") {
+        Some(ErrorControl::Guarded)
+    } else if args.iter().any(|a| a == "--confirmed") {
+        Some(ErrorControl::Confirmed)
+    } else {
+        None
+    };
     let only: Option<String> = args
         .iter()
         .position(|a| a == "--methods")
@@ -343,9 +382,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for p in &problems {
             for &eps in &EPS {
                 for &tol in &TOLS {
-                    rows.push(run_case(p, (eps, tol), (m, cont), ErrorControl::Residual));
-                    if guarded && matches!(m, Method::Lobatto4 | Method::Lobatto6) {
-                        let control = ErrorControl::Guarded;
+                    rows.push(run_case(p, (eps, tol), (m, cont), ErrorControl::default()));
+                    if let (Some(control), Method::Lobatto4 | Method::Lobatto6) = (second, m) {
                         base.push(run_case(p, (eps, tol), (m, cont), control));
                     }
                 }
@@ -355,8 +393,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     std::fs::write(dir.join("bvp.csv"), csv_of(&rows)?)?;
-    if guarded {
-        std::fs::write(dir.join("bvp_guarded.csv"), csv_of(&base)?)?;
+    if let Some(control) = second {
+        let file = format!("bvp_{}.csv", control_name(control));
+        std::fs::write(dir.join(file), csv_of(&base)?)?;
     }
 
     // Summary.
@@ -455,39 +494,51 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             writeln!(md, "{}", summary(name, &rs))?;
         }
     }
-    if guarded {
+    if let Some(control) = second {
+        let name = control_name(control);
         writeln!(
             md,
-            "\n### the guard of residual control (`ErrorControl::Guarded`; all {} problems, each case run by default and guarded back to back)\n",
+            "\n### default against `ErrorControl::{control:?}` (all {} problems, each case run both ways back to back)\n",
             problems.len()
         )?;
         writeln!(
             md,
-            "| solver | converged default / guarded | total time default / guarded (s) |"
+            "| solver | converged default / {name} | error ≤ 10·tol (of converged with exact) default / {name} | total time default / {name} (s) |"
         )?;
-        writeln!(md, "|---|---|---|")?;
+        writeln!(md, "|---|---|---|---|")?;
+        let suffix = format!(" ({name})");
         let mut names: Vec<&str> = Vec::new();
         for r in &base {
-            let name = r.method.trim_end_matches(" (guarded)");
+            let name = r.method.trim_end_matches(suffix.as_str());
             if !names.contains(&name) {
                 names.push(name);
             }
         }
-        for name in names {
-            let plain: Vec<&Row> = rows.iter().filter(|r| r.method == name).collect();
-            let guarded: Vec<&Row> = base
+        for method in names {
+            let first: Vec<&Row> = rows.iter().filter(|r| r.method == method).collect();
+            let other: Vec<&Row> = base
                 .iter()
-                .filter(|r| r.method.trim_end_matches(" (guarded)") == name)
+                .filter(|r| r.method.trim_end_matches(suffix.as_str()) == method)
                 .collect();
             let conv = |v: &[&Row]| v.iter().filter(|r| r.status == "Converged").count();
+            let good = |v: &[&Row]| {
+                let exact = v
+                    .iter()
+                    .filter(|r| r.status == "Converged" && r.error.is_finite());
+                let n = exact.clone().count();
+                let ok = exact.filter(|r| r.error <= 10.0 * r.tol).count();
+                format!("{ok}/{n}")
+            };
             let time = |v: &[&Row]| v.iter().map(|r| r.time).sum::<f64>();
             writeln!(
                 md,
-                "| {name} | {} / {} | {:.2} / {:.2} |",
-                conv(&plain),
-                conv(&guarded),
-                time(&plain),
-                time(&guarded)
+                "| {method} | {} / {} | {} / {} | {:.2} / {:.2} |",
+                conv(&first),
+                conv(&other),
+                good(&first),
+                good(&other),
+                time(&first),
+                time(&other)
             )?;
         }
     }
@@ -499,12 +550,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// The rows as CSV.
 fn csv_of(rows: &[Row]) -> Result<String, std::fmt::Error> {
     let mut csv = String::from(
-        "problem,eps,tol,method,status,error,node_error,nodes,time_s,pointwise_error,estimate,guard,error_kind\n",
+        "problem,eps,tol,method,status,error,node_error,nodes,time_s,pointwise_error,estimate,guard,error_kind,confirmation\n",
     );
     for r in rows {
         writeln!(
             csv,
-            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e},{:.3e},{:.3e},{:.3e},{}",
+            "{},{:e},{:e},{},{},{:.3e},{:.3e},{},{:.4e},{:.3e},{:.3e},{:.3e},{},{:.3e}",
             r.id,
             r.eps,
             r.tol,
@@ -517,7 +568,8 @@ fn csv_of(rows: &[Row]) -> Result<String, std::fmt::Error> {
             r.pointwise,
             r.estimate,
             r.guard,
-            r.kind
+            r.kind,
+            r.confirmation
         )?;
     }
     Ok(csv)

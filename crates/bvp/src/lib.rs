@@ -105,6 +105,15 @@ pub trait BvpSolver {
     /// Sets that accuracy (`0 < tol < 1`; used by [`solve_by_continuation`] for the members on
     /// the way, see [`PathOptions::intermediate_tol`]). Default: ignored.
     fn set_tolerance(&mut self, _tol: f64) {}
+
+    /// Whether the members solved from now on are steps of a walk towards another member
+    /// (`true`; set by [`solve_by_continuation`] while it walks) or results (`false`). Returns
+    /// whether the solver checks a result more than a step, so that the walk's last member is to
+    /// be solved again as a result (collocation with [`ErrorControl::Confirmed`]: no guard on the
+    /// way). Default: ignored, `false`.
+    fn set_walking(&mut self, _walking: bool) -> bool {
+        false
+    }
 }
 
 impl<S: BvpSolver + ?Sized> BvpSolver for &mut S {
@@ -116,6 +125,9 @@ impl<S: BvpSolver + ?Sized> BvpSolver for &mut S {
     }
     fn set_tolerance(&mut self, tol: f64) {
         (**self).set_tolerance(tol)
+    }
+    fn set_walking(&mut self, walking: bool) -> bool {
+        (**self).set_walking(walking)
     }
 }
 

@@ -283,13 +283,18 @@ pub fn solve_by_continuation<P: ParamBvp + ?Sized, S: BvpSolver>(
     if let (Some(t), Some(_)) = (opts.intermediate_tol, own_tol) {
         solver.set_tolerance(t);
     }
+    let recheck = solver.set_walking(true);
     let walked = walk_family(family, solver, guess, from, to, opts, log);
-    let Some(tol) = own_tol.filter(|_| opts.intermediate_tol.is_some()) else {
+    solver.set_walking(false);
+    let loosened = own_tol.filter(|_| opts.intermediate_tol.is_some());
+    if let Some(tol) = loosened {
+        solver.set_tolerance(tol);
+    }
+    if loosened.is_none() && !recheck {
         return walked;
-    };
-    solver.set_tolerance(tol);
+    }
     let mut res = walked?;
-    // The member at `to` at the solver's own tolerance, from the last intermediate solution.
+    // The member at `to` at the solver's own tolerance and checks, from the last one on the way.
     let sol = solver.solve(&Member::new(family, to), &Guess::from(&res.solution))?;
     res.stats.accumulate(&sol.stats);
     res.stats.nodes = sol.stats.nodes;

@@ -27,8 +27,9 @@ pub struct Stats {
     /// collocation rows divided by `1 + |F|`, see [`crate::newton::NewtonSystem::residual_scale`]).
     pub residual: f64,
     /// Estimated error of the solution as returned (collocation: the max scaled RMS residual of
-    /// the returned interpolant over the mesh intervals, or with
-    /// [`crate::ErrorControl::Error`] its estimated true error; shooting: see
+    /// the returned interpolant over the mesh intervals, or, once error control decided (with
+    /// [`crate::ErrorControl::Error`], or after a confirmed alarm of the guard), its estimated
+    /// true error; shooting: see
     /// [`crate::Shooting`]).
     pub error_estimate: Option<f64>,
 }

@@ -8,7 +8,8 @@ use bvp::samples::{Bratu, BratuFamily};
 use bvp::testset::CashMazzia;
 use bvp::{
     from_fns, solve_by_continuation, solve_member, BvpError, BvpSolver, Collocation,
-    CollocationOptions, Dense, Guess, PathOptions, Scheme, Shooting, ShootingOptions, Status,
+    CollocationOptions, Dense, ErrorControl, Guess, PathOptions, Scheme, Shooting, ShootingOptions,
+    Status,
 };
 
 fn lobatto(scheme: Scheme, tol: f64) -> Collocation {
@@ -275,6 +276,63 @@ fn solve_member_falls_back_to_continuation() {
         assert_eq!(res.path.len() == 1, direct, "{:?}", res.path);
         assert!(scaled_error(&p, eps, &res.solution) <= 10.0 * tol);
         assert!(res.stats.rhs_evals >= res.solution.stats.rhs_evals);
+    }
+}
+
+/// `solve_by_continuation` marks the steps of its walk (`BvpSolver::set_walking`): collocation
+/// with the default control (`ErrorControl::Confirmed`) solves them without the guard and the
+/// member it returns once more with it; under `ErrorControl::Residual` no solve runs the guard
+/// and the walk's last solution is returned.
+#[test]
+fn continuation_checks_the_member_it_returns() {
+    struct Recorder {
+        inner: Collocation,
+        walking: Vec<bool>,
+        guarded: Vec<bool>,
+    }
+    impl BvpSolver for Recorder {
+        fn solve<P: bvp::Bvp + ?Sized>(
+            &mut self,
+            problem: &P,
+            guess: &Guess,
+        ) -> Result<bvp::Solution, BvpError> {
+            let r = self.inner.solve(problem, guess);
+            self.guarded.push(self.inner.guard_error().is_some());
+            r
+        }
+        fn set_walking(&mut self, walking: bool) -> bool {
+            self.walking.push(walking);
+            self.inner.set_walking(walking)
+        }
+    }
+    let (eps, tol) = (1e-3, 1e-6);
+    let p = CashMazzia::new(20).unwrap();
+    for control in [ErrorControl::Confirmed, ErrorControl::Residual] {
+        let mut rec = Recorder {
+            inner: Collocation::new(CollocationOptions {
+                scheme: Scheme::Lobatto6,
+                tol,
+                control,
+                ..CollocationOptions::default()
+            })
+            .unwrap(),
+            walking: Vec::new(),
+            guarded: Vec::new(),
+        };
+        let opts = PathOptions::default();
+        let res = solve_by_continuation(&p, &mut rec, &p.guess(0.1, 101), 0.1, eps, &opts)
+            .unwrap_or_else(|e| panic!("{control:?}: {e}"));
+        assert_eq!(rec.walking, [true, false], "{control:?}");
+        let (last, steps) = rec.guarded.split_last().unwrap();
+        assert!(
+            steps.len() >= res.path.len() - 1,
+            "{control:?}: {}",
+            steps.len()
+        );
+        assert!(steps.iter().all(|g| !g), "{control:?}: {:?}", rec.guarded);
+        assert_eq!(*last, control == ErrorControl::Confirmed, "{control:?}");
+        let e = scaled_error(&p, eps, &res.solution);
+        assert!(e <= 10.0 * tol, "{control:?}: error {e:.2e}");
     }
 }
 

@@ -134,3 +134,40 @@ fn guarded_residual_control_meets_tol_on_the_periodic_problem() {
     let guard = solve_guarded(Scheme::Lobatto4, 1e-4, ErrorControl::Guarded).1;
     assert!(guard.unwrap() > 1e-3, "guard {guard:?}");
 }
+
+/// Residual control whose guard's alarms are confirmed (`ErrorControl::Confirmed`): an alarm
+/// is checked against error control's reference before the solve goes on under error control,
+/// so every success is within 10·tol of the reference (measured at tol 1e-3 / 1e-4 / 1e-6:
+/// Lobatto4 2.0e-4 / 1.9e-5 / 2.4e-7, Lobatto6 1.1e-5 / 9.5e-6 / 2.2e-7; with `Residual`
+/// Lobatto4 at 1e-4 is 5.2e-3 off). At tol 1e-4 Lobatto4's alarm is confirmed (guard 3.2e-3,
+/// reference 6.3e-3).
+#[test]
+fn confirmed_control_is_within_ten_tol_on_the_periodic_problem() {
+    let reference = reference();
+    for tol in [1e-3, 1e-4, 1e-6] {
+        for scheme in [Scheme::Lobatto4, Scheme::Lobatto6] {
+            let guess = Guess::constant(0.0, 1.0, 5, &[0.01, 0.01, 0.01], vec![]);
+            let mut solver = Collocation::new(CollocationOptions {
+                scheme,
+                tol,
+                control: ErrorControl::Confirmed,
+                ..CollocationOptions::default()
+            })
+            .unwrap();
+            let sol = solver
+                .solve(&measles(), &guess)
+                .unwrap_or_else(|e| panic!("{scheme:?} tol {tol:e}: {e}"));
+            let err = error(&sol, &reference);
+            assert!(
+                err <= 10.0 * tol,
+                "{scheme:?} tol {tol:e}: error {err:.3e} (guard {:?}, confirmation {:?})",
+                solver.guard_error(),
+                solver.confirmation()
+            );
+            if (scheme, tol) == (Scheme::Lobatto4, 1e-4) {
+                let confirmed = solver.confirmation().unwrap();
+                assert!(confirmed > tol, "confirmation {confirmed:.3e}");
+            }
+        }
+    }
+}

@@ -126,12 +126,14 @@ impl<P: Bvp + ?Sized> Disc<'_, P> {
     /// The guard's estimate (module docs) of the error of `sol`, the returned object of the
     /// discrete solution `u` on this mesh (points current), with `d2z` the one-sided `z''` of
     /// [`crate::Dense::QuinticIntervals`] at the ends of every interval (Lobatto6; computed here
-    /// for Lobatto4). `None` if it cannot be formed (NaN/∞ of `F`, a singular matrix).
+    /// for Lobatto4). Errors relative to `1 + |S_c|` pointwise, or with `scale` to
+    /// `1 + scale[c]` ([`super::run::scales`]). `None` if it cannot be formed (NaN/∞ of `F`, a
+    /// singular matrix).
     pub(super) fn guard(
         &mut self,
         u: &[f64],
         sol: &Solution,
-        d2z: Option<&[f64]>,
+        (d2z, scale): (Option<&[f64]>, Option<&[f64]>),
         stats: &mut Stats,
     ) -> Option<f64> {
         let (n, stride) = (self.lay.n, self.lay.stride);
@@ -149,7 +151,7 @@ impl<P: Bvp + ?Sized> Disc<'_, P> {
             .internal
             .then(|| self.third_derivatives(p, (&sol.z, &sol.dz, d2z), stats));
         let m = if d3z.is_some() { 4 } else { 3 };
-        let (rhs, gap) = self.hermite_defects(sol, (m, d2z, d3z.as_deref()), stats)?;
+        let (rhs, gap) = self.hermite_defects(sol, (m, d2z, d3z.as_deref()), scale, stats)?;
         let mut x = vec![0.0; self.lay.dim()];
         for i in 0..self.lay.intervals() {
             let row = i * stride + stride - n;
@@ -167,8 +169,8 @@ impl<P: Bvp + ?Sized> Disc<'_, P> {
         let mut worst = 0.0_f64;
         for i in 0..self.lay.intervals() {
             for c in 0..n {
-                let rel =
-                    |node: usize| x[node * stride + c].abs() / (1.0 + sol.z[node * n + c].abs());
+                let size = |node: usize| scale.map_or(sol.z[node * n + c].abs(), |s| s[c]);
+                let rel = |node: usize| x[node * stride + c].abs() / (1.0 + size(node));
                 worst = worst.max(rel(i).max(rel(i + 1)) + gap[i * n + c]);
             }
         }
@@ -177,11 +179,13 @@ impl<P: Bvp + ?Sized> Disc<'_, P> {
 
     /// Per interval: the integral of the Hermite interpolant's residual `(1/h) ∫ (P' − F(s, P))`
     /// (`n` values, the node row of `R_H(u_h)`) and `max |S − P| / (1 + |S|)` at the interior
-    /// points (`n` values), `S` the returned object. `m` data per end: value, `F`, `d2z`, `d3z`.
+    /// points (`n` values; with `scale`, `|S − P| / (1 + scale[c])`), `S` the returned object.
+    /// `m` data per end: value, `F`, `d2z`, `d3z`.
     fn hermite_defects(
         &mut self,
         sol: &Solution,
         (m, d2z, d3z): (usize, &[f64], Option<&[f64]>),
+        scale: Option<&[f64]>,
         stats: &mut Stats,
     ) -> Option<(Vec<f64>, Vec<f64>)> {
         let n = self.lay.n;
@@ -214,7 +218,8 @@ impl<P: Bvp + ?Sized> Disc<'_, P> {
                 sol.eval(s, &mut sv);
                 for c in 0..n {
                     rhs[i * n + c] += EST_W[e] * (pd[c] - f[c]);
-                    let g = (sv[c] - pv[c]).abs() / (1.0 + sv[c].abs());
+                    let size = scale.map_or(sv[c].abs(), |s| s[c]);
+                    let g = (sv[c] - pv[c]).abs() / (1.0 + size);
                     gap[i * n + c] = gap[i * n + c].max(g);
                 }
             }

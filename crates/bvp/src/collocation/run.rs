@@ -61,6 +61,9 @@ pub(super) struct Run {
     control: ErrorControl,
     /// The guard's first estimate ([`super::Collocation::guard_error`]).
     pub guard: Option<f64>,
+    /// The estimate that checked the guard's alarm ([`super::ErrorControl::Confirmed`],
+    /// [`super::Collocation::confirmation`]).
+    pub confirmed: Option<f64>,
     pub stats: Stats,
 }
 
@@ -109,6 +112,7 @@ impl Run {
             res_tol: cx.opts.tol,
             control: cx.opts.control,
             guard: None,
+            confirmed: None,
             stats,
         })
     }
@@ -441,7 +445,12 @@ impl Run {
             self.move_to(cx, disc, mesh, fine);
             return Next::Again;
         }
-        if opts.adapt && self.control == ErrorControl::Guarded {
+        if opts.adapt
+            && matches!(
+                self.control,
+                ErrorControl::Guarded | ErrorControl::Confirmed
+            )
+        {
             if let Some(next) = self.guard(cx, disc, mesh, &sol, d2z.as_deref()) {
                 return next;
             }
@@ -475,7 +484,8 @@ impl Run {
         sol: &Solution,
         d2z: Option<&[f64]>,
     ) -> Option<Next> {
-        let est = disc.guard(&self.u, sol, d2z, &mut self.stats);
+        let scale = scales(cx, sol);
+        let est = disc.guard(&self.u, sol, (d2z, scale.as_deref()), &mut self.stats);
         let previous = std::mem::replace(&mut self.guard, est);
         let est = est?;
         if est <= cx.opts.tol {
@@ -487,8 +497,36 @@ impl Run {
             self.guard = previous;
             return Some(next);
         }
+        if self.control == ErrorControl::Confirmed {
+            return Some(self.confirm(cx, disc, mesh, sol.clone()));
+        }
         self.control = ErrorControl::Error;
         Some(self.control_error(cx, disc, mesh, sol.clone()))
+    }
+
+    /// [`ErrorControl::Confirmed`]: the guard's alarm on `sol` is checked against a reference
+    /// ([`error_estimate`], as error control does). Not confirmed (the estimated error meets
+    /// `tol`): `sol` is returned as residual control accepted it (its `error_estimate` the
+    /// residual; no coarsening, which would only meet the guard's alarm again). Confirmed: the
+    /// solve continues under [`ErrorControl::Error`] from this estimate.
+    fn confirm<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        sol: Solution,
+    ) -> Next {
+        let est = error_estimate(cx, disc.prob, &sol, self.res_tol);
+        if let Some(st) = &est.1 {
+            self.stats.accumulate(st);
+        }
+        let worst = est.0.as_ref().map_or(f64::INFINITY, |e| max_of(e));
+        self.confirmed = Some(worst);
+        if worst <= cx.opts.tol {
+            return Next::Done(Ok(with_total_stats(sol, &self.stats)));
+        }
+        self.control = ErrorControl::Error;
+        self.refine_for_error(cx, disc, mesh, sol, est.0)
     }
 
     /// Error control ([`ErrorControl::Error`]) of `sol`, which met the residual tolerance in
@@ -502,14 +540,26 @@ impl Run {
         cx: &Ctx<'_>,
         disc: &mut Disc<'_, P>,
         mesh: &[f64],
-        mut sol: Solution,
+        sol: Solution,
     ) -> Next {
-        let tol = cx.opts.tol;
         let est = error_estimate(cx, disc.prob, &sol, self.res_tol);
         if let Some(st) = &est.1 {
             self.stats.accumulate(st);
         }
-        let errs = est.0;
+        self.refine_for_error(cx, disc, mesh, sol, est.0)
+    }
+
+    /// [`Run::control_error`] with the estimate `errs` of `sol` (per interval; `None` if the
+    /// reference failed).
+    fn refine_for_error<P: Bvp + ?Sized>(
+        &mut self,
+        cx: &Ctx<'_>,
+        disc: &mut Disc<'_, P>,
+        mesh: &[f64],
+        mut sol: Solution,
+        errs: Option<Vec<f64>>,
+    ) -> Next {
+        let tol = cx.opts.tol;
         let worst = errs.as_ref().map_or(f64::INFINITY, |e| max_of(e));
         if worst <= tol {
             self.stats.error_estimate = Some(worst);
@@ -540,8 +590,27 @@ impl Run {
     }
 }
 
+/// With [`ErrorControl::Confirmed`] (the option): the size of every component, `max |z_c|` over
+/// the nodes of `sol`, to which its errors are relative (`|S_c − R_c| / (1 + max |z_c|)`, the
+/// error relative to the solution's scale, as the Cash–Mazzia study measures it). `None` in the
+/// other modes: pointwise, relative to `1 + |R_c|`.
+pub(super) fn scales(cx: &Ctx<'_>, sol: &Solution) -> Option<Vec<f64>> {
+    if cx.opts.control != ErrorControl::Confirmed {
+        return None;
+    }
+    let n = sol.n;
+    let mut size = vec![0.0_f64; n];
+    for z in sol.z.chunks_exact(n) {
+        for (m, v) in size.iter_mut().zip(z) {
+            *m = m.max(v.abs());
+        }
+    }
+    Some(size)
+}
+
 /// The estimated error of `sol` per interval (max over its ends and the interior points
-/// `EST_T` of `|S_c − R_c| / (1 + |R_c|)`, every component `c`) against a reference `R` of
+/// `EST_T` of `|S_c − R_c| / (1 + |R_c|)`, every component `c`; with [`ErrorControl::Confirmed`]
+/// relative to `1 + max |R_c|` over the reference's nodes, [`scales`]) against a reference `R` of
 /// higher accuracy on the same problem, and the reference solve's statistics. Lobatto4: `R` is
 /// Lobatto6 on the same mesh (order 6 against 4 at the nodes, 5 against 4 between them);
 /// Lobatto6: `R` is Lobatto6 on the halved mesh (64× more accurate). So `|S − R|` is the error
@@ -579,6 +648,7 @@ fn error_estimate<P: Bvp + ?Sized>(
         Err(e) => return (None, e.stats().cloned()),
     };
     let n = sol.n;
+    let scale = scales(cx, &reference);
     let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
     let mut errs = Vec::with_capacity(sol.mesh.len() - 1);
     for w in sol.mesh.windows(2) {
@@ -588,7 +658,8 @@ fn error_estimate<P: Bvp + ?Sized>(
             sol.eval(s, &mut a);
             reference.eval(s, &mut b);
             for c in 0..n {
-                e = e.max((a[c] - b[c]).abs() / (1.0 + b[c].abs()));
+                let size = scale.as_ref().map_or(b[c].abs(), |s| s[c]);
+                e = e.max((a[c] - b[c]).abs() / (1.0 + size));
             }
         }
         errs.push(e);
