@@ -124,6 +124,11 @@ pub(crate) struct Fig {
     pub panels: Vec<Panel>,
     pub w: u32,
     pub h: u32,
+    /// Instead of the grid: the panels in one column, each `w` wide and of these heights; their
+    /// plot areas have the same horizontal extent and every panel after the first takes the
+    /// first one's x range (aligned in x: legends that do not fit inside go below, never
+    /// beside).
+    pub stack: Option<Vec<u32>>,
 }
 
 fn pe<E: std::fmt::Debug>(e: E) -> Fail {
@@ -302,6 +307,8 @@ pub(crate) struct PanelLayout {
     pub tags: Vec<(String, Rect)>,
     /// labels that found no free place (not drawn)
     pub untagged: Vec<String>,
+    /// the x range of the plot area (data units)
+    pub x_range: (f64, f64),
 }
 
 fn legend_entries(p: &Panel) -> Vec<&Series> {
@@ -650,11 +657,15 @@ fn lay_out<'a, DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     p: &Panel,
     whole: &Rect,
+    (x_fixed, keep_width): (Option<(f64, f64)>, bool),
 ) -> Res<Laid<'a, DB>>
 where
     DB::ErrorType: 'static,
 {
-    let (xr0, yr0) = data_ranges(p);
+    let (mut xr0, yr0) = data_ranges(p);
+    if let Some(x) = x_fixed {
+        xr0 = x;
+    }
     let legend_wh = legend_size(p);
     // legend inside the plot area if there is an empty place, else beside it (narrow legends)
     // or below it (wide ones); the plot area shrinks to make room
@@ -677,7 +688,8 @@ where
                 break (chart, px, marks, Some(r));
             }
             inside = false;
-            if lw < 0.3 * (whole.x1 - whole.x0) {
+            // (a panel aligned with another keeps its width: its legend goes below)
+            if !keep_width && lw < 0.3 * (whole.x1 - whole.x0) {
                 right += (lw + u(14.0) as f64).ceil() as i32;
             } else {
                 bottom += (lh + u(10.0) as f64).ceil() as i32;
@@ -837,6 +849,7 @@ where
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     p: &Panel,
+    aligned: (Option<(f64, f64)>, bool),
 ) -> Res<PanelLayout>
 where
     DB::ErrorType: 'static,
@@ -861,8 +874,12 @@ where
         (whole.x0 + 0.5 * w as f64, whole.y0 + u(8.0) as f64),
     )?;
     let (_, area) = area.split_vertically(u(36.0));
-    let (mut chart, px, marks, legend) = lay_out(&area, p, &whole)?;
+    let (mut chart, px, marks, legend) = lay_out(&area, p, &whole, aligned)?;
     let plot = plot_rect(&chart);
+    let x_range = {
+        let r = chart.x_range();
+        (r.start, r.end)
+    };
     chart
         .configure_mesh()
         .x_desc(p.xlabel.as_str())
@@ -889,6 +906,7 @@ where
         legend,
         tags,
         untagged,
+        x_range,
     })
 }
 
@@ -921,6 +939,9 @@ pub(crate) fn panel_grid(n: usize) -> (usize, usize) {
 /// The size of a figure's picture (output pixels): its panels on [`panel_grid`], the caption
 /// above.
 pub(crate) fn picture_size(fig: &Fig) -> (u32, u32) {
+    if let Some(heights) = &fig.stack {
+        return (fig.w, heights.iter().sum::<u32>() + 40);
+    }
     let (rows, cols) = panel_grid(fig.panels.len());
     (fig.w * cols as u32, fig.h * rows as u32 + 40)
 }
@@ -943,12 +964,37 @@ pub(crate) fn render(fig: &Fig) -> Res<(String, Vec<PanelLayout>)> {
             (0.5 * (w * S as u32) as f64, u(8.0) as f64),
         )?;
         let (_, body) = root.split_vertically(u(40.0));
-        for (a, p) in body
-            .split_evenly(panel_grid(fig.panels.len()))
-            .iter()
-            .zip(&fig.panels)
-        {
-            layouts.push(draw_panel(a, p)?);
+        match &fig.stack {
+            Some(heights) => {
+                // one column; the panels after the first in the first one's x range
+                let mut edge = 0;
+                let breaks: Vec<i32> = heights
+                    .iter()
+                    .map(|h| {
+                        edge += *h as i32 * S;
+                        edge
+                    })
+                    .collect();
+                let areas = body.split_by_breakpoints(
+                    Vec::<i32>::new(),
+                    &breaks[..breaks.len().saturating_sub(1)],
+                );
+                let mut x_fixed = None;
+                for (a, p) in areas.iter().zip(&fig.panels) {
+                    let l = draw_panel(a, p, (x_fixed, true))?;
+                    x_fixed = x_fixed.or(Some(l.x_range));
+                    layouts.push(l);
+                }
+            }
+            None => {
+                for (a, p) in body
+                    .split_evenly(panel_grid(fig.panels.len()))
+                    .iter()
+                    .zip(&fig.panels)
+                {
+                    layouts.push(draw_panel(a, p, (None, false))?);
+                }
+            }
         }
         root.present().map_err(pe)?;
     }
@@ -1079,6 +1125,7 @@ mod tests {
             panels: vec![p],
             w: 600,
             h: 400,
+            stack: None,
         };
         let (_, l) = render(&fig).unwrap();
         let legend = l[0].legend.unwrap();

@@ -670,6 +670,11 @@ pub struct FitArgs {
     /// Also estimate the surface inclination (straight surfaces).
     #[arg(long)]
     pub fit_angle: bool,
+    /// Also estimate the corrugation's amplitude, wavelength and phase (a comma list of those
+    /// names: only these), starting from --corrugation-amplitude, --corrugation-wavelength,
+    /// --corrugation-phase (or the scene's [surface] kind = "sine").
+    #[arg(long, value_name = "PARTS", num_args = 0..=1, require_equals = true, default_missing_value = "amplitude,wavelength,phase")]
+    pub fit_corrugation: Option<String>,
     /// Surface height eta of the model (rod lengths), in (eta_, 1); the start with --fit-eta. [default: scene file's, else 0.75]
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
@@ -851,6 +856,15 @@ pub struct PlotArgs {
     /// the drag's --shapes (--select chooses other points).
     #[arg(long, value_name = "SHAPES.csv", help_heading = "Drag")]
     pub shapes: Option<PathBuf>,
+    /// Drag with --shapes: one picture of the drag over its surface instead, aligned in d: above,
+    /// the surface, the rod just before and after every slip and the tip's contacts (lab frame,
+    /// the foot at x = d); below, the moment at the foot m_base(d) with the slips marked. The
+    /// --corrugation, --grating or --surface-profile flags of the drag draw its surface exactly
+    /// (its height read off the tips); without them it is drawn through the tips.
+    #[arg(long, requires = "shapes", help_heading = "Drag")]
+    pub aligned: bool,
+    #[command(flatten, next_help_heading = "Drag: its surface (with --aligned)")]
+    pub texture: TextureArgs,
     /// Shapes: inclination of the surface line drawn through the tip (rad), as the scan's --surface-angle.
     #[arg(long, value_name = "B", value_parser = finite_f64, default_value = "0", help_heading = "Shapes")]
     pub surface_angle: f64,

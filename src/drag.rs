@@ -10,7 +10,7 @@ use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
 use vibrissa::drag::{DragRow, DragSummary, SlipEvent};
-use vibrissa::fit::{FitOptions, FitResult, Signal, Trace};
+use vibrissa::fit::{CorrugationFit, FitOptions, FitResult, Signal, Trace};
 use vibrissa::{DragOptions, Scene, StopReason, Units};
 
 /// Columns of the drag CSV (`vibrissa plot` reads them by name); with a physical scene
@@ -219,6 +219,25 @@ pub fn read_trace(text: &str, name: &str, use_sig: &[bool; 3]) -> Res<Trace> {
     })
 }
 
+/// Which of the corrugation's parameters `--fit-corrugation[=PARTS]` frees.
+fn corrugation_parts(list: Option<&str>) -> Res<CorrugationFit> {
+    let mut c = CorrugationFit::default();
+    for part in list.into_iter().flat_map(|l| l.split(',')) {
+        match part.trim() {
+            "amplitude" => c.amplitude = true,
+            "wavelength" => c.wavelength = true,
+            "phase" => c.phase = true,
+            other => {
+                return Err(usage(format!(
+                    "--fit-corrugation: '{other}' is not a part of the corrugation (amplitude, \
+                     wavelength, phase)"
+                )))
+            }
+        }
+    }
+    Ok(c)
+}
+
 /// The answer of `vibrissa fit`.
 #[derive(Serialize)]
 struct FitOut<'a> {
@@ -270,6 +289,7 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
     let opts = FitOptions {
         fit_eta: a.fit_eta,
         fit_angle: a.fit_angle,
+        corrugation: corrugation_parts(a.fit_corrugation.as_deref())?,
         guess: a.mu_s.zip(a.mu_k),
         solver: a.solver.config(sc.start),
         contact: sc.contact,

@@ -174,6 +174,7 @@ fn fig2(cx: &Ctx) -> Res<Fig> {
         panels: vec![p],
         w: 860,
         h: 640,
+        stack: None,
     })
 }
 
@@ -236,6 +237,7 @@ fn fig3(cx: &Ctx) -> Res<Fig> {
         panels: vec![p],
         w: 720,
         h: 720,
+        stack: None,
     })
 }
 
@@ -276,6 +278,7 @@ fn fig4(cx: &Ctx) -> Res<Fig> {
         panels: vec![a, b],
         w: 560,
         h: 460,
+        stack: None,
     })
 }
 
@@ -315,6 +318,7 @@ fn fig5(cx: &Ctx) -> Res<Fig> {
         panels: vec![p],
         w: 620,
         h: 720,
+        stack: None,
     })
 }
 
@@ -414,6 +418,7 @@ fn fig_sequence(
         panels: vec![a],
         w: 760,
         h: 560,
+        stack: None,
     });
 }
 
@@ -472,6 +477,7 @@ fn fig_mu(
         panels: vec![m],
         w: 760,
         h: 560,
+        stack: None,
     });
 }
 
@@ -528,6 +534,7 @@ fn fig_lines(
         panels: vec![b],
         w: 720,
         h: 660,
+        stack: None,
     })
 }
 

@@ -18,6 +18,8 @@ use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+mod aligned;
+
 /// A CSV file: header and rows of text fields.
 pub(crate) struct Table {
     name: String,
@@ -325,6 +327,7 @@ fn signals(t: &Table, title: &str, xcol: &str) -> Res<Fig> {
         panels,
         w: 520,
         h: 440,
+        stack: None,
     })
 }
 
@@ -481,6 +484,7 @@ fn shapes(t: &Table, select: Option<&[usize]>, beta: f64, whisk: bool) -> Res<Fi
         panels: vec![shape_panel(t, &by_point, &styled, (title, beta, whisk))?],
         w: 760,
         h: 560,
+        stack: None,
     })
 }
 
@@ -881,6 +885,7 @@ fn sweep(t: &Table, x: Option<&str>, y: Option<&str>, z: &str, wheres: &[String]
         panels: vec![p],
         w: 760,
         h: 560,
+        stack: None,
     })
 }
 
@@ -917,8 +922,37 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
             t.name
         )));
     }
+    let mut sc = vibrissa::Scene {
+        surface_angle: a.surface_angle,
+        ..vibrissa::Scene::default()
+    };
+    let textured = crate::texture::apply(&a.texture, &mut sc)?;
+    if textured && !a.aligned {
+        return Err(usage(
+            "the texture flags (--corrugation-*, --grating-*, --surface-profile) give the surface \
+             of a drag's picture with --aligned",
+        ));
+    }
     let mut fig = match kind {
         PlotKind::Scan => signals(t, &format!("scan {}", t.name), "d")?,
+        PlotKind::Drag if a.aligned => {
+            let shape = if textured {
+                vibrissa::surface::Height::new(&sc.surface, 0.0, a.surface_angle)?
+            } else {
+                None
+            };
+            let path = a
+                .shapes
+                .as_ref()
+                .ok_or_else(|| usage("--aligned needs --shapes"))?;
+            aligned::drag_over_surface(
+                t,
+                &Table::read(path)?,
+                a.select.as_deref(),
+                shape.as_ref(),
+                a.surface_angle,
+            )?
+        }
         PlotKind::Drag => match &a.shapes {
             Some(path) => {
                 drag_with_shapes(t, &Table::read(path)?, a.select.as_deref(), a.surface_angle)?
@@ -977,6 +1011,9 @@ mod tests {
     const DRAG_SHAPES: &str = include_str!("../tests/fixtures/plot/drag_shapes.csv");
     const WHISK: &str = include_str!("../tests/fixtures/plot/whisk.csv");
     const WHISK_SHAPES: &str = include_str!("../tests/fixtures/plot/whisk_shapes.csv");
+    const CORRUGATED: &str = include_str!("../tests/fixtures/plot/drag_corrugated.csv");
+    const CORRUGATED_SHAPES: &str =
+        include_str!("../tests/fixtures/plot/drag_corrugated_shapes.csv");
 
     fn args(kind: PlotKind) -> PlotArgs {
         PlotArgs {
@@ -986,6 +1023,8 @@ mod tests {
             title: None,
             select: None,
             shapes: None,
+            aligned: false,
+            texture: crate::cli::TextureArgs::default(),
             surface_angle: 0.0,
             x: None,
             y: None,
@@ -1148,6 +1187,105 @@ mod tests {
         a.select = Some(vec![99]);
         let e = err(figure(&Table::parse("shapes.csv", SHAPES).unwrap(), &a));
         assert!(e.contains("--select 99"), "{e}");
+    }
+
+    /// The corrugation of the fixture (README there): `A sin(2πx/W)` at height 0.
+    fn corrugation() -> vibrissa::surface::Height {
+        let p = vibrissa::surface::SurfaceProfile::Sine {
+            amplitude: 0.005,
+            wavelength: 0.1,
+            phase: 0.0,
+        };
+        vibrissa::surface::Height::new(&p, 0.0, 0.0)
+            .unwrap()
+            .unwrap()
+    }
+
+    /// Issue 31's picture of a drag over its surface (15 slips over a corrugation): above, the
+    /// surface at the height the tips give (η = 0.75, to 1e-6), the rod before and after every
+    /// slip, the feet at x = d and the tip's contacts; below, m_base(d) with the slips marked —
+    /// in the same x range and the same horizontal pixel extent, so that a foot at x = d
+    /// stands above its corner of the sawtooth.
+    #[test]
+    fn a_drag_over_its_surface_aligns_the_rods_with_the_sawtooth() {
+        let t = Table::parse("drag_corrugated.csv", CORRUGATED).unwrap();
+        let sh = Table::parse("drag_corrugated_shapes.csv", CORRUGATED_SHAPES).unwrap();
+        let h = corrugation();
+        let f = aligned::drag_over_surface(&t, &sh, None, Some(&h), 0.0).unwrap();
+        assert_eq!(f.panels.len(), 2);
+        let (up, low) = (&f.panels[0], &f.panels[1]);
+        assert!(up.equal_aspect && !low.equal_aspect);
+        assert_eq!(
+            names(up),
+            [
+                "surface (η = 0.75 from the tips)",
+                "rod just before a slip",
+                "rod just after a slip",
+                "foot at a slip (x = d)",
+                "tip where it slips (15)",
+                "tip where it stops (15)"
+            ]
+        );
+        // 15 slips: 30 rods of 9 samples from the foot (d, 0) to the tip on the surface
+        let rods: Vec<&Series> = up
+            .series
+            .iter()
+            .filter(|s| matches!(s.kind, Kind::Line | Kind::Dashed) && s.pts.len() == 9)
+            .collect();
+        assert_eq!(rods.len(), 30);
+        for s in &rods {
+            let (foot, tip) = (s.pts[0], s.pts[8]);
+            assert_eq!(foot.1, 0.0);
+            assert!((tip.1 - 0.75 - h.h(tip.0)).abs() < 1e-6, "{tip:?}");
+        }
+        // the surface passes through every contact of the tip
+        let surface = &up.series[0];
+        for s in up.series.iter().filter(|s| s.name.starts_with("tip where")) {
+            for &(x, y) in &s.pts {
+                assert!((y - 0.75 - h.h(x)).abs() < 1e-6, "{}: ({x}, {y})", s.name);
+                assert!(surface.pts[0].0 < x && x < surface.pts.last().unwrap().0);
+            }
+        }
+        // below: the moment with its slips (and their ends) marked
+        let n = names(low);
+        assert!(
+            n.contains(&"slip (15)") && n.contains(&"slip_end (15)"),
+            "{n:?}"
+        );
+        let (svg, l) = render(&f).unwrap();
+        for (a, b) in [(l[0].plot.x0, l[1].plot.x0), (l[0].plot.x1, l[1].plot.x1)] {
+            assert!((a - b).abs() < 1e-9, "plot areas at {a} and {b}");
+        }
+        assert_eq!(l[0].x_range, l[1].x_range);
+        // every foot and every slip of the sawtooth inside the shared range
+        let d = t.need("d").unwrap();
+        assert!(l[0].x_range.0 < 0.0 && d.iter().all(|&x| x < l[0].x_range.1));
+        for p in [up, low] {
+            assert!(svg.contains(&p.title), "{}", p.title);
+        }
+        for (p, lay) in f.panels.iter().zip(&l) {
+            check_panel("drag over its surface", p, lay);
+        }
+        // without the texture, the surface is the path through the tips
+        let f = aligned::drag_over_surface(&t, &sh, None, None, 0.0).unwrap();
+        assert!(names(&f.panels[0])[0].starts_with("surface (where the tip touched"));
+        // another corrugation is refused: the tips are not on it
+        let p = vibrissa::surface::SurfaceProfile::Sine {
+            amplitude: 0.005,
+            wavelength: 0.11,
+            phase: 0.0,
+        };
+        let other = vibrissa::surface::Height::new(&p, 0.0, 0.0)
+            .unwrap()
+            .unwrap();
+        let e = err(aligned::drag_over_surface(&t, &sh, None, Some(&other), 0.0));
+        assert!(e.contains("the tips lie up to"), "{e}");
+        // the texture flags draw --aligned's surface only
+        let mut a = args(PlotKind::Auto);
+        a.texture.corrugation_amplitude = vec![0.005];
+        a.texture.corrugation_wavelength = vec![0.1];
+        let e = err(figure(&t, &a));
+        assert!(e.contains("with --aligned"), "{e}");
     }
 
     #[test]

@@ -229,11 +229,14 @@ pub fn command(cmd: &mut Command) -> Res<()> {
                 &limits::ROTARY_INERTIA,
             )
         }
-        Command::Plot(a) => check(
-            Src::Flag("--surface-angle"),
-            a.surface_angle,
-            &limits::SURFACE_ANGLE,
-        ),
+        Command::Plot(a) => {
+            check(
+                Src::Flag("--surface-angle"),
+                a.surface_angle,
+                &limits::SURFACE_ANGLE,
+            )?;
+            texture(&a.texture)
+        }
     }
 }
 

@@ -809,6 +809,56 @@ fn plot_draws_each_kind_of_file() {
     assert!(e.contains("--surface-angle 1 is outside"), "{e}");
 }
 
+/// `plot DRAG.csv --shapes SHAPES.csv --aligned` with the drag's corrugation (issue 31): one SVG
+/// of the surface and the rods at the slips above the moment at the foot.
+#[test]
+fn plot_aligned_draws_a_drag_over_its_surface() {
+    let dir = tmpdir("plot_aligned");
+    let fixtures = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/plot");
+    let out = dir.join("over.svg");
+    let o = ok(&[
+        "plot",
+        fixtures.join("drag_corrugated.csv").to_str().unwrap(),
+        "--shapes",
+        fixtures
+            .join("drag_corrugated_shapes.csv")
+            .to_str()
+            .unwrap(),
+        "--aligned",
+        "--corrugation-amplitude",
+        "0.005",
+        "--corrugation-wavelength",
+        "0.1",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.stdout.trim(),
+        format!("plot written to {}", out.display())
+    );
+    let svg = std::fs::read_to_string(&out).unwrap();
+    for text in [
+        "the rod at the slips over the surface",
+        "surface (η = 0.75 from the tips)",
+        "rod just before a slip",
+        "rod just after a slip",
+        "tip where it slips (15)",
+        "moment at the foot (the foot at x = d)",
+        "slip (15)",
+    ] {
+        assert!(svg.contains(text), "{text}");
+    }
+    let e = bad(
+        &[
+            "plot",
+            fixtures.join("drag_corrugated.csv").to_str().unwrap(),
+            "--aligned",
+        ],
+        2,
+    );
+    assert!(e.contains("--shapes"), "{e}");
+}
+
 #[test]
 fn a_handover_to_the_own_shooter_is_said() {
     // A trapped start multiple shooting cannot take (docs/robustness.md, third grid): `scan`

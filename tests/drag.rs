@@ -597,6 +597,52 @@ fn fit_recovers_the_drag_and_names_what_it_cannot_determine() {
     assert!(line.contains("no slip"), "{line}");
 }
 
+/// `fit --fit-corrugation[=PARTS]` (issue 31): the parts named are fitted from the corrugation
+/// flags' values; on a flat trace (the fixture's two slips, μs = 0.5, μk = 0.3) started at
+/// amplitude 0 the wavelength and the phase are named on stderr and get no standard error, μs
+/// and μk come back (from the places alone: exactly, to 1e-9); a part that is not one, and a
+/// scene without a corrugation, are refused.
+#[test]
+fn fit_corrugation_names_the_parts_a_trace_cannot_determine() {
+    let t = "tests/fixtures/drag/trace.csv";
+    let flat = [
+        "--corrugation-amplitude",
+        "0",
+        "--corrugation-wavelength",
+        "0.1",
+    ];
+    let mut args = vec!["fit", "--trace", t, "--places-only"];
+    args.extend(flat);
+    args.push("--fit-corrugation=wavelength,phase");
+    let o = ok(&args);
+    assert!(
+        o.stderr
+            .contains("wavelength and phase cannot be determined from this trace"),
+        "{}",
+        o.stderr
+    );
+    let (h, rows) = csv(&o.stdout);
+    let names: Vec<&str> = rows.iter().map(|r| r[0].as_str()).collect();
+    assert_eq!(names, ["mu_s", "mu_k", "wavelength", "phase"]);
+    let se = h.iter().position(|c| c == "std_error").unwrap();
+    let id = h.iter().position(|c| c == "identifiable").unwrap();
+    for r in &rows[2..] {
+        assert!(r[se].is_empty() && r[id] == "false", "{r:?}");
+    }
+    close(col(&h, &rows[0], "value"), 0.5, 1e-9, "mu_s");
+    close(col(&h, &rows[1], "value"), 0.3, 1e-9, "mu_k");
+    assert_eq!(col(&h, &rows[2], "value"), 0.1);
+    let mut args = vec!["fit", "--trace", t, "--fit-corrugation=amplitude,depth"];
+    args.extend(flat);
+    let e = bad(&args, 2);
+    assert!(
+        e.contains("--fit-corrugation: 'depth' is not a part"),
+        "{e}"
+    );
+    let e = bad(&["fit", "--trace", t, "--fit-corrugation"], 2);
+    assert!(e.contains("not one sine corrugation"), "{e}");
+}
+
 /// A side contact at its slip limit slides (issue 31): its slips are `slip` rows a fit reads, the
 /// contact column says `side`, and the drag reaches d_max without a warning.
 #[test]

@@ -18,10 +18,18 @@
 //! A fit whose consistency check calls it a misfit has no standard error and counts as not
 //! covered (`misfits` in the first table).
 //!
+//! `texture [TRIALS [SLIPS]]` (issue 31): the corrugation read back. The noise-free trace of
+//! SLIPS slips (default 6) over A = 0.005, W = 0.1, P = 0.7 fitted with μs, μk, A, W, P free from
+//! eight perturbed starts (A ±20 %, W ±5 %, P ±0.3, with unit weights given: the errors against
+//! `√n · tol · std_error`, observations exact to the drags' tolerance); then TRIALS (default 10)
+//! noisy traces (the noise below, the levels given) from the start A = 0.0055, W = 0.097,
+//! P = 0.6: each parameter within 3 standard errors, the rms error and the mean standard error.
+//!
 //! (default 100 trials of 4, 8, 16 and 32 slips; trial `i` of `n` slips draws from seed
 //! `1000 n + i`)
 
-use vibrissa::fit::{fit, FitOptions, FitResult, Trace};
+use std::time::Instant;
+use vibrissa::fit::{fit, CorrugationFit, FitOptions, FitResult, Trace};
 use vibrissa::{drag, DragOptions, Scene};
 
 #[path = "../tests/support/noisy_trace.rs"]
@@ -134,6 +142,16 @@ fn main() {
     assert!((t_tail(1.0, 1.0) - 0.5).abs() < 1e-12);
     assert!((t_tail(3.0, 1e7) - 2.699_796e-3).abs() < 1e-8);
     let mut args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().is_some_and(|a| a == "texture") {
+        let num = |i: usize, default: usize| {
+            args.get(i).map_or(default, |a| {
+                a.parse()
+                    .expect("usage: fit_stats texture [TRIALS [SLIPS]]")
+            })
+        };
+        texture(num(1, 10), num(2, 6));
+        return;
+    }
     // `corrugated`: the scene's surface corrugated (A = 0.005, W = 0.1; issue 33)
     let corrugated = args.first().is_some_and(|a| a == "corrugated");
     if corrugated {
@@ -294,5 +312,152 @@ fn main() {
             s0[1] / s1[1],
             ((n1 as f64) / (n0 as f64)).sqrt()
         );
+    }
+}
+
+/// A scene whose surface is the corrugation `A sin(2πx/W + P)`.
+fn corrugation(amplitude: f64, wavelength: f64, phase: f64) -> Scene {
+    Scene {
+        surface: vibrissa::surface::SurfaceProfile::Sine {
+            amplitude,
+            wavelength,
+            phase,
+        },
+        ..Scene::default()
+    }
+}
+
+/// The parameters of the texture study and their true values.
+const TEXTURE_TRUTH: [(&str, f64); 5] = [
+    ("mu_s", 0.5),
+    ("mu_k", 0.3),
+    ("amplitude", 0.005),
+    ("wavelength", 0.1),
+    ("phase", 0.7),
+];
+
+/// The corrugation read back (module docs, `texture`).
+fn texture(trials: usize, slips: usize) {
+    let truth = corrugation(0.005, 0.1, 0.7);
+    let (rod, surface) = truth.parts().expect("scene");
+    let r = drag(
+        &rod,
+        &surface,
+        &DragOptions {
+            d_max: 1.0,
+            points: 2,
+            mu_s: Some(0.5),
+            mu_k: Some(0.3),
+            max_slips: slips,
+            ..DragOptions::default()
+        },
+    )
+    .expect("drag");
+    assert_eq!(r.slips.len(), slips, "{r}");
+    let all = CorrugationFit::ALL;
+    let tol = vibrissa::SolverConfig::DEFAULT_TOL;
+    println!(
+        "noise-free trace of {slips} slips, unit weights: start A, W, P | error / (sqrt(n) tol SE) \
+         mu_s, mu_k, A, W, P | largest error | drags | seconds"
+    );
+    let exact_trace = full(&r);
+    for (a0, w0, p0) in [
+        (0.004, 0.095, 0.4),
+        (0.006, 0.095, 0.4),
+        (0.004, 0.105, 0.4),
+        (0.006, 0.105, 0.4),
+        (0.004, 0.095, 1.0),
+        (0.006, 0.095, 1.0),
+        (0.004, 0.105, 1.0),
+        (0.006, 0.105, 1.0),
+    ] {
+        let t0 = Instant::now();
+        let opts = FitOptions {
+            corrugation: all,
+            sigma: Some([1.0; 4]),
+            ..FitOptions::default()
+        };
+        let f = fit(&corrugation(a0, w0, p0), &exact_trace, &opts);
+        let secs = t0.elapsed().as_secs_f64();
+        match f {
+            Ok(f) => {
+                let n = (f.observations as f64).sqrt();
+                let mut worst = 0.0f64;
+                let ratios: Vec<String> = TEXTURE_TRUTH
+                    .iter()
+                    .map(|&(name, want)| {
+                        let p = f.get(name).expect("fitted");
+                        let e = (p.value - want).abs();
+                        worst = worst.max(e);
+                        let se = p.std_error.unwrap_or(f64::NAN);
+                        format!("{:.2e}", e / (n * tol * se))
+                    })
+                    .collect();
+                println!(
+                    "{a0}, {w0}, {p0} | {} | {worst:.2e} | {} | {secs:.1}{}",
+                    ratios.join(", "),
+                    f.drags,
+                    f.message.map_or(String::new(), |m| format!(" | {m}"))
+                );
+            }
+            Err(e) => println!("{a0}, {w0}, {p0} | error: {e} | {secs:.1}"),
+        }
+    }
+    println!(
+        "{trials} noisy traces of {slips} slips, levels given: within 3 SE | rms error | mean SE \
+         (mu_s, mu_k, A, W, P) | misfits | seconds per fit"
+    );
+    let given = FitOptions {
+        corrugation: all,
+        sigma: Some(SIGMA),
+        ..FitOptions::default()
+    };
+    let (mut inside, mut e2, mut se) = ([0usize; 5], [0.0f64; 5], [0.0f64; 5]);
+    let (mut misfits, t0) = (0, Instant::now());
+    for seed in 0..trials {
+        let t = noisy(&r, slips, &mut Rng(31_000 + seed as u64));
+        let f = fit(&corrugation(0.0055, 0.097, 0.6), &t, &given).expect("fit");
+        for (i, &(name, want)) in TEXTURE_TRUTH.iter().enumerate() {
+            let p = f.get(name).expect("fitted");
+            let e = p.value - want;
+            e2[i] += e * e;
+            match p.std_error {
+                Some(s) => {
+                    se[i] += s;
+                    inside[i] += usize::from(e.abs() <= 3.0 * s);
+                }
+                None => misfits += usize::from(i == 0),
+            }
+        }
+    }
+    let k = trials as f64;
+    let list = |v: [f64; 5]| {
+        v.iter()
+            .map(|x| format!("{x:.3e}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    println!(
+        "{inside:?} of {trials} | {} | {} | {misfits} | {:.1}",
+        list(e2.map(|e| (e / k).sqrt())),
+        list(se.map(|s| s / k)),
+        t0.elapsed().as_secs_f64() / k
+    );
+}
+
+/// Every signal before and after each slip of `r`, without noise.
+fn full(r: &vibrissa::DragResult) -> Trace {
+    let sig = |s: &vibrissa::drag::Signals| [Some(s.fx), Some(s.fy), Some(s.m_base)];
+    Trace {
+        slips: r
+            .slips
+            .iter()
+            .map(|e| vibrissa::fit::TraceSlip {
+                d: e.d,
+                before: sig(&e.before),
+                after: sig(&e.after),
+            })
+            .collect(),
+        tips: Vec::new(),
     }
 }

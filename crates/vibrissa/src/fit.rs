@@ -1,6 +1,6 @@
 //! Reading the surface from the signals (issue 21): the friction coefficients `μs`, `μk` (and on
-//! request the surface height η and inclination β) estimated from a measured drag by nonlinear
-//! least squares.
+//! request the surface height η and inclination β, or a sine corrugation's amplitude,
+//! wavelength and phase, issue 31) estimated from a measured drag by nonlinear least squares.
 //!
 //! The data are the trace's slips (the sawtooth's corners): for each slip `k` its foot
 //! displacement `d_k` and any of the base signals `fx`, `fy`, `m_base` just before and just after
@@ -13,7 +13,9 @@
 //!
 //! are minimized by argmin's Gauss–Newton method with a backtracking (Armijo) line search, in
 //! unconstrained coordinates (`μs = e^a`, `μk = μs / (1 + e^−b)`, η and β mapped onto their open
-//! ranges); the Jacobian by central differences of drags. `σ_kind` is each kind's noise level
+//! ranges, the wavelength's logarithm onto its range `[0.01, 100]`, the amplitude onto `±` the
+//! largest the slope limit allows at that wavelength, the phase as it is); the Jacobian by
+//! central differences of drags. `σ_kind` is each kind's noise level
 //! (`d`, `fx`, `fy`, `m_base`): given, or estimated. Estimated: a first fit with unit weights,
 //! then, until no level changes by more than 1e-3 (at most 12 rounds), each kind's variance
 //! from its residuals `e_i` (in its own units) over its own degrees of freedom and the fit
@@ -52,7 +54,8 @@
 //! not identifiable from the given signals when the column-scaled `J` is rank deficient (singular
 //! value ratio below 1e-7): the parameters carrying the null direction are named, held at their
 //! starting values, and the others fitted (e.g. μk from a trace with one slip and no signals after
-//! it: the slip's place depends on μs alone).
+//! it: the slip's place depends on μs alone; a corrugation's wavelength and phase when its
+//! amplitude starts at 0: they change nothing).
 //!
 //! Starting values: μs from the first slip — the friction ratio of the scan at `d_1` — and μk
 //! from the second (the scan's ratio at `d_1 − (d_2 − d_1)`, the place the flat surface's slip
@@ -60,6 +63,7 @@
 
 use crate::drag::{drag, DragOptions, DragResult, MAX_MU_S};
 use crate::report::{ContactModel, ScanOptions};
+use crate::surface::SurfaceProfile;
 use crate::{Scene, SolverConfig, VibrissaError};
 use argmin::core::{CostFunction, Error as ArgminError, Executor, Jacobian, Operator, State};
 use argmin::solver::gaussnewton::GaussNewtonLS;
@@ -251,6 +255,10 @@ pub struct FitOptions {
     pub fit_eta: bool,
     /// Also estimate the surface inclination β (straight surfaces). Default false.
     pub fit_angle: bool,
+    /// Which of the corrugation's amplitude, wavelength and phase to estimate as well (a scene
+    /// whose surface is one sine, `[surface] kind = "sine"`; their starts are the scene's).
+    /// Default: none.
+    pub corrugation: CorrugationFit,
     /// Starting `(μs, μk)`; default from the first two slips (module docs).
     pub guess: Option<(f64, f64)>,
     /// Noise levels of `d`, `fx`, `fy`, `m_base` (`None`: estimated).
@@ -268,6 +276,7 @@ impl Default for FitOptions {
         FitOptions {
             fit_eta: false,
             fit_angle: false,
+            corrugation: CorrugationFit::default(),
             guess: None,
             sigma: None,
             solver: SolverConfig::default(),
@@ -277,10 +286,38 @@ impl Default for FitOptions {
     }
 }
 
+/// Which parameters of a sine corrugation `A·sin(2πx/W + P)` (the scene's `[surface] kind =
+/// "sine"`) [`fit`] estimates beside μs and μk; the others are held at the scene's values.
+/// Default: none (the corrugation is known).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct CorrugationFit {
+    /// The amplitude `A` (rod lengths), within the slope limit of the surface
+    /// (`|tan β| + 2π|A|/W < 1`) and `|A| ≤ 0.2`.
+    pub amplitude: bool,
+    /// The wavelength `W` (rod lengths), in `[0.01, 100]`.
+    pub wavelength: bool,
+    /// The phase `P` (rad) at `x = 0`.
+    pub phase: bool,
+}
+
+impl CorrugationFit {
+    /// All three.
+    pub const ALL: CorrugationFit = CorrugationFit {
+        amplitude: true,
+        wavelength: true,
+        phase: true,
+    };
+
+    /// Whether any is estimated.
+    pub fn any(self) -> bool {
+        self.amplitude || self.wavelength || self.phase
+    }
+}
+
 /// One estimated parameter.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct FitParam {
-    /// `mu_s`, `mu_k`, `eta`, `surface_angle`.
+    /// `mu_s`, `mu_k`, `eta`, `surface_angle`, `amplitude`, `wavelength`, `phase`.
     pub name: &'static str,
     /// The estimate (the starting value when not identifiable).
     pub value: f64,
@@ -372,17 +409,47 @@ enum Par {
     MuK,
     Eta,
     Angle,
+    Amplitude,
+    Wavelength,
+    Phase,
 }
 
+/// Natural values of every parameter, indexed by [`Par`].
+type Values = [f64; 7];
+
 impl Par {
+    /// In [`Values`] order.
+    const ALL: [Par; 7] = [
+        Par::MuS,
+        Par::MuK,
+        Par::Eta,
+        Par::Angle,
+        Par::Amplitude,
+        Par::Wavelength,
+        Par::Phase,
+    ];
+
     fn name(self) -> &'static str {
         match self {
             Par::MuS => "mu_s",
             Par::MuK => "mu_k",
             Par::Eta => "eta",
             Par::Angle => "surface_angle",
+            Par::Amplitude => "amplitude",
+            Par::Wavelength => "wavelength",
+            Par::Phase => "phase",
         }
     }
+}
+
+/// The range of a corrugation's wavelength, rod lengths (the scene's).
+const WAVELENGTH_RANGE: (f64, f64) = (0.01, 100.0);
+
+/// The largest amplitude of a corrugation of wavelength `w` on a surface inclined by `beta`: the
+/// scene's 0.2, and just below the slope limit `|tan β| + 2π|A|/W < 1`.
+fn max_amplitude(w: f64, beta: f64) -> f64 {
+    let room = (crate::surface::MAX_PROFILE_SLOPE - beta.tan().abs()).max(0.0);
+    (room * w / std::f64::consts::TAU * (1.0 - 1e-9)).min(0.2)
 }
 
 /// The least-squares problem: observations, weights, the scene and which parameters are free.
@@ -393,7 +460,7 @@ struct Model<'a> {
     sigma: [f64; 4],
     free: Vec<Par>,
     /// Natural values of every parameter (the held ones stay).
-    base: [f64; 4],
+    base: Values,
     opts: &'a FitOptions,
     d_max: f64,
     drags: RefCell<usize>,
@@ -408,28 +475,36 @@ fn logit(p: f64) -> f64 {
 }
 
 impl Model<'_> {
-    /// Natural `(μs, μk, η, β)` from the free coordinates `x`.
-    fn natural(&self, x: &[f64]) -> [f64; 4] {
+    /// Natural `(μs, μk, η, β, A, W, P)` from the free coordinates `x` (μk a share of μs, the
+    /// amplitude a share of its largest at the wavelength and inclination).
+    fn natural(&self, x: &[f64]) -> Values {
         let mut v = self.base;
+        let (w_lo, w_hi) = (WAVELENGTH_RANGE.0.ln(), WAVELENGTH_RANGE.1.ln());
         for (i, p) in self.free.iter().enumerate() {
             match p {
                 Par::MuS => v[0] = x[i].exp(),
-                Par::MuK => {}
+                Par::MuK | Par::Amplitude => {}
                 Par::Eta => {
                     let lo = elastica::lower_limit().1;
                     v[2] = lo + (1.0 - lo) * logistic(x[i]);
                 }
                 Par::Angle => v[3] = crate::MAX_SURFACE_ANGLE * (2.0 * logistic(x[i]) - 1.0),
+                Par::Wavelength => v[5] = (w_lo + (w_hi - w_lo) * logistic(x[i])).exp(),
+                Par::Phase => v[6] = x[i],
             }
         }
         if let Some(i) = self.free.iter().position(|&p| p == Par::MuK) {
             v[1] = v[0] * logistic(x[i]);
         }
+        if let Some(i) = self.free.iter().position(|&p| p == Par::Amplitude) {
+            v[4] = max_amplitude(v[5], v[3]) * (2.0 * logistic(x[i]) - 1.0);
+        }
         v
     }
 
     /// Free coordinates of natural values.
-    fn coords(&self, v: [f64; 4]) -> Vec<f64> {
+    fn coords(&self, v: Values) -> Vec<f64> {
+        let (w_lo, w_hi) = (WAVELENGTH_RANGE.0.ln(), WAVELENGTH_RANGE.1.ln());
         self.free
             .iter()
             .map(|p| match p {
@@ -440,16 +515,27 @@ impl Model<'_> {
                     logit((v[2] - lo) / (1.0 - lo))
                 }
                 Par::Angle => logit(0.5 * (v[3] / crate::MAX_SURFACE_ANGLE + 1.0)),
+                Par::Amplitude => logit(0.5 * (v[4] / max_amplitude(v[5], v[3]) + 1.0)),
+                Par::Wavelength => logit((v[5].ln() - w_lo) / (w_hi - w_lo)),
+                Par::Phase => v[6],
             })
             .collect()
     }
 
     /// The drag at natural values.
-    fn drag_at(&self, v: [f64; 4]) -> Result<DragResult, VibrissaError> {
+    fn drag_at(&self, v: Values) -> Result<DragResult, VibrissaError> {
         *self.drags.borrow_mut() += 1;
         let mut sc = self.scene.clone();
         sc.eta = v[2];
         sc.surface_angle = v[3];
+        if let SurfaceProfile::Sine { .. } = sc.surface {
+            // (the scene's own values unless fitted)
+            sc.surface = SurfaceProfile::Sine {
+                amplitude: v[4],
+                wavelength: v[5],
+                phase: v[6],
+            };
+        }
         let (rod, surface) = sc.parts()?;
         drag(
             &rod,
@@ -470,13 +556,13 @@ impl Model<'_> {
     /// Weighted residuals at natural values (a missing model slip counts as one at `d_max`, its
     /// signals as zero; a drag that fails gives large residuals, so that a line search backs
     /// off).
-    fn residuals(&self, v: [f64; 4]) -> DVector<f64> {
+    fn residuals(&self, v: Values) -> DVector<f64> {
         self.residuals_of(v)
             .unwrap_or_else(|_| DVector::from_element(self.obs.len(), 1e6))
     }
 
     /// The weighted residuals, or why the drag at `v` fails.
-    fn residuals_of(&self, v: [f64; 4]) -> Result<DVector<f64>, VibrissaError> {
+    fn residuals_of(&self, v: Values) -> Result<DVector<f64>, VibrissaError> {
         let r = self.drag_at(v)?;
         Ok(DVector::from_iterator(
             self.obs.len(),
@@ -498,21 +584,16 @@ impl Model<'_> {
     }
 
     /// `∂r/∂(natural free parameters)` by central differences.
-    fn jacobian_natural(&self, v: [f64; 4]) -> Result<DMatrix<f64>, VibrissaError> {
+    fn jacobian_natural(&self, v: Values) -> Result<DMatrix<f64>, VibrissaError> {
         let mut j = DMatrix::zeros(self.obs.len(), self.free.len());
         for (c, p) in self.free.iter().enumerate() {
-            let i = match p {
-                Par::MuS => 0,
-                Par::MuK => 1,
-                Par::Eta => 2,
-                Par::Angle => 3,
-            };
+            let i = *p as usize;
             let h = 1e-6 * v[i].abs().max(0.1);
             let (mut a, mut b) = (v, v);
             a[i] += h;
             b[i] -= h;
             // (a failed drag there is an error, not a parameter the signals do not see)
-            let at = |w: [f64; 4]| {
+            let at = |w: Values| {
                 self.residuals_of(w)
                     .map_err(|e| VibrissaError::NoConvergence {
                         what: format!(
@@ -741,9 +822,10 @@ fn unidentifiable(j: &DMatrix<f64>) -> Option<Vec<usize>> {
     Some((0..n).filter(|&c| v[c].abs() > 0.3).collect())
 }
 
-/// Estimates μs, μk (and on request η, β) of `scene` from the slips of `trace` (module docs).
-/// Errors for invalid input (fewer than one slip, non-finite values), when the start cannot be
-/// guessed, or when Gauss–Newton fails.
+/// Estimates μs, μk (and on request η, β, the corrugation's amplitude, wavelength, phase) of
+/// `scene` from the slips of `trace` (module docs). Errors for invalid input (fewer than one
+/// slip, non-finite values, a corrugation to fit on a surface that is not one sine), when the
+/// start cannot be guessed, or when Gauss–Newton fails.
 pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult, VibrissaError> {
     let (mut model, mut message, held) = setup(scene, trace, opts)?;
     let n = model.obs.len();
@@ -849,6 +931,24 @@ fn setup<'a>(
                 .into(),
         });
     }
+    let corrugation = match scene.surface {
+        SurfaceProfile::Sine {
+            amplitude,
+            wavelength,
+            phase,
+        } => Some([amplitude, wavelength, phase]),
+        _ => None,
+    };
+    if opts.corrugation.any() && corrugation.is_none() {
+        return Err(VibrissaError::MethodUnavailable {
+            method: "fit of the corrugation (amplitude, wavelength, phase)".into(),
+            reason:
+                "the scene's surface is not one sine corrugation (scene [surface] kind = \"sine\", \
+                     or one --corrugation-amplitude with its --corrugation-wavelength): its values \
+                     are the fit's start"
+                    .into(),
+        });
+    }
     let obs = observations(trace)?;
     if let Some(s) = opts.sigma {
         if let Some(i) = (0..4).find(|&i| !(s[i].is_finite() && s[i] > 0.0)) {
@@ -877,6 +977,18 @@ fn setup<'a>(
     if opts.fit_angle {
         free.push(Par::Angle);
     }
+    let c = opts.corrugation;
+    for (on, par) in [
+        (c.amplitude, Par::Amplitude),
+        (c.wavelength, Par::Wavelength),
+        (c.phase, Par::Phase),
+    ] {
+        if on {
+            free.push(par);
+        }
+    }
+    // (a surface other than a sine has no corrugation: its values are never used)
+    let [amplitude, wavelength, phase] = corrugation.unwrap_or([0.0, 1.0, 0.0]);
     let mut model = Model {
         scene,
         trace,
@@ -888,6 +1000,9 @@ fn setup<'a>(
             mu_k0.max(1e-6 * mu_s0),
             scene.eta,
             scene.surface_angle,
+            amplitude,
+            wavelength,
+            phase,
         ],
         opts,
         d_max: reach(trace),
@@ -1289,9 +1404,17 @@ fn hold_unidentifiable(model: &mut Model<'_>) -> Result<(Option<String>, Vec<Par
         .slips
         .iter()
         .any(|s| s.after.iter().any(Option::is_some));
+    let flat = model.base[Par::Amplitude as usize] == 0.0
+        && bad
+            .iter()
+            .all(|&c| matches!(model.free[c], Par::Wavelength | Par::Phase));
     let why = if slips == 1 && !after {
         "the trace has one slip and no signals after it, so nothing in it depends on where the \
          slip ends"
+            .to_string()
+    } else if flat {
+        "the corrugation's amplitude is 0 at the start, so its wavelength and phase change \
+         nothing in the drag; start from a nonzero amplitude"
             .to_string()
     } else {
         "the given signals do not change along that direction of the parameters".to_string()
@@ -1393,7 +1516,7 @@ fn reweight(
 /// its degrees of freedom. Held parameters are reported as not identifiable.
 fn estimates(
     model: &Model<'_>,
-    v: [f64; 4],
+    v: Values,
     (kinds, kind_dof): (&[usize], &[f64; 4]),
     s2: f64,
     exact: bool,
@@ -1411,7 +1534,7 @@ fn estimates(
         (m, _, _) => (m, vec![None; model.free.len()]),
     };
     let mut params = Vec::new();
-    for par in [Par::MuS, Par::MuK, Par::Eta, Par::Angle] {
+    for par in Par::ALL {
         let value = v[par as usize];
         if let Some(c) = model.free.iter().position(|&q| q == par) {
             let se = cov

@@ -323,3 +323,124 @@ fn corrugated_trace_fits_its_surface_and_misfits_a_flat_one() {
     assert!(m.contains("tips lie off a straight line"), "{m}");
     assert!(m.contains("does not fit the whole trace"), "{m}");
 }
+
+/// A drag's default solver tolerance: the observations of a noise-free trace are exact to it.
+const DRAG_TOL: f64 = vibrissa::SolverConfig::DEFAULT_TOL;
+
+/// The corrugated scene of issue 31's read-back.
+fn corrugated(amplitude: f64, wavelength: f64, phase: f64) -> Scene {
+    Scene {
+        surface: vibrissa::surface::SurfaceProfile::Sine {
+            amplitude,
+            wavelength,
+            phase,
+        },
+        ..Scene::default()
+    }
+}
+
+/// Issue 31: the texture read back. The noise-free trace of a drag over A = 0.005, W = 0.1,
+/// P = 0.7 (μs = 0.5, μk = 0.3, d to 0.03: 6 slips, 42 observations) fitted from A = 0.0055
+/// (+10 %), W = 0.097 (−3 %), P = 0.6 with μs, μk read off the slips. With unit weights given
+/// the standard error is `√[(JᵀJ)⁻¹]_ii`, so observations exact to the drags' tolerance ε bound
+/// each error by `√n · ε · std_error` (the tolerance of each parameter; measured errors 1e-14
+/// to 4e-11 against bounds 1e-10 to 2e-7). A local minimum a wavelength or a slip off would
+/// miss it by orders of magnitude more.
+#[test]
+fn corrugation_is_read_back_from_perturbed_starts() {
+    let truth = corrugated(0.005, 0.1, 0.7);
+    let (rod, surface) = truth.parts().unwrap();
+    let r = drag(
+        &rod,
+        &surface,
+        &DragOptions {
+            d_max: 0.03,
+            points: 2,
+            mu_s: Some(0.5),
+            mu_k: Some(0.3),
+            ..DragOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(r.slips.len(), 6, "{r}");
+    let t = full_trace(&r);
+    let f = fit(
+        &corrugated(0.0055, 0.097, 0.6),
+        &t,
+        &FitOptions {
+            corrugation: vibrissa::fit::CorrugationFit::ALL,
+            sigma: Some([1.0; 4]),
+            ..FitOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(f.message.is_none(), "{f}");
+    let n = f.observations as f64;
+    for (name, want) in [
+        ("mu_s", 0.5),
+        ("mu_k", 0.3),
+        ("amplitude", 0.005),
+        ("wavelength", 0.1),
+        ("phase", 0.7),
+    ] {
+        let p = f.get(name).unwrap();
+        let bound = n.sqrt() * DRAG_TOL * p.std_error.unwrap();
+        assert!(
+            p.identifiable && (p.value - want).abs() <= bound,
+            "{name}: error {:e}, bound {bound:e}: {f}",
+            p.value - want
+        );
+    }
+}
+
+/// A trace of a flat surface fitted with a corrugation starting at amplitude 0: the wavelength
+/// and the phase change nothing, so they are named, held at their starts and get no number
+/// (no standard error); μs, μk and the amplitude (0) are fitted — to 1e-7, the flat drag's
+/// own accuracy, as a sine of amplitude 0 is the same line by another code path (unit weights
+/// given: no reweighting rounds).
+#[test]
+fn a_flat_trace_names_the_corrugation_it_cannot_determine() {
+    let r = truth(3);
+    let t = full_trace(&r);
+    let f = fit(
+        &corrugated(0.0, 0.1, 0.3),
+        &t,
+        &FitOptions {
+            corrugation: vibrissa::fit::CorrugationFit::ALL,
+            sigma: Some([1.0; 4]),
+            ..FitOptions::default()
+        },
+    )
+    .unwrap();
+    let m = f.message.as_deref().unwrap_or("");
+    assert!(
+        m.contains("wavelength and phase cannot be determined from this trace")
+            && m.contains("amplitude is 0"),
+        "{f}"
+    );
+    for (name, held) in [("wavelength", 0.1), ("phase", 0.3)] {
+        let p = f.get(name).unwrap();
+        assert!(
+            !p.identifiable && p.std_error.is_none() && p.value == held,
+            "{f}"
+        );
+    }
+    for (name, want) in [("mu_s", 0.5), ("mu_k", 0.3), ("amplitude", 0.0)] {
+        let p = f.get(name).unwrap();
+        assert!(p.identifiable && (p.value - want).abs() < 1e-7, "{f}");
+    }
+    // a surface that is not one sine has no corrugation to fit
+    let e = fit(
+        &Scene::default(),
+        &t,
+        &FitOptions {
+            corrugation: vibrissa::fit::CorrugationFit {
+                phase: true,
+                ..Default::default()
+            },
+            ..FitOptions::default()
+        },
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("not one sine corrugation"), "{e}");
+}
