@@ -523,23 +523,32 @@ impl<P: Profile> Chain<P> {
             let dlt = 1e-5 * (b - a);
             let diff =
                 |lo: [f64; 4], hi: [f64; 4]| [0, 1, 2, 3].map(|i| (hi[i] - lo[i]) / (2.0 * dlt));
-            if moving_b {
+            // the moved segments' end states, integrated together (the start state stays where
+            // it is for a moving start: only the segment's span moves)
+            let (span_b, span_a) = ([(a, b - dlt), (a, b + dlt)], [(a - dlt, b), (a + dlt, b)]);
+            let (end_b, end_a) = match (moving_b, moving_a) {
+                (true, true) => {
+                    let [b0, b1, a0, a1] = self.sh.end_states(
+                        k,
+                        [span_b[0], span_b[1], span_a[0], span_a[1]],
+                        cur.z,
+                        g,
+                    );
+                    (Some([b0, b1]), Some([a0, a1]))
+                }
+                (true, false) => (Some(self.sh.end_states(k, span_b, cur.z, g)), None),
+                _ => (None, Some(self.sh.end_states(k, span_a, cur.z, g))),
+            };
+            if let Some([lo, hi]) = end_b {
                 let col = set.offset(k) + 2;
-                let dz = diff(
-                    self.sh.end_state(k, a, b - dlt, cur.z, g),
-                    self.sh.end_state(k, a, b + dlt, cur.z, g),
-                );
+                let dz = diff(lo, hi);
                 for i in 0..4 {
                     d[(i, col)] += dz[i];
                 }
             }
-            if moving_a {
-                // the start state stays where it is: only the segment's span moves
+            if let Some([lo, hi]) = end_a {
                 let col = set.offset(k - 1) + 2;
-                let dz = diff(
-                    self.sh.end_state(k, a - dlt, b, cur.z, g),
-                    self.sh.end_state(k, a + dlt, b, cur.z, g),
-                );
+                let dz = diff(lo, hi);
                 for i in 0..4 {
                     d[(i, col)] += dz[i];
                 }

@@ -774,9 +774,14 @@ pub(crate) fn locate(
             }
         }
     }
+    // the last solve of the search: where it is the root, it is the point (a correction at
+    // the same λ from the same history and meshes gives the same point, so it is not redone)
+    let mut last: Option<Pt> = None;
     let mut eval = |lam: f64| -> Result<f64, StepError> {
         let p = st.correct(lam, hist, fresh)?;
-        Ok(c.of_watch(env, &p.w))
+        let v = c.of_watch(env, &p.w);
+        last = Some(p);
+        Ok(v)
     };
     let lam = match search::root(&mut eval, a, b, 1e-13 * (1.0 + b.abs())) {
         Ok(lam) => lam,
@@ -788,7 +793,10 @@ pub(crate) fn locate(
         }
         Err(e) => return Err(e),
     };
-    let p = st.correct(lam, hist, fresh).map_err(RootError::Caller)?;
+    let p = match last {
+        Some(p) if p.lam.to_bits() == lam.to_bits() => p,
+        _ => st.correct(lam, hist, fresh).map_err(RootError::Caller)?,
+    };
     inside(st, env, hist, a, p, c, fresh).map_err(RootError::Caller)
 }
 

@@ -47,7 +47,7 @@
 //! by the Hermite polynomial through the last points and their tangents, corrects it, and locates
 //! every event inside the step where it happens — slip (`|μ| = μ0`, either sign), lift-off
 //! (`N = 0`), penetration (the rod above the surface line), a fold in `d` (snap-through) — by
-//! Brent's method (crate argmin) on that polynomial refined by Newton with solves; the event that
+//! Brent's method (`elastica::roots`) on that polynomial refined by Newton with solves; the event that
 //! ends the scan is its last point ([`Event`]). The measurable range of μ0 is the first monotone
 //! stretch of `|μ(d)|` ([`RangeEnd`]); [`infer`] maps a slip displacement back to μ0.
 //!

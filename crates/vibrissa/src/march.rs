@@ -583,6 +583,14 @@ impl<P: Profile> Run<'_, '_, P> {
             if !ended(c.of_watch(env, &p.w)) {
                 continue;
             }
+            // an event that still holds at an earlier event's point ends after it: not the step's
+            // outcome, and not located
+            if found
+                .as_ref()
+                .is_some_and(|f| !ended(c.of_watch(env, &f.pt.w)))
+            {
+                continue;
+            }
             match locate(&mut *self.stepper, env, &w.hist, (lam, p.lam), c) {
                 Ok(pe) => {
                     let v = c.of_watch(env, &pe.w);

@@ -17,7 +17,7 @@
 //! `δm(0)`, `δGx(0)`, `δGy(0)`, the three tip conditions make a 3×3 matrix `D(λ)`; the
 //! eigenvalues are the roots of `det D(λ)` (an entire function of `λ`: no poles), found by a
 //! sweep in `β = sign(λ)|λ|^(1/4)` (the roots of the uniform rod are nearly equally spaced in β)
-//! from below the lowest possible eigenvalue, then Brent's method (argmin) on each bracket. The
+//! from below the lowest possible eigenvalue, then Brent's method (`elastica::roots`) on each bracket. The
 //! mode shape is the state along the rod of `D`'s null vector.
 //!
 //! At `λ = 0` the problem is the linearization of the static equations with the same conditions,

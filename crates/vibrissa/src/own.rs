@@ -14,6 +14,9 @@ use crate::watch::{fill_slip, has_slider, watch, Env, RodView};
 use bvp::Stats;
 use nalgebra::DVector;
 
+/// States on the rod the watch of one point keeps (see [`OwnStepper::point`]).
+const MEMO: usize = 4;
+
 /// The stepper on the rod's own shooter.
 pub(crate) struct OwnStepper<P: Profile> {
     pub chain: Chain<P>,
@@ -29,6 +32,19 @@ impl<P: Profile> OwnStepper<P> {
         let sol = self.chain.path(&cv.u);
         let xf = self.chain.family.pose(lam).0.xf;
         let chain = &self.chain;
+        // the watch asks for some states more than once (a located maximum, then its state; a
+        // contact's place, then its height): the last few are kept (the same function of `s`)
+        let mut memo = [(f64::NAN, [0.0; 4]); MEMO];
+        let mut slot = 0;
+        let mut exact = |s: f64| {
+            if let Some((_, z)) = memo.iter().find(|m| m.0.to_bits() == s.to_bits()) {
+                return *z;
+            }
+            let z = chain.state_at(s);
+            memo[slot] = (s, z);
+            slot = (slot + 1) % MEMO;
+            z
+        };
         let mut w = watch(
             &self.env,
             &chain.set,
@@ -38,7 +54,7 @@ impl<P: Profile> OwnStepper<P> {
             RodView {
                 sol: &sol,
                 xf,
-                exact: &mut |s| chain.state_at(s),
+                exact: &mut exact,
                 kappa: &|s, m| chain.sh.profile.kappa(s, m),
                 straight: chain.sh.profile.straight(),
             },

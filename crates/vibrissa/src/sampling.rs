@@ -119,7 +119,7 @@ impl<'a> Sampler<'a> {
     /// The root of `m` between two points `(interval, t)` of opposite signs. On one monotone
     /// piece of one cubic (the usual case) by Newton's method on the cubic, kept in the bracket by
     /// bisection — a polynomial root, ~10× cheaper than a general 1-D search per output point;
-    /// across intervals by Brent's method (argmin).
+    /// across intervals by Brent's method.
     fn root_between(&self, a: (usize, f64), b: (usize, f64)) -> f64 {
         let s_of = |(i, t): (usize, f64)| self.mesh[i] + t * (self.mesh[i + 1] - self.mesh[i]);
         if a.0 == b.0 {

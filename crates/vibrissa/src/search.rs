@@ -1,6 +1,6 @@
-//! One-dimensional searches of the marches (events, the maximum of |μ|, folds): argmin's Brent
-//! methods through [`elastica::roots`], with the caller's own error type passed through unchanged
-//! ([`RootError::Caller`]).
+//! One-dimensional searches of the marches (events, the maximum of |μ|, folds): Brent's methods
+//! of [`elastica::roots`] (argmin's arithmetic without its executor), with the caller's own error
+//! type passed through unchanged ([`RootError::Caller`]).
 
 use elastica::roots::{brent_max, brent_root};
 

@@ -410,40 +410,105 @@ impl<P: Profile> Shooter<P> {
         self.step(z0, s0, s - s0, m.force)
     }
 
-    /// The end state of segment `k`'s mesh laid on `[a, b]` from `z0` under the force `g`, without
-    /// sensitivities or a record (the profile read directly): the differences in the segment's
-    /// ends that move with the contacts.
-    pub fn end_state(&self, k: usize, a: f64, b: f64, z0: [f64; 4], g: [f64; 2]) -> [f64; 4] {
+    /// The end states of segment `k`'s mesh laid on each of the spans `ab`, from `z0` under the
+    /// force `g`, without sensitivities or a record (the profile read directly): the differences
+    /// in the segment's ends that move with the contacts. The integrations run in lockstep, each
+    /// lane [`Shooter::step`]'s operations in its order (so each lane's bits are those of its
+    /// integration alone); interleaved, the lanes' independent chains of latencies overlap (in
+    /// one integration each stage waits for the last).
+    pub fn end_states<const L: usize>(
+        &self,
+        k: usize,
+        ab: [(f64, f64); L],
+        z0: [f64; 4],
+        g: [f64; 2],
+    ) -> [[f64; 4]; L] {
         #[cfg(target_arch = "x86_64")]
         {
             if std::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
-                return unsafe { self.end_state_avx2(k, a, b, z0, g) };
+                return unsafe { self.end_states_avx2(k, ab, z0, g) };
             }
         }
-        self.end_state_impl(k, a, b, z0, g)
+        self.end_states_impl(k, ab, z0, g)
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
-    unsafe fn end_state_avx2(
+    unsafe fn end_states_avx2<const L: usize>(
         &self,
         k: usize,
-        a: f64,
-        b: f64,
+        ab: [(f64, f64); L],
         z0: [f64; 4],
         g: [f64; 2],
-    ) -> [f64; 4] {
-        self.end_state_impl(k, a, b, z0, g)
+    ) -> [[f64; 4]; L] {
+        self.end_states_impl(k, ab, z0, g)
     }
 
     #[inline(always)]
-    fn end_state_impl(&self, k: usize, a: f64, b: f64, z0: [f64; 4], g: [f64; 2]) -> [f64; 4] {
+    fn end_states_impl<const L: usize>(
+        &self,
+        k: usize,
+        ab: [(f64, f64); L],
+        z0: [f64; 4],
+        g: [f64; 2],
+    ) -> [[f64; 4]; L] {
         let nodes = &self.segs[k].nodes;
-        let mut z = z0;
+        let mut z = [z0; L];
         for w in nodes.windows(2) {
-            let s0 = a + (b - a) * w[0];
-            z = self.step_impl(z, s0, (b - a) * (w[1] - w[0]), g);
+            let s0 = ab.map(|(a, b)| a + (b - a) * w[0]);
+            let h = ab.map(|(a, b)| (b - a) * (w[1] - w[0]));
+            z = self.steps_impl(z, s0, h, g);
+        }
+        z
+    }
+
+    /// [`Shooter::step_impl`] on `L` lanes at once, stage by stage (the same operations per lane).
+    #[inline(always)]
+    fn steps_impl<const L: usize>(
+        &self,
+        z0: [[f64; 4]; L],
+        s0: [f64; L],
+        h: [f64; L],
+        g: [f64; 2],
+    ) -> [[f64; 4]; L] {
+        let pb = |s: f64| -> (f64, f64) {
+            if P::UNIFORM {
+                (1.0, 0.0)
+            } else {
+                (self.profile.b(s), self.profile.k0(s))
+            }
+        };
+        let mut kk = [[[0.0; 4]; 12]; L];
+        for st in 0..12 {
+            for l in 0..L {
+                if h[l] == 0.0 {
+                    continue;
+                }
+                let mut t = z0[l];
+                for (j, kj) in kk[l].iter().enumerate().take(st) {
+                    let ha = h[l] * tab::A[st * tab::STAGES + j];
+                    if ha != 0.0 {
+                        for c in 0..4 {
+                            t[c] += ha * kj[c];
+                        }
+                    }
+                }
+                let (bb, qq) = pb(s0[l] + tab::C[st] * h[l]);
+                kk[l][st] = rhs::<4>(&t, g[0], g[1], bb, qq);
+            }
+        }
+        let mut z = z0;
+        for l in 0..L {
+            if h[l] == 0.0 {
+                continue;
+            }
+            for (j, kj) in kk[l].iter().enumerate() {
+                let hb = h[l] * tab::B[j];
+                for c in 0..4 {
+                    z[l][c] += hb * kj[c];
+                }
+            }
         }
         z
     }
