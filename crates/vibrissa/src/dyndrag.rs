@@ -12,7 +12,8 @@
 //! ```
 //!
 //! Events, each located inside the step where it happens by Brent's method (argmin) on the
-//! step's length, every function value a step solved anew, to `event_tol` in time:
+//! step's length, every function value a step solved anew, to `event_tol` in time (one within
+//! the shortest step `max(1e-3 dt, 1e-5)` of a step's start is placed at that step's end):
 //! **slip** where `|T|` reaches `μs N` (the tip then slides in the direction `dir = sign T` it
 //! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
 //! then sticks where it is; if it needs more than `μs N` there, the next step's search finds
@@ -407,6 +408,15 @@ fn pressed(rod: &Rod, eta: f64, grid: &[f64]) -> Result<(Guess, [f64; 2]), Vibri
     Ok((guess, [shape.x1, eta]))
 }
 
+/// The shortest step the events make, `max(1e-3 dt, 1e-5)`: with `G` scaled by `4/Δt²`, the
+/// rounding of the positions still enters the moment's equation as `4/Δt² · ε`, which the
+/// collocation's residual control cannot meet at tol 1e-10 below a few 1e-6 (measured: a step of
+/// 2.4e-6 ran into the mesh limit of 10⁴ nodes, 3.5e-5 did not). An event closer than this to
+/// a step's start is placed at this step's end.
+fn shortest_step(dt: f64) -> f64 {
+    (1e-3 * dt).max(1e-5)
+}
+
 /// Which of a step's event functions: `[lift-off, the contact's own]`.
 const LIFT: usize = 0;
 const PHASE: usize = 1;
@@ -527,15 +537,17 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// Where event function `which` reaches zero in `(lo, hi]` (`< 0` at `lo`, `≥ 0` at `hi`):
-    /// Brent's method on the step's length.
+    /// Brent's method on the step's length (no step shorter than [`shortest_step`] tried: the
+    /// function is constant below it).
     fn locate(&mut self, which: usize, lo: f64, hi: f64) -> Result<f64, VibrissaError> {
         let tol = self.o.event_tol;
         let now = self.events_now()[which];
+        let shortest = shortest_step(self.o.dt).min(hi);
         let mut f = |tau: f64| -> Result<f64, VibrissaError> {
             if tau <= 0.0 {
                 return Ok(now);
             }
-            let tr = self.try_step(tau)?;
+            let tr = self.try_step(tau.max(shortest))?;
             Ok(self.events_after(&tr)[which])
         };
         crate::search::root(&mut f, lo, hi, tol).map_err(|e| match e {
@@ -586,12 +598,12 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// A lower end of the search in a step that starts a slip (the velocity zero at the start):
-    /// the longest of `τ/2, τ/4, …` (to `1e-6 τ`) where the tip moves the way it slides. `None`:
-    /// it does not move that way at all.
-    fn slip_start(&mut self, tau: f64) -> Result<Option<f64>, VibrissaError> {
+    /// the longest of `τ/2, τ/4, …` (down to `tau_min`) where the tip moves the way it slides.
+    /// `None`: it does not move that way at all.
+    fn slip_start(&mut self, tau: f64, tau_min: f64) -> Result<Option<f64>, VibrissaError> {
         let mut lo = tau;
-        while lo > 1e-6 * tau {
-            lo *= 0.5;
+        while lo > tau_min {
+            lo = (0.5 * lo).max(tau_min);
             let tr = self.try_step(lo)?;
             if self.events_after(&tr)[PHASE] < 0.0 {
                 return Ok(Some(lo));
@@ -604,6 +616,7 @@ impl<'r> Drive<'r, '_> {
     fn run(&mut self) -> Result<DynDragStop, VibrissaError> {
         let t_end = self.o.t_end();
         let dt = self.o.dt;
+        let tau_min = shortest_step(dt);
         loop {
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(DynDragStop::DMax);
@@ -616,9 +629,10 @@ impl<'r> Drive<'r, '_> {
                 self.fresh_slip = false;
                 continue;
             }
+            // the lower end of the search: the step's start (or where a slip's tip moves)
             let mut lo = 0.0;
             if self.fresh_slip && g1[PHASE] >= 0.0 {
-                match self.slip_start(tau)? {
+                match self.slip_start(tau, tau_min.min(tau))? {
                     Some(l) => lo = l,
                     None => {
                         // no motion the way of the slip: it sticks at once
@@ -644,7 +658,7 @@ impl<'r> Drive<'r, '_> {
                     reason: format!("its event functions are not numbers: {g1:?}"),
                 });
             };
-            let tr = self.try_step(at)?;
+            let tr = self.try_step(at.max(tau_min.min(tau)))?;
             self.take(tr);
             self.fresh_slip = false;
             if let Some(stop) = self.apply(which) {
