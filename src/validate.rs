@@ -234,6 +234,8 @@ pub fn command(cmd: &mut Command) -> Res<()> {
             a.surface_angle,
             &limits::SURFACE_ANGLE,
         ),
+        // the library's DynDragOptions::validate names each value as its flag (main.rs)
+        Command::Dynamics(_) => Ok(()),
     }
 }
 
