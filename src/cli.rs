@@ -238,6 +238,62 @@ pub enum Command {
     /// Natural frequencies of a static state given by its foot values (the free, unloaded rod by
     /// default): one row per mode, omega^2 < 0 meaning the state is unstable.
     Modes(ModesArgs),
+    /// The rod in time: `dynamics drag` drags the foot at a speed with the tip on the surface
+    /// (stick, slip and lift-off located in time); one row per time step.
+    Dynamics(DynamicsArgs),
+}
+
+/// `vibrissa dynamics`.
+#[derive(Args, Debug)]
+pub struct DynamicsArgs {
+    /// What to follow in time.
+    #[command(subcommand)]
+    pub command: DynamicsCommand,
+}
+
+/// The sub-commands of `vibrissa dynamics`.
+#[derive(Subcommand, Debug)]
+pub enum DynamicsCommand {
+    /// Drag the foot along x at --speed with the tip on the flat surface y = eta under Coulomb
+    /// friction, from the pressed start at rest: one row per time step.
+    Drag(DynamicsDragArgs),
+}
+
+/// `vibrissa dynamics drag`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time, every step a BVP in s. The tip sticks while |T| < mu_s N, slides with T = mu_k N against its motion, sticks again where its velocity along the surface is zero; lift-off (N = 0) ends the drag. Events are located in time to 1e-10. The foot's speed rises smoothly to --speed over --ramp time units. Time unit sqrt(rho A(0) L^4 / EI(0)). Flat surfaces only (--surface-angle 0, no [surface] or [friction] table)."
+)]
+pub struct DynamicsDragArgs {
+    /// Foot speed after the start ramp (rod lengths per time unit), in (0, 100].
+    #[arg(long, value_name = "V", value_parser = finite_f64, default_value = "0.01")]
+    pub speed: f64,
+    /// Duration of the smooth start of the foot's speed, in [0, 1e6] (0: at --speed at once).
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "2")]
+    pub ramp: f64,
+    /// Surface height eta (rod lengths), in (eta_, 1) (see scan --help). [default: scene file's, else 0.75]
+    #[arg(long, value_name = "H", value_parser = finite_f64)]
+    pub eta: Option<f64>,
+    /// Foot displacement where the drag ends (rod lengths), in (0, 1000].
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.03")]
+    pub d_max: f64,
+    /// Static friction coefficient, in [0, 100].
+    #[arg(long, value_name = "MU", value_parser = finite_f64, default_value = "0.5")]
+    pub mu_s: f64,
+    /// Kinetic friction coefficient, in [0, mu_s).
+    #[arg(long, value_name = "MU", value_parser = finite_f64, default_value = "0.3")]
+    pub mu_k: f64,
+    /// Time step, in (0, 1].
+    #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = "0.01")]
+    pub dt: f64,
+    /// Damper of the foot's support (moment per angular velocity), in [0, inf).
+    #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
+    pub foot_damping: f64,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print a JSON object instead of CSV.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// Physical dimensions: with all three (or a scene file's `[physical]`), physical-unit columns.
@@ -906,20 +962,24 @@ pub fn is_numeric(a: &clap::Arg) -> bool {
 /// The command with every numeric flag taking values that start with '-'. clap's own
 /// `allow_negative_numbers` knows only `-1` and `-1.5`, not `-1e-3`, `-.5`, `-inf` or lists.
 pub fn command() -> clap::Command {
-    let mut cmd = Cli::command();
+    hyphen_values(Cli::command())
+}
+
+/// `allow_hyphen_values` on the numeric flags of every sub-command (and theirs: `dynamics drag`).
+fn hyphen_values(mut cmd: clap::Command) -> clap::Command {
     let names: Vec<String> = cmd
         .get_subcommands()
         .map(|s| s.get_name().to_string())
         .collect();
     for name in names {
         cmd = cmd.mut_subcommand(name, |sub| {
-            sub.mut_args(|a| {
+            hyphen_values(sub.mut_args(|a| {
                 if is_numeric(&a) {
                     a.allow_hyphen_values(true)
                 } else {
                     a
                 }
-            })
+            }))
         });
     }
     cmd

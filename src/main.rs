@@ -3,6 +3,7 @@
 mod chart;
 mod cli;
 mod drag;
+mod dynamics;
 mod error;
 mod figures;
 mod journal;
@@ -109,6 +110,12 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Modes(a) => {
             scene_args::build_scene(&a.scene, None)?;
         }
+        Command::Dynamics(a) => match &a.command {
+            cli::DynamicsCommand::Drag(d) => {
+                scene_args::build_scene(&d.scene, d.eta)?;
+                dynamics::options(d).validate()?;
+            }
+        },
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
@@ -170,6 +177,10 @@ fn run(mut cli: Cli) -> Res<()> {
         Command::Modes(a) => {
             progress::start("modes", false);
             modes::run(a)
+        }
+        Command::Dynamics(a) => {
+            progress::start("dynamics", false);
+            dynamics::run(a)
         }
     }
 }

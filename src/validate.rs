@@ -237,6 +237,8 @@ pub fn command(cmd: &mut Command) -> Res<()> {
             )?;
             texture(&a.texture)
         }
+        // the library's DynDragOptions::validate names each value as its flag (main.rs)
+        Command::Dynamics(_) => Ok(()),
     }
 }
 

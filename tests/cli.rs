@@ -944,6 +944,41 @@ fn modes_of_the_uniform_rod() {
     assert_eq!(v["stable"], true);
 }
 
+/// `vibrissa dynamics drag`: one row per time step from the pressed start (N = 2.8266222292,
+/// the scan's f0, docs/reference.md; the tip stuck where it was pressed), the foot at d_max at
+/// the end; `--json` the library's result; a bad value or a tilted surface is one line, exit 2.
+#[test]
+fn dynamics_drag_rows() {
+    let args = [
+        "dynamics", "drag", "--speed", "0.1", "--d-max", "0.003", "--dt", "0.05",
+    ];
+    let o = ok(&args);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(h[..3], ["t", "d", "tip_x"]);
+    assert_eq!(h.last().unwrap(), "event");
+    assert_eq!(rows.len(), 14);
+    close(col(&h, &rows[0], "normal"), 2.8266222292, 1e-9, "normal");
+    close(col(&h, &rows[13], "d"), 0.003, 1e-15, "d");
+    for r in &rows {
+        assert_eq!(r[6], "stuck");
+        close(
+            col(&h, r, "tip_x"),
+            col(&h, &rows[0], "tip_x"),
+            1e-9,
+            "tip_x",
+        );
+    }
+    let mut j = args.to_vec();
+    j.push("--json");
+    let v: serde_json::Value = serde_json::from_str(&ok(&j).stdout).unwrap();
+    assert_eq!(v["samples"].as_array().unwrap().len(), 14);
+    assert_eq!(v["stop"]["reason"], "d_max");
+    let e = bad(&["dynamics", "drag", "--speed", "-1"], 2);
+    assert!(e.contains("speed"), "{e}");
+    let e = bad(&["dynamics", "drag", "--surface-angle", "0.1"], 2);
+    assert!(e.contains("surface angle"), "{e}");
+}
+
 /// `scan --modes`: the lowest ω² of each row with the tip stuck, positive on the rows of the
 /// paper's rod at η = 0.95 and 0 (to 1e-6) at the fold in d where the scan stops; without the
 /// flag the columns are unchanged.

@@ -30,14 +30,22 @@
 //! a tip force, the interior is in balance and `a⁰ = 0` is consistent, but the trapezoidal rule
 //! sees the mean of the force before and after the jump in the first step, which loses energy
 //! (1.0 % at 50 steps per period); from then on the energy is kept.
+//!
+//! [`drag`]: the foot dragged at a speed with the tip on a flat surface under Coulomb friction,
+//! stick, slip and lift-off located in time (its own docs). `free` and `drag` share the step
+//! and its history (module `rothe`); `drag` takes steps of any length (its events shorten them)
+//! with the positions' history from the last step's solution and the internal force scaled by
+//! the step (`Settings::short_steps` there), `free` its fixed steps as before.
 
-use crate::inertia::mass_density;
-use crate::parts::Stiffness;
-use crate::profile::{General, Profile};
+use crate::rothe::{rest_guess, Rothe, Settings, TipBc};
 use crate::{Rod, VibrissaError};
-use bvp::{Bvp, BvpSolver, Collocation, CollocationOptions, Dims, Guess, Solution};
 use serde::Serialize;
-use std::f64::consts::FRAC_PI_2;
+
+pub use crate::dyndrag::{
+    drag, ContactState, DragEventKind, DragSample, DragStats, DynDragEvent, DynDragOptions,
+    DynDragResult, DynDragStop,
+};
+pub use crate::rothe::{DynSample, DynStats};
 
 /// Options of [`free`].
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -111,47 +119,6 @@ impl DynamicsOptions {
     }
 }
 
-/// The rod at one time.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct DynSample {
-    /// Time.
-    pub t: f64,
-    /// Tip position, x.
-    pub tip_x: f64,
-    /// Tip position, y.
-    pub tip_y: f64,
-    /// Tip velocity, x.
-    pub tip_vx: f64,
-    /// Tip velocity, y.
-    pub tip_vy: f64,
-    /// Rotation of the foot `θ = φ(0) − π/2` (0 on a clamp).
-    pub theta: f64,
-    /// `m(0)`.
-    pub m_base: f64,
-    /// Internal force at the foot `G(0)`, x (the contact force, in the static case).
-    pub gx_base: f64,
-    /// Internal force at the foot, y.
-    pub gy_base: f64,
-    /// Kinetic energy `½∫μ|r_t|²`.
-    pub kinetic: f64,
-    /// Elastic energy `½∫b m² + θ²/(2 c_s)`.
-    pub elastic: f64,
-    /// Energy taken by the foot's damper so far, `∫ c θ_t² dt` (by the midpoint rule of the
-    /// time steps: the scheme's own energy identity).
-    pub dissipated: f64,
-}
-
-/// Work done.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct DynStats {
-    /// Time steps.
-    pub steps: usize,
-    /// Newton iterations of the steps' collocation solves.
-    pub newton_iterations: usize,
-    /// Largest mesh of a step's collocation.
-    pub max_nodes: usize,
-}
-
 /// The time series of [`free`].
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DynamicsResult {
@@ -159,113 +126,6 @@ pub struct DynamicsResult {
     pub samples: Vec<DynSample>,
     /// Work done.
     pub stats: DynStats,
-}
-
-/// Cubic Hermite interpolation of values `v` and derivatives `d` on the uniform grid
-/// (`v.len() − 1` intervals on `[0, 1]`): continuous with its first derivative.
-fn interp(v: &[f64], d: &[f64], s: f64) -> f64 {
-    let n = v.len() - 1;
-    let h = 1.0 / n as f64;
-    let u = (s * n as f64).clamp(0.0, n as f64);
-    let i = (u.floor() as usize).min(n - 1);
-    let t = u - i as f64;
-    let (t2, t3) = (t * t, t * t * t);
-    (2.0 * t3 - 3.0 * t2 + 1.0) * v[i]
-        + (t3 - 2.0 * t2 + t) * h * d[i]
-        + (-2.0 * t3 + 3.0 * t2) * v[i + 1]
-        + (t3 - t2) * h * d[i + 1]
-}
-
-/// One time step's boundary-value problem.
-struct Step<'a> {
-    profile: &'a General,
-    stiffness: &'a Stiffness,
-    /// `4/Δt²`.
-    k_acc: f64,
-    /// `r̂` on the grid.
-    hat_x: &'a [f64],
-    hat_y: &'a [f64],
-    /// `dr̂/ds` on the grid.
-    hat_xs: &'a [f64],
-    hat_ys: &'a [f64],
-    compliance: f64,
-    /// `c·(2/Δt)`, and `c·(−2/Δt θⁿ − θ_tⁿ)`: `c θ_t = damp_k θ + damp_0`.
-    damp_k: f64,
-    damp_0: f64,
-    /// The moment applied to the support.
-    moment: f64,
-    /// The force on the tip.
-    tip_force: [f64; 2],
-}
-
-impl Bvp for Step<'_> {
-    fn dims(&self) -> Dims {
-        Dims { n: 6, k: 0 }
-    }
-    fn interval(&self) -> (f64, f64) {
-        (0.0, 1.0)
-    }
-    fn rhs(&self, s: f64, z: &[f64], _p: &[f64], dz: &mut [f64]) {
-        let (sp, cp) = z[2].sin_cos();
-        let mu = mass_density(self.stiffness, s);
-        dz[0] = cp;
-        dz[1] = sp;
-        dz[2] = self.profile.k0(s) + self.profile.b(s) * z[3];
-        dz[3] = z[4] * sp - z[5] * cp;
-        dz[4] = mu * self.k_acc * (z[0] - interp(self.hat_x, self.hat_xs, s));
-        dz[5] = mu * self.k_acc * (z[1] - interp(self.hat_y, self.hat_ys, s));
-    }
-    fn rhs_jacobian(
-        &self,
-        s: f64,
-        z: &[f64],
-        _p: &[f64],
-        dfdz: &mut [f64],
-        _dfdp: &mut [f64],
-    ) -> bool {
-        let (sp, cp) = z[2].sin_cos();
-        let mk = mass_density(self.stiffness, s) * self.k_acc;
-        dfdz[..36].fill(0.0);
-        dfdz[2] = -sp;
-        dfdz[6 + 2] = cp;
-        dfdz[12 + 3] = self.profile.b(s);
-        dfdz[18 + 2] = z[4] * cp + z[5] * sp;
-        dfdz[18 + 4] = sp;
-        dfdz[18 + 5] = -cp;
-        dfdz[24] = mk;
-        dfdz[30 + 1] = mk;
-        true
-    }
-    fn bc_jacobian(
-        &self,
-        _za: &[f64],
-        _zb: &[f64],
-        _p: &[f64],
-        dga: &mut [f64],
-        dgb: &mut [f64],
-        _dgp: &mut [f64],
-    ) -> bool {
-        dga[..36].fill(0.0);
-        dgb[..36].fill(0.0);
-        dga[0] = 1.0;
-        dga[6 + 1] = 1.0;
-        dga[12 + 2] = 1.0 + self.compliance * self.damp_k;
-        dga[12 + 3] = -self.compliance;
-        dgb[18 + 3] = 1.0;
-        dgb[24 + 4] = 1.0;
-        dgb[30 + 5] = 1.0;
-        true
-    }
-    fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
-        let theta = za[2] - FRAC_PI_2;
-        res[0] = za[0];
-        res[1] = za[1];
-        res[2] =
-            theta - self.compliance * (za[3] + self.moment - self.damp_k * theta - self.damp_0);
-        res[3] = zb[3];
-        res[4] = zb[4] - self.tip_force[0];
-        res[5] = zb[5] - self.tip_force[1];
-    }
 }
 
 /// The rod of `rod` (its taper, rest curvature, support spring), released at rest in its rest
@@ -277,206 +137,43 @@ pub fn free(
     opts: &DynamicsOptions,
 ) -> Result<DynamicsResult, VibrissaError> {
     opts.validate()?;
-    let profile = rod.profile(1.0);
-    let stiffness = rod.stiffness();
-    let cs = rod.support_compliance();
-    let ng = opts.grid;
-    let grid: Vec<f64> = (0..=ng).map(|i| i as f64 / ng as f64).collect();
-    let mu: Vec<f64> = grid.iter().map(|&s| mass_density(stiffness, s)).collect();
-    let bvec: Vec<f64> = grid.iter().map(|&s| profile.b(s)).collect();
-    // the rest shape: m ≡ 0, G ≡ 0
-    let mut rest = Guess::from_fn(6, grid.clone(), vec![], |_, z| z.fill(0.0));
-    {
-        let (mut x, mut y, mut phi) = (0.0, 0.0, FRAC_PI_2);
-        let h = 1.0 / ng as f64;
-        let sub = 20;
-        for (zi, &s0) in rest.z.chunks_mut(6).zip(&grid) {
-            zi[0] = x;
-            zi[1] = y;
-            zi[2] = phi;
-            // midpoint rule on a fine subgrid (the guess only; collocation makes it exact)
-            for k in 0..sub {
-                let s = s0 + (k as f64 + 0.5) * h / sub as f64;
-                let pm = phi + 0.5 * profile.k0(s) * h / sub as f64;
-                x += pm.cos() * h / sub as f64;
-                y += pm.sin() * h / sub as f64;
-                phi += profile.k0(s) * h / sub as f64;
-            }
-        }
-    }
-    let mut solver = Collocation::new(CollocationOptions {
+    let settings = Settings {
+        grid: opts.grid,
         tol: opts.tol,
         scheme: opts.scheme,
-        coarsen: false,
-        ..CollocationOptions::default()
-    })
-    .map_err(|e| VibrissaError::solver("dynamics options", e))?;
-    let dt = opts.dt;
-    let mut stats = DynStats::default();
+        damping: opts.foot_damping,
+        short_steps: false,
+    };
+    let grid = Rothe::grid_of(&settings);
+    let rest = rest_guess(&rod.profile(1.0), &grid);
     // the start solved once (the static problem: no inertia), the rest shape as its guess
-    let zeros = vec![0.0; ng + 1];
-    let statics = Step {
-        profile: &profile,
-        stiffness,
-        k_acc: 0.0,
-        hat_x: &zeros,
-        hat_y: &zeros,
-        hat_xs: &zeros,
-        hat_ys: &zeros,
-        compliance: cs,
-        damp_k: 0.0,
-        damp_0: 0.0,
-        moment: 0.0,
-        tip_force: opts.release_force,
-    };
-    let mut sol = solver
-        .solve(&statics, &rest)
-        .map_err(|e| VibrissaError::solver("the starting equilibrium", e))?;
-    // on the grid, per component (x, y): position and its s-derivative (e = (cos φ, sin φ)),
-    // velocity, acceleration, each with its s-derivative (the recursions are linear, so the
-    // derivatives follow the same rule), and m for the energy
-    let sample_grid = |sol: &Solution, pos: &mut [Vec<f64>; 4], m: &mut Vec<f64>| {
-        let mut out = [0.0; 6];
-        for (i, &s) in grid.iter().enumerate() {
-            sol.eval(s, &mut out);
-            let (sp, cp) = out[2].sin_cos();
-            pos[0][i] = out[0];
-            pos[1][i] = out[1];
-            pos[2][i] = cp;
-            pos[3][i] = sp;
-            m[i] = out[3];
-        }
-    };
-    let zero = || vec![0.0; ng + 1];
-    let mut pos = [zero(), zero(), zero(), zero()];
-    let mut m = zero();
-    sample_grid(&sol, &mut pos, &mut m);
-    let mut vel = [zero(), zero(), zero(), zero()];
-    // v0 and its derivative (fourth-order central differences, one-sided near the ends)
-    let hd = 1e-3;
-    for (i, &s) in grid.iter().enumerate() {
-        let v = v0(s);
-        let sc = s.clamp(2.0 * hd, 1.0 - 2.0 * hd);
-        let (p1, m1, p2, m2) = (
-            v0(sc + hd),
-            v0(sc - hd),
-            v0(sc + 2.0 * hd),
-            v0(sc - 2.0 * hd),
-        );
-        for c in 0..2 {
-            vel[c][i] = v[c];
-            let d = (8.0 * (p1[c] - m1[c]) - (p2[c] - m2[c])) / (12.0 * hd);
-            // (s near an end: the derivative at the clamped point, corrected to first order)
-            let d2 = (p1[c] - 2.0 * v0(sc)[c] + m1[c]) / (hd * hd);
-            vel[2 + c][i] = d + d2 * (s - sc);
-        }
-        if !(v[0].is_finite() && v[1].is_finite()) {
-            return Err(VibrissaError::range("v0", v[0] + v[1], "finite"));
-        }
-    }
-    let mut acc = [zero(), zero(), zero(), zero()];
-    let mut theta = sol.left()[2] - FRAC_PI_2;
-    let mut theta_t = 0.0;
-    let mut dissipated = 0.0;
-    // Simpson's rule on the grid (an even number of intervals)
-    let trap = |f: &dyn Fn(usize) -> f64| -> f64 {
-        let h = 1.0 / ng as f64;
-        (0..=ng)
-            .map(|i| {
-                f(i) * h / 3.0
-                    * if i == 0 || i == ng {
-                        1.0
-                    } else if i % 2 == 1 {
-                        4.0
-                    } else {
-                        2.0
-                    }
-            })
-            .sum()
-    };
-    let sample = |t: f64, sol: &Solution, vel: &[Vec<f64>; 4], m: &[f64], th: f64, dis| {
-        let kinetic = 0.5 * trap(&|i| mu[i] * (vel[0][i] * vel[0][i] + vel[1][i] * vel[1][i]));
-        let mut elastic = 0.5 * trap(&|i| bvec[i] * m[i] * m[i]);
-        if cs > 0.0 {
-            elastic += 0.5 * th * th / cs;
-        }
-        let (l, r) = (sol.left(), sol.right());
-        DynSample {
-            t,
-            tip_x: r[0],
-            tip_y: r[1],
-            tip_vx: vel[0][ng],
-            tip_vy: vel[1][ng],
-            theta: th,
-            m_base: l[3],
-            gx_base: l[4],
-            gy_base: l[5],
-            kinetic,
-            elastic,
-            dissipated: dis,
-        }
-    };
-    let c = opts.foot_damping;
-    let mut hat = [zero(), zero(), zero(), zero()];
-    let mut next = [zero(), zero(), zero(), zero()];
-    let mut samples = vec![sample(0.0, &sol, &vel, &m, theta, dissipated)];
+    let mut rothe = Rothe::at_rest(
+        rod,
+        &settings,
+        &rest,
+        [0.0, 0.0],
+        TipBc::Force(opts.release_force),
+    )?;
+    rothe.set_velocity(v0)?;
+    let dt = opts.dt;
+    let mut samples = vec![rothe.sample(0.0)];
     let steps = (opts.t_end / dt).round().max(1.0) as usize;
-    let k_acc = 4.0 / (dt * dt);
     for n in 0..steps {
-        for q in 0..4 {
-            for i in 0..=ng {
-                hat[q][i] = pos[q][i] + dt * vel[q][i] + 0.25 * dt * dt * acc[q][i];
-            }
-        }
-        let step = Step {
-            profile: &profile,
-            stiffness,
-            k_acc,
-            hat_x: &hat[0],
-            hat_y: &hat[1],
-            hat_xs: &hat[2],
-            hat_ys: &hat[3],
-            compliance: cs,
-            damp_k: c * 2.0 / dt,
-            damp_0: c * (-2.0 / dt * theta - theta_t),
-            moment: opts.foot_moment,
-            tip_force: [0.0, 0.0],
-        };
-        let guess = Guess::from(&sol);
-        sol = solver.solve(&step, &guess).map_err(|e| {
-            VibrissaError::solver(
-                format!("time step {} (t = {})", n + 1, (n + 1) as f64 * dt),
-                e,
-            )
-        })?;
-        stats.steps += 1;
-        stats.newton_iterations += sol.stats.newton_iters;
-        stats.max_nodes = stats.max_nodes.max(sol.len());
-        sample_grid(&sol, &mut next, &mut m);
-        for q in 0..4 {
-            for i in 0..=ng {
-                let a1 = k_acc * (next[q][i] - hat[q][i]);
-                vel[q][i] += 0.5 * dt * (acc[q][i] + a1);
-                acc[q][i] = a1;
-            }
-        }
-        std::mem::swap(&mut pos, &mut next);
-        let theta1 = sol.left()[2] - FRAC_PI_2;
-        let theta_t1 = 2.0 / dt * (theta1 - theta) - theta_t;
-        // the scheme's own energy identity: the damper takes Δt c ((θ_tⁿ + θ_tⁿ⁺¹)/2)² per step
-        let mid = 0.5 * (theta_t + theta_t1);
-        dissipated += dt * c * mid * mid;
-        (theta, theta_t) = (theta1, theta_t1);
-        samples.push(sample(
-            (n + 1) as f64 * dt,
-            &sol,
-            &vel,
-            &m,
-            theta,
-            dissipated,
-        ));
+        let trial = rothe
+            .trial(dt, [0.0, 0.0], TipBc::Force([0.0, 0.0]), opts.foot_moment)
+            .map_err(|e| {
+                VibrissaError::solver(
+                    format!("time step {} (t = {})", n + 1, (n + 1) as f64 * dt),
+                    *e,
+                )
+            })?;
+        rothe.commit(trial);
+        samples.push(rothe.sample((n + 1) as f64 * dt));
     }
-    Ok(DynamicsResult { samples, stats })
+    Ok(DynamicsResult {
+        samples,
+        stats: rothe.stats,
+    })
 }
 
 #[cfg(test)]

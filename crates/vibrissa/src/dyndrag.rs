@@ -1,0 +1,743 @@
+//! The dynamic drag (issue 32): the foot moves along x at speed `v` while the tip touches the
+//! flat surface `y = η` with Coulomb friction, the rod followed in time by the Rothe step of
+//! `dynamics::free` (module `rothe`: Newmark's average acceleration in time, Lobatto
+//! collocation in s).
+//!
+//! ```text
+//!     foot:      x(0) = d(t),  y(0) = 0,  the support's spring and damper as in `free`
+//!     stuck:     x(1) = X_a,  y(1) = η,  m(1) = 0            while |T| < μs N
+//!     slipping:  y(1) = η,  m(1) = 0,  T = dir·μk·N           while dir·ẋ(1) > 0
+//!     N = −Gy(1) (the surface pushes down on the rod),  T = −Gx(1)  (μ = T/N as in the static
+//!     model: T > 0 holds the tip back against the drag in +x)
+//! ```
+//!
+//! Events, each located inside the step where it happens by Brent's method (argmin) on the
+//! step's length, every function value a step solved anew, to `event_tol` in time (one within
+//! the shortest step `max(1e-3 dt, 1e-5)` of a step's start is placed at that step's end):
+//! **slip** where `|T|` reaches `μs N` (the tip then slides in the direction `dir = sign T` it
+//! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
+//! then sticks where it is; if it needs more than `μs N` there, the next step's search finds
+//! the slip at once), **lift-off** where `N` falls to zero (the drag ends there: a flying tip
+//! is not modelled). A sticking tip's velocity and acceleration at the tip are set to zero:
+//! the velocity is zero to the event's tolerance, and the acceleration of a continuous rod
+//! jumps at the point that sticks only (the force holding it rises like `√t` from the moment
+//! it sticks), which Newmark's history would otherwise carry on as an alternating spurious
+//! acceleration of the tip.
+//!
+//! The start: the rod pressed onto the surface (the static state with the force normal to it,
+//! the start of `vibrissa::drag`), at rest, the tip stuck. The foot's speed rises smoothly
+//! from 0 to `v` over the time `ramp`: `ḋ = v·(10u³ − 15u⁴ + 6u⁵)`, `u = t/ramp`, so its
+//! acceleration and jerk are zero at both ends of the ramp (`d = v·ramp·(u⁴(5/2 − 3u + u²))`
+//! on the ramp, `v·ramp/2 + v(t − ramp)` after it). A sudden start at speed `v` would ring the
+//! stuck rod at its own frequencies with an amplitude proportional to `v`, which the slow limit
+//! `v → 0` could not shed (the rod has no damping but the foot's damper).
+//!
+//! Energy, by the scheme's own identity (the trapezoidal rule of Newmark's rule on every force
+//! at the boundary): the foot's work `W = Σ −(Gx(0)ⁿ + Gx(0)ⁿ⁺¹)/2 (dⁿ⁺¹ − dⁿ)`, the work friction
+//! takes `D_f = Σ −(Gx(1)ⁿ + Gx(1)ⁿ⁺¹)/2 (x(1)ⁿ⁺¹ − x(1)ⁿ)` (zero while stuck), the damper's
+//! `D_c` as in `free`; `W = ΔK + ΔE + D_f + D_c`, exact for a linear rod, to the time scheme's
+//! error for this one.
+
+use crate::config::SolverConfig;
+use crate::rothe::{Rothe, Settings, TipBc, Trial};
+use crate::shape::BranchChoice;
+use crate::solve::{solve, Target};
+use crate::{Rod, Surface, VibrissaError};
+use bvp::Guess;
+use serde::Serialize;
+use std::fmt;
+
+/// Options of [`drag`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DynDragOptions {
+    /// The foot's speed `v` along +x after the ramp (rod lengths per time unit), in
+    /// `(0, 100]`. Default 0.01.
+    pub speed: f64,
+    /// Duration of the smooth start of the foot's speed from 0 to `v`, in `[0, 1e6]` (0: the
+    /// foot moves at `v` from `t = 0`). Default 2 (about 1.1 periods of the free rod's first
+    /// mode, 13 of the stuck paper's rod's).
+    pub ramp: f64,
+    /// Foot displacement where the drag ends, in `(0, 1000]`. Default 0.03 (past the paper's
+    /// rod's first slip at 0.0210).
+    pub d_max: f64,
+    /// Static friction coefficient μs, in `[0, 100]`. Default 0.5 (the paper's).
+    pub mu_s: f64,
+    /// Kinetic friction coefficient `μk ∈ [0, μs)`. Default 0.3.
+    pub mu_k: f64,
+    /// Time step, in `(0, 1]`. Default 0.01.
+    pub dt: f64,
+    /// Tolerance in time of the events' places, in `[1e-14, 1e-3]`. Default 1e-10.
+    pub event_tol: f64,
+    /// Damper of the foot's support `c`, `≥ 0`. Default 0.
+    pub foot_damping: f64,
+    /// Intervals of the history grid in `s`, even, in `[20, 100000]`. Default 200.
+    pub grid: usize,
+    /// Tolerance of each step's collocation, in `[1e-13, 1e-4]`. Default 1e-10.
+    pub tol: f64,
+    /// Collocation scheme of the steps. Default Lobatto IIIA of order 6.
+    #[serde(skip)]
+    pub scheme: bvp::Scheme,
+    /// Most events before the drag stops, in `[1, 1e6]`. Default 10000.
+    pub max_events: usize,
+}
+
+impl Default for DynDragOptions {
+    fn default() -> Self {
+        DynDragOptions {
+            speed: 0.01,
+            ramp: 2.0,
+            d_max: 0.03,
+            mu_s: 0.5,
+            mu_k: 0.3,
+            dt: 0.01,
+            event_tol: 1e-10,
+            foot_damping: 0.0,
+            grid: 200,
+            tol: 1e-10,
+            scheme: bvp::Scheme::Lobatto6,
+            max_events: 10_000,
+        }
+    }
+}
+
+/// Most time steps of a drag (`t_end/dt`).
+pub const MAX_STEPS: f64 = 1e7;
+
+impl DynDragOptions {
+    /// Checks every value; the error names it and its valid range.
+    pub fn validate(&self) -> Result<(), VibrissaError> {
+        use crate::limits;
+        let bad = |name: &str, v: f64, r: &str| Err(VibrissaError::range(name, v, r));
+        if !(self.speed > 0.0 && self.speed <= 100.0) {
+            return bad("speed", self.speed, "(0, 100]");
+        }
+        if !(self.ramp >= 0.0 && self.ramp <= 1e6) {
+            return bad("ramp", self.ramp, "[0, 1e6]");
+        }
+        limits::DRAG_D_MAX.check("d_max", self.d_max)?;
+        limits::MU_S.check("mu_s", self.mu_s)?;
+        limits::kinetic_friction(self.mu_s).check("mu_k", self.mu_k)?;
+        if !(self.dt > 0.0 && self.dt <= 1.0) {
+            return bad("dt", self.dt, "(0, 1]");
+        }
+        if !(self.event_tol >= 1e-14 && self.event_tol <= 1e-3) {
+            return bad("event_tol", self.event_tol, "[1e-14, 1e-3]");
+        }
+        if !(self.foot_damping >= 0.0 && self.foot_damping.is_finite()) {
+            return bad("foot_damping", self.foot_damping, "[0, inf)");
+        }
+        if !(20..=100_000).contains(&self.grid) || self.grid % 2 == 1 {
+            return bad("grid", self.grid as f64, "[20, 100000], even");
+        }
+        if !(self.tol >= 1e-13 && self.tol <= 1e-4) {
+            return bad("tol", self.tol, "[1e-13, 1e-4]");
+        }
+        limits::MAX_SLIPS.check_count("max_events", self.max_events)?;
+        let steps = self.t_end() / self.dt;
+        if steps > MAX_STEPS {
+            return Err(VibrissaError::range(
+                "d_max/(speed dt)",
+                steps,
+                format!("at most {MAX_STEPS:e} time steps: raise speed or dt, or lower d_max"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The foot's place at time `t` (the smooth start, then speed `v`).
+    pub fn foot_at(&self, t: f64) -> f64 {
+        let (v, tr) = (self.speed, self.ramp);
+        if t >= tr {
+            v * tr / 2.0 + v * (t - tr)
+        } else {
+            let u = t / tr;
+            v * tr * u.powi(4) * (2.5 - 3.0 * u + u * u)
+        }
+    }
+
+    /// The time at which the foot reaches `d_max`.
+    pub fn t_end(&self) -> f64 {
+        let (v, tr) = (self.speed, self.ramp);
+        if self.d_max >= v * tr / 2.0 {
+            return tr + (self.d_max - v * tr / 2.0) / v;
+        }
+        // on the ramp: d is increasing in t, bisection to rounding
+        let (mut lo, mut hi) = (0.0, tr);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if self.foot_at(mid) < self.d_max {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+}
+
+/// The tip's contact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactState {
+    /// The tip sticks where it is.
+    Stuck,
+    /// The tip slides towards +x.
+    SlidingForward,
+    /// The tip slides towards −x.
+    SlidingBack,
+}
+
+impl ContactState {
+    /// `stuck`, `sliding_forward`, `sliding_back`.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactState::Stuck => "stuck",
+            ContactState::SlidingForward => "sliding_forward",
+            ContactState::SlidingBack => "sliding_back",
+        }
+    }
+    fn dir(self) -> f64 {
+        match self {
+            ContactState::Stuck => 0.0,
+            ContactState::SlidingForward => 1.0,
+            ContactState::SlidingBack => -1.0,
+        }
+    }
+}
+
+/// What happened at an event.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DragEventKind {
+    /// The stuck tip starts to slide (`|T| = μs N`).
+    Slip,
+    /// The sliding tip stops and sticks (its velocity along the surface zero).
+    Stick,
+    /// The normal force falls to zero: the drag ends.
+    LiftOff,
+}
+
+impl DragEventKind {
+    /// `slip`, `stick`, `lift_off`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DragEventKind::Slip => "slip",
+            DragEventKind::Stick => "stick",
+            DragEventKind::LiftOff => "lift_off",
+        }
+    }
+}
+
+/// One event of a dynamic drag, at the state where it is located.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DynDragEvent {
+    /// What happened.
+    pub kind: DragEventKind,
+    /// Time.
+    pub t: f64,
+    /// Foot displacement.
+    pub d: f64,
+    /// The tip's x.
+    pub tip_x: f64,
+    /// The tip's velocity along x.
+    pub tip_vx: f64,
+    /// Normal force `N`.
+    pub normal: f64,
+    /// Tangential force `T` (friction on the tip, + against +x).
+    pub tangential: f64,
+    /// The contact from here on.
+    pub state: ContactState,
+}
+
+/// The rod at one time of a dynamic drag.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DragSample {
+    /// Time.
+    pub t: f64,
+    /// Foot displacement.
+    pub d: f64,
+    /// Tip x.
+    pub tip_x: f64,
+    /// Tip y.
+    pub tip_y: f64,
+    /// Tip velocity, x.
+    pub tip_vx: f64,
+    /// Tip velocity, y.
+    pub tip_vy: f64,
+    /// The tip's contact over the step that ended here.
+    pub state: ContactState,
+    /// Normal force `N = −Gy(1)`.
+    pub normal: f64,
+    /// Tangential force `T = −Gx(1)` (`μ = T/N`).
+    pub tangential: f64,
+    /// The force the rod exerts on its support, x (`Gx(0)`; the static drag's `fx`).
+    pub fx: f64,
+    /// The force on the support, y.
+    pub fy: f64,
+    /// `m(0)`.
+    pub m_base: f64,
+    /// Kinetic energy.
+    pub kinetic: f64,
+    /// Elastic energy.
+    pub elastic: f64,
+    /// The foot's work so far.
+    pub foot_work: f64,
+    /// Energy friction took so far.
+    pub friction: f64,
+    /// Energy the foot's damper took so far.
+    pub damper: f64,
+}
+
+/// Why a dynamic drag ended.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "reason")]
+pub enum DynDragStop {
+    /// The foot reached `d_max`.
+    DMax,
+    /// The normal force fell to zero at displacement `d`.
+    LiftOff {
+        /// Where.
+        d: f64,
+    },
+    /// `max_events` events happened.
+    MaxEvents,
+}
+
+impl fmt::Display for DynDragStop {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            DynDragStop::DMax => write!(f, "d_max"),
+            DynDragStop::LiftOff { d } => write!(f, "lift-off at d = {d}"),
+            DynDragStop::MaxEvents => write!(f, "max_events"),
+        }
+    }
+}
+
+/// Work done.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct DragStats {
+    /// Time steps taken.
+    pub steps: usize,
+    /// Steps solved (taken, and tried while locating events).
+    pub solves: usize,
+    /// Newton iterations of all solves.
+    pub newton_iterations: usize,
+    /// Largest collocation mesh.
+    pub max_nodes: usize,
+    /// Slips.
+    pub slips: usize,
+    /// Sticks.
+    pub sticks: usize,
+}
+
+impl fmt::Display for DragStats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} steps, {} solves, {} Newton iterations, largest mesh {}; {} slips, {} sticks",
+            self.steps,
+            self.solves,
+            self.newton_iterations,
+            self.max_nodes,
+            self.slips,
+            self.sticks
+        )
+    }
+}
+
+/// Result of [`drag`].
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DynDragResult {
+    /// One sample per step taken (the start included).
+    pub samples: Vec<DragSample>,
+    /// The events in order.
+    pub events: Vec<DynDragEvent>,
+    /// Why it ended.
+    pub stop: DynDragStop,
+    /// Work done.
+    pub stats: DragStats,
+}
+
+impl DynDragResult {
+    /// The first slip's foot displacement.
+    pub fn first_slip(&self) -> Option<f64> {
+        self.events
+            .iter()
+            .find(|e| e.kind == DragEventKind::Slip)
+            .map(|e| e.d)
+    }
+}
+
+impl fmt::Display for DynDragResult {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.first_slip() {
+            Some(d) => write!(f, "first slip at d = {d}; ")?,
+            None => write!(f, "no slip; ")?,
+        }
+        write!(f, "stopped: {}; {}", self.stop, self.stats)
+    }
+}
+
+/// The pressed start: the static rod with its tip at height η and the force normal to the
+/// surface (the start of `vibrissa::drag`), as a guess on `grid` for the Rothe state.
+fn pressed(rod: &Rod, eta: f64, grid: &[f64]) -> Result<(Guess, [f64; 2]), VibrissaError> {
+    let shape = solve(
+        rod,
+        0.0,
+        Target::Eta(eta),
+        &BranchChoice::Convex,
+        &SolverConfig::default(),
+    )?;
+    let pts: Vec<_> = grid.iter().map(|&s| shape.point_at(s)).collect();
+    if let Some(p) = pts[..pts.len() - 1].iter().find(|p| p.y > eta) {
+        return Err(VibrissaError::NoStart {
+            reason: format!(
+                "the pressed rod crosses the surface at s = {} (y = {} > eta = {eta}): the \
+                 dynamic drag has the tip alone on the surface",
+                p.s, p.y
+            ),
+        });
+    }
+    let (fx, fy) = (shape.fx, shape.fy);
+    let mut k = 0;
+    let guess = Guess::from_fn(6, grid.to_vec(), vec![], |_, z| {
+        let p = &pts[k];
+        k += 1;
+        z.copy_from_slice(&[p.x, p.y, p.phi, p.m, fx, fy]);
+    });
+    Ok((guess, [shape.x1, eta]))
+}
+
+/// The shortest step the events make, `max(1e-3 dt, 1e-5)`: with `G` scaled by `4/Δt²`, the
+/// rounding of the positions still enters the moment's equation as `4/Δt² · ε`, which the
+/// collocation's residual control cannot meet at tol 1e-10 below a few 1e-6 (measured: a step of
+/// 2.4e-6 ran into the mesh limit of 10⁴ nodes, 3.5e-5 did not). An event closer than this to
+/// a step's start is placed at this step's end.
+fn shortest_step(dt: f64) -> f64 {
+    (1e-3 * dt).max(1e-5)
+}
+
+/// Which of a step's event functions: `[lift-off, the contact's own]`.
+const LIFT: usize = 0;
+const PHASE: usize = 1;
+
+/// The driver of a dynamic drag.
+struct Drive<'r, 'o> {
+    o: &'o DynDragOptions,
+    rothe: Rothe<'r>,
+    eta: f64,
+    t: f64,
+    d: f64,
+    state: ContactState,
+    /// The stuck tip's x.
+    anchor: f64,
+    /// The step after a slip began (the tip's velocity zero at its start).
+    fresh_slip: bool,
+    foot_work: f64,
+    friction: f64,
+    samples: Vec<DragSample>,
+    events: Vec<DynDragEvent>,
+    stats: DragStats,
+}
+
+/// `N = −Gy(1)`, `T = −Gx(1)` of the tip's force `G(1)`.
+fn contact_forces(g: [f64; 2]) -> (f64, f64) {
+    (-g[1], -g[0])
+}
+
+impl<'r> Drive<'r, '_> {
+    fn bc(&self) -> TipBc {
+        match self.state {
+            ContactState::Stuck => TipBc::Stuck([self.anchor, self.eta]),
+            s => TipBc::Sliding {
+                y: self.eta,
+                ratio: s.dir() * self.o.mu_k,
+            },
+        }
+    }
+
+    /// The step of length `tau` from the present time, solved.
+    fn try_step(&mut self, tau: f64) -> Result<Trial, VibrissaError> {
+        let foot = [self.o.foot_at(self.t + tau), 0.0];
+        self.stats.solves += 1;
+        let bc = self.bc();
+        self.rothe.trial(tau, foot, bc, 0.0).map_err(|e| {
+            VibrissaError::solver(
+                format!(
+                    "dynamic drag: the step from t = {} by {tau} ({})",
+                    self.t,
+                    self.state.name()
+                ),
+                *e,
+            )
+        })
+    }
+
+    /// The event functions (`< 0` while the contact holds): `−N`, and `|T| − μs N` (stuck) or
+    /// `−dir·ẋ(1)` (sliding), from the forces and the tip's velocity.
+    fn events_of(&self, n: f64, t: f64, vx: f64) -> [f64; 2] {
+        let phase = match self.state {
+            ContactState::Stuck => t.abs() - self.o.mu_s * n,
+            s => -s.dir() * vx,
+        };
+        [-n, phase]
+    }
+
+    fn events_after(&self, tr: &Trial) -> [f64; 2] {
+        let (n, t) = contact_forces(tr.force(1));
+        self.events_of(n, t, self.rothe.tip_velocity(tr)[0])
+    }
+
+    fn events_now(&self) -> [f64; 2] {
+        let (n, t) = contact_forces(self.rothe.force(1));
+        self.events_of(n, t, self.rothe.sample(self.t).tip_vx)
+    }
+
+    /// Takes the step: the energies by the trapezoidal rule, a sample.
+    fn take(&mut self, tr: Trial) {
+        let (g0, g1, x1, d_old) = (
+            self.rothe.force(0),
+            self.rothe.force(1),
+            self.rothe.sol.right()[0],
+            self.d,
+        );
+        let tau = tr.tau;
+        self.rothe.commit(tr);
+        self.t += tau;
+        self.d = self.o.foot_at(self.t);
+        let (h0, h1) = (self.rothe.force(0), self.rothe.force(1));
+        self.foot_work += -0.5 * (g0[0] + h0[0]) * (self.d - d_old);
+        self.friction += -0.5 * (g1[0] + h1[0]) * (self.rothe.sol.right()[0] - x1);
+        self.stats.steps += 1;
+        self.samples.push(self.sample());
+    }
+
+    fn sample(&self) -> DragSample {
+        let p = self.rothe.sample(self.t);
+        let (normal, tangential) = contact_forces(self.rothe.force(1));
+        DragSample {
+            t: self.t,
+            d: self.d,
+            tip_x: p.tip_x,
+            tip_y: p.tip_y,
+            tip_vx: p.tip_vx,
+            tip_vy: p.tip_vy,
+            state: self.state,
+            normal,
+            tangential,
+            fx: p.gx_base,
+            fy: p.gy_base,
+            m_base: p.m_base,
+            kinetic: p.kinetic,
+            elastic: p.elastic,
+            foot_work: self.foot_work,
+            friction: self.friction,
+            damper: p.dissipated,
+        }
+    }
+
+    /// Where event function `which` reaches zero in `(lo, hi]` (`< 0` at `lo`, `≥ 0` at `hi`):
+    /// Brent's method on the step's length (no step shorter than [`shortest_step`] tried: the
+    /// function is constant below it).
+    fn locate(&mut self, which: usize, lo: f64, hi: f64) -> Result<f64, VibrissaError> {
+        let tol = self.o.event_tol;
+        let now = self.events_now()[which];
+        let shortest = shortest_step(self.o.dt).min(hi);
+        let mut f = |tau: f64| -> Result<f64, VibrissaError> {
+            if tau <= 0.0 {
+                return Ok(now);
+            }
+            let tr = self.try_step(tau.max(shortest))?;
+            Ok(self.events_after(&tr)[which])
+        };
+        crate::search::root(&mut f, lo, hi, tol).map_err(|e| match e {
+            crate::search::RootError::Caller(e) => e,
+            other => VibrissaError::NoConvergence {
+                what: format!("locating the dynamic drag's event after t = {}", self.t),
+                reason: other.to_string(),
+            },
+        })
+    }
+
+    /// The contact changes after event `which`; `Some(stop)` where the drag ends.
+    fn apply(&mut self, which: usize) -> Option<DynDragStop> {
+        let (normal, tangential) = contact_forces(self.rothe.force(1));
+        let kind = if which == LIFT {
+            DragEventKind::LiftOff
+        } else if self.state == ContactState::Stuck {
+            self.state = if tangential >= 0.0 {
+                ContactState::SlidingForward
+            } else {
+                ContactState::SlidingBack
+            };
+            self.fresh_slip = true;
+            self.stats.slips += 1;
+            DragEventKind::Slip
+        } else {
+            self.state = ContactState::Stuck;
+            self.anchor = self.rothe.sol.right()[0];
+            self.rothe.hold_tip_x();
+            self.stats.sticks += 1;
+            DragEventKind::Stick
+        };
+        let p = self.rothe.sample(self.t);
+        self.events.push(DynDragEvent {
+            kind,
+            t: self.t,
+            d: self.d,
+            tip_x: p.tip_x,
+            tip_vx: p.tip_vx,
+            normal,
+            tangential,
+            state: self.state,
+        });
+        if kind == DragEventKind::LiftOff {
+            return Some(DynDragStop::LiftOff { d: self.d });
+        }
+        (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
+    }
+
+    /// A lower end of the search in a step that starts a slip (the velocity zero at the start):
+    /// the longest of `τ/2, τ/4, …` (down to `tau_min`) where the tip moves the way it slides.
+    /// `None`: it does not move that way at all.
+    fn slip_start(&mut self, tau: f64, tau_min: f64) -> Result<Option<f64>, VibrissaError> {
+        let mut lo = tau;
+        while lo > tau_min {
+            lo = (0.5 * lo).max(tau_min);
+            let tr = self.try_step(lo)?;
+            if self.events_after(&tr)[PHASE] < 0.0 {
+                return Ok(Some(lo));
+            }
+        }
+        Ok(None)
+    }
+
+    /// The drag to its end.
+    fn run(&mut self) -> Result<DynDragStop, VibrissaError> {
+        let t_end = self.o.t_end();
+        let dt = self.o.dt;
+        let tau_min = shortest_step(dt);
+        loop {
+            if t_end - self.t <= 1e-12 * t_end.max(1.0) {
+                return Ok(DynDragStop::DMax);
+            }
+            let tau = dt.min(t_end - self.t);
+            let tr = self.try_step(tau)?;
+            let g1 = self.events_after(&tr);
+            if g1.iter().all(|&g| g < 0.0) {
+                self.take(tr);
+                self.fresh_slip = false;
+                continue;
+            }
+            // the lower end of the search: the step's start (or where a slip's tip moves)
+            let mut lo = 0.0;
+            if self.fresh_slip && g1[PHASE] >= 0.0 {
+                match self.slip_start(tau, tau_min.min(tau))? {
+                    Some(l) => lo = l,
+                    None => {
+                        // no motion the way of the slip: it sticks at once
+                        if let Some(stop) = self.apply(PHASE) {
+                            return Ok(stop);
+                        }
+                        continue;
+                    }
+                }
+            }
+            let mut first: Option<(f64, usize)> = None;
+            for which in [LIFT, PHASE] {
+                if g1[which] >= 0.0 {
+                    let at = self.locate(which, lo, tau)?;
+                    if first.is_none_or(|(t, _)| at < t) {
+                        first = Some((at, which));
+                    }
+                }
+            }
+            let Some((at, which)) = first else {
+                return Err(VibrissaError::NoConvergence {
+                    what: format!("the dynamic drag's step from t = {}", self.t),
+                    reason: format!("its event functions are not numbers: {g1:?}"),
+                });
+            };
+            let tr = self.try_step(at.max(tau_min.min(tau)))?;
+            self.take(tr);
+            self.fresh_slip = false;
+            if let Some(stop) = self.apply(which) {
+                return Ok(stop);
+            }
+        }
+    }
+}
+
+/// Drags the foot of `rod` along +x at speed `opts.speed` (after the smooth start) with the tip
+/// on the flat `surface` (`y = η`) and Coulomb friction `opts.mu_s`, `opts.mu_k`, from the
+/// pressed start at rest to `opts.d_max`, in time (see the module docs of `dynamics`).
+/// Errors: invalid input, a surface that is not flat, no start, a step the collocation does not
+/// solve.
+pub fn drag(
+    rod: &Rod,
+    surface: &Surface,
+    opts: &DynDragOptions,
+) -> Result<DynDragResult, VibrissaError> {
+    opts.validate()?;
+    if surface.angle() != 0.0 {
+        return Err(VibrissaError::range(
+            "surface angle",
+            surface.angle(),
+            "0 (the dynamic drag: a flat surface)",
+        ));
+    }
+    if surface.profile().is_some() || surface.texture().is_some() {
+        return Err(VibrissaError::NotImplemented(
+            "the dynamic drag on a curved or textured surface",
+        ));
+    }
+    let eta = surface.eta();
+    let settings = Settings {
+        grid: opts.grid,
+        tol: opts.tol,
+        scheme: opts.scheme,
+        damping: opts.foot_damping,
+        short_steps: true,
+    };
+    let grid = Rothe::grid_of(&settings);
+    let (guess, tip) = pressed(rod, eta, &grid)?;
+    let rothe = Rothe::at_rest(rod, &settings, &guess, [0.0, 0.0], TipBc::Stuck(tip))?;
+    let mut drive = Drive {
+        o: opts,
+        rothe,
+        eta,
+        t: 0.0,
+        d: 0.0,
+        state: ContactState::Stuck,
+        anchor: tip[0],
+        fresh_slip: false,
+        foot_work: 0.0,
+        friction: 0.0,
+        samples: vec![],
+        events: vec![],
+        stats: DragStats::default(),
+    };
+    drive.samples.push(drive.sample());
+    let stop = if drive.events_now()[PHASE] >= 0.0 {
+        // the start needs more than μs (μs = 0): it slips at once
+        drive.apply(PHASE).unwrap_or(DynDragStop::DMax)
+    } else {
+        DynDragStop::DMax
+    };
+    let stop = match stop {
+        DynDragStop::DMax => drive.run()?,
+        s => s,
+    };
+    let r = &drive.rothe.stats;
+    let stats = DragStats {
+        newton_iterations: r.newton_iterations,
+        max_nodes: r.max_nodes,
+        ..drive.stats
+    };
+    Ok(DynDragResult {
+        samples: drive.samples,
+        events: drive.events,
+        stop,
+        stats,
+    })
+}

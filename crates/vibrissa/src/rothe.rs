@@ -1,0 +1,613 @@
+//! The Rothe step of the rod in time, shared by `dynamics::free` and `dynamics::drag` (issue 32):
+//! one time step of Newmark's average-acceleration rule as a boundary-value problem in the arc
+//! length, solved by crate `bvp`'s Lobatto collocation, and the history of positions,
+//! velocities and accelerations on a uniform grid in `s` (module `dynamics` states the
+//! equations and the scheme's properties).
+//!
+//! A step is tried first ([`Rothe::trial`]: the BVP solved for a step `τ`, nothing of the state
+//! changed) and then taken ([`Rothe::commit`]), so a driver can locate an event inside a step by
+//! trying steps of several lengths (`dynamics::drag`). The step length may change from step to
+//! step (the rule is written for any `τ`). The foot and the tip take their conditions per
+//! step: the foot at a given place, the tip free under a force, stuck at a point, or sliding
+//! along the line `y = η` under Coulomb friction.
+
+use crate::inertia::mass_density;
+use crate::parts::Stiffness;
+use crate::profile::{General, Profile};
+use crate::{Rod, VibrissaError};
+use bvp::{Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Dims, Guess, Solution};
+use serde::Serialize;
+use std::f64::consts::FRAC_PI_2;
+
+/// The rod at one time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct DynSample {
+    /// Time.
+    pub t: f64,
+    /// Tip position, x.
+    pub tip_x: f64,
+    /// Tip position, y.
+    pub tip_y: f64,
+    /// Tip velocity, x.
+    pub tip_vx: f64,
+    /// Tip velocity, y.
+    pub tip_vy: f64,
+    /// Rotation of the foot `θ = φ(0) − π/2` (0 on a clamp).
+    pub theta: f64,
+    /// `m(0)`.
+    pub m_base: f64,
+    /// Internal force at the foot `G(0)`, x (the contact force, in the static case).
+    pub gx_base: f64,
+    /// Internal force at the foot, y.
+    pub gy_base: f64,
+    /// Kinetic energy `½∫μ|r_t|²`.
+    pub kinetic: f64,
+    /// Elastic energy `½∫b m² + θ²/(2 c_s)`.
+    pub elastic: f64,
+    /// Energy taken by the foot's damper so far, `∫ c θ_t² dt` (by the midpoint rule of the
+    /// time steps: the scheme's own energy identity).
+    pub dissipated: f64,
+}
+
+/// Work done.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct DynStats {
+    /// Time steps.
+    pub steps: usize,
+    /// Newton iterations of the steps' collocation solves.
+    pub newton_iterations: usize,
+    /// Largest mesh of a step's collocation.
+    pub max_nodes: usize,
+}
+
+/// The tip's conditions in a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum TipBc {
+    /// A given force `G(1)` on the tip (`[0, 0]`: free).
+    Force([f64; 2]),
+    /// The tip held at a point: `r(1)` given.
+    Stuck([f64; 2]),
+    /// The tip on the line `y = y`, sliding: the tangential force `Gx(1) = ratio·Gy(1)`
+    /// (`ratio = dir·μk`: with the normal force `N = −Gy(1)`, friction `−dir·μk·N` against
+    /// the slide in direction `dir`).
+    Sliding { y: f64, ratio: f64 },
+}
+
+/// Cubic Hermite interpolation of values `v` and derivatives `d` on the uniform grid
+/// (`v.len() − 1` intervals on `[0, 1]`): continuous with its first derivative.
+fn interp(v: &[f64], d: &[f64], s: f64) -> f64 {
+    let n = v.len() - 1;
+    let h = 1.0 / n as f64;
+    let u = (s * n as f64).clamp(0.0, n as f64);
+    let i = (u.floor() as usize).min(n - 1);
+    let t = u - i as f64;
+    let (t2, t3) = (t * t, t * t * t);
+    (2.0 * t3 - 3.0 * t2 + 1.0) * v[i]
+        + (t3 - 2.0 * t2 + t) * h * d[i]
+        + (-2.0 * t3 + 3.0 * t2) * v[i + 1]
+        + (t3 - t2) * h * d[i + 1]
+}
+
+/// One time step's boundary-value problem.
+struct Step<'a> {
+    profile: &'a General,
+    stiffness: &'a Stiffness,
+    /// `4/Δt²`.
+    k_acc: f64,
+    /// The unknowns 4, 5 are `G/gs` (see [`Settings::short_steps`]).
+    gs: f64,
+    /// The positions `rⁿ` as the last step's solution (then `hat_*` hold `r̂ − rⁿ`), or `None`
+    /// (`hat_*` hold `r̂`).
+    base: Option<&'a Solution>,
+    /// `r̂` (or `r̂ − rⁿ`) on the grid.
+    hat_x: &'a [f64],
+    hat_y: &'a [f64],
+    /// `dr̂/ds` on the grid.
+    hat_xs: &'a [f64],
+    hat_ys: &'a [f64],
+    compliance: f64,
+    /// `c·(2/Δt)`, and `c·(−2/Δt θⁿ − θ_tⁿ)`: `c θ_t = damp_k θ + damp_0`.
+    damp_k: f64,
+    damp_0: f64,
+    /// The moment applied to the support.
+    moment: f64,
+    /// The foot's place.
+    foot: [f64; 2],
+    /// The tip's conditions.
+    tip: TipBc,
+}
+
+impl Bvp for Step<'_> {
+    fn dims(&self) -> Dims {
+        Dims { n: 6, k: 0 }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn rhs(&self, s: f64, z: &[f64], _p: &[f64], dz: &mut [f64]) {
+        let (sp, cp) = z[2].sin_cos();
+        let mu = mass_density(self.stiffness, s);
+        dz[0] = cp;
+        dz[1] = sp;
+        dz[2] = self.profile.k0(s) + self.profile.b(s) * z[3];
+        dz[3] = self.gs * (z[4] * sp - z[5] * cp);
+        let mut r0 = [0.0; 6];
+        if let Some(b) = self.base {
+            b.eval(s, &mut r0);
+        }
+        let k = self.k_acc / self.gs;
+        dz[4] = mu * k * (z[0] - r0[0] - interp(self.hat_x, self.hat_xs, s));
+        dz[5] = mu * k * (z[1] - r0[1] - interp(self.hat_y, self.hat_ys, s));
+    }
+    fn rhs_jacobian(
+        &self,
+        s: f64,
+        z: &[f64],
+        _p: &[f64],
+        dfdz: &mut [f64],
+        _dfdp: &mut [f64],
+    ) -> bool {
+        let (sp, cp) = z[2].sin_cos();
+        let mk = mass_density(self.stiffness, s) * (self.k_acc / self.gs);
+        dfdz[..36].fill(0.0);
+        dfdz[2] = -sp;
+        dfdz[6 + 2] = cp;
+        dfdz[12 + 3] = self.profile.b(s);
+        dfdz[18 + 2] = self.gs * (z[4] * cp + z[5] * sp);
+        dfdz[18 + 4] = self.gs * sp;
+        dfdz[18 + 5] = -self.gs * cp;
+        dfdz[24] = mk;
+        dfdz[30 + 1] = mk;
+        true
+    }
+    fn bc_jacobian(
+        &self,
+        _za: &[f64],
+        _zb: &[f64],
+        _p: &[f64],
+        dga: &mut [f64],
+        dgb: &mut [f64],
+        _dgp: &mut [f64],
+    ) -> bool {
+        dga[..36].fill(0.0);
+        dgb[..36].fill(0.0);
+        dga[0] = 1.0;
+        dga[6 + 1] = 1.0;
+        dga[12 + 2] = 1.0 + self.compliance * self.damp_k;
+        dga[12 + 3] = -self.compliance;
+        dgb[18 + 3] = 1.0;
+        match self.tip {
+            TipBc::Force(_) => {
+                dgb[24 + 4] = self.gs;
+                dgb[30 + 5] = self.gs;
+            }
+            TipBc::Stuck(_) => {
+                dgb[24] = 1.0;
+                dgb[30 + 1] = 1.0;
+            }
+            TipBc::Sliding { ratio, .. } => {
+                dgb[24 + 1] = 1.0;
+                dgb[30 + 4] = 1.0;
+                dgb[30 + 5] = -ratio;
+            }
+        }
+        true
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
+        let theta = za[2] - FRAC_PI_2;
+        res[0] = za[0] - self.foot[0];
+        res[1] = za[1] - self.foot[1];
+        res[2] =
+            theta - self.compliance * (za[3] + self.moment - self.damp_k * theta - self.damp_0);
+        res[3] = zb[3];
+        match self.tip {
+            TipBc::Force(f) => {
+                res[4] = self.gs * zb[4] - f[0];
+                res[5] = self.gs * zb[5] - f[1];
+            }
+            TipBc::Stuck(p) => {
+                res[4] = zb[0] - p[0];
+                res[5] = zb[1] - p[1];
+            }
+            TipBc::Sliding { y, ratio } => {
+                res[4] = zb[1] - y;
+                res[5] = zb[4] - ratio * zb[5];
+            }
+        }
+    }
+}
+
+/// Settings of the Rothe steps.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Settings {
+    /// Intervals of the history grid (even).
+    pub grid: usize,
+    /// Collocation tolerance.
+    pub tol: f64,
+    /// Collocation scheme.
+    pub scheme: bvp::Scheme,
+    /// The foot's damper `c`.
+    pub damping: f64,
+    /// Steps of any length, short ones too (`true`, `dynamics::drag`, whose events shorten
+    /// steps), or as `dynamics::free` (`false`). With `true`: (1) `r̂ = rⁿ + (Δt vⁿ + Δt²/4 aⁿ)`
+    /// with `rⁿ` the last step's solution itself and only the bracket interpolated on the grid
+    /// (its interpolation error enters the acceleration with `4/Δt` and 1, not `4/Δt²`);
+    /// (2) the unknowns of the internal force are `H = G/(4/Δt²)`, so `H' = μ(r − r̂)` and
+    /// `m' = (4/Δt²) H × e`: the collocation's residual control scales each equation by its own
+    /// size, and with `G` itself an error `δr` of the positions (rounding, at the least) makes a
+    /// residual `4/Δt² δr` in `G' = μ r_tt` that a short step cannot meet (Δt = 1.3e-3 at tol
+    /// 1e-10 ran into the mesh limit of 10⁴ nodes), while with `H` it is `δr`.
+    pub short_steps: bool,
+}
+
+/// A step solved but not taken.
+pub(crate) struct Trial {
+    /// The step's length.
+    pub tau: f64,
+    /// `G = gs·(z[4], z[5])` in `sol`.
+    gs: f64,
+    /// The solution at the step's end.
+    pub sol: Solution,
+    /// `r̂` of the step on the grid (x, y and their s-derivatives).
+    hat: [Vec<f64>; 4],
+    /// Positions (x, y, cos φ, sin φ) on the grid at the step's end.
+    next: [Vec<f64>; 4],
+    /// `m` on the grid at the step's end.
+    m: Vec<f64>,
+}
+
+impl Trial {
+    /// The internal force `G` at the foot (`end` 0) or the tip (`end` 1) of the trial.
+    pub fn force(&self, end: usize) -> [f64; 2] {
+        let z = if end == 0 {
+            self.sol.left()
+        } else {
+            self.sol.right()
+        };
+        [self.gs * z[4], self.gs * z[5]]
+    }
+}
+
+/// The rod's state in time: the last solution and the history on the grid.
+pub(crate) struct Rothe<'r> {
+    profile: General,
+    stiffness: &'r Stiffness,
+    cs: f64,
+    damping: f64,
+    short_steps: bool,
+    ng: usize,
+    grid: Vec<f64>,
+    mu: Vec<f64>,
+    bvec: Vec<f64>,
+    solver: Collocation,
+    /// The solution at the present time.
+    pub sol: Solution,
+    /// Per component (x, y): position and its s-derivative (`e = (cos φ, sin φ)`); velocity and
+    /// acceleration likewise (the recursions are linear, so the derivatives follow the same
+    /// rule).
+    pos: [Vec<f64>; 4],
+    vel: [Vec<f64>; 4],
+    acc: [Vec<f64>; 4],
+    m: Vec<f64>,
+    /// `G = gs·(z[4], z[5])` in `sol`.
+    gs: f64,
+    /// Foot rotation and its rate.
+    pub theta: f64,
+    theta_t: f64,
+    /// Energy the foot's damper took so far.
+    pub dissipated: f64,
+    /// Work done.
+    pub stats: DynStats,
+}
+
+/// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
+/// (the guess only; collocation makes it exact).
+pub(crate) fn rest_guess(profile: &General, grid: &[f64]) -> Guess {
+    let ng = grid.len() - 1;
+    let mut rest = Guess::from_fn(6, grid.to_vec(), vec![], |_, z| z.fill(0.0));
+    let (mut x, mut y, mut phi) = (0.0, 0.0, FRAC_PI_2);
+    let h = 1.0 / ng as f64;
+    let sub = 20;
+    for (zi, &s0) in rest.z.chunks_mut(6).zip(grid) {
+        zi[0] = x;
+        zi[1] = y;
+        zi[2] = phi;
+        for k in 0..sub {
+            let s = s0 + (k as f64 + 0.5) * h / sub as f64;
+            let pm = phi + 0.5 * profile.k0(s) * h / sub as f64;
+            x += pm.cos() * h / sub as f64;
+            y += pm.sin() * h / sub as f64;
+            phi += profile.k0(s) * h / sub as f64;
+        }
+    }
+    rest
+}
+
+impl<'r> Rothe<'r> {
+    /// The uniform grid of `settings.grid` intervals.
+    pub fn grid_of(settings: &Settings) -> Vec<f64> {
+        let ng = settings.grid;
+        (0..=ng).map(|i| i as f64 / ng as f64).collect()
+    }
+
+    /// The state at rest in the static equilibrium with the foot at `foot` and the tip's
+    /// condition `tip` (solved once, from `guess`; no inertia).
+    pub fn at_rest(
+        rod: &'r Rod,
+        settings: &Settings,
+        guess: &Guess,
+        foot: [f64; 2],
+        tip: TipBc,
+    ) -> Result<Self, VibrissaError> {
+        let profile = rod.profile(1.0);
+        let stiffness = rod.stiffness();
+        let ng = settings.grid;
+        let grid = Self::grid_of(settings);
+        let mu: Vec<f64> = grid.iter().map(|&s| mass_density(stiffness, s)).collect();
+        let bvec: Vec<f64> = grid.iter().map(|&s| profile.b(s)).collect();
+        let mut solver = Collocation::new(CollocationOptions {
+            tol: settings.tol,
+            scheme: settings.scheme,
+            coarsen: false,
+            ..CollocationOptions::default()
+        })
+        .map_err(|e| VibrissaError::solver("dynamics options", e))?;
+        let zeros = vec![0.0; ng + 1];
+        let statics = Step {
+            profile: &profile,
+            stiffness,
+            k_acc: 0.0,
+            gs: 1.0,
+            base: None,
+            hat_x: &zeros,
+            hat_y: &zeros,
+            hat_xs: &zeros,
+            hat_ys: &zeros,
+            compliance: rod.support_compliance(),
+            damp_k: 0.0,
+            damp_0: 0.0,
+            moment: 0.0,
+            foot,
+            tip,
+        };
+        let sol = solver
+            .solve(&statics, guess)
+            .map_err(|e| VibrissaError::solver("the starting equilibrium", e))?;
+        let zero = || vec![0.0; ng + 1];
+        let mut me = Rothe {
+            cs: rod.support_compliance(),
+            damping: settings.damping,
+            short_steps: settings.short_steps,
+            gs: 1.0,
+            ng,
+            mu,
+            bvec,
+            solver,
+            theta: sol.left()[2] - FRAC_PI_2,
+            sol,
+            pos: [zero(), zero(), zero(), zero()],
+            vel: [zero(), zero(), zero(), zero()],
+            acc: [zero(), zero(), zero(), zero()],
+            m: zero(),
+            theta_t: 0.0,
+            dissipated: 0.0,
+            stats: DynStats::default(),
+            grid,
+            profile,
+            stiffness,
+        };
+        let (mut pos, mut m) = (std::mem::take(&mut me.pos), std::mem::take(&mut me.m));
+        me.sample_grid(&me.sol, &mut pos, &mut m);
+        (me.pos, me.m) = (pos, m);
+        Ok(me)
+    }
+
+    /// Positions (x, y, cos φ, sin φ) and `m` of `sol` on the grid.
+    fn sample_grid(&self, sol: &Solution, pos: &mut [Vec<f64>; 4], m: &mut [f64]) {
+        let mut out = [0.0; 6];
+        for (i, &s) in self.grid.iter().enumerate() {
+            sol.eval(s, &mut out);
+            let (sp, cp) = out[2].sin_cos();
+            pos[0][i] = out[0];
+            pos[1][i] = out[1];
+            pos[2][i] = cp;
+            pos[3][i] = sp;
+            m[i] = out[3];
+        }
+    }
+
+    /// Sets the velocity field to `v0(s) = (vx, vy)` (its s-derivative by fourth-order central
+    /// differences, one-sided near the ends).
+    pub fn set_velocity(&mut self, v0: &dyn Fn(f64) -> [f64; 2]) -> Result<(), VibrissaError> {
+        let hd = 1e-3;
+        for (i, &s) in self.grid.iter().enumerate() {
+            let v = v0(s);
+            let sc = s.clamp(2.0 * hd, 1.0 - 2.0 * hd);
+            let (p1, m1, p2, m2) = (
+                v0(sc + hd),
+                v0(sc - hd),
+                v0(sc + 2.0 * hd),
+                v0(sc - 2.0 * hd),
+            );
+            for c in 0..2 {
+                self.vel[c][i] = v[c];
+                let d = (8.0 * (p1[c] - m1[c]) - (p2[c] - m2[c])) / (12.0 * hd);
+                // (s near an end: the derivative at the clamped point, corrected to first order)
+                let d2 = (p1[c] - 2.0 * v0(sc)[c] + m1[c]) / (hd * hd);
+                self.vel[2 + c][i] = d + d2 * (s - sc);
+            }
+            if !(v[0].is_finite() && v[1].is_finite()) {
+                return Err(VibrissaError::range("v0", v[0] + v[1], "finite"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The tip's x velocity and acceleration set to zero at the grid's last node (a tip that
+    /// sticks: its velocity is zero there to the event's tolerance, and its acceleration jumps
+    /// to zero; the rest of the rod's acceleration is continuous at the moment it sticks).
+    pub fn hold_tip_x(&mut self) {
+        self.vel[0][self.ng] = 0.0;
+        self.acc[0][self.ng] = 0.0;
+    }
+
+    /// Solves the step of length `tau` with the foot at `foot`, the tip's condition `tip` and the
+    /// moment `moment` on the support; the state is left as it is.
+    pub fn trial(
+        &mut self,
+        tau: f64,
+        foot: [f64; 2],
+        tip: TipBc,
+        moment: f64,
+    ) -> Result<Trial, Box<BvpError>> {
+        let ng = self.ng;
+        let zero = || vec![0.0; ng + 1];
+        let mut hat = [zero(), zero(), zero(), zero()];
+        let mut bracket = [zero(), zero(), zero(), zero()];
+        for (q, (h, b)) in hat.iter_mut().zip(bracket.iter_mut()).enumerate() {
+            for (i, (hi, bi)) in h.iter_mut().zip(b.iter_mut()).enumerate() {
+                *hi = self.pos[q][i] + tau * self.vel[q][i] + 0.25 * tau * tau * self.acc[q][i];
+                *bi = tau * self.vel[q][i] + 0.25 * tau * tau * self.acc[q][i];
+            }
+        }
+        let k_acc = 4.0 / (tau * tau);
+        let gs = if self.short_steps { k_acc } else { 1.0 };
+        let (base, interp_of) = if self.short_steps {
+            (Some(&self.sol), &bracket)
+        } else {
+            (None, &hat)
+        };
+        let c = self.damping;
+        let step = Step {
+            profile: &self.profile,
+            stiffness: self.stiffness,
+            k_acc,
+            gs,
+            base,
+            hat_x: &interp_of[0],
+            hat_y: &interp_of[1],
+            hat_xs: &interp_of[2],
+            hat_ys: &interp_of[3],
+            compliance: self.cs,
+            damp_k: c * 2.0 / tau,
+            damp_0: c * (-2.0 / tau * self.theta - self.theta_t),
+            moment,
+            foot,
+            tip,
+        };
+        let mut guess = Guess::from(&self.sol);
+        if gs != self.gs {
+            let r = self.gs / gs;
+            for zi in guess.z.chunks_mut(6) {
+                zi[4] *= r;
+                zi[5] *= r;
+            }
+            for zi in guess.dz.iter_mut().flat_map(|d| d.chunks_mut(6)) {
+                zi[4] *= r;
+                zi[5] *= r;
+            }
+        }
+        let sol = self.solver.solve(&step, &guess).map_err(Box::new)?;
+        self.stats.newton_iterations += sol.stats.newton_iters;
+        self.stats.max_nodes = self.stats.max_nodes.max(sol.len());
+        let mut next = [zero(), zero(), zero(), zero()];
+        let mut m = zero();
+        self.sample_grid(&sol, &mut next, &mut m);
+        Ok(Trial {
+            tau,
+            gs,
+            sol,
+            hat,
+            next,
+            m,
+        })
+    }
+
+    /// The internal force `G` at the foot (`end` 0) or the tip (`end` 1) now.
+    pub fn force(&self, end: usize) -> [f64; 2] {
+        let z = if end == 0 {
+            self.sol.left()
+        } else {
+            self.sol.right()
+        };
+        [self.gs * z[4], self.gs * z[5]]
+    }
+
+    /// The tip's velocity at the end of the trial step.
+    pub fn tip_velocity(&self, tr: &Trial) -> [f64; 2] {
+        let (i, k) = (self.ng, 4.0 / (tr.tau * tr.tau));
+        let v = |q: usize| {
+            let a1 = k * (tr.next[q][i] - tr.hat[q][i]);
+            self.vel[q][i] + 0.5 * tr.tau * (self.acc[q][i] + a1)
+        };
+        [v(0), v(1)]
+    }
+
+    /// Takes the trial step.
+    pub fn commit(&mut self, tr: Trial) {
+        let (tau, k_acc) = (tr.tau, 4.0 / (tr.tau * tr.tau));
+        let mut next = tr.next;
+        for (q, nq) in next.iter().enumerate() {
+            let (v, a) = (&mut self.vel[q], &mut self.acc[q]);
+            for (i, (vi, ai)) in v.iter_mut().zip(a.iter_mut()).enumerate() {
+                let a1 = k_acc * (nq[i] - tr.hat[q][i]);
+                *vi += 0.5 * tau * (*ai + a1);
+                *ai = a1;
+            }
+        }
+        std::mem::swap(&mut self.pos, &mut next);
+        self.m = tr.m;
+        self.sol = tr.sol;
+        self.gs = tr.gs;
+        self.stats.steps += 1;
+        let theta1 = self.sol.left()[2] - FRAC_PI_2;
+        let theta_t1 = 2.0 / tau * (theta1 - self.theta) - self.theta_t;
+        // the scheme's own energy identity: the damper takes Δt c ((θ_tⁿ + θ_tⁿ⁺¹)/2)² per step
+        let mid = 0.5 * (self.theta_t + theta_t1);
+        self.dissipated += tau * self.damping * mid * mid;
+        (self.theta, self.theta_t) = (theta1, theta_t1);
+    }
+
+    /// Simpson's rule on the grid (an even number of intervals).
+    fn simpson(&self, f: &dyn Fn(usize) -> f64) -> f64 {
+        let (ng, h) = (self.ng, 1.0 / self.ng as f64);
+        (0..=ng)
+            .map(|i| {
+                f(i) * h / 3.0
+                    * if i == 0 || i == ng {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    }
+            })
+            .sum()
+    }
+
+    /// The present state as a sample at time `t`.
+    pub fn sample(&self, t: f64) -> DynSample {
+        let (vel, mu, bv, m) = (&self.vel, &self.mu, &self.bvec, &self.m);
+        let kinetic =
+            0.5 * self.simpson(&|i| mu[i] * (vel[0][i] * vel[0][i] + vel[1][i] * vel[1][i]));
+        let mut elastic = 0.5 * self.simpson(&|i| bv[i] * m[i] * m[i]);
+        if self.cs > 0.0 {
+            elastic += 0.5 * self.theta * self.theta / self.cs;
+        }
+        let (l, r) = (self.sol.left(), self.sol.right());
+        DynSample {
+            t,
+            tip_x: r[0],
+            tip_y: r[1],
+            tip_vx: vel[0][self.ng],
+            tip_vy: vel[1][self.ng],
+            theta: self.theta,
+            m_base: l[3],
+            gx_base: self.gs * l[4],
+            gy_base: self.gs * l[5],
+            kinetic,
+            elastic,
+            dissipated: self.dissipated,
+        }
+    }
+}
