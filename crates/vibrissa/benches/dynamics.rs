@@ -16,28 +16,17 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use std::f64::consts::PI;
 use std::hint::black_box;
 use std::time::Duration;
-use vibrissa::dynamics::{free, DynamicsOptions};
+use vibrissa::dynamics::{first_mode_velocity, free, DynamicsOptions, CLAMPED_FREE_BETA1};
 use vibrissa::Rod;
 
-const BETA1: f64 = 1.87510406871196;
-
-/// The first clamped–free mode (Blevins, table 8-1), scaled to `amp` at the tip.
-fn mode1(amp: f64) -> impl Fn(f64) -> [f64; 2] {
-    let b = BETA1;
-    let sigma = (b.cosh() + b.cos()) / (b.sinh() + b.sin());
-    let w = move |s: f64| (b * s).cosh() - (b * s).cos() - sigma * ((b * s).sinh() - (b * s).sin());
-    let w1 = w(1.0);
-    move |s| [amp * w(s) / w1, 0.0]
-}
-
 fn oscillate(steps_per_period: usize) -> usize {
-    let period = 2.0 * PI / (BETA1 * BETA1);
+    let period = 2.0 * PI / (CLAMPED_FREE_BETA1 * CLAMPED_FREE_BETA1);
     let o = DynamicsOptions {
         dt: period / steps_per_period as f64,
         t_end: 1.2 * period,
         ..DynamicsOptions::default()
     };
-    let r = free(&Rod::uniform(), &mode1(1e-4), &o).expect("free oscillation");
+    let r = free(&Rod::uniform(), &first_mode_velocity(1e-4), &o).expect("free oscillation");
     black_box(r.samples.len())
 }
 

@@ -29,64 +29,12 @@
 //! `1000 n + i`)
 
 use std::time::Instant;
-use vibrissa::fit::{fit, CorrugationFit, FitOptions, FitResult, Trace};
+use vibrissa::fit::{fit, inc_beta, CorrugationFit, FitOptions, FitResult, Trace};
 use vibrissa::{drag, DragOptions, Scene};
 
 #[path = "../tests/support/noisy_trace.rs"]
 mod noisy_trace;
 use noisy_trace::{exact, noisy, places_only, Rng, SIGMA};
-
-/// `ln Γ(x)`, x > 0 (Lanczos, g = 7, 9 terms: 1e-15 relative).
-fn ln_gamma(x: f64) -> f64 {
-    const C: [f64; 9] = [
-        0.999_999_999_999_809_9,
-        676.520_368_121_885_1,
-        -1_259.139_216_722_402_8,
-        771.323_428_777_653_1,
-        -176.615_029_162_140_6,
-        12.507_343_278_686_905,
-        -0.138_571_095_265_720_12,
-        9.984_369_578_019_572e-6,
-        1.505_632_735_149_311_6e-7,
-    ];
-    let x = x - 1.0;
-    let t = x + 7.5;
-    let s = C[0] + (1..9).map(|i| C[i] / (x + i as f64)).sum::<f64>();
-    0.5 * std::f64::consts::TAU.ln() + (x + 0.5) * t.ln() - t + s.ln()
-}
-
-/// The regularized incomplete beta function `I_x(a, b)` (Lentz's continued fraction).
-fn inc_beta(x: f64, a: f64, b: f64) -> f64 {
-    if x <= 0.0 || x >= 1.0 {
-        return x.clamp(0.0, 1.0);
-    }
-    if x > (a + 1.0) / (a + b + 2.0) {
-        return 1.0 - inc_beta(1.0 - x, b, a);
-    }
-    let front =
-        (ln_gamma(a + b) - ln_gamma(a) - ln_gamma(b) + a * x.ln() + b * (1.0 - x).ln()).exp() / a;
-    let tiny = 1e-300;
-    let (mut c, mut d) = (1.0, 1.0 - (a + b) * x / (a + 1.0));
-    d = 1.0 / if d.abs() < tiny { tiny } else { d };
-    let mut f = d;
-    for m in 1..300 {
-        let m = m as f64;
-        for num in [
-            m * (b - m) * x / ((a + 2.0 * m - 1.0) * (a + 2.0 * m)),
-            -(a + m) * (a + b + m) * x / ((a + 2.0 * m) * (a + 2.0 * m + 1.0)),
-        ] {
-            d = 1.0 + num * d;
-            d = 1.0 / if d.abs() < tiny { tiny } else { d };
-            c = 1.0 + num / c;
-            c = if c.abs() < tiny { tiny } else { c };
-            f *= c * d;
-        }
-        if (c * d - 1.0).abs() < 1e-15 {
-            break;
-        }
-    }
-    front * f
-}
 
 /// `P(|T| > t)` for Student's t with `dof` degrees of freedom.
 fn t_tail(t: f64, dof: f64) -> f64 {

@@ -12,18 +12,10 @@
 
 use std::f64::consts::PI;
 use std::time::Instant;
-use vibrissa::dynamics::{free, DynamicsOptions, DynamicsResult};
+use vibrissa::dynamics::{
+    first_mode_velocity, free, DynamicsOptions, DynamicsResult, CLAMPED_FREE_BETA1,
+};
 use vibrissa::Rod;
-
-const BETA1: f64 = 1.87510406871196;
-
-fn mode1(amp: f64) -> impl Fn(f64) -> [f64; 2] {
-    let b = BETA1;
-    let sigma = (b.cosh() + b.cos()) / (b.sinh() + b.sin());
-    let w = move |s: f64| (b * s).cosh() - (b * s).cos() - sigma * ((b * s).sinh() - (b * s).sin());
-    let w1 = w(1.0);
-    move |s| [amp * w(s) / w1, 0.0]
-}
 
 /// The first upward zero crossing of the tip's x after `after`, by cubic Hermite interpolation
 /// with the tip's velocity.
@@ -63,7 +55,7 @@ fn drift(r: &DynamicsResult) -> f64 {
 
 fn main() -> Result<(), vibrissa::VibrissaError> {
     let rod = Rod::uniform();
-    let w1 = BETA1 * BETA1;
+    let w1 = CLAMPED_FREE_BETA1 * CLAMPED_FREE_BETA1;
     let period = 2.0 * PI / w1;
     println!("uniform clamped-free rod, first mode, tip velocity amplitude 1e-4; T = 2 pi / beta1^2 = {period}");
     println!("scheme   steps/T  time_s  max_nodes  newton  period_err  newmark_pred  omega_err(dispersion)  energy_drift");
@@ -78,7 +70,7 @@ fn main() -> Result<(), vibrissa::VibrissaError> {
                 ..DynamicsOptions::default()
             };
             let t0 = Instant::now();
-            let r = free(&rod, &mode1(1e-4), &o)?;
+            let r = free(&rod, &first_mode_velocity(1e-4), &o)?;
             let el = t0.elapsed().as_secs_f64();
             let tp = upward_crossing(&r, 0.6 * period);
             let pred = PI * dt / (w1 * dt / 2.0).atan();
@@ -113,7 +105,7 @@ fn main() -> Result<(), vibrissa::VibrissaError> {
             ..DynamicsOptions::default()
         };
         let t0 = Instant::now();
-        let r = free(&rod, &mode1(amp), &o)?;
+        let r = free(&rod, &first_mode_velocity(amp), &o)?;
         println!(
             "tip velocity amplitude {amp}: {periods} periods at {n} steps per period: energy drift {:.3e} ({} steps, {:.1} s, largest mesh {})",
             drift(&r),

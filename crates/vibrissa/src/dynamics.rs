@@ -128,6 +128,22 @@ pub struct DynamicsResult {
     pub stats: DynStats,
 }
 
+/// β₁ of the uniform clamped–free rod, `ω₁ = β₁²` (Blevins, *Formulas for natural frequency
+/// and mode shape*, 1979, table 8-1).
+pub const CLAMPED_FREE_BETA1: f64 = 1.87510406871196;
+
+/// The first mode of the uniform clamped–free rod (Blevins, table 8-1) as a velocity field
+/// across the rod, `amp` at the tip: a start for [`free`] whose motion is that mode with the
+/// frequency `β₁²` (the sample the tests, the example `free_oscillation` and the bench
+/// `dynamics` share).
+pub fn first_mode_velocity(amp: f64) -> impl Fn(f64) -> [f64; 2] {
+    let b = CLAMPED_FREE_BETA1;
+    let sigma = (b.cosh() + b.cos()) / (b.sinh() + b.sin());
+    let w = move |s: f64| (b * s).cosh() - (b * s).cos() - sigma * ((b * s).sinh() - (b * s).sin());
+    let w1 = w(1.0);
+    move |s| [amp * w(s) / w1, 0.0]
+}
+
 /// The rod of `rod` (its taper, rest curvature, support spring), released at rest in its rest
 /// shape (or in its equilibrium under `opts.release_force`, removed at `t = 0`) with the
 /// velocity `v0(s) = (vx, vy)`, followed to `opts.t_end` with free tip.
@@ -180,16 +196,6 @@ pub fn free(
 mod tests {
     use super::*;
 
-    /// The first mode of the uniform clamped–free rod as its velocity (Blevins, table 8-1).
-    fn mode1(amp: f64) -> impl Fn(f64) -> [f64; 2] {
-        let b = 1.87510406871196f64;
-        let sigma = (b.cosh() + b.cos()) / (b.sinh() + b.sin());
-        let w =
-            move |s: f64| (b * s).cosh() - (b * s).cos() - sigma * ((b * s).sinh() - (b * s).sin());
-        let w1 = w(1.0);
-        move |s| [amp * w(s) / w1, 0.0]
-    }
-
     /// Newmark's discrete frequency `ω_h` of `x_{n+1} + x_{n−1} = 2 cos(ω_h Δt) x_n` read off
     /// the tip's samples near the peak, mapped back by the scheme's exact dispersion
     /// `tan(ω_h Δt/2) = ω Δt/2` of the linear oscillator.
@@ -205,14 +211,14 @@ mod tests {
     /// energy (measured drift 6.5e-9 over a period).
     #[test]
     fn small_oscillation_has_the_first_frequency_and_keeps_its_energy() {
-        let w1 = 1.87510406871196f64.powi(2);
+        let w1 = CLAMPED_FREE_BETA1.powi(2);
         let period = 2.0 * std::f64::consts::PI / w1;
         let o = DynamicsOptions {
             dt: period / 50.0,
             t_end: period,
             ..DynamicsOptions::default()
         };
-        let r = free(&Rod::uniform(), &mode1(1e-4), &o).unwrap();
+        let r = free(&Rod::uniform(), &first_mode_velocity(1e-4), &o).unwrap();
         assert_eq!(r.samples.len(), 51);
         let w = frequency_of(&r, o.dt, 12);
         assert!((w / w1 - 1.0).abs() < 1e-8, "omega {w}");
@@ -250,7 +256,7 @@ mod tests {
             foot_damping: 0.3,
             ..DynamicsOptions::default()
         };
-        let r = free(&rod, &mode1(1e-3), &o).unwrap();
+        let r = free(&rod, &first_mode_velocity(1e-3), &o).unwrap();
         let e0 = r.samples[0].kinetic + r.samples[0].elastic;
         let last = r.samples.last().unwrap();
         assert!(last.dissipated > 0.05 * e0, "{last:?}");
@@ -313,7 +319,7 @@ mod tests {
     #[test]
     fn release_from_a_tip_load_keeps_the_stored_energy() {
         let f = 1e-4;
-        let period = 2.0 * std::f64::consts::PI / 1.87510406871196f64.powi(2);
+        let period = 2.0 * std::f64::consts::PI / CLAMPED_FREE_BETA1.powi(2);
         let o = DynamicsOptions {
             dt: period / 50.0,
             t_end: period,
@@ -349,7 +355,7 @@ mod tests {
             ..DynamicsOptions::default()
         };
         assert!(matches!(
-            free(&Rod::uniform(), &mode1(1e-3), &o),
+            free(&Rod::uniform(), &first_mode_velocity(1e-3), &o),
             Err(VibrissaError::OutOfRange { .. })
         ));
     }

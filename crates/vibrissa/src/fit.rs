@@ -1266,8 +1266,10 @@ fn ln_gamma(x: f64) -> f64 {
     0.5 * std::f64::consts::TAU.ln() + (x + 0.5) * t.ln() - t + s.ln()
 }
 
-/// The regularized incomplete beta function `I_x(a, b)` (Lentz's continued fraction).
-fn inc_beta(x: f64, a: f64, b: f64) -> f64 {
+/// The regularized incomplete beta function `I_x(a, b)`, `a, b > 0` (Lentz's continued
+/// fraction; `ln Γ` by Lanczos, 1e-15 relative): the tails of Fisher's F and Student's t, as
+/// `P(|T| > t) = I_{ν/(ν+t²)}(ν/2, 1/2)` for `ν` degrees of freedom.
+pub fn inc_beta(x: f64, a: f64, b: f64) -> f64 {
     if x <= 0.0 || x >= 1.0 {
         return x.clamp(0.0, 1.0);
     }
