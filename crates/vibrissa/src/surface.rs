@@ -903,9 +903,12 @@ pub(crate) fn curve_clearance(
     skip: &dyn Fn(f64) -> bool,
 ) -> (f64, f64) {
     let gap = |z: &[f64; 4]| z[1] - h.jet_scaled(z[0], amp).0 - off;
-    let slope = |z: &[f64; 4]| {
+    // (one evaluation of the profile for both: on a corrugation it is a sin_cos, and the
+    // samples are most of the drag's cost)
+    let gap_slope = |z: &[f64; 4]| {
+        let (hv, hd, _) = h.jet_scaled(z[0], amp);
         let (sp, cp) = z[2].sin_cos();
-        sp - h.jet_scaled(z[0], amp).1 * cp
+        (z[1] - hv - off, sp - hd * cp)
     };
     let nf = n as f64;
     let mut ss: Vec<f64> = (0..=n).map(|i| i as f64 / nf).collect();
@@ -919,8 +922,8 @@ pub(crate) fn curve_clearance(
     let pts: Vec<(f64, f64, f64)> = ss
         .into_iter()
         .map(|s| {
-            let z = sample(s);
-            (s, gap(&z), slope(&z))
+            let (g, sl) = gap_slope(&sample(s));
+            (s, g, sl)
         })
         .collect();
     let mut best = (f64::NEG_INFINITY, f64::NAN);
@@ -945,10 +948,11 @@ pub(crate) fn curve_clearance(
             continue;
         }
         let z0 = sample(s0);
-        if gap(&z0) < -1e-3 {
+        let g0 = gap(&z0);
+        if g0 < -1e-3 {
             // far below the surface the interpolant's error (~1e-8) does not matter
-            if !skip(s0) && h.covers(z0[0]) && gap(&z0) > best.0 {
-                best = (gap(&z0), s0);
+            if !skip(s0) && h.covers(z0[0]) && g0 > best.0 {
+                best = (g0, s0);
             }
             continue;
         }
