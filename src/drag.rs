@@ -219,23 +219,18 @@ pub fn read_trace(text: &str, name: &str, use_sig: &[bool; 3]) -> Res<Trace> {
     })
 }
 
-/// Which of the corrugation's parameters `--fit-corrugation[=PARTS]` frees.
+/// Which of the corrugation's parameters `--fit-corrugation[=PARTS]` frees (the library reads
+/// the names).
 fn corrugation_parts(list: Option<&str>) -> Res<CorrugationFit> {
-    let mut c = CorrugationFit::default();
-    for part in list.into_iter().flat_map(|l| l.split(',')) {
-        match part.trim() {
-            "amplitude" => c.amplitude = true,
-            "wavelength" => c.wavelength = true,
-            "phase" => c.phase = true,
-            other => {
-                return Err(usage(format!(
-                    "--fit-corrugation: '{other}' is not a part of the corrugation (amplitude, \
-                     wavelength, phase)"
-                )))
-            }
-        }
+    match list {
+        None => Ok(CorrugationFit::default()),
+        Some(l) => CorrugationFit::from_names(l.split(',')).map_err(|e| match e {
+            vibrissa::VibrissaError::InvalidName { value, valid, .. } => usage(format!(
+                "--fit-corrugation: '{value}' is not a part of the corrugation ({valid})"
+            )),
+            e => e.into(),
+        }),
     }
-    Ok(c)
 }
 
 /// The answer of `vibrissa fit`.

@@ -16,7 +16,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
-use vibrissa::fit::{FitOptions, Signal, Trace};
+use vibrissa::fit::{CorrugationFit, FitOptions, Signal, Trace};
 use vibrissa::surface::{FrictionProfile, SurfaceProfile};
 use vibrissa::{
     BranchChoice, ContactModel, DragOptions, Method, Physical, Precurvature, Rod, ScanOptions,
@@ -926,10 +926,12 @@ fn locate<'py>(
     Ok(d.into_any())
 }
 
-/// μs, μk (and on request η, β) from a drag trace given as CSV text (`vibrissa fit`; the
-/// library's `Trace::from_csv`): the `FitResult` as a dict with `slips` and `signals`.
+/// μs, μk (and on request η, β, the corrugation's parts) from a drag trace given as CSV text
+/// (`vibrissa fit`; the library's `Trace::from_csv`): the `FitResult` as a dict with `slips`
+/// and `signals`. `corrugation`: the parts named (`CorrugationFit::from_names`; an empty list
+/// all three), or none.
 #[pyfunction]
-#[pyo3(signature = (csv, rod, surface, *, signals=None, fit_eta=false, fit_angle=false, mu_s=None, mu_k=None, sigma=None, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, contact=None, start=None))]
+#[pyo3(signature = (csv, rod, surface, *, signals=None, fit_eta=false, fit_angle=false, corrugation=None, mu_s=None, mu_k=None, sigma=None, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, contact=None, start=None))]
 #[allow(clippy::too_many_arguments)]
 fn fit<'py>(
     py: Python<'py>,
@@ -939,6 +941,7 @@ fn fit<'py>(
     signals: Option<Vec<String>>,
     fit_eta: bool,
     fit_angle: bool,
+    corrugation: Option<Vec<String>>,
     mu_s: Option<f64>,
     mu_k: Option<f64>,
     sigma: Option<[f64; 4]>,
@@ -980,9 +983,14 @@ fn fit<'py>(
     let trace = Trace::from_csv(csv, use_sig).map_err(py_err)?;
     let (contact, start) = settings(surface, contact, start)?;
     let scene = scene_of(&rod.0, surface, contact, start);
+    let corrugation = match &corrugation {
+        Some(names) => CorrugationFit::from_names(names.iter().map(String::as_str)).map_err(py_err)?,
+        None => CorrugationFit::default(),
+    };
     let mut opts = FitOptions {
         fit_eta,
         fit_angle,
+        corrugation,
         guess,
         sigma,
         solver: config(method, tol, segments, start)?,

@@ -142,6 +142,39 @@ def test_the_corrugated_trace_of_issue_33():
     assert not flat["consistency"]["consistent"]
 
 
+def test_fit_corrugation_equals_the_program(program):
+    """The corrugation read back (issue 31) from Python as by ``vibrissa fit
+    --fit-corrugation=amplitude`` (a noise-free trace of 2 slips over A = 0.005, W = 0.1,
+    P = 0.7): the same parameters, values and standard errors; from a start 10 % off, the
+    amplitude comes back to 1e-8; an unknown part is an InputError naming the valid ones."""
+    with tempfile.TemporaryDirectory() as tmp:
+        trace = os.path.join(tmp, "tr.csv")
+        program("drag", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.014", "--points", "5",
+                "--corrugation-amplitude", "0.005", "--corrugation-wavelength", "0.1",
+                "--corrugation-phase", "0.7", "--out", trace)
+        out = json.loads(program("fit", "--trace", trace, "--corrugation-amplitude", "0.0055",
+                                 "--corrugation-wavelength", "0.1", "--corrugation-phase", "0.7",
+                                 "--fit-corrugation=amplitude", "--json"))
+        rod, surface = vibrissa.scene(
+            surface={"kind": "sine", "amplitude": 0.0055, "wavelength": 0.1, "phase": 0.7})
+        py = vibrissa.fit(trace, rod, surface, fit_corrugation="amplitude")
+        assert py["slips"] == out["slips"] == 2
+        assert [p["name"] for p in py["params"]] == ["mu_s", "mu_k", "amplitude"]
+        for p, q in zip(py["params"], out["params"]):
+            assert p == q
+        assert abs(py["params"][2]["value"] - 0.005) < 1e-8, py["params"]
+        with pytest.raises(vibrissa.InputError, match="amplitude, wavelength, phase"):
+            vibrissa.fit(trace, rod, surface, fit_corrugation=["height"])
+
+
+def test_fit_corrugation_names_the_parts_as_the_program():
+    parts = vibrissa._corrugation_parts
+    assert parts(False) is None and parts(None) is None
+    assert parts(True) == []  # all three, as --fit-corrugation without a list
+    assert parts("amplitude,phase") == ["amplitude", "phase"]
+    assert parts(("wavelength",)) == ["wavelength"]
+
+
 def test_the_program_refuses_what_python_refuses():
     # each of these was accepted, or killed the interpreter (issue 33)
     cases = [

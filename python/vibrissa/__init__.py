@@ -660,6 +660,17 @@ def locate(
     )
 
 
+def _corrugation_parts(parts: Union[bool, str, Sequence[str]]) -> Optional[List[str]]:
+    """``fit``'s ``fit_corrugation`` as the names the library reads (None: none, []: all)."""
+    if parts is False or parts is None:
+        return None
+    if parts is True:
+        return []
+    if isinstance(parts, str):
+        return parts.split(",")
+    return [str(p) for p in parts]
+
+
 def fit(
     trace: Any,
     rod: Any = None,
@@ -668,6 +679,7 @@ def fit(
     signals: Optional[Sequence[str]] = None,
     fit_eta: bool = False,
     fit_angle: bool = False,
+    fit_corrugation: Union[bool, str, Sequence[str]] = False,
     mu_s: Optional[float] = None,
     mu_k: Optional[float] = None,
     sigma: Optional[Sequence[float]] = None,
@@ -682,7 +694,11 @@ def fit(
     CSV file, or the CSV text (``vibrissa drag``'s columns: ``d`` and any of ``fx``, ``fy``,
     ``m_base``, ``x_tip``, ``y_tip``, ``event``). ``rod``, ``surface``: the scene the trace
     was measured in (default: the paper's rod on a flat surface at 0.75; fit a corrugated
-    trace with its corrugated surface). ``mu_s``, ``mu_k``: the start (default: read off the
+    trace with its corrugated surface). ``fit_corrugation``: also estimate the surface's
+    corrugation (a sine ``surface``, its values the start): ``True`` its amplitude, wavelength
+    and phase, or the parts named (a list, or a comma list as the program's
+    ``--fit-corrugation=PARTS``); a part the trace cannot determine is named in ``message`` and
+    has no standard error. ``mu_s``, ``mu_k``: the start (default: read off the
     first slips); ``sigma``: the noise levels of ``d``, ``fx``, ``fy``, ``m_base`` (default
     estimated). A dict: ``params`` (``name``, ``value``, ``std_error``, ``dof``,
     ``identifiable``), ``message`` (None, or what limits the answer: a misfit has no standard
@@ -702,6 +718,7 @@ def fit(
         signals=None if signals is None else list(signals),
         fit_eta=fit_eta,
         fit_angle=fit_angle,
+        corrugation=_corrugation_parts(fit_corrugation),
         mu_s=mu_s,
         mu_k=mu_k,
         sigma=None if sigma is None else [float(x) for x in sigma],

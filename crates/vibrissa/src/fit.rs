@@ -312,6 +312,32 @@ impl CorrugationFit {
     pub fn any(self) -> bool {
         self.amplitude || self.wavelength || self.phase
     }
+
+    /// The parts named (`amplitude`, `wavelength`, `phase`; surrounding blanks ignored); none
+    /// named: all three (the program's `--fit-corrugation` without a list, Python's
+    /// `fit_corrugation=True`). An unknown name is [`VibrissaError::InvalidName`].
+    pub fn from_names<'a>(
+        names: impl IntoIterator<Item = &'a str>,
+    ) -> Result<CorrugationFit, VibrissaError> {
+        let mut c = CorrugationFit::default();
+        let mut named = false;
+        for part in names {
+            named = true;
+            match part.trim() {
+                "amplitude" => c.amplitude = true,
+                "wavelength" => c.wavelength = true,
+                "phase" => c.phase = true,
+                other => {
+                    return Err(VibrissaError::InvalidName {
+                        name: "part of the corrugation",
+                        value: other.to_string(),
+                        valid: "amplitude, wavelength, phase",
+                    })
+                }
+            }
+        }
+        Ok(if named { c } else { CorrugationFit::ALL })
+    }
 }
 
 /// One estimated parameter.

@@ -3,7 +3,7 @@
 //! spread of the estimates, the noise levels' degrees of freedom, and a trace with one slip
 //! naming the parameter it cannot determine.
 
-use vibrissa::fit::{fit, FitOptions, Trace, TraceSlip};
+use vibrissa::fit::{fit, CorrugationFit, FitOptions, Trace, TraceSlip};
 use vibrissa::{drag, DragOptions, DragResult, Scene};
 
 #[path = "support/noisy_trace.rs"]
@@ -443,4 +443,25 @@ fn a_flat_trace_names_the_corrugation_it_cannot_determine() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("not one sine corrugation"), "{e}");
+}
+
+/// The parts of a corrugation to fit, by name (the program's `--fit-corrugation=PARTS` and
+/// Python's `fit_corrugation` read them here): none named is all three; an unknown name is an
+/// input error that lists the valid ones.
+#[test]
+fn corrugation_parts_by_name() {
+    let none: [&str; 0] = [];
+    assert_eq!(
+        CorrugationFit::from_names(none).unwrap(),
+        CorrugationFit::ALL
+    );
+    let c = CorrugationFit::from_names([" amplitude", "phase "]).unwrap();
+    assert!(c.amplitude && c.phase && !c.wavelength);
+    let e = CorrugationFit::from_names(["amplitude", "height"]).unwrap_err();
+    assert!(e.is_input(), "{e}");
+    assert!(e.to_string().contains("'height'"), "{e}");
+    assert!(
+        e.to_string().contains("amplitude, wavelength, phase"),
+        "{e}"
+    );
 }
