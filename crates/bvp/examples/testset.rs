@@ -7,18 +7,19 @@
 //!
 //! ```text
 //! cargo run --release -p bvp --example testset [-- --quick] [-- --out DIR] [-- --methods A,B]
-//!     [-- --guarded | --confirmed]
+//!     [-- --guarded | --confirmed | --residual]
 //! ```
 //!
 //! Writes `DIR/bvp.csv` (one row per case and method) and `DIR/summary.md` (per method: converged
 //! count, fine-grid error against tol, nodes, time; beside scipy's `solve_bvp` when
 //! `DIR/scipy.csv` from `scipy_testset.py` is present). Default DIR: `data/bvp_testset`.
-//! Collocation runs with the default control (`ErrorControl::Residual`). `--guarded` /
-//! `--confirmed`: every collocation case is also run with `ErrorControl::Guarded` /
-//! `ErrorControl::Confirmed` right after it (same machine state), into `DIR/bvp_guarded.csv` /
-//! `DIR/bvp_confirmed.csv` (columns `guard`: the guard's estimate, `confirmation`: the
-//! estimate that checked its alarm) and a table of converged counts, counts within 10·tol and
-//! total times of both in `summary.md`. `--methods`: only these (e.g. `lobatto4,lobatto6+cont`).
+//! Collocation runs with the default control (`ErrorControl::Confirmed`). `--guarded` /
+//! `--confirmed` / `--residual`: every collocation case is also run with
+//! `ErrorControl::Guarded` / `Confirmed` / `Residual` (the default before issue 34's fourth
+//! round) right after it (same machine state), into `DIR/bvp_guarded.csv` /
+//! `DIR/bvp_confirmed.csv` / `DIR/bvp_residual.csv` (columns `guard`: the guard's estimate,
+//! `confirmation`: the estimate that checked its alarm) and a table of converged counts,
+//! counts within 10·tol and total times of both in `summary.md`. `--methods`: only these (e.g. `lobatto4,lobatto6+cont`).
 //!
 //! Error: `max |y − y_exact| / (1 + |y_exact|)` over a fine grid (2001 equal points plus 9 inside
 //! every mesh interval of the solution) and, separately, over the solution's mesh nodes.
@@ -337,6 +338,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Some(ErrorControl::Guarded)
     } else if args.iter().any(|a| a == "--confirmed") {
         Some(ErrorControl::Confirmed)
+    } else if args.iter().any(|a| a == "--residual") {
+        Some(ErrorControl::Residual)
     } else {
         None
     };

@@ -106,11 +106,13 @@
 //! solution that is not a coarsening of an accepted one is confirmed before it is acted on: the
 //! solution is compared with the reference of error control (below; one Newton solve on the
 //! same mesh for Lobatto4, on the halved mesh for Lobatto6), in the same scale. Above `tol`:
-//! the solve continues under error control from that estimate. Else the alarm was false (on
+//! the solve continues under error control from that estimate, first by a Newton solve on the
+//! same mesh to a lower threshold (an error that is Newton's goes without refinement) and an
+//! estimate again. Else the alarm was false (on
 //! the Cash–Mazzia set: Lobatto6's guard in layers, up to 1.0e-2 for a reference estimate of
 //! 9.6e-7) and the solution is returned as accepted, without coarsening further. The steps of
 //! a walk by [`crate::solve_by_continuation`] skip the guard ([`BvpSolver::set_walking`]); its
-//! last member is solved again with it. Figures: [`ErrorControl::Confirmed`].
+//! last member is solved again with it. The default control. Figures: [`ErrorControl::Confirmed`].
 //!
 //! # Error control mode
 //!
@@ -122,7 +124,10 @@
 //! bound. If `max e_i > tol`, the residual tolerance is multiplied by
 //! `clamp(tol / (2 max e_i), 1e-3, 1/2)` (the error is the residual propagated by the problem's
 //! Green's function) and the mesh refined where the residual exceeds it or `e_i > tol`.
-//! `stats.error_estimate` is `max e_i`; coarsening after acceptance is off.
+//! `stats.error_estimate` is `max e_i`; coarsening after acceptance is off. An estimate above
+//! `tol` that is more than half the one the last refinement was made for is a floor that
+//! refinement does not lower (rounding, in a problem that amplifies it): the solve ends at once
+//! with [`BvpError::Inaccurate`] (the estimate, `tol`, the statistics), not at `max_nodes`.
 //!
 //! # Lobatto6 from a poor guess
 //!
@@ -199,8 +204,8 @@ pub enum ErrorControl {
     /// The scaled RMS residual of the returned interpolant per interval (bvp4c, scipy's
     /// `solve_bvp`). The error is that residual propagated by the problem: at most its size
     /// times the conditioning of the problem, which can be large (a periodic epidemic model at
-    /// tol 1e-4: residual 8.5e-5, error 5.2e-3). The default.
-    #[default]
+    /// tol 1e-4: residual 8.5e-5, error 5.2e-3). The default until issue 34's fourth round
+    /// (now [`ErrorControl::Confirmed`]).
     Residual,
     /// The residual as above, guarded: the true error of a solution that met the residual is
     /// also estimated cheaply (deferred correction with the factored Newton matrix, see the
@@ -213,14 +218,17 @@ pub enum ErrorControl {
     /// Lobatto4 successes on the test set (7 with continuation) and made continuation 2.4×
     /// slower. [`ErrorControl::Confirmed`] checks its alarms first.
     Guarded,
-    /// Residual control whose successes are also within `tol` in their error (not the default:
-    /// see the end). The residual as above; then the guard of [`ErrorControl::Guarded`] (with errors relative
+    /// Residual control whose successes are also within `tol` in their error. The default. The
+    /// residual as above; then the guard of [`ErrorControl::Guarded`] (with errors relative
     /// to the solution's scale, `|S_c − y_c| / (1 + max |y_c|)` with the max over the nodes);
     /// an alarm (estimate above `tol`) is confirmed before it is acted on, by the reference of
     /// [`ErrorControl::Error`] (one more Newton solve; same scale). Confirmed (that estimate
-    /// above `tol` too): the solve goes on under error control, and `stats.error_estimate` is
-    /// its estimate. Not confirmed: the solution is returned as residual control accepted it
-    /// (no further coarsening; `stats.error_estimate` its residual).
+    /// above `tol` too): the solve goes on under error control — first once more on the same mesh
+    /// with Newton's threshold lowered (to a tenth of the residual it stopped at, times the
+    /// factor the error missed by), since part of the error can be Newton's, then refining —
+    /// and `stats.error_estimate` is its estimate. Not confirmed: the solution is returned as
+    /// residual control accepted it (no further coarsening; `stats.error_estimate` its
+    /// residual).
     /// [`Collocation::guard_error`] and [`Collocation::confirmation`] report both estimates.
     /// Steps of a walk by [`crate::solve_by_continuation`] are solved under `Residual`, and its
     /// last member again under this control ([`BvpSolver::set_walking`]).
@@ -228,27 +236,35 @@ pub enum ErrorControl {
     /// Measured. The periodic epidemic model at tol 1e-4 (error against an independent
     /// reference on 2001 points, `tests/periodic.rs`): Lobatto4 1.9e-5 (guard 3.2e-3,
     /// confirmed by 6.3e-3; `Residual`: 5.2e-3), Lobatto6 9.5e-6 (guard 1.5e-4, reference
-    /// 9.3e-6 on the first accepted mesh, returned without coarsening; `Residual`: 9.5e-4). The
-    /// Cash–Mazzia study with every collocation case run under `Residual` and this control back
-    /// to back (`cargo run --release -p bvp --example testset -- --confirmed`, all 32 problems,
-    /// 384 cases per method, `data/bvp_testset/confirmed`): the same converged counts
-    /// (Lobatto4 343, Lobatto6 352, each with continuation 371, 372), all within 10·tol of the
-    /// exact solutions; the guard fired on 1 Lobatto4 success, confirmed (problem 9 at
-    /// ε = 1e-4, tol 1e-4: error 1.95e-4 → 1.7e-5), and on 11 Lobatto6 successes (13 with
-    /// continuation), none confirmed (reference estimates at most 0.09·tol); total times
-    /// +0.8 % (Lobatto4), −0.7 % (Lobatto6), +5.9 % and +0.0 % (each with
-    /// continuation). Scaled, not pointwise: in the layer of Cash–Mazzia 104 at ε = 1e-3
+    /// 9.3e-6 on the first accepted mesh, returned without coarsening; `Residual`: 9.5e-4);
+    /// `tests/periodic.rs` checks every success of the default options at tol 1e-3…1e-8. The
+    /// Cash–Mazzia study with every collocation case run under this control (the default) and
+    /// `Residual` back to back in one sitting (`cargo run --release -p bvp --example testset --
+    /// --residual`, all 32 problems, 384 cases per method, `data/bvp_testset/default_control`):
+    /// the same converged counts (Lobatto4 343, Lobatto6 352, each with continuation 371, 372),
+    /// all within 10·tol of the exact solutions; the guard fired on 1 Lobatto4 success,
+    /// confirmed (problem 9 at ε = 1e-4, tol 1e-4: error 1.95e-4 → 1.7e-5, 281 → 457 nodes),
+    /// and on 11 Lobatto6 successes (13 with continuation), none confirmed (reference estimates
+    /// at most 0.09·tol); total times +2.1 % (Lobatto4, 24.87 s against 24.37 s), +5.1 %
+    /// (Lobatto6, 53.77 / 51.15 s), +1.3 % and +2.8 % (each with continuation, 56.70 / 55.99 s
+    /// and 83.61 / 81.37 s). Scaled, not pointwise: in the layer of Cash–Mazzia 104 at ε = 1e-3
     /// (`y = 1/(ε + x)`, `z = (y, …, y''')`), Lobatto4 at tol 1e-4 has a pointwise relative
     /// error of 3.9e-3 in `y'''` at `x = 1` (where `|y'''| ≈ 6` against 6e12 at `x = 0`; the
     /// pointwise guard of `Guarded` said 3.8e-3, and error control then ran into the node
     /// limit), but 1.1e-6 relative to the scale.
     ///
-    /// Why it is not the default: the program's rod dynamics (`vibrissa::dynamics`, collocation
-    /// at tol 1e-10 every time step) has confirmed alarms whose error refinement does not
-    /// reduce (reference estimates 6.4e-9, 5.6e-9, 4.7e-9 on 201, 457, 915 nodes), and error
-    /// control then fails at the node limit (`Inaccurate`: 2.5e-9 against a residual tolerance
-    /// lowered to 1.1e-12): 3 of its tests fail; returning the best solution instead when a
-    /// pass does not halve the estimate made them pass in 309 s against 5.9 s with `Residual`.
+    /// The default since issue 34's fourth round (on the figures above).
+    ///
+    /// Newton's error. In the rod dynamics of the `vibrissa` crate (collocation at tol 1e-10
+    /// every time step) the confirmed alarms (6.4e-9, 5.6e-9, 4.7e-9 at three successive steps)
+    /// were Newton's error, not the mesh's: Newton stops at a scaled residual of `tol/20`, the
+    /// positions are then 3e-12 off, and the step's equations (`G' = μ·4/Δt²·(r − r̂)`) carry
+    /// that into the internal force times 3100. Refining the mesh with a lower residual tolerance
+    /// removed it (2.4e-14 after one pass) but grew the mesh at every step until the node limit;
+    /// the re-solve on the same mesh removes it without refinement. That crate's dynamics keeps
+    /// `Residual`: the guard raises false alarms there at nearly every step (its differences of
+    /// `F` meet `F`'s rounding, amplified by `4/Δt²`), which cost 4× the time.
+    #[default]
     Confirmed,
     /// The residual as above, and then the true error of the returned solution, estimated
     /// against a more accurate reference (Lobatto4: Lobatto6 on the same mesh; Lobatto6:
@@ -257,7 +273,11 @@ pub enum ErrorControl {
     /// tolerance is lowered and the mesh refined. As bvp5c, which controls the true error. The
     /// estimate is asymptotically correct (the reference's error is `O(h)` resp. `1/64` of it),
     /// not a bound; `stats.error_estimate` is it. Costs one more Newton solve per accepted mesh,
-    /// and the meshes a tighter residual needs.
+    /// and the meshes a tighter residual needs. An estimate above `tol` that is more than half
+    /// the one the last refinement was made for (a floor: rounding, or an error the estimate does
+    /// not see falling) ends the solve at once with [`BvpError::Inaccurate`] (the estimate and
+    /// `tol`), instead of refining to `max_nodes`; also under `Guarded` and `Confirmed` after a
+    /// confirmed alarm.
     Error,
 }
 
@@ -288,9 +308,10 @@ pub struct CollocationOptions {
     /// Newton options. `max_iter`, `step_tol`, `min_damping`, `step_residual_tol` apply as given;
     /// the residual threshold is `min(newton.tol, tol / 20, bc_tol)`.
     pub newton: NewtonOptions,
-    /// What the error control holds to `tol`: the residual (default) or the estimated true
-    /// error ([`ErrorControl`]). Coarsening after acceptance is off with `Error` (and with
-    /// `Confirmed` after an alarm of the guard).
+    /// What the error control holds to `tol` ([`ErrorControl`]). Default
+    /// [`ErrorControl::Confirmed`]: the residual, and the estimated true error where a cheap
+    /// guard raises an alarm that a reference confirms (was `Residual`). Coarsening after
+    /// acceptance is off with `Error` (and with `Confirmed` after an alarm of the guard).
     pub control: ErrorControl,
     /// Globalization: when damped Newton fails on the first mesh, solve the Newton homotopy
     /// `R(u) − τ R(u₀) = 0` from `τ = 1` to `0` on that mesh (see [`crate::newton::homotopy`])
@@ -309,7 +330,7 @@ impl Default for CollocationOptions {
             adapt: true,
             coarsen: true,
             newton: NewtonOptions::default(),
-            control: ErrorControl::Residual,
+            control: ErrorControl::Confirmed,
             homotopy: true,
         }
     }

@@ -3,8 +3,8 @@
 use crate::limits;
 use crate::VibrissaError;
 use bvp::{
-    Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Guess, Integrator, NewtonOptions,
-    Scheme, Shooting, ShootingOptions, Solution,
+    Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, ErrorControl, Guess, Integrator,
+    NewtonOptions, Scheme, Shooting, ShootingOptions, Solution,
 };
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -248,6 +248,11 @@ impl Engine {
                         // boundary rows and Newton to NEWTON_TOL_MAX at most, as for shooting
                         bc_tol: Some(cfg.tol.min(NEWTON_TOL_MAX)),
                         max_nodes: 20_000,
+                        // Residual control, not bvp's default (`Confirmed`): on the paper's scan
+                        // (default scene, 201 points) both give the same rows byte for byte at
+                        // tol 1e-4, 1e-6, 1e-8 and 1e-10, orders 4 and 6 (μ within 1.4e-11 of the
+                        // closed form at 1e-10), and `Confirmed` took 1.0–1.9× the time
+                        control: ErrorControl::Residual,
                         newton: NewtonOptions {
                             tol: cfg.tol.min(NEWTON_TOL_MAX),
                             ..newton
