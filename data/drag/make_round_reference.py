@@ -40,6 +40,11 @@ Checked at every output and event state: N > 0; the centreline below the surface
 sampled s (clearance > 0: no side touches down); the disk nowhere closer to the surface than r
 except at C (no second contact of the disk).
 
+Checked once (printed): the energy balances of the first stick phase (foot work = change of the
+elastic energy: the rolling disk does no work) and of the first slip (energy released = the
+integral of T dq, q = sigma(xc) - r (phi(1) - t(xc)) the disk's material slip), which the signs
+of m(1) = r T and of the rolling condition must satisfy.
+
 Output `round_tip_reference.csv`: kind, k, d, x_contact, x_tip, mu, slope - `slip` (the state
 just before slip k), `slip_end` (just after), `row` (an output displacement d of a stick phase);
 x_contact the lab x of C, x_tip the lab x of the disk's centre P, slope h'(x_contact). The
@@ -57,7 +62,7 @@ import os
 import sys
 
 import numpy as np
-from scipy.integrate import quad, solve_ivp
+from scipy.integrate import quad, simpson, solve_ivp
 from scipy.optimize import brentq, root
 
 # the scene; the environment overrides it only for checks (README: R = 0 against reference.csv)
@@ -274,6 +279,47 @@ class Drag:
         return out
 
 
+def energy_check(rtol, rows):
+    """Energy balances, a check of m(1) = r T and of the rolling condition's sign: over the first
+    stick phase the foot's work, the integral of -Fx dd, equals the change of the elastic
+    energy E, the integral of m^2 / 2 ds (a disk rolling without slip does no work); over the
+    first slip the energy released equals the integral of T dq, q = sigma(xc) - r (phi(1) -
+    t(xc)) the disk's material slip along the surface."""
+    dr = Drag(Rod(rtol))
+    xc, f = dr.start()
+    u = np.array([*f, xc])
+    anchor = dr.anchor(u, xc)
+
+    def energy(u):
+        def g(s, z):
+            return [math.cos(z[2]), math.sin(z[2]), z[3],
+                    u[1] * math.sin(z[2]) - u[2] * math.cos(z[2]), 0.5 * z[3] ** 2]
+        return solve_ivp(g, (0.0, 1.0), [0.0, 0.0, math.pi / 2, u[0], 0.0], method="DOP853",
+                         rtol=rtol, atol=rtol).y[4, -1]
+    slip = next(r for r in rows if r[0] == "slip")
+    end = next(r for r in rows if r[0] == "slip_end")
+    ds = np.linspace(0.0, slip[2], 41)
+    es, fxs = [], []
+    for d in ds:
+        u, _ = dr.stuck(anchor, d, u)
+        es.append(energy(u))
+        fxs.append(u[1])
+    work = simpson(-np.array(fxs), x=ds)
+    v = u[:3]
+    xs = np.linspace(slip[3], end[3], 81)
+    el, ts, qs = [], [], []
+    for x in xs:
+        v, _ = dr.held(x, slip[2], v)
+        el.append(energy(v))
+        ts.append(nt(v[1], v[2], th(x))[1])
+        qs.append(sigma(x) - R * (dr.rod.tip(*v)[2] - th(x)))
+    diss = simpson(ts, x=qs)
+    print(f"energy balance of the first stick: foot work {work:.12e}, energy change "
+          f"{es[-1] - es[0]:.12e}, difference {work - (es[-1] - es[0]):.1e}; of the first slip: "
+          f"released {el[0] - el[-1]:.12e}, int T dq {diss:.12e}, difference "
+          f"{el[0] - el[-1] - diss:.1e}", file=sys.stderr)
+
+
 def main():
     grid = [D_MAX * i / (POINTS - 1) for i in range(POINTS)]
     tols = [float(t) for t in os.environ.get("RTOLS", "1e-13,1e-12").split(",")]
@@ -286,6 +332,7 @@ def main():
                   f"{['%.4f' % v for v in dr.slips_seen]}, slopes {dr.slopes}: {e}", file=sys.stderr)
         return
     runs = [Drag(Rod(rtol)).run(grid) for rtol in tols]
+    energy_check(tols[0], runs[0])
     if len(runs) == 2:
         a, b = runs
         assert [r[:2] for r in a] == [r[:2] for r in b]
