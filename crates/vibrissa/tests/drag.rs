@@ -656,8 +656,9 @@ fn matches_the_independent_reference() {
     }
 }
 
-/// The rows of `data/drag/side_reference.csv` (`make_side_reference.py`) of the given kinds.
-fn side_reference(kinds: &[&str]) -> Vec<(String, [f64; 7])> {
+/// The rows of `data/drag/side_reference.csv` (`make_side_reference.py`) of the given kinds:
+/// the kind, the contact set (`tip`, `side+tip`) and the values a drag row reports.
+fn side_reference(kinds: &[&str]) -> Vec<(String, &'static str, [f64; 7])> {
     let text = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../data/drag/side_reference.csv"
@@ -688,7 +689,12 @@ fn side_reference(kinds: &[&str]) -> Vec<(String, [f64; 7])> {
                 v("fy"),
                 v("m_base"),
             ];
-            (r[0].to_string(), row)
+            let set = if r[col("s_side")].is_empty() {
+                "tip"
+            } else {
+                "side+tip"
+            };
+            (r[0].to_string(), set, row)
         })
         .collect()
 }
@@ -715,7 +721,7 @@ fn side_scene_drag() -> DragResult {
 }
 
 /// The crate's row that a reference row describes: its output displacement, or its event.
-fn side_row(r: &DragResult, kind: &str, d: f64) -> [f64; 7] {
+fn side_row(r: &DragResult, kind: &str, d: f64) -> ([f64; 7], &'static str) {
     let g = match kind {
         "row" => r
             .rows
@@ -741,18 +747,32 @@ fn side_row(r: &DragResult, kind: &str, d: f64) -> [f64; 7] {
                 e.s_slip
             );
             let b = e.before;
-            return [e.d, b.x_tip, b.mu, b.normal, b.fx, b.fy, b.m_base];
+            let set = r
+                .rows
+                .iter()
+                .find(|q| q.event == Some(DragEvent::Slip))
+                .unwrap()
+                .contact
+                .name();
+            return ([e.d, b.x_tip, b.mu, b.normal, b.fx, b.fy, b.m_base], set);
         }
     };
-    [g.d, g.x_tip, g.mu, g.normal, g.fx, g.fy, g.m_base]
+    (
+        [g.d, g.x_tip, g.mu, g.normal, g.fx, g.fy, g.m_base],
+        g.contact.name(),
+    )
 }
 
 /// Compares reference rows with the drag at 1e-8; returns the largest difference.
-fn compare_side(r: &DragResult, rows: &[(String, [f64; 7])]) -> f64 {
+fn compare_side(r: &DragResult, rows: &[(String, &str, [f64; 7])]) -> f64 {
     let names = ["d", "x_tip", "mu", "normal", "fx", "fy", "m_base"];
     let mut worst = 0.0f64;
-    for (kind, want) in rows {
-        let got = side_row(r, kind, want[0]);
+    for (kind, set, want) in rows {
+        let (got, label) = side_row(r, kind, want[0]);
+        // the touchdown row is the state before the side touches
+        if kind != "touchdown" {
+            assert_eq!(label, *set, "{kind} at d = {}", want[0]);
+        }
         for k in 0..7 {
             let e = (got[k] - want[k]).abs();
             worst = worst.max(e);
@@ -779,9 +799,9 @@ fn compare_side(r: &DragResult, rows: &[(String, [f64; 7])]) -> f64 {
 #[test]
 fn a_sliding_side_matches_the_independent_reference() {
     let r = side_scene_drag();
-    let halt = side_reference(&["halt"])[0].1[0];
+    let halt = side_reference(&["halt"])[0].2[0];
     let mut rows = side_reference(&["row", "touchdown"]);
-    rows.retain(|(_, v)| v[0] < halt);
+    rows.retain(|(_, _, v)| v[0] < halt);
     rows.extend(side_reference(&["side_slip"]));
     assert!(rows.len() >= 20, "{} reference rows", rows.len());
     let worst = compare_side(&r, &rows);
@@ -801,9 +821,9 @@ fn a_sliding_side_matches_the_independent_reference() {
 #[ignore = "the crate's halt differs from the reference by 7.7e-8 in d (see the doc comment)"]
 fn the_halt_of_a_sliding_side_matches_the_independent_reference() {
     let r = side_scene_drag();
-    let halt = side_reference(&["halt"])[0].1[0];
+    let halt = side_reference(&["halt"])[0].2[0];
     let mut rows = side_reference(&["halt", "row"]);
-    rows.retain(|(_, v)| v[0] >= halt);
+    rows.retain(|(_, _, v)| v[0] >= halt);
     let worst = compare_side(&r, &rows);
     eprintln!(
         "halt and rolling side: {} reference rows, largest difference {worst:.2e}",
