@@ -811,22 +811,37 @@ fn a_sliding_side_matches_the_independent_reference() {
     );
 }
 
-/// The side's halt (its slip rate falls to zero) and the rolling side after it, against the
-/// same reference at 1e-8. Ignored: the crate's halt lies 7.7e-8 after the reference's (with
-/// `tol` 1e-10; 3.6e-8 before it with 1e-12, while the reference moves 1.4e-12 from rtol 1e-13
-/// to 1e-12), and the forces of that row differ by up to 3.9e-6 (the same state 7.7e-8 away
-/// in d); the slip rate's slope there is 1.5e-3, so a rate error of 1e-10 moves the halt by
-/// 7e-8. The rolling rows after it: ΣN at d = 0.27 differs by 1.8e-8 (0.26: 2.7e-9).
+/// The side's halt (its slip rate falls to zero), against the same reference at 1e-8. The halt
+/// is badly conditioned (the slip rate's slope in d is 1.5e-3 there, so a rate error of 1e-10
+/// moves it by 7e-8, and the row's forces change by ~50 per unit d): its search needs the
+/// tangent from the Jacobian at each solution (with the chord corrector's, at its prediction,
+/// the halt lay 7.7e-8 late and its forces differed by 3.9e-6). Measured: 8.7e-10 (ΣN; d 4.8e-12).
 #[test]
-#[ignore = "the crate's halt differs from the reference by 7.7e-8 in d (see the doc comment)"]
 fn the_halt_of_a_sliding_side_matches_the_independent_reference() {
     let r = side_scene_drag();
+    let rows = side_reference(&["halt"]);
+    let worst = compare_side(&r, &rows);
+    eprintln!("halt: largest difference {worst:.2e}");
+}
+
+/// The rolling side after the halt (rows at d = 0.26, 0.27), against the same reference at
+/// 1e-8. Ignored: ΣN at d = 0.27 differs by 1.1e-8 (tol 1e-10 and 1e-11; −1.5e-8 with 1e-12;
+/// 0.26: 4.7e-9 to −5.7e-9), while fx, fy, m(0) agree to 5e-10. The side rolling beside the
+/// stuck tip traps the segment between them: the Jacobian's smallest singular value is 1.6e-8
+/// (condition 1.1e9; 2e5 while the side slides), its direction a pair of tangential forces at
+/// the two contacts with N_tip in it, so residuals at rounding (1e-16 to 1e-15) leave ΣN
+/// uncertain by ~1e-8 — in the reference too (its rtol 1e-13 against 1e-12: 5.7e-9).
+#[test]
+#[ignore = "the rolling rows' ΣN is determined to ~1e-8 only (condition 1.1e9; see the doc comment)"]
+fn the_rolling_side_after_the_halt_matches_the_independent_reference() {
+    let r = side_scene_drag();
     let halt = side_reference(&["halt"])[0].2[0];
-    let mut rows = side_reference(&["halt", "row"]);
+    let mut rows = side_reference(&["row"]);
     rows.retain(|(_, _, v)| v[0] >= halt);
+    assert_eq!(rows.len(), 2);
     let worst = compare_side(&r, &rows);
     eprintln!(
-        "halt and rolling side: {} reference rows, largest difference {worst:.2e}",
+        "rolling side: {} reference rows, largest difference {worst:.2e}",
         rows.len()
     );
 }
