@@ -743,7 +743,11 @@ pub(crate) fn locate(
     (a, b): (f64, f64),
     c: Crossing,
 ) -> Result<Pt, LocateError> {
-    let fresh = c == Crossing::MuMax;
+    // the events whose values come from the tangent (the slope of |μ|, a slider's slip rate)
+    // need the Jacobian at the solution, not the chord corrector's at its prediction: one
+    // chord step of ~1e-9 left the tangent off by 1.6e-8 and the slip rate by 1.2e-10, which
+    // put a sliding side's halt 7.7e-8 late (issue 31)
+    let fresh = matches!(c, Crossing::MuMax | Crossing::Halt(_));
     let set = st.set().clone();
     let poly_val = |st: &dyn Stepper, lam: f64| -> Option<f64> {
         let (u, du) = st.interpolant(hist, lam)?;

@@ -655,3 +655,193 @@ fn matches_the_independent_reference() {
         eprintln!("{name}: {checked} reference points, largest difference {worst:.2e}");
     }
 }
+
+/// The rows of `data/drag/side_reference.csv` (`make_side_reference.py`) of the given kinds:
+/// the kind, the contact set (`tip`, `side+tip`) and the values a drag row reports.
+fn side_reference(kinds: &[&str]) -> Vec<(String, &'static str, [f64; 7])> {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/drag/side_reference.csv"
+    ))
+    .unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).unwrap();
+    lines
+        .map(|l| l.split(',').collect::<Vec<&str>>())
+        .filter(|r| kinds.contains(&r[0]))
+        .map(|r| {
+            let v = |name: &str| -> f64 {
+                match r[col(name)] {
+                    "" => 0.0,
+                    x => x.parse().unwrap(),
+                }
+            };
+            // d, x_tip, mu = ΣT/ΣN, ΣN, fx, fy, m(0): what a drag row reports
+            let normal = v("n_side") + v("n_tip");
+            let mu = (v("t_side") + v("t_tip")) / normal;
+            let row = [
+                v("d"),
+                v("x_tip"),
+                mu,
+                normal,
+                v("fx"),
+                v("fy"),
+                v("m_base"),
+            ];
+            let set = if r[col("s_side")].is_empty() {
+                "tip"
+            } else {
+                "side+tip"
+            };
+            (r[0].to_string(), set, row)
+        })
+        .collect()
+}
+
+/// The drag of `make_side_reference.py`: the paper's rod over `0.02 sin(2πx/0.2 + 4)`, μs 0.5,
+/// μk 0.3, output every 0.01 up to 0.28.
+fn side_scene_drag() -> DragResult {
+    let s = scene(|s| {
+        s.surface = SurfaceProfile::Sine {
+            amplitude: 0.02,
+            wavelength: 0.2,
+            phase: 4.0,
+        }
+    });
+    let r = run(
+        &s,
+        &DragOptions {
+            points: 29,
+            ..uniform(0.5, 0.3, 0.28)
+        },
+    );
+    assert_eq!(r.stop, StopReason::DMax, "{r}");
+    r
+}
+
+/// The crate's row that a reference row describes: its output displacement, or its event.
+fn side_row(r: &DragResult, kind: &str, d: f64) -> ([f64; 7], &'static str) {
+    let g = match kind {
+        "row" => r
+            .rows
+            .iter()
+            .find(|q| q.event.is_none() && (q.d - d).abs() < 1e-15)
+            .unwrap_or_else(|| panic!("no row at d = {d}")),
+        "touchdown" | "halt" => {
+            let e = if kind == "halt" {
+                vibrissa::Event::Halt
+            } else {
+                vibrissa::Event::Touchdown
+            };
+            r.rows
+                .iter()
+                .find(|q| q.event == Some(DragEvent::Contact(e)))
+                .unwrap_or_else(|| panic!("no {kind} row"))
+        }
+        _ => {
+            let e = &r.slips[0];
+            assert!(
+                e.s_slip < 0.9,
+                "the first slip is the side's: s = {}",
+                e.s_slip
+            );
+            let b = e.before;
+            let set = r
+                .rows
+                .iter()
+                .find(|q| q.event == Some(DragEvent::Slip))
+                .unwrap()
+                .contact
+                .name();
+            return ([e.d, b.x_tip, b.mu, b.normal, b.fx, b.fy, b.m_base], set);
+        }
+    };
+    (
+        [g.d, g.x_tip, g.mu, g.normal, g.fx, g.fy, g.m_base],
+        g.contact.name(),
+    )
+}
+
+/// Compares reference rows with the drag at 1e-8; returns the largest difference.
+fn compare_side(r: &DragResult, rows: &[(String, &str, [f64; 7])]) -> f64 {
+    let names = ["d", "x_tip", "mu", "normal", "fx", "fy", "m_base"];
+    let mut worst = 0.0f64;
+    for (kind, set, want) in rows {
+        let (got, label) = side_row(r, kind, want[0]);
+        // the touchdown row is the state before the side touches
+        if kind != "touchdown" {
+            assert_eq!(label, *set, "{kind} at d = {}", want[0]);
+        }
+        for k in 0..7 {
+            let e = (got[k] - want[k]).abs();
+            worst = worst.max(e);
+            assert!(
+                e < 1e-8,
+                "{kind} at d = {}: {} {} against {} (reference)",
+                want[0],
+                names[k],
+                got[k],
+                want[k]
+            );
+        }
+    }
+    worst
+}
+
+/// A side that slides while the tip sticks (issue 31), against the independent computation of
+/// `data/drag/make_side_reference.py` (scipy: two-segment shooting with the side's place, the
+/// moment there and both contact forces as unknowns, complex-step derivatives; its own spread
+/// from rtol 1e-13 to 1e-12 is in data/drag/README.md): the tip-only rows, the side's
+/// touchdown 0.116 behind the tip, the rows while it slides with kinetic friction (a passive
+/// slider), and the side's own slip once it has halted and rolls — d, the tip's place, ΣT/ΣN,
+/// ΣN, the base force and moment, to 1e-8.
+#[test]
+fn a_sliding_side_matches_the_independent_reference() {
+    let r = side_scene_drag();
+    let halt = side_reference(&["halt"])[0].2[0];
+    let mut rows = side_reference(&["row", "touchdown"]);
+    rows.retain(|(_, _, v)| v[0] < halt);
+    rows.extend(side_reference(&["side_slip"]));
+    assert!(rows.len() >= 20, "{} reference rows", rows.len());
+    let worst = compare_side(&r, &rows);
+    eprintln!(
+        "sliding side: {} reference rows, largest difference {worst:.2e}",
+        rows.len()
+    );
+}
+
+/// The side's halt (its slip rate falls to zero), against the same reference at 1e-8. The halt
+/// is badly conditioned (the slip rate's slope in d is 1.5e-3 there, so a rate error of 1e-10
+/// moves it by 7e-8, and the row's forces change by ~50 per unit d): its search needs the
+/// tangent from the Jacobian at each solution (with the chord corrector's, at its prediction,
+/// the halt lay 7.7e-8 late and its forces differed by 3.9e-6). Measured: 8.7e-10 (ΣN; d 4.8e-12).
+#[test]
+fn the_halt_of_a_sliding_side_matches_the_independent_reference() {
+    let r = side_scene_drag();
+    let rows = side_reference(&["halt"]);
+    let worst = compare_side(&r, &rows);
+    eprintln!("halt: largest difference {worst:.2e}");
+}
+
+/// The rolling side after the halt (rows at d = 0.26, 0.27), against the same reference at
+/// 1e-8. Ignored: ΣN at d = 0.27 differs by 1.1e-8 (tol 1e-10 and 1e-11; −1.5e-8 with 1e-12;
+/// 0.26: 4.7e-9 to −5.7e-9), while fx, fy, m(0) agree to 5e-10. The side rolling beside the
+/// stuck tip traps the segment between them: the Jacobian's smallest singular value is 1.6e-8
+/// (condition 1.1e9; 2e5 while the side slides), its direction a pair of tangential forces at
+/// the two contacts with N_tip in it, so residuals at rounding (1e-16 to 1e-15) leave ΣN
+/// uncertain by ~1e-8 — in the reference too (its rtol 1e-13 against 1e-12: 5.7e-9).
+#[test]
+#[ignore = "the rolling rows' ΣN is determined to ~1e-8 only (condition 1.1e9; see the doc comment)"]
+fn the_rolling_side_after_the_halt_matches_the_independent_reference() {
+    let r = side_scene_drag();
+    let halt = side_reference(&["halt"])[0].2[0];
+    let mut rows = side_reference(&["row"]);
+    rows.retain(|(_, _, v)| v[0] >= halt);
+    assert_eq!(rows.len(), 2);
+    let worst = compare_side(&r, &rows);
+    eprintln!(
+        "rolling side: {} reference rows, largest difference {worst:.2e}",
+        rows.len()
+    );
+}
