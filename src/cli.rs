@@ -239,7 +239,8 @@ pub enum Command {
     /// default): one row per mode, omega^2 < 0 meaning the state is unstable.
     Modes(ModesArgs),
     /// The rod in time: `dynamics drag` drags the foot at a speed with the tip on the surface
-    /// (stick, slip and lift-off located in time); one row per time step.
+    /// (stick, slip and lift-off located in time), `dynamics free` releases it from a tip force
+    /// or a foot moment; one row per time step.
     Dynamics(DynamicsArgs),
 }
 
@@ -257,6 +258,46 @@ pub enum DynamicsCommand {
     /// Drag the foot along x at --speed with the tip on the flat surface y = eta under Coulomb
     /// friction, from the pressed start at rest: one row per time step.
     Drag(DynamicsDragArgs),
+    /// Release the rod at t = 0 from its equilibrium under a tip force (--release-fx,
+    /// --release-fy) or step a moment onto its foot (--foot-moment), tip free: one row per time
+    /// step.
+    Free(DynamicsFreeArgs),
+}
+
+/// `vibrissa dynamics free`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time (no numerical damping; periods lengthen by (omega dt)^2/12), every step a BVP in s. The start is the static equilibrium under the dead tip force (--release-fx, --release-fy), at rest; the force is removed at t = 0 (the first step sees the mean of the force before and after, which loses about 1 % of the energy at 50 steps per period). --foot-moment steps a moment onto the foot's support (it turns the rod only when --support-compliance > 0). Time unit sqrt(rho A(0) L^4 / EI(0)); with physical dimensions (keratin, 1250 kg/m^3) t_s and the physical-unit columns are added."
+)]
+pub struct DynamicsFreeArgs {
+    /// Tip force x (EI/L^2) held before t = 0 and released then (a dead load), finite.
+    #[arg(long, value_name = "FX", value_parser = finite_f64, default_value = "0")]
+    pub release_fx: f64,
+    /// Tip force y (EI/L^2) held before t = 0 and released then, finite.
+    #[arg(long, value_name = "FY", value_parser = finite_f64, default_value = "0")]
+    pub release_fy: f64,
+    /// A moment (EI/L) applied to the foot's support from t = 0 on (a step), finite; needs
+    /// --support-compliance > 0 to turn the foot.
+    #[arg(long, value_name = "M", value_parser = finite_f64, default_value = "0")]
+    pub foot_moment: f64,
+    /// Time step, in (0, 1].
+    #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = "0.01")]
+    pub dt: f64,
+    /// End time (normalized time units), in (0, 1e6].
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1")]
+    pub t_end: f64,
+    /// Damper of the foot's support (moment per angular velocity), in [0, inf); its spring is
+    /// 1/--support-compliance.
+    #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
+    pub foot_damping: f64,
+    /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    pub spectrum: Option<PathBuf>,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print a JSON object instead of CSV.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `vibrissa dynamics drag`.
@@ -289,6 +330,9 @@ pub struct DynamicsDragArgs {
     /// Damper of the foot's support (moment per angular velocity), in [0, inf).
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
     pub foot_damping: f64,
+    /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    pub spectrum: Option<PathBuf>,
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Print a JSON object instead of CSV.

@@ -107,6 +107,7 @@ mod shooter;
 mod sines;
 mod sode;
 pub mod solve;
+pub mod spectrum;
 mod start;
 mod stepper;
 pub mod surface;
