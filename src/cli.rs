@@ -221,7 +221,8 @@ pub enum Command {
     Infer(InferArgs),
     /// Regenerate the paper's Figures 2-11 as SVG files, with the CSV data behind each.
     Figures(FiguresArgs),
-    /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV or a drag CSV.
+    /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV, a drag CSV, a
+    /// dynamics CSV or its --spectrum.
     Plot(PlotArgs),
     /// Turn the foot against a point object (a peg): the contact moves along the rod until the
     /// object slips off the tip; one row per foot angle.
@@ -728,6 +729,14 @@ pub struct DragArgs {
     /// each slip (the energy balance, in --json's slips; extra solves).
     #[arg(long)]
     pub energy_balance: bool,
+    /// Your foot speed (rod lengths per time unit sqrt(rho A L^4/EI)), in (0, inf): a warning on
+    /// stderr when it is above the speed below which this quasi-static drag's first slip holds
+    /// in time to 1e-3 (vibrissa::quasistatic; the rows are the same either way).
+    #[arg(long, value_name = "V", value_parser = finite_f64, conflicts_with = "speed_mm_s")]
+    pub speed: Option<f64>,
+    /// Your foot speed in mm/s (needs physical dimensions; keratin's density), as --speed.
+    #[arg(long, value_name = "V", value_parser = finite_f64)]
+    pub speed_mm_s: Option<f64>,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]
@@ -906,6 +915,11 @@ pub enum PlotKind {
     Whisk,
     /// the rod at chosen angles in the frame of the unturned foot (whisk --shapes)
     WhiskShapes,
+    /// m_base, the force at the foot (fx, fy) and the tip's position against time t, events
+    /// marked (dynamics drag, dynamics free)
+    Dynamics,
+    /// the amplitude of m_base against frequency (dynamics --spectrum)
+    Spectrum,
 }
 
 impl PlotKind {
@@ -919,6 +933,8 @@ impl PlotKind {
             PlotKind::Drag => "drag",
             PlotKind::Whisk => "whisk",
             PlotKind::WhiskShapes => "whisk shapes",
+            PlotKind::Dynamics => "dynamics",
+            PlotKind::Spectrum => "spectrum",
         }
     }
 }
@@ -929,7 +945,8 @@ impl PlotKind {
     after_help = "Columns are read by name: extra columns are ignored, and every value of an event column is marked (one marker and legend entry per event name). Units are the files' (normalized: L, EI/L^2, EI/L)."
 )]
 pub struct PlotArgs {
-    /// The CSV file to draw (written by scan --out, scan --shapes, sweep --out, or drag).
+    /// The CSV file to draw (written by scan --out, scan --shapes, sweep --out, drag, whisk,
+    /// dynamics or dynamics --spectrum).
     #[arg(value_name = "FILE.csv")]
     pub file: PathBuf,
     /// What the file is.

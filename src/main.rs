@@ -101,7 +101,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
             scene_args::build_scene(&a.scene, None)?;
         }
         Command::Drag(a) => {
-            drag::scene(a)?;
+            drag::foot_speed(a, &drag::scene(a)?)?;
             plan_table(&a.out, &a.shapes)?;
         }
         Command::Fit(a) => {

@@ -115,13 +115,17 @@ pub(crate) fn detect(t: &Table) -> Res<PlotKind> {
         PlotKind::Whisk
     } else if t.has("index") && t.has("stop_reason") {
         PlotKind::Sweep
+    } else if t.has("t") && t.has("m_base") && t.has("kinetic") {
+        PlotKind::Dynamics
+    } else if t.has("frequency") && t.has("amplitude") {
+        PlotKind::Spectrum
     } else if t.has("d") && t.has("phase") {
         PlotKind::Drag
     } else if t.has("d") && t.has("mu") {
         PlotKind::Scan
     } else {
         return Err(usage(format!(
-            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase, a whisk theta and s_c, its --shapes point, s and theta); use --kind to say which",
+            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase, a whisk theta and s_c, its --shapes point, s and theta, a dynamics file t, m_base and kinetic, a spectrum frequency and amplitude); use --kind to say which",
             t.name
         )));
     })
@@ -156,6 +160,11 @@ fn label(col: &str) -> String {
         "newton_iters" => "Newton iterations (–)",
         "rhs_evals" => "right-hand-side evaluations (–)",
         "stop_reason" => "stop reason",
+        "t" => "time t (√(ρA L⁴/EI))",
+        "tip_x" => "tip position x (L)",
+        "tip_y" => "tip position y (L)",
+        "frequency" => "frequency (1/time unit)",
+        "amplitude" => "amplitude of m_base (EI/L)",
         _ => "",
     };
     if known.is_empty() {
@@ -325,6 +334,96 @@ fn signals(t: &Table, title: &str, xcol: &str) -> Res<Fig> {
         name: String::new(),
         caption: title.to_string(),
         panels,
+        w: 520,
+        h: 440,
+        stack: None,
+    })
+}
+
+/// A column that changes (a drag's tip height, fixed at η, does not).
+fn varies(v: &[f64]) -> bool {
+    let (lo, hi) = v
+        .iter()
+        .filter(|x| x.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    hi > lo
+}
+
+/// A dynamics file (`dynamics drag`, `dynamics free`): the moment at the foot, the force at
+/// the foot and the tip's position (x, and y where it changes) against time, events marked.
+fn dynamics(t: &Table) -> Res<Fig> {
+    let time = t.need("t")?;
+    let ev = events(t);
+    let m = t.need("m_base")?;
+    let mut panels = vec![signal_panel(
+        "moment at the foot",
+        ("t", &label("m_base")),
+        &time,
+        &[("m_base", &m, BLUE_)],
+        &ev,
+    )];
+    let (fx, fy) = (t.need("fx")?, t.need("fy")?);
+    panels.push(signal_panel(
+        "force at the foot G(0)",
+        ("t", "force (EI/L²)"),
+        &time,
+        &[("fx", &fx, BLUE_), ("fy", &fy, ORANGE_)],
+        &ev,
+    ));
+    for col in ["tip_x", "tip_y"] {
+        if let Some(v) = t.num(col)?.filter(|v| varies(v)) {
+            panels.push(signal_panel(
+                "tip position",
+                ("t", &label(col)),
+                &time,
+                &[(col, &v, BLUE_)],
+                &ev,
+            ));
+        }
+    }
+    Ok(Fig {
+        name: String::new(),
+        caption: format!("dynamics {}", t.name),
+        panels,
+        w: 520,
+        h: 440,
+        stack: None,
+    })
+}
+
+/// A spectrum file (`dynamics --spectrum`): the amplitude against frequency, drawn up to 1.2
+/// times the highest frequency whose amplitude reaches 0.1 % of the largest (at least 8 bins).
+fn spectrum(t: &Table) -> Res<Fig> {
+    let (f, a) = (t.need("frequency")?, t.need("amplitude")?);
+    let top = a
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(0.0, f64::max);
+    let last = a
+        .iter()
+        .rposition(|v| *v >= 1e-3 * top)
+        .unwrap_or(f.len() - 1);
+    let cut = (1.2 * f[last]).max(f[8.min(f.len() - 1)]);
+    let pts: Vec<(f64, f64)> = f
+        .iter()
+        .zip(&a)
+        .filter(|(f, a)| **f <= cut && a.is_finite())
+        .map(|(f, a)| (*f, *a))
+        .collect();
+    let mut p = panel(
+        "amplitude spectrum of the moment at the foot",
+        &label("frequency"),
+        &label("amplitude"),
+    );
+    p.series
+        .push(unlabeled(series("amplitude", Kind::Line, BLUE_, pts)));
+    Ok(Fig {
+        name: String::new(),
+        caption: format!("spectrum {}", t.name),
+        panels: vec![p],
         w: 520,
         h: 440,
         stack: None,
@@ -963,6 +1062,8 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
         PlotKind::Shapes => shapes(t, a.select.as_deref(), a.surface_angle, false)?,
         PlotKind::WhiskShapes => shapes(t, a.select.as_deref(), a.surface_angle, true)?,
         PlotKind::Sweep => sweep(t, a.x.as_deref(), a.y.as_deref(), &a.z, &a.r#where)?,
+        PlotKind::Dynamics => dynamics(t)?,
+        PlotKind::Spectrum => spectrum(t)?,
         PlotKind::Auto => unreachable!("detected above"),
     };
     if let Some(title) = &a.title {

@@ -222,3 +222,79 @@ fn drag_spectrum_and_physical_columns() {
     assert!((col(&sh, r, "frequency_Hz") / (col(&sh, r, "frequency") / unit) - 1.0).abs() < 1e-12);
     assert!((col(&sh, r, "amplitude_Nm") / (col(&sh, r, "amplitude") * ei_l) - 1.0).abs() < 1e-12);
 }
+
+/// `drag --speed V`: the rows are the same with and without it; above the scene's quasi-static
+/// bound (vibrissa::quasistatic: the paper's rod 0.0174, from its measured first-slip lag
+/// 0.069 v² reaching 1e-3 of d = 0.0210132) one warning line on stderr. `--speed-mm-s`
+/// through the time unit (the long rat preset: 27.7 ms, L = 45 mm; its estimate 8.77e-4, so
+/// 1 mm/s = 6.15e-4 passes, 2 mm/s does not). Bad speeds: one line, exit 2.
+#[test]
+fn drag_speed_warns_above_the_quasi_static_bound() {
+    let base = [
+        "drag", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.03", "--points", "4",
+    ];
+    let plain = ok(&base);
+    let warnings = |o: &common::Out| {
+        o.stderr
+            .lines()
+            .filter(|l| l.starts_with("warning:"))
+            .map(String::from)
+            .collect::<Vec<_>>()
+    };
+    assert!(warnings(&plain).is_empty(), "{}", plain.stderr);
+    for (v, warned) in [
+        ("0.01", false),
+        ("0.017", false),
+        ("0.018", true),
+        ("0.02", true),
+    ] {
+        let mut a = base.to_vec();
+        a.extend(["--speed", v]);
+        let o = ok(&a);
+        assert_eq!(o.stdout, plain.stdout, "--speed {v}");
+        let w = warnings(&o);
+        assert_eq!(w.len(), usize::from(warned), "--speed {v}: {}", o.stderr);
+        if warned {
+            assert!(w[0].contains("1.741e-2"), "{}", w[0]);
+        }
+    }
+    let rat = "data/scenes/rat_mystacial_long.toml";
+    let root = env!("CARGO_MANIFEST_DIR");
+    let scene = format!("{root}/{rat}");
+    for (v, warned) in [("1", false), ("2", true)] {
+        let o = ok(&[
+            "drag",
+            "--scene",
+            &scene,
+            "--mu-s",
+            "0.5",
+            "--mu-k",
+            "0.3",
+            "--d-max",
+            "0.003",
+            "--points",
+            "3",
+            "--speed-mm-s",
+            v,
+        ]);
+        let w = warnings(&o);
+        assert_eq!(
+            w.len(),
+            usize::from(warned),
+            "--speed-mm-s {v}: {}",
+            o.stderr
+        );
+        if warned {
+            assert!(w[0].contains("8.773e-4"), "{}", w[0]);
+        }
+    }
+    let mut a = base.to_vec();
+    a.extend(["--speed", "0"]);
+    assert!(bad(&a, 2).contains("--speed"));
+    let mut a = base.to_vec();
+    a.extend(["--speed-mm-s", "1"]);
+    assert!(bad(&a, 2).contains("physical dimensions"));
+    let mut a = base.to_vec();
+    a.extend(["--speed", "0.1", "--speed-mm-s", "1"]);
+    assert!(bad(&a, 2).contains("--speed"));
+}

@@ -93,6 +93,7 @@ mod own;
 mod parts;
 pub mod peg;
 pub mod profile;
+pub mod quasistatic;
 mod record;
 pub mod report;
 mod rod;
