@@ -186,13 +186,13 @@ const EVENT_STYLE: [(Kind, RGBColor); 5] = [
 /// The rows of each event name (in order of first appearance).
 fn events(t: &Table) -> Vec<(String, Vec<usize>)> {
     let mut out: Vec<(String, Vec<usize>)> = Vec::new();
-    for (i, e) in t.text("event").unwrap_or_default().into_iter().enumerate() {
-        if e.is_empty() {
-            continue;
-        }
-        match out.iter_mut().find(|(n, _)| n == e) {
-            Some((_, rows)) => rows.push(i),
-            None => out.push((e.to_string(), vec![i])),
+    for (i, field) in t.text("event").unwrap_or_default().into_iter().enumerate() {
+        // (a dynamics file names two events of one step with a space: "slip stick")
+        for e in field.split_whitespace() {
+            match out.iter_mut().find(|(n, _)| n == e) {
+                Some((_, rows)) => rows.push(i),
+                None => out.push((e.to_string(), vec![i])),
+            }
         }
     }
     out
@@ -1112,6 +1112,8 @@ mod tests {
     const DRAG_SHAPES: &str = include_str!("../tests/fixtures/plot/drag_shapes.csv");
     const WHISK: &str = include_str!("../tests/fixtures/plot/whisk.csv");
     const WHISK_SHAPES: &str = include_str!("../tests/fixtures/plot/whisk_shapes.csv");
+    const DYNAMICS: &str = include_str!("../tests/fixtures/plot/dynamics_drag.csv");
+    const SPECTRUM: &str = include_str!("../tests/fixtures/plot/dynamics_spectrum.csv");
     const CORRUGATED: &str = include_str!("../tests/fixtures/plot/drag_corrugated.csv");
     const CORRUGATED_SHAPES: &str =
         include_str!("../tests/fixtures/plot/drag_corrugated_shapes.csv");
@@ -1173,6 +1175,57 @@ mod tests {
             assert_eq!(f.panels.len(), panels, "{name}");
             checked(&f);
         }
+    }
+
+    /// A dynamics file (`dynamics drag --speed 0.1 --d-max 0.03 --dt 0.02`: one slip at
+    /// t = 1.0967535139444828) and its `--spectrum`: detected from their columns; against time
+    /// the moment, the force (fx, fy) and the tip's x (its y, fixed at η, is left out), the slip
+    /// marked on each; the spectrum drawn up to 1.2 times its last frequency above 0.1 % of the
+    /// peak; two events of one step ("slip stick") are marked as two.
+    #[test]
+    fn dynamics_and_spectrum_files_are_detected_and_drawn() {
+        let t = Table::parse("dyn.csv", DYNAMICS).unwrap();
+        assert_eq!(detect(&t).unwrap(), PlotKind::Dynamics);
+        let f = figure(&t, &args(PlotKind::Auto)).unwrap();
+        checked(&f);
+        let titles: Vec<&str> = f.panels.iter().map(|p| p.title.as_str()).collect();
+        assert_eq!(
+            titles,
+            [
+                "moment at the foot",
+                "force at the foot G(0)",
+                "tip position"
+            ]
+        );
+        assert_eq!(f.panels[2].ylabel, "tip position x (L)");
+        for p in &f.panels {
+            assert_eq!(p.xlabel, "time t (√(ρA L⁴/EI))");
+            let slip: Vec<&Series> = p.series.iter().filter(|s| s.name == "slip").collect();
+            assert_eq!(slip.len(), 1, "{}", p.title);
+            assert!((slip[0].pts[0].0 - 1.0967535139444828).abs() < 1e-15);
+        }
+        let s = Table::parse("spec.csv", SPECTRUM).unwrap();
+        assert_eq!(detect(&s).unwrap(), PlotKind::Spectrum);
+        let f = figure(&s, &args(PlotKind::Auto)).unwrap();
+        checked(&f);
+        assert_eq!(f.panels.len(), 1);
+        let pts = &f.panels[0].series[0].pts;
+        let a = s.need("amplitude").unwrap();
+        let top = a.iter().copied().fold(0.0, f64::max);
+        let fr = s.need("frequency").unwrap();
+        let last = a.iter().rposition(|v| *v >= 1e-3 * top).unwrap();
+        assert!(pts.iter().all(|p| p.0 <= 1.2 * fr[last] + 1e-12));
+        assert!(
+            pts.len() > last && pts.len() < fr.len(),
+            "{} of {}",
+            pts.len(),
+            fr.len()
+        );
+        // two events in one step
+        let two = DYNAMICS.replacen(",slip\n", ",slip stick\n", 1);
+        let f = fig("dyn.csv", &two, &args(PlotKind::Auto));
+        let n = names(&f.panels[0]);
+        assert!(n.contains(&"slip") && n.contains(&"stick"), "{n:?}");
     }
 
     #[test]
