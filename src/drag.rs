@@ -217,7 +217,7 @@ pub fn foot_speed(a: &DragArgs, sc: &Scene) -> Res<Option<f64>> {
         (None, Some(v)) => (v, "--speed-mm-s"),
         (None, None) => return Ok(None),
     };
-    if !(v.0 > 0.0) {
+    if v.0 <= 0.0 {
         return Err(usage(format!(
             "{} = {} is outside the valid range (0, inf)",
             v.1, v.0

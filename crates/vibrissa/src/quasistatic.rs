@@ -63,7 +63,7 @@ pub fn speed_bound(rod: &Rod, start: &BaseLoad, d_slip: f64) -> Result<SpeedBoun
     };
     let m = modes(rod, start, TipCondition::Pinned, &o)?;
     let w2 = m.modes.first().map_or(f64::NAN, |m| m.omega2);
-    if !(w2 > 0.0) {
+    if w2.is_nan() || w2 <= 0.0 {
         return Err(VibrissaError::range(
             "omega1^2 of the stuck start",
             w2,
