@@ -8,7 +8,7 @@
 //!
 //! - the paper's rod (η = 0.75): the first slip at d = 0.0210132 is late by ≈ 0.069 v² (slip
 //!   after the ramp); 1e-3 relative is 2.1e-5, reached at v = 0.0174 (v = 0.01: 3.3e-4,
-//!   v = 0.02: 1.3e-3). The stuck start's first frequency is ω₁ = 41.64 (`modes`, tip pinned).
+//!   v = 0.017: 9.46e-4, v = 0.018: 1.070e-3, v = 0.02: 1.3e-3). The stuck start's first frequency is ω₁ = 41.64 (`modes`, tip pinned).
 //! - the long rat preset (`data/scenes/rat_mystacial_long.toml`, η = 0.9, taper 0.1, rest
 //!   curvature −0.72): the first slip at d = 0.0021043 is late by 8.8e-4 relative at v = 0.002,
 //!   2.55e-3 at v = 0.003 (3.6e-4 at 0.001, 1.2e-4 at 0.0005): the bound is 0.0021
