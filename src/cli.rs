@@ -221,7 +221,8 @@ pub enum Command {
     Infer(InferArgs),
     /// Regenerate the paper's Figures 2-11 as SVG files, with the CSV data behind each.
     Figures(FiguresArgs),
-    /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV or a drag CSV.
+    /// Draw a file of yours as SVG: a scan CSV, its --shapes, a sweep CSV, a drag CSV, a
+    /// dynamics CSV or its --spectrum.
     Plot(PlotArgs),
     /// Turn the foot against a point object (a peg): the contact moves along the rod until the
     /// object slips off the tip; one row per foot angle.
@@ -239,7 +240,8 @@ pub enum Command {
     /// default): one row per mode, omega^2 < 0 meaning the state is unstable.
     Modes(ModesArgs),
     /// The rod in time: `dynamics drag` drags the foot at a speed with the tip on the surface
-    /// (stick, slip and lift-off located in time); one row per time step.
+    /// (stick, slip and lift-off located in time), `dynamics free` releases it from a tip force
+    /// or a foot moment; one row per time step.
     Dynamics(DynamicsArgs),
 }
 
@@ -257,6 +259,46 @@ pub enum DynamicsCommand {
     /// Drag the foot along x at --speed with the tip on the flat surface y = eta under Coulomb
     /// friction, from the pressed start at rest: one row per time step.
     Drag(DynamicsDragArgs),
+    /// Release the rod at t = 0 from its equilibrium under a tip force (--release-fx,
+    /// --release-fy) or step a moment onto its foot (--foot-moment), tip free: one row per time
+    /// step.
+    Free(DynamicsFreeArgs),
+}
+
+/// `vibrissa dynamics free`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time (no numerical damping; periods lengthen by (omega dt)^2/12), every step a BVP in s. The start is the static equilibrium under the dead tip force (--release-fx, --release-fy), at rest; the force is removed at t = 0 (the first step sees the mean of the force before and after, which loses about 1 % of the energy at 50 steps per period). --foot-moment steps a moment onto the foot's support (it turns the rod only when --support-compliance > 0). Time unit sqrt(rho A(0) L^4 / EI(0)); with physical dimensions (keratin, 1250 kg/m^3) t_s and the physical-unit columns are added."
+)]
+pub struct DynamicsFreeArgs {
+    /// Tip force x (EI/L^2) held before t = 0 and released then (a dead load), finite.
+    #[arg(long, value_name = "FX", value_parser = finite_f64, default_value = "0")]
+    pub release_fx: f64,
+    /// Tip force y (EI/L^2) held before t = 0 and released then, finite.
+    #[arg(long, value_name = "FY", value_parser = finite_f64, default_value = "0")]
+    pub release_fy: f64,
+    /// A moment (EI/L) applied to the foot's support from t = 0 on (a step), finite; needs
+    /// --support-compliance > 0 to turn the foot.
+    #[arg(long, value_name = "M", value_parser = finite_f64, default_value = "0")]
+    pub foot_moment: f64,
+    /// Time step, in (0, 1].
+    #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = "0.01")]
+    pub dt: f64,
+    /// End time (normalized time units), in (0, 1e6].
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1")]
+    pub t_end: f64,
+    /// Damper of the foot's support (moment per angular velocity), in [0, inf); its spring is
+    /// 1/--support-compliance.
+    #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
+    pub foot_damping: f64,
+    /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    pub spectrum: Option<PathBuf>,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Print a JSON object instead of CSV.
+    #[arg(long)]
+    pub json: bool,
 }
 
 /// `vibrissa dynamics drag`.
@@ -289,6 +331,9 @@ pub struct DynamicsDragArgs {
     /// Damper of the foot's support (moment per angular velocity), in [0, inf).
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
     pub foot_damping: f64,
+    /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    pub spectrum: Option<PathBuf>,
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Print a JSON object instead of CSV.
@@ -684,6 +729,14 @@ pub struct DragArgs {
     /// each slip (the energy balance, in --json's slips; extra solves).
     #[arg(long)]
     pub energy_balance: bool,
+    /// Your foot speed (rod lengths per time unit sqrt(rho A L^4/EI)), in (0, inf): a warning on
+    /// stderr when it is above the speed below which this quasi-static drag's first slip holds
+    /// in time to 1e-3 (vibrissa::quasistatic; the rows are the same either way).
+    #[arg(long, value_name = "V", value_parser = finite_f64, conflicts_with = "speed_mm_s")]
+    pub speed: Option<f64>,
+    /// Your foot speed in mm/s (needs physical dimensions; keratin's density), as --speed.
+    #[arg(long, value_name = "V", value_parser = finite_f64)]
+    pub speed_mm_s: Option<f64>,
     #[command(flatten)]
     pub solver: SolverArgs,
     #[command(flatten)]
@@ -862,6 +915,11 @@ pub enum PlotKind {
     Whisk,
     /// the rod at chosen angles in the frame of the unturned foot (whisk --shapes)
     WhiskShapes,
+    /// m_base, the force at the foot (fx, fy) and the tip's position against time t, events
+    /// marked (dynamics drag, dynamics free)
+    Dynamics,
+    /// the amplitude of m_base against frequency (dynamics --spectrum)
+    Spectrum,
 }
 
 impl PlotKind {
@@ -875,6 +933,8 @@ impl PlotKind {
             PlotKind::Drag => "drag",
             PlotKind::Whisk => "whisk",
             PlotKind::WhiskShapes => "whisk shapes",
+            PlotKind::Dynamics => "dynamics",
+            PlotKind::Spectrum => "spectrum",
         }
     }
 }
@@ -885,7 +945,8 @@ impl PlotKind {
     after_help = "Columns are read by name: extra columns are ignored, and every value of an event column is marked (one marker and legend entry per event name). Units are the files' (normalized: L, EI/L^2, EI/L)."
 )]
 pub struct PlotArgs {
-    /// The CSV file to draw (written by scan --out, scan --shapes, sweep --out, or drag).
+    /// The CSV file to draw (written by scan --out, scan --shapes, sweep --out, drag, whisk,
+    /// dynamics or dynamics --spectrum).
     #[arg(value_name = "FILE.csv")]
     pub file: PathBuf,
     /// What the file is.

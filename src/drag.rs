@@ -144,6 +144,7 @@ pub fn run(a: &DragArgs) -> Res<()> {
     if stop.reason != "d_max" {
         crate::progress::warn(&format!("the drag stopped early: {}", stop.detail));
     }
+    speed_warning(a, &rod, &r)?;
     if let Some(h) = &r.handover {
         crate::progress::warn(h);
     }
@@ -204,6 +205,62 @@ pub fn run(a: &DragArgs) -> Res<()> {
             Some(p) => writeln!(io::stdout(), "{line}\nCSV written to {}", p.display())?,
             None => crate::progress::note(&line),
         }
+    }
+    Ok(())
+}
+
+/// The user's foot speed in normalized units (`--speed`, or `--speed-mm-s` through the time
+/// unit of a rod with physical dimensions, keratin's density); `None` without either.
+pub fn foot_speed(a: &DragArgs, sc: &Scene) -> Res<Option<f64>> {
+    let v = match (a.speed, a.speed_mm_s) {
+        (Some(v), _) => (v, "--speed"),
+        (None, Some(v)) => (v, "--speed-mm-s"),
+        (None, None) => return Ok(None),
+    };
+    if v.0 <= 0.0 {
+        return Err(usage(format!(
+            "{} = {} is outside the valid range (0, inf)",
+            v.1, v.0
+        )));
+    }
+    if v.1 == "--speed" {
+        return Ok(Some(v.0));
+    }
+    let p = sc.physical.as_ref().ok_or_else(|| {
+        usage("--speed-mm-s needs physical dimensions (--length-mm, --youngs-modulus-gpa, --base-diameter-um or a scene's [physical]); --speed takes the normalized speed")
+    })?;
+    let unit_s = vibrissa::inertia::time_unit_s(p, vibrissa::inertia::KERATIN_DENSITY);
+    Ok(Some(v.0 * unit_s / p.length_mm))
+}
+
+/// With `--speed`/`--speed-mm-s`: one warning line when the speed is above the scene's
+/// quasi-static bound (`vibrissa::quasistatic::speed_bound`, from the first slip and the stuck
+/// start's first frequency); nothing without a slip.
+fn speed_warning(a: &DragArgs, rod: &vibrissa::Rod, r: &vibrissa::DragResult) -> Res<()> {
+    let Some(v) = foot_speed(a, &scene(a)?)? else {
+        return Ok(());
+    };
+    let (Some(start), Some(slip)) = (r.rows.first(), r.slips.first()) else {
+        return Ok(());
+    };
+    let load = vibrissa::modes::BaseLoad {
+        m_base: start.m_base,
+        fx: start.fx,
+        fy: start.fy,
+    };
+    match vibrissa::quasistatic::speed_bound(rod, &load, slip.d) {
+        Ok(b) if v > b.speed => crate::progress::warn(&format!(
+            "at the foot speed {v} (rod lengths per time unit) the rod's inertia moves the first slip by more than {} of d = {} (the quasi-static bound of this scene is about {:.3e}: {} x omega1 {:.4} x d; docs/model.md, \"When the quasi-static drag holds\"); these rows are the slow limit",
+            vibrissa::quasistatic::SLIP_AGREEMENT,
+            slip.d,
+            b.speed,
+            vibrissa::quasistatic::SPEED_FACTOR,
+            b.omega1
+        )),
+        Ok(_) => {}
+        Err(e) => crate::progress::warn(&format!(
+            "the quasi-static speed bound of this scene could not be estimated: {e}"
+        )),
     }
     Ok(())
 }

@@ -1,15 +1,22 @@
-//! `vibrissa dynamics drag`: the foot dragged at a speed with the tip on the surface, in time
-//! (`vibrissa::dynamics::drag`, issue 32).
+//! `vibrissa dynamics drag` (the foot dragged at a speed with the tip on the surface, in time:
+//! `vibrissa::dynamics::drag`) and `vibrissa dynamics free` (the rod released from a tip force
+//! or a foot moment: `vibrissa::dynamics::free`), issue 32; with `--spectrum`, the amplitude
+//! spectrum of the moment at the foot (`vibrissa::spectrum`).
 
-use crate::cli::{DynamicsArgs, DynamicsCommand, DynamicsDragArgs};
+use crate::cli::{DynamicsArgs, DynamicsCommand, DynamicsDragArgs, DynamicsFreeArgs};
 use crate::error::Res;
 use crate::scene_args::build_scene;
-use crate::table::num;
+use crate::table::{csv_line, num, Sink};
 use std::io::Write;
-use vibrissa::dynamics::{drag, DynDragOptions};
+use std::path::Path;
+use vibrissa::dynamics::{drag, free, DynDragOptions, DynamicsOptions};
+use vibrissa::inertia::{time_unit_s, KERATIN_DENSITY};
+use vibrissa::spectrum::amplitude_spectrum;
+use vibrissa::{Rod, Units};
 
-/// Columns of the CSV: one row per time step (the start included).
-pub const HEADER: [&str; 18] = [
+/// Columns of the drag's CSV: one row per time step (the start included); with a physical
+/// scene [`DRAG_PHYSICAL`] before `event`.
+pub const HEADER: [&str; 17] = [
     "t",
     "d",
     "tip_x",
@@ -27,17 +34,40 @@ pub const HEADER: [&str; 18] = [
     "foot_work",
     "friction",
     "damper",
-    "event",
 ];
+
+/// The drag's physical-unit columns (seconds, mm, N, N·m).
+pub const DRAG_PHYSICAL: [&str; 9] = [
+    "t_s",
+    "d_mm",
+    "tip_x_mm",
+    "tip_y_mm",
+    "normal_N",
+    "tangential_N",
+    "fx_N",
+    "fy_N",
+    "m_base_Nm",
+];
+
+/// Columns of `dynamics free`: one row per time step (the start included); with a physical
+/// scene [`FREE_PHYSICAL`] after them.
+pub const FREE_HEADER: [&str; 12] = [
+    "t", "tip_x", "tip_y", "tip_vx", "tip_vy", "theta", "fx", "fy", "m_base", "kinetic", "elastic",
+    "damper",
+];
+
+/// The free rod's physical-unit columns.
+pub const FREE_PHYSICAL: [&str; 6] = ["t_s", "tip_x_mm", "tip_y_mm", "fx_N", "fy_N", "m_base_Nm"];
 
 /// Run `vibrissa dynamics ...`.
 pub fn run(a: &DynamicsArgs) -> Res<()> {
     match &a.command {
         DynamicsCommand::Drag(d) => run_drag(d),
+        DynamicsCommand::Free(f) => run_free(f),
     }
 }
 
-/// The options of the flags.
+/// The options of the drag's flags.
 pub fn options(a: &DynamicsDragArgs) -> DynDragOptions {
     DynDragOptions {
         speed: a.speed,
@@ -51,6 +81,44 @@ pub fn options(a: &DynamicsDragArgs) -> DynDragOptions {
     }
 }
 
+/// The options of `dynamics free`'s flags.
+pub fn free_options(a: &DynamicsFreeArgs) -> DynamicsOptions {
+    DynamicsOptions {
+        dt: a.dt,
+        t_end: a.t_end,
+        foot_damping: a.foot_damping,
+        foot_moment: a.foot_moment,
+        release_force: [a.release_fx, a.release_fy],
+        ..DynamicsOptions::default()
+    }
+}
+
+/// The unit factors of a rod with physical dimensions, with its time unit in seconds
+/// (keratin's density, as `modes`).
+fn units(rod: &Rod) -> Option<(Units, f64)> {
+    Some((rod.units()?, time_unit_s(rod.physical()?, KERATIN_DENSITY)))
+}
+
+/// Writes the amplitude spectrum of `m_base(t)` to `path` (columns `frequency, amplitude`,
+/// and `frequency_Hz, amplitude_Nm` with physical dimensions).
+fn write_spectrum(path: &Path, t: &[f64], m: &[f64], u: Option<(Units, f64)>) -> Res<()> {
+    let s = amplitude_spectrum(t, m)?;
+    let mut w = Sink::open(Some(path))?;
+    let mut h = vec!["frequency", "amplitude"];
+    if u.is_some() {
+        h.extend(["frequency_Hz", "amplitude_Nm"]);
+    }
+    csv_line(&mut w, &h)?;
+    for (f, a) in s.frequency.iter().zip(&s.amplitude) {
+        let mut v = vec![num(*f), num(*a)];
+        if let Some((u, ts)) = u {
+            v.extend([num(f / ts), num(a * u.moment_nm)]);
+        }
+        csv_line(&mut w, &v)?;
+    }
+    w.finish()
+}
+
 /// `vibrissa dynamics drag`: CSV rows of [`HEADER`] (the event's name on the row where it
 /// happened), or the library's result as JSON.
 fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
@@ -60,6 +128,11 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
     o.validate()?;
     let r = drag(&rod, &surface, &o)?;
     crate::progress::stop();
+    let u = units(&rod);
+    if let Some(path) = &a.spectrum {
+        let (t, m): (Vec<f64>, Vec<f64>) = r.samples.iter().map(|p| (p.t, p.m_base)).unzip();
+        write_spectrum(path, &t, &m, u)?;
+    }
     let stdout = std::io::stdout();
     let mut w = stdout.lock();
     if a.json {
@@ -67,7 +140,12 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
         writeln!(w)?;
         return Ok(());
     }
-    writeln!(w, "{}", HEADER.join(","))?;
+    let mut header = HEADER.to_vec();
+    if u.is_some() {
+        header.extend(DRAG_PHYSICAL);
+    }
+    header.push("event");
+    writeln!(w, "{}", header.join(","))?;
     let mut events = r.events.iter().peekable();
     for p in &r.samples {
         let mut names = vec![];
@@ -93,6 +171,13 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
             ]
             .map(num),
         );
+        if let Some((u, ts)) = u {
+            let l = u.length_mm;
+            v.push(num(p.t * ts));
+            v.extend([p.d, p.tip_x, p.tip_y].map(|x| num(x * l)));
+            v.extend([p.normal, p.tangential, p.fx, p.fy].map(|f| num(f * u.force_n)));
+            v.push(num(p.m_base * u.moment_nm));
+        }
         v.push(names.join(" "));
         writeln!(w, "{}", v.join(","))?;
     }
@@ -100,5 +185,71 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
         crate::progress::warn(&format!("the dynamic drag stopped early: {}", r.stop));
     }
     crate::progress::eprint(&format!("dynamics drag: {r}"));
+    Ok(())
+}
+
+/// `vibrissa dynamics free`: CSV rows of [`FREE_HEADER`], or the library's result as JSON.
+fn run_free(a: &DynamicsFreeArgs) -> Res<()> {
+    let scene = build_scene(&a.scene, None)?;
+    let rod = scene.rod()?;
+    let o = free_options(a);
+    o.validate()?;
+    if o.foot_moment != 0.0 && rod.support_compliance() == 0.0 {
+        crate::progress::warn(
+            "--foot-moment turns the foot only through its spring: with --support-compliance 0 (a clamp) it has no effect",
+        );
+    }
+    let r = free(&rod, &|_| [0.0, 0.0], &o)?;
+    crate::progress::stop();
+    let u = units(&rod);
+    if let Some(path) = &a.spectrum {
+        let (t, m): (Vec<f64>, Vec<f64>) = r.samples.iter().map(|p| (p.t, p.m_base)).unzip();
+        write_spectrum(path, &t, &m, u)?;
+    }
+    let mut w = Sink::open(None)?;
+    if a.json {
+        serde_json::to_writer_pretty(&mut w, &r)?;
+        writeln!(w)?;
+        return w.finish();
+    }
+    let mut header = FREE_HEADER.to_vec();
+    if u.is_some() {
+        header.extend(FREE_PHYSICAL);
+    }
+    csv_line(&mut w, &header)?;
+    for p in &r.samples {
+        let mut v: Vec<String> = [
+            p.t,
+            p.tip_x,
+            p.tip_y,
+            p.tip_vx,
+            p.tip_vy,
+            p.theta,
+            p.gx_base,
+            p.gy_base,
+            p.m_base,
+            p.kinetic,
+            p.elastic,
+            p.dissipated,
+        ]
+        .map(num)
+        .into();
+        if let Some((u, ts)) = u {
+            let l = u.length_mm;
+            v.push(num(p.t * ts));
+            v.extend([p.tip_x * l, p.tip_y * l].map(num));
+            v.extend([p.gx_base, p.gy_base].map(|f| num(f * u.force_n)));
+            v.push(num(p.m_base * u.moment_nm));
+        }
+        csv_line(&mut w, &v)?;
+    }
+    w.finish()?;
+    crate::progress::eprint(&format!(
+        "dynamics free: {} steps to t = {}, {} Newton iterations, largest mesh {}",
+        r.stats.steps,
+        r.samples.last().map_or(0.0, |p| p.t),
+        r.stats.newton_iterations,
+        r.stats.max_nodes
+    ));
     Ok(())
 }

@@ -101,7 +101,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
             scene_args::build_scene(&a.scene, None)?;
         }
         Command::Drag(a) => {
-            drag::scene(a)?;
+            drag::foot_speed(a, &drag::scene(a)?)?;
             plan_table(&a.out, &a.shapes)?;
         }
         Command::Fit(a) => {
@@ -114,11 +114,25 @@ fn prepare(cmd: &mut Command) -> Res<()> {
             cli::DynamicsCommand::Drag(d) => {
                 scene_args::build_scene(&d.scene, d.eta)?;
                 dynamics::options(d).validate()?;
+                plan_spectrum(&d.spectrum)?;
+            }
+            cli::DynamicsCommand::Free(f) => {
+                scene_args::build_scene(&f.scene, None)?;
+                dynamics::free_options(f).validate()?;
+                plan_spectrum(&f.spectrum)?;
             }
         },
         Command::Sweep(_) | Command::Figures(_) => {}
     }
     Ok(())
+}
+
+/// The `--spectrum` file of a `dynamics` command.
+fn plan_spectrum(p: &Option<std::path::PathBuf>) -> Res<()> {
+    match p {
+        Some(p) => output_files::plan(&[("--spectrum", p.as_path())], false),
+        None => Ok(()),
+    }
 }
 
 /// The files of a command with `--out` and `--shapes` (see `output_files::plan`).

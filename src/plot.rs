@@ -115,13 +115,17 @@ pub(crate) fn detect(t: &Table) -> Res<PlotKind> {
         PlotKind::Whisk
     } else if t.has("index") && t.has("stop_reason") {
         PlotKind::Sweep
+    } else if t.has("t") && t.has("m_base") && t.has("kinetic") {
+        PlotKind::Dynamics
+    } else if t.has("frequency") && t.has("amplitude") {
+        PlotKind::Spectrum
     } else if t.has("d") && t.has("phase") {
         PlotKind::Drag
     } else if t.has("d") && t.has("mu") {
         PlotKind::Scan
     } else {
         return Err(usage(format!(
-            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase, a whisk theta and s_c, its --shapes point, s and theta); use --kind to say which",
+            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase, a whisk theta and s_c, its --shapes point, s and theta, a dynamics file t, m_base and kinetic, a spectrum frequency and amplitude); use --kind to say which",
             t.name
         )));
     })
@@ -156,6 +160,11 @@ fn label(col: &str) -> String {
         "newton_iters" => "Newton iterations (–)",
         "rhs_evals" => "right-hand-side evaluations (–)",
         "stop_reason" => "stop reason",
+        "t" => "time t (√(ρA L⁴/EI))",
+        "tip_x" => "tip position x (L)",
+        "tip_y" => "tip position y (L)",
+        "frequency" => "frequency (1/time unit)",
+        "amplitude" => "amplitude of m_base (EI/L)",
         _ => "",
     };
     if known.is_empty() {
@@ -177,13 +186,13 @@ const EVENT_STYLE: [(Kind, RGBColor); 5] = [
 /// The rows of each event name (in order of first appearance).
 fn events(t: &Table) -> Vec<(String, Vec<usize>)> {
     let mut out: Vec<(String, Vec<usize>)> = Vec::new();
-    for (i, e) in t.text("event").unwrap_or_default().into_iter().enumerate() {
-        if e.is_empty() {
-            continue;
-        }
-        match out.iter_mut().find(|(n, _)| n == e) {
-            Some((_, rows)) => rows.push(i),
-            None => out.push((e.to_string(), vec![i])),
+    for (i, field) in t.text("event").unwrap_or_default().into_iter().enumerate() {
+        // (a dynamics file names two events of one step with a space: "slip stick")
+        for e in field.split_whitespace() {
+            match out.iter_mut().find(|(n, _)| n == e) {
+                Some((_, rows)) => rows.push(i),
+                None => out.push((e.to_string(), vec![i])),
+            }
         }
     }
     out
@@ -325,6 +334,96 @@ fn signals(t: &Table, title: &str, xcol: &str) -> Res<Fig> {
         name: String::new(),
         caption: title.to_string(),
         panels,
+        w: 520,
+        h: 440,
+        stack: None,
+    })
+}
+
+/// A column that changes (a drag's tip height, fixed at η, does not).
+fn varies(v: &[f64]) -> bool {
+    let (lo, hi) = v
+        .iter()
+        .filter(|x| x.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    hi > lo
+}
+
+/// A dynamics file (`dynamics drag`, `dynamics free`): the moment at the foot, the force at
+/// the foot and the tip's position (x, and y where it changes) against time, events marked.
+fn dynamics(t: &Table) -> Res<Fig> {
+    let time = t.need("t")?;
+    let ev = events(t);
+    let m = t.need("m_base")?;
+    let mut panels = vec![signal_panel(
+        "moment at the foot",
+        ("t", &label("m_base")),
+        &time,
+        &[("m_base", &m, BLUE_)],
+        &ev,
+    )];
+    let (fx, fy) = (t.need("fx")?, t.need("fy")?);
+    panels.push(signal_panel(
+        "force at the foot G(0)",
+        ("t", "force (EI/L²)"),
+        &time,
+        &[("fx", &fx, BLUE_), ("fy", &fy, ORANGE_)],
+        &ev,
+    ));
+    for col in ["tip_x", "tip_y"] {
+        if let Some(v) = t.num(col)?.filter(|v| varies(v)) {
+            panels.push(signal_panel(
+                "tip position",
+                ("t", &label(col)),
+                &time,
+                &[(col, &v, BLUE_)],
+                &ev,
+            ));
+        }
+    }
+    Ok(Fig {
+        name: String::new(),
+        caption: format!("dynamics {}", t.name),
+        panels,
+        w: 520,
+        h: 440,
+        stack: None,
+    })
+}
+
+/// A spectrum file (`dynamics --spectrum`): the amplitude against frequency, drawn up to 1.2
+/// times the highest frequency whose amplitude reaches 0.1 % of the largest (at least 8 bins).
+fn spectrum(t: &Table) -> Res<Fig> {
+    let (f, a) = (t.need("frequency")?, t.need("amplitude")?);
+    let top = a
+        .iter()
+        .copied()
+        .filter(|v| v.is_finite())
+        .fold(0.0, f64::max);
+    let last = a
+        .iter()
+        .rposition(|v| *v >= 1e-3 * top)
+        .unwrap_or(f.len() - 1);
+    let cut = (1.2 * f[last]).max(f[8.min(f.len() - 1)]);
+    let pts: Vec<(f64, f64)> = f
+        .iter()
+        .zip(&a)
+        .filter(|(f, a)| **f <= cut && a.is_finite())
+        .map(|(f, a)| (*f, *a))
+        .collect();
+    let mut p = panel(
+        "amplitude spectrum of the moment at the foot",
+        &label("frequency"),
+        &label("amplitude"),
+    );
+    p.series
+        .push(unlabeled(series("amplitude", Kind::Line, BLUE_, pts)));
+    Ok(Fig {
+        name: String::new(),
+        caption: format!("spectrum {}", t.name),
+        panels: vec![p],
         w: 520,
         h: 440,
         stack: None,
@@ -963,6 +1062,8 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
         PlotKind::Shapes => shapes(t, a.select.as_deref(), a.surface_angle, false)?,
         PlotKind::WhiskShapes => shapes(t, a.select.as_deref(), a.surface_angle, true)?,
         PlotKind::Sweep => sweep(t, a.x.as_deref(), a.y.as_deref(), &a.z, &a.r#where)?,
+        PlotKind::Dynamics => dynamics(t)?,
+        PlotKind::Spectrum => spectrum(t)?,
         PlotKind::Auto => unreachable!("detected above"),
     };
     if let Some(title) = &a.title {
@@ -1011,6 +1112,8 @@ mod tests {
     const DRAG_SHAPES: &str = include_str!("../tests/fixtures/plot/drag_shapes.csv");
     const WHISK: &str = include_str!("../tests/fixtures/plot/whisk.csv");
     const WHISK_SHAPES: &str = include_str!("../tests/fixtures/plot/whisk_shapes.csv");
+    const DYNAMICS: &str = include_str!("../tests/fixtures/plot/dynamics_drag.csv");
+    const SPECTRUM: &str = include_str!("../tests/fixtures/plot/dynamics_spectrum.csv");
     const CORRUGATED: &str = include_str!("../tests/fixtures/plot/drag_corrugated.csv");
     const CORRUGATED_SHAPES: &str =
         include_str!("../tests/fixtures/plot/drag_corrugated_shapes.csv");
@@ -1072,6 +1175,57 @@ mod tests {
             assert_eq!(f.panels.len(), panels, "{name}");
             checked(&f);
         }
+    }
+
+    /// A dynamics file (`dynamics drag --speed 0.1 --d-max 0.03 --dt 0.02`: one slip at
+    /// t = 1.0967535139444828) and its `--spectrum`: detected from their columns; against time
+    /// the moment, the force (fx, fy) and the tip's x (its y, fixed at η, is left out), the slip
+    /// marked on each; the spectrum drawn up to 1.2 times its last frequency above 0.1 % of the
+    /// peak; two events of one step ("slip stick") are marked as two.
+    #[test]
+    fn dynamics_and_spectrum_files_are_detected_and_drawn() {
+        let t = Table::parse("dyn.csv", DYNAMICS).unwrap();
+        assert_eq!(detect(&t).unwrap(), PlotKind::Dynamics);
+        let f = figure(&t, &args(PlotKind::Auto)).unwrap();
+        checked(&f);
+        let titles: Vec<&str> = f.panels.iter().map(|p| p.title.as_str()).collect();
+        assert_eq!(
+            titles,
+            [
+                "moment at the foot",
+                "force at the foot G(0)",
+                "tip position"
+            ]
+        );
+        assert_eq!(f.panels[2].ylabel, "tip position x (L)");
+        for p in &f.panels {
+            assert_eq!(p.xlabel, "time t (√(ρA L⁴/EI))");
+            let slip: Vec<&Series> = p.series.iter().filter(|s| s.name == "slip").collect();
+            assert_eq!(slip.len(), 1, "{}", p.title);
+            assert!((slip[0].pts[0].0 - 1.0967535139444828).abs() < 1e-15);
+        }
+        let s = Table::parse("spec.csv", SPECTRUM).unwrap();
+        assert_eq!(detect(&s).unwrap(), PlotKind::Spectrum);
+        let f = figure(&s, &args(PlotKind::Auto)).unwrap();
+        checked(&f);
+        assert_eq!(f.panels.len(), 1);
+        let pts = &f.panels[0].series[0].pts;
+        let a = s.need("amplitude").unwrap();
+        let top = a.iter().copied().fold(0.0, f64::max);
+        let fr = s.need("frequency").unwrap();
+        let last = a.iter().rposition(|v| *v >= 1e-3 * top).unwrap();
+        assert!(pts.iter().all(|p| p.0 <= 1.2 * fr[last] + 1e-12));
+        assert!(
+            pts.len() > last && pts.len() < fr.len(),
+            "{} of {}",
+            pts.len(),
+            fr.len()
+        );
+        // two events in one step
+        let two = DYNAMICS.replacen(",slip\n", ",slip stick\n", 1);
+        let f = fig("dyn.csv", &two, &args(PlotKind::Auto));
+        let n = names(&f.panels[0]);
+        assert!(n.contains(&"slip") && n.contains(&"stick"), "{n:?}");
     }
 
     #[test]

@@ -16,7 +16,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc::{channel, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
+use vibrissa::dynamics::{DynDragOptions, DynamicsOptions};
 use vibrissa::fit::{CorrugationFit, FitOptions, Signal, Trace};
+use vibrissa::modes::{BaseLoad, ModeOptions, TipCondition};
 use vibrissa::surface::{FrictionProfile, SurfaceProfile};
 use vibrissa::{
     BranchChoice, ContactModel, DragOptions, Method, Physical, Precurvature, Rod, ScanOptions,
@@ -447,6 +449,9 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     d.set_item("drag_d_max", vibrissa::limits::DEFAULT_DRAG_D_MAX)?;
     d.set_item("drag_points", vibrissa::limits::DEFAULT_DRAG_POINTS)?;
     d.set_item("whisk", to_py(py, &WhiskOptions::default())?)?;
+    d.set_item("dynamics_free", to_py(py, &DynamicsOptions::default())?)?;
+    d.set_item("dynamics_drag", to_py(py, &DynDragOptions::default())?)?;
+    d.set_item("modes", to_py(py, &ModeOptions::default())?)?;
     Ok(d)
 }
 
@@ -1019,6 +1024,145 @@ fn fit<'py>(
     Ok(out)
 }
 
+/// The rod's time unit in seconds (keratin's density, as the program's `t_s`), or None.
+fn time_unit(rod: &Rod) -> Option<f64> {
+    rod.physical()
+        .map(|p| vibrissa::inertia::time_unit_s(p, vibrissa::inertia::KERATIN_DENSITY))
+}
+
+/// The rod released at t = 0 (`vibrissa dynamics free`): from its equilibrium under the tip
+/// force `release_force`, and/or with `foot_moment` stepped onto its support; a dict with the
+/// library's `DynamicsResult` (`samples`, `stats`; what the program's `--json` prints) plus
+/// `units` and `time_unit_s`. Ctrl-C stops waiting for it.
+#[pyfunction]
+#[pyo3(signature = (rod, *, release_force=(0.0, 0.0), foot_moment=0.0, dt=DynamicsOptions::default().dt, t_end=DynamicsOptions::default().t_end, foot_damping=0.0, grid=DynamicsOptions::default().grid, tol=DynamicsOptions::default().tol))]
+#[allow(clippy::too_many_arguments)]
+fn dynamics_free<'py>(
+    py: Python<'py>,
+    rod: &PyRod,
+    release_force: (f64, f64),
+    foot_moment: f64,
+    dt: f64,
+    t_end: f64,
+    foot_damping: f64,
+    grid: usize,
+    tol: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = DynamicsOptions {
+        dt,
+        t_end,
+        foot_damping,
+        foot_moment,
+        release_force: [release_force.0, release_force.1],
+        grid,
+        tol,
+        ..DynamicsOptions::default()
+    };
+    opts.validate().map_err(py_err)?;
+    let rod = rod.0.clone();
+    let (units, unit_s) = (rod.units(), time_unit(&rod));
+    let r = interruptible(py, Arc::new(AtomicBool::new(false)), move || {
+        vibrissa::dynamics::free(&rod, &|_| [0.0, 0.0], &opts)
+    })?
+    .map_err(py_err)?;
+    let out = to_py(py, &r)?;
+    out.set_item("units", units_dict(py, units)?)?;
+    out.set_item("time_unit_s", unit_s)?;
+    Ok(out)
+}
+
+/// The drag in time (`vibrissa dynamics drag`): a dict with the library's `DynDragResult`
+/// (`samples`, `events`, `stop`, `stats`; what the program's `--json` prints) plus `units` and
+/// `time_unit_s`. Ctrl-C stops waiting for it.
+#[pyfunction]
+#[pyo3(signature = (rod, surface, *, speed=DynDragOptions::default().speed, ramp=DynDragOptions::default().ramp, d_max=DynDragOptions::default().d_max, mu_s=DynDragOptions::default().mu_s, mu_k=DynDragOptions::default().mu_k, dt=DynDragOptions::default().dt, foot_damping=0.0))]
+#[allow(clippy::too_many_arguments)]
+fn dynamics_drag<'py>(
+    py: Python<'py>,
+    rod: &PyRod,
+    surface: &PySurface,
+    speed: f64,
+    ramp: f64,
+    d_max: f64,
+    mu_s: f64,
+    mu_k: f64,
+    dt: f64,
+    foot_damping: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let opts = DynDragOptions {
+        speed,
+        ramp,
+        d_max,
+        mu_s,
+        mu_k,
+        dt,
+        foot_damping,
+        ..DynDragOptions::default()
+    };
+    opts.validate().map_err(py_err)?;
+    let (rod, surface) = (rod.0.clone(), surface.s.clone());
+    let (units, unit_s) = (rod.units(), time_unit(&rod));
+    let r = interruptible(py, Arc::new(AtomicBool::new(false)), move || {
+        vibrissa::dynamics::drag(&rod, &surface, &opts)
+    })?
+    .map_err(py_err)?;
+    let out = to_py(py, &r)?;
+    out.set_item("units", units_dict(py, units)?)?;
+    out.set_item("time_unit_s", unit_s)?;
+    Ok(out)
+}
+
+/// Natural frequencies of a static state given by its foot values (`vibrissa modes`): a dict
+/// with the library's `ModesResult` (what the program's `--json` prints) plus `time_unit_s`.
+/// `tip`: "free", "pinned" or "sliding" (on the line of inclination `tip_angle`).
+#[pyfunction]
+#[pyo3(signature = (rod, *, m_base=0.0, fx=0.0, fy=0.0, tip="free", tip_angle=0.0, count=ModeOptions::default().count, rotary_inertia=ModeOptions::default().rotary_inertia, points=ModeOptions::default().shape_points))]
+#[allow(clippy::too_many_arguments)]
+fn modes<'py>(
+    py: Python<'py>,
+    rod: &PyRod,
+    m_base: f64,
+    fx: f64,
+    fy: f64,
+    tip: &str,
+    tip_angle: f64,
+    count: usize,
+    rotary_inertia: f64,
+    points: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    let tip = match tip {
+        "free" => TipCondition::Free,
+        "pinned" => TipCondition::Pinned,
+        "sliding" => {
+            vibrissa::limits::TIP_ANGLE
+                .check("tip_angle", tip_angle)
+                .map_err(py_err)?;
+            TipCondition::Sliding { angle: tip_angle }
+        }
+        other => {
+            return Err(input(format!(
+                "invalid tip '{other}': valid values are free, pinned, sliding"
+            )))
+        }
+    };
+    let opts = ModeOptions {
+        count,
+        rotary_inertia,
+        shape_points: points,
+        ..ModeOptions::default()
+    };
+    let load = BaseLoad { m_base, fx, fy };
+    let rod = rod.0.clone();
+    let unit_s = time_unit(&rod);
+    let r = interruptible(py, Arc::new(AtomicBool::new(false)), move || {
+        vibrissa::modes::modes(&rod, &load, tip, &opts)
+    })?
+    .map_err(py_err)?;
+    let out = to_py(py, &r)?;
+    out.set_item("time_unit_s", unit_s)?;
+    Ok(out)
+}
+
 /// `vibrissa._core`: see the `vibrissa` package.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -1037,5 +1181,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(locate, m)?)?;
     m.add_function(wrap_pyfunction!(solve_peg, m)?)?;
     m.add_function(wrap_pyfunction!(fit, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics_free, m)?)?;
+    m.add_function(wrap_pyfunction!(dynamics_drag, m)?)?;
+    m.add_function(wrap_pyfunction!(modes, m)?)?;
     Ok(())
 }

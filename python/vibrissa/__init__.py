@@ -66,6 +66,9 @@ __all__ = [
     "solve_peg",
     "limits",
     "fit",
+    "dynamics_free",
+    "dynamics_drag",
+    "modes",
 ]
 
 Column = Union[np.ndarray, List[Any]]
@@ -727,4 +730,111 @@ def fit(
         segments=segments,
         contact=contact,
         start=start,
+    )
+
+
+def _in_columns(r: Dict[str, Any], key: str) -> Dict[str, Any]:
+    """``r[key]`` (a list of dicts) as columns, the rows kept as ``r[key + "_rows"]``."""
+    r[key + "_rows"] = r[key]
+    r[key] = columns(r[key])
+    return r
+
+
+def dynamics_free(
+    rod: Any,
+    *,
+    release_force: Tuple[float, float] = (0.0, 0.0),
+    foot_moment: float = 0.0,
+    dt: float = _DEFAULTS["dynamics_free"]["dt"],
+    t_end: float = _DEFAULTS["dynamics_free"]["t_end"],
+    foot_damping: float = 0.0,
+    grid: int = _DEFAULTS["dynamics_free"]["grid"],
+    tol: float = _DEFAULTS["dynamics_free"]["tol"],
+) -> Dict[str, Any]:
+    """The rod released at t = 0 (as ``vibrissa dynamics free``): from its equilibrium under
+    the dead tip force ``release_force = (fx, fy)`` (removed at t = 0), and/or with the moment
+    ``foot_moment`` stepped onto its support (it turns the foot through the rod's
+    ``support_compliance``), the support's damper ``foot_damping``, time step ``dt`` to
+    ``t_end`` (normalized time). A dict: ``samples`` (columns ``t``, ``tip_x``, ``tip_y``,
+    ``tip_vx``, ``tip_vy``, ``theta``, ``m_base``, ``gx_base``, ``gy_base`` (the program's
+    ``fx``, ``fy``), ``kinetic``, ``elastic``, ``dissipated`` (the program's ``damper``)),
+    ``samples_rows`` (the same as dicts: the program's ``--json``), ``stats``, ``units`` and
+    ``time_unit_s`` (seconds per time unit for a rod with physical dimensions, keratin's
+    density; else None)."""
+    r = _core.dynamics_free(
+        rod,
+        release_force=(float(release_force[0]), float(release_force[1])),
+        foot_moment=foot_moment,
+        dt=dt,
+        t_end=t_end,
+        foot_damping=foot_damping,
+        grid=grid,
+        tol=tol,
+    )
+    return _in_columns(r, "samples")
+
+
+def dynamics_drag(
+    rod: Any,
+    surface: Any = None,
+    *,
+    speed: float = _DEFAULTS["dynamics_drag"]["speed"],
+    ramp: float = _DEFAULTS["dynamics_drag"]["ramp"],
+    d_max: float = _DEFAULTS["dynamics_drag"]["d_max"],
+    mu_s: float = _DEFAULTS["dynamics_drag"]["mu_s"],
+    mu_k: float = _DEFAULTS["dynamics_drag"]["mu_k"],
+    dt: float = _DEFAULTS["dynamics_drag"]["dt"],
+    foot_damping: float = 0.0,
+) -> Dict[str, Any]:
+    """The drag in time (as ``vibrissa dynamics drag``): the foot moves along x at ``speed``
+    (rising smoothly over ``ramp``) with the tip on the flat ``surface`` under Coulomb friction
+    ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``. A dict: ``samples``
+    (columns as the program's CSV: ``t``, ``d``, ``tip_x``, ..., ``state``, ``normal``,
+    ``tangential``, ``fx``, ``fy``, ``m_base``, energies), ``samples_rows`` (the same as dicts:
+    the program's ``--json``), ``events`` (``slip``, ``stick``, ``lift_off`` with their time and
+    place), ``stop``, ``stats``, ``units``, ``time_unit_s``."""
+    if surface is None:
+        surface = Surface()
+    r = _core.dynamics_drag(
+        rod,
+        surface,
+        speed=speed,
+        ramp=ramp,
+        d_max=d_max,
+        mu_s=mu_s,
+        mu_k=mu_k,
+        dt=dt,
+        foot_damping=foot_damping,
+    )
+    return _in_columns(r, "samples")
+
+
+def modes(
+    rod: Any,
+    *,
+    m_base: float = 0.0,
+    fx: float = 0.0,
+    fy: float = 0.0,
+    tip: str = "free",
+    tip_angle: float = 0.0,
+    count: int = _DEFAULTS["modes"]["count"],
+    rotary_inertia: float = _DEFAULTS["modes"]["rotary_inertia"],
+    points: int = _DEFAULTS["modes"]["shape_points"],
+) -> Dict[str, Any]:
+    """Natural frequencies of a static state (as ``vibrissa modes``) given by its foot values
+    ``m_base``, ``fx``, ``fy`` (default: the free, unloaded rod), the tip ``"free"``,
+    ``"pinned"`` (also a tip stuck by friction) or ``"sliding"`` on the line of inclination
+    ``tip_angle``. A dict: the library's result (``modes``: one dict per mode with ``omega2``,
+    ``omega``, and ``points`` samples of its shape; ``stable``; what the program's ``--json``
+    prints) plus ``time_unit_s`` (so ``omega / (2 pi time_unit_s)`` is the frequency in Hz)."""
+    return _core.modes(
+        rod,
+        m_base=m_base,
+        fx=fx,
+        fy=fy,
+        tip=tip,
+        tip_angle=tip_angle,
+        count=count,
+        rotary_inertia=rotary_inertia,
+        points=points,
     )

@@ -173,3 +173,38 @@ def fit(
     contact: Optional[str] = None,
     start: Optional[str] = None,
 ) -> Dict[str, Any]: ...
+def dynamics_free(
+    rod: Rod,
+    *,
+    release_force: Tuple[float, float] = (0.0, 0.0),
+    foot_moment: float = 0.0,
+    dt: float = 0.01,
+    t_end: float = 1.0,
+    foot_damping: float = 0.0,
+    grid: int = 200,
+    tol: float = 1e-10,
+) -> Dict[str, Any]: ...
+def dynamics_drag(
+    rod: Rod,
+    surface: Surface,
+    *,
+    speed: float = 0.01,
+    ramp: float = 2.0,
+    d_max: float = 0.03,
+    mu_s: float = 0.5,
+    mu_k: float = 0.3,
+    dt: float = 0.01,
+    foot_damping: float = 0.0,
+) -> Dict[str, Any]: ...
+def modes(
+    rod: Rod,
+    *,
+    m_base: float = 0.0,
+    fx: float = 0.0,
+    fy: float = 0.0,
+    tip: str = "free",
+    tip_angle: float = 0.0,
+    count: int = 3,
+    rotary_inertia: float = 0.0,
+    points: int = 0,
+) -> Dict[str, Any]: ...

@@ -90,7 +90,8 @@ impl Default for DynamicsOptions {
 }
 
 impl DynamicsOptions {
-    fn validate(&self) -> Result<(), VibrissaError> {
+    /// Checks every value; the error names it and its valid range.
+    pub fn validate(&self) -> Result<(), VibrissaError> {
         let bad = |name: &str, v: f64, r: &str| Err(VibrissaError::range(name, v, r));
         if !(self.dt > 0.0 && self.dt <= 1.0) {
             return bad("dt", self.dt, "(0, 1]");
