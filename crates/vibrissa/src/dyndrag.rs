@@ -35,8 +35,9 @@
 //! Energy, by the scheme's own identity (the trapezoidal rule of Newmark's rule on every force
 //! at the boundary): the foot's work `W = Σ −(Gx(0)ⁿ + Gx(0)ⁿ⁺¹)/2 (dⁿ⁺¹ − dⁿ)`, the work friction
 //! takes `D_f = Σ −(Gx(1)ⁿ + Gx(1)ⁿ⁺¹)/2 (x(1)ⁿ⁺¹ − x(1)ⁿ)` (zero while stuck), the damper's
-//! `D_c` as in `free`; `W = ΔK + ΔE + D_f + D_c`, exact for a linear rod, to the time scheme's
-//! error for this one.
+//! `D_c` as in `free`, and the rod's internal and external damping's `D_i`, `D_e` (module
+//! `dynamics`); `W = ΔK + ΔE + D_f + D_c + D_i + D_e`, exact for a linear rod, to the time
+//! scheme's error for this one.
 
 use crate::config::SolverConfig;
 use crate::rothe::{Rothe, Settings, TipBc, Trial};
@@ -70,6 +71,13 @@ pub struct DynDragOptions {
     pub event_tol: f64,
     /// Damper of the foot's support `c`, `≥ 0`. Default 0.
     pub foot_damping: f64,
+    /// The rod's internal (Kelvin–Voigt) damping `γ_i`, in `[0, 1e6]`: the bending moment
+    /// `m = ((κ − κ0) + γ_i κ_t)/b` (a material whose stress is `E(ε + γ_i ε_t)`; every mode of
+    /// the linearized rod decays at `γ_i ω²/2`). Default 0.
+    pub internal_damping: f64,
+    /// External viscous damping `γ_e`, in `[0, 1e6]`: a distributed force `−γ_e μ(s) r_t`
+    /// (every mode decays at `γ_e/2`). Default 0.
+    pub external_damping: f64,
     /// Intervals of the history grid in `s`, even, in `[20, 100000]`. Default 200.
     pub grid: usize,
     /// Tolerance of each step's collocation, in `[1e-13, 1e-4]`. Default 1e-10.
@@ -92,6 +100,8 @@ impl Default for DynDragOptions {
             dt: 0.01,
             event_tol: 1e-10,
             foot_damping: 0.0,
+            internal_damping: 0.0,
+            external_damping: 0.0,
             grid: 200,
             tol: 1e-10,
             scheme: bvp::Scheme::Lobatto6,
@@ -125,6 +135,12 @@ impl DynDragOptions {
         }
         if !(self.foot_damping >= 0.0 && self.foot_damping.is_finite()) {
             return bad("foot_damping", self.foot_damping, "[0, inf)");
+        }
+        if !(self.internal_damping >= 0.0 && self.internal_damping <= 1e6) {
+            return bad("internal_damping", self.internal_damping, "[0, 1e6]");
+        }
+        if !(self.external_damping >= 0.0 && self.external_damping <= 1e6) {
+            return bad("external_damping", self.external_damping, "[0, 1e6]");
         }
         if !(20..=100_000).contains(&self.grid) || self.grid % 2 == 1 {
             return bad("grid", self.grid as f64, "[20, 100000], even");
@@ -286,6 +302,10 @@ pub struct DragSample {
     pub friction: f64,
     /// Energy the foot's damper took so far.
     pub damper: f64,
+    /// Energy the rod's internal (Kelvin–Voigt) damping took so far.
+    pub internal_damping: f64,
+    /// Energy the external viscous damping took so far.
+    pub external_damping: f64,
 }
 
 /// Why a dynamic drag ended.
@@ -533,6 +553,8 @@ impl<'r> Drive<'r, '_> {
             foot_work: self.foot_work,
             friction: self.friction,
             damper: p.dissipated,
+            internal_damping: p.internal_damping,
+            external_damping: p.external_damping,
         }
     }
 
@@ -697,6 +719,8 @@ pub fn drag(
         tol: opts.tol,
         scheme: opts.scheme,
         damping: opts.foot_damping,
+        internal_damping: opts.internal_damping,
+        external_damping: opts.external_damping,
         short_steps: true,
     };
     let grid = Rothe::grid_of(&settings);
