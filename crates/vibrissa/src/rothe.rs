@@ -76,6 +76,28 @@ pub(crate) enum TipBc {
     /// (`ratio = dir·μk`: with the normal force `N = −Gy(1)`, friction `−dir·μk·N` against
     /// the slide in direction `dir`).
     Sliding { y: f64, ratio: f64 },
+    /// The tip on the line `y = y`, sliding in direction `dir` with the kinetic friction
+    /// `μk(|ẋ(1)|)` of the friction table ([`Rothe::friction_table`]): `Gx(1) = dir·μk·Gy(1)`,
+    /// the tip's velocity at the step's end by the trapezoidal rule, `2/Δt (x(1) − xⁿ) − ẋⁿ`.
+    SlidingRate { y: f64, dir: f64 },
+}
+
+/// Kinetic friction `μk(v)` of a table of `(v, μk)` points (speeds increasing): piecewise
+/// linear, constant beyond its ends; with its slope `dμk/dv`.
+pub(crate) fn mu_k_of(table: &[[f64; 2]], v: f64) -> (f64, f64) {
+    let (first, last) = (table[0], table[table.len() - 1]);
+    if v <= first[0] {
+        return (first[1], 0.0);
+    }
+    if v >= last[0] {
+        return (last[1], 0.0);
+    }
+    let k = table
+        .partition_point(|p| p[0] <= v)
+        .clamp(1, table.len() - 1);
+    let (a, b) = (table[k - 1], table[k]);
+    let slope = (b[1] - a[1]) / (b[0] - a[0]);
+    (a[1] + slope * (v - a[0]), slope)
 }
 
 /// Cubic Hermite interpolation of values `v` and derivatives `d` on the uniform grid
@@ -152,6 +174,19 @@ struct Step<'a> {
     foot: [f64; 2],
     /// The tip's conditions.
     tip: TipBc,
+    /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ)` and `2/Δt`.
+    table: &'a [[f64; 2]],
+    tip_then: [f64; 2],
+    two_tau: f64,
+}
+
+impl Step<'_> {
+    /// The slip velocity at the step's end and `μk`, `dμk/dx(1)` there.
+    fn rate_friction(&self, x1: f64) -> (f64, f64) {
+        let v = self.two_tau * (x1 - self.tip_then[0]) - self.tip_then[1];
+        let (mk, slope) = mu_k_of(self.table, v.abs());
+        (mk, slope * v.signum() * self.two_tau)
+    }
 }
 
 impl Bvp for Step<'_> {
@@ -206,7 +241,7 @@ impl Bvp for Step<'_> {
     fn bc_jacobian(
         &self,
         _za: &[f64],
-        _zb: &[f64],
+        zb: &[f64],
         _p: &[f64],
         dga: &mut [f64],
         dgb: &mut [f64],
@@ -233,6 +268,13 @@ impl Bvp for Step<'_> {
                 dgb[30 + 4] = 1.0;
                 dgb[30 + 5] = -ratio;
             }
+            TipBc::SlidingRate { dir, .. } => {
+                let (mk, dmk) = self.rate_friction(zb[0]);
+                dgb[24 + 1] = 1.0;
+                dgb[30 + 4] = 1.0;
+                dgb[30 + 5] = -dir * mk;
+                dgb[30] = -dir * dmk * zb[5];
+            }
         }
         true
     }
@@ -255,6 +297,11 @@ impl Bvp for Step<'_> {
             TipBc::Sliding { y, ratio } => {
                 res[4] = zb[1] - y;
                 res[5] = zb[4] - ratio * zb[5];
+            }
+            TipBc::SlidingRate { y, dir } => {
+                let (mk, _) = self.rate_friction(zb[0]);
+                res[4] = zb[1] - y;
+                res[5] = zb[4] - dir * mk * zb[5];
             }
         }
     }
@@ -358,6 +405,8 @@ pub(crate) struct Rothe<'r> {
     external_dissipated: f64,
     /// Work done.
     pub stats: DynStats,
+    /// The kinetic friction's table `(|v|, μk)` of [`TipBc::SlidingRate`] (empty: not used).
+    pub friction_table: Vec<[f64; 2]>,
 }
 
 /// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
@@ -431,6 +480,9 @@ impl<'r> Rothe<'r> {
             moment: 0.0,
             foot,
             tip,
+            table: &[],
+            tip_then: [0.0, 0.0],
+            two_tau: 0.0,
         };
         let sol = solver
             .solve(&statics, guess)
@@ -461,6 +513,7 @@ impl<'r> Rothe<'r> {
             internal_dissipated: 0.0,
             external_dissipated: 0.0,
             stats: DynStats::default(),
+            friction_table: vec![],
             grid,
             profile,
             stiffness,
@@ -541,6 +594,13 @@ impl<'r> Rothe<'r> {
         self.acc[0][self.ng] = 0.0;
     }
 
+    /// The tip's y velocity and acceleration set to zero at the grid's last node (a plastic
+    /// impact on the surface `y = η`: see `dynamics::drag`).
+    pub fn hold_tip_y(&mut self) {
+        self.vel[1][self.ng] = 0.0;
+        self.acc[1][self.ng] = 0.0;
+    }
+
     /// Solves the step of length `tau` with the foot at `foot`, the tip's condition `tip` and the
     /// moment `moment` on the support; the state is left as it is.
     pub fn trial(
@@ -612,6 +672,9 @@ impl<'r> Rothe<'r> {
             moment,
             foot,
             tip,
+            table: &self.friction_table,
+            tip_then: [self.pos[0][ng], self.vel[0][ng]],
+            two_tau: 2.0 / tau,
         };
         let mut guess = Guess::from(&self.sol);
         if gs != self.gs {
