@@ -17,8 +17,10 @@
 //! **slip** where `|T|` reaches `μs N` (the tip then slides in the direction `dir = sign T` it
 //! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
 //! then sticks where it is; if it needs more than `μs N` there, the next step's search finds
-//! the slip at once), **lift-off** where `N` falls to zero (the drag ends there: a flying tip
-//! is not modelled). A sticking tip's velocity and acceleration at the tip are set to zero:
+//! the slip at once), **lift-off** where `N` falls to zero (the drag ends there, or with
+//! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
+//! plastic impact, and the drag ends; docs/model.md). With `mu_k_table` the kinetic friction
+//! depends on the slip velocity at the step's end, `T = dir·μk(|ẋ(1)|)·N`. A sticking tip's velocity and acceleration at the tip are set to zero:
 //! the velocity is zero to the event's tolerance, and the acceleration of a continuous rod
 //! jumps at the point that sticks only (the force holding it rises like `√t` from the moment
 //! it sticks), which Newmark's history would otherwise carry on as an alternating spurious
@@ -35,8 +37,9 @@
 //! Energy, by the scheme's own identity (the trapezoidal rule of Newmark's rule on every force
 //! at the boundary): the foot's work `W = Σ −(Gx(0)ⁿ + Gx(0)ⁿ⁺¹)/2 (dⁿ⁺¹ − dⁿ)`, the work friction
 //! takes `D_f = Σ −(Gx(1)ⁿ + Gx(1)ⁿ⁺¹)/2 (x(1)ⁿ⁺¹ − x(1)ⁿ)` (zero while stuck), the damper's
-//! `D_c` as in `free`; `W = ΔK + ΔE + D_f + D_c`, exact for a linear rod, to the time scheme's
-//! error for this one.
+//! `D_c` as in `free`, and the rod's internal and external damping's `D_i`, `D_e` (module
+//! `dynamics`); `W = ΔK + ΔE + D_f + D_c + D_i + D_e`, exact for a linear rod, to the time
+//! scheme's error for this one.
 
 use crate::config::SolverConfig;
 use crate::rothe::{Rothe, Settings, TipBc, Trial};
@@ -64,12 +67,23 @@ pub struct DynDragOptions {
     pub mu_s: f64,
     /// Kinetic friction coefficient `μk ∈ [0, μs)`. Default 0.3.
     pub mu_k: f64,
+    /// Kinetic friction depending on the slip velocity: points `(|v|, μk)`, speeds `≥ 0`
+    /// strictly increasing, each `μk ∈ [0, μs)`; `μk(|v|)` piecewise linear between them and
+    /// constant beyond the ends. When not empty it replaces `mu_k`. Default empty.
+    pub mu_k_table: Vec<[f64; 2]>,
     /// Time step, in `(0, 1]`. Default 0.01.
     pub dt: f64,
     /// Tolerance in time of the events' places, in `[1e-14, 1e-3]`. Default 1e-10.
     pub event_tol: f64,
     /// Damper of the foot's support `c`, `≥ 0`. Default 0.
     pub foot_damping: f64,
+    /// The rod's internal (Kelvin–Voigt) damping `γ_i`, in `[0, 1e6]`: the bending moment
+    /// `m = ((κ − κ0) + γ_i κ_t)/b` (a material whose stress is `E(ε + γ_i ε_t)`; every mode of
+    /// the linearized rod decays at `γ_i ω²/2`). Default 0.
+    pub internal_damping: f64,
+    /// External viscous damping `γ_e`, in `[0, 1e6]`: a distributed force `−γ_e μ(s) r_t`
+    /// (every mode decays at `γ_e/2`). Default 0.
+    pub external_damping: f64,
     /// Intervals of the history grid in `s`, even, in `[20, 100000]`. Default 200.
     pub grid: usize,
     /// Tolerance of each step's collocation, in `[1e-13, 1e-4]`. Default 1e-10.
@@ -79,6 +93,13 @@ pub struct DynDragOptions {
     pub scheme: bvp::Scheme,
     /// Most events before the drag stops, in `[1, 1e6]`. Default 10000.
     pub max_events: usize,
+    /// After a lift-off the tip flies (free tip) until it touches the surface again: the event
+    /// `touchdown`, located like the others on the tip's gap `η − y(1)`, a plastic impact (the
+    /// tip's velocity normal to the surface set to zero, the kinetic energy this takes booked
+    /// as `impact`), where the drag ends (stop `touchdown`: the motion after the impact is not
+    /// modelled, docs/model.md). `false`: lift-off ends the drag (stop `lift_off`). Default
+    /// `false`.
+    pub flight: bool,
 }
 
 impl Default for DynDragOptions {
@@ -89,13 +110,17 @@ impl Default for DynDragOptions {
             d_max: 0.03,
             mu_s: 0.5,
             mu_k: 0.3,
+            mu_k_table: vec![],
             dt: 0.01,
             event_tol: 1e-10,
             foot_damping: 0.0,
+            internal_damping: 0.0,
+            external_damping: 0.0,
             grid: 200,
             tol: 1e-10,
             scheme: bvp::Scheme::Lobatto6,
             max_events: 10_000,
+            flight: false,
         }
     }
 }
@@ -117,6 +142,18 @@ impl DynDragOptions {
         limits::DRAG_D_MAX.check("d_max", self.d_max)?;
         limits::MU_S.check("mu_s", self.mu_s)?;
         limits::kinetic_friction(self.mu_s).check("mu_k", self.mu_k)?;
+        let mut last = f64::NEG_INFINITY;
+        for p in &self.mu_k_table {
+            if !(p[0] >= 0.0 && p[0].is_finite() && p[0] > last) {
+                return bad(
+                    "mu_k_table speed",
+                    p[0],
+                    "[0, inf), strictly increasing along the table",
+                );
+            }
+            last = p[0];
+            limits::kinetic_friction(self.mu_s).check("mu_k_table mu_k", p[1])?;
+        }
         if !(self.dt > 0.0 && self.dt <= 1.0) {
             return bad("dt", self.dt, "(0, 1]");
         }
@@ -125,6 +162,12 @@ impl DynDragOptions {
         }
         if !(self.foot_damping >= 0.0 && self.foot_damping.is_finite()) {
             return bad("foot_damping", self.foot_damping, "[0, inf)");
+        }
+        if !(self.internal_damping >= 0.0 && self.internal_damping <= 1e6) {
+            return bad("internal_damping", self.internal_damping, "[0, 1e6]");
+        }
+        if !(self.external_damping >= 0.0 && self.external_damping <= 1e6) {
+            return bad("external_damping", self.external_damping, "[0, 1e6]");
         }
         if !(20..=100_000).contains(&self.grid) || self.grid % 2 == 1 {
             return bad("grid", self.grid as f64, "[20, 100000], even");
@@ -185,6 +228,8 @@ pub enum ContactState {
     SlidingForward,
     /// The tip slides towards −x.
     SlidingBack,
+    /// The tip flies, off the surface (with `DynDragOptions::flight`).
+    Flying,
 }
 
 impl ContactState {
@@ -194,11 +239,12 @@ impl ContactState {
             ContactState::Stuck => "stuck",
             ContactState::SlidingForward => "sliding_forward",
             ContactState::SlidingBack => "sliding_back",
+            ContactState::Flying => "flying",
         }
     }
     fn dir(self) -> f64 {
         match self {
-            ContactState::Stuck => 0.0,
+            ContactState::Stuck | ContactState::Flying => 0.0,
             ContactState::SlidingForward => 1.0,
             ContactState::SlidingBack => -1.0,
         }
@@ -213,8 +259,11 @@ pub enum DragEventKind {
     Slip,
     /// The sliding tip stops and sticks (its velocity along the surface zero).
     Stick,
-    /// The normal force falls to zero: the drag ends.
+    /// The normal force falls to zero: the drag ends (or the tip flies, with
+    /// `DynDragOptions::flight`).
     LiftOff,
+    /// The flying tip reaches the surface again (a plastic impact).
+    Touchdown,
 }
 
 impl DragEventKind {
@@ -224,6 +273,7 @@ impl DragEventKind {
             DragEventKind::Slip => "slip",
             DragEventKind::Stick => "stick",
             DragEventKind::LiftOff => "lift_off",
+            DragEventKind::Touchdown => "touchdown",
         }
     }
 }
@@ -286,6 +336,12 @@ pub struct DragSample {
     pub friction: f64,
     /// Energy the foot's damper took so far.
     pub damper: f64,
+    /// Energy the rod's internal (Kelvin–Voigt) damping took so far.
+    pub internal_damping: f64,
+    /// Energy the external viscous damping took so far.
+    pub external_damping: f64,
+    /// Kinetic energy the touchdowns' impacts took so far.
+    pub impact: f64,
 }
 
 /// Why a dynamic drag ended.
@@ -301,6 +357,12 @@ pub enum DynDragStop {
     },
     /// `max_events` events happened.
     MaxEvents,
+    /// The flying tip touched the surface again at displacement `d` (with
+    /// `DynDragOptions::flight`).
+    Touchdown {
+        /// Where.
+        d: f64,
+    },
 }
 
 impl fmt::Display for DynDragStop {
@@ -309,6 +371,7 @@ impl fmt::Display for DynDragStop {
             DynDragStop::DMax => write!(f, "d_max"),
             DynDragStop::LiftOff { d } => write!(f, "lift-off at d = {d}"),
             DynDragStop::MaxEvents => write!(f, "max_events"),
+            DynDragStop::Touchdown { d } => write!(f, "touchdown at d = {d}"),
         }
     }
 }
@@ -435,6 +498,7 @@ struct Drive<'r, 'o> {
     fresh_slip: bool,
     foot_work: f64,
     friction: f64,
+    impact: f64,
     samples: Vec<DragSample>,
     events: Vec<DynDragEvent>,
     stats: DragStats,
@@ -449,6 +513,11 @@ impl<'r> Drive<'r, '_> {
     fn bc(&self) -> TipBc {
         match self.state {
             ContactState::Stuck => TipBc::Stuck([self.anchor, self.eta]),
+            ContactState::Flying => TipBc::Force([0.0, 0.0]),
+            s if !self.o.mu_k_table.is_empty() => TipBc::SlidingRate {
+                y: self.eta,
+                dir: s.dir(),
+            },
             s => TipBc::Sliding {
                 y: self.eta,
                 ratio: s.dir() * self.o.mu_k,
@@ -474,10 +543,12 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// The event functions (`< 0` while the contact holds): `−N`, and `|T| − μs N` (stuck) or
-    /// `−dir·ẋ(1)` (sliding), from the forces and the tip's velocity.
-    fn events_of(&self, n: f64, t: f64, vx: f64) -> [f64; 2] {
+    /// `−dir·ẋ(1)` (sliding), from the forces and the tip's velocity; flying: none, and the
+    /// tip's height over the surface `y(1) − η` (minus the gap).
+    fn events_of(&self, n: f64, t: f64, vx: f64, y: f64) -> [f64; 2] {
         let phase = match self.state {
             ContactState::Stuck => t.abs() - self.o.mu_s * n,
+            ContactState::Flying => return [-1.0, y - self.eta],
             s => -s.dir() * vx,
         };
         [-n, phase]
@@ -485,12 +556,14 @@ impl<'r> Drive<'r, '_> {
 
     fn events_after(&self, tr: &Trial) -> [f64; 2] {
         let (n, t) = contact_forces(tr.force(1));
-        self.events_of(n, t, self.rothe.tip_velocity(tr)[0])
+        let y = tr.sol.right()[1];
+        self.events_of(n, t, self.rothe.tip_velocity(tr)[0], y)
     }
 
     fn events_now(&self) -> [f64; 2] {
         let (n, t) = contact_forces(self.rothe.force(1));
-        self.events_of(n, t, self.rothe.sample(self.t).tip_vx)
+        let p = self.rothe.sample(self.t);
+        self.events_of(n, t, p.tip_vx, p.tip_y)
     }
 
     /// Takes the step: the energies by the trapezoidal rule, a sample.
@@ -533,6 +606,9 @@ impl<'r> Drive<'r, '_> {
             foot_work: self.foot_work,
             friction: self.friction,
             damper: p.dissipated,
+            internal_damping: p.internal_damping,
+            external_damping: p.external_damping,
+            impact: self.impact,
         }
     }
 
@@ -563,7 +639,13 @@ impl<'r> Drive<'r, '_> {
     fn apply(&mut self, which: usize) -> Option<DynDragStop> {
         let (normal, tangential) = contact_forces(self.rothe.force(1));
         let kind = if which == LIFT {
+            if self.o.flight {
+                self.state = ContactState::Flying;
+            }
             DragEventKind::LiftOff
+        } else if self.state == ContactState::Flying {
+            self.touchdown();
+            DragEventKind::Touchdown
         } else if self.state == ContactState::Stuck {
             self.state = if tangential >= 0.0 {
                 ContactState::SlidingForward
@@ -591,10 +673,37 @@ impl<'r> Drive<'r, '_> {
             tangential,
             state: self.state,
         });
-        if kind == DragEventKind::LiftOff {
+        if kind == DragEventKind::LiftOff && !self.o.flight {
             return Some(DynDragStop::LiftOff { d: self.d });
         }
+        if kind == DragEventKind::Touchdown {
+            return Some(DynDragStop::Touchdown { d: self.d });
+        }
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
+    }
+
+    /// The plastic impact of the tip on the surface: its velocity (and acceleration) normal to
+    /// the surface set to zero at the tip's node, the kinetic energy this takes booked as
+    /// `impact` (the event's sample is the state after the impact); the contact from here on
+    /// slides the way the tip moves along the surface (sticks, if it does not move).
+    fn touchdown(&mut self) {
+        let before = self.rothe.sample(self.t).kinetic;
+        self.rothe.hold_tip_y();
+        let after = self.rothe.sample(self.t);
+        self.impact += before - after.kinetic;
+        if let Some(last) = self.samples.last_mut() {
+            last.tip_vy = after.tip_vy;
+            last.kinetic = after.kinetic;
+            last.impact = self.impact;
+        }
+        self.state = if after.tip_vx > 0.0 {
+            ContactState::SlidingForward
+        } else if after.tip_vx < 0.0 {
+            ContactState::SlidingBack
+        } else {
+            self.anchor = after.tip_x;
+            ContactState::Stuck
+        };
     }
 
     /// A lower end of the search in a step that starts a slip (the velocity zero at the start):
@@ -697,11 +806,14 @@ pub fn drag(
         tol: opts.tol,
         scheme: opts.scheme,
         damping: opts.foot_damping,
+        internal_damping: opts.internal_damping,
+        external_damping: opts.external_damping,
         short_steps: true,
     };
     let grid = Rothe::grid_of(&settings);
     let (guess, tip) = pressed(rod, eta, &grid)?;
-    let rothe = Rothe::at_rest(rod, &settings, &guess, [0.0, 0.0], TipBc::Stuck(tip))?;
+    let mut rothe = Rothe::at_rest(rod, &settings, &guess, [0.0, 0.0], TipBc::Stuck(tip))?;
+    rothe.friction_table = opts.mu_k_table.clone();
     let mut drive = Drive {
         o: opts,
         rothe,
@@ -713,6 +825,7 @@ pub fn drag(
         fresh_slip: false,
         foot_work: 0.0,
         friction: 0.0,
+        impact: 0.0,
         samples: vec![],
         events: vec![],
         stats: DragStats::default(),

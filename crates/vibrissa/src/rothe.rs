@@ -44,11 +44,16 @@ pub struct DynSample {
     pub gy_base: f64,
     /// Kinetic energy `½∫μ|r_t|²`.
     pub kinetic: f64,
-    /// Elastic energy `½∫b m² + θ²/(2 c_s)`.
+    /// Elastic energy `½∫b m² + θ²/(2 c_s)` (with internal damping `½∫(κ − κ0)²/b + θ²/(2 c_s)`).
     pub elastic: f64,
     /// Energy taken by the foot's damper so far, `∫ c θ_t² dt` (by the midpoint rule of the
     /// time steps: the scheme's own energy identity).
     pub dissipated: f64,
+    /// Energy taken by the rod's internal (Kelvin–Voigt) damping so far,
+    /// `∫ γ_i ∫ κ_t²/b ds dt` (midpoint rule of the steps, Simpson's rule on the grid).
+    pub internal_damping: f64,
+    /// Energy taken by the external viscous damping so far, `∫ γ_e ∫ μ |r_t|² ds dt` (likewise).
+    pub external_damping: f64,
 }
 
 /// Work done.
@@ -73,6 +78,28 @@ pub(crate) enum TipBc {
     /// (`ratio = dir·μk`: with the normal force `N = −Gy(1)`, friction `−dir·μk·N` against
     /// the slide in direction `dir`).
     Sliding { y: f64, ratio: f64 },
+    /// The tip on the line `y = y`, sliding in direction `dir` with the kinetic friction
+    /// `μk(|ẋ(1)|)` of the friction table ([`Rothe::friction_table`]): `Gx(1) = dir·μk·Gy(1)`,
+    /// the tip's velocity at the step's end by the trapezoidal rule, `2/Δt (x(1) − xⁿ) − ẋⁿ`.
+    SlidingRate { y: f64, dir: f64 },
+}
+
+/// Kinetic friction `μk(v)` of a table of `(v, μk)` points (speeds increasing): piecewise
+/// linear, constant beyond its ends; with its slope `dμk/dv`.
+pub(crate) fn mu_k_of(table: &[[f64; 2]], v: f64) -> (f64, f64) {
+    let (first, last) = (table[0], table[table.len() - 1]);
+    if v <= first[0] {
+        return (first[1], 0.0);
+    }
+    if v >= last[0] {
+        return (last[1], 0.0);
+    }
+    let k = table
+        .partition_point(|p| p[0] <= v)
+        .clamp(1, table.len() - 1);
+    let (a, b) = (table[k - 1], table[k]);
+    let slope = (b[1] - a[1]) / (b[0] - a[0]);
+    (a[1] + slope * (v - a[0]), slope)
 }
 
 /// Cubic Hermite interpolation of values `v` and derivatives `d` on the uniform grid
@@ -90,6 +117,35 @@ fn interp(v: &[f64], d: &[f64], s: f64) -> f64 {
         + (t3 - t2) * h * d[i + 1]
 }
 
+/// Cubic Lagrange interpolation of values `v` on the uniform grid (`v.len() − 1 ≥ 3`
+/// intervals on `[0, 1]`; the four nodes around `s`, shifted inwards at the ends).
+fn lagrange(v: &[f64], s: f64) -> f64 {
+    let n = v.len() - 1;
+    let u = (s * n as f64).clamp(0.0, n as f64);
+    let i = (u.floor() as usize).clamp(1, n - 2);
+    let t = u - i as f64;
+    let (a, b, c, d) = (v[i - 1], v[i], v[i + 1], v[i + 2]);
+    -t * (t - 1.0) * (t - 2.0) / 6.0 * a + (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0 * b
+        - (t + 1.0) * t * (t - 2.0) / 2.0 * c
+        + (t + 1.0) * t * (t - 1.0) / 6.0 * d
+}
+
+/// `v0''(s)` by finite differences of step 1e-3 of fourth order: central inside, one-sided
+/// (six points) within two steps of an end.
+fn second_derivative(v0: &dyn Fn(f64) -> [f64; 2], s: f64) -> [f64; 2] {
+    let h = 1e-3;
+    let at = |k: f64| v0(s + k * h);
+    if s >= 2.0 * h && s <= 1.0 - 2.0 * h {
+        let f = [at(-2.0), at(-1.0), at(0.0), at(1.0), at(2.0)];
+        let w = [-1.0, 16.0, -30.0, 16.0, -1.0];
+        return [0, 1].map(|c| (0..5).map(|k| w[k] * f[k][c]).sum::<f64>() / (12.0 * h * h));
+    }
+    let sign = if s < 0.5 { 1.0 } else { -1.0 };
+    let w = [45.0, -154.0, 214.0, -156.0, 61.0, -10.0];
+    let f: Vec<[f64; 2]> = (0..6).map(|k| at(sign * k as f64)).collect();
+    [0, 1].map(|c| (0..6).map(|k| w[k] * f[k][c]).sum::<f64>() / (12.0 * h * h))
+}
+
 /// One time step's boundary-value problem.
 struct Step<'a> {
     profile: &'a General,
@@ -98,6 +154,9 @@ struct Step<'a> {
     k_acc: f64,
     /// The unknowns 4, 5 are `G/gs` (see [`Settings::short_steps`]).
     gs: f64,
+    /// Kelvin–Voigt damping: `1 + 2γ_i/Δt` and `q = γ_i (2/Δt κⁿ + κ_tⁿ)` on the grid, so that
+    /// `φ' = (κ0 + b m + q)/(1 + 2γ_i/Δt)` (`None`: no internal damping, `φ' = κ0 + b m`).
+    kv: Option<(f64, &'a [f64])>,
     /// The positions `rⁿ` as the last step's solution (then `hat_*` hold `r̂ − rⁿ`), or `None`
     /// (`hat_*` hold `r̂`).
     base: Option<&'a Solution>,
@@ -117,6 +176,19 @@ struct Step<'a> {
     foot: [f64; 2],
     /// The tip's conditions.
     tip: TipBc,
+    /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ)` and `2/Δt`.
+    table: &'a [[f64; 2]],
+    tip_then: [f64; 2],
+    two_tau: f64,
+}
+
+impl Step<'_> {
+    /// The slip velocity at the step's end and `μk`, `dμk/dx(1)` there.
+    fn rate_friction(&self, x1: f64) -> (f64, f64) {
+        let v = self.two_tau * (x1 - self.tip_then[0]) - self.tip_then[1];
+        let (mk, slope) = mu_k_of(self.table, v.abs());
+        (mk, slope * v.signum() * self.two_tau)
+    }
 }
 
 impl Bvp for Step<'_> {
@@ -131,7 +203,10 @@ impl Bvp for Step<'_> {
         let mu = mass_density(self.stiffness, s);
         dz[0] = cp;
         dz[1] = sp;
-        dz[2] = self.profile.k0(s) + self.profile.b(s) * z[3];
+        dz[2] = match self.kv {
+            None => self.profile.k0(s) + self.profile.b(s) * z[3],
+            Some((c, q)) => (self.profile.k0(s) + self.profile.b(s) * z[3] + lagrange(q, s)) / c,
+        };
         dz[3] = self.gs * (z[4] * sp - z[5] * cp);
         let mut r0 = [0.0; 6];
         if let Some(b) = self.base {
@@ -154,7 +229,10 @@ impl Bvp for Step<'_> {
         dfdz[..36].fill(0.0);
         dfdz[2] = -sp;
         dfdz[6 + 2] = cp;
-        dfdz[12 + 3] = self.profile.b(s);
+        dfdz[12 + 3] = match self.kv {
+            None => self.profile.b(s),
+            Some((c, _)) => self.profile.b(s) / c,
+        };
         dfdz[18 + 2] = self.gs * (z[4] * cp + z[5] * sp);
         dfdz[18 + 4] = self.gs * sp;
         dfdz[18 + 5] = -self.gs * cp;
@@ -165,7 +243,7 @@ impl Bvp for Step<'_> {
     fn bc_jacobian(
         &self,
         _za: &[f64],
-        _zb: &[f64],
+        zb: &[f64],
         _p: &[f64],
         dga: &mut [f64],
         dgb: &mut [f64],
@@ -192,6 +270,13 @@ impl Bvp for Step<'_> {
                 dgb[30 + 4] = 1.0;
                 dgb[30 + 5] = -ratio;
             }
+            TipBc::SlidingRate { dir, .. } => {
+                let (mk, dmk) = self.rate_friction(zb[0]);
+                dgb[24 + 1] = 1.0;
+                dgb[30 + 4] = 1.0;
+                dgb[30 + 5] = -dir * mk;
+                dgb[30] = -dir * dmk * zb[5];
+            }
         }
         true
     }
@@ -215,6 +300,11 @@ impl Bvp for Step<'_> {
                 res[4] = zb[1] - y;
                 res[5] = zb[4] - ratio * zb[5];
             }
+            TipBc::SlidingRate { y, dir } => {
+                let (mk, _) = self.rate_friction(zb[0]);
+                res[4] = zb[1] - y;
+                res[5] = zb[4] - dir * mk * zb[5];
+            }
         }
     }
 }
@@ -230,6 +320,10 @@ pub(crate) struct Settings {
     pub scheme: bvp::Scheme,
     /// The foot's damper `c`.
     pub damping: f64,
+    /// The rod's internal (Kelvin–Voigt) damping `γ_i`: `b m = (κ − κ0) + γ_i κ_t`.
+    pub internal_damping: f64,
+    /// External viscous damping `γ_e`: a distributed force `−γ_e μ r_t`.
+    pub external_damping: f64,
     /// Steps of any length, short ones too (`true`, `dynamics::drag`, whose events shorten
     /// steps), or as `dynamics::free` (`false`). With `true`: (1) `r̂ = rⁿ + (Δt vⁿ + Δt²/4 aⁿ)`
     /// with `rⁿ` the last step's solution itself and only the bracket interpolated on the grid
@@ -256,6 +350,8 @@ pub(crate) struct Trial {
     next: [Vec<f64>; 4],
     /// `m` on the grid at the step's end.
     m: Vec<f64>,
+    /// `κ = φ'` on the grid at the step's end.
+    kappa: Vec<f64>,
 }
 
 impl Trial {
@@ -281,6 +377,11 @@ pub(crate) struct Rothe<'r> {
     grid: Vec<f64>,
     mu: Vec<f64>,
     bvec: Vec<f64>,
+    /// `κ0` on the grid.
+    k0vec: Vec<f64>,
+    /// `γ_i`, `γ_e`.
+    gi: f64,
+    ge: f64,
     solver: Collocation,
     /// The solution at the present time.
     pub sol: Solution,
@@ -291,6 +392,9 @@ pub(crate) struct Rothe<'r> {
     vel: [Vec<f64>; 4],
     acc: [Vec<f64>; 4],
     m: Vec<f64>,
+    /// Curvature `κ = φ'` and its rate on the grid.
+    kappa: Vec<f64>,
+    kappa_t: Vec<f64>,
     /// `G = gs·(z[4], z[5])` in `sol`.
     gs: f64,
     /// Foot rotation and its rate.
@@ -298,8 +402,13 @@ pub(crate) struct Rothe<'r> {
     theta_t: f64,
     /// Energy the foot's damper took so far.
     pub dissipated: f64,
+    /// Energy the internal and the external damping took so far.
+    internal_dissipated: f64,
+    external_dissipated: f64,
     /// Work done.
     pub stats: DynStats,
+    /// The kinetic friction's table `(|v|, μk)` of [`TipBc::SlidingRate`] (empty: not used).
+    pub friction_table: Vec<[f64; 2]>,
 }
 
 /// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
@@ -347,6 +456,7 @@ impl<'r> Rothe<'r> {
         let grid = Self::grid_of(settings);
         let mu: Vec<f64> = grid.iter().map(|&s| mass_density(stiffness, s)).collect();
         let bvec: Vec<f64> = grid.iter().map(|&s| profile.b(s)).collect();
+        let k0vec: Vec<f64> = grid.iter().map(|&s| profile.k0(s)).collect();
         let mut solver = Collocation::new(CollocationOptions {
             tol: settings.tol,
             scheme: settings.scheme,
@@ -369,6 +479,7 @@ impl<'r> Rothe<'r> {
             stiffness,
             k_acc: 0.0,
             gs: 1.0,
+            kv: None,
             base: None,
             hat_x: &zeros,
             hat_y: &zeros,
@@ -380,6 +491,9 @@ impl<'r> Rothe<'r> {
             moment: 0.0,
             foot,
             tip,
+            table: &[],
+            tip_then: [0.0, 0.0],
+            two_tau: 0.0,
         };
         let sol = solver
             .solve(&statics, guess)
@@ -393,6 +507,9 @@ impl<'r> Rothe<'r> {
             ng,
             mu,
             bvec,
+            k0vec,
+            gi: settings.internal_damping,
+            ge: settings.external_damping,
             solver,
             theta: sol.left()[2] - FRAC_PI_2,
             sol,
@@ -400,15 +517,22 @@ impl<'r> Rothe<'r> {
             vel: [zero(), zero(), zero(), zero()],
             acc: [zero(), zero(), zero(), zero()],
             m: zero(),
+            kappa: zero(),
+            kappa_t: zero(),
             theta_t: 0.0,
             dissipated: 0.0,
+            internal_dissipated: 0.0,
+            external_dissipated: 0.0,
             stats: DynStats::default(),
+            friction_table: vec![],
             grid,
             profile,
             stiffness,
         };
         let (mut pos, mut m) = (std::mem::take(&mut me.pos), std::mem::take(&mut me.m));
         me.sample_grid(&me.sol, &mut pos, &mut m);
+        // at rest: κ = κ0 + b m, κ_t = 0
+        me.kappa = (0..=ng).map(|i| me.k0vec[i] + me.bvec[i] * m[i]).collect();
         (me.pos, me.m) = (pos, m);
         Ok(me)
     }
@@ -451,6 +575,25 @@ impl<'r> Rothe<'r> {
                 return Err(VibrissaError::range("v0", v[0] + v[1], "finite"));
             }
         }
+        if self.ge > 0.0 {
+            // the damping force's share of the start's acceleration, `a⁰ = −γ_e v0` (consistent
+            // for the linearized rod at rest: no elastic force, so the rest of `a⁰` is zero)
+            for q in 0..4 {
+                for i in 0..=self.ng {
+                    self.acc[q][i] = -self.ge * self.vel[q][i];
+                }
+            }
+        }
+        if self.gi > 0.0 {
+            // the curvature's rate of the start, `κ_t = e⊥·v0'' − κ e·v0'` (the history of the
+            // Kelvin–Voigt moment: an inconsistent one would stay as an undamped alternation)
+            for (i, &s) in self.grid.iter().enumerate() {
+                let (cp, sp) = (self.pos[2][i], self.pos[3][i]);
+                let vss = second_derivative(v0, s);
+                let along = cp * self.vel[2][i] + sp * self.vel[3][i];
+                self.kappa_t[i] = -sp * vss[0] + cp * vss[1] - self.kappa[i] * along;
+            }
+        }
         Ok(())
     }
 
@@ -460,6 +603,13 @@ impl<'r> Rothe<'r> {
     pub fn hold_tip_x(&mut self) {
         self.vel[0][self.ng] = 0.0;
         self.acc[0][self.ng] = 0.0;
+    }
+
+    /// The tip's y velocity and acceleration set to zero at the grid's last node (a plastic
+    /// impact on the surface `y = η`: see `dynamics::drag`).
+    pub fn hold_tip_y(&mut self) {
+        self.vel[1][self.ng] = 0.0;
+        self.acc[1][self.ng] = 0.0;
     }
 
     /// Solves the step of length `tau` with the foot at `foot`, the tip's condition `tip` and the
@@ -483,17 +633,45 @@ impl<'r> Rothe<'r> {
         }
         let k_acc = 4.0 / (tau * tau);
         let gs = if self.short_steps { k_acc } else { 1.0 };
-        let (base, interp_of) = if self.short_steps {
-            (Some(&self.sol), &bracket)
+        let (base, mut interp_of) = if self.short_steps {
+            (Some(&self.sol), bracket)
         } else {
-            (None, &hat)
+            (None, hat.clone())
+        };
+        // external damping: `r_tt + γ_e r_t = k (r − r̂')` with `k = 4/Δt² + 2γ_e/Δt` and
+        // `r̂' = (4/Δt² r̂ + γ_e (2/Δt rⁿ + vⁿ))/k` (`r_t` by the trapezoidal rule)
+        let k_step = if self.ge > 0.0 {
+            let k = k_acc + 2.0 * self.ge / tau;
+            for (q, h) in interp_of.iter_mut().enumerate() {
+                for (i, hi) in h.iter_mut().enumerate() {
+                    let from = if self.short_steps {
+                        self.ge * self.vel[q][i]
+                    } else {
+                        self.ge * (2.0 / tau * self.pos[q][i] + self.vel[q][i])
+                    };
+                    *hi = (k_acc * *hi + from) / k;
+                }
+            }
+            k
+        } else {
+            k_acc
+        };
+        // Kelvin–Voigt: `κ_t = 2/Δt (κ − κⁿ) − κ_tⁿ` in `κ − κ0 + γ_i κ_t = b m`
+        let kv_c = 1.0 + 2.0 * self.gi / tau;
+        let kv_q: Vec<f64> = if self.gi > 0.0 {
+            (0..=ng)
+                .map(|i| self.gi * (2.0 / tau * self.kappa[i] + self.kappa_t[i]))
+                .collect()
+        } else {
+            vec![]
         };
         let c = self.damping;
         let step = Step {
             profile: &self.profile,
             stiffness: self.stiffness,
-            k_acc,
+            k_acc: k_step,
             gs,
+            kv: (self.gi > 0.0).then_some((kv_c, kv_q.as_slice())),
             base,
             hat_x: &interp_of[0],
             hat_y: &interp_of[1],
@@ -505,6 +683,9 @@ impl<'r> Rothe<'r> {
             moment,
             foot,
             tip,
+            table: &self.friction_table,
+            tip_then: [self.pos[0][ng], self.vel[0][ng]],
+            two_tau: 2.0 / tau,
         };
         let mut guess = Guess::from(&self.sol);
         if gs != self.gs {
@@ -524,6 +705,16 @@ impl<'r> Rothe<'r> {
         let mut next = [zero(), zero(), zero(), zero()];
         let mut m = zero();
         self.sample_grid(&sol, &mut next, &mut m);
+        let kappa = (0..=ng)
+            .map(|i| {
+                let elastic = self.k0vec[i] + self.bvec[i] * m[i];
+                if self.gi > 0.0 {
+                    (elastic + kv_q[i]) / kv_c
+                } else {
+                    elastic
+                }
+            })
+            .collect();
         Ok(Trial {
             tau,
             gs,
@@ -531,6 +722,7 @@ impl<'r> Rothe<'r> {
             hat,
             next,
             m,
+            kappa,
         })
     }
 
@@ -557,6 +749,7 @@ impl<'r> Rothe<'r> {
     /// Takes the trial step.
     pub fn commit(&mut self, tr: Trial) {
         let (tau, k_acc) = (tr.tau, 4.0 / (tr.tau * tr.tau));
+        let old_vel = (self.ge > 0.0).then(|| [self.vel[0].clone(), self.vel[1].clone()]);
         let mut next = tr.next;
         for (q, nq) in next.iter().enumerate() {
             let (v, a) = (&mut self.vel[q], &mut self.acc[q]);
@@ -566,6 +759,29 @@ impl<'r> Rothe<'r> {
                 *ai = a1;
             }
         }
+        if let Some(old) = old_vel {
+            // the scheme's identity: the force `−γ_e μ r_t` takes `Δt γ_e ∫ μ |v_mid|²`
+            let (vel, mu) = (&self.vel, &self.mu);
+            let mid2 = |i: usize| {
+                let (x, y) = (0.5 * (old[0][i] + vel[0][i]), 0.5 * (old[1][i] + vel[1][i]));
+                mu[i] * (x * x + y * y)
+            };
+            self.external_dissipated += tau * self.ge * self.simpson(&mid2);
+        }
+        if self.gi > 0.0 {
+            // `κ_t` by the trapezoidal rule; the moment `γ_i κ_t/b` takes `Δt γ_i ∫ κ_t,mid²/b`
+            let kt1: Vec<f64> = (0..=self.ng)
+                .map(|i| 2.0 / tau * (tr.kappa[i] - self.kappa[i]) - self.kappa_t[i])
+                .collect();
+            let (kt0, bv) = (&self.kappa_t, &self.bvec);
+            let mid2 = |i: usize| {
+                let k = 0.5 * (kt0[i] + kt1[i]);
+                k * k / bv[i]
+            };
+            self.internal_dissipated += tau * self.gi * self.simpson(&mid2);
+            self.kappa_t = kt1;
+        }
+        self.kappa = tr.kappa;
         std::mem::swap(&mut self.pos, &mut next);
         self.m = tr.m;
         self.sol = tr.sol;
@@ -601,7 +817,13 @@ impl<'r> Rothe<'r> {
         let (vel, mu, bv, m) = (&self.vel, &self.mu, &self.bvec, &self.m);
         let kinetic =
             0.5 * self.simpson(&|i| mu[i] * (vel[0][i] * vel[0][i] + vel[1][i] * vel[1][i]));
-        let mut elastic = 0.5 * self.simpson(&|i| bv[i] * m[i] * m[i]);
+        let mut elastic = if self.gi > 0.0 {
+            // `½∫ (κ − κ0)²/b`: the moment is no longer the elastic one alone
+            let (k, k0) = (&self.kappa, &self.k0vec);
+            0.5 * self.simpson(&|i| (k[i] - k0[i]).powi(2) / bv[i])
+        } else {
+            0.5 * self.simpson(&|i| bv[i] * m[i] * m[i])
+        };
         if self.cs > 0.0 {
             elastic += 0.5 * self.theta * self.theta / self.cs;
         }
@@ -619,6 +841,8 @@ impl<'r> Rothe<'r> {
             kinetic,
             elastic,
             dissipated: self.dissipated,
+            internal_damping: self.internal_dissipated,
+            external_damping: self.external_dissipated,
         }
     }
 }
