@@ -291,6 +291,15 @@ pub struct DynamicsFreeArgs {
     /// 1/--support-compliance.
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
     pub foot_damping: f64,
+    /// The rod's internal (Kelvin-Voigt) damping gamma_i, in [0, 1e6]: every mode of the
+    /// linearized rod decays at gamma_i omega^2/2 (docs/model.md). The energy it takes is in
+    /// --json (`internal_damping`).
+    #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
+    pub internal_damping: f64,
+    /// External viscous damping gamma_e, in [0, 1e6]: a distributed force -gamma_e mu(s) r_t
+    /// (every mode decays at gamma_e/2). The energy it takes is in --json (`external_damping`).
+    #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
+    pub external_damping: f64,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub spectrum: Option<PathBuf>,
@@ -331,6 +340,25 @@ pub struct DynamicsDragArgs {
     /// Damper of the foot's support (moment per angular velocity), in [0, inf).
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
     pub foot_damping: f64,
+    /// The rod's internal (Kelvin-Voigt) damping gamma_i, in [0, 1e6]: every mode of the
+    /// linearized rod decays at gamma_i omega^2/2 (docs/model.md). The energy it takes is in
+    /// --json (`internal_damping`).
+    #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
+    pub internal_damping: f64,
+    /// External viscous damping gamma_e, in [0, 1e6]: a distributed force -gamma_e mu(s) r_t
+    /// (every mode decays at gamma_e/2). The energy it takes is in --json (`external_damping`).
+    #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
+    pub external_damping: f64,
+    /// Kinetic friction depending on the slip speed: points V:MU,V:MU,... (speeds >= 0
+    /// increasing, each MU in [0, mu_s)), piecewise linear, constant beyond the ends; replaces
+    /// --mu-k.
+    #[arg(long, value_name = "V:MU,...", value_parser = speed_table)]
+    pub mu_k_table: Option<SpeedTable>,
+    /// After a lift-off the tip flies until it touches the surface again (event touchdown, a
+    /// plastic impact whose energy is in --json as `impact`), where the drag ends; without it a
+    /// lift-off ends the drag.
+    #[arg(long)]
+    pub flight: bool,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub spectrum: Option<PathBuf>,
@@ -1109,4 +1137,28 @@ pub fn missing_value(args: &[std::ffi::OsString]) -> Option<String> {
         }
     }
     None
+}
+
+/// `--mu-k-table`'s points `(|v|, mu_k)` (the library checks their order and range).
+#[derive(Clone, Debug)]
+pub struct SpeedTable(pub Vec<[f64; 2]>);
+
+/// Parses `V:MU,V:MU,...`.
+fn speed_table(text: &str) -> Result<SpeedTable, String> {
+    text.split(',')
+        .map(|pair| {
+            let (v, mu) = pair
+                .split_once(':')
+                .ok_or_else(|| format!("'{pair}' is not V:MU"))?;
+            let num = |t: &str| {
+                t.trim()
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| format!("'{t}' is not a finite number"))
+            };
+            Ok([num(v)?, num(mu)?])
+        })
+        .collect::<Result<Vec<_>, String>>()
+        .map(SpeedTable)
 }

@@ -77,6 +77,10 @@ pub fn options(a: &DynamicsDragArgs) -> DynDragOptions {
         mu_k: a.mu_k,
         dt: a.dt,
         foot_damping: a.foot_damping,
+        internal_damping: a.internal_damping,
+        external_damping: a.external_damping,
+        mu_k_table: a.mu_k_table.as_ref().map(|t| t.0.clone()).unwrap_or_default(),
+        flight: a.flight,
         ..DynDragOptions::default()
     }
 }
@@ -87,6 +91,8 @@ pub fn free_options(a: &DynamicsFreeArgs) -> DynamicsOptions {
         dt: a.dt,
         t_end: a.t_end,
         foot_damping: a.foot_damping,
+        internal_damping: a.internal_damping,
+        external_damping: a.external_damping,
         foot_moment: a.foot_moment,
         release_force: [a.release_fx, a.release_fy],
         ..DynamicsOptions::default()
