@@ -161,3 +161,95 @@ fn a_round_tip_runs_past_where_the_point_tip_turns_into_the_corrugation() {
     assert!(end > 0.1, "{round}");
     assert!(round.slips.len() > 3, "{round}");
 }
+
+/// A corrugation with flanks steeper than 45° (A 0.01, W 0.05: the steepest slope 2πA/W = 1.26,
+/// 51.5°): refused to the point tip, with a message that names the slope and the tip radius;
+/// with a round tip of radius 0.005 the drag runs through 12 slips. (It ends at d 0.0193 where a
+/// side touches down behind the disk during a slip: the program's run, 201 output points, calls
+/// it a jam; this one, 11 points, a new state whose Newton iteration stalls at a residual of
+/// 1e-11 — docs/robustness.md, "With a round tip".)
+#[test]
+fn a_round_tip_takes_flanks_steeper_than_45_degrees() {
+    let steep = |r: f64| Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.01,
+            wavelength: 0.05,
+            phase: 0.0,
+        },
+        tip_radius: r,
+        ..Scene::default()
+    };
+    let e = steep(0.0).parts().unwrap_err().to_string();
+    assert!(
+        e.contains("1.256637") && e.contains("tip radius"),
+        "the point tip's refusal: {e}"
+    );
+    // a surface made for a round tip is refused to a point tip
+    let (_, surface) = steep(0.005).parts().unwrap();
+    let o = DragOptions {
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        ..DragOptions::default()
+    };
+    let e = vibrissa::drag(&Rod::uniform(), &surface, &o).unwrap_err();
+    assert!(e.to_string().contains("45 degrees"), "{e}");
+    let r = corrugated(0.005, 0.01, 0.05, 0.3, false);
+    assert!(r.slips.len() >= 10, "{r}");
+    assert!(
+        !matches!(r.stop, StopReason::SolverFailure { .. }) && r.stop.at().unwrap_or(0.3) > 0.015,
+        "{r}"
+    );
+}
+
+/// `solve` at a surface height with a round tip: a vertical force (α = 0) has no tangential
+/// part on the flat surface, so no moment about the disk's centre, and the rod is the point
+/// tip's on the line lowered by r (1e-10); a slope or a tip position target is refused.
+#[test]
+fn solve_at_a_height_with_a_round_tip() {
+    use vibrissa::{BranchChoice, SolverConfig, Target};
+    let cfg = SolverConfig::default();
+    let r = 0.02;
+    let disk = Rod::builder().tip_radius(r).build().unwrap();
+    let a = vibrissa::solve(&disk, 0.0, Target::Eta(0.75), &BranchChoice::Convex, &cfg).unwrap();
+    let b = vibrissa::solve(
+        &Rod::uniform(),
+        0.0,
+        Target::Eta(0.75 - r),
+        &BranchChoice::Convex,
+        &cfg,
+    )
+    .unwrap();
+    assert!((a.f - b.f).abs() <= 1e-10, "f {} against {}", a.f, b.f);
+    let slope = vibrissa::solve(&disk, 0.0, Target::Phi1(0.3), &BranchChoice::Convex, &cfg);
+    assert!(slope.is_err());
+}
+
+/// A round tip is solved on the rod's own shooter: the generic methods and the closed forms
+/// refuse it by name, as does a tip radius outside [0, 0.05].
+#[test]
+fn a_round_tip_is_refused_where_it_is_not_modelled() {
+    use vibrissa::{Method, SolverConfig, VibrissaError};
+    let disk = Rod::builder().tip_radius(0.01).build().unwrap();
+    let surface = Surface::flat(0.75).unwrap();
+    for method in [
+        Method::MultipleShooting,
+        Method::Collocation4,
+        Method::Analytic,
+    ] {
+        let o = ScanOptions {
+            solver: SolverConfig {
+                method,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let e = vibrissa::scan(&disk, &surface, &o).unwrap_err();
+        assert!(
+            matches!(e, VibrissaError::MethodUnavailable { .. }),
+            "{method:?}: {e}"
+        );
+    }
+    for r in [-1e-3, 0.06, f64::NAN] {
+        assert!(Rod::builder().tip_radius(r).build().is_err(), "r = {r}");
+    }
+}
