@@ -1137,7 +1137,7 @@ pub(crate) fn disk_on_curve(h: &crate::surface::Height, r: f64, px: f64, amp: f6
     };
     let mut dk = at(px - r * h.angle_scaled(px, amp).0.sin());
     for _ in 0..60 {
-        if !(dk.jac > 0.0) {
+        if dk.jac.is_nan() || dk.jac <= 0.0 {
             return None;
         }
         let step = (dk.xc + r * dk.th.sin() - px) / dk.jac;
