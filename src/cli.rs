@@ -414,6 +414,11 @@ pub struct SceneArgs {
     /// [default: scene file's, else pressed]
     #[arg(long, value_parser = start(), value_name = "START", help_heading = "Scene")]
     pub start: Option<StartKind>,
+    /// Radius R of the round tip (rod lengths), in [0, 0.05]: the rod's end carries a rigid disk
+    /// of radius R centred at its end point, which rolls while it sticks and takes surface slopes
+    /// up to 80 degrees; 0 is the point tip. [default: scene file's, else 0]
+    #[arg(long, value_name = "R", value_parser = finite_f64, help_heading = "Scene")]
+    pub tip_radius: Option<f64>,
     #[command(flatten)]
     pub physical: PhysicalArgs,
 }
@@ -860,6 +865,10 @@ pub struct SweepArgs {
     /// Surface angles B (rad), in (-pi/4, pi/4). [default: scene's]
     #[arg(long, value_name = "LIST", value_parser = axis, help_heading = "Scene")]
     pub surface_angle: Option<Axis>,
+    /// Radius R of the round tip (rod lengths), in [0, 0.05], for every scene of the grid (see
+    /// scan --help). [default: scene's, else 0]
+    #[arg(long, value_name = "R", value_parser = finite_f64, help_heading = "Scene")]
+    pub tip_radius: Option<f64>,
     #[command(flatten)]
     pub physical: PhysicalArgs,
     /// Methods, a comma list (shooting, multiple-shooting, collocation, collocation6, analytic).

@@ -14,11 +14,15 @@ use vibrissa::fit::{CorrugationFit, FitOptions, FitResult, Signal, Trace};
 use vibrissa::{DragOptions, Scene, StopReason, Units};
 
 /// Columns of the drag CSV (`vibrissa plot` reads them by name); with a physical scene
-/// `d_mm, x_tip_mm, y_tip_mm, normal_N, fx_N, fy_N, m_base_Nm` before `event`, as the scan's.
-pub fn header(physical: bool) -> Vec<&'static str> {
-    let mut h = vec![
-        "d", "phase", "x_tip", "y_tip", "mu", "mu_s", "normal", "fx", "fy", "m_base", "contact",
-    ];
+/// `d_mm, x_tip_mm, y_tip_mm, normal_N, fx_N, fy_N, m_base_Nm` before `event`, as the scan's;
+/// with a round tip (`round`) its contact point `x_contact` after the tip's (the disk's centre)
+/// `x_tip, y_tip`.
+pub fn header(physical: bool, round: bool) -> Vec<&'static str> {
+    let mut h = vec!["d", "phase", "x_tip", "y_tip"];
+    if round {
+        h.push("x_contact");
+    }
+    h.extend(["mu", "mu_s", "normal", "fx", "fy", "m_base", "contact"]);
     if physical {
         h.extend([
             "d_mm",
@@ -34,9 +38,12 @@ pub fn header(physical: bool) -> Vec<&'static str> {
     h
 }
 
-fn row(r: &DragRow, u: Option<Units>) -> Vec<String> {
+fn row(r: &DragRow, u: Option<Units>, round: bool) -> Vec<String> {
     let mut v = vec![num(r.d), r.phase.name().to_string()];
     v.extend([r.x_tip, r.y_tip].map(num));
+    if round {
+        v.push(opt(r.x_contact));
+    }
     v.push(mu_text(r.mu));
     v.push(mu_text(r.mu_s));
     v.extend([r.normal, r.fx, r.fy, r.m_base].map(num));
@@ -136,9 +143,9 @@ pub fn run(a: &DragArgs) -> Res<()> {
     }
     if a.out.is_some() || !a.json {
         let u = crate::scene_args::units_of(&sc);
-        crate::table::write_table(a.out.as_deref(), &header(u.is_some()), &r.rows, |p| {
-            row(p, u)
-        })?;
+        let round = sc.tip_radius > 0.0;
+        let h = header(u.is_some(), round);
+        crate::table::write_table(a.out.as_deref(), &h, &r.rows, |p| row(p, u, round))?;
     }
     let stop = Stop::from(&r.stop);
     if stop.reason != "d_max" {

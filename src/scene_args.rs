@@ -83,6 +83,7 @@ pub fn build_scene(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
         k1: flag(a.precurvature_slope.is_some(), "--precurvature-slope"),
         c: flag(a.support_compliance.is_some(), "--support-compliance"),
         beta: flag(a.surface_angle.is_some(), "--surface-angle"),
+        tip_radius: flag(a.tip_radius.is_some(), "--tip-radius"),
         physical: physical_src(&a.physical),
     };
     validate::scene(&sc, &src)?;
@@ -122,6 +123,9 @@ pub fn build_scene_unchecked(a: &SceneArgs, eta: Option<f64>) -> Res<Scene> {
     }
     if let Some(s) = a.start {
         sc.start = s;
+    }
+    if let Some(r) = a.tip_radius {
+        sc.tip_radius = r;
     }
     Ok(sc)
 }

@@ -304,6 +304,9 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
         None => Scene::default(),
     };
     apply_physical(&mut base, &a.physical)?;
+    if let Some(r) = a.tip_radius {
+        base.tip_radius = r;
+    }
     // check the base with the axes' first values in place: each quantity is then checked from
     // where it came (the flag or the file's key); the axes' other values are checked below
     let first = |x: &Option<Axis>| x.as_ref().map(Axis::first);
@@ -328,6 +331,7 @@ fn base_scene(a: &SweepArgs) -> Res<Scene> {
         k1: flag(&a.precurvature_slope, "--precurvature-slope"),
         c: flag(&a.support_compliance, "--support-compliance"),
         beta: flag(&a.surface_angle, "--surface-angle"),
+        tip_radius: a.tip_radius.map(|_| "--tip-radius"),
         physical: physical_src(&a.physical),
     };
     validate::scene(&probe, &src)?;

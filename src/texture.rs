@@ -71,7 +71,23 @@ pub fn apply(a: &TextureArgs, sc: &mut Scene) -> Res<bool> {
         let tau = std::f64::consts::TAU;
         let steep: f64 = amp.iter().zip(wave).map(|(a, w)| tau * a.abs() / w).sum();
         let steepest = beta + steep;
-        if steepest >= vibrissa::surface::MAX_PROFILE_SLOPE {
+        // (a round tip takes slopes up to 80 degrees: the library's limit for the scene's tip)
+        let max = vibrissa::limits::max_profile_slope(sc.tip_radius);
+        let (limit, hint) = if sc.tip_radius > 0.0 {
+            (
+                format!(
+                    "{} (80 degrees, the steepest surface a round tip takes)",
+                    short(max)
+                ),
+                "",
+            )
+        } else {
+            (
+                "1 (45 degrees, the steepest surface a point tip takes)".to_string(),
+                "; a round tip (--tip-radius R > 0) takes slopes up to 80 degrees",
+            )
+        };
+        if steepest >= max {
             let mut m = format!(
                 "--corrugation-amplitude {} with --corrugation-wavelength {} makes the surface's steepest slope ",
                 list(amp),
@@ -80,13 +96,13 @@ pub fn apply(a: &TextureArgs, sc: &mut Scene) -> Res<bool> {
             if amp.len() == 1 {
                 let k = tau / wave[0];
                 m += &format!(
-                    "|tan(surface angle)| + 2 pi |A| / W = {} reach 1 (45 degrees, the steepest surface the model takes); |A| must stay below {}",
+                    "|tan(surface angle)| + 2 pi |A| / W = {} reach {limit}; |A| must stay below {}{hint}",
                     short(steepest),
-                    short(((vibrissa::surface::MAX_PROFILE_SLOPE - beta) / k).max(0.0))
+                    short(((max - beta) / k).max(0.0))
                 );
             } else {
                 m += &format!(
-                    "|tan(surface angle)| + the sum of 2 pi |A| / W = {} reach 1 (45 degrees, the steepest surface the model takes); lower the amplitudes",
+                    "|tan(surface angle)| + the sum of 2 pi |A| / W = {} reach {limit}; lower the amplitudes{hint}",
                     short(steepest)
                 );
             }

@@ -67,6 +67,8 @@ pub struct SceneSrc<'a> {
     pub c: Option<&'static str>,
     /// `surface_angle` from a flag
     pub beta: Option<&'static str>,
+    /// `tip_radius` from a flag
+    pub tip_radius: Option<&'static str>,
     /// the three physical values from flags
     pub physical: [Option<&'static str>; 3],
 }
@@ -144,6 +146,11 @@ pub fn scene(sc: &Scene, src: &SceneSrc) -> Res<()> {
         src.of(src.beta, "surface_angle"),
         sc.surface_angle,
         &limits::SURFACE_ANGLE,
+    )?;
+    check(
+        src.of(src.tip_radius, "tip_radius"),
+        sc.tip_radius,
+        &limits::TIP_RADIUS,
     )?;
     if let Some(p) = &sc.physical {
         let keys = [

@@ -262,6 +262,7 @@ fn scene_of(rod: &Rod, surface: &PySurface, contact: ContactModel, start: StartK
         start,
         surface: surface.profile.clone(),
         friction: surface.friction.clone(),
+        tip_radius: rod.tip_radius(),
     }
 }
 

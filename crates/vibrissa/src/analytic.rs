@@ -134,6 +134,7 @@ fn point(e: &Elastica, d: f64, event: Option<Event>) -> ScanPoint {
         contact: crate::report::ContactLabel::TIP,
         s_c: None,
         event,
+        x_contact: None,
     }
 }
 

@@ -154,9 +154,20 @@ impl Contact {
 #[derive(Clone, Debug, PartialEq, Default)]
 pub(crate) struct ContactSet {
     pub contacts: Vec<Contact>,
+    /// Radius `r ≥ 0` of the rigid disk the rod's end carries (0: a point tip). A tip contact
+    /// on a surface then touches it at `C = P + r·n(x_c)`, `P` the rod's end; see
+    /// [`disk_on_curve`], [`tip_place`].
+    pub tip_radius: f64,
 }
 
 impl ContactSet {
+    /// The contacts `contacts` of a point tip.
+    pub fn of(contacts: Vec<Contact>) -> ContactSet {
+        ContactSet {
+            contacts,
+            tip_radius: 0.0,
+        }
+    }
     /// Number of unknowns.
     pub fn n(&self) -> usize {
         1 + self.contacts.iter().map(Contact::unknowns).sum::<usize>()
@@ -460,6 +471,25 @@ impl<P: Profile> Chain<P> {
             }
             l[0] = cur.d[(3, n)];
         }
+        // a round tip carries the moment of its contact force about its centre: m(1) = r·T_loc
+        if let Some(jt) = self.disk_tip() {
+            let ct = &set.contacts[jt];
+            let o = set.offset(jt);
+            let Some((mv, dpx, down, dlam)) =
+                disk_moment(ct, set.tip_radius, &cur.z, &u[o..o + 2], &pose, &dpose)
+            else {
+                return Err(EvalError::NonFinite);
+            };
+            r[0] -= mv;
+            if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
+                for col in 0..n {
+                    j[(0, col)] -= dpx * cur.d[(0, col)];
+                }
+                j[(0, o)] -= down[0];
+                j[(0, o + 1)] -= down[1];
+                l[0] -= dpx * cur.d[(0, n)] + dlam;
+            }
+        }
         if !r.iter().all(|v| v.is_finite()) {
             return Err(EvalError::NonFinite);
         }
@@ -581,7 +611,8 @@ impl<P: Profile> Chain<P> {
         } else {
             (still(pose), still(dpose))
         };
-        let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
+        let radius = if ct.tip { set.tip_radius } else { 0.0 };
+        let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose, radius);
         let mut rows = jac.zip(rl);
         for i in 0..cs.rows {
             r[row] = cs.val[i];
@@ -673,6 +704,17 @@ impl<P: Profile> Chain<P> {
             }
         }
         total.is_finite().then_some(total)
+    }
+
+    /// The tip contact that is a disk on a surface (a tip radius > 0), if the set has one.
+    pub fn disk_tip(&self) -> Option<usize> {
+        let set = &self.set;
+        let j = set.contacts.len().checked_sub(1)?;
+        let ct = &set.contacts[j];
+        (set.tip_radius > 0.0
+            && ct.tip
+            && matches!(ct.geom, Geom::Line { .. } | Geom::Curve { .. }))
+        .then_some(j)
     }
 
     /// Refines the meshes of the loaded segments whose last shot was over tolerance.
@@ -855,12 +897,17 @@ impl Conds {
 
 /// See [`Conds`]: on the surface (its place along the line per the mode, tangent inside the rod),
 /// at a point object (its position, and the mode), or a held tip slope.
+///
+/// `radius`: the disk radius of a tip contact (0: a point tip, and for every other contact).
+/// The disk's centre, the rod's end, stays on the surface offset by `radius` along its normal,
+/// and a stuck tip rolls: its place is [`tip_place`]'s.
 pub(crate) fn conditions(
     ct: &Contact,
     z: &[f64; 4],
     own: &[f64],
     pose: &Pose,
     dpose: &Pose,
+    radius: f64,
 ) -> Conds {
     let mut cs = Conds::default();
     let (rx, ry) = (z[0] + pose.xf, z[1]);
@@ -872,8 +919,11 @@ pub(crate) fn conditions(
             let (sb, cb) = beta.sin_cos();
             let nv = [-sb, cb];
             let e = [cb, sb];
+            // (a disk's centre runs on the line lowered by its radius)
+            let lowered = if radius > 0.0 { radius } else { 0.0 };
+            let gap = nv[0] * (rx - p0[0]) + nv[1] * (ry - p0[1]) - pose.h;
             cs.push(
-                nv[0] * (rx - p0[0]) + nv[1] * (ry - p0[1]) - pose.h,
+                if lowered > 0.0 { gap + lowered } else { gap },
                 [nv[0], nv[1], 0.0, 0.0],
                 [0.0; 3],
                 nv[0] * dpose.xf - dpose.h,
@@ -884,6 +934,13 @@ pub(crate) fn conditions(
             let along = e[0] * (rx - p0[0]) + e[1] * (ry - p0[1]);
             let da = [e[0], e[1], 0.0, 0.0];
             match ct.mode {
+                Mode::Stuck(anchor) if lowered > 0.0 => cs.push(
+                    // rolling: along the line, less r·(φ(1) − β)
+                    along - lowered * (z[2] - beta) - anchor - pose.slide,
+                    [e[0], e[1], -lowered, 0.0],
+                    [0.0; 3],
+                    e[0] * dpose.xf - dpose.slide,
+                ),
                 Mode::Stuck(anchor) => cs.push(
                     along - anchor - pose.slide,
                     da,
@@ -903,6 +960,9 @@ pub(crate) fn conditions(
                 Mode::Free => friction(&mut cs, 0.0),
                 Mode::Sliding(ratio) => friction(&mut cs, ratio),
             }
+        }
+        Geom::Curve { h } if ct.tip && radius > 0.0 => {
+            disk_conditions(&mut cs, ct, (h, radius), z, own, pose, dpose)
         }
         Geom::Curve { h } => curve_conditions(&mut cs, ct, h, z, own, pose, dpose),
         Geom::Slope { phi1 } => {
@@ -1047,4 +1107,198 @@ pub(crate) fn local_forces(ct: &Contact, nn: f64, tt: f64, x: f64) -> (f64, f64)
 /// `β + kπ` (forwards or backwards along the line), the multiple nearest `phi`.
 pub(crate) fn slope_on(beta: f64, phi: f64) -> f64 {
     beta + std::f64::consts::PI * ((phi - beta) / std::f64::consts::PI).round()
+}
+
+/// Where a round tip touches a curved surface: the contact point `x_c` of the disk of radius `r`
+/// centred at the rod's end `P` (lab `px`) on the surface at amplitude `amp`, the surface's angle
+/// `θ` and `dθ/dx` there, and `J = 1 + r cos θ·θ'`, the rate of the centre's `x` along the
+/// contact point's (`P = C − r·n(x_c)`, so `P_x = x_c + r sin θ(x_c)`; the centre's curve, the
+/// surface offset by `r`, has the slope `tan θ(x_c)` there).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Disk {
+    pub xc: f64,
+    pub th: f64,
+    pub dth: f64,
+    pub jac: f64,
+}
+
+/// The contact point of the disk of radius `r` centred at lab `px` on `h` (amplitude `amp`):
+/// Newton on `x_c + r sin θ(x_c) = px`. `None` where `J ≤ 0` (the disk is wider than a concave
+/// part of the surface is round: it would touch at a second point) or Newton fails.
+pub(crate) fn disk_on_curve(h: &crate::surface::Height, r: f64, px: f64, amp: f64) -> Option<Disk> {
+    let at = |xc: f64| {
+        let (th, dth) = h.angle_scaled(xc, amp);
+        Disk {
+            xc,
+            th,
+            dth,
+            jac: 1.0 + r * th.cos() * dth,
+        }
+    };
+    let mut dk = at(px - r * h.angle_scaled(px, amp).0.sin());
+    for _ in 0..60 {
+        if dk.jac.is_nan() || dk.jac <= 0.0 {
+            return None;
+        }
+        let step = (dk.xc + r * dk.th.sin() - px) / dk.jac;
+        dk = at(dk.xc - step);
+        if step.abs() <= 1e-15 * (1.0 + px.abs()) {
+            return (dk.jac > 0.0).then_some(dk);
+        }
+    }
+    None
+}
+
+/// The place along the surface that a stuck tip keeps (the anchor of [`Mode::Stuck`]) at the
+/// rod's end state `z` (foot frame, the foot at lab `xf`): for a point tip (`r = 0`) the arc
+/// length of the tip (along a line: from its point `p0`); for a disk of radius `r` rolling
+/// without slip, `σ(x_c) − r·(φ(1) − θ(x_c))` (the contact point's arc length less the disk's
+/// turn against the surface's normal). `None` off a surface, or where a disk has no contact
+/// point.
+pub(crate) fn tip_place(r: f64, geom: &Geom, z: &[f64], xf: f64) -> Option<f64> {
+    let x = z[0] + xf;
+    match geom {
+        Geom::Line { p0, beta } => {
+            let (sb, cb) = beta.sin_cos();
+            let along = cb * (x - p0[0]) + sb * (z[1] - p0[1]);
+            Some(if r > 0.0 {
+                along - r * (z[2] - beta)
+            } else {
+                along
+            })
+        }
+        Geom::Curve { h } if r > 0.0 => {
+            let dk = disk_on_curve(h, r, x, 1.0)?;
+            Some(h.sigma(dk.xc).0 - r * (z[2] - dk.th))
+        }
+        Geom::Curve { h } => Some(h.sigma(x).0),
+        _ => None,
+    }
+}
+
+/// The lab position of a tip's contact point with a surface: the rod's end (lab `(z[0] + xf,
+/// z[1])`) for a point tip, `P + r·n` for a disk (on a curve at amplitude `amp`). `None` where a
+/// disk has no contact point.
+pub(crate) fn tip_point(r: f64, geom: &Geom, z: &[f64], xf: f64, amp: f64) -> Option<[f64; 2]> {
+    let (x, y) = (z[0] + xf, z[1]);
+    if r <= 0.0 {
+        return Some([x, y]);
+    }
+    let th = match geom {
+        Geom::Line { beta, .. } => *beta,
+        Geom::Curve { h } => disk_on_curve(h, r, x, amp)?.th,
+        _ => return Some([x, y]),
+    };
+    Some([x - r * th.sin(), y + r * th.cos()])
+}
+
+/// The moment about the disk's centre of a round tip's contact force, `r·T_loc` (`T_loc` the
+/// force's component on the surface's tangent `t = −(cos θ, sin θ)` at the contact point), and
+/// its derivatives: `(value, ∂/∂P_x, ∂/∂(N, T), ∂/∂λ explicit)`. `None` where the disk has no
+/// contact point.
+fn disk_moment(
+    ct: &Contact,
+    r: f64,
+    z: &[f64; 4],
+    own: &[f64],
+    pose: &Pose,
+    dpose: &Pose,
+) -> Option<(f64, f64, [f64; 2], f64)> {
+    let px = z[0] + pose.xf;
+    // θ at the contact point, its rate with P_x and with λ at a fixed P
+    let (th, dth_px, dth_lam) = match &ct.geom {
+        Geom::Line { beta, .. } => (*beta, 0.0, 0.0),
+        Geom::Curve { h } => {
+            let amp = 1.0 - pose.flat;
+            let dk = disk_on_curve(h, r, px, amp)?;
+            let th_amp = if dpose.flat != 0.0 {
+                let d = h.jet_scaled(dk.xc, amp).1;
+                h.shape(dk.xc).1 / (1.0 + d * d)
+            } else {
+                0.0
+            };
+            let lam = (dk.dth * dpose.xf - th_amp * dpose.flat) / dk.jac;
+            (dk.th, dk.dth / dk.jac, lam)
+        }
+        _ => return Some((0.0, 0.0, [0.0; 2], 0.0)),
+    };
+    let f = ct.force(own[0], own[1]);
+    let (st, c) = th.sin_cos();
+    let tl = -f[0] * c - f[1] * st;
+    let nl = f[0] * st - f[1] * c;
+    let t = ct.t();
+    let down = [
+        r * (ct.n[0] * c + ct.n[1] * st),
+        r * (-t[0] * c - t[1] * st),
+    ];
+    Some((r * tl, r * nl * dth_px, down, r * nl * dth_lam))
+}
+
+/// The conditions of a round tip (radius `r`) on the curved surface `h`: its centre on the
+/// offset curve, `P_y = h(x_c) − r cos θ(x_c)` (`x_c` from `P_x`, [`disk_on_curve`]); the mode
+/// at the contact point (stuck: rolling, [`tip_place`] fixed; free or sliding: the friction
+/// ratio in the local frame there). The derivatives by `P_x` go through `x_c`: the offset curve's
+/// slope is `tan θ(x_c)`, the place's rate `1/cos θ(x_c)`, θ's rate `θ'/J`.
+fn disk_conditions(
+    cs: &mut Conds,
+    ct: &Contact,
+    (h, r): (&crate::surface::Height, f64),
+    z: &[f64; 4],
+    own: &[f64],
+    pose: &Pose,
+    dpose: &Pose,
+) {
+    let px = z[0] + pose.xf;
+    let amp = 1.0 - pose.flat;
+    let Some(dk) = disk_on_curve(h, r, px, amp) else {
+        // no contact point: no value (the solve backs off)
+        cs.push(f64::NAN, [0.0; 4], [0.0; 3], 0.0);
+        cs.push(f64::NAN, [0.0; 4], [0.0; 3], 0.0);
+        return;
+    };
+    let (hv, d, _) = h.jet_scaled(dk.xc, amp);
+    let (sv, sd) = if dpose.flat != 0.0 {
+        h.shape(dk.xc)
+    } else {
+        (0.0, 0.0)
+    };
+    let (st, c) = dk.th.sin_cos();
+    cs.push(
+        z[1] - (hv - r * c) - pose.h,
+        [-d, 1.0, 0.0, 0.0],
+        [0.0; 3],
+        -d * dpose.xf - dpose.h + sv * dpose.flat,
+    );
+    let dth = dk.dth / dk.jac;
+    let dth_lam = (dk.dth * dpose.xf - sd / (1.0 + d * d) * dpose.flat) / dk.jac;
+    match ct.mode {
+        Mode::Stuck(anchor) => {
+            let place = h.sigma(dk.xc).0 - r * (z[2] - dk.th);
+            cs.push(
+                place - anchor - pose.slide,
+                [1.0 / c, 0.0, -r, 0.0],
+                [0.0; 3],
+                dpose.xf / c - dpose.slide,
+            )
+        }
+        _ => {
+            let ratio = if let Mode::Sliding(q) = ct.mode {
+                q
+            } else {
+                0.0
+            };
+            let f = ct.force(own[0], own[1]);
+            let nl = f[0] * st - f[1] * c;
+            let tl = -f[0] * c - f[1] * st;
+            let t = ct.t();
+            let dn = [-ct.n[0] * st + ct.n[1] * c, t[0] * st - t[1] * c];
+            let dt = [ct.n[0] * c + ct.n[1] * st, -t[0] * c - t[1] * st];
+            cs.push(
+                tl - ratio * nl,
+                [(nl + ratio * tl) * dth, 0.0, 0.0, 0.0],
+                [dt[0] - ratio * dn[0], dt[1] - ratio * dn[1], 0.0],
+                (nl + ratio * tl) * dth_lam,
+            )
+        }
+    }
 }

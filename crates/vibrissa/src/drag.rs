@@ -209,6 +209,10 @@ pub struct DragRow {
     pub jump: Option<f64>,
     /// On a slip row: the elastic energy the slip releases.
     pub released: Option<f64>,
+    /// Lab x of a round tip's contact point with the surface (tip radius > 0; the tip's
+    /// position above is the disk's centre, the rod's end); `None` for a point tip.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x_contact: Option<f64>,
 }
 
 /// The base signals at one state.
@@ -595,7 +599,7 @@ impl<P: Profile> DragRun<'_, P> {
     /// before). Contacts that formed sliding slide on with kinetic friction until they halt.
     fn stick(&mut self, p: Pt, first: bool, carry: Option<f64>) -> Result<Stuck, StopReason> {
         let d = p.lam;
-        let x_tip = p.sol.right()[0] + d;
+        let x_tip = round_contact(self.st.set(), &p).unwrap_or(p.sol.right()[0] + d);
         let mu_s = carry.unwrap_or_else(|| self.fr.at(x_tip, 1.0).0);
         let mut env = self.base.clone();
         env.mu0 = Some(mu_s);
@@ -898,7 +902,8 @@ impl<P: Profile> DragRun<'_, P> {
             r.jump = Some(ev.jump);
             r.released = Some(ev.released);
         }
-        let mu_s_next = mu_s_next.unwrap_or_else(|| self.fr.at(ev.after.x_tip, dir).0);
+        let x_next = round_contact(&nset, &pa).unwrap_or(ev.after.x_tip);
+        let mu_s_next = mu_s_next.unwrap_or_else(|| self.fr.at(x_next, dir).0);
         let sp = scan_point(&pa, &nset, self.profile, None);
         self.rows.push(DragRow {
             phase: Phase::Slip,
@@ -1061,6 +1066,14 @@ fn at_foot(stop: StopReason, d: f64) -> StopReason {
     }
 }
 
+/// Lab x of a round tip's contact point at `p` (where its friction is), if the set's tip is one
+/// and touches.
+fn round_contact(set: &ContactSet, p: &Pt) -> Option<f64> {
+    (set.tip_radius > 0.0 && set.tip())
+        .then(|| p.w.contacts.last().map(|c| c.x))
+        .flatten()
+}
+
 fn row_of(sp: &crate::ScanPoint, tip: &[f64], d: f64, mu_s: f64) -> DragRow {
     DragRow {
         d,
@@ -1077,6 +1090,7 @@ fn row_of(sp: &crate::ScanPoint, tip: &[f64], d: f64, mu_s: f64) -> DragRow {
         event: sp.event.map(DragEvent::Contact),
         jump: None,
         released: None,
+        x_contact: sp.x_contact,
     }
 }
 

@@ -88,6 +88,15 @@ impl<P: Profile + 'static> Begin<'_, P> {
                 handover: None,
             });
         }
+        if self.chain.set.tip_radius > 0.0 {
+            // (the generic methods' boundary conditions hold m(1) = 0 at the tip)
+            return Err(VibrissaError::MethodUnavailable {
+                method: self.solver.method.name().into(),
+                reason: "a round tip (tip radius > 0) is solved by the rod's own shooter \
+                         (method shooting)"
+                    .into(),
+            });
+        }
         let sh = &self.chain.sh;
         let mut g = GenericStepper::new(
             sh.profile.clone(),

@@ -100,6 +100,8 @@ impl Crossing {
                 v.push(Crossing::Lie(j));
             }
             match (&c.geom, c.tip) {
+                // (a round tip meets the surface at any angle)
+                (Geom::Line { .. } | Geom::Curve { .. }, true) if set.tip_radius > 0.0 => {}
                 (Geom::Line { .. } | Geom::Curve { .. }, true) => v.push(Crossing::TipTangent),
                 (Geom::Line { .. } | Geom::Curve { .. }, false) => v.push(Crossing::PeelBack(j)),
                 (Geom::Point { .. }, false) => v.push(Crossing::SlipOff(j)),
@@ -202,7 +204,12 @@ pub(crate) fn held(set: &ContactSet, j: usize, pe: &Pt, xf: f64) -> ContactSet {
     };
     let mut ns = set.clone();
     ns.contacts[j].mode = if ct.tip {
-        Mode::Stuck(sigma)
+        // (a round tip's place includes its turn: it rolls)
+        Mode::Stuck(if set.tip_radius > 0.0 {
+            crate::chain::tip_place(set.tip_radius, &ct.geom, &z, xf).unwrap_or(f64::NAN)
+        } else {
+            sigma
+        })
     } else {
         Mode::Rolling(sigma - dir * s)
     };
@@ -491,7 +498,11 @@ fn curve_transition(
             let (mode, phi_ref) = rolling(&z, s);
             let ct = Contact::on_curve(false, h, z[0] + xf, mode, phi_ref);
             let xb = pe.sol.right()[0] + xf;
-            let stuck = if friction {
+            let stuck = if friction && set.tip_radius > 0.0 {
+                let geom = Geom::Curve { h: h.clone() };
+                let place = crate::chain::tip_place(set.tip_radius, &geom, pe.sol.right(), xf);
+                Mode::Stuck(place.unwrap_or(f64::NAN))
+            } else if friction {
                 Mode::Stuck(h.sigma(xb).0)
             } else {
                 Mode::Free
@@ -513,6 +524,9 @@ fn curve_transition(
             let mut nu = u.clone();
             nu.push(1.0);
             Next::Switch(Event::Touchdown, ns, nu)
+        }
+        Crossing::PeelBack(j) if set.tip_radius > 0.0 && !set.tip() => {
+            Next::Limit(round_tip_peel(set, j, pe))
         }
         Crossing::PeelBack(j) => {
             let o = set.offset(j);
@@ -641,7 +655,11 @@ pub(crate) fn transition(
                     Mode::Free
                 };
                 let ct = Contact::on_surface(false, p0, beta, mode, phi_ref);
-                let stuck = if friction {
+                let stuck = if friction && set.tip_radius > 0.0 {
+                    let geom = Geom::Line { p0, beta };
+                    let place = crate::chain::tip_place(set.tip_radius, &geom, pe.sol.right(), xf);
+                    Mode::Stuck(place.unwrap_or(f64::NAN))
+                } else if friction {
                     Mode::Stuck(along(pe.sol.right(), beta, p0))
                 } else {
                     Mode::Free
@@ -666,6 +684,9 @@ pub(crate) fn transition(
                 let mut nu = u.clone();
                 nu.push(1.0);
                 Next::Switch(Event::Touchdown, ns, nu)
+            }
+            Crossing::PeelBack(j) if set.tip_radius > 0.0 && !set.tip() => {
+                Next::Limit(round_tip_peel(set, j, pe))
             }
             Crossing::PeelBack(j) => {
                 let ct = &set.contacts[j];
@@ -695,6 +716,16 @@ pub(crate) fn transition(
                 Next::Switch(Event::PeelBack, ns, nu)
             }
         }
+}
+
+/// Why a side lying on the surface cannot peel back to a round tip: its contact point reached
+/// the rod's end, where the disk (centred there) would overlap the surface.
+fn round_tip_peel(set: &ContactSet, j: usize, pe: &Pt) -> String {
+    format!(
+        "the side contact at s = {:.6} reached the rod's end, where the round tip (radius {}) \
+         would overlap the surface: a side lying under a round tip is not in the model",
+        pe.w.contacts[j].s, set.tip_radius
+    )
 }
 
 /// Why an event could not be located inside its step.

@@ -120,7 +120,7 @@ impl<P: Profile> ParamBvp for ChainBvp<P> {
         for (j, ct) in set.contacts.iter().enumerate() {
             let z = [zb[4 * j], zb[4 * j + 1], zb[4 * j + 2], zb[4 * j + 3]];
             let o = set.offset(j);
-            let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
+            let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose, 0.0);
             for i in 0..cs.rows {
                 res[row] = cs.val[i];
                 row += 1;
@@ -235,7 +235,7 @@ impl<P: Profile> ParamBvp for ChainBvp<P> {
         for (j, ct) in set.contacts.iter().enumerate() {
             let z = [zb[4 * j], zb[4 * j + 1], zb[4 * j + 2], zb[4 * j + 3]];
             let o = set.offset(j);
-            let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose);
+            let cs = conditions(ct, &z, &u[o..o + ct.unknowns()], &pose, &dpose, 0.0);
             for i in 0..cs.rows {
                 for q in 0..4 {
                     dgb[row * n + 4 * j + q] = cs.dz[i][q];

@@ -46,6 +46,7 @@ pub(crate) fn start<P: Profile>(
     kind: crate::StartKind,
     tol: f64,
 ) -> Result<(Pressed<P>, ContactSet, [f64; 2]), VibrissaError> {
+    surface.check_tip(rod.tip_radius())?;
     match surface.profile_shared() {
         None => {
             let start = crate::start::scan_start(rod, profile, surface, kind, tol)?;
@@ -102,6 +103,7 @@ fn curve_start<P: Profile>(
                 ..*c
             })
             .collect(),
+        tip_radius: pressed.set.tip_radius,
     };
     let mut st = OwnStepper {
         chain: Chain::new(pressed.sh, set, Family::Grow { off0 }),
@@ -197,7 +199,15 @@ pub(crate) fn stuck<P: Profile>(
                 let (nl, tl) = crate::chain::local_forces(c, u[o], u[o + 1], x);
                 u[o] = nl;
                 u[o + 1] = tl;
-                Contact::on_curve(true, h, x, Mode::Stuck(h.sigma(x).0), 0.0)
+                // (a round tip's place includes its turn: it rolls; its x is the contact point's)
+                let r = p.set.tip_radius;
+                let place = if r > 0.0 {
+                    let geom = Geom::Curve { h: h.clone() };
+                    crate::chain::tip_place(r, &geom, p.pt.sol.right(), xf).unwrap_or(f64::NAN)
+                } else {
+                    h.sigma(x).0
+                };
+                Contact::on_curve(true, h, x, Mode::Stuck(place), 0.0)
             } else {
                 let th = h.angle(x).0;
                 let dir = (c.phi_ref - th).cos().round();
@@ -208,5 +218,11 @@ pub(crate) fn stuck<P: Profile>(
             }
         })
         .collect();
-    (ContactSet { contacts }, u)
+    (
+        ContactSet {
+            contacts,
+            tip_radius: p.set.tip_radius,
+        },
+        u,
+    )
 }

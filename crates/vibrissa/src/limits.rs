@@ -185,6 +185,29 @@ pub const SUPPORT_COMPLIANCE: Range = Range::new(0.0, true, 1000.0, true).unit("
 pub const SURFACE_ANGLE: Range = Range::new(-FRAC_PI_4, false, FRAC_PI_4, false)
     .symbol("(-pi/4, pi/4)")
     .unit("radians");
+/// Radius `r` of the round tip (rod lengths): the rod's end carries a rigid disk of radius `r`
+/// centred at its end point; 0 is the point tip. A whisker's tip is a few µm across on a rod of
+/// tens of mm (r ~ 1e-4); 0.05 is a tip as wide as a tenth of the rod.
+pub const TIP_RADIUS: Range = Range::new(0.0, true, 0.05, true).unit("rod lengths").why(
+    "rod lengths; 0 is a point tip, and a disk wider than a tenth of the rod is no whisker tip",
+);
+/// Steepest surface slope `|h'|` a point tip takes (45°, the straight surface's inclination):
+/// steeper, the tip would meet the surface edge-on where it turns.
+pub const POINT_TIP_SLOPE: f64 = 1.0;
+/// Steepest surface slope `|h'|` a round tip (tip radius > 0) takes: `tan 80°` (a disk meets a
+/// surface at any angle; beyond 80° the surface's arc length per unit x grows without bound).
+pub const ROUND_TIP_SLOPE: f64 = 5.671_281_819_617_707;
+
+/// The steepest surface slope `|h'|` the tip of radius `tip_radius` takes: [`POINT_TIP_SLOPE`]
+/// for a point tip, [`ROUND_TIP_SLOPE`] for a round one.
+pub fn max_profile_slope(tip_radius: f64) -> f64 {
+    if tip_radius > 0.0 {
+        ROUND_TIP_SLOPE
+    } else {
+        POINT_TIP_SLOPE
+    }
+}
+
 /// A tabulated reciprocal stiffness `b` (relative to the foot).
 pub const TABLE_B: Range = Range::new(1e-8, true, 1e8, true);
 /// Physical dimensions (mm, GPa, µm).
@@ -330,6 +353,7 @@ pub fn named() -> Vec<(&'static str, Range)> {
         ("precurvature_slope", PRECURVATURE_SLOPE),
         ("support_compliance", SUPPORT_COMPLIANCE),
         ("surface_angle", SURFACE_ANGLE),
+        ("tip_radius", TIP_RADIUS),
         ("table_b", TABLE_B),
         ("physical", PHYSICAL),
         ("tol", TOL),

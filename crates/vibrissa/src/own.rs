@@ -65,6 +65,18 @@ impl<P: Profile> OwnStepper<P> {
                 fill_slip(&mut w, &self.chain.set, (&cv.u, d), &r, foot);
             }
         }
+        // a round tip on a curve: its contact point's rate (x_c + r sin θ(x_c) = P_x)
+        if let (Some(j), Some(d)) = (self.chain.disk_tip(), du.as_deref()) {
+            let set = &self.chain.set;
+            if let crate::chain::Geom::Curve { h } = &set.contacts[j].geom {
+                let foot = self.chain.family.pose(lam).1.xf;
+                let px = sol.right()[0] + xf;
+                let dk = crate::chain::disk_on_curve(h, set.tip_radius, px, 1.0);
+                if let (Some(r), Some(dk)) = (self.chain.contact_rates(&cv.u, lam, d), dk) {
+                    w.contacts[j].dxc = (r[j][0] + foot) / dk.jac;
+                }
+            }
+        }
         Ok(Pt {
             lam,
             u: cv.u,

@@ -306,7 +306,7 @@ fn whisk_with<P: Profile>(
         n: [sp, -cp],
         phi_ref: phi_t,
     };
-    let set = ContactSet { contacts: vec![ct] };
+    let set = ContactSet::of(vec![ct]);
     let env = Env {
         ground: Default::default(),
         line: None,

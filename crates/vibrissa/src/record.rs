@@ -90,10 +90,13 @@ fn driver_rate(env: &Env, set: &ContactSet, j: usize, p: &Pt, xf: f64) -> (f64, 
     let o = set.offset(j);
     let f = ct.force(p.u[o], p.u[o + 1]);
     let df = ct.force(du[o], du[o + 1]);
-    // the unit tangent along +σ at the contact and its turn per unit arc length
-    let (e, de) = match &ct.geom {
+    // the unit tangent along +σ at the contact and its turn per unit arc length, and the rate
+    // of the contact point's arc length (a point tip's: its place's, dir; a round tip's: its
+    // contact point's, which rolls)
+    let disk = ct.tip && set.tip_radius > 0.0;
+    let (e, de, rate) = match &ct.geom {
         Geom::Curve { h } => {
-            let x = if ct.tip {
+            let x = if ct.tip && !disk {
                 p.sol.right()[0] + xf
             } else {
                 p.w.contacts[j].x
@@ -101,13 +104,14 @@ fn driver_rate(env: &Env, set: &ContactSet, j: usize, p: &Pt, xf: f64) -> (f64, 
             let (_, d, dd) = h.jet(x);
             let w = (1.0 + d * d).sqrt();
             let kappa = dd / (w * w * w);
-            ([1.0 / w, d / w], [-d / w * kappa, kappa / w])
+            let rate = if disk { w * p.w.contacts[j].dxc } else { dir };
+            ([1.0 / w, d / w], [-d / w * kappa, kappa / w], rate)
         }
-        Geom::Line { beta, .. } => ([beta.cos(), beta.sin()], [0.0, 0.0]),
+        Geom::Line { beta, .. } => ([beta.cos(), beta.sin()], [0.0, 0.0], dir),
         _ => return (0.0, 0.0),
     };
     let r = -dir * (f[0] * e[0] + f[1] * e[1]);
-    let dr = -dir * (df[0] * e[0] + df[1] * e[1]) - (f[0] * de[0] + f[1] * de[1]);
+    let dr = -dir * (df[0] * e[0] + df[1] * e[1]) - dir * rate * (f[0] * de[0] + f[1] * de[1]);
     (r, dr)
 }
 
@@ -201,6 +205,10 @@ pub(crate) fn scan_point<P: Profile>(
         contact: ContactLabel::of(set),
         s_c,
         event,
+        x_contact: match w.contacts.last() {
+            Some(c) if set.tip_radius > 0.0 && set.tip() => Some(c.x),
+            _ => None,
+        },
     }
 }
 

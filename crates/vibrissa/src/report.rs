@@ -162,6 +162,10 @@ pub struct ScanPoint {
     /// The event at this point, if it is one (a change of the contact state, or where the scan
     /// stopped), not a grid point.
     pub event: Option<Event>,
+    /// Lab x of the contact point of a round tip (tip radius > 0) touching the surface (the
+    /// disk's centre is the rod's end); `None` for a point tip.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x_contact: Option<f64>,
 }
 
 impl ScanPoint {
@@ -184,6 +188,7 @@ impl ScanPoint {
             contact: ContactLabel("none"),
             s_c: None,
             event: None,
+            x_contact: None,
         }
     }
 }

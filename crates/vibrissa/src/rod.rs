@@ -57,6 +57,7 @@ pub struct Rod {
     compliance: f64,
     physical: Option<Physical>,
     uniform_profile: bool,
+    tip_radius: f64,
 }
 
 /// Builder of a [`Rod`]; every setting defaults to the uniform, straight, clamped rod.
@@ -66,6 +67,7 @@ pub struct RodBuilder {
     precurvature: Precurvature,
     compliance: f64,
     physical: Option<Physical>,
+    tip_radius: f64,
 }
 
 impl RodBuilder {
@@ -99,6 +101,12 @@ impl RodBuilder {
         self.physical = Some(physical);
         self
     }
+    /// A round tip: the rod's end carries a rigid disk of radius `r ∈` [`limits::TIP_RADIUS`]
+    /// centred at its end point (default 0, the point tip).
+    pub fn tip_radius(mut self, r: f64) -> Self {
+        self.tip_radius = r;
+        self
+    }
     /// Validates and builds; the error names the value and its valid range.
     pub fn build(self) -> Result<Rod, VibrissaError> {
         Rod::new(
@@ -106,7 +114,8 @@ impl RodBuilder {
             self.precurvature,
             self.compliance,
             self.physical,
-        )
+        )?
+        .with_tip_radius(self.tip_radius)
     }
 }
 
@@ -172,6 +181,7 @@ impl Rod {
             compliance: 0.0,
             physical: None,
             uniform_profile: true,
+            tip_radius: 0.0,
         }
     }
 
@@ -222,6 +232,7 @@ impl Rod {
             compliance: c,
             physical,
             uniform_profile,
+            tip_radius: 0.0,
         };
         if let Some(u) = rod.units() {
             for (name, v) in [
@@ -247,6 +258,19 @@ impl Rod {
     /// Support compliance `c`.
     pub fn support_compliance(&self) -> f64 {
         self.compliance
+    }
+    /// The rod with a round tip of radius `r` (a rigid disk centred at the rod's end point,
+    /// turning with it; 0: the point tip); `r` must lie in [`limits::TIP_RADIUS`].
+    pub fn with_tip_radius(self, r: f64) -> Result<Rod, VibrissaError> {
+        limits::TIP_RADIUS.check("tip radius", r)?;
+        Ok(Rod {
+            tip_radius: r,
+            ..self
+        })
+    }
+    /// The radius of the round tip (0: a point tip).
+    pub fn tip_radius(&self) -> f64 {
+        self.tip_radius
     }
     /// Physical dimensions, if any.
     pub fn physical(&self) -> Option<&Physical> {
@@ -358,8 +382,26 @@ impl Surface {
         self,
         p: &crate::surface::SurfaceProfile,
     ) -> Result<Surface, VibrissaError> {
-        let profile = crate::surface::Height::new(p, self.eta, self.angle)?.map(Arc::new);
+        self.with_profile_for_tip(p, 0.0)
+    }
+    /// The surface with the height profile `p` for a tip of radius `tip_radius` (a round tip
+    /// takes slopes up to 80°, [`crate::surface::Height::for_tip`]); errors name the scene key.
+    pub fn with_profile_for_tip(
+        self,
+        p: &crate::surface::SurfaceProfile,
+        tip_radius: f64,
+    ) -> Result<Surface, VibrissaError> {
+        let profile =
+            crate::surface::Height::for_tip(p, self.eta, self.angle, tip_radius)?.map(Arc::new);
         Ok(Surface { profile, ..self })
+    }
+    /// `Ok` when a tip of radius `tip_radius` may touch this surface
+    /// ([`crate::surface::Height::check_tip`]; a line takes any tip).
+    pub fn check_tip(&self, tip_radius: f64) -> Result<(), VibrissaError> {
+        match self.profile() {
+            Some(h) => h.check_tip(tip_radius),
+            None => Ok(()),
+        }
     }
     /// The surface with the friction profile `f` (see [`crate::surface`]).
     pub fn with_friction(

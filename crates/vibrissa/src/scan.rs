@@ -100,6 +100,14 @@ fn scan_impl(
     grid: &[f64],
 ) -> Result<ScanResult, VibrissaError> {
     if opts.solver.method == Method::Analytic {
+        if rod.tip_radius() > 0.0 {
+            return Err(VibrissaError::MethodUnavailable {
+                method: "analytic".into(),
+                reason: "the closed forms are those of the point tip; a round tip (tip radius > \
+                         0) is solved by the rod's own shooter (method shooting)"
+                    .into(),
+            });
+        }
         return crate::analytic::scan_analytic(rod, surface, opts, grid);
     }
     if rod.has_uniform_profile() {

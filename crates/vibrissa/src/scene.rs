@@ -48,6 +48,16 @@ pub struct Scene {
     /// The friction along the surface: `none` (default: the command's coefficients), `uniform`,
     /// `table`, `patches`.
     pub friction: crate::surface::FrictionProfile,
+    /// Radius of the round tip, a rigid disk centred at the rod's end (rod lengths; default 0,
+    /// the point tip; range [`crate::limits::TIP_RADIUS`]). A round tip takes surface slopes up
+    /// to 80°.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub tip_radius: f64,
+}
+
+/// Whether a value is 0 (a default the scene file leaves out).
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 impl Default for Scene {
@@ -63,6 +73,7 @@ impl Default for Scene {
             start: crate::StartKind::Pressed,
             surface: Default::default(),
             friction: Default::default(),
+            tip_radius: 0.0,
         }
     }
 }
@@ -75,13 +86,14 @@ impl Scene {
             self.precurvature.clone(),
             self.support_compliance,
             self.physical.clone(),
-        )
+        )?
+        .with_tip_radius(self.tip_radius)
     }
 
     /// The surface of the scene (height, inclination, profile and friction), validated.
     pub fn surface(&self) -> Result<Surface, VibrissaError> {
         Surface::new(self.eta, self.surface_angle)?
-            .with_profile(&self.surface)?
+            .with_profile_for_tip(&self.surface, self.tip_radius)?
             .with_friction(&self.friction)
     }
 
@@ -93,8 +105,9 @@ impl Scene {
     /// Checks every value (see [`Rod::new`] and [`Surface::new`]); the error names the value and
     /// its valid range.
     pub fn validate(&self) -> Result<(), VibrissaError> {
-        self.surface()?;
-        self.rod().map(|_| ())
+        let surface = self.surface()?;
+        let rod = self.rod()?;
+        surface.check_tip(rod.tip_radius())
     }
 }
 

@@ -57,6 +57,17 @@ pub fn solve(
     cfg.validate()?;
     check_alpha(alpha)?;
     check_target(&target)?;
+    if rod.tip_radius() > 0.0
+        && (!matches!(target, Target::Eta(_)) || cfg.method == Method::Analytic)
+    {
+        return Err(VibrissaError::MethodUnavailable {
+            method: "a round tip (tip radius > 0)".into(),
+            reason: "a solve holds a round tip on the surface at the height eta (--eta), on the \
+                     rod's own shooter: a tip slope or a tip position has no contact point for \
+                     the disk, and the closed forms are the point tip's"
+                .into(),
+        });
+    }
     if cfg.method == Method::Analytic {
         return solve_analytic(rod, alpha, target, branch);
     }
@@ -70,8 +81,9 @@ pub fn solve(
 }
 
 /// The contact set of a tip condition under a tip force at angle `alpha` (force frame normal
-/// `(−sin α, cos α)`), and its fixed pose.
-fn tip_set(alpha: f64, target: &Target) -> (ContactSet, Pose) {
+/// `(−sin α, cos α)`), and its fixed pose; `r` the round tip's radius (a height target: the
+/// disk touching the line `y = η`, its centre at `η − r`).
+fn tip_set(alpha: f64, target: &Target, r: f64) -> (ContactSet, Pose) {
     let (geom, mode, h) = match *target {
         Target::Phi1(phi1) => (Geom::Slope { phi1 }, Mode::Free, 0.0),
         Target::Eta(eta) => (
@@ -99,7 +111,14 @@ fn tip_set(alpha: f64, target: &Target) -> (ContactSet, Pose) {
         phi_ref: 0.0,
     };
     (
-        ContactSet { contacts: vec![ct] },
+        ContactSet {
+            contacts: vec![ct],
+            tip_radius: if matches!(target, Target::Eta(_)) {
+                r
+            } else {
+                0.0
+            },
+        },
         Pose {
             h,
             ..Pose::default()
@@ -119,7 +138,7 @@ fn solve_with<P: Profile>(
     let c = rod.support_compliance();
     let tol = cfg.own_shooter_tol().unwrap_or(cfg.tol.min(1e-10));
     let ntol = tol.min(NEWTON_TOL_MAX);
-    let (set, pose) = tip_set(alpha, &target);
+    let (set, pose) = tip_set(alpha, &target, rod.tip_radius());
     let mut chain = Chain::new(
         Shooter::new(profile.clone(), c, tol, 8),
         set.clone(),
@@ -225,6 +244,11 @@ fn load<P: Profile>(
         force_beta: 0.0,
         sides: false,
         goal,
+        tip_radius: if matches!(target, Target::Eta(_)) {
+            rod.tip_radius()
+        } else {
+            0.0
+        },
     };
     // connected: the uniform clamped rod first, its deviations grown once the force is turned
     let first_rod = if connected {
@@ -255,10 +279,11 @@ fn load<P: Profile>(
         Err(e) => return Err(e),
     };
     // the condition's own set (slope or height held), at force angle 0
-    let (set0, pose) = tip_set(0.0, target);
+    let r = rod.tip_radius();
+    let (set0, pose) = tip_set(0.0, target, r);
     let (set0, pose) = match *target {
         // the tip x follows later: hold the height first
-        Target::Tip { y1, .. } => tip_set(0.0, &Target::Eta(y1)),
+        Target::Tip { y1, .. } => tip_set(0.0, &Target::Eta(y1), r),
         _ => (set0, pose),
     };
     let mut chain = Chain::new(pressed.sh, set0, Family::Fixed(pose));
@@ -304,7 +329,7 @@ fn load<P: Profile>(
             let _ = chain.eval(&u, 0.0, false);
             chain.path(&u).right()[0]
         };
-        let (tset, _) = tip_set(alpha, target);
+        let (tset, _) = tip_set(alpha, target, r);
         let mut ch = Chain::new(chain.sh, tset, Family::Drag);
         if let Some(ct) = ch.set.contacts.first_mut() {
             ct.mode = Mode::Stuck(x0);

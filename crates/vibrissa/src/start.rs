@@ -45,6 +45,8 @@ pub(crate) struct PressSpec {
     pub sides: bool,
     /// Where the press ends.
     pub goal: Goal,
+    /// The tip's disk radius (0: a point tip).
+    pub tip_radius: f64,
 }
 
 /// A pressed state: its contact set (frictionless contacts on the line through `p0`), the point,
@@ -71,8 +73,14 @@ fn press_failed(what: &str, stop: &StopReason) -> VibrissaError {
 }
 
 /// The rest shape (unloaded) and its highest point along the normal of a line inclined by
-/// `beta`: `(height, s)`, refined on the rod.
-fn rest_top<P: Profile>(sh: &mut Shooter<P>, beta: f64, tip_only: bool) -> (f64, f64, [f64; 4]) {
+/// `beta`: `(height, s)`, refined on the rod (a round tip of radius `r` reaches `r` above its
+/// centre).
+fn rest_top<P: Profile>(
+    sh: &mut Shooter<P>,
+    beta: f64,
+    tip_only: bool,
+    r: f64,
+) -> (f64, f64, [f64; 4]) {
     let z0 = [0.0, 0.0, FRAC_PI_2, 0.0];
     for _ in 0..32 {
         let shot = sh.shoot(0, 0.0, 1.0, z0, &[], [0.0, 0.0], false);
@@ -85,7 +93,7 @@ fn rest_top<P: Profile>(sh: &mut Shooter<P>, beta: f64, tip_only: bool) -> (f64,
     let last = pz.len() - 4;
     let zt = [pz[last], pz[last + 1], pz[last + 2], pz[last + 3]];
     let h = |z: &[f64]| -sb * z[0] + cb * z[1];
-    let mut best = (h(&zt), 1.0, zt);
+    let mut best = (if r > 0.0 { h(&zt) + r } else { h(&zt) }, 1.0, zt);
     if tip_only {
         return best;
     }
@@ -147,16 +155,23 @@ fn first_touch<P: Profile>(
     spec: &PressSpec,
 ) -> Result<Touch, VibrissaError> {
     let gb = spec.geom_beta;
-    let (top, s_top, z_top) = rest_top(sh, gb, !spec.sides);
+    let r = spec.tip_radius;
+    let (top, s_top, z_top) = rest_top(sh, gb, !spec.sides, r);
+    // (the height the rest shape reaches: a round tip's top)
+    let reach = if r > 0.0 && s_top >= 1.0 {
+        z_top[1] + r
+    } else {
+        z_top[1]
+    };
     let symmetric = gb == 0.0 && spec.force_beta == 0.0 && s_top == 1.0 && profile.straight();
     if let Goal::Height(eta, _) = spec.goal {
-        if z_top[1] <= eta {
+        if reach <= eta {
             return Err(VibrissaError::OutOfReach {
                 what: format!(
                     "the rod's rest shape does not reach the surface at eta = {eta}: its highest \
                      point (s = {s_top:.6}) is below it, so it touches only when pulled up"
                 ),
-                reach: z_top[1],
+                reach,
                 needed: eta,
             });
         }
@@ -168,7 +183,7 @@ fn first_touch<P: Profile>(
         contact.phi_ref = crate::chain::slope_on(gb, z_top[2]);
     }
     let room = match spec.goal {
-        Goal::Height(eta, _) => (z_top[1] - eta).max(1e-12),
+        Goal::Height(eta, _) => (reach - eta).max(1e-12),
         Goal::TipSlope(..) => 1.0,
     };
     // a straight rod on a nearly horizontal line meets it almost axially: its path passes close
@@ -285,6 +300,7 @@ pub(crate) fn press<P: Profile>(
     let (p0, top) = ([0.0, 0.0], t.top);
     let set = ContactSet {
         contacts: vec![t.contact.clone()],
+        tip_radius: spec.tip_radius,
     };
     let mut chain = Chain::new(sh, set, Family::Press { h0: top });
     let ntol = corrector_tol(tol);
@@ -396,6 +412,9 @@ fn loaded_start<P: Profile>(
                 )
                 .z;
             let h = -beta.sin() * z1[0] + beta.cos() * z1[1];
+            // (a round tip's centre stays its radius below the line)
+            let r = chain.set.tip_radius;
+            let h = if r > 0.0 { h + r } else { h };
             return Ok((top - h, vec![m0, n0, 0.0]));
         }
     }
@@ -414,6 +433,9 @@ fn buckled_start<P: Profile>(
     left: bool,
 ) -> Result<(f64, Vec<f64>), VibrissaError> {
     let side = if left { -1.0 } else { 1.0 };
+    // (a round tip's centre stays its radius below the line)
+    let r = chain.set.tip_radius;
+    let top = if r > 0.0 { top - r } else { top };
     let sh = &mut chain.sh;
     // the first sign change of ∂m(1)/∂m(0) in f: bracket by doubling, then Brent
     let k0 = straight_stiffness(sh, 0.0);
@@ -508,8 +530,15 @@ pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64;
         p.pt.sol.eval(s, &mut z);
         [z[0], z[1]]
     };
-    let p0 = z_last;
+    // (a round tip touches the line its radius beyond its centre, along the normal)
+    let r = p.set.tip_radius;
+    let p0 = if p.set.tip() && r > 0.0 {
+        [z_last[0] - r * sb, z_last[1] + r * cb]
+    } else {
+        z_last
+    };
     let along = |z: &[f64]| cb * (z[0] - p0[0]) + sb * (z[1] - p0[1]);
+    let line = Geom::Line { p0, beta };
     let contacts = p
         .set
         .contacts
@@ -520,7 +549,7 @@ pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64;
             let mut z = [0.0; 4];
             p.pt.sol.eval(s, &mut z);
             let mode = if c.tip {
-                Mode::Stuck(along(&z))
+                Mode::Stuck(crate::chain::tip_place(r, &line, &z, 0.0).unwrap_or(f64::NAN))
             } else {
                 Mode::Rolling(along(&z) - (c.phi_ref - beta).cos().round() * s)
             };
@@ -531,7 +560,13 @@ pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64;
             }
         })
         .collect();
-    (ContactSet { contacts }, p0)
+    (
+        ContactSet {
+            contacts,
+            tip_radius: p.set.tip_radius,
+        },
+        p0,
+    )
 }
 
 /// The tolerance of a second press when the first, at a looser tolerance, fails.
@@ -563,6 +598,7 @@ pub(crate) fn scan_start<P: Profile>(
                         force_beta: beta,
                         sides: true,
                         goal: Goal::Height(eta, 1.0),
+                        tip_radius: rod.tip_radius(),
                     },
                 )
             };
@@ -595,6 +631,12 @@ pub(crate) fn scan_start<P: Profile>(
                     }
                 })
         }
+        StartKind::Connected if rod.tip_radius() > 0.0 => Err(VibrissaError::MethodUnavailable {
+            method: "start = connected".into(),
+            reason: "a round tip (tip radius > 0) starts from the rod pressed onto the surface \
+                     (start = pressed)"
+                .into(),
+        }),
         StartKind::Connected => {
             // the uniform clamped rod pressed down at its tip to height eta, the force turned to
             // the surface's normal, then the rod's deviations grown to the scene's rod
@@ -603,6 +645,7 @@ pub(crate) fn scan_start<P: Profile>(
                 force_beta: 0.0,
                 sides: false,
                 goal: Goal::Height(eta, 1.0),
+                tip_radius: 0.0,
             };
             let uniform = profile.at_amplitude(0.0);
             let pu = press(

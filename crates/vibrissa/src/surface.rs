@@ -176,8 +176,28 @@ impl Default for FrictionProfile {
     }
 }
 
-/// Largest slope `|h'|` of a profile (45°, as the straight surface's inclination).
-pub const MAX_PROFILE_SLOPE: f64 = 1.0;
+/// Largest slope `|h'|` of a profile under a point tip (45°, as the straight surface's
+/// inclination; a round tip takes [`crate::limits::ROUND_TIP_SLOPE`]).
+pub const MAX_PROFILE_SLOPE: f64 = crate::limits::POINT_TIP_SLOPE;
+
+/// The slope limit `max` in words: `1, 45 degrees`.
+fn slope_limit_text(max: f64) -> String {
+    if max == MAX_PROFILE_SLOPE {
+        "1, 45 degrees".into()
+    } else {
+        format!("{max:.6}, {:.0} degrees", max.atan().to_degrees())
+    }
+}
+
+/// What a refusal at the point tip's slope limit suggests: a round tip.
+fn round_tip_hint(max: f64) -> &'static str {
+    if max == MAX_PROFILE_SLOPE {
+        "; a round tip, tip radius > 0 (--tip-radius, scene key tip_radius), takes slopes up \
+         to 80 degrees"
+    } else {
+        ""
+    }
+}
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
 enum Shape {
@@ -218,7 +238,13 @@ pub struct Height {
 
 /// A sine corrugation's shape, its parameters and steepest slope (with the surface's own slope
 /// `slope`) checked; errors name the scene key.
-fn sine(amplitude: f64, wavelength: f64, phase: f64, slope: f64) -> Result<Shape, VibrissaError> {
+fn sine(
+    amplitude: f64,
+    wavelength: f64,
+    phase: f64,
+    slope: f64,
+    max_slope: f64,
+) -> Result<Shape, VibrissaError> {
     if !(amplitude.is_finite() && amplitude.abs() <= 0.2) {
         return Err(VibrissaError::range(
             "surface.amplitude",
@@ -238,15 +264,17 @@ fn sine(amplitude: f64, wavelength: f64, phase: f64, slope: f64) -> Result<Shape
     }
     let k = std::f64::consts::TAU / wavelength;
     let steepest = slope.abs() + amplitude.abs() * k;
-    if steepest >= MAX_PROFILE_SLOPE {
+    if steepest >= max_slope {
         return Err(VibrissaError::range(
             "surface.amplitude",
             amplitude,
             format!(
                 "|amplitude| < {:.6} for this wavelength and surface_angle (the \
                      steepest slope |tan(surface_angle)| + 2 pi |amplitude| / wavelength \
-                     = {steepest:.6} must stay below 1, 45 degrees)",
-                ((MAX_PROFILE_SLOPE - slope.abs()) / k).max(0.0)
+                     = {steepest:.6} must stay below {}{})",
+                ((max_slope - slope.abs()) / k).max(0.0),
+                slope_limit_text(max_slope),
+                round_tip_hint(max_slope)
             ),
         ));
     }
@@ -261,6 +289,20 @@ impl Height {
     /// The profile of `p` at base height `eta` and inclination `beta` (`None` for a line);
     /// errors name the scene key.
     pub fn new(p: &SurfaceProfile, eta: f64, beta: f64) -> Result<Option<Height>, VibrissaError> {
+        Height::for_tip(p, eta, beta, 0.0)
+    }
+
+    /// As [`Height::new`], for a rod whose tip has the radius `tip_radius`: the steepest slope
+    /// it takes is [`crate::limits::max_profile_slope`]'s (45° for a point tip, 80° for a round
+    /// one; a circle still ends at 45°), and a round tip must fit the surface's concave parts
+    /// ([`Height::check_tip`]).
+    pub fn for_tip(
+        p: &SurfaceProfile,
+        eta: f64,
+        beta: f64,
+        tip_radius: f64,
+    ) -> Result<Option<Height>, VibrissaError> {
+        let max_slope = crate::limits::max_profile_slope(tip_radius);
         let slope = beta.tan();
         let (shape, lo, hi) = match p {
             SurfaceProfile::Line {} => return Ok(None),
@@ -269,7 +311,7 @@ impl Height {
                 wavelength,
                 phase,
             } => (
-                sine(amplitude, wavelength, phase, slope)?,
+                sine(amplitude, wavelength, phase, slope, max_slope)?,
                 f64::NEG_INFINITY,
                 f64::INFINITY,
             ),
@@ -310,11 +352,7 @@ impl Height {
                 phase,
             } => (
                 Shape::Sines(crate::sines::Sines::new(
-                    amplitude,
-                    wavelength,
-                    phase,
-                    slope,
-                    MAX_PROFILE_SLOPE,
+                    amplitude, wavelength, phase, slope, max_slope,
                 )?),
                 f64::NEG_INFINITY,
                 f64::INFINITY,
@@ -332,7 +370,7 @@ impl Height {
                     flank_angle,
                     ridge_radius,
                     offset,
-                    slope,
+                    (slope, max_slope),
                 )?)),
                 f64::NEG_INFINITY,
                 f64::INFINITY,
@@ -377,14 +415,20 @@ impl Height {
                     }
                     worst = worst.max(h.jet(0.5 * (a + b)).1.abs());
                 }
-                if worst >= MAX_PROFILE_SLOPE {
+                if worst >= max_slope {
                     return Err(VibrissaError::InvalidTable {
                         name: "surface".into(),
                         reason: format!(
                             "the spline through the table (with surface_angle) has the slope \
-                             {worst:.6} between x = {} and x = {}; slopes must stay below 1 \
-                             (45 degrees)",
-                            w[0], w[1]
+                             {worst:.6} between x = {} and x = {}; slopes must stay below {}{}",
+                            w[0],
+                            w[1],
+                            if max_slope == MAX_PROFILE_SLOPE {
+                                "1 (45 degrees)".to_string()
+                            } else {
+                                slope_limit_text(max_slope)
+                            },
+                            round_tip_hint(max_slope)
                         ),
                     });
                 }
@@ -392,6 +436,64 @@ impl Height {
         }
         h.tabulate_arc();
         Ok(Some(h))
+    }
+
+    /// Whether a tip of radius `tip_radius` may touch this surface: its steepest slope within
+    /// [`crate::limits::max_profile_slope`] (a surface made for a round tip is refused to a
+    /// point tip where it is steeper than 45°), and a round tip no wider than the surface's
+    /// concave parts are round (`r·max(−h''·cos³θ) < 1`: else the disk, centred on the surface
+    /// offset by `r`, would touch a groove at two points). Both found on 4096 samples of a
+    /// period (a corrugation, a grating), of the domain (a table, a circle), or of `[−2, 4]`
+    /// (a sum of sines); errors name the tip radius and where the surface refuses it.
+    pub fn check_tip(&self, tip_radius: f64) -> Result<(), VibrissaError> {
+        let (a, b) = match &self.shape {
+            &Shape::Sine { k, phase, .. } => (-phase / k, (std::f64::consts::TAU - phase) / k),
+            Shape::Grating(g) => (g.offset, g.offset + g.period),
+            Shape::Sines(_) => (-2.0, 4.0),
+            _ => (self.lo, self.hi),
+        };
+        let n = 4096;
+        let (mut steep, mut x_steep) = (0.0f64, a);
+        let (mut concave, mut x_concave) = (0.0f64, a);
+        for i in 0..=n {
+            let x = a + (b - a) * i as f64 / n as f64;
+            let (_, d, dd) = self.jet(x);
+            if d.abs() > steep {
+                (steep, x_steep) = (d.abs(), x);
+            }
+            let c = -dd / (1.0 + d * d).powf(1.5);
+            if c > concave {
+                (concave, x_concave) = (c, x);
+            }
+        }
+        let max = crate::limits::max_profile_slope(tip_radius);
+        if steep >= max {
+            return Err(VibrissaError::range(
+                "tip radius",
+                tip_radius,
+                format!(
+                    "(0, {}] on this surface: its slope reaches |h'| = {steep:.6} ({:.1} degrees) \
+                     at x = {x_steep:.6}, steeper than a point tip takes (1, 45 degrees); a \
+                     round tip (--tip-radius, scene key tip_radius) takes slopes up to 80 degrees",
+                    crate::limits::TIP_RADIUS.hi,
+                    steep.atan().to_degrees()
+                ),
+            ));
+        }
+        if tip_radius > 0.0 && tip_radius * concave >= 1.0 {
+            return Err(VibrissaError::range(
+                "tip radius",
+                tip_radius,
+                format!(
+                    "[0, {:.6}) on this surface: its concave part at x = {x_concave:.6} is \
+                     rounded with the radius {:.6}, and a wider round tip would touch it at two \
+                     points (a groove narrower than the tip)",
+                    1.0 / concave,
+                    1.0 / concave
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// `(h, h', h'')` at lab `x` (beyond the ends of a circle or a table: continued along the end
@@ -559,7 +661,7 @@ fn grating(
     flank_angle: Option<f64>,
     ridge_radius: f64,
     offset: f64,
-    slope: f64,
+    (slope, max_slope): (f64, f64),
 ) -> Result<crate::grating::Grating, VibrissaError> {
     use crate::limits;
     limits::GRATING_PERIOD.check("surface.period", period)?;
@@ -589,7 +691,7 @@ fn grating(
         }
     }
     let steepest = slope.abs() + g.flank_angle.tan();
-    if steepest.is_nan() || steepest >= MAX_PROFILE_SLOPE {
+    if steepest.is_nan() || steepest >= max_slope {
         let (key, value) = match flank_angle {
             Some(a) => ("surface.flank_angle", a),
             None => ("surface.depth", g.depth),
@@ -599,8 +701,14 @@ fn grating(
             value,
             format!(
                 "a grating whose steepest slope |tan(surface_angle)| + tan(flank_angle) = \
-                 {steepest:.6} (flank_angle {:.6} rad) stays below 1 (45 degrees)",
-                g.flank_angle
+                 {steepest:.6} (flank_angle {:.6} rad) stays below {}{}",
+                g.flank_angle,
+                if max_slope == MAX_PROFILE_SLOPE {
+                    "1 (45 degrees)".to_string()
+                } else {
+                    slope_limit_text(max_slope)
+                },
+                round_tip_hint(max_slope)
             ),
         ));
     }

@@ -54,6 +54,9 @@ pub(crate) struct ContactForce {
     pub curv: f64,
     /// How a contact slides on the surface (filled where the set has a sliding contact).
     pub slide: SlideRate,
+    /// A round tip's contact point on a curved surface: the rate `dx_c/dλ` of its lab x along
+    /// the branch (its friction's frame turns with it; NaN elsewhere or where not known).
+    pub dxc: f64,
 }
 
 /// A surface contact's slip along the branch (module `events`' halt, `record`'s friction work).
@@ -185,6 +188,7 @@ pub(crate) fn watch(
         kappa,
         straight,
     } = rod;
+    let amp = if env.ground.grow { lam } else { 1.0 };
     let mut contacts = Vec::with_capacity(set.contacts.len());
     let (mut nsum, mut tsum) = (0.0, 0.0);
     let (mut dnsum, mut dtsum) = (0.0, 0.0);
@@ -196,7 +200,7 @@ pub(crate) fn watch(
         force[0] += f[0];
         force[1] += f[1];
         let x = if s >= 1.0 {
-            sol.right()[0] + xf
+            disk_point(set, j, sol.right(), xf, amp).map_or(sol.right()[0] + xf, |c| c[0])
         } else {
             exact(s)[0] + xf
         };
@@ -251,6 +255,7 @@ pub(crate) fn watch(
             mu_s,
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
             slide: SlideRate::UNKNOWN,
+            dxc: f64::NAN,
             curv: match ct.geom {
                 Geom::Line { beta, .. } if lies_inside(set, j) => {
                     let z = exact(s);
@@ -272,10 +277,7 @@ pub(crate) fn watch(
             }
         });
     let (clear, clear_s, tip_approach) = match (env.line, &env.ground.curve) {
-        (_, Some(h)) => {
-            let amp = if env.ground.grow { lam } else { 1.0 };
-            curve_clearance(set, u, (h, amp), sol, xf, exact, kappa)
-        }
+        (_, Some(h)) => curve_clearance(set, u, (h, amp), sol, xf, exact, kappa),
         (line, None) => match line {
             Some((p0, beta)) => clearance(
                 set,
@@ -299,7 +301,8 @@ pub(crate) fn watch(
     };
     let y_max = crate::sampling::extrema(sol, 0.0, 1.0).max;
     let last_y = match contacts.last() {
-        Some(c) if c.s >= 1.0 => sol.right()[1],
+        Some(c) if c.s >= 1.0 => disk_point(set, set.contacts.len() - 1, sol.right(), xf, amp)
+            .map_or(sol.right()[1], |c| c[1]),
         Some(c) => exact(c.s)[1],
         None => f64::NAN,
     };
@@ -317,6 +320,21 @@ pub(crate) fn watch(
         y_max,
         last_y,
         phi1: sol.right()[2],
+    }
+}
+
+/// The lab contact point of contact `j` if it is a round tip on a surface (the rod's end state
+/// `zb`, foot at `xf`, a curve at amplitude `amp`); `None` for a point tip or any other contact.
+fn disk_point(set: &ContactSet, j: usize, zb: &[f64], xf: f64, amp: f64) -> Option<[f64; 2]> {
+    let ct = &set.contacts[j];
+    if !(ct.tip && set.tip_radius > 0.0) {
+        return None;
+    }
+    match ct.geom {
+        Geom::Line { .. } | Geom::Curve { .. } => {
+            crate::chain::tip_point(set.tip_radius, &ct.geom, zb, xf, amp)
+        }
+        _ => None,
     }
 }
 
@@ -348,11 +366,17 @@ fn clearance(
         .collect();
     // the line the contacts hold the rod on: its height offset (0 when the scene's own surface,
     // else the pressed one's)
+    // (a round tip's centre, its radius below the line)
+    let r = set.tip_radius;
     let off = surf
         .last()
         .map(|&s| {
             let z = exact(s);
-            h(z[0], z[1])
+            if s >= 1.0 && r > 0.0 {
+                h(z[0], z[1]) + r
+            } else {
+                h(z[0], z[1])
+            }
         })
         .unwrap_or(0.0);
     let s_last = set
@@ -417,12 +441,18 @@ fn clearance(
     let tip_contact = set.tip();
     if !tip_contact && lying_from > 1.0 && 1.0 - s_last >= 5e-7 {
         let zb = sol.right();
-        let v = h(zb[0], zb[1]) - off;
+        // (a round tip touches down where its centre comes within its radius)
+        let v = if r > 0.0 {
+            h(zb[0], zb[1]) + r - off
+        } else {
+            h(zb[0], zb[1]) - off
+        };
         if v > best.0 {
             best = (v, 1.0);
         }
     }
     let approach = if tip_contact
+        && r <= 0.0
         && matches!(
             set.contacts.last().map(|c| &c.geom),
             Some(Geom::Line { .. })
@@ -447,6 +477,12 @@ fn curve_clearance(
 ) -> (f64, f64, f64) {
     let hh = |x: f64| h.jet_scaled(x, amp).0;
     let ss: Vec<f64> = (0..set.contacts.len()).map(|j| set.s_of(j, u)).collect();
+    // (a round tip's centre on the surface offset by its radius: its gap to that offset curve)
+    let r = set.tip_radius;
+    let disk_gap = |z: &[f64]| -> Option<f64> {
+        let dk = crate::chain::disk_on_curve(h, r, z[0] + xf, amp)?;
+        Some(z[1] - (hh(dk.xc) - r * dk.th.cos()))
+    };
     let off = ss
         .last()
         .map(|&s| {
@@ -455,7 +491,10 @@ fn curve_clearance(
             } else {
                 exact(s).to_vec()
             };
-            z[1] - hh(z[0] + xf)
+            match (s >= 1.0 && r > 0.0).then(|| disk_gap(&z)) {
+                Some(g) => g.unwrap_or(f64::NAN),
+                None => z[1] - hh(z[0] + xf),
+            }
         })
         .unwrap_or(0.0);
     let near = |s: f64| ss.iter().any(|&c| (s - c).abs() < NEAR);
@@ -472,7 +511,11 @@ fn curve_clearance(
         crate::surface::curve_clearance(h, amp, off, n, &ss, &mut sample, &mut on_rod, &near);
     let zb = sol.right();
     if !set.tip() && h.covers(zb[0] + xf) {
-        let v = zb[1] - hh(zb[0] + xf) - off;
+        let v = if r > 0.0 {
+            disk_gap(zb).unwrap_or(f64::NEG_INFINITY) - off
+        } else {
+            zb[1] - hh(zb[0] + xf) - off
+        };
         if v > best {
             (best, at) = (v, 1.0);
         }
@@ -482,7 +525,7 @@ fn curve_clearance(
         best = -hh(xf) - off;
         at = 0.0;
     }
-    let approach = if set.tip() {
+    let approach = if set.tip() && r <= 0.0 {
         (zb[2] - h.angle_scaled(zb[0] + xf, amp).0).sin()
     } else {
         f64::NAN

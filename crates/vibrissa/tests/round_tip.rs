@@ -1,0 +1,255 @@
+//! The round tip (issue 31): the rod's end carries a rigid disk of radius r centred at its end
+//! point (docs/model.md, "The round tip").
+
+use vibrissa::surface::SurfaceProfile;
+use vibrissa::{DragOptions, DragResult, Rod, ScanOptions, Scene, StopReason, Surface};
+
+fn scan_points(rod: &Rod, surface: &Surface, d: &[f64]) -> Vec<vibrissa::ScanPoint> {
+    vibrissa::scan_at(rod, surface, &ScanOptions::default(), d)
+        .expect("scan")
+        .points
+}
+
+/// On a flat surface a frictionless disk (the pressed start: the contact force normal to the
+/// surface, T = 0) carries no moment about its centre, so its rod is the point-tip rod whose
+/// contact line is lowered by r: the centre runs on y = η − r and m(1) = 0. Both solved by the
+/// same shooter to its tolerance (1e-10 by default): equal to 1e-10.
+#[test]
+fn a_frictionless_disk_on_a_flat_surface_is_the_point_tip_on_the_lowered_line() {
+    for (eta, r) in [(0.75, 0.01), (0.8, 0.05), (0.6, 0.002)] {
+        let disk = Rod::builder().tip_radius(r).build().unwrap();
+        let a = &scan_points(&disk, &Surface::flat(eta).unwrap(), &[0.0])[0];
+        let b = &scan_points(&Rod::uniform(), &Surface::flat(eta - r).unwrap(), &[0.0])[0];
+        for (what, x, y) in [
+            ("m_base", a.m_base, b.m_base),
+            ("fx", a.fx, b.fx),
+            ("fy", a.fy, b.fy),
+            ("phi1", a.phi1, b.phi1),
+            ("mu", a.mu, b.mu),
+        ] {
+            assert!(
+                (x - y).abs() <= 1e-10,
+                "eta {eta}, r {r}: {what} {x} against the lowered point tip's {y}"
+            );
+        }
+        // T = 0: no moment about the centre, m(1) = r T = 0
+        assert!(a.mu.abs() <= 1e-12, "mu {}", a.mu);
+        // the contact point right above the centre
+        let xc = a.x_contact.expect("a round tip reports its contact point");
+        assert!(xc.is_finite());
+    }
+}
+
+/// A stuck disk rolls without slipping: on a flat surface its contact point moves by r times
+/// the turn of the rod's end, x_c − x_c0 = r (φ(1) − φ(1)_0), to 1e-10 (the solve's tolerance).
+#[test]
+fn a_stuck_disk_rolls_on_a_flat_surface() {
+    let r = 0.02;
+    let disk = Rod::builder().tip_radius(r).build().unwrap();
+    let pts = scan_points(
+        &disk,
+        &Surface::flat(0.75).unwrap(),
+        &[0.0, 0.02, 0.05, 0.1],
+    );
+    let (x0, p0) = (pts[0].x_contact.unwrap(), pts[0].phi1);
+    for p in &pts[1..] {
+        let xc = p.x_contact.unwrap();
+        let want = r * (p.phi1 - p0);
+        assert!(
+            (xc - x0 - want).abs() <= 1e-10,
+            "d {}: x_c − x_c0 = {} against r (φ1 − φ1_0) = {want}",
+            p.d,
+            xc - x0
+        );
+        // it did turn (the check is not of a tip standing still)
+        assert!((p.phi1 - p0).abs() > 1e-3);
+    }
+}
+
+/// The paper's rod at η 0.75 with a round tip of radius `r` over the corrugation
+/// `A sin(2πx/W)`, dragged with μs 0.5, μk 0.3 to `d_max`.
+fn corrugated(r: f64, a: f64, w: f64, d_max: f64, balance: bool) -> DragResult {
+    let scene = Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: a,
+            wavelength: w,
+            phase: 0.0,
+        },
+        tip_radius: r,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = DragOptions {
+        d_max,
+        points: 11,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        energy_balance: balance,
+        ..DragOptions::default()
+    };
+    vibrissa::drag(&rod, &surface, &o).unwrap()
+}
+
+/// The energy balance of every phase with a round tip (as `tests/drag.rs` for the point tip, to
+/// 1e-8): over a stick the foot's work is the elastic energy's change (a rolling tip does no
+/// work), over a slip the energy released is the work friction absorbs at the contact point, its
+/// tangential force times the material slip there (the place of the rolling tip, arc length less
+/// r times the disk's turn against the surface). A wrong moment at the tip, or a wrong rolling
+/// condition, breaks both. On the flat surface and on a corrugation.
+#[test]
+fn energy_balance_with_a_round_tip() {
+    for (name, a, w, d_max) in [("flat", 0.0, 0.1, 0.08), ("corrugated", 0.005, 0.05, 0.06)] {
+        let r = if a == 0.0 {
+            let (rod, surface) = Scene {
+                tip_radius: 0.01,
+                ..Scene::default()
+            }
+            .parts()
+            .unwrap();
+            let o = DragOptions {
+                d_max,
+                points: 11,
+                mu_s: Some(0.5),
+                mu_k: Some(0.3),
+                energy_balance: true,
+                ..DragOptions::default()
+            };
+            vibrissa::drag(&rod, &surface, &o).unwrap()
+        } else {
+            corrugated(0.005, a, w, d_max, true)
+        };
+        assert!(r.slips.len() >= 2, "{name}: {r}");
+        for (k, e) in r.slips.iter().enumerate() {
+            let work = e.work.unwrap();
+            let de = e.before.energy - e.energy_stick;
+            assert!(
+                (work - de).abs() < 1e-8,
+                "{name}, stick {k}: work {work} energy change {de}"
+            );
+            let diss = e.dissipated.unwrap();
+            assert!(
+                (diss - e.released).abs() < 1e-8,
+                "{name}, slip {k}: dissipated {diss} released {}",
+                e.released
+            );
+            assert!(
+                e.released > 1e-6,
+                "{name}, slip {k}: released {}",
+                e.released
+            );
+        }
+    }
+}
+
+/// `vibrissa drag --eta 0.75 --corrugation-amplitude 0.005 --corrugation-wavelength 0.05`: the
+/// point tip ends after 3 slips at d 0.0105 ("the tip would turn into the surface"); with a
+/// round tip of radius 0.005 the drag runs on past it (docs/robustness.md reports where it ends
+/// and why).
+#[test]
+fn a_round_tip_runs_past_where_the_point_tip_turns_into_the_corrugation() {
+    let point = corrugated(0.0, 0.005, 0.05, 0.3, false);
+    assert_eq!(point.slips.len(), 3, "{point}");
+    assert!(
+        matches!(&point.stop, StopReason::ContactChange { d, message } if (d - 0.0105).abs() < 1e-3 && message.contains("turn into the surface")),
+        "{point}"
+    );
+    let round = corrugated(0.005, 0.005, 0.05, 0.3, false);
+    let end = match &round.stop {
+        StopReason::DMax => 0.3,
+        s => s.at().unwrap_or(f64::NAN),
+    };
+    assert!(end > 0.1, "{round}");
+    assert!(round.slips.len() > 3, "{round}");
+}
+
+/// A corrugation with flanks steeper than 45° (A 0.01, W 0.05: the steepest slope 2πA/W = 1.26,
+/// 51.5°): refused to the point tip, with a message that names the slope and the tip radius;
+/// with a round tip of radius 0.005 the drag runs through 12 slips. (It ends at d 0.0193 where a
+/// side touches down behind the disk during a slip: the program's run, 201 output points, calls
+/// it a jam; this one, 11 points, a new state whose Newton iteration stalls at a residual of
+/// 1e-11 — docs/robustness.md, "With a round tip".)
+#[test]
+fn a_round_tip_takes_flanks_steeper_than_45_degrees() {
+    let steep = |r: f64| Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.01,
+            wavelength: 0.05,
+            phase: 0.0,
+        },
+        tip_radius: r,
+        ..Scene::default()
+    };
+    let e = steep(0.0).parts().unwrap_err().to_string();
+    assert!(
+        e.contains("1.256637") && e.contains("tip radius"),
+        "the point tip's refusal: {e}"
+    );
+    // a surface made for a round tip is refused to a point tip
+    let (_, surface) = steep(0.005).parts().unwrap();
+    let o = DragOptions {
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        ..DragOptions::default()
+    };
+    let e = vibrissa::drag(&Rod::uniform(), &surface, &o).unwrap_err();
+    assert!(e.to_string().contains("45 degrees"), "{e}");
+    let r = corrugated(0.005, 0.01, 0.05, 0.3, false);
+    assert!(r.slips.len() >= 10, "{r}");
+    assert!(
+        !matches!(r.stop, StopReason::SolverFailure { .. }) && r.stop.at().unwrap_or(0.3) > 0.015,
+        "{r}"
+    );
+}
+
+/// `solve` at a surface height with a round tip: a vertical force (α = 0) has no tangential
+/// part on the flat surface, so no moment about the disk's centre, and the rod is the point
+/// tip's on the line lowered by r (1e-10); a slope or a tip position target is refused.
+#[test]
+fn solve_at_a_height_with_a_round_tip() {
+    use vibrissa::{BranchChoice, SolverConfig, Target};
+    let cfg = SolverConfig::default();
+    let r = 0.02;
+    let disk = Rod::builder().tip_radius(r).build().unwrap();
+    let a = vibrissa::solve(&disk, 0.0, Target::Eta(0.75), &BranchChoice::Convex, &cfg).unwrap();
+    let b = vibrissa::solve(
+        &Rod::uniform(),
+        0.0,
+        Target::Eta(0.75 - r),
+        &BranchChoice::Convex,
+        &cfg,
+    )
+    .unwrap();
+    assert!((a.f - b.f).abs() <= 1e-10, "f {} against {}", a.f, b.f);
+    let slope = vibrissa::solve(&disk, 0.0, Target::Phi1(0.3), &BranchChoice::Convex, &cfg);
+    assert!(slope.is_err());
+}
+
+/// A round tip is solved on the rod's own shooter: the generic methods and the closed forms
+/// refuse it by name, as does a tip radius outside [0, 0.05].
+#[test]
+fn a_round_tip_is_refused_where_it_is_not_modelled() {
+    use vibrissa::{Method, SolverConfig, VibrissaError};
+    let disk = Rod::builder().tip_radius(0.01).build().unwrap();
+    let surface = Surface::flat(0.75).unwrap();
+    for method in [
+        Method::MultipleShooting,
+        Method::Collocation4,
+        Method::Analytic,
+    ] {
+        let o = ScanOptions {
+            solver: SolverConfig {
+                method,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let e = vibrissa::scan(&disk, &surface, &o).unwrap_err();
+        assert!(
+            matches!(e, VibrissaError::MethodUnavailable { .. }),
+            "{method:?}: {e}"
+        );
+    }
+    for r in [-1e-3, 0.06, f64::NAN] {
+        assert!(Rod::builder().tip_radius(r).build().is_err(), "r = {r}");
+    }
+}
