@@ -79,7 +79,11 @@ pub fn options(a: &DynamicsDragArgs) -> DynDragOptions {
         foot_damping: a.foot_damping,
         internal_damping: a.internal_damping,
         external_damping: a.external_damping,
-        mu_k_table: a.mu_k_table.as_ref().map(|t| t.0.clone()).unwrap_or_default(),
+        mu_k_table: a
+            .mu_k_table
+            .as_ref()
+            .map(|t| t.0.clone())
+            .unwrap_or_default(),
         flight: a.flight,
         ..DynDragOptions::default()
     }

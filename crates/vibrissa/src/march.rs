@@ -667,6 +667,11 @@ impl<P: Profile> Run<'_, '_, P> {
     ) -> Flow {
         let env = self.spec.env;
         self.out.push(&set, &pe, Some(ev));
+        if let Some(message) = ahead_of_driver(env, &set, &new_set, &pe) {
+            self.range.close(RangeEnd::Event);
+            let stop = StopReason::ContactChange { d: pe.lam, message };
+            return Flow::End(stop, Some(Box::new((set, pe))));
+        }
         if new_set.contacts.len() > set.contacts.len() {
             let du = self.stepper.tangent_in(&new_set, pe.lam, &u);
             if let Some(message) = forming_slip(&set, &new_set, &u, du.as_deref(), env.mu0) {
@@ -825,3 +830,28 @@ enum Pending {
 
 /// The largest rate `|du/dλ|` of a held state's tangent that still lets the march go on from it.
 const HOLD_MAX: f64 = 1e6;
+
+/// Why a contact forming during a slip is not followed: one placed before the sliding contact
+/// in the rod's order would renumber it, and the slip's family and events name the driver by
+/// its number in the set the slip began with (a side touching down behind a sliding tip would
+/// be taken for the driver). `None` for any other change.
+fn ahead_of_driver(env: &Env, set: &ContactSet, new_set: &ContactSet, pe: &Pt) -> Option<String> {
+    let driver = env.ground.slide?.driver;
+    if new_set.contacts.len() <= set.contacts.len() {
+        return None;
+    }
+    let at = (0..set.contacts.len())
+        .find(|&k| set.contacts[k] != new_set.contacts[k])
+        .unwrap_or(set.contacts.len());
+    (at <= driver).then(|| {
+        let s_new = pe.w.clear_s;
+        let s_driver = pe.w.contacts.get(driver).map_or(f64::NAN, |c| c.s);
+        format!(
+            "a contact touches down at s = {s_new:.6} during the slip of the contact at s = \
+             {s_driver:.6} ({} to {}): a slip that a new contact joins behind the sliding one is \
+             not followed",
+            set.label(),
+            new_set.label()
+        )
+    })
+}

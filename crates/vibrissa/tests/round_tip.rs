@@ -253,3 +253,25 @@ fn a_round_tip_is_refused_where_it_is_not_modelled() {
         assert!(Rod::builder().tip_radius(r).build().is_err(), "r = {r}");
     }
 }
+
+/// A side touching down behind the sliding tip during a slip (the steep flank,
+/// amplitude 0.02, wavelength 0.1, with r = 0.005: in the second slip the rod meets the trough
+/// at s ≈ 0.978) is a named stop, not a Newton failure on a set whose slide moved the new side
+/// instead of the tip: the slip's driver is numbered in the set the slip began with.
+#[test]
+fn a_side_touching_down_behind_a_sliding_tip_is_named() {
+    let r = corrugated(0.005, 0.02, 0.1, 0.3, false);
+    assert_eq!(r.slips.len(), 1, "{r}");
+    match &r.stop {
+        StopReason::ContactChange { d, message } => {
+            assert!((d - 0.004694).abs() < 1e-5, "{d}");
+            assert!(
+                message.contains("during the slip of the contact at s = 1.000000"),
+                "{message}"
+            );
+            assert!(message.contains("is not followed"), "{message}");
+            assert!(!message.contains("Newton"), "{message}");
+        }
+        other => panic!("{other}"),
+    }
+}
