@@ -275,3 +275,81 @@ fn a_side_touching_down_behind_a_sliding_tip_is_named() {
         other => panic!("{other}"),
     }
 }
+
+/// Against the independent computation of `data/drag/round_tip_reference.csv`
+/// (`make_round_reference.py`: scipy, Cartesian tip forces, the disk's centre on the offset
+/// surface, its own rolling condition and continuation; its own spread 2.5e-11): the paper's
+/// rod with a disk of radius 0.005 over `0.75 + 0.02 sin(2πx/0.1 + 5)` (flanks to 51.5°), μs 0.5,
+/// μk 0.3, 21 points to d 0.02 — every slip's place, the disk centre's lab x and μ before and
+/// after it, and the rows' d, contact point, centre and μ, to 1e-8. From slip 3 on the contact
+/// sits on flanks steeper than 45°.
+#[test]
+fn a_round_tip_matches_the_independent_reference() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/drag/round_tip_reference.csv"
+    ))
+    .unwrap();
+    let scene = Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.02,
+            wavelength: 0.1,
+            phase: 5.0,
+        },
+        tip_radius: 0.005,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = DragOptions {
+        d_max: 0.02,
+        points: 21,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        ..DragOptions::default()
+    };
+    let r = vibrissa::drag(&rod, &surface, &o).unwrap();
+    assert_eq!(r.slips.len(), 11, "{r}");
+    let (mut checked, mut worst, mut steep) = (0, 0.0f64, 0);
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let (kind, k) = (f[0], f[1].parse::<usize>().unwrap());
+        let v: Vec<f64> = f[2..7].iter().map(|x| x.parse().unwrap()).collect();
+        let [d, xc, xt, mu, slope] = [v[0], v[1], v[2], v[3], v[4]];
+        if slope.abs() > 1.0 {
+            steep += 1;
+        }
+        let ours: Vec<(&str, f64, f64)> = match kind {
+            "slip" | "slip_end" => {
+                let e = &r.slips[k];
+                let s = if kind == "slip" { &e.before } else { &e.after };
+                vec![("d", e.d, d), ("x_tip", s.x_tip, xt), ("mu", s.mu, mu)]
+            }
+            _ => {
+                let g = r
+                    .rows
+                    .iter()
+                    .find(|q| q.event.is_none() && (q.d - d).abs() < 1e-15)
+                    .unwrap_or_else(|| panic!("no row at d = {d}"));
+                vec![
+                    ("d", g.d, d),
+                    ("x_contact", g.x_contact.unwrap(), xc),
+                    ("x_tip", g.x_tip, xt),
+                    ("mu", g.mu, mu),
+                ]
+            }
+        };
+        for (what, a, b) in ours {
+            worst = worst.max((a - b).abs());
+            assert!(
+                (a - b).abs() < 1e-8,
+                "{kind} {k}: {what} {a} against {b} (reference)"
+            );
+        }
+        checked += 1;
+    }
+    assert!(
+        checked >= 40 && steep >= 10,
+        "{checked} values, {steep} on steep flanks"
+    );
+    eprintln!("round tip: {checked} reference points, largest difference {worst:.2e}");
+}
