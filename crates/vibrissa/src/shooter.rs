@@ -314,22 +314,30 @@ impl<P: Profile> Shooter<P> {
         m.force = g;
         let n = m.nodes.len() - 1;
         let coef = &m.coef;
-        let bk = |i: usize| -> (f64, f64) {
+        // the profile at the stages of one step and at its end (one bounds check per step)
+        let at = |cs: &[[f64; 2]], i: usize| -> (f64, f64) {
             if P::UNIFORM {
                 (1.0, 0.0)
             } else {
-                let e = coef[i];
+                let e = cs[i];
                 (e[0], e[1])
+            }
+        };
+        let step_coef = |step: usize| -> &[[f64; 2]] {
+            if P::UNIFORM {
+                &[]
+            } else {
+                &coef[12 * step..12 * step + 13]
             }
         };
         let (gx, gy) = (g[0], g[1]);
         let mut kk = [[0.0; N]; 12];
-        let (b0, q0) = bk(0);
+        let (b0, q0) = at(step_coef(0), 0);
         kk[0] = rhs::<N>(&y, gx, gy, b0, q0);
         let mut err_max: f64 = 0.0;
         for step in 0..n {
             let h = len * (m.nodes[step + 1] - m.nodes[step]);
-            let base = 12 * step;
+            let cs = step_coef(step);
             m.path_s.push(a + len * m.nodes[step]);
             m.path_z.extend_from_slice(&y[..4]);
             m.path_dz.extend_from_slice(&kk[0][..4]);
@@ -343,7 +351,7 @@ impl<P: Profile> Shooter<P> {
                             t[cc] += ha * kk[$j][cc];
                         }
                     )*
-                    let (bb, qq) = bk(base + $i);
+                    let (bb, qq) = at(cs, $i);
                     kk[$i] = rhs::<N>(&t, gx, gy, bb, qq);
                 }};
             }
@@ -370,7 +378,7 @@ impl<P: Profile> Shooter<P> {
             m.step_err.push(err);
             err_max = err_max.max(err);
             y = ynew;
-            let (bb, qq) = bk(base + 12);
+            let (bb, qq) = at(cs, 12);
             kk[0] = rhs::<N>(&y, gx, gy, bb, qq);
         }
         m.path_s.push(b);
@@ -463,7 +471,10 @@ impl<P: Profile> Shooter<P> {
         z
     }
 
-    /// [`Shooter::step_impl`] on `L` lanes at once, stage by stage (the same operations per lane).
+    /// [`Shooter::step_impl`] on `L` lanes at once, stage by stage (the same operations per lane,
+    /// in its order). The stage sums run over the tableau's nonzero `a_ij` only, unrolled as in
+    /// the shots: `step_impl` skips a term whose `h·a_ij` is zero, which for a finite step is
+    /// exactly the zero `a_ij`; the final sum keeps all twelve terms, as `step_impl` does.
     #[inline(always)]
     fn steps_impl<const L: usize>(
         &self,
@@ -480,24 +491,37 @@ impl<P: Profile> Shooter<P> {
             }
         };
         let mut kk = [[[0.0; 4]; 12]; L];
-        for st in 0..12 {
-            for l in 0..L {
-                if h[l] == 0.0 {
-                    continue;
-                }
-                let mut t = z0[l];
-                for (j, kj) in kk[l].iter().enumerate().take(st) {
-                    let ha = h[l] * tab::A[st * tab::STAGES + j];
-                    if ha != 0.0 {
-                        for c in 0..4 {
-                            t[c] += ha * kj[c];
-                        }
+        macro_rules! stage {
+            ($i:literal, [$($j:literal),*]) => {{
+                for l in 0..L {
+                    if h[l] == 0.0 {
+                        continue;
                     }
+                    #[allow(unused_mut)]
+                    let mut t = z0[l];
+                    $(
+                        let ha = h[l] * tab::A[$i * tab::STAGES + $j];
+                        for c in 0..4 {
+                            t[c] += ha * kk[l][$j][c];
+                        }
+                    )*
+                    let (bb, qq) = pb(s0[l] + tab::C[$i] * h[l]);
+                    kk[l][$i] = rhs::<4>(&t, g[0], g[1], bb, qq);
                 }
-                let (bb, qq) = pb(s0[l] + tab::C[st] * h[l]);
-                kk[l][st] = rhs::<4>(&t, g[0], g[1], bb, qq);
-            }
+            }};
         }
+        stage!(0, []);
+        stage!(1, [0]);
+        stage!(2, [0, 1]);
+        stage!(3, [0, 2]);
+        stage!(4, [0, 2, 3]);
+        stage!(5, [0, 3, 4]);
+        stage!(6, [0, 3, 4, 5]);
+        stage!(7, [0, 3, 4, 5, 6]);
+        stage!(8, [0, 3, 4, 5, 6, 7]);
+        stage!(9, [0, 3, 4, 5, 6, 7, 8]);
+        stage!(10, [0, 3, 4, 5, 6, 7, 8, 9]);
+        stage!(11, [0, 3, 4, 5, 6, 7, 8, 9, 10]);
         let mut z = z0;
         for l in 0..L {
             if h[l] == 0.0 {
@@ -615,7 +639,9 @@ pub(crate) fn sin_cos(x: f64) -> (f64, f64) {
     // fdlibm's split keeps 1 − z/2 exact to the last bit
     let cr = w + (((1.0 - w) - hz) + z * z * cp);
     // quadrant by selects rather than a jump table
-    let q = k as i64;
+    // SAFETY: `k` is a whole number with |k| < 1e5·2/π (the test above), so it converts
+    // exactly and in range: one truncating instruction instead of the saturating `as`
+    let q = unsafe { k.to_int_unchecked::<i64>() };
     let (s1, c1) = if q & 1 == 0 { (sr, cr) } else { (cr, -sr) };
     if q & 2 == 0 {
         (s1, c1)
@@ -801,6 +827,56 @@ mod tests {
         let first = nodes[1] - nodes[0];
         let last = nodes[n] - nodes[n - 1];
         assert!(last < 0.5 * first, "first step {first}, last {last}");
+    }
+
+    /// The lanes of `end_states` are, bit for bit, the single-step integrations of `step` over
+    /// the segment's mesh laid on each span (a graded mesh, a tapered pre-curved rod), so the
+    /// central differences of the moving ends do not depend on how they are computed.
+    #[test]
+    fn end_states_lanes_are_single_step_integrations() {
+        let scene = Scene {
+            stiffness: Stiffness::Taper { ratio: 0.1 },
+            precurvature: Precurvature::Linear { k0: -0.7, k1: 0.2 },
+            ..Scene::default()
+        };
+        let mut sh = Shooter::new(
+            General::new(&scene.stiffness, &scene.precurvature, 1.0),
+            0.0,
+            1e-10,
+            8,
+        );
+        let z0 = [0.0, 0.0, std::f64::consts::FRAC_PI_2, -0.05];
+        let g = [0.02, -0.3];
+        while sh.shoot(0, 0.0, 0.9, z0, &[], g, false).err > 1.0 {
+            assert!(sh.refine(0));
+        }
+        assert!(sh.segs[0].nodes.len() > 9, "the mesh was graded");
+        let single = |(a, b): (f64, f64)| -> [f64; 4] {
+            let mut z = z0;
+            for w in sh.segs[0].nodes.windows(2) {
+                z = sh.step(z, a + (b - a) * w[0], (b - a) * (w[1] - w[0]), g);
+            }
+            z
+        };
+        let d = 1e-5 * 0.9;
+        let spans = [
+            (0.0, 0.9 - d),
+            (0.0, 0.9 + d),
+            (0.1 - d, 0.9),
+            (0.1 + d, 0.9),
+        ];
+        let four = sh.end_states(0, spans, z0, g);
+        let two = sh.end_states(0, [spans[2], spans[3]], z0, g);
+        for (l, span) in spans.iter().enumerate() {
+            let z = single(*span);
+            assert_eq!(
+                four[l].map(f64::to_bits),
+                z.map(f64::to_bits),
+                "lane {l} of four"
+            );
+        }
+        assert_eq!(two[0].map(f64::to_bits), single(spans[2]).map(f64::to_bits));
+        assert_eq!(two[1].map(f64::to_bits), single(spans[3]).map(f64::to_bits));
     }
 
     /// The state on the rod between nodes (one step from the node before) agrees with a shot on
