@@ -990,7 +990,9 @@ fn fit<'py>(
     let (contact, start) = settings(surface, contact, start)?;
     let scene = scene_of(&rod.0, surface, contact, start);
     let corrugation = match &corrugation {
-        Some(names) => CorrugationFit::from_names(names.iter().map(String::as_str)).map_err(py_err)?,
+        Some(names) => {
+            CorrugationFit::from_names(names.iter().map(String::as_str)).map_err(py_err)?
+        }
         None => CorrugationFit::default(),
     };
     let mut opts = FitOptions {
