@@ -764,13 +764,18 @@ impl<P: Profile> DragRun<'_, P> {
                         message: format!(
                             "the contact at s = {:.6} slid {MAX_SLIP} rod lengths along the \
                              surface without reaching an equilibrium where mu_k holds it",
-                            qe.w.contacts[j].s
+                            qe.w.contacts.get(j).map_or(f64::NAN, |c| c.s)
                         ),
                     })
                 }
                 StopReason::DMax => {
                     // at a patch boundary: the patch ahead holds the contact, or it slides on
-                    let c = qe.w.contacts[j];
+                    let Some(&c) = qe.w.contacts.get(j) else {
+                        return Err(Self::failure(
+                            d_s,
+                            format!("the sliding contact {j} is gone"),
+                        ));
+                    };
                     let (ms, mk) = self.fr.at(c.x, dir);
                     if dir * c.tangential <= mk * c.normal {
                         let slid = slid + qe.lam - clam;

@@ -133,7 +133,9 @@ fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) 
     match m {
         Meter::Foot => out[0] = corrected(foot_rate(set, a.0), foot_rate(set, b.0), h),
         Meter::Slide => {
-            if let Some(j) = env.ground.slide.map(|s| s.driver) {
+            // (a driver numbered past the set, after a lift-off before it: nothing metered)
+            let driver = env.ground.slide.map(|s| s.driver);
+            if let Some(j) = driver.filter(|&j| j < set.contacts.len()) {
                 let (ra, rb) = (
                     driver_rate(env, set, j, a.0, a.1),
                     driver_rate(env, set, j, b.0, b.1),
