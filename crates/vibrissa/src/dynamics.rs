@@ -39,7 +39,7 @@
 //! with the positions' history from the last step's solution and the internal force scaled by
 //! the step (`Settings::short_steps` there), `free` its fixed steps as before.
 
-use crate::rothe::{rest_guess, Rothe, Settings, TipBc};
+use crate::rothe::{check_damping, rest_guess, Rothe, Settings, TipBc};
 use crate::{Rod, VibrissaError};
 use serde::Serialize;
 
@@ -113,12 +113,7 @@ impl DynamicsOptions {
         if !(self.foot_damping >= 0.0 && self.foot_damping.is_finite()) {
             return bad("foot_damping", self.foot_damping, "[0, inf)");
         }
-        if !(self.internal_damping >= 0.0 && self.internal_damping <= 1e6) {
-            return bad("internal_damping", self.internal_damping, "[0, 1e6]");
-        }
-        if !(self.external_damping >= 0.0 && self.external_damping <= 1e6) {
-            return bad("external_damping", self.external_damping, "[0, 1e6]");
-        }
+        check_damping(self.internal_damping, self.external_damping)?;
         for (i, f) in self.release_force.iter().enumerate() {
             if !f.is_finite() {
                 return bad(["release_force.x", "release_force.y"][i], *f, "finite");

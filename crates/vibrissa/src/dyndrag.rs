@@ -42,7 +42,7 @@
 //! scheme's error for this one.
 
 use crate::config::SolverConfig;
-use crate::rothe::{Rothe, Settings, TipBc, Trial};
+use crate::rothe::{check_damping, Rothe, Settings, TipBc, Trial};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
 use crate::{Rod, Surface, VibrissaError};
@@ -163,12 +163,7 @@ impl DynDragOptions {
         if !(self.foot_damping >= 0.0 && self.foot_damping.is_finite()) {
             return bad("foot_damping", self.foot_damping, "[0, inf)");
         }
-        if !(self.internal_damping >= 0.0 && self.internal_damping <= 1e6) {
-            return bad("internal_damping", self.internal_damping, "[0, 1e6]");
-        }
-        if !(self.external_damping >= 0.0 && self.external_damping <= 1e6) {
-            return bad("external_damping", self.external_damping, "[0, 1e6]");
-        }
+        check_damping(self.internal_damping, self.external_damping)?;
         if !(20..=100_000).contains(&self.grid) || self.grid % 2 == 1 {
             return bad("grid", self.grid as f64, "[20, 100000], even");
         }

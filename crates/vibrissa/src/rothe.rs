@@ -846,3 +846,17 @@ impl<'r> Rothe<'r> {
         }
     }
 }
+
+/// The rod's damping of `DynamicsOptions` and `DynDragOptions`: Kelvin–Voigt `γ_i` and
+/// external `γ_e`, each in `[0, 1e6]`.
+pub(crate) fn check_damping(internal: f64, external: f64) -> Result<(), VibrissaError> {
+    for (name, v) in [
+        ("internal_damping", internal),
+        ("external_damping", external),
+    ] {
+        if !(0.0..=1e6).contains(&v) {
+            return Err(VibrissaError::range(name, v, "[0, 1e6]"));
+        }
+    }
+    Ok(())
+}
