@@ -90,12 +90,17 @@ pub fn run_scan(scene: &Scene, mut opts: ScanOptions) -> Res<Scanned> {
 /// `side+tip`, …; `s_c`: the arc length of the first contact inside the rod, empty if none), its
 /// physical-unit values (scenes with `[physical]`), and `event` last (empty for grid points; a
 /// change of contact state — `touchdown`, `peel_back`, `release` — or the reason the scan
-/// stopped — `slip`, `lift_off`, `penetration`, `fold_in_d` — on event rows).
-pub fn header(physical: bool) -> Vec<&'static str> {
+/// stopped — `slip`, `lift_off`, `penetration`, `fold_in_d` — on event rows); with a round tip
+/// (`round`) the lab x of its contact point, `x_contact`, after `s_c` (empty where the tip is off
+/// the surface), as the drag's.
+pub fn header(physical: bool, round: bool) -> Vec<&'static str> {
     let mut h = vec![
         "d", "mu", "alpha", "phi1", "f", "fx", "fy", "m_base", "flex", "s_flex", "y_max", "normal",
         "mu_peak", "contact", "s_c",
     ];
+    if round {
+        h.push("x_contact");
+    }
     if physical {
         h.extend(["d_mm", "f_N", "fx_N", "fy_N", "m_base_Nm"]);
     }
@@ -104,7 +109,7 @@ pub fn header(physical: bool) -> Vec<&'static str> {
 }
 
 /// Fields of one scan CSV row.
-pub fn row(p: &ScanPoint, u: Option<Units>) -> Vec<String> {
+pub fn row(p: &ScanPoint, u: Option<Units>, round: bool) -> Vec<String> {
     let mut r = vec![
         num(p.d),
         mu_text(p.mu),
@@ -122,6 +127,9 @@ pub fn row(p: &ScanPoint, u: Option<Units>) -> Vec<String> {
         p.contact.name().to_string(),
         opt(p.s_c),
     ];
+    if round {
+        r.push(opt(p.x_contact));
+    }
     if let Some(u) = u {
         r.extend(
             [
@@ -138,20 +146,21 @@ pub fn row(p: &ScanPoint, u: Option<Units>) -> Vec<String> {
     r
 }
 
-/// Write the scan points as CSV; with `modes`, the column `omega1_sq` before `event`.
+/// Write the scan points as CSV (`round`: the rod has a round tip); with `modes`, the column
+/// `omega1_sq` before `event`.
 pub fn write_points<W: Write>(
     w: &mut W,
     points: &[ScanPoint],
-    u: Option<Units>,
+    (u, round): (Option<Units>, bool),
     modes: Option<&[Option<f64>]>,
 ) -> Res<()> {
-    let mut h = header(u.is_some());
+    let mut h = header(u.is_some(), round);
     if modes.is_some() {
         h.insert(h.len() - 1, "omega1_sq");
     }
     csv_line(w, &h)?;
     for (i, p) in points.iter().enumerate() {
-        let mut r = row(p, u);
+        let mut r = row(p, u, round);
         if let Some(m) = modes {
             r.insert(r.len() - 1, opt(m.get(i).copied().flatten()));
         }
@@ -301,7 +310,8 @@ pub fn run(a: &ScanArgs) -> Res<()> {
     };
     if a.out.is_some() || !a.json {
         let mut sink = Sink::open(a.out.as_deref())?;
-        write_points(&mut sink, &out.result.points, u, modes.as_deref())?;
+        let round = scene.tip_radius > 0.0;
+        write_points(&mut sink, &out.result.points, (u, round), modes.as_deref())?;
         sink.finish()?;
     }
     if out.stop.reason != "d_max" {

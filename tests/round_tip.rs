@@ -30,6 +30,28 @@ fn the_drag_of_a_round_tip_has_its_contact_point() {
     }
 }
 
+/// A round tip's scan writes `x_contact` after `s_c`, and only then; the stuck disk rolls on the
+/// flat surface, so its contact point moves by the arc it turns through:
+/// `x_contact − x_contact(0) = r·(φ1 − φ1(0))` (as the library's test, here through the CSV's
+/// printed digits, 1e-9).
+#[test]
+fn the_scan_of_a_round_tip_has_its_contact_point() {
+    let args = ["scan", "--points", "5", "--d-max", "0.2"];
+    let (h0, _) = csv(&ok(&args).stdout);
+    assert!(!h0.iter().any(|c| c == "x_contact"));
+    let mut round = args.to_vec();
+    round.extend(["--tip-radius", "0.02"]);
+    let (h, rows) = csv(&ok(&round).stdout);
+    let i = h.iter().position(|c| c == "s_c").expect("s_c");
+    assert_eq!(h[i + 1], "x_contact");
+    let (xc0, phi0) = (col(&h, &rows[0], "x_contact"), col(&h, &rows[0], "phi1"));
+    assert!(rows.len() == 5 && col(&h, &rows[4], "d") == 0.2);
+    for r in &rows {
+        let (xc, phi) = (col(&h, r, "x_contact"), col(&h, r, "phi1"));
+        assert!((xc - xc0 - 0.02 * (phi - phi0)).abs() <= 1e-9, "{r:?}");
+    }
+}
+
 /// The flag's range comes from the library, and a point tip on a corrugation steeper than 45°
 /// is refused with a message that names the slope and the flag.
 #[test]

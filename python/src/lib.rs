@@ -73,7 +73,7 @@ struct PyRod(Rod);
 #[pymethods]
 impl PyRod {
     #[new]
-    #[pyo3(signature = (taper=None, precurvature=0.0, precurvature_slope=0.0, support_compliance=0.0, *, stiffness=None, precurvature_profile=None, physical=None))]
+    #[pyo3(signature = (taper=None, precurvature=0.0, precurvature_slope=0.0, support_compliance=0.0, *, stiffness=None, precurvature_profile=None, physical=None, tip_radius=0.0))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         taper: Option<f64>,
@@ -83,6 +83,7 @@ impl PyRod {
         stiffness: Option<&Bound<'_, PyAny>>,
         precurvature_profile: Option<&Bound<'_, PyAny>>,
         physical: Option<&Bound<'_, PyAny>>,
+        tip_radius: f64,
     ) -> PyResult<Self> {
         let stiff = match (taper, stiffness) {
             (Some(_), Some(_)) => return Err(input("give either taper or stiffness, not both")),
@@ -106,12 +107,13 @@ impl PyRod {
             .map(|p| depythonize(p).map_err(|e| input_err("physical", e)))
             .transpose()?;
         Rod::new(stiff, pre, support_compliance, phys)
+            .and_then(|r| r.with_tip_radius(tip_radius))
             .map(PyRod)
             .map_err(py_err)
     }
 
     /// The rod's parts as a dict (the scene file's keys: stiffness, precurvature,
-    /// support_compliance, physical).
+    /// support_compliance, physical, and tip_radius when the tip is round).
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let r = &self.0;
         let d = PyDict::new(py);
@@ -119,6 +121,10 @@ impl PyRod {
         d.set_item("precurvature", to_py(py, r.precurvature())?)?;
         d.set_item("support_compliance", r.support_compliance())?;
         d.set_item("physical", to_py(py, &r.physical())?)?;
+        if r.tip_radius() > 0.0 {
+            // (as in a scene file, where the key is left out for the point tip)
+            d.set_item("tip_radius", r.tip_radius())?;
+        }
         Ok(d.into_any())
     }
 
@@ -135,8 +141,13 @@ impl PyRod {
 
     fn __repr__(&self) -> String {
         let r = &self.0;
+        let tip = if r.tip_radius() > 0.0 {
+            format!(", tip_radius={}", r.tip_radius())
+        } else {
+            String::new()
+        };
         format!(
-            "Rod(stiffness={:?}, precurvature={:?}, support_compliance={}, physical={:?})",
+            "Rod(stiffness={:?}, precurvature={:?}, support_compliance={}, physical={:?}{tip})",
             r.stiffness(),
             r.precurvature(),
             r.support_compliance(),
@@ -686,17 +697,21 @@ fn sweep<'py>(
 }
 
 /// One drag row with the program's column names (`vibrissa drag`'s CSV), the physical columns
-/// with units.
+/// with units, and `x_contact` for a round tip (`round`).
 fn drag_row<'py>(
     py: Python<'py>,
     r: &vibrissa::drag::DragRow,
     u: Option<Units>,
+    round: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("d", r.d)?;
     d.set_item("phase", r.phase.name())?;
     d.set_item("x_tip", r.x_tip)?;
     d.set_item("y_tip", r.y_tip)?;
+    if round {
+        d.set_item("x_contact", r.x_contact)?;
+    }
     d.set_item("mu", r.mu)?;
     d.set_item("mu_s", r.mu_s)?;
     d.set_item("normal", r.normal)?;
@@ -757,7 +772,7 @@ fn drag<'py>(
     shapes_fit(shape_points, opts.points)?;
     opts.validate().map_err(py_err)?;
     let (rod, surface) = (rod.0.clone(), surface.s.clone());
-    let units = rod.units();
+    let (units, round) = (rod.units(), rod.tip_radius() > 0.0);
     let r = interruptible(py, cancel_on(&mut opts.solver), move || {
         vibrissa::drag(&rod, &surface, &opts)
     })?
@@ -765,7 +780,7 @@ fn drag<'py>(
     let out = PyDict::new(py);
     let rows = PyList::empty(py);
     for row in &r.rows {
-        rows.append(drag_row(py, row, units)?)?;
+        rows.append(drag_row(py, row, units, round)?)?;
     }
     out.set_item("rows", rows)?;
     out.set_item("slips", to_py(py, &r.slips)?)?;

@@ -62,6 +62,27 @@ def test_drag_equals_the_program(program, scene):
             same(py.summary[k], summary[k], k)
 
 
+def test_a_round_tip_drag_equals_the_program(program):
+    # issue 31: Rod(tip_radius=...) is the program's --tip-radius, x_contact column included
+    args = ["drag", "--tip-radius", "0.005", "--corrugation-amplitude", "0.005",
+            "--corrugation-wavelength", "0.1", "--mu-s", "0.5", "--mu-k", "0.3",
+            "--d-max", "0.1", "--points", "11"]
+    rows = read_csv(program(*args))
+    assert "x_contact" in rows[0]
+    rod = vibrissa.Rod(tip_radius=0.005)
+    assert rod.to_dict()["tip_radius"] == 0.005 and "tip_radius=0.005" in repr(rod)
+    assert "tip_radius" not in vibrissa.Rod().to_dict()
+    _, surface = vibrissa.scene(surface={"kind": "sine", "amplitude": 0.005, "wavelength": 0.1})
+    py = vibrissa.drag(rod, surface, mu_s=0.5, mu_k=0.3, d_max=0.1, points=11)
+    check_rows(py.rows, rows, " ".join(args))
+    # the same rod from the scene key
+    keyed, _ = vibrissa.scene(tip_radius=0.005)
+    assert keyed.to_dict() == rod.to_dict()
+    # the library's range, as the program's error line says it
+    with pytest.raises(vibrissa.InputError, match=r"^tip radius = 0\.1 is outside the valid range"):
+        vibrissa.Rod(tip_radius=0.1)
+
+
 def test_whisk_and_locate_equal_the_program(program):
     # the rat's whisker: physical columns too
     sc = str(SCENES / "rat_mystacial_short.toml")

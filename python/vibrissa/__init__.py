@@ -487,7 +487,8 @@ class DragResult:
 
     Attributes:
         rows: dict of columns with the program's names (``vibrissa drag``'s CSV): ``d``,
-            ``phase``, ``x_tip``, ``y_tip``, ``mu``, ``mu_s``, ``normal``, ``fx``, ``fy``,
+            ``phase``, ``x_tip``, ``y_tip``, (with a round tip ``x_contact``), ``mu``, ``mu_s``,
+            ``normal``, ``fx``, ``fy``,
             ``m_base``, ``contact``, (with a physical rod ``d_mm``, ``x_tip_mm``, ``y_tip_mm``,
             ``normal_N``, ``fx_N``, ``fy_N``, ``m_base_Nm``), ``event``, ``jump``,
             ``energy_released``.

@@ -3,7 +3,8 @@
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 class Rod:
-    """A validated rod: stiffness profile, rest curvature, support compliance, physical units."""
+    """A validated rod: stiffness profile, rest curvature, support compliance, physical units,
+    the radius of a round tip (0: the point tip)."""
 
     def __init__(
         self,
@@ -15,6 +16,7 @@ class Rod:
         stiffness: Optional[Mapping[str, Any]] = None,
         precurvature_profile: Optional[Mapping[str, Any]] = None,
         physical: Optional[Mapping[str, float]] = None,
+        tip_radius: float = 0.0,
     ) -> None: ...
     def to_dict(self) -> Dict[str, Any]: ...
     def units(self) -> Optional[Dict[str, float]]: ...

@@ -500,6 +500,17 @@ fn logit(p: f64) -> f64 {
     (p / (1.0 - p)).ln()
 }
 
+/// `p` moved by whole turns into `(start − π, start + π]`.
+fn within_pi_of(p: f64, start: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let q = start + (p - start).rem_euclid(TAU);
+    if q - start > PI {
+        q - TAU
+    } else {
+        q
+    }
+}
+
 impl Model<'_> {
     /// Natural `(μs, μk, η, β, A, W, P)` from the free coordinates `x` (μk a share of μs, the
     /// amplitude a share of its largest at the wavelength and inclination).
@@ -524,6 +535,16 @@ impl Model<'_> {
         }
         if let Some(i) = self.free.iter().position(|&p| p == Par::Amplitude) {
             v[4] = max_amplitude(v[5], v[3]) * (2.0 * logistic(x[i]) - 1.0);
+        }
+        v
+    }
+
+    /// `v` with a fitted phase moved by whole turns to within π of its start: the surface is
+    /// 2π-periodic in the phase, so the least squares may end any number of turns away (seen:
+    /// +2π and +30π from starts 0.3 off), and a user compares with the start they gave.
+    fn near_start_phase(&self, mut v: Values) -> Values {
+        if self.free.contains(&Par::Phase) {
+            v[6] = within_pi_of(v[6], self.base[6]);
         }
         v
     }
@@ -869,7 +890,7 @@ pub fn fit(scene: &Scene, trace: &Trace, opts: &FitOptions) -> Result<FitResult,
     if opts.sigma.is_none() && !exact {
         (x, kind_dof) = reweight(&mut model, x, &kinds, &mut iterations)?;
     }
-    let v = model.natural(&x);
+    let v = model.near_start_phase(model.natural(&x));
     if v[0] > 0.99 * MAX_MU_S {
         // the drag's own limit: nothing in the trace is matched there
         return Err(VibrissaError::NoConvergence {
@@ -1594,6 +1615,26 @@ mod tests {
     use super::*;
     use proptest::prelude::Rng;
     use proptest::test_runner::{RngAlgorithm, TestRng};
+
+    #[test]
+    fn a_fitted_phase_is_reported_within_half_a_turn_of_its_start() {
+        use std::f64::consts::{PI, TAU};
+        // the turns seen in fits of issue 31 (+1 and +15 turns from a start 0.1 below the truth)
+        for (p, start, want) in [
+            (0.7 + TAU, 0.6, 0.7),
+            (0.7 + 15.0 * TAU, 0.6, 0.7),
+            (0.7 - 3.0 * TAU, 0.6, 0.7),
+            (-0.2, 6.0, TAU - 0.2),
+            (0.6 + PI, 0.6, 0.6 + PI),
+            (0.6 - PI, 0.6, 0.6 + PI),
+        ] {
+            let q = within_pi_of(p, start);
+            assert!(
+                (q - want).abs() < 1e-13,
+                "{p} from {start}: {q}, want {want}"
+            );
+        }
+    }
 
     /// A linear model with the trace's structure at 4 slips: kinds `d` (4 rows), `fx` (8),
     /// `m_base` (4), two parameters, each kind fixing a different direction.
