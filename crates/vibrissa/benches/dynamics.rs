@@ -5,11 +5,12 @@
 //! period to 1e-6 (measured 6.8e-7, docs/dependencies.md). The period errors of the single runs
 //! are Newmark's own, `πΔt/atan(ωΔt/2)` against `2π/ω`: 5.2e-3, 1.3e-3, 3.3e-4, 8.2e-5.
 //!
-//! Printed first, the error-against-time table: the four runs timed in one interleaved run
+//! Printed first, the error-against-time table: the four runs with the default options and with
+//! grid 50, tol 1e-8 (fit to period errors of 1e-4 and above), timed in one interleaved run
 //! (minimum of 5, in the thread's CPU time where Linux gives it, as the bench `engine`), each
-//! with its steps, Newton iterations, time per step and the period error read off the tip's
-//! upward zero crossing, and Richardson's three pairs; a filter that no benchmark matches prints
-//! the table alone (`cargo bench -p vibrissa --bench dynamics -- table-only`).
+//! with its steps, Newton iterations, largest mesh, time per step and the period error read off
+//! the tip's upward zero crossing, and Richardson's three pairs; a filter that no benchmark
+//! matches prints the table alone (`cargo bench -p vibrissa --bench dynamics -- table-only`).
 //!
 //! The peer, PyElastica, is timed by `benches/pyelastica_free.py` on the same rod, start and
 //! period measurement; docs/performance.md sets the two error-against-time curves side by side.
@@ -43,10 +44,15 @@ fn period() -> f64 {
 }
 
 fn run(steps_per_period: usize) -> DynamicsResult {
+    run_with(steps_per_period, &DynamicsOptions::default())
+}
+
+/// The free oscillation at `steps_per_period` with the grid and tolerance of `base`.
+fn run_with(steps_per_period: usize, base: &DynamicsOptions) -> DynamicsResult {
     let o = DynamicsOptions {
         dt: period() / steps_per_period as f64,
         t_end: 1.2 * period(),
-        ..DynamicsOptions::default()
+        ..base.clone()
     };
     free(&Rod::uniform(), &first_mode_velocity(1e-4), &o).expect("free oscillation")
 }
@@ -109,21 +115,36 @@ fn thread_cpu() -> Option<Duration> {
     None
 }
 
-/// The error-against-time table: each of 25, 50, 100, 200 steps per period timed in one
-/// interleaved run (round-robin, minimum of 5, the thread's CPU time where Linux gives it, else
+/// The error-against-time table, for the default options (grid 200, tol 1e-10) and for a grid
+/// and tolerance fit to the period errors of 1e-3 and above (grid 50, tol 1e-8: the history and
+/// the mesh on 50 intervals): each of 25, 50, 100, 200 steps per period timed in one interleaved
+/// run (round-robin over both, minimum of 5, the thread's CPU time where Linux gives it, else
 /// wall time), its period error against `2π/β₁²`, and Richardson's pairs (their times summed).
 fn table() {
     let ns = [25usize, 50, 100, 200];
-    let mut best = [Duration::MAX; 4];
+    let configs = [
+        ("grid 200, tol 1e-10 (default)", DynamicsOptions::default()),
+        (
+            "grid 50, tol 1e-8",
+            DynamicsOptions {
+                grid: 50,
+                tol: 1e-8,
+                ..DynamicsOptions::default()
+            },
+        ),
+    ];
+    let mut best = [[Duration::MAX; 4]; 2];
     for _ in 0..5 {
-        for (n, b) in ns.iter().zip(best.iter_mut()) {
-            let (t, cpu) = (Instant::now(), thread_cpu());
-            black_box(run(*n));
-            let spent = match (cpu, thread_cpu()) {
-                (Some(a), Some(z)) => z.saturating_sub(a),
-                _ => t.elapsed(),
-            };
-            *b = (*b).min(spent);
+        for (c, (_, o)) in configs.iter().enumerate() {
+            for (i, n) in ns.iter().enumerate() {
+                let (t, cpu) = (Instant::now(), thread_cpu());
+                black_box(run_with(*n, o));
+                let spent = match (cpu, thread_cpu()) {
+                    (Some(a), Some(z)) => z.saturating_sub(a),
+                    _ => t.elapsed(),
+                };
+                best[c][i] = best[c][i].min(spent);
+            }
         }
     }
     let clock = if thread_cpu().is_some() {
@@ -131,34 +152,38 @@ fn table() {
     } else {
         "wall time"
     };
-    println!(
-        "\n({clock}, minimum of 5)\n{:>14} {:>6} {:>7} {:>10} {:>12} {:>12}",
-        "steps/period", "steps", "newton", "time ms", "ms/step", "period err"
-    );
-    let mut periods = [0.0; 4];
-    for (i, n) in ns.iter().enumerate() {
-        let r = run(*n);
-        periods[i] = crossing(&r);
-        let ms = best[i].as_secs_f64() * 1e3;
+    for (c, (name, o)) in configs.iter().enumerate() {
         println!(
-            "{n:>14} {:>6} {:>7} {ms:>10.2} {:>12.3} {:>12.3e}",
-            r.stats.steps,
-            r.stats.newton_iterations,
-            ms / r.stats.steps as f64,
-            (periods[i] / period() - 1.0).abs()
+            "\n{name} ({clock}, minimum of 5)\n{:>14} {:>6} {:>7} {:>5} {:>10} {:>9} {:>11}",
+            "steps/period", "steps", "newton", "mesh", "time ms", "ms/step", "period err"
         );
-    }
-    for i in 0..3 {
-        let rich = (4.0 * periods[i + 1] - periods[i]) / 3.0;
-        println!(
-            "{:>14} {:>6} {:>7} {:>10.2} {:>12} {:>12.3e}",
-            format!("{}+{} Rich.", ns[i], ns[i + 1]),
-            "",
-            "",
-            (best[i] + best[i + 1]).as_secs_f64() * 1e3,
-            "",
-            (rich / period() - 1.0).abs()
-        );
+        let mut periods = [0.0; 4];
+        for (i, n) in ns.iter().enumerate() {
+            let r = run_with(*n, o);
+            periods[i] = crossing(&r);
+            let ms = best[c][i].as_secs_f64() * 1e3;
+            println!(
+                "{n:>14} {:>6} {:>7} {:>5} {ms:>10.2} {:>9.3} {:>11.3e}",
+                r.stats.steps,
+                r.stats.newton_iterations,
+                r.stats.max_nodes,
+                ms / r.stats.steps as f64,
+                (periods[i] / period() - 1.0).abs()
+            );
+        }
+        for i in 0..3 {
+            let rich = (4.0 * periods[i + 1] - periods[i]) / 3.0;
+            println!(
+                "{:>14} {:>6} {:>7} {:>5} {:>10.2} {:>9} {:>11.3e}",
+                format!("{}+{} Rich.", ns[i], ns[i + 1]),
+                "",
+                "",
+                "",
+                (best[c][i] + best[c][i + 1]).as_secs_f64() * 1e3,
+                "",
+                (rich / period() - 1.0).abs()
+            );
+        }
     }
 }
 
