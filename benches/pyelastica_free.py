@@ -17,11 +17,15 @@ error-against-time curve this script prints: one row per (r, elements, dt), CSV 
 
     r,elements,dt,steps,period,error,seconds
 
+(`seconds` the wall time of the stepping loop; its CPU time, `time.process_time()`, goes to stderr,
+one line per row: on a shared, loaded machine that is the figure to compare.)
+
 Run (PyElastica 1.0 from PyPI; not a dependency of the project):
 
     python3 -m venv /tmp/pye && /tmp/pye/bin/pip install pyelastica
     /tmp/pye/bin/python benches/pyelastica_free.py            # about 10 minutes on one core
     /tmp/pye/bin/python benches/pyelastica_free.py --quick    # two rows
+    /tmp/pye/bin/python benches/pyelastica_free.py --r 0.02 --elements 200,400,800   # chosen rows
 
 The same study of ours: `cargo run --release -p vibrissa --example free_oscillation` and the
 criterion bench `cargo bench -p vibrissa --bench dynamics`; docs/performance.md compares them.
@@ -78,7 +82,7 @@ def run(r, n, dt, amp=1e-4):
     t = 0.0
     y_prev = 0.0
     crossings = []
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     for _ in range(steps):
         t = stepper.step(sim, t, dt)
         y = rod.position_collection[1, -1]
@@ -86,16 +90,24 @@ def run(r, n, dt, amp=1e-4):
             crossings.append(t - dt + dt * (-y_prev) / (y - y_prev))
         y_prev = y
     seconds = time.perf_counter() - t0
+    cpu = time.process_time() - c0
     period = crossings[0] if crossings else float("nan")
-    return steps, period, seconds
+    return steps, period, seconds, cpu
+
+
+def option(name, default):
+    """The comma-separated values after `name` on the command line, or `default`."""
+    if name in sys.argv:
+        return [float(v) for v in sys.argv[sys.argv.index(name) + 1].split(",")]
+    return default
 
 
 def main():
     quick = "--quick" in sys.argv
     # explicit stability: below the shear-rotation wave's 0.87 r^2 and the axial wave's dx r / 2
     cases = []
-    radii = [0.01] if quick else [0.02, 0.01, 0.005]
-    elements = [25] if quick else [25, 50, 100, 200]
+    radii = option("--r", [0.01] if quick else [0.02, 0.01, 0.005])
+    elements = [int(n) for n in option("--elements", [25] if quick else [25, 50, 100, 200])]
     for r in radii:
         for n in elements:
             cases.append((r, n, min(0.4 * r * r, 0.5 * (1.0 / n) * r / 2.0)))
@@ -105,9 +117,10 @@ def main():
     run(0.02, 10, 1e-3, amp=1e-4)
     print("r,elements,dt,steps,period,error,seconds")
     for r, n, dt in cases:
-        steps, period, seconds = run(r, n, dt)
+        steps, period, seconds, cpu = run(r, n, dt)
         err = abs(period / PERIOD - 1.0)
         print(f"{r},{n},{dt:.3e},{steps},{period:.10f},{err:.3e},{seconds:.3f}", flush=True)
+        print(f"r {r}, {n} elements: {cpu:.3f} s CPU time of the process", file=sys.stderr, flush=True)
         if seconds > 300:
             break
 

@@ -1,9 +1,16 @@
 //! The rod in time against a peer (issue 32): the uniform clamped–free rod released from its rest
 //! shape with a velocity in the first mode's shape (tip amplitude 1e-4), followed for 1.2 periods
-//! by `vibrissa::dynamics::free` (Newmark in time, Lobatto6 collocation in s), at 25, 50 and 100
-//! steps per period; and the pair 50 + 100 whose Richardson extrapolation gives the period to
-//! 1e-6 (measured 6.8e-7, docs/dependencies.md). The period errors of the single runs are
-//! Newmark's own, `πΔt/atan(ωΔt/2)` against `2π/ω`: 5.2e-3, 1.3e-3, 3.3e-4.
+//! by `vibrissa::dynamics::free` (Newmark in time, Lobatto6 collocation in s), at 25, 50, 100
+//! and 200 steps per period; and the pair 50 + 100 whose Richardson extrapolation gives the
+//! period to 1e-6 (measured 6.8e-7, docs/dependencies.md). The period errors of the single runs
+//! are Newmark's own, `πΔt/atan(ωΔt/2)` against `2π/ω`: 5.2e-3, 1.3e-3, 3.3e-4, 8.2e-5.
+//!
+//! Printed first, the error-against-time table: the four runs with the default options and with
+//! grid 50, tol 1e-8 (fit to period errors of 1e-4 and above), timed in one interleaved run
+//! (minimum of 5, in the thread's CPU time where Linux gives it, as the bench `engine`), each
+//! with its steps, Newton iterations, largest mesh, time per step and the period error read off
+//! the tip's upward zero crossing, and Richardson's three pairs; a filter that no benchmark
+//! matches prints the table alone (`cargo bench -p vibrissa --bench dynamics -- table-only`).
 //!
 //! The peer, PyElastica, is timed by `benches/pyelastica_free.py` on the same rod, start and
 //! period measurement; docs/performance.md sets the two error-against-time curves side by side.
@@ -24,21 +31,160 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::f64::consts::PI;
 use std::hint::black_box;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 use vibrissa::dynamics::{
-    drag, first_mode_velocity, free, DynDragOptions, DynamicsOptions, CLAMPED_FREE_BETA1,
+    drag, first_mode_velocity, free, DynDragOptions, DynamicsOptions, DynamicsResult,
+    CLAMPED_FREE_BETA1,
 };
 use vibrissa::{Rod, Surface};
 
-fn oscillate(steps_per_period: usize) -> usize {
-    let period = 2.0 * PI / (CLAMPED_FREE_BETA1 * CLAMPED_FREE_BETA1);
+/// The period `2π/β₁²` of the first mode.
+fn period() -> f64 {
+    2.0 * PI / (CLAMPED_FREE_BETA1 * CLAMPED_FREE_BETA1)
+}
+
+fn run(steps_per_period: usize) -> DynamicsResult {
+    run_with(steps_per_period, &DynamicsOptions::default())
+}
+
+/// The free oscillation at `steps_per_period` with the grid and tolerance of `base`.
+fn run_with(steps_per_period: usize, base: &DynamicsOptions) -> DynamicsResult {
     let o = DynamicsOptions {
-        dt: period / steps_per_period as f64,
-        t_end: 1.2 * period,
-        ..DynamicsOptions::default()
+        dt: period() / steps_per_period as f64,
+        t_end: 1.2 * period(),
+        ..base.clone()
     };
-    let r = free(&Rod::uniform(), &first_mode_velocity(1e-4), &o).expect("free oscillation");
-    black_box(r.samples.len())
+    free(&Rod::uniform(), &first_mode_velocity(1e-4), &o).expect("free oscillation")
+}
+
+fn oscillate(steps_per_period: usize) -> usize {
+    black_box(run(steps_per_period).samples.len())
+}
+
+/// The tip's first upward zero crossing after 0.6 periods (the period), by cubic Hermite
+/// interpolation with the tip's velocity (as the example `free_oscillation`).
+fn crossing(r: &DynamicsResult) -> f64 {
+    for w in r.samples.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        if a.t > 0.6 * period() && a.tip_x < 0.0 && b.tip_x >= 0.0 {
+            let h = b.t - a.t;
+            let p = |u: f64| {
+                let (u2, u3) = (u * u, u * u * u);
+                (2.0 * u3 - 3.0 * u2 + 1.0) * a.tip_x
+                    + (u3 - 2.0 * u2 + u) * h * a.tip_vx
+                    + (-2.0 * u3 + 3.0 * u2) * b.tip_x
+                    + (u3 - u2) * h * b.tip_vx
+            };
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..100 {
+                let m = 0.5 * (lo + hi);
+                if p(m) < 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            return a.t + 0.5 * (lo + hi) * h;
+        }
+    }
+    f64::NAN
+}
+
+/// The CPU time of this thread (Linux: `clock_gettime(CLOCK_THREAD_CPUTIME_ID)` of the C library
+/// that std links), or `None` elsewhere (as the bench `engine`: on the loaded shared machine a
+/// run is preempted for whole time slices, which its CPU time does not see).
+#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
+fn thread_cpu() -> Option<Duration> {
+    #[repr(C)]
+    struct Timespec {
+        sec: i64,
+        nsec: i64,
+    }
+    extern "C" {
+        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
+    }
+    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
+    let mut t = Timespec { sec: 0, nsec: 0 };
+    // SAFETY: `t` is a valid `struct timespec` of this target (two 64-bit fields).
+    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    (rc == 0).then(|| Duration::new(t.sec as u64, t.nsec as u32))
+}
+
+#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
+fn thread_cpu() -> Option<Duration> {
+    None
+}
+
+/// The error-against-time table, for the default options (grid 200, tol 1e-10) and for a grid
+/// and tolerance fit to the period errors of 1e-3 and above (grid 50, tol 1e-8: the history and
+/// the mesh on 50 intervals): each of 25, 50, 100, 200 steps per period timed in one interleaved
+/// run (round-robin over both, minimum of 5, the thread's CPU time where Linux gives it, else
+/// wall time), its period error against `2π/β₁²`, and Richardson's pairs (their times summed).
+fn table() {
+    let ns = [25usize, 50, 100, 200];
+    let configs = [
+        ("grid 200, tol 1e-10 (default)", DynamicsOptions::default()),
+        (
+            "grid 50, tol 1e-8",
+            DynamicsOptions {
+                grid: 50,
+                tol: 1e-8,
+                ..DynamicsOptions::default()
+            },
+        ),
+    ];
+    let mut best = [[Duration::MAX; 4]; 2];
+    for _ in 0..5 {
+        for (c, (_, o)) in configs.iter().enumerate() {
+            for (i, n) in ns.iter().enumerate() {
+                let (t, cpu) = (Instant::now(), thread_cpu());
+                black_box(run_with(*n, o));
+                let spent = match (cpu, thread_cpu()) {
+                    (Some(a), Some(z)) => z.saturating_sub(a),
+                    _ => t.elapsed(),
+                };
+                best[c][i] = best[c][i].min(spent);
+            }
+        }
+    }
+    let clock = if thread_cpu().is_some() {
+        "CPU time of the thread"
+    } else {
+        "wall time"
+    };
+    for (c, (name, o)) in configs.iter().enumerate() {
+        println!(
+            "\n{name} ({clock}, minimum of 5)\n{:>14} {:>6} {:>7} {:>5} {:>10} {:>9} {:>11}",
+            "steps/period", "steps", "newton", "mesh", "time ms", "ms/step", "period err"
+        );
+        let mut periods = [0.0; 4];
+        for (i, n) in ns.iter().enumerate() {
+            let r = run_with(*n, o);
+            periods[i] = crossing(&r);
+            let ms = best[c][i].as_secs_f64() * 1e3;
+            println!(
+                "{n:>14} {:>6} {:>7} {:>5} {ms:>10.2} {:>9.3} {:>11.3e}",
+                r.stats.steps,
+                r.stats.newton_iterations,
+                r.stats.max_nodes,
+                ms / r.stats.steps as f64,
+                (periods[i] / period() - 1.0).abs()
+            );
+        }
+        for i in 0..3 {
+            let rich = (4.0 * periods[i + 1] - periods[i]) / 3.0;
+            println!(
+                "{:>14} {:>6} {:>7} {:>5} {:>10.2} {:>9} {:>11.3e}",
+                format!("{}+{} Rich.", ns[i], ns[i + 1]),
+                "",
+                "",
+                "",
+                (best[c][i] + best[c][i + 1]).as_secs_f64() * 1e3,
+                "",
+                (rich / period() - 1.0).abs()
+            );
+        }
+    }
 }
 
 /// The paper's rod dragged through 10 slips (20 events); returns the slips.
@@ -58,9 +204,10 @@ fn ten_slips() -> usize {
 }
 
 fn bench(c: &mut Criterion) {
+    table();
     let mut g = c.benchmark_group("free_oscillation");
     g.sample_size(10).measurement_time(Duration::from_secs(10));
-    for n in [25, 50, 100] {
+    for n in [25, 50, 100, 200] {
         g.bench_function(format!("{n}_steps_per_period"), |b| b.iter(|| oscillate(n)));
     }
     g.bench_function("period_to_1e-6_richardson_50_100", |b| {

@@ -21,7 +21,9 @@
 //! clamp) hold exactly at every step because each step solves the rod's own equations. The
 //! history `r̂` is carried on a uniform grid in `s` and interpolated by cubic Lagrange
 //! polynomials. Fixed steps: the error is set by `dt` (second order, so Richardson
-//! extrapolation between `dt` and `dt/2` is fourth order).
+//! extrapolation between `dt` and `dt/2` is fourth order). Each step's Newton iteration starts
+//! from the last two solutions extrapolated in time, `2zⁿ − zⁿ⁻¹` (one iteration per step where
+//! the last solution alone took two; the same equations to the same tolerance).
 //!
 //! Starts from the rest shape (`m ≡ 0`, an equilibrium) with a velocity field `v0(s)`
 //! (inextensible: `v0' ⟂ e`; clamped: `v0'(0) = 0`) and `a⁰ = 0`, which is exact for the
@@ -174,6 +176,7 @@ pub fn free(
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
         short_steps: false,
+        predict: true,
     };
     let grid = Rothe::grid_of(&settings);
     let rest = rest_guess(&rod.profile(1.0), &grid);
@@ -222,8 +225,8 @@ mod tests {
 
     /// A small velocity in the first mode's shape: the tip's motion has the first frequency
     /// β₁² (β₁ = 1.87510406871196, Blevins table 8-1) up to the time scheme's known dispersion
-    /// (measured: 1.3e-9 relative at 50 steps per period), and the undamped scheme keeps the
-    /// energy (measured drift 6.5e-9 over a period).
+    /// (measured: 1.2e-9 relative at 50 steps per period), and the undamped scheme keeps the
+    /// energy (measured drift 2.7e-9 over a period).
     #[test]
     fn small_oscillation_has_the_first_frequency_and_keeps_its_energy() {
         let w1 = CLAMPED_FREE_BETA1.powi(2);
@@ -428,8 +431,8 @@ mod tests {
 
     /// External damping `γ_e = 0.2` on the uniform clamped–free rod: the first mode decays at
     /// `γ_e/2` with the frequency `sqrt(ω₁² − γ_e²/4)` (ω₁ = β₁², β₁ = 1.87510406871196).
-    /// Measured: mapped roots 5.4e-9, 4.0e-9 from the closed form (rate; frequency 9.6e-10,
-    /// 3.3e-9); raw −6.1e-3, −1.5e-3 (rate, ratio 3.98); Richardson −9.4e-6, −1.9e-6.
+    /// Measured: mapped roots 7.7e-11, 2.6e-10 from the closed form (rate; frequency 8.9e-10,
+    /// 3.5e-9); raw −6.1e-3, −1.5e-3 (rate, ratio 3.98); Richardson −9.4e-6, −1.9e-6.
     #[test]
     fn external_damping_decays_the_first_mode_at_half_gamma() {
         let (ge, w1) = (0.2, CLAMPED_FREE_BETA1.powi(2));
@@ -443,8 +446,8 @@ mod tests {
 
     /// Kelvin–Voigt damping `γ_i` with `γ_i ω₁/2 = 0.05` on the uniform clamped–free rod: the
     /// first mode decays at `γ_i ω₁²/2` with the frequency `ω₁ sqrt(1 − (γ_i ω₁/2)²)`.
-    /// Measured: mapped roots 2.1e-9, 4.5e-9 (rate; frequency 1.0e-9, 3.7e-9); raw −6.1e-3,
-    /// −1.5e-3 (rate, ratio 3.98); Richardson −9.4e-6, −1.8e-6.
+    /// Measured: mapped roots 1.0e-10, 1.9e-10 (rate; frequency 9.2e-10, 3.5e-9); raw −6.1e-3,
+    /// −1.5e-3 (rate, ratio 3.98); Richardson −9.3e-6, −1.8e-6.
     #[test]
     fn internal_damping_decays_the_first_mode_at_gamma_omega_squared() {
         let w1 = CLAMPED_FREE_BETA1.powi(2);
@@ -462,7 +465,7 @@ mod tests {
 
     /// Both dampings and the foot's damper over ten periods (25 steps each): the energy the rod
     /// loses is what the three dampers take, step by step (the scheme's identity; Simpson's
-    /// rule on the grid aside). Measured: balance to 7.5e-9 from step 1 on, while the dampers
+    /// rule on the grid aside). Measured: balance to 8.1e-9 from step 1 on, while the dampers
     /// take 90 % of it. The first step loses 3.2e-3 more: the start's acceleration `a⁰` lacks
     /// the Kelvin–Voigt moment's share (its velocity error `Δt/2·δa` stays; the external
     /// damping's share `−γ_e v0` is set).

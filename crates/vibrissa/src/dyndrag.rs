@@ -804,6 +804,7 @@ pub fn drag(
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
         short_steps: true,
+        predict: false,
     };
     let grid = Rothe::grid_of(&settings);
     let (guess, tip) = pressed(rod, eta, &grid)?;

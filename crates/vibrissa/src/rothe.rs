@@ -102,6 +102,22 @@ pub(crate) fn mu_k_of(table: &[[f64; 2]], v: f64) -> (f64, f64) {
     (a[1] + slope * (v - a[0]), slope)
 }
 
+/// The internal force's unknowns (4, 5) of `guess`, values and slopes, times `r` (a change of
+/// their scale `gs`, see [`Settings::short_steps`]).
+fn scale_forces(guess: &mut Guess, r: f64) {
+    if r == 1.0 {
+        return;
+    }
+    for zi in guess.z.chunks_mut(6) {
+        zi[4] *= r;
+        zi[5] *= r;
+    }
+    for zi in guess.dz.iter_mut().flat_map(|d| d.chunks_mut(6)) {
+        zi[4] *= r;
+        zi[5] *= r;
+    }
+}
+
 /// Cubic Hermite interpolation of values `v` and derivatives `d` on the uniform grid
 /// (`v.len() − 1` intervals on `[0, 1]`): continuous with its first derivative.
 fn interp(v: &[f64], d: &[f64], s: f64) -> f64 {
@@ -334,6 +350,12 @@ pub(crate) struct Settings {
     /// residual `4/Δt² δr` in `G' = μ r_tt` that a short step cannot meet (Δt = 1.3e-3 at tol
     /// 1e-10 ran into the mesh limit of 10⁴ nodes), while with `H` it is `δr`.
     pub short_steps: bool,
+    /// Start each step's Newton iteration from the last two solutions extrapolated in time
+    /// (`2zⁿ − zⁿ⁻¹` at the mesh nodes, values and slopes) when the last step had the same
+    /// length and both solutions the same mesh (`dynamics::free`'s fixed steps); else from the
+    /// last solution. The start of Newton only: the step solves the same equations to the
+    /// same tolerance (one Newton iteration per step where the last solution needed two).
+    pub predict: bool,
 }
 
 /// A step solved but not taken.
@@ -373,6 +395,10 @@ pub(crate) struct Rothe<'r> {
     cs: f64,
     damping: f64,
     short_steps: bool,
+    /// [`Settings::predict`], and the solution before `sol` with the length of the step
+    /// between them.
+    predict: bool,
+    previous: Option<(f64, Solution)>,
     ng: usize,
     grid: Vec<f64>,
     mu: Vec<f64>,
@@ -503,6 +529,8 @@ impl<'r> Rothe<'r> {
             cs: rod.support_compliance(),
             damping: settings.damping,
             short_steps: settings.short_steps,
+            predict: settings.predict,
+            previous: None,
             gs: 1.0,
             ng,
             mu,
@@ -688,18 +716,15 @@ impl<'r> Rothe<'r> {
             two_tau: 2.0 / tau,
         };
         let mut guess = Guess::from(&self.sol);
-        if gs != self.gs {
-            let r = self.gs / gs;
-            for zi in guess.z.chunks_mut(6) {
-                zi[4] *= r;
-                zi[5] *= r;
-            }
-            for zi in guess.dz.iter_mut().flat_map(|d| d.chunks_mut(6)) {
-                zi[4] *= r;
-                zi[5] *= r;
-            }
-        }
-        let sol = self.solver.solve(&step, &guess).map_err(Box::new)?;
+        scale_forces(&mut guess, self.gs / gs);
+        let sol = match self.predicted(tau, &guess) {
+            // a predicted start that Newton cannot take falls back to the last solution
+            Some(start) => match self.solver.solve(&step, &start) {
+                Ok(sol) => sol,
+                Err(_) => self.solver.solve(&step, &guess).map_err(Box::new)?,
+            },
+            None => self.solver.solve(&step, &guess).map_err(Box::new)?,
+        };
         self.stats.newton_iterations += sol.stats.newton_iters;
         self.stats.max_nodes = self.stats.max_nodes.max(sol.len());
         let mut next = [zero(), zero(), zero(), zero()];
@@ -724,6 +749,27 @@ impl<'r> Rothe<'r> {
             m,
             kappa,
         })
+    }
+
+    /// The start of a step of length `tau` extrapolated from the last two solutions (see
+    /// [`Settings::predict`]): `2zⁿ − zⁿ⁻¹` from `guess` (the last solution, forces scaled for
+    /// the step), if the last step was as long and the two meshes are the same.
+    fn predicted(&self, tau: f64, guess: &Guess) -> Option<Guess> {
+        let (last, prev) = self.previous.as_ref()?;
+        if *last != tau || prev.mesh != self.sol.mesh || prev.z.len() != guess.z.len() {
+            return None;
+        }
+        let mut start = guess.clone();
+        // (`previous` is kept only while the forces' scale `gs` stays: same scale as `guess`)
+        for (z, p) in start.z.iter_mut().zip(&prev.z) {
+            *z += *z - p;
+        }
+        if let Some(dz) = start.dz.as_mut() {
+            for (d, p) in dz.iter_mut().zip(&prev.dz) {
+                *d += *d - p;
+            }
+        }
+        Some(start)
     }
 
     /// The internal force `G` at the foot (`end` 0) or the tip (`end` 1) now.
@@ -784,7 +830,10 @@ impl<'r> Rothe<'r> {
         self.kappa = tr.kappa;
         std::mem::swap(&mut self.pos, &mut next);
         self.m = tr.m;
-        self.sol = tr.sol;
+        let last = std::mem::replace(&mut self.sol, tr.sol);
+        if self.predict && tr.gs == self.gs {
+            self.previous = Some((tau, last));
+        }
         self.gs = tr.gs;
         self.stats.steps += 1;
         let theta1 = self.sol.left()[2] - FRAC_PI_2;
