@@ -25,6 +25,7 @@
 
 use crate::chain::{Chain, ContactSet, Family, Mode};
 use crate::config::SolverConfig;
+use crate::contacts::{states, with_hold, with_threshold};
 use crate::engine::{Begin, FirstPoint};
 use crate::events::Crossing;
 use crate::march::{march, Spec};
@@ -40,6 +41,8 @@ use crate::{Rod, Surface, VibrissaError};
 use serde::Serialize;
 use std::fmt;
 use std::sync::Arc;
+
+pub use crate::contacts::{ContactState, Hold};
 
 /// Largest foot displacement of a drag (rod lengths; [`limits::DRAG_D_MAX`](crate::limits)).
 pub const MAX_DRAG: f64 = crate::limits::DRAG_D_MAX.hi;
@@ -179,7 +182,7 @@ impl DragEvent {
 }
 
 /// One row of a drag: an output displacement (stick) or an event.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DragRow {
     /// Foot displacement.
     pub d: f64,
@@ -213,6 +216,10 @@ pub struct DragRow {
     /// position above is the disk's centre, the rod's end); `None` for a point tip.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub x_contact: Option<f64>,
+    /// Each contact, in order along the rod (the tip last): its place, its forces in the
+    /// surface's local frame, how it holds (in a slip's rows the contact that drives the slip
+    /// is [`Hold::Slipping`]) and the coefficient of its state.
+    pub contacts: Vec<ContactState>,
 }
 
 /// The base signals at one state.
@@ -265,6 +272,18 @@ pub struct SlipEvent {
     pub after: Signals,
 }
 
+/// The contacts of one slip ([`DragResult::slip_contacts`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SlipContacts {
+    /// Just before the slip (the one that slips at its slip limit, `|T| = μs N`).
+    pub before: Vec<ContactState>,
+    /// Where the slip ends, before they stick again: the contact that slid last
+    /// [`Hold::Sliding`], held by kinetic friction (`|T| = μk N`; [`Hold::Stuck`] where the patch
+    /// ahead of a texture's boundary holds it), contacts sliding passively as they slide, the
+    /// others as they hold (the row of event `slip_end` has this state with every contact stuck).
+    pub after: Vec<ContactState>,
+}
+
 /// Means and spreads over the slips of a drag.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct DragSummary {
@@ -299,6 +318,8 @@ pub struct DragResult {
     pub rows: Vec<DragRow>,
     /// The slips.
     pub slips: Vec<SlipEvent>,
+    /// Each slip's contacts, in the order of `slips`.
+    pub slip_contacts: Vec<SlipContacts>,
     /// Means and spreads.
     pub summary: DragSummary,
     /// Why the drag stopped (`d_max` reached, or an event that ends it).
@@ -438,16 +459,26 @@ fn drag_with<P: Profile>(
         rows: Vec::new(),
         shapes: Vec::new(),
         slips: Vec::new(),
+        slip_contacts: Vec::new(),
+        slide_now: None,
     };
     let stop = run.run(p);
     let (mut rows, mut shapes, mut slips) = (run.rows, run.shapes, run.slips);
-    let stop = off_surface(surface, &mut rows, &mut shapes, &mut slips).unwrap_or(stop);
+    let mut slip_contacts = run.slip_contacts;
+    let stop = off_surface(
+        surface,
+        &mut rows,
+        &mut shapes,
+        (&mut slips, &mut slip_contacts),
+    )
+    .unwrap_or(stop);
     let mut stats = start.stats.clone();
     stats.accumulate(&st.stats());
     Ok(DragResult {
         summary: summary(&slips),
         rows,
         slips,
+        slip_contacts,
         stop,
         stats,
         shapes,
@@ -463,7 +494,7 @@ fn off_surface(
     surface: &Surface,
     rows: &mut Vec<DragRow>,
     shapes: &mut Vec<Vec<ShapePoint>>,
-    slips: &mut Vec<SlipEvent>,
+    (slips, slip_contacts): (&mut Vec<SlipEvent>, &mut Vec<SlipContacts>),
 ) -> Option<StopReason> {
     let h = surface.profile()?;
     let k = rows.iter().position(|r| !h.covers(r.x_tip))?;
@@ -472,7 +503,10 @@ fn off_surface(
     let (d_in, d) = (k.checked_sub(1).map_or(0.0, |j| rows[j].d), rows[k].d);
     rows.truncate(k);
     shapes.truncate(k);
-    slips.retain(|e| e.d < d && e.after.x_tip >= lo && e.after.x_tip <= hi);
+    let keep = |e: &SlipEvent| e.d < d && e.after.x_tip >= lo && e.after.x_tip <= hi;
+    let mut kept = slips.iter().map(keep);
+    slip_contacts.retain(|_| kept.next().unwrap_or(false));
+    slips.retain(keep);
     if let Some(last) = rows.last_mut() {
         // (a slip row whose end was dropped is no longer a slip of the trace)
         if last.event == Some(DragEvent::Slip) {
@@ -502,6 +536,9 @@ struct DragRun<'a, P: Profile> {
     rows: Vec<DragRow>,
     shapes: Vec<Vec<ShapePoint>>,
     slips: Vec<SlipEvent>,
+    slip_contacts: Vec<SlipContacts>,
+    /// The slide of the last piece of a slip marched (its driver, the way, its μk).
+    slide_now: Option<Slide>,
 }
 
 impl<P: Profile> DragRun<'_, P> {
@@ -713,6 +750,7 @@ impl<P: Profile> DragRun<'_, P> {
                 driver: j,
             });
             senv.ground.meter = self.opts.energy_balance.then_some(Meter::Slide);
+            self.slide_now = senv.ground.slide;
             if boundary.is_some() {
                 // μk is this patch's until the boundary
                 senv.ground.texture = None;
@@ -887,6 +925,18 @@ impl<P: Profile> DragRun<'_, P> {
             }
         };
         let balance = self.opts.energy_balance;
+        // the contacts at the slip's ends, the stuck ones with the slip's threshold
+        let textured = self.base.ground.texture.is_some();
+        let at =
+            |set: &ContactSet, q: &Pt| with_threshold(states(set, &q.w.contacts), s.mu_s, textured);
+        let after = match (self.slide_now, mu_s_next) {
+            (Some(sl), None) => {
+                let sliding = Hold::Sliding { dir: sl.dir };
+                with_hold(at(&eset, &qe), sl.driver, sliding, sl.mu_k)
+            }
+            (Some(sl), Some(ms)) => with_hold(at(&eset, &qe), sl.driver, Hold::Stuck, ms),
+            (None, _) => at(&eset, &qe),
+        };
         let ev = SlipEvent {
             d: d_s,
             d_stick: s.d,
@@ -900,6 +950,7 @@ impl<P: Profile> DragRun<'_, P> {
             before: sig(&s.pe, s.e_before),
             after: sig(&pa, e_after),
         };
+        let before = at(&s.set, &s.pe);
         // the slip row (just before) carries the jump and the energy; then the state after
         if let Some(r) = self.slip_row(ev.d) {
             r.phase = Phase::Slip;
@@ -910,16 +961,19 @@ impl<P: Profile> DragRun<'_, P> {
         let x_next = round_contact(&nset, &pa).unwrap_or(ev.after.x_tip);
         let mu_s_next = mu_s_next.unwrap_or_else(|| self.fr.at(x_next, dir).0);
         let sp = scan_point(&pa, &nset, self.profile, None);
+        // (the stuck contacts' threshold: the next stick's)
+        let contacts = with_threshold(states(&nset, &pa.w.contacts), mu_s_next, textured);
         self.rows.push(DragRow {
             phase: Phase::Slip,
             event: Some(DragEvent::SlipEnd),
-            ..row_of(&sp, pa.sol.right(), d_s, mu_s_next)
+            ..row_of(&sp, pa.sol.right(), d_s, mu_s_next, contacts)
         });
         if let Some(ns) = self.opts.keep_shapes {
             let shape = shape_from(pa.sol.clone(), 0.0, self.general.clone());
             self.shapes.push(shape.samples(ns));
         }
         self.slips.push(ev);
+        self.slip_contacts.push(SlipContacts { before, after });
         Ok((pa, e_after, mu_s_next))
     }
 
@@ -950,7 +1004,13 @@ impl<P: Profile> DragRun<'_, P> {
     ) {
         for (i, sp) in out.points.iter().enumerate() {
             let d = held.unwrap_or(sp.d);
-            let mut r = row_of(sp, &out.tips[i], d, mu_s);
+            let textured = self.base.ground.texture.is_some();
+            let mut contacts = with_threshold(out.contacts[i].clone(), mu_s, textured);
+            if let (Phase::Slip, Some(sl)) = (phase, self.slide_now) {
+                let hold = Hold::Slipping { dir: sl.dir };
+                contacts = with_hold(contacts, sl.driver, hold, sl.mu_k);
+            }
+            let mut r = row_of(sp, &out.tips[i], d, mu_s, contacts);
             r.phase = phase;
             self.rows.push(r);
             if let Some(sh) = out.shapes.get(i) {
@@ -1079,7 +1139,13 @@ fn round_contact(set: &ContactSet, p: &Pt) -> Option<f64> {
         .flatten()
 }
 
-fn row_of(sp: &crate::ScanPoint, tip: &[f64], d: f64, mu_s: f64) -> DragRow {
+fn row_of(
+    sp: &crate::ScanPoint,
+    tip: &[f64],
+    d: f64,
+    mu_s: f64,
+    contacts: Vec<ContactState>,
+) -> DragRow {
     DragRow {
         d,
         phase: Phase::Stick,
@@ -1096,6 +1162,7 @@ fn row_of(sp: &crate::ScanPoint, tip: &[f64], d: f64, mu_s: f64) -> DragRow {
         jump: None,
         released: None,
         x_contact: sp.x_contact,
+        contacts,
     }
 }
 

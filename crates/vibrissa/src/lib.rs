@@ -69,6 +69,7 @@ mod analytic;
 mod arclength;
 mod chain;
 mod config;
+mod contacts;
 mod control;
 pub mod drag;
 pub mod dynamics;

@@ -63,6 +63,8 @@ pub(crate) struct MarchOut {
     pub stats: Stats,
     /// The tip state `z(1)` (foot frame) of each output point.
     pub tips: Vec<[f64; 4]>,
+    /// The contacts of each output point.
+    pub contacts: Vec<Vec<crate::contacts::ContactState>>,
     /// The works integrated along the march (`env.ground.meter`; 0 without one): the foot's and
     /// what friction absorbed at the sliding contacts.
     pub metered: [f64; 2],
@@ -131,6 +133,7 @@ pub(crate) fn march<P: Profile>(
         last,
         stats,
         tips: out.tips,
+        contacts: out.contacts,
         metered: out.metered,
     }
 }

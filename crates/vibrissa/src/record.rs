@@ -222,6 +222,8 @@ pub(crate) struct Output<'a, P: Profile> {
     /// The next grid point to emit.
     pub gi: usize,
     pub tips: Vec<[f64; 4]>,
+    /// Each output point's contacts (their holds from the modes of its set).
+    pub contacts: Vec<Vec<crate::contacts::ContactState>>,
     pub metered: [f64; 2],
     /// Each row's shape sampled at this many points, if kept.
     pub keep_shapes: Option<usize>,
@@ -244,6 +246,7 @@ impl<'a, P: Profile> Output<'a, P> {
             shapes: Vec::new(),
             gi,
             tips: Vec::with_capacity(rows),
+            contacts: Vec::with_capacity(rows),
             metered: [0.0, 0.0],
             keep_shapes,
             profile,
@@ -256,6 +259,7 @@ impl<'a, P: Profile> Output<'a, P> {
         self.points.push(scan_point(p, set, self.profile, event));
         let zb = p.sol.right();
         self.tips.push([zb[0], zb[1], zb[2], zb[3]]);
+        (self.contacts).push(crate::contacts::states(set, &p.w.contacts));
         if let Some(ns) = self.keep_shapes {
             let shape = shape_from(p.sol.clone(), 0.0, self.general.clone());
             self.shapes.push(shape.samples(ns));

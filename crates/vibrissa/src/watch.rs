@@ -44,6 +44,8 @@ pub(crate) struct ContactForce {
     pub s: f64,
     /// Lab x of the contact point.
     pub x: f64,
+    /// Its height (a round tip: the point of its disk that touches, from the rod's end).
+    pub y: f64,
     /// Its slip threshold (μ0 for the tip, else the texture's μs there; `inf`: none).
     pub mu_s: f64,
     /// μk there during a slip (`inf` otherwise).
@@ -199,10 +201,12 @@ pub(crate) fn watch(
         let f = ct.force(u[o], u[o + 1]);
         force[0] += f[0];
         force[1] += f[1];
-        let x = if s >= 1.0 {
-            disk_point(set, j, sol.right(), xf, amp).map_or(sol.right()[0] + xf, |c| c[0])
+        let (x, y) = if s >= 1.0 {
+            let zb = sol.right();
+            disk_point(set, j, zb, xf, amp).map_or((zb[0] + xf, zb[1]), |c| (c[0], c[1]))
         } else {
-            exact(s)[0] + xf
+            let z = exact(s);
+            (z[0] + xf, z[1])
         };
         let (nrm, tng, dn, dt) = match ct.geom {
             Geom::Curve { .. } => {
@@ -252,6 +256,7 @@ pub(crate) fn watch(
             tangential: tng,
             s,
             x,
+            y,
             mu_s,
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
             slide: SlideRate::UNKNOWN,
