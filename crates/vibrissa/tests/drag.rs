@@ -332,9 +332,11 @@ fn a_sliding_tip_that_lifts_off_ends_its_slip() {
 
 /// A slip with no quasi-static continuation is a named physical stop (a jam), not a missing
 /// contact state: on the paper's rod over a corrugation of amplitude 0.001, wavelength 0.02 and
-/// phase 2π/3 (issue 31's texture grid, data/drag/texture_grid.csv), a side contact behind the
-/// tip slides 0.0101 in a slip and the state after it does not hold (the free rod would cross
-/// the surface): no contact state consistent with Coulomb friction continues the slip.
+/// phase 2π/3 (issue 31's texture grid, data/drag/texture_grid.csv), the tip slips at d 0.21929,
+/// the side behind it halts and lets go, and the tip slides on alone, the friction it needs
+/// rising; 0.0101 into the slip its end would turn into the surface, and the state after that
+/// change does not hold (the free rod would cross the surface): no contact state consistent
+/// with Coulomb friction continues the slip.
 #[test]
 fn a_slip_without_a_quasi_static_continuation_jams() {
     let s = scene(|s| {
