@@ -724,7 +724,7 @@ impl<P: Profile> DragRun<'_, P> {
     fn slide_driver(
         &mut self,
         s: &Stuck,
-        (j, dir): (usize, f64),
+        (mut j, dir): (usize, f64),
         (mut cset, q0): (ContactSet, Pt),
         dissipated: &mut f64,
         depth: usize,
@@ -781,6 +781,10 @@ impl<P: Profile> DragRun<'_, P> {
                 slide: false,
             };
             let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
+            // (a contact before the driver that let go renumbered it)
+            if let Some(k) = sout.driver {
+                j = k;
+            }
             if let (StopReason::SolverFailure { message, .. }, true) =
                 (&sout.stop, crate::watch::traps(&s.set))
             {
@@ -791,21 +795,17 @@ impl<P: Profile> DragRun<'_, P> {
             let Some((eset, qe)) = sout.last else {
                 return Err(sout.stop);
             };
+            if sout.driver.is_none() {
+                // the sliding contact lifted off: the slip ends there, the others held
+                let slid = slid + qe.lam - clam;
+                return Ok((eset, qe, slid, None));
+            }
             match &sout.stop {
                 StopReason::DMax if qe.lam < lam_end * (1.0 - 1e-14) => {
                     let slid = slid + qe.lam - clam;
                     return Ok((moved(eset, j, dir * qe.lam), qe, slid, None));
                 }
-                StopReason::DMax if lam_end >= MAX_SLIP => {
-                    return Err(StopReason::ContactChange {
-                        d: d_s,
-                        message: format!(
-                            "the contact at s = {:.6} slid {MAX_SLIP} rod lengths along the \
-                             surface without reaching an equilibrium where mu_k holds it",
-                            qe.w.contacts.get(j).map_or(f64::NAN, |c| c.s)
-                        ),
-                    })
-                }
+                StopReason::DMax if lam_end >= MAX_SLIP => return Err(unbounded(d_s, &qe, j)),
                 StopReason::DMax => {
                     // at a patch boundary: the patch ahead holds the contact, or it slides on
                     let Some(&c) = qe.w.contacts.get(j) else {
@@ -830,9 +830,18 @@ impl<P: Profile> DragRun<'_, P> {
                     let held = moved(eset, j, dir * qe.lam);
                     slid += qe.lam - clam;
                     let dir_k = qe.w.contacts[k].tangential.signum();
+                    let n_held = held.contacts.len();
                     let (mut kset, kq, _, _) =
                         self.slide_driver(s, (k, dir_k), (held, qe), dissipated, depth + 1)?;
-                    x_now = kq.w.contacts[j].x;
+                    // (a contact that let go during that slip may have renumbered this one)
+                    let Some(c) =
+                        kq.w.contacts
+                            .get(j)
+                            .filter(|_| kset.contacts.len() >= n_held)
+                    else {
+                        return Err(let_go_in_turn(d_s, &s.set, &kset));
+                    };
+                    x_now = c.x;
                     // where μk holds it, it goes on sliding with this one as long as this one's
                     // slide pushes it its way (its friction is μk N already: no jump); else it
                     // halts at once (two contacts that would take turns in ever shorter slips
@@ -848,16 +857,7 @@ impl<P: Profile> DragRun<'_, P> {
                     }
                 }
                 StopReason::Slip { .. } => return Err(jammed(d_s, &qe, &eset)),
-                StopReason::FoldInD { d } => {
-                    return Err(StopReason::ContactChange {
-                        d: d_s,
-                        message: format!(
-                            "the slip does not end quasi-statically: the equilibria fold back \
-                             after the contact at s = {:.6} slid {d} (a snap)",
-                            q0.w.contacts[j].s
-                        ),
-                    })
-                }
+                StopReason::FoldInD { d } => return Err(snap(d_s, q0.w.contacts[j].s, *d)),
                 other => return Err(at_foot(other.clone(), d_s)),
             }
         }
@@ -1074,6 +1074,44 @@ fn moved(set: ContactSet, j: usize, by: f64) -> ContactSet {
         m => m,
     };
     set
+}
+
+/// The equilibria of a slip fold back after the contact at `s` slid `by` (at the foot's place
+/// `d`): a snap.
+fn snap(d: f64, s: f64, by: f64) -> StopReason {
+    StopReason::ContactChange {
+        d,
+        message: format!(
+            "the slip does not end quasi-statically: the equilibria fold back after the contact \
+             at s = {s:.6} slid {by} (a snap)"
+        ),
+    }
+}
+
+/// A slide that ran [`MAX_SLIP`] without μk holding contact `j` (at the foot's place `d`).
+fn unbounded(d: f64, qe: &Pt, j: usize) -> StopReason {
+    StopReason::ContactChange {
+        d,
+        message: format!(
+            "the contact at s = {:.6} slid {MAX_SLIP} rod lengths along the surface without \
+             reaching an equilibrium where mu_k holds it",
+            qe.w.contacts.get(j).map_or(f64::NAN, |c| c.s)
+        ),
+    }
+}
+
+/// A contact let go during a slip nested in another (the set `from` of the stick, `to` after
+/// it): the outer slide's contact may have been renumbered, and its slide is not followed.
+fn let_go_in_turn(d: f64, from: &ContactSet, to: &ContactSet) -> StopReason {
+    StopReason::ContactChange {
+        d,
+        message: format!(
+            "a contact let go during a slip that another contact's slip held ({} to {}): the \
+             slip of the one it held is not followed",
+            from.label(),
+            to.label()
+        ),
+    }
 }
 
 /// A set that jams: contacts keep reaching their slip limits while others slip (no quasi-static

@@ -68,6 +68,10 @@ pub(crate) struct MarchOut {
     /// The works integrated along the march (`env.ground.meter`; 0 without one): the foot's and
     /// what friction absorbed at the sliding contacts.
     pub metered: [f64; 2],
+    /// In a slip: the driver's number in the last point's set (one less for each contact before
+    /// it that let go during the march); `None` where the driver itself let go (the march ends at
+    /// the first point without it).
+    pub driver: Option<usize>,
 }
 
 /// Runs the march from the point `p0` (λ = `p0.lam`) over the grid.
@@ -98,6 +102,7 @@ pub(crate) fn march<P: Profile>(
         && crate::watch::traps(stepper.set())
         && stepper.singular_at(p0.lam, &p0.u);
     let set = stepper.set().clone();
+    let mut driver = spec.env.ground.slide.map(|s| s.driver);
     let (stop, last) = if let Some(ev) = start_event {
         // the start itself is not a valid state (the rod crosses the surface, is pulled, or
         // slips): it is reported as the event, never as a grid row
@@ -108,6 +113,7 @@ pub(crate) fn march<P: Profile>(
         let mut run = Run {
             stepper: &mut *stepper,
             spec,
+            env: spec.env.clone(),
             ctl: StepControl::default(),
             out: &mut out,
             range: &mut range,
@@ -116,7 +122,9 @@ pub(crate) fn march<P: Profile>(
             let stop = run.indeterminate(&set, &p0);
             (stop, Some((set, p0)))
         } else {
-            run.run(p0)
+            let ended = run.run(p0);
+            driver = run.env.ground.slide.map(|s| s.driver);
+            ended
         }
     };
     stats.accumulate(&stepper.stats());
@@ -135,6 +143,7 @@ pub(crate) fn march<P: Profile>(
         tips: out.tips,
         contacts: out.contacts,
         metered: out.metered,
+        driver,
     }
 }
 
@@ -142,6 +151,9 @@ pub(crate) fn march<P: Profile>(
 struct Run<'a, 'b, P: Profile> {
     stepper: &'a mut dyn Stepper,
     spec: &'a Spec<'b>,
+    /// The march's environment: the spec's, with a slip's driver renumbered where a contact
+    /// before it lets go.
+    env: Env,
     ctl: StepControl,
     out: &'a mut Output<'b, P>,
     range: &'a mut RangeTracker,
@@ -196,9 +208,9 @@ impl<P: Profile> Run<'_, '_, P> {
         let spec = self.spec;
         let lam_end = spec.lam_end;
         let h_max = self.stepper.h_max().min(lam_end - p0.lam).max(1e-12);
-        let pending = Crossing::all(spec.env, self.stepper.set())
+        let pending = Crossing::all(&self.env, self.stepper.set())
             .into_iter()
-            .filter(|c| !holds(c.of_watch(spec.env, &p0.w)))
+            .filter(|c| !holds(c.of_watch(&self.env, &p0.w)))
             .collect();
         let mut w = Walk {
             h: self.ctl.h_init.min(h_max),
@@ -270,7 +282,7 @@ impl<P: Profile> Run<'_, '_, P> {
             );
             return end(StopReason::SolverFailure { d: lam, message });
         }
-        let armed: Vec<Crossing> = Crossing::all(self.spec.env, self.stepper.set())
+        let armed: Vec<Crossing> = Crossing::all(&self.env, self.stepper.set())
             .into_iter()
             .filter(|c| !w.pending.contains(c))
             .collect();
@@ -371,7 +383,7 @@ impl<P: Profile> Run<'_, '_, P> {
             target = lam_end;
         }
         for &c in armed {
-            let env = self.spec.env;
+            let env = &self.env;
             if let Some(ds) = predicted_crossing(&*self.stepper, env, &w.hist, (lam, target), c) {
                 // (not when it is as good as here: the step would not move)
                 if ds - lam > w.h_min {
@@ -437,7 +449,7 @@ impl<P: Profile> Run<'_, '_, P> {
     /// A change of contact set holds only if its new event functions leave zero inwards: the end
     /// where one leaves it outwards at the new point `p`.
     fn check_pending(&mut self, w: &mut Walk, p: &Pt, lam: f64) -> Option<Pending> {
-        let env = self.spec.env;
+        let env = &self.env;
         let mut wrong = None;
         w.pending.retain(|&c| {
             let v = c.of_watch(env, &p.w);
@@ -541,7 +553,7 @@ impl<P: Profile> Run<'_, '_, P> {
             return end(f);
         }
         let l_stop = found.as_ref().map_or(p.lam, |f| f.pt.lam);
-        let env = self.spec.env;
+        let env = &self.env;
         if let Some(m) = env.ground.meter {
             let upto = found.as_ref().map_or(&p, |f| &f.pt).clone();
             let st = &mut *self.stepper;
@@ -579,7 +591,7 @@ impl<P: Profile> Run<'_, '_, P> {
         p: &Pt,
         armed: &[Crossing],
     ) -> (Option<Found>, Option<StopReason>) {
-        let env = self.spec.env;
+        let env = &self.env;
         let mut found: Option<Found> = None;
         let mut failure: Option<StopReason> = None;
         for &c in armed {
@@ -635,7 +647,7 @@ impl<P: Profile> Run<'_, '_, P> {
             slide: self.spec.slide,
         };
         let xf = self.stepper.foot_x(pe.lam);
-        match transition(self.spec.env, rules, &set, cross, &pe, xf) {
+        match transition(&self.env, rules, &set, cross, &pe, xf) {
             Next::Done => {
                 self.range.close(RangeEnd::DMax);
                 Flow::End(StopReason::DMax, Some(Box::new((set, pe))))
@@ -668,7 +680,8 @@ impl<P: Profile> Run<'_, '_, P> {
         mut new_set: ContactSet,
         u: Vec<f64>,
     ) -> Flow {
-        let env = self.spec.env;
+        let driver_gone = self.renumber(&set, &new_set, pe.lam);
+        let env = &self.env;
         self.out.push(&set, &pe, Some(ev));
         if let Some(message) = ahead_of_driver(env, &set, &new_set, &pe) {
             self.range.close(RangeEnd::Event);
@@ -697,6 +710,11 @@ impl<P: Profile> Run<'_, '_, P> {
         let rising = pe.w.dmu_abs;
         match self.stepper.switch(new_set.clone(), pe.lam, u) {
             Ok(q) => {
+                if driver_gone {
+                    // the sliding contact lifted off: the slip ends at the first point without
+                    // it (the foot held, the other contacts as they were)
+                    return Flow::End(StopReason::DMax, Some(Box::new((new_set, q))));
+                }
                 // a maximum of |μ| at the kink of the change
                 if self.range.end.is_none()
                     && rising.is_some_and(|s| s > 0.0)
@@ -733,6 +751,37 @@ impl<P: Profile> Run<'_, '_, P> {
                 )
             }
         }
+    }
+
+    /// A contact before a slip's driver that lets go (`set` to `new_set`) moves the driver one
+    /// place down the set: the slip's family and events follow it under its new number (before,
+    /// the old number named the next contact or none, and the slide moved no contact). Whether
+    /// the driver itself let go: then the march has no slide left (`env.ground.slide` none; the
+    /// family's driver a number past the set, which moves no contact).
+    fn renumber(&mut self, set: &ContactSet, new_set: &ContactSet, lam: f64) -> bool {
+        let Some(slide) = self.env.ground.slide.as_mut() else {
+            return false;
+        };
+        if new_set.contacts.len() + 1 != set.contacts.len() {
+            return false;
+        }
+        let gone = (0..new_set.contacts.len())
+            .find(|&k| set.contacts[k] != new_set.contacts[k])
+            .unwrap_or(new_set.contacts.len());
+        if gone > slide.driver {
+            return false;
+        }
+        let (xf, dir, lost) = (self.stepper.foot_x(lam), slide.dir, gone == slide.driver);
+        let driver = if lost {
+            self.env.ground.slide = None;
+            new_set.contacts.len()
+        } else {
+            slide.driver -= 1;
+            slide.driver
+        };
+        self.stepper
+            .phase(crate::chain::Family::Slide { xf, dir, driver }, &self.env);
+        lost
     }
 
     /// Emits the grid points up to `upto` (the branch point itself where one is at the grid
@@ -841,8 +890,7 @@ const HOLD_MAX: f64 = 1e6;
 fn ahead_of_driver(env: &Env, set: &ContactSet, new_set: &ContactSet, pe: &Pt) -> Option<String> {
     let driver = env.ground.slide?.driver;
     let (old, new) = (set.contacts.len(), new_set.contacts.len());
-    // (a lift-off before the driver renumbers it too; there the slip ends as before, in a jam
-    // where the freed rod would cross the surface, tests/drag.rs)
+    // (a lift-off before the driver renumbers it the other way: Run::renumber)
     if new <= old {
         return None;
     }
