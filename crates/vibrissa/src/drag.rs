@@ -784,6 +784,10 @@ impl<P: Profile> DragRun<'_, P> {
             // (a contact before the driver that let go renumbered it)
             if let Some(k) = sout.driver {
                 j = k;
+                // (the contacts' states recorded for this slip name the driver by its number)
+                if let Some(sl) = self.slide_now.as_mut() {
+                    sl.driver = k;
+                }
             }
             if let (StopReason::SolverFailure { message, .. }, true) =
                 (&sout.stop, crate::watch::traps(&s.set))

@@ -192,6 +192,25 @@ enum Flow {
 }
 
 /// Ends the march with `stop` at the newest point of the history.
+/// The stop where a fold is reached in a state that pulls at one of its contacts (`N < 0` beyond
+/// rounding): such a point is no state of the model, so it is not recorded; the contact set
+/// entered before it (a tip touching down in a slide, seen in issue 31's property test) cannot
+/// continue quasi-statically.
+fn pulling(set: &ContactSet, p: &Pt, d: f64) -> Option<StopReason> {
+    let total: f64 = p.w.contacts.iter().map(|c| c.normal.abs()).sum();
+    let j = (p.w.contacts.iter()).position(|c| -c.normal > 1e-10 * (1.0 + total))?;
+    Some(StopReason::ContactChange {
+        d,
+        message: format!(
+            "the equilibria fold back in the contact state {} with its contact at s = {:.6} \
+             pulling (N = {:.3e}): no state of the model continues it quasi-statically",
+            set.label(),
+            set.s_of(j, &p.u),
+            p.w.contacts[j].normal
+        ),
+    })
+}
+
 fn end(stop: StopReason) -> Flow {
     Flow::End(stop, None)
 }
@@ -435,6 +454,9 @@ impl<P: Profile> Run<'_, '_, P> {
                     return Err(end(stop));
                 };
                 let set = self.stepper.set().clone();
+                if let Some(stop) = pulling(&set, &p, lf) {
+                    return Err(end(stop));
+                }
                 self.out.push(&set, &p, Some(Event::FoldInD));
                 Err(Flow::End(stop, Some(Box::new((set, *p)))))
             }

@@ -267,7 +267,7 @@ fn release_in_a_slip(r: &DragResult) -> Option<(DragRow, DragRow)> {
     let end = r.rows[k..]
         .iter()
         .find(|w| w.event == Some(DragEvent::SlipEnd))?;
-    Some((r.rows[k], *end))
+    Some((r.rows[k].clone(), end.clone()))
 }
 
 /// A contact before the slip's driver that lets go renumbers the driver (issue 31's texture
