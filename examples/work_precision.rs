@@ -37,7 +37,10 @@
 //! Environment: `WP_CAP_S` (default 8): a method's tolerance sweep on one problem stops after the
 //! first run slower than this many seconds (that run is kept); `WP_QUICK=1`: fewer tolerances
 //! (smoke test); `WP_PLOT_ONLY=1`: redraw the SVG and `summary.md` from the CSV in the output
-//! directory.
+//! directory; `WP_ONLY=problem/method` (e.g. `scan/collocation6`): rerun that method's sweep on
+//! that problem alone and put its rows in place of its rows in the CSV already in the output
+//! directory (the other rows, the SVG and `summary.md` redrawn from them, a line appended to
+//! `machine.txt`).
 //!
 //! Times are wall-clock, single thread, the minimum over batches (each batch repeats a fast run
 //! until it lasts ≥ 0.1 s), so they are comparable within one run of this program.
@@ -190,7 +193,11 @@ fn single_shape(rows: &mut Vec<Row>, quick: bool, cap: f64) -> Result<()> {
         .iter()
         .map(|(b, _)| Elastica::new(*b, alpha, phi1).map(|e| e.f))
         .collect::<Result<_, _>>()?;
+    let only = std::env::var("WP_ONLY").ok();
     for (name, cfgs) in configs(quick) {
+        if only.as_ref().is_some_and(|o| *o != format!("shape/{name}")) {
+            continue;
+        }
         for (knob, cfg) in cfgs {
             let time = shape_row(rows, &name, knob, &f_ref, |i| {
                 let s = solve(&rod, alpha, Target::Phi1(phi1), &branches[i].1, &cfg)?;
@@ -403,7 +410,14 @@ fn sweep<R>(
     mut run: impl FnMut(&SolverConfig) -> Result<R>,
     judge: impl Fn(&R) -> Outcome,
 ) {
+    let only = std::env::var("WP_ONLY").ok();
     for (name, cfgs) in configs(quick) {
+        if only
+            .as_ref()
+            .is_some_and(|o| *o != format!("{problem}/{name}"))
+        {
+            continue;
+        }
         for (knob, cfg) in cfgs {
             let (tol, rk4_steps) = knob_parts(knob);
             let (err, time, reps, stats, note) = match time_it(|| run(&cfg)) {
@@ -1152,6 +1166,57 @@ fn summary(rows: &[Row], cap: f64) -> String {
     s
 }
 
+/// `WP_ONLY=problem/method`: that method's sweep on that problem, its rows put in place of its
+/// rows in the CSV in `dir` (appended if it had none); SVG and summary redrawn, a line appended
+/// to `machine.txt`.
+fn rerun_only(dir: &Path, only: &str, quick: bool, cap: f64) -> Result<()> {
+    let (problem, method) = only.split_once('/').ok_or_else(|| {
+        anyhow!("WP_ONLY={only}: expected problem/method, e.g. scan/collocation6")
+    })?;
+    type Problem = fn(&mut Vec<Row>, bool, f64) -> Result<()>;
+    let problems: [(&str, Problem); 6] = [
+        ("shape", single_shape),
+        ("scan", uniform_scan),
+        ("taper", tapered_scan),
+        ("side", side_scan),
+        ("drag", drag_problem),
+        ("whisk", whisk_problem),
+    ];
+    let run = problems
+        .iter()
+        .find(|p| p.0 == problem)
+        .ok_or_else(|| anyhow!("WP_ONLY={only}: no problem {problem}"))?
+        .1;
+    let csv = dir.join("work_precision.csv");
+    let old = read_csv(&csv)?;
+    let load_start = load_average();
+    let t0 = Instant::now();
+    let mut new = Vec::new();
+    run(&mut new, quick, cap)?;
+    let total = t0.elapsed().as_secs_f64();
+    let is = |r: &Row| r.problem == problem && r.method == method;
+    let new: Vec<Row> = new.into_iter().filter(|r| is(r)).collect();
+    if new.is_empty() {
+        bail!("WP_ONLY={only}: no such rows");
+    }
+    let at = old.iter().position(&is).unwrap_or(old.len());
+    let mut rows: Vec<Row> = old[..at].to_vec();
+    rows.extend(new);
+    rows.extend(old[at..].iter().filter(|r| !is(r)).cloned());
+    write_csv(&csv, &rows)?;
+    plot(&dir.join("work_precision.svg"), &rows)?;
+    std::fs::write(dir.join("summary.md"), summary(&rows, cap))?;
+    let note = format!(
+        "rows {only} rerun alone (WP_ONLY): load average at start {load_start}; at end {}; run time {total:.0} s\n",
+        load_average()
+    );
+    let machine = dir.join("machine.txt");
+    let before = std::fs::read_to_string(&machine).unwrap_or_default();
+    std::fs::write(&machine, before + &note)?;
+    eprintln!("rows {only} replaced in {}", csv.display());
+    Ok(())
+}
+
 /// The output directory: the first argument, else `WP_OUT`, else `target/work_precision`.
 fn out_dir() -> PathBuf {
     std::env::args_os()
@@ -1175,6 +1240,9 @@ fn main() -> Result<()> {
         std::fs::write(dir.join("summary.md"), summary(&rows, cap))?;
         eprintln!("re-plotted {}", dir.display());
         return Ok(());
+    }
+    if let Ok(only) = std::env::var("WP_ONLY") {
+        return rerun_only(&dir, &only, quick, cap);
     }
     let load_start = load_average();
     let mut rows = Vec::new();
