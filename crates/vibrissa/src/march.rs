@@ -202,8 +202,9 @@ fn pulling(set: &ContactSet, p: &Pt, d: f64) -> Option<StopReason> {
     Some(StopReason::ContactChange {
         d,
         message: format!(
-            "the equilibria fold back in the contact state {} with its contact at s = {:.6} \
-             pulling (N = {:.3e}): no state of the model continues it quasi-statically",
+            "the rod does not go on quasi-statically (a snap): its equilibria fold back in the \
+             contact state {} with its contact at s = {:.6} pulling (N = {:.3e}), where no \
+             state of the model holds",
             set.label(),
             set.s_of(j, &p.u),
             p.w.contacts[j].normal
