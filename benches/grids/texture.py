@@ -69,7 +69,7 @@ def classify(reason, detail, code):
         return "stale slip driver"
     if "Newton did not converge" in detail and "trapped" not in detail:
         return "Newton failure / NaN"
-    if "the equilibria fold back" in detail and "(a snap)" in detail:
+    if "equilibria fold back" in detail and "(a snap)" in detail:
         return "fold/snap"
     if "the start" in detail and "trap" in detail:
         return "trapped start"
