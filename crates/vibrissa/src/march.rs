@@ -191,7 +191,6 @@ enum Flow {
     End(StopReason, Option<Box<(ContactSet, Pt)>>),
 }
 
-/// Ends the march with `stop` at the newest point of the history.
 /// The stop where a fold is reached in a state that pulls at one of its contacts (`N < 0` beyond
 /// rounding): such a point is no state of the model, so it is not recorded; the contact set
 /// entered before it (a tip touching down in a slide, seen in issue 31's property test) cannot
@@ -212,6 +211,7 @@ fn pulling(set: &ContactSet, p: &Pt, d: f64) -> Option<StopReason> {
     })
 }
 
+/// Ends the march with `stop` at the newest point of the history.
 fn end(stop: StopReason) -> Flow {
     Flow::End(stop, None)
 }
