@@ -1010,9 +1010,11 @@ impl<P: Profile> DragRun<'_, P> {
             let d = held.unwrap_or(sp.d);
             let textured = self.base.ground.texture.is_some();
             let mut contacts = with_threshold(out.contacts[i].clone(), mu_s, textured);
-            if let (Phase::Slip, Some(sl)) = (phase, self.slide_now) {
+            if let (Phase::Slip, Some(sl), Some(Some(k))) =
+                (phase, self.slide_now, out.drivers.get(i))
+            {
                 let hold = Hold::Slipping { dir: sl.dir };
-                contacts = with_hold(contacts, sl.driver, hold, sl.mu_k);
+                contacts = with_hold(contacts, *k, hold, sl.mu_k);
             }
             let mut r = row_of(sp, &out.tips[i], d, mu_s, contacts);
             r.phase = phase;

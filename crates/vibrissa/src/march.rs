@@ -65,6 +65,8 @@ pub(crate) struct MarchOut {
     pub tips: Vec<[f64; 4]>,
     /// The contacts of each output point.
     pub contacts: Vec<Vec<crate::contacts::ContactState>>,
+    /// In a slip: the driver's number in each output point's set.
+    pub drivers: Vec<Option<usize>>,
     /// The works integrated along the march (`env.ground.meter`; 0 without one): the foot's and
     /// what friction absorbed at the sliding contacts.
     pub metered: [f64; 2],
@@ -85,6 +87,7 @@ pub(crate) fn march<P: Profile>(
     let gi = spec.grid.partition_point(|&g| g < p0.lam);
     let rows = spec.grid.len() + 1;
     let mut out = Output::new(rows, gi, spec.keep_shapes, profile, spec.general);
+    out.driver = spec.env.ground.slide.map(|s| s.driver);
     let mut range = RangeTracker {
         best: (p0.w.mu.abs(), p0.w.mu, p0.lam),
         end: None,
@@ -142,6 +145,7 @@ pub(crate) fn march<P: Profile>(
         stats,
         tips: out.tips,
         contacts: out.contacts,
+        drivers: out.drivers,
         metered: out.metered,
         driver,
     }
@@ -706,6 +710,8 @@ impl<P: Profile> Run<'_, '_, P> {
         let driver_gone = self.renumber(&set, &new_set, pe.lam);
         let env = &self.env;
         self.out.push(&set, &pe, Some(ev));
+        // (the event's row is of the old set; the points after it of the new one)
+        self.out.driver = env.ground.slide.map(|s| s.driver);
         if let Some(message) = ahead_of_driver(env, &set, &new_set, &pe) {
             self.range.close(RangeEnd::Event);
             let stop = StopReason::ContactChange { d: pe.lam, message };

@@ -224,6 +224,10 @@ pub(crate) struct Output<'a, P: Profile> {
     pub tips: Vec<[f64; 4]>,
     /// Each output point's contacts (their holds from the modes of its set).
     pub contacts: Vec<Vec<crate::contacts::ContactState>>,
+    /// In a slip: the sliding contact's number in the set of the points recorded now (the march
+    /// renumbers it where a contact before it lets go), and of each output point.
+    pub driver: Option<usize>,
+    pub drivers: Vec<Option<usize>>,
     pub metered: [f64; 2],
     /// Each row's shape sampled at this many points, if kept.
     pub keep_shapes: Option<usize>,
@@ -247,6 +251,8 @@ impl<'a, P: Profile> Output<'a, P> {
             gi,
             tips: Vec::with_capacity(rows),
             contacts: Vec::with_capacity(rows),
+            driver: None,
+            drivers: Vec::with_capacity(rows),
             metered: [0.0, 0.0],
             keep_shapes,
             profile,
@@ -260,6 +266,7 @@ impl<'a, P: Profile> Output<'a, P> {
         let zb = p.sol.right();
         self.tips.push([zb[0], zb[1], zb[2], zb[3]]);
         (self.contacts).push(crate::contacts::states(set, &p.w.contacts));
+        self.drivers.push(self.driver);
         if let Some(ns) = self.keep_shapes {
             let shape = shape_from(p.sol.clone(), 0.0, self.general.clone());
             self.shapes.push(shape.samples(ns));
