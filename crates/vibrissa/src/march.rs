@@ -105,7 +105,6 @@ pub(crate) fn march<P: Profile>(
         && crate::watch::traps(stepper.set())
         && stepper.singular_at(p0.lam, &p0.u);
     let set = stepper.set().clone();
-    let mut driver = spec.env.ground.slide.map(|s| s.driver);
     let (stop, last) = if let Some(ev) = start_event {
         // the start itself is not a valid state (the rod crosses the surface, is pulled, or
         // slips): it is reported as the event, never as a grid row
@@ -125,9 +124,7 @@ pub(crate) fn march<P: Profile>(
             let stop = run.indeterminate(&set, &p0);
             (stop, Some((set, p0)))
         } else {
-            let ended = run.run(p0);
-            driver = run.env.ground.slide.map(|s| s.driver);
-            ended
+            run.run(p0)
         }
     };
     stats.accumulate(&stepper.stats());
@@ -145,9 +142,9 @@ pub(crate) fn march<P: Profile>(
         stats,
         tips: out.tips,
         contacts: out.contacts,
+        driver: out.driver,
         drivers: out.drivers,
         metered: out.metered,
-        driver,
     }
 }
 

@@ -305,12 +305,7 @@ pub(crate) fn watch(
         [f64::NAN; 4]
     };
     let y_max = crate::sampling::extrema(sol, 0.0, 1.0).max;
-    let last_y = match contacts.last() {
-        Some(c) if c.s >= 1.0 => disk_point(set, set.contacts.len() - 1, sol.right(), xf, amp)
-            .map_or(sol.right()[1], |c| c[1]),
-        Some(c) => exact(c.s)[1],
-        None => f64::NAN,
-    };
+    let last_y = contacts.last().map_or(f64::NAN, |c| c.y);
     Watch {
         lam,
         mu,
