@@ -31,12 +31,17 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::f64::consts::PI;
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use vibrissa::dynamics::{
     drag, first_mode_velocity, free, DynDragOptions, DynamicsOptions, DynamicsResult,
     CLAMPED_FREE_BETA1,
 };
 use vibrissa::{Rod, Surface};
+
+#[path = "support/clock.rs"]
+mod clock;
+#[path = "../tests/support/crossing.rs"]
+mod crossing;
 
 /// The period `2π/β₁²` of the first mode.
 fn period() -> f64 {
@@ -61,60 +66,6 @@ fn oscillate(steps_per_period: usize) -> usize {
     black_box(run(steps_per_period).samples.len())
 }
 
-/// The tip's first upward zero crossing after 0.6 periods (the period), by cubic Hermite
-/// interpolation with the tip's velocity (as the example `free_oscillation`).
-fn crossing(r: &DynamicsResult) -> f64 {
-    for w in r.samples.windows(2) {
-        let (a, b) = (&w[0], &w[1]);
-        if a.t > 0.6 * period() && a.tip_x < 0.0 && b.tip_x >= 0.0 {
-            let h = b.t - a.t;
-            let p = |u: f64| {
-                let (u2, u3) = (u * u, u * u * u);
-                (2.0 * u3 - 3.0 * u2 + 1.0) * a.tip_x
-                    + (u3 - 2.0 * u2 + u) * h * a.tip_vx
-                    + (-2.0 * u3 + 3.0 * u2) * b.tip_x
-                    + (u3 - u2) * h * b.tip_vx
-            };
-            let (mut lo, mut hi) = (0.0, 1.0);
-            for _ in 0..100 {
-                let m = 0.5 * (lo + hi);
-                if p(m) < 0.0 {
-                    lo = m;
-                } else {
-                    hi = m;
-                }
-            }
-            return a.t + 0.5 * (lo + hi) * h;
-        }
-    }
-    f64::NAN
-}
-
-/// The CPU time of this thread (Linux: `clock_gettime(CLOCK_THREAD_CPUTIME_ID)` of the C library
-/// that std links), or `None` elsewhere (as the bench `engine`: on the loaded shared machine a
-/// run is preempted for whole time slices, which its CPU time does not see).
-#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-fn thread_cpu() -> Option<Duration> {
-    #[repr(C)]
-    struct Timespec {
-        sec: i64,
-        nsec: i64,
-    }
-    extern "C" {
-        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-    }
-    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
-    let mut t = Timespec { sec: 0, nsec: 0 };
-    // SAFETY: `t` is a valid `struct timespec` of this target (two 64-bit fields).
-    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut t) };
-    (rc == 0).then(|| Duration::new(t.sec as u64, t.nsec as u32))
-}
-
-#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-fn thread_cpu() -> Option<Duration> {
-    None
-}
-
 /// The error-against-time table, for the default options (grid 200, tol 1e-10) and for a grid
 /// and tolerance fit to the period errors of 1e-3 and above (grid 50, tol 1e-8: the history and
 /// the mesh on 50 intervals): each of 25, 50, 100, 200 steps per period timed in one interleaved
@@ -137,21 +88,14 @@ fn table() {
     for _ in 0..5 {
         for (c, (_, o)) in configs.iter().enumerate() {
             for (i, n) in ns.iter().enumerate() {
-                let (t, cpu) = (Instant::now(), thread_cpu());
-                black_box(run_with(*n, o));
-                let spent = match (cpu, thread_cpu()) {
-                    (Some(a), Some(z)) => z.saturating_sub(a),
-                    _ => t.elapsed(),
-                };
+                let spent = clock::spent(|| {
+                    black_box(run_with(*n, o));
+                });
                 best[c][i] = best[c][i].min(spent);
             }
         }
     }
-    let clock = if thread_cpu().is_some() {
-        "CPU time of the thread"
-    } else {
-        "wall time"
-    };
+    let clock = clock::name();
     for (c, (name, o)) in configs.iter().enumerate() {
         println!(
             "\n{name} ({clock}, minimum of 5)\n{:>14} {:>6} {:>7} {:>5} {:>10} {:>9} {:>11}",
@@ -160,7 +104,7 @@ fn table() {
         let mut periods = [0.0; 4];
         for (i, n) in ns.iter().enumerate() {
             let r = run_with(*n, o);
-            periods[i] = crossing(&r);
+            periods[i] = crossing::upward_crossing(&r, 0.6 * period());
             let ms = best[c][i].as_secs_f64() * 1e3;
             println!(
                 "{n:>14} {:>6} {:>7} {:>5} {ms:>10.2} {:>9.3} {:>11.3e}",

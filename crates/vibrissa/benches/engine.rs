@@ -15,8 +15,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use vibrissa::{scan, Precurvature, Rod, ScanOptions, ScanResult, Scene, Stiffness, Surface};
+
+#[path = "support/clock.rs"]
+mod clock;
 
 struct Case {
     name: &'static str,
@@ -143,44 +146,15 @@ fn run(c: &Case) -> ScanResult {
     scan(&c.rod, &c.surface, &c.opts).expect("scan runs")
 }
 
-/// The CPU time of this thread (Linux: `clock_gettime(CLOCK_THREAD_CPUTIME_ID)` of the C library
-/// that std links), or `None` elsewhere. On a loaded machine a scan of a few milliseconds is
-/// preempted for whole time slices (4 ms on the shared machine), so its wall time comes in
-/// steps of that size, which no minimum over repetitions removes; its CPU time does not.
-#[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-fn thread_cpu() -> Option<Duration> {
-    #[repr(C)]
-    struct Timespec {
-        sec: i64,
-        nsec: i64,
-    }
-    extern "C" {
-        fn clock_gettime(clock: i32, tp: *mut Timespec) -> i32;
-    }
-    const CLOCK_THREAD_CPUTIME_ID: i32 = 3;
-    let mut t = Timespec { sec: 0, nsec: 0 };
-    // SAFETY: `t` is a valid `struct timespec` of this target (two 64-bit fields).
-    let rc = unsafe { clock_gettime(CLOCK_THREAD_CPUTIME_ID, &mut t) };
-    (rc == 0).then(|| Duration::new(t.sec as u64, t.nsec as u32))
-}
-
-#[cfg(not(all(target_os = "linux", target_pointer_width = "64")))]
-fn thread_cpu() -> Option<Duration> {
-    None
-}
-
 /// Minimum time per scan over `reps` round-robin repetitions of all cases: the thread's CPU
-/// time where [`thread_cpu`] has it, else the wall time.
+/// time where [`clock::thread_cpu`] has it, else the wall time.
 fn interleaved(cases: &[Case], reps: usize) -> Vec<Duration> {
     let mut best = vec![Duration::MAX; cases.len()];
     for _ in 0..reps {
         for (c, b) in cases.iter().zip(best.iter_mut()) {
-            let (t, cpu) = (Instant::now(), thread_cpu());
-            black_box(run(c));
-            let spent = match (cpu, thread_cpu()) {
-                (Some(a), Some(z)) => z.saturating_sub(a),
-                _ => t.elapsed(),
-            };
+            let spent = clock::spent(|| {
+                black_box(run(c));
+            });
             *b = (*b).min(spent);
         }
     }
@@ -193,11 +167,7 @@ fn table(cases: &[Case]) {
     let results: Vec<ScanResult> = cases.iter().map(run).collect();
     let per_point = |i: usize| times[i].as_secs_f64() / grid_points(&results[i]).max(1) as f64;
     let (t_u, pp_u) = (times[0].as_secs_f64(), per_point(0));
-    let clock = if thread_cpu().is_some() {
-        "CPU time of the thread"
-    } else {
-        "wall time"
-    };
+    let clock = clock::name();
     println!(
         "\n({clock}, minimum of 15)\n{:<24} {:>7} {:>10} {:>10} {:>9} {:>9}  stop",
         "scene", "points", "scan ms", "µs/point", "×/point", "×scan"

@@ -17,34 +17,9 @@ use vibrissa::dynamics::{
 };
 use vibrissa::Rod;
 
-/// The first upward zero crossing of the tip's x after `after`, by cubic Hermite interpolation
-/// with the tip's velocity.
-fn upward_crossing(r: &DynamicsResult, after: f64) -> f64 {
-    for w in r.samples.windows(2) {
-        let (a, b) = (&w[0], &w[1]);
-        if a.t > after && a.tip_x < 0.0 && b.tip_x >= 0.0 {
-            let h = b.t - a.t;
-            let p = |u: f64| {
-                let (u2, u3) = (u * u, u * u * u);
-                (2.0 * u3 - 3.0 * u2 + 1.0) * a.tip_x
-                    + (u3 - 2.0 * u2 + u) * h * a.tip_vx
-                    + (-2.0 * u3 + 3.0 * u2) * b.tip_x
-                    + (u3 - u2) * h * b.tip_vx
-            };
-            let (mut lo, mut hi) = (0.0, 1.0);
-            for _ in 0..100 {
-                let m = 0.5 * (lo + hi);
-                if p(m) < 0.0 {
-                    lo = m;
-                } else {
-                    hi = m;
-                }
-            }
-            return a.t + 0.5 * (lo + hi) * h;
-        }
-    }
-    f64::NAN
-}
+#[path = "../tests/support/crossing.rs"]
+mod crossing;
+use crossing::upward_crossing;
 
 fn drift(r: &DynamicsResult) -> f64 {
     let e0 = r.samples[0].kinetic + r.samples[0].elastic;
