@@ -2,7 +2,9 @@
 //! (paper §3, Remark 3.1): μ and f at the closed-form points' displacements, both phases.
 
 use elastica::{ClosedFormScan, Phase0End};
-use vibrissa::{scan_at, ContactModel, Method, ScanOptions, Scene, SolverConfig, StopReason};
+use vibrissa::{
+    scan_at, ContactModel, Method, ScanOptions, ScanResult, Scene, SolverConfig, StopReason,
+};
 
 /// The paper's model (the tip alone touches), which the closed forms describe; the numerical
 /// scan starts from the rod pressed onto the surface, found without the closed forms.
@@ -180,6 +182,37 @@ fn eta_06_stops_by_penetration_near_horizontal_tip() {
     );
 }
 
+/// The paper's scan (the default scene and options: 201 points on d ∈ [0, 0.5]) by `method` at
+/// `tol`.
+fn paper_scan(method: Method, tol: f64) -> ScanOptions {
+    ScanOptions {
+        solver: SolverConfig {
+            method,
+            tol,
+            ..SolverConfig::default()
+        },
+        ..ScanOptions::default()
+    }
+}
+
+/// The 201 grid points of a scan of the paper's scene (no event row ends it) against the closed
+/// form (`Method::Analytic`, elastica's curve) at the same d: `(d, μ, closed-form μ)`.
+fn grid_against_closed_form(res: &ScanResult) -> Vec<(f64, f64, f64)> {
+    let (rod, surface) = Scene::default().parts().unwrap();
+    let grid: Vec<_> = res.points.iter().filter(|p| p.event.is_none()).collect();
+    assert_eq!(grid.len(), 201);
+    let ds: Vec<f64> = grid.iter().map(|p| p.d).collect();
+    let cf = scan_at(&rod, &surface, &paper_scan(Method::Analytic, 1e-10), &ds).unwrap();
+    assert_eq!(cf.points.len(), ds.len(), "{}", cf.stop);
+    grid.iter()
+        .zip(&cf.points)
+        .map(|(p, q)| {
+            assert_eq!(p.d, q.d);
+            (p.d, p.mu, q.mu)
+        })
+        .collect()
+}
+
 /// A loose tolerance is cheap and still accurate (issue 35): the paper's scan (η = 0.75, the
 /// default scene and options: 201 points on d ∈ [0, 0.5]) at tol 1e-4 needs at most a quarter
 /// of the right-hand-side evaluations of the default tol 1e-10, and its μ is within 1e-4 of the
@@ -189,16 +222,8 @@ fn eta_06_stops_by_penetration_near_horizontal_tip() {
 #[test]
 fn paper_scan_at_tol_1e4_is_cheap_and_within_1e4_of_the_closed_form() {
     let (rod, surface) = Scene::default().parts().unwrap();
-    let with = |method: Method, tol: f64| ScanOptions {
-        solver: SolverConfig {
-            method,
-            tol,
-            ..SolverConfig::default()
-        },
-        ..ScanOptions::default()
-    };
     let default = vibrissa::scan(&rod, &surface, &ScanOptions::default()).unwrap();
-    let loose = vibrissa::scan(&rod, &surface, &with(Method::Shooting, 1e-4)).unwrap();
+    let loose = vibrissa::scan(&rod, &surface, &paper_scan(Method::Shooting, 1e-4)).unwrap();
     assert_eq!(loose.stop, StopReason::DMax);
     assert_eq!(default.stop, StopReason::DMax);
     let (n_loose, n_default) = (loose.stats.rhs_evals, default.stats.rhs_evals);
@@ -206,17 +231,10 @@ fn paper_scan_at_tol_1e4_is_cheap_and_within_1e4_of_the_closed_form() {
         4 * n_loose <= n_default,
         "tol 1e-4: {n_loose} right-hand-side evaluations, tol 1e-10: {n_default}"
     );
-    // the grid points (no event row ends this scan): all 201 of them
-    let grid: Vec<_> = loose.points.iter().filter(|p| p.event.is_none()).collect();
-    assert_eq!(grid.len(), 201);
-    let ds: Vec<f64> = grid.iter().map(|p| p.d).collect();
-    let cf = scan_at(&rod, &surface, &with(Method::Analytic, 1e-10), &ds).unwrap();
-    assert_eq!(cf.points.len(), ds.len(), "{}", cf.stop);
     let mut worst: f64 = 0.0;
-    for (p, q) in grid.iter().zip(&cf.points) {
-        assert_eq!(p.d, q.d);
-        let e = (p.mu - q.mu).abs();
-        assert!(e <= 1e-4, "d = {}: mu {} against {}", p.d, p.mu, q.mu);
+    for (d, mu, want) in grid_against_closed_form(&loose) {
+        let e = (mu - want).abs();
+        assert!(e <= 1e-4, "d = {d}: mu {mu} against {want}");
         worst = worst.max(e);
     }
     eprintln!(
@@ -235,26 +253,12 @@ fn paper_scan_at_tol_1e4_is_cheap_and_within_1e4_of_the_closed_form() {
 #[ignore = "16 s in release; the cheap guard is bvp's a_rounding_floor_of_the_check_is_not_refined"]
 fn paper_scan_by_collocation6_at_tol_1e12_reaches_d_max_within_1e11_of_the_closed_form() {
     let (rod, surface) = Scene::default().parts().unwrap();
-    let with = |method: Method, tol: f64| ScanOptions {
-        solver: SolverConfig {
-            method,
-            tol,
-            ..SolverConfig::default()
-        },
-        ..ScanOptions::default()
-    };
     let tol = 1e-12;
-    let res = vibrissa::scan(&rod, &surface, &with(Method::Collocation6, tol)).unwrap();
+    let res = vibrissa::scan(&rod, &surface, &paper_scan(Method::Collocation6, tol)).unwrap();
     assert_eq!(res.stop, StopReason::DMax, "{}", res.stop);
-    let grid: Vec<_> = res.points.iter().filter(|p| p.event.is_none()).collect();
-    assert_eq!(grid.len(), 201);
-    let ds: Vec<f64> = grid.iter().map(|p| p.d).collect();
-    let cf = scan_at(&rod, &surface, &with(Method::Analytic, 1e-10), &ds).unwrap();
-    assert_eq!(cf.points.len(), ds.len(), "{}", cf.stop);
     let mut worst: f64 = 0.0;
-    for (p, q) in grid.iter().zip(&cf.points) {
-        assert_eq!(p.d, q.d);
-        worst = worst.max((p.mu - q.mu).abs());
+    for (_, mu, want) in grid_against_closed_form(&res) {
+        worst = worst.max((mu - want).abs());
     }
     assert!(worst <= 10.0 * tol, "max |dmu| {worst:.3e}");
     eprintln!(
