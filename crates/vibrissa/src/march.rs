@@ -709,11 +709,6 @@ impl<P: Profile> Run<'_, '_, P> {
         self.out.push(&set, &pe, Some(ev));
         // (the event's row is of the old set; the points after it of the new one)
         self.out.driver = env.ground.slide.map(|s| s.driver);
-        if let Some(message) = ahead_of_driver(env, &set, &new_set, &pe) {
-            self.range.close(RangeEnd::Event);
-            let stop = StopReason::ContactChange { d: pe.lam, message };
-            return Flow::End(stop, Some(Box::new((set, pe))));
-        }
         if new_set.contacts.len() > set.contacts.len() {
             let du = self.stepper.tangent_in(&new_set, pe.lam, &u);
             if let Some(message) = forming_slip(&set, &new_set, &u, du.as_deref(), env.mu0) {
@@ -780,14 +775,28 @@ impl<P: Profile> Run<'_, '_, P> {
     }
 
     /// A contact before a slip's driver that lets go (`set` to `new_set`) moves the driver one
-    /// place down the set: the slip's family and events follow it under its new number (before,
-    /// the old number named the next contact or none, and the slide moved no contact). Whether
-    /// the driver itself let go: then the march has no slide left (`env.ground.slide` none; the
-    /// family's driver a number past the set, which moves no contact).
+    /// place down the set, one that touches down before it one place up: the slip's family and
+    /// events follow it under its new number (before, the old number named another contact or
+    /// none, and the slide moved the wrong contact or none). Whether the driver itself let go:
+    /// then the march has no slide left (`env.ground.slide` none; the family's driver a number
+    /// past the set, which moves no contact).
     fn renumber(&mut self, set: &ContactSet, new_set: &ContactSet, lam: f64) -> bool {
         let Some(slide) = self.env.ground.slide.as_mut() else {
             return false;
         };
+        if new_set.contacts.len() == set.contacts.len() + 1 {
+            // a contact that touches down before the driver moves it one place up the set
+            let at = (0..set.contacts.len())
+                .find(|&k| set.contacts[k] != new_set.contacts[k])
+                .unwrap_or(set.contacts.len());
+            if at <= slide.driver {
+                slide.driver += 1;
+                let (xf, dir, driver) = (self.stepper.foot_x(lam), slide.dir, slide.driver);
+                self.stepper
+                    .phase(crate::chain::Family::Slide { xf, dir, driver }, &self.env);
+            }
+            return false;
+        }
         if new_set.contacts.len() + 1 != set.contacts.len() {
             return false;
         }
@@ -908,31 +917,3 @@ enum Pending {
 
 /// The largest rate `|du/dλ|` of a held state's tangent that still lets the march go on from it.
 const HOLD_MAX: f64 = 1e6;
-
-/// Why a contact forming during a slip is not followed: one placed before the sliding contact
-/// in the rod's order would renumber it, and the slip's family and events name the driver by
-/// its number in the set the slip began with (a side touching down behind a sliding tip would
-/// be taken for the driver). `None` for any other change.
-fn ahead_of_driver(env: &Env, set: &ContactSet, new_set: &ContactSet, pe: &Pt) -> Option<String> {
-    let driver = env.ground.slide?.driver;
-    let (old, new) = (set.contacts.len(), new_set.contacts.len());
-    // (a lift-off before the driver renumbers it the other way: Run::renumber)
-    if new <= old {
-        return None;
-    }
-    let at = (0..old.min(new))
-        .find(|&k| set.contacts[k] != new_set.contacts[k])
-        .unwrap_or(old.min(new));
-    (at <= driver).then(|| {
-        let s_of = |k: usize| pe.w.contacts.get(k).map_or(f64::NAN, |c| c.s);
-        format!(
-            "a contact touches down at s = {:.6} during the slip of the contact at s = \
-             {:.6} ({} to {}): a slip that a new contact joins behind the sliding one is not \
-             followed",
-            pe.w.clear_s,
-            s_of(driver),
-            set.label(),
-            new_set.label()
-        )
-    })
-}
