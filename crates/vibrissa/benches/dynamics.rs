@@ -23,6 +23,10 @@
 //! steps, 481 solves (37 ms each), 4727 Newton iterations, largest mesh 384, to d = 0.1967.
 //! The last four of the ten slips (from d = 0.1897 on) stick at the moment they slip (the
 //! tip does not move the way it is pushed), so six of them are slips of nonzero length.
+//! The slips after the first stick are not converged at this dt: at dt 0.01 and 0.005 the
+//! events that follow are others (`cargo run --release -p vibrissa --example drag_slips --
+//! --ten`); the accuracy against PyElastica (`benches/pyelastica_drag.py`) is compared on the
+//! first slip, docs/performance.md.
 //!
 //! ```sh
 //! cargo bench -p vibrissa --bench dynamics
