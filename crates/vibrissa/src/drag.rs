@@ -280,7 +280,8 @@ pub struct SlipContacts {
     /// Where the slip ends, before they stick again: the contact that slid last
     /// [`Hold::Sliding`], held by kinetic friction (`|T| = μk N`; [`Hold::Stuck`] where the patch
     /// ahead of a texture's boundary holds it), contacts sliding passively as they slide, the
-    /// others as they hold (the row of event `slip_end` has this state with every contact stuck).
+    /// others as they hold (the row of event `slip_end` has this state with every contact stuck,
+    /// but a driver that creeps: sliding, see docs/model.md).
     pub after: Vec<ContactState>,
 }
 
@@ -461,6 +462,7 @@ fn drag_with<P: Profile>(
         slips: Vec::new(),
         slip_contacts: Vec::new(),
         slide_now: None,
+        lifted: false,
     };
     let stop = run.run(p);
     let (mut rows, mut shapes, mut slips) = (run.rows, run.shapes, run.slips);
@@ -539,6 +541,8 @@ struct DragRun<'a, P: Profile> {
     slip_contacts: Vec<SlipContacts>,
     /// The slide of the last piece of a slip marched (its driver, the way, its μk).
     slide_now: Option<Slide>,
+    /// Whether the last slip's sliding contact lifted off (its slip ended there).
+    lifted: bool,
 }
 
 impl<P: Profile> DragRun<'_, P> {
@@ -633,7 +637,8 @@ impl<P: Profile> DragRun<'_, P> {
 
     /// The stick phase from `p` (the start if `first`; `carry`: the tip's μs after a slip): the
     /// march in `d` until a contact reaches its slip limit (`Err`: the drag ends there or
-    /// before). Contacts that formed sliding slide on with kinetic friction until they halt.
+    /// before). Contacts that formed sliding (or creep after a slip shorter than the tolerance,
+    /// `creeps`) slide on with kinetic friction until they halt.
     fn stick(&mut self, p: Pt, first: bool, carry: Option<f64>) -> Result<Stuck, StopReason> {
         let d = p.lam;
         let x_tip = round_contact(self.st.set(), &p).unwrap_or(p.sol.right()[0] + d);
@@ -700,6 +705,7 @@ impl<P: Profile> DragRun<'_, P> {
     /// (the first one held where it is) before the first one goes on.
     fn slide(&mut self, s: &Stuck) -> Result<Slid, StopReason> {
         let mut dissipated = 0.0;
+        self.lifted = false;
         let (set, pe, slid, mu_s_next) = self.slide_driver(
             s,
             (s.driver, s.dir),
@@ -801,6 +807,7 @@ impl<P: Profile> DragRun<'_, P> {
             };
             if sout.driver.is_none() {
                 // the sliding contact lifted off: the slip ends there, the others held
+                self.lifted |= depth == 0;
                 let slid = slid + qe.lam - clam;
                 return Ok((eset, qe, slid, None));
             }
@@ -884,27 +891,15 @@ impl<P: Profile> DragRun<'_, P> {
             mu_s_next,
             slid: lam_s,
         } = slid;
-        if crate::watch::traps(&s.set) && lam_s < self.opts.solver.tol {
-            // a slide shorter than the tolerance beside a side that holds: the trapped pair
-            // relaxes from μs to μk over it, and the tip creeps in such slips (40000 of
-            // 1e-11 each over d = 0.1 on a grid-3 scene, 500 s), unresolved
-            return Err(StopReason::ContactChange {
-                d: d_s,
-                message: format!(
-                    "the tip slid {lam_s:.1e} (less than the tolerance {:e}) beside a contact \
-                     that does not slip ({}): trapped between them it creeps in such slips, \
-                     which are not followed",
-                    self.opts.solver.tol,
-                    s.set.label()
-                ),
-            });
-        }
         // every contact holds where it stopped (the sliding ones: μk holds them)
         let mut nset = eset.clone();
         for k in 0..nset.contacts.len() {
             if crate::events::is_slider(&nset.contacts[k]) {
                 nset = crate::events::held(&nset, k, &qe, d_s);
             }
+        }
+        if crate::watch::traps(&s.set) && lam_s < self.opts.solver.tol && !self.lifted {
+            nset = self.creeps(s, (nset, lam_s), mu_s_next)?;
         }
         self.st.phase(Family::Drag, &self.base);
         let pa = match self.st.switch(nset.clone(), d_s, qe.u.clone()) {
@@ -979,6 +974,44 @@ impl<P: Profile> DragRun<'_, P> {
         self.slips.push(ev);
         self.slip_contacts.push(SlipContacts { before, after });
         Ok((pa, e_after, mu_s_next))
+    }
+
+    /// A slip of `lam_s`, shorter than the tolerance, beside a side that holds (the stick `s`
+    /// trapped the rod between them): the trapped pair relaxes from μs to μk over a slide that
+    /// short, and the foot's next `1e-7` or so brings the driver back to μs, so the stick–slip
+    /// cycle has shrunk below what the solver resolves in place (40000 such slips of 1e-11 over
+    /// d = 0.1 on a grid-3 scene). Each slip ends on the branch where the driver slides with
+    /// kinetic friction, and the stuck states between lie within one slip length, less than the
+    /// tolerance, of it: the driver creeps, and the next stick follows it as that slide
+    /// (`T = dir·μk N`, a passive slider of the march) until it halts, sticks and the cycle
+    /// starts again (a driver that lifted off in the slip has no creep). `nset`: the stuck set
+    /// after the slip; it returns with the driver sliding.
+    /// Where the slip stopped at a texture's patch boundary (the patch ahead holds it) the
+    /// creep is not followed (`Err`, named).
+    fn creeps(
+        &self,
+        s: &Stuck,
+        (nset, lam_s): (ContactSet, f64),
+        mu_s_next: Option<f64>,
+    ) -> Result<ContactSet, StopReason> {
+        let slide = self
+            .slide_now
+            .filter(|sl| mu_s_next.is_none() && sl.driver < nset.contacts.len());
+        let Some(sl) = slide else {
+            return Err(StopReason::ContactChange {
+                d: s.pe.lam,
+                message: format!(
+                    "the tip slid {lam_s:.1e} (less than the tolerance {:e}) beside a contact \
+                     that does not slip ({}) and stopped at a patch boundary of the texture: \
+                     trapped between them it creeps in such slips, which are not followed there",
+                    self.opts.solver.tol,
+                    s.set.label()
+                ),
+            });
+        };
+        let mut nset = nset;
+        nset.contacts[sl.driver].mode = Mode::Sliding(sl.dir * sl.mu_k);
+        Ok(nset)
     }
 
     /// Arc length along the surface from lab `x0` to `x1`.

@@ -424,6 +424,28 @@ fn no_tensile_tip_at_a_slips_fold() {
     });
 }
 
+/// Was "trapped slide, not followed" (issue 31's texture grid, 0.02/0.5/0, taper 0.3, r = 0.005,
+/// the paper's drag settings): the tip slipped beside a side that holds in slips shorter than
+/// the tolerance, and the drag stopped at d = 0.006137. Its creep is followed now as a slide
+/// with μk in the stick (drag.rs `creeps`), and the drag reaches d_max with every contact by
+/// Coulomb and every slip's and stick's energy balance.
+#[test]
+fn a_tip_creeping_beside_a_side_that_holds_slides_on() {
+    let c = Case {
+        amp: 0.02,
+        wave: 0.5,
+        phase: 0.0,
+        eta: 0.75,
+        mu_s: 0.5,
+        ratio: 0.6,
+        taper: Some(0.3),
+        radius: 0.005,
+        d_max: 0.3,
+    };
+    let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
+}
+
 /// Open: a round tip and a side slip in turn at d = 0.00623, ever shorter, without end (cancelled after HANG s).
 #[test]
 #[ignore = "open failure (issue 31)"]
