@@ -22,16 +22,19 @@
 //! SLIPS slips (default 6) over A = 0.005, W = 0.1, P = 0.7 fitted with μs, μk, A, W, P free from
 //! eight perturbed starts (A ±20 %, W ±5 %, P ±0.3, with unit weights given: the errors against
 //! `√n · tol · std_error`, observations exact to the drags' tolerance); then TRIALS (default 10)
-//! noisy traces (the noise below, the levels given) from the start A = 0.0055, W = 0.097,
-//! P = 0.6: each parameter within 3 standard errors, the rms error and the mean standard error.
+//! noisy traces (the noise below, the levels given; trial `i` draws from seed `31000 + i`) from
+//! the start A = 0.0055, W = 0.097, P = 0.6: each parameter within 3 standard errors (and A and
+//! W both, and all five), the rms error and the mean standard error, the trials not covered,
+//! and the CPU time and the drags per fit.
 //!
 //! (default 100 trials of 4, 8, 16 and 32 slips; trial `i` of `n` slips draws from seed
 //! `1000 n + i`)
 
-use std::time::Instant;
 use vibrissa::fit::{fit, inc_beta, CorrugationFit, FitOptions, FitResult, Trace};
 use vibrissa::{drag, DragOptions, Scene};
 
+#[path = "../benches/support/clock.rs"]
+mod clock;
 #[path = "../tests/support/noisy_trace.rs"]
 mod noisy_trace;
 use noisy_trace::{exact, noisy, places_only, Rng, SIGMA};
@@ -306,7 +309,8 @@ fn texture(trials: usize, slips: usize) {
     let tol = vibrissa::SolverConfig::DEFAULT_TOL;
     println!(
         "noise-free trace of {slips} slips, unit weights: start A, W, P | error / (sqrt(n) tol SE) \
-         mu_s, mu_k, A, W, P | largest error | drags | seconds"
+         mu_s, mu_k, A, W, P | largest error | drags | seconds ({})",
+        clock::name()
     );
     let exact_trace = full(&r);
     for (a0, w0, p0) in [
@@ -319,14 +323,15 @@ fn texture(trials: usize, slips: usize) {
         (0.004, 0.105, 1.0),
         (0.006, 0.105, 1.0),
     ] {
-        let t0 = Instant::now();
         let opts = FitOptions {
             corrugation: all,
             sigma: Some([1.0; 4]),
             ..FitOptions::default()
         };
-        let f = fit(&corrugation(a0, w0, p0), &exact_trace, &opts);
-        let secs = t0.elapsed().as_secs_f64();
+        let mut f = None;
+        let secs = clock::spent(|| f = Some(fit(&corrugation(a0, w0, p0), &exact_trace, &opts)))
+            .as_secs_f64();
+        let f = f.expect("run");
         match f {
             Ok(f) => {
                 let n = (f.observations as f64).sqrt();
@@ -352,8 +357,10 @@ fn texture(trials: usize, slips: usize) {
         }
     }
     println!(
-        "{trials} noisy traces of {slips} slips, levels given: within 3 SE | rms error | mean SE \
-         (mu_s, mu_k, A, W, P) | misfits | seconds per fit (wall time × threads)"
+        "{trials} noisy traces of {slips} slips, levels given: within 3 SE (mu_s, mu_k, A, W, P) \
+         | A and W both | all five | rms error | mean SE (mu_s, mu_k, A, W, P) | misfits | {} per \
+         fit: mean, median, largest | drags per fit: mean, largest",
+        clock::name()
     );
     let given = FitOptions {
         corrugation: all,
@@ -361,10 +368,10 @@ fn texture(trials: usize, slips: usize) {
         ..FitOptions::default()
     };
     let (mut inside, mut e2, mut se) = ([0usize; 5], [0.0f64; 5], [0.0f64; 5]);
-    let (mut misfits, t0) = (0, Instant::now());
+    let (mut both, mut five, mut misfits) = (0, 0, 0);
     // the trials on every core (each fit is independent; trial `seed` draws from its own seed)
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let fits: Vec<FitResult> = std::thread::scope(|sc| {
+    let fits: Vec<(FitResult, f64)> = std::thread::scope(|sc| {
         let jobs: Vec<_> = (0..threads)
             .map(|k| {
                 let (r, given) = (&r, &given);
@@ -373,21 +380,26 @@ fn texture(trials: usize, slips: usize) {
                         .step_by(threads)
                         .map(|seed| {
                             let t = noisy(r, slips, &mut Rng(31_000 + seed as u64));
-                            let f = fit(&corrugation(0.0055, 0.097, 0.6), &t, given);
-                            (seed, f.expect("fit"))
+                            let mut f = None;
+                            let secs = clock::spent(|| {
+                                f = Some(fit(&corrugation(0.0055, 0.097, 0.6), &t, given));
+                            });
+                            let f = f.expect("run").expect("fit");
+                            (seed, (f, secs.as_secs_f64()))
                         })
                         .collect::<Vec<_>>()
                 })
             })
             .collect();
-        let mut all: Vec<(usize, FitResult)> = jobs
+        let mut all: Vec<(usize, (FitResult, f64))> = jobs
             .into_iter()
             .flat_map(|j| j.join().expect("a trial"))
             .collect();
         all.sort_by_key(|(seed, _)| *seed);
         all.into_iter().map(|(_, f)| f).collect()
     });
-    for f in &fits {
+    for (seed, (f, secs)) in fits.iter().enumerate() {
+        let mut covered = [false; 5];
         for (i, &(name, want)) in TEXTURE_TRUTH.iter().enumerate() {
             let p = f.get(name).expect("fitted");
             let e = p.value - want;
@@ -395,10 +407,19 @@ fn texture(trials: usize, slips: usize) {
             match p.std_error {
                 Some(s) => {
                     se[i] += s;
-                    inside[i] += usize::from(e.abs() <= 3.0 * s);
+                    covered[i] = e.abs() <= 3.0 * s;
+                    inside[i] += usize::from(covered[i]);
                 }
                 None => misfits += usize::from(i == 0),
             }
+        }
+        both += usize::from(covered[2] && covered[3]);
+        five += usize::from(covered.iter().all(|&c| c));
+        if !covered.iter().all(|&c| c) {
+            println!(
+                "  not covered: seed {seed} ({secs:.1} s, {} drags): {f}",
+                f.drags
+            );
         }
     }
     let k = trials as f64;
@@ -408,11 +429,26 @@ fn texture(trials: usize, slips: usize) {
             .collect::<Vec<_>>()
             .join(", ")
     };
+    let mut slowest: Vec<(usize, f64, usize)> = (fits.iter().enumerate())
+        .map(|(seed, (f, s))| (seed, *s, f.drags))
+        .collect();
+    slowest.sort_by(|a, b| b.1.total_cmp(&a.1));
+    for (seed, s, drags) in slowest.iter().take(3) {
+        println!("  slow: seed {seed}: {s:.1} s, {drags} drags");
+    }
+    let mut secs: Vec<f64> = fits.iter().map(|(_, s)| *s).collect();
+    secs.sort_by(f64::total_cmp);
+    let drags: Vec<usize> = fits.iter().map(|(f, _)| f.drags).collect();
     println!(
-        "{inside:?} of {trials} | {} | {} | {misfits} | {:.1}",
+        "{inside:?} of {trials} | {both} | {five} | {} | {} | {misfits} | {:.1}, {:.1}, {:.1} s \
+         | {:.0}, {}",
         list(e2.map(|e| (e / k).sqrt())),
         list(se.map(|s| s / k)),
-        t0.elapsed().as_secs_f64() * threads as f64 / k
+        secs.iter().sum::<f64>() / k,
+        secs[secs.len() / 2],
+        secs[secs.len() - 1],
+        drags.iter().sum::<usize>() as f64 / k,
+        drags.iter().max().copied().unwrap_or(0)
     );
 }
 
