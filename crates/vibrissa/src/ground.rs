@@ -6,12 +6,13 @@
 //! a straight rod vertically onto a corrugation folds: the frictionless tip snaps down a slope.)
 
 use crate::chain::{Chain, Contact, ContactSet, Family, Geom, Mode};
+use crate::events::{transition, Crossing, Next, Rules, AT_ZERO};
 use crate::march::{march, Spec};
 use crate::own::OwnStepper;
 use crate::profile::Profile;
 use crate::report::StopReason;
 use crate::start::Pressed;
-use crate::stepper::Stepper;
+use crate::stepper::{Pt, Stepper};
 use crate::surface::{Ground, Height};
 use crate::watch::Env;
 use crate::{Rod, Surface, VibrissaError};
@@ -80,7 +81,9 @@ pub(crate) fn start<P: Profile>(
 /// from zero to its full amplitude with the contacts frictionless: the one march in the
 /// amplitude `t ∈ [0, 1]` (family `Grow`), the contact points sliding to where the force is
 /// normal to the profile, sides touching down, lying parts peeling back, as in any march. The
-/// press on the line keeps its handling of first touch and buckling.
+/// press on the line keeps its handling of first touch and buckling. A free part of the pressed
+/// rod lying on the trend (a straight tail beyond a side contact) is settled on the profile at a
+/// small amplitude first ([`grow`], [`settle`]).
 fn curve_start<P: Profile>(
     rod: &Rod,
     profile: &P,
@@ -126,21 +129,7 @@ fn curve_start<P: Profile>(
     let p0 = st
         .correct_from(0.0, &pressed.pt.u, None, true)
         .map_err(|e| fail("the pressed rod", &e))?;
-    let spec = Spec {
-        env: &st.env.clone(),
-        grid: &[],
-        lam_end: 1.0,
-        keep_shapes: None,
-        general: &rod.profile(1.0),
-        friction: false,
-        check_start: false,
-        slide: false,
-    };
-    let out = march(&mut st, &spec, profile, p0, Stats::default());
-    let (set, end) = match (&out.stop, out.last) {
-        (StopReason::DMax, Some((set, pt))) if pt.lam == 1.0 => (set, pt),
-        (stop, _) => return Err(fail("the march in the amplitude", stop)),
-    };
+    let (set, end) = grow(&mut st, p0, rod, profile).map_err(|(what, e)| fail(what, &e))?;
     // the grown profile is the drag's at d = 0
     st.chain.family = Family::Drag;
     st.env.ground.grow = false;
@@ -225,4 +214,168 @@ pub(crate) fn stuck<P: Profile>(
         },
         u,
     )
+}
+
+/// The amplitudes at which [`settle`] finds the contacts of a rod whose free part lies on the
+/// straight trend, in the order tried where the march from amplitude 0 ends short of the full
+/// profile: the first that settles and grows to the full profile is the start.
+const SETTLE_AT: [f64; 3] = [1e-3, 1e-2, 3e-2];
+
+/// The march in the amplitude from the rod pressed on the straight trend, `p0` (amplitude 0),
+/// to the full profile: its contact set and last point there, or what failed (and why). Where a
+/// free part lies on the trend at `p0` and that march ends short, the rod is settled on the
+/// profile at a small amplitude ([`settle`]) and the march goes on from there.
+fn grow<P: Profile>(
+    st: &mut OwnStepper<P>,
+    p0: Pt,
+    rod: &Rod,
+    profile: &P,
+) -> Result<(ContactSet, Pt), (&'static str, String)> {
+    let spec = Spec {
+        env: &st.env.clone(),
+        grid: &[],
+        lam_end: 1.0,
+        keep_shapes: None,
+        general: &rod.profile(1.0),
+        friction: false,
+        check_start: false,
+        slide: false,
+    };
+    // (the march from amplitude 0 first, as for any start: where it grows the profile, the
+    // start is what it was before settling existed)
+    let n = if lying(&p0) { SETTLE_AT.len() + 1 } else { 1 };
+    let set0 = st.chain.set.clone();
+    let mut first_failure: Option<(&'static str, String)> = None;
+    for &t in [0.0].iter().chain(&SETTLE_AT).take(n) {
+        st.chain.set = set0.clone();
+        let from = if t > 0.0 {
+            match settle(st, &p0, t) {
+                Ok(q) => q,
+                Err(e) => {
+                    note(&mut first_failure, t, e);
+                    continue;
+                }
+            }
+        } else {
+            p0.clone()
+        };
+        let out = march(st, &spec, profile, from, Stats::default());
+        match (&out.stop, out.last) {
+            (StopReason::DMax, Some((set, pt))) if pt.lam == 1.0 => return Ok((set, pt)),
+            (stop, _) if t == 0.0 => {
+                first_failure = Some(("the march in the amplitude", stop.describe("d")));
+            }
+            (stop, _) => note(
+                &mut first_failure,
+                t,
+                format!("then {}", stop.describe("d")),
+            ),
+        }
+    }
+    Err(first_failure.unwrap_or(("the march in the amplitude", "no start".into())))
+}
+
+/// Adds to the failure of the march from amplitude 0 the first failure of a start settled at
+/// amplitude `t`.
+fn note(failure: &mut Option<(&'static str, String)>, t: f64, e: String) {
+    if let Some((_, msg)) = failure {
+        if !msg.contains("; settled at amplitude") {
+            msg.push_str(&format!(
+                "; settled at amplitude {t} instead (the rod lying on the straight trend): {e}"
+            ));
+        }
+    }
+}
+
+/// Whether a free part of the rod lies on the straight trend at `p` (amplitude 0): its largest
+/// height above it is zero to rounding, away from the foot (a straight unloaded tail beyond a
+/// side contact, as on a tapered rod pressed deep).
+fn lying(p: &Pt) -> bool {
+    p.w.clear.abs() <= LYING && p.w.clear_s > 0.0
+}
+
+/// How close to the straight trend a free part lies at amplitude 0 (rounding of the rod's
+/// heights is ~1e-14; a free part this close that does not lie would have to be tangent to the
+/// trend without a contact).
+const LYING: f64 = 1e-10;
+
+/// The rod at amplitude `t` from the state `p` at amplitude 0 whose free part lies on the
+/// straight trend. Every point of that part touches at 0, so the contacts the grown profile
+/// makes begin there at once (a touchdown at the march's start, with no place singled out
+/// along the lying part); they are found at the small amplitude `t` itself, as an active set:
+/// the state solved with the contacts so far, then a contact that pulls released, a touching
+/// tip that turns into the profile laid down, or a contact added where the rod crosses the
+/// profile most (beside the others, else in place of its neighbour before or after it, which
+/// passes it its load), until the state holds (no pull, no crossing beyond [`AT_ZERO`]). The
+/// contacts are frictionless, as in the march in the amplitude.
+fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, String> {
+    let rules = Rules {
+        friction: false,
+        slide: false,
+    };
+    let env = st.env.clone();
+    let mut set = st.chain.set.clone();
+    let mut q = st
+        .switch(set.clone(), t, p.u.clone())
+        .map_err(|e| e.to_string())?;
+    for _ in 0..SETTLE_CHANGES {
+        let pull = (0..set.contacts.len())
+            .filter(|&j| q.w.contacts[j].normal < 0.0)
+            .min_by(|&a, &b| q.w.contacts[a].normal.total_cmp(&q.w.contacts[b].normal));
+        let cross = if let Some(j) = pull {
+            Crossing::Lift(j)
+        } else if q.w.tip_approach < 0.0 {
+            Crossing::TipTangent
+        } else if q.w.clear > AT_ZERO {
+            Crossing::Touchdown
+        } else {
+            return Ok(q);
+        };
+        let Next::Switch(_, ns, nu) = transition(&env, rules, &set, cross, &q, 0.0) else {
+            return Err(format!(
+                "{cross:?} in {} leaves no contact state",
+                set.label()
+            ));
+        };
+        let mut tries = vec![(ns.clone(), nu.clone())];
+        let added = ns.contacts.iter().position(|c| !set.contacts.contains(c));
+        if let (Crossing::Touchdown, Some(k)) = (cross, added) {
+            for j in [k.checked_sub(1), Some(k + 1)].into_iter().flatten() {
+                if j < ns.contacts.len() {
+                    let mut mu = nu.clone();
+                    mu[ns.offset(k)] = nu[ns.offset(j)];
+                    tries.push(without(&ns, &mu, j));
+                }
+            }
+        }
+        let mut failed = String::new();
+        let mut next = None;
+        for (ts, tu) in tries {
+            match st.switch(ts.clone(), t, tu) {
+                Ok(r) => {
+                    next = Some((ts, r));
+                    break;
+                }
+                Err(e) => failed = format!("{} ({cross:?}): {e}", ts.label()),
+            }
+        }
+        (set, q) = next.ok_or(failed)?;
+    }
+    Err(format!(
+        "no contact state holds after {SETTLE_CHANGES} changes ({})",
+        set.label()
+    ))
+}
+
+/// Changes of the contact set [`settle`] tries.
+const SETTLE_CHANGES: usize = 32;
+
+/// The set `set` (unknowns `u`) without its contact `j`.
+fn without(set: &ContactSet, u: &[f64], j: usize) -> (ContactSet, Vec<f64>) {
+    let mut ns = set.clone();
+    ns.contacts.remove(j);
+    let o = set.offset(j);
+    let mut nu = u.to_vec();
+    nu.drain(o..o + set.contacts[j].unknowns());
+    (ns, nu)
 }
