@@ -12,7 +12,7 @@ use crate::own::OwnStepper;
 use crate::profile::Profile;
 use crate::report::StopReason;
 use crate::start::Pressed;
-use crate::stepper::{Pt, Stepper};
+use crate::stepper::{Pt, StepError, Stepper};
 use crate::surface::{Ground, Height};
 use crate::watch::Env;
 use crate::{Rod, Surface, VibrissaError};
@@ -252,7 +252,7 @@ fn grow<P: Profile>(
             match settle(st, &p0, t) {
                 Ok(q) => q,
                 Err(e) => {
-                    note(&mut first_failure, t, e);
+                    note(&mut first_failure, t, e.to_string());
                     continue;
                 }
             }
@@ -308,7 +308,7 @@ const LYING: f64 = 1e-10;
 /// profile most (beside the others, else in place of its neighbour before or after it, which
 /// passes it its load), until the state holds (no pull, no crossing beyond [`AT_ZERO`]). The
 /// contacts are frictionless, as in the march in the amplitude.
-fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, String> {
+fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, SettleError> {
     let rules = Rules {
         friction: false,
         slide: false,
@@ -317,7 +317,7 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Stri
     let mut set = st.chain.set.clone();
     let mut q = st
         .switch(set.clone(), t, p.u.clone())
-        .map_err(|e| e.to_string())?;
+        .map_err(SettleError::Start)?;
     for _ in 0..SETTLE_CHANGES {
         let pull = (0..set.contacts.len())
             .filter(|&j| q.w.contacts[j].normal < 0.0)
@@ -332,10 +332,10 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Stri
             return Ok(q);
         };
         let Next::Switch(_, ns, nu) = transition(&env, rules, &set, cross, &q, 0.0) else {
-            return Err(format!(
-                "{cross:?} in {} leaves no contact state",
-                set.label()
-            ));
+            return Err(SettleError::NoState {
+                cross,
+                set: set.label(),
+            });
         };
         let mut tries = vec![(ns.clone(), nu.clone())];
         let added = ns.contacts.iter().position(|c| !set.contacts.contains(c));
@@ -348,7 +348,7 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Stri
                 }
             }
         }
-        let mut failed = String::new();
+        let mut failed = None;
         let mut next = None;
         for (ts, tu) in tries {
             match st.switch(ts.clone(), t, tu) {
@@ -356,15 +356,45 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Stri
                     next = Some((ts, r));
                     break;
                 }
-                Err(e) => failed = format!("{} ({cross:?}): {e}", ts.label()),
+                Err(error) => {
+                    failed = Some(SettleError::Switch {
+                        set: ts.label(),
+                        cross,
+                        error,
+                    })
+                }
             }
         }
-        (set, q) = next.ok_or(failed)?;
+        let Some(n) = next else {
+            return Err(failed.unwrap_or(SettleError::NoState {
+                cross,
+                set: set.label(),
+            }));
+        };
+        (set, q) = n;
     }
-    Err(format!(
-        "no contact state holds after {SETTLE_CHANGES} changes ({})",
-        set.label()
-    ))
+    Err(SettleError::Unsettled { set: set.label() })
+}
+
+/// Why [`settle`] found no state at its amplitude.
+#[derive(Debug, thiserror::Error)]
+enum SettleError {
+    /// The state with the contacts at amplitude 0 is not solved at the small amplitude.
+    #[error("{0}")]
+    Start(StepError),
+    /// The change `cross` of the set `set` leaves no contact state.
+    #[error("{cross:?} in {set} leaves no contact state")]
+    NoState { cross: Crossing, set: String },
+    /// No state tried after the change `cross` is solved (the last one's error).
+    #[error("{set} ({cross:?}): {error}")]
+    Switch {
+        set: String,
+        cross: Crossing,
+        error: StepError,
+    },
+    /// No state holds after [`SETTLE_CHANGES`] changes.
+    #[error("no contact state holds after {SETTLE_CHANGES} changes ({set})")]
+    Unsettled { set: String },
 }
 
 /// Changes of the contact set [`settle`] tries.

@@ -34,8 +34,21 @@ pub(crate) fn read_profile(path: &Path) -> Result<(Vec<f64>, Vec<f64>), Vibrissa
     parse_profile(&text).map_err(|r| bad(format!("{}: {r}", path.display())))
 }
 
+/// Why a profile's text is refused (the line or samples it names).
+#[derive(Debug, thiserror::Error)]
+pub(crate) enum ProfileTextError {
+    #[error("line {line}: x = {x}, h = {h} must be finite")]
+    NotFinite { line: usize, x: f64, h: f64 },
+    #[error("line {line}: '{text}' is not two numbers x, h (one sample a line)")]
+    NotTwoNumbers { line: usize, text: String },
+    #[error("x = {x} appears twice (lines {first} and {second}): one height per position")]
+    Twice { x: f64, first: usize, second: usize },
+    #[error("{count} samples; a profile needs {need} (a spline through them)")]
+    Count { count: usize, need: String },
+}
+
 /// The samples of a profile's text, sorted by `x`; the error says which line.
-pub(crate) fn parse_profile(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> {
+pub(crate) fn parse_profile(text: &str) -> Result<(Vec<f64>, Vec<f64>), ProfileTextError> {
     let mut rows: Vec<(f64, f64, usize)> = Vec::new();
     let mut header = false;
     for (i, line) in text.lines().enumerate() {
@@ -51,39 +64,38 @@ pub(crate) fn parse_profile(text: &str) -> Result<(Vec<f64>, Vec<f64>), String> 
         match nums {
             Some(v) if v.len() == 2 => {
                 if !(v[0].is_finite() && v[1].is_finite()) {
-                    return Err(format!(
-                        "line {}: x = {}, h = {} must be finite",
-                        i + 1,
-                        v[0],
-                        v[1]
-                    ));
+                    return Err(ProfileTextError::NotFinite {
+                        line: i + 1,
+                        x: v[0],
+                        h: v[1],
+                    });
                 }
                 rows.push((v[0], v[1], i + 1));
             }
             None if rows.is_empty() && !header => header = true,
             _ => {
-                return Err(format!(
-                    "line {}: '{line}' is not two numbers x, h (one sample a line)",
-                    i + 1
-                ))
+                return Err(ProfileTextError::NotTwoNumbers {
+                    line: i + 1,
+                    text: line.to_string(),
+                })
             }
         }
     }
     rows.sort_by(|p, q| p.0.total_cmp(&q.0));
     for w in rows.windows(2) {
         if w[0].0 == w[1].0 {
-            return Err(format!(
-                "x = {} appears twice (lines {} and {}): one height per position",
-                w[0].0, w[0].2, w[1].2
-            ));
+            return Err(ProfileTextError::Twice {
+                x: w[0].0,
+                first: w[0].2,
+                second: w[1].2,
+            });
         }
     }
     if !limits::PROFILE_POINTS.contains_count(rows.len()) {
-        return Err(format!(
-            "{} samples; a profile needs {} (a spline through them)",
-            rows.len(),
-            limits::PROFILE_POINTS.text(6)
-        ));
+        return Err(ProfileTextError::Count {
+            count: rows.len(),
+            need: limits::PROFILE_POINTS.text(6),
+        });
     }
     Ok(rows.iter().map(|r| (r.0, r.1)).unzip())
 }
@@ -295,11 +307,13 @@ mod tests {
         let (x, h) =
             parse_profile("x, h\n# a comment\n0.2 0.01\n0.0,0.0\n\n0.1;-0.01 # c\n").unwrap();
         assert_eq!((x, h), (vec![0.0, 0.1, 0.2], vec![0.0, -0.01, 0.01]));
-        let e = parse_profile("0 0\n0.1 0.2\n0.1 0.3\n").unwrap_err();
+        let e = parse_profile("0 0\n0.1 0.2\n0.1 0.3\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("lines 2 and 3"), "{e}");
-        let e = parse_profile("0 0\n0.1 0.2 0.3\n").unwrap_err();
+        let e = parse_profile("0 0\n0.1 0.2 0.3\n").unwrap_err().to_string();
         assert!(e.contains("line 2"), "{e}");
-        let e = parse_profile("0 0\n0.1 0.2\n").unwrap_err();
+        let e = parse_profile("0 0\n0.1 0.2\n").unwrap_err().to_string();
         assert!(e.contains("2 samples"), "{e}");
     }
 }
