@@ -92,7 +92,7 @@ fn table() {
     for _ in 0..5 {
         for (c, (_, o)) in configs.iter().enumerate() {
             for (i, n) in ns.iter().enumerate() {
-                let spent = clock::spent(|| {
+                let ((), spent) = clock::timed(|| {
                     black_box(run_with(*n, o));
                 });
                 best[c][i] = best[c][i].min(spent);

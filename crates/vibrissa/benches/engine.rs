@@ -152,7 +152,7 @@ fn interleaved(cases: &[Case], reps: usize) -> Vec<Duration> {
     let mut best = vec![Duration::MAX; cases.len()];
     for _ in 0..reps {
         for (c, b) in cases.iter().zip(best.iter_mut()) {
-            let spent = clock::spent(|| {
+            let ((), spent) = clock::timed(|| {
                 black_box(run(c));
             });
             *b = (*b).min(spent);

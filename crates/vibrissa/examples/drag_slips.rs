@@ -35,9 +35,8 @@ fn slips(dt: f64, grid: usize, tol: f64, events: usize) -> Result<Run, VibrissaE
         ..DynDragOptions::default()
     };
     let surface = Surface::flat(0.75)?;
-    let mut out = None;
-    let spent = clock::spent(|| out = Some(drag(&Rod::uniform(), &surface, &o)));
-    let r = out.expect("ran")?;
+    let (r, spent) = clock::timed(|| drag(&Rod::uniform(), &surface, &o));
+    let r = r?;
     if std::env::args().any(|a| a == "--events") {
         for e in &r.events {
             println!(

@@ -37,7 +37,9 @@ use vibrissa::{drag, DragOptions, Scene};
 mod clock;
 #[path = "../tests/support/noisy_trace.rs"]
 mod noisy_trace;
-use noisy_trace::{exact, noisy, places_only, Rng, SIGMA};
+use noisy_trace::{
+    corrugated, exact, noisy, places_only, texture_trace, Rng, SIGMA, TEXTURE_TRUTH,
+};
 
 /// `P(|T| > t)` for Student's t with `dof` degrees of freedom.
 fn t_tail(t: f64, dof: f64) -> f64 {
@@ -266,53 +268,28 @@ fn main() {
     }
 }
 
-/// A scene whose surface is the corrugation `A sin(2πx/W + P)`.
-fn corrugation(amplitude: f64, wavelength: f64, phase: f64) -> Scene {
-    Scene {
-        surface: vibrissa::surface::SurfaceProfile::Sine {
-            amplitude,
-            wavelength,
-            phase,
-        },
-        ..Scene::default()
-    }
-}
-
-/// The parameters of the texture study and their true values.
-const TEXTURE_TRUTH: [(&str, f64); 5] = [
-    ("mu_s", 0.5),
-    ("mu_k", 0.3),
-    ("amplitude", 0.005),
-    ("wavelength", 0.1),
-    ("phase", 0.7),
-];
-
 /// The corrugation read back (module docs, `texture`).
 fn texture(trials: usize, slips: usize) {
-    let truth = corrugation(0.005, 0.1, 0.7);
-    let (rod, surface) = truth.parts().expect("scene");
-    let r = drag(
-        &rod,
-        &surface,
-        &DragOptions {
-            d_max: 1.0,
-            points: 2,
-            mu_s: Some(0.5),
-            mu_k: Some(0.3),
-            max_slips: slips,
-            ..DragOptions::default()
-        },
-    )
-    .expect("drag");
-    assert_eq!(r.slips.len(), slips, "{r}");
-    let all = CorrugationFit::ALL;
+    let r = texture_trace(slips);
+    from_perturbed_starts(&r, slips);
+    let fits = noisy_trials(&r, trials, slips);
+    report_trials(&fits, trials, slips);
+}
+
+/// The noise-free trace of `r` fitted from eight perturbed starts, a row each.
+fn from_perturbed_starts(r: &vibrissa::DragResult, slips: usize) {
     let tol = vibrissa::SolverConfig::DEFAULT_TOL;
     println!(
         "noise-free trace of {slips} slips, unit weights: start A, W, P | error / (sqrt(n) tol SE) \
          mu_s, mu_k, A, W, P | largest error | drags | seconds ({})",
         clock::name()
     );
-    let exact_trace = full(&r);
+    let exact_trace = full(r);
+    let opts = FitOptions {
+        corrugation: CorrugationFit::ALL,
+        sigma: Some([1.0; 4]),
+        ..FitOptions::default()
+    };
     for (a0, w0, p0) in [
         (0.004, 0.095, 0.4),
         (0.006, 0.095, 0.4),
@@ -323,15 +300,8 @@ fn texture(trials: usize, slips: usize) {
         (0.004, 0.105, 1.0),
         (0.006, 0.105, 1.0),
     ] {
-        let opts = FitOptions {
-            corrugation: all,
-            sigma: Some([1.0; 4]),
-            ..FitOptions::default()
-        };
-        let mut f = None;
-        let secs = clock::spent(|| f = Some(fit(&corrugation(a0, w0, p0), &exact_trace, &opts)))
-            .as_secs_f64();
-        let f = f.expect("run");
+        let (f, secs) = clock::timed(|| fit(&corrugated(a0, w0, p0), &exact_trace, &opts));
+        let secs = secs.as_secs_f64();
         match f {
             Ok(f) => {
                 let n = (f.observations as f64).sqrt();
@@ -356,36 +326,31 @@ fn texture(trials: usize, slips: usize) {
             Err(e) => println!("{a0}, {w0}, {p0} | error: {e} | {secs:.1}"),
         }
     }
-    println!(
-        "{trials} noisy traces of {slips} slips, levels given: within 3 SE (mu_s, mu_k, A, W, P) \
-         | A and W both | all five | rms error | mean SE (mu_s, mu_k, A, W, P) | misfits | {} per \
-         fit: mean, median, largest | drags per fit: mean, largest",
-        clock::name()
-    );
+}
+
+/// `trials` noisy traces of the first `slips` slips of `r` (trial `i` from seed `31000 + i`),
+/// each fitted with the noise levels given from the start A = 0.0055, W = 0.097, P = 0.6, on
+/// every core: the fits and their times, in the order of the trials.
+fn noisy_trials(r: &vibrissa::DragResult, trials: usize, slips: usize) -> Vec<(FitResult, f64)> {
     let given = FitOptions {
-        corrugation: all,
+        corrugation: CorrugationFit::ALL,
         sigma: Some(SIGMA),
         ..FitOptions::default()
     };
-    let (mut inside, mut e2, mut se) = ([0usize; 5], [0.0f64; 5], [0.0f64; 5]);
-    let (mut both, mut five, mut misfits) = (0, 0, 0);
-    // the trials on every core (each fit is independent; trial `seed` draws from its own seed)
+    // (each fit is independent; trial `seed` draws from its own seed)
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let fits: Vec<(FitResult, f64)> = std::thread::scope(|sc| {
+    std::thread::scope(|sc| {
         let jobs: Vec<_> = (0..threads)
             .map(|k| {
-                let (r, given) = (&r, &given);
+                let given = &given;
                 sc.spawn(move || {
                     (k..trials)
                         .step_by(threads)
                         .map(|seed| {
                             let t = noisy(r, slips, &mut Rng(31_000 + seed as u64));
-                            let mut f = None;
-                            let secs = clock::spent(|| {
-                                f = Some(fit(&corrugation(0.0055, 0.097, 0.6), &t, given));
-                            });
-                            let f = f.expect("run").expect("fit");
-                            (seed, (f, secs.as_secs_f64()))
+                            let (f, secs) =
+                                clock::timed(|| fit(&corrugated(0.0055, 0.097, 0.6), &t, given));
+                            (seed, (f.expect("fit"), secs.as_secs_f64()))
                         })
                         .collect::<Vec<_>>()
                 })
@@ -397,7 +362,21 @@ fn texture(trials: usize, slips: usize) {
             .collect();
         all.sort_by_key(|(seed, _)| *seed);
         all.into_iter().map(|(_, f)| f).collect()
-    });
+    })
+}
+
+/// The table of the noisy trials' fits: each parameter within 3 standard errors, A and W both,
+/// all five, the rms errors, the mean standard errors, the misfits, the times and the drags;
+/// before it the trials not covered and the three slowest.
+fn report_trials(fits: &[(FitResult, f64)], trials: usize, slips: usize) {
+    println!(
+        "{trials} noisy traces of {slips} slips, levels given: within 3 SE (mu_s, mu_k, A, W, P) \
+         | A and W both | all five | rms error | mean SE (mu_s, mu_k, A, W, P) | misfits | {} per \
+         fit: mean, median, largest | drags per fit: mean, largest",
+        clock::name()
+    );
+    let (mut inside, mut e2, mut se) = ([0usize; 5], [0.0f64; 5], [0.0f64; 5]);
+    let (mut both, mut five, mut misfits) = (0, 0, 0);
     for (seed, (f, secs)) in fits.iter().enumerate() {
         let mut covered = [false; 5];
         for (i, &(name, want)) in TEXTURE_TRUTH.iter().enumerate() {

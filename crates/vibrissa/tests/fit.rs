@@ -8,7 +8,7 @@ use vibrissa::{drag, DragOptions, DragResult, Scene};
 
 #[path = "support/noisy_trace.rs"]
 mod noisy_trace;
-use noisy_trace::{noisy, places_only, Rng, SIGMA};
+use noisy_trace::{corrugated, noisy, places_only, texture_trace, Rng, SIGMA, TEXTURE_TRUTH};
 
 fn truth(n: usize) -> DragResult {
     let (rod, surface) = Scene::default().parts().unwrap();
@@ -327,18 +327,6 @@ fn corrugated_trace_fits_its_surface_and_misfits_a_flat_one() {
 /// A drag's default solver tolerance: the observations of a noise-free trace are exact to it.
 const DRAG_TOL: f64 = vibrissa::SolverConfig::DEFAULT_TOL;
 
-/// The corrugated scene of issue 31's read-back.
-fn corrugated(amplitude: f64, wavelength: f64, phase: f64) -> Scene {
-    Scene {
-        surface: vibrissa::surface::SurfaceProfile::Sine {
-            amplitude,
-            wavelength,
-            phase,
-        },
-        ..Scene::default()
-    }
-}
-
 /// Issue 31: the texture read back. The noise-free trace of a drag over A = 0.005, W = 0.1,
 /// P = 0.7 (μs = 0.5, μk = 0.3, d to 0.03: 6 slips, 42 observations) fitted from A = 0.0055
 /// (+10 %), W = 0.097 (−3 %), P = 0.6 with μs, μk read off the slips. With unit weights given
@@ -376,13 +364,7 @@ fn corrugation_is_read_back_from_perturbed_starts() {
     .unwrap();
     assert!(f.message.is_none(), "{f}");
     let n = f.observations as f64;
-    for (name, want) in [
-        ("mu_s", 0.5),
-        ("mu_k", 0.3),
-        ("amplitude", 0.005),
-        ("wavelength", 0.1),
-        ("phase", 0.7),
-    ] {
+    for (name, want) in TEXTURE_TRUTH {
         let p = f.get(name).unwrap();
         let bound = n.sqrt() * DRAG_TOL * p.std_error.unwrap();
         assert!(
@@ -402,21 +384,7 @@ fn corrugation_is_read_back_from_perturbed_starts() {
 /// errors.)
 #[test]
 fn a_noisy_corrugated_trace_is_read_back_within_three_standard_errors() {
-    let (rod, surface) = corrugated(0.005, 0.1, 0.7).parts().unwrap();
-    let r = drag(
-        &rod,
-        &surface,
-        &DragOptions {
-            d_max: 1.0,
-            points: 2,
-            mu_s: Some(0.5),
-            mu_k: Some(0.3),
-            max_slips: 8,
-            ..DragOptions::default()
-        },
-    )
-    .unwrap();
-    assert_eq!(r.slips.len(), 8, "{r}");
+    let r = texture_trace(8);
     let t = noisy(&r, 8, &mut Rng(31_000));
     let f = fit(
         &corrugated(0.0055, 0.097, 0.6),
@@ -430,13 +398,7 @@ fn a_noisy_corrugated_trace_is_read_back_within_three_standard_errors() {
     .unwrap();
     assert!(f.message.is_none(), "{f}");
     assert!(f.consistency.as_ref().is_some_and(|c| c.consistent), "{f}");
-    for (name, want) in [
-        ("mu_s", 0.5),
-        ("mu_k", 0.3),
-        ("amplitude", 0.005),
-        ("wavelength", 0.1),
-        ("phase", 0.7),
-    ] {
+    for (name, want) in TEXTURE_TRUTH {
         let p = f.get(name).unwrap();
         let se = p.std_error.unwrap();
         assert!(

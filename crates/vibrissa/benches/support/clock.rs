@@ -29,14 +29,15 @@ pub fn thread_cpu() -> Option<Duration> {
     None
 }
 
-/// The time `f` takes by this clock.
-pub fn spent(f: impl FnOnce()) -> Duration {
+/// What `f` returns, and the time it takes by this clock.
+pub fn timed<T>(f: impl FnOnce() -> T) -> (T, Duration) {
     let (t, cpu) = (Instant::now(), thread_cpu());
-    f();
-    match (cpu, thread_cpu()) {
+    let out = f();
+    let took = match (cpu, thread_cpu()) {
         (Some(a), Some(z)) => z.saturating_sub(a),
         _ => t.elapsed(),
-    }
+    };
+    (out, took)
 }
 
 /// What the tables' times are.

@@ -1,9 +1,52 @@
 //! The synthetic noisy traces of `fit`'s checks, shared by `tests/fit.rs` and
 //! `examples/fit_stats.rs`: Gaussian noise on the slip places (σ = 2e-4) and on `fx`, `m_base`
-//! before and `fx` after each slip (σ = 2e-3).
+//! before and `fx` after each slip (σ = 2e-3); and the corrugated sample of issue 31's texture
+//! read-back ([`texture_trace`]).
 
 use vibrissa::fit::{Trace, TraceSlip};
-use vibrissa::DragResult;
+use vibrissa::{drag, DragOptions, DragResult, Scene};
+
+/// A scene whose surface is the corrugation `A sin(2πx/W + P)` (the paper's rod at η = 0.75).
+pub fn corrugated(amplitude: f64, wavelength: f64, phase: f64) -> Scene {
+    Scene {
+        surface: vibrissa::surface::SurfaceProfile::Sine {
+            amplitude,
+            wavelength,
+            phase,
+        },
+        ..Scene::default()
+    }
+}
+
+/// The parameters of the texture read-back and their true values.
+pub const TEXTURE_TRUTH: [(&str, f64); 5] = [
+    ("mu_s", 0.5),
+    ("mu_k", 0.3),
+    ("amplitude", 0.005),
+    ("wavelength", 0.1),
+    ("phase", 0.7),
+];
+
+/// The texture read-back's drag: [`TEXTURE_TRUTH`]'s corrugation and coefficients, through its
+/// first `slips` slips.
+pub fn texture_trace(slips: usize) -> DragResult {
+    let (rod, surface) = corrugated(0.005, 0.1, 0.7).parts().expect("scene");
+    let r = drag(
+        &rod,
+        &surface,
+        &DragOptions {
+            d_max: 1.0,
+            points: 2,
+            mu_s: Some(0.5),
+            mu_k: Some(0.3),
+            max_slips: slips,
+            ..DragOptions::default()
+        },
+    )
+    .expect("drag");
+    assert_eq!(r.slips.len(), slips, "{r}");
+    r
+}
 
 /// splitmix64 and Box–Muller: a seeded normal sampler without dependencies.
 pub struct Rng(pub u64);
