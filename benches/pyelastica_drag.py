@@ -68,6 +68,8 @@ import numpy as np
 import elastica as ea
 from scipy.integrate import solve_bvp
 
+from pyelastica_rod import option, stable_dt, unit_rod
+
 ETA = 0.75
 MU_S = 0.5
 MU_K = 0.3
@@ -203,20 +205,9 @@ class Friction(ea.NoForces):
 
 
 def run(r, n, dt, events=2 * SLIPS, settle=1.5, damping=40.0):
-    area = math.pi * r * r
-    inertia = math.pi * r**4 / 4.0
     x, y, phi, normal, tip_x = pressed(n)
     sim = Sim()
-    rod = ea.CosseratRod.straight_rod(
-        n,
-        np.zeros(3),
-        np.array([0.0, 1.0, 0.0]),
-        np.array([1.0, 0.0, 0.0]),
-        1.0,
-        r,
-        1.0 / area,
-        youngs_modulus=1.0 / inertia,
-    )
+    rod = unit_rod(n, r, [0.0, 1.0, 0.0], [1.0, 0.0, 0.0])
     foot_director = rod.director_collection[..., 0].copy()
     rod.position_collection[0, :] = x
     rod.position_collection[1, :] = y
@@ -258,13 +249,6 @@ def run(r, n, dt, events=2 * SLIPS, settle=1.5, damping=40.0):
     return steps, contact, seconds, cpu
 
 
-def option(name, default):
-    """The comma-separated values after `name` on the command line, or `default`."""
-    if name in sys.argv:
-        return [float(v) for v in sys.argv[sys.argv.index(name) + 1].split(",")]
-    return default
-
-
 def main():
     quick = "--quick" in sys.argv
     radii = option("--r", [0.02])
@@ -274,8 +258,7 @@ def main():
     cases = []
     for r in radii:
         for n in elements:
-            # explicit stability, as benches/pyelastica_free.py
-            cases.append((r, n, scale * min(0.4 * r * r, 0.5 * (1.0 / n) * r / 2.0)))
+            cases.append((r, n, scale * stable_dt(r, n)))
     # warm numba's compilation outside the timed runs
     run(0.02, 10, 1e-4, events=1, settle=0.01)
     print("r,elements,dt,steps,slips,seconds,cpu,slip_d,stick_d")

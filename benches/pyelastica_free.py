@@ -38,6 +38,8 @@ import time
 import numpy as np
 import elastica as ea
 
+from pyelastica_rod import option, stable_dt, unit_rod
+
 BETA1 = 1.87510406871196
 OMEGA1 = BETA1**2
 PERIOD = 2.0 * math.pi / OMEGA1
@@ -55,19 +57,8 @@ class Sim(ea.BaseSystemCollection, ea.Constraints):
 
 
 def run(r, n, dt, amp=1e-4):
-    area = math.pi * r * r
-    inertia = math.pi * r**4 / 4.0
     sim = Sim()
-    rod = ea.CosseratRod.straight_rod(
-        n,
-        np.zeros(3),
-        np.array([1.0, 0.0, 0.0]),
-        np.array([0.0, 1.0, 0.0]),
-        1.0,
-        r,
-        1.0 / area,
-        youngs_modulus=1.0 / inertia,
-    )
+    rod = unit_rod(n, r, [1.0, 0.0, 0.0], [0.0, 1.0, 0.0])
     sim.append(rod)
     sim.constrain(rod).using(ea.OneEndFixedBC, constrained_position_idx=(0,), constrained_director_idx=(0,))
     sim.finalize()
@@ -95,22 +86,14 @@ def run(r, n, dt, amp=1e-4):
     return steps, period, seconds, cpu
 
 
-def option(name, default):
-    """The comma-separated values after `name` on the command line, or `default`."""
-    if name in sys.argv:
-        return [float(v) for v in sys.argv[sys.argv.index(name) + 1].split(",")]
-    return default
-
-
 def main():
     quick = "--quick" in sys.argv
-    # explicit stability: below the shear-rotation wave's 0.87 r^2 and the axial wave's dx r / 2
     cases = []
     radii = option("--r", [0.01] if quick else [0.02, 0.01, 0.005])
     elements = [int(n) for n in option("--elements", [25] if quick else [25, 50, 100, 200])]
     for r in radii:
         for n in elements:
-            cases.append((r, n, min(0.4 * r * r, 0.5 * (1.0 / n) * r / 2.0)))
+            cases.append((r, n, stable_dt(r, n)))
     if quick:
         cases = cases[:2]
     # warm numba's compilation outside the timed runs
