@@ -67,19 +67,23 @@ fn a_stuck_disk_rolls_on_a_flat_surface() {
     }
 }
 
-/// The paper's rod at η 0.75 with a round tip of radius `r` over the corrugation
-/// `A sin(2πx/W)`, dragged with μs 0.5, μk 0.3 to `d_max`.
-fn corrugated(r: f64, a: f64, w: f64, d_max: f64, balance: bool) -> DragResult {
-    let scene = Scene {
+/// The paper's rod with a tip of radius `r` over `0.75 + a sin(2πx/w + phase)`.
+fn round_tip_over(r: f64, a: f64, w: f64, phase: f64) -> Scene {
+    Scene {
         surface: SurfaceProfile::Sine {
             amplitude: a,
             wavelength: w,
-            phase: 0.0,
+            phase,
         },
         tip_radius: r,
         ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
+    }
+}
+
+/// The paper's rod at η 0.75 with a round tip of radius `r` over the corrugation
+/// `A sin(2πx/W)`, dragged with μs 0.5, μk 0.3 to `d_max`.
+fn corrugated(r: f64, a: f64, w: f64, d_max: f64, balance: bool) -> DragResult {
+    let (rod, surface) = round_tip_over(r, a, w, 0.0).parts().unwrap();
     let o = DragOptions {
         d_max,
         points: 11,
@@ -165,21 +169,12 @@ fn a_round_tip_runs_past_where_the_point_tip_turns_into_the_corrugation() {
 
 /// A corrugation with flanks steeper than 45° (A 0.01, W 0.05: the steepest slope 2πA/W = 1.26,
 /// 51.5°): refused to the point tip, with a message that names the slope and the tip radius;
-/// with a round tip of radius 0.005 the drag runs through 12 slips. (It ends at d 0.0193 where a
-/// side touches down behind the disk during a slip: the program's run, 201 output points, calls
-/// it a jam; this one, 11 points, a new state whose Newton iteration stalls at a residual of
-/// 1e-11 — docs/robustness.md, "With a round tip".)
+/// with a round tip of radius 0.005 the drag runs through 12 slips and on: at d 0.0193 a side
+/// touches down behind the disk during a slip and joins it, and this run (11 output points)
+/// goes on to a jam at d 0.0313 after 175 slips (docs/robustness.md, "With a round tip").
 #[test]
 fn a_round_tip_takes_flanks_steeper_than_45_degrees() {
-    let steep = |r: f64| Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.01,
-            wavelength: 0.05,
-            phase: 0.0,
-        },
-        tip_radius: r,
-        ..Scene::default()
-    };
+    let steep = |r: f64| round_tip_over(r, 0.01, 0.05, 0.0);
     let e = steep(0.0).parts().unwrap_err().to_string();
     assert!(
         e.contains("1.256637") && e.contains("tip radius"),
@@ -262,16 +257,7 @@ fn a_round_tip_is_refused_where_it_is_not_modelled() {
 /// up the contact set; it stopped there as "not followed" before.)
 #[test]
 fn a_side_touching_down_behind_a_sliding_tip_joins_the_slip() {
-    let scene = Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.02,
-            wavelength: 0.1,
-            phase: 0.0,
-        },
-        tip_radius: 0.005,
-        ..Scene::default()
-    };
-    let (_, surface) = scene.parts().unwrap();
+    let (_, surface) = round_tip_over(0.005, 0.02, 0.1, 0.0).parts().unwrap();
     let h = surface.profile().unwrap();
     let r = corrugated(0.005, 0.02, 0.1, 0.3, true);
     let i = r
@@ -312,16 +298,7 @@ fn a_round_tip_matches_the_independent_reference() {
         "/../../data/drag/round_tip_reference.csv"
     ))
     .unwrap();
-    let scene = Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.02,
-            wavelength: 0.1,
-            phase: 5.0,
-        },
-        tip_radius: 0.005,
-        ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
+    let (rod, surface) = round_tip_over(0.005, 0.02, 0.1, 5.0).parts().unwrap();
     let o = DragOptions {
         d_max: 0.02,
         points: 21,
