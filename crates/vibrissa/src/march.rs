@@ -784,34 +784,29 @@ impl<P: Profile> Run<'_, '_, P> {
         let Some(slide) = self.env.ground.slide.as_mut() else {
             return false;
         };
-        if new_set.contacts.len() == set.contacts.len() + 1 {
-            // a contact that touches down before the driver moves it one place up the set
-            let at = (0..set.contacts.len())
-                .find(|&k| set.contacts[k] != new_set.contacts[k])
-                .unwrap_or(set.contacts.len());
-            if at <= slide.driver {
-                slide.driver += 1;
-                let (xf, dir, driver) = (self.stepper.foot_x(lam), slide.dir, slide.driver);
-                self.stepper
-                    .phase(crate::chain::Family::Slide { xf, dir, driver }, &self.env);
-            }
+        let (old, new) = (set.contacts.len(), new_set.contacts.len());
+        if new.abs_diff(old) != 1 {
             return false;
         }
-        if new_set.contacts.len() + 1 != set.contacts.len() {
-            return false;
-        }
-        let gone = (0..new_set.contacts.len())
+        // (the first place where the sets differ: the contact that came or went)
+        let shared = old.min(new);
+        let at = (0..shared)
             .find(|&k| set.contacts[k] != new_set.contacts[k])
-            .unwrap_or(new_set.contacts.len());
-        if gone > slide.driver {
+            .unwrap_or(shared);
+        if at > slide.driver {
             return false;
         }
-        let (xf, dir, lost) = (self.stepper.foot_x(lam), slide.dir, gone == slide.driver);
+        let (xf, dir) = (self.stepper.foot_x(lam), slide.dir);
+        let lost = new < old && at == slide.driver;
         let driver = if lost {
             self.env.ground.slide = None;
-            new_set.contacts.len()
+            new
         } else {
-            slide.driver -= 1;
+            if new > old {
+                slide.driver += 1;
+            } else {
+                slide.driver -= 1;
+            }
             slide.driver
         };
         self.stepper
