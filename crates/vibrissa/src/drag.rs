@@ -671,7 +671,7 @@ impl<P: Profile> DragRun<'_, P> {
             StopReason::Slip { .. } => {}
             other => return Err(other),
         }
-        let driver = slipping(&env, &sset, &pe);
+        let driver = slipping(&env, &sset, &pe, None);
         if let Some(stop) = self.too_many_slips(pe.lam) {
             return Err(stop);
         }
@@ -701,8 +701,8 @@ impl<P: Profile> DragRun<'_, P> {
     }
 
     /// The slip after the stick `s`: the slipping contact slides (the foot held) until kinetic
-    /// friction holds it; a contact that reaches its own slip limit on the way slips in turn
-    /// (the first one held where it is) before the first one goes on.
+    /// friction holds it; a contact that reaches its own slip limit on the way breaks free and
+    /// slides along at that limit, and relaxes to kinetic friction when the first one has.
     fn slide(&mut self, s: &Stuck) -> Result<Slid, StopReason> {
         let mut dissipated = 0.0;
         self.lifted = false;
@@ -711,7 +711,6 @@ impl<P: Profile> DragRun<'_, P> {
             (s.driver, s.dir),
             (s.set.clone(), s.pe.clone()),
             &mut dissipated,
-            0,
         )?;
         Ok(Slid {
             set,
@@ -727,18 +726,31 @@ impl<P: Profile> DragRun<'_, P> {
     /// contact sticks if the patch ahead holds it), until μk holds it: the state there (the
     /// slide added to the contact's place), how far it slid, and the static coefficient ahead
     /// where it stopped at a patch boundary. The work friction absorbs is added to `dissipated`.
+    ///
+    /// A contact that reaches its slip limit while `j` slides breaks free: it slides along with
+    /// `T = μs N` (a passive slider at its static limit, so nothing jumps), and once μk holds
+    /// `j`, `j` slides along with `T = μk N` while that one relaxes, driven, from μs to μk. Each
+    /// contact's friction falls from static to kinetic once, in turn; none is held back to
+    /// build up to μs again (holding the first while the second slides lets the two take turns
+    /// at μs without end: a pair walking along the surface in slides of 1e-8).
     fn slide_driver(
         &mut self,
         s: &Stuck,
-        (mut j, dir): (usize, f64),
+        (mut j, mut dir): (usize, f64),
         (mut cset, q0): (ContactSet, Pt),
         dissipated: &mut f64,
-        depth: usize,
     ) -> Result<(ContactSet, Pt, f64, Option<f64>), StopReason> {
         let d_s = s.pe.lam;
         let (mut cu, mut clam) = (q0.u.clone(), 0.0);
         let mut x_now = q0.w.contacts[j].x;
         let mut slid = 0.0;
+        // (the slip's own contact, whose slide is the slip's jump, drives first; after it rides
+        // on, its number, way and place where it began to ride, and the number of contacts)
+        let mut own = true;
+        let mut rode: Option<(usize, f64, f64, usize)> = None;
+        // (pieces in a row that ended where they began: contacts that change state in turn
+        // without the slide moving)
+        let mut stalls = 0;
         loop {
             let (_, mu_k) = self.fr.at(x_now, dir);
             let boundary = (self.fr.texture.as_ref()).and_then(|t| t.next_boundary(x_now, dir));
@@ -772,10 +784,6 @@ impl<P: Profile> DragRun<'_, P> {
                 Ok(q) => q,
                 Err(e) => return Err(Self::failure(d_s, format!("the slip at {clam}: {e}"))),
             };
-            if depth > 0 && clam == 0.0 && Crossing::Stick(j).of_watch(&senv, &q.w) >= 0.0 {
-                // a contact that resumes its slide where μk already holds it
-                return Ok((cset, q, slid, None));
-            }
             let sspec = Spec {
                 env: &senv,
                 grid: &[],
@@ -805,16 +813,40 @@ impl<P: Profile> DragRun<'_, P> {
             let Some((eset, qe)) = sout.last else {
                 return Err(sout.stop);
             };
+            let own_slide = if own { qe.lam - clam } else { 0.0 };
+            stalls = if qe.lam == clam { stalls + 1 } else { 0 };
+            if stalls > MAX_STALLS {
+                return Err(stalled(d_s, &qe, &eset));
+            }
             if sout.driver.is_none() {
                 // the sliding contact lifted off: the slip ends there, the others held
-                self.lifted |= depth == 0;
-                let slid = slid + qe.lam - clam;
+                self.lifted |= own;
+                let slid = slid + own_slide + ridden(rode, &eset, &qe, d_s);
                 return Ok((eset, qe, slid, None));
             }
             match &sout.stop {
                 StopReason::DMax if qe.lam < lam_end * (1.0 - 1e-14) => {
-                    let slid = slid + qe.lam - clam;
-                    return Ok((moved(eset, j, dir * qe.lam), qe, slid, None));
+                    slid += own_slide;
+                    let end = moved(eset, j, dir * qe.lam);
+                    let Some(k) = breaking_free(&end, &qe, |x, d| self.fr.at(x, d).1) else {
+                        let (end, qe) = if own {
+                            (end, qe)
+                        } else {
+                            self.at_kinetic(end, qe, (j, dir * mu_k), d_s)
+                        };
+                        let slid = slid + ridden(rode, &end, &qe, d_s);
+                        return Ok((end, qe, slid, None));
+                    };
+                    // μk holds this one: it slides along with kinetic friction while the one
+                    // that broke free relaxes to it
+                    if own {
+                        rode = Some((j, dir, place(end.contacts[j].mode), end.contacts.len()));
+                    }
+                    let mut next = riding(end, j, dir * mu_k);
+                    next = crate::events::held(&next, k, &qe, d_s);
+                    (j, dir, own) = (k, qe.w.contacts[k].tangential.signum(), false);
+                    x_now = qe.w.contacts[k].x;
+                    (cset, cu, clam) = (next, qe.u, 0.0);
                 }
                 StopReason::DMax if lam_end >= MAX_SLIP => return Err(unbounded(d_s, &qe, j)),
                 StopReason::DMax => {
@@ -827,50 +859,49 @@ impl<P: Profile> DragRun<'_, P> {
                     };
                     let (ms, mk) = self.fr.at(c.x, dir);
                     if dir * c.tangential <= mk * c.normal {
-                        let slid = slid + qe.lam - clam;
-                        return Ok((moved(eset, j, dir * qe.lam), qe, slid, Some(ms)));
+                        let end = moved(eset, j, dir * qe.lam);
+                        let slid = slid + own_slide + ridden(rode, &end, &qe, d_s);
+                        return Ok((end, qe, slid, Some(ms)));
                     }
                     x_now = c.x;
-                    slid += qe.lam - clam;
+                    slid += own_slide;
                     (cset, cu, clam) = (eset, qe.u, qe.lam);
                 }
-                StopReason::Slip { .. } if depth < MAX_NESTED => {
-                    // another contact reached its slip limit: this one holds where it is while
-                    // that one slips, then goes on
-                    let k = slipping(&senv, &eset, &qe);
-                    let held = moved(eset, j, dir * qe.lam);
-                    slid += qe.lam - clam;
-                    let dir_k = qe.w.contacts[k].tangential.signum();
-                    let n_held = held.contacts.len();
-                    let (mut kset, kq, _, _) =
-                        self.slide_driver(s, (k, dir_k), (held, qe), dissipated, depth + 1)?;
-                    // (a contact that let go during that slip may have renumbered this one)
-                    let Some(c) =
-                        kq.w.contacts
-                            .get(j)
-                            .filter(|_| kset.contacts.len() >= n_held)
-                    else {
-                        return Err(let_go_in_turn(d_s, &s.set, &kset));
-                    };
-                    x_now = c.x;
-                    // where μk holds it, it goes on sliding with this one as long as this one's
-                    // slide pushes it its way (its friction is μk N already: no jump); else it
-                    // halts at once (two contacts that would take turns in ever shorter slips
-                    // slide together)
-                    if let (Some(c), Some(w)) = (kset.contacts.get_mut(k), kq.w.contacts.get(k)) {
-                        if c.mode.no_slip() {
-                            c.mode = Mode::Sliding(dir_k * self.fr.at(w.x, dir_k).1);
-                        }
-                    }
-                    (cset, cu, clam) = (kset, kq.u.clone(), 0.0);
-                    if Crossing::Stick(j).of_watch(&senv, &kq.w) >= 0.0 {
-                        return Ok((cset, kq, slid, None));
-                    }
+                StopReason::Slip { .. } => {
+                    // another contact reached its slip limit: it breaks free and slides along
+                    // at that limit while this one goes on
+                    let k = slipping(&senv, &eset, &qe, Some(j));
+                    let c = qe.w.contacts[k];
+                    let next = riding(eset, k, c.tangential / c.normal);
+                    slid += own_slide;
+                    x_now = qe.w.contacts[j].x;
+                    (cset, cu, clam) = (next, qe.u, qe.lam);
                 }
-                StopReason::Slip { .. } => return Err(jammed(d_s, &qe, &eset)),
                 StopReason::FoldInD { d } => return Err(snap(d_s, q0.w.contacts[j].s, *d)),
                 other => return Err(at_foot(other.clone(), d_s)),
             }
+        }
+    }
+
+    /// The end `(end, qe)` of a slide that a contact which broke free drove, its driver `j` held
+    /// by kinetic friction `ratio = dir·μk` there: the state where that holds exactly (the driver
+    /// as a slider at `ratio`, its place free), as the others that rode on hold. Its end is located
+    /// in the driver's short slide from μs to μk, where the ratio it needs changes by ~4e5 per
+    /// unit slide, so the located point lies ~4e-8 off μk N; this moves it by ~1e-13. Where that
+    /// state is not found, the located one is kept.
+    fn at_kinetic(
+        &mut self,
+        end: ContactSet,
+        qe: Pt,
+        (j, ratio): (usize, f64),
+        xf: f64,
+    ) -> (ContactSet, Pt) {
+        let exact = riding(end.clone(), j, ratio);
+        match self.st.switch(exact.clone(), qe.lam, qe.u.clone()) {
+            Ok(q) if q.w.contacts.len() == exact.contacts.len() => {
+                (crate::events::held(&exact, j, &q, xf), q)
+            }
+            _ => (end, qe),
         }
     }
 
@@ -1089,16 +1120,13 @@ struct Slid {
     slid: f64,
 }
 
-/// How deep slips may nest (a contact that reaches its limit while another slides slips in
-/// turn) before the set is called jammed.
-const MAX_NESTED: usize = 8;
-
-/// The contact of `set` at its slip limit at `pe` (the one furthest beyond it).
-fn slipping(env: &Env, set: &ContactSet, pe: &Pt) -> usize {
+/// The contact of `set` at its slip limit at `pe` (the one furthest beyond it), other than the
+/// slide's driver `j` (beyond its limit while it slides).
+fn slipping(env: &Env, set: &ContactSet, pe: &Pt, j: Option<usize>) -> usize {
     let w = &pe.w;
     (0..set.contacts.len())
-        .filter(|&j| set.contacts[j].mode.no_slip())
-        .map(|j| (j, Crossing::Slip(j).of_watch(env, w)))
+        .filter(|&k| Some(k) != j && set.contacts[k].mode.no_slip())
+        .map(|k| (k, Crossing::Slip(k).of_watch(env, w)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map_or(set.contacts.len().saturating_sub(1), |w| w.0)
 }
@@ -1113,6 +1141,77 @@ fn moved(set: ContactSet, j: usize, by: f64) -> ContactSet {
         m => m,
     };
     set
+}
+
+/// How many pieces of a slide in a row may end where they began (a contact breaking free, a
+/// driver handing over, a rider halting) before the slide is called jammed.
+const MAX_STALLS: usize = 8;
+
+/// A slide whose contacts change state in turn without it moving (at the foot's place `d`,
+/// the state `qe` of the set `set`): no quasi-static motion goes on, a jam.
+fn stalled(d: f64, qe: &Pt, set: &ContactSet) -> StopReason {
+    let at: Vec<String> = (qe.w.contacts.iter())
+        .map(|c| format!("{:.6}", c.s))
+        .collect();
+    StopReason::Jam {
+        d,
+        message: format!(
+            "during a slip the contacts of {} (at s = {}) break free, hand over and halt in \
+             turn {MAX_STALLS} times without the slide moving: no quasi-static motion that \
+             friction allows goes on",
+            set.label(),
+            at.join(", ")
+        ),
+    }
+}
+
+/// `set` with contact `j` sliding with `T = ratio·N` (a passive slider: its place follows).
+fn riding(set: ContactSet, j: usize, ratio: f64) -> ContactSet {
+    let mut set = set;
+    set.contacts[j].mode = Mode::Sliding(ratio);
+    set
+}
+
+/// The place of a contact that holds (a stuck tip's anchor, a rolling side's invariant), NaN for
+/// one that does not.
+fn place(m: Mode) -> f64 {
+    match m {
+        Mode::Stuck(a) | Mode::Rolling(a) => a,
+        _ => f64::NAN,
+    }
+}
+
+/// How far the slip's own contact slid while it rode on (its number, way and place where it
+/// began to ride, and the number of contacts then, `rode`) to the end state `(set, q)` of the
+/// slip at the foot's place `xf`: its place there, held, less the place where it began (0 where
+/// it did not ride, or a contact came or went since, so its number may name another).
+fn ridden(rode: Option<(usize, f64, f64, usize)>, set: &ContactSet, q: &Pt, xf: f64) -> f64 {
+    let Some((i, dir, p0, _)) = rode.filter(|r| r.3 == set.contacts.len()) else {
+        return 0.0;
+    };
+    let there = crate::events::held(set, i, q, xf);
+    let by = dir * (place(there.contacts[i].mode) - p0);
+    if by.is_finite() {
+        by
+    } else {
+        0.0
+    }
+}
+
+/// The contact of `set` that broke free during a slip and still slides with more than kinetic
+/// friction at `pe` (`mu_k(x, dir)` the kinetic coefficient there), the one furthest above it.
+fn breaking_free(set: &ContactSet, pe: &Pt, mu_k: impl Fn(f64, f64) -> f64) -> Option<usize> {
+    (0..set.contacts.len())
+        .filter_map(|k| match set.contacts[k].mode {
+            Mode::Sliding(r) if crate::events::is_slider(&set.contacts[k]) => {
+                let c = pe.w.contacts[k];
+                let over = r.abs() - mu_k(c.x, r.signum());
+                (over > 1e-12).then_some((k, over))
+            }
+            _ => None,
+        })
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|(k, _)| k)
 }
 
 /// The equilibria of a slip fold back after the contact at `s` slid `by` (at the foot's place
@@ -1135,37 +1234,6 @@ fn unbounded(d: f64, qe: &Pt, j: usize) -> StopReason {
             "the contact at s = {:.6} slid {MAX_SLIP} rod lengths along the surface without \
              reaching an equilibrium where mu_k holds it",
             qe.w.contacts.get(j).map_or(f64::NAN, |c| c.s)
-        ),
-    }
-}
-
-/// A contact let go during a slip nested in another (the set `from` of the stick, `to` after
-/// it): the outer slide's contact may have been renumbered, and its slide is not followed.
-fn let_go_in_turn(d: f64, from: &ContactSet, to: &ContactSet) -> StopReason {
-    StopReason::ContactChange {
-        d,
-        message: format!(
-            "a contact let go during a slip that another contact's slip held ({} to {}): the \
-             slip of the one it held is not followed",
-            from.label(),
-            to.label()
-        ),
-    }
-}
-
-/// A set that jams: contacts keep reaching their slip limits while others slip (no quasi-static
-/// motion consistent with friction within the nesting bound).
-fn jammed(d: f64, qe: &Pt, set: &ContactSet) -> StopReason {
-    let at: Vec<String> = (qe.w.contacts.iter())
-        .map(|c| format!("{:.6}", c.s))
-        .collect();
-    StopReason::ContactChange {
-        d,
-        message: format!(
-            "the contact set {} jams: its contacts (at s = {}) reach their slip limits in turn \
-             {MAX_NESTED} deep within one slip, with no quasi-static motion that friction allows",
-            set.label(),
-            at.join(", ")
         ),
     }
 }

@@ -59,12 +59,6 @@ impl<P: Profile> OwnStepper<P> {
                 straight: chain.sh.profile.straight(),
             },
         );
-        if let (true, Some(d)) = (has_slider(&self.chain.set), du.as_deref()) {
-            let foot = self.chain.family.pose(lam).1.xf;
-            if let Some(r) = self.chain.contact_rates(&cv.u, lam, d) {
-                fill_slip(&mut w, &self.chain.set, (&cv.u, d), &r, foot);
-            }
-        }
         // a round tip on a curve: its contact point's rate (x_c + r sin θ(x_c) = P_x)
         if let (Some(j), Some(d)) = (self.chain.disk_tip(), du.as_deref()) {
             let set = &self.chain.set;
@@ -75,6 +69,12 @@ impl<P: Profile> OwnStepper<P> {
                 if let (Some(r), Some(dk)) = (self.chain.contact_rates(&cv.u, lam, d), dk) {
                     w.contacts[j].dxc = (r[j][0] + foot) / dk.jac;
                 }
+            }
+        }
+        if let (true, Some(d)) = (has_slider(&self.chain.set), du.as_deref()) {
+            let foot = self.chain.family.pose(lam).1.xf;
+            if let Some(r) = self.chain.contact_rates(&cv.u, lam, d) {
+                fill_slip(&mut w, &self.chain.set, (&cv.u, d), &r, foot);
             }
         }
         Ok(Pt {

@@ -674,6 +674,9 @@ pub(crate) fn fill_slip(
         let vx = r[0] + foot;
         let x = w.contacts[j].x;
         let o = set.offset(j);
+        // a round tip rolls: its contact point moves by the disk's turn as well, so its slip is
+        // the rate of its place less the turn's (the anchor of a stuck disk, `tip_place`)
+        let disk = (ct.tip && set.tip_radius > 0.0).then_some(set.tip_radius);
         // the place along the surface and its rate, the way the rod runs along it, the normal
         // force's rate in the surface's local frame
         let (place, along, dir, dn) = match &ct.geom {
@@ -681,9 +684,10 @@ pub(crate) fn fill_slip(
                 let (sb, cb) = beta.sin_cos();
                 // (on the line through p0: its height follows from x)
                 let place = (x - p0[0]) / cb;
+                let turn = disk.map_or((0.0, 0.0), |rr| (rr * (w.phi1 - beta), rr * r[2]));
                 (
-                    place,
-                    cb * vx + sb * r[1],
+                    place - turn.0,
+                    cb * vx + sb * r[1] - turn.1,
                     (ct.phi_ref - beta).cos().round(),
                     du[o],
                 )
@@ -692,12 +696,21 @@ pub(crate) fn fill_slip(
                 let (th, dth) = h.angle(x);
                 let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
                 let (sg, dsg) = h.sigma(x);
+                // (a disk's contact point's x rate, else the rod end's)
+                let vc = if disk.is_some() {
+                    w.contacts[j].dxc
+                } else {
+                    vx
+                };
+                let turn = disk.map_or((0.0, 0.0), |rr| {
+                    (rr * (w.phi1 - th), rr * (r[2] - dth * vc))
+                });
                 // N_loc = Fx sin θ − Fy cos θ: through the unknowns and through θ(x)
                 let f = ct.force(du[o], du[o + 1]);
                 let f0 = ct.force(u[o], u[o + 1]);
                 let (st, c) = th.sin_cos();
-                let dn = f[0] * st - f[1] * c + (f0[0] * c + f0[1] * st) * dth * vx;
-                (sg, dsg * vx, kpi.cos().round(), dn)
+                let dn = f[0] * st - f[1] * c + (f0[0] * c + f0[1] * st) * dth * vc;
+                (sg - turn.0, dsg * vc - turn.1, kpi.cos().round(), dn)
             }
             _ => continue,
         };
