@@ -1079,6 +1079,15 @@ impl<P: Profile> DragRun<'_, P> {
             {
                 let hold = Hold::Slipping { dir: sl.dir };
                 contacts = with_hold(contacts, *k, hold, sl.mu_k);
+                // (one that broke free and slides along at more than μk is slipping as well)
+                for c in contacts.iter_mut() {
+                    if let Hold::Sliding { dir } = c.hold {
+                        let mu_k = self.fr.at(c.x, dir).1;
+                        if c.mu > mu_k * (1.0 + 1e-12) {
+                            (c.hold, c.mu) = (Hold::Slipping { dir }, mu_k);
+                        }
+                    }
+                }
             }
             let mut r = row_of(sp, &out.tips[i], d, mu_s, contacts);
             r.phase = phase;
