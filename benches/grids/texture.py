@@ -34,7 +34,8 @@ COLUMNS = ["amplitude", "wavelength", "phase", "rod", "tip_radius", "class", "st
 # Class order of the tables: physical stops first, then refusals, then the rest.
 CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "refused: steep for a point tip",
            "refused: other", "no start", "trapped start", "trapped slide (not followed)",
-           "nested slips 8 deep (named)", "slide of 4 rod lengths", "side behind the sliding "
+           "nested slips 8 deep (named)", "side begins to lie along the surface",
+           "slide of 4 rod lengths", "side behind the sliding "
            "contact (not followed)", "not modelled / no contact state", "too many slips",
            "named stop: other", "stale slip driver", "Newton failure / NaN",
            "solver failure: event", "error: other", "panic", "slow"]
@@ -77,6 +78,8 @@ def classify(reason, detail, code):
         return "trapped slide (not followed)"
     if "reach their slip limits in turn" in detail:
         return "nested slips 8 deep (named)"
+    if "begins to lie along the surface" in detail:
+        return "side begins to lie along the surface"
     if "rod lengths along the surface without reaching" in detail:
         return "slide of 4 rod lengths"
     if "joins behind the sliding one" in detail:

@@ -34,8 +34,8 @@ pub(crate) enum Crossing {
     PeelBack(usize),
     /// The point object at contact `j` reaches the tip.
     SlipOff(usize),
-    /// The side contact `j` (with another beyond it) begins to lie along the line: the rod's
-    /// curvature there, relative to the line, falls to zero.
+    /// The side contact `j` (on a line: with another beyond it) begins to lie along the surface:
+    /// the rod's curvature there, relative to the surface, falls to zero.
     Lie(usize),
     /// The contact `j`, sliding with kinetic friction, comes to rest: its slip rate falls to zero
     /// (it would reverse against its friction).
@@ -96,7 +96,7 @@ impl Crossing {
             {
                 v.push(Crossing::Slip(j));
             }
-            if lies_inside(set, j) {
+            if lies_inside(set, j) || (!c.tip && matches!(c.geom, Geom::Curve { .. })) {
                 v.push(Crossing::Lie(j));
             }
             match (&c.geom, c.tip) {
@@ -610,6 +610,9 @@ pub(crate) fn transition(
                 ))
             }
             Crossing::Slip(_) => Next::Stop(Event::Slip),
+            Crossing::Lie(j) if matches!(set.contacts[j].geom, Geom::Curve { .. }) => {
+                Next::Limit(curve_lie(set, j, pe))
+            }
             Crossing::Lie(j) => Next::Limit(format!(
                 "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
                 pe.w.contacts[j].s
@@ -716,6 +719,29 @@ pub(crate) fn transition(
                 Next::Switch(Event::PeelBack, ns, nu)
             }
         }
+}
+
+/// Why a side on a curved surface stops where the rod begins to curve as the surface does (its
+/// relative curvature, the gap's second derivative along the rod, rises to zero): beyond it the
+/// rod, tangent there, would cut the surface beside the contact. No second point contact next to
+/// it holds the rod instead (between two tangent points of nearly equal curvature the gap would
+/// vanish along the whole stretch): the rod would lie along the surface. Where the contact is the
+/// last one and the rod's rest beyond it straight, the place is an inflection of the surface, its
+/// steepest point.
+fn curve_lie(set: &ContactSet, j: usize, pe: &Pt) -> String {
+    let c = &pe.w.contacts[j];
+    let last = if j + 1 == set.contacts.len() {
+        ", the last contact: the rod beyond it is unloaded"
+    } else {
+        ""
+    };
+    format!(
+        "the side contact at s = {:.6} (x = {:.6}{last}) begins to lie along the surface: the \
+         rod's curvature there fell to the surface's, so beyond it the rod, tangent there, would \
+         cut the surface beside the contact, and no point contact next to it holds it; a lying \
+         stretch pressed by a distributed force is not in the model",
+        c.s, c.x
+    )
 }
 
 /// Why a side lying on the surface cannot peel back to a round tip: its contact point reached

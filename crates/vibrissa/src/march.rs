@@ -212,6 +212,30 @@ fn pulling(set: &ContactSet, p: &Pt, d: f64) -> Option<StopReason> {
     })
 }
 
+/// The stop where a slip's sliding contact `j` lets go (`N = 0` at the located point `pe`) while
+/// the slip still needs a tangential force there, and the state without it is no nearby
+/// equilibrium (`e`, the switch's failure): releasing the contact removes a finite force from the
+/// rod at once, so no quasi-static state continues from there and the rod jumps (the slip turns
+/// dynamic). `None` where the tangential force is within rounding of zero (the release is
+/// continuous there, and a failure to solve it is the solver's).
+fn released_pushing(pe: &Pt, j: usize, e: &StepError) -> Option<StopReason> {
+    let c = pe.w.contacts.get(j)?;
+    let total: f64 = pe.w.contacts.iter().map(|c| c.normal.abs()).sum();
+    if c.tangential.abs() <= 1e-8 * (1.0 + total) {
+        return None;
+    }
+    Some(StopReason::Jam {
+        d: pe.lam,
+        message: format!(
+            "the sliding contact at s = {:.6} lets go (N = {:.1e}) while the slip still needs \
+             the tangential force T = {:.3e} there: releasing it removes that force from the rod \
+             at once, and no state without it lies near (from the state at the release: {e}); \
+             the slip turns dynamic",
+            c.s, c.normal, c.tangential
+        ),
+    })
+}
+
 /// Ends the march with `stop` at the newest point of the history.
 fn end(stop: StopReason) -> Flow {
     Flow::End(stop, None)
@@ -704,6 +728,7 @@ impl<P: Profile> Run<'_, '_, P> {
         mut new_set: ContactSet,
         u: Vec<f64>,
     ) -> Flow {
+        let driver_before = self.env.ground.slide.map(|s| s.driver);
         let driver_gone = self.renumber(&set, &new_set, pe.lam);
         let env = &self.env;
         self.out.push(&set, &pe, Some(ev));
@@ -759,6 +784,15 @@ impl<P: Profile> Run<'_, '_, P> {
                 Flow::Go
             }
             Err(e) => {
+                if let Some(stop) = driver_before
+                    .filter(|_| driver_gone)
+                    .and_then(|j| released_pushing(&pe, j, &e))
+                {
+                    // the march ends at the event point, where the driver still touches
+                    self.out.driver = driver_before;
+                    self.range.close(RangeEnd::Event);
+                    return Flow::End(stop, Some(Box::new((set, pe))));
+                }
                 self.range.close(RangeEnd::SolverFailure);
                 let message = format!(
                     "{} ({} to {}): the new contact state does not hold: {e}",

@@ -52,7 +52,8 @@ pub(crate) struct ContactForce {
     pub mu_k: f64,
     /// Where it is a side on the line with a contact beyond it: the height's second derivative
     /// along the rod there, `cos(φ − β) κ` (negative while the rod curves away from the line on
-    /// both sides; zero where it begins to lie along it). NaN elsewhere.
+    /// both sides; zero where it begins to lie along it); a side on a curved surface: the same
+    /// of the gap to the surface ([`curve_curv`]). NaN elsewhere.
     pub curv: f64,
     /// How a contact slides on the surface (filled where the set has a sliding contact).
     pub slide: SlideRate,
@@ -163,6 +164,54 @@ pub(crate) fn lies_inside(set: &ContactSet, j: usize) -> bool {
     !c.tip && matches!(c.geom, Geom::Line { .. }) && j + 1 < set.contacts.len()
 }
 
+/// [`ContactForce::curv`] of contact `j` of `set` at `s` (the rod's state there `zs`, if known;
+/// foot at `xf`, the surface at amplitude `amp`).
+fn side_curv(
+    set: &ContactSet,
+    j: usize,
+    (s, zs): (f64, Option<[f64; 4]>),
+    (xf, amp): (f64, f64),
+    exact: &mut dyn FnMut(f64) -> [f64; 4],
+    kappa: &dyn Fn(f64, f64) -> f64,
+) -> f64 {
+    let ct = &set.contacts[j];
+    match &ct.geom {
+        Geom::Line { beta, .. } if lies_inside(set, j) => {
+            let z = zs.unwrap_or_else(|| exact(s));
+            (z[2] - beta).cos() * kappa(s, z[3])
+        }
+        Geom::Curve { h } if !ct.tip => {
+            let z = zs.unwrap_or_else(|| exact(s));
+            let inside = j + 1 < set.contacts.len();
+            curve_curv(h, amp, z, xf, kappa(s, z[3]), inside)
+        }
+        _ => f64::NAN,
+    }
+}
+
+/// The height's second derivative along the rod at a side contact on the curved surface `h`
+/// (at amplitude `amp`; the rod's state `z` there in the foot frame, foot at `xf`, its curvature
+/// `kappa`), `cos θ·(κ (cos φ + h' sin φ) − h'' cos² φ)` of the vertical gap `y − h(x)`: negative
+/// while the rod curves away from the surface on both sides of the contact, zero where it curves
+/// as the surface does (beyond it the rod cuts the surface beside the contact). As on a line
+/// ([`lies_inside`]), NaN for the last contact where the surface is straight (`h'' = 0`, a
+/// grating's flank or land): a straight rest beyond it lies on the surface by design.
+fn curve_curv(
+    h: &crate::surface::Height,
+    amp: f64,
+    z: [f64; 4],
+    xf: f64,
+    kappa: f64,
+    inside: bool,
+) -> f64 {
+    let (_, d, dd) = h.jet_scaled(z[0] + xf, amp);
+    if dd == 0.0 && !inside {
+        return f64::NAN;
+    }
+    let (sp, cp) = z[2].sin_cos();
+    (kappa * (cp + d * sp) - dd * cp * cp) / d.hypot(1.0)
+}
+
 /// The slip threshold `|T|/N` of contact `j` off a friction texture: μ0, or without it unbounded
 /// (a lone contact's ratio is what a scan measures), except in a set that traps the rod between
 /// two contacts that do not slip: [`SIDE_FRICTION_LIMIT`].
@@ -201,12 +250,14 @@ pub(crate) fn watch(
         let f = ct.force(u[o], u[o + 1]);
         force[0] += f[0];
         force[1] += f[1];
-        let (x, y) = if s >= 1.0 {
-            let zb = sol.right();
-            disk_point(set, j, zb, xf, amp).map_or((zb[0] + xf, zb[1]), |c| (c[0], c[1]))
-        } else {
-            let z = exact(s);
-            (z[0] + xf, z[1])
+        // (the rod's state at a contact along it, once)
+        let zs = (s < 1.0).then(|| exact(s));
+        let (x, y) = match zs {
+            None => {
+                let zb = sol.right();
+                disk_point(set, j, zb, xf, amp).map_or((zb[0] + xf, zb[1]), |c| (c[0], c[1]))
+            }
+            Some(z) => (z[0] + xf, z[1]),
         };
         let (nrm, tng, dn, dt) = match ct.geom {
             Geom::Curve { .. } => {
@@ -261,13 +312,7 @@ pub(crate) fn watch(
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
             slide: SlideRate::UNKNOWN,
             dxc: f64::NAN,
-            curv: match ct.geom {
-                Geom::Line { beta, .. } if lies_inside(set, j) => {
-                    let z = exact(s);
-                    (z[2] - beta).cos() * kappa(s, z[3])
-                }
-                _ => f64::NAN,
-            },
+            curv: side_curv(set, j, (s, zs), (xf, amp), &mut *exact, kappa),
         });
     }
     let mu = if nsum != 0.0 { tsum / nsum } else { 0.0 };
