@@ -247,9 +247,9 @@ const RESUME_STEP: [f64; 2] = [1e-4, 1e-3];
 const RESUMES: usize = 8;
 
 /// Two contacts closer than this along the rod (of length 1) are a stretch of the rod lying
-/// along the profile: the point-contact model does not resolve it (the segment between them is
-/// some 1e9 times stiffer than the rod, and its Newton iterations stall or its branch seems to
-/// turn back at every step).
+/// along the profile: the point-contact model does not resolve it (the segment between them,
+/// of stiffness EI/ℓ³, is at least 1e9 times stiffer than the rod, and its Newton iterations
+/// stall or its branch seems to turn back at every step).
 const LYING_SPACING: f64 = 1e-3;
 
 /// How a march in the amplitude that does not reach the full profile ends.
@@ -263,19 +263,22 @@ enum Short {
     Other,
 }
 
-/// Where two neighbouring contacts of `set` at `q` lie closer than [`LYING_SPACING`] along the
-/// rod: the first one's place and their spacing. (On the scenes of issue 31 where it happens
-/// the rod's curvature at both contacts equals the profile's there to 1e-3: the rod between
-/// them follows the profile.)
+/// Where the rod lies along the profile between two neighbouring contacts of `set` at `q`:
+/// they are closer than [`LYING_SPACING`] along the rod, or the free rod between them touches
+/// the profile to [`AT_ZERO`] (a third point where no contact holds). The first one's place
+/// and their spacing. (On the scenes of issue 31 with contacts that close, the rod's curvature
+/// at both equals the profile's there to 1e-3: the rod between them follows the profile.)
 fn lies(set: &ContactSet, q: &Pt) -> Option<(f64, f64)> {
     let at: Vec<f64> = (0..set.contacts.len()).map(|j| set.s_of(j, &q.u)).collect();
+    let touches =
+        |w: &[f64]| q.w.clear.abs() <= AT_ZERO && w[0] < q.w.clear_s && q.w.clear_s < w[1];
     at.windows(2)
-        .find(|w| w[1] - w[0] < LYING_SPACING)
+        .find(|w| w[1] - w[0] < LYING_SPACING || touches(w))
         .map(|w| (w[0], w[1] - w[0]))
 }
 
-/// How a march ended short at `(stop, last)`: a fold is a snap unless its state has two
-/// contacts [`LYING_SPACING`] apart (then its branch is not resolved).
+/// How a march ended short at `(stop, last)`: a fold is a snap unless its state has the rod
+/// lying along the profile ([`lies`]; then its branch is not resolved).
 fn short(stop: &StopReason, last: Option<&(ContactSet, Pt)>) -> Short {
     match (stop, last) {
         (StopReason::FoldInD { d }, l) if l.is_none_or(|(set, q)| lies(set, q).is_none()) => {
@@ -294,8 +297,8 @@ enum GrowError {
     /// The pressed rod snaps as the profile grows: its equilibria fold back at the amplitude
     /// `amplitude` (of 1) and no march found a way past.
     Snap { amplitude: f64 },
-    /// The rod begins to lie along the profile at the amplitude `amplitude`: two of its
-    /// contacts, at `s` and `spacing` beyond, closer than [`LYING_SPACING`].
+    /// The rod begins to lie along the profile at the amplitude `amplitude`: between two of
+    /// its contacts, at `s` and `spacing` beyond ([`lies`]).
     Lies {
         amplitude: f64,
         s: f64,
@@ -313,8 +316,8 @@ enum GrowError {
 /// state Newton does not solve, a jump of the highest free point that no event locates), the
 /// march is resumed from where it ended ([`resume`]); where a free part lies on the trend, the
 /// rod is settled at the larger amplitudes [`SETTLE_LATER`] as well. A march that ends in a
-/// fold is a snap; one whose last state has two contacts closer than [`LYING_SPACING`], a rod
-/// lying down along the profile ([`short`]).
+/// fold is a snap; one whose last state has the rod lying along the profile between two
+/// contacts ([`lies`]), a rod lying down ([`short`]).
 fn grow<P: Profile>(
     st: &mut OwnStepper<P>,
     p0: Pt,
@@ -425,7 +428,7 @@ fn grow<P: Profile>(
 /// state to continue with: the rod settled ([`settle`], [`Settle::Careful`]) a little further
 /// on ([`RESUME_STEP`]) and marched from there, at most [`RESUMES`] times. The full profile's
 /// contact set and point, else how the last march ended short ([`short`]: one that ends with
-/// two contacts [`LYING_SPACING`] apart is not resumed, the rod lies along the profile there).
+/// the rod lying along the profile, [`lies`], is not resumed).
 fn resume<P: Profile>(
     st: &mut OwnStepper<P>,
     spec: &Spec<'_>,
