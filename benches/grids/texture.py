@@ -34,8 +34,8 @@ COLUMNS = ["amplitude", "wavelength", "phase", "rod", "tip_radius", "class", "st
 # Class order of the tables: physical stops first, then refusals, then the rest.
 CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture grows",
            "refused: steep for a point tip", "refused: other",
-           "refused: start lies along the texture", "no start", "trapped start", "trapped slide (not followed)",
-           "nested slips 8 deep (named)", "slide of 4 rod lengths", "side behind the sliding "
+           "refused: start lies along the texture", "no start", "trapped start",
+           "trapped slide (not followed)", "nested slips 8 deep (named)", "slide of 4 rod lengths", "side behind the sliding "
            "contact (not followed)", "not modelled / no contact state", "too many slips",
            "named stop: other", "stale slip driver", "Newton failure / NaN",
            "solver failure: event", "error: other", "panic", "slow"]
