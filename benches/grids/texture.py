@@ -32,8 +32,9 @@ COLUMNS = ["amplitude", "wavelength", "phase", "rod", "tip_radius", "class", "st
            "slips", "d_end", "cpu_s", "exit", "detail"]
 
 # Class order of the tables: physical stops first, then refusals, then the rest.
-CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "refused: steep for a point tip",
-           "refused: other", "no start", "trapped start", "trapped slide (not followed)",
+CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture grows",
+           "refused: steep for a point tip", "refused: other", "no start", "trapped start",
+           "start lies along the texture (not modelled)", "trapped slide (not followed)",
            "nested slips 8 deep (named)", "side begins to lie along the surface",
            "slide of 4 rod lengths", "side behind the sliding "
            "contact (not followed)", "not modelled / no contact state", "too many slips",
@@ -52,6 +53,13 @@ def classify(reason, detail, code):
             return "refused: steep for a point tip"
         if "80 degrees, the steepest" in detail or "a groove narrower than the tip" in detail:
             return "refused: other"
+        # the pressed rod has no start on the texture: it snaps as the texture grows from
+        # its straight trend (a fold), or lies down along a stretch of it (not in the
+        # point-contact model)
+        if "snaps as the surface's shape grows" in detail:
+            return "start snaps as the texture grows"
+        if "lies down along the surface" in detail:
+            return "start lies along the texture (not modelled)"
         if "no start" in detail:
             return "no start"
         if "Newton" in detail or "NaN" in detail or "not finite" in detail:

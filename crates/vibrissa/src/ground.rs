@@ -129,7 +129,19 @@ fn curve_start<P: Profile>(
     let p0 = st
         .correct_from(0.0, &pressed.pt.u, None, true)
         .map_err(|e| fail("the pressed rod", &e))?;
-    let (set, end) = grow(&mut st, p0, rod, profile).map_err(|(what, e)| fail(what, &e))?;
+    let (set, end) = grow(&mut st, p0, rod, profile).map_err(|e| match e {
+        GrowError::Snap { amplitude } => VibrissaError::StartSnaps { amplitude },
+        GrowError::Lies {
+            amplitude,
+            s,
+            spacing,
+        } => VibrissaError::StartLies {
+            amplitude,
+            s,
+            spacing,
+        },
+        GrowError::Failed(what, e) => fail(what, &e),
+    })?;
     // the grown profile is the drag's at d = 0
     st.chain.family = Family::Drag;
     st.env.ground.grow = false;
@@ -221,16 +233,97 @@ pub(crate) fn stuck<P: Profile>(
 /// profile: the first that settles and grows to the full profile is the start.
 const SETTLE_AT: [f64; 3] = [1e-3, 1e-2, 3e-2];
 
+/// Where those fail too: larger amplitudes, at which the settled contacts lie apart (at small
+/// amplitudes a lying tail settles into contacts 1e-4 of the rod apart with the rod between
+/// them within rounding of the profile, which the march cannot follow), each settled with
+/// [`Settle::Careful`].
+const SETTLE_LATER: [f64; 3] = [0.1, 0.3, 1.0];
+
+/// How far in the amplitude [`resume`] settles the rod beyond the point where a march in the
+/// amplitude found no contact state to continue with, in the order tried.
+const RESUME_STEP: [f64; 2] = [1e-4, 1e-3];
+
+/// How many times the march in the amplitude is resumed ([`resume`]) before the start fails.
+const RESUMES: usize = 8;
+
+/// Two contacts closer than this along the rod (of length 1) are a stretch of the rod lying
+/// along the profile: the point-contact model does not resolve it (the segment between them,
+/// of stiffness EI/ℓ³, is at least 1e9 times stiffer than the rod, and its Newton iterations
+/// stall or its branch seems to turn back at every step).
+const LYING_SPACING: f64 = 1e-3;
+
+/// How a march in the amplitude that does not reach the full profile ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Short {
+    /// In a fold (a snap) at this amplitude.
+    Snap(f64),
+    /// Where the rod begins to lie along the profile (amplitude, s, spacing): see [`lies`].
+    Lies(f64, f64, f64),
+    /// Otherwise.
+    Other,
+}
+
+/// Where the rod lies along the profile between two neighbouring contacts of `set` at `q`:
+/// they are closer than [`LYING_SPACING`] along the rod, or the free rod between them touches
+/// the profile to [`AT_ZERO`] (a third point where no contact holds). The first one's place
+/// and their spacing. (On the scenes of issue 31 with contacts that close, the rod's curvature
+/// at both equals the profile's there to 1e-3: the rod between them follows the profile.)
+fn lies(set: &ContactSet, q: &Pt) -> Option<(f64, f64)> {
+    let at: Vec<f64> = (0..set.contacts.len()).map(|j| set.s_of(j, &q.u)).collect();
+    let touches =
+        |w: &[f64]| q.w.clear.abs() <= AT_ZERO && w[0] < q.w.clear_s && q.w.clear_s < w[1];
+    at.windows(2)
+        .find(|w| w[1] - w[0] < LYING_SPACING || touches(w))
+        .map(|w| (w[0], w[1] - w[0]))
+}
+
+/// How a march ended short at `(stop, last)`: a fold is a snap unless its state has the rod
+/// lying along the profile ([`lies`]; then its branch is not resolved).
+fn short(stop: &StopReason, last: Option<&(ContactSet, Pt)>) -> Short {
+    match (stop, last) {
+        (StopReason::FoldInD { d }, l) if l.is_none_or(|(set, q)| lies(set, q).is_none()) => {
+            Short::Snap(*d)
+        }
+        (_, Some((set, q))) => match lies(set, q) {
+            Some((s, gap)) => Short::Lies(q.lam, s, gap),
+            None => Short::Other,
+        },
+        _ => Short::Other,
+    }
+}
+
+/// Why the profile could not be grown to its full amplitude.
+enum GrowError {
+    /// The pressed rod snaps as the profile grows: its equilibria fold back at the amplitude
+    /// `amplitude` (of 1) and no march found a way past.
+    Snap { amplitude: f64 },
+    /// The rod begins to lie along the profile at the amplitude `amplitude`: between two of
+    /// its contacts, at `s` and `spacing` beyond ([`lies`]).
+    Lies {
+        amplitude: f64,
+        s: f64,
+        spacing: f64,
+    },
+    /// What failed (and why).
+    Failed(&'static str, String),
+}
+
 /// The march in the amplitude from the rod pressed on the straight trend, `p0` (amplitude 0),
 /// to the full profile: its contact set and last point there, or what failed (and why). Where a
 /// free part lies on the trend at `p0` and that march ends short, the rod is settled on the
-/// profile at a small amplitude ([`settle`]) and the march goes on from there.
+/// profile at a small amplitude ([`settle`]) and the march goes on from there. Where every
+/// such march ends at a change of contacts that it does not resolve (a touchdown whose new
+/// state Newton does not solve, a jump of the highest free point that no event locates), the
+/// march is resumed from where it ended ([`resume`]); where a free part lies on the trend, the
+/// rod is settled at the larger amplitudes [`SETTLE_LATER`] as well. A march that ends in a
+/// fold is a snap; one whose last state has the rod lying along the profile between two
+/// contacts ([`lies`]), a rod lying down ([`short`]).
 fn grow<P: Profile>(
     st: &mut OwnStepper<P>,
     p0: Pt,
     rod: &Rod,
     profile: &P,
-) -> Result<(ContactSet, Pt), (&'static str, String)> {
+) -> Result<(ContactSet, Pt), GrowError> {
     let spec = Spec {
         env: &st.env.clone(),
         grid: &[],
@@ -243,13 +336,15 @@ fn grow<P: Profile>(
     };
     // (the march from amplitude 0 first, as for any start: where it grows the profile, the
     // start is what it was before settling existed)
-    let n = if lying(&p0) { SETTLE_AT.len() + 1 } else { 1 };
+    let lying_tail = lying(&p0);
+    let n = if lying_tail { SETTLE_AT.len() + 1 } else { 1 };
     let set0 = st.chain.set.clone();
     let mut first_failure: Option<(&'static str, String)> = None;
+    let mut ended: Vec<(StopReason, Option<(ContactSet, Pt)>)> = Vec::new();
     for &t in [0.0].iter().chain(&SETTLE_AT).take(n) {
         st.chain.set = set0.clone();
         let from = if t > 0.0 {
-            match settle(st, &p0, t) {
+            match settle(st, &p0, t, Settle::First) {
                 Ok(q) => q,
                 Err(e) => {
                     note(&mut first_failure, t, e.to_string());
@@ -262,17 +357,103 @@ fn grow<P: Profile>(
         let out = march(st, &spec, profile, from, Stats::default());
         match (&out.stop, out.last) {
             (StopReason::DMax, Some((set, pt))) if pt.lam == 1.0 => return Ok((set, pt)),
-            (stop, _) if t == 0.0 => {
-                first_failure = Some(("the march in the amplitude", stop.describe("d")));
+            (stop, last) => {
+                if t == 0.0 {
+                    first_failure = Some(("the march in the amplitude", stop.describe("d")));
+                } else {
+                    note(
+                        &mut first_failure,
+                        t,
+                        format!("then {}", stop.describe("d")),
+                    );
+                }
+                ended.push((stop.clone(), last));
             }
-            (stop, _) => note(
-                &mut first_failure,
-                t,
-                format!("then {}", stop.describe("d")),
-            ),
         }
     }
-    Err(first_failure.unwrap_or(("the march in the amplitude", "no start".into())))
+    // (what follows runs only where every march above ended short: a start that grew before
+    // is what it was)
+    let later = if lying_tail { &SETTLE_LATER[..] } else { &[] };
+    for &t in later {
+        st.chain.set = set0.clone();
+        if let Ok(q) = settle(st, &p0, t, Settle::Careful) {
+            let out = march(st, &spec, profile, q, Stats::default());
+            match (&out.stop, out.last) {
+                (StopReason::DMax, Some((set, pt))) if pt.lam == 1.0 => return Ok((set, pt)),
+                (stop, last) => ended.push((stop.clone(), last)),
+            }
+        }
+    }
+    let mut ends = Vec::new();
+    for (stop, last) in ended {
+        let resumable = matches!(
+            stop,
+            StopReason::ContactChange { .. } | StopReason::SolverFailure { .. }
+        );
+        match (short(&stop, last.as_ref()), last) {
+            (Short::Other, Some(l)) if resumable => match resume(st, &spec, profile, l) {
+                Ok(done) => return Ok(done),
+                Err(e) => ends.push(e),
+            },
+            (e, _) => ends.push(e),
+        }
+    }
+    // (the earliest amplitude at which the rod snaps, else lies down)
+    let first = |f: fn(&Short) -> Option<[f64; 3]>| {
+        ends.iter()
+            .filter_map(f)
+            .min_by(|a, b| a[0].total_cmp(&b[0]))
+    };
+    if let Some([amplitude, ..]) = first(|e| match *e {
+        Short::Snap(d) => Some([d, 0.0, 0.0]),
+        _ => None,
+    }) {
+        return Err(GrowError::Snap { amplitude });
+    }
+    if let Some([amplitude, s, spacing]) = first(|e| match *e {
+        Short::Lies(d, s, gap) => Some([d, s, gap]),
+        _ => None,
+    }) {
+        return Err(GrowError::Lies {
+            amplitude,
+            s,
+            spacing,
+        });
+    }
+    let (what, why) = first_failure.unwrap_or(("the march in the amplitude", "no start".into()));
+    Err(GrowError::Failed(what, why))
+}
+
+/// The march in the amplitude resumed from its last point `(set, p)`, where it found no contact
+/// state to continue with: the rod settled ([`settle`], [`Settle::Careful`]) a little further
+/// on ([`RESUME_STEP`]) and marched from there, at most [`RESUMES`] times. The full profile's
+/// contact set and point, else how the last march ended short ([`short`]: one that ends with
+/// the rod lying along the profile, [`lies`], is not resumed).
+fn resume<P: Profile>(
+    st: &mut OwnStepper<P>,
+    spec: &Spec<'_>,
+    profile: &P,
+    (mut set, mut p): (ContactSet, Pt),
+) -> Result<(ContactSet, Pt), Short> {
+    for _ in 0..RESUMES {
+        let settled = RESUME_STEP.iter().find_map(|&dt| {
+            st.chain.set = set.clone();
+            settle(st, &p, (p.lam + dt).min(1.0), Settle::Careful).ok()
+        });
+        let q = settled.ok_or(Short::Other)?;
+        let out = march(st, spec, profile, q, Stats::default());
+        match (out.stop, out.last) {
+            (StopReason::DMax, Some((s, pt))) if pt.lam == 1.0 => return Ok((s, pt)),
+            (
+                stop @ (StopReason::ContactChange { .. } | StopReason::SolverFailure { .. }),
+                Some(l),
+            ) if short(&stop, Some(&l)) == Short::Other => {
+                (set, p) = l;
+            }
+            (stop, last) => return Err(short(&stop, last.as_ref())),
+        }
+    }
+    Err(Short::Other)
 }
 
 /// Adds to the failure of the march from amplitude 0 the first failure of a start settled at
@@ -299,16 +480,33 @@ fn lying(p: &Pt) -> bool {
 /// trend without a contact).
 const LYING: f64 = 1e-10;
 
-/// The rod at amplitude `t` from the state `p` at amplitude 0 whose free part lies on the
-/// straight trend. Every point of that part touches at 0, so the contacts the grown profile
+/// How [`settle`] chooses among the contact states it tries after a touchdown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Settle {
+    /// The first that is solved.
+    First,
+    /// The first solved that holds, else the first solved; never one it reached before (the
+    /// same contacts at the same places), which would cycle (a tip that touches down and
+    /// pulls, released, touching down again).
+    Careful,
+}
+
+/// The rod at amplitude `t` from the state `p` at a smaller amplitude (0, where its free part
+/// lies on the straight trend; or where a march in the amplitude ended, see [`resume`]). Every
+/// point of a lying part touches at 0, so the contacts the grown profile
 /// makes begin there at once (a touchdown at the march's start, with no place singled out
-/// along the lying part); they are found at the small amplitude `t` itself, as an active set:
+/// along the lying part); they are found at the amplitude `t` itself, as an active set:
 /// the state solved with the contacts so far, then a contact that pulls released, a touching
 /// tip that turns into the profile laid down, or a contact added where the rod crosses the
 /// profile most (beside the others, else in place of its neighbour before or after it, which
 /// passes it its load), until the state holds (no pull, no crossing beyond [`AT_ZERO`]). The
 /// contacts are frictionless, as in the march in the amplitude.
-fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, SettleError> {
+fn settle<P: Profile>(
+    st: &mut OwnStepper<P>,
+    p: &Pt,
+    t: f64,
+    how: Settle,
+) -> Result<Pt, SettleError> {
     let rules = Rules {
         friction: false,
         slide: false,
@@ -318,6 +516,7 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Sett
     let mut q = st
         .switch(set.clone(), t, p.u.clone())
         .map_err(SettleError::Start)?;
+    let mut seen = vec![place(&set, &q)];
     for _ in 0..SETTLE_CHANGES {
         let pull = (0..set.contacts.len())
             .filter(|&j| q.w.contacts[j].normal < 0.0)
@@ -350,11 +549,17 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Sett
         }
         let mut failed = None;
         let mut next = None;
+        let mut solved: Option<(ContactSet, Pt)> = None;
         for (ts, tu) in tries {
             match st.switch(ts.clone(), t, tu) {
-                Ok(r) => {
+                Ok(r) if how == Settle::First || settled(&r) && !seen.contains(&place(&ts, &r)) => {
                     next = Some((ts, r));
                     break;
+                }
+                Ok(r) => {
+                    if solved.is_none() && !seen.contains(&place(&ts, &r)) {
+                        solved = Some((ts, r));
+                    }
                 }
                 Err(error) => {
                     failed = Some(SettleError::Switch {
@@ -365,6 +570,15 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Sett
                 }
             }
         }
+        if next.is_none() {
+            // (the stepper holds the last state tried: the one chosen, solved again)
+            if let Some((ts, r)) = solved {
+                next = Some((
+                    ts.clone(),
+                    st.switch(ts, t, r.u).map_err(SettleError::Start)?,
+                ));
+            }
+        }
         let Some(n) = next else {
             return Err(failed.unwrap_or(SettleError::NoState {
                 cross,
@@ -372,8 +586,28 @@ fn settle<P: Profile>(st: &mut OwnStepper<P>, p: &Pt, t: f64) -> Result<Pt, Sett
             }));
         };
         (set, q) = n;
+        seen.push(place(&set, &q));
     }
     Err(SettleError::Unsettled { set: set.label() })
+}
+
+/// Whether the state `q` holds as [`settle`] asks: no contact pulls, a touching tip does not
+/// turn into the profile, no free part crosses it beyond [`AT_ZERO`].
+fn settled(q: &Pt) -> bool {
+    // (as the active set of [`settle`] reads them: NaN neither pulls, turns nor crosses)
+    let turns = q.w.tip_approach < 0.0;
+    let crosses = q.w.clear > AT_ZERO;
+    let pulls = q.w.contacts.iter().any(|c| c.normal < 0.0);
+    !pulls && !turns && !crosses
+}
+
+/// A state's contacts and their places along the rod (to 1e-9), which [`Settle::Careful`]
+/// does not return to.
+fn place(set: &ContactSet, q: &Pt) -> (String, Vec<i64>) {
+    let at = (0..set.contacts.len())
+        .map(|j| (set.s_of(j, &q.u) * 1e9).round() as i64)
+        .collect();
+    (set.label(), at)
 }
 
 /// Why [`settle`] found no state at its amplitude.

@@ -7,7 +7,7 @@
 //! with the tail are found at a small amplitude and the growth goes on from there.
 
 use vibrissa::surface::{Height, SurfaceProfile};
-use vibrissa::{drag, DragOptions, Scene, Stiffness};
+use vibrissa::{drag, DragOptions, Scene, Stiffness, VibrissaError};
 
 /// The corrugation of the docs' example (docs/robustness.md, "Textures: issue 31's grid").
 const SINE: SurfaceProfile = SurfaceProfile::Sine {
@@ -81,5 +81,142 @@ fn a_tapered_rod_lying_on_the_trend_starts_on_the_corrugation() {
         (next.m_base, start.m_base),
     ] {
         assert!((a - b).abs() < 1e-3, "{a} against the start's {b}");
+    }
+}
+
+/// The rat preset (data/scenes/rat_mystacial_short.toml) at the grid's η = 0.75.
+fn rat_short() -> Scene {
+    let path = format!(
+        "{}/../../data/scenes/rat_mystacial_short.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let s: Scene = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    Scene { eta: 0.75, ..s }
+}
+
+/// The tapered rod (ρ = 0.3) of the grid.
+fn taper() -> Scene {
+    Scene {
+        stiffness: Stiffness::Taper { ratio: 0.3 },
+        ..Scene::default()
+    }
+}
+
+/// `scene` on the sine of amplitude `a`, wavelength `w`, phase `p`, with the grid's friction,
+/// dragged a short way (the start is what is tested).
+fn on_sine(scene: Scene, a: f64, w: f64, p: f64) -> Result<vibrissa::DragResult, VibrissaError> {
+    let scene = Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: a,
+            wavelength: w,
+            phase: p,
+        },
+        ..scene
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let opts = DragOptions {
+        d_max: 1e-3,
+        points: 2,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        keep_shapes: Some(1001),
+        ..DragOptions::default()
+    };
+    drag(&rod, &surface, &opts)
+}
+
+/// The start of `r` (on `profile` at η = 0.75) holds: every contact pushes (N > 0) with
+/// |T| ≤ μs N, lies on the surface to [`ON_SURFACE`], and the rod sampled at 1001 points is
+/// nowhere beyond the surface by more than that. Returns the number of contacts.
+fn start_holds(r: &vibrissa::DragResult, profile: &SurfaceProfile) -> usize {
+    let h = Height::new(profile, 0.75, 0.0).unwrap().unwrap();
+    let start = &r.rows[0];
+    assert_eq!(start.d, 0.0);
+    for c in &start.contacts {
+        assert!(c.normal > 0.0, "a tensile contact at the start: {c}");
+        assert!(c.tangential.abs() <= 0.5 * c.normal, "beyond μs: {c}");
+        let off = c.y - h.jet(c.x).0;
+        assert!(off.abs() <= ON_SURFACE, "off the surface by {off:e}: {c}");
+    }
+    let worst = r.shapes[0]
+        .iter()
+        .map(|p| p.y - h.jet(p.x).0)
+        .fold(f64::NEG_INFINITY, f64::max);
+    assert!(
+        worst <= ON_SURFACE,
+        "the start crosses the surface by {worst:e}"
+    );
+    start.contacts.len()
+}
+
+/// Issue 31's grid, taper 0.3 on the sine 0.001 / 0.05 / phase 0: the tail lying on the trend
+/// settled at the small amplitudes into two contacts 4e-4 apart with the rod between them
+/// within rounding of the sine, which the march in the amplitude could not follow ("no start:
+/// ... side+side does not hold beyond d = 0.001"). Settled at a tenth of the amplitude its
+/// contacts lie apart and the growth reaches the full sine: the start holds, with the tail on
+/// the sine (more than the one side of the flat surface).
+#[test]
+fn a_tail_lying_on_the_trend_settles_at_a_larger_amplitude() {
+    let r = on_sine(taper(), 0.001, 0.05, 0.0).expect("a start on the sine");
+    let profile = SurfaceProfile::Sine {
+        amplitude: 0.001,
+        wavelength: 0.05,
+        phase: 0.0,
+    };
+    assert!(start_holds(&r, &profile) >= 2);
+}
+
+/// Issue 31's grid, the short rat preset on the sine 0.003 / 0.1 / phase 2π/3: the march in
+/// the amplitude met a side touching down whose new state Newton did not solve ("no start: ...
+/// touchdown (side to side+side): the new contact state does not hold: Newton did not
+/// converge"). Resumed a little further on, it reaches the full sine: the start holds.
+#[test]
+fn a_touchdown_newton_does_not_solve_is_passed_by_resuming() {
+    let p = 2.0 * std::f64::consts::PI / 3.0;
+    let r = on_sine(rat_short(), 0.003, 0.1, p).expect("a start on the sine");
+    let profile = SurfaceProfile::Sine {
+        amplitude: 0.003,
+        wavelength: 0.1,
+        phase: p,
+    };
+    assert!(start_holds(&r, &profile) >= 1);
+}
+
+/// Issue 31's grid, taper 0.3 with a round tip (radius 0.005) on the steep sine 0.05 / 0.1 /
+/// phase 0: the pressed rod's equilibria fold back as the sine grows, so there is no
+/// quasi-static pressed start; the start says so as a snap, at an amplitude inside (0, 1).
+#[test]
+fn a_rod_that_snaps_as_the_texture_grows_has_no_start() {
+    let scene = Scene {
+        tip_radius: 0.005,
+        ..taper()
+    };
+    match on_sine(scene, 0.05, 0.1, 0.0) {
+        Err(VibrissaError::StartSnaps { amplitude }) => {
+            assert!(amplitude > 0.0 && amplitude < 1.0, "{amplitude}")
+        }
+        other => panic!("expected a snap at the start, got {other:?}"),
+    }
+}
+
+/// Issue 31's grid, the short rat preset on the sine 0.001 / 0.05 / phase 2π/3: as the sine
+/// grows, the rod's free curved tail meets a stretch whose curvature equals its own, and the
+/// rod lies down along it: two contacts closer than 1e-3 of the rod's length, the march from
+/// them turning back at every step. The start says so, with the place on the rod and the
+/// spacing (below 1e-3).
+#[test]
+fn a_rod_that_lies_down_along_the_texture_has_no_start() {
+    let p = 2.0 * std::f64::consts::PI / 3.0;
+    match on_sine(rat_short(), 0.001, 0.05, p) {
+        Err(VibrissaError::StartLies {
+            amplitude,
+            s,
+            spacing,
+        }) => {
+            assert!(amplitude > 0.0 && amplitude < 1.0, "{amplitude}");
+            assert!(s > 0.0 && s < 1.0, "{s}");
+            assert!(spacing > 0.0 && spacing < 1e-3, "{spacing}");
+        }
+        other => panic!("expected the rod lying down at the start, got {other:?}"),
     }
 }
