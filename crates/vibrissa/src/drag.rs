@@ -871,8 +871,9 @@ impl<P: Profile> DragRun<'_, P> {
                     // another contact reached its slip limit: it breaks free and slides along
                     // at that limit while this one goes on
                     let k = slipping(&senv, &eset, &qe, Some(j));
-                    let c = qe.w.contacts[k];
-                    let next = riding(eset, k, c.tangential / c.normal);
+                    let Some(next) = broke_free(eset, &qe, k) else {
+                        return Err(Self::failure(d_s, "a contact breaks free at N = 0".into()));
+                    };
                     slid += own_slide;
                     x_now = qe.w.contacts[j].x;
                     (cset, cu, clam) = (next, qe.u, qe.lam);
@@ -1188,6 +1189,14 @@ fn place(m: Mode) -> f64 {
         Mode::Stuck(a) | Mode::Rolling(a) => a,
         _ => f64::NAN,
     }
+}
+
+/// `set` with contact `k`, at its slip limit at `pe`, sliding along at that limit (`T/N` kept);
+/// `None` where its ratio is not finite (no normal force).
+fn broke_free(set: ContactSet, pe: &Pt, k: usize) -> Option<ContactSet> {
+    let c = pe.w.contacts[k];
+    let ratio = c.tangential / c.normal;
+    ratio.is_finite().then(|| riding(set, k, ratio))
 }
 
 /// How far the slip's own contact slid while it rode on (its number, way and place where it
