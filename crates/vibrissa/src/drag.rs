@@ -871,7 +871,7 @@ impl<P: Profile> DragRun<'_, P> {
                     // another contact reached its slip limit: it breaks free and slides along
                     // at that limit while this one goes on
                     let k = slipping(&senv, &eset, &qe, Some(j));
-                    let Some(next) = broke_free(eset, &qe, k) else {
+                    let Some(next) = riding_at_limit(eset, &qe, k) else {
                         return Err(Self::failure(d_s, "a contact breaks free at N = 0".into()));
                     };
                     slid += own_slide;
@@ -1041,9 +1041,7 @@ impl<P: Profile> DragRun<'_, P> {
                 ),
             });
         };
-        let mut nset = nset;
-        nset.contacts[sl.driver].mode = Mode::Sliding(sl.dir * sl.mu_k);
-        Ok(nset)
+        Ok(riding(nset, sl.driver, sl.dir * sl.mu_k))
     }
 
     /// Arc length along the surface from lab `x0` to `x1`.
@@ -1193,7 +1191,7 @@ fn place(m: Mode) -> f64 {
 
 /// `set` with contact `k`, at its slip limit at `pe`, sliding along at that limit (`T/N` kept);
 /// `None` where its ratio is not finite (no normal force).
-fn broke_free(set: ContactSet, pe: &Pt, k: usize) -> Option<ContactSet> {
+fn riding_at_limit(set: ContactSet, pe: &Pt, k: usize) -> Option<ContactSet> {
     let c = pe.w.contacts[k];
     let ratio = c.tangential / c.normal;
     ratio.is_finite().then(|| riding(set, k, ratio))

@@ -106,11 +106,7 @@ fn taper() -> Scene {
 /// dragged a short way (the start is what is tested).
 fn on_sine(scene: Scene, a: f64, w: f64, p: f64) -> Result<vibrissa::DragResult, VibrissaError> {
     let scene = Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: a,
-            wavelength: w,
-            phase: p,
-        },
+        surface: sine(a, w, p),
         ..scene
     };
     let (rod, surface) = scene.parts().unwrap();
@@ -123,6 +119,22 @@ fn on_sine(scene: Scene, a: f64, w: f64, p: f64) -> Result<vibrissa::DragResult,
         ..DragOptions::default()
     };
     drag(&rod, &surface, &opts)
+}
+
+/// The sine of amplitude `a`, wavelength `w` and phase `p`.
+fn sine(a: f64, w: f64, p: f64) -> SurfaceProfile {
+    SurfaceProfile::Sine {
+        amplitude: a,
+        wavelength: w,
+        phase: p,
+    }
+}
+
+/// The drag of `scene` on the sine `(a, w, p)` starts, and its start holds ([`start_holds`]):
+/// the number of its contacts.
+fn starts_on(scene: Scene, a: f64, w: f64, p: f64) -> usize {
+    let r = on_sine(scene, a, w, p).expect("a start on the sine");
+    start_holds(&r, &sine(a, w, p))
 }
 
 /// The start of `r` (on `profile` at η = 0.75) holds: every contact pushes (N > 0) with
@@ -157,13 +169,7 @@ fn start_holds(r: &vibrissa::DragResult, profile: &SurfaceProfile) -> usize {
 /// the sine (more than the one side of the flat surface).
 #[test]
 fn a_tail_lying_on_the_trend_settles_at_a_larger_amplitude() {
-    let r = on_sine(taper(), 0.001, 0.05, 0.0).expect("a start on the sine");
-    let profile = SurfaceProfile::Sine {
-        amplitude: 0.001,
-        wavelength: 0.05,
-        phase: 0.0,
-    };
-    assert!(start_holds(&r, &profile) >= 2);
+    assert!(starts_on(taper(), 0.001, 0.05, 0.0) >= 2);
 }
 
 /// Issue 31's grid, taper 0.3 on the sine 0.003 / 0.02 / phase 0: the march in the amplitude
@@ -172,13 +178,7 @@ fn a_tail_lying_on_the_trend_settles_at_a_larger_amplitude() {
 /// Resumed a little further on, it reaches the full sine: the start holds.
 #[test]
 fn a_march_in_the_amplitude_that_stops_is_resumed() {
-    let r = on_sine(taper(), 0.003, 0.02, 0.0).expect("a start on the sine");
-    let profile = SurfaceProfile::Sine {
-        amplitude: 0.003,
-        wavelength: 0.02,
-        phase: 0.0,
-    };
-    assert!(start_holds(&r, &profile) >= 1);
+    assert!(starts_on(taper(), 0.003, 0.02, 0.0) >= 1);
 }
 
 /// Issue 31's grid, the short rat preset on the sine 0.003 / 0.1 / phase 2π/3: the march in
