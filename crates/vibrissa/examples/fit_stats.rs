@@ -89,6 +89,9 @@ impl Tally {
     }
 }
 
+/// The friction pair the traces are drawn with.
+const TRUTH: [f64; 2] = [0.5, 0.3];
+
 fn main() {
     // (the tail function against known values: t_1 is Cauchy, P(|T_1| > 1) = 1/2; the normal
     // limit P(|Z| > 3) = 2.6998e-3)
@@ -123,15 +126,14 @@ fn main() {
         Scene::default()
     };
     let (rod, surface) = scene.parts().expect("scene");
-    let truth = [0.5, 0.3];
     let r = drag(
         &rod,
         &surface,
         &DragOptions {
             d_max: if corrugated { 1.0 } else { 0.5 },
             points: 2,
-            mu_s: Some(truth[0]),
-            mu_k: Some(truth[1]),
+            mu_s: Some(TRUTH[0]),
+            mu_k: Some(TRUTH[1]),
             max_slips: 32,
             ..DragOptions::default()
         },
@@ -162,18 +164,61 @@ fn main() {
         vec![4, 8, 16, 32]
     };
     assert!(lengths.iter().all(|&n| (1..=r.slips.len()).contains(&n)));
+    let (rows, ratios) = trials_table(&scene, &r, (trials, lengths), &given);
+    // the estimated standard errors against the spread they estimate: the standard error with
+    // the noise levels given (the spread to first order) and the trials' rms error
+    println!(
+        "slips | mean SE / SE with sigma given mu_s, mu_k | rms SE / rms error mu_s, mu_k | mean \
+         SE / rms error mu_s, mu_k (sigma estimated)"
+    );
+    for (n, q) in &ratios {
+        println!(
+            "{n} | {:.3}, {:.3} | {:.3}, {:.3} | {:.3}, {:.3}",
+            q[0][0], q[1][0], q[0][1], q[1][1], q[0][2], q[1][2]
+        );
+    }
+    information(&scene, &r, &rows, &given);
+    for w in rows.windows(2) {
+        let ((n0, r0, s0), (n1, r1, s1)) = (w[0], w[1]);
+        println!(
+            "{n0} -> {n1} slips: rms error ratio mu_s {:.2}, mu_k {:.2}; standard error ratio (sigma \
+             given) mu_s {:.2}, mu_k {:.2}; 1/sqrt(n): {:.2}",
+            r0[0] / r1[0],
+            r0[1] / r1[1],
+            s0[0] / s1[0],
+            s0[1] / s1[1],
+            ((n1 as f64) / (n0 as f64)).sqrt()
+        );
+    }
+}
+
+/// A trace length: its slips, the trials' rms errors of μs and μk, and their mean standard errors
+/// with the noise levels given.
+type Length = (usize, [f64; 2], [f64; 2]);
+
+/// A trace length's slips and, for μs and μk, the mean estimated standard error over the one with
+/// the noise levels given, the rms standard error over the rms error, and the mean standard error
+/// over the rms error.
+type SeRatios = (usize, [[f64; 3]; 2]);
+
+/// Per trace length: a row of the trials' tallies printed (σ estimated and given), and the
+/// length's rms errors with the standard errors given σ, and the ratios of the estimated standard
+/// errors to the spread they estimate.
+fn trials_table(
+    scene: &Scene,
+    r: &vibrissa::DragResult,
+    (trials, lengths): (u64, Vec<usize>),
+    given: &FitOptions,
+) -> (Vec<Length>, Vec<SeRatios>) {
     let mut rows = Vec::new();
     let mut ratios = Vec::new();
     for n in lengths {
         let (mut est, mut giv) = (Tally::default(), Tally::default());
         for seed in 0..trials {
             let mut rng = Rng(1000 * n as u64 + seed);
-            let t = noisy(&r, n, &mut rng);
-            est.add(
-                &fit(&scene, &t, &FitOptions::default()).expect("fit"),
-                truth,
-            );
-            giv.add(&fit(&scene, &t, &given).expect("fit"), truth);
+            let t = noisy(r, n, &mut rng);
+            est.add(&fit(scene, &t, &FitOptions::default()).expect("fit"), TRUTH);
+            giv.add(&fit(scene, &t, given).expect("fit"), TRUTH);
         }
         let k = trials as f64;
         let rms = est.e2.map(|e| (e / k).sqrt());
@@ -205,38 +250,30 @@ fn main() {
             [0, 1].map(|i| [se[i] / se_given[i], rms_se[i] / rms[i], se[i] / rms[i]]),
         ));
     }
-    // the estimated standard errors against the spread they estimate: the standard error with
-    // the noise levels given (the spread to first order) and the trials' rms error
-    println!(
-        "slips | mean SE / SE with sigma given mu_s, mu_k | rms SE / rms error mu_s, mu_k | mean \
-         SE / rms error mu_s, mu_k (sigma estimated)"
-    );
-    for (n, q) in &ratios {
-        println!(
-            "{n} | {:.3}, {:.3} | {:.3}, {:.3} | {:.3}, {:.3}",
-            q[0][0], q[1][0], q[0][1], q[1][1], q[0][2], q[1][2]
-        );
-    }
-    // where the information comes from: the standard errors of the noiseless trace with the
-    // noise levels given, from every observation, from the signals alone (the places weighted
-    // out by σ_d = 1e3) and from the places alone
+    (rows, ratios)
+}
+
+/// Where the information comes from: the standard errors of the noiseless trace of each length
+/// of `rows` with the noise levels given, from every observation, from the signals alone (the
+/// places weighted out by σ_d = 1e3) and from the places alone, and their ratios between lengths.
+fn information(scene: &Scene, r: &vibrissa::DragResult, rows: &[Length], given: &FitOptions) {
     println!(
         "slips | SE mu_s, mu_k from all observations | signals only | places only (noiseless \
          trace, noise levels given)"
     );
     let mut info = Vec::new();
-    for &(n, _, _) in &rows {
-        let all = exact(&r, n);
+    for &(n, _, _) in rows {
+        let all = exact(r, n);
         let places = places_only(&all);
         let no_places = FitOptions {
             sigma: Some([1e3, SIGMA[1], SIGMA[2], SIGMA[3]]),
             ..FitOptions::default()
         };
         let se = |t: &Trace, o: &FitOptions| -> [f64; 2] {
-            let f = fit(&scene, t, o).expect("fit");
+            let f = fit(scene, t, o).expect("fit");
             ["mu_s", "mu_k"].map(|p| f.get(p).and_then(|q| q.std_error).unwrap_or(f64::NAN))
         };
-        let (a, b, c) = (se(&all, &given), se(&all, &no_places), se(&places, &given));
+        let (a, b, c) = (se(&all, given), se(&all, &no_places), se(&places, given));
         println!(
             "{n} | {:.3e}, {:.3e} | {:.3e}, {:.3e} | {:.3e}, {:.3e}",
             a[0], a[1], b[0], b[1], c[0], c[1]
@@ -252,18 +289,6 @@ fn main() {
             b0[1] / b1[1],
             c0[0] / c1[0],
             c0[1] / c1[1]
-        );
-    }
-    for w in rows.windows(2) {
-        let ((n0, r0, s0), (n1, r1, s1)) = (w[0], w[1]);
-        println!(
-            "{n0} -> {n1} slips: rms error ratio mu_s {:.2}, mu_k {:.2}; standard error ratio (sigma \
-             given) mu_s {:.2}, mu_k {:.2}; 1/sqrt(n): {:.2}",
-            r0[0] / r1[0],
-            r0[1] / r1[1],
-            s0[0] / s1[0],
-            s0[1] / s1[1],
-            ((n1 as f64) / (n0 as f64)).sqrt()
         );
     }
 }
