@@ -331,6 +331,8 @@ pub(crate) struct Chain<P: Profile> {
     bps: Vec<f64>,
     /// The last evaluation with sensitivities: `∂z(s_k)/∂(u, λ)` at each breakpoint (4 × (n + 1)).
     zs: Vec<DMatrix<f64>>,
+    /// The unknowns and `λ` of the last evaluation (the shooter's paths are of that state).
+    shot: (Vec<f64>, f64),
 }
 
 /// How far past the tip a contact's arc length may go inside a solve (see
@@ -356,6 +358,7 @@ impl<P: Profile> Chain<P> {
             family,
             bps: Vec::new(),
             zs: Vec::new(),
+            shot: (Vec::new(), f64::NAN),
         }
     }
 
@@ -382,6 +385,8 @@ impl<P: Profile> Chain<P> {
         let n = set.n();
         let nc = n + 1; // columns: u, then λ
         let (pose, dpose) = self.family.pose(lam);
+        // (a shot that fails part way leaves paths of no state)
+        self.shot.1 = f64::NAN;
         let bps = self.breakpoints(u)?;
         self.bps.clone_from(&bps);
         if var {
@@ -493,6 +498,9 @@ impl<P: Profile> Chain<P> {
         if !r.iter().all(|v| v.is_finite()) {
             return Err(EvalError::NonFinite);
         }
+        self.shot.0.clear();
+        self.shot.0.extend_from_slice(u);
+        self.shot.1 = lam;
         Ok(Eval {
             r,
             jac,
@@ -790,6 +798,18 @@ impl<P: Profile, M: FnMut(&mut Chain<P>, f64)> Curve for Morph<P, M> {
 }
 
 impl<P: Profile> Chain<P> {
+    /// Whether the shooter's paths are of the state `(u, λ)` (its last evaluation).
+    pub fn shot_of(&self, u: &[f64], lam: f64) -> bool {
+        self.shot.1.to_bits() == lam.to_bits()
+            && self.shot.0.len() == u.len()
+            && self
+                .shot
+                .0
+                .iter()
+                .zip(u)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+
     /// The whole rod of the last evaluation as a [`Solution`] (the loaded segments' paths, then
     /// the unloaded rest beyond the last contact, integrated here to the tolerance), with
     /// `params = [f, α]` of the total contact force. A breakpoint appears twice in the mesh, with

@@ -33,21 +33,36 @@ impl OnPlane for Plane<'_> {
     }
 }
 
+/// Whether an event of the march has ended at a branch point (the fold passage hands its path
+/// back there: the march locates the event between the path's points).
+pub(crate) type Ended<'a> = &'a mut dyn FnMut(&Pt) -> bool;
+
 /// Follows the branch from the newest point of `hist` until `λ` passes `target` (or reaches
-/// `lam_end`) or the branch turns back.
-pub(crate) fn pass(st: &mut dyn Stepper, hist: &[Pt], target: f64, lam_end: f64) -> Passed {
-    match follow(st, hist, target, lam_end, &FOLD_STEPS) {
+/// `lam_end`) or the branch turns back, or an event has `ended` at a point of a long path.
+pub(crate) fn pass(
+    st: &mut dyn Stepper,
+    hist: &[Pt],
+    (target, lam_end): (f64, f64),
+    ended: Ended<'_>,
+) -> Passed {
+    match follow(st, hist, (target, lam_end), &FOLD_STEPS, ended) {
         Ok(p) => p,
         Err(e) => Passed::Failed(FoldFailure::Arc(e)),
     }
 }
 
+/// The path's lengths at which [`follow`] asks whether an event has ended (at the 8th, 16th,
+/// 32nd … point: a passage of a few steps pays nothing, a long one a watch per doubling).
+fn asks_at(k: usize) -> bool {
+    k >= 8 && k.is_power_of_two()
+}
+
 fn follow(
     st: &mut dyn Stepper,
     hist: &[Pt],
-    target: f64,
-    lam_end: f64,
+    (target, lam_end): (f64, f64),
     ctl: &FoldSteps,
+    ended: Ended<'_>,
 ) -> Result<Passed, ShotFailure> {
     let tol = st.corrector_tol();
     let last = &hist[hist.len() - 1];
@@ -68,6 +83,13 @@ fn follow(
         }
         if arc.last.lam() > target || arc.last.lam() >= lam_end {
             return beyond(st, path, target, lam_end);
+        }
+        // a branch far steeper in u than in λ (a rod trapped between a sliding contact and one
+        // that holds: its force pair changes by ~1e8 per unit slide) can take thousands of steps
+        // to the target, through an event that ends the state long before it (the held
+        // contact's slip limit)
+        if asks_at(path.len()) && st.arc_point(&arc.last).is_ok_and(|q| ended(&q)) {
+            return Ok(Passed::Beyond(upto_event(st, path)));
         }
     }
     Ok(Passed::Failed(FoldFailure::Budget {
@@ -106,6 +128,15 @@ fn locate_fold(
         q
     });
     Ok(Passed::Fold(lam, pt.map(Box::new)))
+}
+
+/// The path's points as branch points up to a point where an event ended (the last): those
+/// with a tangent, for the march to step through and locate the event on.
+fn upto_event(st: &mut dyn Stepper, path: Vec<ArcPoint>) -> Vec<Pt> {
+    path.iter()
+        .filter_map(|a| st.arc_point(a).ok())
+        .filter(|q| q.du.is_some())
+        .collect()
 }
 
 /// The path's points as branch points, the last one beyond `target` (or at `lam_end`). A point

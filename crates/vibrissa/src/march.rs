@@ -409,7 +409,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 let limit = Some(limit);
                 Err(end(StopReason::LiftOff { d: ls, limit }))
             }
-            (Err(e), _) => self.through_fold(w, lam, target, e),
+            (Err(e), _) => self.through_fold(w, (lam, target), e, armed),
         }
     }
 
@@ -444,12 +444,19 @@ impl<P: Profile> Run<'_, '_, P> {
     fn through_fold(
         &mut self,
         w: &mut Walk,
-        lam: f64,
-        target: f64,
+        (lam, target): (f64, f64),
         e: StepError,
+        armed: &[Crossing],
     ) -> Result<(Pt, bool), Flow> {
         let lam_end = self.spec.lam_end;
-        match fold::pass(&mut *self.stepper, &w.hist, target, lam_end) {
+        let env = &self.env;
+        let mut has_ended = |q: &Pt| armed.iter().any(|c| ended(c.of_watch(env, &q.w)));
+        match fold::pass(
+            &mut *self.stepper,
+            &w.hist,
+            (target, lam_end),
+            &mut has_ended,
+        ) {
             Passed::Beyond(ps) => {
                 // every point of the path, each taken as a step: a branch too steep for natural
                 // steps (near a bifurcation) is not a polynomial in λ between far points, and

@@ -29,6 +29,12 @@ impl<P: Profile> OwnStepper<P> {
     pub(crate) fn point(&mut self, lam: f64, cv: Converged) -> Result<Pt, StepError> {
         let du = cv.tangent();
         let det = cv.det();
+        if !self.chain.shot_of(&cv.u, lam) {
+            // (the fold passage turns its path into branch points after the path went on: the
+            // shooter's paths are of a later point, and the watch of this one would read the
+            // rod of that one)
+            self.chain.eval(&cv.u, lam, false).map_err(StepError::Rod)?;
+        }
         let sol = self.chain.path(&cv.u);
         let xf = self.chain.family.pose(lam).0.xf;
         let chain = &self.chain;

@@ -551,6 +551,31 @@ fn a_side_and_a_tip_that_walked_in_turn_slide_together_to_d_max() {
     assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
 
+/// A tip that slips beside a side 0.031 behind it that holds (texture grid: amplitude 0.001,
+/// wavelength 0.5, phase 2π/3, taper 0.3, point tip): the rod between them is trapped, and its
+/// force pair changes by ~1e8 per unit of the tip's slide. Natural steps failed on the slide's
+/// first 5e-7 and the fold passage crawled 5000 steps without reaching it, through the side's
+/// slip limit, so the drag stopped at d = 3.4e-6 ("the slide of such a tip is not followed").
+/// The passage now hands its path back where an event has ended, and each of its points is the
+/// rod at its own unknowns (they were watched on the shooter's paths of the passage's last
+/// point): the drag reaches d_max, every contact by Coulomb and every slip's energy balance.
+#[test]
+fn a_tip_slipping_beside_a_side_on_a_steep_trapped_branch_slides_to_d_max() {
+    let c = Case {
+        amp: 0.001,
+        wave: 0.5,
+        phase: 2.0 * std::f64::consts::PI / 3.0,
+        eta: 0.75,
+        mu_s: 0.5,
+        ratio: 0.6,
+        taper: Some(0.3),
+        radius: 0.0,
+        d_max: 0.3,
+    };
+    let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
+}
+
 /// Open: a solver failure at d = 0.00189: locating the slip event, the corrector crossed a fold.
 #[test]
 #[ignore = "open failure (issue 31)"]
