@@ -440,7 +440,8 @@ impl<P: Profile> Run<'_, '_, P> {
     }
 
     /// The fold passage after the natural step to `target` failed with `e`: its first point (the
-    /// rest queued), or the fold (the end), or the end with the failure.
+    /// rest queued, up to the first where an `armed` event has ended), or the fold (the end), or
+    /// the end with the failure.
     fn through_fold(
         &mut self,
         w: &mut Walk,
@@ -450,13 +451,8 @@ impl<P: Profile> Run<'_, '_, P> {
     ) -> Result<(Pt, bool), Flow> {
         let lam_end = self.spec.lam_end;
         let env = &self.env;
-        let mut has_ended = |q: &Pt| armed.iter().any(|c| ended(c.of_watch(env, &q.w)));
-        match fold::pass(
-            &mut *self.stepper,
-            &w.hist,
-            (target, lam_end),
-            &mut has_ended,
-        ) {
+        let done = |q: &Pt| armed.iter().any(|c| ended(c.of_watch(env, &q.w)));
+        match fold::pass(&mut *self.stepper, &w.hist, (target, lam_end), &done) {
             Passed::Beyond(ps) => {
                 // every point of the path, each taken as a step: a branch too steep for natural
                 // steps (near a bifurcation) is not a polynomial in λ between far points, and

@@ -30,9 +30,9 @@ impl<P: Profile> OwnStepper<P> {
         let du = cv.tangent();
         let det = cv.det();
         if !self.chain.shot_of(&cv.u, lam) {
-            // (the fold passage turns its path into branch points after the path went on: the
-            // shooter's paths are of a later point, and the watch of this one would read the
-            // rod of that one)
+            // (a solve converted after the shooter went on to other states: its paths are of
+            // those, and the watch would read the rod of another point; the fold passage once
+            // turned its whole path into points at its end, 982 such points in one texture drag)
             self.chain.eval(&cv.u, lam, false).map_err(StepError::Rod)?;
         }
         let sol = self.chain.path(&cv.u);

@@ -713,6 +713,56 @@ fn a_rat_slip_whose_side_let_go_jams_with_every_slip_balanced() {
     assert!(out.contains("stopped: jam at"), "{out}");
 }
 
+/// The short rat preset on `A sin(2πx/W + P)` (issue 31's texture grid) with a point tip.
+fn rat_case(amp: f64, wave: f64, phase: f64, d_max: f64) -> (Case, Scene) {
+    let c = Case {
+        taper: None,
+        d_max,
+        ..grid_case(amp, wave, phase, 0.0)
+    };
+    let path = format!(
+        "{}/../../data/scenes/rat_mystacial_short.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let rat: Scene = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let s = Scene {
+        stiffness: rat.stiffness,
+        precurvature: rat.precurvature,
+        ..scene(&c)
+    };
+    (c, s)
+}
+
+/// Was slow (issue 31's texture grid, 0.001/0.02/2π/3 on the short rat preset, point tip: 331
+/// slips to d = 0.00073 in 87 s of CPU, 2600 Newton iterations a slip): the contact at s = 0.9964
+/// slips beside a side at s = 0.9767 that holds, and the rod trapped between them relaxes the
+/// driver from μs to μk over a slide of 4e-10, far inside the slide's shortest natural step
+/// (5e-7). The fold passage took that step: 792 points to its end, 1090 Newton iterations,
+/// where the march used the first four (μk holds the driver among them) and dropped the rest.
+/// The passage now ends at the first point where an event of the march has ended (fold.rs
+/// `pass`). Every row's and slip's contacts and energies are checked (run_in); the drag to
+/// d = 1e-5 (two slips) takes fewer than 1000 Newton iterations in all, start included (2502
+/// before, 346 now; to 3e-5, nine slips: 10245 before, 480 now).
+#[test]
+fn a_trapped_slides_fold_passage_ends_where_the_driver_sticks() {
+    let (c, s) = rat_case(0.001, 0.02, 2.0 * std::f64::consts::FRAC_PI_3, 1e-5);
+    let out = run_in(&c, s.clone()).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(out.contains("stopped: d_max reached"), "{out}");
+    let (rod, surface) = s.parts().unwrap();
+    let o = DragOptions {
+        d_max: c.d_max,
+        points: 11,
+        mu_s: Some(c.mu_s),
+        mu_k: Some(c.ratio * c.mu_s),
+        energy_balance: true,
+        ..DragOptions::default()
+    };
+    let r = drag(&rod, &surface, &o).unwrap();
+    assert_eq!(r.slips.len(), 2, "{out}");
+    let n = r.stats.newton_iters;
+    assert!(n < 1000, "{n} Newton iterations: {out}");
+}
+
 /// A survey of `PROPTEST_CASES` (else 100) scenes from proptest's deterministic seed, each
 /// outcome printed (not stopping at the first failure): `cargo test -p vibrissa --test
 /// contact_forces -- --ignored --nocapture survey`.

@@ -510,12 +510,17 @@ fn two_patch_texture() {
 }
 
 #[test]
-fn a_tip_that_slips_beside_a_side_that_holds_is_named() {
+fn a_tip_that_slips_beside_a_side_that_holds_slides() {
     // A scene of the third grid (docs/robustness.md): pressed into side+tip with the side 0.1
     // before the tip. At μs = 0.5 the tip slips first, at d = 6.07e-6 (the slip of the single
     // scan at μ0 = 0.5). The slide then starts with the pair of tangential forces between side
     // and tip, nearly indeterminate, jumping with μs → μk, and Newton from the stuck state
-    // diverged (residual 3e3): the drag ended in a solver message. It is named now.
+    // diverged (residual 3e3): the drag ended in a solver message, then in a named stop ("the
+    // tip slips beside the contact at s = 0.898 ... not followed"), when the fold passage that
+    // takes the slide's first step crawled 5000 points towards its natural step's 5e-7 without
+    // reaching it (the tip's slide of 1.1e-11 ends on its first points). The passage ends where
+    // an event of the march has ended (fold.rs `pass`): the slip is followed, and the drag
+    // reaches d_max, every slip releasing what its friction dissipates.
     let s = scene(|s| {
         s.eta = 0.55;
         s.stiffness = Stiffness::Taper { ratio: 0.5 };
@@ -523,15 +528,20 @@ fn a_tip_that_slips_beside_a_side_that_holds_is_named() {
         s.support_compliance = 0.5;
         s.surface_angle = -0.2;
     });
-    let r = run(&s, &uniform(0.5, 0.3, 0.01));
-    let StopReason::ContactChange { d, message } = &r.stop else {
-        panic!("{}", r.stop);
-    };
-    assert!(
-        message.contains("the tip slips beside the contact at s = 0.898"),
-        "{message}"
+    let r = run(
+        &s,
+        &DragOptions {
+            energy_balance: true,
+            ..uniform(0.5, 0.3, 0.01)
+        },
     );
-    assert!((d - scan_slip(&s, 0.5)).abs() < 1e-12, "{d}");
+    assert_eq!(r.stop, StopReason::DMax, "{}", r.stop);
+    let first = r.slips.first().expect("a slip");
+    assert!((first.d - scan_slip(&s, 0.5)).abs() < 1e-12, "{}", first.d);
+    for e in &r.slips {
+        let off = (e.dissipated.unwrap() - e.released).abs();
+        assert!(off < 1e-8, "{e:?}");
+    }
 }
 
 /// Issue 31's texture grid, 0.02/0.5/0 with `--taper 0.3 --tip-radius 0.005` (the paper's drag
