@@ -16,8 +16,9 @@
 use crate::chain::ContactSet;
 use crate::control::StepControl;
 use crate::events::{
-    ended, first_max, forming_slip, holds, lifted, locate, predicted_crossing, sliding_from_start,
-    start_event, stop_reason, transition, vanishing_normal, Crossing, Next, Rules, AT_ZERO, JUMP,
+    beyond, ended, first_max, forming_slip, holds, lifted, locate, predicted_crossing,
+    sliding_from_start, start_event, stop_reason, transition, vanishing_normal, Crossing, Next,
+    Rules, AT_ZERO, JUMP,
 };
 use crate::fold;
 use crate::profile::{General, Profile};
@@ -587,7 +588,10 @@ impl<P: Profile> Run<'_, '_, P> {
     /// outcome.
     fn after_step(&mut self, w: &mut Walk, prev: &Pt, p: Pt, armed: &[Crossing]) -> Flow {
         let lam = prev.lam;
-        let (found, failure) = self.events_in(w, lam, &p, armed);
+        let (mut found, mut failure) = self.events_in(w, lam, &p, armed);
+        if let Some(f) = self.dipped(w, lam, armed, &mut found) {
+            failure = Some(f);
+        }
         if let (None, Some(f)) = (&found, failure) {
             // a step too long for the event's scale (a light touch changes fast): the step
             // again, shorter, before giving up
@@ -684,6 +688,53 @@ impl<P: Profile> Run<'_, '_, P> {
             }
         }
         (found, failure)
+    }
+
+    /// The armed events beyond zero at the earliest located event's point (other than that
+    /// event): they ended before it, though some hold again at the step's end or were located
+    /// later (a root past it), as a free tip that dips below a corrugation and out again within
+    /// one step of a slip (issue 31: the slip ended with the tip 1.6e-5 inside the surface, or a
+    /// stuck tip 1.2e-3 beyond its slip limit). Each is located before the event found, and the
+    /// earliest replaces it (`found`); a failure to locate one leaves no event found and is
+    /// returned (the step is then taken again, shorter).
+    fn dipped(
+        &mut self,
+        w: &Walk,
+        lam: f64,
+        armed: &[Crossing],
+        found: &mut Option<Found>,
+    ) -> Option<StopReason> {
+        let env = &self.env;
+        let back = |c: Crossing, f: &Found| c != f.cross && beyond(c.of_watch(env, &f.pt.w));
+        // (each replacement is strictly earlier: at most one per armed event)
+        for _ in 0..armed.len() {
+            let f = found.as_ref()?;
+            let &c = armed.iter().find(|&&c| back(c, f))?;
+            let fail = |message: String| StopReason::SolverFailure { d: lam, message };
+            match locate(&mut *self.stepper, env, &w.hist, (lam, f.pt.lam), c) {
+                Ok(pe) if pe.lam < f.pt.lam => {
+                    let v = c.of_watch(env, &pe.w);
+                    if c == Crossing::Touchdown && env.ground.curve.is_some() && v < -JUMP {
+                        // (a jump of the highest free point, not a root: as in events_in)
+                        *found = None;
+                        let at = pe.lam;
+                        return Some(fail(format!(
+                            "{} jumps to {v:.3e} at d = {at}",
+                            c.describe()
+                        )));
+                    }
+                    *found = Some(Found { cross: c, pt: pe });
+                }
+                Ok(_) => return None,
+                Err(msg) => {
+                    *found = None;
+                    return Some(fail(format!(
+                        "locating the {c:?} event before another: {msg}"
+                    )));
+                }
+            }
+        }
+        None
     }
 
     /// The outcome of the event `cross` at its located point `pe`: a change of contact set and
