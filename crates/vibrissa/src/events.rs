@@ -513,6 +513,7 @@ fn curve_transition(
             let j = set.contacts.len() - 1;
             let zb = pe.sol.right();
             let (mode, phi_ref) = rolling(zb, 1.0);
+            let mode = kept_sliding(&set.contacts[j], mode);
             let mut ns = set.clone();
             // the force keeps its frame (the unknowns carry over)
             ns.contacts[j] = Contact {
@@ -682,6 +683,7 @@ pub(crate) fn transition(
                 } else {
                     Mode::Free
                 };
+                let mode = kept_sliding(ct, mode);
                 let mut ns = set.clone();
                 ns.contacts[j] = Contact::on_surface(false, p0, beta, mode, phi_ref);
                 let mut nu = u.clone();
@@ -719,6 +721,18 @@ pub(crate) fn transition(
                 Next::Switch(Event::PeelBack, ns, nu)
             }
         }
+}
+
+/// The mode of the contact `ct` after it changes between tip and side (the tip lies down, a
+/// side peels back to the tip): a contact that slides (a passive slider, `T = ratio N`) slides
+/// on with its ratio, else `held` (how a new contact holds). Holding a sliding tip where it lay
+/// down trapped the stretch between it and a slip's driver 0.027 away, whose tangential forces
+/// then changed by 2e7 per unit slide (issue 31).
+fn kept_sliding(ct: &Contact, held: Mode) -> Mode {
+    match ct.mode {
+        Mode::Sliding(r) => Mode::Sliding(r),
+        _ => held,
+    }
 }
 
 /// Why a side on a curved surface stops where the rod begins to curve as the surface does (its
