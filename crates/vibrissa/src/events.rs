@@ -584,6 +584,48 @@ pub(crate) fn transition(
     pe: &Pt,
     xf: f64,
 ) -> Next {
+    driver_anchor(
+        env,
+        set,
+        pe.lam,
+        transition_at(env, rules, set, cross, pe, xf),
+    )
+}
+
+/// `next` with the place of a slip's driver that changed its kind (a tip that lies down, a side
+/// that peels back to the tip) as the slip's family reads it. The family moves the driver's
+/// place (a stuck tip's anchor, a rolling side's invariant) by `dir·λ` (module `chain`,
+/// `Pose::slide`), and the new mode holds its place at `λ`: its anchor is that less `dir·λ`.
+/// (Taken as it was, the new state at the event's `λ` is the driver moved on by a second `dir·λ`:
+/// the rod jumps there, and the energy it releases is no work of friction.)
+fn driver_anchor(env: &Env, set: &ContactSet, lam: f64, next: Next) -> Next {
+    let Next::Switch(ev, mut ns, nu) = next else {
+        return next;
+    };
+    if let Some(sl) = env.ground.slide {
+        let j = sl.driver;
+        let same = ns.contacts.len() == set.contacts.len() && j < set.contacts.len();
+        if same && ns.contacts[j].tip != set.contacts[j].tip {
+            let by = sl.dir * lam;
+            ns.contacts[j].mode = match ns.contacts[j].mode {
+                Mode::Stuck(a) => Mode::Stuck(a - by),
+                Mode::Rolling(k) => Mode::Rolling(k - by),
+                m => m,
+            };
+        }
+    }
+    Next::Switch(ev, ns, nu)
+}
+
+/// [`transition`], the places of the new contacts as they are at `pe`.
+fn transition_at(
+    env: &Env,
+    rules: Rules,
+    set: &ContactSet,
+    cross: Crossing,
+    pe: &Pt,
+    xf: f64,
+) -> Next {
     let friction = rules.friction;
     let u = &pe.u;
     let along = |z: &[f64], beta: f64, p0: [f64; 2]| {

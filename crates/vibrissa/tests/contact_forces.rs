@@ -493,10 +493,14 @@ fn open_drag_hangs_at_its_start() {
     });
 }
 
-/// Open: a sliding side peels back to the tip during the slip: the work metered, 0.00662, is not the energy released, 0.01147.
+/// Was open: a sliding side peels back to the tip during the slip: the work metered, 0.00662,
+/// was not the energy released, 0.01147 (slip 4, d = 0.043355). The slip's family moves its
+/// driver's place by `dir·λ`, and the tip that the driver became held its place at the event's
+/// `λ` as its anchor: the rod jumped on by a second `λ` there, releasing energy no friction took
+/// (events.rs `driver_anchor`; a tip that lies down as the driver is the same). The energy of
+/// every slip balances to 1e-8 now.
 #[test]
-#[ignore = "open failure (issue 31)"]
-fn open_energy_of_a_slip_whose_side_peels_back() {
+fn energy_balances_at_a_slip_whose_side_peels_back() {
     open(&Case {
         amp: 0.00477953391473403,
         wave: 0.22828372884181566,
@@ -508,6 +512,53 @@ fn open_energy_of_a_slip_whose_side_peels_back() {
         radius: 0.0,
         d_max: 0.061043731868745836,
     });
+}
+
+/// Two more of the survey's scenes whose slips did not balance for the same reason (before
+/// `driver_anchor`: slip 14 at d = 0.076044 metered 0.0032121 of 0.0042096 released on the
+/// uniform rod, slip 60 at d = 0.020385 metered 2.669e-7 of 4.456e-7 on a tapered one): every
+/// contact by Coulomb and every slip's energy to 1e-8.
+#[test]
+fn energy_balances_at_the_surveys_slips_whose_driver_changes_kind() {
+    open(&Case {
+        amp: 0.01972282810031794,
+        wave: 0.38083573637334206,
+        phase: 6.1994446304066715,
+        eta: 0.6409945782739707,
+        mu_s: 0.5165164426954519,
+        ratio: 0.6414462897446284,
+        taper: None,
+        radius: 0.0,
+        d_max: 0.08715518270806817,
+    });
+    open(&Case {
+        amp: 0.006358914161537145,
+        wave: 0.3414654663551734,
+        phase: 5.470478932591279,
+        eta: 0.6417841746787663,
+        mu_s: 0.3863941856273612,
+        ratio: 0.583027647928206,
+        taper: Some(0.36222078619172193),
+        radius: 0.0,
+        d_max: 0.0818268486332887,
+    });
+}
+
+/// Issue 31's drag over 0.01/0.2/0 on the rod tapered to 0.3 with a point tip (the paper's
+/// settings), to just past its slip at d = 0.118119: the side at s = 0.99991 that drives it peels
+/// back to the tip 1.0e-5 into the slide, and the tip lies down again 1.4e-4 into it. Its energy
+/// released, 0.0021184, was metered as 0.0020387 (3.8 % short: the rod jumped on by the slide's
+/// λ at both changes, `driver_anchor`); every slip of the drag (3415) balances to 1e-8 now.
+/// About 10 s in release: run on request (`--ignored`); the scenes above test the same change.
+#[test]
+#[ignore = "slow: 3415 slips, about 10 s in release"]
+fn energy_balances_at_a_slip_whose_driver_peels_back_and_lies_down_again() {
+    let c = Case {
+        d_max: 0.1182,
+        ..grid_case(0.01, 0.2, 0.0, 0.0)
+    };
+    let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
 
 /// Was open: the tip touches down sliding during a side's slip, and dissipated and released
