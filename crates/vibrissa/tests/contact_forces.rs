@@ -441,17 +441,7 @@ fn no_tensile_tip_at_a_slips_fold() {
 /// Coulomb and every slip's and stick's energy balance.
 #[test]
 fn a_tip_creeping_beside_a_side_that_holds_slides_on() {
-    let c = Case {
-        amp: 0.02,
-        wave: 0.5,
-        phase: 0.0,
-        eta: 0.75,
-        mu_s: 0.5,
-        ratio: 0.6,
-        taper: Some(0.3),
-        radius: 0.005,
-        d_max: 0.3,
-    };
+    let c = grid_case(0.02, 0.5, 0.0, 0.005);
     let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
     assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
@@ -598,15 +588,8 @@ fn energy_balances_at_a_slip_where_a_round_tip_touches_down() {
 #[test]
 fn a_side_and_a_tip_that_walked_in_turn_slide_together_to_d_max() {
     let c = Case {
-        amp: 0.01,
-        wave: 0.05,
-        phase: 4.0 * std::f64::consts::PI / 3.0,
-        eta: 0.75,
-        mu_s: 0.5,
-        ratio: 0.6,
         taper: None,
-        radius: 0.005,
-        d_max: 0.3,
+        ..grid_case(0.01, 0.05, 4.0 * std::f64::consts::PI / 3.0, 0.005)
     };
     let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
     assert!(out.ends_with("stopped: d_max reached"), "{out}");
@@ -622,17 +605,7 @@ fn a_side_and_a_tip_that_walked_in_turn_slide_together_to_d_max() {
 /// point): the drag reaches d_max, every contact by Coulomb and every slip's energy balance.
 #[test]
 fn a_tip_slipping_beside_a_side_on_a_steep_trapped_branch_slides_to_d_max() {
-    let c = Case {
-        amp: 0.001,
-        wave: 0.5,
-        phase: 2.0 * std::f64::consts::PI / 3.0,
-        eta: 0.75,
-        mu_s: 0.5,
-        ratio: 0.6,
-        taper: Some(0.3),
-        radius: 0.0,
-        d_max: 0.3,
-    };
+    let c = grid_case(0.001, 0.5, 2.0 * std::f64::consts::PI / 3.0, 0.0);
     let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
     assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
