@@ -8,7 +8,8 @@
 //! dt 0.02, 0.01 (grid 100, tol 1e-8; grid 200, tol 1e-10) and 0.005 (grid 200, tol 1e-10),
 //! with the places of every slip and stick: after the first stick they change with dt (the
 //! events that follow are not the same), which is why docs/performance.md compares the first
-//! slip. `-- --settings dt,grid,tol,dt,grid,tol,...` picks the settings of either.
+//! slip. `-- --settings dt,grid,tol,dt,grid,tol,...` picks the settings of either;
+//! `-- --internal-damping G` gives the rod Kelvin–Voigt damping `γ_i = G` (default 0).
 //!
 //! The peer's side of the same drag: `benches/pyelastica_drag.py`.
 //!
@@ -21,6 +22,15 @@ use vibrissa::{Rod, Surface, VibrissaError};
 #[path = "../benches/support/clock.rs"]
 mod clock;
 
+/// The value after `name` on the command line, else 0.
+fn flag(name: &str) -> f64 {
+    std::env::args()
+        .skip_while(|a| a != name)
+        .nth(1)
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0.0)
+}
+
 /// The slip and stick places `d` of the drag at `(dt, grid, tol)` through `events` events,
 /// its CPU time in s and its work.
 type Run = (Vec<f64>, Vec<f64>, f64, String);
@@ -32,6 +42,7 @@ fn slips(dt: f64, grid: usize, tol: f64, events: usize) -> Result<Run, VibrissaE
         grid,
         d_max: 10.0,
         max_events: events,
+        internal_damping: flag("--internal-damping"),
         ..DynDragOptions::default()
     };
     let surface = Surface::flat(0.75)?;

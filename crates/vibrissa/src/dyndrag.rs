@@ -25,6 +25,10 @@
 //! jumps at the point that sticks only (the force holding it rises like `√t` from the moment
 //! it sticks), which Newmark's history would otherwise carry on as an alternating spurious
 //! acceleration of the tip.
+//! After each slip and stick the scheme is restarted: the history's accelerations and the end
+//! forces are replaced by ones consistent with the new condition (`Rothe::restart`, two steps of
+//! [`restart_step`] on a copy), since the holding force jumps there and the trapezoidal rule
+//! would carry half the jump on as a mode alternating from step to step (docs/model.md).
 //!
 //! The start: the rod pressed onto the surface (the static state with the force normal to it,
 //! the start of `vibrissa::drag`), at rest, the tip stuck. The foot's speed rises smoothly
@@ -386,19 +390,22 @@ pub struct DragStats {
     pub slips: usize,
     /// Sticks.
     pub sticks: usize,
+    /// Restarts of the scheme after a slip or a stick (module docs).
+    pub restarts: usize,
 }
 
 impl fmt::Display for DragStats {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} steps, {} solves, {} Newton iterations, largest mesh {}; {} slips, {} sticks",
+            "{} steps, {} solves, {} Newton iterations, largest mesh {}; {} slips, {} sticks, {} restarts",
             self.steps,
             self.solves,
             self.newton_iterations,
             self.max_nodes,
             self.slips,
-            self.sticks
+            self.sticks,
+            self.restarts
         )
     }
 }
@@ -473,6 +480,15 @@ fn pressed(rod: &Rod, eta: f64, grid: &[f64]) -> Result<(Guess, [f64; 2]), Vibri
 /// a step's start is placed at this step's end.
 fn shortest_step(dt: f64) -> f64 {
     (1e-3 * dt).max(1e-5)
+}
+
+/// The length `δ` of the two steps that restart the scheme after a slip or a stick:
+/// `min(tol^(1/3), dt/4)`. The restart's accelerations carry the steps' position error
+/// magnified by `4/δ²` (about `4 tol/δ²`) and are those of the time `1.5 δ` later; `δ = tol^(1/3)`
+/// makes both about `tol^(1/3)` (4.6e-4 at the default tol 1e-10; `δ` = 1e-5 gave accelerations
+/// off by O(1) there).
+fn restart_step(o: &DynDragOptions) -> f64 {
+    o.tol.cbrt().min(0.25 * o.dt)
 }
 
 /// Which of a step's event functions: `[lift-off, the contact's own]`.
@@ -657,6 +673,9 @@ impl<'r> Drive<'r, '_> {
             self.stats.sticks += 1;
             DragEventKind::Stick
         };
+        if matches!(kind, DragEventKind::Slip | DragEventKind::Stick) {
+            self.restart();
+        }
         let p = self.rothe.sample(self.t);
         self.events.push(DynDragEvent {
             kind,
@@ -675,6 +694,22 @@ impl<'r> Drive<'r, '_> {
             return Some(DynDragStop::Touchdown { d: self.d });
         }
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
+    }
+
+    /// The rod's accelerations and end forces made consistent with the tip's new condition
+    /// after a slip or a stick (`Rothe::restart`, two steps of [`restart_step`] on a copy).
+    /// Where those steps are not solved the drag goes on from the history as it is (counted:
+    /// `stats.restarts` falls short of the slips and sticks).
+    fn restart(&mut self) {
+        let delta = restart_step(self.o);
+        let feet = [
+            [self.o.foot_at(self.t + delta), 0.0],
+            [self.o.foot_at(self.t + 2.0 * delta), 0.0],
+        ];
+        self.stats.solves += 2;
+        if self.rothe.restart(delta, feet, self.bc(), 0.0).is_ok() {
+            self.stats.restarts += 1;
+        }
     }
 
     /// The plastic impact of the tip on the surface: its velocity (and acceleration) normal to
@@ -724,6 +759,13 @@ impl<'r> Drive<'r, '_> {
         loop {
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(DynDragStop::DMax);
+            }
+            if self.state == ContactState::Stuck && self.events_now()[PHASE] >= 0.0 {
+                // a tip that sticks but needs more than μs N at once slips at once
+                if let Some(stop) = self.apply(PHASE) {
+                    return Ok(stop);
+                }
+                continue;
             }
             let tau = dt.min(t_end - self.t);
             let tr = self.try_step(tau)?;
