@@ -281,7 +281,8 @@ pub struct SlipContacts {
     /// [`Hold::Sliding`], held by kinetic friction (`|T| = μk N`; [`Hold::Stuck`] where the patch
     /// ahead of a texture's boundary holds it), contacts sliding passively as they slide, the
     /// others as they hold (the row of event `slip_end` has this state with every contact stuck,
-    /// but a driver that creeps: sliding, see docs/model.md).
+    /// but a driver that creeps or a contact that slides on after the slip: sliding, see
+    /// docs/model.md).
     pub after: Vec<ContactState>,
 }
 
@@ -941,6 +942,7 @@ impl<P: Profile> DragRun<'_, P> {
                 return Err(Self::failure(d_s, message));
             }
         };
+        let (nset, pa) = self.sliding_on((&eset, &qe), (nset, pa));
         let Some(e_after) = self.st.energy(&pa.u, pa.lam) else {
             return Err(Self::failure(d_s, "the elastic energy after a slip".into()));
         };
@@ -1006,6 +1008,50 @@ impl<P: Profile> DragRun<'_, P> {
         self.slips.push(ev);
         self.slip_contacts.push(SlipContacts { before, after });
         Ok((pa, e_after, mu_s_next))
+    }
+
+    /// The state `(nset, pa)` after a slip, every contact held where it stopped, or, where it
+    /// traps the rod in an equilibrium singular to working precision, the contacts that slid
+    /// passively with kinetic friction to the slip's end (`eset` at `qe`) sliding on as they
+    /// slid, `T = ratio·N` (a passive slider of the next stick, which halts it where its slip
+    /// rate reverses). Held, the trapped pair's tangential forces change by ~1e8 per unit `d`
+    /// from μk towards μs (issue 31: a side 0.0054 from the tip, formed sliding, that slid along
+    /// in the tip's slip), so both contacts pass their limits within the next stick's first
+    /// step of 1e-7, the sign of the Newton matrix's determinant, 1e-27, is noise, and the
+    /// slip limit is not located (the corrector "crossed a fold" at every point between).
+    fn sliding_on(
+        &mut self,
+        (eset, qe): (&ContactSet, &Pt),
+        (nset, pa): (ContactSet, Pt),
+    ) -> (ContactSet, Pt) {
+        if !crate::watch::traps(&nset) || !self.st.singular_at(pa.lam, &pa.u) {
+            return (nset, pa);
+        }
+        let mut next = nset.clone();
+        let mut any = false;
+        for (k, ct) in eset.contacts.iter().enumerate() {
+            let Mode::Sliding(r) = ct.mode else { continue };
+            let Some(c) = qe.w.contacts.get(k) else {
+                continue;
+            };
+            // (kinetic: one that broke free and still slides at more than μk is held)
+            let kinetic = r.abs() <= self.fr.at(c.x, r.signum()).1 * (1.0 + 1e-12);
+            if crate::events::is_slider(ct) && kinetic {
+                next.contacts[k].mode = Mode::Sliding(r);
+                any = true;
+            }
+        }
+        if !any {
+            return (nset, pa);
+        }
+        match self.st.switch(next.clone(), pa.lam, qe.u.clone()) {
+            Ok(q) => (next, q),
+            // (the held state, as before, where that one is not found)
+            Err(_) => match self.st.switch(nset.clone(), pa.lam, pa.u.clone()) {
+                Ok(q) => (nset, q),
+                Err(_) => (nset, pa),
+            },
+        }
     }
 
     /// A slip of `lam_s`, shorter than the tolerance, beside a side that holds (the stick `s`

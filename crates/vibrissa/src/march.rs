@@ -237,6 +237,30 @@ fn released_pushing(pe: &Pt, j: usize, e: &StepError) -> Option<StopReason> {
     })
 }
 
+/// Why the march ends where a sliding contact of `set` halts at `pe` and holds (`held`, first
+/// point `q`) in a state that traps the rod in an equilibrium singular to working precision, as
+/// a start in such a state does (issue 31: a side 0.0054 from the tip; the sign of the Newton
+/// matrix's determinant, 1e-27, is noise there, and the next step's fold passage reported a
+/// fold 1.3e-16 on).
+fn halted_trapped(set: &ContactSet, held: &ContactSet, pe: &Pt, q: &Pt) -> String {
+    let j = (0..set.contacts.len())
+        .find(|&k| set.contacts[k].mode != held.contacts[k].mode)
+        .unwrap_or(0);
+    let at: Vec<String> = (0..held.contacts.len())
+        .filter(|&k| held.contacts[k].mode.no_slip())
+        .map(|k| format!("{:.6}", held.s_of(k, &q.u)))
+        .collect();
+    format!(
+        "the sliding contact at s = {:.6} halts and holds where it is: the state {} then traps \
+         the rod between contacts at s = {} that hold without slip, and its equilibrium is \
+         singular to working precision: the pair of tangential forces between them is \
+         indeterminate; the point-contact model does not resolve it",
+        set.s_of(j, &pe.u),
+        held.label(),
+        at.join(" and ")
+    )
+}
+
 /// Ends the march with `stop` at the newest point of the history.
 fn end(stop: StopReason) -> Flow {
     Flow::End(stop, None)
@@ -864,6 +888,15 @@ impl<P: Profile> Run<'_, '_, P> {
                     // the sliding contact lifted off: the slip ends at the first point without
                     // it (the foot held, the other contacts as they were)
                     return Flow::End(StopReason::DMax, Some(Box::new((new_set, q))));
+                }
+                if ev == Event::Halt
+                    && crate::watch::traps(&new_set)
+                    && self.stepper.singular_at(q.lam, &q.u)
+                {
+                    self.range.close(RangeEnd::Event);
+                    let message = halted_trapped(&set, &new_set, &pe, &q);
+                    let stop = StopReason::ContactChange { d: pe.lam, message };
+                    return Flow::End(stop, Some(Box::new((set, pe))));
                 }
                 // a maximum of |μ| at the kink of the change
                 if self.range.end.is_none()

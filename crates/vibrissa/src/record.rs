@@ -154,7 +154,22 @@ fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) 
         let (ca, cb) = (&a.0.w.contacts[k], &b.0.w.contacts[k]);
         let hq = cb.slide.q - ca.slide.q;
         let end = |c: &crate::watch::ContactForce| (c.normal, c.slide.dnormal / c.slide.slip);
-        out[1] += ratio * corrected(end(ca), end(cb), hq);
+        let (ea, eb) = (end(ca), end(cb));
+        out[1] += ratio
+            * if ea.1.is_finite() && eb.1.is_finite() {
+                corrected(ea, eb, hq)
+            } else {
+                // a slip rate of zero at an end (the slider halts there, a located `Halt`):
+                // `dN/dq` is unbounded, and its `±inf` made the meter infinite (issue 31:
+                // the stick work `inf` before slip 1 of 0.001/0.5/2π/3). `∫ N q' dλ` instead,
+                // with `q''` constant over the step
+                let qq = (cb.slide.slip - ca.slide.slip) / h;
+                let g = |c: &crate::watch::ContactForce| {
+                    let (n, v) = (c.normal, c.slide.slip);
+                    (n * v, c.slide.dnormal * v + n * qq)
+                };
+                corrected(g(ca), g(cb), h)
+            };
     }
     out
 }

@@ -121,6 +121,15 @@ pub(crate) struct Watch {
 /// Distance from a contact inside which a maximum of the height is that contact's own.
 const NEAR: f64 = 1e-4;
 
+/// Shortest free tail beyond the last contact whose end counts as a free part that may touch
+/// down. The tail is unloaded, so its gap to the surface is the relative curvature at the contact
+/// times `ℓ²/2` (plus `O(ℓ³)`): on a line `κ0·ℓ²/2 ≤ 4e-13` for `ℓ < 5e-7`, `|κ0| ≤ 3`; on a
+/// curve its sign is the one event `Lie` watches (the gap's second derivative), so a shorter
+/// tail's height is the rounding of the gap at the contact (issue 31: 6.7e-16 with the side
+/// 1.5e-13 before the tip, taken as the tip touching down there, a state of two contacts
+/// 4e-13 apart whose first step's residual was NaN).
+const TAIL: f64 = 5e-7;
+
 /// The solved rod as the watch sees it.
 pub(crate) struct RodView<'a> {
     /// The whole rod (its interpolant locates the highest points).
@@ -484,7 +493,7 @@ fn clearance(
     // the last contact's neighbourhood (a tail of length ℓ → 0 before a peel-back sits
     // κ0·ℓ²/2 ≤ 4e-13 from the line for ℓ < 5e-7, |κ0| ≤ 3: rounding, no touchdown)
     let tip_contact = set.tip();
-    if !tip_contact && lying_from > 1.0 && 1.0 - s_last >= 5e-7 {
+    if !tip_contact && lying_from > 1.0 && 1.0 - s_last >= TAIL {
         let zb = sol.right();
         // (a round tip touches down where its centre comes within its radius)
         let v = if r > 0.0 {
@@ -555,7 +564,9 @@ fn curve_clearance(
     let (mut best, mut at) =
         crate::surface::curve_clearance(h, amp, off, n, &ss, &mut sample, &mut on_rod, &near);
     let zb = sol.right();
-    if !set.tip() && h.covers(zb[0] + xf) {
+    // (a tail shorter than `TAIL` beyond the last contact: its height is rounding, see there)
+    let s_last = ss.iter().copied().fold(0.0, f64::max);
+    if !set.tip() && h.covers(zb[0] + xf) && 1.0 - s_last >= TAIL {
         let v = if r > 0.0 {
             disk_gap(zb).unwrap_or(f64::NEG_INFINITY) - off
         } else {
