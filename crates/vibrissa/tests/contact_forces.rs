@@ -474,7 +474,7 @@ fn a_round_tip_and_a_side_that_break_free_in_one_slip_slide_together() {
 /// singular to working precision, from the noise of its determinant; it is now that named stop,
 /// march.rs `halted_trapped`.)
 #[test]
-fn a_drag_that_hung_at_its_start_runs_to_a_snap() {
+fn a_drag_that_hung_at_its_start_runs_to_a_named_stop() {
     open(&Case {
         amp: 0.013862691721217343,
         wave: 0.09726705331030241,
