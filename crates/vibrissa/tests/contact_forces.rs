@@ -468,14 +468,13 @@ fn a_round_tip_and_a_side_that_break_free_in_one_slip_slide_together() {
 
 /// Was a drag that did not pass d = 2e-11 (cancelled after HANG s): its slips' slides went
 /// through the fold passage, which followed each to its target far past the slip's end. With the
-/// passage ending where an event of the march has ended it runs to d = 0.010773 (3325 slips),
-/// every contact by Coulomb and every slip's energy to 1e-8. (That stop was reported as a snap,
-/// 2.4e-15 after a sliding side halts there into a state trapping the rod in an equilibrium
-/// singular to working precision, from the noise of its determinant; it is now that named stop,
-/// march.rs `halted_trapped`.)
+/// passage ending where an event of the march has ended it ran to a snap at d = 0.010773 (3325
+/// slips), where a passive slider's halt was located at a root of the solver's noise just before
+/// its lift-off; with that halt taken for the lift-off (march.rs `shadows`) it reaches d_max
+/// (3455 slips), every contact by Coulomb and every slip's energy to 1e-8.
 #[test]
-fn a_drag_that_hung_at_its_start_runs_to_a_named_stop() {
-    open(&Case {
+fn a_drag_that_hung_at_its_start_runs_to_d_max() {
+    let c = Case {
         amp: 0.013862691721217343,
         wave: 0.09726705331030241,
         phase: 5.118179006378352,
@@ -485,7 +484,9 @@ fn a_drag_that_hung_at_its_start_runs_to_a_named_stop() {
         taper: Some(0.4010038067345833),
         radius: 0.002672239678129047,
         d_max: 0.03240596615760605,
-    });
+    };
+    let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
 
 /// Was open: a sliding side peels back to the tip during the slip: the work metered, 0.00662,
@@ -535,8 +536,9 @@ fn energy_balances_at_the_surveys_slip_whose_driver_changes_kind() {
 /// side 1.5e-13 before the tip, for a touchdown 1.4e-13 earlier: in the state side+tip so made
 /// the side's place along the rod moves by 2.75 per unit λ, and the first step's prediction put
 /// it past the tip. The end of a free tail that short is rounding on a curved surface as on a
-/// line (watch.rs `TAIL`): the side peels back, and the drag reaches d_max (18 slips), every
-/// contact by Coulomb and every slip's energy to 1e-8.
+/// line (watch.rs `TAIL`), and a touchdown located within the smallest step of a peel-back is
+/// that peel-back (march.rs `shadows`; each mends this scene alone): the side peels back, and the
+/// drag reaches d_max (18 slips), every contact by Coulomb and every slip's energy to 1e-8.
 #[test]
 fn a_side_peeling_back_to_the_tip_is_no_touchdown_of_its_tail() {
     let c = Case {
@@ -855,6 +857,77 @@ fn a_side_that_forms_holding_and_slips_in_the_first_step_slips() {
     };
     let out = run_in(&c, on_rat(&c)).unwrap_or_else(|e| panic!("{c:?}: {e}"));
     assert!(out.ends_with("stopped: d_max reached"), "{out}");
+}
+
+/// Was a solver failure (issue 31's texture grid, the rod tapered to 0.3, point tip): at
+/// 0.001/0.02/0 "after d = 0.0085553: natural step: Newton did not converge (iteration 12,
+/// residual NaN); pseudo-arclength: residual 1.9e-12", at 0.001/0.02/4π/3 the same after
+/// d = 0.0028063. A side that creeps (slides with μk beside a side that holds, one wavelength
+/// behind it) loses its normal force, and its slip rate (about 2.6e-5 N) falls to zero with it:
+/// the halt was located at a root of the solver's noise (N = 7.4e-7, 1.7e-8 in d before the
+/// side's own lift-off, at phase 0), and the held side needed |T|/N of 23 at once, on a branch
+/// no natural step followed. A halt within the smallest natural step of the contact's own
+/// lift-off is that lift-off now (march.rs `shadows`): the side lets go at N = 0, after the
+/// point where the drag failed, every contact by Coulomb and every slip and stick balanced up
+/// to a named stop. (The program, 201 output points, goes on to jams at d = 0.015402 and
+/// 0.010295; with this test's 11 points the first step after the release is too long, see the
+/// open test below.)
+#[test]
+fn a_creeping_side_that_halts_as_it_lets_go_is_released() {
+    let third = 4.0 * std::f64::consts::FRAC_PI_3;
+    for (phase, failed) in [(0.0, 0.008555276994325253), (third, 0.002806274949312679)] {
+        let c = grid_case(0.001, 0.02, phase, 0.0);
+        let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+        assert!(stop_d(&out).is_none_or(|d| d > failed), "{c:?}: {out}");
+    }
+}
+
+/// Open: after the release above (0.001/0.02/0 and 4π/3, taper 0.3, point tip) the first step
+/// with this test's 11 output points is 0.01 long, and the free rod where the side let go, which
+/// leaves the surface and touches down again 1.3e-3 further on (the program's run), lies across
+/// it at the step's end: "the contact state side does not hold" at the release.
+#[test]
+#[ignore = "open failure (issue 31)"]
+fn open_a_released_side_touching_down_again_inside_the_first_step() {
+    for (phase, released) in [
+        (0.0, 0.0085553),
+        (4.0 * std::f64::consts::FRAC_PI_3, 0.0028063),
+    ] {
+        let c = grid_case(0.001, 0.02, phase, 0.0);
+        let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+        assert!(stop_d(&out).is_none_or(|d| d > released), "{c:?}: {out}");
+    }
+}
+
+/// Open: the same cause on 0.003/0.05/0 (taper 0.3, point tip) was "after d = 0.035075: Newton
+/// did not converge (residual 1.1e-8); locating the fold: residual 4.8e-12", a creeping side
+/// that halted 1.7e-8 before its lift-off; released there, the drag goes on through some 3000
+/// slips. It fails further on, at d = 0.050025: in a slip the free rod touches down one
+/// wavelength (0.05) beyond the sliding side, the new state's Jacobian is singular at its first
+/// point (det -2.5e-18), and the fold passage writes a fold row there whose new side has N = 0
+/// and T = -1.7e-4, beyond Coulomb. About 10 s in release.
+#[test]
+#[ignore = "open failure (issue 31); slow: about 3000 slips, 10 s in release"]
+fn open_a_side_touching_down_a_wavelength_beyond_a_sliding_side() {
+    open(&grid_case(0.003, 0.05, 0.0, 0.0));
+}
+
+/// Was a solver failure (issue 31's texture grid, 0.05/0.5/4π/3 on the uniform rod, point tip):
+/// "after d = 0.012947: during a slip: natural step to 0.000657: Newton did not converge
+/// (iteration 0, residual NaN)". In the slip the driving side rolls to the tip; the height of
+/// the free end beyond it vanishes with that end, and a touchdown of the tip was located 1.8e-12
+/// of the slide before the peel-back: the set side (s = 1 − 1.5e-12) + tip had crossing contacts
+/// at the first step. A touchdown of the free end within the smallest natural step of a side's
+/// peel-back to the tip is that peel-back now (march.rs `shadows`), and the drag goes on past
+/// that slip, every contact by Coulomb and every slip and stick balanced, to a named stop.
+#[test]
+fn a_tip_touching_down_as_the_side_rolls_onto_it_is_the_peel_back() {
+    let c = Case {
+        taper: None,
+        ..grid_case(0.05, 0.5, 4.0 * std::f64::consts::FRAC_PI_3, 0.0)
+    };
+    let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(stop_d(&out).is_none_or(|d| d > 0.012947), "{c:?}: {out}");
 }
 
 /// The short rat preset on `A sin(2πx/W + P)` (issue 31's texture grid) with a point tip.
