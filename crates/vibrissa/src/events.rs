@@ -552,6 +552,7 @@ fn curve_transition(
                 } else {
                     Mode::Free
                 };
+                let mode = kept_sliding(&set.contacts[j], mode);
                 ns.contacts[j] = Contact {
                     tip: true,
                     mode,
@@ -784,7 +785,7 @@ fn kept_sliding(ct: &Contact, held: Mode) -> Mode {
 /// vanish along the whole stretch): the rod would lie along the surface. Where the contact is the
 /// last one and the rod's rest beyond it straight, the place is an inflection of the surface, its
 /// steepest point.
-fn curve_lie(set: &ContactSet, j: usize, pe: &Pt) -> String {
+pub(crate) fn curve_lie(set: &ContactSet, j: usize, pe: &Pt) -> String {
     let c = &pe.w.contacts[j];
     let last = if j + 1 == set.contacts.len() {
         ", the last contact: the rod beyond it is unloaded"

@@ -13,7 +13,7 @@
 //! peel-back, release, a contact sliding on) or ends. What is recorded (rows, shapes, the first
 //! maximum of `|μ|`, metered work) is observed by module `record`.
 
-use crate::chain::ContactSet;
+use crate::chain::{ContactSet, Geom};
 use crate::control::StepControl;
 use crate::events::{
     beyond, ended, first_max, forming_slip, holds, lifted, locate, predicted_crossing,
@@ -396,7 +396,7 @@ impl<P: Profile> Run<'_, '_, P> {
             Ok(next) => next,
             Err(flow) => return flow,
         };
-        match self.check_pending(w, &p, lam) {
+        match self.check_pending(w, &p, lam, from_queue) {
             Some(Pending::Stop(stop)) => return end(stop),
             Some(Pending::Shorter) => return Flow::Go,
             // a sliding contact that reverses from the state's first point halts there: the
@@ -561,13 +561,32 @@ impl<P: Profile> Run<'_, '_, P> {
 
     /// A change of contact set holds only if its new event functions leave zero inwards: the end
     /// where one leaves it outwards at the new point `p`.
-    fn check_pending(&mut self, w: &mut Walk, p: &Pt, lam: f64) -> Option<Pending> {
+    fn check_pending(
+        &mut self,
+        w: &mut Walk,
+        p: &Pt,
+        lam: f64,
+        from_queue: bool,
+    ) -> Option<Pending> {
         if self.formed_too_long(w, p, lam) {
             w.h = self.ctl.reject * (p.lam - lam);
             w.queue.clear();
             return Some(Pending::Shorter);
         }
         let env = &self.env;
+        // the free rod's height is its highest point: one that crossed the surface elsewhere
+        // inside the step (a touchdown of its own, issue 31: at s = 0.946 while the side released
+        // at s = 0.986 rose) hides whether the point at zero after the change left it inwards;
+        // the step again, shorter, tells them apart (in the foot's march; in a slip it stays the
+        // jam it was)
+        let crossed = |c: &Crossing| *c == Crossing::Touchdown && c.of_watch(env, &p.w) > 0.0;
+        let stick = env.ground.slide.is_none();
+        if stick && !from_queue && w.h > w.h_min && w.pending.iter().any(crossed) {
+            // (shorter than the last try too: a fold passage's point comes back whatever the step)
+            w.h = self.ctl.reject * w.h.min(p.lam - lam);
+            w.queue.clear();
+            return Some(Pending::Shorter);
+        }
         let mut wrong = None;
         w.pending.retain(|&c| {
             let v = c.of_watch(env, &p.w);
@@ -596,6 +615,16 @@ impl<P: Profile> Run<'_, '_, P> {
                     c.describe()
                 ),
             }));
+        }
+        let set = self.stepper.set();
+        if let Crossing::Lie(j) = c {
+            if let (Some(q), Geom::Curve { .. }) = (w.hist.last(), &set.contacts[j].geom) {
+                // a side that lies along the surface from the state's first point (the tip
+                // lay down where the surface curves more than the rod's end, issue 31): the
+                // stop is the lie's, with its reason
+                let message = crate::events::curve_lie(set, j, q);
+                return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));
+            }
         }
         Some(Pending::Stop(StopReason::ContactChange {
             d: lam,
