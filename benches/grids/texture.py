@@ -34,7 +34,8 @@ COLUMNS = ["amplitude", "wavelength", "phase", "rod", "tip_radius", "class", "st
 # Class order of the tables: physical stops first, then refusals, then the rest.
 CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture grows",
            "refused: steep for a point tip", "refused: other", "no start", "trapped start",
-           "start lies along the texture (not modelled)", "trapped slide (not followed)",
+           "start lies along the texture (not modelled)",
+           "slider halts into a trapped state (named)", "trapped slide (not followed)",
            "nested slips 8 deep (named)", "side begins to lie along the surface",
            "slide of 4 rod lengths", "side behind the sliding "
            "contact (not followed)", "not modelled / no contact state", "too many slips",
@@ -80,6 +81,8 @@ def classify(reason, detail, code):
         return "Newton failure / NaN"
     if "equilibria fold back" in detail and "(a snap)" in detail:
         return "fold/snap"
+    if "halts and holds where it is" in detail:
+        return "slider halts into a trapped state (named)"
     if "the start" in detail and "trap" in detail:
         return "trapped start"
     if "trapped" in detail:
