@@ -808,9 +808,10 @@ impl<'r> Rothe<'r> {
     /// a jump of a force with an undamped mode alternating from step to step at half the jump,
     /// whatever the step: at a stick of the paper's rod the tip's T/N alternated by ±0.34 to
     /// ±0.36 at dt 0.01 … 0.0025 (±0.23 with internal damping 0.01), and that mode, not the
-    /// rod, decided where the tip slipped next. Over two short steps a held quantity's acceleration goes `2a_c − aⁿ`, `aⁿ`
-    /// (and its force likewise) and a free one's `a_c`, `a_c` (`a_c` the consistent one, to
-    /// O(δ)): their mean is `a_c` either way. The positions and velocities stay as they are.
+    /// rod, decided where the tip slipped next. Over two short steps a held quantity's
+    /// acceleration goes `2a_c − aⁿ`, `aⁿ` (and its force likewise) and a free one's `a_c`,
+    /// `a_c` (`a_c` the consistent one, to O(δ)): their mean is `a_c` either way. The positions
+    /// and velocities stay as they are.
     pub fn restart(
         &mut self,
         delta: f64,
