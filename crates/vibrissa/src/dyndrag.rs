@@ -760,8 +760,12 @@ impl<'r> Drive<'r, '_> {
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(DynDragStop::DMax);
             }
-            if self.state == ContactState::Stuck && self.events_now()[PHASE] >= 0.0 {
-                // a tip that sticks but needs more than μs N at once slips at once
+            if self.state == ContactState::Stuck
+                && self.rothe.restarted()
+                && self.events_now()[PHASE] >= 0.0
+            {
+                // a tip that sticks but needs more than μs N at once slips at once (only a
+                // restart changes the forces a step's end left below the limit)
                 if let Some(stop) = self.apply(PHASE) {
                     return Ok(stop);
                 }

@@ -839,6 +839,11 @@ impl<'r> Rothe<'r> {
         Ok(())
     }
 
+    /// Whether a [`Rothe::restart`] set the end forces since the last step was taken.
+    pub fn restarted(&self) -> bool {
+        self.after.is_some()
+    }
+
     /// Takes the trial step.
     pub fn commit(&mut self, tr: Trial) {
         self.after = None;
