@@ -13,7 +13,7 @@
 //! peel-back, release, a contact sliding on) or ends. What is recorded (rows, shapes, the first
 //! maximum of `|μ|`, metered work) is observed by module `record`.
 
-use crate::chain::{ContactSet, Geom};
+use crate::chain::{ContactSet, Geom, Mode};
 use crate::control::StepControl;
 use crate::events::{
     beyond, ended, first_max, forming_slip, holds, lifted, locate, predicted_crossing,
@@ -686,8 +686,8 @@ impl<P: Profile> Run<'_, '_, P> {
             return hold;
         }
         let mut back = set.clone();
-        if let crate::chain::Mode::Sliding(r) = back.contacts[j].mode {
-            back.contacts[j].mode = crate::chain::Mode::Sliding(-r);
+        if let Mode::Sliding(r) = back.contacts[j].mode {
+            back.contacts[j].mode = Mode::Sliding(-r);
         }
         back
     }
@@ -947,7 +947,28 @@ impl<P: Profile> Run<'_, '_, P> {
             }
         }
         let rising = pe.w.dmu_abs;
-        match self.stepper.switch(new_set.clone(), pe.lam, u) {
+        let formed = (new_set.contacts.len() > set.contacts.len()).then(|| u.clone());
+        let switched = self.stepper.switch(new_set.clone(), pe.lam, u);
+        let switched = match (switched, formed) {
+            (Ok(q), Some(u)) => match self.trapped_straight(&set, &new_set, &q, &u) {
+                Trapped::No => Ok(q),
+                Trapped::Slides(slid, q) => {
+                    new_set = slid;
+                    Ok(*q)
+                }
+                Trapped::Stop(message) => {
+                    self.range.close(RangeEnd::Event);
+                    let d = pe.lam;
+                    let stop = match self.env.ground.slide {
+                        Some(_) => StopReason::Jam { d, message },
+                        None => StopReason::ContactChange { d, message },
+                    };
+                    return Flow::End(stop, Some(Box::new((set, pe))));
+                }
+            },
+            (r, _) => r,
+        };
+        match switched {
             Ok(q) => {
                 if driver_gone {
                     // the sliding contact lifted off: the slip ends at the first point without
@@ -973,6 +994,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 }
                 // (one within rounding of zero too: its side is noise, and an armed one would
                 // cross back at once, an event the grid decides)
+                let env = &self.env;
                 w.pending = Crossing::all(env, &new_set)
                     .into_iter()
                     .filter(|c| {
@@ -1008,6 +1030,60 @@ impl<P: Profile> Run<'_, '_, P> {
                 )
             }
         }
+    }
+
+    /// Whether the contact that has just formed in `new_set` (from `set`; the old state in the
+    /// new unknowns `u`, its first point `q`) holds without slip where its state is singular at
+    /// that point: the contact forms at the end of a straight, unloaded stretch of the rod beyond
+    /// a contact that does not slip either (the free rod touching down on the next crest of a
+    /// corrugation, issue 31). Pulled along its length, a straight inextensible stretch does not
+    /// bend, so at `N = 0` any pair of opposite tangential forces at its ends is an equilibrium:
+    /// a line of states, and the branch on which the new contact loads leaves that line at a
+    /// finite `T` (0.003/0.05/0 on the rod tapered to 0.3: `T = −1.7e-4` at `N = 0`), beyond
+    /// any friction. The contact slides from the start, with kinetic friction, the way the rod
+    /// moves over it there (its friction opposing its slip, on the sliding state's tangent),
+    /// if that state loads it; else no contact state continues.
+    fn trapped_straight(
+        &mut self,
+        set: &ContactSet,
+        new_set: &ContactSet,
+        q: &Pt,
+        u: &[f64],
+    ) -> Trapped {
+        let Some(mu_k) = self.env.ground.mu_k else {
+            return Trapped::No;
+        };
+        let Some(j) = (new_set.contacts.iter()).position(|c| !set.contacts.contains(c)) else {
+            return Trapped::No;
+        };
+        let ct = &new_set.contacts[j];
+        if ct.tip
+            || !ct.mode.no_slip()
+            || !crate::watch::traps(new_set)
+            || !self.stepper.singular_at(q.lam, &q.u)
+        {
+            return Trapped::No;
+        }
+        for ratio in [mu_k, -mu_k] {
+            let mut slid = new_set.clone();
+            slid.contacts[j].mode = Mode::Sliding(ratio);
+            let Ok(p) = self.stepper.switch(slid.clone(), q.lam, u.to_vec()) else {
+                continue;
+            };
+            let rate = p.w.contacts[j].slide;
+            if ratio * rate.slip > 0.0 && rate.dnormal > 0.0 {
+                return Trapped::Slides(slid, Box::new(p));
+            }
+        }
+        Trapped::Stop(format!(
+            "a side contact forms at s = {:.6} at the end of a straight stretch of the rod that \
+             another contact holds without slip: the state {} is singular there (the tension of \
+             the stretch is indeterminate, and holding the new contact needs a tangential force \
+             at zero normal force), and sliding with kinetic friction the way the rod moves over \
+             it does not load it: no contact state continues",
+            new_set.s_of(j, &q.u),
+            new_set.label()
+        ))
     }
 
     /// A contact before a slip's driver that lets go (`set` to `new_set`) moves the driver one
@@ -1142,6 +1218,16 @@ impl std::fmt::Display for BridgeError {
 /// the solver's noise (a located touchdown lies within 1e-13 in `λ` of the new contact's zero;
 /// the corrector iterates to 1e-11).
 const NOISE: f64 = 1e-8;
+
+/// How a contact that has just formed in a singular state holds ([`Run::trapped_straight`]).
+enum Trapped {
+    /// As it formed (its state is not singular, or not of that kind).
+    No,
+    /// It slides from the start: the set, and its first point.
+    Slides(ContactSet, Box<Pt>),
+    /// No contact state continues: why.
+    Stop(String),
+}
 
 /// A new contact state's event that its first step found beyond zero.
 enum Pending {
