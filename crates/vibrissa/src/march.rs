@@ -829,7 +829,11 @@ impl<P: Profile> Run<'_, '_, P> {
     /// event): they ended before it, though some hold again at the step's end or were located
     /// later (a root past it), as a free tip that dips below a corrugation and out again within
     /// one step of a slip (issue 31: the slip ended with the tip 1.6e-5 inside the surface, or a
-    /// stuck tip 1.2e-3 beyond its slip limit). Each is located before the event found, and the
+    /// stuck tip 1.2e-3 beyond its slip limit), or a sliding tip that turns into the surface and
+    /// back within the step (issue 31's own drag, A 0.005, W 0.05: its third slip ended with
+    /// `sin(φ(1) − β)` at −5.0e-3, and no contact state continued the march in `d` from
+    /// there; the tip lies down 3.0e-5 into that slip, and the side it becomes slides on, its
+    /// place kept by `driver_anchor`). Each is located before the event found, and the
     /// earliest replaces it (`found`); a failure to locate one leaves no event found and is
     /// returned (the step is then taken again, shorter).
     fn dipped(
@@ -840,13 +844,6 @@ impl<P: Profile> Run<'_, '_, P> {
         found: &mut Option<Found>,
     ) -> Option<StopReason> {
         let env = &self.env;
-        // (not in a slip driven by the tip: there an event found this way, the tip lying down,
-        // leads to a slide of the lying driver that does not balance its energy, 3.5e-5 of
-        // 1.7e-3 released on tests/round_tip.rs's point tip; such a slip ends as before)
-        let set = self.stepper.set();
-        if set.tip() && (env.ground.slide).is_some_and(|s| s.driver + 1 == set.contacts.len()) {
-            return None;
-        }
         let back = |c: Crossing, f: &Found| c != f.cross && beyond(c.of_watch(env, &f.pt.w));
         // (each replacement is strictly earlier: at most one per armed event)
         for _ in 0..armed.len() {

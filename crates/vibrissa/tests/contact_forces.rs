@@ -1068,6 +1068,37 @@ fn a_tip_lying_down_in_a_trough_that_curves_more_than_its_end_lies_along() {
     assert!((d - 0.236426).abs() < 1e-6, "d = {d}: {message}");
 }
 
+/// Issue 31's own example, `vibrissa drag --eta 0.75 --mu-s 0.5 --mu-k 0.3 --d-max 0.3
+/// --corrugation-amplitude 0.005 --corrugation-wavelength 0.05` (201 output points, as the
+/// program's default): it ended after 3 slips, "contact change at d = 0.010511365: the contact
+/// state tip does not hold beyond d = 0.010511365: -sin(phi(1) - beta) (the tip would turn into
+/// the surface) = 4.992e-3 after the change ... the model has no contact state that continues".
+/// In the third slip the sliding tip turned into the surface 3.0e-5 into the slide and out again
+/// within the slide's first step (to 0.0029), so the slip ended, at 0.00167, with the rod's end
+/// pointing 5.0e-3 into the surface; the tip's lying down is now located inside that step
+/// (march.rs `dipped`, in a slip driven by the tip too), and the side it becomes slides on.
+/// Every contact up to the stop is on the surface, pushing and by Coulomb, and every slip and
+/// stick balances its energy.
+#[test]
+fn the_issues_example_slides_on_where_its_tip_lies_down_in_a_slip() {
+    let c = Case {
+        amp: 0.005,
+        wave: 0.05,
+        phase: 0.0,
+        eta: 0.75,
+        mu_s: 0.5,
+        ratio: 0.6,
+        taper: None,
+        radius: 0.0,
+        d_max: 0.3,
+    };
+    let out = run_points(&c, scene(&c), 201).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(!out.contains("no contact state"), "{out}");
+    assert!(!out.contains("does not hold"), "{out}");
+    // (past the third slip, which starts at d = 0.0105114)
+    assert!(stop_d(&out).is_none_or(|d| d > 0.0105114), "{out}");
+}
+
 /// A survey of `PROPTEST_CASES` (else 100) scenes from proptest's deterministic seed, each
 /// outcome printed (not stopping at the first failure): `cargo test -p vibrissa --test
 /// contact_forces -- --ignored --nocapture survey`.

@@ -147,15 +147,17 @@ fn energy_balance_with_a_round_tip() {
 }
 
 /// `vibrissa drag --eta 0.75 --corrugation-amplitude 0.005 --corrugation-wavelength 0.05`: the
-/// point tip ends after 3 slips at d 0.0105 ("the tip would turn into the surface"); with a
-/// round tip of radius 0.005 the drag runs on past it (docs/robustness.md reports where it ends
-/// and why).
+/// point tip ended after 3 slips at d 0.0105 ("the tip would turn into the surface"), where its
+/// lying down inside the third slip was not located; it now lies down there and slides on as a
+/// side, past d 0.0105 (to a snap a few slips later, docs/robustness.md); with a round tip of
+/// radius 0.005 the drag runs on much further (docs/robustness.md reports where it ends and why).
 #[test]
 fn a_round_tip_runs_past_where_the_point_tip_turns_into_the_corrugation() {
     let point = corrugated(0.0, 0.005, 0.05, 0.3, false);
-    assert_eq!(point.slips.len(), 3, "{point}");
+    assert!(point.slips.len() > 3, "{point}");
     assert!(
-        matches!(&point.stop, StopReason::ContactChange { d, message } if (d - 0.0105).abs() < 1e-3 && message.contains("turn into the surface")),
+        point.stop.at().is_none_or(|d| d > 0.0105114)
+            && !point.stop.to_string().contains("no contact state"),
         "{point}"
     );
     let round = corrugated(0.005, 0.005, 0.05, 0.3, false);
