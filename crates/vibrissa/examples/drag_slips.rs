@@ -6,9 +6,9 @@
 //! the CPU time of the thread and the slip's place `d` against `D_SLIP` (the same drag with
 //! dt → 0, `-- --reference` recomputes it). `-- --ten`: the bench's 10 slips (20 events) at
 //! dt 0.02, 0.01 (grid 100, tol 1e-8; grid 200, tol 1e-10) and 0.005 (grid 200, tol 1e-10),
-//! with the places of every slip and stick: after the first stick they change with dt (the
-//! events that follow are not the same), which is why docs/performance.md compares the first
-//! slip. `-- --settings dt,grid,tol,dt,grid,tol,...` picks the settings of either;
+//! with the places of every slip and stick (slips 2 to 5 converge as dt → 0 since the slip test
+//! on the held force, docs/model.md; docs/performance.md compares the first slip, the one the
+//! peer's drag also converges in). `-- --settings dt,grid,tol,dt,grid,tol,...` picks the settings of either;
 //! `-- --internal-damping G` gives the rod Kelvin–Voigt damping `γ_i = G` (default 0).
 //!
 //! The peer's side of the same drag: `benches/pyelastica_drag.py`.

@@ -28,7 +28,10 @@
 //! After each slip and stick the scheme is restarted: the history's accelerations and the end
 //! forces are replaced by ones consistent with the new condition (`Rothe::restart`, two steps of
 //! [`restart_step`] on a copy), since the holding force jumps there and the trapezoidal rule
-//! would carry half the jump on as a mode alternating from step to step (docs/model.md).
+//! would carry half the jump on as a mode alternating from step to step (docs/model.md). What
+//! is left of that mode in the held tip's force (it grows during a stuck phase) does not enter
+//! the motion, so after the first event the slip's test takes the held force without it
+//! ([`Drive::held_force`]: the step's end, its start and the last step's start combined).
 //!
 //! The start: the rod pressed onto the surface (the static state with the force normal to it,
 //! the start of `vibrissa::drag`), at rest, the tip stuck. The foot's speed rises smoothly
@@ -507,6 +510,11 @@ struct Drive<'r, 'o> {
     anchor: f64,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
+    /// The tip's force at the last step's start and that step's length, while the tip's
+    /// condition has not changed since (the stuck tip's slip test, [`Drive::held_force`]).
+    tip_before: Option<([f64; 2], f64)>,
+    /// [`Drive::held_force`] of the last step taken (`None` where it was not formed).
+    held_now: Option<[f64; 2]>,
     foot_work: f64,
     friction: f64,
     impact: f64,
@@ -568,13 +576,47 @@ impl<'r> Drive<'r, '_> {
     fn events_after(&self, tr: &Trial) -> [f64; 2] {
         let (n, t) = contact_forces(tr.force(1));
         let y = tr.sol.right()[1];
-        self.events_of(n, t, self.rothe.tip_velocity(tr)[0], y)
+        let mut g = self.events_of(n, t, self.rothe.tip_velocity(tr)[0], y);
+        if self.state == ContactState::Stuck {
+            let (n, t) = contact_forces(self.held_force(tr));
+            g[PHASE] = self.events_of(n, t, 0.0, y)[PHASE];
+        }
+        g
+    }
+
+    /// The stuck tip's force at the end of the trial `tr` for the slip's test, without the
+    /// trapezoidal rule's alternating mode: `a Gⁿ⁺¹ + ½ Gⁿ + c Gⁿ⁻¹` with
+    /// `a = (τ + h/2)/(τ + h)`, `c = −τ/(2(τ + h))` (`τ` this step, `h` the last).
+    ///
+    /// Why: the held tip's force is a multiplier of the rod's constraints, and the rule leaves
+    /// in it a mode `e, −e, e, …` that changes sign every step whatever its length and does not
+    /// enter the motion (the momentum takes the forces' mean over each step). Excited at every
+    /// slip and stick, it grew during a stuck phase, about linearly in time, to ±0.04 in T/N at
+    /// dt 0.01, 0.005 and 0.0025 alike (docs/model.md), so it, not the rod,
+    /// decided which crest of the stuck rod's ringing reached μs N. The weights sum to 1, are
+    /// exact for a force linear in time, and cancel the mode (`a − ½ + c = 0`). Without the
+    /// last step under the same condition (after a slip, a stick or the start) the force at
+    /// the step's end itself.
+    fn held_force(&self, tr: &Trial) -> [f64; 2] {
+        let g1 = tr.force(1);
+        let Some((g_prev, h)) = self.tip_before else {
+            return g1;
+        };
+        let (tau, g0) = (tr.tau, self.rothe.force(1));
+        let a = (tau + 0.5 * h) / (tau + h);
+        let c = -0.5 * tau / (tau + h);
+        [0, 1].map(|k| a * g1[k] + 0.5 * g0[k] + c * g_prev[k])
     }
 
     fn events_now(&self) -> [f64; 2] {
         let (n, t) = contact_forces(self.rothe.force(1));
         let p = self.rothe.sample(self.t);
-        self.events_of(n, t, p.tip_vx, p.tip_y)
+        let mut g = self.events_of(n, t, p.tip_vx, p.tip_y);
+        if let (ContactState::Stuck, Some(held)) = (self.state, self.held_now) {
+            let (n, t) = contact_forces(held);
+            g[PHASE] = self.events_of(n, t, 0.0, p.tip_y)[PHASE];
+        }
+        g
     }
 
     /// Takes the step: the energies by the trapezoidal rule, a sample.
@@ -586,7 +628,12 @@ impl<'r> Drive<'r, '_> {
             self.d,
         );
         let tau = tr.tau;
+        let held = (self.state == ContactState::Stuck && self.tip_before.is_some())
+            .then(|| self.held_force(&tr));
         self.rothe.commit(tr);
+        // (the drag's start is consistent and smooth: no mode to remove before the first event)
+        self.tip_before = (!self.events.is_empty()).then_some((g1, tau));
+        self.held_now = held;
         self.t += tau;
         self.d = self.o.foot_at(self.t);
         let (h0, h1) = (self.rothe.force(0), self.rothe.force(1));
@@ -648,6 +695,8 @@ impl<'r> Drive<'r, '_> {
 
     /// The contact changes after event `which`; `Some(stop)` where the drag ends.
     fn apply(&mut self, which: usize) -> Option<DynDragStop> {
+        self.tip_before = None;
+        self.held_now = None;
         let (normal, tangential) = contact_forces(self.rothe.force(1));
         let kind = if which == LIFT {
             if self.o.flight {
@@ -865,6 +914,8 @@ pub fn drag(
         state: ContactState::Stuck,
         anchor: tip[0],
         fresh_slip: false,
+        tip_before: None,
+        held_now: None,
         foot_work: 0.0,
         friction: 0.0,
         impact: 0.0,
