@@ -210,7 +210,9 @@ const STALL: usize = 4;
 /// iterate is kept while the residual falls by 10× per iteration, so from a good predictor a
 /// point costs one shot with and one without sensitivities. With `fresh` (or when the iterate
 /// moved more than `1e-5`) the returned Jacobian is recomputed at the solution: tangents and
-/// the events that use them need it exact. An iteration that [`stalled`] gives up early.
+/// the events that use them need it exact; an iterate the chord's rate expects to converge is
+/// shot with its sensitivities at once (the same bits as without, so the same iterations). An
+/// iteration that [`stalled`] gives up early.
 pub(crate) fn correct_chord<C: Curve + ?Sized>(
     ch: &mut C,
     lam: f64,
@@ -229,8 +231,19 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
         let mut rns = Vec::with_capacity(max_iter + 1);
         for it in 0..=max_iter {
             let need = lu.is_none();
+            let moved = u
+                .iter()
+                .zip(u0)
+                .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+            // (a Jacobian made at this very iterate is exact already)
+            let exact_wanted = (fresh || moved > 1e-5) && !((is_fresh || need) && it == 0);
+            // where the chord's rate says this iterate converges and its Jacobian would then be
+            // recomputed here, the sensitivities come with this shot (the state's bits are those
+            // of a shot without them); a wrong guess costs them, unused
+            let ahead = matches!(rns[..], [.., before, last] if last * (last / before) <= tol);
+            let spec = !need && exact_wanted && ahead;
             let e = ch
-                .eval(&u, lam, need)
+                .eval(&u, lam, need || spec)
                 .map_err(|_| ShotFailure::NoConvergence {
                     iteration: it,
                     residual: f64::NAN,
@@ -254,17 +267,16 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
                     refined = true;
                     break;
                 }
-                let moved = u
-                    .iter()
-                    .zip(u0)
-                    .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
                 let (mut j, mut rl) = jac0.take().unwrap_or_default();
-                if (fresh || moved > 1e-5) && !(is_fresh && it == 0) {
+                if exact_wanted {
                     // one more shot at the solution for an exact tangent (it leaves the same
-                    // paths in the shooter, the state being the same)
-                    let e2 = ch
-                        .eval(&u, lam, true)
-                        .map_err(|_| ShotFailure::Singular { iteration: it })?;
+                    // paths in the shooter, the state being the same), unless this one had them
+                    let e2 = if spec {
+                        e
+                    } else {
+                        ch.eval(&u, lam, true)
+                            .map_err(|_| ShotFailure::Singular { iteration: it })?
+                    };
                     j = e2.jac.unwrap_or(j);
                     rl = e2.r_lam.unwrap_or(rl);
                 }
@@ -285,12 +297,17 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
             }
             if matches!(rns[..], [.., before, _] if rn > 0.1 * before) {
                 // slow chord convergence: a fresh Jacobian here
-                let e2 = ch
-                    .eval(&u, lam, true)
-                    .map_err(|_| ShotFailure::Singular { iteration: it })?;
-                let j = e2.jac.clone().unwrap_or_else(|| DMatrix::zeros(0, 0));
+                let (jac, r_lam) = if spec {
+                    (e.jac.clone(), e.r_lam.clone())
+                } else {
+                    let e2 = ch
+                        .eval(&u, lam, true)
+                        .map_err(|_| ShotFailure::Singular { iteration: it })?;
+                    (e2.jac, e2.r_lam)
+                };
+                let j = jac.unwrap_or_else(|| DMatrix::zeros(0, 0));
                 lu = Some(j.clone().lu());
-                jac0 = Some((j, e2.r_lam.unwrap_or_else(|| DVector::zeros(0))));
+                jac0 = Some((j, r_lam.unwrap_or_else(|| DVector::zeros(0))));
                 is_fresh = false;
             }
             let du = lu

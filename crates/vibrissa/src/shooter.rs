@@ -829,6 +829,48 @@ mod tests {
         assert!(last < 0.5 * first, "first step {first}, last {last}");
     }
 
+    /// A shot with sensitivities has the bits of the shot without them: the same end state,
+    /// largest step error and recorded path, for one and two start directions, on a mesh graded
+    /// towards a thin tip (the chord corrector asks for the sensitivities of an iterate it
+    /// expects to converge with the shot that tests it, and keeps its residual).
+    #[test]
+    fn sensitivities_leave_the_shot_bit_for_bit() {
+        let scene = Scene {
+            stiffness: Stiffness::Taper { ratio: 0.1 },
+            precurvature: Precurvature::Linear { k0: -0.72, k1: 0.0 },
+            ..Scene::default()
+        };
+        let mut sh = Shooter::new(
+            General::new(&scene.stiffness, &scene.precurvature, 1.0),
+            0.0,
+            1e-10,
+            8,
+        );
+        let z0 = [0.0, 0.0, 1.4, -0.05];
+        let g = [0.02, -0.3];
+        while sh.shoot(0, 0.1, 0.95, z0, &[], g, false).err > 1.0 {
+            assert!(sh.refine(0));
+        }
+        assert!(sh.segs[0].nodes.len() > 9, "the mesh was graded");
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let plain = sh.shoot(0, 0.1, 0.95, z0, &[], g, false);
+        let (ps, pz, pdz) = sh.path(0);
+        let path = (bits(ps), bits(pz), bits(pdz));
+        for dirs in [&[[0.0, 1.0]][..], &[[1.0, 0.0], [0.0, 1.0]][..]] {
+            let var = sh.shoot(0, 0.1, 0.95, z0, dirs, g, true);
+            assert_eq!(var.ncol, dirs.len() + 2);
+            assert_eq!(
+                bits(&var.z),
+                bits(&plain.z),
+                "end state, {} directions",
+                dirs.len()
+            );
+            assert_eq!(var.err.to_bits(), plain.err.to_bits());
+            let (vs, vz, vdz) = sh.path(0);
+            assert_eq!((bits(vs), bits(vz), bits(vdz)), path, "recorded path");
+        }
+    }
+
     /// The lanes of `end_states` are, bit for bit, the single-step integrations of `step` over
     /// the segment's mesh laid on each span (a graded mesh, a tapered pre-curved rod), so the
     /// central differences of the moving ends do not depend on how they are computed.
