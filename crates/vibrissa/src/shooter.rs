@@ -829,15 +829,18 @@ mod tests {
         assert!(last < 0.5 * first, "first step {first}, last {last}");
     }
 
-    /// A shot with sensitivities has the bits of the shot without them: the same end state,
-    /// largest step error and recorded path, for one and two start directions, on a mesh graded
-    /// towards a thin tip (the chord corrector asks for the sensitivities of an iterate it
-    /// expects to converge with the shot that tests it, and keeps its residual).
-    #[test]
-    fn sensitivities_leave_the_shot_bit_for_bit() {
+    /// A shooter on the rod tapered to 0.1 with rest curvature `k0 + k1 s`, its mesh refined
+    /// until the shot over `span` from `z0` under the force `g` meets the tolerance 1e-10: a
+    /// mesh graded towards the thin tip.
+    fn graded(
+        (k0, k1): (f64, f64),
+        (a, b): (f64, f64),
+        z0: [f64; 4],
+        g: [f64; 2],
+    ) -> Shooter<General> {
         let scene = Scene {
             stiffness: Stiffness::Taper { ratio: 0.1 },
-            precurvature: Precurvature::Linear { k0: -0.72, k1: 0.0 },
+            precurvature: Precurvature::Linear { k0, k1 },
             ..Scene::default()
         };
         let mut sh = Shooter::new(
@@ -846,12 +849,21 @@ mod tests {
             1e-10,
             8,
         );
-        let z0 = [0.0, 0.0, 1.4, -0.05];
-        let g = [0.02, -0.3];
-        while sh.shoot(0, 0.1, 0.95, z0, &[], g, false).err > 1.0 {
+        while sh.shoot(0, a, b, z0, &[], g, false).err > 1.0 {
             assert!(sh.refine(0));
         }
         assert!(sh.segs[0].nodes.len() > 9, "the mesh was graded");
+        sh
+    }
+
+    /// A shot with sensitivities has the bits of the shot without them: the same end state,
+    /// largest step error and recorded path, for one and two start directions, on a mesh graded
+    /// towards a thin tip (the chord corrector asks for the sensitivities of an iterate it
+    /// expects to converge with the shot that tests it, and keeps its residual).
+    #[test]
+    fn sensitivities_leave_the_shot_bit_for_bit() {
+        let (z0, g) = ([0.0, 0.0, 1.4, -0.05], [0.02, -0.3]);
+        let mut sh = graded((-0.72, 0.0), (0.1, 0.95), z0, g);
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         let plain = sh.shoot(0, 0.1, 0.95, z0, &[], g, false);
         let (ps, pz, pdz) = sh.path(0);
@@ -876,23 +888,8 @@ mod tests {
     /// central differences of the moving ends do not depend on how they are computed.
     #[test]
     fn end_states_lanes_are_single_step_integrations() {
-        let scene = Scene {
-            stiffness: Stiffness::Taper { ratio: 0.1 },
-            precurvature: Precurvature::Linear { k0: -0.7, k1: 0.2 },
-            ..Scene::default()
-        };
-        let mut sh = Shooter::new(
-            General::new(&scene.stiffness, &scene.precurvature, 1.0),
-            0.0,
-            1e-10,
-            8,
-        );
-        let z0 = [0.0, 0.0, std::f64::consts::FRAC_PI_2, -0.05];
-        let g = [0.02, -0.3];
-        while sh.shoot(0, 0.0, 0.9, z0, &[], g, false).err > 1.0 {
-            assert!(sh.refine(0));
-        }
-        assert!(sh.segs[0].nodes.len() > 9, "the mesh was graded");
+        let (z0, g) = ([0.0, 0.0, std::f64::consts::FRAC_PI_2, -0.05], [0.02, -0.3]);
+        let sh = graded((-0.7, 0.2), (0.0, 0.9), z0, g);
         let single = |(a, b): (f64, f64)| -> [f64; 4] {
             let mut z = z0;
             for w in sh.segs[0].nodes.windows(2) {
