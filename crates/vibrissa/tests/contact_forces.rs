@@ -1082,15 +1082,8 @@ fn a_tip_lying_down_in_a_trough_that_curves_more_than_its_end_lies_along() {
 #[test]
 fn the_issues_example_slides_on_where_its_tip_lies_down_in_a_slip() {
     let c = Case {
-        amp: 0.005,
-        wave: 0.05,
-        phase: 0.0,
-        eta: 0.75,
-        mu_s: 0.5,
-        ratio: 0.6,
         taper: None,
-        radius: 0.0,
-        d_max: 0.3,
+        ..grid_case(0.005, 0.05, 0.0, 0.0)
     };
     let out = run_points(&c, scene(&c), 201).unwrap_or_else(|e| panic!("{c:?}: {e}"));
     assert!(!out.contains("no contact state"), "{out}");
