@@ -754,26 +754,13 @@ impl<P: Profile> DragRun<'_, P> {
         let mut stalls = 0;
         loop {
             let (_, mu_k) = self.fr.at(x_now, dir);
-            let boundary = (self.fr.texture.as_ref()).and_then(|t| t.next_boundary(x_now, dir));
+            let (senv, boundary) = self.piece_env(s.mu_s, (j, dir, mu_k), x_now);
             let lam_end = match boundary {
                 Some(xb) if self.fr.uniform.is_none() => {
                     (clam + self.arc(x_now, xb).abs()).min(MAX_SLIP)
                 }
                 _ => MAX_SLIP,
             };
-            let mut senv = self.base.clone();
-            senv.mu0 = Some(s.mu_s);
-            senv.ground.slide = Some(Slide {
-                dir,
-                mu_k,
-                driver: j,
-            });
-            senv.ground.meter = self.opts.energy_balance.then_some(Meter::Slide);
-            self.slide_now = senv.ground.slide;
-            if boundary.is_some() {
-                // μk is this patch's until the boundary
-                senv.ground.texture = None;
-            }
             // (the point again, watched with this piece's μk)
             let family = Family::Slide {
                 xf: d_s,
@@ -820,9 +807,19 @@ impl<P: Profile> DragRun<'_, P> {
                 return Err(stalled(d_s, &qe, &eset));
             }
             if sout.driver.is_none() {
-                // the sliding contact lifted off: the slip ends there, the others held
+                // the sliding contact lifted off: the slip ends there, the others held, unless
+                // one that slid along with it needs more than kinetic friction held: that one
+                // slides on as the driver
                 self.lifted |= own;
-                let slid = slid + own_slide + ridden(rode, &eset, &qe, d_s);
+                slid += own_slide;
+                let mu_k = |x: f64, d: f64| self.fr.at(x, d).1;
+                if let Some((k, r)) = still_sliding(&sout.riders, &qe, mu_k) {
+                    (j, dir, own) = (k, r.signum(), false);
+                    x_now = qe.w.contacts[k].x;
+                    (cset, cu, clam) = (eset, qe.u, 0.0);
+                    continue;
+                }
+                let slid = slid + ridden(rode, &eset, &qe, d_s);
                 return Ok((eset, qe, slid, None));
             }
             match &sout.stop {
@@ -883,6 +880,31 @@ impl<P: Profile> DragRun<'_, P> {
                 other => return Err(at_foot(other.clone(), d_s)),
             }
         }
+    }
+
+    /// The environment of a piece of the slide of contact `j` the way `dir` from lab `x_now`
+    /// (kinetic coefficient `mu_k`, the stick's threshold `mu_s`), and the texture's next patch
+    /// boundary ahead, if any (μk is this patch's until it).
+    fn piece_env(
+        &mut self,
+        mu_s: f64,
+        (j, dir, mu_k): (usize, f64, f64),
+        x_now: f64,
+    ) -> (Env, Option<f64>) {
+        let boundary = (self.fr.texture.as_ref()).and_then(|t| t.next_boundary(x_now, dir));
+        let mut senv = self.base.clone();
+        senv.mu0 = Some(mu_s);
+        senv.ground.slide = Some(Slide {
+            dir,
+            mu_k,
+            driver: j,
+        });
+        senv.ground.meter = self.opts.energy_balance.then_some(Meter::Slide);
+        self.slide_now = senv.ground.slide;
+        if boundary.is_some() {
+            senv.ground.texture = None;
+        }
+        (senv, boundary)
     }
 
     /// The end `(end, qe)` of a slide that a contact which broke free drove, its driver `j` held
@@ -1274,6 +1296,26 @@ fn breaking_free(set: &ContactSet, pe: &Pt, mu_k: impl Fn(f64, f64) -> f64) -> O
         })
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(k, _)| k)
+}
+
+/// Of the contacts that slid along with a slip's driver when it let go (`riders`: their numbers
+/// and friction ratios), held where they were then (state `pe`), the one that needs more than
+/// kinetic friction (`mu_k(x, dir)` there) the way it slid, the furthest above it, with its
+/// ratio: it slides on.
+fn still_sliding(
+    riders: &[(usize, f64)],
+    pe: &Pt,
+    mu_k: impl Fn(f64, f64) -> f64,
+) -> Option<(usize, f64)> {
+    (riders.iter())
+        .filter_map(|&(k, r)| {
+            let c = pe.w.contacts.get(k)?;
+            let dir = r.signum();
+            let over = dir * c.tangential - mu_k(c.x, dir) * c.normal;
+            (over > 1e-12 * (1.0 + c.normal)).then_some((k, r, over))
+        })
+        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|(k, r, _)| (k, r))
 }
 
 /// The equilibria of a slip fold back after the contact at `s` slid `by` (at the foot's place

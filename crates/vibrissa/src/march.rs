@@ -75,6 +75,9 @@ pub(crate) struct MarchOut {
     /// it that let go during the march); `None` where the driver itself let go (the march ends at
     /// the first point without it).
     pub driver: Option<usize>,
+    /// Where the slip's driver let go: the contacts that slid along with it, held where they were
+    /// then (their numbers in the last point's set, and their friction ratios `T/N`).
+    pub riders: Vec<(usize, f64)>,
 }
 
 /// Runs the march from the point `p0` (λ = `p0.lam`) over the grid.
@@ -146,6 +149,7 @@ pub(crate) fn march<P: Profile>(
         driver: out.driver,
         drivers: out.drivers,
         metered: out.metered,
+        riders: out.riders,
     }
 }
 
@@ -215,11 +219,12 @@ fn pulling(set: &ContactSet, p: &Pt, d: f64) -> Option<StopReason> {
 
 /// The stop where a slip's sliding contact `j` lets go (`N = 0` at the located point `pe`) while
 /// the slip still needs a tangential force there, and the state without it is no nearby
-/// equilibrium (`e`, the switch's failure): releasing the contact removes a finite force from the
-/// rod at once, so no quasi-static state continues from there and the rod jumps (the slip turns
-/// dynamic). `None` where the tangential force is within rounding of zero (the release is
-/// continuous there, and a failure to solve it is the solver's).
-fn released_pushing(pe: &Pt, j: usize, e: &StepError) -> Option<StopReason> {
+/// equilibrium (`why`: the switch's failure, or what the state found without it violates):
+/// releasing the contact removes a finite force from the rod at once, so no quasi-static state
+/// continues from there and the rod jumps (the slip turns dynamic). `None` where the tangential
+/// force is within rounding of zero (the release is continuous there, and a failure to solve it
+/// is the solver's).
+fn released_pushing(pe: &Pt, j: usize, why: &dyn std::fmt::Display) -> Option<StopReason> {
     let c = pe.w.contacts.get(j)?;
     let total: f64 = pe.w.contacts.iter().map(|c| c.normal.abs()).sum();
     if c.tangential.abs() <= 1e-8 * (1.0 + total) {
@@ -230,11 +235,29 @@ fn released_pushing(pe: &Pt, j: usize, e: &StepError) -> Option<StopReason> {
         message: format!(
             "the sliding contact at s = {:.6} lets go (N = {:.1e}) while the slip still needs \
              the tangential force T = {:.3e} there: releasing it removes that force from the rod \
-             at once, and no state without it lies near (from the state at the release: {e}); \
+             at once, and no state without it lies near (from the state at the release: {why}); \
              the slip turns dynamic",
             c.s, c.normal, c.tangential
         ),
     })
+}
+
+/// Why the state `q` found where a slip's driver let go is no state of the model: the free rod
+/// crosses the surface there, or its end points into it, beyond a located event's rounding
+/// (`None` where neither).
+fn crossing_after_release(env: &Env, q: &Pt) -> Option<String> {
+    [Crossing::Touchdown, Crossing::TipTangent]
+        .into_iter()
+        .map(|c| (c, c.of_watch(env, &q.w)))
+        .find(|&(_, v)| v > JUMP)
+        .map(|(c, v)| match c {
+            Crossing::Touchdown => format!(
+                "without it, {} = {v:.3e} at s = {:.6}",
+                c.describe(),
+                q.w.clear_s
+            ),
+            _ => format!("without it, {} = {v:.3e}", c.describe()),
+        })
 }
 
 /// Why the march ends where a sliding contact of `set` halts at `pe` and holds (`held`, first
@@ -259,6 +282,39 @@ fn halted_trapped(set: &ContactSet, held: &ContactSet, pe: &Pt, q: &Pt) -> Strin
         held.label(),
         at.join(" and ")
     )
+}
+
+/// The set `new_set` left where the slip's driver let go (from `set` at `pe`, the foot at `xf`),
+/// with the contacts that slid along with it (passive sliders, `T = ratio·N`) held where they are
+/// at `pe`; their numbers in it and their ratios. Left sliding, they would be free to move at
+/// once to where their kinetic friction alone holds the rod, the force the driver still carried
+/// (its tangential force need not vanish with its normal force) gone: a jump whose energy no
+/// friction work accounts for (issue 31: 3.3e-4 of 1.14e-3 released, the tip moving 3.8e-4 at
+/// once). Held, each takes that force up; one that then needs more than kinetic friction slides
+/// on as the slip's driver (module `drag`).
+fn hold_riders(
+    set: &ContactSet,
+    mut new_set: ContactSet,
+    pe: &Pt,
+    xf: f64,
+) -> (ContactSet, Vec<(usize, f64)>) {
+    let gone = (0..new_set.contacts.len())
+        .find(|&k| set.contacts[k] != new_set.contacts[k])
+        .unwrap_or(new_set.contacts.len());
+    let mut riders = Vec::new();
+    for k in 0..new_set.contacts.len() {
+        let Mode::Sliding(r) = new_set.contacts[k].mode else {
+            continue;
+        };
+        if !crate::events::is_slider(&new_set.contacts[k]) {
+            continue;
+        }
+        // (its number in the old set, whose unknowns `pe` carries)
+        let ko = if k < gone { k } else { k + 1 };
+        new_set.contacts[k].mode = crate::events::held(set, ko, pe, xf).contacts[ko].mode;
+        riders.push((k, r));
+    }
+    (new_set, riders)
 }
 
 /// Whether the event `c`, located at `pe`, comes before the event found `f` (in a march whose
@@ -920,6 +976,10 @@ impl<P: Profile> Run<'_, '_, P> {
     ) -> Flow {
         let driver_before = self.env.ground.slide.map(|s| s.driver);
         let driver_gone = self.renumber(&set, &new_set, pe.lam);
+        if driver_gone {
+            let xf = self.stepper.foot_x(pe.lam);
+            (new_set, self.out.riders) = hold_riders(&set, new_set, &pe, xf);
+        }
         let env = &self.env;
         self.out.push(&set, &pe, Some(ev));
         // (the event's row is of the old set; the points after it of the new one)
@@ -967,6 +1027,18 @@ impl<P: Profile> Run<'_, '_, P> {
         };
         match switched {
             Ok(q) => {
+                let crossing = driver_gone
+                    .then(|| crossing_after_release(&self.env, &q))
+                    .flatten();
+                let pushing = driver_before
+                    .zip(crossing)
+                    .and_then(|(j, why)| released_pushing(&pe, j, &why));
+                if let Some(stop) = pushing {
+                    // the march ends at the event point, where the driver still touches
+                    self.out.driver = driver_before;
+                    self.range.close(RangeEnd::Event);
+                    return Flow::End(stop, Some(Box::new((set, pe))));
+                }
                 if driver_gone {
                     // the sliding contact lifted off: the slip ends at the first point without
                     // it (the foot held, the other contacts as they were)
@@ -1037,9 +1109,15 @@ impl<P: Profile> Run<'_, '_, P> {
     /// bend, so at `N = 0` any pair of opposite tangential forces at its ends is an equilibrium:
     /// a line of states, and the branch on which the new contact loads leaves that line at a
     /// finite `T` (0.003/0.05/0 on the rod tapered to 0.3: `T = −1.7e-4` at `N = 0`), beyond
-    /// any friction. The contact slides from the start, with kinetic friction, the way the rod
-    /// moves over it there (its friction opposing its slip, on the sliding state's tangent),
-    /// if that state loads it; else no contact state continues.
+    /// any friction. The same holds for the tip touching down at the end of the free tail beyond
+    /// a side that rolls (the tail is unloaded, so straight): rolling that side along the surface
+    /// moves its contact point along the tail by as much as it shortens it, so to first order the
+    /// side may roll either way with the tip held (issue 31's own drag, A 0.005, W 0.05: the tip
+    /// touching down 4.3e-3 beyond the side that drove its sixth slip, the stuck state's tangent
+    /// 1e18, its equilibria folding back at once with the tip pulling, N = −9.7e-6). The
+    /// contact slides from the start, with kinetic friction, the way the rod moves over it there
+    /// (its friction opposing its slip, on the sliding state's tangent), if that state loads it;
+    /// else no contact state continues.
     fn trapped_straight(
         &mut self,
         set: &ContactSet,
@@ -1054,8 +1132,7 @@ impl<P: Profile> Run<'_, '_, P> {
             return Trapped::No;
         };
         let ct = &new_set.contacts[j];
-        if ct.tip
-            || !ct.mode.no_slip()
+        if !ct.mode.no_slip()
             || !crate::watch::traps(new_set)
             || !self.stepper.singular_at(q.lam, &q.u)
         {
@@ -1073,11 +1150,16 @@ impl<P: Profile> Run<'_, '_, P> {
             }
         }
         Trapped::Stop(format!(
-            "a side contact forms at s = {:.6} at the end of a straight stretch of the rod that \
+            "a {} forms at s = {:.6} at the end of a straight stretch of the rod that \
              another contact holds without slip: the state {} is singular there (the tension of \
              the stretch is indeterminate, and holding the new contact needs a tangential force \
              at zero normal force), and sliding with kinetic friction the way the rod moves over \
              it does not load it: no contact state continues",
+            if ct.tip {
+                "tip contact"
+            } else {
+                "side contact"
+            },
             new_set.s_of(j, &q.u),
             new_set.label()
         ))

@@ -244,6 +244,8 @@ pub(crate) struct Output<'a, P: Profile> {
     pub driver: Option<usize>,
     pub drivers: Vec<Option<usize>>,
     pub metered: [f64; 2],
+    /// Where a slip's driver let go: the passive sliders then, held (module `march`).
+    pub riders: Vec<(usize, f64)>,
     /// Each row's shape sampled at this many points, if kept.
     pub keep_shapes: Option<usize>,
     /// The rod's profile (flex points of the rows, shapes).
@@ -269,6 +271,7 @@ impl<'a, P: Profile> Output<'a, P> {
             driver: None,
             drivers: Vec::with_capacity(rows),
             metered: [0.0, 0.0],
+            riders: Vec::new(),
             keep_shapes,
             profile,
             general,

@@ -334,14 +334,18 @@ fn a_sliding_tip_that_lifts_off_ends_its_slip() {
 /// paper's rod over a corrugation of amplitude 0.001, wavelength 0.02 and phase 2π/3 (issue
 /// 31's texture grid, data/drag/texture_grid.csv), the tip slips at d 0.21929, the side behind
 /// it halts and lets go, and the tip slides on alone; 0.0101 into the slip its end lies down
-/// (the tip becomes a side, the slip's driver), 0.0195 into it the end touches down behind that
-/// side, and with the tip stuck the equilibria fold back, the tip pulling: a snap, named. Before,
-/// the side the tip became held the slide's λ in its place twice over: the rod jumped 0.0101 on
-/// along the surface at the change, its free end 3.9e-3 into the surface, and the drag stopped
-/// with a jam ("the contact state side does not hold beyond 1.013386e-2 of the slip") that was
-/// that jump's (events.rs `driver_anchor`).
+/// (the tip becomes a side, the slip's driver), 0.0195 into it the free end touches down beyond
+/// that side. Before, the side the tip became held the slide's λ in its place twice over: the
+/// rod jumped 0.0101 on along the surface at the change, its free end 3.9e-3 into the surface,
+/// and the drag stopped with a jam ("the contact state side does not hold beyond 1.013386e-2 of
+/// the slip") that was that jump's (events.rs `driver_anchor`). Then, with the tip that touched
+/// down stuck, the equilibria folded back at once, the tip pulling: a snap. That state is
+/// singular (the tail between side and tip is straight; march.rs `trapped_straight`): the tip
+/// now slides from the start, the side lets go and the tip, held, drives the slip on; it lies
+/// down and touches down again three times, and at the fourth release the side lets go with
+/// T = 53.5 (N = 3.9e-9) and no state without it is found: a jam, at the same d.
 #[test]
-fn a_slip_whose_tip_lies_down_slides_on_as_a_side_to_a_snap() {
+fn a_slip_whose_tip_lies_down_slides_on_as_a_side_to_a_jam() {
     let s = scene(|s| {
         s.surface = SurfaceProfile::Sine {
             amplitude: 0.001,
@@ -351,14 +355,11 @@ fn a_slip_whose_tip_lies_down_slides_on_as_a_side_to_a_snap() {
     });
     let r = run(&s, &uniform(0.5, 0.3, 0.3));
     match &r.stop {
-        StopReason::ContactChange { d, message } => {
+        StopReason::Jam { d, message } => {
             assert!((*d - 0.21929).abs() < 1e-5, "{d}");
-            assert!(
-                message.contains("(a snap)") && message.contains("side+tip"),
-                "{message}"
-            );
+            assert!(message.contains("lets go"), "{message}");
         }
-        other => panic!("not a snap: {other}"),
+        other => panic!("not a jam: {other}"),
     }
 }
 
@@ -366,8 +367,10 @@ fn a_slip_whose_tip_lies_down_slides_on_as_a_side_to_a_snap() {
 /// near the tip) is a tip contact — a corner on the surface — not a side contact at `s = 1`,
 /// which would need the rod tangent there: before, the new state's Newton diverged and the drag
 /// stopped with "touchdown (side to side+side): the new contact state does not hold: Newton did
-/// not converge". With the tip stuck, the slip ends in a snap (the equilibria fold back), a
-/// physical stop, after the same six slips.
+/// not converge". With the tip stuck, the slip ended in a snap after six slips (d 0.016586): the
+/// state is singular there (march.rs `trapped_straight`), and the tip now slides from the start;
+/// the drag goes on through a seventh slip to d 0.016801, where the sliding tip halts 5.5e-3
+/// beyond the side, a state singular to working precision, named (march.rs `halted_trapped`).
 #[test]
 fn a_tip_touching_down_in_a_slip_is_a_tip_contact() {
     let s = scene(|s| {
@@ -382,15 +385,14 @@ fn a_tip_touching_down_in_a_slip_is_a_tip_contact() {
         ..uniform(0.5, 0.3, 0.3)
     };
     let r = run(&s, &o);
-    assert_eq!(r.slips.len(), 6, "{r}");
-    match &r.stop {
-        StopReason::FoldInD { d } => assert!((d - 0.016585816).abs() < 1e-6, "{d}"),
-        StopReason::ContactChange { d, message } => {
-            assert!((d - 0.016585816).abs() < 1e-6, "{d}");
-            assert!(message.contains("fold back"), "{message}");
-        }
-        other => panic!("not a snap: {other}"),
-    }
+    assert!(r.slips.len() > 6, "{r}");
+    let d = r.stop.at().unwrap_or(0.3);
+    assert!(d > 0.016586, "{r}");
+    let stop = r.stop.to_string();
+    assert!(
+        !stop.contains("does not hold") && !stop.contains("Newton did not converge"),
+        "{stop}"
+    );
 }
 
 /// A run asked to stop (its configuration's `Cancel` set, as Python's Ctrl-C does) ends at its
