@@ -866,7 +866,7 @@ impl<'r> Drive<'r, '_> {
             if let Some(tol) = self.o.time_tol {
                 let err = self.rothe.local_error(&tr);
                 h = ctl.next(tau, err, tol);
-                if !(err <= tol) {
+                if err > tol {
                     if tau <= ctl.h_min {
                         return Err(too_short(self.t, tau, err, tol));
                     }
@@ -998,4 +998,25 @@ pub fn drag(
         stop,
         stats,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::held_weights;
+
+    /// The held force's weights for steps of unequal length (τ the step tried, h the last):
+    /// they sum to 1, give a force linear in time its value at the tried step's end, and cancel
+    /// a mode `e, −e, e` of the three forces (to rounding).
+    #[test]
+    fn held_weights_fit_unequal_steps() {
+        for (tau, h) in [(0.01, 0.01), (0.003, 0.01), (0.02, 1e-5), (1e-5, 0.5)] {
+            let [a, b, c] = held_weights(tau, h);
+            assert!((a + b + c - 1.0).abs() < 1e-15, "{tau} {h}");
+            // G(t) = 2 + 3t with t = τ at the step's end, 0 at its start, −h before
+            let g = |t: f64| 2.0 + 3.0 * t;
+            let held = a * g(tau) + b * g(0.0) + c * g(-h);
+            assert!((held - g(tau)).abs() < 1e-14, "{tau} {h}: {held}");
+            assert!((a - b + c).abs() < 1e-15, "{tau} {h}");
+        }
+    }
 }
