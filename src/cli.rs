@@ -287,6 +287,12 @@ pub struct DynamicsFreeArgs {
     /// End time (normalized time units), in (0, 1e6].
     #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1")]
     pub t_end: f64,
+    /// Adaptive time steps: the tolerance (rod lengths) of each step's local error estimate in
+    /// the positions, in [1e-14, 0.1]; --dt is then the first step, a step over it is tried
+    /// again shorter, and the rows are at the steps taken (docs/model.md, "Adaptive time
+    /// steps"). [default: fixed steps of --dt]
+    #[arg(long, value_name = "TOL", value_parser = finite_f64)]
+    pub time_tol: Option<f64>,
     /// Damper of the foot's support (moment per angular velocity), in [0, inf); its spring is
     /// 1/--support-compliance.
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
@@ -337,6 +343,12 @@ pub struct DynamicsDragArgs {
     /// Time step, in (0, 1].
     #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = "0.01")]
     pub dt: f64,
+    /// Adaptive time steps: the tolerance (rod lengths) of each step's local error estimate in
+    /// the positions, in [1e-14, 0.1]; --dt is then the first step, a step over it is tried
+    /// again shorter, each step taken proposes the next, and events still shorten a step to
+    /// their place (docs/model.md, "Adaptive time steps"). [default: fixed steps of --dt]
+    #[arg(long, value_name = "TOL", value_parser = finite_f64)]
+    pub time_tol: Option<f64>,
     /// Damper of the foot's support (moment per angular velocity), in [0, inf).
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
     pub foot_damping: f64,

@@ -76,6 +76,7 @@ pub fn options(a: &DynamicsDragArgs) -> DynDragOptions {
         mu_s: a.mu_s,
         mu_k: a.mu_k,
         dt: a.dt,
+        time_tol: a.time_tol,
         foot_damping: a.foot_damping,
         internal_damping: a.internal_damping,
         external_damping: a.external_damping,
@@ -94,6 +95,7 @@ pub fn free_options(a: &DynamicsFreeArgs) -> DynamicsOptions {
     DynamicsOptions {
         dt: a.dt,
         t_end: a.t_end,
+        time_tol: a.time_tol,
         foot_damping: a.foot_damping,
         internal_damping: a.internal_damping,
         external_damping: a.external_damping,
@@ -254,8 +256,13 @@ fn run_free(a: &DynamicsFreeArgs) -> Res<()> {
         csv_line(&mut w, &v)?;
     }
     w.finish()?;
+    let rejected = if o.time_tol.is_some() {
+        format!("; {} steps rejected", r.stats.rejected_steps)
+    } else {
+        String::new()
+    };
     crate::progress::eprint(&format!(
-        "dynamics free: {} steps to t = {}, {} Newton iterations, largest mesh {}",
+        "dynamics free: {} steps to t = {}, {} Newton iterations, largest mesh {}{rejected}",
         r.stats.steps,
         r.samples.last().map_or(0.0, |p| p.t),
         r.stats.newton_iterations,

@@ -21,7 +21,10 @@
 //! clamp) hold exactly at every step because each step solves the rod's own equations. The
 //! history `r̂` is carried on a uniform grid in `s` and interpolated by cubic Lagrange
 //! polynomials. Fixed steps: the error is set by `dt` (second order, so Richardson
-//! extrapolation between `dt` and `dt/2` is fourth order). Each step's Newton iteration starts
+//! extrapolation between `dt` and `dt/2` is fourth order). With `time_tol` (default off) the
+//! steps adapt to a local error estimate (module `timestep`: Zienkiewicz and Xie's estimate of
+//! Newmark's rule, accepted or rejected per step; the scheme stays second order and, for the
+//! linearized undamped rod, keeps the energy exactly at every step whatever its length). Each step's Newton iteration starts
 //! from the last two solutions extrapolated in time, `2zⁿ − zⁿ⁻¹` (one iteration per step where
 //! the last solution alone took two; the same equations to the same tolerance).
 //!
@@ -42,6 +45,7 @@
 //! the step (`Settings::short_steps` there), `free` its fixed steps as before.
 
 use crate::rothe::{check_damping, rest_guess, Rothe, Settings, TipBc};
+use crate::timestep::{check_time_tol, too_short};
 use crate::{Rod, VibrissaError};
 use serde::Serialize;
 
@@ -50,6 +54,7 @@ pub use crate::dyndrag::{
     DynDragResult, DynDragStop,
 };
 pub use crate::rothe::{DynSample, DynStats};
+pub use crate::timestep::{TimeStepControl, TIME_TOL_RANGE};
 
 /// Options of [`free`].
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -83,6 +88,15 @@ pub struct DynamicsOptions {
     /// Collocation scheme of the steps. Default Lobatto IIIA of order 6.
     #[serde(skip)]
     pub scheme: bvp::Scheme,
+    /// Adaptive time steps: the tolerance of each step's local error estimate in the positions
+    /// (rod lengths; module `timestep`: `Δt²/12 · max_s |aⁿ⁺¹ − aⁿ|`), in `[1e-14, 1e-1]`;
+    /// `dt` is then the first step, a step over the tolerance is tried again shorter, and the
+    /// samples are at the steps taken. `None`: fixed steps `dt`. Default `None`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_tol: Option<f64>,
+    /// The bounds of the adaptive steps' controller (used with `time_tol` only; checked then).
+    /// Default [`TimeStepControl::default`].
+    pub step_control: TimeStepControl,
 }
 
 impl Default for DynamicsOptions {
@@ -98,6 +112,8 @@ impl Default for DynamicsOptions {
             grid: 200,
             tol: 1e-10,
             scheme: bvp::Scheme::Lobatto6,
+            time_tol: None,
+            step_control: TimeStepControl::default(),
         }
     }
 }
@@ -130,7 +146,7 @@ impl DynamicsOptions {
         if !(self.tol >= 1e-13 && self.tol <= 1e-4) {
             return bad("tol", self.tol, "[1e-13, 1e-4]");
         }
-        Ok(())
+        check_time_tol(self.time_tol, &self.step_control)
     }
 }
 
@@ -175,7 +191,8 @@ pub fn free(
         damping: opts.foot_damping,
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
-        short_steps: false,
+        // adaptive steps may be short: the history and the forces' scale of `drag`
+        short_steps: opts.time_tol.is_some(),
         predict: true,
     };
     let grid = Rothe::grid_of(&settings);
@@ -191,6 +208,13 @@ pub fn free(
     rothe.set_velocity(v0)?;
     let dt = opts.dt;
     let mut samples = vec![rothe.sample(0.0)];
+    if let Some(tol) = opts.time_tol {
+        adaptive(&mut rothe, opts, tol, &mut samples)?;
+        return Ok(DynamicsResult {
+            samples,
+            stats: rothe.stats,
+        });
+    }
     let steps = (opts.t_end / dt).round().max(1.0) as usize;
     for n in 0..steps {
         let trial = rothe
@@ -208,6 +232,48 @@ pub fn free(
         samples,
         stats: rothe.stats,
     })
+}
+
+/// [`free`]'s steps with `time_tol` (module `timestep`): from `dt`, each step accepted when its
+/// local error estimate is within `tol`, the next one proposed by `opts.step_control`; the
+/// steps end on `t_end` (a rest shorter than two steps is halved), a sample after each.
+fn adaptive(
+    rothe: &mut Rothe,
+    opts: &DynamicsOptions,
+    tol: f64,
+    samples: &mut Vec<DynSample>,
+) -> Result<(), VibrissaError> {
+    let c = &opts.step_control;
+    let (t_end, mut t) = (opts.t_end, 0.0);
+    let mut h = opts.dt.clamp(c.h_min, c.h_max);
+    while t_end - t > 1e-12 * t_end.max(1.0) {
+        let rest = t_end - t;
+        let tau = if rest <= h {
+            rest
+        } else if rest < 2.0 * h {
+            0.5 * rest
+        } else {
+            h
+        };
+        let trial = rothe
+            .trial(tau, [0.0, 0.0], TipBc::Force([0.0, 0.0]), opts.foot_moment)
+            .map_err(|e| {
+                VibrissaError::solver(format!("the time step from t = {t} by {tau}"), *e)
+            })?;
+        let err = rothe.local_error(&trial);
+        h = c.next(tau, err, tol);
+        if err > tol {
+            if tau <= c.h_min {
+                return Err(too_short(t, tau, err, tol));
+            }
+            rothe.stats.rejected_steps += 1;
+            continue;
+        }
+        rothe.commit(trial);
+        t = if tau == rest { t_end } else { t + tau };
+        samples.push(rothe.sample(t));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -52,6 +52,7 @@ use crate::config::SolverConfig;
 use crate::rothe::{check_damping, Rothe, Settings, TipBc, Trial};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
+use crate::timestep::{check_time_tol, too_short, TimeStepControl};
 use crate::{Rod, Surface, VibrissaError};
 use bvp::Guess;
 use serde::Serialize;
@@ -107,6 +108,17 @@ pub struct DynDragOptions {
     /// modelled, docs/model.md). `false`: lift-off ends the drag (stop `lift_off`). Default
     /// `false`.
     pub flight: bool,
+    /// Adaptive time steps: the tolerance of each step's local error estimate in the positions
+    /// (rod lengths; module `timestep` of `dynamics::free`), in `[1e-14, 1e-1]`; `dt` is then
+    /// the first step, a step over the tolerance is tried again shorter, and each accepted
+    /// step proposes the next one (events still shorten a step to their place, and the
+    /// restart's steps and the shortest step stay those of `dt`). `None`: fixed steps `dt`.
+    /// Default `None`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub time_tol: Option<f64>,
+    /// The bounds of the adaptive steps' controller (used with `time_tol` only; checked then).
+    /// Default [`TimeStepControl::default`].
+    pub step_control: TimeStepControl,
 }
 
 impl Default for DynDragOptions {
@@ -128,6 +140,8 @@ impl Default for DynDragOptions {
             scheme: bvp::Scheme::Lobatto6,
             max_events: 10_000,
             flight: false,
+            time_tol: None,
+            step_control: TimeStepControl::default(),
         }
     }
 }
@@ -178,6 +192,7 @@ impl DynDragOptions {
             return bad("tol", self.tol, "[1e-13, 1e-4]");
         }
         limits::MAX_SLIPS.check_count("max_events", self.max_events)?;
+        check_time_tol(self.time_tol, &self.step_control)?;
         let steps = self.t_end() / self.dt;
         if steps > MAX_STEPS {
             return Err(VibrissaError::range(
@@ -395,6 +410,10 @@ pub struct DragStats {
     pub sticks: usize,
     /// Restarts of the scheme after a slip or a stick (module docs).
     pub restarts: usize,
+    /// Steps the local error estimate rejected (with `time_tol`; not written while 0, so fixed
+    /// steps serialize and print as before).
+    #[serde(skip_serializing_if = "crate::rothe::is_zero")]
+    pub rejected_steps: usize,
 }
 
 impl fmt::Display for DragStats {
@@ -409,7 +428,11 @@ impl fmt::Display for DragStats {
             self.slips,
             self.sticks,
             self.restarts
-        )
+        )?;
+        if self.rejected_steps > 0 {
+            write!(f, "; {} steps rejected", self.rejected_steps)?;
+        }
+        Ok(())
     }
 }
 
@@ -494,6 +517,13 @@ fn restart_step(o: &DynDragOptions) -> f64 {
     o.tol.cbrt().min(0.25 * o.dt)
 }
 
+/// The weights `[a, ½, c]` of [`Drive::held_force`] on the held force at the ends of the step
+/// being tried (`τ` long) and of the last one (`h` long): `a = (τ + h/2)/(τ + h)`,
+/// `c = −τ/(2(τ + h))`.
+fn held_weights(tau: f64, h: f64) -> [f64; 3] {
+    [(tau + 0.5 * h) / (tau + h), 0.5, -0.5 * tau / (tau + h)]
+}
+
 /// Which of a step's event functions: `[lift-off, the contact's own]`.
 const LIFT: usize = 0;
 const PHASE: usize = 1;
@@ -576,9 +606,16 @@ impl<'r> Drive<'r, '_> {
     fn events_after(&self, tr: &Trial) -> [f64; 2] {
         let (n, t) = contact_forces(tr.force(1));
         let y = tr.sol.right()[1];
-        let mut g = self.events_of(n, t, self.rothe.tip_velocity(tr)[0], y);
-        if self.state == ContactState::Stuck {
-            let (n, t) = contact_forces(self.held_force(tr));
+        let g = self.events_of(n, t, self.rothe.tip_velocity(tr)[0], y);
+        let held = (self.state == ContactState::Stuck).then(|| self.held_force(tr));
+        self.held_test(g, held, y)
+    }
+
+    /// The event functions `g` with the stuck tip's slip test taken on the held force `held`
+    /// ([`Drive::held_force`]) where there is one, the tip at height `y`.
+    fn held_test(&self, mut g: [f64; 2], held: Option<[f64; 2]>, y: f64) -> [f64; 2] {
+        if let (ContactState::Stuck, Some(held)) = (self.state, held) {
+            let (n, t) = contact_forces(held);
             g[PHASE] = self.events_of(n, t, 0.0, y)[PHASE];
         }
         g
@@ -596,27 +633,24 @@ impl<'r> Drive<'r, '_> {
     /// decided which crest of the stuck rod's ringing reached μs N. The weights sum to 1, are
     /// exact for a force linear in time, and cancel the mode (`a − ½ + c = 0`). Without the
     /// last step under the same condition (after a slip, a stick or the start) the force at
-    /// the step's end itself.
+    /// the step's end itself. The weights ([`held_weights`]) hold for steps of any lengths
+    /// (adaptive steps, and steps an event shortened): the mode keeps its size whatever the
+    /// steps, since the momentum takes the mean of each step's two end forces.
     fn held_force(&self, tr: &Trial) -> [f64; 2] {
         let g1 = tr.force(1);
         let Some((g_prev, h)) = self.tip_before else {
             return g1;
         };
-        let (tau, g0) = (tr.tau, self.rothe.force(1));
-        let a = (tau + 0.5 * h) / (tau + h);
-        let c = -0.5 * tau / (tau + h);
-        [0, 1].map(|k| a * g1[k] + 0.5 * g0[k] + c * g_prev[k])
+        let g0 = self.rothe.force(1);
+        let [a, b, c] = held_weights(tr.tau, h);
+        [0, 1].map(|k| a * g1[k] + b * g0[k] + c * g_prev[k])
     }
 
     fn events_now(&self) -> [f64; 2] {
         let (n, t) = contact_forces(self.rothe.force(1));
         let p = self.rothe.sample(self.t);
-        let mut g = self.events_of(n, t, p.tip_vx, p.tip_y);
-        if let (ContactState::Stuck, Some(held)) = (self.state, self.held_now) {
-            let (n, t) = contact_forces(held);
-            g[PHASE] = self.events_of(n, t, 0.0, p.tip_y)[PHASE];
-        }
-        g
+        let g = self.events_of(n, t, p.tip_vx, p.tip_y);
+        self.held_test(g, self.held_now, p.tip_y)
     }
 
     /// Takes the step: the energies by the trapezoidal rule, a sample.
@@ -805,6 +839,13 @@ impl<'r> Drive<'r, '_> {
         let t_end = self.o.t_end();
         let dt = self.o.dt;
         let tau_min = shortest_step(dt);
+        let ctl = self.o.step_control;
+        // the step to try (fixed steps: `dt`; with `time_tol`: the controller's proposal)
+        let mut h = if self.o.time_tol.is_some() {
+            dt.clamp(ctl.h_min, ctl.h_max)
+        } else {
+            dt
+        };
         loop {
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(DynDragStop::DMax);
@@ -820,8 +861,19 @@ impl<'r> Drive<'r, '_> {
                 }
                 continue;
             }
-            let tau = dt.min(t_end - self.t);
+            let tau = h.min(t_end - self.t);
             let tr = self.try_step(tau)?;
+            if let Some(tol) = self.o.time_tol {
+                let err = self.rothe.local_error(&tr);
+                h = ctl.next(tau, err, tol);
+                if err > tol {
+                    if tau <= ctl.h_min {
+                        return Err(too_short(self.t, tau, err, tol));
+                    }
+                    self.stats.rejected_steps += 1;
+                    continue;
+                }
+            }
             let g1 = self.events_after(&tr);
             if g1.iter().all(|&g| g < 0.0) {
                 self.take(tr);
@@ -946,4 +998,25 @@ pub fn drag(
         stop,
         stats,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::held_weights;
+
+    /// The held force's weights for steps of unequal length (τ the step tried, h the last):
+    /// they sum to 1, give a force linear in time its value at the tried step's end, and cancel
+    /// a mode `e, −e, e` of the three forces (to rounding).
+    #[test]
+    fn held_weights_fit_unequal_steps() {
+        for (tau, h) in [(0.01, 0.01), (0.003, 0.01), (0.02, 1e-5), (1e-5, 0.5)] {
+            let [a, b, c] = held_weights(tau, h);
+            assert!((a + b + c - 1.0).abs() < 1e-15, "{tau} {h}");
+            // G(t) = 2 + 3t with t = τ at the step's end, 0 at its start, −h before
+            let g = |t: f64| 2.0 + 3.0 * t;
+            let held = a * g(tau) + b * g(0.0) + c * g(-h);
+            assert!((held - g(tau)).abs() < 1e-14, "{tau} {h}: {held}");
+            assert!((a - b + c).abs() < 1e-15, "{tau} {h}");
+        }
+    }
 }

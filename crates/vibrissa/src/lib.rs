@@ -113,6 +113,7 @@ pub mod spectrum;
 mod start;
 mod stepper;
 pub mod surface;
+mod timestep;
 mod watch;
 
 pub use config::Cancel;

@@ -65,6 +65,15 @@ pub struct DynStats {
     pub newton_iterations: usize,
     /// Largest mesh of a step's collocation.
     pub max_nodes: usize,
+    /// Steps the local error estimate rejected (with `time_tol`; not written while 0, so
+    /// fixed steps serialize as before).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub rejected_steps: usize,
+}
+
+/// `serde`'s test for [`DynStats::rejected_steps`].
+pub(crate) fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// The tip's conditions in a step.
@@ -418,6 +427,10 @@ pub(crate) struct Rothe<'r> {
     pos: [Vec<f64>; 4],
     vel: [Vec<f64>; 4],
     acc: [Vec<f64>; 4],
+    /// The accelerations `(a_x, a_y)` on the grid before the last step and that step's length,
+    /// while the history has not been changed since (the local error estimate,
+    /// [`Rothe::local_error`]).
+    acc_before: Option<([Vec<f64>; 2], f64)>,
     m: Vec<f64>,
     /// Curvature `κ = φ'` and its rate on the grid.
     kappa: Vec<f64>,
@@ -548,6 +561,7 @@ impl<'r> Rothe<'r> {
             pos: [zero(), zero(), zero(), zero()],
             vel: [zero(), zero(), zero(), zero()],
             acc: [zero(), zero(), zero(), zero()],
+            acc_before: None,
             m: zero(),
             kappa: zero(),
             kappa_t: zero(),
@@ -636,6 +650,7 @@ impl<'r> Rothe<'r> {
     pub fn hold_tip_x(&mut self) {
         self.vel[0][self.ng] = 0.0;
         self.acc[0][self.ng] = 0.0;
+        self.acc_before = None;
     }
 
     /// The tip's y velocity and acceleration set to zero at the grid's last node (a plastic
@@ -643,6 +658,7 @@ impl<'r> Rothe<'r> {
     pub fn hold_tip_y(&mut self) {
         self.vel[1][self.ng] = 0.0;
         self.acc[1][self.ng] = 0.0;
+        self.acc_before = None;
     }
 
     /// Solves the step of length `tau` with the foot at `foot`, the tip's condition `tip` and the
@@ -790,6 +806,30 @@ impl<'r> Rothe<'r> {
         [self.gs * z[4], self.gs * z[5]]
     }
 
+    /// The local error estimate of the trial step in the positions (module `timestep`):
+    /// `Δt³/12 · max_i |r_ttt(s_i)|` over the history grid, `|·|` the Euclidean length of
+    /// `(x_ttt, y_ttt)`, with `r_ttt = (aⁿ⁺¹ − aⁿ⁻¹)/(Δt + h)` (`h` the last step) where the
+    /// history holds `aⁿ⁻¹`, else `(aⁿ⁺¹ − aⁿ)/Δt` (infinite where it is not a number).
+    pub fn local_error(&self, tr: &Trial) -> f64 {
+        let k = 4.0 / (tr.tau * tr.tau);
+        let (before, span) = match &self.acc_before {
+            Some((a, h)) => ([&a[0], &a[1]], tr.tau + h),
+            None => ([&self.acc[0], &self.acc[1]], tr.tau),
+        };
+        let da = |q: usize, i: usize| k * (tr.next[q][i] - tr.hat[q][i]) - before[q][i];
+        let mut worst = 0.0f64;
+        for i in 0..=self.ng {
+            let d = da(0, i).hypot(da(1, i));
+            // (a value that is not a number rejects the step)
+            worst = if d.is_nan() {
+                f64::INFINITY
+            } else {
+                worst.max(d)
+            };
+        }
+        tr.tau.powi(3) / 12.0 * worst / span
+    }
+
     /// The tip's velocity at the end of the trial step.
     pub fn tip_velocity(&self, tr: &Trial) -> [f64; 2] {
         let (i, k) = (self.ng, 4.0 / (tr.tau * tr.tau));
@@ -834,6 +874,7 @@ impl<'r> Rothe<'r> {
         let avg = |a: [f64; 2], b: [f64; 2]| [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
         self.after = Some([avg(f1[0], t2.force(0)), avg(f1[1], t2.force(1))]);
         self.previous = None;
+        self.acc_before = None;
         self.stats.newton_iterations = probe.stats.newton_iterations;
         self.stats.max_nodes = probe.stats.max_nodes;
         Ok(())
@@ -849,6 +890,7 @@ impl<'r> Rothe<'r> {
         self.after = None;
         let (tau, k_acc) = (tr.tau, 4.0 / (tr.tau * tr.tau));
         let old_vel = (self.ge > 0.0).then(|| [self.vel[0].clone(), self.vel[1].clone()]);
+        self.acc_before = Some(([self.acc[0].clone(), self.acc[1].clone()], tau));
         let mut next = tr.next;
         for (q, nq) in next.iter().enumerate() {
             let (v, a) = (&mut self.vel[q], &mut self.acc[q]);
