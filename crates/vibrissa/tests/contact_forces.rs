@@ -374,14 +374,13 @@ fn run_bounded(c: &Case, s: Scene, points: usize, hang: u64) -> Result<String, T
     ))
 }
 
-/// The property's seed. Seeds 1 to 4 pass, every row and slip of each scene checked, in 1.2, 34,
-/// 69 and 29 s of CPU in release. Seeds 2 and 3 each hold a drag of some 5000 slips (that of
-/// seed 2 alone 29 s of CPU), which on a loaded machine runs past [`HANG`] seconds and is
-/// cancelled as hung (both seeds pass with `HANG` at 900). In the test profile seed 1 takes
-/// 1.9 s, and seeds 3 and 4 each meet a drag cancelled so, after 61 s and 32 s. So the property
-/// runs on request (`--ignored`); other seeds with `PROPTEST_RNG_SEED`, a survey of 100 scenes
-/// with `survey`.
-const SEED: u64 = 3;
+/// The property's seed in the default test run. Seeds 1 to 4 pass, every row and slip of each
+/// scene checked, in 1.2, 34, 69 and 29 s of CPU in release; seed 1's 16 scenes take about 2 s
+/// in the test profile, so it is the one `cargo test` runs. Seeds 2 and 3 each hold a drag of
+/// some 5000 slips (that of seed 2 alone 29 s of CPU), which in the test profile or on a loaded
+/// machine runs past [`HANG`] seconds and is cancelled as hung; run them in release with
+/// `PROPTEST_RNG_SEED`, and a survey of 100 scenes with `survey`.
+const SEED: u64 = 1;
 
 /// `PROPTEST_CASES` cases (else 16) from `PROPTEST_RNG_SEED` (else `SEED`); failures are not
 /// persisted (those found are tests of their own, below).
@@ -400,7 +399,6 @@ fn config() -> ProptestConfig {
 proptest! {
     #![proptest_config(config())]
     #[test]
-    #[ignore = "slow: 16 drags, some of ~5000 slips; 1.2 to 69 s of CPU a seed in release"]
     fn every_contact_holds_by_coulomb_on_the_surface(c in cases()) {
         run(&c)?;
     }
