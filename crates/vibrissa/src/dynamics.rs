@@ -89,7 +89,7 @@ pub struct DynamicsOptions {
     #[serde(skip)]
     pub scheme: bvp::Scheme,
     /// Adaptive time steps: the tolerance of each step's local error estimate in the positions
-    /// (rod lengths; module `timestep`: `Δt²/12 · max_s |aⁿ⁺¹ − aⁿ|`), in `[1e-14, 1e-1]`;
+    /// (rod lengths; module `timestep`: `Δt³/12 · max_s |r_ttt|`), in `[1e-14, 1e-1]`;
     /// `dt` is then the first step, a step over the tolerance is tried again shorter, and the
     /// samples are at the steps taken. `None`: fixed steps `dt`. Default `None`.
     #[serde(skip_serializing_if = "Option::is_none")]

@@ -5,14 +5,19 @@
 //! The estimate (Zienkiewicz and Xie, "A simple error estimator and adaptive time stepping
 //! procedure for dynamic analysis", Earthquake Eng. Struct. Dyn. 20, 1991): Newmark's rule with
 //! parameter `β` makes a local error in the positions of `(β − 1/6) Δt³ r_ttt + O(Δt⁴)`; the
-//! average-acceleration rule has `β = 1/4`, and `r_ttt ≈ (aⁿ⁺¹ − aⁿ)/Δt`, so
+//! average-acceleration rule has `β = 1/4`, so
 //!
 //! ```text
-//!     e = Δt²/12 · max_i |aⁿ⁺¹(s_i) − aⁿ(s_i)|
+//!     e = Δt³/12 · max_i |r_ttt(s_i)|,    r_ttt ≈ (aⁿ⁺¹ − aⁿ⁻¹)/(Δt + h)
 //! ```
 //!
-//! with `|·|` the Euclidean length of the acceleration's change `(Δa_x, Δa_y)` at a node `s_i`
-//! of the history grid and the maximum over all its nodes (an absolute error in rod lengths).
+//! with `h` the last step, `|·|` the Euclidean length of `(x_ttt, y_ttt)` at a node `s_i` of the
+//! history grid and the maximum over all its nodes (an absolute error in rod lengths). The
+//! difference is taken over two steps, not Zienkiewicz and Xie's one step `(aⁿ⁺¹ − aⁿ)/Δt`:
+//! the rule carries a mode in the accelerations that alternates from step to step, which cancels
+//! in `aⁿ⁺¹ − aⁿ⁻¹` and enters `aⁿ⁺¹ − aⁿ` doubled (with it the steps shrank from period to period;
+//! docs/model.md, "Adaptive time steps"). The first step, and the first after a restart, a stick
+//! or a touchdown (which replace the accelerations), take the one-step difference.
 //! A step is accepted when `e ≤ time_tol`, else tried again shorter; either way the next step is
 //! `Δt · clamp(safety · (time_tol/e)^(1/3), max_shrink, max_growth)`, at most `max_growth` after
 //! an accepted step and at most 1 after a rejected one, within `[h_min, h_max]`.
