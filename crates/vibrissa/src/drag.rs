@@ -1046,7 +1046,7 @@ impl<P: Profile> DragRun<'_, P> {
         (eset, qe): (&ContactSet, &Pt),
         (nset, pa): (ContactSet, Pt),
     ) -> (ContactSet, Pt) {
-        if !crate::watch::traps(&nset) || !self.st.singular_at(pa.lam, &pa.u) {
+        if !self.st.trapped_singular(&nset, pa.lam, &pa.u) {
             return (nset, pa);
         }
         let mut next = nset.clone();

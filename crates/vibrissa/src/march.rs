@@ -104,10 +104,10 @@ pub(crate) fn march<P: Profile>(
     // a start that traps the rod between contacts whose equilibrium is singular to working
     // precision: the tangential pair between them has no determined value (the corrections
     // return any of a line of states, |T|/N of 1e3 on a frictionless press)
-    let indeterminate = start_event.is_none()
-        && spec.check_start
-        && crate::watch::traps(stepper.set())
-        && stepper.singular_at(p0.lam, &p0.u);
+    let indeterminate = start_event.is_none() && spec.check_start && {
+        let set = stepper.set().clone();
+        stepper.trapped_singular(&set, p0.lam, &p0.u)
+    };
     let set = stepper.set().clone();
     let (stop, last) = if let Some(ev) = start_event {
         // the start itself is not a valid state (the rod crosses the surface, is pulled, or
@@ -1044,10 +1044,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     // it (the foot held, the other contacts as they were)
                     return Flow::End(StopReason::DMax, Some(Box::new((new_set, q))));
                 }
-                if ev == Event::Halt
-                    && crate::watch::traps(&new_set)
-                    && self.stepper.singular_at(q.lam, &q.u)
-                {
+                if ev == Event::Halt && self.stepper.trapped_singular(&new_set, q.lam, &q.u) {
                     self.range.close(RangeEnd::Event);
                     let message = halted_trapped(&set, &new_set, &pe, &q);
                     let stop = StopReason::ContactChange { d: pe.lam, message };
@@ -1132,10 +1129,7 @@ impl<P: Profile> Run<'_, '_, P> {
             return Trapped::No;
         };
         let ct = &new_set.contacts[j];
-        if !ct.mode.no_slip()
-            || !crate::watch::traps(new_set)
-            || !self.stepper.singular_at(q.lam, &q.u)
-        {
+        if !ct.mode.no_slip() || !self.stepper.trapped_singular(new_set, q.lam, &q.u) {
             return Trapped::No;
         }
         for ratio in [mu_k, -mu_k] {

@@ -162,6 +162,14 @@ pub(crate) trait Stepper {
     /// Whether the equilibrium of the current set at `(u, λ)` is singular to working precision
     /// (on the rod's own shooter).
     fn singular_at(&mut self, lam: f64, u: &[f64]) -> bool;
+    /// Whether `set` (the stepper's set at `(u, λ)`) traps the rod in an equilibrium singular to
+    /// working precision: two surface contacts that hold without slip, whose tangential pair
+    /// the equilibrium does not determine (the Newton matrix singular there). The start, a
+    /// contact that halts, a new contact held at the end of a straight stretch and a drag's
+    /// stick after a slip all ask this.
+    fn trapped_singular(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> bool {
+        crate::watch::traps(set) && self.singular_at(lam, u)
+    }
     /// The elastic energy of the rod at `(u, λ)` (on the rod's own shooter).
     fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64>;
     /// Work done so far.
