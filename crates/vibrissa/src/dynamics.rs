@@ -45,7 +45,7 @@
 //! the step (`Settings::short_steps` there), `free` its fixed steps as before.
 
 use crate::rothe::{check_damping, rest_guess, Rothe, Settings, TipBc};
-use crate::timestep::{check_time_tol, too_short};
+use crate::timestep::check_time_tol;
 use crate::{Rod, VibrissaError};
 use serde::Serialize;
 
@@ -245,7 +245,7 @@ fn adaptive(
 ) -> Result<(), VibrissaError> {
     let c = &opts.step_control;
     let (t_end, mut t) = (opts.t_end, 0.0);
-    let mut h = opts.dt.clamp(c.h_min, c.h_max);
+    let mut h = c.first(opts.dt);
     while t_end - t > 1e-12 * t_end.max(1.0) {
         let rest = t_end - t;
         let tau = if rest <= h {
@@ -260,12 +260,9 @@ fn adaptive(
             .map_err(|e| {
                 VibrissaError::solver(format!("the time step from t = {t} by {tau}"), *e)
             })?;
-        let err = rothe.local_error(&trial);
-        h = c.next(tau, err, tol);
-        if err > tol {
-            if tau <= c.h_min {
-                return Err(too_short(t, tau, err, tol));
-            }
+        let rejected;
+        (rejected, h) = c.judge(t, tau, rothe.local_error(&trial), tol)?;
+        if rejected {
             rothe.stats.rejected_steps += 1;
             continue;
         }

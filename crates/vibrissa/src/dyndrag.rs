@@ -52,7 +52,7 @@ use crate::config::SolverConfig;
 use crate::rothe::{check_damping, Rothe, Settings, TipBc, Trial};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
-use crate::timestep::{check_time_tol, too_short, TimeStepControl};
+use crate::timestep::{check_time_tol, TimeStepControl};
 use crate::{Rod, Surface, VibrissaError};
 use bvp::Guess;
 use serde::Serialize;
@@ -842,7 +842,7 @@ impl<'r> Drive<'r, '_> {
         let ctl = self.o.step_control;
         // the step to try (fixed steps: `dt`; with `time_tol`: the controller's proposal)
         let mut h = if self.o.time_tol.is_some() {
-            dt.clamp(ctl.h_min, ctl.h_max)
+            ctl.first(dt)
         } else {
             dt
         };
@@ -864,12 +864,9 @@ impl<'r> Drive<'r, '_> {
             let tau = h.min(t_end - self.t);
             let tr = self.try_step(tau)?;
             if let Some(tol) = self.o.time_tol {
-                let err = self.rothe.local_error(&tr);
-                h = ctl.next(tau, err, tol);
-                if err > tol {
-                    if tau <= ctl.h_min {
-                        return Err(too_short(self.t, tau, err, tol));
-                    }
+                let rejected;
+                (rejected, h) = ctl.judge(self.t, tau, self.rothe.local_error(&tr), tol)?;
+                if rejected {
                     self.stats.rejected_steps += 1;
                     continue;
                 }

@@ -101,6 +101,28 @@ impl TimeStepControl {
         };
         (h * f.clamp(self.max_shrink, up)).clamp(self.h_min, self.h_max)
     }
+
+    /// The first step to try from the given `dt`, within `[h_min, h_max]`.
+    pub(crate) fn first(&self, dt: f64) -> f64 {
+        dt.clamp(self.h_min, self.h_max)
+    }
+
+    /// The verdict on a step of length `tau` tried from `t` whose estimate was `err` against
+    /// `tol`: whether it is rejected, and the next step to try ([`TimeStepControl::next`]); a
+    /// step rejected at `h_min` is an error (the drag and the free rod share this).
+    pub(crate) fn judge(
+        &self,
+        t: f64,
+        tau: f64,
+        err: f64,
+        tol: f64,
+    ) -> Result<(bool, f64), VibrissaError> {
+        let rejected = err > tol;
+        if rejected && tau <= self.h_min {
+            return Err(too_short(t, tau, err, tol));
+        }
+        Ok((rejected, self.next(tau, err, tol)))
+    }
 }
 
 /// Checks `time_tol` (`None`: fixed steps) and, with it, the controller's bounds.
@@ -123,7 +145,7 @@ pub(crate) fn check_time_tol(
 }
 
 /// The error of a step rejected at the shortest step.
-pub(crate) fn too_short(t: f64, h: f64, err: f64, tol: f64) -> VibrissaError {
+fn too_short(t: f64, h: f64, err: f64, tol: f64) -> VibrissaError {
     VibrissaError::NoConvergence {
         what: format!("the adaptive time step from t = {t}"),
         reason: format!(
