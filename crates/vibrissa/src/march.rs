@@ -1007,7 +1007,7 @@ impl<P: Profile> Run<'_, '_, P> {
         let formed = (new_set.contacts.len() > set.contacts.len()).then(|| u.clone());
         let switched = self.stepper.switch(new_set.clone(), pe.lam, u);
         let switched = match (switched, formed) {
-            (Ok(q), Some(u)) => match self.trapped_straight(&set, &new_set, &q, &u) {
+            (Ok(q), Some(u)) => match self.formed_holds(&set, &new_set, &q, &u) {
                 Trapped::No => Ok(q),
                 Trapped::Slides(slid, q) => {
                     new_set = slid;
@@ -1020,6 +1020,11 @@ impl<P: Profile> Run<'_, '_, P> {
                         Some(_) => StopReason::Jam { d, message },
                         None => StopReason::ContactChange { d, message },
                     };
+                    return Flow::End(stop, Some(Box::new((set, pe))));
+                }
+                Trapped::Jam(message) => {
+                    self.range.close(RangeEnd::Event);
+                    let stop = StopReason::Jam { d: pe.lam, message };
                     return Flow::End(stop, Some(Box::new((set, pe))));
                 }
             },
@@ -1098,24 +1103,38 @@ impl<P: Profile> Run<'_, '_, P> {
         }
     }
 
-    /// Whether the contact that has just formed in `new_set` (from `set`; the old state in the
-    /// new unknowns `u`, its first point `q`) holds without slip where its state is singular at
-    /// that point: the contact forms at the end of a straight, unloaded stretch of the rod beyond
-    /// a contact that does not slip either (the free rod touching down on the next crest of a
-    /// corrugation, issue 31). Pulled along its length, a straight inextensible stretch does not
-    /// bend, so at `N = 0` any pair of opposite tangential forces at its ends is an equilibrium:
-    /// a line of states, and the branch on which the new contact loads leaves that line at a
-    /// finite `T` (0.003/0.05/0 on the rod tapered to 0.3: `T = −1.7e-4` at `N = 0`), beyond
-    /// any friction. The same holds for the tip touching down at the end of the free tail beyond
-    /// a side that rolls (the tail is unloaded, so straight): rolling that side along the surface
-    /// moves its contact point along the tail by as much as it shortens it, so to first order the
-    /// side may roll either way with the tip held (issue 31's own drag, A 0.005, W 0.05: the tip
-    /// touching down 4.3e-3 beyond the side that drove its sixth slip, the stuck state's tangent
-    /// 1e18, its equilibria folding back at once with the tip pulling, N = −9.7e-6). The
-    /// contact slides from the start, with kinetic friction, the way the rod moves over it there
-    /// (its friction opposing its slip, on the sliding state's tangent), if that state loads it;
-    /// else no contact state continues.
-    fn trapped_straight(
+    /// How the contact that has just formed in `new_set` (from `set`; the old state in the new
+    /// unknowns `u`, its first point `q`) holds where holding it without slip, as it formed, is
+    /// no way on. Two such cases, one remedy (with kinetic friction, a drag): the contact slides
+    /// from the start, with kinetic friction, the way the rod moves over it there (its friction
+    /// opposing its slip, on the sliding state's tangent), if that state loads it
+    /// ([`Run::slides_from_start`]); else no contact state continues.
+    /// * Its state is singular at that point: the contact forms at the end of a straight,
+    ///   unloaded stretch of the rod beyond a contact that does not slip either (the free rod
+    ///   touching down on the next crest of a corrugation, issue 31). Pulled along its length, a
+    ///   straight inextensible stretch does not bend, so at `N = 0` any pair of opposite
+    ///   tangential forces at its ends is an equilibrium: a line of states, and the branch on
+    ///   which the new contact loads leaves that line at a finite `T` (0.003/0.05/0 on the rod
+    ///   tapered to 0.3: `T = −1.7e-4` at `N = 0`), beyond any friction. The same holds for the
+    ///   tip touching down at the end of the free tail beyond a side that rolls (the tail is
+    ///   unloaded, so straight): rolling that side along the surface moves its contact point
+    ///   along the tail by as much as it shortens it, so to first order the side may roll either
+    ///   way with the tip held (issue 31's own drag, A 0.005, W 0.05: the tip touching down
+    ///   4.3e-3 beyond the side that drove its sixth slip, the stuck state's tangent 1e18, its
+    ///   equilibria folding back at once with the tip pulling, N = −9.7e-6). Where no slide
+    ///   loads it, the stop names the singular state ([`Trapped::Stop`]).
+    /// * Held, it would pull at once: its normal force falls from zero on the held state's exact
+    ///   tangent, though the state before crosses the surface there (the touchdown). Holding it
+    ///   traps the stretch between it and a contact that does not slip, whose tangential forces
+    ///   then bend the rod away from the surface (issue 31's texture grid, 0.003/0.1/4π/3 on the
+    ///   rod tapered to 0.3: a side touching down at s = 0.8138, 0.071 behind a rolling side, at
+    ///   d 0.29658 needs `dT/dd = 92` and `dN/dd = −14.6` held; sliding towards +x it loads,
+    ///   `dN/dd = 4.3`, and slips that way, 5.9e-4 per unit d; towards −x it would slip against
+    ///   its friction). The drag ended there, "the contact state side+side does not hold". The
+    ///   rate problem of the new contact (hold, slide either way, or leave, which the touchdown
+    ///   excludes) then has the slide as its solution; where it has none, no quasi-static state
+    ///   continues: a jam ([`Trapped::Jam`]).
+    fn formed_holds(
         &mut self,
         set: &ContactSet,
         new_set: &ContactSet,
@@ -1129,34 +1148,74 @@ impl<P: Profile> Run<'_, '_, P> {
             return Trapped::No;
         };
         let ct = &new_set.contacts[j];
-        if !ct.mode.no_slip() || !self.stepper.trapped_singular(new_set, q.lam, &q.u) {
+        if !ct.mode.no_slip() {
             return Trapped::No;
         }
+        let what = if ct.tip {
+            "tip contact"
+        } else {
+            "side contact"
+        };
+        if self.stepper.trapped_singular(new_set, q.lam, &q.u) {
+            if let Some((slid, p)) = self.slides_from_start(new_set, j, q.lam, u, mu_k) {
+                return Trapped::Slides(slid, p);
+            }
+            return Trapped::Stop(format!(
+                "a {what} forms at s = {:.6} at the end of a straight stretch of the rod that \
+                 another contact holds without slip: the state {} is singular there (the tension \
+                 of the stretch is indeterminate, and holding the new contact needs a tangential \
+                 force at zero normal force), and sliding with kinetic friction the way the rod \
+                 moves over it does not load it: no contact state continues",
+                new_set.s_of(j, &q.u),
+                new_set.label()
+            ));
+        }
+        let o = new_set.offset(j);
+        let Some((dn, dt)) = (self.stepper.tangent_in(new_set, q.lam, &q.u))
+            .and_then(|du| Some((*du.get(o)?, *du.get(o + 1)?)))
+        else {
+            return Trapped::No;
+        };
+        if dn >= 0.0 {
+            return Trapped::No;
+        }
+        if let Some((slid, p)) = self.slides_from_start(new_set, j, q.lam, u, mu_k) {
+            return Trapped::Slides(slid, p);
+        }
+        Trapped::Jam(format!(
+            "a {what} forms at s = {:.6} in the state {}: held without slip it would pull at once \
+             (dN = {dn:.3e}, dT = {dt:.3e} per unit of the march), and sliding with kinetic \
+             friction either way does not load it or slips against its friction: no contact \
+             state consistent with Coulomb friction continues",
+            new_set.s_of(j, &q.u),
+            new_set.label()
+        ))
+    }
+
+    /// `new_set` with its contact `j`, just formed, sliding with kinetic friction `mu_k` the way
+    /// the rod moves over it, and its first point at `λ` from the old state in the new unknowns
+    /// `u`: the first of the two ways (`+x`, then `−x`) whose state loads the contact (its normal
+    /// force rises) and slips it the way its friction opposes; `None` where neither does.
+    fn slides_from_start(
+        &mut self,
+        new_set: &ContactSet,
+        j: usize,
+        lam: f64,
+        u: &[f64],
+        mu_k: f64,
+    ) -> Option<(ContactSet, Box<Pt>)> {
         for ratio in [mu_k, -mu_k] {
             let mut slid = new_set.clone();
             slid.contacts[j].mode = Mode::Sliding(ratio);
-            let Ok(p) = self.stepper.switch(slid.clone(), q.lam, u.to_vec()) else {
+            let Ok(p) = self.stepper.switch(slid.clone(), lam, u.to_vec()) else {
                 continue;
             };
             let rate = p.w.contacts[j].slide;
             if ratio * rate.slip > 0.0 && rate.dnormal > 0.0 {
-                return Trapped::Slides(slid, Box::new(p));
+                return Some((slid, Box::new(p)));
             }
         }
-        Trapped::Stop(format!(
-            "a {} forms at s = {:.6} at the end of a straight stretch of the rod that \
-             another contact holds without slip: the state {} is singular there (the tension of \
-             the stretch is indeterminate, and holding the new contact needs a tangential force \
-             at zero normal force), and sliding with kinetic friction the way the rod moves over \
-             it does not load it: no contact state continues",
-            if ct.tip {
-                "tip contact"
-            } else {
-                "side contact"
-            },
-            new_set.s_of(j, &q.u),
-            new_set.label()
-        ))
+        None
     }
 
     /// A contact before a slip's driver that lets go (`set` to `new_set`) moves the driver one
@@ -1292,14 +1351,18 @@ impl std::fmt::Display for BridgeError {
 /// the corrector iterates to 1e-11).
 const NOISE: f64 = 1e-8;
 
-/// How a contact that has just formed in a singular state holds ([`Run::trapped_straight`]).
+/// How a contact that has just formed holds where holding it as it formed is no way on
+/// ([`Run::formed_holds`]).
 enum Trapped {
     /// As it formed (its state is not singular, or not of that kind).
     No,
     /// It slides from the start: the set, and its first point.
     Slides(ContactSet, Box<Pt>),
-    /// No contact state continues: why.
+    /// No contact state continues from its singular state: why.
     Stop(String),
+    /// Held it would pull, and no slide loads it: no state consistent with Coulomb friction
+    /// continues (a jam): why.
+    Jam(String),
 }
 
 /// A new contact state's event that its first step found beyond zero.

@@ -934,7 +934,7 @@ fn a_released_side_touching_down_again_inside_the_first_step_is_followed() {
 /// length it does not bend, so at N = 0 any pair of opposite tangential forces at its ends is
 /// an equilibrium (the new state's Jacobian singular, det -1.3e-17), and the branch on which the
 /// new side loads leaves that line at T = -1.7e-4. Such a side slides from the start, the way
-/// the rod moves over it (march.rs `trapped_straight`): here with the driver, at +μk, its N
+/// the rod moves over it (march.rs `formed_holds`): here with the driver, at +μk, its N
 /// rising at 34 per unit slide. The drag goes on through some 6000 slips to a named jam at
 /// d = 0.1120, every row and slip checked. About 30 s of CPU in release.
 #[test]
@@ -1105,7 +1105,7 @@ fn the_issues_example_slides_on_where_its_tip_lies_down_in_a_slip() {
 /// s = 0.995928, the free tail beyond the side (unloaded, so straight) touches down at its end
 /// 6.2e-4 into the slide. Held there, the tip makes a state singular to working precision:
 /// rolling the side moves its point along the straight tail by as much as it shortens it
-/// (march.rs `trapped_straight`, which took only sides before). The tip now slides from the
+/// (march.rs `formed_holds`, which took only sides before). The tip now slides from the
 /// start with kinetic friction; 1.4e-4 further on the side lets go with T = 0.154 still on it,
 /// and the tip, held where it is then (march.rs `hold_riders`), needs 0.367 of its normal force:
 /// it slides on as the slip's driver until μk holds it (drag.rs `still_sliding`). (Left sliding,
@@ -1145,6 +1145,54 @@ fn a_driver_letting_go_while_it_pushes_beside_a_slider_is_a_jam() {
     );
     let d = stop_d(&out).unwrap_or(f64::NAN);
     assert!((d - 0.1210113).abs() < 1e-6, "d = {d}: {out}");
+}
+
+/// Was "the contact state side+side does not hold beyond d = 0.2965843410172796: -N of contact 1
+/// (it would pull) = 6.149e-3 after the change, and the state before it ended there: the model
+/// has no contact state that continues" after 4852 slips (issue 31's texture grid, 0.003/0.1/4π/3
+/// on the rod tapered to 0.3, point tip; the grid's one "does not hold"). In the stick after the
+/// last slip the rod rests on one side, rolling at s = 0.884553 (|T|/N = 0.295), and the free rod
+/// behind it touches down on the crest before, at s = 0.813845. Held there, the new side traps
+/// the stretch between the two sides and would pull at once (on the held state's tangent
+/// dN/dd = -14.6, dT/dd = 92.3), though the state without it crosses the surface: the new side
+/// cannot hold, and it cannot stay off. It slides from the start (march.rs `formed_holds`):
+/// towards +x with T = +μk N it loads (dN/dd = 4.3) and slips that way (5.9e-4 per unit d);
+/// towards −x it would slip against its friction. The drag reaches `d_max`, every row's contacts
+/// on the surface, pushing and within Coulomb, every slip balancing its energy. About 40 s of
+/// CPU in release.
+#[test]
+#[ignore = "slow: 4852 slips, about 40 s of CPU in release"]
+fn a_side_touching_down_that_would_pull_if_held_slides_from_the_start() {
+    let c = grid_case(0.003, 0.1, 4.0 * std::f64::consts::FRAC_PI_3, 0.0);
+    let out = run_bounded(&c, scene(&c), 201, SLOW_HANG).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(!out.contains("does not hold"), "{out}");
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
+}
+
+/// Was a jam (issue 31's texture grid, 0.003/0.05/2π/3 on the short rat preset, tip radius
+/// 0.005): "the slip cannot go on quasi-statically: the contact state side+side+tip does not hold
+/// beyond 3.345804e-8 of the slip (|T| - mu0 N of contact 1 (it would slip) = 8.542e-1)" at
+/// d = 0.0289109 (56 slips). In the 57th slip the tip slides towards −x beside a side held at
+/// s = 0.983101, and 3.3e-8 into the slide the rod behind that side touches down at s = 0.936231.
+/// Held there, the new side traps the stretch between the two sides and would pull at once
+/// (dN = −318, dT = 5189 per unit slide on the held state's tangent), though the state without
+/// it crosses the surface. It slides from the start with kinetic friction the way the rod moves
+/// over it (march.rs `formed_holds`), towards +x, and loads; where μk holds the tip it sticks
+/// with N = 1.07e-4, T/N = 0.3. The drag goes on past that slip (to d = 0.028911 here: the 57
+/// slips in about 0.5 s of CPU in release), every row's contacts on the surface, pushing and
+/// within Coulomb, every slip balancing its energy; the whole grid drag reaches `d_max` (5227
+/// slips).
+#[test]
+fn a_contact_touching_down_in_a_slip_that_would_pull_if_held_slides_from_the_start() {
+    let (c, s) = rat_case(0.003, 0.05, 2.0 * std::f64::consts::FRAC_PI_3, 0.028911);
+    let c = Case { radius: 0.005, ..c };
+    let s = Scene {
+        tip_radius: 0.005,
+        ..s
+    };
+    let out = run_in(&c, s).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(!out.contains("does not hold"), "{out}");
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
 
 /// A survey of `PROPTEST_CASES` (else 100) scenes from proptest's deterministic seed, each

@@ -340,7 +340,7 @@ fn a_sliding_tip_that_lifts_off_ends_its_slip() {
 /// and the drag stopped with a jam ("the contact state side does not hold beyond 1.013386e-2 of
 /// the slip") that was that jump's (events.rs `driver_anchor`). Then, with the tip that touched
 /// down stuck, the equilibria folded back at once, the tip pulling: a snap. That state is
-/// singular (the tail between side and tip is straight; march.rs `trapped_straight`): the tip
+/// singular (the tail between side and tip is straight; march.rs `formed_holds`): the tip
 /// now slides from the start, the side lets go and the tip, held, drives the slip on; it lies
 /// down and touches down again three times, and at the fourth release the side lets go with
 /// T = 53.5 (N = 3.9e-9) and no state without it is found: a jam, at the same d.
@@ -368,7 +368,7 @@ fn a_slip_whose_tip_lies_down_slides_on_as_a_side_to_a_jam() {
 /// which would need the rod tangent there: before, the new state's Newton diverged and the drag
 /// stopped with "touchdown (side to side+side): the new contact state does not hold: Newton did
 /// not converge". With the tip stuck, the slip ended in a snap after six slips (d 0.016586): the
-/// state is singular there (march.rs `trapped_straight`), and the tip now slides from the start;
+/// state is singular there (march.rs `formed_holds`), and the tip now slides from the start;
 /// the drag goes on through a seventh slip to d 0.016801, where the sliding tip halts 5.5e-3
 /// beyond the side, a state singular to working precision, named (march.rs `halted_trapped`).
 #[test]
