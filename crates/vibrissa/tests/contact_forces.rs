@@ -1158,10 +1158,10 @@ fn a_driver_letting_go_while_it_pushes_beside_a_slider_is_a_jam() {
 /// cannot hold, and it cannot stay off. It slides from the start (march.rs `formed_holds`):
 /// towards +x with T = +μk N it loads (dN/dd = 4.3) and slips that way (5.9e-4 per unit d);
 /// towards −x it would slip against its friction. The drag reaches `d_max`, every row's contacts
-/// on the surface, pushing and within Coulomb, every slip balancing its energy. About 40 s of
+/// on the surface, pushing and within Coulomb, every slip balancing its energy. About 18 s of
 /// CPU in release.
 #[test]
-#[ignore = "slow: 4852 slips, about 40 s of CPU in release"]
+#[ignore = "slow: 4852 slips, about 18 s of CPU in release"]
 fn a_side_touching_down_that_would_pull_if_held_slides_from_the_start() {
     let c = grid_case(0.003, 0.1, 4.0 * std::f64::consts::FRAC_PI_3, 0.0);
     let out = run_bounded(&c, scene(&c), 201, SLOW_HANG).unwrap_or_else(|e| panic!("{c:?}: {e}"));
