@@ -1049,11 +1049,13 @@ fn time_unit(rod: &Rod) -> Option<f64> {
 }
 
 /// The rod released at t = 0 (`vibrissa dynamics free`): from its equilibrium under the tip
-/// force `release_force`, and/or with `foot_moment` stepped onto its support; a dict with the
-/// library's `DynamicsResult` (`samples`, `stats`; what the program's `--json` prints) plus
-/// `units` and `time_unit_s`. Ctrl-C stops waiting for it.
+/// force `release_force`, and/or with `foot_moment` stepped onto its support; every option of
+/// the library's `DynamicsOptions` the program's flags set (`time_tol`: adaptive steps, `None`
+/// fixed ones; the dampers), and its `grid` and `tol`, the defaults and checks the library's. A
+/// dict with the library's `DynamicsResult` (`samples`, `stats`; what the program's `--json`
+/// prints) plus `units` and `time_unit_s`. Ctrl-C stops waiting for it.
 #[pyfunction]
-#[pyo3(signature = (rod, *, release_force=(0.0, 0.0), foot_moment=0.0, dt=DynamicsOptions::default().dt, t_end=DynamicsOptions::default().t_end, foot_damping=0.0, grid=DynamicsOptions::default().grid, tol=DynamicsOptions::default().tol))]
+#[pyo3(signature = (rod, *, release_force=(DynamicsOptions::default().release_force[0], DynamicsOptions::default().release_force[1]), foot_moment=DynamicsOptions::default().foot_moment, dt=DynamicsOptions::default().dt, t_end=DynamicsOptions::default().t_end, time_tol=DynamicsOptions::default().time_tol, foot_damping=DynamicsOptions::default().foot_damping, internal_damping=DynamicsOptions::default().internal_damping, external_damping=DynamicsOptions::default().external_damping, grid=DynamicsOptions::default().grid, tol=DynamicsOptions::default().tol))]
 #[allow(clippy::too_many_arguments)]
 fn dynamics_free<'py>(
     py: Python<'py>,
@@ -1062,14 +1064,20 @@ fn dynamics_free<'py>(
     foot_moment: f64,
     dt: f64,
     t_end: f64,
+    time_tol: Option<f64>,
     foot_damping: f64,
+    internal_damping: f64,
+    external_damping: f64,
     grid: usize,
     tol: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
     let opts = DynamicsOptions {
         dt,
         t_end,
+        time_tol,
         foot_damping,
+        internal_damping,
+        external_damping,
         foot_moment,
         release_force: [release_force.0, release_force.1],
         grid,
@@ -1089,11 +1097,14 @@ fn dynamics_free<'py>(
     Ok(out)
 }
 
-/// The drag in time (`vibrissa dynamics drag`): a dict with the library's `DynDragResult`
-/// (`samples`, `events`, `stop`, `stats`; what the program's `--json` prints) plus `units` and
-/// `time_unit_s`. Ctrl-C stops waiting for it.
+/// The drag in time (`vibrissa dynamics drag`): every option of the library's `DynDragOptions`
+/// the program's flags set (`time_tol`: adaptive steps, `None` fixed ones; the dampers;
+/// `mu_k_table` as `(speed, mu_k)` pairs, empty: `mu_k`; `flight`), and its `grid`, `tol`,
+/// `event_tol` and `max_events`, the defaults and checks the library's. A dict with the
+/// library's `DynDragResult` (`samples`, `events`, `stop`, `stats`; what the program's `--json`
+/// prints) plus `units` and `time_unit_s`. Ctrl-C stops waiting for it.
 #[pyfunction]
-#[pyo3(signature = (rod, surface, *, speed=DynDragOptions::default().speed, ramp=DynDragOptions::default().ramp, d_max=DynDragOptions::default().d_max, mu_s=DynDragOptions::default().mu_s, mu_k=DynDragOptions::default().mu_k, dt=DynDragOptions::default().dt, foot_damping=0.0))]
+#[pyo3(signature = (rod, surface, *, speed=DynDragOptions::default().speed, ramp=DynDragOptions::default().ramp, d_max=DynDragOptions::default().d_max, mu_s=DynDragOptions::default().mu_s, mu_k=DynDragOptions::default().mu_k, mu_k_table=table_pairs(&DynDragOptions::default().mu_k_table), dt=DynDragOptions::default().dt, time_tol=DynDragOptions::default().time_tol, foot_damping=DynDragOptions::default().foot_damping, internal_damping=DynDragOptions::default().internal_damping, external_damping=DynDragOptions::default().external_damping, flight=DynDragOptions::default().flight, grid=DynDragOptions::default().grid, tol=DynDragOptions::default().tol, event_tol=DynDragOptions::default().event_tol, max_events=DynDragOptions::default().max_events))]
 #[allow(clippy::too_many_arguments)]
 fn dynamics_drag<'py>(
     py: Python<'py>,
@@ -1104,8 +1115,17 @@ fn dynamics_drag<'py>(
     d_max: f64,
     mu_s: f64,
     mu_k: f64,
+    mu_k_table: Vec<(f64, f64)>,
     dt: f64,
+    time_tol: Option<f64>,
     foot_damping: f64,
+    internal_damping: f64,
+    external_damping: f64,
+    flight: bool,
+    grid: usize,
+    tol: f64,
+    event_tol: f64,
+    max_events: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
     let opts = DynDragOptions {
         speed,
@@ -1113,8 +1133,17 @@ fn dynamics_drag<'py>(
         d_max,
         mu_s,
         mu_k,
+        mu_k_table: mu_k_table.into_iter().map(|(v, m)| [v, m]).collect(),
         dt,
+        time_tol,
         foot_damping,
+        internal_damping,
+        external_damping,
+        flight,
+        grid,
+        tol,
+        event_tol,
+        max_events,
         ..DynDragOptions::default()
     };
     opts.validate().map_err(py_err)?;
@@ -1128,6 +1157,11 @@ fn dynamics_drag<'py>(
     out.set_item("units", units_dict(py, units)?)?;
     out.set_item("time_unit_s", unit_s)?;
     Ok(out)
+}
+
+/// A friction table's points as `(speed, mu_k)` pairs.
+fn table_pairs(t: &[[f64; 2]]) -> Vec<(f64, f64)> {
+    t.iter().map(|p| (p[0], p[1])).collect()
 }
 
 /// Natural frequencies of a static state given by its foot values (`vibrissa modes`): a dict

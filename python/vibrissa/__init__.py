@@ -741,34 +741,57 @@ def _in_columns(r: Dict[str, Any], key: str) -> Dict[str, Any]:
     return r
 
 
+_FREE = _DEFAULTS["dynamics_free"]
+_DRAG = _DEFAULTS["dynamics_drag"]
+
+
 def dynamics_free(
     rod: Any,
     *,
-    release_force: Tuple[float, float] = (0.0, 0.0),
-    foot_moment: float = 0.0,
-    dt: float = _DEFAULTS["dynamics_free"]["dt"],
-    t_end: float = _DEFAULTS["dynamics_free"]["t_end"],
-    foot_damping: float = 0.0,
-    grid: int = _DEFAULTS["dynamics_free"]["grid"],
-    tol: float = _DEFAULTS["dynamics_free"]["tol"],
+    release_force: Tuple[float, float] = tuple(_FREE["release_force"]),
+    foot_moment: float = _FREE["foot_moment"],
+    dt: float = _FREE["dt"],
+    t_end: float = _FREE["t_end"],
+    time_tol: Optional[float] = _FREE.get("time_tol"),
+    foot_damping: float = _FREE["foot_damping"],
+    internal_damping: float = _FREE["internal_damping"],
+    external_damping: float = _FREE["external_damping"],
+    grid: int = _FREE["grid"],
+    tol: float = _FREE["tol"],
 ) -> Dict[str, Any]:
     """The rod released at t = 0 (as ``vibrissa dynamics free``): from its equilibrium under
     the dead tip force ``release_force = (fx, fy)`` (removed at t = 0), and/or with the moment
     ``foot_moment`` stepped onto its support (it turns the foot through the rod's
-    ``support_compliance``), the support's damper ``foot_damping``, time step ``dt`` to
-    ``t_end`` (normalized time). A dict: ``samples`` (columns ``t``, ``tip_x``, ``tip_y``,
-    ``tip_vx``, ``tip_vy``, ``theta``, ``m_base``, ``gx_base``, ``gy_base`` (the program's
-    ``fx``, ``fy``), ``kinetic``, ``elastic``, ``dissipated`` (the program's ``damper``)),
-    ``samples_rows`` (the same as dicts: the program's ``--json``), ``stats``, ``units`` and
-    ``time_unit_s`` (seconds per time unit for a rod with physical dimensions, keratin's
-    density; else None)."""
+    ``support_compliance``), time step ``dt`` to ``t_end`` (normalized time).
+
+    ``time_tol`` (the program's ``--time-tol``): adaptive time steps, the tolerance (rod
+    lengths) of each step's local error estimate in the positions, in [1e-14, 0.1]; ``dt`` is
+    then the first step, a step over the tolerance is tried again shorter, and the samples are
+    at the steps taken (``stats["rejected_steps"]`` counts the steps tried again). ``None``:
+    fixed steps of ``dt``. The dampers (each >= 0, default 0): ``foot_damping`` the support's
+    damper, ``internal_damping`` the rod's Kelvin-Voigt damping gamma_i (every mode of the
+    linearized rod decays at gamma_i omega^2/2), ``external_damping`` a viscous force
+    -gamma_e mu(s) r_t (every mode decays at gamma_e/2). ``grid`` (even, intervals of the
+    history grid in s) and ``tol`` (each step's collocation tolerance). The defaults and valid
+    ranges are the library's (a value out of range raises ``InputError`` naming it).
+
+    A dict: ``samples`` (columns ``t``, ``tip_x``, ``tip_y``, ``tip_vx``, ``tip_vy``,
+    ``theta``, ``m_base``, ``gx_base``, ``gy_base`` (the program's ``fx``, ``fy``),
+    ``kinetic``, ``elastic``, ``dissipated`` (the program's ``damper``), ``internal_damping``
+    and ``external_damping`` (the energy each damper took)), ``samples_rows`` (the same as
+    dicts: the program's ``--json``), ``stats`` (steps, rejected steps, Newton iterations,
+    ...), ``units`` and ``time_unit_s`` (seconds per time unit for a rod with physical
+    dimensions, keratin's density; else None)."""
     r = _core.dynamics_free(
         rod,
         release_force=(float(release_force[0]), float(release_force[1])),
         foot_moment=foot_moment,
         dt=dt,
         t_end=t_end,
+        time_tol=time_tol,
         foot_damping=foot_damping,
+        internal_damping=internal_damping,
+        external_damping=external_damping,
         grid=grid,
         tol=tol,
     )
@@ -779,21 +802,43 @@ def dynamics_drag(
     rod: Any,
     surface: Any = None,
     *,
-    speed: float = _DEFAULTS["dynamics_drag"]["speed"],
-    ramp: float = _DEFAULTS["dynamics_drag"]["ramp"],
-    d_max: float = _DEFAULTS["dynamics_drag"]["d_max"],
-    mu_s: float = _DEFAULTS["dynamics_drag"]["mu_s"],
-    mu_k: float = _DEFAULTS["dynamics_drag"]["mu_k"],
-    dt: float = _DEFAULTS["dynamics_drag"]["dt"],
-    foot_damping: float = 0.0,
+    speed: float = _DRAG["speed"],
+    ramp: float = _DRAG["ramp"],
+    d_max: float = _DRAG["d_max"],
+    mu_s: float = _DRAG["mu_s"],
+    mu_k: float = _DRAG["mu_k"],
+    mu_k_table: Sequence[Tuple[float, float]] = tuple(tuple(p) for p in _DRAG["mu_k_table"]),
+    dt: float = _DRAG["dt"],
+    time_tol: Optional[float] = _DRAG.get("time_tol"),
+    foot_damping: float = _DRAG["foot_damping"],
+    internal_damping: float = _DRAG["internal_damping"],
+    external_damping: float = _DRAG["external_damping"],
+    flight: bool = _DRAG["flight"],
+    grid: int = _DRAG["grid"],
+    tol: float = _DRAG["tol"],
+    event_tol: float = _DRAG["event_tol"],
+    max_events: int = _DRAG["max_events"],
 ) -> Dict[str, Any]:
     """The drag in time (as ``vibrissa dynamics drag``): the foot moves along x at ``speed``
     (rising smoothly over ``ramp``) with the tip on the flat ``surface`` under Coulomb friction
-    ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``. A dict: ``samples``
-    (columns as the program's CSV: ``t``, ``d``, ``tip_x``, ..., ``state``, ``normal``,
-    ``tangential``, ``fx``, ``fy``, ``m_base``, energies), ``samples_rows`` (the same as dicts:
-    the program's ``--json``), ``events`` (``slip``, ``stick``, ``lift_off`` with their time and
-    place), ``stop``, ``stats``, ``units``, ``time_unit_s``."""
+    ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``.
+
+    ``mu_k_table``: kinetic friction depending on the slip speed, ``(speed, mu_k)`` pairs
+    (speeds >= 0 increasing, each mu_k in [0, mu_s)), piecewise linear, constant beyond the
+    ends; replaces ``mu_k`` (the program's ``--mu-k-table V:MU,...``). ``time_tol``: adaptive
+    time steps as in :func:`dynamics_free` (``dt`` the first step; events still shorten a step
+    to their place). The dampers ``foot_damping``, ``internal_damping``, ``external_damping``
+    as in :func:`dynamics_free`. ``flight``: after a lift-off the tip flies until it touches
+    the surface again (event ``touchdown``, a plastic impact), where the drag ends; without it
+    a lift-off ends the drag. ``grid``, ``tol`` as in :func:`dynamics_free`; ``event_tol``
+    the tolerance in time of the events' places, ``max_events`` the most events before the
+    drag stops. The defaults and valid ranges are the library's.
+
+    A dict: ``samples`` (columns as the program's CSV: ``t``, ``d``, ``tip_x``, ...,
+    ``state``, ``normal``, ``tangential``, ``fx``, ``fy``, ``m_base``, energies),
+    ``samples_rows`` (the same as dicts: the program's ``--json``), ``events`` (``slip``,
+    ``stick``, ``lift_off``, ``touchdown`` with their time and place), ``stop``, ``stats``,
+    ``units``, ``time_unit_s``."""
     if surface is None:
         surface = Surface()
     r = _core.dynamics_drag(
@@ -804,8 +849,17 @@ def dynamics_drag(
         d_max=d_max,
         mu_s=mu_s,
         mu_k=mu_k,
+        mu_k_table=[(float(v), float(m)) for v, m in mu_k_table],
         dt=dt,
+        time_tol=time_tol,
         foot_damping=foot_damping,
+        internal_damping=internal_damping,
+        external_damping=external_damping,
+        flight=flight,
+        grid=grid,
+        tol=tol,
+        event_tol=event_tol,
+        max_events=max_events,
     )
     return _in_columns(r, "samples")
 

@@ -182,7 +182,10 @@ def dynamics_free(
     foot_moment: float = 0.0,
     dt: float = 0.01,
     t_end: float = 1.0,
+    time_tol: Optional[float] = None,
     foot_damping: float = 0.0,
+    internal_damping: float = 0.0,
+    external_damping: float = 0.0,
     grid: int = 200,
     tol: float = 1e-10,
 ) -> Dict[str, Any]: ...
@@ -195,8 +198,17 @@ def dynamics_drag(
     d_max: float = 0.03,
     mu_s: float = 0.5,
     mu_k: float = 0.3,
+    mu_k_table: Sequence[Tuple[float, float]] = (),
     dt: float = 0.01,
+    time_tol: Optional[float] = None,
     foot_damping: float = 0.0,
+    internal_damping: float = 0.0,
+    external_damping: float = 0.0,
+    flight: bool = False,
+    grid: int = 200,
+    tol: float = 1e-10,
+    event_tol: float = 1e-10,
+    max_events: int = 10000,
 ) -> Dict[str, Any]: ...
 def modes(
     rod: Rod,

@@ -25,8 +25,10 @@
 //! steps adapt to a local error estimate (module `timestep`: Zienkiewicz and Xie's estimate of
 //! Newmark's rule, accepted or rejected per step; the scheme stays second order and, for the
 //! linearized undamped rod, keeps the energy exactly at every step whatever its length). Each step's Newton iteration starts
-//! from the last two solutions extrapolated in time, `2zⁿ − zⁿ⁻¹` (one iteration per step where
-//! the last solution alone took two; the same equations to the same tolerance).
+//! from the last two solutions extrapolated in time, `2zⁿ − zⁿ⁻¹` at fixed steps and the
+//! shape's `zⁿ + (τ/h)(zⁿ − zⁿ⁻¹)` at adaptive ones (`τ` the step tried, `h` the last one;
+//! module `rothe`): one iteration per step where the last solution alone took two, the same
+//! equations to the same tolerance.
 //!
 //! Starts from the rest shape (`m ≡ 0`, an equilibrium) with a velocity field `v0(s)`
 //! (inextensible: `v0' ⟂ e`; clamped: `v0'(0) = 0`) and `a⁰ = 0`, which is exact for the

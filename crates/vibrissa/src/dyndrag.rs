@@ -948,6 +948,9 @@ pub fn drag(
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
         short_steps: true,
+        // the last solution as Newton's start, at fixed and adaptive steps (the extrapolated
+        // start of `free`, tried with adaptive steps: fewer Newton iterations, no CPU time
+        // saved that could be measured; docs/performance.md)
         predict: false,
     };
     let grid = Rothe::grid_of(&settings);
