@@ -365,9 +365,21 @@ pub(crate) struct Settings {
     /// last solution. The start of Newton only: the step solves the same equations to the
     /// same tolerance (one Newton iteration per step where the last solution needed two).
     pub predict: bool,
+    /// Each step starts from a coarser mesh than the last solution's where that solution's
+    /// residual allows (`dynamics::drag`; `false`: the last solution's mesh, as
+    /// `dynamics::free`), and the prediction of [`Settings::predict`] applies to steps of any
+    /// length on any mesh (the last solution's change over the last step, scaled to the step's
+    /// length, evaluated at the start's nodes). Why: the collocation refines a step's mesh where
+    /// the residual exceeds `tol` but never coarsens it (coarsening is off, module docs of
+    /// `Rothe::at_rest`), so a mesh refined for a short step (an event's search, a restart) or
+    /// for the rod's shape at one time stays for the rest of a drag: the paper's rod's ten-slip
+    /// drag (dt 0.01, grid 100, tol 1e-8) grew from 101 nodes to 220, and the LU
+    /// factorization of every Newton iteration costs in proportion (docs/performance.md).
+    pub remesh: bool,
 }
 
 /// A step solved but not taken.
+#[derive(Clone)]
 pub(crate) struct Trial {
     /// The step's length.
     pub tau: f64,
@@ -383,6 +395,9 @@ pub(crate) struct Trial {
     m: Vec<f64>,
     /// `κ = φ'` on the grid at the step's end.
     kappa: Vec<f64>,
+    /// With [`Settings::remesh`]: the step's collocation residual per mesh interval of `sol`
+    /// (else empty).
+    rho: Vec<f64>,
 }
 
 impl Trial {
@@ -409,6 +424,11 @@ pub(crate) struct Rothe<'r> {
     /// between them.
     predict: bool,
     previous: Option<(f64, Solution)>,
+    /// [`Settings::remesh`], the collocation's `tol`, and the nodes of `sol` the next step
+    /// starts from (`None`: all of them).
+    remesh: bool,
+    tol: f64,
+    start_nodes: Option<Vec<usize>>,
     ng: usize,
     grid: Vec<f64>,
     mu: Vec<f64>,
@@ -548,6 +568,9 @@ impl<'r> Rothe<'r> {
             short_steps: settings.short_steps,
             predict: settings.predict,
             previous: None,
+            remesh: settings.remesh,
+            tol: settings.tol,
+            start_nodes: None,
             gs: 1.0,
             ng,
             mu,
@@ -736,7 +759,7 @@ impl<'r> Rothe<'r> {
             tip_then: [self.pos[0][ng], self.vel[0][ng]],
             two_tau: 2.0 / tau,
         };
-        let mut guess = Guess::from(&self.sol);
+        let mut guess = self.start();
         scale_forces(&mut guess, self.gs / gs);
         let sol = match self.predicted(tau, &guess) {
             // a predicted start that Newton cannot take falls back to the last solution
@@ -748,6 +771,11 @@ impl<'r> Rothe<'r> {
         };
         self.stats.newton_iterations += sol.stats.newton_iters;
         self.stats.max_nodes = self.stats.max_nodes.max(sol.len());
+        let rho = if self.remesh {
+            sol.residuals(&step)
+        } else {
+            vec![]
+        };
         let mut next = [zero(), zero(), zero(), zero()];
         let mut m = zero();
         self.sample_grid(&sol, &mut next, &mut m);
@@ -769,7 +797,30 @@ impl<'r> Rothe<'r> {
             next,
             m,
             kappa,
+            rho,
         })
+    }
+
+    /// The start of the next step's collocation: the last solution on its mesh, or (with
+    /// [`Settings::remesh`]) on the nodes [`coarser`] kept of it (the solution's own values and
+    /// slopes there).
+    fn start(&self) -> Guess {
+        let Some(keep) = &self.start_nodes else {
+            return Guess::from(&self.sol);
+        };
+        let n = self.sol.n;
+        let pick = |v: &[f64]| -> Vec<f64> {
+            keep.iter()
+                .flat_map(|&i| v[i * n..(i + 1) * n].iter().copied())
+                .collect()
+        };
+        Guess {
+            n,
+            mesh: keep.iter().map(|&i| self.sol.mesh[i]).collect(),
+            z: pick(&self.sol.z),
+            dz: Some(pick(&self.sol.dz)),
+            params: self.sol.params.clone(),
+        }
     }
 
     /// The start of a step of length `tau` extrapolated from the last two solutions (see
@@ -777,6 +828,14 @@ impl<'r> Rothe<'r> {
     /// the step), if the last step was as long and the two meshes are the same.
     fn predicted(&self, tau: f64, guess: &Guess) -> Option<Guess> {
         let (last, prev) = self.previous.as_ref()?;
+        if self.remesh {
+            let gs = if self.short_steps {
+                4.0 / (tau * tau)
+            } else {
+                1.0
+            };
+            return Some(extrapolated(tau / last, self.gs / gs, prev, guess));
+        }
         if *last != tau || prev.mesh != self.sol.mesh || prev.z.len() != guess.z.len() {
             return None;
         }
@@ -925,6 +984,7 @@ impl<'r> Rothe<'r> {
         self.kappa = tr.kappa;
         std::mem::swap(&mut self.pos, &mut next);
         self.m = tr.m;
+        self.start_nodes = coarser(&tr.rho, &tr.sol.mesh, self.ng, self.tol);
         let last = std::mem::replace(&mut self.sol, tr.sol);
         if self.predict && tr.gs == self.gs {
             self.previous = Some((tau, last));
@@ -991,6 +1051,59 @@ impl<'r> Rothe<'r> {
     }
 }
 
+/// With [`Settings::remesh`]: `z + ratio·(z − zⁿ⁻¹)` at the nodes of `guess` (`z` there, its
+/// forces scaled for the step), `zⁿ⁻¹` the solution before the last (`prev`, evaluated there with
+/// its slopes, its forces times `scale` as `guess`'s were), `ratio` the step's length over the
+/// last.
+fn extrapolated(ratio: f64, scale: f64, prev: &Solution, guess: &Guess) -> Guess {
+    let n = guess.n;
+    let mut start = guess.clone();
+    let (mut p, mut dp) = (vec![0.0; n], vec![0.0; n]);
+    for (i, &s) in guess.mesh.iter().enumerate() {
+        prev.eval(s, &mut p);
+        prev.eval_derivative(s, &mut dp);
+        for c in 0..n {
+            // (the unknowns 4, 5 are the internal force over its scale)
+            let k = if c >= 4 { scale } else { 1.0 };
+            let z = &mut start.z[i * n + c];
+            *z += ratio * (*z - k * p[c]);
+            if let Some(dz) = start.dz.as_mut() {
+                let d = &mut dz[i * n + c];
+                *d += ratio * (*d - k * dp[c]);
+            }
+        }
+    }
+    start
+}
+
+/// The nodes of `mesh` kept when adjacent intervals whose residuals `rho` (per interval) are
+/// both below `tol/100` are merged in pairs (the collocation's own rule for merging: the
+/// residual of Lobatto6 grows by about `2⁴` on an interval twice as long), except across a node
+/// of the history's grid of `ng` intervals: the step's equations interpolate the history on that
+/// grid by cubic Hermite pieces, whose second derivative jumps at its nodes, and an interval
+/// across one loses the collocation's order (merged across grid nodes the residual of the paper's
+/// rod's drag rose above `tol` at every step and the mesh was refined back). `None` where
+/// nothing is merged (or `rho` is empty).
+fn coarser(rho: &[f64], mesh: &[f64], ng: usize, tol: f64) -> Option<Vec<usize>> {
+    let low = tol / 100.0;
+    let on_grid = |s: f64| {
+        let u = s * ng as f64;
+        (u - u.round()).abs() < 1e-9 * ng as f64
+    };
+    let mut keep = Vec::with_capacity(rho.len() + 1);
+    keep.push(0);
+    let mut i = 0;
+    while i < rho.len() {
+        if i + 1 < rho.len() && rho[i] < low && rho[i + 1] < low && !on_grid(mesh[i + 1]) {
+            i += 2;
+        } else {
+            i += 1;
+        }
+        keep.push(i);
+    }
+    (keep.len() < rho.len() + 1).then_some(keep)
+}
+
 /// The rod's damping of `DynamicsOptions` and `DynDragOptions`: Kelvin–Voigt `γ_i` and
 /// external `γ_e`, each in `[0, 1e6]`.
 pub(crate) fn check_damping(internal: f64, external: f64) -> Result<(), VibrissaError> {
@@ -1003,4 +1116,36 @@ pub(crate) fn check_damping(internal: f64, external: f64) -> Result<(), Vibrissa
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::coarser;
+
+    /// A drag's step refined on the history grid of 4 intervals (nodes 0, ¼, ½, ¾, 1) with
+    /// nodes added at ⅛, 3/16, 5/8: the intervals below `tol/100` merge in pairs, never
+    /// across a grid node, and a mesh with nothing to merge is kept as it is.
+    #[test]
+    fn coarser_merges_below_the_tolerance_inside_grid_cells() {
+        let tol = 1e-8;
+        let mesh = [0.0, 0.125, 0.1875, 0.25, 0.5, 0.625, 0.75, 1.0];
+        let low = 1e-11;
+        // 0–⅛ and ⅛–3/16 merge (⅛ is not a grid node); 3/16–¼ and ¼–½ do not (¼ is one);
+        // ½–⅝ and ⅝–¾ merge; ¾–1 stays
+        let rho = [low, low, low, low, low, low, low];
+        assert_eq!(coarser(&rho, &mesh, 4, tol), Some(vec![0, 2, 3, 4, 6, 7]));
+        // one interval at tol/10 keeps its neighbour's node
+        let rho = [low, 1e-9, low, low, low, low, low];
+        assert_eq!(
+            coarser(&rho, &mesh, 4, tol),
+            Some(vec![0, 1, 2, 3, 4, 6, 7])
+        );
+        // the grid itself, or nothing below tol/100: nothing to merge
+        assert_eq!(
+            coarser(&[low; 4], &[0.0, 0.25, 0.5, 0.75, 1.0], 4, tol),
+            None
+        );
+        assert_eq!(coarser(&[2e-10; 7], &mesh, 4, tol), None);
+        assert_eq!(coarser(&[], &mesh, 4, tol), None);
+    }
 }
