@@ -405,6 +405,9 @@ pub struct DragStats {
     pub newton_iterations: usize,
     /// Largest collocation mesh.
     pub max_nodes: usize,
+    /// The collocation mesh of the last step taken (nodes; not serialized).
+    #[serde(skip)]
+    pub mesh_nodes: usize,
     /// Slips.
     pub slips: usize,
     /// Sticks.
@@ -958,7 +961,7 @@ pub fn drag(
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
         short_steps: true,
-        predict: true,
+        predict: false,
         remesh: true,
     };
     let grid = Rothe::grid_of(&settings);
@@ -999,6 +1002,7 @@ pub fn drag(
     let stats = DragStats {
         newton_iterations: r.newton_iterations,
         max_nodes: r.max_nodes,
+        mesh_nodes: drive.rothe.sol.len(),
         ..drive.stats
     };
     Ok(DynDragResult {

@@ -366,15 +366,14 @@ pub(crate) struct Settings {
     /// same tolerance (one Newton iteration per step where the last solution needed two).
     pub predict: bool,
     /// Each step starts from a coarser mesh than the last solution's where that solution's
-    /// residual allows (`dynamics::drag`; `false`: the last solution's mesh, as
-    /// `dynamics::free`), and the prediction of [`Settings::predict`] applies to steps of any
-    /// length on any mesh (the last solution's change over the last step, scaled to the step's
-    /// length, evaluated at the start's nodes). Why: the collocation refines a step's mesh where
-    /// the residual exceeds `tol` but never coarsens it (coarsening is off, module docs of
-    /// `Rothe::at_rest`), so a mesh refined for a short step (an event's search, a restart) or
-    /// for the rod's shape at one time stays for the rest of a drag: the paper's rod's ten-slip
-    /// drag (dt 0.01, grid 100, tol 1e-8) grew from 101 nodes to 220, and the LU
-    /// factorization of every Newton iteration costs in proportion (docs/performance.md).
+    /// residual allows ([`coarser`]: never below the history's grid; `dynamics::drag`), or
+    /// from the last solution's mesh (`false`, `dynamics::free`). Why: the collocation refines a
+    /// step's mesh where the residual exceeds `tol` but does not coarsen it (coarsening is off,
+    /// [`Rothe::at_rest`]), so the nodes added for one step (an event's short steps, the rod's
+    /// shape at one time) stayed for the rest of a drag: the paper's rod's ten-slip drag (dt
+    /// 0.01, grid 100, tol 1e-8) grew from 101 nodes to 220, and the LU factorization of every
+    /// Newton iteration costs in proportion (docs/performance.md, "The dynamic drag against
+    /// PyElastica").
     pub remesh: bool,
 }
 
@@ -828,15 +827,7 @@ impl<'r> Rothe<'r> {
     /// the step), if the last step was as long and the two meshes are the same.
     fn predicted(&self, tau: f64, guess: &Guess) -> Option<Guess> {
         let (last, prev) = self.previous.as_ref()?;
-        if self.remesh {
-            let gs = if self.short_steps {
-                4.0 / (tau * tau)
-            } else {
-                1.0
-            };
-            return Some(extrapolated(tau / last, self.gs / gs, prev, guess));
-        }
-        if *last != tau || prev.mesh != self.sol.mesh || prev.z.len() != guess.z.len() {
+        if *last != tau || prev.mesh != self.sol.mesh || prev.mesh != guess.mesh {
             return None;
         }
         let mut start = guess.clone();
@@ -1049,31 +1040,6 @@ impl<'r> Rothe<'r> {
             external_damping: self.external_dissipated,
         }
     }
-}
-
-/// With [`Settings::remesh`]: `z + ratio·(z − zⁿ⁻¹)` at the nodes of `guess` (`z` there, its
-/// forces scaled for the step), `zⁿ⁻¹` the solution before the last (`prev`, evaluated there with
-/// its slopes, its forces times `scale` as `guess`'s were), `ratio` the step's length over the
-/// last.
-fn extrapolated(ratio: f64, scale: f64, prev: &Solution, guess: &Guess) -> Guess {
-    let n = guess.n;
-    let mut start = guess.clone();
-    let (mut p, mut dp) = (vec![0.0; n], vec![0.0; n]);
-    for (i, &s) in guess.mesh.iter().enumerate() {
-        prev.eval(s, &mut p);
-        prev.eval_derivative(s, &mut dp);
-        for c in 0..n {
-            // (the unknowns 4, 5 are the internal force over its scale)
-            let k = if c >= 4 { scale } else { 1.0 };
-            let z = &mut start.z[i * n + c];
-            *z += ratio * (*z - k * p[c]);
-            if let Some(dz) = start.dz.as_mut() {
-                let d = &mut dz[i * n + c];
-                *d += ratio * (*d - k * dp[c]);
-            }
-        }
-    }
-    start
 }
 
 /// The nodes of `mesh` kept when adjacent intervals whose residuals `rho` (per interval) are
