@@ -73,7 +73,7 @@ fn slips(dt: f64, grid: usize, tol: f64, events: usize) -> Result<Run, VibrissaE
         of(DragEventKind::Slip),
         of(DragEventKind::Stick),
         spent.as_secs_f64(),
-        r.stats.to_string(),
+        format!("{}; last step's mesh {}", r.stats, r.stats.mesh_nodes),
     ))
 }
 

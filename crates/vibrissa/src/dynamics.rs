@@ -196,6 +196,7 @@ pub fn free(
         // adaptive steps may be short: the history and the forces' scale of `drag`
         short_steps: opts.time_tol.is_some(),
         predict: true,
+        remesh: false,
     };
     let grid = Rothe::grid_of(&settings);
     let rest = rest_guess(&rod.profile(1.0), &grid);

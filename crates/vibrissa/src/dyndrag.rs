@@ -398,12 +398,16 @@ impl fmt::Display for DynDragStop {
 pub struct DragStats {
     /// Time steps taken.
     pub steps: usize,
-    /// Steps solved (taken, and tried while locating events).
+    /// Steps solved (taken, and tried while locating events; a step tried again from the same
+    /// state with the same length is not solved again).
     pub solves: usize,
     /// Newton iterations of all solves.
     pub newton_iterations: usize,
     /// Largest collocation mesh.
     pub max_nodes: usize,
+    /// The collocation mesh of the last step taken (nodes; not serialized).
+    #[serde(skip)]
+    pub mesh_nodes: usize,
     /// Slips.
     pub slips: usize,
     /// Sticks.
@@ -551,6 +555,8 @@ struct Drive<'r, 'o> {
     samples: Vec<DragSample>,
     events: Vec<DynDragEvent>,
     stats: DragStats,
+    /// The steps tried from the present state (since the last step taken or event), by length.
+    tried: Vec<(f64, Trial)>,
 }
 
 /// `N = −Gy(1)`, `T = −Gx(1)` of the tip's force `G(1)`.
@@ -576,10 +582,13 @@ impl<'r> Drive<'r, '_> {
 
     /// The step of length `tau` from the present time, solved.
     fn try_step(&mut self, tau: f64) -> Result<Trial, VibrissaError> {
+        if let Some((_, tr)) = self.tried.iter().find(|(t, _)| *t == tau) {
+            return Ok(tr.clone());
+        }
         let foot = [self.o.foot_at(self.t + tau), 0.0];
         self.stats.solves += 1;
         let bc = self.bc();
-        self.rothe.trial(tau, foot, bc, 0.0).map_err(|e| {
+        let tr = self.rothe.trial(tau, foot, bc, 0.0).map_err(|e| {
             VibrissaError::solver(
                 format!(
                     "dynamic drag: the step from t = {} by {tau} ({})",
@@ -588,7 +597,9 @@ impl<'r> Drive<'r, '_> {
                 ),
                 *e,
             )
-        })
+        })?;
+        self.tried.push((tau, tr.clone()));
+        Ok(tr)
     }
 
     /// The event functions (`< 0` while the contact holds): `−N`, and `|T| − μs N` (stuck) or
@@ -655,6 +666,7 @@ impl<'r> Drive<'r, '_> {
 
     /// Takes the step: the energies by the trapezoidal rule, a sample.
     fn take(&mut self, tr: Trial) {
+        self.tried.clear();
         let (g0, g1, x1, d_old) = (
             self.rothe.force(0),
             self.rothe.force(1),
@@ -729,6 +741,7 @@ impl<'r> Drive<'r, '_> {
 
     /// The contact changes after event `which`; `Some(stop)` where the drag ends.
     fn apply(&mut self, which: usize) -> Option<DynDragStop> {
+        self.tried.clear();
         self.tip_before = None;
         self.held_now = None;
         let (normal, tangential) = contact_forces(self.rothe.force(1));
@@ -952,6 +965,7 @@ pub fn drag(
         // start of `free`, tried with adaptive steps: fewer Newton iterations, no CPU time
         // saved that could be measured; docs/performance.md)
         predict: false,
+        remesh: true,
     };
     let grid = Rothe::grid_of(&settings);
     let (guess, tip) = pressed(rod, eta, &grid)?;
@@ -974,6 +988,7 @@ pub fn drag(
         samples: vec![],
         events: vec![],
         stats: DragStats::default(),
+        tried: vec![],
     };
     drive.samples.push(drive.sample());
     let stop = if drive.events_now()[PHASE] >= 0.0 {
@@ -990,6 +1005,7 @@ pub fn drag(
     let stats = DragStats {
         newton_iterations: r.newton_iterations,
         max_nodes: r.max_nodes,
+        mesh_nodes: drive.rothe.sol.len(),
         ..drive.stats
     };
     Ok(DynDragResult {

@@ -372,9 +372,20 @@ pub(crate) struct Settings {
     /// starts from the last solution (with adaptive steps the extrapolation saved 11 to 16 %
     /// of its Newton iterations and no CPU time that could be measured; not adopted).
     pub predict: bool,
+    /// Each step starts from a coarser mesh than the last solution's where that solution's
+    /// residual allows ([`coarser`]: never below the history's grid; `dynamics::drag`), or
+    /// from the last solution's mesh (`false`, `dynamics::free`). Why: the collocation refines a
+    /// step's mesh where the residual exceeds `tol` but does not coarsen it (coarsening is off,
+    /// [`Rothe::at_rest`]), so the nodes added for one step (an event's short steps, the rod's
+    /// shape at one time) stayed for the rest of a drag: the paper's rod's ten-slip drag (dt
+    /// 0.01, grid 100, tol 1e-8) grew from 101 nodes to 220, and the LU factorization of every
+    /// Newton iteration costs in proportion (docs/performance.md, "The dynamic drag against
+    /// PyElastica").
+    pub remesh: bool,
 }
 
 /// A step solved but not taken.
+#[derive(Clone)]
 pub(crate) struct Trial {
     /// The step's length.
     pub tau: f64,
@@ -390,6 +401,9 @@ pub(crate) struct Trial {
     m: Vec<f64>,
     /// `κ = φ'` on the grid at the step's end.
     kappa: Vec<f64>,
+    /// With [`Settings::remesh`]: the step's collocation residual per mesh interval of `sol`
+    /// (else empty).
+    rho: Vec<f64>,
 }
 
 impl Trial {
@@ -416,6 +430,11 @@ pub(crate) struct Rothe<'r> {
     /// between them and its forces' scale `gs`.
     predict: bool,
     previous: Option<(f64, f64, Solution)>,
+    /// [`Settings::remesh`], the collocation's `tol`, and the nodes of `sol` the next step
+    /// starts from (`None`: all of them).
+    remesh: bool,
+    tol: f64,
+    start_nodes: Option<Vec<usize>>,
     ng: usize,
     grid: Vec<f64>,
     mu: Vec<f64>,
@@ -555,6 +574,9 @@ impl<'r> Rothe<'r> {
             short_steps: settings.short_steps,
             predict: settings.predict,
             previous: None,
+            remesh: settings.remesh,
+            tol: settings.tol,
+            start_nodes: None,
             gs: 1.0,
             ng,
             mu,
@@ -743,7 +765,7 @@ impl<'r> Rothe<'r> {
             tip_then: [self.pos[0][ng], self.vel[0][ng]],
             two_tau: 2.0 / tau,
         };
-        let mut guess = Guess::from(&self.sol);
+        let mut guess = self.start();
         scale_forces(&mut guess, self.gs / gs);
         let sol = match self.predicted(tau, &guess) {
             // a predicted start that Newton cannot take falls back to the last solution
@@ -755,6 +777,11 @@ impl<'r> Rothe<'r> {
         };
         self.stats.newton_iterations += sol.stats.newton_iters;
         self.stats.max_nodes = self.stats.max_nodes.max(sol.len());
+        let rho = if self.remesh {
+            sol.residuals(&step)
+        } else {
+            vec![]
+        };
         let mut next = [zero(), zero(), zero(), zero()];
         let mut m = zero();
         self.sample_grid(&sol, &mut next, &mut m);
@@ -776,7 +803,30 @@ impl<'r> Rothe<'r> {
             next,
             m,
             kappa,
+            rho,
         })
+    }
+
+    /// The start of the next step's collocation: the last solution on its mesh, or (with
+    /// [`Settings::remesh`]) on the nodes [`coarser`] kept of it (the solution's own values and
+    /// slopes there).
+    fn start(&self) -> Guess {
+        let Some(keep) = &self.start_nodes else {
+            return Guess::from(&self.sol);
+        };
+        let n = self.sol.n;
+        let pick = |v: &[f64]| -> Vec<f64> {
+            keep.iter()
+                .flat_map(|&i| v[i * n..(i + 1) * n].iter().copied())
+                .collect()
+        };
+        Guess {
+            n,
+            mesh: keep.iter().map(|&i| self.sol.mesh[i]).collect(),
+            z: pick(&self.sol.z),
+            dz: Some(pick(&self.sol.dz)),
+            params: self.sol.params.clone(),
+        }
     }
 
     /// The start of a step of length `tau` extrapolated from the last two solutions (see
@@ -787,7 +837,8 @@ impl<'r> Rothe<'r> {
     /// solution's.
     fn predicted(&self, tau: f64, guess: &Guess) -> Option<Guess> {
         let (last, prev_gs, prev) = self.previous.as_ref()?;
-        if prev.mesh != self.sol.mesh || prev.z.len() != guess.z.len() {
+        if prev.mesh != self.sol.mesh || prev.mesh != guess.mesh || prev.z.len() != guess.z.len()
+        {
             return None;
         }
         let mut start = guess.clone();
@@ -950,6 +1001,7 @@ impl<'r> Rothe<'r> {
         self.kappa = tr.kappa;
         std::mem::swap(&mut self.pos, &mut next);
         self.m = tr.m;
+        self.start_nodes = coarser(&tr.rho, &tr.sol.mesh, self.ng, self.tol);
         let last = std::mem::replace(&mut self.sol, tr.sol);
         if self.predict {
             self.previous = Some((tau, self.gs, last));
@@ -1016,6 +1068,40 @@ impl<'r> Rothe<'r> {
     }
 }
 
+/// The nodes of `mesh` kept when adjacent intervals whose residuals `rho` (per interval) are
+/// both below `tol/100` are merged in pairs (the collocation's own rule for merging: the
+/// residual of Lobatto6 grows by about `2⁴` on an interval twice as long), except across a node
+/// of the history's grid of `ng` intervals: the step's equations interpolate the history on that
+/// grid by cubic Hermite pieces, whose second derivative jumps at its nodes, and an interval
+/// across one loses the collocation's order (merged across grid nodes the residual of the paper's
+/// rod's drag rose above `tol` at every step and the mesh was refined back). A mesh of more than
+/// twice the grid's nodes is brought back to the grid's nodes alone: near the rounding floor of
+/// the residual (tol 1e-10) nothing is below `tol/100`, and the nodes an event's short step
+/// needed (up to 2662 at grid 200) stayed for the rest of the drag (2253 nodes at its end).
+/// `None` where nothing is merged (or `rho` is empty).
+fn coarser(rho: &[f64], mesh: &[f64], ng: usize, tol: f64) -> Option<Vec<usize>> {
+    let low = tol / 100.0;
+    let on_grid = |s: f64| {
+        let u = s * ng as f64;
+        (u - u.round()).abs() < 1e-9 * ng as f64
+    };
+    if !rho.is_empty() && mesh.len() > 2 * (ng + 1) {
+        return Some((0..mesh.len()).filter(|&i| on_grid(mesh[i])).collect());
+    }
+    let mut keep = Vec::with_capacity(rho.len() + 1);
+    keep.push(0);
+    let mut i = 0;
+    while i < rho.len() {
+        if i + 1 < rho.len() && rho[i] < low && rho[i + 1] < low && !on_grid(mesh[i + 1]) {
+            i += 2;
+        } else {
+            i += 1;
+        }
+        keep.push(i);
+    }
+    (keep.len() < rho.len() + 1).then_some(keep)
+}
+
 /// The rod's damping of `DynamicsOptions` and `DynDragOptions`: Kelvin–Voigt `γ_i` and
 /// external `γ_e`, each in `[0, 1e6]`.
 pub(crate) fn check_damping(internal: f64, external: f64) -> Result<(), VibrissaError> {
@@ -1028,4 +1114,43 @@ pub(crate) fn check_damping(internal: f64, external: f64) -> Result<(), Vibrissa
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::coarser;
+
+    /// A drag's step refined on the history grid of 4 intervals (nodes 0, ¼, ½, ¾, 1) with
+    /// nodes added at ⅛, 3/16, 5/8: the intervals below `tol/100` merge in pairs, never
+    /// across a grid node, and a mesh with nothing to merge is kept as it is.
+    #[test]
+    fn coarser_merges_below_the_tolerance_inside_grid_cells() {
+        let tol = 1e-8;
+        let mesh = [0.0, 0.125, 0.1875, 0.25, 0.5, 0.625, 0.75, 1.0];
+        let low = 1e-11;
+        // 0–⅛ and ⅛–3/16 merge (⅛ is not a grid node); 3/16–¼ and ¼–½ do not (¼ is one);
+        // ½–⅝ and ⅝–¾ merge; ¾–1 stays
+        let rho = [low, low, low, low, low, low, low];
+        assert_eq!(coarser(&rho, &mesh, 4, tol), Some(vec![0, 2, 3, 4, 6, 7]));
+        // one interval at tol/10 keeps its neighbour's node
+        let rho = [low, 1e-9, low, low, low, low, low];
+        assert_eq!(
+            coarser(&rho, &mesh, 4, tol),
+            Some(vec![0, 1, 2, 3, 4, 6, 7])
+        );
+        // the grid itself, or nothing below tol/100: nothing to merge
+        assert_eq!(
+            coarser(&[low; 4], &[0.0, 0.25, 0.5, 0.75, 1.0], 4, tol),
+            None
+        );
+        assert_eq!(coarser(&[2e-10; 7], &mesh, 4, tol), None);
+        assert_eq!(coarser(&[], &mesh, 4, tol), None);
+        // more than twice the grid's nodes: the grid's alone, whatever the residual
+        let fine: Vec<f64> = (0..=16).map(|i| i as f64 / 16.0).collect();
+        assert_eq!(
+            coarser(&[2e-10; 16], &fine, 4, tol),
+            Some(vec![0, 4, 8, 12, 16])
+        );
+        assert_eq!(coarser(&[], &fine, 4, tol), None);
+    }
 }

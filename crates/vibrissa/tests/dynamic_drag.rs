@@ -543,3 +543,23 @@ fn the_third_slip_converges_in_dt() {
         assert!((d[2] - D3_LIMIT).abs() < 2e-3, "{}", d[2]);
     }
 }
+
+/// The mesh of the drag's steps comes back down after the events (dt 0.01, tol 1e-8, grid 100;
+/// the drag of [`the_second_slip_comes_at_its_limit`], past the first slip, the first stick
+/// and the second slip). The collocation refines a step's mesh where its residual exceeds tol
+/// and does not coarsen it; when every step started from the last solution's mesh, the nodes
+/// added for one step stayed, and the last step's mesh had grown from the history grid's 101
+/// nodes to 157 by d = 0.064 (220 by the tenth stick), each node a cost in every Newton
+/// iteration's factorization. Since a step starts from that mesh with the intervals whose
+/// residual is below tol/100 merged in pairs (never across a node of the history grid): 122
+/// (docs/performance.md, "The dynamic drag against PyElastica"). The bound is halfway. And a
+/// step the event's search tries again from the same state with the same length is not solved
+/// again: 250 solves where there were 257 (the bound halfway).
+#[test]
+fn the_mesh_comes_back_down_after_the_events() {
+    let r = paper(&light(0.05, 0.01, 0.064));
+    eprintln!("{r}; last mesh {}", r.stats.mesh_nodes);
+    assert!(slip_places(&r).len() >= 2, "{r}");
+    assert!(r.stats.mesh_nodes < 140, "{}", r.stats.mesh_nodes);
+    assert!(r.stats.solves < 254, "{r}");
+}
