@@ -837,8 +837,7 @@ impl<'r> Rothe<'r> {
     /// solution's.
     fn predicted(&self, tau: f64, guess: &Guess) -> Option<Guess> {
         let (last, prev_gs, prev) = self.previous.as_ref()?;
-        if prev.mesh != self.sol.mesh || prev.mesh != guess.mesh || prev.z.len() != guess.z.len()
-        {
+        if prev.mesh != self.sol.mesh || prev.mesh != guess.mesh || prev.z.len() != guess.z.len() {
             return None;
         }
         let mut start = guess.clone();
