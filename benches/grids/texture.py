@@ -4,6 +4,7 @@ how it stops (docs/robustness.md, "Textures").
 
 Usage: python3 benches/grids/texture.py [--bin target/release/vibrissa] [--jobs 2]
            [--timeout 60] [--out data/drag/texture_grid.csv]
+       python3 benches/grids/texture.py --redo CLASS --from FILE.csv [--out ...]
        python3 benches/grids/texture.py --count FILE.csv [FILE.csv ...]
 
 The grid: amplitudes {0.001, 0.003, 0.01, 0.02, 0.05} x wavelengths {0.02, 0.05, 0.1, 0.2, 0.5}
@@ -12,6 +13,9 @@ data/scenes/rat_mystacial_short.toml} x tip radius {0, 0.005} = 450 drags, each 
 settings (eta 0.75, mu_s 0.5, mu_k 0.3, d_max 0.3; the rat preset's eta overridden to 0.75) and
 `--json`. A drag is killed after --timeout seconds of wall time (class "slow"). cpu_s is the
 drag's user + system CPU time (os.wait4), the only column that differs between runs.
+
+--redo runs again only the rows of FILE.csv in the class CLASS (e.g. "slow": drags killed by the
+wall-time limit when the machine was loaded) and writes FILE.csv's rows with those replaced.
 
 --count prints the class counts of committed CSVs (the tables of docs/robustness.md).
 """
@@ -162,12 +166,27 @@ def main():
     ap.add_argument("--timeout", type=float, default=60.0)
     ap.add_argument("--out", default="data/drag/texture_grid.csv")
     ap.add_argument("--count", nargs="+")
+    ap.add_argument("--redo", metavar="CLASS")
+    ap.add_argument("--from", dest="source", metavar="FILE.csv")
     a = ap.parse_args()
     if a.count:
         return count(a.count)
     grid = list(scenes())
+    old = None
+    if a.redo:
+        if not a.source:
+            ap.error("--redo needs --from FILE.csv")
+        old = list(csv.DictReader(open(a.source)))
+        if len(old) != len(grid):
+            ap.error(f"{a.source} has {len(old)} rows, the grid {len(grid)}")
+        for r in old:
+            r["class"] = classify(r["stop_reason"], r["detail"], r["exit"])
+        grid = [g for g, r in zip(grid, old) if r["class"] == a.redo]
     with ThreadPoolExecutor(a.jobs) as ex:
         rows = list(ex.map(lambda ka: run(a.bin, a.timeout, *ka), grid))
+    if old is not None:
+        it = iter(rows)
+        rows = [next(it) if r["class"] == a.redo else {c: r[c] for c in COLUMNS} for r in old]
     with open(a.out, "w", newline="") as f:
         w = csv.DictWriter(f, COLUMNS, lineterminator="\n")
         w.writeheader()
