@@ -308,9 +308,11 @@ pub struct DynDragEvent {
     pub tip_x: f64,
     /// The tip's velocity along x.
     pub tip_vx: f64,
-    /// Normal force `N`.
+    /// Normal force `N`: the tip's force at the event's state; at a slip the held force its
+    /// test takes (after the first event: without the time rule's alternating mode, so
+    /// `|T| = μs N` to the event's location; docs/model.md, "The slip test on the held force").
     pub normal: f64,
-    /// Tangential force `T` (friction on the tip, + against +x).
+    /// Tangential force `T` (friction on the tip, + against +x), taken as `normal` is.
     pub tangential: f64,
     /// The contact from here on.
     pub state: ContactState,
@@ -743,8 +745,12 @@ impl<'r> Drive<'r, '_> {
     fn apply(&mut self, which: usize) -> Option<DynDragStop> {
         self.tried.clear();
         self.tip_before = None;
-        self.held_now = None;
-        let (normal, tangential) = contact_forces(self.rothe.force(1));
+        // (a slip's forces as its test takes them: the stuck tip's held force, without the
+        // rule's alternating mode, where there is one; so its row has |T| = μs N to the event's
+        // location. A lift-off's test takes the end force.)
+        let slip = self.state == ContactState::Stuck && which != LIFT;
+        let held = self.held_now.take().filter(|_| slip);
+        let (normal, tangential) = contact_forces(held.unwrap_or_else(|| self.rothe.force(1)));
         let kind = if which == LIFT {
             if self.o.flight {
                 self.state = ContactState::Flying;
