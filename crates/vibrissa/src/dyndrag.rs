@@ -13,11 +13,13 @@
 //!
 //! Events, each located inside the step where it happens by Brent's method (argmin) on the
 //! step's length, every function value a step solved anew, to `event_tol` in time (one within
-//! the shortest step `max(1e-3 dt, 1e-5)` of a step's start is placed at that step's end):
+//! the shortest step `max(1e-3 dt, √tol)` of a step's start is placed at that step's end):
 //! **slip** where `|T|` reaches `μs N` (the tip then slides in the direction `dir = sign T` it
 //! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
-//! then sticks where it is; if it needs more than `μs N` there, the next step's search finds
-//! the slip at once), **lift-off** where `N` falls to zero (the drag ends there, or with
+//! then sticks where it is; if it needs more than `μs N` there, it slips at once, and if that
+//! slip moves it the other way, it sticks at once; a fourth event at the same instant would
+//! repeat the second, and the drag stops `Cycling`, a stick the time step does not resolve),
+//! **lift-off** where `N` falls to zero (the drag ends there, or with
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, and the drag ends; docs/model.md). With `mu_k_table` the kinetic friction
 //! depends on the slip velocity at the step's end, `T = dir·μk(|ẋ(1)|)·N`. A sticking tip's velocity and acceleration at the tip are set to zero:
@@ -376,6 +378,21 @@ pub enum DynDragStop {
     },
     /// `max_events` events happened.
     MaxEvents,
+    /// The tip's condition cycles at one instant (time `t`, displacement `d`): stuck after a
+    /// stick it needs the force (`normal`, `tangential`) beyond μs N (or a pull), slipping the
+    /// way that force points it moves the other way, and stuck again it needs the same force.
+    /// The quasi-static rod cannot do this; the time step is too coarse for the rod's motion
+    /// at this stick (a shorter `dt` or a smaller `tol` resolves it).
+    Cycling {
+        /// When.
+        t: f64,
+        /// Where.
+        d: f64,
+        /// The normal force the stuck tip needs.
+        normal: f64,
+        /// The tangential force the stuck tip needs.
+        tangential: f64,
+    },
     /// The flying tip touched the surface again at displacement `d` (with
     /// `DynDragOptions::flight`).
     Touchdown {
@@ -390,6 +407,17 @@ impl fmt::Display for DynDragStop {
             DynDragStop::DMax => write!(f, "d_max"),
             DynDragStop::LiftOff { d } => write!(f, "lift-off at d = {d}"),
             DynDragStop::MaxEvents => write!(f, "max_events"),
+            DynDragStop::Cycling {
+                t,
+                d,
+                normal,
+                tangential,
+            } => write!(
+                f,
+                "the tip's stick and slip cycle at t = {t}, d = {d}: held it needs N = {normal}, \
+                 T = {tangential} (beyond mu_s N or a pull), and slipping that way it moves the \
+                 other way; the time step is too coarse for this stick (try a shorter dt)"
+            ),
             DynDragStop::Touchdown { d } => write!(f, "touchdown at d = {d}"),
         }
     }
@@ -505,13 +533,16 @@ fn pressed(rod: &Rod, eta: f64, grid: &[f64]) -> Result<(Guess, [f64; 2]), Vibri
     Ok((guess, [shape.x1, eta]))
 }
 
-/// The shortest step the events make, `max(1e-3 dt, 1e-5)`: with `G` scaled by `4/Δt²`, the
-/// rounding of the positions still enters the moment's equation as `4/Δt² · ε`, which the
-/// collocation's residual control cannot meet at tol 1e-10 below a few 1e-6 (measured: a step of
-/// 2.4e-6 ran into the mesh limit of 10⁴ nodes, 3.5e-5 did not). An event closer than this to
-/// a step's start is placed at this step's end.
-fn shortest_step(dt: f64) -> f64 {
-    (1e-3 * dt).max(1e-5)
+/// The shortest step the events make, `max(1e-3 dt, √tol)` (`√tol` = 1e-5 at the default tol
+/// 1e-10): with `G` scaled by `4/Δt²`, the rounding of the positions still enters the moment's
+/// equation as `4/Δt² · ε`, which the collocation's residual control cannot meet at tol 1e-10
+/// below a few 1e-6 (measured: a step of 2.4e-6 ran into the mesh limit of 10⁴ nodes, 3.5e-5
+/// did not), and the step's end forces carry the positions' error `≈ tol` times `4/Δt²`: `√tol`
+/// keeps that factor `4 tol/Δt²` at 4 for every tol (at tol 1e-6 a step of 5e-5, the former
+/// shortest at dt 0.05, read a slip at N = −480 where N ≈ 5). An event closer than this to a
+/// step's start is placed at this step's end.
+fn shortest_step(dt: f64, tol: f64) -> f64 {
+    (1e-3 * dt).max(tol.sqrt())
 }
 
 /// The length `δ` of the two steps that restart the scheme after a slip or a stick:
@@ -529,6 +560,10 @@ fn restart_step(o: &DynDragOptions) -> f64 {
 fn held_weights(tau: f64, h: f64) -> [f64; 3] {
     [(tau + 0.5 * h) / (tau + h), 0.5, -0.5 * tau / (tau + h)]
 }
+
+/// The most events at one instant (without a step between them): a stick, the slip at once
+/// of a tip that needs more than μs N, and its stick at once where it slides neither way.
+const MAX_INSTANT_EVENTS: usize = 3;
 
 /// Which of a step's event functions: `[lift-off, the contact's own]`.
 const LIFT: usize = 0;
@@ -559,6 +594,8 @@ struct Drive<'r, 'o> {
     stats: DragStats,
     /// The steps tried from the present state (since the last step taken or event), by length.
     tried: Vec<(f64, Trial)>,
+    /// Events since the last step taken (at the present instant).
+    instant_events: usize,
 }
 
 /// `N = −Gy(1)`, `T = −Gx(1)` of the tip's force `G(1)`.
@@ -669,6 +706,7 @@ impl<'r> Drive<'r, '_> {
     /// Takes the step: the energies by the trapezoidal rule, a sample.
     fn take(&mut self, tr: Trial) {
         self.tried.clear();
+        self.instant_events = 0;
         let (g0, g1, x1, d_old) = (
             self.rothe.force(0),
             self.rothe.force(1),
@@ -724,7 +762,7 @@ impl<'r> Drive<'r, '_> {
     fn locate(&mut self, which: usize, lo: f64, hi: f64) -> Result<f64, VibrissaError> {
         let tol = self.o.event_tol;
         let now = self.events_now()[which];
-        let shortest = shortest_step(self.o.dt).min(hi);
+        let shortest = shortest_step(self.o.dt, self.o.tol).min(hi);
         let mut f = |tau: f64| -> Result<f64, VibrissaError> {
             if tau <= 0.0 {
                 return Ok(now);
@@ -770,6 +808,7 @@ impl<'r> Drive<'r, '_> {
             DragEventKind::Slip
         } else {
             self.state = ContactState::Stuck;
+            self.fresh_slip = false;
             self.anchor = self.rothe.sol.right()[0];
             self.rothe.hold_tip_x();
             self.stats.sticks += 1;
@@ -794,6 +833,17 @@ impl<'r> Drive<'r, '_> {
         }
         if kind == DragEventKind::Touchdown {
             return Some(DynDragStop::Touchdown { d: self.d });
+        }
+        // a stick, a slip at once and a stick at once can share an instant; a fourth event
+        // there repeats the second from the same state, and so on without end
+        self.instant_events += 1;
+        if self.instant_events > MAX_INSTANT_EVENTS {
+            return Some(DynDragStop::Cycling {
+                t: self.t,
+                d: self.d,
+                normal,
+                tangential,
+            });
         }
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
     }
@@ -857,7 +907,7 @@ impl<'r> Drive<'r, '_> {
     fn run(&mut self) -> Result<DynDragStop, VibrissaError> {
         let t_end = self.o.t_end();
         let dt = self.o.dt;
-        let tau_min = shortest_step(dt);
+        let tau_min = shortest_step(dt, self.o.tol);
         let ctl = self.o.step_control;
         // the step to try (fixed steps: `dt`; with `time_tol`: the controller's proposal)
         let mut h = if self.o.time_tol.is_some() {
@@ -995,6 +1045,7 @@ pub fn drag(
         events: vec![],
         stats: DragStats::default(),
         tried: vec![],
+        instant_events: 0,
     };
     drive.samples.push(drive.sample());
     let stop = if drive.events_now()[PHASE] >= 0.0 {
