@@ -18,7 +18,8 @@
 //! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
 //! then sticks where it is; if it needs more than `μs N` there, it slips at once, and if that
 //! slip moves it the other way, it sticks at once; a fourth event at the same instant would
-//! repeat the second, and the drag stops `Cycling`, a stick the time step does not resolve),
+//! repeat the second, and a pull at once is not the rod's either: the drag stops
+//! `UnresolvedStick`, a stick the time step does not resolve),
 //! **lift-off** where `N` falls to zero (the drag ends there, or with
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, and the drag ends; docs/model.md). With `mu_k_table` the kinetic friction
@@ -378,12 +379,12 @@ pub enum DynDragStop {
     },
     /// `max_events` events happened.
     MaxEvents,
-    /// The tip's condition cycles at one instant (time `t`, displacement `d`): stuck after a
-    /// stick it needs the force (`normal`, `tangential`) beyond μs N (or a pull), slipping the
-    /// way that force points it moves the other way, and stuck again it needs the same force.
-    /// The quasi-static rod cannot do this; the time step is too coarse for the rod's motion
-    /// at this stick (a shorter `dt` or a smaller `tol` resolves it).
-    Cycling {
+    /// The time step does not resolve a stick (time `t`, displacement `d`): right after it the
+    /// stuck tip needs the force (`normal`, `tangential`), a pull, or beyond μs N where a slip
+    /// at once then moves the tip the other way and it sticks again at once (events would cycle
+    /// at one instant). The rod cannot need either at once: the held force starts from the
+    /// sliding one and changes continuously (like `√t`). A shorter `dt` resolves it.
+    UnresolvedStick {
         /// When.
         t: f64,
         /// Where.
@@ -407,16 +408,17 @@ impl fmt::Display for DynDragStop {
             DynDragStop::DMax => write!(f, "d_max"),
             DynDragStop::LiftOff { d } => write!(f, "lift-off at d = {d}"),
             DynDragStop::MaxEvents => write!(f, "max_events"),
-            DynDragStop::Cycling {
+            DynDragStop::UnresolvedStick {
                 t,
                 d,
                 normal,
                 tangential,
             } => write!(
                 f,
-                "the tip's stick and slip cycle at t = {t}, d = {d}: held it needs N = {normal}, \
-                 T = {tangential} (beyond mu_s N or a pull), and slipping that way it moves the \
-                 other way; the time step is too coarse for this stick (try a shorter dt)"
+                "the time step does not resolve the stick at t = {t}, d = {d}: at once after it \
+                 the stuck tip needs N = {normal}, T = {tangential} (a pull, or beyond mu_s N \
+                 where slipping moves it the other way), which the rod cannot need at once \
+                 (try a shorter dt)"
             ),
             DynDragStop::Touchdown { d } => write!(f, "touchdown at d = {d}"),
         }
@@ -781,6 +783,12 @@ impl<'r> Drive<'r, '_> {
 
     /// The contact changes after event `which`; `Some(stop)` where the drag ends.
     fn apply(&mut self, which: usize) -> Option<DynDragStop> {
+        // a stick, a slip at once and a stick at once can share an instant; a fourth event
+        // there would repeat the second from the same state, and so on without end
+        if self.instant_events == MAX_INSTANT_EVENTS {
+            let (normal, tangential) = contact_forces(self.rothe.force(1));
+            return Some(self.unresolved(normal, tangential));
+        }
         self.tried.clear();
         self.tip_before = None;
         // (a slip's forces as its test takes them: the stuck tip's held force, without the
@@ -834,18 +842,22 @@ impl<'r> Drive<'r, '_> {
         if kind == DragEventKind::Touchdown {
             return Some(DynDragStop::Touchdown { d: self.d });
         }
-        // a stick, a slip at once and a stick at once can share an instant; a fourth event
-        // there repeats the second from the same state, and so on without end
         self.instant_events += 1;
-        if self.instant_events > MAX_INSTANT_EVENTS {
-            return Some(DynDragStop::Cycling {
-                t: self.t,
-                d: self.d,
-                normal,
-                tangential,
-            });
-        }
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
+    }
+
+    /// The stop at a stick the time step does not resolve, with the force the stuck tip needs
+    /// (`normal`, `tangential`). The rod's held force starts from the sliding one at a stick
+    /// and changes continuously (like `√t`): a tip that needs a pull or more than μs N at once,
+    /// or within the shortest step, is the scheme's, its steps too coarse for the motion
+    /// before the stick.
+    fn unresolved(&self, normal: f64, tangential: f64) -> DynDragStop {
+        DynDragStop::UnresolvedStick {
+            t: self.t,
+            d: self.d,
+            normal,
+            tangential,
+        }
     }
 
     /// The rod's accelerations and end forces made consistent with the tip's new condition
@@ -919,12 +931,19 @@ impl<'r> Drive<'r, '_> {
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(DynDragStop::DMax);
             }
+            let now = self.events_now();
             if self.state == ContactState::Stuck
                 && self.rothe.restarted()
-                && self.events_now()[PHASE] >= 0.0
+                && now.iter().any(|&g| g >= 0.0)
             {
                 // a tip that sticks but needs more than μs N at once slips at once (only a
-                // restart changes the forces a step's end left below the limit)
+                // restart changes the forces a step's end left inside the limits); one that
+                // needs a pull at once is a stick the step does not resolve (the held force
+                // starts from the sliding one, which pushes)
+                if now[LIFT] >= 0.0 {
+                    let (normal, tangential) = contact_forces(self.rothe.force(1));
+                    return Ok(self.unresolved(normal, tangential));
+                }
                 if let Some(stop) = self.apply(PHASE) {
                     return Ok(stop);
                 }
@@ -975,7 +994,15 @@ impl<'r> Drive<'r, '_> {
                     reason: format!("its event functions are not numbers: {g1:?}"),
                 });
             };
-            let tr = self.try_step(at.max(tau_min.min(tau)))?;
+            let shortest = tau_min.min(tau);
+            let tr = self.try_step(at.max(shortest))?;
+            if self.state == ContactState::Stuck && self.instant_events > 0 && at <= shortest {
+                // right after its stick the tip needs to slip or lift within the shortest
+                // step: its force has left the friction cone at once, which the rod's does
+                // not (see `unresolved`)
+                let (normal, tangential) = contact_forces(self.held_force(&tr));
+                return Ok(self.unresolved(normal, tangential));
+            }
             self.take(tr);
             self.fresh_slip = false;
             if let Some(stop) = self.apply(which) {

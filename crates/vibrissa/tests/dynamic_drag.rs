@@ -620,12 +620,17 @@ fn a_coarse_drag_runs_through_its_slips() {
     assert!(most_at_one_instant(&r) <= 3, "{r}");
 }
 
-/// Where a step is too coarse to resolve a stick, the drag says so and stops: at dt 0.05
-/// (grid 20, tol 1e-8) the tip sticks at d = 0.1298 and held it would need |T| = 0.87 N by the
-/// restart's forces (a pull, N = −3.6, at grid 200, tol 1e-10), while slipping the way that
-/// force points it moves the other way.
-/// It used to slip and stick at that instant until `max_events`. Now the stop is
-/// `DynDragStop::Cycling` at the stick's place, and at dt 0.02 the same drag goes on past it.
+/// Where a step is too coarse to resolve a stick, the drag says so and stops. Right after a
+/// stick the rod's held force starts from the sliding one (it changes like `√t`), so a stuck
+/// tip that needs a pull or more than μs N at once is the time step's. At dt 0.05 (grid 20,
+/// tol 1e-8) the tip sticks at d = 0.1298 and needs |T| = 0.87 N at once by the restart's
+/// forces; slipping the way that force points it moves the other way, and stuck again it needs
+/// the same: it used to slip and stick at that instant until `max_events`. At dt 0.1 (grid 20,
+/// tol 1e-10) it sticks at d = 0.0418 and needs a pull at once (N = −0.82; −0.83 at grid 200),
+/// which was taken for a slip with a tensile force. (The force needed at once depends on the
+/// restart's steps, `tol^(1/3)` long: at tol 1e-8 and 1e-9 the same stick needs N = 1.76 and
+/// 0.94 and more than μs N, as a numerical force does.) Both stop `UnresolvedStick` at the stick, without an event
+/// that has a pull, and at dt 0.02 the first drag goes on past it.
 #[test]
 fn a_stick_the_step_cannot_resolve_is_a_named_stop() {
     let coarse = DynDragOptions {
@@ -637,25 +642,58 @@ fn a_stick_the_step_cannot_resolve_is_a_named_stop() {
         max_events: 200,
         ..DynDragOptions::default()
     };
-    let r = paper(&coarse);
-    eprintln!("{r}");
-    let DynDragStop::Cycling {
-        d,
-        normal,
-        tangential,
-        ..
-    } = r.stop
-    else {
-        panic!("{r}")
-    };
-    assert!((d - 0.1298).abs() < 1e-3, "{r}");
-    assert!(
-        normal < 0.0 || tangential.abs() > coarse.mu_s * normal,
-        "{r}"
-    );
-    assert!(r.events.len() < 20, "{r}");
-    assert!(r.stop.to_string().contains("shorter dt"), "{}", r.stop);
+    for (dt, tol, at, pull) in [(0.05, 1e-8, 0.1298, false), (0.1, 1e-10, 0.0418, true)] {
+        let r = paper(&DynDragOptions {
+            dt,
+            tol,
+            ..coarse.clone()
+        });
+        eprintln!("{r}");
+        let DynDragStop::UnresolvedStick {
+            d,
+            normal,
+            tangential,
+            ..
+        } = r.stop
+        else {
+            panic!("{r}")
+        };
+        assert!((d - at).abs() < 1e-3, "{r}");
+        assert_eq!(normal < 0.0, pull, "{r}");
+        assert!(pull || tangential.abs() > coarse.mu_s * normal, "{r}");
+        assert!(r.events.len() < 20, "{r}");
+        assert!(r.events.iter().all(|e| e.normal > 0.0), "{r}");
+        assert!(r.stop.to_string().contains("shorter dt"), "{}", r.stop);
+    }
     let finer = paper(&DynDragOptions { dt: 0.02, ..coarse });
     assert_eq!(finer.stop, DynDragStop::DMax, "{finer}");
     assert!(most_at_one_instant(&finer) <= 3, "{finer}");
+}
+
+/// A stick that needs a pull within the shortest step after it is the time step's too. At
+/// dt 0.05 with internal damping 0.01 (v = 0.01, grid 20, tol 1e-10) the third stick, at
+/// d = 0.07705, is within the limits at once, but the slip search of the next step found its
+/// root inside the shortest step (5e-5), whose force is a pull: the drag recorded a slip with
+/// N = −15.5 (and ended cycling). Now it stops `UnresolvedStick` there with that force, and no
+/// event has a pull.
+#[test]
+fn a_pull_within_the_shortest_step_after_a_stick_is_unresolved() {
+    let o = DynDragOptions {
+        speed: 0.01,
+        dt: 0.05,
+        d_max: 0.08,
+        tol: 1e-10,
+        grid: 20,
+        internal_damping: 0.01,
+        max_events: 200,
+        ..DynDragOptions::default()
+    };
+    let r = paper(&o);
+    eprintln!("{r}");
+    let DynDragStop::UnresolvedStick { d, normal, .. } = r.stop else {
+        panic!("{r}")
+    };
+    assert!((d - 0.07705).abs() < 1e-4 && normal < 0.0, "{r}");
+    assert_eq!(r.events.len(), 6, "{r}");
+    assert!(r.events.iter().all(|e| e.normal > 0.0), "{r}");
 }
