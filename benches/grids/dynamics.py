@@ -1,0 +1,117 @@
+#!/usr/bin/env python3
+"""Issue 32's dynamic-drag grid: `vibrissa dynamics drag` over time steps, speeds, rods and
+options, every drag classified by how it ends (docs/robustness.md, "The dynamic drag").
+
+Usage: python3 benches/grids/dynamics.py [--bin target/release/vibrissa] [--jobs 2]
+           [--timeout 300] [--out data/dynamics/drag_grid.csv]
+       python3 benches/grids/dynamics.py --count FILE.csv
+
+The grid: dt {0.1, 0.05, 0.02, 0.01} x speed {0.01, 0.05, 0.2} x scenes {the paper's rod;
+taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short rat preset;
+the paper's rod with internal damping 0.01; the paper's rod with --flight} = 60 drags to
+d_max 0.12 (program defaults otherwise: eta 0.75, mu_s 0.5, mu_k 0.3, ramp 2, grid 200,
+tol 1e-10), each with `--json`. A drag is killed after --timeout seconds of wall time (class
+"slow"). cpu_s is the drag's user + system CPU time (os.wait4), the only column that differs
+between runs. Checked on every row that ends: no event with a normal force below zero or not a
+number (column bad_events).
+"""
+import argparse, collections, csv, json, os, subprocess, sys, tempfile, threading
+from concurrent.futures import ThreadPoolExecutor
+
+DTS = ["0.1", "0.05", "0.02", "0.01"]
+SPEEDS = ["0.01", "0.05", "0.2"]
+SCENES = [
+    ("paper", []),
+    ("taper0.3_eta0.9", ["--taper", "0.3", "--eta", "0.9"]),
+    ("rat_short", ["--scene", "data/scenes/rat_mystacial_short.toml"]),
+    ("paper_damped0.01", ["--internal-damping", "0.01"]),
+    ("paper_flight", ["--flight"]),
+]
+COMMON = ["--d-max", "0.12", "--json"]
+COLUMNS = ["dt", "speed", "scene", "class", "stop_reason", "slips", "events", "bad_events",
+           "d_end", "cpu_s", "exit", "detail"]
+CLASSES = ["d_max", "lift-off", "touchdown", "unresolved stick (named)", "max_events",
+           "refused", "no start", "error: other", "panic", "slow"]
+
+
+def run(binary, timeout, case):
+    dt, speed, (scene, extra) = case
+    cmd = [binary, "dynamics", "drag", "--dt", dt, "--speed", speed, *extra, *COMMON]
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        p = subprocess.Popen(cmd, stdout=out, stderr=err)
+        timer = threading.Timer(timeout, p.kill)
+        timer.start()
+        _, status, usage = os.wait4(p.pid, 0)
+        timed_out = not timer.is_alive()
+        timer.cancel()
+        code = os.waitstatus_to_exitcode(status)
+        if timed_out and code != 0:
+            code = None
+        cpu = usage.ru_utime + usage.ru_stime
+        out.seek(0)
+        err.seek(0)
+        stdout, stderr = out.read().decode(), err.read().decode()
+    row = dict(dt=dt, speed=speed, scene=scene, cpu_s=f"{cpu:.3f}",
+               exit="timeout" if code is None else code)
+    lines = [l for l in stderr.strip().splitlines() if l.startswith("error")]
+    if code is None:
+        row.update({"class": "slow", "detail": f"killed after {timeout} s"})
+        return row
+    if code != 0:
+        detail = lines[-1] if lines else stderr.strip().splitlines()[-1:]
+        cls = ("panic" if code == 101 else "no start" if "no start" in str(detail)
+               else "refused" if code == 2 else "error: other")
+        row.update({"class": cls, "detail": str(detail)[:300]})
+        return row
+    r = json.loads(stdout)
+    ev = r["events"]
+    bad = sum(1 for e in ev if not (e["normal"] >= 0))
+    reason = r["stop"]["reason"]
+    cls = {"d_max": "d_max", "lift_off": "lift-off", "touchdown": "touchdown",
+           "unresolved_stick": "unresolved stick (named)",
+           "max_events": "max_events"}.get(reason, "error: other")
+    d_end = r["samples"][-1]["d"] if r["samples"] else 0.0
+    row.update({"class": cls, "stop_reason": reason,
+                "slips": sum(e["kind"] == "slip" for e in ev), "events": len(ev),
+                "bad_events": bad, "d_end": f"{d_end:.6f}",
+                "detail": json.dumps(r["stop"]) if reason != "d_max" else ""})
+    return row
+
+
+def count(paths):
+    for path in paths:
+        rows = list(csv.DictReader(open(path)))
+        c = collections.Counter(r["class"] for r in rows)
+        print(f"{path}: {len(rows)} drags")
+        for k in CLASSES:
+            if c[k]:
+                print(f"  {k}: {c[k]}")
+        bad = sum(int(r["bad_events"] or 0) for r in rows)
+        print(f"  events with a pull or no number: {bad}")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", default="target/release/vibrissa")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--timeout", type=float, default=300)
+    ap.add_argument("--out", default="data/dynamics/drag_grid.csv")
+    ap.add_argument("--count", nargs="+")
+    a = ap.parse_args()
+    if a.count:
+        return count(a.count)
+    cases = [(dt, v, s) for dt in DTS for v in SPEEDS for s in SCENES]
+    with ThreadPoolExecutor(a.jobs) as ex:
+        rows = []
+        for row in ex.map(lambda c: run(a.bin, a.timeout, c), cases):
+            rows.append(row)
+            print(",".join(str(row.get(k, "")) for k in COLUMNS[:10]), file=sys.stderr, flush=True)
+    with open(a.out, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=COLUMNS)
+        w.writeheader()
+        w.writerows(rows)
+    count([a.out])
+
+
+if __name__ == "__main__":
+    sys.exit(main())
