@@ -1035,6 +1035,16 @@ pub fn drag(
             "the dynamic drag on a curved or textured surface",
         ));
     }
+    if rod.tip_radius() != 0.0 {
+        // (the pressed start would touch with the round end's side, the drag holds the end
+        // point on the surface: a start that slipped at t = 0 at T/N = -1.65 and a lift-off
+        // row with N = -0.11 for r = 0.01)
+        return Err(VibrissaError::range(
+            "tip radius",
+            rod.tip_radius(),
+            "0 (the dynamic drag: a point tip)",
+        ));
+    }
     let eta = surface.eta();
     let settings = Settings {
         grid: opts.grid,

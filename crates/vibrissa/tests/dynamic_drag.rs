@@ -78,6 +78,11 @@ fn refuses_bad_input() {
     let tilted = Surface::new(0.75, 0.1).unwrap();
     let e = drag(&Rod::uniform(), &tilted, &DynDragOptions::default()).unwrap_err();
     assert!(e.is_input(), "{e}");
+    // a round tip is the static drag's, not this one's (it used to start with a slip at t = 0)
+    let round = Rod::uniform().with_tip_radius(0.01).unwrap();
+    let e = drag(&round, &flat, &DynDragOptions::default()).unwrap_err();
+    assert!(matches!(e, VibrissaError::OutOfRange { .. }), "{e}");
+    assert!(e.to_string().contains("tip radius"), "{e}");
 }
 
 /// The test drags' discretization: collocation tol 1e-8 on a history grid of 100 intervals
