@@ -630,9 +630,20 @@ impl<'r> Drive<'r, '_> {
         self.stats.solves += 1;
         let bc = self.bc();
         let tr = self.rothe.trial(tau, foot, bc, 0.0).map_err(|e| {
+            // (a foot at full speed from t = 0 is an impulse on the rod at rest: its
+            // acceleration is infinite there, which no step resolves; v 0.2 failed, 0.05 not)
+            let impulse = if self.o.ramp == 0.0 && self.t < self.o.dt {
+                format!(
+                    "; the foot starts at speed {} at once (ramp 0), an impulse on the rod at \
+                     rest: a ramp > 0 resolves it",
+                    self.o.speed
+                )
+            } else {
+                String::new()
+            };
             VibrissaError::solver(
                 format!(
-                    "dynamic drag: the step from t = {} by {tau} ({})",
+                    "dynamic drag: the step from t = {} by {tau} ({}){impulse}",
                     self.t,
                     self.state.name()
                 ),
