@@ -13,7 +13,8 @@
 //!
 //! Events, each located inside the step where it happens by Brent's method (argmin) on the
 //! step's length, every function value a step solved anew, to `event_tol` in time (one within
-//! the shortest step `max(1e-3 dt, √tol)` of a step's start is placed at that step's end):
+//! the shortest step `max(1e-3 dt, 1e-5, 0.1 √tol)` of a step's start is placed at that
+//! step's end):
 //! **slip** where `|T|` reaches `μs N` (the tip then slides in the direction `dir = sign T` it
 //! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
 //! then sticks where it is; if it needs more than `μs N` there, it slips at once, and if that
@@ -535,16 +536,18 @@ fn pressed(rod: &Rod, eta: f64, grid: &[f64]) -> Result<(Guess, [f64; 2]), Vibri
     Ok((guess, [shape.x1, eta]))
 }
 
-/// The shortest step the events make, `max(1e-3 dt, √tol)` (`√tol` = 1e-5 at the default tol
-/// 1e-10): with `G` scaled by `4/Δt²`, the rounding of the positions still enters the moment's
-/// equation as `4/Δt² · ε`, which the collocation's residual control cannot meet at tol 1e-10
-/// below a few 1e-6 (measured: a step of 2.4e-6 ran into the mesh limit of 10⁴ nodes, 3.5e-5
-/// did not), and the step's end forces carry the positions' error `≈ tol` times `4/Δt²`: `√tol`
-/// keeps that factor `4 tol/Δt²` at 4 for every tol (at tol 1e-6 a step of 5e-5, the former
-/// shortest at dt 0.05, read a slip at N = −480 where N ≈ 5). An event closer than this to a
-/// step's start is placed at this step's end.
+/// The shortest step the events make, `max(1e-3 dt, 1e-5, 0.1 √tol)` (the last counts above
+/// tol 1e-8 only): with `G` scaled by `4/Δt²`, the rounding of the positions still enters the
+/// moment's equation as `4/Δt² · ε`, which the collocation's residual control cannot meet at
+/// tol 1e-10 below a few 1e-6 (measured: a step of 2.4e-6 ran into the mesh limit of 10⁴
+/// nodes, 3.5e-5 did not), and the step's end forces carry the positions' error times `4/Δt²`:
+/// `0.1 √tol` keeps `4 tol/Δt²` at most 400, as 1e-5 does at tol 1e-8, where the drags read
+/// their forces well (at tol 1e-6 a step of 5e-5, `4 tol/Δt²` = 1600, read a slip at N = −480
+/// where N ≈ 5; `√tol` itself, 1e-4 at tol 1e-8, placed events up to 1e-4 late and read a
+/// lift-off at N = −0.086 in a drag at dt 0.00125 that runs through ten slips with 1e-5). An
+/// event closer than this to a step's start is placed at this step's end.
 fn shortest_step(dt: f64, tol: f64) -> f64 {
-    (1e-3 * dt).max(tol.sqrt())
+    (1e-3 * dt).max(1e-5).max(0.1 * tol.sqrt())
 }
 
 /// The length `δ` of the two steps that restart the scheme after a slip or a stick:
