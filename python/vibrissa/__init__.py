@@ -837,7 +837,10 @@ def dynamics_drag(
     A dict: ``samples`` (columns as the program's CSV: ``t``, ``d``, ``tip_x``, ...,
     ``state``, ``normal``, ``tangential``, ``fx``, ``fy``, ``m_base``, energies),
     ``samples_rows`` (the same as dicts: the program's ``--json``), ``events`` (``slip``,
-    ``stick``, ``lift_off``, ``touchdown`` with their time and place), ``stop``, ``stats``,
+    ``stick``, ``lift_off``, ``touchdown`` with their time and place), ``stop`` (its
+    ``reason``: ``d_max``, ``lift_off``, ``touchdown``, ``max_events``, or
+    ``unresolved_stick``, a stick the time step does not resolve, with ``t``, ``d`` and the
+    force the stuck tip would need), ``stats``,
     ``units``, ``time_unit_s``."""
     if surface is None:
         surface = Surface()
