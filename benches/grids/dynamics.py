@@ -4,16 +4,19 @@ options, every drag classified by how it ends (docs/robustness.md, "The dynamic 
 
 Usage: python3 benches/grids/dynamics.py [--bin target/release/vibrissa] [--jobs 2]
            [--timeout 300] [--out data/dynamics/drag_grid.csv]
+       python3 benches/grids/dynamics.py --scenes NAME,NAME [--out ...]
        python3 benches/grids/dynamics.py --count FILE.csv
 
+--scenes runs the rows of the named scenes only (e.g. rat_long).
+
 The grid: dt {0.1, 0.05, 0.02, 0.01} x speed {0.01, 0.05, 0.2} x scenes {the paper's rod;
-taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short rat preset;
-the paper's rod with internal damping 0.01; the paper's rod with --flight} = 60 drags to
-d_max 0.12 (program defaults otherwise: eta 0.75, mu_s 0.5, mu_k 0.3, ramp 2, grid 200,
-tol 1e-10), each with `--json`. A drag is killed after --timeout seconds of wall time (class
-"slow"). cpu_s is the drag's user + system CPU time (os.wait4), the only column that differs
-between runs. Checked on every row that ends: no event with a normal force below zero or not a
-number (column bad_events).
+taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short and the long
+rat presets; the paper's rod with internal damping 0.01; the paper's rod with --flight} = 72
+drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
+mu_k 0.3, ramp 2, grid 200, tol 1e-10), each with `--json`. A drag is killed after --timeout
+seconds of wall time (class "slow"). cpu_s is the drag's user + system CPU time (os.wait4), the
+only column that differs between runs. Checked on every row that ends: no event with a normal
+force below zero or not a number (column bad_events).
 """
 import argparse, collections, csv, json, os, subprocess, sys, tempfile, threading
 from concurrent.futures import ThreadPoolExecutor
@@ -24,6 +27,7 @@ SCENES = [
     ("paper", []),
     ("taper0.3_eta0.9", ["--taper", "0.3", "--eta", "0.9"]),
     ("rat_short", ["--scene", "data/scenes/rat_mystacial_short.toml"]),
+    ("rat_long", ["--scene", "data/scenes/rat_mystacial_long.toml"]),
     ("paper_damped0.01", ["--internal-damping", "0.01"]),
     ("paper_flight", ["--flight"]),
 ]
@@ -97,10 +101,12 @@ def main():
     ap.add_argument("--timeout", type=float, default=300)
     ap.add_argument("--out", default="data/dynamics/drag_grid.csv")
     ap.add_argument("--count", nargs="+")
+    ap.add_argument("--scenes", help="comma-separated scene names (default: all)")
     a = ap.parse_args()
     if a.count:
         return count(a.count)
-    cases = [(dt, v, s) for dt in DTS for v in SPEEDS for s in SCENES]
+    keep = set(a.scenes.split(",")) if a.scenes else {name for name, _ in SCENES}
+    cases = [(dt, v, s) for dt in DTS for v in SPEEDS for s in SCENES if s[0] in keep]
     with ThreadPoolExecutor(a.jobs) as ex:
         rows = []
         for row in ex.map(lambda c: run(a.bin, a.timeout, c), cases):
