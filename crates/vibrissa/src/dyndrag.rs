@@ -19,8 +19,9 @@
 //! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
 //! then sticks where it is; if it needs more than `μs N` there, it slips at once, and if that
 //! slip moves it the other way, it sticks at once; a fourth event at the same instant would
-//! repeat the second, and a pull at once is not the rod's either: the drag stops
-//! `UnresolvedStick`, a stick the time step does not resolve),
+//! repeat the second, and a pull at once, or a slip or lift-off within the shortest step
+//! after a stick, is not the rod's either: the drag stops `UnresolvedStick`, a stick the time
+//! step does not resolve),
 //! **lift-off** where `N` falls to zero (the drag ends there, or with
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, and the drag ends; docs/model.md). With `mu_k_table` the kinetic friction
@@ -383,8 +384,9 @@ pub enum DynDragStop {
     /// The time step does not resolve a stick (time `t`, displacement `d`): right after it the
     /// stuck tip needs the force (`normal`, `tangential`), a pull, or beyond μs N where a slip
     /// at once then moves the tip the other way and it sticks again at once (events would cycle
-    /// at one instant). The rod cannot need either at once: the held force starts from the
-    /// sliding one and changes continuously (like `√t`). A shorter `dt` resolves it.
+    /// at one instant), or it slips or lifts off within the shortest step. The rod cannot need
+    /// either so soon: the held force starts from the sliding one and changes continuously
+    /// (like `√t`). A shorter `dt` resolves it.
     UnresolvedStick {
         /// When.
         t: f64,
@@ -416,10 +418,9 @@ impl fmt::Display for DynDragStop {
                 tangential,
             } => write!(
                 f,
-                "the time step does not resolve the stick at t = {t}, d = {d}: at once after it \
-                 the stuck tip needs N = {normal}, T = {tangential} (a pull, or beyond mu_s N \
-                 where slipping moves it the other way), which the rod cannot need at once \
-                 (try a shorter dt)"
+                "the time step does not resolve the stick at t = {t}, d = {d}: right after it \
+                 the stuck tip needs N = {normal}, T = {tangential} (a pull, or beyond mu_s N), \
+                 which the rod cannot need so soon after a stick (try a shorter dt)"
             ),
             DynDragStop::Touchdown { d } => write!(f, "touchdown at d = {d}"),
         }
