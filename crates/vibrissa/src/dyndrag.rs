@@ -946,23 +946,22 @@ impl<'r> Drive<'r, '_> {
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(DynDragStop::DMax);
             }
-            let now = self.events_now();
-            if self.state == ContactState::Stuck
-                && self.rothe.restarted()
-                && now.iter().any(|&g| g >= 0.0)
-            {
+            if self.state == ContactState::Stuck && self.rothe.restarted() {
                 // a tip that sticks but needs more than μs N at once slips at once (only a
                 // restart changes the forces a step's end left inside the limits); one that
                 // needs a pull at once is a stick the step does not resolve (the held force
                 // starts from the sliding one, which pushes)
+                let now = self.events_now();
                 if now[LIFT] >= 0.0 {
                     let (normal, tangential) = contact_forces(self.rothe.force(1));
                     return Ok(self.unresolved(normal, tangential));
                 }
-                if let Some(stop) = self.apply(PHASE) {
-                    return Ok(stop);
+                if now[PHASE] >= 0.0 {
+                    if let Some(stop) = self.apply(PHASE) {
+                        return Ok(stop);
+                    }
+                    continue;
                 }
-                continue;
             }
             let tau = h.min(t_end - self.t);
             let tr = self.try_step(tau)?;
