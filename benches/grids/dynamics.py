@@ -18,8 +18,10 @@ seconds of wall time (class "slow"). cpu_s is the drag's user + system CPU time 
 only column that differs between runs. Checked on every row that ends: no event with a normal
 force below zero or not a number (column bad_events).
 """
-import argparse, collections, csv, json, os, subprocess, sys, tempfile, threading
+import argparse, collections, csv, json, sys
 from concurrent.futures import ThreadPoolExecutor
+
+from timed import run_timed
 
 DTS = ["0.1", "0.05", "0.02", "0.01"]
 SPEEDS = ["0.01", "0.05", "0.2"]
@@ -41,20 +43,9 @@ CLASSES = ["d_max", "lift-off", "touchdown", "unresolved stick (named)", "max_ev
 def run(binary, timeout, case):
     dt, speed, (scene, extra) = case
     cmd = [binary, "dynamics", "drag", "--dt", dt, "--speed", speed, *extra, *COMMON]
-    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-        p = subprocess.Popen(cmd, stdout=out, stderr=err)
-        timer = threading.Timer(timeout, p.kill)
-        timer.start()
-        _, status, usage = os.wait4(p.pid, 0)
-        timed_out = not timer.is_alive()
-        timer.cancel()
-        code = os.waitstatus_to_exitcode(status)
-        if timed_out and code != 0:
-            code = None
-        cpu = usage.ru_utime + usage.ru_stime
-        out.seek(0)
-        err.seek(0)
-        stdout, stderr = out.read().decode(), err.read().decode()
+    code, timed_out, stdout, stderr, cpu = run_timed(cmd, timeout)
+    if timed_out:
+        code = None
     row = dict(dt=dt, speed=speed, scene=scene, cpu_s=f"{cpu:.3f}",
                exit="timeout" if code is None else code)
     lines = [l for l in stderr.strip().splitlines() if l.startswith("error")]

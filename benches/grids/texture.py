@@ -19,8 +19,10 @@ wall-time limit when the machine was loaded) and writes FILE.csv's rows with tho
 
 --count prints the class counts of committed CSVs (the tables of docs/robustness.md).
 """
-import argparse, collections, csv, json, math, os, subprocess, sys, tempfile, threading
+import argparse, collections, csv, json, math, sys
 from concurrent.futures import ThreadPoolExecutor
+
+from timed import run_timed
 
 AMPLITUDES = [0.001, 0.003, 0.01, 0.02, 0.05]
 WAVELENGTHS = [0.02, 0.05, 0.1, 0.2, 0.5]
@@ -120,27 +122,18 @@ def scenes():
 
 
 def run(binary, timeout, key, args):
-    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
-        p = subprocess.Popen([binary, "drag"] + args, stdout=out, stderr=err)
-        timer = threading.Timer(timeout, p.kill)
-        timer.start()
-        _, status, ru = os.wait4(p.pid, 0)
-        timed_out = not timer.is_alive()
-        timer.cancel()
-        p.returncode = os.waitstatus_to_exitcode(status)
-        out.seek(0); err.seek(0)
-        stdout, stderr = out.read().decode(), err.read().decode()
-    row = dict(key, cpu_s=f"{ru.ru_utime + ru.ru_stime:.3f}", exit=p.returncode)
-    if timed_out and p.returncode != 0:
+    code, timed_out, stdout, stderr, cpu = run_timed([binary, "drag"] + args, timeout)
+    row = dict(key, cpu_s=f"{cpu:.3f}", exit=code)
+    if timed_out:
         row.update(exit="timeout", stop_reason="", slips="", d_end="", detail="")
-    elif p.returncode == 0:
+    elif code == 0:
         j = json.loads(stdout)
         row.update(stop_reason=j["stop_reason"], slips=j["cycles"], d_end=repr(j["stop"]["d"] if j["stop"]["d"] is not None else 0.3),
                    detail=j["stop"]["detail"])
     else:
         lines = [l for l in stderr.splitlines() if l.strip()]
         row.update(stop_reason="error", slips="", d_end="",
-                   detail=(lines[-1] if lines else f"exit {p.returncode}")[:2000])
+                   detail=(lines[-1] if lines else f"exit {code}")[:2000])
     row["class"] = classify(row["stop_reason"], row["detail"], row["exit"])
     return row
 
