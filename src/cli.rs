@@ -27,6 +27,7 @@ struct Defaults {
     whisk_points: String,
     shape_points: String,
     solve_shape_points: String,
+    max_slips: String,
 }
 
 static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
@@ -48,6 +49,7 @@ static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
         whisk_points: whisk.points.to_string(),
         shape_points: limits::DEFAULT_SHAPE_POINTS.to_string(),
         solve_shape_points: limits::DEFAULT_SOLVE_SHAPE_POINTS.to_string(),
+        max_slips: vibrissa::DragOptions::default().max_slips.to_string(),
     }
 });
 
@@ -117,6 +119,11 @@ pub const MAX_JOBS: u64 = vibrissa::limits::JOBS.hi as u64;
 
 fn points(s: &str) -> Result<u32, String> {
     number_text::count(s, 2, MAX_POINTS)
+}
+fn max_slips(s: &str) -> Result<u32, String> {
+    // the library's range (the limits table), as a flag's value
+    let r = limits::MAX_SLIPS;
+    number_text::count(s, r.lo as u64, r.hi as u64)
 }
 fn shape_points(s: &str) -> Result<u32, String> {
     number_text::count(s, 2, MAX_SHAPE_POINTS)
@@ -774,6 +781,10 @@ pub struct DragArgs {
     /// each slip (the energy balance, in --json's slips; extra solves).
     #[arg(long)]
     pub energy_balance: bool,
+    /// Most slips before the drag stops, in [1, 1000000]: a guard against slips that come too
+    /// close together to reach --d-max (the stop names their spacing and the slips still needed).
+    #[arg(long, value_name = "N", default_value = DEFAULTS.max_slips.as_str(), value_parser = max_slips)]
+    pub max_slips: u32,
     /// Your foot speed (rod lengths per time unit sqrt(rho A L^4/EI)), in (0, inf): a warning on
     /// stderr when it is above the speed below which this quasi-static drag's first slip holds
     /// in time to 1e-3 (vibrissa::quasistatic; the rows are the same either way).

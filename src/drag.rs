@@ -119,7 +119,7 @@ pub fn run(a: &DragArgs) -> Res<()> {
         keep_shapes: a.shapes.as_ref().map(|_| a.shape_points as usize),
         contact: sc.contact,
         energy_balance: a.energy_balance,
-        ..DragOptions::default()
+        max_slips: a.max_slips as usize,
     };
     let r = vibrissa::drag(&rod, &surface, &opts)?;
     crate::progress::stop();

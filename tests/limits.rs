@@ -112,6 +112,11 @@ fn long_runs_are_bounded_and_inputs_meaningful() {
     assert_eq!(v["stop_reason"], "contact_change", "{}", o.stdout);
     assert!(v["cycles"].as_u64().unwrap() <= 3, "{}", o.stdout);
     assert!(o.stderr.contains("would exceed max_slips"), "{}", o.stderr);
+    assert!(
+        o.stderr.contains("kinetic friction this close to static"),
+        "{}",
+        o.stderr
+    );
     // a threshold below the solver's noise in mu (the start's |mu| ~ 1e-22): the tip slips at
     // d = 0 (was: "locating the Slip(0) event: no sign change")
     let o = ok(&["scan", "--mu0", "1e-300", "--points", "5", "--json"]);
@@ -143,6 +148,41 @@ fn long_runs_are_bounded_and_inputs_meaningful() {
     let v = json(&o.stdout);
     assert!(v["stop"]["d"].as_f64().unwrap() < 1e-10, "{}", o.stdout);
     assert!(o.stderr.contains("would exceed max_slips"), "{}", o.stderr);
+    // μs − μk = 0.2 is not what makes these slips short, and the stop does not say it is
+    // (it did: "kinetic friction this close to static"); it says what each slip does
+    assert!(!o.stderr.contains("kinetic friction"), "{}", o.stderr);
+    assert!(
+        o.stderr.contains("each slip moves the tip by") && o.stderr.contains("releases"),
+        "{}",
+        o.stderr
+    );
+    // the guard is the program's to set: a cap of 3 ends the paper's drag after 3 slips, by
+    // name, and the library's range is the flag's
+    let o = ok(&[
+        "drag",
+        "--mu-s",
+        "0.5",
+        "--mu-k",
+        "0.3",
+        "--d-max",
+        "1",
+        "--max-slips",
+        "3",
+        "--json",
+    ]);
+    let v = json(&o.stdout);
+    assert_eq!(v["cycles"], 3, "{}", o.stdout);
+    assert!(o.stderr.contains("max_slips = 3 reached"), "{}", o.stderr);
+    for v in ["0", "1000001"] {
+        let e = bad(
+            &["drag", "--mu-s", "0.5", "--mu-k", "0.3", "--max-slips", v],
+            2,
+        );
+        assert!(
+            e.contains("--max-slips") && e.contains("[1, 1000000]"),
+            "{e}"
+        );
+    }
     // a circle whose end lies before the pressed tip is refused (was replaced by its end
     // tangent without a word), and a drag stops where the tip leaves one
     let f = file(

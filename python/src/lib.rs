@@ -460,6 +460,7 @@ fn defaults(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
     )?;
     d.set_item("drag_d_max", vibrissa::limits::DEFAULT_DRAG_D_MAX)?;
     d.set_item("drag_points", vibrissa::limits::DEFAULT_DRAG_POINTS)?;
+    d.set_item("drag_max_slips", DragOptions::default().max_slips)?;
     d.set_item("whisk", to_py(py, &WhiskOptions::default())?)?;
     d.set_item("dynamics_free", to_py(py, &DynamicsOptions::default())?)?;
     d.set_item("dynamics_drag", to_py(py, &DynDragOptions::default())?)?;
@@ -739,7 +740,7 @@ fn drag_row<'py>(
 /// (`vibrissa drag`); a dict: `rows` (the program's columns), `slips`, `summary`, `stop`,
 /// `stats`, `handover`, `units`, `shapes`. Ctrl-C interrupts it.
 #[pyfunction]
-#[pyo3(signature = (rod, surface, *, mu_s=None, mu_k=None, d_max=vibrissa::limits::DEFAULT_DRAG_D_MAX, points=vibrissa::limits::DEFAULT_DRAG_POINTS, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, shape_points=None, contact=None, start=None, energy_balance=false))]
+#[pyo3(signature = (rod, surface, *, mu_s=None, mu_k=None, d_max=vibrissa::limits::DEFAULT_DRAG_D_MAX, points=vibrissa::limits::DEFAULT_DRAG_POINTS, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, shape_points=None, contact=None, start=None, energy_balance=false, max_slips=None))]
 #[allow(clippy::too_many_arguments)]
 fn drag<'py>(
     py: Python<'py>,
@@ -756,6 +757,7 @@ fn drag<'py>(
     contact: Option<&str>,
     start: Option<&str>,
     energy_balance: bool,
+    max_slips: Option<usize>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (contact, start) = settings(surface, contact, start)?;
     let mut opts = DragOptions {
@@ -769,6 +771,9 @@ fn drag<'py>(
         energy_balance,
         ..DragOptions::default()
     };
+    if let Some(n) = max_slips {
+        opts.max_slips = n;
+    }
     shapes_fit(shape_points, opts.points)?;
     opts.validate().map_err(py_err)?;
     let (rod, surface) = (rod.0.clone(), surface.s.clone());

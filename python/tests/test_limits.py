@@ -3,6 +3,7 @@ whisk, locate, fit) gives the program's numbers on the same scenes, field by fie
 the program refuses are refused (the library's limits); memory is budgeted; Ctrl-C is honoured;
 the regressions of the pressed start are fixed."""
 
+import inspect
 import json
 import math
 import os
@@ -60,6 +61,20 @@ def test_drag_equals_the_program(program, scene):
         assert summary["stop_reason"] == py.stop_reason
         for k in ("jump_mean", "drop_fx_mean", "released_mean"):
             same(py.summary[k], summary[k], k)
+
+
+def test_max_slips_is_the_program_s(program):
+    # the guard --max-slips as a keyword: its default is the library's, a cap ends the drag
+    # where the program's does, and the library's range refuses
+    lib = vibrissa._core.defaults()["drag_max_slips"]
+    assert inspect.signature(vibrissa.drag).parameters["max_slips"].default == lib
+    args = ["drag", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "1", "--max-slips", "3"]
+    summary = json.loads(program(*args, "--json"))
+    py = vibrissa.drag(vibrissa.Rod(), mu_s=0.5, mu_k=0.3, d_max=1.0, max_slips=3)
+    assert summary["cycles"] == len(py.slips) == 3
+    assert summary["stop_reason"] == py.stop_reason
+    with pytest.raises(vibrissa.InputError, match="max_slips"):
+        vibrissa.drag(vibrissa.Rod(), mu_s=0.5, mu_k=0.3, max_slips=0)
 
 
 def test_a_round_tip_drag_equals_the_program(program):

@@ -553,12 +553,15 @@ def drag(
     contact: Optional[str] = None,
     start: Optional[str] = None,
     energy_balance: bool = False,
+    max_slips: int = _DEFAULTS["drag_max_slips"],
 ) -> DragResult:
     """The drag (as ``vibrissa drag``): the foot moves from 0 to ``d_max`` across ``surface``;
     the tip sticks until ``|mu|`` reaches ``mu_s``, slips to where ``mu_k`` holds it, and sticks
     again. ``mu_s`` with ``mu_k`` (``mu_k < mu_s``), or neither: the surface's ``friction``
-    texture. The defaults are the program's; the values are checked as the program checks them
-    (the library's limits). Ctrl-C interrupts it."""
+    texture. ``max_slips``: the most slips before the drag stops (a guard, as the program's
+    ``--max-slips``). The defaults are the program's; the
+    values are checked as the program checks them (the library's limits). Ctrl-C interrupts
+    it."""
     if surface is None:
         surface = Surface()
     return DragResult(
@@ -576,6 +579,7 @@ def drag(
             contact=contact,
             start=start,
             energy_balance=energy_balance,
+            max_slips=max_slips,
         )
     )
 

@@ -122,6 +122,7 @@ def drag(
     contact: Optional[str] = None,
     start: Optional[str] = None,
     energy_balance: bool = False,
+    max_slips: Optional[int] = None,
 ) -> Dict[str, Any]: ...
 def whisk(
     rod: Rod,

@@ -53,8 +53,15 @@ pub const MAX_MU_S: f64 = crate::limits::MU_S.hi;
 pub const MAX_SLIP: f64 = 4.0;
 
 /// Slips closer together in `d` than this (rod lengths) that would run past `max_slips` end the
-/// drag at once instead of at the cap (kinetic friction within about 1e-5 of static).
+/// drag at once instead of at the cap, where kinetic friction is within 1e-3 μs of static
+/// (about 1e-5 of it makes slips this close), or where they come closer than
+/// [`MIN_RESOLVED_SPACING`].
 pub const MIN_SLIP_SPACING: f64 = 1e-6;
+
+/// Slips closer together in `d` than this (rod lengths, ten times the default tolerance) come at
+/// the solver's noise in `d`; with more to `d_max` than `max_slips` allows they end the drag at
+/// once, whatever μk.
+pub const MIN_RESOLVED_SPACING: f64 = 1e-9;
 
 /// Options of [`drag`].
 #[derive(Clone, Debug, PartialEq, Serialize, serde::Deserialize)]
@@ -239,6 +246,16 @@ pub struct Signals {
     pub x_tip: f64,
     /// Elastic energy.
     pub energy: f64,
+}
+
+/// Whether slips `spacing` apart in `d` (mean), `ahead` more of them to `d_max` and `left` of
+/// `max_slips`, end the drag at once (`DragRun::too_many_slips`): closer than
+/// [`MIN_SLIP_SPACING`], more than are left, and lasting — kinetic friction within 1e-3 μs of
+/// static (`friction_close`) or slips closer than [`MIN_RESOLVED_SPACING`] (NaN spacing: none
+/// reaches `d_max`).
+fn stops_early(spacing: f64, ahead: f64, left: usize, friction_close: bool) -> bool {
+    let lasting = friction_close || spacing.is_nan() || spacing < MIN_RESOLVED_SPACING;
+    spacing < MIN_SLIP_SPACING && lasting && (ahead.is_nan() || ahead > left as f64)
 }
 
 /// One slip and the stick phase before it.
@@ -598,10 +615,49 @@ impl<P: Profile> DragRun<'_, P> {
         !h.covers(r.x_tip)
     }
 
+    /// Why the slips are this short: kinetic friction within 1e-3 μs of static (each slip
+    /// ends almost where it began), else what the last slip did: how far it moved its contact
+    /// and what it released, the ratio the contacts need falling from μs to μk within that slide
+    /// (a hinge-like support makes it so: slips 1.9e-12 apart with μs 0.5, μk 0.3).
+    fn why_short(&self) -> String {
+        let last = &self.slips[self.slips.len() - 1];
+        if self.friction_close() {
+            return "kinetic friction this close to static makes the slips as short; widen \
+                    mu_s - mu_k"
+                .to_string();
+        }
+        let who = if last.s_slip >= 1.0 {
+            "the tip".to_string()
+        } else {
+            format!("the contact at s = {:.6}", last.s_slip)
+        };
+        format!(
+            "each slip moves {who} by {} along the surface and releases {} of elastic energy: \
+             the friction ratio the contacts ({}) need falls from mu_s to mu_k within so short \
+             a slide, and the slips come closer in d than {:e}, where their places are the \
+             solver's noise",
+            crate::limits::digits(last.jump.abs(), 3),
+            crate::limits::digits(last.released, 3),
+            self.rows.last().map_or("", |r| r.contact.name()),
+            MIN_RESOLVED_SPACING
+        )
+    }
+
+    /// Kinetic friction within 1e-3 μs of static (the options' uniform pair; a friction
+    /// profile's coefficients change along the surface).
+    fn friction_close(&self) -> bool {
+        matches!((self.opts.mu_s, self.opts.mu_k), (Some(s), Some(k)) if s - k <= 1e-3 * s)
+    }
+
     /// From the third slip on: slips spaced less than [`MIN_SLIP_SPACING`] apart in `d` whose
     /// count to `d_max` would exceed the `max_slips` left end the drag now, with the reason
     /// (issue 33: μk = 0.4999999999 for μs = 0.5 ran 100 000 slips of no length, 11 s, to the
-    /// cap). Slips further apart run to `max_slips` as asked (a fit's drags stop there).
+    /// cap), where μk is that close to μs or the slips come closer than
+    /// [`MIN_RESOLVED_SPACING`]. Why not on the spacing alone: slips made short by the contacts
+    /// (a side holding beside the tip) are short only while that lasts, and their count to
+    /// `d_max` is no forecast (the texture grid's rat preset over 0.01/0.2/4π/3: 1500 slips
+    /// 1e-6 apart forecast 299 000 more, and the drag reached `d_max` in 8875). Slips further
+    /// apart run to `max_slips` as asked (a fit's drags stop there).
     fn too_many_slips(&self, d: f64) -> Option<StopReason> {
         let n = self.slips.len();
         if n < 2 {
@@ -610,18 +666,18 @@ impl<P: Profile> DragRun<'_, P> {
         let spacing = (self.slips[n - 1].d - self.slips[0].d) / (n - 1) as f64;
         let left = self.opts.max_slips.saturating_sub(n);
         let ahead = (self.opts.d_max - d) / spacing;
-        (spacing < MIN_SLIP_SPACING && (ahead.is_nan() || ahead > left as f64)).then(|| {
+        stops_early(spacing, ahead, left, self.friction_close()).then(|| {
             StopReason::ContactChange {
                 d,
                 message: if ahead.is_finite() {
                     format!(
                         "the slips come {} apart in d, so about {} more to d_max = {} would \
-                         exceed max_slips = {} (kinetic friction this close to static makes \
-                         the slips as short; widen mu_s - mu_k or shorten the drag)",
+                         exceed max_slips = {} ({}; raise max_slips or shorten the drag)",
                         crate::limits::digits(spacing, 3),
                         crate::limits::digits(ahead, 3),
                         self.opts.d_max,
-                        self.opts.max_slips
+                        self.opts.max_slips,
+                        self.why_short()
                     )
                 } else {
                     // (μs below the solver's noise in μ, 1e-300: each slip ends where it began)
@@ -1449,5 +1505,29 @@ fn summary(slips: &[SlipEvent]) -> DragSummary {
         released_std: rs,
         period_mean: pm,
         period_std: ps,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slips_end_the_drag_early_only_where_they_stay_short() {
+        // issue 33: μk 1e-10 below μs, slips 1.57e-11 apart, 1.78e10 more to d_max
+        assert!(stops_early(1.57e-11, 1.78e10, 99_998, true));
+        // a hinge-like support: slips 1.93e-12 apart, closer than the solver resolves
+        assert!(stops_early(1.93e-12, 5.18e11, 99_998, false));
+        // the texture grid's rat preset over 0.01/0.2/4π/3 (μs 0.5, μk 0.3): 1500 slips 1e-6
+        // apart, a side holding beside the tip, forecast 299 000 more; they grew apart, and the
+        // drag reaches d_max in 8875 (it stopped here at once)
+        assert!(!stops_early(0.999e-6, 2.99e5, 98_500, false));
+        // the same spacing with μk close to μs lasts: stop
+        assert!(stops_early(0.999e-6, 2.99e5, 98_500, true));
+        // slips that fit into the slips left, or wider apart, run on
+        assert!(!stops_early(1.57e-11, 90_000.0, 99_998, true));
+        assert!(!stops_early(2e-6, 1e9, 10, true));
+        // no slip reaches d_max (NaN: each ends where it began)
+        assert!(stops_early(0.0, f64::NAN, 99_998, false));
     }
 }
