@@ -3,7 +3,7 @@
 how it stops (docs/robustness.md, "Textures").
 
 Usage: python3 benches/grids/texture.py [--bin target/release/vibrissa] [--jobs 2]
-           [--timeout 60] [--out data/drag/texture_grid.csv]
+           [--timeout 1200] [--out data/drag/texture_grid.csv]
        python3 benches/grids/texture.py --redo CLASS --from FILE.csv [--out ...]
        python3 benches/grids/texture.py --count FILE.csv [FILE.csv ...]
 
@@ -156,7 +156,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin", default="target/release/vibrissa")
     ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--timeout", type=float, default=60.0)
+    ap.add_argument("--timeout", type=float, default=1200.0)
     ap.add_argument("--out", default="data/drag/texture_grid.csv")
     ap.add_argument("--count", nargs="+")
     ap.add_argument("--redo", metavar="CLASS")
