@@ -559,9 +559,8 @@ def drag(
     the tip sticks until ``|mu|`` reaches ``mu_s``, slips to where ``mu_k`` holds it, and sticks
     again. ``mu_s`` with ``mu_k`` (``mu_k < mu_s``), or neither: the surface's ``friction``
     texture. ``max_slips``: the most slips before the drag stops (a guard, as the program's
-    ``--max-slips``). The defaults are the program's; the
-    values are checked as the program checks them (the library's limits). Ctrl-C interrupts
-    it."""
+    ``--max-slips``). The defaults are the program's; the values are checked as the program
+    checks them (the library's limits). Ctrl-C interrupts it."""
     if surface is None:
         surface = Surface()
     return DragResult(

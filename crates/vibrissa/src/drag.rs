@@ -248,7 +248,7 @@ pub struct Signals {
     pub energy: f64,
 }
 
-/// Slips over which [`DragRun::too_many_slips`] measures the recent spacing in `d`.
+/// Slips over which `DragRun::too_many_slips` measures the recent spacing in `d`.
 const SPACING_WINDOW: usize = 100;
 
 /// Whether slips `spacing` apart in `d`, `ahead` more of them to `d_max` and `left` of
@@ -660,11 +660,11 @@ impl<P: Profile> DragRun<'_, P> {
     /// cap), where μk is that close to μs (their mean spacing), or the last
     /// [`SPACING_WINDOW`] slips come closer than [`MIN_RESOLVED_SPACING`] (a drag over a grating
     /// slipped again and again at one d from its 315th slip on, which the mean spacing since the
-    /// first slip hid for 41 644 slips and 94 s). Why not on the mean spacing alone: slips made short by the contacts
-    /// (a side holding beside the tip) are short only while that lasts, and their count to
-    /// `d_max` is no forecast (the texture grid's rat preset over 0.01/0.2/4π/3: 1500 slips
-    /// 1e-6 apart forecast 299 000 more, and the drag reached `d_max` in 8875). Slips further
-    /// apart run to `max_slips` as asked (a fit's drags stop there).
+    /// first slip hid for 41 644 slips and 94 s). Why not on the mean spacing alone: slips made
+    /// short by the contacts (a side holding beside the tip) are short only while that lasts,
+    /// and their count to `d_max` is no forecast (the texture grid's rat preset over
+    /// 0.01/0.2/4π/3: 1500 slips 1e-6 apart forecast 299 000 more, and the drag reached `d_max`
+    /// in 8875). Slips further apart run to `max_slips` as asked (a fit's drags stop there).
     fn too_many_slips(&self, d: f64) -> Option<StopReason> {
         let n = self.slips.len();
         if n < 2 {
@@ -687,7 +687,7 @@ impl<P: Profile> DragRun<'_, P> {
             message: if ahead.is_finite() {
                 format!(
                     "the slips come {} apart in d, so about {} more to d_max = {} would \
-                         exceed max_slips = {} ({}; raise max_slips or shorten the drag)",
+                     exceed max_slips = {} ({}; raise max_slips or shorten the drag)",
                     crate::limits::digits(spacing, 3),
                     crate::limits::digits(ahead, 3),
                     self.opts.d_max,
@@ -697,7 +697,7 @@ impl<P: Profile> DragRun<'_, P> {
             } else {
                 format!(
                     "the slips come 0 apart in d: the contacts slip again where they \
-                         stopped, and no number of slips reaches d_max = {} ({})",
+                     stopped, and no number of slips reaches d_max = {} ({})",
                     self.opts.d_max,
                     self.why_short()
                 )
