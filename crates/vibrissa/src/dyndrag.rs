@@ -801,8 +801,7 @@ impl<'r> Drive<'r, '_> {
         // a stick, a slip at once and a stick at once can share an instant; a fourth event
         // there would repeat the second from the same state, and so on without end
         if self.instant_events == MAX_INSTANT_EVENTS {
-            let (normal, tangential) = contact_forces(self.rothe.force(1));
-            return Some(self.unresolved(normal, tangential));
+            return Some(self.unresolved(self.rothe.force(1)));
         }
         self.tried.clear();
         self.tip_before = None;
@@ -862,11 +861,12 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// The stop at a stick the time step does not resolve, with the force the stuck tip needs
-    /// (`normal`, `tangential`). The rod's held force starts from the sliding one at a stick
+    /// (the tip's force `g`, as [`contact_forces`] reads it). The rod's held force starts from the sliding one at a stick
     /// and changes continuously (like `√t`): a tip that needs a pull or more than μs N at once,
     /// or within the shortest step, is the scheme's, its steps too coarse for the motion
     /// before the stick.
-    fn unresolved(&self, normal: f64, tangential: f64) -> DynDragStop {
+    fn unresolved(&self, g: [f64; 2]) -> DynDragStop {
+        let (normal, tangential) = contact_forces(g);
         DynDragStop::UnresolvedStick {
             t: self.t,
             d: self.d,
@@ -953,8 +953,7 @@ impl<'r> Drive<'r, '_> {
                 // starts from the sliding one, which pushes)
                 let now = self.events_now();
                 if now[LIFT] >= 0.0 {
-                    let (normal, tangential) = contact_forces(self.rothe.force(1));
-                    return Ok(self.unresolved(normal, tangential));
+                    return Ok(self.unresolved(self.rothe.force(1)));
                 }
                 if now[PHASE] >= 0.0 {
                     if let Some(stop) = self.apply(PHASE) {
@@ -1014,8 +1013,7 @@ impl<'r> Drive<'r, '_> {
                 // right after its stick the tip needs to slip or lift within the shortest
                 // step: its force has left the friction cone at once, which the rod's does
                 // not (see `unresolved`)
-                let (normal, tangential) = contact_forces(self.held_force(&tr));
-                return Ok(self.unresolved(normal, tangential));
+                return Ok(self.unresolved(self.held_force(&tr)));
             }
             self.take(tr);
             self.fresh_slip = false;
