@@ -378,6 +378,19 @@ pub struct DynamicsDragArgs {
     /// lift-off ends the drag.
     #[arg(long)]
     pub flight: bool,
+    /// The foot's path by a time table instead of --speed, --ramp and --d-max: a file of rows
+    /// t, d[, theta] (time, the foot's displacement along x, the turn of its support in rad,
+    /// clockwise; comma, semicolon or space separated, '#' comments, an optional header), t
+    /// strictly increasing from the first row 0, 0[, 0]; each column a natural cubic spline
+    /// (docs/model.md, "The foot's path"). The drag ends at the table's last time; a column
+    /// theta is added after d.
+    #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["speed", "ramp", "d_max"])]
+    pub foot_table: Option<PathBuf>,
+    /// Whisking: the foot's support turns by theta(t) = A (1 - cos 2 pi F t)/2 (rad, clockwise;
+    /// A in [-pi/2, pi/2], F in (0, 1000] whisks per time unit), on top of the foot's path; a
+    /// column theta is added after d.
+    #[arg(long, value_name = "A,F", value_parser = whisk_arg)]
+    pub whisk: Option<vibrissa::dynamics::Whisk>,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub spectrum: Option<PathBuf>,
@@ -1176,6 +1189,24 @@ pub fn missing_value(args: &[std::ffi::OsString]) -> Option<String> {
 pub struct SpeedTable(pub Vec<[f64; 2]>);
 
 /// Parses `V:MU,V:MU,...`.
+/// `A,F` of `dynamics drag --whisk` (the ranges are the library's, checked with the options).
+fn whisk_arg(text: &str) -> Result<vibrissa::dynamics::Whisk, String> {
+    let (a, f) = text
+        .split_once(',')
+        .ok_or_else(|| format!("'{text}' is not A,F (amplitude in rad, whisks per time unit)"))?;
+    let num = |t: &str| {
+        t.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| format!("'{t}' is not a finite number"))
+    };
+    Ok(vibrissa::dynamics::Whisk {
+        amplitude: num(a)?,
+        frequency: num(f)?,
+    })
+}
+
 fn speed_table(text: &str) -> Result<SpeedTable, String> {
     text.split(',')
         .map(|pair| {

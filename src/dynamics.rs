@@ -67,9 +67,13 @@ pub fn run(a: &DynamicsArgs) -> Res<()> {
     }
 }
 
-/// The options of the drag's flags.
-pub fn options(a: &DynamicsDragArgs) -> DynDragOptions {
-    DynDragOptions {
+/// The options of the drag's flags (`--foot-table` read from its file).
+pub fn options(a: &DynamicsDragArgs) -> Res<DynDragOptions> {
+    let foot_table = match &a.foot_table {
+        Some(path) => vibrissa::dynamics::read_foot_table(path)?,
+        None => vec![],
+    };
+    Ok(DynDragOptions {
         speed: a.speed,
         ramp: a.ramp,
         d_max: a.d_max,
@@ -86,8 +90,10 @@ pub fn options(a: &DynamicsDragArgs) -> DynDragOptions {
             .map(|t| t.0.clone())
             .unwrap_or_default(),
         flight: a.flight,
+        foot_table,
+        whisk: a.whisk,
         ..DynDragOptions::default()
-    }
+    })
 }
 
 /// The options of `dynamics free`'s flags.
@@ -136,9 +142,11 @@ fn write_spectrum(path: &Path, t: &[f64], m: &[f64], u: Option<(Units, f64)>) ->
 fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
     let scene = build_scene(&a.scene, a.eta)?;
     let (rod, surface) = scene.parts()?;
-    let o = options(a);
+    let o = options(a)?;
     o.validate()?;
     let r = drag(&rod, &surface, &o)?;
+    // (the turn's column where the foot's support turns)
+    let turns = o.whisk.is_some() || !o.foot_table.is_empty();
     crate::progress::stop();
     let u = units(&rod);
     if let Some(path) = &a.spectrum {
@@ -153,6 +161,9 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
         return Ok(());
     }
     let mut header = HEADER.to_vec();
+    if turns {
+        header.insert(2, "theta");
+    }
     if u.is_some() {
         header.extend(DRAG_PHYSICAL);
     }
@@ -167,6 +178,9 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
         let mut v: Vec<String> = [p.t, p.d, p.tip_x, p.tip_y, p.tip_vx, p.tip_vy]
             .map(num)
             .into();
+        if turns {
+            v.insert(2, num(p.theta));
+        }
         v.push(p.state.name().to_string());
         v.extend(
             [
@@ -193,7 +207,8 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
         v.push(names.join(" "));
         writeln!(w, "{}", v.join(","))?;
     }
-    if r.stop != vibrissa::dynamics::DynDragStop::DMax {
+    use vibrissa::dynamics::DynDragStop;
+    if !matches!(r.stop, DynDragStop::DMax | DynDragStop::TableEnd) {
         crate::progress::warn(&format!("the dynamic drag stopped early: {}", r.stop));
     }
     crate::progress::eprint(&format!("dynamics drag: {r}"));

@@ -113,7 +113,7 @@ fn prepare(cmd: &mut Command) -> Res<()> {
         Command::Dynamics(a) => match &a.command {
             cli::DynamicsCommand::Drag(d) => {
                 scene_args::build_scene(&d.scene, d.eta)?;
-                dynamics::options(d).validate()?;
+                dynamics::options(d)?.validate()?;
                 plan_spectrum(&d.spectrum)?;
             }
             cli::DynamicsCommand::Free(f) => {

@@ -132,9 +132,11 @@ def test_keyword_defaults_are_the_library_s(command):
     for name, p in params.items():
         if name in ("rod", "surface"):
             continue
-        if name == "time_tol":
-            # the library's default is None (fixed steps), which its dict leaves out
-            assert "time_tol" not in lib and p.default is None
+        if name in ("time_tol", "whisk"):
+            # the library's default is None (fixed steps, no whisk), which its dict leaves out
+            assert name not in lib and p.default is None
+        elif name == "foot_table":
+            assert [tuple(x) for x in p.default] == [tuple(x) for x in lib["foot_table"]]
         elif name == "release_force":
             assert tuple(p.default) == tuple(lib["release_force"])
         elif name == "mu_k_table":
@@ -253,3 +255,25 @@ def test_options_out_of_range_raise_the_library_s_error():
     ]:
         with pytest.raises(vibrissa.InputError, match=name):
             vibrissa.dynamics_drag(rod, **kw)
+
+
+def test_a_whisk_over_a_foot_table_equals_the_program(program, tmp_path):
+    # the foot drawn forward and back by a table while its support whisks (issue 32)
+    table = tmp_path / "foot.csv"
+    table.write_text("t,d,theta\n0,0,0\n0.4,0.004,0.01\n0.8,0.002,0.0\n")
+    args = ["dynamics", "drag", "--foot-table", str(table), "--whisk", "0.05,0.5",
+            "--dt", "0.05"]
+    want = json.loads(program(*args, "--json"))
+    rows = [(0, 0, 0), (0.4, 0.004, 0.01), (0.8, 0.002, 0.0)]
+    py = vibrissa.dynamics_drag(vibrissa.Rod(), vibrissa.Surface(eta=0.75), foot_table=rows,
+                                whisk=(0.05, 0.5), dt=0.05)
+    check_samples(py, want["samples"], " ".join(args))
+    assert py["stop"] == want["stop"] == {"reason": "table_end"}
+    assert py["samples"]["theta"][-1] == pytest.approx(0.05 * (1 - np.cos(2 * np.pi * 0.5 * 0.8)) / 2)
+    assert [e["kind"] for e in py["events"]] == ["slip", "stick"]
+    csv = program(*args).splitlines()
+    assert csv[0].startswith("t,d,theta,tip_x")
+    with pytest.raises(vibrissa.InputError, match="foot"):
+        vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=[(0.1, 0, 0), (1, 0.1, 0)])
+    with pytest.raises(ValueError, match="row 1"):
+        vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=[(0, 0), (1, 0.1, 0, 4)])

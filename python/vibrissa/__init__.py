@@ -821,10 +821,20 @@ def dynamics_drag(
     tol: float = _DRAG["tol"],
     event_tol: float = _DRAG["event_tol"],
     max_events: int = _DRAG["max_events"],
+    foot_table: Sequence[Sequence[float]] = tuple(tuple(r) for r in _DRAG["foot_table"]),
+    whisk: Optional[Tuple[float, float]] = None,
 ) -> Dict[str, Any]:
     """The drag in time (as ``vibrissa dynamics drag``): the foot moves along x at ``speed``
     (rising smoothly over ``ramp``) with the tip on the flat ``surface`` under Coulomb friction
     ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``.
+
+    ``foot_table``: the foot's path instead of ``speed``, ``ramp`` and ``d_max``, rows
+    ``(t, d)`` or ``(t, d, theta)`` (time, displacement along x, the turn of the foot's support
+    in rad, clockwise), ``t`` strictly increasing from the first row ``(0, 0[, 0])``; each
+    column a natural cubic spline; the drag ends at the last time (stop ``table_end``; the
+    program's ``--foot-table FILE``). ``whisk``: ``(amplitude, frequency)``, the support turns
+    by ``amplitude (1 - cos 2 pi frequency t)/2`` on top of the path (``--whisk A,F``); the
+    samples' ``theta`` is the turn.
 
     ``mu_k_table``: kinetic friction depending on the slip speed, ``(speed, mu_k)`` pairs
     (speeds >= 0 increasing, each mu_k in [0, mu_s)), piecewise linear, constant beyond the
@@ -841,7 +851,7 @@ def dynamics_drag(
     ``state``, ``normal``, ``tangential``, ``fx``, ``fy``, ``m_base``, energies),
     ``samples_rows`` (the same as dicts: the program's ``--json``), ``events`` (``slip``,
     ``stick``, ``lift_off``, ``touchdown`` with their time and place), ``stop`` (its
-    ``reason``: ``d_max``, ``lift_off``, ``touchdown``, ``max_events``, or
+    ``reason``: ``d_max``, ``table_end``, ``lift_off``, ``touchdown``, ``max_events``, or
     ``unresolved_stick``, a stick the time step does not resolve, with ``t``, ``d`` and the
     force the stuck tip would need), ``stats``,
     ``units``, ``time_unit_s``."""
@@ -866,6 +876,8 @@ def dynamics_drag(
         tol=tol,
         event_tol=event_tol,
         max_events=max_events,
+        foot_table=[[float(v) for v in row] for row in foot_table],
+        whisk=None if whisk is None else (float(whisk[0]), float(whisk[1])),
     )
     return _in_columns(r, "samples")
 

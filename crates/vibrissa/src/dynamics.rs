@@ -46,14 +46,14 @@
 //! with the positions' history from the last step's solution and the internal force scaled by
 //! the step (`Settings::short_steps` there), `free` its fixed steps as before.
 
-use crate::rothe::{check_damping, rest_guess, Rothe, Settings, TipBc};
+use crate::rothe::{check_damping, rest_guess, Foot, Rothe, Settings, TipBc};
 use crate::timestep::check_time_tol;
 use crate::{Rod, VibrissaError};
 use serde::Serialize;
 
 pub use crate::dyndrag::{
-    drag, ContactState, DragEventKind, DragSample, DragStats, DynDragEvent, DynDragOptions,
-    DynDragResult, DynDragStop,
+    drag, parse_foot_table, read_foot_table, ContactState, DragEventKind, DragSample, DragStats,
+    DynDragEvent, DynDragOptions, DynDragResult, DynDragStop, Whisk, MAX_FOOT_ROWS,
 };
 pub use crate::rothe::{DynSample, DynStats};
 pub use crate::timestep::{TimeStepControl, TIME_TOL_RANGE};
@@ -221,7 +221,12 @@ pub fn free(
     let steps = (opts.t_end / dt).round().max(1.0) as usize;
     for n in 0..steps {
         let trial = rothe
-            .trial(dt, [0.0, 0.0], TipBc::Force([0.0, 0.0]), opts.foot_moment)
+            .trial(
+                dt,
+                Foot::at([0.0, 0.0]),
+                TipBc::Force([0.0, 0.0]),
+                opts.foot_moment,
+            )
             .map_err(|e| {
                 VibrissaError::solver(
                     format!("time step {} (t = {})", n + 1, (n + 1) as f64 * dt),
@@ -259,7 +264,12 @@ fn adaptive(
             h
         };
         let trial = rothe
-            .trial(tau, [0.0, 0.0], TipBc::Force([0.0, 0.0]), opts.foot_moment)
+            .trial(
+                tau,
+                Foot::at([0.0, 0.0]),
+                TipBc::Force([0.0, 0.0]),
+                opts.foot_moment,
+            )
             .map_err(|e| {
                 VibrissaError::solver(format!("the time step from t = {t} by {tau}"), *e)
             })?;

@@ -1,10 +1,12 @@
-//! The dynamic drag (issue 32): the foot moves along x at speed `v` while the tip touches the
-//! flat surface `y = η` with Coulomb friction, the rod followed in time by the Rothe step of
+//! The dynamic drag (issue 32): the foot moves along x at speed `v` (or along a time table, its
+//! support turned by the table's angle and a whisk) while the tip touches the flat surface
+//! `y = η` with Coulomb friction, the rod followed in time by the Rothe step of
 //! `dynamics::free` (module `rothe`: Newmark's average acceleration in time, Lobatto
 //! collocation in s).
 //!
 //! ```text
-//!     foot:      x(0) = d(t),  y(0) = 0,  the support's spring and damper as in `free`
+//!     foot:      x(0) = d(t),  y(0) = 0,  φ(0) = π/2 − θ_w(t) + θ (θ the support's own
+//!                rotation: its spring and damper as in `free`, 0 on a clamp)
 //!     stuck:     x(1) = X_a,  y(1) = η,  m(1) = 0            while |T| < μs N
 //!     slipping:  y(1) = η,  m(1) = 0,  T = dir·μk·N           while dir·ẋ(1) > 0
 //!     N = −Gy(1) (the surface pushes down on the rod),  T = −Gx(1)  (μ = T/N as in the static
@@ -35,7 +37,8 @@
 //! [`restart_step`] on a copy), since the holding force jumps there and the trapezoidal rule
 //! would carry half the jump on as a mode alternating from step to step (docs/model.md). What
 //! is left of that mode in the held tip's force (it grows during a stuck phase) does not enter
-//! the motion, so after the first event the slip's test takes the held force without it
+//! the motion, so after the first event the stuck tip's tests (slip and lift-off) take the held
+//! force without it
 //! ([`Drive::held_force`]: the step's end, its start and the last step's start combined).
 //!
 //! The start: the rod pressed onto the surface (the static state with the force normal to it,
@@ -47,14 +50,16 @@
 //! `v → 0` could not shed (the rod has no damping but the foot's damper).
 //!
 //! Energy, by the scheme's own identity (the trapezoidal rule of Newmark's rule on every force
-//! at the boundary): the foot's work `W = Σ −(Gx(0)ⁿ + Gx(0)ⁿ⁺¹)/2 (dⁿ⁺¹ − dⁿ)`, the work friction
+//! at the boundary): the foot's work `W = Σ −(Gx(0)ⁿ + Gx(0)ⁿ⁺¹)/2 (dⁿ⁺¹ − dⁿ)` plus, where the
+//! support turns, `Σ (m(0)ⁿ + m(0)ⁿ⁺¹)/2 (θ_wⁿ⁺¹ − θ_wⁿ)` (`δE = m(0) δθ_w` for the rod and
+//! its spring at rest), the work friction
 //! takes `D_f = Σ −(Gx(1)ⁿ + Gx(1)ⁿ⁺¹)/2 (x(1)ⁿ⁺¹ − x(1)ⁿ)` (zero while stuck), the damper's
 //! `D_c` as in `free`, and the rod's internal and external damping's `D_i`, `D_e` (module
 //! `dynamics`); `W = ΔK + ΔE + D_f + D_c + D_i + D_e`, exact for a linear rod, to the time
 //! scheme's error for this one.
 
 use crate::config::SolverConfig;
-use crate::rothe::{check_damping, Rothe, Settings, TipBc, Trial};
+use crate::rothe::{check_damping, Foot, Rothe, Settings, TipBc, Trial};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
 use crate::timestep::{check_time_tol, TimeStepControl};
@@ -124,6 +129,46 @@ pub struct DynDragOptions {
     /// The bounds of the adaptive steps' controller (used with `time_tol` only; checked then).
     /// Default [`TimeStepControl::default`].
     pub step_control: TimeStepControl,
+    /// The foot's path by a time table instead of `speed` and `ramp`: rows `(t, d, θ_w)`, the
+    /// time, the foot's displacement along x and the turn of its support (rad, clockwise as
+    /// the static whisk's foot angle: the clamp holds the foot's slope at `π/2 − θ_w`). `t`
+    /// strictly increasing from the first row `(0, 0, 0)` (the pressed start at rest), at
+    /// least two rows, at most [`MAX_FOOT_ROWS`], `θ_w` in
+    /// [`limits::THETA`](crate::limits::THETA); each column is the natural cubic spline
+    /// through its values (C²: the foot's acceleration is continuous, so the table itself
+    /// gives the rod no impulse; a table whose first slope is not zero starts the foot at that
+    /// speed at once, as `ramp` 0 does). The drag ends at the table's last time (`d_max`,
+    /// `speed` and `ramp` are not used; stop [`DynDragStop::TableEnd`]). `d` may fall as well
+    /// as rise (the foot drawn back). Default empty: `speed` and `ramp`.
+    pub foot_table: Vec<[f64; 3]>,
+    /// Whisking: the foot's support turns by `θ_w(t) = A (1 − cos 2πft)/2` on top of the foot's
+    /// path (and of a table's `θ_w`): from the rest angle to `A` and back every `1/f` time
+    /// units, starting at rest. Default `None`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub whisk: Option<Whisk>,
+}
+
+/// Most rows of [`DynDragOptions::foot_table`].
+pub const MAX_FOOT_ROWS: usize = 100_000;
+
+/// A whisking turn of the foot's support, `θ_w(t) = A (1 − cos 2πft)/2`
+/// ([`DynDragOptions::whisk`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Whisk {
+    /// The largest turn `A` (rad, clockwise; negative turns the other way), in `(−π/2, π/2)`
+    /// ([`limits::THETA`](crate::limits::THETA)).
+    pub amplitude: f64,
+    /// Whisks per time unit `f`, in `(0, 1000]`
+    /// ([`limits::WHISK_FREQUENCY`](crate::limits::WHISK_FREQUENCY); a rat's 5–12 Hz in the
+    /// preset's time unit: `vibrissa::inertia`).
+    pub frequency: f64,
+}
+
+impl Whisk {
+    /// `θ_w(t)`.
+    pub fn turn_at(&self, t: f64) -> f64 {
+        0.5 * self.amplitude * (1.0 - (std::f64::consts::TAU * self.frequency * t).cos())
+    }
 }
 
 impl Default for DynDragOptions {
@@ -147,6 +192,8 @@ impl Default for DynDragOptions {
             flight: false,
             time_tol: None,
             step_control: TimeStepControl::default(),
+            foot_table: vec![],
+            whisk: None,
         }
     }
 }
@@ -198,19 +245,46 @@ impl DynDragOptions {
         }
         limits::MAX_SLIPS.check_count("max_events", self.max_events)?;
         check_time_tol(self.time_tol, &self.step_control)?;
+        check_foot_table(&self.foot_table)?;
+        if let Some(w) = self.whisk {
+            limits::THETA.check("whisk amplitude", w.amplitude)?;
+            limits::WHISK_FREQUENCY.check("whisk frequency", w.frequency)?;
+        }
         let steps = self.t_end() / self.dt;
         if steps > MAX_STEPS {
+            let (name, hint) = if self.foot_table.is_empty() {
+                ("d_max/(speed dt)", "raise speed or dt, or lower d_max")
+            } else {
+                (
+                    "the foot table's last time/dt",
+                    "raise dt or end the table sooner",
+                )
+            };
             return Err(VibrissaError::range(
-                "d_max/(speed dt)",
+                name,
                 steps,
-                format!("at most {MAX_STEPS:e} time steps: raise speed or dt, or lower d_max"),
+                format!("at most {MAX_STEPS:e} time steps: {hint}"),
             ));
         }
         Ok(())
     }
 
-    /// The foot's place at time `t` (the smooth start, then speed `v`).
+    /// The foot's displacement along x at time `t`: the smooth start, then speed `v`; or the
+    /// spline of `foot_table`.
     pub fn foot_at(&self, t: f64) -> f64 {
+        if !self.foot_table.is_empty() {
+            return FootPath::new(self).at(t).place[0];
+        }
+        self.ramp_at(t)
+    }
+
+    /// The turn `θ_w` of the foot's support at time `t` (the table's and the whisk's).
+    pub fn turn_at(&self, t: f64) -> f64 {
+        FootPath::new(self).at(t).turn
+    }
+
+    /// The smooth start, then speed `v`.
+    fn ramp_at(&self, t: f64) -> f64 {
         let (v, tr) = (self.speed, self.ramp);
         if t >= tr {
             v * tr / 2.0 + v * (t - tr)
@@ -220,8 +294,12 @@ impl DynDragOptions {
         }
     }
 
-    /// The time at which the foot reaches `d_max`.
+    /// The time at which the drag ends: where the foot reaches `d_max`, or the foot table's
+    /// last time.
     pub fn t_end(&self) -> f64 {
+        if let Some(last) = self.foot_table.last() {
+            return last[0];
+        }
         let (v, tr) = (self.speed, self.ramp);
         if self.d_max >= v * tr / 2.0 {
             return tr + (self.d_max - v * tr / 2.0) / v;
@@ -230,13 +308,148 @@ impl DynDragOptions {
         let (mut lo, mut hi) = (0.0, tr);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
-            if self.foot_at(mid) < self.d_max {
+            if self.ramp_at(mid) < self.d_max {
                 lo = mid;
             } else {
                 hi = mid;
             }
         }
         hi
+    }
+}
+
+/// Checks a foot table ([`DynDragOptions::foot_table`]); the error names the row.
+fn check_foot_table(rows: &[[f64; 3]]) -> Result<(), VibrissaError> {
+    if rows.is_empty() {
+        return Ok(());
+    }
+    let bad = |reason: String| {
+        Err(VibrissaError::InvalidTable {
+            name: "foot".into(),
+            reason,
+        })
+    };
+    if rows.len() < 2 || rows.len() > MAX_FOOT_ROWS {
+        return bad(format!(
+            "{} rows: a foot table needs at least 2 (and at most {MAX_FOOT_ROWS})",
+            rows.len()
+        ));
+    }
+    if rows[0] != [0.0, 0.0, 0.0] {
+        return bad(format!(
+            "its first row is (t, d, theta) = ({}, {}, {}): it must be (0, 0, 0), the pressed \
+             start at rest",
+            rows[0][0], rows[0][1], rows[0][2]
+        ));
+    }
+    for (i, r) in rows.iter().enumerate() {
+        if !r.iter().all(|v| v.is_finite()) || r[1].abs() > 1000.0 {
+            return bad(format!(
+                "row {i}: (t, d, theta) = ({}, {}, {}) (finite, |d| <= 1000)",
+                r[0], r[1], r[2]
+            ));
+        }
+        if !crate::limits::THETA.contains(r[2]) {
+            return bad(format!(
+                "row {i}: theta = {} rad is not in {} (the foot turned clockwise, within a \
+                 quarter turn)",
+                r[2],
+                crate::limits::THETA.text(6)
+            ));
+        }
+        if i > 0 && r[0] <= rows[i - 1][0] {
+            return bad(format!(
+                "row {i}: t = {} is not after t = {} of the row before: t must increase \
+                 strictly",
+                r[0],
+                rows[i - 1][0]
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The rows of a foot table's text ([`DynDragOptions::foot_table`]): one row a line, `t, d` or
+/// `t, d, theta` (a missing `theta` is 0), separated by a comma, a semicolon, tabs or spaces;
+/// `#` starts a comment; a first line that is not numbers is a header. The rows stay in the
+/// file's order (`DynDragOptions::validate` checks them). The error names the line.
+pub fn parse_foot_table(text: &str) -> Result<Vec<[f64; 3]>, VibrissaError> {
+    let mut rows = Vec::new();
+    let mut header = false;
+    for (i, line, nums) in crate::measured::numeric_lines(text) {
+        match nums {
+            Some(v) if v.len() == 2 || v.len() == 3 => {
+                rows.push([v[0], v[1], v.get(2).copied().unwrap_or(0.0)]);
+            }
+            None if rows.is_empty() && !header => header = true,
+            _ => {
+                return Err(VibrissaError::InvalidTable {
+                    name: "foot".into(),
+                    reason: format!(
+                        "line {}: '{line}' is not two or three numbers t, d[, theta] (one row a \
+                         line)",
+                        i + 1
+                    ),
+                })
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// [`parse_foot_table`] of a file.
+pub fn read_foot_table(path: &std::path::Path) -> Result<Vec<[f64; 3]>, VibrissaError> {
+    let text = std::fs::read_to_string(path).map_err(|e| VibrissaError::InvalidTable {
+        name: "foot".into(),
+        reason: format!("cannot read {}: {e}", path.display()),
+    })?;
+    parse_foot_table(&text).map_err(|e| match e {
+        VibrissaError::InvalidTable { name, reason } => VibrissaError::InvalidTable {
+            name,
+            reason: format!("{}: {reason}", path.display()),
+        },
+        e => e,
+    })
+}
+
+/// The foot's place and turn in time ([`DynDragOptions::foot_table`], `speed` and `ramp`,
+/// [`DynDragOptions::whisk`]).
+struct FootPath<'o> {
+    o: &'o DynDragOptions,
+    /// The table's times, and per column (d, θ_w) the values and the spline's second
+    /// derivatives.
+    t: Vec<f64>,
+    cols: [(Vec<f64>, Vec<f64>); 2],
+}
+
+impl<'o> FootPath<'o> {
+    fn new(o: &'o DynDragOptions) -> Self {
+        let t: Vec<f64> = o.foot_table.iter().map(|r| r[0]).collect();
+        let col = |k: usize| {
+            let v: Vec<f64> = o.foot_table.iter().map(|r| r[k]).collect();
+            let m = crate::spline::natural_moments(&t, &v);
+            (v, m)
+        };
+        let cols = [col(1), col(2)];
+        FootPath { o, t, cols }
+    }
+
+    /// The foot at time `t`.
+    fn at(&self, t: f64) -> Foot {
+        let whisk = self.o.whisk.map_or(0.0, |w| w.turn_at(t));
+        if self.t.is_empty() {
+            return Foot {
+                place: [self.o.ramp_at(t), 0.0],
+                turn: whisk,
+            };
+        }
+        let [(d, dm), (th, thm)] = &self.cols;
+        let d = crate::spline::jet(&self.t, d, dm, t).0;
+        let turn = crate::spline::jet(&self.t, th, thm, t).0;
+        Foot {
+            place: [d, 0.0],
+            turn: turn + whisk,
+        }
     }
 }
 
@@ -330,6 +543,9 @@ pub struct DragSample {
     pub t: f64,
     /// Foot displacement.
     pub d: f64,
+    /// The turn `θ_w` of the foot's support ([`DynDragOptions::foot_table`],
+    /// [`DynDragOptions::whisk`]; 0 without them).
+    pub theta: f64,
     /// Tip x.
     pub tip_x: f64,
     /// Tip y.
@@ -354,7 +570,8 @@ pub struct DragSample {
     pub kinetic: f64,
     /// Elastic energy.
     pub elastic: f64,
-    /// The foot's work so far.
+    /// The foot's work so far: its support's force along the foot's path and, where the
+    /// support turns, its moment on the turn.
     pub foot_work: f64,
     /// Energy friction took so far.
     pub friction: f64,
@@ -374,6 +591,8 @@ pub struct DragSample {
 pub enum DynDragStop {
     /// The foot reached `d_max`.
     DMax,
+    /// The foot table's last time was reached ([`DynDragOptions::foot_table`]).
+    TableEnd,
     /// The normal force fell to zero at displacement `d`.
     LiftOff {
         /// Where.
@@ -409,6 +628,7 @@ impl fmt::Display for DynDragStop {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             DynDragStop::DMax => write!(f, "d_max"),
+            DynDragStop::TableEnd => write!(f, "the foot table's end"),
             DynDragStop::LiftOff { d } => write!(f, "lift-off at d = {d}"),
             DynDragStop::MaxEvents => write!(f, "max_events"),
             DynDragStop::UnresolvedStick {
@@ -578,10 +798,13 @@ const PHASE: usize = 1;
 /// The driver of a dynamic drag.
 struct Drive<'r, 'o> {
     o: &'o DynDragOptions,
+    path: FootPath<'o>,
     rothe: Rothe<'r>,
     eta: f64,
     t: f64,
     d: f64,
+    /// The support's turn `θ_w`.
+    turn: f64,
     state: ContactState,
     /// The stuck tip's x.
     anchor: f64,
@@ -630,21 +853,22 @@ impl<'r> Drive<'r, '_> {
         if let Some((_, tr)) = self.tried.iter().find(|(t, _)| *t == tau) {
             return Ok(tr.clone());
         }
-        let foot = [self.o.foot_at(self.t + tau), 0.0];
+        let foot = self.path.at(self.t + tau);
         self.stats.solves += 1;
         let bc = self.bc();
         let tr = self.rothe.trial(tau, foot, bc, 0.0).map_err(|e| {
             // (a foot at full speed from t = 0 is an impulse on the rod at rest: its
             // acceleration is infinite there, which no step resolves; v 0.2 failed, 0.05 not)
-            let impulse = if self.o.ramp == 0.0 && self.t < self.o.dt {
-                format!(
-                    "; the foot starts at speed {} at once (ramp 0), an impulse on the rod at \
+            let impulse =
+                if self.o.ramp == 0.0 && self.o.foot_table.is_empty() && self.t < self.o.dt {
+                    format!(
+                        "; the foot starts at speed {} at once (ramp 0), an impulse on the rod at \
                      rest: a ramp > 0 resolves it",
-                    self.o.speed
-                )
-            } else {
-                String::new()
-            };
+                        self.o.speed
+                    )
+                } else {
+                    String::new()
+                };
             VibrissaError::solver(
                 format!(
                     "dynamic drag: the step from t = {} by {tau} ({}){impulse}",
@@ -678,14 +902,19 @@ impl<'r> Drive<'r, '_> {
         self.held_test(g, held, y)
     }
 
-    /// The event functions `g` with the stuck tip's slip test taken on the held force `held`
-    /// ([`Drive::held_force`]) where there is one, the tip at height `y`.
-    fn held_test(&self, mut g: [f64; 2], held: Option<[f64; 2]>, y: f64) -> [f64; 2] {
-        if let (ContactState::Stuck, Some(held)) = (self.state, held) {
-            let (n, t) = contact_forces(held);
-            g[PHASE] = self.events_of(n, t, 0.0, y)[PHASE];
+    /// The event functions `g` with the stuck tip's tests (slip and lift-off) taken on the held
+    /// force `held` ([`Drive::held_force`]) where there is one, the tip at height `y`. (The
+    /// lift-off's too: the rule's mode reaches ±1.4 in the stuck paper's rod's N = 4 at dt 0.02
+    /// after a few slips, and a whisk drawn back, where N falls, read a lift-off at N = −0.18
+    /// where the held force had N = 2.3.)
+    fn held_test(&self, g: [f64; 2], held: Option<[f64; 2]>, y: f64) -> [f64; 2] {
+        match (self.state, held) {
+            (ContactState::Stuck, Some(held)) => {
+                let (n, t) = contact_forces(held);
+                self.events_of(n, t, 0.0, y)
+            }
+            _ => g,
         }
-        g
     }
 
     /// The stuck tip's force at the end of the trial `tr` for the slip's test, without the
@@ -724,11 +953,13 @@ impl<'r> Drive<'r, '_> {
     fn take(&mut self, tr: Trial) {
         self.tried.clear();
         self.instant_events = 0;
-        let (g0, g1, x1, d_old) = (
+        let (g0, g1, x1, d_old, turn_old, m0) = (
             self.rothe.force(0),
             self.rothe.force(1),
             self.rothe.sol.right()[0],
             self.d,
+            self.turn,
+            self.rothe.sol.left()[3],
         );
         let tau = tr.tau;
         let held = (self.state == ContactState::Stuck && self.tip_before.is_some())
@@ -738,9 +969,13 @@ impl<'r> Drive<'r, '_> {
         self.tip_before = (!self.events.is_empty()).then_some((g1, tau));
         self.held_now = held;
         self.t += tau;
-        self.d = self.o.foot_at(self.t);
+        let foot = self.path.at(self.t);
+        (self.d, self.turn) = (foot.place[0], foot.turn);
         let (h0, h1) = (self.rothe.force(0), self.rothe.force(1));
-        self.foot_work += -0.5 * (g0[0] + h0[0]) * (self.d - d_old);
+        // the support's force along the foot's path, and its moment `m(0)` on the turn (the
+        // clamp holds the slope `π/2 − θ_w`: `δE = m(0) δθ_w` for the rod and its spring)
+        self.foot_work += -0.5 * (g0[0] + h0[0]) * (self.d - d_old)
+            + 0.5 * (m0 + self.rothe.sol.left()[3]) * (self.turn - turn_old);
         self.friction += -0.5 * (g1[0] + h1[0]) * (self.rothe.sol.right()[0] - x1);
         self.stats.steps += 1;
         self.samples.push(self.sample());
@@ -752,6 +987,7 @@ impl<'r> Drive<'r, '_> {
         DragSample {
             t: self.t,
             d: self.d,
+            theta: self.turn,
             tip_x: p.tip_x,
             tip_y: p.tip_y,
             tip_vx: p.tip_vx,
@@ -805,11 +1041,11 @@ impl<'r> Drive<'r, '_> {
         }
         self.tried.clear();
         self.tip_before = None;
-        // (a slip's forces as its test takes them: the stuck tip's held force, without the
-        // rule's alternating mode, where there is one; so its row has |T| = μs N to the event's
-        // location. A lift-off's test takes the end force.)
-        let slip = self.state == ContactState::Stuck && which != LIFT;
-        let held = self.held_now.take().filter(|_| slip);
+        // (a stuck tip's event's forces as its test takes them: the held force, without the
+        // rule's alternating mode, where there is one; so a slip's row has |T| = μs N and a
+        // lift-off's N = 0 to the event's location. A sliding tip's tests take the end force.)
+        let stuck = self.state == ContactState::Stuck;
+        let held = self.held_now.take().filter(|_| stuck);
         let (normal, tangential) = contact_forces(held.unwrap_or_else(|| self.rothe.force(1)));
         let kind = if which == LIFT {
             if self.o.flight {
@@ -882,8 +1118,8 @@ impl<'r> Drive<'r, '_> {
     fn restart(&mut self) {
         let delta = restart_step(self.o);
         let feet = [
-            [self.o.foot_at(self.t + delta), 0.0],
-            [self.o.foot_at(self.t + 2.0 * delta), 0.0],
+            self.path.at(self.t + delta),
+            self.path.at(self.t + 2.0 * delta),
         ];
         self.stats.solves += 2;
         if self.rothe.restart(delta, feet, self.bc(), 0.0).is_ok() {
@@ -944,7 +1180,11 @@ impl<'r> Drive<'r, '_> {
         };
         loop {
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
-                return Ok(DynDragStop::DMax);
+                return Ok(if self.o.foot_table.is_empty() {
+                    DynDragStop::DMax
+                } else {
+                    DynDragStop::TableEnd
+                });
             }
             if self.state == ContactState::Stuck && self.rothe.restarted() {
                 // a tip that sticks but needs more than μs N at once slips at once (only a
@@ -1078,10 +1318,12 @@ pub fn drag(
     rothe.friction_table = opts.mu_k_table.clone();
     let mut drive = Drive {
         o: opts,
+        path: FootPath::new(opts),
         rothe,
         eta,
         t: 0.0,
         d: 0.0,
+        turn: 0.0,
         state: ContactState::Stuck,
         anchor: tip[0],
         fresh_slip: false,

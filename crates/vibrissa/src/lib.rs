@@ -110,6 +110,7 @@ mod sines;
 mod sode;
 pub mod solve;
 pub mod spectrum;
+mod spline;
 mod start;
 mod stepper;
 pub mod surface;

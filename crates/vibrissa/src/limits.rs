@@ -255,6 +255,8 @@ pub const THETA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
     .symbol("(-pi/2, pi/2)")
     .unit("radians")
     .why("the foot turned clockwise, within a quarter turn");
+/// Whisks per time unit of the dynamic drag's whisking turn.
+pub const WHISK_FREQUENCY: Range = Range::new(0.0, false, 1000.0, true).unit("per time unit");
 
 /// The program's (and Python's) foot displacement a drag goes to unless asked otherwise (shorter
 /// than [`DragOptions::default`](crate::DragOptions)'s 2: a few slips, quickly).

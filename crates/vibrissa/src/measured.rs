@@ -51,16 +51,7 @@ pub(crate) enum ProfileTextError {
 pub(crate) fn parse_profile(text: &str) -> Result<(Vec<f64>, Vec<f64>), ProfileTextError> {
     let mut rows: Vec<(f64, f64, usize)> = Vec::new();
     let mut header = false;
-    for (i, line) in text.lines().enumerate() {
-        let line = line.split('#').next().unwrap_or("").trim();
-        if line.is_empty() {
-            continue;
-        }
-        let cols: Vec<&str> = line
-            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
-            .filter(|c| !c.is_empty())
-            .collect();
-        let nums: Option<Vec<f64>> = cols.iter().map(|c| c.parse::<f64>().ok()).collect();
+    for (i, line, nums) in numeric_lines(text) {
         match nums {
             Some(v) if v.len() == 2 => {
                 if !(v[0].is_finite() && v[1].is_finite()) {
@@ -98,6 +89,25 @@ pub(crate) fn parse_profile(text: &str) -> Result<(Vec<f64>, Vec<f64>), ProfileT
         });
     }
     Ok(rows.iter().map(|r| (r.0, r.1)).unzip())
+}
+
+/// The lines of a table's text that are not empty after their `#` comment is cut: the line's
+/// number (from 0), its text, and its numbers if every field is one (fields separated by a
+/// comma, a semicolon, tabs or spaces). Shared by the profile files and the dynamic drag's foot
+/// tables.
+pub(crate) fn numeric_lines(text: &str) -> impl Iterator<Item = (usize, &str, Option<Vec<f64>>)> {
+    text.lines().enumerate().filter_map(|(i, line)| {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            return None;
+        }
+        let nums = line
+            .split(|c: char| c == ',' || c == ';' || c.is_whitespace())
+            .filter(|c| !c.is_empty())
+            .map(|c| c.parse::<f64>().ok())
+            .collect();
+        Some((i, line, nums))
+    })
 }
 
 /// The band matrices of the smoothing spline on `x`: `R` (diagonal, first off-diagonal) and `Q`

@@ -197,8 +197,8 @@ struct Step<'a> {
     damp_0: f64,
     /// The moment applied to the support.
     moment: f64,
-    /// The foot's place.
-    foot: [f64; 2],
+    /// The foot's place and the support's turn `θ_w` (the clamp's direction `π/2 − θ_w`).
+    foot: Foot,
     /// The tip's conditions.
     tip: TipBc,
     /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ)` and `2/Δt`.
@@ -306,9 +306,10 @@ impl Bvp for Step<'_> {
         true
     }
     fn bc(&self, za: &[f64], zb: &[f64], _p: &[f64], res: &mut [f64]) {
-        let theta = za[2] - FRAC_PI_2;
-        res[0] = za[0] - self.foot[0];
-        res[1] = za[1] - self.foot[1];
+        // the support's own rotation: the foot's slope against the turned clamp's direction
+        let theta = za[2] - FRAC_PI_2 + self.foot.turn;
+        res[0] = za[0] - self.foot.place[0];
+        res[1] = za[1] - self.foot.place[1];
         res[2] =
             theta - self.compliance * (za[3] + self.moment - self.damp_k * theta - self.damp_0);
         res[3] = zb[3];
@@ -331,6 +332,24 @@ impl Bvp for Step<'_> {
                 res[5] = zb[4] - dir * mk * zb[5];
             }
         }
+    }
+}
+
+/// Where the foot is at a step's end: its place and the turn `θ_w` of its support (clockwise,
+/// as the static whisk's foot angle: the clamp holds the foot's slope at `π/2 − θ_w`, a
+/// compliant support at `π/2 − θ_w + θ` with `θ` its own rotation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Foot {
+    /// The foot's place `(x(0), y(0))`.
+    pub place: [f64; 2],
+    /// The support's turn `θ_w`.
+    pub turn: f64,
+}
+
+impl Foot {
+    /// The foot at `place`, its support not turned.
+    pub fn at(place: [f64; 2]) -> Foot {
+        Foot { place, turn: 0.0 }
     }
 }
 
@@ -389,6 +408,8 @@ pub(crate) struct Settings {
 pub(crate) struct Trial {
     /// The step's length.
     pub tau: f64,
+    /// The support's turn at the step's end.
+    turn: f64,
     /// `G = gs·(z[4], z[5])` in `sol`.
     gs: f64,
     /// The solution at the step's end.
@@ -558,7 +579,7 @@ impl<'r> Rothe<'r> {
             damp_k: 0.0,
             damp_0: 0.0,
             moment: 0.0,
-            foot,
+            foot: Foot::at(foot),
             tip,
             table: &[],
             tip_then: [0.0, 0.0],
@@ -695,7 +716,7 @@ impl<'r> Rothe<'r> {
     pub fn trial(
         &mut self,
         tau: f64,
-        foot: [f64; 2],
+        foot: Foot,
         tip: TipBc,
         moment: f64,
     ) -> Result<Trial, Box<BvpError>> {
@@ -797,6 +818,7 @@ impl<'r> Rothe<'r> {
             .collect();
         Ok(Trial {
             tau,
+            turn: foot.turn,
             gs,
             sol,
             hat,
@@ -931,7 +953,7 @@ impl<'r> Rothe<'r> {
     pub fn restart(
         &mut self,
         delta: f64,
-        feet: [[f64; 2]; 2],
+        feet: [Foot; 2],
         tip: TipBc,
         moment: f64,
     ) -> Result<(), Box<BvpError>> {
@@ -1008,7 +1030,7 @@ impl<'r> Rothe<'r> {
         }
         self.gs = tr.gs;
         self.stats.steps += 1;
-        let theta1 = self.sol.left()[2] - FRAC_PI_2;
+        let theta1 = self.sol.left()[2] - FRAC_PI_2 + tr.turn;
         let theta_t1 = 2.0 / tau * (theta1 - self.theta) - self.theta_t;
         // the scheme's own energy identity: the damper takes Δt c ((θ_tⁿ + θ_tⁿ⁺¹)/2)² per step
         let mid = 0.5 * (self.theta_t + theta_t1);

@@ -519,19 +519,7 @@ impl Height {
                 let w = (r * r - u * u).sqrt();
                 (r - w, u / w, r * r / (w * w * w))
             }
-            Shape::Spline { x: xs, y, m } => {
-                let n = xs.len();
-                let i = xs.partition_point(|&t| t <= x).clamp(1, n - 1) - 1;
-                let hh = xs[i + 1] - xs[i];
-                let (a, b) = ((xs[i + 1] - x) / hh, (x - xs[i]) / hh);
-                let v = a * y[i]
-                    + b * y[i + 1]
-                    + ((a * a * a - a) * m[i] + (b * b * b - b) * m[i + 1]) * hh * hh / 6.0;
-                let d = (y[i + 1] - y[i]) / hh
-                    + (-(3.0 * a * a - 1.0) * m[i] + (3.0 * b * b - 1.0) * m[i + 1]) * hh / 6.0;
-                let dd = a * m[i] + b * m[i + 1];
-                (v, d, dd)
-            }
+            Shape::Spline { x: xs, y, m } => crate::spline::jet(xs, y, m, x),
             Shape::Sines(s) => s.jet(x),
             Shape::Grating(g) => g.jet(x),
         };
@@ -748,23 +736,7 @@ fn spline(x: &[f64], y: &[f64]) -> Result<Shape, VibrissaError> {
             )));
         }
     }
-    // tridiagonal system of the natural spline (Thomas algorithm)
-    let n = x.len();
-    let mut m = vec![0.0; n];
-    let (mut c, mut d) = (vec![0.0; n], vec![0.0; n]);
-    for i in 1..n - 1 {
-        let (h0, h1) = (x[i] - x[i - 1], x[i + 1] - x[i]);
-        let a = h0 / 6.0;
-        let b = (h0 + h1) / 3.0;
-        let cc = h1 / 6.0;
-        let r = (y[i + 1] - y[i]) / h1 - (y[i] - y[i - 1]) / h0;
-        let den = b - a * c[i - 1];
-        c[i] = cc / den;
-        d[i] = (r - a * d[i - 1]) / den;
-    }
-    for i in (1..n - 1).rev() {
-        m[i] = d[i] - c[i] * m[i + 1];
-    }
+    let m = crate::spline::natural_moments(x, y);
     Ok(Shape::Spline {
         x: x.to_vec(),
         y: y.to_vec(),
