@@ -556,14 +556,21 @@ pub struct DragSample {
     pub tip_vy: f64,
     /// The tip's contact over the step that ended here.
     pub state: ContactState,
-    /// Normal force `N = −Gy(1)`.
+    /// Normal force `N = −Gy(1)` (after the first event without the time rule's alternating
+    /// mode: [`DragSample::step_end_forces`]).
     pub normal: f64,
-    /// Tangential force `T = −Gx(1)` (`μ = T/N`).
+    /// Tangential force `T = −Gx(1)` (`μ = T/N`), as `normal`.
     pub tangential: f64,
     /// The force the rod exerts on its support, x (`Gx(0)`; the static drag's `fx`).
     pub fx: f64,
     /// The force on the support, y.
     pub fy: f64,
+    /// The forces at the support and the tip, `G(0)` and `G(1)`, as the step's end left them:
+    /// with the time rule's mode that alternates from step to step, which `normal`,
+    /// `tangential`, `fx` and `fy` leave out after the first event (docs/model.md, "The
+    /// samples' forces"). Not serialized.
+    #[serde(skip)]
+    pub step_end_forces: [[f64; 2]; 2],
     /// `m(0)`.
     pub m_base: f64,
     /// Kinetic energy.
@@ -810,11 +817,14 @@ struct Drive<'r, 'o> {
     anchor: f64,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
-    /// The tip's force at the last step's start and that step's length, while the tip's
-    /// condition has not changed since (the stuck tip's slip test, [`Drive::held_force`]).
-    tip_before: Option<([f64; 2], f64)>,
-    /// [`Drive::held_force`] of the last step taken (`None` where it was not formed).
+    /// The forces at the support and the tip (`G(0)`, `G(1)`) at the last step's start and that
+    /// step's length, while the tip's condition has not changed since ([`Drive::held_ends`]).
+    ends_before: Option<([[f64; 2]; 2], f64)>,
+    /// [`Drive::held_force`] of the last step taken while the tip is stuck (its tests; `None`
+    /// where it was not formed).
     held_now: Option<[f64; 2]>,
+    /// [`Drive::held_ends`] of the last step taken (its sample; `None` where it was not formed).
+    ends_now: Option<[[f64; 2]; 2]>,
     foot_work: f64,
     friction: f64,
     impact: f64,
@@ -933,13 +943,21 @@ impl<'r> Drive<'r, '_> {
     /// (adaptive steps, and steps an event shortened): the mode keeps its size whatever the
     /// steps, since the momentum takes the mean of each step's two end forces.
     fn held_force(&self, tr: &Trial) -> [f64; 2] {
-        let g1 = tr.force(1);
-        let Some((g_prev, h)) = self.tip_before else {
-            return g1;
-        };
-        let g0 = self.rothe.force(1);
+        self.held_ends(tr).map_or_else(|| tr.force(1), |g| g[1])
+    }
+
+    /// The forces at both ends, the support's and the tip's, at the end of the trial `tr`
+    /// without the rule's alternating mode, as [`Drive::held_force`] forms the tip's (`None`
+    /// without the last step under the same condition). The support's force is a multiplier
+    /// too (of the foot's place) and carries the same mode: ±0.5 in the paper's rod's
+    /// `fy ≈ −4` at dt 0.02 after a few slips, sliding or stuck. The rows report these.
+    fn held_ends(&self, tr: &Trial) -> Option<[[f64; 2]; 2]> {
+        let (g_prev, h) = self.ends_before?;
         let [a, b, c] = held_weights(tr.tau, h);
-        [0, 1].map(|k| a * g1[k] + b * g0[k] + c * g_prev[k])
+        Some([0, 1].map(|e| {
+            let (g1, g0) = (tr.force(e), self.rothe.force(e));
+            [0, 1].map(|k| a * g1[k] + b * g0[k] + c * g_prev[e][k])
+        }))
     }
 
     fn events_now(&self) -> [f64; 2] {
@@ -962,12 +980,15 @@ impl<'r> Drive<'r, '_> {
             self.rothe.sol.left()[3],
         );
         let tau = tr.tau;
-        let held = (self.state == ContactState::Stuck && self.tip_before.is_some())
-            .then(|| self.held_force(&tr));
+        let ends = self.held_ends(&tr);
+        let held = ends
+            .filter(|_| self.state == ContactState::Stuck)
+            .map(|g| g[1]);
         self.rothe.commit(tr);
         // (the drag's start is consistent and smooth: no mode to remove before the first event)
-        self.tip_before = (!self.events.is_empty()).then_some((g1, tau));
+        self.ends_before = (!self.events.is_empty()).then_some(([g0, g1], tau));
         self.held_now = held;
+        self.ends_now = ends;
         self.t += tau;
         let foot = self.path.at(self.t);
         (self.d, self.turn) = (foot.place[0], foot.turn);
@@ -981,9 +1002,13 @@ impl<'r> Drive<'r, '_> {
         self.samples.push(self.sample());
     }
 
+    /// The present state as a sample: the forces without the rule's alternating mode where
+    /// [`Drive::held_ends`] formed them, else those of the step's end.
     fn sample(&self) -> DragSample {
         let p = self.rothe.sample(self.t);
-        let (normal, tangential) = contact_forces(self.rothe.force(1));
+        let end = [[p.gx_base, p.gy_base], self.rothe.force(1)];
+        let ends = self.ends_now.unwrap_or(end);
+        let (normal, tangential) = contact_forces(ends[1]);
         DragSample {
             t: self.t,
             d: self.d,
@@ -995,8 +1020,9 @@ impl<'r> Drive<'r, '_> {
             state: self.state,
             normal,
             tangential,
-            fx: p.gx_base,
-            fy: p.gy_base,
+            fx: ends[0][0],
+            fy: ends[0][1],
+            step_end_forces: end,
             m_base: p.m_base,
             kinetic: p.kinetic,
             elastic: p.elastic,
@@ -1040,7 +1066,8 @@ impl<'r> Drive<'r, '_> {
             return Some(self.unresolved(self.rothe.force(1)));
         }
         self.tried.clear();
-        self.tip_before = None;
+        self.ends_before = None;
+        self.ends_now = None;
         // (a stuck tip's event's forces as its test takes them: the held force, without the
         // rule's alternating mode, where there is one; so a slip's row has |T| = μs N and a
         // lift-off's N = 0 to the event's location. A sliding tip's tests take the end force.)
@@ -1327,8 +1354,9 @@ pub fn drag(
         state: ContactState::Stuck,
         anchor: tip[0],
         fresh_slip: false,
-        tip_before: None,
+        ends_before: None,
         held_now: None,
+        ends_now: None,
         foot_work: 0.0,
         friction: 0.0,
         impact: 0.0,
