@@ -326,7 +326,7 @@ pub struct DynamicsFreeArgs {
 /// `vibrissa dynamics drag`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time, every step a BVP in s. The tip sticks while |T| < mu_s N, slides with T = mu_k N against its motion, sticks again where its velocity along the surface is zero; lift-off (N = 0) ends the drag. Events are located in time to 1e-10. The foot's speed rises smoothly to --speed over --ramp time units. Time unit sqrt(rho A(0) L^4 / EI(0)). Flat surfaces only (--surface-angle 0, no [surface] or [friction] table)."
+    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time, every step a BVP in s. The tip sticks while |T| < mu_s N, slides with T = mu_k N against its motion, sticks again where its velocity along the surface is zero; lift-off (N = 0) ends the drag. Events are located in time to 1e-10. The foot's speed rises smoothly to --speed over --ramp time units, or the foot follows --foot-table; --whisk turns its support. Time unit sqrt(rho A(0) L^4 / EI(0)). Flat surfaces only (--surface-angle 0, no [surface] or [friction] table)."
 )]
 pub struct DynamicsDragArgs {
     /// Foot speed after the start ramp (rod lengths per time unit), in (0, 100].
