@@ -270,7 +270,7 @@ impl DynDragOptions {
     }
 
     /// The foot's displacement along x at time `t`: the smooth start, then speed `v`; or the
-    /// spline of `foot_table`.
+    /// spline of `foot_table` (made anew on every call, O(rows); the drag makes it once).
     pub fn foot_at(&self, t: f64) -> f64 {
         if !self.foot_table.is_empty() {
             return FootPath::new(self).at(t).place[0];
@@ -278,7 +278,8 @@ impl DynDragOptions {
         self.ramp_at(t)
     }
 
-    /// The turn `θ_w` of the foot's support at time `t` (the table's and the whisk's).
+    /// The turn `θ_w` of the foot's support at time `t` (the table's and the whisk's; the
+    /// table's spline made anew on every call, as [`DynDragOptions::foot_at`]).
     pub fn turn_at(&self, t: f64) -> f64 {
         FootPath::new(self).at(t).turn
     }
@@ -432,6 +433,15 @@ impl<'o> FootPath<'o> {
         };
         let cols = [col(1), col(2)];
         FootPath { o, t, cols }
+    }
+
+    /// Whether the table's spline starts the foot or its turn with a speed (at `t = 0`).
+    fn starts_moving(&self) -> bool {
+        !self.t.is_empty()
+            && self
+                .cols
+                .iter()
+                .any(|(v, m)| crate::spline::jet(&self.t, v, m, 0.0).1 != 0.0)
     }
 
     /// The foot at time `t`.
@@ -869,16 +879,21 @@ impl<'r> Drive<'r, '_> {
         let tr = self.rothe.trial(tau, foot, bc, 0.0).map_err(|e| {
             // (a foot at full speed from t = 0 is an impulse on the rod at rest: its
             // acceleration is infinite there, which no step resolves; v 0.2 failed, 0.05 not)
-            let impulse =
-                if self.o.ramp == 0.0 && self.o.foot_table.is_empty() && self.t < self.o.dt {
-                    format!(
-                        "; the foot starts at speed {} at once (ramp 0), an impulse on the rod at \
+            let impulse = if self.t >= self.o.dt {
+                String::new()
+            } else if self.path.starts_moving() {
+                "; the foot table's spline starts the foot moving at once (its slope at t = 0 is \
+                 not 0), an impulse on the rod at rest: rows that start it smoothly resolve it"
+                    .to_string()
+            } else if self.o.ramp == 0.0 {
+                format!(
+                    "; the foot starts at speed {} at once (ramp 0), an impulse on the rod at \
                      rest: a ramp > 0 resolves it",
-                        self.o.speed
-                    )
-                } else {
-                    String::new()
-                };
+                    self.o.speed
+                )
+            } else {
+                String::new()
+            };
             VibrissaError::solver(
                 format!(
                     "dynamic drag: the step from t = {} by {tau} ({}){impulse}",
