@@ -847,8 +847,9 @@ def dynamics_drag(
     the tolerance in time of the events' places, ``max_events`` the most events before the
     drag stops. The defaults and valid ranges are the library's.
 
-    A dict: ``samples`` (columns as the program's CSV: ``t``, ``d``, ``tip_x``, ...,
-    ``state``, ``normal``, ``tangential``, ``fx``, ``fy``, ``m_base``, energies),
+    A dict: ``samples`` (columns as the program's CSV: ``t``, ``d``, ``theta`` (the support's
+    turn), ``tip_x``, ..., ``state``, ``normal``, ``tangential``, ``fx``, ``fy`` (after the
+    first event without the time rule's alternating mode), ``m_base``, energies),
     ``samples_rows`` (the same as dicts: the program's ``--json``), ``events`` (``slip``,
     ``stick``, ``lift_off``, ``touchdown`` with their time and place), ``stop`` (its
     ``reason``: ``d_max``, ``table_end``, ``lift_off``, ``touchdown``, ``max_events``, or
