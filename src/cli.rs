@@ -387,7 +387,7 @@ pub struct DynamicsDragArgs {
     #[arg(long, value_name = "FILE.csv", conflicts_with_all = ["speed", "ramp", "d_max"])]
     pub foot_table: Option<PathBuf>,
     /// Whisking: the foot's support turns by theta(t) = A (1 - cos 2 pi F t)/2 (rad, clockwise;
-    /// A in [-pi/2, pi/2], F in (0, 1000] whisks per time unit), on top of the foot's path; a
+    /// A in (-pi/2, pi/2), F in (0, 1000] whisks per time unit), on top of the foot's path; a
     /// column theta is added after d.
     #[arg(long, value_name = "A,F", value_parser = whisk_arg)]
     pub whisk: Option<vibrissa::dynamics::Whisk>,
@@ -1188,7 +1188,6 @@ pub fn missing_value(args: &[std::ffi::OsString]) -> Option<String> {
 #[derive(Clone, Debug)]
 pub struct SpeedTable(pub Vec<[f64; 2]>);
 
-/// Parses `V:MU,V:MU,...`.
 /// `A,F` of `dynamics drag --whisk` (the ranges are the library's, checked with the options).
 fn whisk_arg(text: &str) -> Result<vibrissa::dynamics::Whisk, String> {
     let (a, f) = text
@@ -1207,6 +1206,7 @@ fn whisk_arg(text: &str) -> Result<vibrissa::dynamics::Whisk, String> {
     })
 }
 
+/// Parses `V:MU,V:MU,...`.
 fn speed_table(text: &str) -> Result<SpeedTable, String> {
     text.split(',')
         .map(|pair| {
