@@ -277,3 +277,5 @@ def test_a_whisk_over_a_foot_table_equals_the_program(program, tmp_path):
         vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=[(0.1, 0, 0), (1, 0.1, 0)])
     with pytest.raises(ValueError, match="row 1"):
         vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=[(0, 0), (1, 0.1, 0, 4)])
+    with pytest.raises(vibrissa.InputError, match="d_max given with it"):
+        vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=rows, d_max=0.1)

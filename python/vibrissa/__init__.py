@@ -828,7 +828,8 @@ def dynamics_drag(
     (rising smoothly over ``ramp``) with the tip on the flat ``surface`` under Coulomb friction
     ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``.
 
-    ``foot_table``: the foot's path instead of ``speed``, ``ramp`` and ``d_max``, rows
+    ``foot_table``: the foot's path instead of ``speed``, ``ramp`` and ``d_max`` (any of them
+    given with it raises :class:`InputError`, as the program's flags conflict), rows
     ``(t, d)`` or ``(t, d, theta)`` (time, displacement along x, the turn of the foot's support
     in rad, clockwise), ``t`` strictly increasing from the first row ``(0, 0[, 0])``; each
     column a natural cubic spline; the drag ends at the last time (stop ``table_end``; the
@@ -858,6 +859,14 @@ def dynamics_drag(
     ``units``, ``time_unit_s``."""
     if surface is None:
         surface = Surface()
+    if len(foot_table) > 0:
+        # as the program's --foot-table, which conflicts with --speed, --ramp and --d-max
+        given = [k for k, v in (("speed", speed), ("ramp", ramp), ("d_max", d_max)) if v != _DRAG[k]]
+        if given:
+            raise InputError(
+                f"foot_table replaces speed, ramp and d_max (the drag ends at its last time): "
+                f"{', '.join(given)} given with it"
+            )
     r = _core.dynamics_drag(
         rod,
         surface,
