@@ -352,7 +352,8 @@ fn varies(v: &[f64]) -> bool {
 }
 
 /// A dynamics file (`dynamics drag`, `dynamics free`): the moment at the foot, the force at
-/// the foot and the tip's position (x, and y where it changes) against time, events marked.
+/// the foot, the turn of a drag's support where it turns (`--whisk`, `--foot-table`) and the
+/// tip's position (x, and y where it changes) against time, events marked.
 fn dynamics(t: &Table) -> Res<Fig> {
     let time = t.need("t")?;
     let ev = events(t);
@@ -372,6 +373,17 @@ fn dynamics(t: &Table) -> Res<Fig> {
         &[("fx", &fx, BLUE_), ("fy", &fy, ORANGE_)],
         &ev,
     ));
+    // (a drag's theta is its support's turn, clockwise; `dynamics free`'s, without d, is the
+    // support's own rotation and is not drawn)
+    if let (true, Some(v)) = (t.has("d"), t.num("theta")?.filter(|v| varies(v))) {
+        panels.push(signal_panel(
+            "turn of the support",
+            ("t", &label("theta")),
+            &time,
+            &[("theta", &v, BLUE_)],
+            &ev,
+        ));
+    }
     for col in ["tip_x", "tip_y"] {
         if let Some(v) = t.num(col)?.filter(|v| varies(v)) {
             panels.push(signal_panel(
@@ -1113,6 +1125,7 @@ mod tests {
     const WHISK: &str = include_str!("../tests/fixtures/plot/whisk.csv");
     const WHISK_SHAPES: &str = include_str!("../tests/fixtures/plot/whisk_shapes.csv");
     const DYNAMICS: &str = include_str!("../tests/fixtures/plot/dynamics_drag.csv");
+    const WHISK_DYNAMICS: &str = include_str!("../tests/fixtures/plot/dynamics_whisk.csv");
     const SPECTRUM: &str = include_str!("../tests/fixtures/plot/dynamics_spectrum.csv");
     const CORRUGATED: &str = include_str!("../tests/fixtures/plot/drag_corrugated.csv");
     const CORRUGATED_SHAPES: &str =
@@ -1228,6 +1241,33 @@ mod tests {
         assert!(n.contains(&"slip") && n.contains(&"stick"), "{n:?}");
     }
 
+    /// A dynamic whisk (`dynamics drag --foot-table` of `0,0` and `4,0`, `--whisk 0.3,0.05`,
+    /// `--dt 0.05`: a slip at t = 3.3357, a stick at 3.6784): a panel of the support's turn
+    /// between the force and the tip, the events marked on it.
+    #[test]
+    fn a_dynamic_whisk_draws_the_turn_of_its_support() {
+        let t = Table::parse("whisk_dyn.csv", WHISK_DYNAMICS).unwrap();
+        assert_eq!(detect(&t).unwrap(), PlotKind::Dynamics);
+        let f = figure(&t, &args(PlotKind::Auto)).unwrap();
+        checked(&f);
+        let titles: Vec<&str> = f.panels.iter().map(|p| p.title.as_str()).collect();
+        assert_eq!(
+            titles,
+            [
+                "moment at the foot",
+                "force at the foot G(0)",
+                "turn of the support",
+                "tip position"
+            ]
+        );
+        let turn = &f.panels[2];
+        assert_eq!(turn.ylabel, "foot angle θ (rad, clockwise)");
+        let marks: Vec<&str> = turn.series.iter().map(|s| s.name.as_str()).collect();
+        assert!(
+            marks.contains(&"slip") && marks.contains(&"stick"),
+            "{marks:?}"
+        );
+    }
     #[test]
     fn events_are_marked_on_every_signal() {
         // the scan stops at penetration: one marker per line of each panel, in the legend
