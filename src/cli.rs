@@ -1078,7 +1078,7 @@ pub struct PlotArgs {
 }
 
 /// True for flags whose values are numbers, counts, number lists or ranges: they take values
-/// starting with '-' (`--alpha -1e-3`, `--precurvature -1,0,1`).
+/// starting with '-' (`--alpha -1e-3`, `--precurvature -1,0,1`, `--whisk -0.3,0.05`).
 pub fn is_numeric(a: &clap::Arg) -> bool {
     if !a.get_action().takes_values() || a.is_positional() {
         return false;
@@ -1089,6 +1089,7 @@ pub fn is_numeric(a: &clap::Arg) -> bool {
         || t == TypeId::of::<Axis>()
         || t == TypeId::of::<Shard>()
         || t == TypeId::of::<Point>()
+        || t == TypeId::of::<vibrissa::dynamics::Whisk>()
         || a.get_value_names()
             .is_some_and(|n| n.iter().any(|n| n.as_str() == "LIST"))
 }

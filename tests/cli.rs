@@ -979,6 +979,47 @@ fn dynamics_drag_rows() {
     assert!(e.contains("surface angle"), "{e}");
 }
 
+/// `vibrissa dynamics drag --foot-table FILE --whisk A,F`: the column `theta` after `d` with the
+/// support's turn `A (1 − cos 2πFt)/2` on every row (a negative A turns it the other way and is
+/// taken without `=`), the foot where the table puts it, the stop `table_end`; the table's flag
+/// conflicts with `--d-max`.
+#[test]
+fn dynamics_drag_whisk_columns() {
+    let d = tmpdir("whisk");
+    let table = d.join("foot.csv");
+    std::fs::write(&table, "t,d\n0,0\n0.3,0.002\n").unwrap();
+    let t = table.to_str().unwrap();
+    let args = [
+        "dynamics",
+        "drag",
+        "--foot-table",
+        t,
+        "--whisk",
+        "-0.02,0.5",
+        "--dt",
+        "0.05",
+    ];
+    let o = ok(&args);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(h[..4], ["t", "d", "theta", "tip_x"]);
+    assert_eq!(rows.len(), 7);
+    for r in &rows {
+        let time = col(&h, r, "t");
+        let want = -0.02 * (1.0 - (std::f64::consts::TAU * 0.5 * time).cos()) / 2.0;
+        close(col(&h, r, "theta"), want, 1e-15, "theta");
+    }
+    close(col(&h, &rows[6], "d"), 0.002, 1e-15, "d");
+    let mut j = args.to_vec();
+    j.push("--json");
+    let v: serde_json::Value = serde_json::from_str(&ok(&j).stdout).unwrap();
+    assert_eq!(v["stop"]["reason"], "table_end");
+    let e = bad(
+        &["dynamics", "drag", "--foot-table", t, "--d-max", "0.1"],
+        2,
+    );
+    assert!(e.contains("--foot-table") && e.contains("--d-max"), "{e}");
+}
+
 /// `scan --modes`: the lowest ω² of each row with the tip stuck, positive on the rows of the
 /// paper's rod at η = 0.95 and 0 (to 1e-6) at the fold in d where the scan stops; without the
 /// flag the columns are unchanged.
