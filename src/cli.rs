@@ -1194,16 +1194,9 @@ fn whisk_arg(text: &str) -> Result<vibrissa::dynamics::Whisk, String> {
     let (a, f) = text
         .split_once(',')
         .ok_or_else(|| format!("'{text}' is not A,F (amplitude in rad, whisks per time unit)"))?;
-    let num = |t: &str| {
-        t.trim()
-            .parse::<f64>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .ok_or_else(|| format!("'{t}' is not a finite number"))
-    };
     Ok(vibrissa::dynamics::Whisk {
-        amplitude: num(a)?,
-        frequency: num(f)?,
+        amplitude: finite_f64(a)?,
+        frequency: finite_f64(f)?,
     })
 }
 

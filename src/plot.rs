@@ -1164,6 +1164,15 @@ mod tests {
         l
     }
 
+    /// A dynamics file's figure: detected as one from its columns, drawn, its layout checked.
+    fn dynamics_fig(name: &str, text: &str) -> Fig {
+        let t = Table::parse(name, text).unwrap();
+        assert_eq!(detect(&t).unwrap(), PlotKind::Dynamics);
+        let f = figure(&t, &args(PlotKind::Auto)).unwrap();
+        checked(&f);
+        f
+    }
+
     fn names(p: &Panel) -> Vec<&str> {
         p.series
             .iter()
@@ -1197,10 +1206,7 @@ mod tests {
     /// peak; two events of one step ("slip stick") are marked as two.
     #[test]
     fn dynamics_and_spectrum_files_are_detected_and_drawn() {
-        let t = Table::parse("dyn.csv", DYNAMICS).unwrap();
-        assert_eq!(detect(&t).unwrap(), PlotKind::Dynamics);
-        let f = figure(&t, &args(PlotKind::Auto)).unwrap();
-        checked(&f);
+        let f = dynamics_fig("dyn.csv", DYNAMICS);
         let titles: Vec<&str> = f.panels.iter().map(|p| p.title.as_str()).collect();
         assert_eq!(
             titles,
@@ -1246,10 +1252,7 @@ mod tests {
     /// between the force and the tip, the events marked on it.
     #[test]
     fn a_dynamic_whisk_draws_the_turn_of_its_support() {
-        let t = Table::parse("whisk_dyn.csv", WHISK_DYNAMICS).unwrap();
-        assert_eq!(detect(&t).unwrap(), PlotKind::Dynamics);
-        let f = figure(&t, &args(PlotKind::Auto)).unwrap();
-        checked(&f);
+        let f = dynamics_fig("whisk_dyn.csv", WHISK_DYNAMICS);
         let titles: Vec<&str> = f.panels.iter().map(|p| p.title.as_str()).collect();
         assert_eq!(
             titles,

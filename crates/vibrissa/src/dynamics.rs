@@ -53,7 +53,7 @@ use serde::Serialize;
 
 pub use crate::dyndrag::{
     drag, parse_foot_table, read_foot_table, ContactState, DragEventKind, DragSample, DragStats,
-    DynDragEvent, DynDragOptions, DynDragResult, DynDragStop, Whisk, MAX_FOOT_ROWS,
+    DynDragEvent, DynDragOptions, DynDragResult, DynDragStop, Whisk,
 };
 pub use crate::rothe::{DynSample, DynStats};
 pub use crate::timestep::{TimeStepControl, TIME_TOL_RANGE};

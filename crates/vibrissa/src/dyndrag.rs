@@ -132,8 +132,8 @@ pub struct DynDragOptions {
     /// The foot's path by a time table instead of `speed` and `ramp`: rows `(t, d, θ_w)`, the
     /// time, the foot's displacement along x and the turn of its support (rad, clockwise as
     /// the static whisk's foot angle: the clamp holds the foot's slope at `π/2 − θ_w`). `t`
-    /// strictly increasing from the first row `(0, 0, 0)` (the pressed start at rest), at
-    /// least two rows, at most [`MAX_FOOT_ROWS`], `θ_w` in
+    /// strictly increasing from the first row `(0, 0, 0)` (the pressed start at rest), with
+    /// [`limits::FOOT_TABLE_ROWS`](crate::limits::FOOT_TABLE_ROWS) rows, `θ_w` in
     /// [`limits::THETA`](crate::limits::THETA); each column is the natural cubic spline
     /// through its values (C²: the foot's acceleration is continuous, so the table itself
     /// gives the rod no impulse; a table whose first slope is not zero starts the foot at that
@@ -147,9 +147,6 @@ pub struct DynDragOptions {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub whisk: Option<Whisk>,
 }
-
-/// Most rows of [`DynDragOptions::foot_table`].
-pub const MAX_FOOT_ROWS: usize = 100_000;
 
 /// A whisking turn of the foot's support, `θ_w(t) = A (1 − cos 2πft)/2`
 /// ([`DynDragOptions::whisk`]).
@@ -330,10 +327,12 @@ fn check_foot_table(rows: &[[f64; 3]]) -> Result<(), VibrissaError> {
             reason,
         })
     };
-    if rows.len() < 2 || rows.len() > MAX_FOOT_ROWS {
+    let count = crate::limits::FOOT_TABLE_ROWS;
+    if !count.contains_count(rows.len()) {
         return bad(format!(
-            "{} rows: a foot table needs at least 2 (and at most {MAX_FOOT_ROWS})",
-            rows.len()
+            "{} rows: a foot table needs {}",
+            rows.len(),
+            count.text(6)
         ));
     }
     if rows[0] != [0.0, 0.0, 0.0] {

@@ -255,6 +255,8 @@ pub const THETA: Range = Range::new(-FRAC_PI_2, false, FRAC_PI_2, false)
     .symbol("(-pi/2, pi/2)")
     .unit("radians")
     .why("the foot turned clockwise, within a quarter turn");
+/// Rows of the dynamic drag's foot table (`DynDragOptions::foot_table`).
+pub const FOOT_TABLE_ROWS: Range = Range::count(2, 100_000);
 /// Whisks per time unit of the dynamic drag's whisking turn.
 pub const WHISK_FREQUENCY: Range = Range::new(0.0, false, 1000.0, true).unit("per time unit");
 

@@ -719,40 +719,52 @@ fn a_pull_within_the_shortest_step_after_a_stick_is_unresolved() {
     assert!(r.events.iter().all(|e| e.normal > 0.0), "{r}");
 }
 
-/// The foot turned: `whisk` with the foot held (a table of `d ≡ 0`) and the tip held by a large
-/// μs, at `f` whisks per time unit over a quarter whisk, dt `dt`. Returns the largest
-/// `|Δm(0)|` against the static rod at the same turn (`solve` with the tip at the stuck place
-/// seen from the turned foot: the static states of the turned clamp), and the run.
-fn slow_whisk(f: f64, dt: f64) -> (f64, DynDragResult) {
-    let quarter = 0.25 / f;
-    let o = DynDragOptions {
-        foot_table: vec![[0.0, 0.0, 0.0], [quarter, 0.0, 0.0]],
+/// A whisk of amplitude `a` at `f` whisks per time unit with the foot held (a table of `d ≡ 0`
+/// to `t_end`), time step `dt`, on the test drags' discretization (tol 1e-8, 100 intervals).
+fn held_foot_whisk(t_end: f64, a: f64, f: f64, dt: f64) -> DynDragOptions {
+    DynDragOptions {
+        foot_table: vec![[0.0, 0.0, 0.0], [t_end, 0.0, 0.0]],
         whisk: Some(Whisk {
-            amplitude: 0.2,
+            amplitude: a,
             frequency: f,
         }),
-        mu_s: 100.0,
         dt,
         grid: 100,
         tol: 1e-8,
         ..DynDragOptions::default()
+    }
+}
+
+/// The static rod of the clamp turned clockwise by `theta` with its tip pinned at the lab point
+/// `(x, y)`: `solve` with the tip's place seen from the clamp turned back upright
+/// (counter-clockwise by `theta`; the rod's internal force is in that frame too).
+fn turned_static(x: f64, y: f64, theta: f64) -> vibrissa::Shape {
+    let (sn, cs) = theta.sin_cos();
+    let (x1, y1) = (x * cs - y * sn, x * sn + y * cs);
+    solve(
+        &Rod::uniform(),
+        -theta,
+        Target::Tip { x1, y1 },
+        &BranchChoice::Convex,
+        &SolverConfig::default(),
+    )
+    .unwrap()
+}
+
+/// The foot turned: `whisk` with the foot held and the tip held by a large μs, at `f` whisks per
+/// time unit over a quarter whisk, dt `dt`. Returns the largest `|Δm(0)|` against the static rod
+/// at the same turn with the tip where it is held ([`turned_static`]), and the run.
+fn slow_whisk(f: f64, dt: f64) -> (f64, DynDragResult) {
+    let o = DynDragOptions {
+        mu_s: 100.0,
+        ..held_foot_whisk(0.25 / f, 0.2, f, dt)
     };
     let r = paper(&o);
     assert_eq!(r.stop, DynDragStop::TableEnd, "{}", r.stop);
     let mut worst = 0.0f64;
     for p in &r.samples {
         assert_eq!(p.state, ContactState::Stuck);
-        // the tip seen from the clamp turned back upright (counter-clockwise by θ)
-        let (sn, cs) = p.theta.sin_cos();
-        let (x1, y1) = (p.tip_x * cs - p.tip_y * sn, p.tip_x * sn + p.tip_y * cs);
-        let q = solve(
-            &Rod::uniform(),
-            -p.theta,
-            Target::Tip { x1, y1 },
-            &BranchChoice::Convex,
-            &SolverConfig::default(),
-        )
-        .unwrap();
+        let q = turned_static(p.tip_x, p.tip_y, p.theta);
         worst = worst.max((p.m_base - q.m_base).abs());
     }
     (worst, r)
@@ -783,17 +795,7 @@ fn a_slow_whisk_follows_the_turned_static_rod() {
 #[test]
 fn a_whisk_balances_its_energy() {
     for dt in [0.02, 0.01] {
-        let o = DynDragOptions {
-            foot_table: vec![[0.0, 0.0, 0.0], [6.0, 0.0, 0.0]],
-            whisk: Some(Whisk {
-                amplitude: 0.3,
-                frequency: 0.05,
-            }),
-            dt,
-            grid: 100,
-            tol: 1e-8,
-            ..DynDragOptions::default()
-        };
+        let o = held_foot_whisk(6.0, 0.3, 0.05, dt);
         let r = paper(&o);
         assert_eq!(r.stop, DynDragStop::TableEnd);
         assert_eq!(r.stats.slips, 2, "{}", r.stats);
@@ -923,21 +925,12 @@ fn the_rows_forces_leave_the_mode_out() {
 }
 
 /// The turn of the clamp at which the static rod, its tip pinned at `(x_a, η)`, needs
-/// `T/N = μs` (the quasi-static whisk's first slip): bisection on the turn, each state the
-/// static solve with the tip's place seen from the clamp turned upright and its force turned
-/// back into the lab frame.
+/// `T/N = μs` (the quasi-static whisk's first slip): bisection on the turn, each state
+/// [`turned_static`] with its force turned back into the lab frame.
 fn quasi_static_slip_turn(x_a: f64, eta: f64, mu_s: f64) -> f64 {
     let ratio = |theta: f64| {
+        let q = turned_static(x_a, eta, theta);
         let (sn, cs) = theta.sin_cos();
-        let (x1, y1) = (x_a * cs - eta * sn, x_a * sn + eta * cs);
-        let q = solve(
-            &Rod::uniform(),
-            -theta,
-            Target::Tip { x1, y1 },
-            &BranchChoice::Convex,
-            &SolverConfig::default(),
-        )
-        .unwrap();
         // the internal force turned back clockwise by θ: N = −G_y, T = −G_x
         let (gx, gy) = (q.fx * cs + q.fy * sn, -q.fx * sn + q.fy * cs);
         -gx / -gy
@@ -965,16 +958,8 @@ fn quasi_static_slip_turn(x_a: f64, eta: f64, mu_s: f64) -> f64 {
 fn the_first_slip_of_a_slow_whisk_tends_to_the_quasi_static_one() {
     let run = |f: f64| {
         let o = DynDragOptions {
-            foot_table: vec![[0.0, 0.0, 0.0], [0.2 / f, 0.0, 0.0]],
-            whisk: Some(Whisk {
-                amplitude: 0.3,
-                frequency: f,
-            }),
-            dt: 0.1,
-            grid: 100,
-            tol: 1e-8,
             max_events: 1,
-            ..DynDragOptions::default()
+            ..held_foot_whisk(0.2 / f, 0.3, f, 0.1)
         };
         let r = paper(&o);
         let e = r.events[0];
