@@ -262,9 +262,10 @@ pub struct DynamicsArgs {
 
 /// The sub-commands of `vibrissa dynamics`.
 #[derive(Subcommand, Debug)]
+#[allow(clippy::large_enum_variant)] // one value per process
 pub enum DynamicsCommand {
-    /// Drag the foot along x at --speed with the tip on the flat surface y = eta under Coulomb
-    /// friction, from the pressed start at rest: one row per time step.
+    /// Drag the foot along x at --speed with the tip on the surface (a line or a height
+    /// profile) under Coulomb friction, from the pressed start at rest: one row per time step.
     Drag(DynamicsDragArgs),
     /// Release the rod at t = 0 from its equilibrium under a tip force (--release-fx,
     /// --release-fy) or step a moment onto its foot (--foot-moment), tip free: one row per time
@@ -326,7 +327,7 @@ pub struct DynamicsFreeArgs {
 /// `vibrissa dynamics drag`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time, every step a BVP in s. The tip sticks while |T| < mu_s N, slides with T = mu_k N against its motion, sticks again where its velocity along the surface is zero; lift-off (N = 0) ends the drag. Events are located in time to 1e-10. The foot's speed rises smoothly to --speed over --ramp time units, or the foot follows --foot-table; --whisk turns its support. Time unit sqrt(rho A(0) L^4 / EI(0)). Flat surfaces only (--surface-angle 0, no [surface] or [friction] table)."
+    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time, every step a BVP in s. The tip sticks while |T| < mu_s N, slides with T = mu_k N against its motion, sticks again where its velocity along the surface is zero; lift-off (N = 0) ends the drag. Events are located in time to 1e-10. The foot's speed rises smoothly to --speed over --ramp time units, or the foot follows --foot-table; --whisk turns its support. Time unit sqrt(rho A(0) L^4 / EI(0)). Any surface line (--surface-angle) or height profile (the --corrugation, --grating and --surface-profile flags, or the scene's [surface]) with the tip alone on it: a side of the rod reaching the surface ends the drag (side_contact); no [friction] table."
 )]
 pub struct DynamicsDragArgs {
     /// Foot speed after the start ramp (rod lengths per time unit), in (0, 100].
@@ -394,6 +395,8 @@ pub struct DynamicsDragArgs {
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub spectrum: Option<PathBuf>,
+    #[command(flatten)]
+    pub texture: TextureArgs,
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Print a JSON object instead of CSV.

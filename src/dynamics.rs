@@ -140,7 +140,8 @@ fn write_spectrum(path: &Path, t: &[f64], m: &[f64], u: Option<(Units, f64)>) ->
 /// `vibrissa dynamics drag`: CSV rows of [`HEADER`] (the event's name on the row where it
 /// happened), or the library's result as JSON.
 fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
-    let scene = build_scene(&a.scene, a.eta)?;
+    let mut scene = build_scene(&a.scene, a.eta)?;
+    crate::texture::apply(&a.texture, &mut scene)?;
     let (rod, surface) = scene.parts()?;
     let o = options(a)?;
     o.validate()?;

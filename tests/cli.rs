@@ -1020,6 +1020,51 @@ fn dynamics_drag_whisk_columns() {
     assert!(e.contains("--foot-table") && e.contains("--d-max"), "{e}");
 }
 
+/// `dynamics drag` over a corrugation from the texture flags: the tip's rows on the surface
+/// `0.75 + A sin(2πx/W)` (1e-9), each row's contact pushed; where the rod's end lies down on
+/// the surface the drag ends with the event `side_contact` on its last row, a warning naming
+/// it, exit 0; a start with two crests under the rod is one line and exit 1.
+#[test]
+fn dynamics_drag_over_a_corrugation() {
+    let corr = |a: &'static str, w: &'static str, d_max: &'static str| {
+        [
+            "dynamics",
+            "drag",
+            "--speed",
+            "0.05",
+            "--dt",
+            "0.02",
+            "--d-max",
+            d_max,
+            "--corrugation-amplitude",
+            a,
+            "--corrugation-wavelength",
+            w,
+        ]
+    };
+    let o = ok(&corr("0.003", "0.1", "0.013"));
+    let (h, rows) = csv(&o.stdout);
+    let surface = |x: f64| 0.75 + 0.003 * (std::f64::consts::TAU * x / 0.1).sin();
+    for r in &rows {
+        close(
+            col(&h, r, "tip_y"),
+            surface(col(&h, r, "tip_x")),
+            1e-9,
+            "tip_y",
+        );
+        assert!(col(&h, r, "normal") > 0.0);
+    }
+    assert!(rows.iter().any(|r| r.last().unwrap() == "slip"));
+    let o = ok(&corr("0.02", "0.2", "0.002"));
+    let (_, rows) = csv(&o.stdout);
+    assert_eq!(rows.last().unwrap().last().unwrap(), "side_contact");
+    assert!(o.stderr.contains("the rod's end lies down"), "{}", o.stderr);
+    let mut taper = corr("0.001", "0.02", "0.001").to_vec();
+    taper.extend(["--taper", "0.3"]);
+    let e = bad(&taper, 1);
+    assert!(e.contains("side+side"), "{e}");
+}
+
 /// `scan --modes`: the lowest ω² of each row with the tip stuck, positive on the rows of the
 /// paper's rod at η = 0.95 and 0 (to 1e-6) at the fold in d where the scan stops; without the
 /// flag the columns are unchanged.

@@ -279,3 +279,26 @@ def test_a_whisk_over_a_foot_table_equals_the_program(program, tmp_path):
         vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=[(0, 0), (1, 0.1, 0, 4)])
     with pytest.raises(vibrissa.InputError, match="d_max given with it"):
         vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=rows, d_max=0.1)
+
+
+def test_dynamics_drag_on_a_corrugation_equals_the_program(program):
+    # the tip over a sine corrugation through its first slip, and a side reaching the surface
+    # (the rod's end lying down) as the named stop
+    for amp, wl, d_max in (("0.003", "0.1", "0.013"), ("0.02", "0.2", "0.002")):
+        args = ["dynamics", "drag", "--speed", "0.05", "--d-max", d_max, "--dt", "0.02",
+                "--corrugation-amplitude", amp, "--corrugation-wavelength", wl]
+        want = json.loads(program(*args, "--json"))
+        surface = vibrissa.Surface(eta=0.75, profile={"kind": "sine", "amplitude": float(amp),
+                                                     "wavelength": float(wl)})
+        py = vibrissa.dynamics_drag(vibrissa.Rod(), surface, speed=0.05, d_max=float(d_max),
+                                    dt=0.02)
+        check_samples(py, want["samples"], " ".join(args))
+        assert py["events"] == want["events"]
+        assert py["stop"] == want["stop"]
+        assert py["stats"] == want["stats"]
+    assert py["stop"]["reason"] == "side_contact" and py["stop"]["s"] == 1.0, py["stop"]
+    tapered = vibrissa.Rod(taper=0.3)
+    fine = vibrissa.Surface(eta=0.75, profile={"kind": "sine", "amplitude": 0.001,
+                                               "wavelength": 0.02})
+    with pytest.raises(vibrissa.Error, match="side"):
+        vibrissa.dynamics_drag(tapered, fine, d_max=0.001)

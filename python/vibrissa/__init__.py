@@ -825,8 +825,12 @@ def dynamics_drag(
     whisk: Optional[Tuple[float, float]] = None,
 ) -> Dict[str, Any]:
     """The drag in time (as ``vibrissa dynamics drag``): the foot moves along x at ``speed``
-    (rising smoothly over ``ramp``) with the tip on the flat ``surface`` under Coulomb friction
-    ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``.
+    (rising smoothly over ``ramp``) with the tip on the ``surface`` (a line, inclined or not, or
+    a height profile such as ``profile={"kind": "sine", ...}``; no ``friction`` profile) under
+    Coulomb friction ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``. The tip
+    alone touches: a start with a side on the surface raises :class:`Error` naming the contact
+    (no start), and a side that reaches the surface later ends the drag (stop
+    ``side_contact``).
 
     ``foot_table``: the foot's path instead of ``speed``, ``ramp`` and ``d_max`` (any of them
     given with it raises :class:`InputError`, as the program's flags conflict), rows
@@ -855,7 +859,8 @@ def dynamics_drag(
     ``stick``, ``lift_off``, ``touchdown`` with their time and place), ``stop`` (its
     ``reason``: ``d_max``, ``table_end``, ``lift_off``, ``touchdown``, ``max_events``, or
     ``unresolved_stick``, a stick the time step does not resolve, with ``t``, ``d`` and the
-    force the stuck tip would need), ``stats``,
+    force the stuck tip would need, or ``side_contact`` with ``t``, ``d`` and the rod's point
+    ``s``, ``x`` that reached the surface, ``s`` 1 where the rod's end lies down), ``stats``,
     ``units``, ``time_unit_s``."""
     if surface is None:
         surface = Surface()

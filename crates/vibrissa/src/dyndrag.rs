@@ -1,6 +1,9 @@
 //! The dynamic drag (issue 32): the foot moves along x at speed `v` (or along a time table, its
-//! support turned by the table's angle and a whisk) while the tip touches the flat surface
-//! `y = η` with Coulomb friction, the rod followed in time by the Rothe step of
+//! support turned by the table's angle and a whisk) while the tip touches the surface
+//! `y = h(x)` (written here for the flat `y = η`; on an inclined line or a height profile the
+//! same with `N = −G·n`, `T = −G·t` along the surface's normal and tangent at the tip, and the
+//! slide's velocity along the tangent: [`crate::rothe::TipBc`]) with Coulomb friction, the rod
+//! followed in time by the Rothe step of
 //! `dynamics::free` (module `rothe`: Newmark's average acceleration in time, Lobatto
 //! collocation in s).
 //!
@@ -26,7 +29,9 @@
 //! step does not resolve),
 //! **lift-off** where `N` falls to zero (the drag ends there, or with
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
-//! plastic impact, and the drag ends; docs/model.md). With `mu_k_table` the kinetic friction
+//! plastic impact, and the drag ends; docs/model.md), **side contact** where a point of the rod
+//! other than the tip reaches the surface or the rod's end turns into it (the drag ends: the
+//! tip alone touches in this model). With `mu_k_table` the kinetic friction
 //! depends on the slip velocity at the step's end, `T = dir·μk(|ẋ(1)|)·N`. A sticking tip's velocity and acceleration at the tip are set to zero:
 //! the velocity is zero to the event's tolerance, and the acceleration of a continuous rod
 //! jumps at the point that sticks only (the force holding it rises like `√t` from the moment
@@ -59,7 +64,7 @@
 //! scheme's error for this one.
 
 use crate::config::SolverConfig;
-use crate::rothe::{check_damping, Foot, Rothe, Settings, TipBc, Trial};
+use crate::rothe::{check_damping, Foot, Rothe, Settings, TipBc, Track, Trial};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
 use crate::timestep::{check_time_tol, TimeStepControl};
@@ -508,16 +513,20 @@ pub enum DragEventKind {
     LiftOff,
     /// The flying tip reaches the surface again (a plastic impact).
     Touchdown,
+    /// A point of the rod other than its tip reaches the surface: the drag ends (the dynamic
+    /// drag has the tip alone on the surface).
+    SideContact,
 }
 
 impl DragEventKind {
-    /// `slip`, `stick`, `lift_off`.
+    /// `slip`, `stick`, `lift_off`, `touchdown`, `side_contact`.
     pub fn name(self) -> &'static str {
         match self {
             DragEventKind::Slip => "slip",
             DragEventKind::Stick => "stick",
             DragEventKind::LiftOff => "lift_off",
             DragEventKind::Touchdown => "touchdown",
+            DragEventKind::SideContact => "side_contact",
         }
     }
 }
@@ -638,6 +647,20 @@ pub enum DynDragStop {
         /// Where.
         d: f64,
     },
+    /// A point of the rod other than its tip reached the surface at time `t`, displacement `d`:
+    /// the point at arc length `s`, lab `x` (on a corrugation's crest, say, or the rod's end
+    /// turning into the surface as `s → 1`). The dynamic drag has the tip alone on the surface;
+    /// the quasi-static drag (`vibrissa::drag`) follows such contacts.
+    SideContact {
+        /// When.
+        t: f64,
+        /// Where.
+        d: f64,
+        /// The rod's point that touches (arc length).
+        s: f64,
+        /// Its lab x.
+        x: f64,
+    },
 }
 
 impl fmt::Display for DynDragStop {
@@ -659,7 +682,26 @@ impl fmt::Display for DynDragStop {
                  which the rod cannot need so soon after a stick (try a shorter dt)"
             ),
             DynDragStop::Touchdown { d } => write!(f, "touchdown at d = {d}"),
+            DynDragStop::SideContact { t, d, x, .. } if self.at_end() => write!(
+                f,
+                "the rod's end lies down on the surface at t = {t}, d = {d} (x = {x}; a side \
+                 touches next to the tip): the dynamic drag has the tip alone on the surface \
+                 (the quasi-static drag follows side contacts)"
+            ),
+            DynDragStop::SideContact { t, d, s, x } => write!(
+                f,
+                "a side of the rod reaches the surface at t = {t}, d = {d} (the point s = {s} at \
+                 x = {x}): the dynamic drag has the tip alone on the surface (the quasi-static \
+                 drag follows side contacts)"
+            ),
         }
+    }
+}
+
+impl DynDragStop {
+    /// Whether a side contact is the rod's end lying down (`s = 1`).
+    fn at_end(&self) -> bool {
+        matches!(self, DynDragStop::SideContact { s, .. } if *s == 1.0)
     }
 }
 
@@ -773,6 +815,59 @@ fn pressed(rod: &Rod, eta: f64, grid: &[f64]) -> Result<(Guess, [f64; 2]), Vibri
     Ok((guess, [shape.x1, eta]))
 }
 
+/// The pressed start on a surface that is not flat (inclined, or a height profile): the start
+/// of `vibrissa::drag` there (the rod pressed onto the line, or onto the profile's trend and
+/// the profile grown, the tip's force normal to the surface), as a guess on `grid`, the tip's
+/// place and the track the tip then touches. A start with a side on the surface is refused:
+/// the dynamic drag has the tip alone on it.
+fn pressed_on(
+    rod: &Rod,
+    surface: &Surface,
+    grid: &[f64],
+) -> Result<(Guess, [f64; 2], Track), VibrissaError> {
+    let cfg = SolverConfig::default();
+    let (start, set, p0) = if rod.has_uniform_profile() {
+        let (s, set, p0) = crate::ground::start(
+            rod,
+            &crate::profile::Uniform,
+            surface,
+            cfg.start,
+            cfg.start_tol(),
+        )?;
+        (s.pt, set, p0)
+    } else {
+        let (s, set, p0) =
+            crate::ground::start(rod, &rod.profile(1.0), surface, cfg.start, cfg.start_tol())?;
+        (s.pt, set, p0)
+    };
+    surface.check_on(p0[0])?;
+    if !set.tip_only() {
+        return Err(VibrissaError::NoStart {
+            reason: format!(
+                "the pressed rod touches the surface with {} (the dynamic drag has the tip \
+                 alone on the surface)",
+                set.label()
+            ),
+        });
+    }
+    let track = match surface.profile_shared() {
+        Some(h) => Track::Curve(h),
+        None => Track::Line {
+            p: p0,
+            slope: surface.angle().tan(),
+        },
+    };
+    let sol = &start.sol;
+    let (f, alpha) = (sol.params[0], sol.params[1]);
+    let (fx, fy) = (f * alpha.sin(), -f * alpha.cos());
+    let guess = Guess::from_fn(6, grid.to_vec(), vec![], |s, z| {
+        let mut r = [0.0; 4];
+        sol.eval(s, &mut r);
+        z.copy_from_slice(&[r[0], r[1], r[2], r[3], fx, fy]);
+    });
+    Ok((guess, p0, track))
+}
+
 /// The shortest step the events make, `max(1e-3 dt, 1e-5, 0.1 √tol)` (the last counts above
 /// tol 1e-8 only): with `G` scaled by `4/Δt²`, the rounding of the positions still enters the
 /// moment's equation as `4/Δt² · ε`, which the collocation's residual control cannot meet at
@@ -807,16 +902,18 @@ fn held_weights(tau: f64, h: f64) -> [f64; 3] {
 /// of a tip that needs more than μs N, and its stick at once where it slides neither way.
 const MAX_INSTANT_EVENTS: usize = 3;
 
-/// Which of a step's event functions: `[lift-off, the contact's own]`.
+/// Which of a step's event functions: `[lift-off, the contact's own, a side's contact]`.
 const LIFT: usize = 0;
 const PHASE: usize = 1;
+const SIDE: usize = 2;
 
 /// The driver of a dynamic drag.
 struct Drive<'r, 'o> {
     o: &'o DynDragOptions,
     path: FootPath<'o>,
     rothe: Rothe<'r>,
-    eta: f64,
+    /// The surface the tip touches (as the rod's steps see it: `rothe.track` is the same).
+    track: Track,
     t: f64,
     d: f64,
     /// The support's turn `θ_w`.
@@ -826,14 +923,17 @@ struct Drive<'r, 'o> {
     anchor: f64,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
-    /// The forces at the support and the tip (`G(0)`, `G(1)`) at the last step's start and that
-    /// step's length, while the tip's condition has not changed since ([`Drive::held_ends`]).
-    ends_before: Option<([[f64; 2]; 2], f64)>,
+    /// The forces at the support and the tip (`G(0)`, `G(1)`) at the last step's start, that
+    /// step's length and the tip's x at its start, while the tip's condition has not changed
+    /// since ([`Drive::held_ends`]).
+    ends_before: Option<([[f64; 2]; 2], f64, f64)>,
     /// [`Drive::held_force`] of the last step taken while the tip is stuck (its tests; `None`
     /// where it was not formed).
     held_now: Option<[f64; 2]>,
     /// [`Drive::held_ends`] of the last step taken (its sample; `None` where it was not formed).
     ends_now: Option<[[f64; 2]; 2]>,
+    /// [`Drive::held_contact`] of the last step taken (its sample's `N`, `T`).
+    contact_now: Option<(f64, f64)>,
     foot_work: f64,
     friction: f64,
     impact: f64,
@@ -846,22 +946,34 @@ struct Drive<'r, 'o> {
     instant_events: usize,
 }
 
-/// `N = −Gy(1)`, `T = −Gx(1)` of the tip's force `G(1)`.
-fn contact_forces(g: [f64; 2]) -> (f64, f64) {
-    (-g[1], -g[0])
+/// `N = −G·n`, `T = −G·t` of the tip's force `G(1)` on a track of slope `hp` (unit normal
+/// `n = (−h', 1)/w`, tangent `t = (1, h')/w`, `w = √(1 + h'²)`): on a flat one `N = −Gy(1)`,
+/// `T = −Gx(1)`.
+fn contact_forces(g: [f64; 2], hp: f64) -> (f64, f64) {
+    if hp == 0.0 {
+        return (-g[1], -g[0]);
+    }
+    let w = (1.0 + hp * hp).sqrt();
+    ((hp * g[0] - g[1]) / w, -(g[0] + hp * g[1]) / w)
+}
+
+/// The unit normal `(−h', 1)/w` and the velocity `v` along the unit tangent `(1, h')/w` of a
+/// track of slope `hp` (`v[0]` on a flat one).
+fn normal_and_along(hp: f64, v: [f64; 2]) -> ([f64; 2], f64) {
+    if hp == 0.0 {
+        return ([0.0, 1.0], v[0]);
+    }
+    let w = (1.0 + hp * hp).sqrt();
+    ([-hp / w, 1.0 / w], (v[0] + hp * v[1]) / w)
 }
 
 impl<'r> Drive<'r, '_> {
     fn bc(&self) -> TipBc {
         match self.state {
-            ContactState::Stuck => TipBc::Stuck([self.anchor, self.eta]),
+            ContactState::Stuck => TipBc::Stuck([self.anchor, self.track.jet(self.anchor).0]),
             ContactState::Flying => TipBc::Force([0.0, 0.0]),
-            s if !self.o.mu_k_table.is_empty() => TipBc::SlidingRate {
-                y: self.eta,
-                dir: s.dir(),
-            },
+            s if !self.o.mu_k_table.is_empty() => TipBc::SlidingRate { dir: s.dir() },
             s => TipBc::Sliding {
-                y: self.eta,
                 ratio: s.dir() * self.o.mu_k,
             },
         }
@@ -906,36 +1018,68 @@ impl<'r> Drive<'r, '_> {
         Ok(tr)
     }
 
+    /// The tip's normal and tangential force of the tip's force `g` with the tip at `x`.
+    fn forces(&self, g: [f64; 2], x: f64) -> (f64, f64) {
+        contact_forces(g, self.track.jet(x).1)
+    }
+
     /// The event functions (`< 0` while the contact holds): `−N`, and `|T| − μs N` (stuck) or
-    /// `−dir·ẋ(1)` (sliding), from the forces and the tip's velocity; flying: none, and the
-    /// tip's height over the surface `y(1) − η` (minus the gap).
-    fn events_of(&self, n: f64, t: f64, vx: f64, y: f64) -> [f64; 2] {
+    /// `−dir·v_t` (sliding, `v_t` the tip's velocity `v` along the surface), from the forces and
+    /// the tip's velocity; flying: none, and the tip's height over the surface `y(1) − h(x(1))`
+    /// (minus the gap), the tip at `r`.
+    fn events_of(&self, n: f64, t: f64, v: [f64; 2], r: [f64; 2]) -> [f64; 2] {
+        let (h, hp, _) = self.track.jet(r[0]);
         let phase = match self.state {
             ContactState::Stuck => t.abs() - self.o.mu_s * n,
-            ContactState::Flying => return [-1.0, y - self.eta],
-            s => -s.dir() * vx,
+            ContactState::Flying => return [-1.0, r[1] - h],
+            s => -s.dir() * normal_and_along(hp, v).1,
         };
         [-n, phase]
     }
 
-    fn events_after(&self, tr: &Trial) -> [f64; 2] {
-        let (n, t) = contact_forces(tr.force(1));
-        let y = tr.sol.right()[1];
-        let g = self.events_of(n, t, self.rothe.tip_velocity(tr)[0], y);
+    fn events_after(&self, tr: &Trial) -> [f64; 3] {
+        let r = [tr.sol.right()[0], tr.sol.right()[1]];
+        let (n, t) = self.forces(tr.force(1), r[0]);
+        let g = self.events_of(n, t, self.rothe.tip_velocity(tr), r);
         let held = (self.state == ContactState::Stuck).then(|| self.held_force(tr));
-        self.held_test(g, held, y)
+        let [lift, phase] = self.held_test(g, held, r);
+        [lift, phase, self.side_gap(&tr.sol).0]
+    }
+
+    /// The largest height of the rod's points over the surface, `max (y − h(x))` over the
+    /// solution's nodes but its ends (`< 0` while only the tip touches: the foot is below the
+    /// surface, the tip on it), with its node's `s` and `x`; and, while the tip touches, how
+    /// far its end turns into the surface, `h'(x) cos φ − sin φ` at `s = 1` (the height over
+    /// the surface of the points just before a touching tip falls like `(1 − s)` times it:
+    /// where it reaches 0 the rod's end lies down on the surface, as the quasi-static drag's
+    /// touchdown of a side at the tip).
+    fn side_gap(&self, sol: &bvp::Solution) -> (f64, f64, f64) {
+        let mut worst = (f64::NEG_INFINITY, f64::NAN, f64::NAN);
+        if self.state != ContactState::Flying {
+            let z = sol.right();
+            let (sp, cp) = z[2].sin_cos();
+            worst = (self.track.jet(z[0]).1 * cp - sp, 1.0, z[0]);
+        }
+        for i in 1..sol.len().saturating_sub(1) {
+            let z = sol.node(i);
+            let gap = z[1] - self.track.jet(z[0]).0;
+            if gap > worst.0 || gap.is_nan() {
+                worst = (gap, sol.mesh[i], z[0]);
+            }
+        }
+        worst
     }
 
     /// The event functions `g` with the stuck tip's tests (slip and lift-off) taken on the held
-    /// force `held` ([`Drive::held_force`]) where there is one, the tip at height `y`. (The
+    /// force `held` ([`Drive::held_force`]) where there is one, the tip at `r`. (The
     /// lift-off's too: the rule's mode reaches ±1.4 in the stuck paper's rod's N = 4 at dt 0.02
     /// after a few slips, and a whisk drawn back, where N falls, read a lift-off at N = −0.18
     /// where the held force had N = 2.3.)
-    fn held_test(&self, g: [f64; 2], held: Option<[f64; 2]>, y: f64) -> [f64; 2] {
+    fn held_test(&self, g: [f64; 2], held: Option<[f64; 2]>, r: [f64; 2]) -> [f64; 2] {
         match (self.state, held) {
             (ContactState::Stuck, Some(held)) => {
-                let (n, t) = contact_forces(held);
-                self.events_of(n, t, 0.0, y)
+                let (n, t) = self.forces(held, r[0]);
+                self.events_of(n, t, [0.0, 0.0], r)
             }
             _ => g,
         }
@@ -966,7 +1110,7 @@ impl<'r> Drive<'r, '_> {
     /// too (of the foot's place) and carries the same mode: ±0.5 in the paper's rod's
     /// `fy ≈ −4` at dt 0.02 after a few slips, sliding or stuck. The rows report these.
     fn held_ends(&self, tr: &Trial) -> Option<[[f64; 2]; 2]> {
-        let (g_prev, h) = self.ends_before?;
+        let (g_prev, h, _) = self.ends_before?;
         let [a, b, c] = held_weights(tr.tau, h);
         Some([0, 1].map(|e| {
             let (g1, g0) = (tr.force(e), self.rothe.force(e));
@@ -974,35 +1118,59 @@ impl<'r> Drive<'r, '_> {
         }))
     }
 
-    fn events_now(&self) -> [f64; 2] {
-        let (n, t) = contact_forces(self.rothe.force(1));
+    /// The tip's `N` and `T` at the end of the trial `tr` without the rule's alternating mode:
+    /// the weights of [`Drive::held_ends`] on the three forces' `N` and `T`, each taken along the
+    /// surface's normal where the tip then was (the same as the held force's `N`, `T` on a flat
+    /// surface; on a curve a sliding tip's `|T| = μk N` holds in each, and so in the
+    /// combination, not in the combined force read at one place).
+    fn held_contact(&self, tr: &Trial) -> Option<(f64, f64)> {
+        let (g_prev, h, x_prev) = self.ends_before?;
+        let [a, b, c] = held_weights(tr.tau, h);
+        let nt = [
+            self.forces(tr.force(1), tr.sol.right()[0]),
+            self.forces(self.rothe.force(1), self.rothe.sol.right()[0]),
+            self.forces(g_prev[1], x_prev),
+        ];
+        Some((
+            a * nt[0].0 + b * nt[1].0 + c * nt[2].0,
+            a * nt[0].1 + b * nt[1].1 + c * nt[2].1,
+        ))
+    }
+
+    fn events_now(&self) -> [f64; 3] {
         let p = self.rothe.sample(self.t);
-        let g = self.events_of(n, t, p.tip_vx, p.tip_y);
-        self.held_test(g, self.held_now, p.tip_y)
+        let r = [p.tip_x, p.tip_y];
+        let (n, t) = self.forces(self.rothe.force(1), r[0]);
+        let g = self.events_of(n, t, [p.tip_vx, p.tip_vy], r);
+        let [lift, phase] = self.held_test(g, self.held_now, r);
+        [lift, phase, self.side_gap(&self.rothe.sol).0]
     }
 
     /// Takes the step: the energies by the trapezoidal rule, a sample.
     fn take(&mut self, tr: Trial) {
         self.tried.clear();
         self.instant_events = 0;
-        let (g0, g1, x1, d_old, turn_old, m0) = (
+        let (g0, g1, x1, y1, d_old, turn_old, m0) = (
             self.rothe.force(0),
             self.rothe.force(1),
             self.rothe.sol.right()[0],
+            self.rothe.sol.right()[1],
             self.d,
             self.turn,
             self.rothe.sol.left()[3],
         );
         let tau = tr.tau;
         let ends = self.held_ends(&tr);
+        let contact = self.held_contact(&tr);
         let held = ends
             .filter(|_| self.state == ContactState::Stuck)
             .map(|g| g[1]);
         self.rothe.commit(tr);
         // (the drag's start is consistent and smooth: no mode to remove before the first event)
-        self.ends_before = (!self.events.is_empty()).then_some(([g0, g1], tau));
+        self.ends_before = (!self.events.is_empty()).then_some(([g0, g1], tau, x1));
         self.held_now = held;
         self.ends_now = ends;
+        self.contact_now = contact;
         self.t += tau;
         let foot = self.path.at(self.t);
         (self.d, self.turn) = (foot.place[0], foot.turn);
@@ -1011,7 +1179,13 @@ impl<'r> Drive<'r, '_> {
         // clamp holds the slope `π/2 − θ_w`: `δE = m(0) δθ_w` for the rod and its spring)
         self.foot_work += -0.5 * (g0[0] + h0[0]) * (self.d - d_old)
             + 0.5 * (m0 + self.rothe.sol.left()[3]) * (self.turn - turn_old);
-        self.friction += -0.5 * (g1[0] + h1[0]) * (self.rothe.sol.right()[0] - x1);
+        // (the work of the tip's force on a moving tip: friction, the normal force's part zero
+        // to the step's error on a curve, exactly zero on a flat surface, which keeps to x)
+        let x1_new = self.rothe.sol.right()[0];
+        self.friction += -0.5 * (g1[0] + h1[0]) * (x1_new - x1);
+        if !self.track.flat() {
+            self.friction += -0.5 * (g1[1] + h1[1]) * (self.rothe.sol.right()[1] - y1);
+        }
         self.stats.steps += 1;
         self.samples.push(self.sample());
     }
@@ -1022,7 +1196,9 @@ impl<'r> Drive<'r, '_> {
         let p = self.rothe.sample(self.t);
         let end = [[p.gx_base, p.gy_base], self.rothe.force(1)];
         let ends = self.ends_now.unwrap_or(end);
-        let (normal, tangential) = contact_forces(ends[1]);
+        let (normal, tangential) = self
+            .contact_now
+            .unwrap_or_else(|| self.forces(ends[1], p.tip_x));
         DragSample {
             t: self.t,
             d: self.d,
@@ -1082,13 +1258,19 @@ impl<'r> Drive<'r, '_> {
         self.tried.clear();
         self.ends_before = None;
         self.ends_now = None;
+        self.contact_now = None;
         // (a stuck tip's event's forces as its test takes them: the held force, without the
         // rule's alternating mode, where there is one; so a slip's row has |T| = μs N and a
         // lift-off's N = 0 to the event's location. A sliding tip's tests take the end force.)
         let stuck = self.state == ContactState::Stuck;
         let held = self.held_now.take().filter(|_| stuck);
-        let (normal, tangential) = contact_forces(held.unwrap_or_else(|| self.rothe.force(1)));
-        let kind = if which == LIFT {
+        let (normal, tangential) = self.forces(
+            held.unwrap_or_else(|| self.rothe.force(1)),
+            self.rothe.sol.right()[0],
+        );
+        let kind = if which == SIDE {
+            DragEventKind::SideContact
+        } else if which == LIFT {
             if self.o.flight {
                 self.state = ContactState::Flying;
             }
@@ -1110,6 +1292,10 @@ impl<'r> Drive<'r, '_> {
             self.fresh_slip = false;
             self.anchor = self.rothe.sol.right()[0];
             self.rothe.hold_tip_x();
+            if !self.track.flat() {
+                // (on a sloped track the tip moved along it in y too)
+                self.rothe.hold_tip_y();
+            }
             self.stats.sticks += 1;
             DragEventKind::Stick
         };
@@ -1133,6 +1319,15 @@ impl<'r> Drive<'r, '_> {
         if kind == DragEventKind::Touchdown {
             return Some(DynDragStop::Touchdown { d: self.d });
         }
+        if kind == DragEventKind::SideContact {
+            let (_, s, x) = self.side_gap(&self.rothe.sol);
+            return Some(DynDragStop::SideContact {
+                t: self.t,
+                d: self.d,
+                s,
+                x,
+            });
+        }
         self.instant_events += 1;
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
     }
@@ -1143,7 +1338,7 @@ impl<'r> Drive<'r, '_> {
     /// or within the shortest step, is the scheme's, its steps too coarse for the motion
     /// before the stick.
     fn unresolved(&self, g: [f64; 2]) -> DynDragStop {
-        let (normal, tangential) = contact_forces(g);
+        let (normal, tangential) = self.forces(g, self.rothe.sol.right()[0]);
         DynDragStop::UnresolvedStick {
             t: self.t,
             d: self.d,
@@ -1163,8 +1358,27 @@ impl<'r> Drive<'r, '_> {
             self.path.at(self.t + 2.0 * delta),
         ];
         self.stats.solves += 2;
-        if self.rothe.restart(delta, feet, self.bc(), 0.0).is_ok() {
-            self.stats.restarts += 1;
+        if self.rothe.restart(delta, feet, self.bc(), 0.0).is_err() {
+            return;
+        }
+        self.stats.restarts += 1;
+        if let (false, dir @ (1.0 | -1.0)) = (self.track.flat(), self.state.dir()) {
+            // the restart's tip force is the mean of two probe steps' whose tip stood where
+            // the surface's normal differs: on a curve it meets the slide's friction only to
+            // O(δ) (5e-6 N at tol 1e-8 over a corrugation). Its normal part is kept, its
+            // tangential part set to the slide's `T = dir·μk N` (μk at rest for a table)
+            let x = self.rothe.sol.right()[0];
+            let (_, hp, _) = self.track.jet(x);
+            let (n, _) = self.forces(self.rothe.force(1), x);
+            let mu_k = match self.o.mu_k_table.first() {
+                Some(_) => crate::rothe::mu_k_of(&self.o.mu_k_table, 0.0).0,
+                None => self.o.mu_k,
+            };
+            let t = dir * mu_k * n;
+            let w = (1.0 + hp * hp).sqrt();
+            let (nv, tv) = ([-hp / w, 1.0 / w], [1.0 / w, hp / w]);
+            self.rothe
+                .set_restart_tip_force([-n * nv[0] - t * tv[0], -n * nv[1] - t * tv[1]]);
         }
     }
 
@@ -1173,8 +1387,15 @@ impl<'r> Drive<'r, '_> {
     /// `impact` (the event's sample is the state after the impact); the contact from here on
     /// slides the way the tip moves along the surface (sticks, if it does not move).
     fn touchdown(&mut self) {
-        let before = self.rothe.sample(self.t).kinetic;
-        self.rothe.hold_tip_y();
+        let before = self.rothe.sample(self.t);
+        let (_, hp, _) = self.track.jet(before.tip_x);
+        if self.track.flat() {
+            self.rothe.hold_tip_y();
+        } else {
+            self.rothe
+                .hold_tip_normal(normal_and_along(hp, [0.0, 0.0]).0);
+        }
+        let before = before.kinetic;
         let after = self.rothe.sample(self.t);
         self.impact += before - after.kinetic;
         if let Some(last) = self.samples.last_mut() {
@@ -1182,9 +1403,10 @@ impl<'r> Drive<'r, '_> {
             last.kinetic = after.kinetic;
             last.impact = self.impact;
         }
-        self.state = if after.tip_vx > 0.0 {
+        let along = normal_and_along(hp, [after.tip_vx, after.tip_vy]).1;
+        self.state = if along > 0.0 {
             ContactState::SlidingForward
-        } else if after.tip_vx < 0.0 {
+        } else if along < 0.0 {
             ContactState::SlidingBack
         } else {
             self.anchor = after.tip_x;
@@ -1274,7 +1496,7 @@ impl<'r> Drive<'r, '_> {
                 }
             }
             let mut first: Option<(f64, usize)> = None;
-            for which in [LIFT, PHASE] {
+            for which in [LIFT, PHASE, SIDE] {
                 if g1[which] >= 0.0 {
                     let at = self.locate(which, lo, tau)?;
                     if first.is_none_or(|(t, _)| at < t) {
@@ -1306,26 +1528,20 @@ impl<'r> Drive<'r, '_> {
 }
 
 /// Drags the foot of `rod` along +x at speed `opts.speed` (after the smooth start) with the tip
-/// on the flat `surface` (`y = η`) and Coulomb friction `opts.mu_s`, `opts.mu_k`, from the
-/// pressed start at rest to `opts.d_max`, in time (see the module docs of `dynamics`).
-/// Errors: invalid input, a surface that is not flat, no start, a step the collocation does not
-/// solve.
+/// on `surface` (a line, inclined or not, or a height profile) and Coulomb friction
+/// `opts.mu_s`, `opts.mu_k`, from the pressed start at rest to `opts.d_max`, in time (see the
+/// module docs of `dynamics`).
+/// Errors: invalid input, a friction profile, a tip radius, no start (or one with a side on the
+/// surface), a step the collocation does not solve.
 pub fn drag(
     rod: &Rod,
     surface: &Surface,
     opts: &DynDragOptions,
 ) -> Result<DynDragResult, VibrissaError> {
     opts.validate()?;
-    if surface.angle() != 0.0 {
-        return Err(VibrissaError::range(
-            "surface angle",
-            surface.angle(),
-            "0 (the dynamic drag: a flat surface)",
-        ));
-    }
-    if surface.profile().is_some() || surface.texture().is_some() {
+    if surface.texture().is_some() {
         return Err(VibrissaError::NotImplemented(
-            "the dynamic drag on a curved or textured surface",
+            "the dynamic drag on a surface with a friction profile",
         ));
     }
     if rod.tip_radius() != 0.0 {
@@ -1338,7 +1554,6 @@ pub fn drag(
             "0 (the dynamic drag: a point tip)",
         ));
     }
-    let eta = surface.eta();
     let settings = Settings {
         grid: opts.grid,
         tol: opts.tol,
@@ -1354,14 +1569,25 @@ pub fn drag(
         remesh: true,
     };
     let grid = Rothe::grid_of(&settings);
-    let (guess, tip) = pressed(rod, eta, &grid)?;
+    let (guess, tip, track) = if surface.angle() == 0.0 && surface.profile().is_none() {
+        let eta = surface.eta();
+        let (guess, tip) = pressed(rod, eta, &grid)?;
+        let flat = Track::Line {
+            p: [0.0, eta],
+            slope: 0.0,
+        };
+        (guess, tip, flat)
+    } else {
+        pressed_on(rod, surface, &grid)?
+    };
     let mut rothe = Rothe::at_rest(rod, &settings, &guess, [0.0, 0.0], TipBc::Stuck(tip))?;
     rothe.friction_table = opts.mu_k_table.clone();
+    rothe.track = track.clone();
     let mut drive = Drive {
         o: opts,
         path: FootPath::new(opts),
         rothe,
-        eta,
+        track,
         t: 0.0,
         d: 0.0,
         turn: 0.0,
@@ -1371,6 +1597,7 @@ pub fn drag(
         ends_before: None,
         held_now: None,
         ends_now: None,
+        contact_now: None,
         foot_work: 0.0,
         friction: 0.0,
         impact: 0.0,

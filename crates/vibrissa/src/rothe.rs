@@ -76,6 +76,35 @@ pub(crate) fn is_zero(n: &usize) -> bool {
     *n == 0
 }
 
+/// The line or curve `y = h(x)` the tip touches in a drag: the line through `p` with the slope
+/// `slope` (a flat surface: slope 0), or a surface's height profile.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Track {
+    Line { p: [f64; 2], slope: f64 },
+    Curve(std::sync::Arc<crate::surface::Height>),
+}
+
+impl Track {
+    /// `(h, h', h'')` at `x`.
+    pub fn jet(&self, x: f64) -> (f64, f64, f64) {
+        match self {
+            Track::Line { p, slope } => (p[1] + slope * (x - p[0]), *slope, 0.0),
+            Track::Curve(h) => h.jet(x),
+        }
+    }
+
+    /// Whether the track is the flat line `y = const` (its normal is `y`, its tangent `x`).
+    pub fn flat(&self) -> bool {
+        matches!(self, Track::Line { slope, .. } if *slope == 0.0)
+    }
+}
+
+/// The line `y = 0`, the track a state starts with.
+const FLAT: Track = Track::Line {
+    p: [0.0, 0.0],
+    slope: 0.0,
+};
+
 /// The tip's conditions in a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum TipBc {
@@ -83,14 +112,17 @@ pub(crate) enum TipBc {
     Force([f64; 2]),
     /// The tip held at a point: `r(1)` given.
     Stuck([f64; 2]),
-    /// The tip on the line `y = y`, sliding: the tangential force `Gx(1) = ratio·Gy(1)`
-    /// (`ratio = dir·μk`: with the normal force `N = −Gy(1)`, friction `−dir·μk·N` against
-    /// the slide in direction `dir`).
-    Sliding { y: f64, ratio: f64 },
-    /// The tip on the line `y = y`, sliding in direction `dir` with the kinetic friction
-    /// `μk(|ẋ(1)|)` of the friction table ([`Rothe::friction_table`]): `Gx(1) = dir·μk·Gy(1)`,
-    /// the tip's velocity at the step's end by the trapezoidal rule, `2/Δt (x(1) − xⁿ) − ẋⁿ`.
-    SlidingRate { y: f64, dir: f64 },
+    /// The tip on the track `y = h(x)` ([`Rothe::track`]), sliding: with the track's unit
+    /// tangent `t = (1, h')/w` and normal `n = (−h', 1)/w`, `w = √(1 + h'²)`, the tangential
+    /// force `G·t = ratio·G·n` (`ratio = dir·μk`: with the normal force `N = −G·n`, friction
+    /// `T = −G·t = dir·μk·N` against the slide in direction `dir`; on a flat track
+    /// `Gx(1) = ratio·Gy(1)`).
+    Sliding { ratio: f64 },
+    /// The tip on the track, sliding in direction `dir` with the kinetic friction
+    /// `μk(|v_t|)` of the friction table ([`Rothe::friction_table`]): `G·t = dir·μk·G·n`, the
+    /// tip's velocity along the track at the step's end by the trapezoidal rule,
+    /// `v = 2/Δt (r(1) − rⁿ) − ṙⁿ`, `v_t = v·t` (`ẋ(1)` on a flat track).
+    SlidingRate { dir: f64 },
 }
 
 /// Kinetic friction `μk(v)` of a table of `(v, μk)` points (speeds increasing): piecewise
@@ -201,18 +233,30 @@ struct Step<'a> {
     foot: Foot,
     /// The tip's conditions.
     tip: TipBc,
-    /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ)` and `2/Δt`.
+    /// The track of a sliding tip.
+    track: &'a Track,
+    /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ, yⁿ, ẏⁿ)` and `2/Δt`.
     table: &'a [[f64; 2]],
-    tip_then: [f64; 2],
+    tip_then: [f64; 4],
     two_tau: f64,
 }
 
 impl Step<'_> {
-    /// The slip velocity at the step's end and `μk`, `dμk/dx(1)` there.
-    fn rate_friction(&self, x1: f64) -> (f64, f64) {
-        let v = self.two_tau * (x1 - self.tip_then[0]) - self.tip_then[1];
+    /// `μk` at the slip velocity at the step's end (the tip at `(x1, y1)`, the track's slope
+    /// `hp` there) and `dμk/dx(1)`, `dμk/dy(1)` (the tangent's own change left out: Newton's
+    /// matrix only).
+    fn rate_friction(&self, x1: f64, y1: f64, hp: f64) -> (f64, [f64; 2]) {
+        let vx = self.two_tau * (x1 - self.tip_then[0]) - self.tip_then[1];
+        if hp == 0.0 {
+            let (mk, slope) = mu_k_of(self.table, vx.abs());
+            return (mk, [slope * vx.signum() * self.two_tau, 0.0]);
+        }
+        let vy = self.two_tau * (y1 - self.tip_then[2]) - self.tip_then[3];
+        let w = (1.0 + hp * hp).sqrt();
+        let v = (vx + hp * vy) / w;
         let (mk, slope) = mu_k_of(self.table, v.abs());
-        (mk, slope * v.signum() * self.two_tau)
+        let dv = slope * v.signum() * self.two_tau / w;
+        (mk, [dv, dv * hp])
     }
 }
 
@@ -290,17 +334,13 @@ impl Bvp for Step<'_> {
                 dgb[24] = 1.0;
                 dgb[30 + 1] = 1.0;
             }
-            TipBc::Sliding { ratio, .. } => {
-                dgb[24 + 1] = 1.0;
-                dgb[30 + 4] = 1.0;
-                dgb[30 + 5] = -ratio;
-            }
-            TipBc::SlidingRate { dir, .. } => {
-                let (mk, dmk) = self.rate_friction(zb[0]);
-                dgb[24 + 1] = 1.0;
-                dgb[30 + 4] = 1.0;
-                dgb[30 + 5] = -dir * mk;
-                dgb[30] = -dir * dmk * zb[5];
+            TipBc::Sliding { ratio } => self.sliding_jacobian(zb, ratio, [0.0, 0.0], dgb),
+            TipBc::SlidingRate { dir } => {
+                let (hp, _) = self.slope_at(zb[0]);
+                let (mk, dmk) = self.rate_friction(zb[0], zb[1], hp);
+                // `res = G·t' − dir·μk·G·n'` (t', n' the unnormalized tangent and normal)
+                let gn = zb[5] - hp * zb[4];
+                self.sliding_jacobian(zb, dir * mk, [-dir * dmk[0] * gn, -dir * dmk[1] * gn], dgb);
             }
         }
         true
@@ -322,16 +362,46 @@ impl Bvp for Step<'_> {
                 res[4] = zb[0] - p[0];
                 res[5] = zb[1] - p[1];
             }
-            TipBc::Sliding { y, ratio } => {
-                res[4] = zb[1] - y;
-                res[5] = zb[4] - ratio * zb[5];
-            }
-            TipBc::SlidingRate { y, dir } => {
-                let (mk, _) = self.rate_friction(zb[0]);
-                res[4] = zb[1] - y;
-                res[5] = zb[4] - dir * mk * zb[5];
+            TipBc::Sliding { ratio } => self.sliding_res(zb, ratio, res),
+            TipBc::SlidingRate { dir } => {
+                let (hp, _) = self.slope_at(zb[0]);
+                let (mk, _) = self.rate_friction(zb[0], zb[1], hp);
+                self.sliding_res(zb, dir * mk, res);
             }
         }
+    }
+}
+
+impl Step<'_> {
+    /// The track's slope `h'` and `h''` at `x`.
+    fn slope_at(&self, x: f64) -> (f64, f64) {
+        let (_, hp, hpp) = self.track.jet(x);
+        (hp, hpp)
+    }
+
+    /// The sliding tip's two conditions: on the track, `y(1) − h(x(1)) = 0`, and the
+    /// friction `G·t' − ratio·G·n' = 0` with `t' = (1, h')`, `n' = (−h', 1)` (`w`, common to
+    /// both, divided out).
+    fn sliding_res(&self, zb: &[f64], ratio: f64, res: &mut [f64]) {
+        let (h, hp, _) = self.track.jet(zb[0]);
+        res[4] = zb[1] - h;
+        res[5] = if hp == 0.0 {
+            zb[4] - ratio * zb[5]
+        } else {
+            zb[4] + hp * zb[5] - ratio * (zb[5] - hp * zb[4])
+        };
+    }
+
+    /// The derivatives of [`Step::sliding_res`] (`extra`: those of the ratio's own dependence
+    /// on `x(1)`, `y(1)` in the friction row).
+    fn sliding_jacobian(&self, zb: &[f64], ratio: f64, extra: [f64; 2], dgb: &mut [f64]) {
+        let (hp, hpp) = self.slope_at(zb[0]);
+        dgb[24] = -hp;
+        dgb[24 + 1] = 1.0;
+        dgb[30] = hpp * (zb[5] + ratio * zb[4]) + extra[0];
+        dgb[30 + 1] = extra[1];
+        dgb[30 + 4] = 1.0 + ratio * hp;
+        dgb[30 + 5] = hp - ratio;
     }
 }
 
@@ -499,6 +569,8 @@ pub(crate) struct Rothe<'r> {
     pub stats: DynStats,
     /// The kinetic friction's table `(|v|, μk)` of [`TipBc::SlidingRate`] (empty: not used).
     pub friction_table: Vec<[f64; 2]>,
+    /// The track of [`TipBc::Sliding`] and [`TipBc::SlidingRate`] (default: the line `y = 0`).
+    pub track: Track,
 }
 
 /// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
@@ -564,6 +636,7 @@ impl<'r> Rothe<'r> {
         })
         .map_err(|e| VibrissaError::solver("dynamics options", e))?;
         let zeros = vec![0.0; ng + 1];
+        let flat = FLAT;
         let statics = Step {
             profile: &profile,
             stiffness,
@@ -581,8 +654,9 @@ impl<'r> Rothe<'r> {
             moment: 0.0,
             foot: Foot::at(foot),
             tip,
+            track: &flat,
             table: &[],
-            tip_then: [0.0, 0.0],
+            tip_then: [0.0; 4],
             two_tau: 0.0,
         };
         let sol = solver
@@ -622,6 +696,7 @@ impl<'r> Rothe<'r> {
             after: None,
             stats: DynStats::default(),
             friction_table: vec![],
+            track: FLAT,
             grid,
             profile,
             stiffness,
@@ -711,6 +786,19 @@ impl<'r> Rothe<'r> {
         self.acc_before = None;
     }
 
+    /// The tip's velocity and acceleration along the unit normal `n` removed at the grid's last
+    /// node (a plastic impact on a track of that normal there; [`Rothe::hold_tip_y`] on a flat
+    /// one).
+    pub fn hold_tip_normal(&mut self, n: [f64; 2]) {
+        let i = self.ng;
+        for q in [&mut self.vel, &mut self.acc] {
+            let along = q[0][i] * n[0] + q[1][i] * n[1];
+            q[0][i] -= along * n[0];
+            q[1][i] -= along * n[1];
+        }
+        self.acc_before = None;
+    }
+
     /// Solves the step of length `tau` with the foot at `foot`, the tip's condition `tip` and the
     /// moment `moment` on the support; the state is left as it is.
     pub fn trial(
@@ -782,8 +870,14 @@ impl<'r> Rothe<'r> {
             moment,
             foot,
             tip,
+            track: &self.track,
             table: &self.friction_table,
-            tip_then: [self.pos[0][ng], self.vel[0][ng]],
+            tip_then: [
+                self.pos[0][ng],
+                self.vel[0][ng],
+                self.pos[1][ng],
+                self.vel[1][ng],
+            ],
             two_tau: 2.0 / tau,
         };
         let mut guess = self.start();
@@ -976,6 +1070,13 @@ impl<'r> Rothe<'r> {
         self.stats.newton_iterations = probe.stats.newton_iterations;
         self.stats.max_nodes = probe.stats.max_nodes;
         Ok(())
+    }
+
+    /// Replaces the tip's force a [`Rothe::restart`] set (no effect without one).
+    pub fn set_restart_tip_force(&mut self, g: [f64; 2]) {
+        if let Some(f) = self.after.as_mut() {
+            f[1] = g;
+        }
     }
 
     /// Whether a [`Rothe::restart`] set the end forces since the last step was taken.
