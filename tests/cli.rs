@@ -946,7 +946,8 @@ fn modes_of_the_uniform_rod() {
 
 /// `vibrissa dynamics drag`: one row per time step from the pressed start (N = 2.8266222292,
 /// the scan's f0, docs/reference.md; the tip stuck where it was pressed), the foot at d_max at
-/// the end; `--json` the library's result; a bad value or a tilted surface is one line, exit 2.
+/// the end; `--json` the library's result; a bad value or a round tip is one line, exit 2
+/// (surfaces: `dynamics_drag_over_a_corrugation`).
 #[test]
 fn dynamics_drag_rows() {
     let args = [
@@ -975,8 +976,8 @@ fn dynamics_drag_rows() {
     assert_eq!(v["stop"]["reason"], "d_max");
     let e = bad(&["dynamics", "drag", "--speed", "-1"], 2);
     assert!(e.contains("speed"), "{e}");
-    let e = bad(&["dynamics", "drag", "--surface-angle", "0.1"], 2);
-    assert!(e.contains("surface angle"), "{e}");
+    let e = bad(&["dynamics", "drag", "--tip-radius", "0.01"], 2);
+    assert!(e.contains("tip radius"), "{e}");
 }
 
 /// `vibrissa dynamics drag --foot-table FILE --whisk A,F`: the column `theta` after `d` with the

@@ -11,8 +11,10 @@ Usage: python3 benches/grids/dynamics.py [--bin target/release/vibrissa] [--jobs
 
 The grid: dt {0.1, 0.05, 0.02, 0.01} x speed {0.01, 0.05, 0.2} x scenes {the paper's rod;
 taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short and the long
-rat presets; the paper's rod with internal damping 0.01; the paper's rod with --flight} = 72
-drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
+rat presets; the paper's rod with internal damping 0.01; the paper's rod with --flight; the
+paper's rod on a surface inclined by 0.1, over a corrugation 0.003 sin(2 pi x/0.1) and over one
+0.02 sin(2 pi x/0.2) (where the rod's end lies down); the short rat preset over the first
+corrugation} = 120 drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
 mu_k 0.3, ramp 2, grid 200, tol 1e-10), each with `--json`. A drag is killed after --timeout
 seconds of wall time (class "slow"). cpu_s is the drag's user + system CPU time (os.wait4), the
 only column that differs between runs. Checked on every row that ends: no event with a normal
@@ -32,12 +34,19 @@ SCENES = [
     ("rat_long", ["--scene", "data/scenes/rat_mystacial_long.toml"]),
     ("paper_damped0.01", ["--internal-damping", "0.01"]),
     ("paper_flight", ["--flight"]),
+    ("inclined0.1", ["--surface-angle", "0.1"]),
+    ("corrugation0.003_0.1", ["--corrugation-amplitude", "0.003",
+                              "--corrugation-wavelength", "0.1"]),
+    ("corrugation0.02_0.2", ["--corrugation-amplitude", "0.02", "--corrugation-wavelength", "0.2"]),
+    ("rat_short_corrugation0.003_0.1", ["--scene", "data/scenes/rat_mystacial_short.toml",
+                                        "--corrugation-amplitude", "0.003",
+                                        "--corrugation-wavelength", "0.1"]),
 ]
 COMMON = ["--d-max", "0.12", "--json"]
 COLUMNS = ["dt", "speed", "scene", "class", "stop_reason", "slips", "events", "bad_events",
            "d_end", "cpu_s", "exit", "detail"]
-CLASSES = ["d_max", "lift-off", "touchdown", "unresolved stick (named)", "max_events",
-           "refused", "no start", "error: other", "panic", "slow"]
+CLASSES = ["d_max", "lift-off", "touchdown", "side contact", "unresolved stick (named)",
+           "max_events", "refused", "no start", "error: other", "panic", "slow"]
 
 
 def run(binary, timeout, case):
@@ -63,7 +72,7 @@ def run(binary, timeout, case):
     bad = sum(1 for e in ev if not (e["normal"] >= 0))
     reason = r["stop"]["reason"]
     cls = {"d_max": "d_max", "lift_off": "lift-off", "touchdown": "touchdown",
-           "unresolved_stick": "unresolved stick (named)",
+           "side_contact": "side contact", "unresolved_stick": "unresolved stick (named)",
            "max_events": "max_events"}.get(reason, "error: other")
     d_end = r["samples"][-1]["d"] if r["samples"] else 0.0
     row.update({"class": cls, "stop_reason": reason,

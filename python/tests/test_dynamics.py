@@ -105,6 +105,10 @@ def test_dynamics_refuse_what_the_program_refuses():
 
 # the program's flags that are not options of the computation, or are named otherwise here
 NOT_OPTIONS = {"help", "json", "spectrum", "eta", "scene"}
+# the drag's texture flags set the surface (Python: ``Surface(profile=...)``), not an option
+NOT_OPTIONS |= {"corrugation-amplitude", "corrugation-wavelength", "corrugation-phase",
+                "grating-period", "grating-depth", "grating-flank-angle", "grating-ridge-radius",
+                "grating-offset", "surface-profile", "profile-tolerance"}
 RENAMED = {"release-fx": "release_force", "release-fy": "release_force"}
 
 
