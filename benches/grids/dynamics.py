@@ -46,7 +46,8 @@ COMMON = ["--d-max", "0.12", "--json"]
 COLUMNS = ["dt", "speed", "scene", "class", "stop_reason", "slips", "events", "bad_events",
            "d_end", "cpu_s", "exit", "detail"]
 CLASSES = ["d_max", "lift-off", "touchdown", "side contact", "unresolved stick (named)",
-           "max_events", "refused", "no start", "error: other", "panic", "slow"]
+           "unresolved step (named)", "max_events", "refused", "no start", "error: other",
+           "panic", "slow"]
 
 
 def run(binary, timeout, case):
@@ -73,6 +74,7 @@ def run(binary, timeout, case):
     reason = r["stop"]["reason"]
     cls = {"d_max": "d_max", "lift_off": "lift-off", "touchdown": "touchdown",
            "side_contact": "side contact", "unresolved_stick": "unresolved stick (named)",
+           "unresolved_step": "unresolved step (named)",
            "max_events": "max_events"}.get(reason, "error: other")
     d_end = r["samples"][-1]["d"] if r["samples"] else 0.0
     row.update({"class": cls, "stop_reason": reason,

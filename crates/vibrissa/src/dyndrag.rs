@@ -641,6 +641,22 @@ pub enum DynDragStop {
         /// The tangential force the stuck tip needs.
         tangential: f64,
     },
+    /// The time step does not resolve the stuck rod at time `t`, displacement `d`: within the
+    /// shortest step the stuck tip's force would jump from `(N, T) = before` to (`normal`,
+    /// `tangential`), where the rod's changes continuously (the time rule's alternating mode,
+    /// grown during the stuck phase, in the state's velocities). A shorter `dt` resolves it.
+    UnresolvedStep {
+        /// When.
+        t: f64,
+        /// Where.
+        d: f64,
+        /// `(N, T)` at the step's start.
+        before: [f64; 2],
+        /// The normal force within the shortest step.
+        normal: f64,
+        /// The tangential force within the shortest step.
+        tangential: f64,
+    },
     /// The flying tip touched the surface again at displacement `d` (with
     /// `DynDragOptions::flight`).
     Touchdown {
@@ -680,6 +696,20 @@ impl fmt::Display for DynDragStop {
                 "the time step does not resolve the stick at t = {t}, d = {d}: right after it \
                  the stuck tip needs N = {normal}, T = {tangential} (a pull, or beyond mu_s N), \
                  which the rod cannot need so soon after a stick (try a shorter dt)"
+            ),
+            DynDragStop::UnresolvedStep {
+                t,
+                d,
+                before,
+                normal,
+                tangential,
+            } => write!(
+                f,
+                "the time step does not resolve the stuck rod at t = {t}, d = {d}: within the \
+                 shortest step the stuck tip's force would jump from N = {}, T = {} to \
+                 N = {normal}, T = {tangential}, where the rod's changes continuously (the time \
+                 rule's alternating mode, grown while the tip was stuck; try a shorter dt)",
+                before[0], before[1]
             ),
             DynDragStop::Touchdown { d } => write!(f, "touchdown at d = {d}"),
             DynDragStop::SideContact { t, d, x, .. } if self.at_end() => write!(
@@ -1347,6 +1377,34 @@ impl<'r> Drive<'r, '_> {
         }
     }
 
+    /// The stop where a stuck tip's event lands within the shortest step and its held force
+    /// there is far from the one the step starts with (by more than a tenth of it): a force
+    /// that changes continuously moves by `Ġ·τ` in such a step. Seen over a corrugation at
+    /// dt 0.02 (v 0.01): after two stuck phases the trials from one state needed 6 to 55
+    /// Newton iterations and their held force grew like `1/τ` as the step shortened (from
+    /// |G| = 4.3 to 14 at τ = 2e-5), so the search put a slip there at T/N = 1.52, and a later
+    /// one at N = −15.7, a pull. The state's velocities there do not fit the stuck tip's
+    /// condition to the step's accuracy (the time rule's mode grown in the stuck phase); a
+    /// shorter `dt` resolves it (dt 0.01 reaches d_max with 11 slips).
+    fn jumped(&self, tr: &Trial) -> Option<DynDragStop> {
+        let before = self.held_now.unwrap_or_else(|| self.rothe.force(1));
+        let after = self.held_force(tr);
+        let jump = (after[0] - before[0]).hypot(after[1] - before[1]);
+        if jump <= 0.1 * before[0].hypot(before[1]) {
+            return None;
+        }
+        let x = self.rothe.sol.right()[0];
+        let (n0, t0) = self.forces(before, x);
+        let (normal, tangential) = self.forces(after, x);
+        Some(DynDragStop::UnresolvedStep {
+            t: self.t,
+            d: self.d,
+            before: [n0, t0],
+            normal,
+            tangential,
+        })
+    }
+
     /// The rod's accelerations and end forces made consistent with the tip's new condition
     /// after a slip or a stick (`Rothe::restart`, two steps of [`restart_step`] on a copy).
     /// Where those steps are not solved the drag goes on from the history as it is (counted:
@@ -1517,6 +1575,11 @@ impl<'r> Drive<'r, '_> {
                 // step: its force has left the friction cone at once, which the rod's does
                 // not (see `unresolved`)
                 return Ok(self.unresolved(self.held_force(&tr)));
+            }
+            if self.state == ContactState::Stuck && at <= shortest {
+                if let Some(stop) = self.jumped(&tr) {
+                    return Ok(stop);
+                }
             }
             self.take(tr);
             self.fresh_slip = false;

@@ -212,3 +212,35 @@ fn refuses_a_friction_profile_or_a_side_at_the_start() {
     assert!(matches!(e, VibrissaError::NoStart { .. }), "{e}");
     assert!(e.to_string().contains("side+side"), "{e}");
 }
+
+/// A stuck rod the time step does not resolve ends the drag by name: over the corrugation
+/// (amplitude 0.003, wavelength 0.1) at dt 0.02, v 0.01, the stuck tip's force would jump within
+/// the shortest step (docs/model.md, "A stuck rod the time step does not resolve"); no event
+/// before the stop has a pulling normal force or leaves the friction cone.
+#[test]
+fn a_stuck_rod_the_step_cannot_resolve_is_a_named_stop() {
+    let surface = corrugated(0.003, 0.1);
+    let r = drag(&Rod::uniform(), &surface, &light(0.01, 0.02, 0.12)).unwrap();
+    eprintln!("{r}");
+    for e in &r.events {
+        assert!(e.normal > 0.0, "{e:?}");
+        if e.kind == DragEventKind::Slip {
+            assert!(
+                (e.tangential.abs() - 0.5 * e.normal).abs() < 1e-6 * e.normal,
+                "{e:?}"
+            );
+        }
+    }
+    let DynDragStop::UnresolvedStep {
+        before,
+        normal,
+        tangential,
+        ..
+    } = r.stop
+    else {
+        panic!("{}", r.stop);
+    };
+    let jump = (normal - before[0]).hypot(tangential - before[1]);
+    assert!(jump > 0.1 * before[0].hypot(before[1]), "{}", r.stop);
+    assert!(r.stop.to_string().contains("shorter dt"), "{}", r.stop);
+}
