@@ -314,6 +314,11 @@ pub struct DynamicsFreeArgs {
     /// (every mode decays at gamma_e/2). The energy it takes is in --json (`external_damping`).
     #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
     pub external_damping: f64,
+    /// Rotary inertia: the radius of gyration of the foot's section over the length g0, in
+    /// [0, 0.1] (as modes --rotary-inertia): the slopes carry the inertia g0^2/b per length and
+    /// the kinetic energy its share. [default: 0, Euler-Bernoulli]
+    #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
+    pub rotary_inertia: f64,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub spectrum: Option<PathBuf>,
@@ -369,6 +374,11 @@ pub struct DynamicsDragArgs {
     /// (every mode decays at gamma_e/2). The energy it takes is in --json (`external_damping`).
     #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
     pub external_damping: f64,
+    /// Rotary inertia: the radius of gyration of the foot's section over the length g0, in
+    /// [0, 0.1] (as modes --rotary-inertia): the slopes carry the inertia g0^2/b per length and
+    /// the kinetic energy its share. [default: 0, Euler-Bernoulli]
+    #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
+    pub rotary_inertia: f64,
     /// Kinetic friction depending on the slip speed: points V:MU,V:MU,... (speeds >= 0
     /// increasing, each MU in [0, mu_s)), piecewise linear, constant beyond the ends; replaces
     /// --mu-k.

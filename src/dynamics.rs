@@ -84,6 +84,7 @@ pub fn options(a: &DynamicsDragArgs) -> Res<DynDragOptions> {
         foot_damping: a.foot_damping,
         internal_damping: a.internal_damping,
         external_damping: a.external_damping,
+        rotary_inertia: a.rotary_inertia,
         mu_k_table: a
             .mu_k_table
             .as_ref()
@@ -105,6 +106,7 @@ pub fn free_options(a: &DynamicsFreeArgs) -> DynamicsOptions {
         foot_damping: a.foot_damping,
         internal_damping: a.internal_damping,
         external_damping: a.external_damping,
+        rotary_inertia: a.rotary_inertia,
         foot_moment: a.foot_moment,
         release_force: [a.release_fx, a.release_fy],
         ..DynamicsOptions::default()

@@ -1060,7 +1060,7 @@ fn time_unit(rod: &Rod) -> Option<f64> {
 /// dict with the library's `DynamicsResult` (`samples`, `stats`; what the program's `--json`
 /// prints) plus `units` and `time_unit_s`. Ctrl-C stops waiting for it.
 #[pyfunction]
-#[pyo3(signature = (rod, *, release_force=(DynamicsOptions::default().release_force[0], DynamicsOptions::default().release_force[1]), foot_moment=DynamicsOptions::default().foot_moment, dt=DynamicsOptions::default().dt, t_end=DynamicsOptions::default().t_end, time_tol=DynamicsOptions::default().time_tol, foot_damping=DynamicsOptions::default().foot_damping, internal_damping=DynamicsOptions::default().internal_damping, external_damping=DynamicsOptions::default().external_damping, grid=DynamicsOptions::default().grid, tol=DynamicsOptions::default().tol))]
+#[pyo3(signature = (rod, *, release_force=(DynamicsOptions::default().release_force[0], DynamicsOptions::default().release_force[1]), foot_moment=DynamicsOptions::default().foot_moment, dt=DynamicsOptions::default().dt, t_end=DynamicsOptions::default().t_end, time_tol=DynamicsOptions::default().time_tol, foot_damping=DynamicsOptions::default().foot_damping, internal_damping=DynamicsOptions::default().internal_damping, external_damping=DynamicsOptions::default().external_damping, rotary_inertia=DynamicsOptions::default().rotary_inertia, grid=DynamicsOptions::default().grid, tol=DynamicsOptions::default().tol))]
 #[allow(clippy::too_many_arguments)]
 fn dynamics_free<'py>(
     py: Python<'py>,
@@ -1073,6 +1073,7 @@ fn dynamics_free<'py>(
     foot_damping: f64,
     internal_damping: f64,
     external_damping: f64,
+    rotary_inertia: f64,
     grid: usize,
     tol: f64,
 ) -> PyResult<Bound<'py, PyAny>> {
@@ -1083,6 +1084,7 @@ fn dynamics_free<'py>(
         foot_damping,
         internal_damping,
         external_damping,
+        rotary_inertia,
         foot_moment,
         release_force: [release_force.0, release_force.1],
         grid,
@@ -1111,7 +1113,7 @@ fn dynamics_free<'py>(
 /// `stats`; what the program's `--json` prints) plus `units` and `time_unit_s`. Ctrl-C stops
 /// waiting for it.
 #[pyfunction]
-#[pyo3(signature = (rod, surface, *, speed=DynDragOptions::default().speed, ramp=DynDragOptions::default().ramp, d_max=DynDragOptions::default().d_max, mu_s=DynDragOptions::default().mu_s, mu_k=DynDragOptions::default().mu_k, mu_k_table=table_pairs(&DynDragOptions::default().mu_k_table), dt=DynDragOptions::default().dt, time_tol=DynDragOptions::default().time_tol, foot_damping=DynDragOptions::default().foot_damping, internal_damping=DynDragOptions::default().internal_damping, external_damping=DynDragOptions::default().external_damping, flight=DynDragOptions::default().flight, grid=DynDragOptions::default().grid, tol=DynDragOptions::default().tol, event_tol=DynDragOptions::default().event_tol, max_events=DynDragOptions::default().max_events, foot_table=vec![], whisk=None))]
+#[pyo3(signature = (rod, surface, *, speed=DynDragOptions::default().speed, ramp=DynDragOptions::default().ramp, d_max=DynDragOptions::default().d_max, mu_s=DynDragOptions::default().mu_s, mu_k=DynDragOptions::default().mu_k, mu_k_table=table_pairs(&DynDragOptions::default().mu_k_table), dt=DynDragOptions::default().dt, time_tol=DynDragOptions::default().time_tol, foot_damping=DynDragOptions::default().foot_damping, internal_damping=DynDragOptions::default().internal_damping, external_damping=DynDragOptions::default().external_damping, rotary_inertia=DynDragOptions::default().rotary_inertia, flight=DynDragOptions::default().flight, grid=DynDragOptions::default().grid, tol=DynDragOptions::default().tol, event_tol=DynDragOptions::default().event_tol, max_events=DynDragOptions::default().max_events, foot_table=vec![], whisk=None))]
 #[allow(clippy::too_many_arguments)]
 fn dynamics_drag<'py>(
     py: Python<'py>,
@@ -1128,6 +1130,7 @@ fn dynamics_drag<'py>(
     foot_damping: f64,
     internal_damping: f64,
     external_damping: f64,
+    rotary_inertia: f64,
     flight: bool,
     grid: usize,
     tol: f64,
@@ -1163,6 +1166,7 @@ fn dynamics_drag<'py>(
         foot_damping,
         internal_damping,
         external_damping,
+        rotary_inertia,
         flight,
         grid,
         tol,

@@ -39,6 +39,27 @@ def test_dynamics_free_equals_the_program(program):
     assert py["units"] is None and py["time_unit_s"] is None
 
 
+def test_rotary_inertia_equals_the_program(program):
+    # the slopes' inertia in both dynamics commands; it changes the motion
+    args = ["dynamics", "free", "--release-fx", "1e-3", "--dt", "0.05", "--t-end", "0.5",
+            "--rotary-inertia", "0.05"]
+    want = json.loads(program(*args, "--json"))
+    py = vibrissa.dynamics_free(vibrissa.Rod(), release_force=(1e-3, 0.0), dt=0.05, t_end=0.5,
+                                rotary_inertia=0.05)
+    check_samples(py, want["samples"], " ".join(args))
+    plain = vibrissa.dynamics_free(vibrissa.Rod(), release_force=(1e-3, 0.0), dt=0.05,
+                                   t_end=0.5)
+    assert py["samples"]["tip_x"][-1] != plain["samples"]["tip_x"][-1]
+    args = ["dynamics", "drag", "--speed", "0.1", "--d-max", "0.003", "--dt", "0.05",
+            "--rotary-inertia", "0.05"]
+    want = json.loads(program(*args, "--json"))
+    py = vibrissa.dynamics_drag(vibrissa.Rod(), speed=0.1, d_max=0.003, dt=0.05,
+                                rotary_inertia=0.05)
+    check_samples(py, want["samples"], " ".join(args))
+    with pytest.raises(vibrissa.InputError, match="rotary_inertia"):
+        vibrissa.dynamics_free(vibrissa.Rod(), rotary_inertia=0.2)
+
+
 def test_dynamics_free_with_a_physical_rod_and_a_foot_moment(program, tmp_path):
     # the rat's long whisker (tapered, precurved, physical units) on a compliant, damped foot
     text = (SCENES / "rat_mystacial_long.toml").read_text()

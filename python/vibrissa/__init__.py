@@ -759,6 +759,7 @@ def dynamics_free(
     foot_damping: float = _FREE["foot_damping"],
     internal_damping: float = _FREE["internal_damping"],
     external_damping: float = _FREE["external_damping"],
+    rotary_inertia: float = _FREE["rotary_inertia"],
     grid: int = _FREE["grid"],
     tol: float = _FREE["tol"],
 ) -> Dict[str, Any]:
@@ -774,8 +775,11 @@ def dynamics_free(
     fixed steps of ``dt``. The dampers (each >= 0, default 0): ``foot_damping`` the support's
     damper, ``internal_damping`` the rod's Kelvin-Voigt damping gamma_i (every mode of the
     linearized rod decays at gamma_i omega^2/2), ``external_damping`` a viscous force
-    -gamma_e mu(s) r_t (every mode decays at gamma_e/2). ``grid`` (even, intervals of the
-    history grid in s) and ``tol`` (each step's collocation tolerance). The defaults and valid
+    -gamma_e mu(s) r_t (every mode decays at gamma_e/2). ``rotary_inertia``: the radius of
+    gyration g0 of the foot's section over the length, in [0, 0.1] (as :func:`modes`'s; the
+    slopes carry the inertia g0^2/b per length, the kinetic energy its share; default 0).
+    ``grid`` (even, intervals of the history grid in s) and ``tol`` (each step's collocation
+    tolerance). The defaults and valid
     ranges are the library's (a value out of range raises ``InputError`` naming it).
 
     A dict: ``samples`` (columns ``t``, ``tip_x``, ``tip_y``, ``tip_vx``, ``tip_vy``,
@@ -795,6 +799,7 @@ def dynamics_free(
         foot_damping=foot_damping,
         internal_damping=internal_damping,
         external_damping=external_damping,
+        rotary_inertia=rotary_inertia,
         grid=grid,
         tol=tol,
     )
@@ -816,6 +821,7 @@ def dynamics_drag(
     foot_damping: float = _DRAG["foot_damping"],
     internal_damping: float = _DRAG["internal_damping"],
     external_damping: float = _DRAG["external_damping"],
+    rotary_inertia: float = _DRAG["rotary_inertia"],
     flight: bool = _DRAG["flight"],
     grid: int = _DRAG["grid"],
     tol: float = _DRAG["tol"],
@@ -846,7 +852,7 @@ def dynamics_drag(
     ends; replaces ``mu_k`` (the program's ``--mu-k-table V:MU,...``). ``time_tol``: adaptive
     time steps as in :func:`dynamics_free` (``dt`` the first step; events still shorten a step
     to their place). The dampers ``foot_damping``, ``internal_damping``, ``external_damping``
-    as in :func:`dynamics_free`. ``flight``: after a lift-off the tip flies until it touches
+    and ``rotary_inertia`` as in :func:`dynamics_free`. ``flight``: after a lift-off the tip flies until it touches
     the surface again (event ``touchdown``, a plastic impact), where the drag ends; without it
     a lift-off ends the drag. ``grid``, ``tol`` as in :func:`dynamics_free`; ``event_tol``
     the tolerance in time of the events' places, ``max_events`` the most events before the
@@ -888,6 +894,7 @@ def dynamics_drag(
         foot_damping=foot_damping,
         internal_damping=internal_damping,
         external_damping=external_damping,
+        rotary_inertia=rotary_inertia,
         flight=flight,
         grid=grid,
         tol=tol,

@@ -3,10 +3,11 @@
 //! Lobatto collocation (mesh adapted to its tolerance at every step).
 //!
 //! The rod's equations of docs/model.md ("The rod in time") with the translational inertia
-//! `μ(s)` of module `inertia` (no rotary inertia here), at the new time level:
+//! `μ(s)` of module `inertia` and, as an option (`rotary_inertia` = `g0`, default 0), the
+//! rotary inertia `j = g0²/b`, at the new time level:
 //!
 //! ```text
-//!     x' = cos φ,  y' = sin φ,  φ' = κ0 + b m,  m' = Gx sin φ − Gy cos φ,  G' = μ r_tt
+//!     x' = cos φ,  y' = sin φ,  φ' = κ0 + b m,  m' = Gx sin φ − Gy cos φ + j φ_tt,  G' = μ r_tt
 //!     x(0) = y(0) = 0,  θ = φ(0) − π/2 = c_s (m(0) + M − c θ_t),  m(1) = 0,  G(1) = 0
 //! ```
 //!
@@ -74,6 +75,12 @@ pub struct DynamicsOptions {
     /// External viscous damping `γ_e`, in `[0, 1e6]`: a distributed force `−γ_e μ(s) r_t`
     /// (every mode decays at `γ_e/2`). Default 0.
     pub external_damping: f64,
+    /// Rotary inertia: the radius of gyration of the foot's cross-section over the length
+    /// `g0 = r(0)/(2L)`, in `[0, 0.1]` (`limits::ROTARY_INERTIA`, as `ModeOptions`'): the rod's
+    /// slopes carry the inertia `j = g0²/b` per length (a cone's `μ g²`, module `inertia`), the
+    /// moment balance `m' = G × e + j φ_tt`, and the kinetic energy `½∫ j φ_t²` besides
+    /// `½∫ μ |r_t|²`. Default 0 (none: the Euler–Bernoulli rod).
+    pub rotary_inertia: f64,
     /// A moment `M` applied to the foot's support from `t = 0` on (a step; the follicle's
     /// muscles): the support carries `m(0) + M = kθ + cθ_t`. Finite. Default 0 (no effect
     /// on a clamp).
@@ -109,6 +116,7 @@ impl Default for DynamicsOptions {
             foot_damping: 0.0,
             internal_damping: 0.0,
             external_damping: 0.0,
+            rotary_inertia: 0.0,
             foot_moment: 0.0,
             release_force: [0.0, 0.0],
             grid: 200,
@@ -134,6 +142,7 @@ impl DynamicsOptions {
             return bad("foot_damping", self.foot_damping, "[0, inf)");
         }
         check_damping(self.internal_damping, self.external_damping)?;
+        crate::limits::ROTARY_INERTIA.check("rotary_inertia", self.rotary_inertia)?;
         for (i, f) in self.release_force.iter().enumerate() {
             if !f.is_finite() {
                 return bad(["release_force.x", "release_force.y"][i], *f, "finite");
@@ -193,6 +202,7 @@ pub fn free(
         damping: opts.foot_damping,
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
+        rotary_inertia: opts.rotary_inertia,
         // adaptive steps may be short: the history and the forces' scale of `drag`
         short_steps: opts.time_tol.is_some(),
         predict: true,
@@ -336,6 +346,95 @@ mod tests {
             "{} {want}",
             last.tip_x
         );
+    }
+
+    /// The first mode of the uniform clamped–free Rayleigh beam (Euler–Bernoulli with rotary
+    /// inertia `j = g0²`): `w'''' + jλ w'' − λ w = 0`, `w(0) = w'(0) = 0`, `w''(1) = 0`,
+    /// `w'''(1) + jλ w'(1) = 0` (the linearized rod of module `modes` about the straight rod),
+    /// `w = cosh as − cos bs + C (sinh as − (a/b) sin bs)` with `a², −b²` the roots of
+    /// `r⁴ + jλ r² − λ = 0`: its `λ = ω₁²` by bisection on the free end's shear condition
+    /// (from below the Euler–Bernoulli `β₁⁴`), and the shape as a velocity field, `amp` at the
+    /// tip.
+    fn rayleigh_first_mode(g0: f64, amp: f64) -> (f64, impl Fn(f64) -> [f64; 2]) {
+        let j = g0 * g0;
+        let parts = move |lam: f64| {
+            let root = (j * j * lam * lam + 4.0 * lam).sqrt();
+            let (a, b) = (
+                (0.5 * (root - j * lam)).sqrt(),
+                (0.5 * (root + j * lam)).sqrt(),
+            );
+            let c = -(a * a * a.cosh() + b * b * b.cos()) / (a * a * a.sinh() + a * b * b.sin());
+            (a, b, c)
+        };
+        let shear = |lam: f64| {
+            let (a, b, c) = parts(lam);
+            let d1 = a * a.sinh() + b * b.sin() + c * (a * a.cosh() - a * b.cos());
+            let d3 = a.powi(3) * a.sinh() - b.powi(3) * b.sin()
+                + c * (a.powi(3) * a.cosh() + a * b * b * b.cos());
+            d3 + j * lam * d1
+        };
+        let (mut lo, mut hi) = (0.8 * CLAMPED_FREE_BETA1.powi(4), CLAMPED_FREE_BETA1.powi(4));
+        assert!(shear(lo) * shear(hi) < 0.0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if shear(lo) * shear(mid) <= 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let lam = 0.5 * (lo + hi);
+        let (a, b, c) = parts(lam);
+        let w = move |s: f64| {
+            (a * s).cosh() - (b * s).cos() + c * ((a * s).sinh() - a / b * (b * s).sin())
+        };
+        let w1 = w(1.0);
+        (lam.sqrt(), move |s: f64| [amp * w(s) / w1, 0.0])
+    }
+
+    /// With rotary inertia (g0 = 0.05) a small velocity in the first mode's shape of the
+    /// Rayleigh beam (closed form above: ω₁ = 3.49574816, 0.58 % below Euler–Bernoulli's
+    /// 3.51601527; `vibrissa modes --rotary-inertia 0.05` gives the same to 7e-13) oscillates at
+    /// that frequency, and the energy with the rotation's share `½∫ j φ_t²` is kept. Measured
+    /// (50 steps per period, grid 200, tol 1e-10, 2026-11-29): frequency off by 1.4e-9, energy
+    /// drift 3.2e-9 over the period; the same start without rotary inertia oscillates 6.4e-3
+    /// off. Bounds as the Euler–Bernoulli test's: frequency 1e-8, energy 1e-7.
+    #[test]
+    fn rotary_inertia_has_the_rayleigh_beam_s_frequency() {
+        let g0 = 0.05;
+        let (w1, v0) = rayleigh_first_mode(g0, 1e-4);
+        let period = 2.0 * std::f64::consts::PI / w1;
+        let o = DynamicsOptions {
+            dt: period / 50.0,
+            t_end: period,
+            rotary_inertia: g0,
+            ..DynamicsOptions::default()
+        };
+        let r = free(&Rod::uniform(), &v0, &o).unwrap();
+        let w = frequency_of(&r, o.dt, 12);
+        let e0 = r.samples[0].kinetic;
+        let worst = r.samples.iter().fold(0.0f64, |w, p| {
+            w.max(((p.kinetic + p.elastic) / e0 - 1.0).abs())
+        });
+        eprintln!(
+            "rayleigh omega {w1}, euler-bernoulli {}, omega error {:e}, energy drift {worst:e}",
+            CLAMPED_FREE_BETA1.powi(2),
+            w / w1 - 1.0
+        );
+        let plain = free(
+            &Rod::uniform(),
+            &v0,
+            &DynamicsOptions {
+                rotary_inertia: 0.0,
+                ..o.clone()
+            },
+        )
+        .unwrap();
+        let off = frequency_of(&plain, o.dt, 12) / w1 - 1.0;
+        eprintln!("without rotary inertia: omega error {off:e}");
+        assert!((w / w1 - 1.0).abs() < 1e-8, "omega {w} against {w1}");
+        assert!(worst < 1e-7, "{worst:e}");
+        assert!(off > 1e-3, "{off:e}");
     }
 
     /// The viscoelastic foot (spring `k = 1/c_s = 2`, damper `c = 0.3`): the energy the rod

@@ -107,6 +107,12 @@ pub struct DynDragOptions {
     /// External viscous damping `γ_e`, in `[0, 1e6]`: a distributed force `−γ_e μ(s) r_t`
     /// (every mode decays at `γ_e/2`). Default 0.
     pub external_damping: f64,
+    /// Rotary inertia: the radius of gyration of the foot's cross-section over the length
+    /// `g0 = r(0)/(2L)`, in `[0, 0.1]` (`limits::ROTARY_INERTIA`, as `ModeOptions`'): the rod's
+    /// slopes carry the inertia `j = g0²/b` per length (a cone's `μ g²`, module `inertia`), the
+    /// moment balance `m' = G × e + j φ_tt`, and the kinetic energy `½∫ j φ_t²` besides
+    /// `½∫ μ |r_t|²`. Default 0 (none: the Euler–Bernoulli rod).
+    pub rotary_inertia: f64,
     /// Intervals of the history grid in `s`, even, in `[20, 100000]`. Default 200.
     pub grid: usize,
     /// Tolerance of each step's collocation, in `[1e-13, 1e-4]`. Default 1e-10.
@@ -187,6 +193,7 @@ impl Default for DynDragOptions {
             foot_damping: 0.0,
             internal_damping: 0.0,
             external_damping: 0.0,
+            rotary_inertia: 0.0,
             grid: 200,
             tol: 1e-10,
             scheme: bvp::Scheme::Lobatto6,
@@ -239,6 +246,7 @@ impl DynDragOptions {
             return bad("foot_damping", self.foot_damping, "[0, inf)");
         }
         check_damping(self.internal_damping, self.external_damping)?;
+        crate::limits::ROTARY_INERTIA.check("rotary_inertia", self.rotary_inertia)?;
         if !(20..=100_000).contains(&self.grid) || self.grid % 2 == 1 {
             return bad("grid", self.grid as f64, "[20, 100000], even");
         }
@@ -1624,6 +1632,7 @@ pub fn drag(
         damping: opts.foot_damping,
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
+        rotary_inertia: opts.rotary_inertia,
         short_steps: true,
         // the last solution as Newton's start, at fixed and adaptive steps (the extrapolated
         // start of `free`, tried with adaptive steps: fewer Newton iterations, no CPU time

@@ -42,7 +42,7 @@ pub struct DynSample {
     pub gx_base: f64,
     /// Internal force at the foot, y.
     pub gy_base: f64,
-    /// Kinetic energy `½∫μ|r_t|²`.
+    /// Kinetic energy `½∫μ|r_t|²` (with rotary inertia plus `½∫ j φ_t²`).
     pub kinetic: f64,
     /// Elastic energy `½∫b m² + θ²/(2 c_s)` (with internal damping `½∫(κ − κ0)²/b + θ²/(2 c_s)`).
     pub elastic: f64,
@@ -214,6 +214,10 @@ struct Step<'a> {
     /// Kelvin–Voigt damping: `1 + 2γ_i/Δt` and `q = γ_i (2/Δt κⁿ + κ_tⁿ)` on the grid, so that
     /// `φ' = (κ0 + b m + q)/(1 + 2γ_i/Δt)` (`None`: no internal damping, `φ' = κ0 + b m`).
     kv: Option<(f64, &'a [f64])>,
+    /// Rotary inertia: `g0²·4/Δt²` and `φ̂` (or `φ̂ − φⁿ` with `base`) on the grid, so that
+    /// `m' = G × e + j φ_tt` with `j = g0²/b`, `φ_tt = 4/Δt² (φ − φ̂)` (`None`: no rotary
+    /// inertia).
+    rot: Option<(f64, &'a [f64])>,
     /// The positions `rⁿ` as the last step's solution (then `hat_*` hold `r̂ − rⁿ`), or `None`
     /// (`hat_*` hold `r̂`).
     base: Option<&'a Solution>,
@@ -281,6 +285,9 @@ impl Bvp for Step<'_> {
         if let Some(b) = self.base {
             b.eval(s, &mut r0);
         }
+        if let Some((jk, phi_hat)) = self.rot {
+            dz[3] += jk / self.profile.b(s) * (z[2] - r0[2] - lagrange(phi_hat, s));
+        }
         let k = self.k_acc / self.gs;
         dz[4] = mu * k * (z[0] - r0[0] - interp(self.hat_x, self.hat_xs, s));
         dz[5] = mu * k * (z[1] - r0[1] - interp(self.hat_y, self.hat_ys, s));
@@ -303,6 +310,9 @@ impl Bvp for Step<'_> {
             Some((c, _)) => self.profile.b(s) / c,
         };
         dfdz[18 + 2] = self.gs * (z[4] * cp + z[5] * sp);
+        if let Some((jk, _)) = self.rot {
+            dfdz[18 + 2] += jk / self.profile.b(s);
+        }
         dfdz[18 + 4] = self.gs * sp;
         dfdz[18 + 5] = -self.gs * cp;
         dfdz[24] = mk;
@@ -438,6 +448,9 @@ pub(crate) struct Settings {
     pub internal_damping: f64,
     /// External viscous damping `γ_e`: a distributed force `−γ_e μ r_t`.
     pub external_damping: f64,
+    /// The rotary inertia's radius of gyration at the foot `g0` (module `inertia`: the rotary
+    /// inertia per length `j = g0²/b`; 0: none).
+    pub rotary_inertia: f64,
     /// Steps of any length, short ones too (`true`, `dynamics::drag`, whose events shorten
     /// steps), or as `dynamics::free` (`false`). With `true`: (1) `r̂ = rⁿ + (Δt vⁿ + Δt²/4 aⁿ)`
     /// with `rⁿ` the last step's solution itself and only the bracket interpolated on the grid
@@ -484,10 +497,10 @@ pub(crate) struct Trial {
     gs: f64,
     /// The solution at the step's end.
     pub sol: Solution,
-    /// `r̂` of the step on the grid (x, y and their s-derivatives).
-    hat: [Vec<f64>; 4],
-    /// Positions (x, y, cos φ, sin φ) on the grid at the step's end.
-    next: [Vec<f64>; 4],
+    /// `r̂` of the step on the grid (x, y and their s-derivatives), and `φ̂`.
+    hat: [Vec<f64>; 5],
+    /// Positions (x, y, cos φ, sin φ) and `φ` on the grid at the step's end.
+    next: [Vec<f64>; 5],
     /// `m` on the grid at the step's end.
     m: Vec<f64>,
     /// `κ = φ'` on the grid at the step's end.
@@ -540,10 +553,12 @@ pub(crate) struct Rothe<'r> {
     pub sol: Solution,
     /// Per component (x, y): position and its s-derivative (`e = (cos φ, sin φ)`); velocity and
     /// acceleration likewise (the recursions are linear, so the derivatives follow the same
-    /// rule).
-    pos: [Vec<f64>; 4],
-    vel: [Vec<f64>; 4],
-    acc: [Vec<f64>; 4],
+    /// rule); and the slope `φ`, its rate and acceleration (rotary inertia).
+    pos: [Vec<f64>; 5],
+    vel: [Vec<f64>; 5],
+    acc: [Vec<f64>; 5],
+    /// `g0²` of [`Settings::rotary_inertia`].
+    g0sq: f64,
     /// The accelerations `(a_x, a_y)` on the grid before the last step and that step's length,
     /// while the history has not been changed since (the local error estimate,
     /// [`Rothe::local_error`]).
@@ -643,6 +658,7 @@ impl<'r> Rothe<'r> {
             k_acc: 0.0,
             gs: 1.0,
             kv: None,
+            rot: None,
             base: None,
             hat_x: &zeros,
             hat_y: &zeros,
@@ -682,9 +698,10 @@ impl<'r> Rothe<'r> {
             solver,
             theta: sol.left()[2] - FRAC_PI_2,
             sol,
-            pos: [zero(), zero(), zero(), zero()],
-            vel: [zero(), zero(), zero(), zero()],
-            acc: [zero(), zero(), zero(), zero()],
+            pos: [zero(), zero(), zero(), zero(), zero()],
+            vel: [zero(), zero(), zero(), zero(), zero()],
+            acc: [zero(), zero(), zero(), zero(), zero()],
+            g0sq: settings.rotary_inertia * settings.rotary_inertia,
             acc_before: None,
             m: zero(),
             kappa: zero(),
@@ -710,7 +727,7 @@ impl<'r> Rothe<'r> {
     }
 
     /// Positions (x, y, cos φ, sin φ) and `m` of `sol` on the grid.
-    fn sample_grid(&self, sol: &Solution, pos: &mut [Vec<f64>; 4], m: &mut [f64]) {
+    fn sample_grid(&self, sol: &Solution, pos: &mut [Vec<f64>; 5], m: &mut [f64]) {
         let mut out = [0.0; 6];
         for (i, &s) in self.grid.iter().enumerate() {
             sol.eval(s, &mut out);
@@ -719,6 +736,7 @@ impl<'r> Rothe<'r> {
             pos[1][i] = out[1];
             pos[2][i] = cp;
             pos[3][i] = sp;
+            pos[4][i] = out[2];
             m[i] = out[3];
         }
     }
@@ -746,11 +764,13 @@ impl<'r> Rothe<'r> {
             if !(v[0].is_finite() && v[1].is_finite()) {
                 return Err(VibrissaError::range("v0", v[0] + v[1], "finite"));
             }
+            // `φ_t = e⊥·(r_s)_t` (`r_s = e`)
+            self.vel[4][i] = -self.pos[3][i] * self.vel[2][i] + self.pos[2][i] * self.vel[3][i];
         }
         if self.ge > 0.0 {
             // the damping force's share of the start's acceleration, `a⁰ = −γ_e v0` (consistent
             // for the linearized rod at rest: no elastic force, so the rest of `a⁰` is zero)
-            for q in 0..4 {
+            for q in 0..5 {
                 for i in 0..=self.ng {
                     self.acc[q][i] = -self.ge * self.vel[q][i];
                 }
@@ -810,8 +830,8 @@ impl<'r> Rothe<'r> {
     ) -> Result<Trial, Box<BvpError>> {
         let ng = self.ng;
         let zero = || vec![0.0; ng + 1];
-        let mut hat = [zero(), zero(), zero(), zero()];
-        let mut bracket = [zero(), zero(), zero(), zero()];
+        let mut hat = [zero(), zero(), zero(), zero(), zero()];
+        let mut bracket = [zero(), zero(), zero(), zero(), zero()];
         for (q, (h, b)) in hat.iter_mut().zip(bracket.iter_mut()).enumerate() {
             for (i, (hi, bi)) in h.iter_mut().zip(b.iter_mut()).enumerate() {
                 *hi = self.pos[q][i] + tau * self.vel[q][i] + 0.25 * tau * tau * self.acc[q][i];
@@ -829,7 +849,8 @@ impl<'r> Rothe<'r> {
         // `r̂' = (4/Δt² r̂ + γ_e (2/Δt rⁿ + vⁿ))/k` (`r_t` by the trapezoidal rule)
         let k_step = if self.ge > 0.0 {
             let k = k_acc + 2.0 * self.ge / tau;
-            for (q, h) in interp_of.iter_mut().enumerate() {
+            // (the positions only: the damping force has no moment on the rotation)
+            for (q, h) in interp_of.iter_mut().enumerate().take(4) {
                 for (i, hi) in h.iter_mut().enumerate() {
                     let from = if self.short_steps {
                         self.ge * self.vel[q][i]
@@ -859,6 +880,7 @@ impl<'r> Rothe<'r> {
             k_acc: k_step,
             gs,
             kv: (self.gi > 0.0).then_some((kv_c, kv_q.as_slice())),
+            rot: (self.g0sq > 0.0).then_some((self.g0sq * k_acc, interp_of[4].as_slice())),
             base,
             hat_x: &interp_of[0],
             hat_y: &interp_of[1],
@@ -897,7 +919,7 @@ impl<'r> Rothe<'r> {
         } else {
             vec![]
         };
-        let mut next = [zero(), zero(), zero(), zero()];
+        let mut next = [zero(), zero(), zero(), zero(), zero()];
         let mut m = zero();
         self.sample_grid(&sol, &mut next, &mut m);
         let kappa = (0..=ng)
@@ -1057,7 +1079,7 @@ impl<'r> Rothe<'r> {
         probe.commit(t1);
         let t2 = probe.trial(delta, feet[1], tip, moment)?;
         let k = 4.0 / (delta * delta);
-        for q in 0..4 {
+        for q in 0..5 {
             for i in 0..=self.ng {
                 let a2 = k * (t2.next[q][i] - t2.hat[q][i]);
                 self.acc[q][i] = 0.5 * (probe.acc[q][i] + a2);
@@ -1159,8 +1181,12 @@ impl<'r> Rothe<'r> {
     /// The present state as a sample at time `t`.
     pub fn sample(&self, t: f64) -> DynSample {
         let (vel, mu, bv, m) = (&self.vel, &self.mu, &self.bvec, &self.m);
-        let kinetic =
+        let mut kinetic =
             0.5 * self.simpson(&|i| mu[i] * (vel[0][i] * vel[0][i] + vel[1][i] * vel[1][i]));
+        if self.g0sq > 0.0 {
+            // the rotation's, `½∫ j φ_t²`, `j = g0²/b`
+            kinetic += 0.5 * self.g0sq * self.simpson(&|i| vel[4][i] * vel[4][i] / bv[i]);
+        }
         let mut elastic = if self.gi > 0.0 {
             // `½∫ (κ − κ0)²/b`: the moment is no longer the elastic one alone
             let (k, k0) = (&self.kappa, &self.k0vec);
