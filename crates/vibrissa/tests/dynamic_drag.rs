@@ -399,27 +399,28 @@ fn a_falling_mu_k_lengthens_the_slip() {
 }
 
 /// A lightly pressed precurved rod (κ0 = 1: its free tip at y = sin 1 = 0.841; η = 0.83,
-/// N = 0.0997 at the start) dragged fast (v = 0.5, ramp 0.2) with `flight`: the tip slips at
-/// once, lifts off where N falls to zero, flies (free tip, N = 0, below the surface) and
-/// touches down again, where the drag ends (stop `touchdown`). Checked at dt 0.005: the
-/// lift-off's N and the touchdown's gap `η − y(1)` at the located times (Brent on the step's
-/// length to 1e-10 in time), the flight (free tip, below the surface), the impact (the tip's
-/// normal velocity zero after it, its kinetic energy booked), and the energy balance from the
-/// start through the impact. Measured: touchdown at t = 0.950726, d = 0.425363, gap 9.2e-13,
-/// lift-off N −1.3e-11; impact 1.6e-5; imbalance 4.1e-6 of the foot's work 0.366 (1.1e-5;
-/// at dt 0.01 2.1e-5, at 0.0025 3.3e-6; the first slips differ between the steps — three
-/// slips at 0.005, one at 0.0025 — so no clean order); bound 3e-5 of the foot's work.
+/// N = 0.0997 at the start) dragged fast (v = 0.3, ramp 0.2) with `flight`: the tip slips at
+/// once (at μs N), lifts off where N falls to zero, flies (free tip, N = 0, below the surface)
+/// and touches down again, where the drag ends (stop `touchdown`). Checked at dt 0.005: the
+/// slip within the cone, the lift-off's N and the touchdown's gap `η − y(1)` at the located
+/// times (Brent on the step's length to 1e-10 in time), the flight (free tip, below the
+/// surface), the impact (the tip's normal velocity zero after it, its kinetic energy booked),
+/// and the energy balance from the start through the impact. Measured (2026-11-29): touchdown at
+/// t = 0.834745, d = 0.220424, gap 0, lift-off N 1.2e-11; impact 6.9e-5; imbalance 2.9e-7 of
+/// the foot's work 0.116 (2.5e-6); bound 3e-5 of the foot's work. (At v = 0.5, the speed
+/// before, the start is not resolved at dt 0.005: its first slip read T/N = 5.05 within the
+/// shortest step, now the stop `unresolved_step`.)
 #[test]
 fn a_flying_tip_touches_down() {
     let rod = Rod::builder().precurvature(1.0, 0.0).build().unwrap();
     let eta = 0.83;
     let run = |dt: f64| {
         let o = DynDragOptions {
-            speed: 0.5,
+            speed: 0.3,
             ramp: 0.2,
             d_max: 0.6,
             flight: true,
-            ..light(0.5, dt, 0.6)
+            ..light(0.3, dt, 0.6)
         };
         drag(&rod, &Surface::flat(eta).unwrap(), &o).unwrap()
     };
@@ -436,6 +437,11 @@ fn a_flying_tip_touches_down() {
         let (lift, down) = (r.events[n - 2], r.events[n - 1]);
         assert!(matches!(r.stop, DynDragStop::Touchdown { .. }), "{r}");
         assert!(lift.normal.abs() < 1e-9, "{lift:?}");
+        let slip = r.events[0];
+        assert!(
+            slip.tangential.abs() <= 0.5 * (1.0 + 1e-9) * slip.normal,
+            "{slip:?}"
+        );
         let k = r.samples.iter().position(|p| p.t == down.t).unwrap();
         let (before, at) = (&r.samples[k - 1], &r.samples[k]);
         let gap = eta - at.tip_y;
@@ -640,9 +646,12 @@ fn most_at_one_instant(r: &DynDragResult) -> usize {
 /// slip at once. With that mended, an event searched below a step of 5e-5 read the forces of so
 /// short a step, which at tol 1e-6 carry the positions' error times 4/τ² (1.6e3): a slip with
 /// N = −480 and then a lift-off. Events are no longer searched on steps shorter than
-/// `0.1 √tol` (1e-4 here; 1e-5 at tol 1e-8 and below as before), and the drag stops at d =
-/// 0.2266, a stick the step does not resolve, after five slips. Every event's normal force is
-/// compressive and no more than three share an instant.
+/// `0.1 √tol` (1e-4 here; 1e-5 at tol 1e-8 and below as before), and the drag stopped at d =
+/// 0.2266, a stick the step does not resolve, after five slips; since 2026-11-29 it stops at
+/// d = 0.2055 after four, a stuck rod the step does not resolve (the fifth slip read
+/// T/N = 1.65 within the shortest step: `unresolved_step`; one of its slips reads T/N = 0.507 at
+/// this tol). Every event's normal force is compressive and no more than three share an
+/// instant.
 #[test]
 fn a_coarse_drag_ends_by_name() {
     let o = DynDragOptions {
@@ -659,11 +668,13 @@ fn a_coarse_drag_ends_by_name() {
     assert!(
         matches!(
             r.stop,
-            DynDragStop::DMax | DynDragStop::UnresolvedStick { .. }
+            DynDragStop::DMax
+                | DynDragStop::UnresolvedStick { .. }
+                | DynDragStop::UnresolvedStep { .. }
         ),
         "{r}"
     );
-    assert!(slip_places(&r).len() >= 5, "{r}");
+    assert!(slip_places(&r).len() >= 4, "{r}");
     for e in &r.events {
         assert!(e.normal > 0.0, "{e:?}");
     }
