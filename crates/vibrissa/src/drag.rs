@@ -106,7 +106,7 @@ impl Default for DragOptions {
 
 impl DragOptions {
     /// Checks every value against [`limits`](crate::limits); the error names it and its valid
-    /// range. Kinetic friction stays below static ([`limits::kinetic_friction`]).
+    /// range. Kinetic friction stays below static ([`crate::limits::kinetic_friction`]).
     pub fn validate(&self) -> Result<(), VibrissaError> {
         use crate::limits;
         limits::DRAG_D_MAX.check("d_max", self.d_max)?;

@@ -106,7 +106,7 @@ impl ScanOptions {
     /// The default number of output points (`d` in steps of 0.0025 to the default `d_max`).
     pub const DEFAULT_POINTS: usize = 201;
 
-    /// Checks against [`limits`](crate::limits): `d_max ∈ (0, 2)`, `points ∈ [2, 1e6]`,
+    /// Checks against [`crate::limits`]: `d_max ∈ (0, 2)`, `points ∈ [2, 1e6]`,
     /// `mu0 ≥ 0` finite, `keep_shapes ∈ [2, 1e5]`, the solver.
     pub fn validate(&self) -> Result<(), VibrissaError> {
         limits::D_MAX.check("d_max", self.d_max)?;

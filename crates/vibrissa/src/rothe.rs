@@ -9,7 +9,7 @@
 //! trying steps of several lengths (`dynamics::drag`). The step length may change from step to
 //! step (the rule is written for any `τ`). The foot and the tip take their conditions per
 //! step: the foot at a given place, the tip free under a force, stuck at a point, or sliding
-//! along the line `y = η` under Coulomb friction.
+//! along the surface's line or curve ([`Track`]) under Coulomb friction.
 
 use crate::inertia::mass_density;
 use crate::parts::Stiffness;
