@@ -316,7 +316,7 @@ pub struct DynamicsFreeArgs {
     pub external_damping: f64,
     /// Rotary inertia: the radius of gyration of the foot's section over the length g0, in
     /// [0, 0.1] (as modes --rotary-inertia): the slopes carry the inertia g0^2/b per length and
-    /// the kinetic energy its share. [default: 0, Euler-Bernoulli]
+    /// the kinetic energy its share (0: none, the Euler-Bernoulli rod).
     #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
     pub rotary_inertia: f64,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
@@ -376,7 +376,7 @@ pub struct DynamicsDragArgs {
     pub external_damping: f64,
     /// Rotary inertia: the radius of gyration of the foot's section over the length g0, in
     /// [0, 0.1] (as modes --rotary-inertia): the slopes carry the inertia g0^2/b per length and
-    /// the kinetic energy its share. [default: 0, Euler-Bernoulli]
+    /// the kinetic energy its share (0: none, the Euler-Bernoulli rod).
     #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
     pub rotary_inertia: f64,
     /// Kinetic friction depending on the slip speed: points V:MU,V:MU,... (speeds >= 0
@@ -763,7 +763,7 @@ pub struct ModesArgs {
     /// Number of modes, lowest first, in [1, 50].
     #[arg(long, value_name = "N", default_value = "3", value_parser = mode_count)]
     pub count: u32,
-    /// Radius of gyration of the foot's section over the length (rotary inertia), in [0, 0.1]. [default: 0, Euler-Bernoulli]
+    /// Radius of gyration of the foot's section over the length (rotary inertia), in [0, 0.1] (0: none, the Euler-Bernoulli rod).
     #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
     pub rotary_inertia: f64,
     /// Points of each mode shape in the --json output, uniform in s (0: none), in [0, 1000000].
