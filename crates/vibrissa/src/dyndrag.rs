@@ -995,14 +995,29 @@ fn contact_forces(g: [f64; 2], hp: f64) -> (f64, f64) {
     ((hp * g[0] - g[1]) / w, -(g[0] + hp * g[1]) / w)
 }
 
-/// The unit normal `(−h', 1)/w` and the velocity `v` along the unit tangent `(1, h')/w` of a
-/// track of slope `hp` (`v[0]` on a flat one).
-fn normal_and_along(hp: f64, v: [f64; 2]) -> ([f64; 2], f64) {
-    if hp == 0.0 {
-        return ([0.0, 1.0], v[0]);
-    }
+/// The tip's force `G(1)` of the normal and tangential forces `N`, `T` on a track of slope `hp`
+/// (the inverse of [`contact_forces`]): `G = −N n − T t`, `t = (n_y, −n_x)`.
+fn tip_force(normal: f64, tangential: f64, hp: f64) -> [f64; 2] {
+    let n = unit_normal(hp);
+    [
+        -normal * n[0] - tangential * n[1],
+        -normal * n[1] + tangential * n[0],
+    ]
+}
+
+/// The unit normal `(−h', 1)/w` of a track of slope `hp`.
+fn unit_normal(hp: f64) -> [f64; 2] {
     let w = (1.0 + hp * hp).sqrt();
-    ([-hp / w, 1.0 / w], (v[0] + hp * v[1]) / w)
+    [-hp / w, 1.0 / w]
+}
+
+/// The velocity `v` along the unit tangent `(1, h')/w` of a track of slope `hp` (`v[0]` on a
+/// flat one).
+fn along(hp: f64, v: [f64; 2]) -> f64 {
+    if hp == 0.0 {
+        return v[0];
+    }
+    (v[0] + hp * v[1]) / (1.0 + hp * hp).sqrt()
 }
 
 impl<'r> Drive<'r, '_> {
@@ -1070,7 +1085,7 @@ impl<'r> Drive<'r, '_> {
         let phase = match self.state {
             ContactState::Stuck => t.abs() - self.o.mu_s * n,
             ContactState::Flying => return [-1.0, r[1] - h],
-            s => -s.dir() * normal_and_along(hp, v).1,
+            s => -s.dir() * along(hp, v),
         };
         [-n, phase]
     }
@@ -1436,15 +1451,13 @@ impl<'r> Drive<'r, '_> {
             let x = self.rothe.sol.right()[0];
             let (_, hp, _) = self.track.jet(x);
             let (n, _) = self.forces(self.rothe.force(1), x);
-            let mu_k = match self.o.mu_k_table.first() {
-                Some(_) => crate::rothe::mu_k_of(&self.o.mu_k_table, 0.0).0,
-                None => self.o.mu_k,
+            let mu_k = if self.o.mu_k_table.is_empty() {
+                self.o.mu_k
+            } else {
+                crate::rothe::mu_k_of(&self.o.mu_k_table, 0.0).0
             };
-            let t = dir * mu_k * n;
-            let w = (1.0 + hp * hp).sqrt();
-            let (nv, tv) = ([-hp / w, 1.0 / w], [1.0 / w, hp / w]);
             self.rothe
-                .set_restart_tip_force([-n * nv[0] - t * tv[0], -n * nv[1] - t * tv[1]]);
+                .set_restart_tip_force(tip_force(n, dir * mu_k * n, hp));
         }
     }
 
@@ -1458,8 +1471,7 @@ impl<'r> Drive<'r, '_> {
         if self.track.flat() {
             self.rothe.hold_tip_y();
         } else {
-            self.rothe
-                .hold_tip_normal(normal_and_along(hp, [0.0, 0.0]).0);
+            self.rothe.hold_tip_normal(unit_normal(hp));
         }
         let before = before.kinetic;
         let after = self.rothe.sample(self.t);
@@ -1469,10 +1481,10 @@ impl<'r> Drive<'r, '_> {
             last.kinetic = after.kinetic;
             last.impact = self.impact;
         }
-        let along = normal_and_along(hp, [after.tip_vx, after.tip_vy]).1;
-        self.state = if along > 0.0 {
+        let v = along(hp, [after.tip_vx, after.tip_vy]);
+        self.state = if v > 0.0 {
             ContactState::SlidingForward
-        } else if along < 0.0 {
+        } else if v < 0.0 {
             ContactState::SlidingBack
         } else {
             self.anchor = after.tip_x;

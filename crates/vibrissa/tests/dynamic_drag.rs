@@ -12,6 +12,10 @@ use vibrissa::{
     VibrissaError,
 };
 
+#[path = "support/light_drag.rs"]
+mod light_drag;
+use light_drag::light;
+
 fn paper(o: &DynDragOptions) -> DynDragResult {
     drag(&Rod::uniform(), &Surface::flat(0.75).unwrap(), o).unwrap()
 }
@@ -84,20 +88,6 @@ fn refuses_bad_input() {
     let e = drag(&round, &flat, &DynDragOptions::default()).unwrap_err();
     assert!(matches!(e, VibrissaError::OutOfRange { .. }), "{e}");
     assert!(e.to_string().contains("tip radius"), "{e}");
-}
-
-/// The test drags' discretization: collocation tol 1e-8 on a history grid of 100 intervals
-/// (the first slip of the paper's rod at v = 0.05, dt = 0.02 moves by 1.3e-9 from tol 1e-10 on
-/// 200 intervals; 3.1 times faster).
-fn light(speed: f64, dt: f64, d_max: f64) -> DynDragOptions {
-    DynDragOptions {
-        speed,
-        dt,
-        d_max,
-        tol: 1e-8,
-        grid: 100,
-        ..DynDragOptions::default()
-    }
 }
 
 /// Energy over the first slip, from the slip to the stick that ends it: the foot's work equals

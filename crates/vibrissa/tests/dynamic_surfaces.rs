@@ -3,24 +3,13 @@
 //! (`vibrissa::drag`, the rod's own shooter and march: an independent computation of the slow
 //! limit). The paper's rod (uniform, clamped, η = 0.75, μs = 0.5, μk = 0.3) throughout.
 
-use vibrissa::dynamics::{
-    drag, ContactState, DragEventKind, DynDragOptions, DynDragResult, DynDragStop,
-};
+use vibrissa::dynamics::{drag, ContactState, DragEventKind, DynDragResult, DynDragStop};
 use vibrissa::surface::{FrictionProfile, SurfaceProfile};
 use vibrissa::{DragOptions, Rod, Surface, VibrissaError};
 
-/// The test drags' discretization, as tests/dynamic_drag.rs's `light`: collocation tol 1e-8 on
-/// a history grid of 100 intervals.
-fn light(speed: f64, dt: f64, d_max: f64) -> DynDragOptions {
-    DynDragOptions {
-        speed,
-        dt,
-        d_max,
-        tol: 1e-8,
-        grid: 100,
-        ..DynDragOptions::default()
-    }
-}
+#[path = "support/light_drag.rs"]
+mod light_drag;
+use light_drag::light;
 
 fn inclined() -> Surface {
     Surface::new(0.75, 0.1).unwrap()
