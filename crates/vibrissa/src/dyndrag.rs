@@ -1477,6 +1477,8 @@ impl<'r> Drive<'r, '_> {
         let after = self.rothe.sample(self.t);
         self.impact += before - after.kinetic;
         if let Some(last) = self.samples.last_mut() {
+            // (on a sloped surface the impact changes both components)
+            last.tip_vx = after.tip_vx;
             last.tip_vy = after.tip_vy;
             last.kinetic = after.kinetic;
             last.impact = self.impact;

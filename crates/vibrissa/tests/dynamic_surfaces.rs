@@ -3,7 +3,9 @@
 //! (`vibrissa::drag`, the rod's own shooter and march: an independent computation of the slow
 //! limit). The paper's rod (uniform, clamped, η = 0.75, μs = 0.5, μk = 0.3) throughout.
 
-use vibrissa::dynamics::{drag, ContactState, DragEventKind, DynDragResult, DynDragStop};
+use vibrissa::dynamics::{
+    drag, ContactState, DragEventKind, DynDragOptions, DynDragResult, DynDragStop,
+};
 use vibrissa::surface::{FrictionProfile, SurfaceProfile};
 use vibrissa::{DragOptions, Rod, Surface, VibrissaError};
 
@@ -247,4 +249,42 @@ fn a_stuck_rod_the_step_cannot_resolve_is_a_named_stop() {
     let jump = (normal - before[0]).hypot(tangential - before[1]);
     assert!(jump > 0.1 * before[0].hypot(before[1]), "{}", r.stop);
     assert!(r.stop.to_string().contains("shorter dt"), "{}", r.stop);
+}
+
+/// A flying tip touching down on a sloped line (the precurved rod of tests/dynamic_drag.rs's
+/// flight, κ0 = 1, η = 0.83, v 0.3, ramp 0.2, dt 0.005, the surface inclined by 0.02): the
+/// impact removes the tip's velocity along the surface's normal there, both components of the
+/// touchdown row say so (its `tip_vx` kept the velocity before the impact until 2026-11-29:
+/// 2.5e-5 along the normal), and the energy from the start through the impact balances with it
+/// as on the flat surface (bound 3e-5 of the foot's work). Measured (2026-11-29): touchdown at
+/// d = 0.230828, normal velocity 1.6e-17, impact 6.5e-6, imbalance 8.6e-8 of the foot's work
+/// 0.130.
+#[test]
+fn a_touchdown_on_a_sloped_line_stops_the_normal_velocity() {
+    let rod = Rod::builder().precurvature(1.0, 0.0).build().unwrap();
+    let surface = Surface::new(0.83, 0.02).unwrap();
+    let o = DynDragOptions {
+        ramp: 0.2,
+        flight: true,
+        ..light(0.3, 0.005, 0.5)
+    };
+    let r = drag(&rod, &surface, &o).unwrap();
+    let down = *r.events.last().unwrap();
+    assert_eq!(down.kind, DragEventKind::Touchdown, "{r}");
+    let (a, p) = (
+        &r.samples[0],
+        r.samples.iter().find(|p| p.t == down.t).unwrap(),
+    );
+    let slope = 0.02f64.tan();
+    let normal_velocity = (p.tip_vy - slope * p.tip_vx) / slope.hypot(1.0);
+    let imbalance = p.foot_work
+        - (p.kinetic - a.kinetic + p.elastic - a.elastic + p.friction + p.damper + p.impact);
+    eprintln!(
+        "touchdown at d = {}, normal velocity {normal_velocity:e}, impact {:e}, imbalance \
+         {imbalance:e} of the foot's work {}",
+        down.d, p.impact, p.foot_work
+    );
+    assert!(normal_velocity.abs() < 1e-12, "{p:?}");
+    assert!(p.impact > 0.0, "{p:?}");
+    assert!(imbalance.abs() < 3e-5 * p.foot_work, "{imbalance:e}");
 }
