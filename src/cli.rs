@@ -332,7 +332,7 @@ pub struct DynamicsFreeArgs {
 /// `vibrissa dynamics drag`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time, every step a BVP in s. The tip sticks while |T| < mu_s N, slides with T = mu_k N against its motion, sticks again where its velocity along the surface is zero; lift-off (N = 0) ends the drag. Events are located in time to 1e-10. The foot's speed rises smoothly to --speed over --ramp time units, or the foot follows --foot-table; --whisk turns its support. Time unit sqrt(rho A(0) L^4 / EI(0)). Any surface line (--surface-angle) or height profile (the --corrugation, --grating and --surface-profile flags, or the scene's [surface]) with the tip alone on it: a side of the rod reaching the surface ends the drag (side_contact); no [friction] table."
+    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time, every step a BVP in s. The tip sticks while |T| < mu_s N, slides with T = mu_k N against its motion, sticks again where its velocity along the surface is zero; lift-off (N = 0) ends the drag. Events are located in time to 1e-10. The foot's speed rises smoothly to --speed over --ramp time units, or the foot follows --foot-table; --whisk turns its support. Time unit sqrt(rho A(0) L^4 / EI(0)). Any surface line (--surface-angle) or height profile (the --corrugation, --grating and --surface-profile flags, or the scene's [surface]) with the tip alone on it: a side of the rod reaching the surface ends the drag (side_contact). A scene's [friction] texture gives mu_s and mu_k along the surface (the stuck tip's where it sticks, the sliding tip's where it slides: a patch's boundary crossed is an event, patch)."
 )]
 pub struct DynamicsDragArgs {
     /// Foot speed after the start ramp (rod lengths per time unit), in (0, 100].
@@ -347,12 +347,13 @@ pub struct DynamicsDragArgs {
     /// Foot displacement where the drag ends (rod lengths), in (0, 1000].
     #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "0.03")]
     pub d_max: f64,
-    /// Static friction coefficient, in [0, 100].
-    #[arg(long, value_name = "MU", value_parser = finite_f64, default_value = "0.5")]
-    pub mu_s: f64,
-    /// Kinetic friction coefficient, in [0, mu_s).
-    #[arg(long, value_name = "MU", value_parser = finite_f64, default_value = "0.3")]
-    pub mu_k: f64,
+    /// Static friction coefficient, in [0, 100]; with --mu-k it replaces the scene's [friction]
+    /// texture. [default: the scene's [friction], else 0.5]
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_s: Option<f64>,
+    /// Kinetic friction coefficient, in [0, mu_s). [default: the scene's [friction], else 0.3]
+    #[arg(long, value_name = "MU", value_parser = finite_f64)]
+    pub mu_k: Option<f64>,
     /// Time step, in (0, 1].
     #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = "0.01")]
     pub dt: f64,

@@ -77,8 +77,8 @@ pub fn options(a: &DynamicsDragArgs) -> Res<DynDragOptions> {
         speed: a.speed,
         ramp: a.ramp,
         d_max: a.d_max,
-        mu_s: a.mu_s,
-        mu_k: a.mu_k,
+        mu_s: a.mu_s.unwrap_or(DynDragOptions::default().mu_s),
+        mu_k: a.mu_k.unwrap_or(DynDragOptions::default().mu_k),
         dt: a.dt,
         time_tol: a.time_tol,
         foot_damping: a.foot_damping,
@@ -144,6 +144,10 @@ fn write_spectrum(path: &Path, t: &[f64], m: &[f64], u: Option<(Units, f64)>) ->
 fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
     let mut scene = build_scene(&a.scene, a.eta)?;
     crate::texture::apply(&a.texture, &mut scene)?;
+    if a.mu_s.is_some() || a.mu_k.is_some() {
+        // (the flags replace the scene's texture, as `drag`'s do)
+        scene.friction = vibrissa::surface::FrictionProfile::None {};
+    }
     let (rod, surface) = scene.parts()?;
     let o = options(a)?;
     o.validate()?;

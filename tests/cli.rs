@@ -1066,6 +1066,49 @@ fn dynamics_drag_over_a_corrugation() {
     assert!(e.contains("side+side"), "{e}");
 }
 
+/// `dynamics drag` with the scene's `[friction]` table along x: the first slip at μs of the
+/// stuck tip's x (0.5 + 0.5 (x − 0.55) here), every sliding row at `T = μk(x) N` of its own
+/// x; `--mu-s`, `--mu-k` replace the texture (the rows of the drag without one).
+#[test]
+fn dynamics_drag_on_a_friction_table() {
+    let d = tmpdir("friction_table");
+    let scene = d.join("table.toml");
+    std::fs::write(
+        &scene,
+        "eta = 0.75\n[friction]\nkind = \"table\"\nx = [0.55, 0.75]\nmu_s = [0.5, 0.6]\n\
+         mu_k = [0.3, 0.45]\n",
+    )
+    .unwrap();
+    let sc = scene.to_str().unwrap();
+    let args = [
+        "dynamics", "drag", "--scene", sc, "--speed", "0.05", "--dt", "0.02", "--d-max", "0.03",
+    ];
+    let (h, rows) = csv(&ok(&args).stdout);
+    let slip = rows.iter().find(|r| r.last().unwrap() == "slip").unwrap();
+    let x = col(&h, slip, "tip_x");
+    let ratio = col(&h, slip, "tangential") / col(&h, slip, "normal");
+    close(ratio, 0.5 + 0.5 * (x - 0.55), 1e-9, "slip's T/N");
+    let mut sliding = 0;
+    let state = h.iter().position(|c| c == "state").unwrap();
+    for r in rows.iter().filter(|r| r[state] == "sliding_forward") {
+        let mu_k = 0.3 + 0.75 * (col(&h, r, "tip_x") - 0.55);
+        close(
+            col(&h, r, "tangential") / col(&h, r, "normal"),
+            mu_k,
+            1e-9,
+            "sliding T/N",
+        );
+        sliding += 1;
+    }
+    assert!(sliding > 5, "{sliding}");
+    let mut flags = args.to_vec();
+    flags.extend(["--mu-s", "0.5", "--mu-k", "0.3"]);
+    let plain = [
+        "dynamics", "drag", "--speed", "0.05", "--dt", "0.02", "--d-max", "0.03",
+    ];
+    assert_eq!(ok(&flags).stdout, ok(&plain).stdout);
+}
+
 /// `scan --modes`: the lowest ω² of each row with the tip stuck, positive on the rows of the
 /// paper's rod at η = 0.95 and 0 (to 1e-6) at the fold in d where the scan stops; without the
 /// flag the columns are unchanged.

@@ -14,11 +14,13 @@ taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short 
 rat presets; the paper's rod with internal damping 0.01; the paper's rod with --flight; the
 paper's rod on a surface inclined by 0.1, over a corrugation 0.003 sin(2 pi x/0.1) and over one
 0.02 sin(2 pi x/0.2) (where the rod's end lies down); the short rat preset over the first
-corrugation} = 120 drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
-mu_k 0.3, ramp 2, grid 200, tol 1e-10), each with `--json`. A drag is killed after --timeout
+corrugation; the paper's rod on friction patches and on a friction table along x
+(data/dynamics/friction_*.toml)} = 144 drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
+mu_k 0.3 or the scene's [friction], ramp 2, grid 200, tol 1e-10), each with `--json`. A drag is killed after --timeout
 seconds of wall time (class "slow"). cpu_s is the drag's user + system CPU time (os.wait4), the
 only column that differs between runs. Checked on every row that ends: no event with a normal
-force below zero or not a number, and no located slip beyond the friction cone (|T| > μs N by
+force below zero or not a number, and no located slip beyond the friction cone (|T| > μs N, μs
+the texture's at the slip's place, by
 more than 1e-6 of it; a slip at the instant of a stick, the stuck tip needing more at once, is
 not counted) (column bad_events).
 """
@@ -43,7 +45,19 @@ SCENES = [
     ("rat_short_corrugation0.003_0.1", ["--scene", "data/scenes/rat_mystacial_short.toml",
                                         "--corrugation-amplitude", "0.003",
                                         "--corrugation-wavelength", "0.1"]),
+    ("friction_patches", ["--scene", "data/dynamics/friction_patches.toml"]),
+    ("friction_table", ["--scene", "data/dynamics/friction_table.toml"]),
 ]
+
+
+def mu_s_at(scene, x, side):
+    """μs at the tip's x of the scene's friction (at a patch's boundary the side pushed to)."""
+    if scene == "friction_patches":
+        q = x + (1e-9 if side >= 0 else -1e-9) - 0.6
+        return 0.5 if q - 0.1 * (q // 0.1) < 0.05 else 0.4
+    if scene == "friction_table":
+        return 0.5 + 0.1 * min(max((x - 0.55) / 0.2, 0.0), 1.0)
+    return 0.5
 COMMON = ["--d-max", "0.12", "--json"]
 COLUMNS = ["dt", "speed", "scene", "class", "stop_reason", "slips", "events", "bad_events",
            "d_end", "cpu_s", "exit", "detail"]
@@ -72,12 +86,13 @@ def run(binary, timeout, case):
         return row
     r = json.loads(stdout)
     ev = r["events"]
-    # (μs = 0.5, the program's default: a located slip's |T| is μs N to the event's location; a
-    # slip at the instant of a stick is the stuck tip needing more than μs N at once, by design)
+    # (a located slip's |T| is μs N to the event's location; a slip at the instant of a stick is
+    # the stuck tip needing more than μs N at once, by design)
     at_once = [i > 0 and e["kind"] == "slip" and e["t"] == ev[i - 1]["t"] for i, e in enumerate(ev)]
+    limit = [mu_s_at(scene, e["tip_x"], e["tangential"]) for e in ev]
     bad = sum(1 for i, e in enumerate(ev) if not (e["normal"] >= 0)
               or (e["kind"] == "slip" and not at_once[i]
-                  and not abs(e["tangential"]) <= 0.5 * (1 + 1e-6) * e["normal"]))
+                  and not abs(e["tangential"]) <= limit[i] * (1 + 1e-6) * e["normal"]))
     reason = r["stop"]["reason"]
     cls = {"d_max": "d_max", "lift_off": "lift-off", "touchdown": "touchdown",
            "side_contact": "side contact", "unresolved_stick": "unresolved stick (named)",

@@ -164,6 +164,9 @@ def test_keyword_defaults_are_the_library_s(command):
             assert [tuple(x) for x in p.default] == [tuple(x) for x in lib["foot_table"]]
         elif name == "release_force":
             assert tuple(p.default) == tuple(lib["release_force"])
+        elif name in ("mu_s", "mu_k"):
+            # None: the surface's friction texture, else the library's default
+            assert name in lib and p.default is None
         elif name == "mu_k_table":
             assert [tuple(x) for x in p.default] == [tuple(x) for x in lib["mu_k_table"]]
         else:
@@ -327,3 +330,31 @@ def test_dynamics_drag_on_a_corrugation_equals_the_program(program):
                                                "wavelength": 0.02})
     with pytest.raises(vibrissa.Error, match="side"):
         vibrissa.dynamics_drag(tapered, fine, d_max=0.001)
+
+
+def test_dynamics_drag_on_friction_patches_equals_the_program(program, tmp_path):
+    # the scene's [friction] patches: the first slip where the patch under the tip lets go, a
+    # boundary crossed in the slide (event ``patch``); given mu_s, mu_k replace the texture
+    scene = tmp_path / "patches.toml"
+    scene.write_text(
+        "eta = 0.75\n[friction]\nkind = \"patches\"\nperiod = 0.1\nx = [0.0, 0.05]\n"
+        "mu_s = [0.5, 0.4]\nmu_k = [0.3, 0.2]\noffset = 0.6\n"
+    )
+    friction = {"kind": "patches", "period": 0.1, "x": [0.0, 0.05], "mu_s": [0.5, 0.4],
+                "mu_k": [0.3, 0.2], "offset": 0.6}
+    surface = vibrissa.Surface(eta=0.75, friction=friction)
+    args = ["dynamics", "drag", "--scene", str(scene), "--speed", "0.05", "--d-max", "0.03",
+            "--dt", "0.02"]
+    want = json.loads(program(*args, "--json"))
+    py = vibrissa.dynamics_drag(vibrissa.Rod(), surface, speed=0.05, d_max=0.03, dt=0.02)
+    check_samples(py, want["samples"], " ".join(args))
+    assert py["events"] == want["events"]
+    assert [e["kind"] for e in py["events"]][:3] == ["slip", "patch", "stick"]
+    slip = py["events"][0]
+    assert abs(slip["tangential"] - 0.4 * slip["normal"]) < 1e-9 * slip["normal"]
+    plain = vibrissa.dynamics_drag(vibrissa.Rod(), speed=0.05, d_max=0.03, dt=0.02)
+    given = vibrissa.dynamics_drag(vibrissa.Rod(), surface, speed=0.05, d_max=0.03, dt=0.02,
+                                   mu_s=0.5, mu_k=0.3)
+    assert given["events"] == plain["events"]
+    flags = json.loads(program(*args, "--mu-s", "0.5", "--mu-k", "0.3", "--json"))
+    assert flags["events"] == plain["events"]

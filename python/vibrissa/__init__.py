@@ -813,8 +813,8 @@ def dynamics_drag(
     speed: float = _DRAG["speed"],
     ramp: float = _DRAG["ramp"],
     d_max: float = _DRAG["d_max"],
-    mu_s: float = _DRAG["mu_s"],
-    mu_k: float = _DRAG["mu_k"],
+    mu_s: Optional[float] = None,
+    mu_k: Optional[float] = None,
     mu_k_table: Sequence[Tuple[float, float]] = tuple(tuple(p) for p in _DRAG["mu_k_table"]),
     dt: float = _DRAG["dt"],
     time_tol: Optional[float] = _DRAG.get("time_tol"),
@@ -832,8 +832,11 @@ def dynamics_drag(
 ) -> Dict[str, Any]:
     """The drag in time (as ``vibrissa dynamics drag``): the foot moves along x at ``speed``
     (rising smoothly over ``ramp``) with the tip on the ``surface`` (a line, inclined or not, or
-    a height profile such as ``profile={"kind": "sine", ...}``; no ``friction`` profile) under
-    Coulomb friction ``mu_s``, ``mu_k``, from the pressed start at rest to ``d_max``. The tip
+    a height profile such as ``profile={"kind": "sine", ...}``) under Coulomb friction ``mu_s``,
+    ``mu_k`` (default the surface's ``friction`` texture, else the library's 0.5, 0.3; given,
+    they replace the texture, as the program's flags do: a texture's patches and tables give
+    the stuck tip's μs where it sticks and the sliding tip's μk where it slides, a patch's
+    boundary crossed is an event ``patch``), from the pressed start at rest to ``d_max``. The tip
     alone touches: a start with a side on the surface raises :class:`Error` naming the contact
     (no start), and a side that reaches the surface later ends the drag (stop
     ``side_contact``).
@@ -872,6 +875,14 @@ def dynamics_drag(
     ``units``, ``time_unit_s``."""
     if surface is None:
         surface = Surface()
+    if (mu_s is not None or mu_k is not None) and surface.friction.get("kind", "none") != "none":
+        surface = Surface(
+            eta=surface.eta,
+            angle=surface.angle,
+            profile=surface.profile,
+            contact=surface.contact,
+            start=surface.start,
+        )
     if len(foot_table) > 0:
         # as the program's --foot-table, which conflicts with --speed, --ramp and --d-max
         given = [k for k, v in (("speed", speed), ("ramp", ramp), ("d_max", d_max)) if v != _DRAG[k]]
@@ -886,8 +897,8 @@ def dynamics_drag(
         speed=speed,
         ramp=ramp,
         d_max=d_max,
-        mu_s=mu_s,
-        mu_k=mu_k,
+        mu_s=_DRAG["mu_s"] if mu_s is None else mu_s,
+        mu_k=_DRAG["mu_k"] if mu_k is None else mu_k,
         mu_k_table=[(float(v), float(m)) for v, m in mu_k_table],
         dt=dt,
         time_tol=time_tol,

@@ -205,6 +205,7 @@ def dynamics_drag(
     foot_damping: float = 0.0,
     internal_damping: float = 0.0,
     external_damping: float = 0.0,
+    rotary_inertia: float = 0.0,
     flight: bool = False,
     grid: int = 200,
     tol: float = 1e-10,

@@ -9,7 +9,8 @@
 //! with the places of every slip and stick (slips 2 to 5 converge as dt → 0 since the slip test
 //! on the held force, docs/model.md; docs/performance.md compares the first slip, the one the
 //! peer's drag also converges in). `-- --settings dt,grid,tol,dt,grid,tol,...` picks the settings of either;
-//! `-- --internal-damping G` gives the rod Kelvin–Voigt damping `γ_i = G` (default 0).
+//! `-- --internal-damping G` gives the rod Kelvin–Voigt damping `γ_i = G`, `-- --external-damping G`
+//! external viscous damping `γ_e = G` (default 0 both).
 //!
 //! The peer's side of the same drag: `benches/pyelastica_drag.py`.
 //!
@@ -43,6 +44,7 @@ fn slips(dt: f64, grid: usize, tol: f64, events: usize) -> Result<Run, VibrissaE
         d_max: 10.0,
         max_events: events,
         internal_damping: flag("--internal-damping"),
+        external_damping: flag("--external-damping"),
         ..DynDragOptions::default()
     };
     let surface = Surface::flat(0.75)?;

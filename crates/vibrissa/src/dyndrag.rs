@@ -31,7 +31,10 @@
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, and the drag ends; docs/model.md), **side contact** where a point of the rod
 //! other than the tip reaches the surface or the rod's end turns into it (the drag ends: the
-//! tip alone touches in this model). With `mu_k_table` the kinetic friction
+//! tip alone touches in this model), **patch** where a sliding tip crosses a boundary of the
+//! surface's friction patches (it slides on with the next patch's μk, after a restart). A
+//! friction texture gives μs at the stuck tip's place and μk at the sliding tip's (a table's
+//! at `x(1)`). With `mu_k_table` the kinetic friction
 //! depends on the slip velocity at the step's end, `T = dir·μk(|ẋ(1)|)·N`. A sticking tip's velocity and acceleration at the tip are set to zero:
 //! the velocity is zero to the event's tolerance, and the acceleration of a continuous rod
 //! jumps at the point that sticks only (the force holding it rises like `√t` from the moment
@@ -67,11 +70,13 @@ use crate::config::SolverConfig;
 use crate::rothe::{check_damping, Foot, Rothe, Settings, TipBc, Track, Trial};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
+use crate::surface::Texture;
 use crate::timestep::{check_time_tol, TimeStepControl};
 use crate::{Rod, Surface, VibrissaError};
 use bvp::Guess;
 use serde::Serialize;
 use std::fmt;
+use std::sync::Arc;
 
 /// Options of [`drag`].
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -86,7 +91,8 @@ pub struct DynDragOptions {
     /// Foot displacement where the drag ends, in `(0, 1000]`. Default 0.03 (past the paper's
     /// rod's first slip at 0.0210).
     pub d_max: f64,
-    /// Static friction coefficient μs, in `[0, 100]`. Default 0.5 (the paper's).
+    /// Static friction coefficient μs, in `[0, 100]`. Default 0.5 (the paper's). A surface
+    /// with a friction texture ([`Surface::texture`]) replaces it and `mu_k`.
     pub mu_s: f64,
     /// Kinetic friction coefficient `μk ∈ [0, μs)`. Default 0.3.
     pub mu_k: f64,
@@ -120,7 +126,8 @@ pub struct DynDragOptions {
     /// Collocation scheme of the steps. Default Lobatto IIIA of order 6.
     #[serde(skip)]
     pub scheme: bvp::Scheme,
-    /// Most events before the drag stops, in `[1, 1e6]`. Default 10000.
+    /// Most events before the drag stops (every kind, patches crossed too), in `[1, 1e6]`.
+    /// Default 10000.
     pub max_events: usize,
     /// After a lift-off the tip flies (free tip) until it touches the surface again: the event
     /// `touchdown`, located like the others on the tip's gap `η − y(1)`, a plastic impact (the
@@ -524,10 +531,13 @@ pub enum DragEventKind {
     /// A point of the rod other than its tip reaches the surface: the drag ends (the dynamic
     /// drag has the tip alone on the surface).
     SideContact,
+    /// The sliding tip crosses a boundary of the friction texture's patches: it slides on with
+    /// the next patch's μk (the row: the state at the boundary, its forces the last patch's).
+    Patch,
 }
 
 impl DragEventKind {
-    /// `slip`, `stick`, `lift_off`, `touchdown`, `side_contact`.
+    /// `slip`, `stick`, `lift_off`, `touchdown`, `side_contact`, `patch`.
     pub fn name(self) -> &'static str {
         match self {
             DragEventKind::Slip => "slip",
@@ -535,6 +545,7 @@ impl DragEventKind {
             DragEventKind::LiftOff => "lift_off",
             DragEventKind::Touchdown => "touchdown",
             DragEventKind::SideContact => "side_contact",
+            DragEventKind::Patch => "patch",
         }
     }
 }
@@ -940,10 +951,12 @@ fn held_weights(tau: f64, h: f64) -> [f64; 3] {
 /// of a tip that needs more than μs N, and its stick at once where it slides neither way.
 const MAX_INSTANT_EVENTS: usize = 3;
 
-/// Which of a step's event functions: `[lift-off, the contact's own, a side's contact]`.
+/// Which of a step's event functions: `[lift-off, the contact's own, a side's contact, a
+/// friction patch's boundary]`.
 const LIFT: usize = 0;
 const PHASE: usize = 1;
 const SIDE: usize = 2;
+const EDGE: usize = 3;
 
 /// The driver of a dynamic drag.
 struct Drive<'r, 'o> {
@@ -959,6 +972,13 @@ struct Drive<'r, 'o> {
     state: ContactState,
     /// The stuck tip's x.
     anchor: f64,
+    /// The surface's friction texture (it replaces `o.mu_s`, `o.mu_k`), if any.
+    texture: Option<Arc<Texture>>,
+    /// The sliding tip's μk where the texture does not change it along the slide (uniform
+    /// friction, or the patch the tip slides on).
+    mu_k_now: f64,
+    /// The next boundary of the texture's patches ahead of the sliding tip.
+    edge: Option<f64>,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
     /// The forces at the support and the tip (`G(0)`, `G(1)`) at the last step's start, that
@@ -1026,9 +1046,53 @@ impl<'r> Drive<'r, '_> {
             ContactState::Stuck => TipBc::Stuck([self.anchor, self.track.jet(self.anchor).0]),
             ContactState::Flying => TipBc::Force([0.0, 0.0]),
             s if !self.o.mu_k_table.is_empty() => TipBc::SlidingRate { dir: s.dir() },
+            s if self.varies_along() => TipBc::SlidingOn { dir: s.dir() },
             s => TipBc::Sliding {
-                ratio: s.dir() * self.o.mu_k,
+                ratio: s.dir() * self.mu_k_now,
             },
+        }
+    }
+
+    /// Whether μk changes continuously along the slide (a friction table along x).
+    fn varies_along(&self) -> bool {
+        self.texture
+            .as_ref()
+            .is_some_and(|t| t.continuous() && t.uniform_mu_k().is_none())
+    }
+
+    /// `(μs, μk)` at lab `x` (at a patch boundary, the patch on the side `side`).
+    fn coefficients(&self, x: f64, side: f64) -> (f64, f64) {
+        match &self.texture {
+            Some(t) => t.at(x, side),
+            None => (self.o.mu_s, self.o.mu_k),
+        }
+    }
+
+    /// The sliding tip's μk (at rest, with a table of speeds) at `x`, where it slides.
+    fn mu_k_at(&self, x: f64) -> f64 {
+        if !self.o.mu_k_table.is_empty() {
+            crate::rothe::mu_k_of(&self.o.mu_k_table, 0.0).0
+        } else if self.varies_along() {
+            self.coefficients(x, self.state.dir()).1
+        } else {
+            self.mu_k_now
+        }
+    }
+
+    /// A slide begins (a slip or a touchdown) or crosses a patch's boundary at `x`: its μk is
+    /// the patch's ahead of the tip, and its next boundary the one after.
+    fn enter_slide(&mut self, x: f64) {
+        let dir = self.state.dir();
+        self.mu_k_now = self.coefficients(x, dir).1;
+        self.edge = self.texture.as_ref().and_then(|t| t.next_boundary(x, dir));
+    }
+
+    /// The edge event function: `dir·(x − x_b)` of a tip sliding towards the next patch
+    /// boundary `x_b`, at `x` (`−1`: none ahead, or not sliding).
+    fn edge_gap(&self, x: f64) -> f64 {
+        match (self.state.dir(), self.edge) {
+            (dir @ (1.0 | -1.0), Some(xb)) => dir * (x - xb),
+            _ => -1.0,
         }
     }
 
@@ -1083,20 +1147,20 @@ impl<'r> Drive<'r, '_> {
     fn events_of(&self, n: f64, t: f64, v: [f64; 2], r: [f64; 2]) -> [f64; 2] {
         let (h, hp, _) = self.track.jet(r[0]);
         let phase = match self.state {
-            ContactState::Stuck => t.abs() - self.o.mu_s * n,
+            ContactState::Stuck => t.abs() - self.coefficients(self.anchor, t.signum()).0 * n,
             ContactState::Flying => return [-1.0, r[1] - h],
             s => -s.dir() * along(hp, v),
         };
         [-n, phase]
     }
 
-    fn events_after(&self, tr: &Trial) -> [f64; 3] {
+    fn events_after(&self, tr: &Trial) -> [f64; 4] {
         let r = [tr.sol.right()[0], tr.sol.right()[1]];
         let (n, t) = self.forces(tr.force(1), r[0]);
         let g = self.events_of(n, t, self.rothe.tip_velocity(tr), r);
         let held = (self.state == ContactState::Stuck).then(|| self.held_force(tr));
         let [lift, phase] = self.held_test(g, held, r);
-        [lift, phase, self.side_gap(&tr.sol).0]
+        [lift, phase, self.side_gap(&tr.sol).0, self.edge_gap(r[0])]
     }
 
     /// The largest height of the rod's points over the surface, `max (y − h(x))` over the
@@ -1184,19 +1248,28 @@ impl<'r> Drive<'r, '_> {
             self.forces(self.rothe.force(1), self.rothe.sol.right()[0]),
             self.forces(g_prev[1], x_prev),
         ];
-        Some((
-            a * nt[0].0 + b * nt[1].0 + c * nt[2].0,
-            a * nt[0].1 + b * nt[1].1 + c * nt[2].1,
-        ))
+        let normal = a * nt[0].0 + b * nt[1].0 + c * nt[2].0;
+        if self.varies_along() && self.state.dir() != 0.0 {
+            // (μk changes along the slide: each force meets its own place's, the combination
+            // none; the slide's law at the step's end, on the combined N)
+            let x = tr.sol.right()[0];
+            return Some((normal, self.state.dir() * self.mu_k_at(x) * normal));
+        }
+        Some((normal, a * nt[0].1 + b * nt[1].1 + c * nt[2].1))
     }
 
-    fn events_now(&self) -> [f64; 3] {
+    fn events_now(&self) -> [f64; 4] {
         let p = self.rothe.sample(self.t);
         let r = [p.tip_x, p.tip_y];
         let (n, t) = self.forces(self.rothe.force(1), r[0]);
         let g = self.events_of(n, t, [p.tip_vx, p.tip_vy], r);
         let [lift, phase] = self.held_test(g, self.held_now, r);
-        [lift, phase, self.side_gap(&self.rothe.sol).0]
+        [
+            lift,
+            phase,
+            self.side_gap(&self.rothe.sol).0,
+            self.edge_gap(r[0]),
+        ]
     }
 
     /// Takes the step: the energies by the trapezoidal rule, a sample.
@@ -1323,6 +1396,10 @@ impl<'r> Drive<'r, '_> {
         );
         let kind = if which == SIDE {
             DragEventKind::SideContact
+        } else if which == EDGE {
+            let xb = self.edge.unwrap_or(self.rothe.sol.right()[0]);
+            self.enter_slide(xb);
+            DragEventKind::Patch
         } else if which == LIFT {
             if self.o.flight {
                 self.state = ContactState::Flying;
@@ -1339,6 +1416,7 @@ impl<'r> Drive<'r, '_> {
             };
             self.fresh_slip = true;
             self.stats.slips += 1;
+            self.enter_slide(self.anchor);
             DragEventKind::Slip
         } else {
             self.state = ContactState::Stuck;
@@ -1352,7 +1430,11 @@ impl<'r> Drive<'r, '_> {
             self.stats.sticks += 1;
             DragEventKind::Stick
         };
-        if matches!(kind, DragEventKind::Slip | DragEventKind::Stick) {
+        if matches!(
+            kind,
+            DragEventKind::Slip | DragEventKind::Stick | DragEventKind::Patch
+        ) {
+            // (at a patch's boundary the tip's friction jumps as at a slip)
             self.restart();
         }
         let p = self.rothe.sample(self.t);
@@ -1381,7 +1463,10 @@ impl<'r> Drive<'r, '_> {
                 x,
             });
         }
-        self.instant_events += 1;
+        if kind != DragEventKind::Patch {
+            // (a boundary crossed is not a change of the contact's state)
+            self.instant_events += 1;
+        }
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
     }
 
@@ -1451,11 +1536,7 @@ impl<'r> Drive<'r, '_> {
             let x = self.rothe.sol.right()[0];
             let (_, hp, _) = self.track.jet(x);
             let (n, _) = self.forces(self.rothe.force(1), x);
-            let mu_k = if self.o.mu_k_table.is_empty() {
-                self.o.mu_k
-            } else {
-                crate::rothe::mu_k_of(&self.o.mu_k_table, 0.0).0
-            };
+            let mu_k = self.mu_k_at(x);
             self.rothe
                 .set_restart_tip_force(tip_force(n, dir * mu_k * n, hp));
         }
@@ -1492,6 +1573,7 @@ impl<'r> Drive<'r, '_> {
             self.anchor = after.tip_x;
             ContactState::Stuck
         };
+        self.enter_slide(after.tip_x);
     }
 
     /// A lower end of the search in a step that starts a slip (the velocity zero at the start):
@@ -1576,7 +1658,7 @@ impl<'r> Drive<'r, '_> {
                 }
             }
             let mut first: Option<(f64, usize)> = None;
-            for which in [LIFT, PHASE, SIDE] {
+            for which in [LIFT, PHASE, SIDE, EDGE] {
                 if g1[which] >= 0.0 {
                     let at = self.locate(which, lo, tau)?;
                     if first.is_none_or(|(t, _)| at < t) {
@@ -1616,7 +1698,7 @@ impl<'r> Drive<'r, '_> {
 /// on `surface` (a line, inclined or not, or a height profile) and Coulomb friction
 /// `opts.mu_s`, `opts.mu_k`, from the pressed start at rest to `opts.d_max`, in time (see the
 /// module docs of `dynamics`).
-/// Errors: invalid input, a friction profile, a tip radius, no start (or one with a side on the
+/// Errors: invalid input, a friction texture with `mu_k_table`, a tip radius, no start (or one with a side on the
 /// surface), a step the collocation does not solve.
 pub fn drag(
     rod: &Rod,
@@ -1624,9 +1706,11 @@ pub fn drag(
     opts: &DynDragOptions,
 ) -> Result<DynDragResult, VibrissaError> {
     opts.validate()?;
-    if surface.texture().is_some() {
+    let texture = surface.texture_shared();
+    if texture.is_some() && !opts.mu_k_table.is_empty() {
         return Err(VibrissaError::NotImplemented(
-            "the dynamic drag on a surface with a friction profile",
+            "kinetic friction depending on the slip velocity (mu_k_table) on a surface with a \
+             friction texture",
         ));
     }
     if rod.tip_radius() != 0.0 {
@@ -1669,6 +1753,7 @@ pub fn drag(
     let mut rothe = Rothe::at_rest(rod, &settings, &guess, [0.0, 0.0], TipBc::Stuck(tip))?;
     rothe.friction_table = opts.mu_k_table.clone();
     rothe.track = track.clone();
+    rothe.texture = texture.clone();
     let mut drive = Drive {
         o: opts,
         path: FootPath::new(opts),
@@ -1679,6 +1764,9 @@ pub fn drag(
         turn: 0.0,
         state: ContactState::Stuck,
         anchor: tip[0],
+        texture,
+        mu_k_now: opts.mu_k,
+        edge: None,
         fresh_slip: false,
         ends_before: None,
         held_now: None,

@@ -14,12 +14,14 @@
 use crate::inertia::mass_density;
 use crate::parts::Stiffness;
 use crate::profile::{General, Profile};
+use crate::surface::Texture;
 use crate::{Rod, VibrissaError};
 use bvp::{
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Dims, ErrorControl, Guess, Solution,
 };
 use serde::Serialize;
 use std::f64::consts::FRAC_PI_2;
+use std::sync::Arc;
 
 /// The rod at one time.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -123,6 +125,10 @@ pub(crate) enum TipBc {
     /// tip's velocity along the track at the step's end by the trapezoidal rule,
     /// `v = 2/Δt (r(1) − rⁿ) − ṙⁿ`, `v_t = v·t` (`ẋ(1)` on a flat track).
     SlidingRate { dir: f64 },
+    /// The tip on the track, sliding in direction `dir` with the kinetic friction `μk(x(1))`
+    /// of the surface's friction texture ([`Rothe::texture`], continuous along x):
+    /// `G·t = dir·μk(x(1))·G·n`.
+    SlidingOn { dir: f64 },
 }
 
 /// Kinetic friction `μk(v)` of a table of `(v, μk)` points (speeds increasing): piecewise
@@ -243,9 +249,17 @@ struct Step<'a> {
     table: &'a [[f64; 2]],
     tip_then: [f64; 4],
     two_tau: f64,
+    /// The friction texture of [`TipBc::SlidingOn`].
+    texture: Option<&'a Texture>,
 }
 
 impl Step<'_> {
+    /// `μk` of the friction texture at the tip's `x(1)` and `dμk/dx` (without a texture: no
+    /// friction, which [`TipBc::SlidingOn`] is not built with).
+    fn place_friction(&self, x1: f64) -> (f64, f64) {
+        self.texture.map_or((0.0, 0.0), |t| t.kinetic_slope(x1))
+    }
+
     /// `μk` at the slip velocity at the step's end (the tip at `(x1, y1)`, the track's slope
     /// `hp` there) and `dμk/dx(1)`, `dμk/dy(1)` (the tangent's own change left out: Newton's
     /// matrix only).
@@ -352,6 +366,12 @@ impl Bvp for Step<'_> {
                 let gn = zb[5] - hp * zb[4];
                 self.sliding_jacobian(zb, dir * mk, [-dir * dmk[0] * gn, -dir * dmk[1] * gn], dgb);
             }
+            TipBc::SlidingOn { dir } => {
+                let (hp, _) = self.slope_at(zb[0]);
+                let (mk, dmk) = self.place_friction(zb[0]);
+                let gn = zb[5] - hp * zb[4];
+                self.sliding_jacobian(zb, dir * mk, [-dir * dmk * gn, 0.0], dgb);
+            }
         }
         true
     }
@@ -376,6 +396,10 @@ impl Bvp for Step<'_> {
             TipBc::SlidingRate { dir } => {
                 let (hp, _) = self.slope_at(zb[0]);
                 let (mk, _) = self.rate_friction(zb[0], zb[1], hp);
+                self.sliding_res(zb, dir * mk, res);
+            }
+            TipBc::SlidingOn { dir } => {
+                let (mk, _) = self.place_friction(zb[0]);
                 self.sliding_res(zb, dir * mk, res);
             }
         }
@@ -586,6 +610,8 @@ pub(crate) struct Rothe<'r> {
     pub friction_table: Vec<[f64; 2]>,
     /// The track of [`TipBc::Sliding`] and [`TipBc::SlidingRate`] (default: the line `y = 0`).
     pub track: Track,
+    /// The surface's friction texture of [`TipBc::SlidingOn`] (`None`: not used).
+    pub texture: Option<Arc<Texture>>,
 }
 
 /// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
@@ -674,6 +700,7 @@ impl<'r> Rothe<'r> {
             table: &[],
             tip_then: [0.0; 4],
             two_tau: 0.0,
+            texture: None,
         };
         let sol = solver
             .solve(&statics, guess)
@@ -713,6 +740,7 @@ impl<'r> Rothe<'r> {
             after: None,
             stats: DynStats::default(),
             friction_table: vec![],
+            texture: None,
             track: FLAT,
             grid,
             profile,
@@ -901,6 +929,7 @@ impl<'r> Rothe<'r> {
                 self.vel[1][ng],
             ],
             two_tau: 2.0 / tau,
+            texture: self.texture.as_deref(),
         };
         let mut guess = self.start();
         scale_forces(&mut guess, self.gs / gs);

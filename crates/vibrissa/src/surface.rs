@@ -877,6 +877,27 @@ impl Texture {
         }
     }
 
+    /// Whether μs and μk change continuously along the surface (a table, or uniform); patches
+    /// jump at their boundaries ([`Texture::next_boundary`]).
+    pub fn continuous(&self) -> bool {
+        !matches!(self.profile, FrictionProfile::Patches { .. })
+    }
+
+    /// `μk` at lab `x` of a continuous texture and its slope `dμk/dx` (a table's segment's; 0
+    /// beyond its ends, and the right segment's at a table point).
+    pub fn kinetic_slope(&self, x: f64) -> (f64, f64) {
+        let value = self.at(x, 1.0).1;
+        let FrictionProfile::Table { x: xs, mu_k, .. } = &self.profile else {
+            return (value, 0.0);
+        };
+        let n = xs.len();
+        if n < 2 || x < xs[0] || x >= xs[n - 1] {
+            return (value, 0.0);
+        }
+        let i = xs.partition_point(|&t| t <= x).clamp(1, n - 1) - 1;
+        (value, (mu_k[i + 1] - mu_k[i]) / (xs[i + 1] - xs[i]))
+    }
+
     /// The first patch boundary beyond `x` (by more than 1e-12) in the direction `dir`, if the
     /// texture has patches.
     pub fn next_boundary(&self, x: f64, dir: f64) -> Option<f64> {

@@ -6,7 +6,7 @@
 use vibrissa::dynamics::{
     drag, ContactState, DragEventKind, DynDragOptions, DynDragResult, DynDragStop,
 };
-use vibrissa::surface::{FrictionProfile, SurfaceProfile};
+use vibrissa::surface::SurfaceProfile;
 use vibrissa::{DragOptions, Rod, Surface, VibrissaError};
 
 #[path = "support/light_drag.rs"]
@@ -198,21 +198,12 @@ fn a_side_reaching_the_surface_ends_the_drag_by_name() {
     assert!(e[1] > 0.0 && e[1] < e[0] / 3.0, "{e:?}");
 }
 
-/// What the dynamic drag does not model is refused by name: a friction profile, and a start
-/// with a side on the surface (the rod tapered to 0.3 over a fine corrugation is pressed onto
-/// two of its crests).
+/// What the dynamic drag does not model is refused by name: a start with a side on the
+/// surface (the rod tapered to 0.3 over a fine corrugation is pressed onto two of its crests).
+/// (A friction texture is modelled: tests/dynamic_friction.rs.)
 #[test]
-fn refuses_a_friction_profile_or_a_side_at_the_start() {
-    let textured = Surface::flat(0.75)
-        .unwrap()
-        .with_friction(&FrictionProfile::Uniform {
-            mu_s: 0.5,
-            mu_k: 0.3,
-        })
-        .unwrap();
+fn refuses_a_side_at_the_start() {
     let o = light(0.05, 0.02, 0.01);
-    let e = drag(&Rod::uniform(), &textured, &o).unwrap_err();
-    assert!(matches!(e, VibrissaError::NotImplemented(_)), "{e}");
     let tapered = Rod::builder().taper(0.3).build().unwrap();
     let e = drag(&tapered, &corrugated(0.001, 0.02), &o).unwrap_err();
     assert!(matches!(e, VibrissaError::NoStart { .. }), "{e}");
