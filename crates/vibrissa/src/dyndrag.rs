@@ -1435,7 +1435,7 @@ impl<'r> Drive<'r, '_> {
             DragEventKind::Slip | DragEventKind::Stick | DragEventKind::Patch
         ) {
             // (at a patch's boundary the tip's friction jumps as at a slip)
-            self.restart();
+            self.restart(kind == DragEventKind::Patch);
         }
         let p = self.rothe.sample(self.t);
         self.events.push(DynDragEvent {
@@ -1514,17 +1514,19 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// The rod's accelerations and end forces made consistent with the tip's new condition
-    /// after a slip or a stick (`Rothe::restart`, two steps of [`restart_step`] on a copy).
+    /// after a slip, a stick or a patch crossed (`Rothe::restart`, two steps of [`restart_step`]
+    /// on a copy, three where the tip `moving` slides on).
     /// Where those steps are not solved the drag goes on from the history as it is (counted:
     /// `stats.restarts` falls short of the slips and sticks).
-    fn restart(&mut self) {
+    fn restart(&mut self, moving: bool) {
         let delta = restart_step(self.o);
-        let feet = [
-            self.path.at(self.t + delta),
-            self.path.at(self.t + 2.0 * delta),
-        ];
-        self.stats.solves += 2;
-        if self.rothe.restart(delta, feet, self.bc(), 0.0).is_err() {
+        // (three probe steps where the tip moves on: their values extrapolated back to the
+        // event's instant, see `Rothe::restart`)
+        let feet: Vec<Foot> = (1..=if moving { 3 } else { 2 })
+            .map(|k| self.path.at(self.t + k as f64 * delta))
+            .collect();
+        self.stats.solves += feet.len();
+        if self.rothe.restart(delta, &feet, self.bc(), 0.0).is_err() {
             return;
         }
         self.stats.restarts += 1;
