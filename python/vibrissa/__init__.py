@@ -865,7 +865,8 @@ def dynamics_drag(
     turn), ``tip_x``, ..., ``state``, ``normal``, ``tangential``, ``fx``, ``fy`` (after the
     first event without the time rule's alternating mode), ``m_base``, energies),
     ``samples_rows`` (the same as dicts: the program's ``--json``), ``events`` (``slip``,
-    ``stick``, ``lift_off``, ``touchdown`` with their time and place), ``stop`` (its
+    ``stick``, ``lift_off``, ``touchdown``, ``side_contact``, ``patch`` with their time and
+    place), ``stop`` (its
     ``reason``: ``d_max``, ``table_end``, ``lift_off``, ``touchdown``, ``max_events``, or
     ``unresolved_stick``, a stick the time step does not resolve, with ``t``, ``d`` and the
     force the stuck tip would need, ``unresolved_step``, a stuck rod the time step does not
