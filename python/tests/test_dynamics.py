@@ -358,3 +358,19 @@ def test_dynamics_drag_on_friction_patches_equals_the_program(program, tmp_path)
     assert given["events"] == plain["events"]
     flags = json.loads(program(*args, "--mu-s", "0.5", "--mu-k", "0.3", "--json"))
     assert flags["events"] == plain["events"]
+
+
+def test_dynamics_drag_with_a_round_tip_equals_the_program(program):
+    # a round tip on the flat surface (it needs internal damping: without, the library's
+    # error names it), its centre 0.02 below the surface
+    args = ["dynamics", "drag", "--tip-radius", "0.02", "--internal-damping", "1e-4",
+            "--speed", "0.05", "--dt", "0.05", "--d-max", "0.025"]
+    want = json.loads(program(*args, "--json"))
+    rod = vibrissa.Rod(tip_radius=0.02)
+    py = vibrissa.dynamics_drag(rod, speed=0.05, dt=0.05, d_max=0.025, internal_damping=1e-4)
+    check_samples(py, want["samples"], " ".join(args))
+    assert py["events"] == want["events"]
+    assert [e["kind"] for e in py["events"]][:1] == ["slip"]
+    assert all(abs(y - 0.73) < 1e-9 for y in py["samples"]["tip_y"])
+    with pytest.raises(vibrissa.InputError, match="internal damping"):
+        vibrissa.dynamics_drag(rod, d_max=0.01)

@@ -836,7 +836,9 @@ def dynamics_drag(
     ``mu_k`` (default the surface's ``friction`` texture, else the library's 0.5, 0.3; given,
     they replace the texture, as the program's flags do: a texture's patches and tables give
     the stuck tip's μs where it sticks and the sliding tip's μk where it slides, a patch's
-    boundary crossed is an event ``patch``), from the pressed start at rest to ``d_max``. The tip
+    boundary crossed is an event ``patch``), from the pressed start at rest to ``d_max``. A
+    ``rod`` with a ``tip_radius`` (on a line) rolls while it sticks and carries the moment
+    ``r T``; it needs ``internal_damping`` above 0 (e.g. 1e-4). The tip
     alone touches: a start with a side on the surface raises :class:`Error` naming the contact
     (no start), and a side that reaches the surface later ends the drag (stop
     ``side_contact``).

@@ -34,7 +34,10 @@
 //! tip alone touches in this model), **patch** where a sliding tip crosses a boundary of the
 //! surface's friction patches (it slides on with the next patch's μk, after a restart). A
 //! friction texture gives μs at the stuck tip's place and μk at the sliding tip's (a table's
-//! at `x(1)`). With `mu_k_table` the kinetic friction
+//! at `x(1)`). A round tip (a disk of radius `r` at the rod's end, on a line) has its centre
+//! on the line lowered by `r`, rolls while it sticks (`w·x(1) − r·φ(1)` held), slips at the
+//! contact point's material velocity `v·t − r·φ̇(1)`, and carries `m(1) = r·T` while it touches.
+//! With `mu_k_table` the kinetic friction
 //! depends on the slip velocity at the step's end, `T = dir·μk(|ẋ(1)|)·N`. A sticking tip's velocity and acceleration at the tip are set to zero:
 //! the velocity is zero to the event's tolerance, and the acceleration of a continuous rod
 //! jumps at the point that sticks only (the force holding it rises like `√t` from the moment
@@ -979,6 +982,14 @@ struct Drive<'r, 'o> {
     mu_k_now: f64,
     /// The next boundary of the texture's patches ahead of the sliding tip.
     edge: Option<f64>,
+    /// The tip's radius `r` (a disk centred at the rod's end; 0: a point tip). With `r > 0`
+    /// `track` is the line its centre runs on (the surface lowered by `r` along its normal),
+    /// `surface` the surface itself.
+    radius: f64,
+    /// The surface (the sides' clearance): `track` itself for a point tip.
+    surface: Track,
+    /// The stuck disk's rolling invariant `w·x(1) − r·φ(1)` ([`TipBc::Rolling`]).
+    roll: f64,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
     /// The forces at the support and the tip (`G(0)`, `G(1)`) at the last step's start, that
@@ -1043,6 +1054,7 @@ fn along(hp: f64, v: [f64; 2]) -> f64 {
 impl<'r> Drive<'r, '_> {
     fn bc(&self) -> TipBc {
         match self.state {
+            ContactState::Stuck if self.radius > 0.0 => TipBc::Rolling { a: self.roll },
             ContactState::Stuck => TipBc::Stuck([self.anchor, self.track.jet(self.anchor).0]),
             ContactState::Flying => TipBc::Force([0.0, 0.0]),
             s if !self.o.mu_k_table.is_empty() => TipBc::SlidingRate { dir: s.dir() },
@@ -1053,11 +1065,58 @@ impl<'r> Drive<'r, '_> {
         }
     }
 
+    /// The disk's moment condition's `(a, K)` for a step of length `tau`: the tangential force
+    /// combined over this step's end and the last two steps' as [`Drive::held_force`] combines
+    /// the stuck tip's, `a Tⁿ⁺¹ + ½ Tⁿ + c Tⁿ⁻¹` (`K` the last two terms), since `m(1) = r·T`
+    /// would carry the rule's alternating mode of the multiplier `T` into the rod's motion; the
+    /// end force itself (`(1, 0)`) without the last step under the same condition.
+    fn disk_held(&self, tau: f64) -> (f64, f64) {
+        if self.radius == 0.0 {
+            return (1.0, 0.0);
+        }
+        let Some((g_prev, h, x_prev)) = self.ends_before else {
+            return (1.0, 0.0);
+        };
+        let [a, _, c] = held_weights(tau, h);
+        let tn = self
+            .forces(self.rothe.force(1), self.rothe.sol.right()[0])
+            .1;
+        let tp = self.forces(g_prev[1], x_prev).1;
+        (a, 0.5 * tn + c * tp)
+    }
+
     /// Whether μk changes continuously along the slide (a friction table along x).
     fn varies_along(&self) -> bool {
         self.texture
             .as_ref()
             .is_some_and(|t| t.continuous() && t.uniform_mu_k().is_none())
+    }
+
+    /// The x of the point where the tip touches, its end (a disk's centre) at `x`: `x` for a
+    /// point tip, `x − r sin β` for a disk on a line of slope `tan β`.
+    fn contact_x(&self, x: f64) -> f64 {
+        if self.radius == 0.0 {
+            return x;
+        }
+        let hp = self.track.jet(x).1;
+        x - self.radius * hp / (1.0 + hp * hp).sqrt()
+    }
+
+    /// The stuck disk's rolling invariant of the state `z` at the tip (`[x, y, φ, …]`).
+    fn rolling_of(&self, z: &[f64]) -> f64 {
+        let hp = self.track.jet(z[0]).1;
+        (1.0 + hp * hp).sqrt() * z[0] - self.radius * z[2]
+    }
+
+    /// The velocity along the surface of the tip's material point that touches it: the end's
+    /// velocity `v` along the tangent, less `r·φ̇(1)` for a disk turning at `spin`.
+    fn slip_rate(&self, x: f64, v: [f64; 2], spin: f64) -> f64 {
+        let vt = along(self.track.jet(x).1, v);
+        if self.radius == 0.0 {
+            vt
+        } else {
+            vt - self.radius * spin
+        }
     }
 
     /// `(μs, μk)` at lab `x` (at a patch boundary, the patch on the side `side`).
@@ -1091,7 +1150,7 @@ impl<'r> Drive<'r, '_> {
     /// boundary `x_b`, at `x` (`−1`: none ahead, or not sliding).
     fn edge_gap(&self, x: f64) -> f64 {
         match (self.state.dir(), self.edge) {
-            (dir @ (1.0 | -1.0), Some(xb)) => dir * (x - xb),
+            (dir @ (1.0 | -1.0), Some(xb)) => dir * (self.contact_x(x) - xb),
             _ => -1.0,
         }
     }
@@ -1104,6 +1163,7 @@ impl<'r> Drive<'r, '_> {
         let foot = self.path.at(self.t + tau);
         self.stats.solves += 1;
         let bc = self.bc();
+        self.rothe.disk_held = self.disk_held(tau);
         let tr = self.rothe.trial(tau, foot, bc, 0.0).map_err(|e| {
             // (a foot at full speed from t = 0 is an impulse on the rod at rest: its
             // acceleration is infinite there, which no step resolves; v 0.2 failed, 0.05 not)
@@ -1144,12 +1204,13 @@ impl<'r> Drive<'r, '_> {
     /// `−dir·v_t` (sliding, `v_t` the tip's velocity `v` along the surface), from the forces and
     /// the tip's velocity; flying: none, and the tip's height over the surface `y(1) − h(x(1))`
     /// (minus the gap), the tip at `r`.
-    fn events_of(&self, n: f64, t: f64, v: [f64; 2], r: [f64; 2]) -> [f64; 2] {
-        let (h, hp, _) = self.track.jet(r[0]);
+    fn events_of(&self, n: f64, t: f64, v: [f64; 2], spin: f64, r: [f64; 2]) -> [f64; 2] {
         let phase = match self.state {
-            ContactState::Stuck => t.abs() - self.coefficients(self.anchor, t.signum()).0 * n,
-            ContactState::Flying => return [-1.0, r[1] - h],
-            s => -s.dir() * along(hp, v),
+            ContactState::Stuck => {
+                t.abs() - self.coefficients(self.contact_x(self.anchor), t.signum()).0 * n
+            }
+            ContactState::Flying => return [-1.0, r[1] - self.track.jet(r[0]).0],
+            s => -s.dir() * self.slip_rate(r[0], v, spin),
         };
         [-n, phase]
     }
@@ -1157,7 +1218,8 @@ impl<'r> Drive<'r, '_> {
     fn events_after(&self, tr: &Trial) -> [f64; 4] {
         let r = [tr.sol.right()[0], tr.sol.right()[1]];
         let (n, t) = self.forces(tr.force(1), r[0]);
-        let g = self.events_of(n, t, self.rothe.tip_velocity(tr), r);
+        let spin = self.rothe.tip_rate(tr, 4);
+        let g = self.events_of(n, t, self.rothe.tip_velocity(tr), spin, r);
         let held = (self.state == ContactState::Stuck).then(|| self.held_force(tr));
         let [lift, phase] = self.held_test(g, held, r);
         [lift, phase, self.side_gap(&tr.sol).0, self.edge_gap(r[0])]
@@ -1172,14 +1234,15 @@ impl<'r> Drive<'r, '_> {
     /// touchdown of a side at the tip).
     fn side_gap(&self, sol: &bvp::Solution) -> (f64, f64, f64) {
         let mut worst = (f64::NEG_INFINITY, f64::NAN, f64::NAN);
-        if self.state != ContactState::Flying {
+        if self.state != ContactState::Flying && self.radius == 0.0 {
+            // (a disk meets the surface at any angle: its end does not turn into it)
             let z = sol.right();
             let (sp, cp) = z[2].sin_cos();
             worst = (self.track.jet(z[0]).1 * cp - sp, 1.0, z[0]);
         }
         for i in 1..sol.len().saturating_sub(1) {
             let z = sol.node(i);
-            let gap = z[1] - self.track.jet(z[0]).0;
+            let gap = z[1] - self.surface.jet(z[0]).0;
             if gap > worst.0 || gap.is_nan() {
                 worst = (gap, sol.mesh[i], z[0]);
             }
@@ -1196,7 +1259,7 @@ impl<'r> Drive<'r, '_> {
         match (self.state, held) {
             (ContactState::Stuck, Some(held)) => {
                 let (n, t) = self.forces(held, r[0]);
-                self.events_of(n, t, [0.0, 0.0], r)
+                self.events_of(n, t, [0.0, 0.0], 0.0, r)
             }
             _ => g,
         }
@@ -1262,7 +1325,7 @@ impl<'r> Drive<'r, '_> {
         let p = self.rothe.sample(self.t);
         let r = [p.tip_x, p.tip_y];
         let (n, t) = self.forces(self.rothe.force(1), r[0]);
-        let g = self.events_of(n, t, [p.tip_vx, p.tip_vy], r);
+        let g = self.events_of(n, t, [p.tip_vx, p.tip_vy], self.rothe.tip_spin(), r);
         let [lift, phase] = self.held_test(g, self.held_now, r);
         [
             lift,
@@ -1285,6 +1348,15 @@ impl<'r> Drive<'r, '_> {
             self.turn,
             self.rothe.sol.left()[3],
         );
+        // (after a restart the end's moment is the restarted force's `r·T`, not the last
+        // solution's: the tip's condition changed there)
+        let m1 =
+            if self.radius > 0.0 && self.rothe.restarted() && self.state != ContactState::Flying {
+                self.radius * self.forces(g1, x1).1
+            } else {
+                self.rothe.sol.right()[3]
+            };
+        let phi1 = self.rothe.sol.right()[2];
         let tau = tr.tau;
         let ends = self.held_ends(&tr);
         let contact = self.held_contact(&tr);
@@ -1311,6 +1383,13 @@ impl<'r> Drive<'r, '_> {
         self.friction += -0.5 * (g1[0] + h1[0]) * (x1_new - x1);
         if !self.track.flat() {
             self.friction += -0.5 * (g1[1] + h1[1]) * (self.rothe.sol.right()[1] - y1);
+        }
+        if self.radius > 0.0 {
+            // (a disk: the end's moment `m(1) = r·T` on its turn as well, so that friction
+            // takes the contact force's work on the material point that touches, and a disk
+            // that rolls gives none)
+            let z = self.rothe.sol.right();
+            self.friction -= 0.5 * (m1 + z[3]) * (z[2] - phi1);
         }
         self.stats.steps += 1;
         self.samples.push(self.sample());
@@ -1416,16 +1495,19 @@ impl<'r> Drive<'r, '_> {
             };
             self.fresh_slip = true;
             self.stats.slips += 1;
-            self.enter_slide(self.anchor);
+            self.enter_slide(self.contact_x(self.anchor));
             DragEventKind::Slip
         } else {
             self.state = ContactState::Stuck;
             self.fresh_slip = false;
             self.anchor = self.rothe.sol.right()[0];
-            self.rothe.hold_tip_x();
-            if !self.track.flat() {
-                // (on a sloped track the tip moved along it in y too)
-                self.rothe.hold_tip_y();
+            self.roll = self.rolling_of(self.rothe.sol.right());
+            if self.radius == 0.0 {
+                self.rothe.hold_tip_x();
+                if !self.track.flat() {
+                    // (on a sloped track the tip moved along it in y too)
+                    self.rothe.hold_tip_y();
+                }
             }
             self.stats.sticks += 1;
             DragEventKind::Stick
@@ -1434,8 +1516,9 @@ impl<'r> Drive<'r, '_> {
             kind,
             DragEventKind::Slip | DragEventKind::Stick | DragEventKind::Patch
         ) {
-            // (at a patch's boundary the tip's friction jumps as at a slip)
-            self.restart(kind == DragEventKind::Patch);
+            // (at a patch's boundary the tip's friction jumps as at a slip; a disk's end moves
+            // at every event, rolling or sliding on: the restart then extrapolates back)
+            self.restart(kind == DragEventKind::Patch || self.radius > 0.0);
         }
         let p = self.rothe.sample(self.t);
         self.events.push(DynDragEvent {
@@ -1526,6 +1609,7 @@ impl<'r> Drive<'r, '_> {
             .map(|k| self.path.at(self.t + k as f64 * delta))
             .collect();
         self.stats.solves += feet.len();
+        self.rothe.disk_held = (1.0, 0.0);
         if self.rothe.restart(delta, &feet, self.bc(), 0.0).is_err() {
             return;
         }
@@ -1566,16 +1650,22 @@ impl<'r> Drive<'r, '_> {
             last.kinetic = after.kinetic;
             last.impact = self.impact;
         }
-        let v = along(hp, [after.tip_vx, after.tip_vy]);
+        let v = self.slip_rate(
+            after.tip_x,
+            [after.tip_vx, after.tip_vy],
+            self.rothe.tip_spin(),
+        );
+        let _ = hp;
         self.state = if v > 0.0 {
             ContactState::SlidingForward
         } else if v < 0.0 {
             ContactState::SlidingBack
         } else {
             self.anchor = after.tip_x;
+            self.roll = self.rolling_of(self.rothe.sol.right());
             ContactState::Stuck
         };
-        self.enter_slide(after.tip_x);
+        self.enter_slide(self.contact_x(after.tip_x));
     }
 
     /// A lower end of the search in a step that starts a slip (the velocity zero at the start):
@@ -1699,9 +1789,12 @@ impl<'r> Drive<'r, '_> {
 /// Drags the foot of `rod` along +x at speed `opts.speed` (after the smooth start) with the tip
 /// on `surface` (a line, inclined or not, or a height profile) and Coulomb friction
 /// `opts.mu_s`, `opts.mu_k`, from the pressed start at rest to `opts.d_max`, in time (see the
-/// module docs of `dynamics`).
-/// Errors: invalid input, a friction texture with `mu_k_table`, a tip radius, no start (or one with a side on the
-/// surface), a step the collocation does not solve.
+/// module docs of `dynamics`). A round tip (`rod.tip_radius() > 0`) on a line rolls while it
+/// sticks and carries the moment `m(1) = r·T` while it touches; it needs
+/// `opts.internal_damping > 0` (docs/model.md, "A round tip in time").
+/// Errors: invalid input (a round tip without internal damping among them), `mu_k_table` with
+/// a friction texture or a round tip, a round tip on a height profile, no start (or one with
+/// a side on the surface), a step the collocation does not solve.
 pub fn drag(
     rod: &Rod,
     surface: &Surface,
@@ -1715,14 +1808,29 @@ pub fn drag(
              friction texture",
         ));
     }
-    if rod.tip_radius() != 0.0 {
-        // (the pressed start would touch with the round end's side, the drag holds the end
-        // point on the surface: a start that slipped at t = 0 at T/N = -1.65 and a lift-off
-        // row with N = -0.11 for r = 0.01)
+    let radius = rod.tip_radius();
+    if radius != 0.0 && surface.profile().is_some() {
+        return Err(VibrissaError::NotImplemented(
+            "a round tip (tip radius > 0) on a height profile in the dynamic drag (a line, \
+             inclined or not, takes it)",
+        ));
+    }
+    if radius != 0.0 && !opts.mu_k_table.is_empty() {
+        return Err(VibrissaError::NotImplemented(
+            "kinetic friction depending on the slip velocity (mu_k_table) with a round tip in \
+             the dynamic drag",
+        ));
+    }
+    if radius != 0.0 && opts.internal_damping == 0.0 {
+        // (the sliding disk's `m(1) = r·μk·N` puts the contact's multiplier into the bending
+        // at the end, a non-conservative end condition: undamped, the rod's short waves grow
+        // and `N` rang by ±0.5 to ±1.2 from step to step, Newton failing near a stick at
+        // dt 0.005 and 0.01; γ_i = 1e-4 damps them, docs/model.md)
         return Err(VibrissaError::range(
-            "tip radius",
-            rod.tip_radius(),
-            "0 (the dynamic drag: a point tip)",
+            "internal damping",
+            0.0,
+            "above 0 with a round tip (tip radius > 0): its friction moment makes the undamped \
+             rod's short waves unstable; e.g. 1e-4",
         ));
     }
     let settings = Settings {
@@ -1741,18 +1849,35 @@ pub fn drag(
         remesh: true,
     };
     let grid = Rothe::grid_of(&settings);
-    let (guess, tip, track) = if surface.angle() == 0.0 && surface.profile().is_none() {
-        let eta = surface.eta();
-        let (guess, tip) = pressed(rod, eta, &grid)?;
-        let flat = Track::Line {
-            p: [0.0, eta],
-            slope: 0.0,
+    let (guess, tip, track) =
+        if surface.angle() == 0.0 && surface.profile().is_none() && radius == 0.0 {
+            let eta = surface.eta();
+            let (guess, tip) = pressed(rod, eta, &grid)?;
+            let flat = Track::Line {
+                p: [0.0, eta],
+                slope: 0.0,
+            };
+            (guess, tip, flat)
+        } else {
+            pressed_on(rod, surface, &grid)?
         };
-        (guess, tip, flat)
+    // (a disk's centre, the rod's end, runs on the line lowered by r: the track of the tip's
+    // conditions; the surface itself for the sides)
+    let surface_track = track.clone();
+    let (tip, track) = if radius > 0.0 {
+        let (mut z, n) = (vec![0.0; 6], guess.z.len() / 6 - 1);
+        z.copy_from_slice(&guess.z[6 * n..]);
+        let slope = match track {
+            Track::Line { slope, .. } => slope,
+            Track::Curve(_) => 0.0,
+        };
+        let centre = [z[0], z[1]];
+        (centre, Track::Line { p: centre, slope })
     } else {
-        pressed_on(rod, surface, &grid)?
+        (tip, track)
     };
     let mut rothe = Rothe::at_rest(rod, &settings, &guess, [0.0, 0.0], TipBc::Stuck(tip))?;
+    rothe.tip_radius = radius;
     rothe.friction_table = opts.mu_k_table.clone();
     rothe.track = track.clone();
     rothe.texture = texture.clone();
@@ -1769,6 +1894,9 @@ pub fn drag(
         texture,
         mu_k_now: opts.mu_k,
         edge: None,
+        radius,
+        surface: surface_track,
+        roll: 0.0,
         fresh_slip: false,
         ends_before: None,
         held_now: None,
@@ -1783,6 +1911,8 @@ pub fn drag(
         tried: vec![],
         instant_events: 0,
     };
+    let end = drive.rothe.sol.right().to_vec();
+    drive.roll = drive.rolling_of(&end);
     drive.samples.push(drive.sample());
     let stop = if drive.events_now()[PHASE] >= 0.0 {
         // the start needs more than μs (μs = 0): it slips at once

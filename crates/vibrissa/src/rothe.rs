@@ -129,6 +129,11 @@ pub(crate) enum TipBc {
     /// of the surface's friction texture ([`Rothe::texture`], continuous along x):
     /// `G·t = dir·μk(x(1))·G·n`.
     SlidingOn { dir: f64 },
+    /// A round tip ([`Rothe::tip_radius`] `r > 0`: a rigid disk centred at the rod's end) stuck
+    /// on a line track: it rolls without slipping, `w·x(1) − r·φ(1) = a` (`w = √(1 + h'²)`;
+    /// the contact point's arc length along the line less the disk's turn), its centre on the
+    /// track (the line lowered by `r` along its normal).
+    Rolling { a: f64 },
 }
 
 /// Kinetic friction `μk(v)` of a table of `(v, μk)` points (speeds increasing): piecewise
@@ -251,9 +256,19 @@ struct Step<'a> {
     two_tau: f64,
     /// The friction texture of [`TipBc::SlidingOn`].
     texture: Option<&'a Texture>,
+    /// The tip's radius `r` (a disk on a line track): while it touches, `m(1) = r·T`.
+    radius: f64,
+    /// `(a, K)` of [`Rothe::disk_held`].
+    held: (f64, f64),
 }
 
 impl Step<'_> {
+    /// Whether a round tip touches the track (stuck or sliding): its moment condition is
+    /// `m(1) = r·T` then, `m(1) = 0` otherwise.
+    fn disk_touches(&self) -> bool {
+        self.radius > 0.0 && !matches!(self.tip, TipBc::Force(_) | TipBc::Stuck(_))
+    }
+
     /// `μk` of the friction texture at the tip's `x(1)` and `dμk/dx` (without a texture: no
     /// friction, which [`TipBc::SlidingOn`] is not built with).
     fn place_friction(&self, x1: f64) -> (f64, f64) {
@@ -349,6 +364,14 @@ impl Bvp for Step<'_> {
         dga[12 + 2] = 1.0 + self.compliance * self.damp_k;
         dga[12 + 3] = -self.compliance;
         dgb[18 + 3] = 1.0;
+        if self.disk_touches() {
+            // `m(1) − r·T`, `T = −gs (z4 + h' z5)/w` (a line: h' constant)
+            let (hp, _) = self.slope_at(zb[0]);
+            let w = (1.0 + hp * hp).sqrt();
+            let ra = self.radius * self.held.0;
+            dgb[18 + 4] = ra * self.gs / w;
+            dgb[18 + 5] = ra * self.gs * hp / w;
+        }
         match self.tip {
             TipBc::Force(_) => {
                 dgb[24 + 4] = self.gs;
@@ -372,6 +395,13 @@ impl Bvp for Step<'_> {
                 let gn = zb[5] - hp * zb[4];
                 self.sliding_jacobian(zb, dir * mk, [-dir * dmk * gn, 0.0], dgb);
             }
+            TipBc::Rolling { .. } => {
+                let (hp, _) = self.slope_at(zb[0]);
+                dgb[24] = (1.0 + hp * hp).sqrt();
+                dgb[24 + 2] = -self.radius;
+                dgb[30] = -hp;
+                dgb[30 + 1] = 1.0;
+            }
         }
         true
     }
@@ -383,6 +413,12 @@ impl Bvp for Step<'_> {
         res[2] =
             theta - self.compliance * (za[3] + self.moment - self.damp_k * theta - self.damp_0);
         res[3] = zb[3];
+        if self.disk_touches() {
+            let (_, hp, _) = self.track.jet(zb[0]);
+            let w = (1.0 + hp * hp).sqrt();
+            let (a, known) = self.held;
+            res[3] = zb[3] + self.radius * (a * self.gs * (zb[4] + hp * zb[5]) / w - known);
+        }
         match self.tip {
             TipBc::Force(f) => {
                 res[4] = self.gs * zb[4] - f[0];
@@ -401,6 +437,11 @@ impl Bvp for Step<'_> {
             TipBc::SlidingOn { dir } => {
                 let (mk, _) = self.place_friction(zb[0]);
                 self.sliding_res(zb, dir * mk, res);
+            }
+            TipBc::Rolling { a } => {
+                let (h, hp, _) = self.track.jet(zb[0]);
+                res[4] = (1.0 + hp * hp).sqrt() * zb[0] - self.radius * zb[2] - a;
+                res[5] = zb[1] - h;
             }
         }
     }
@@ -612,6 +653,14 @@ pub(crate) struct Rothe<'r> {
     pub track: Track,
     /// The surface's friction texture of [`TipBc::SlidingOn`] (`None`: not used).
     pub texture: Option<Arc<Texture>>,
+    /// The tip's radius: a rigid disk at the rod's end, its centre on [`Rothe::track`] (the
+    /// surface line lowered by `r`), `m(1) = r·T` while it touches (default 0: a point tip).
+    pub tip_radius: f64,
+    /// The disk's moment condition `m(1) = r·(a·T + K)` of the next trial: `T` the step's end
+    /// tangential force, `a`, `K` its weight and the known part of a combination of it with
+    /// the last two steps' that cancels the rule's alternating mode (default `(1, 0)`: the end
+    /// force itself).
+    pub disk_held: (f64, f64),
 }
 
 /// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
@@ -701,6 +750,8 @@ impl<'r> Rothe<'r> {
             tip_then: [0.0; 4],
             two_tau: 0.0,
             texture: None,
+            radius: 0.0,
+            held: (1.0, 0.0),
         };
         let sol = solver
             .solve(&statics, guess)
@@ -741,6 +792,8 @@ impl<'r> Rothe<'r> {
             stats: DynStats::default(),
             friction_table: vec![],
             texture: None,
+            tip_radius: 0.0,
+            disk_held: (1.0, 0.0),
             track: FLAT,
             grid,
             profile,
@@ -930,6 +983,8 @@ impl<'r> Rothe<'r> {
             ],
             two_tau: 2.0 / tau,
             texture: self.texture.as_deref(),
+            radius: self.tip_radius,
+            held: self.disk_held,
         };
         let mut guess = self.start();
         scale_forces(&mut guess, self.gs / gs);
@@ -1075,12 +1130,19 @@ impl<'r> Rothe<'r> {
 
     /// The tip's velocity at the end of the trial step.
     pub fn tip_velocity(&self, tr: &Trial) -> [f64; 2] {
+        [self.tip_rate(tr, 0), self.tip_rate(tr, 1)]
+    }
+
+    /// The rate of history quantity `q` (0 x, 1 y, 4 φ) at the tip at the end of the trial `tr`.
+    pub fn tip_rate(&self, tr: &Trial, q: usize) -> f64 {
         let (i, k) = (self.ng, 4.0 / (tr.tau * tr.tau));
-        let v = |q: usize| {
-            let a1 = k * (tr.next[q][i] - tr.hat[q][i]);
-            self.vel[q][i] + 0.5 * tr.tau * (self.acc[q][i] + a1)
-        };
-        [v(0), v(1)]
+        let a1 = k * (tr.next[q][i] - tr.hat[q][i]);
+        self.vel[q][i] + 0.5 * tr.tau * (self.acc[q][i] + a1)
+    }
+
+    /// The tip's turning rate `φ̇(1)` now.
+    pub fn tip_spin(&self) -> f64 {
+        self.vel[4][self.ng]
     }
 
     /// The accelerations and end forces made consistent with a tip condition that has just
