@@ -1127,12 +1127,12 @@ impl<'r> Drive<'r, '_> {
         }
     }
 
-    /// The sliding tip's μk (at rest, with a table of speeds) at `x`, where it slides.
+    /// The sliding tip's μk (at rest, with a table of speeds), its end at `x`.
     fn mu_k_at(&self, x: f64) -> f64 {
         if !self.o.mu_k_table.is_empty() {
             crate::rothe::mu_k_of(&self.o.mu_k_table, 0.0).0
         } else if self.varies_along() {
-            self.coefficients(x, self.state.dir()).1
+            self.coefficients(self.contact_x(x), self.state.dir()).1
         } else {
             self.mu_k_now
         }
@@ -1655,7 +1655,6 @@ impl<'r> Drive<'r, '_> {
             [after.tip_vx, after.tip_vy],
             self.rothe.tip_spin(),
         );
-        let _ = hp;
         self.state = if v > 0.0 {
             ContactState::SlidingForward
         } else if v < 0.0 {
@@ -1865,13 +1864,13 @@ pub fn drag(
     // conditions; the surface itself for the sides)
     let surface_track = track.clone();
     let (tip, track) = if radius > 0.0 {
-        let (mut z, n) = (vec![0.0; 6], guess.z.len() / 6 - 1);
-        z.copy_from_slice(&guess.z[6 * n..]);
+        let n = guess.z.len() / 6 - 1;
+        let centre = [guess.z[6 * n], guess.z[6 * n + 1]];
         let slope = match track {
             Track::Line { slope, .. } => slope,
+            // (a round tip on a curve is refused above)
             Track::Curve(_) => 0.0,
         };
-        let centre = [z[0], z[1]];
         (centre, Track::Line { p: centre, slope })
     } else {
         (tip, track)

@@ -269,10 +269,18 @@ impl Step<'_> {
         self.radius > 0.0 && !matches!(self.tip, TipBc::Force(_) | TipBc::Stuck(_))
     }
 
-    /// `μk` of the friction texture at the tip's `x(1)` and `dμk/dx` (without a texture: no
-    /// friction, which [`TipBc::SlidingOn`] is not built with).
+    /// `μk` of the friction texture where the tip touches (its end at `x(1)`; a disk's contact
+    /// point) and `dμk/dx` (without a texture: no friction, which [`TipBc::SlidingOn`] is not
+    /// built with).
     fn place_friction(&self, x1: f64) -> (f64, f64) {
-        self.texture.map_or((0.0, 0.0), |t| t.kinetic_slope(x1))
+        // (a disk touches `r sin β` behind its centre: a line, so a constant shift)
+        let xc = if self.radius > 0.0 {
+            let (_, hp, _) = self.track.jet(x1);
+            x1 - self.radius * hp / (1.0 + hp * hp).sqrt()
+        } else {
+            x1
+        };
+        self.texture.map_or((0.0, 0.0), |t| t.kinetic_slope(xc))
     }
 
     /// `μk` at the slip velocity at the step's end (the tip at `(x1, y1)`, the track's slope
@@ -1162,7 +1170,7 @@ impl<'r> Rothe<'r> {
     /// `1.25 a₁ + 0.5 a₂ − 0.75 a₃` (exact for a linear change, the mode cancelled): the mean of
     /// two is that of the time `1.5 δ` later, which costs no work where the tip is at rest
     /// (a slip, a stick) but `O(τ δ)` of the energy balance where it moves on (a sliding tip
-    /// that crosses into another friction patch).
+    /// that crosses into another friction patch, a round tip's end at any event).
     pub fn restart(
         &mut self,
         delta: f64,
