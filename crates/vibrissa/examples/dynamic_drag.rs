@@ -9,7 +9,7 @@
 //! Run: `cargo run --release -p vibrissa --example dynamic_drag` (about 3 minutes on one core).
 
 use std::time::Instant;
-use vibrissa::dynamics::{drag, DragEventKind, DynDragOptions, DynDragResult};
+use vibrissa::dynamics::{drag, DynDragOptions, DynDragResult};
 use vibrissa::{Rod, Surface, VibrissaError};
 
 /// The quasi-static first slip (`vibrissa scan --mu0 0.5`, docs/reference.md).
@@ -25,25 +25,6 @@ fn run(speed: f64, dt: f64, d_max: f64) -> Result<(DynDragResult, f64), Vibrissa
     let t0 = Instant::now();
     let r = drag(&Rod::uniform(), &Surface::flat(0.75)?, &o)?;
     Ok((r, t0.elapsed().as_secs_f64()))
-}
-
-/// The energy balance from the first slip to the next stick: the foot's work against the
-/// kinetic and elastic energies' change, the friction's and the damper's work.
-fn slip_balance(r: &DynDragResult) -> Option<(f64, f64, f64)> {
-    let slip = r.events.iter().find(|e| e.kind == DragEventKind::Slip)?;
-    let stick = r
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Stick && e.t > slip.t)?;
-    let at = |t: f64| r.samples.iter().find(|p| p.t == t);
-    let (a, b) = (at(slip.t)?, at(stick.t)?);
-    let released = a.elastic - b.elastic;
-    let lhs = b.foot_work - a.foot_work;
-    let rhs = (b.kinetic - a.kinetic)
-        + (b.elastic - a.elastic)
-        + (b.friction - a.friction)
-        + (b.damper - a.damper);
-    Some((released, b.friction - a.friction, lhs - rhs))
 }
 
 fn main() -> Result<(), VibrissaError> {
@@ -65,7 +46,9 @@ fn main() -> Result<(), VibrissaError> {
     for dt in [0.02, 0.01, 0.005, 0.0025] {
         let (r, el) = run(0.05, dt, 0.045)?;
         let d = r.first_slip().unwrap_or(f64::NAN);
-        let bal = slip_balance(&r);
+        let bal = r
+            .first_slip_balance()
+            .map(|e| (e.released, e.friction, e.imbalance));
         println!(
             "dt {dt:<7} d {d:.16} error {:10.3e}; first slip to stick: {bal:?} (released, friction, balance); {} ({el:.1} s)",
             (d - D_QS).abs(),

@@ -817,6 +817,46 @@ pub struct DynDragResult {
     pub stats: DragStats,
 }
 
+/// The energy balance between two samples of a drag ([`DragSample::balance_to`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct EnergyBalance {
+    /// The elastic energy released, `E(from) − E(to)`.
+    pub released: f64,
+    /// The foot's work.
+    pub work: f64,
+    /// The work friction took.
+    pub friction: f64,
+    /// The work the dampers took: the support's, the rod's internal and external.
+    pub damping: f64,
+    /// `work − (ΔK + ΔE + friction + impacts + damping)`: zero but for the time scheme's
+    /// error.
+    pub imbalance: f64,
+}
+
+impl DragSample {
+    /// The energy balance from this sample to a `later` one.
+    pub fn balance_to(&self, later: &DragSample) -> EnergyBalance {
+        let (a, b) = (self, later);
+        let work = b.foot_work - a.foot_work;
+        let friction = b.friction - a.friction;
+        let damping = (b.internal_damping - a.internal_damping)
+            + (b.external_damping - a.external_damping)
+            + (b.damper - a.damper);
+        let rest = (b.kinetic - a.kinetic)
+            + (b.elastic - a.elastic)
+            + friction
+            + (b.impact - a.impact)
+            + damping;
+        EnergyBalance {
+            released: a.elastic - b.elastic,
+            work,
+            friction,
+            damping,
+            imbalance: work - rest,
+        }
+    }
+}
+
 impl DynDragResult {
     /// The first slip's foot displacement.
     pub fn first_slip(&self) -> Option<f64> {
@@ -824,6 +864,23 @@ impl DynDragResult {
             .iter()
             .find(|e| e.kind == DragEventKind::Slip)
             .map(|e| e.d)
+    }
+
+    /// The energy balance from the sample at time `from` to the one at `to` (`None` where
+    /// either is not a sample's time; an event's `t` is one).
+    pub fn balance(&self, from: f64, to: f64) -> Option<EnergyBalance> {
+        let at = |t: f64| self.samples.iter().find(|p| p.t == t);
+        Some(at(from)?.balance_to(at(to)?))
+    }
+
+    /// [`DynDragResult::balance`] from the first slip to the stick that ends it.
+    pub fn first_slip_balance(&self) -> Option<EnergyBalance> {
+        let slip = self.events.iter().find(|e| e.kind == DragEventKind::Slip)?;
+        let stick = self
+            .events
+            .iter()
+            .find(|e| e.kind == DragEventKind::Stick && e.t > slip.t)?;
+        self.balance(slip.t, stick.t)
     }
 }
 
@@ -1095,17 +1152,12 @@ impl<'r> Drive<'r, '_> {
     /// The x of the point where the tip touches, its end (a disk's centre) at `x`: `x` for a
     /// point tip, `x − r sin β` for a disk on a line of slope `tan β`.
     fn contact_x(&self, x: f64) -> f64 {
-        if self.radius == 0.0 {
-            return x;
-        }
-        let hp = self.track.jet(x).1;
-        x - self.radius * hp / (1.0 + hp * hp).sqrt()
+        crate::rothe::contact_x(&self.track, self.radius, x)
     }
 
     /// The stuck disk's rolling invariant of the state `z` at the tip (`[x, y, φ, …]`).
     fn rolling_of(&self, z: &[f64]) -> f64 {
-        let hp = self.track.jet(z[0]).1;
-        (1.0 + hp * hp).sqrt() * z[0] - self.radius * z[2]
+        crate::rothe::rolling_invariant(&self.track, self.radius, z)
     }
 
     /// The velocity along the surface of the tip's material point that touches it: the end's

@@ -136,6 +136,23 @@ pub(crate) enum TipBc {
     Rolling { a: f64 },
 }
 
+/// The x of the point where a disk of radius `r` centred at `x` on a line `track` (the surface
+/// lowered by `r`) touches the surface: `x − r sin β` (`x` itself for a point tip).
+pub(crate) fn contact_x(track: &Track, r: f64, x: f64) -> f64 {
+    if r == 0.0 {
+        return x;
+    }
+    let hp = track.jet(x).1;
+    x - r * hp / (1.0 + hp * hp).sqrt()
+}
+
+/// A disk's rolling invariant `w·x(1) − r·φ(1)` on a line `track` (`w = √(1 + h'²)`), the end
+/// `z = [x, y, φ, …]`: the contact point's arc length along the line less the disk's turn.
+pub(crate) fn rolling_invariant(track: &Track, r: f64, z: &[f64]) -> f64 {
+    let hp = track.jet(z[0]).1;
+    (1.0 + hp * hp).sqrt() * z[0] - r * z[2]
+}
+
 /// Kinetic friction `μk(v)` of a table of `(v, μk)` points (speeds increasing): piecewise
 /// linear, constant beyond its ends; with its slope `dμk/dv`.
 pub(crate) fn mu_k_of(table: &[[f64; 2]], v: f64) -> (f64, f64) {
@@ -273,13 +290,7 @@ impl Step<'_> {
     /// point) and `dμk/dx` (without a texture: no friction, which [`TipBc::SlidingOn`] is not
     /// built with).
     fn place_friction(&self, x1: f64) -> (f64, f64) {
-        // (a disk touches `r sin β` behind its centre: a line, so a constant shift)
-        let xc = if self.radius > 0.0 {
-            let (_, hp, _) = self.track.jet(x1);
-            x1 - self.radius * hp / (1.0 + hp * hp).sqrt()
-        } else {
-            x1
-        };
+        let xc = contact_x(self.track, self.radius, x1);
         self.texture.map_or((0.0, 0.0), |t| t.kinetic_slope(xc))
     }
 
@@ -447,9 +458,8 @@ impl Bvp for Step<'_> {
                 self.sliding_res(zb, dir * mk, res);
             }
             TipBc::Rolling { a } => {
-                let (h, hp, _) = self.track.jet(zb[0]);
-                res[4] = (1.0 + hp * hp).sqrt() * zb[0] - self.radius * zb[2] - a;
-                res[5] = zb[1] - h;
+                res[4] = rolling_invariant(self.track, self.radius, zb) - a;
+                res[5] = zb[1] - self.track.jet(zb[0]).0;
             }
         }
     }

@@ -103,36 +103,19 @@ fn refuses_bad_input() {
 fn a_slip_balances_its_energy() {
     let dt = 0.02;
     let r = paper(&light(0.05, dt, 0.0415));
-    let slip = r
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Slip)
-        .unwrap();
-    let stick = r
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Stick)
-        .unwrap();
-    let at = |t: f64| r.samples.iter().find(|p| p.t == t).unwrap();
-    let (a, b) = (at(slip.t), at(stick.t));
-    let released = a.elastic - b.elastic;
-    let work = b.foot_work - a.foot_work;
-    let rest = (b.kinetic - a.kinetic)
-        + (b.elastic - a.elastic)
-        + (b.friction - a.friction)
-        + (b.damper - a.damper);
-    let imbalance = work - rest;
+    let e = r.first_slip_balance().unwrap();
+    let (released, friction, imbalance) = (e.released, e.friction, e.imbalance);
     eprintln!(
-        "released {released:e}, friction {:e}, foot {work:e}, imbalance {imbalance:e} = {} dt^2 \
-         of the released energy",
-        b.friction - a.friction,
+        "released {released:e}, friction {friction:e}, foot {:e}, imbalance {imbalance:e} = {} \
+         dt^2 of the released energy",
+        e.work,
         imbalance / (dt * dt * released)
     );
     assert!(released > 0.02, "{released}");
     assert!(imbalance.abs() < 2.0 * dt * dt * released, "{imbalance:e}");
-    assert!(b.friction - a.friction > released);
+    assert!(friction > released);
     // the balance does not hold without friction's work
-    assert!((work - rest + (b.friction - a.friction)).abs() > 100.0 * imbalance.abs());
+    assert!((imbalance + friction).abs() > 100.0 * imbalance.abs());
 }
 
 /// The first slip's place tends to the quasi-static one, d = 0.0210132486189 (docs/reference.md),
@@ -199,17 +182,10 @@ fn a_stuck_tip_follows_the_quasi_static_path() {
 }
 
 /// The imbalance `W − (ΔK + ΔE + D_f + D_c + D_i + D_e + impact)` from sample `a` to sample `b`, and
-/// the energy the two dampings of the rod took between them.
+/// the energy the dampers took between them (`DragSample::balance_to`).
 fn imbalance(a: &vibrissa::dynamics::DragSample, b: &vibrissa::dynamics::DragSample) -> (f64, f64) {
-    let damping =
-        (b.internal_damping - a.internal_damping) + (b.external_damping - a.external_damping);
-    let rest = (b.kinetic - a.kinetic)
-        + (b.elastic - a.elastic)
-        + (b.friction - a.friction)
-        + (b.damper - a.damper)
-        + (b.impact - a.impact)
-        + damping;
-    ((b.foot_work - a.foot_work) - rest, damping)
+    let e = a.balance_to(b);
+    (e.imbalance, e.damping)
 }
 
 /// The drag with internal (Kelvin–Voigt, γ_i = 0.01) and external (γ_e = 0.1) damping: over

@@ -195,24 +195,19 @@ fn a_slide_across_a_patch_boundary_changes_mu_k_there_and_balances_its_energy() 
         (edge.tangential - 0.2 * edge.normal).abs() < 1e-9,
         "{edge:?}"
     );
-    let at = |t: f64| r.samples.iter().find(|p| p.t == t).unwrap();
-    let (a, b) = (at(r.events[0].t), at(r.events[2].t));
-    let released = a.elastic - b.elastic;
-    let work = b.foot_work - a.foot_work;
-    let rest = (b.kinetic - a.kinetic) + (b.elastic - a.elastic) + (b.friction - a.friction);
-    let imbalance = work - rest;
+    let e = r.balance(r.events[0].t, r.events[2].t).unwrap();
+    let (released, friction, imbalance) = (e.released, e.friction, e.imbalance);
     eprintln!(
-        "slip {} patch {} stick {}, released {released:e}, friction {:e}, imbalance \
+        "slip {} patch {} stick {}, released {released:e}, friction {friction:e}, imbalance \
          {imbalance:e} = {} dt^2",
         r.events[0].d,
         edge.d,
         r.events[2].d,
-        b.friction - a.friction,
         imbalance / (dt * dt * released)
     );
     assert!(released > 0.01, "{released}");
     assert!(imbalance.abs() < 2.0 * dt * dt * released, "{imbalance:e}");
-    assert!((imbalance + (b.friction - a.friction)).abs() > 100.0 * imbalance.abs());
+    assert!((imbalance + friction).abs() > 100.0 * imbalance.abs());
 }
 
 /// Kinetic friction that depends on the slip velocity is not combined with a texture: refused
