@@ -786,7 +786,8 @@ pub struct DragArgs {
     /// Surface height eta (rod lengths), in (eta_, 1) (see scan --help). [default: scene file's, else 0.75]
     #[arg(long, value_name = "H", value_parser = finite_f64)]
     pub eta: Option<f64>,
-    /// Largest foot displacement d (rod lengths), in (0, 1000].
+    /// Largest foot displacement d (rod lengths), in (0, 1000]; with --turn the largest turn
+    /// (rad), in (0, pi/2).
     // (the program's default, shorter than the library's DragOptions::default(): 2)
     #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "1")]
     pub d_max: f64,
@@ -794,6 +795,11 @@ pub struct DragArgs {
     /// come on top).
     #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
     pub points: u32,
+    /// Whisk against the surface instead: the foot held where it stands, its support turned
+    /// clockwise (towards +x) from upright by theta = 0 ... --d-max (rad); the rows' first
+    /// column is theta.
+    #[arg(long, conflicts_with_all = ["speed", "speed_mm_s", "energy_balance"])]
+    pub turn: bool,
     /// Static friction coefficient, in [0, 100]: the stuck tip slips where |mu| reaches it (with
     /// --mu-k). [default: the scene file's [friction]]
     #[arg(long, value_name = "MU", value_parser = finite_f64)]

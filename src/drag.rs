@@ -16,16 +16,19 @@ use vibrissa::{DragOptions, Scene, StopReason, Units};
 /// Columns of the drag CSV (`vibrissa plot` reads them by name); with a physical scene
 /// `d_mm, x_tip_mm, y_tip_mm, normal_N, fx_N, fy_N, m_base_Nm` before `event`, as the scan's;
 /// with a round tip (`round`) its contact point `x_contact` after the tip's (the disk's centre)
-/// `x_tip, y_tip`.
-pub fn header(physical: bool, round: bool) -> Vec<&'static str> {
-    let mut h = vec!["d", "phase", "x_tip", "y_tip"];
+/// `x_tip, y_tip`; with a turning support (`turn`) the first column is the turn `theta` (rad),
+/// and the physical columns have no `d_mm`.
+pub fn header(physical: bool, round: bool, turn: bool) -> Vec<&'static str> {
+    let mut h = vec![if turn { "theta" } else { "d" }, "phase", "x_tip", "y_tip"];
     if round {
         h.push("x_contact");
     }
     h.extend(["mu", "mu_s", "normal", "fx", "fy", "m_base", "contact"]);
     if physical {
+        if !turn {
+            h.push("d_mm");
+        }
         h.extend([
-            "d_mm",
             "x_tip_mm",
             "y_tip_mm",
             "normal_N",
@@ -38,7 +41,7 @@ pub fn header(physical: bool, round: bool) -> Vec<&'static str> {
     h
 }
 
-fn row(r: &DragRow, u: Option<Units>, round: bool) -> Vec<String> {
+fn row(r: &DragRow, u: Option<Units>, round: bool, turn: bool) -> Vec<String> {
     let mut v = vec![num(r.d), r.phase.name().to_string()];
     v.extend([r.x_tip, r.y_tip].map(num));
     if round {
@@ -50,7 +53,10 @@ fn row(r: &DragRow, u: Option<Units>, round: bool) -> Vec<String> {
     v.push(r.contact.name().to_string());
     if let Some(u) = u {
         let l = u.length_mm;
-        v.extend([r.d * l, r.x_tip * l, r.y_tip * l].map(num));
+        if !turn {
+            v.push(num(r.d * l));
+        }
+        v.extend([r.x_tip * l, r.y_tip * l].map(num));
         v.extend([r.normal, r.fx, r.fy].map(|f| num(f * u.force_n)));
         v.push(num(r.m_base * u.moment_nm));
     }
@@ -120,6 +126,11 @@ pub fn run(a: &DragArgs) -> Res<()> {
         contact: sc.contact,
         energy_balance: a.energy_balance,
         max_slips: a.max_slips as usize,
+        motion: if a.turn {
+            vibrissa::FootMotion::Turn
+        } else {
+            vibrissa::FootMotion::Along
+        },
     };
     let r = vibrissa::drag(&rod, &surface, &opts)?;
     crate::progress::stop();
@@ -139,13 +150,14 @@ pub fn run(a: &DragArgs) -> Res<()> {
                 .iter()
                 .zip(&r.shapes)
                 .map(|(p, sh)| (p.d, p.event.map_or("", |e| e.name()), sh.as_slice())),
+            a.turn,
         )?;
     }
     if a.out.is_some() || !a.json {
         let u = crate::scene_args::units_of(&sc);
         let round = sc.tip_radius > 0.0;
-        let h = header(u.is_some(), round);
-        crate::table::write_table(a.out.as_deref(), &h, &r.rows, |p| row(p, u, round))?;
+        let h = header(u.is_some(), round, a.turn);
+        crate::table::write_table(a.out.as_deref(), &h, &r.rows, |p| row(p, u, round, a.turn))?;
     }
     let stop = Stop::from(&r.stop);
     if stop.reason != "d_max" {
@@ -177,9 +189,14 @@ pub fn run(a: &DragArgs) -> Res<()> {
     if a.json {
         writeln!(io::stdout(), "{}", serde_json::to_string_pretty(&out)?)?;
     } else {
+        let (what, p) = if a.turn {
+            ("drag, the support turned,", "theta")
+        } else {
+            ("drag", "d")
+        };
         let line = if r.slips.is_empty() {
             format!(
-                "drag eta = {} ({}): no slip up to d = {}; {} rows; stopped: {}; {:.1} ms",
+                "{what} eta = {} ({}): no slip up to {p} = {}; {} rows; stopped: {}; {:.1} ms",
                 sc.eta,
                 out.method,
                 // where the drag ended (d_max only when it got there)
@@ -191,7 +208,7 @@ pub fn run(a: &DragArgs) -> Res<()> {
         } else {
             let s = &r.summary;
             format!(
-                "drag eta = {} ({}): {} slip{}, first at d = {:.6}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
+                "{what} eta = {} ({}): {} slip{}, first at {p} = {:.6}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
                 sc.eta,
                 out.method,
                 s.cycles,

@@ -119,16 +119,26 @@ pub(crate) fn detect(t: &Table) -> Res<PlotKind> {
         PlotKind::Dynamics
     } else if t.has("frequency") && t.has("amplitude") {
         PlotKind::Spectrum
-    } else if t.has("d") && t.has("phase") {
+    } else if (t.has("d") || t.has("theta")) && t.has("phase") {
         PlotKind::Drag
     } else if t.has("d") && t.has("mu") {
         PlotKind::Scan
     } else {
         return Err(usage(format!(
-            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d and phase, a whisk theta and s_c, its --shapes point, s and theta, a dynamics file t, m_base and kinetic, a spectrum frequency and amplitude); use --kind to say which",
+            "{}: not a file vibrissa writes (a scan has d and mu, its --shapes point, s and x_lab, a sweep index and stop_reason, a drag d (or theta) and phase, a whisk theta and s_c, its --shapes point, s and theta, a dynamics file t, m_base and kinetic, a spectrum frequency and amplitude); use --kind to say which",
             t.name
         )));
     })
+}
+
+/// The parameter column of a drag's file or its shapes file: `d`, or `theta` where the support
+/// turned (`drag --turn`).
+fn drag_axis(t: &Table) -> &'static str {
+    if !t.has("d") && t.has("theta") {
+        "theta"
+    } else {
+        "d"
+    }
 }
 
 /// Axis label with its unit for a column of the program's files.
@@ -508,7 +518,7 @@ fn shape_panel(
     let (pcol, xcol) = if whisk {
         ("theta", "x")
     } else {
-        ("d", "x_lab")
+        (drag_axis(t), "x_lab")
     };
     let (d, s, x, y) = (t.need(pcol)?, t.need("s")?, t.need(xcol)?, t.need("y")?);
     let ev = t.text("event");
@@ -606,7 +616,7 @@ const DRAG_SHAPE_SLIPS: usize = 3;
 /// the rod just before (solid) and just after (dashed, same colour) each of the first three
 /// slips (`--select` chooses other points).
 fn drag_with_shapes(t: &Table, sh: &Table, select: Option<&[usize]>, beta: f64) -> Res<Fig> {
-    let mut fig = signals(t, &format!("drag {}", t.name), "d")?;
+    let mut fig = signals(t, &format!("drag {}", t.name), drag_axis(t))?;
     let by_point = shape_rows(sh)?;
     let ev = sh.text("event").ok_or_else(|| {
         usage(format!(
@@ -1046,6 +1056,13 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
     }
     let mut fig = match kind {
         PlotKind::Scan => signals(t, &format!("scan {}", t.name), "d")?,
+        PlotKind::Drag if a.aligned && drag_axis(t) == "theta" => {
+            return Err(usage(format!(
+                "{}: --aligned draws a drag whose foot moves along the surface; this drag's \
+                 support turned (its column theta): plot it without --aligned",
+                t.name
+            )))
+        }
         PlotKind::Drag if a.aligned => {
             let shape = if textured {
                 vibrissa::surface::Height::new(&sc.surface, 0.0, a.surface_angle)?
@@ -1068,7 +1085,7 @@ pub(crate) fn figure(t: &Table, a: &PlotArgs) -> Res<Fig> {
             Some(path) => {
                 drag_with_shapes(t, &Table::read(path)?, a.select.as_deref(), a.surface_angle)?
             }
-            None => signals(t, &format!("drag {}", t.name), "d")?,
+            None => signals(t, &format!("drag {}", t.name), drag_axis(t))?,
         },
         PlotKind::Whisk => signals(t, &format!("whisk {}", t.name), "theta")?,
         PlotKind::Shapes => shapes(t, a.select.as_deref(), a.surface_angle, false)?,

@@ -64,22 +64,26 @@ pub fn write_shape(path: &std::path::Path, shape: &[ShapePoint]) -> Res<()> {
 
 /// The shapes file of a scan or a drag (columns point, d, s, x, y, x_lab, phi, kappa, m, event;
 /// `vibrissa plot` reads it): one `(d, event, samples)` per point; x_lab = x + d is the lab
-/// frame (the foot started at 0, the tip stays put).
+/// frame (the foot started at 0, the tip stays put). A drag whose support turns (`turn`) has
+/// `theta` for `d`, and x_lab = x (the foot held at 0).
 pub fn write_shape_file<'a>(
     path: &std::path::Path,
     points: impl Iterator<Item = (f64, &'a str, &'a [ShapePoint])>,
+    turn: bool,
 ) -> Res<()> {
     let mut f = AtomicFile::create(path)?;
+    let d_col = if turn { "theta" } else { "d" };
     csv_line(
         &mut f,
         &[
-            "point", "d", "s", "x", "y", "x_lab", "phi", "kappa", "m", "event",
+            "point", d_col, "s", "x", "y", "x_lab", "phi", "kappa", "m", "event",
         ],
     )?;
     for (i, (d, event, sh)) in points.enumerate() {
+        let xf = if turn { 0.0 } else { d };
         for q in sh {
             let mut r = vec![i.to_string()];
-            r.extend([d, q.s, q.x, q.y, q.x + d, q.phi, q.kappa, q.m].map(num));
+            r.extend([d, q.s, q.x, q.y, q.x + xf, q.phi, q.kappa, q.m].map(num));
             r.push(event.to_string());
             csv_line(&mut f, &r)?;
         }

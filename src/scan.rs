@@ -208,6 +208,7 @@ pub fn write_shapes(path: &std::path::Path, r: &ScanResult) -> Res<()> {
             .iter()
             .zip(&r.shapes)
             .map(|(p, sh)| (p.d, p.event.map_or("", |e| e.name()), sh.as_slice())),
+        false,
     )
 }
 

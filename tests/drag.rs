@@ -734,3 +734,47 @@ fn physical_units_in_the_drag_csv() {
     let f1 = ok(&["fit", "--trace", phys.to_str().unwrap()]);
     assert_eq!(f0.stdout, f1.stdout);
 }
+
+/// `drag --turn`: the support turned with the foot held (the quasi-static whisk against the
+/// surface). The rows' first column is the turn `theta`; the precurved rod (κ0 = −1) unloads
+/// where its rest arc's tip meets the surface, `cos(φ0 − 1) − cos φ0 = η` with
+/// `φ0 = π/2 − θ` (0.172629434569279 at η 0.75, bisection), the stop a lift-off there to the
+/// library's 1e-6 (measured 3.7e-8); the flags a turn cannot take are refused in one line.
+#[test]
+fn drag_turn_unloads_where_the_rest_arc_meets_the_surface() {
+    let args = [
+        "drag",
+        "--turn",
+        "--precurvature",
+        "-1",
+        "--mu-s",
+        "0.5",
+        "--mu-k",
+        "0.3",
+        "--d-max",
+        "0.5",
+        "--points",
+        "11",
+    ];
+    let o = ok(&args);
+    let (h, rows) = csv(&o.stdout);
+    assert_eq!(h[0], "theta");
+    let ev = h.iter().position(|c| c == "event").unwrap();
+    assert!(rows.iter().any(|r| r[ev] == "slip"));
+    let j = json(&ok(&[&args[..], &["--json"]].concat()).stdout);
+    assert_eq!(j["stop_reason"], "lift_off");
+    close(
+        j["stop"]["d"].as_f64().unwrap(),
+        0.172629434569279,
+        1e-6,
+        "unloaded",
+    );
+    // the rows end before it, the tip on the surface, N > 0
+    for r in &rows {
+        assert!(col(&h, r, "theta") < 0.172629434569279 && col(&h, r, "normal") > 0.0);
+    }
+    for extra in [&["--energy-balance"][..], &["--speed", "0.01"]] {
+        let e = bad(&[&args[..], extra].concat(), 2);
+        assert!(e.contains("--turn"), "{e}");
+    }
+}

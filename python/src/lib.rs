@@ -698,15 +698,16 @@ fn sweep<'py>(
 }
 
 /// One drag row with the program's column names (`vibrissa drag`'s CSV), the physical columns
-/// with units, and `x_contact` for a round tip (`round`).
+/// with units, and `x_contact` for a round tip (`round`); a turning support's (`turn`) first
+/// column is `theta`, and it has no `d_mm`.
 fn drag_row<'py>(
     py: Python<'py>,
     r: &vibrissa::drag::DragRow,
     u: Option<Units>,
-    round: bool,
+    (round, turn): (bool, bool),
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("d", r.d)?;
+    d.set_item(if turn { "theta" } else { "d" }, r.d)?;
     d.set_item("phase", r.phase.name())?;
     d.set_item("x_tip", r.x_tip)?;
     d.set_item("y_tip", r.y_tip)?;
@@ -722,7 +723,9 @@ fn drag_row<'py>(
     d.set_item("contact", r.contact.name())?;
     if let Some(u) = u {
         let l = u.length_mm;
-        d.set_item("d_mm", r.d * l)?;
+        if !turn {
+            d.set_item("d_mm", r.d * l)?;
+        }
         d.set_item("x_tip_mm", r.x_tip * l)?;
         d.set_item("y_tip_mm", r.y_tip * l)?;
         d.set_item("normal_N", r.normal * u.force_n)?;
@@ -737,10 +740,11 @@ fn drag_row<'py>(
 }
 
 /// The drag: the foot from 0 to `d_max` across the surface, the tip sticking and slipping
-/// (`vibrissa drag`); a dict: `rows` (the program's columns), `slips`, `summary`, `stop`,
-/// `stats`, `handover`, `units`, `shapes`. Ctrl-C interrupts it.
+/// (`vibrissa drag`; with `turn` the foot held and its support turned by up to `d_max` rad,
+/// `--turn`); a dict: `rows` (the program's columns), `slips`, `summary`, `stop`, `stats`,
+/// `handover`, `units`, `shapes`. Ctrl-C interrupts it.
 #[pyfunction]
-#[pyo3(signature = (rod, surface, *, mu_s=None, mu_k=None, d_max=vibrissa::limits::DEFAULT_DRAG_D_MAX, points=vibrissa::limits::DEFAULT_DRAG_POINTS, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, shape_points=None, contact=None, start=None, energy_balance=false, max_slips=None))]
+#[pyo3(signature = (rod, surface, *, mu_s=None, mu_k=None, d_max=vibrissa::limits::DEFAULT_DRAG_D_MAX, points=vibrissa::limits::DEFAULT_DRAG_POINTS, method="shooting", tol=SolverConfig::DEFAULT_TOL, segments=SolverConfig::DEFAULT_SEGMENTS, shape_points=None, contact=None, start=None, energy_balance=false, max_slips=None, turn=false))]
 #[allow(clippy::too_many_arguments)]
 fn drag<'py>(
     py: Python<'py>,
@@ -758,6 +762,7 @@ fn drag<'py>(
     start: Option<&str>,
     energy_balance: bool,
     max_slips: Option<usize>,
+    turn: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (contact, start) = settings(surface, contact, start)?;
     let mut opts = DragOptions {
@@ -769,6 +774,11 @@ fn drag<'py>(
         keep_shapes: shape_points,
         contact,
         energy_balance,
+        motion: if turn {
+            vibrissa::FootMotion::Turn
+        } else {
+            vibrissa::FootMotion::Along
+        },
         ..DragOptions::default()
     };
     if let Some(n) = max_slips {
@@ -785,7 +795,7 @@ fn drag<'py>(
     let out = PyDict::new(py);
     let rows = PyList::empty(py);
     for row in &r.rows {
-        rows.append(drag_row(py, row, units, round)?)?;
+        rows.append(drag_row(py, row, units, (round, turn))?)?;
     }
     out.set_item("rows", rows)?;
     out.set_item("slips", to_py(py, &r.slips)?)?;

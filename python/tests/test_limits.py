@@ -63,6 +63,24 @@ def test_drag_equals_the_program(program, scene):
             same(py.summary[k], summary[k], k)
 
 
+@pytest.mark.parametrize("scene", ["paper.toml", "rat_mystacial_short.toml"])
+def test_a_turned_drag_equals_the_program(program, scene):
+    # turn=True is the program's --turn: the support turned, the rows' first column theta (and
+    # no d_mm on a physical rod); the turned rat unloads (a lift-off, extrapolated)
+    path = str(SCENES / scene)
+    args = ["drag", "--scene", path, "--turn", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.3",
+            "--points", "31"]
+    rows = read_csv(program(*args))
+    assert "theta" in rows[0] and "d" not in rows[0] and "d_mm" not in rows[0]
+    rod, surface = vibrissa.load_scene(path)
+    py = vibrissa.drag(rod, surface, mu_s=0.5, mu_k=0.3, d_max=0.3, points=31, turn=True)
+    check_rows(py.rows, rows, " ".join(args))
+    summary = json.loads(program(*args, "--json"))
+    assert summary["cycles"] == len(py.slips) > 0
+    assert summary["stop_reason"] == py.stop_reason
+    assert py.stop_reason == ("d_max" if scene == "paper.toml" else "lift_off")
+
+
 def test_max_slips_is_the_program_s(program):
     # the guard --max-slips as a keyword: its default is the library's, a cap ends the drag
     # where the program's does, and the library's range refuses

@@ -486,7 +486,8 @@ class DragResult:
     """The result of :func:`drag`.
 
     Attributes:
-        rows: dict of columns with the program's names (``vibrissa drag``'s CSV): ``d``,
+        rows: dict of columns with the program's names (``vibrissa drag``'s CSV): ``d``
+            (``theta`` with ``turn``),
             ``phase``, ``x_tip``, ``y_tip``, (with a round tip ``x_contact``), ``mu``, ``mu_s``,
             ``normal``, ``fx``, ``fy``,
             ``m_base``, ``contact``, (with a physical rod ``d_mm``, ``x_tip_mm``, ``y_tip_mm``,
@@ -554,12 +555,15 @@ def drag(
     start: Optional[str] = None,
     energy_balance: bool = False,
     max_slips: int = _DEFAULTS["drag_max_slips"],
+    turn: bool = False,
 ) -> DragResult:
     """The drag (as ``vibrissa drag``): the foot moves from 0 to ``d_max`` across ``surface``;
     the tip sticks until ``|mu|`` reaches ``mu_s``, slips to where ``mu_k`` holds it, and sticks
     again. ``mu_s`` with ``mu_k`` (``mu_k < mu_s``), or neither: the surface's ``friction``
     texture. ``max_slips``: the most slips before the drag stops (a guard, as the program's
-    ``--max-slips``). The defaults are the program's; the values are checked as the program
+    ``--max-slips``). ``turn``: the foot held and its support turned clockwise by
+    ``theta = 0 ... d_max`` rad instead (a whisk against the surface, the program's ``--turn``;
+    the rows' first column is ``theta``). The defaults are the program's; the values are checked as the program
     checks them (the library's limits). Ctrl-C interrupts it."""
     if surface is None:
         surface = Surface()
@@ -579,6 +583,7 @@ def drag(
             start=start,
             energy_balance=energy_balance,
             max_slips=max_slips,
+            turn=turn,
         )
     )
 

@@ -123,6 +123,7 @@ def drag(
     start: Optional[str] = None,
     energy_balance: bool = False,
     max_slips: Optional[int] = None,
+    turn: bool = False,
 ) -> Dict[str, Any]: ...
 def whisk(
     rod: Rod,

@@ -250,10 +250,15 @@ pub(crate) enum Family {
     Slope,
     /// Nothing moves with λ (a fixed scene; a homotopy of the rod itself sets the shooter).
     Fixed(Pose),
-    /// The foot held at `xf` while the contact `driver` slides along the surface by `dir·λ` (a
-    /// slip: the anchor of a stuck tip, or the rolling invariant of a side, moves by that much in
-    /// arc length); the other contacts keep their modes.
-    Slide { xf: f64, dir: f64, driver: usize },
+    /// The foot held at `xf`, its support turned by `theta`, while the contact `driver` slides
+    /// along the surface by `dir·λ` (a slip: the anchor of a stuck tip, or the rolling invariant
+    /// of a side, moves by that much in arc length); the other contacts keep their modes.
+    Slide {
+        xf: f64,
+        theta: f64,
+        dir: f64,
+        driver: usize,
+    },
     /// A curved surface's shape grown from its straight trend (`λ = 0`, lifted by `off0`) to
     /// itself (`λ = 1`): `flat = 1 − λ`, `h = (1 − λ)·off0`.
     Grow { off0: f64 },
@@ -276,9 +281,10 @@ impl Family {
             Family::Turn => (Pose { theta: lam, ..z }, Pose { theta: 1.0, ..z }),
             Family::Slope => (Pose { phi: lam, ..z }, Pose { phi: 1.0, ..z }),
             Family::Fixed(p) => (p, z),
-            Family::Slide { xf, dir, .. } => (
+            Family::Slide { xf, theta, dir, .. } => (
                 Pose {
                     xf,
+                    theta,
                     slide: dir * lam,
                     ..z
                 },

@@ -1,5 +1,7 @@
 //! The drag across a surface (issue 21): the foot travels `d` from 0 to `d_max` and the tip
-//! sticks and slips again and again.
+//! sticks and slips again and again. With [`FootMotion::Turn`] the foot stays and its support
+//! turns by `θ` from 0 to `d_max` instead (a whisk against the surface): the same phases with
+//! `θ` for `d` (family Turn in the sticks; the slides hold the foot's turn).
 //!
 //! ```text
 //!     stick:  the march in d (family Drag), the tip stuck at its place σ_a along the surface,
@@ -86,6 +88,46 @@ pub struct DragOptions {
     /// Integrate the foot's work over each stick and the work the sliding tip absorbs over each
     /// slip (the energy balance; extra solves inside the steps). Default false.
     pub energy_balance: bool,
+    /// What the drag's parameter moves: the foot along x (`d`, the default) or the foot's
+    /// support turned about the foot (a whisk against the surface, `θ`).
+    #[serde(skip_serializing_if = "FootMotion::is_along")]
+    pub motion: FootMotion,
+}
+
+/// What a drag's parameter moves ([`DragOptions::motion`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FootMotion {
+    /// The foot travels `d` along x, its support upright (the stiction drag).
+    #[default]
+    Along,
+    /// The foot held at the origin while its support turns clockwise by `θ` (rad) from upright:
+    /// the clamp holds the foot's slope at `π/2 − θ` (the whisk's convention), quasi-static. The
+    /// rows' and slips' `d` is `θ`, `d_max` the largest turn (below π/2).
+    Turn,
+}
+
+impl FootMotion {
+    /// Whether this is the default, [`FootMotion::Along`].
+    pub fn is_along(&self) -> bool {
+        *self == FootMotion::Along
+    }
+
+    /// The family of the stick phases.
+    fn family(self) -> Family {
+        match self {
+            FootMotion::Along => Family::Drag,
+            FootMotion::Turn => Family::Turn,
+        }
+    }
+
+    /// The foot's `(x, θ)` at the drag's parameter `lam`.
+    fn foot(self, lam: f64) -> (f64, f64) {
+        match self {
+            FootMotion::Along => (lam, 0.0),
+            FootMotion::Turn => (0.0, lam),
+        }
+    }
 }
 
 impl Default for DragOptions {
@@ -100,6 +142,7 @@ impl Default for DragOptions {
             contact: ContactModel::Anywhere,
             max_slips: 100_000,
             energy_balance: false,
+            motion: FootMotion::Along,
         }
     }
 }
@@ -110,6 +153,15 @@ impl DragOptions {
     pub fn validate(&self) -> Result<(), VibrissaError> {
         use crate::limits;
         limits::DRAG_D_MAX.check("d_max", self.d_max)?;
+        if self.motion == FootMotion::Turn {
+            limits::THETA.check("d_max (the largest turn)", self.d_max)?;
+            if self.energy_balance {
+                return Err(VibrissaError::NotImplemented(
+                    "the energy balance of a turning foot (the work of the support's moment is \
+                     not metered; each slip's released energy is)",
+                ));
+            }
+        }
         limits::POINTS.check_count("points", self.points)?;
         match (self.mu_s, self.mu_k) {
             (None, None) => {}
@@ -191,7 +243,7 @@ impl DragEvent {
 /// One row of a drag: an output displacement (stick) or an event.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DragRow {
-    /// Foot displacement.
+    /// Foot displacement (the support's turn θ with [`FootMotion::Turn`]).
     pub d: f64,
     /// Stick or slip.
     pub phase: Phase,
@@ -251,6 +303,34 @@ pub struct Signals {
 /// Slips over which `DragRun::too_many_slips` measures the recent spacing in `d`.
 const SPACING_WINDOW: usize = 100;
 
+/// Slips over which `DragRun::unloads` reads the normal force falling to zero.
+const UNLOAD_WINDOW: usize = 50;
+
+/// How closely the lift-off place that `DragRun::unloads` extrapolates must be known (the
+/// zeros of the normal force's line and parabola through the window's slips agree to this):
+/// rod lengths, or radians of a turning support.
+pub const UNLOAD_TOL: f64 = 1e-6;
+
+/// Where the normal force `N(λ)` through the points `a`, `b`, `c` (`(λ, N)`, λ rising, N falling)
+/// reaches zero beyond `c`: by the line through `b` and `c`, and by the parabola through all
+/// three (`None` where it has no zero beyond `c`).
+fn zero_ahead(a: (f64, f64), b: (f64, f64), c: (f64, f64)) -> (f64, Option<f64>) {
+    let line = c.0 + c.1 * (c.0 - b.0) / (b.1 - c.1);
+    // N = c.1 + p x + q x², x = λ − c.0
+    let (xa, xb) = (a.0 - c.0, b.0 - c.0);
+    let (ya, yb) = (a.1 - c.1, b.1 - c.1);
+    let det = xa * xb * (xb - xa);
+    let p = (ya * xb * xb - yb * xa * xa) / det;
+    let q = (yb * xa - ya * xb) / det;
+    let disc = p * p - 4.0 * q * c.1;
+    // (the root nearest ahead, in the form without cancellation)
+    let x = (disc >= 0.0).then(|| 2.0 * c.1 / (-p + disc.sqrt()));
+    (
+        line,
+        x.filter(|x| x.is_finite() && *x > 0.0).map(|x| c.0 + x),
+    )
+}
+
 /// Whether slips `spacing` apart in `d`, `ahead` more of them to `d_max` and `left` of
 /// `max_slips`, end the drag at once (`DragRun::too_many_slips`): closer than
 /// [`MIN_SLIP_SPACING`], more than are left, and lasting — kinetic friction within 1e-3 μs of
@@ -264,7 +344,7 @@ fn stops_early(spacing: f64, ahead: f64, left: usize, friction_close: bool) -> b
 /// One slip and the stick phase before it.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct SlipEvent {
-    /// Foot displacement at the slip.
+    /// Foot displacement at the slip (the support's turn θ with [`FootMotion::Turn`]).
     pub d: f64,
     /// Where the stick phase before it began.
     pub d_stick: f64,
@@ -457,7 +537,7 @@ fn drag_with<P: Profile>(
     let mut sh = start.sh.clone();
     sh.stats = Default::default();
     let begun = Begin {
-        chain: Chain::new(sh, set, Family::Drag),
+        chain: Chain::new(sh, set, opts.motion.family()),
         env: base.clone(),
         solver: &opts.solver,
         lam: 0.0,
@@ -571,6 +651,12 @@ impl<P: Profile> DragRun<'_, P> {
         StopReason::SolverFailure { d, message }
     }
 
+    /// The foot's lab x at the drag's parameter `lam` (`lam` itself, or 0 where the support
+    /// turns).
+    fn xf(&self, lam: f64) -> f64 {
+        self.opts.motion.foot(lam).0
+    }
+
     /// The phases, from the stuck start `p` at `d = 0`; why the drag stopped. Each phase is a
     /// march of the one engine on the same stepper, started from the point where the last one
     /// ended: a stick (the foot moves, the tip stuck) until the tip reaches its slip limit, then
@@ -646,6 +732,58 @@ impl<P: Profile> DragRun<'_, P> {
         )
     }
 
+    /// Slips that accumulate where the contacts unload (the slip at `d` to come, its normal
+    /// force `normal`): over the last [`UNLOAD_WINDOW`] slips and this one the normal force
+    /// falls at every slip, towards a zero that its line and its parabola through them put at
+    /// the same place to [`UNLOAD_TOL`], and the slips' spacing shrinks at least as fast as the
+    /// distance left to it. The contacts then unload there through ever closer slips, which no
+    /// number of slips reaches (a support turned towards the surface's side: the rod relaxes
+    /// until its tip meets the surface without load, the spacing falling like N² on the
+    /// straight rod, like N on the rat's curved one): a lift-off there, extrapolated.
+    fn unloads(&self, d: f64, normal: f64) -> Option<StopReason> {
+        let n = self.slips.len();
+        if n < UNLOAD_WINDOW {
+            return None;
+        }
+        let pts: Vec<(f64, f64)> = (self.slips[n - UNLOAD_WINDOW..].iter())
+            .map(|s| (s.d, s.before.normal))
+            .chain([(d, normal)])
+            .collect();
+        let falling = pts
+            .windows(2)
+            .all(|w| w[1].0 > w[0].0 && w[1].1 < w[0].1 && w[1].1 > 0.0);
+        if !falling {
+            return None;
+        }
+        let (a, b, c) = (pts[0], pts[UNLOAD_WINDOW / 2], pts[UNLOAD_WINDOW]);
+        let (line, Some(at)) = zero_ahead(a, b, c) else {
+            return None;
+        };
+        // (slips that accumulate there shrink at least as fast as the distance left; ones that
+        // keep their spacing reach the zero and are followed to it)
+        let (first, spacing) = (pts[1].0 - a.0, c.0 - pts[UNLOAD_WINDOW - 1].0);
+        let shrinking = spacing / (at - c.0) <= 1.1 * first / (at - a.0);
+        if (at - line).abs() > UNLOAD_TOL || !shrinking {
+            return None;
+        }
+        Some(StopReason::LiftOff {
+            d: at,
+            limit: Some(format!(
+                "the contacts unload through ever closer slips: the normal force fell at each of \
+                 the last {} slips, to {} at the last (d = {}, {} after the one before), the \
+                 slips closing in on the place where its line and parabola through them reach 0, \
+                 d = {} to {:e}, {} ahead",
+                UNLOAD_WINDOW + 1,
+                crate::limits::digits(c.1, 3),
+                c.0,
+                crate::limits::digits(spacing, 3),
+                at,
+                UNLOAD_TOL,
+                crate::limits::digits(at - c.0, 3),
+            )),
+        })
+    }
+
     /// Kinetic friction within 1e-3 μs of static (the options' uniform pair; a friction
     /// profile's coefficients change along the surface).
     fn friction_close(&self) -> bool {
@@ -711,12 +849,12 @@ impl<P: Profile> DragRun<'_, P> {
     /// `creeps`) slide on with kinetic friction until they halt.
     fn stick(&mut self, p: Pt, first: bool, carry: Option<f64>) -> Result<Stuck, StopReason> {
         let d = p.lam;
-        let x_tip = round_contact(self.st.set(), &p).unwrap_or(p.sol.right()[0] + d);
+        let x_tip = round_contact(self.st.set(), &p).unwrap_or(p.sol.right()[0] + self.xf(d));
         let mu_s = carry.unwrap_or_else(|| self.fr.at(x_tip, 1.0).0);
         let mut env = self.base.clone();
         env.mu0 = Some(mu_s);
         env.ground.meter = self.opts.energy_balance.then_some(Meter::Foot);
-        self.st.phase(Family::Drag, &env);
+        self.st.phase(self.opts.motion.family(), &env);
         let gi = if first {
             0
         } else {
@@ -743,6 +881,9 @@ impl<P: Profile> DragRun<'_, P> {
         }
         let driver = slipping(&env, &sset, &pe, None);
         if let Some(stop) = self.too_many_slips(pe.lam) {
+            return Err(stop);
+        }
+        if let Some(stop) = self.unloads(pe.lam, pe.w.normal) {
             return Err(stop);
         }
         if self.slips.len() >= self.opts.max_slips {
@@ -831,8 +972,10 @@ impl<P: Profile> DragRun<'_, P> {
                 _ => MAX_SLIP,
             };
             // (the point again, watched with this piece's μk)
+            let (xf, theta) = self.opts.motion.foot(d_s);
             let family = Family::Slide {
-                xf: d_s,
+                xf,
+                theta,
                 dir,
                 driver: j,
             };
@@ -888,7 +1031,7 @@ impl<P: Profile> DragRun<'_, P> {
                     (cset, cu, clam) = (eset, qe.u, 0.0);
                     continue;
                 }
-                let slid = slid + ridden(rode, &eset, &qe, d_s);
+                let slid = slid + ridden(rode, &eset, &qe, self.xf(d_s));
                 return Ok((eset, qe, slid, None));
             }
             match &sout.stop {
@@ -899,9 +1042,9 @@ impl<P: Profile> DragRun<'_, P> {
                         let (end, qe) = if own {
                             (end, qe)
                         } else {
-                            self.at_kinetic(end, qe, (j, dir * mu_k), d_s)
+                            self.at_kinetic(end, qe, (j, dir * mu_k), self.xf(d_s))
                         };
-                        let slid = slid + ridden(rode, &end, &qe, d_s);
+                        let slid = slid + ridden(rode, &end, &qe, self.xf(d_s));
                         return Ok((end, qe, slid, None));
                     };
                     // μk holds this one: it slides along with kinetic friction while the one
@@ -910,7 +1053,7 @@ impl<P: Profile> DragRun<'_, P> {
                         rode = Some((j, dir, place(end.contacts[j].mode), end.contacts.len()));
                     }
                     let mut next = riding(end, j, dir * mu_k);
-                    next = crate::events::held(&next, k, &qe, d_s);
+                    next = crate::events::held(&next, k, &qe, self.xf(d_s));
                     (j, dir, own) = (k, qe.w.contacts[k].tangential.signum(), false);
                     x_now = qe.w.contacts[k].x;
                     (cset, cu, clam) = (next, qe.u, 0.0);
@@ -927,7 +1070,7 @@ impl<P: Profile> DragRun<'_, P> {
                     let (ms, mk) = self.fr.at(c.x, dir);
                     if dir * c.tangential <= mk * c.normal {
                         let end = moved(eset, j, dir * qe.lam);
-                        let slid = slid + own_slide + ridden(rode, &end, &qe, d_s);
+                        let slid = slid + own_slide + ridden(rode, &end, &qe, self.xf(d_s));
                         return Ok((end, qe, slid, Some(ms)));
                     }
                     x_now = c.x;
@@ -1019,13 +1162,13 @@ impl<P: Profile> DragRun<'_, P> {
         let mut nset = eset.clone();
         for k in 0..nset.contacts.len() {
             if crate::events::is_slider(&nset.contacts[k]) {
-                nset = crate::events::held(&nset, k, &qe, d_s);
+                nset = crate::events::held(&nset, k, &qe, self.xf(d_s));
             }
         }
         if crate::watch::traps(&s.set) && lam_s < self.opts.solver.tol && !self.lifted {
             nset = self.creeps(s, (nset, lam_s), mu_s_next)?;
         }
-        self.st.phase(Family::Drag, &self.base);
+        self.st.phase(self.opts.motion.family(), &self.base);
         let pa = match self.st.switch(nset.clone(), d_s, qe.u.clone()) {
             Ok(q) => q,
             Err(e) => {
@@ -1044,7 +1187,7 @@ impl<P: Profile> DragRun<'_, P> {
                 fx: q.w.force[0],
                 fy: q.w.force[1],
                 m_base: q.sol.left()[3],
-                x_tip: q.sol.right()[0] + d_s,
+                x_tip: q.sol.right()[0] + self.xf(d_s),
                 energy: e,
             }
         };
@@ -1090,7 +1233,13 @@ impl<P: Profile> DragRun<'_, P> {
         self.rows.push(DragRow {
             phase: Phase::Slip,
             event: Some(DragEvent::SlipEnd),
-            ..row_of(&sp, pa.sol.right(), d_s, mu_s_next, contacts)
+            ..row_of(
+                &sp,
+                pa.sol.right(),
+                (d_s, self.xf(d_s)),
+                mu_s_next,
+                contacts,
+            )
         });
         if let Some(ns) = self.opts.keep_shapes {
             let shape = shape_from(pa.sol.clone(), 0.0, self.general.clone());
@@ -1225,7 +1374,7 @@ impl<P: Profile> DragRun<'_, P> {
                     }
                 }
             }
-            let mut r = row_of(sp, &out.tips[i], d, mu_s, contacts);
+            let mut r = row_of(sp, &out.tips[i], (d, self.xf(d)), mu_s, contacts);
             r.phase = phase;
             self.rows.push(r);
             if let Some(sh) = out.shapes.get(i) {
@@ -1460,14 +1609,14 @@ fn round_contact(set: &ContactSet, p: &Pt) -> Option<f64> {
 fn row_of(
     sp: &crate::ScanPoint,
     tip: &[f64],
-    d: f64,
+    (d, xf): (f64, f64),
     mu_s: f64,
     contacts: Vec<ContactState>,
 ) -> DragRow {
     DragRow {
         d,
         phase: Phase::Stick,
-        x_tip: tip[0] + d,
+        x_tip: tip[0] + xf,
         y_tip: tip[1],
         mu: sp.mu,
         normal: sp.normal,

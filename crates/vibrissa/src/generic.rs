@@ -659,8 +659,9 @@ impl<P: Profile> Stepper for GenericStepper<P> {
         GENERIC_H_MAX
     }
 
-    fn foot_x(&self, lam: f64) -> f64 {
-        self.bvp.family.pose(lam).0.xf
+    fn foot(&self, lam: f64) -> (f64, f64) {
+        let p = self.bvp.family.pose(lam).0;
+        (p.xf, p.theta)
     }
 
     fn method_solution(&self) -> Option<Solution> {

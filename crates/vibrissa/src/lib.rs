@@ -118,7 +118,7 @@ mod timestep;
 mod watch;
 
 pub use config::Cancel;
-pub use drag::{drag, DragOptions, DragResult};
+pub use drag::{drag, DragOptions, DragResult, FootMotion};
 pub use error::VibrissaError;
 pub use fit::{fit, FitOptions, FitResult, Trace, TraceSlip};
 pub use peg::{locate, solve_peg, whisk, PegPoint, WhiskOptions, WhiskResult};

@@ -734,7 +734,7 @@ impl<P: Profile> Run<'_, '_, P> {
     /// singular or beyond `HOLD_MAX`, as for a side trapped a short stretch behind a sliding
     /// tip, which must move with it): then it slides the other way.
     fn reversed(&mut self, set: &ContactSet, j: usize, p: &Pt) -> ContactSet {
-        let xf = self.stepper.foot_x(p.lam);
+        let xf = self.stepper.foot(p.lam).0;
         let hold = crate::events::held(set, j, p, xf);
         let way_on = (self.stepper.tangent_in(&hold, p.lam, &p.u))
             .is_some_and(|t| t.iter().all(|v| v.abs() < HOLD_MAX));
@@ -940,7 +940,7 @@ impl<P: Profile> Run<'_, '_, P> {
             friction: self.spec.friction,
             slide: self.spec.slide,
         };
-        let xf = self.stepper.foot_x(pe.lam);
+        let xf = self.stepper.foot(pe.lam).0;
         match transition(&self.env, rules, &set, cross, &pe, xf) {
             Next::Done => {
                 self.range.close(RangeEnd::DMax);
@@ -977,7 +977,7 @@ impl<P: Profile> Run<'_, '_, P> {
         let driver_before = self.env.ground.slide.map(|s| s.driver);
         let driver_gone = self.renumber(&set, &new_set, pe.lam);
         if driver_gone {
-            let xf = self.stepper.foot_x(pe.lam);
+            let xf = self.stepper.foot(pe.lam).0;
             (new_set, self.out.riders) = hold_riders(&set, new_set, &pe, xf);
         }
         let env = &self.env;
@@ -1240,7 +1240,7 @@ impl<P: Profile> Run<'_, '_, P> {
         if at > slide.driver {
             return false;
         }
-        let (xf, dir) = (self.stepper.foot_x(lam), slide.dir);
+        let ((xf, theta), dir) = (self.stepper.foot(lam), slide.dir);
         let lost = new < old && at == slide.driver;
         let driver = if lost {
             self.env.ground.slide = None;
@@ -1253,8 +1253,13 @@ impl<P: Profile> Run<'_, '_, P> {
             }
             slide.driver
         };
-        self.stepper
-            .phase(crate::chain::Family::Slide { xf, dir, driver }, &self.env);
+        let family = crate::chain::Family::Slide {
+            xf,
+            theta,
+            dir,
+            driver,
+        };
+        self.stepper.phase(family, &self.env);
         lost
     }
 

@@ -160,8 +160,9 @@ impl<P: Profile> Stepper for OwnStepper<P> {
         OWN_H_MAX
     }
 
-    fn foot_x(&self, lam: f64) -> f64 {
-        self.chain.family.pose(lam).0.xf
+    fn foot(&self, lam: f64) -> (f64, f64) {
+        let p = self.chain.family.pose(lam).0;
+        (p.xf, p.theta)
     }
 
     fn cancelled(&self) -> bool {

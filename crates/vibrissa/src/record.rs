@@ -46,7 +46,7 @@ pub(crate) fn meter_between(
 ) -> [f64; 2] {
     let ends = |st: &dyn Stepper, a: &Pt, b: &Pt| {
         let set = st.set();
-        metered(m, env, set, (a, st.foot_x(a.lam)), (b, st.foot_x(b.lam)))
+        metered(m, env, set, (a, st.foot(a.lam).0), (b, st.foot(b.lam).0))
     };
     let whole = ends(&*st, a, b);
     if depth >= 16 || b.lam - a.lam <= 1e-13 * (1.0 + b.lam.abs()) {

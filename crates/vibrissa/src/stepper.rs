@@ -176,8 +176,9 @@ pub(crate) trait Stepper {
     fn stats(&self) -> Stats;
     /// Largest natural step in `λ`.
     fn h_max(&self) -> f64;
-    /// The foot's x in the lab frame at `λ` (for along-surface anchors).
-    fn foot_x(&self, lam: f64) -> f64;
+    /// The foot at `λ`: its x in the lab frame (for along-surface anchors) and its support's
+    /// clockwise turn.
+    fn foot(&self, lam: f64) -> (f64, f64);
     /// The method's own last solution of a one-segment chain (the tip alone touches): the rod on
     /// `[0, 1]` with `params = [f, α]`; `None` on the rod's own shooter.
     fn method_solution(&self) -> Option<Solution> {

@@ -7,14 +7,14 @@ use vibrissa::dynamics::Whisk;
 use vibrissa::dynamics::{
     drag, ContactState, DragEventKind, DynDragEvent, DynDragOptions, DynDragResult, DynDragStop,
 };
-use vibrissa::{
-    scan, scan_at, solve, BranchChoice, Rod, ScanOptions, SolverConfig, Surface, Target,
-    VibrissaError,
-};
+use vibrissa::{scan, scan_at, Rod, ScanOptions, Surface, VibrissaError};
 
 #[path = "support/light_drag.rs"]
 mod light_drag;
 use light_drag::light;
+#[path = "support/turned.rs"]
+mod turned;
+use turned::{turn_at_ratio, turned_static};
 
 fn paper(o: &DynDragOptions) -> DynDragResult {
     drag(&Rod::uniform(), &Surface::flat(0.75).unwrap(), o).unwrap()
@@ -741,22 +741,6 @@ fn held_foot_whisk(t_end: f64, a: f64, f: f64, dt: f64) -> DynDragOptions {
     }
 }
 
-/// The static rod of the clamp turned clockwise by `theta` with its tip pinned at the lab point
-/// `(x, y)`: `solve` with the tip's place seen from the clamp turned back upright
-/// (counter-clockwise by `theta`; the rod's internal force is in that frame too).
-fn turned_static(x: f64, y: f64, theta: f64) -> vibrissa::Shape {
-    let (sn, cs) = theta.sin_cos();
-    let (x1, y1) = (x * cs - y * sn, x * sn + y * cs);
-    solve(
-        &Rod::uniform(),
-        -theta,
-        Target::Tip { x1, y1 },
-        &BranchChoice::Convex,
-        &SolverConfig::default(),
-    )
-    .unwrap()
-}
-
 /// The foot turned: `whisk` with the foot held and the tip held by a large μs, at `f` whisks per
 /// time unit over a quarter whisk, dt `dt`. Returns the largest `|Δm(0)|` against the static rod
 /// at the same turn with the tip where it is held ([`turned_static`]), and the run.
@@ -930,30 +914,6 @@ fn the_rows_forces_leave_the_mode_out() {
     }
 }
 
-/// The turn of the clamp at which the static rod, its tip pinned at `(x_a, η)`, needs
-/// `T/N = μs` (the quasi-static whisk's first slip): bisection on the turn, each state
-/// [`turned_static`] with its force turned back into the lab frame.
-fn quasi_static_slip_turn(x_a: f64, eta: f64, mu_s: f64) -> f64 {
-    let ratio = |theta: f64| {
-        let q = turned_static(x_a, eta, theta);
-        let (sn, cs) = theta.sin_cos();
-        // the internal force turned back clockwise by θ: N = −G_y, T = −G_x
-        let (gx, gy) = (q.fx * cs + q.fy * sn, -q.fx * sn + q.fy * cs);
-        -gx / -gy
-    };
-    let (mut lo, mut hi) = (0.0, 0.12);
-    assert!(ratio(lo) < mu_s && ratio(hi) > mu_s);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if ratio(mid) < mu_s {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 /// The first slip of a slow whisk (A 0.3, the foot held) comes at the turn where the static
 /// rod, its tip pinned where it was pressed, needs μs: 0.0750944 (the static solve on the rod's
 /// shooter, another method than the steps' collocation). Measured (dt 0.1, tol 1e-8 on 100
@@ -973,7 +933,7 @@ fn the_first_slip_of_a_slow_whisk_tends_to_the_quasi_static_one() {
         (o.turn_at(e.t), r.samples[0].tip_x)
     };
     let (_, x_a) = run(0.02);
-    let qs = quasi_static_slip_turn(x_a, 0.75, 0.5);
+    let qs = turn_at_ratio(x_a, 0.75, 0.5, (0.0, 0.12));
     assert!((qs - 0.0750944).abs() < 1e-6, "{qs}");
     for (f, bound) in [(0.04, 1.5e-5), (0.02, 4e-6), (0.005, 5e-7)] {
         let (turn, _) = run(f);

@@ -1,0 +1,118 @@
+//! The drag's foot turned instead of moved (`FootMotion::Turn`): the quasi-static whisk against a
+//! surface, stick–slip as the support turns with the foot held. The paper's rod (uniform,
+//! η = 0.75, μs = 0.5, μk = 0.3) against the static rod of the turned clamp with its tip pinned
+//! (`solve` on the rod's shooter; support/turned.rs), which is also the reference of the
+//! dynamic whisk's first slip (tests/dynamic_drag.rs); where the turned rod unloads, against the
+//! unloaded rod's closed form.
+
+use vibrissa::drag::{DragEvent, Phase};
+use vibrissa::{
+    drag, DragOptions, DragResult, FootMotion, Rod, StopReason, Surface, VibrissaError,
+};
+
+#[path = "support/turned.rs"]
+mod turned;
+use turned::{pinned_ratio, turn_at_ratio};
+
+fn turned(d_max: f64) -> DragOptions {
+    DragOptions {
+        d_max,
+        points: 61,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        motion: FootMotion::Turn,
+        ..DragOptions::default()
+    }
+}
+
+fn on_paper_surface(rod: &Rod, o: &DragOptions) -> DragResult {
+    drag(rod, &Surface::flat(0.75).unwrap(), o).unwrap()
+}
+
+/// Every slip of the turned paper's rod comes at the turn where the rod, its tip pinned where
+/// the last slip left it, needs μs (bisection on the pinned static rod), and ends where the rod
+/// pinned at the slip's end needs μk. Measured: the nine slips to θ = 0.3 (0.0750944,
+/// 0.1120609, 0.1452683, …, 0.2906486) within 6.8e-11 of the bisection, their ends within
+/// 4.1e-10 of μk (the solves' tolerance 1e-10). Between slips the tip stays where it stuck.
+#[test]
+fn each_slip_comes_where_the_pinned_rod_needs_mu_s_and_ends_at_mu_k() {
+    let r = on_paper_surface(&Rod::uniform(), &turned(0.3));
+    assert_eq!(r.stop, StopReason::DMax);
+    assert_eq!(r.slips.len(), 9, "{r}");
+    assert!((r.slips[0].d - 0.0750944).abs() < 1e-7, "{}", r.slips[0].d);
+    let mut lo = 0.0;
+    for s in &r.slips {
+        let at = turn_at_ratio(s.before.x_tip, 0.75, 0.5, (lo, s.d + 0.05));
+        assert!((s.d - at).abs() < 1e-9, "slip at {} against {at}", s.d);
+        let end = pinned_ratio(s.after.x_tip, 0.75, s.d);
+        assert!((end - 0.3).abs() < 1e-9, "slip at {}: ends at {end}", s.d);
+        assert!(s.jump > 0.0 && s.released > 0.0, "{s:?}");
+        lo = s.d;
+    }
+    // the stuck tip does not move between the slips
+    let mut anchor = r.rows[0].x_tip;
+    for w in &r.rows {
+        if w.event == Some(DragEvent::SlipEnd) {
+            anchor = w.x_tip;
+        } else if w.phase == Phase::Stick && w.event.is_none() {
+            assert!((w.x_tip - anchor).abs() < 1e-12, "{w:?}");
+            assert!(w.mu.abs() <= 0.5 * (1.0 + 1e-9), "{w:?}");
+        }
+    }
+    // the start is the drag's pressed start
+    let along = DragOptions {
+        motion: FootMotion::Along,
+        ..turned(0.3)
+    };
+    let a = on_paper_surface(&Rod::uniform(), &along);
+    assert_eq!(a.rows[0], r.rows[0]);
+}
+
+/// Turned on, the rod unloads: the slips come ever closer as the normal force falls, and the
+/// drag ends with a lift-off where the unloaded rod's tip meets the surface (extrapolated, to
+/// `UNLOAD_TOL` = 1e-6). The straight rods (uniform, taper 0.3) at `θ = acos η`, the rod of
+/// rest curvature −1 (a circular arc) where `cos(φ0 − 1) − cos φ0 = η`, `φ0 = π/2 − θ`:
+/// 0.172629434569279 (bisection). Measured: 1.5e-8, 2.4e-9 and 3.7e-8 off, after 6806, 3782
+/// and 84 slips.
+#[test]
+fn a_turned_rod_unloads_where_its_rest_shape_meets_the_surface() {
+    let straight = 0.75f64.acos();
+    for (rod, theta) in [
+        (Rod::uniform(), straight),
+        (Rod::builder().taper(0.3).build().unwrap(), straight),
+        (
+            Rod::builder().precurvature(-1.0, 0.0).build().unwrap(),
+            0.172629434569279,
+        ),
+    ] {
+        let r = on_paper_surface(&rod, &turned(1.0));
+        let StopReason::LiftOff {
+            d,
+            limit: Some(why),
+        } = &r.stop
+        else {
+            panic!("{r}")
+        };
+        assert!((d - theta).abs() < 1e-6, "{d} against {theta}");
+        assert!(why.contains("unload"), "{why}");
+        let last = r.slips.last().unwrap();
+        assert!(last.before.normal < 0.02 && last.d < *d, "{last:?}");
+    }
+}
+
+/// A turn beyond the range of a support's turn, and the energy balance (the support's moment's
+/// work is not metered), are refused by name.
+#[test]
+fn refuses_a_turn_out_of_range_and_its_energy_balance() {
+    let e = drag(&Rod::uniform(), &Surface::flat(0.75).unwrap(), &turned(1.6)).unwrap_err();
+    assert!(
+        e.is_input() && e.to_string().contains("largest turn"),
+        "{e}"
+    );
+    let o = DragOptions {
+        energy_balance: true,
+        ..turned(0.3)
+    };
+    let e = drag(&Rod::uniform(), &Surface::flat(0.75).unwrap(), &o).unwrap_err();
+    assert!(matches!(e, VibrissaError::NotImplemented(_)), "{e}");
+}
