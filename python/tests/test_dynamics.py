@@ -374,3 +374,15 @@ def test_dynamics_drag_with_a_round_tip_equals_the_program(program):
     assert all(abs(y - 0.73) < 1e-9 for y in py["samples"]["tip_y"])
     with pytest.raises(vibrissa.InputError, match="internal damping"):
         vibrissa.dynamics_drag(rod, d_max=0.01)
+    # on a corrugation the disk's centre runs r from the profile (the program's, field by field)
+    args = ["dynamics", "drag", "--tip-radius", "0.02", "--internal-damping", "1e-4",
+            "--corrugation-amplitude", "0.005", "--corrugation-wavelength", "0.2",
+            "--speed", "0.05", "--dt", "0.05", "--d-max", "0.012"]
+    want = json.loads(program(*args, "--json"))
+    surface = vibrissa.Surface(eta=0.75, profile={"kind": "sine", "amplitude": 0.005,
+                                                 "wavelength": 0.2})
+    py = vibrissa.dynamics_drag(rod, surface, speed=0.05, dt=0.05, d_max=0.012,
+                                internal_damping=1e-4)
+    check_samples(py, want["samples"], " ".join(args))
+    assert py["events"] == want["events"]
+    assert [e["kind"] for e in py["events"]][:1] == ["slip"]

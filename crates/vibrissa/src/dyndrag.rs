@@ -34,11 +34,13 @@
 //! tip alone touches in this model), **patch** where a sliding tip crosses a boundary of the
 //! surface's friction patches (it slides on with the next patch's μk, after a restart). A
 //! friction texture gives μs at the stuck tip's place and μk at the sliding tip's (a table's
-//! at `x(1)`). A round tip (a disk of radius `r` at the rod's end, on a line) has its centre
-//! on the line lowered by `r`, rolls while it sticks (`w·x(1) − r·φ(1)` held), slips at the
-//! contact point's material velocity `v·t − r·φ̇(1)`, and carries `m(1) = r·T` while it touches.
-//! With `mu_k_table` the kinetic friction
-//! depends on the slip velocity at the step's end, `T = dir·μk(|ẋ(1)|)·N`. A sticking tip's velocity and acceleration at the tip are set to zero:
+//! at `x(1)`). A round tip (a disk of radius `r` at the rod's end) has its centre on the line
+//! lowered by `r` (on a profile's parallel curve at the distance `r`), rolls while it sticks
+//! (the arc length of its centre's path less `r·φ(1)` held: `w·x(1) − r·φ(1)` on a line), slips
+//! at the contact point's material velocity `v·t − r·φ̇(1)`, and carries `m(1) = r·T` while it
+//! touches. With `mu_k_table` the kinetic friction
+//! depends on the slip velocity at the step's end, `T = dir·μk(|ẋ(1)|)·N` (a disk's: its
+//! contact point's). A sticking tip's velocity and acceleration at the tip are set to zero:
 //! the velocity is zero to the event's tolerance, and the acceleration of a continuous rod
 //! jumps at the point that sticks only (the force holding it rises like `√t` from the moment
 //! it sticks), which Newmark's history would otherwise carry on as an alternating spurious
@@ -594,6 +596,10 @@ pub struct DragSample {
     pub tip_vx: f64,
     /// Tip velocity, y.
     pub tip_vy: f64,
+    /// The rod end's turning rate `φ̇(1)` (a round tip's spin: its contact point's material
+    /// velocity along the surface is the end's less `r·φ̇(1)`). Not serialized.
+    #[serde(skip)]
+    pub tip_spin: f64,
     /// The tip's contact over the step that ended here.
     pub state: ContactState,
     /// Normal force `N = −Gy(1)` (after the first event without the time rule's alternating
@@ -1464,6 +1470,7 @@ impl<'r> Drive<'r, '_> {
             tip_y: p.tip_y,
             tip_vx: p.tip_vx,
             tip_vy: p.tip_vy,
+            tip_spin: self.rothe.tip_spin(),
             state: self.state,
             normal,
             tangential,
@@ -1840,12 +1847,13 @@ impl<'r> Drive<'r, '_> {
 /// Drags the foot of `rod` along +x at speed `opts.speed` (after the smooth start) with the tip
 /// on `surface` (a line, inclined or not, or a height profile) and Coulomb friction
 /// `opts.mu_s`, `opts.mu_k`, from the pressed start at rest to `opts.d_max`, in time (see the
-/// module docs of `dynamics`). A round tip (`rod.tip_radius() > 0`) on a line rolls while it
-/// sticks and carries the moment `m(1) = r·T` while it touches; it needs
+/// module docs of `dynamics`). A round tip (`rod.tip_radius() > 0`) rolls while it sticks
+/// (its centre on the line lowered by `r`, or on a profile's parallel curve at the distance
+/// `r`) and carries the moment `m(1) = r·T` while it touches; it needs
 /// `opts.internal_damping > 0` (docs/model.md, "A round tip in time").
 /// Errors: invalid input (a round tip without internal damping among them), `mu_k_table` with
-/// a friction texture or a round tip, a round tip on a height profile, no start (or one with
-/// a side on the surface), a step the collocation does not solve.
+/// a friction texture, no start (or one with a side on the surface), a step the collocation
+/// does not solve.
 pub fn drag(
     rod: &Rod,
     surface: &Surface,
@@ -1860,18 +1868,6 @@ pub fn drag(
         ));
     }
     let radius = rod.tip_radius();
-    if radius != 0.0 && surface.profile().is_some() {
-        return Err(VibrissaError::NotImplemented(
-            "a round tip (tip radius > 0) on a height profile in the dynamic drag (a line, \
-             inclined or not, takes it)",
-        ));
-    }
-    if radius != 0.0 && !opts.mu_k_table.is_empty() {
-        return Err(VibrissaError::NotImplemented(
-            "kinetic friction depending on the slip velocity (mu_k_table) with a round tip in \
-             the dynamic drag",
-        ));
-    }
     if radius != 0.0 && opts.internal_damping == 0.0 {
         // (the sliding disk's `m(1) = r·μk·N` puts the contact's multiplier into the bending
         // at the end, a non-conservative end condition: undamped, the rod's short waves grow
@@ -1912,18 +1908,18 @@ pub fn drag(
         } else {
             pressed_on(rod, surface, &grid)?
         };
-    // (a disk's centre, the rod's end, runs on the line lowered by r: the track of the tip's
-    // conditions; the surface itself for the sides)
+    // (a disk's centre, the rod's end, runs on the line lowered by r, or on the parallel curve
+    // at the distance r under a profile: the track of the tip's conditions; the surface itself
+    // for the sides)
     let surface_track = track.clone();
     let (tip, track) = if radius > 0.0 {
         let n = guess.z.len() / 6 - 1;
         let centre = [guess.z[6 * n], guess.z[6 * n + 1]];
-        let slope = match track {
-            Track::Line { slope, .. } => slope,
-            // (a round tip on a curve is refused above)
-            Track::Curve(_) => 0.0,
+        let path = match track {
+            Track::Line { slope, .. } => Track::Line { p: centre, slope },
+            Track::Curve(h) | Track::Offset { h, .. } => Track::Offset { h, r: radius },
         };
-        (centre, Track::Line { p: centre, slope })
+        (centre, path)
     } else {
         (tip, track)
     };

@@ -79,19 +79,35 @@ pub(crate) fn is_zero(n: &usize) -> bool {
 }
 
 /// The line or curve `y = h(x)` the tip touches in a drag: the line through `p` with the slope
-/// `slope` (a flat surface: slope 0), or a surface's height profile.
+/// `slope` (a flat surface: slope 0), or a surface's height profile; or the path of the centre
+/// of a disk of radius `r` that touches a height profile from below (the profile's parallel
+/// curve at the distance `r`: a round tip's end on a curved surface).
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Track {
-    Line { p: [f64; 2], slope: f64 },
+    Line {
+        p: [f64; 2],
+        slope: f64,
+    },
     Curve(std::sync::Arc<crate::surface::Height>),
+    Offset {
+        h: std::sync::Arc<crate::surface::Height>,
+        r: f64,
+    },
 }
 
 impl Track {
-    /// `(h, h', h'')` at `x`.
+    /// `(h, h', h'')` at `x`. On a disk's path, at the centre `X` whose disk touches the
+    /// profile at `x_c` (`X = x_c + r h'/w`, `w = √(1 + h'²)`): `Y = h − r/w`, `Y' = h'` (the
+    /// path is parallel to the profile) and `Y'' = h''/(1 + r h''/w³)`, all at `x_c`.
     pub fn jet(&self, x: f64) -> (f64, f64, f64) {
         match self {
             Track::Line { p, slope } => (p[1] + slope * (x - p[0]), *slope, 0.0),
             Track::Curve(h) => h.jet(x),
+            Track::Offset { h, r } => {
+                let (y, hp, hpp) = h.jet(touch_of(h, *r, x));
+                let w = (1.0 + hp * hp).sqrt();
+                (y - r / w, hp, hpp / (1.0 + r * hpp / (w * w * w)))
+            }
         }
     }
 
@@ -99,6 +115,24 @@ impl Track {
     pub fn flat(&self) -> bool {
         matches!(self, Track::Line { slope, .. } if *slope == 0.0)
     }
+}
+
+/// Where a disk of radius `r` centred at lab `x` touches the profile `h` from below: the `x_c`
+/// with `x_c + r h'(x_c)/w(x_c) = x` (Newton's method from the line's `x − r h'/w`; the disk fits
+/// the profile, `1 + r h''/w³ > 0`, which the surface checks for a round tip).
+fn touch_of(h: &crate::surface::Height, r: f64, x: f64) -> f64 {
+    let (_, hp, _) = h.jet(x);
+    let mut xc = x - r * hp / (1.0 + hp * hp).sqrt();
+    for _ in 0..30 {
+        let (_, hp, hpp) = h.jet(xc);
+        let w = (1.0 + hp * hp).sqrt();
+        let step = (xc + r * hp / w - x) / (1.0 + r * hpp / (w * w * w));
+        xc -= step;
+        if step.abs() <= 1e-15 * (1.0 + xc.abs()) {
+            break;
+        }
+    }
+    xc
 }
 
 /// The line `y = 0`, the track a state starts with.
@@ -142,13 +176,24 @@ pub(crate) fn contact_x(track: &Track, r: f64, x: f64) -> f64 {
     if r == 0.0 {
         return x;
     }
+    if let Track::Offset { h, r } = track {
+        return touch_of(h, *r, x);
+    }
     let hp = track.jet(x).1;
     x - r * hp / (1.0 + hp * hp).sqrt()
 }
 
-/// A disk's rolling invariant `w·x(1) − r·φ(1)` on a line `track` (`w = √(1 + h'²)`), the end
-/// `z = [x, y, φ, …]`: the contact point's arc length along the line less the disk's turn.
+/// A disk's rolling invariant `s(x(1)) − r·φ(1)`, the end `z = [x, y, φ, …]`: the arc length
+/// `s` of its centre's path less the disk's turn (rolling without slip, the contact's material
+/// point at rest, moves the centre along its path by `r` per unit turn). On a line `track`
+/// `s = w·x` (`w = √(1 + h'²)`); on a disk's path under a profile `s = σ(x_c) + r·atan h'(x_c)`
+/// (`σ` the profile's arc length, `x_c` where the disk touches: `ds = (w + r h''/w²) dx_c`),
+/// whose slope in `x(1)` is `w` too.
 pub(crate) fn rolling_invariant(track: &Track, r: f64, z: &[f64]) -> f64 {
+    if let Track::Offset { h, r } = track {
+        let xc = touch_of(h, *r, z[0]);
+        return h.sigma(xc).0 + r * h.jet(xc).1.atan() - r * z[2];
+    }
     let hp = track.jet(z[0]).1;
     (1.0 + hp * hp).sqrt() * z[0] - r * z[2]
 }
@@ -269,7 +314,7 @@ struct Step<'a> {
     track: &'a Track,
     /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ, yⁿ, ẏⁿ)` and `2/Δt`.
     table: &'a [[f64; 2]],
-    tip_then: [f64; 4],
+    tip_then: [f64; 6],
     two_tau: f64,
     /// The friction texture of [`TipBc::SlidingOn`].
     texture: Option<&'a Texture>,
@@ -294,21 +339,30 @@ impl Step<'_> {
         self.texture.map_or((0.0, 0.0), |t| t.kinetic_slope(xc))
     }
 
-    /// `μk` at the slip velocity at the step's end (the tip at `(x1, y1)`, the track's slope
-    /// `hp` there) and `dμk/dx(1)`, `dμk/dy(1)` (the tangent's own change left out: Newton's
-    /// matrix only).
-    fn rate_friction(&self, x1: f64, y1: f64, hp: f64) -> (f64, [f64; 2]) {
+    /// `μk` at the slip velocity at the step's end (the tip's end `zb`, the track's slope `hp`
+    /// there) and `dμk/dx(1)`, `dμk/dy(1)`, `dμk/dφ(1)` (the tangent's own change left out:
+    /// Newton's matrix only). A disk's slip velocity is its contact's material point's,
+    /// `v·t − r φ̇(1)`, with `φ̇(1)` by the trapezoidal rule as the end's velocity.
+    fn rate_friction(&self, zb: &[f64], hp: f64) -> (f64, [f64; 3]) {
+        let (x1, y1) = (zb[0], zb[1]);
         let vx = self.two_tau * (x1 - self.tip_then[0]) - self.tip_then[1];
+        let spin = if self.radius > 0.0 {
+            self.radius * (self.two_tau * (zb[2] - self.tip_then[4]) - self.tip_then[5])
+        } else {
+            0.0
+        };
         if hp == 0.0 {
-            let (mk, slope) = mu_k_of(self.table, vx.abs());
-            return (mk, [slope * vx.signum() * self.two_tau, 0.0]);
+            let v = vx - spin;
+            let (mk, slope) = mu_k_of(self.table, v.abs());
+            let dv = slope * v.signum() * self.two_tau;
+            return (mk, [dv, 0.0, -dv * self.radius]);
         }
         let vy = self.two_tau * (y1 - self.tip_then[2]) - self.tip_then[3];
         let w = (1.0 + hp * hp).sqrt();
-        let v = (vx + hp * vy) / w;
+        let v = (vx + hp * vy) / w - spin;
         let (mk, slope) = mu_k_of(self.table, v.abs());
         let dv = slope * v.signum() * self.two_tau / w;
-        (mk, [dv, dv * hp])
+        (mk, [dv, dv * hp, -dv * w * self.radius])
     }
 }
 
@@ -403,10 +457,11 @@ impl Bvp for Step<'_> {
             TipBc::Sliding { ratio } => self.sliding_jacobian(zb, ratio, [0.0, 0.0], dgb),
             TipBc::SlidingRate { dir } => {
                 let (hp, _) = self.slope_at(zb[0]);
-                let (mk, dmk) = self.rate_friction(zb[0], zb[1], hp);
+                let (mk, dmk) = self.rate_friction(zb, hp);
                 // `res = G·t' − dir·μk·G·n'` (t', n' the unnormalized tangent and normal)
                 let gn = zb[5] - hp * zb[4];
                 self.sliding_jacobian(zb, dir * mk, [-dir * dmk[0] * gn, -dir * dmk[1] * gn], dgb);
+                dgb[30 + 2] = -dir * dmk[2] * gn;
             }
             TipBc::SlidingOn { dir } => {
                 let (hp, _) = self.slope_at(zb[0]);
@@ -450,7 +505,7 @@ impl Bvp for Step<'_> {
             TipBc::Sliding { ratio } => self.sliding_res(zb, ratio, res),
             TipBc::SlidingRate { dir } => {
                 let (hp, _) = self.slope_at(zb[0]);
-                let (mk, _) = self.rate_friction(zb[0], zb[1], hp);
+                let (mk, _) = self.rate_friction(zb, hp);
                 self.sliding_res(zb, dir * mk, res);
             }
             TipBc::SlidingOn { dir } => {
@@ -765,7 +820,7 @@ impl<'r> Rothe<'r> {
             tip,
             track: &flat,
             table: &[],
-            tip_then: [0.0; 4],
+            tip_then: [0.0; 6],
             two_tau: 0.0,
             texture: None,
             radius: 0.0,
@@ -998,6 +1053,8 @@ impl<'r> Rothe<'r> {
                 self.vel[0][ng],
                 self.pos[1][ng],
                 self.vel[1][ng],
+                self.pos[4][ng],
+                self.vel[4][ng],
             ],
             two_tau: 2.0 / tau,
             texture: self.texture.as_deref(),
