@@ -16,7 +16,7 @@ paper's rod on a surface inclined by 0.1, over a corrugation 0.003 sin(2 pi x/0.
 0.02 sin(2 pi x/0.2) (where the rod's end lies down); the short rat preset over the first
 corrugation; the paper's rod on friction patches and on a friction table along x
 (data/dynamics/friction_*.toml); the paper's rod with a round tip of radius 0.02 and internal
-damping 1e-4} = 156 drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
+damping 1e-4, on the flat surface and over a corrugation 0.005 sin(2 pi x/0.2)} = 168 drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
 mu_k 0.3 or the scene's [friction], ramp 2, grid 200, tol 1e-10), each with `--json`. A drag is killed after --timeout
 seconds of wall time (class "slow"). cpu_s is the drag's user + system CPU time (os.wait4), the
 only column that differs between runs. Checked on every row that ends: no event with a normal
@@ -49,6 +49,9 @@ SCENES = [
     ("friction_patches", ["--scene", "data/dynamics/friction_patches.toml"]),
     ("friction_table", ["--scene", "data/dynamics/friction_table.toml"]),
     ("round_tip0.02", ["--tip-radius", "0.02", "--internal-damping", "1e-4"]),
+    ("round_tip0.02_corrugation0.005_0.2", ["--tip-radius", "0.02", "--internal-damping", "1e-4",
+                                            "--corrugation-amplitude", "0.005",
+                                            "--corrugation-wavelength", "0.2"]),
 ]
 
 

@@ -1675,6 +1675,21 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_normal_force_s_zero_ahead_by_its_line_and_its_parabola() {
+        // N = 2 − λ: both at 2
+        let (line, para) = zero_ahead((0.0, 2.0), (0.5, 1.5), (1.0, 1.0));
+        assert_eq!((line, para), (2.0, Some(2.0)));
+        // N = (3 − λ)(λ + 1)/4 through λ = 0, 1, 2: the parabola's zero at 3 exactly, the
+        // line through the last two at 2 + 0.75/0.25 = 5
+        let n = |l: f64| (3.0 - l) * (l + 1.0) / 4.0;
+        let (line, para) = zero_ahead((0.0, n(0.0)), (1.0, n(1.0)), (2.0, n(2.0)));
+        assert!((line - 5.0).abs() < 1e-14 && (para.unwrap() - 3.0).abs() < 1e-14);
+        // a force that rises again before zero (N = 1 + (λ − 1)², λ = 0, 1, 2 falling no more)
+        let (_, para) = zero_ahead((0.0, 2.0), (0.5, 1.25), (1.0, 1.0));
+        assert_eq!(para, None);
+    }
+
+    #[test]
     fn slips_end_the_drag_early_only_where_they_stay_short() {
         // issue 33: μk 1e-10 below μs, slips 1.57e-11 apart, 1.78e10 more to d_max
         assert!(stops_early(1.57e-11, 1.78e10, 99_998, true));
