@@ -850,7 +850,7 @@ pub struct DragArgs {
 /// `vibrissa fit`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "The trace: a CSV file with a column d and any of fx, fy, m_base. Its slips are the rows whose event column says slip (the state just before) and slip_end (just after), as vibrissa drag writes them; without an event column, a slip is where d does not increase from one row to the next (the foot held while the tip slides): the row before is the state before, the row after the state after."
+    after_help = "The trace: a CSV file with a column d (or theta: a drag --turn trace, fitted with turned drags) and any of fx, fy, m_base. Its slips are the rows whose event column says slip (the state just before) and slip_end (just after), as vibrissa drag writes them; without an event column, a slip is where d does not increase from one row to the next (the foot held while the tip slides): the row before is the state before, the row after the state after."
 )]
 pub struct FitArgs {
     /// The measured trace (CSV; "-": stdin).

@@ -777,4 +777,20 @@ fn drag_turn_unloads_where_the_rest_arc_meets_the_surface() {
         let e = bad(&[&args[..], extra].concat(), 2);
         assert!(e.contains("--turn"), "{e}");
     }
+    // fit reads mu_s and mu_k off a turned trace (its column theta) with turned drags
+    let dir = tmpdir("drag_turn_fit");
+    let csv_path = dir.join("turn.csv");
+    let p = csv_path.to_str().unwrap();
+    ok(&[
+        "drag", "--turn", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.2", "--out", p,
+    ]);
+    let (h, rows) = csv(&ok(&["fit", "--trace", p]).stdout);
+    for (k, want) in [(0, 0.5), (1, 0.3)] {
+        close(
+            col(&h, &rows[k], "value"),
+            want,
+            1e-9,
+            "fit of a turned trace",
+        );
+    }
 }

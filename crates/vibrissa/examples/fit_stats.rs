@@ -470,5 +470,6 @@ fn full(r: &vibrissa::DragResult) -> Trace {
             })
             .collect(),
         tips: Vec::new(),
+        motion: Default::default(),
     }
 }

@@ -125,6 +125,10 @@ pub struct Trace {
     /// measured). On a straight surface they lie on one line; [`fit`] says when they do not
     /// (a curved or corrugated surface fitted as a straight one).
     pub tips: Vec<[f64; 2]>,
+    /// What the trace's parameter moved: the foot along x (column `d`), or the foot's support
+    /// turned with the foot held (column `theta`, `drag --turn`); the model's drags move the
+    /// same.
+    pub motion: crate::FootMotion,
 }
 
 /// A table's error about the trace.
@@ -136,7 +140,8 @@ fn bad_trace(reason: String) -> VibrissaError {
 }
 
 impl Trace {
-    /// The slips of a trace CSV: a header with a column `d` and any of `fx`, `fy`, `m_base`
+    /// The slips of a trace CSV: a header with a column `d` (or `theta`: a turned support's
+    /// trace, [`Trace::motion`]) and any of `fx`, `fy`, `m_base`
     /// (those of `use_sig`, in [`Signal::ALL`] order), `x_tip`, `y_tip`, `event`. Its slips are
     /// the rows whose `event` is `slip` (the state just before) with the next `slip_end` row
     /// (just after), as [`crate::drag()`]'s rows are written; without an `event` column, a slip
@@ -151,8 +156,15 @@ impl Trace {
         let (_, head) = lines.next().ok_or_else(|| bad_trace("empty file".into()))?;
         let cols: Vec<&str> = head.split(',').map(str::trim).collect();
         let at = |c: &str| cols.iter().position(|h| *h == c);
-        let d_col =
-            at("d").ok_or_else(|| bad_trace("no column d (the foot displacement)".into()))?;
+        let (d_col, motion) = match (at("d"), at("theta")) {
+            (Some(c), _) => (c, crate::FootMotion::Along),
+            (None, Some(c)) => (c, crate::FootMotion::Turn),
+            (None, None) => {
+                return Err(bad_trace(
+                    "no column d (the foot displacement) or theta (the support's turn)".into(),
+                ))
+            }
+        };
         let ev_col = at("event");
         let tip_col = at("x_tip").zip(at("y_tip"));
         let sig_col: Vec<Option<usize>> = Signal::ALL
@@ -216,7 +228,11 @@ impl Trace {
                 )));
             }
         }
-        Ok(Trace { slips, tips })
+        Ok(Trace {
+            slips,
+            tips,
+            motion,
+        })
     }
 }
 
@@ -607,6 +623,7 @@ impl Model<'_> {
                 solver: self.opts.solver.clone(),
                 contact: self.opts.contact,
                 max_slips: self.trace.slips.len(),
+                motion: self.trace.motion,
                 ..DragOptions::default()
             },
         )
@@ -1113,8 +1130,16 @@ fn setup<'a>(
 /// the last at d = 0.042, ran to 0.35 and a trapped slide, 0.6 s against 0.04 s).
 fn reach(trace: &Trace) -> f64 {
     let d_last = trace.slips[trace.slips.len() - 1].d;
-    (2.0 * d_last + REACH_MARGIN).min(crate::drag::MAX_DRAG)
+    let most = match trace.motion {
+        crate::FootMotion::Along => crate::drag::MAX_DRAG,
+        // (a turn below π/2)
+        crate::FootMotion::Turn => MAX_FIT_TURN,
+    };
+    (2.0 * d_last + REACH_MARGIN).min(most)
 }
+
+/// The largest turn of a fit's drags on a turned trace (rad; the range of a turn is below π/2).
+const MAX_FIT_TURN: f64 = 1.5;
 
 /// What the model's drags go beyond twice the trace's last slip ([`reach`]).
 const REACH_MARGIN: f64 = 0.05;
@@ -1124,6 +1149,7 @@ fn prefix(trace: &Trace, k: usize) -> Trace {
     Trace {
         slips: trace.slips[..k].to_vec(),
         tips: Vec::new(),
+        motion: trace.motion,
     }
 }
 
@@ -1454,6 +1480,9 @@ fn start_values(
     let d1 = trace.slips[0].d;
     let d2 = trace.slips.get(1).map(|s| s.d);
     let back = d2.map(|d2| d1 - (d2 - d1)).filter(|&b| b > 0.0);
+    if trace.motion == crate::FootMotion::Turn {
+        return turned_start(rod, surface, opts, d1, back);
+    }
     let mut at = vec![d1];
     if let Some(b) = back {
         at.insert(0, b);
@@ -1480,6 +1509,43 @@ fn start_values(
             reason: r.stop.to_string(),
         }),
     }
+}
+
+/// The start on a turned trace: the ratio the stuck tip needs at the first slip's turn `d1`
+/// (μs) and at `back` (μk; as [`start_values`] reads the scan), each the last row of a turned
+/// drag to there whose tip does not slip (μs 100).
+fn turned_start(
+    rod: &crate::Rod,
+    surface: &crate::Surface,
+    opts: &FitOptions,
+    d1: f64,
+    back: Option<f64>,
+) -> Result<(f64, f64), VibrissaError> {
+    let ratio = |theta: f64| -> Result<f64, VibrissaError> {
+        let o = DragOptions {
+            d_max: theta,
+            points: 2,
+            mu_s: Some(crate::limits::MU_S.hi),
+            mu_k: Some(0.5 * crate::limits::MU_S.hi),
+            solver: opts.solver.clone(),
+            contact: opts.contact,
+            motion: crate::FootMotion::Turn,
+            ..DragOptions::default()
+        };
+        let r = drag(rod, surface, &o)?;
+        match (r.rows.last(), &r.stop) {
+            (Some(p), crate::StopReason::DMax) if p.d == theta => Ok(p.mu.abs()),
+            _ => Err(VibrissaError::NoConvergence {
+                what: "the fit's starting values (the turned drag to the first slip)".into(),
+                reason: r.stop.to_string(),
+            }),
+        }
+    };
+    let mu_s = ratio(d1)?;
+    Ok(match back {
+        Some(b) => (mu_s, ratio(b)?.min(0.95 * mu_s)),
+        None => (mu_s, 0.6 * mu_s),
+    })
 }
 
 /// Identifiability at the start: the parameters the signals do not determine are held at their

@@ -147,6 +147,7 @@ fn exact_trace_gives_the_coefficients() {
     let r = truth(3);
     let t = Trace {
         tips: Vec::new(),
+        motion: Default::default(),
         slips: r
             .slips
             .iter()
@@ -176,6 +177,7 @@ fn one_slip_names_what_it_cannot_determine() {
     let e = r.slips[0];
     let t = Trace {
         tips: Vec::new(),
+        motion: Default::default(),
         slips: vec![TraceSlip {
             d: e.d,
             before: [Some(e.before.fx), None, Some(e.before.m_base)],
@@ -194,6 +196,7 @@ fn one_slip_names_what_it_cannot_determine() {
     // the state after the slip depends on μk: with it, both are determined
     let t2 = Trace {
         tips: Vec::new(),
+        motion: Default::default(),
         slips: vec![TraceSlip {
             after: [Some(e.after.fx), None, Some(e.after.m_base)],
             ..t.slips[0]
@@ -230,6 +233,7 @@ fn fit_angle_recovers_the_inclination() {
     assert!(r.slips.len() >= 3, "{r}");
     let t = Trace {
         tips: Vec::new(),
+        motion: Default::default(),
         slips: r
             .slips
             .iter()
@@ -274,6 +278,7 @@ fn full_trace(r: &DragResult) -> Trace {
             })
             .collect(),
         tips: r.rows.iter().map(|p| [p.x_tip, p.y_tip]).collect(),
+        motion: Default::default(),
     }
 }
 

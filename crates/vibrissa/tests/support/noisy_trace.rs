@@ -85,6 +85,7 @@ pub fn exact(r: &DragResult, n: usize) -> Trace {
 pub fn places_only(t: &Trace) -> Trace {
     Trace {
         tips: Vec::new(),
+        motion: Default::default(),
         slips: t
             .slips
             .iter()
@@ -102,6 +103,7 @@ fn with_noise(r: &DragResult, n: usize, mut noise: impl FnMut(f64) -> f64) -> Tr
     let (sd, sf) = (SIGMA[0], SIGMA[1]);
     Trace {
         tips: Vec::new(),
+        motion: Default::default(),
         slips: r.slips[..n]
             .iter()
             .map(|e| TraceSlip {
