@@ -174,6 +174,21 @@ def test_fit_equals_the_program(program):
             vibrissa.fit(trace)
 
 
+def test_fit_of_a_turned_trace_equals_the_program(program):
+    # a drag --turn trace (column theta) is fitted with turned drags, in Python as by the program
+    with tempfile.TemporaryDirectory() as tmp:
+        trace = os.path.join(tmp, "turn.csv")
+        program("drag", "--turn", "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.2", "--out", trace)
+        out = json.loads(program("fit", "--trace", trace, "--json"))
+        py = vibrissa.fit(trace)
+        assert py["slips"] == out["slips"] == 4
+        for p, q, want in zip(py["params"], out["params"], (0.5, 0.3)):
+            assert p == q
+            assert abs(p["value"] - want) < 1e-9, p
+        d = vibrissa.drag(vibrissa.Rod(), mu_s=0.5, mu_k=0.3, d_max=0.2, turn=True)
+        assert vibrissa.fit(d)["params"] == py["params"]
+
+
 def test_the_corrugated_trace_of_issue_33():
     """The issue's noise-free trace (a drag over the corrugated surface, 15 slips): fitted on its
     surface, mu_s and mu_k to 1e-6 with standard errors and no message (was 0.5933 and 0.4683
