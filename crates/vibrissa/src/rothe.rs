@@ -312,7 +312,8 @@ struct Step<'a> {
     tip: TipBc,
     /// The track of a sliding tip.
     track: &'a Track,
-    /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ, yⁿ, ẏⁿ)` and `2/Δt`.
+    /// The friction table of [`TipBc::SlidingRate`], the tip's `(xⁿ, ẋⁿ, yⁿ, ẏⁿ, φⁿ, φ̇ⁿ)` and
+    /// `2/Δt`.
     table: &'a [[f64; 2]],
     tip_then: [f64; 6],
     two_tau: f64,
