@@ -121,19 +121,22 @@ def scenes():
                                    tip_radius=r), args
 
 
-def run(binary, timeout, key, args):
+def run(binary, timeout, key, args, d_max=0.3, end="d_end"):
+    """One drag's row: its stop, slips, where it ended (column `end`; `d_max` where the stop
+    has no place) and CPU time, classified."""
     code, timed_out, stdout, stderr, cpu = run_timed([binary, "drag"] + args, timeout)
     row = dict(key, cpu_s=f"{cpu:.3f}", exit=code)
     if timed_out:
-        row.update(exit="timeout", stop_reason="", slips="", d_end="", detail="")
+        row.update({"exit": "timeout", "stop_reason": "", "slips": "", end: "", "detail": ""})
     elif code == 0:
         j = json.loads(stdout)
-        row.update(stop_reason=j["stop_reason"], slips=j["cycles"], d_end=repr(j["stop"]["d"] if j["stop"]["d"] is not None else 0.3),
-                   detail=j["stop"]["detail"])
+        at = j["stop"]["d"] if j["stop"]["d"] is not None else d_max
+        row.update({"stop_reason": j["stop_reason"], "slips": j["cycles"], end: repr(at),
+                    "detail": j["stop"]["detail"]})
     else:
         lines = [l for l in stderr.splitlines() if l.strip()]
-        row.update(stop_reason="error", slips="", d_end="",
-                   detail=(lines[-1] if lines else f"exit {code}")[:2000])
+        row.update({"stop_reason": "error", "slips": "", end: "",
+                    "detail": (lines[-1] if lines else f"exit {code}")[:2000]})
     row["class"] = classify(row["stop_reason"], row["detail"], row["exit"])
     return row
 

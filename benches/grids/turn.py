@@ -14,11 +14,11 @@ rest curvature +1, rest curvature -1} x eta {0.5, 0.75, 0.9} x surfaces {flat; a
 rat preset's eta overridden). A drag is killed after --timeout seconds of wall time (class
 "slow"). cpu_s is the drag's user + system CPU time, the only column that differs between runs.
 """
-import argparse, collections, csv, json, sys
+import argparse, collections, csv, sys
 from concurrent.futures import ThreadPoolExecutor
 
-from texture import CLASSES, classify
-from timed import run_timed
+import texture
+from texture import CLASSES
 
 RODS = [
     ("uniform", []),
@@ -50,20 +50,7 @@ def scenes():
 
 
 def run(binary, timeout, key, args):
-    code, timed_out, stdout, stderr, cpu = run_timed([binary, "drag"] + args, timeout)
-    row = dict(key, cpu_s=f"{cpu:.3f}", exit=code)
-    if timed_out:
-        row.update(exit="timeout", stop_reason="", slips="", theta_end="", detail="")
-    elif code == 0:
-        j = json.loads(stdout)
-        end = j["stop"]["d"] if j["stop"]["d"] is not None else 1.2
-        row.update(stop_reason=j["stop_reason"], slips=j["cycles"], theta_end=repr(end),
-                   detail=j["stop"]["detail"])
-    else:
-        lines = [l for l in stderr.splitlines() if l.strip()]
-        row.update(stop_reason="error", slips="", theta_end="",
-                   detail=(lines[-1] if lines else f"exit {code}")[:2000])
-    row["class"] = classify(row["stop_reason"], row["detail"], row["exit"])
+    row = texture.run(binary, timeout, key, args, d_max=1.2, end="theta_end")
     if row["detail"].startswith("error: no contact:"):
         # (a precurved rest shape below the surface: the input is refused, exit 2)
         row["class"] = NO_CONTACT

@@ -866,10 +866,22 @@ impl DragSample {
 impl DynDragResult {
     /// The first slip's foot displacement.
     pub fn first_slip(&self) -> Option<f64> {
-        self.events
+        self.first_slip_event().map(|e| e.d)
+    }
+
+    /// The first slip's event.
+    pub fn first_slip_event(&self) -> Option<&DynDragEvent> {
+        self.events.iter().find(|e| e.kind == DragEventKind::Slip)
+    }
+
+    /// The first slip's event and the stick that ends it (`None` where the drag ends first).
+    pub fn first_slip_and_stick(&self) -> Option<(&DynDragEvent, &DynDragEvent)> {
+        let slip = self.first_slip_event()?;
+        let stick = self
+            .events
             .iter()
-            .find(|e| e.kind == DragEventKind::Slip)
-            .map(|e| e.d)
+            .find(|e| e.kind == DragEventKind::Stick && e.t > slip.t)?;
+        Some((slip, stick))
     }
 
     /// The energy balance from the sample at time `from` to the one at `to` (`None` where
@@ -881,11 +893,7 @@ impl DynDragResult {
 
     /// [`DynDragResult::balance`] from the first slip to the stick that ends it.
     pub fn first_slip_balance(&self) -> Option<EnergyBalance> {
-        let slip = self.events.iter().find(|e| e.kind == DragEventKind::Slip)?;
-        let stick = self
-            .events
-            .iter()
-            .find(|e| e.kind == DragEventKind::Stick && e.t > slip.t)?;
+        let (slip, stick) = self.first_slip_and_stick()?;
         self.balance(slip.t, stick.t)
     }
 }

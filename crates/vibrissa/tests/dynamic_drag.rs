@@ -203,16 +203,7 @@ fn a_damped_slip_balances_its_energy() {
         ..light(0.05, dt, 0.0415)
     };
     let r = paper(&o);
-    let slip = r
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Slip)
-        .unwrap();
-    let stick = r
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Stick)
-        .unwrap();
+    let (slip, stick) = first_slip(&r);
     let at = |t: f64| r.samples.iter().find(|p| p.t == t).unwrap();
     let (a, b) = (at(slip.t), at(stick.t));
     let released = a.elastic - b.elastic;
@@ -263,17 +254,8 @@ fn a_slip_with_rotary_inertia_balances_its_energy() {
 
 /// The first slip of a drag: the slip and the stick that ends it.
 fn first_slip(r: &DynDragResult) -> (DynDragEvent, DynDragEvent) {
-    let slip = *r
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Slip)
-        .unwrap();
-    let stick = *r
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Stick && e.t > slip.t)
-        .unwrap();
-    (slip, stick)
+    let (slip, stick) = r.first_slip_and_stick().unwrap();
+    (*slip, *stick)
 }
 
 /// A constant table of μk(|v|) is the constant μk: the same drag (events and samples) to 1e-12.

@@ -6,7 +6,7 @@
 //! quasi-static drag of the same round tip (`vibrissa::drag`, the rod's own shooter and march:
 //! an independent computation of the slow limit) and the drag's own energy balance.
 
-use vibrissa::dynamics::{drag, DragEventKind, DynDragOptions};
+use vibrissa::dynamics::{drag, DynDragOptions, DynDragResult};
 use vibrissa::surface::SurfaceProfile;
 use vibrissa::{DragOptions, Rod, Surface, VibrissaError};
 
@@ -28,6 +28,52 @@ fn damped(speed: f64, dt: f64, d_max: f64) -> DynDragOptions {
     }
 }
 
+/// The quasi-static drag's first slip of the disk r = 0.02 on `surface` (μs 0.5, μk 0.3).
+fn quasi_static_first_slip(surface: &Surface) -> f64 {
+    let o = DragOptions {
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        d_max: 0.03,
+        ..DragOptions::default()
+    };
+    vibrissa::drag(&disk(0.02), surface, &o).unwrap().slips[0].d
+}
+
+/// The first slip of the disk r = 0.02 on `surface` at v = 0.01 and 0.005 (dt 0.02, each drag
+/// to `d_end`) less `d_qs`; each first slip at `T = μs N` to 1e-9, and `check` sees each drag.
+fn first_slip_errors(
+    surface: &Surface,
+    d_end: f64,
+    d_qs: f64,
+    check: impl Fn(&DynDragResult),
+) -> Vec<f64> {
+    [0.01, 0.005]
+        .iter()
+        .map(|&v| {
+            let r = drag(&disk(0.02), surface, &damped(v, 0.02, d_end)).unwrap();
+            let slip = r.first_slip_event().unwrap();
+            assert!(
+                (slip.tangential - 0.5 * slip.normal).abs() < 1e-9,
+                "{slip:?}"
+            );
+            check(&r);
+            slip.d - d_qs
+        })
+        .collect()
+}
+
+/// How far the first slip and the stick that ends it of a disk of radius 1e-6 lie from the
+/// point tip's on `surface` (options `o`).
+fn small_disk_apart(surface: &Surface, o: &DynDragOptions) -> (f64, f64) {
+    let point = drag(&Rod::uniform(), surface, o).unwrap();
+    let small = drag(&disk(1e-6), surface, o).unwrap();
+    let (a, b) = (
+        point.first_slip_and_stick().unwrap(),
+        small.first_slip_and_stick().unwrap(),
+    );
+    ((b.0.d - a.0.d).abs(), (b.1.d - a.1.d).abs())
+}
+
 /// The first slip of the disk r = 0.02 tends to the quasi-static one (d = 0.0182197688, the
 /// quasi-static drag of the same disk) as the foot slows down, as the point tip's does.
 /// Measured (dt 0.02, tol 1e-8 on 100 intervals, γ_i 1e-4, 2026-11-30): 5.25e-6 and 1.09e-6
@@ -37,29 +83,8 @@ fn damped(speed: f64, dt: f64, d_max: f64) -> DynDragOptions {
 #[test]
 fn a_round_tip_s_first_slip_tends_to_the_quasi_static_one() {
     let surface = Surface::flat(0.75).unwrap();
-    let o = DragOptions {
-        mu_s: Some(0.5),
-        mu_k: Some(0.3),
-        d_max: 0.03,
-        ..DragOptions::default()
-    };
-    let d_qs = vibrissa::drag(&disk(0.02), &surface, &o).unwrap().slips[0].d;
-    let e: Vec<f64> = [0.01, 0.005]
-        .iter()
-        .map(|&v| {
-            let r = drag(&disk(0.02), &surface, &damped(v, 0.02, 0.0184)).unwrap();
-            let slip = r
-                .events
-                .iter()
-                .find(|e| e.kind == DragEventKind::Slip)
-                .unwrap();
-            assert!(
-                (slip.tangential - 0.5 * slip.normal).abs() < 1e-9,
-                "{slip:?}"
-            );
-            slip.d - d_qs
-        })
-        .collect();
+    let d_qs = quasi_static_first_slip(&surface);
+    let e = first_slip_errors(&surface, 0.0184, d_qs, |_| {});
     eprintln!("quasi-static {d_qs}, errors {e:?}, ratio {}", e[0] / e[1]);
     assert!((d_qs - 0.0182197688).abs() < 1e-9, "{d_qs}");
     assert!(e[0] > 0.0 && e[0] < 1.5 * 5.25e-6, "{e:?}");
@@ -74,13 +99,7 @@ fn a_round_tip_s_first_slip_tends_to_the_quasi_static_one() {
 #[test]
 fn a_vanishing_radius_is_the_point_tip() {
     let surface = Surface::flat(0.75).unwrap();
-    let o = damped(0.05, 0.02, 0.045);
-    let point = drag(&Rod::uniform(), &surface, &o).unwrap();
-    let small = drag(&disk(1e-6), &surface, &o).unwrap();
-    let at =
-        |r: &vibrissa::dynamics::DynDragResult, k| r.events.iter().find(|e| e.kind == k).unwrap().d;
-    let slip = (at(&small, DragEventKind::Slip) - at(&point, DragEventKind::Slip)).abs();
-    let stick = (at(&small, DragEventKind::Stick) - at(&point, DragEventKind::Stick)).abs();
+    let (slip, stick) = small_disk_apart(&surface, &damped(0.05, 0.02, 0.045));
     eprintln!("slip {slip:e}, stick {stick:e}");
     assert!(slip < 1e-6, "{slip:e}");
     assert!(stick < 1e-5, "{stick:e}");
@@ -150,41 +169,21 @@ fn corrugated() -> Surface {
 #[test]
 fn a_round_tip_on_a_corrugation_tends_to_the_quasi_static_one() {
     let surface = corrugated();
-    let o = DragOptions {
-        mu_s: Some(0.5),
-        mu_k: Some(0.3),
-        d_max: 0.03,
-        ..DragOptions::default()
-    };
-    let d_qs = vibrissa::drag(&disk(0.02), &surface, &o).unwrap().slips[0].d;
+    let d_qs = quasi_static_first_slip(&surface);
     let h = surface.profile().unwrap();
-    let e: Vec<f64> = [0.01, 0.005]
-        .iter()
-        .map(|&v| {
-            let r = drag(&disk(0.02), &surface, &damped(v, 0.02, 0.0097)).unwrap();
-            let slip = r
-                .events
-                .iter()
-                .find(|e| e.kind == DragEventKind::Slip)
-                .unwrap();
-            assert!(
-                (slip.tangential - 0.5 * slip.normal).abs() < 1e-9,
-                "{slip:?}"
-            );
-            for p in &r.samples {
-                // the nearest point of the profile: (x − X) + (h(x) − Y) h'(x) = 0
-                let mut x = p.tip_x;
-                for _ in 0..50 {
-                    let (y, d, dd) = h.jet(x);
-                    let g = (x - p.tip_x) + (y - p.tip_y) * d;
-                    x -= g / (1.0 + d * d + (y - p.tip_y) * dd);
-                }
-                let gap = (x - p.tip_x).hypot(h.jet(x).0 - p.tip_y);
-                assert!((gap - 0.02).abs() < 1e-9, "{gap} {p:?}");
+    let e = first_slip_errors(&surface, 0.0097, d_qs, |r| {
+        for p in &r.samples {
+            // the nearest point of the profile: (x − X) + (h(x) − Y) h'(x) = 0
+            let mut x = p.tip_x;
+            for _ in 0..50 {
+                let (y, d, dd) = h.jet(x);
+                let g = (x - p.tip_x) + (y - p.tip_y) * d;
+                x -= g / (1.0 + d * d + (y - p.tip_y) * dd);
             }
-            slip.d - d_qs
-        })
-        .collect();
+            let gap = (x - p.tip_x).hypot(h.jet(x).0 - p.tip_y);
+            assert!((gap - 0.02).abs() < 1e-9, "{gap} {p:?}");
+        }
+    });
     eprintln!("quasi-static {d_qs}, errors {e:?}, ratio {}", e[0] / e[1]);
     assert!(e[0] > 0.0 && e[0] < 1.5 * 4.36e-6, "{e:?}");
     assert!(e[0] / e[1] > 3.0, "{e:?}");
@@ -199,12 +198,7 @@ fn a_round_tip_on_a_corrugation_tends_to_the_quasi_static_one() {
 fn a_round_tip_on_a_corrugation_shrinks_to_the_point_and_balances() {
     let surface = corrugated();
     let o = damped(0.05, 0.02, 0.03);
-    let point = drag(&Rod::uniform(), &surface, &o).unwrap();
-    let small = drag(&disk(1e-6), &surface, &o).unwrap();
-    let at =
-        |r: &vibrissa::dynamics::DynDragResult, k| r.events.iter().find(|e| e.kind == k).unwrap().d;
-    let slip = (at(&small, DragEventKind::Slip) - at(&point, DragEventKind::Slip)).abs();
-    let stick = (at(&small, DragEventKind::Stick) - at(&point, DragEventKind::Stick)).abs();
+    let (slip, stick) = small_disk_apart(&surface, &o);
     eprintln!("slip {slip:e}, stick {stick:e}");
     assert!(slip < 1e-6, "{slip:e}");
     assert!(stick < 1e-5, "{stick:e}");
@@ -260,16 +254,7 @@ fn a_round_tip_slides_at_mu_k_of_its_contact_s_speed() {
     )
     .unwrap();
     let mu_k = |v: f64| if v >= 0.05 { 0.2 } else { 0.3 - 2.0 * v };
-    let slip = falling
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Slip)
-        .unwrap();
-    let stick = falling
-        .events
-        .iter()
-        .find(|e| e.kind == DragEventKind::Stick && e.t > slip.t)
-        .unwrap();
+    let (slip, stick) = falling.first_slip_and_stick().unwrap();
     let (mut contact, mut end) = (0.0f64, 0.0f64);
     for p in falling
         .samples

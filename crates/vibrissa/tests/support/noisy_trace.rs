@@ -3,8 +3,21 @@
 //! before and `fx` after each slip (σ = 2e-3); and the corrugated sample of issue 31's texture
 //! read-back ([`texture_trace`]).
 
-use vibrissa::fit::{Trace, TraceSlip};
+use vibrissa::fit::{FitResult, Trace, TraceSlip};
 use vibrissa::{drag, DragOptions, DragResult, Scene};
+
+/// A fit of a noisy trace of the paper's coefficients (the trace of `seed`): no message, and μs
+/// 0.5 and μk 0.3 each within 3 standard errors, the standard errors in (0, 1e-3).
+#[allow(dead_code)] // (the tests' check; examples/fit_stats.rs counts the coverage instead)
+pub fn within_three_standard_errors(f: &FitResult, seed: u64) {
+    assert!(f.message.is_none(), "{f}");
+    for (name, want) in [("mu_s", 0.5), ("mu_k", 0.3)] {
+        let p = f.get(name).unwrap();
+        let se = p.std_error.unwrap();
+        assert!(se > 0.0 && se < 1e-3, "{f}");
+        assert!((p.value - want).abs() <= 3.0 * se, "seed {seed}: {f}");
+    }
+}
 
 /// A scene whose surface is the corrugation `A sin(2πx/W + P)` (the paper's rod at η = 0.75).
 pub fn corrugated(amplitude: f64, wavelength: f64, phase: f64) -> Scene {
