@@ -203,36 +203,42 @@ fn refuses_a_side_at_the_start() {
     assert!(e.to_string().contains("side+side"), "{e}");
 }
 
-/// A stuck rod the time step does not resolve ends the drag by name: over the corrugation
-/// (amplitude 0.003, wavelength 0.1) at dt 0.02, v 0.01, the stuck tip's force would jump within
-/// the shortest step (docs/model.md, "A stuck rod the time step does not resolve"); no event
-/// before the stop has a pulling normal force or leaves the friction cone.
+/// A stuck rod's velocity mismatch does not end the drag. Over the corrugation (amplitude
+/// 0.003, wavelength 0.1) at dt 0.02, v 0.01 the stuck phases leave the rod's velocities a
+/// mismatch with the held tip that grows from slip to slip, and its `1/τ` term in the held
+/// force, not the rod, put a slip within the shortest step at T/N = 1.52: until 2026-11-30
+/// the drag stopped there (`unresolved_step`, d 0.0364, after two slips). With the term taken
+/// out of the search (docs/model.md, "A stuck rod the time step does not resolve") it goes on
+/// through four more slips located at |T| = μs N, and ends by name where the coarse step does
+/// not resolve a stick (d 0.0949; dt 0.01 reaches d_max). No event has a pulling normal force.
 #[test]
-fn a_stuck_rod_the_step_cannot_resolve_is_a_named_stop() {
+fn a_stuck_rod_s_velocity_mismatch_does_not_end_the_drag() {
     let surface = corrugated(0.003, 0.1);
     let r = drag(&Rod::uniform(), &surface, &light(0.01, 0.02, 0.12)).unwrap();
     eprintln!("{r}");
-    for e in &r.events {
+    let mut located = 0;
+    for (i, e) in r.events.iter().enumerate() {
         assert!(e.normal > 0.0, "{e:?}");
-        if e.kind == DragEventKind::Slip {
+        // (a slip at the instant of a stick is the stick's: the force it needed at once)
+        let at_once = i > 0 && r.events[i - 1].t == e.t;
+        if e.kind == DragEventKind::Slip && !at_once {
             assert!(
                 (e.tangential.abs() - 0.5 * e.normal).abs() < 1e-6 * e.normal,
                 "{e:?}"
             );
+            located += 1;
         }
     }
-    let DynDragStop::UnresolvedStep {
-        before,
-        normal,
-        tangential,
-        ..
-    } = r.stop
-    else {
-        panic!("{}", r.stop);
+    assert!(located >= 6, "{located} slips located: {r}");
+    let stop_d = match r.stop {
+        DynDragStop::UnresolvedStick { d, .. } | DynDragStop::UnresolvedStep { d, .. } => d,
+        DynDragStop::DMax => 0.12,
+        _ => panic!("{}", r.stop),
     };
-    let jump = (normal - before[0]).hypot(tangential - before[1]);
-    assert!(jump > 0.1 * before[0].hypot(before[1]), "{}", r.stop);
-    assert!(r.stop.to_string().contains("shorter dt"), "{}", r.stop);
+    assert!(stop_d > 0.09, "{}", r.stop);
+    if r.stop != DynDragStop::DMax {
+        assert!(r.stop.to_string().contains("shorter dt"), "{}", r.stop);
+    }
 }
 
 /// A flying tip touching down on a sloped line (the precurved rod of tests/dynamic_drag.rs's
