@@ -798,7 +798,7 @@ pub struct DragArgs {
     /// Whisk against the surface instead: the foot held where it stands, its support turned
     /// clockwise (towards +x) from upright by theta = 0 ... --d-max (rad); the rows' first
     /// column is theta.
-    #[arg(long, conflicts_with_all = ["speed", "speed_mm_s", "energy_balance"])]
+    #[arg(long, conflicts_with_all = ["speed", "speed_mm_s"])]
     pub turn: bool,
     /// Static friction coefficient, in [0, 100]: the stuck tip slips where |mu| reaches it (with
     /// --mu-k). [default: the scene file's [friction]]
@@ -810,8 +810,9 @@ pub struct DragArgs {
     pub mu_k: Option<f64>,
     #[command(flatten)]
     pub texture: TextureArgs,
-    /// Also integrate the foot's work over each stick and the work the sliding tip absorbs over
-    /// each slip (the energy balance, in --json's slips; extra solves).
+    /// Also integrate the foot's work over each stick (a turned support's: its moment's) and the
+    /// work the sliding tip absorbs over each slip (the energy balance, in --json's slips; extra
+    /// solves).
     #[arg(long)]
     pub energy_balance: bool,
     /// Most slips before the drag stops, in [1, 1000000]: a guard against slips that come too

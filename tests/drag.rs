@@ -739,7 +739,8 @@ fn physical_units_in_the_drag_csv() {
 /// surface). The rows' first column is the turn `theta`; the precurved rod (κ0 = −1) unloads
 /// where its rest arc's tip meets the surface, `cos(φ0 − 1) − cos φ0 = η` with
 /// `φ0 = π/2 − θ` (0.172629434569279 at η 0.75, bisection), the stop a lift-off there to the
-/// library's 1e-6 (measured 3.7e-8); the flags a turn cannot take are refused in one line.
+/// library's 1e-6 (measured 3.7e-8); the flag a turn cannot take (`--speed`) is refused in one
+/// line, and `--energy-balance` balances every stick and slip.
 #[test]
 fn drag_turn_unloads_where_the_rest_arc_meets_the_surface() {
     let args = [
@@ -773,9 +774,30 @@ fn drag_turn_unloads_where_the_rest_arc_meets_the_surface() {
     for r in &rows {
         assert!(col(&h, r, "theta") < 0.172629434569279 && col(&h, r, "normal") > 0.0);
     }
-    for extra in [&["--energy-balance"][..], &["--speed", "0.01"]] {
-        let e = bad(&[&args[..], extra].concat(), 2);
-        assert!(e.contains("--turn"), "{e}");
+    let e = bad(&[&args[..], &["--speed", "0.01"]].concat(), 2);
+    assert!(e.contains("--turn"), "{e}");
+    // the energy balance of a turn: the support's work over each stick (its moment's) is the
+    // energy's change, each slip's dissipation the energy released (1e-8)
+    let j = json(&ok(&[&args[..], &["--json", "--energy-balance"]].concat()).stdout);
+    let slips = j["slips"].as_array().unwrap();
+    assert!(!slips.is_empty());
+    for s in slips {
+        let (e0, e1) = (
+            s["energy_stick"].as_f64().unwrap(),
+            s["before"]["energy"].as_f64().unwrap(),
+        );
+        close(
+            s["work"].as_f64().unwrap(),
+            e1 - e0,
+            1e-8,
+            "turned stick energy",
+        );
+        close(
+            s["dissipated"].as_f64().unwrap(),
+            s["released"].as_f64().unwrap(),
+            1e-8,
+            "turned slip energy",
+        );
     }
     // fit reads mu_s and mu_k off a turned trace (its column theta) with turned drags
     let dir = tmpdir("drag_turn_fit");

@@ -79,6 +79,14 @@ def test_a_turned_drag_equals_the_program(program, scene):
     assert summary["cycles"] == len(py.slips) > 0
     assert summary["stop_reason"] == py.stop_reason
     assert py.stop_reason == ("d_max" if scene == "paper.toml" else "lift_off")
+    # with the energy balance: the support's work over each stick, as the program's
+    balanced = vibrissa.drag(rod, surface, mu_s=0.5, mu_k=0.3, d_max=0.3, points=31, turn=True,
+                             energy_balance=True)
+    program_slips = json.loads(program(*args, "--json", "--energy-balance"))["slips"]
+    assert len(balanced.slips) == len(program_slips) > 0
+    for a, b in zip(balanced.slips, program_slips):
+        assert a["work"] == b["work"] and a["dissipated"] == b["dissipated"]
+        assert abs(a["work"] - (a["before"]["energy"] - a["energy_stick"])) < 1e-8
 
 
 def test_max_slips_is_the_program_s(program):

@@ -155,12 +155,6 @@ impl DragOptions {
         limits::DRAG_D_MAX.check("d_max", self.d_max)?;
         if self.motion == FootMotion::Turn {
             limits::THETA.check("d_max (the largest turn)", self.d_max)?;
-            if self.energy_balance {
-                return Err(VibrissaError::NotImplemented(
-                    "the energy balance of a turning foot (the work of the support's moment is \
-                     not metered; each slip's released energy is)",
-                ));
-            }
         }
         limits::POINTS.check_count("points", self.points)?;
         match (self.mu_s, self.mu_k) {
@@ -358,8 +352,8 @@ pub struct SlipEvent {
     /// The work the sliding contact absorbs, `∫ T dσ` (equal to `released`: the energy balance
     /// of the slip); with `energy_balance`.
     pub dissipated: Option<f64>,
-    /// The foot's work over the stick phase before, `∫ −F_x dd` (equal to the energy's change
-    /// over it plus `friction`); with `energy_balance`.
+    /// The foot's work over the stick phase before, `∫ −F_x dd` (a turned support's, `∫ m(0) dθ`;
+    /// equal to the energy's change over it plus `friction`); with `energy_balance`.
     pub work: Option<f64>,
     /// The work contacts sliding with kinetic friction absorbed over the stick phase before (0
     /// where every contact held); with `energy_balance`.
@@ -853,7 +847,10 @@ impl<P: Profile> DragRun<'_, P> {
         let mu_s = carry.unwrap_or_else(|| self.fr.at(x_tip, 1.0).0);
         let mut env = self.base.clone();
         env.mu0 = Some(mu_s);
-        env.ground.meter = self.opts.energy_balance.then_some(Meter::Foot);
+        env.ground.meter = self.opts.energy_balance.then_some(match self.opts.motion {
+            FootMotion::Along => Meter::Foot,
+            FootMotion::Turn => Meter::Turn,
+        });
         self.st.phase(self.opts.motion.family(), &env);
         let gi = if first {
             0

@@ -80,6 +80,13 @@ fn foot_rate(set: &ContactSet, p: &Pt) -> (f64, f64) {
     (r, dr)
 }
 
+/// The rate of the turning support's work at the point `p` and its slope in `λ = θ`: the moment
+/// at the foot `m(0)` (the unknowns' first, `ContactSet`), since the clamp holds the slope
+/// `π/2 − θ` and `δE = m(0) δθ` for the rod and its support's spring.
+fn turn_rate(p: &Pt) -> (f64, f64) {
+    (p.u[0], p.du.as_deref().map_or(0.0, |du| du[0]))
+}
+
 /// The rate of the work the driving contact `j` of a slip absorbs (`dir·T`, its place moving by
 /// `dir·λ` along the surface) at `p` (foot at `xf`) and its slope in `λ`.
 fn driver_rate(env: &Env, set: &ContactSet, j: usize, p: &Pt, xf: f64) -> (f64, f64) {
@@ -132,6 +139,7 @@ fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) 
     let mut out = [0.0, 0.0];
     match m {
         Meter::Foot => out[0] = corrected(foot_rate(set, a.0), foot_rate(set, b.0), h),
+        Meter::Turn => out[0] = corrected(turn_rate(a.0), turn_rate(b.0), h),
         Meter::Slide => {
             // (a driver numbered past the set, after a lift-off before it: nothing metered)
             let driver = env.ground.slide.map(|s| s.driver);

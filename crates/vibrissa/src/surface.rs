@@ -959,6 +959,9 @@ pub(crate) enum Meter {
     Foot,
     /// The work the sliding tip's contact force absorbs: `∫ −F·dr_tip` (`∫ T dσ` on the surface).
     Slide,
+    /// The work of the support as it turns (the foot held): `∫ m(0) dθ`, `m(0)` the moment at
+    /// the foot (the clamp holds the slope `π/2 − θ`).
+    Turn,
 }
 
 /// A slip in progress.
