@@ -1399,18 +1399,22 @@ impl<'r> Drive<'r, '_> {
     /// `unresolved_step` after three slips where dt 0.01 went through ten: the finer the step,
     /// the sooner. Without the term the same drags reach d_max through ten slips at dt 0.01,
     /// 0.005 and 0.0025 (docs/model.md).
-    fn deflate(&mut self, tr: &Trial, short: f64) -> Result<(), VibrissaError> {
+    fn deflate(&mut self, tr: &Trial, short: f64) {
         self.mismatch = None;
         let (Some(now), Some((_, h, _))) = (self.ends_now, self.ends_before) else {
-            return Ok(());
+            return;
         };
         let mid = (short * tr.tau).sqrt();
         if mid <= short || mid >= tr.tau {
-            return Ok(());
+            return;
         }
-        let ts = self.try_step(short)?;
+        // (a step these two lengths do not solve leaves the search as it was: the test is
+        // the search's own, not a condition of the drag)
+        let Ok(ts) = self.try_step(short) else {
+            return;
+        };
         let (Some(es), Some(ef)) = (self.held_ends(&ts), self.held_ends(tr)) else {
-            return Ok(());
+            return;
         };
         let (ws, wf) = (mismatch_weight(short, h), mismatch_weight(tr.tau, h));
         let det = short * wf - tr.tau * ws;
@@ -1423,9 +1427,8 @@ impl<'r> Drive<'r, '_> {
                 rate[e][k] = (ds * wf - df * ws) / det;
             }
         }
-        let tm = self.try_step(mid)?;
-        let Some(em) = self.held_ends(&tm) else {
-            return Ok(());
+        let Some(em) = self.try_step(mid).ok().and_then(|tm| self.held_ends(&tm)) else {
+            return;
         };
         let wm = mismatch_weight(mid, h);
         let miss = |k: usize| em[1][k] - term[1][k] * wm - now[1][k] - rate[1][k] * mid;
@@ -1433,7 +1436,6 @@ impl<'r> Drive<'r, '_> {
         if fits {
             self.mismatch = Some(term);
         }
-        Ok(())
     }
 
     /// The tip's `N` and `T` at the end of the trial `tr` without the rule's alternating mode:
@@ -1883,7 +1885,7 @@ impl<'r> Drive<'r, '_> {
             }
             if self.state == ContactState::Stuck {
                 // (the held force's velocity mismatch out of the search's shorter steps)
-                self.deflate(&tr, tau_min.min(tau))?;
+                self.deflate(&tr, tau_min.min(tau));
                 g1 = self.events_after(&tr);
                 if g1.iter().all(|&g| g < 0.0) {
                     self.take(tr);
