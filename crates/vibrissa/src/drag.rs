@@ -366,6 +366,21 @@ pub struct SlipEvent {
     pub after: Signals,
 }
 
+impl SlipEvent {
+    /// The energy balance of the stick phase before the slip and of the slip, with
+    /// `energy_balance` (`None` without): `(stick, slip)`, the foot's (or the turned support's)
+    /// work less the elastic energy's change and what contacts sliding with kinetic friction
+    /// absorbed over the stick, and the work the sliding contact absorbed less the energy
+    /// released over the slip. Both are zero to the meter's accuracy.
+    pub fn imbalance(&self) -> Option<(f64, f64)> {
+        let change = self.before.energy - self.energy_stick;
+        Some((
+            self.work? - self.friction? - change,
+            self.dissipated? - self.released,
+        ))
+    }
+}
+
 /// The contacts of one slip ([`DragResult::slip_contacts`]).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SlipContacts {
