@@ -386,8 +386,8 @@ pub struct DynamicsDragArgs {
     #[arg(long, value_name = "V:MU,...", value_parser = speed_table)]
     pub mu_k_table: Option<SpeedTable>,
     /// After a lift-off the tip flies until it touches the surface again (event touchdown, a
-    /// plastic impact whose energy is in --json as `impact`), where the drag ends; without it a
-    /// lift-off ends the drag.
+    /// plastic impact whose energy is in --json as `impact`), then slides or sticks on; without
+    /// it a lift-off ends the drag.
     #[arg(long)]
     pub flight: bool,
     /// The foot's path by a time table instead of --speed, --ramp and --d-max: a file of rows

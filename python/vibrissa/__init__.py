@@ -863,8 +863,8 @@ def dynamics_drag(
     time steps as in :func:`dynamics_free` (``dt`` the first step; events still shorten a step
     to their place). The dampers ``foot_damping``, ``internal_damping``, ``external_damping``
     and ``rotary_inertia`` as in :func:`dynamics_free`. ``flight``: after a lift-off the tip flies until it touches
-    the surface again (event ``touchdown``, a plastic impact), where the drag ends; without it
-    a lift-off ends the drag. ``grid``, ``tol`` as in :func:`dynamics_free`; ``event_tol``
+    the surface again (event ``touchdown``, a plastic impact), then slides or sticks on;
+    without it a lift-off ends the drag. ``grid``, ``tol`` as in :func:`dynamics_free`; ``event_tol``
     the tolerance in time of the events' places, ``max_events`` the most events before the
     drag stops. The defaults and valid ranges are the library's.
 
@@ -874,7 +874,7 @@ def dynamics_drag(
     ``samples_rows`` (the same as dicts: the program's ``--json``), ``events`` (``slip``,
     ``stick``, ``lift_off``, ``touchdown``, ``side_contact``, ``patch`` with their time and
     place), ``stop`` (its
-    ``reason``: ``d_max``, ``table_end``, ``lift_off``, ``touchdown``, ``max_events``, or
+    ``reason``: ``d_max``, ``table_end``, ``lift_off``, ``max_events``, or
     ``unresolved_stick``, a stick the time step does not resolve, with ``t``, ``d`` and the
     force the stuck tip would need, ``unresolved_step``, a stuck rod the time step does not
     resolve (its force would jump within the shortest step: ``t``, ``d``, ``before`` and the

@@ -316,7 +316,10 @@ struct Step<'a> {
     /// `2/Δt`.
     table: &'a [[f64; 2]],
     tip_then: [f64; 6],
+    /// The tip's rates `q_t = two_tau (q − qⁿ) − then_rate q_tⁿ` (2/Δt and 1 by the
+    /// trapezoidal rule, 1/Δt and 0 by backward Euler).
     two_tau: f64,
+    then_rate: f64,
     /// The friction texture of [`TipBc::SlidingOn`].
     texture: Option<&'a Texture>,
     /// The tip's radius `r` (a disk on a line track): while it touches, `m(1) = r·T`.
@@ -346,9 +349,10 @@ impl Step<'_> {
     /// `v·t − r φ̇(1)`, with `φ̇(1)` by the trapezoidal rule as the end's velocity.
     fn rate_friction(&self, zb: &[f64], hp: f64) -> (f64, [f64; 3]) {
         let (x1, y1) = (zb[0], zb[1]);
-        let vx = self.two_tau * (x1 - self.tip_then[0]) - self.tip_then[1];
+        let vx = self.two_tau * (x1 - self.tip_then[0]) - self.then_rate * self.tip_then[1];
         let spin = if self.radius > 0.0 {
-            self.radius * (self.two_tau * (zb[2] - self.tip_then[4]) - self.tip_then[5])
+            self.radius
+                * (self.two_tau * (zb[2] - self.tip_then[4]) - self.then_rate * self.tip_then[5])
         } else {
             0.0
         };
@@ -358,7 +362,7 @@ impl Step<'_> {
             let dv = slope * v.signum() * self.two_tau;
             return (mk, [dv, 0.0, -dv * self.radius]);
         }
-        let vy = self.two_tau * (y1 - self.tip_then[2]) - self.tip_then[3];
+        let vy = self.two_tau * (y1 - self.tip_then[2]) - self.then_rate * self.tip_then[3];
         let w = (1.0 + hp * hp).sqrt();
         let v = (vx + hp * vy) / w - spin;
         let (mk, slope) = mu_k_of(self.table, v.abs());
@@ -630,6 +634,8 @@ pub(crate) struct Settings {
 pub(crate) struct Trial {
     /// The step's length.
     pub tau: f64,
+    /// Solved by backward Euler ([`Rothe::euler_steps`]), not the trapezoidal rule.
+    pub euler: bool,
     /// The support's turn at the step's end.
     turn: f64,
     /// `G = gs·(z[4], z[5])` in `sol`.
@@ -721,6 +727,17 @@ pub(crate) struct Rothe<'r> {
     after: Option<[[f64; 2]; 2]>,
     /// Work done.
     pub stats: DynStats,
+    /// Steps still to take by backward Euler instead of the trapezoidal rule (default 0).
+    ///
+    /// Why: where the tip touches down the Euler–Bernoulli rod's contact force is singular,
+    /// like `t^(-1/2)` (the rod next to the tip, still moving into the surface, is stopped by
+    /// it), and the trapezoidal rule, which does not damp, answers it with end forces of
+    /// alternating sign (−0.68 then −2.9, spurious lift-offs within 1e-5: docs/model.md,
+    /// "Flight and touchdown"). Backward Euler (`vⁿ⁺¹ = (rⁿ⁺¹ − rⁿ)/Δt`,
+    /// `aⁿ⁺¹ = (vⁿ⁺¹ − vⁿ)/Δt`) damps what its step cannot resolve (L-stable), at the cost of
+    /// first order and of an energy loss of its own (`½∫μ|Δv|²` and more a step), which the
+    /// drag books with the impact.
+    pub euler_steps: usize,
     /// The kinetic friction's table `(|v|, μk)` of [`TipBc::SlidingRate`] (empty: not used).
     pub friction_table: Vec<[f64; 2]>,
     /// The track of [`TipBc::Sliding`] and [`TipBc::SlidingRate`] (default: the line `y = 0`).
@@ -823,6 +840,7 @@ impl<'r> Rothe<'r> {
             table: &[],
             tip_then: [0.0; 6],
             two_tau: 0.0,
+            then_rate: 1.0,
             texture: None,
             radius: 0.0,
             held: (1.0, 0.0),
@@ -864,6 +882,7 @@ impl<'r> Rothe<'r> {
             external_dissipated: 0.0,
             after: None,
             stats: DynStats::default(),
+            euler_steps: 0,
             friction_table: vec![],
             texture: None,
             tip_radius: 0.0,
@@ -987,13 +1006,22 @@ impl<'r> Rothe<'r> {
         let zero = || vec![0.0; ng + 1];
         let mut hat = [zero(), zero(), zero(), zero(), zero()];
         let mut bracket = [zero(), zero(), zero(), zero(), zero()];
+        // the rule's coefficients: `r̂ = rⁿ + Δt vⁿ + ch Δt² aⁿ`, `a = (ca/Δt²)(r − r̂)`, and a
+        // rate `q_t = (rv/Δt)(q − qⁿ) − sv q_tⁿ` (trapezoidal: ¼, 4, 2, 1; backward Euler: 0, 1,
+        // 1, 0)
+        let euler = self.euler_steps > 0;
+        let (ch, ca, rv, sv) = if euler {
+            (0.0, 1.0, 1.0, 0.0)
+        } else {
+            (0.25, 4.0, 2.0, 1.0)
+        };
         for (q, (h, b)) in hat.iter_mut().zip(bracket.iter_mut()).enumerate() {
             for (i, (hi, bi)) in h.iter_mut().zip(b.iter_mut()).enumerate() {
-                *hi = self.pos[q][i] + tau * self.vel[q][i] + 0.25 * tau * tau * self.acc[q][i];
-                *bi = tau * self.vel[q][i] + 0.25 * tau * tau * self.acc[q][i];
+                *hi = self.pos[q][i] + tau * self.vel[q][i] + ch * tau * tau * self.acc[q][i];
+                *bi = tau * self.vel[q][i] + ch * tau * tau * self.acc[q][i];
             }
         }
-        let k_acc = 4.0 / (tau * tau);
+        let k_acc = ca / (tau * tau);
         let gs = if self.short_steps { k_acc } else { 1.0 };
         let (base, mut interp_of) = if self.short_steps {
             (Some(&self.sol), bracket)
@@ -1001,16 +1029,17 @@ impl<'r> Rothe<'r> {
             (None, hat.clone())
         };
         // external damping: `r_tt + γ_e r_t = k (r − r̂')` with `k = 4/Δt² + 2γ_e/Δt` and
-        // `r̂' = (4/Δt² r̂ + γ_e (2/Δt rⁿ + vⁿ))/k` (`r_t` by the trapezoidal rule)
+        // `r̂' = (4/Δt² r̂ + γ_e (2/Δt rⁿ + vⁿ))/k` (`r_t` by the trapezoidal rule; by backward
+        // Euler `k = 1/Δt² + γ_e/Δt`, `r̂' = (r̂/Δt² + γ_e rⁿ/Δt)/k`)
         let k_step = if self.ge > 0.0 {
-            let k = k_acc + 2.0 * self.ge / tau;
+            let k = k_acc + rv * self.ge / tau;
             // (the positions only: the damping force has no moment on the rotation)
             for (q, h) in interp_of.iter_mut().enumerate().take(4) {
                 for (i, hi) in h.iter_mut().enumerate() {
                     let from = if self.short_steps {
-                        self.ge * self.vel[q][i]
+                        self.ge * sv * self.vel[q][i]
                     } else {
-                        self.ge * (2.0 / tau * self.pos[q][i] + self.vel[q][i])
+                        self.ge * (rv / tau * self.pos[q][i] + sv * self.vel[q][i])
                     };
                     *hi = (k_acc * *hi + from) / k;
                 }
@@ -1020,10 +1049,10 @@ impl<'r> Rothe<'r> {
             k_acc
         };
         // Kelvin–Voigt: `κ_t = 2/Δt (κ − κⁿ) − κ_tⁿ` in `κ − κ0 + γ_i κ_t = b m`
-        let kv_c = 1.0 + 2.0 * self.gi / tau;
+        let kv_c = 1.0 + rv * self.gi / tau;
         let kv_q: Vec<f64> = if self.gi > 0.0 {
             (0..=ng)
-                .map(|i| self.gi * (2.0 / tau * self.kappa[i] + self.kappa_t[i]))
+                .map(|i| self.gi * (rv / tau * self.kappa[i] + sv * self.kappa_t[i]))
                 .collect()
         } else {
             vec![]
@@ -1042,8 +1071,8 @@ impl<'r> Rothe<'r> {
             hat_xs: &interp_of[2],
             hat_ys: &interp_of[3],
             compliance: self.cs,
-            damp_k: c * 2.0 / tau,
-            damp_0: c * (-2.0 / tau * self.theta - self.theta_t),
+            damp_k: c * rv / tau,
+            damp_0: c * (-rv / tau * self.theta - sv * self.theta_t),
             moment,
             foot,
             tip,
@@ -1057,7 +1086,8 @@ impl<'r> Rothe<'r> {
                 self.pos[4][ng],
                 self.vel[4][ng],
             ],
-            two_tau: 2.0 / tau,
+            two_tau: rv / tau,
+            then_rate: sv,
             texture: self.texture.as_deref(),
             radius: self.tip_radius,
             held: self.disk_held,
@@ -1094,6 +1124,7 @@ impl<'r> Rothe<'r> {
             .collect();
         Ok(Trial {
             tau,
+            euler,
             turn: foot.turn,
             gs,
             sol,
@@ -1185,6 +1216,11 @@ impl<'r> Rothe<'r> {
     /// `(x_ttt, y_ttt)`, with `r_ttt = (aⁿ⁺¹ − aⁿ⁻¹)/(Δt + h)` (`h` the last step) where the
     /// history holds `aⁿ⁻¹`, else `(aⁿ⁺¹ − aⁿ)/Δt` (infinite where it is not a number).
     pub fn local_error(&self, tr: &Trial) -> f64 {
+        if tr.euler {
+            // (an impact's steps are taken at the length the drag gives them: the estimate is
+            // the trapezoidal rule's)
+            return 0.0;
+        }
         let k = 4.0 / (tr.tau * tr.tau);
         let (before, span) = match &self.acc_before {
             Some((a, h)) => ([&a[0], &a[1]], tr.tau + h),
@@ -1211,7 +1247,11 @@ impl<'r> Rothe<'r> {
 
     /// The rate of history quantity `q` (0 x, 1 y, 4 φ) at the tip at the end of the trial `tr`.
     pub fn tip_rate(&self, tr: &Trial, q: usize) -> f64 {
-        let (i, k) = (self.ng, 4.0 / (tr.tau * tr.tau));
+        let i = self.ng;
+        if tr.euler {
+            return (tr.next[q][i] - self.pos[q][i]) / tr.tau;
+        }
+        let k = 4.0 / (tr.tau * tr.tau);
         let a1 = k * (tr.next[q][i] - tr.hat[q][i]);
         self.vel[q][i] + 0.5 * tr.tau * (self.acc[q][i] + a1)
     }
@@ -1247,7 +1287,8 @@ impl<'r> Rothe<'r> {
         moment: f64,
     ) -> Result<(), Box<BvpError>> {
         let mut probe = self.clone();
-        let k = 4.0 / (delta * delta);
+        // (an impact's backward-Euler steps, if any are left, restart by their own rule)
+        let k = if probe.euler_steps > 0 { 1.0 } else { 4.0 } / (delta * delta);
         // each probe step's end accelerations (the five quantities on the grid) and end forces
         let mut acc: Vec<Vec<Vec<f64>>> = vec![];
         let mut ends: Vec<[[f64; 2]; 2]> = vec![];
@@ -1304,7 +1345,9 @@ impl<'r> Rothe<'r> {
     /// Takes the trial step.
     pub fn commit(&mut self, tr: Trial) {
         self.after = None;
-        let (tau, k_acc) = (tr.tau, 4.0 / (tr.tau * tr.tau));
+        let euler = tr.euler;
+        self.euler_steps = self.euler_steps.saturating_sub(usize::from(euler));
+        let (tau, k_acc) = (tr.tau, if euler { 1.0 } else { 4.0 } / (tr.tau * tr.tau));
         let old_vel = (self.ge > 0.0).then(|| [self.vel[0].clone(), self.vel[1].clone()]);
         self.acc_before = Some(([self.acc[0].clone(), self.acc[1].clone()], tau));
         let mut next = tr.next;
@@ -1312,15 +1355,24 @@ impl<'r> Rothe<'r> {
             let (v, a) = (&mut self.vel[q], &mut self.acc[q]);
             for (i, (vi, ai)) in v.iter_mut().zip(a.iter_mut()).enumerate() {
                 let a1 = k_acc * (nq[i] - tr.hat[q][i]);
-                *vi += 0.5 * tau * (*ai + a1);
+                *vi += if euler {
+                    tau * a1
+                } else {
+                    0.5 * tau * (*ai + a1)
+                };
                 *ai = a1;
             }
         }
         if let Some(old) = old_vel {
             // the scheme's identity: the force `−γ_e μ r_t` takes `Δt γ_e ∫ μ |v_mid|²`
+            // (backward Euler: `Δt γ_e ∫ μ |vⁿ⁺¹|²`)
             let (vel, mu) = (&self.vel, &self.mu);
+            let w_old = if euler { 0.0 } else { 0.5 };
             let mid2 = |i: usize| {
-                let (x, y) = (0.5 * (old[0][i] + vel[0][i]), 0.5 * (old[1][i] + vel[1][i]));
+                let (x, y) = (
+                    w_old * old[0][i] + (1.0 - w_old) * vel[0][i],
+                    w_old * old[1][i] + (1.0 - w_old) * vel[1][i],
+                );
                 mu[i] * (x * x + y * y)
             };
             self.external_dissipated += tau * self.ge * self.simpson(&mid2);
@@ -1328,11 +1380,18 @@ impl<'r> Rothe<'r> {
         if self.gi > 0.0 {
             // `κ_t` by the trapezoidal rule; the moment `γ_i κ_t/b` takes `Δt γ_i ∫ κ_t,mid²/b`
             let kt1: Vec<f64> = (0..=self.ng)
-                .map(|i| 2.0 / tau * (tr.kappa[i] - self.kappa[i]) - self.kappa_t[i])
+                .map(|i| {
+                    if euler {
+                        (tr.kappa[i] - self.kappa[i]) / tau
+                    } else {
+                        2.0 / tau * (tr.kappa[i] - self.kappa[i]) - self.kappa_t[i]
+                    }
+                })
                 .collect();
             let (kt0, bv) = (&self.kappa_t, &self.bvec);
+            let w_old = if euler { 0.0 } else { 0.5 };
             let mid2 = |i: usize| {
-                let k = 0.5 * (kt0[i] + kt1[i]);
+                let k = w_old * kt0[i] + (1.0 - w_old) * kt1[i];
                 k * k / bv[i]
             };
             self.internal_dissipated += tau * self.gi * self.simpson(&mid2);
@@ -1349,9 +1408,15 @@ impl<'r> Rothe<'r> {
         self.gs = tr.gs;
         self.stats.steps += 1;
         let theta1 = self.sol.left()[2] - FRAC_PI_2 + tr.turn;
-        let theta_t1 = 2.0 / tau * (theta1 - self.theta) - self.theta_t;
+        let (theta_t1, mid) = if euler {
+            let rate = (theta1 - self.theta) / tau;
+            (rate, rate)
+        } else {
+            let rate = 2.0 / tau * (theta1 - self.theta) - self.theta_t;
+            (rate, 0.5 * (self.theta_t + rate))
+        };
         // the scheme's own energy identity: the damper takes Δt c ((θ_tⁿ + θ_tⁿ⁺¹)/2)² per step
-        let mid = 0.5 * (self.theta_t + theta_t1);
+        // (backward Euler: Δt c (θ_tⁿ⁺¹)²)
         self.dissipated += tau * self.damping * mid * mid;
         (self.theta, self.theta_t) = (theta1, theta_t1);
     }

@@ -246,9 +246,10 @@ fn a_stuck_rod_s_velocity_mismatch_does_not_end_the_drag() {
 /// impact removes the tip's velocity along the surface's normal there, both components of the
 /// touchdown row say so (its `tip_vx` kept the velocity before the impact until 2026-11-29:
 /// 2.5e-5 along the normal), and the energy from the start through the impact balances with it
-/// as on the flat surface (bound 3e-5 of the foot's work). Measured (2026-11-29): touchdown at
-/// d = 0.230828, normal velocity 1.6e-17, impact 6.5e-6, imbalance 8.6e-8 of the foot's work
-/// 0.130.
+/// as on the flat surface (bound 3e-5 of the foot's work); the drag goes on to d_max.
+/// Measured (2026-11-29): touchdown at d = 0.230828, normal velocity 1.6e-17, impact 6.5e-6,
+/// imbalance 8.6e-8 of the foot's work 0.130 (9.8e-8 since the sliding tip's lift-off test takes the
+/// held force, 2026-11-30).
 #[test]
 fn a_touchdown_on_a_sloped_line_stops_the_normal_velocity() {
     let rod = Rod::builder().precurvature(1.0, 0.0).build().unwrap();
@@ -256,11 +257,16 @@ fn a_touchdown_on_a_sloped_line_stops_the_normal_velocity() {
     let o = DynDragOptions {
         ramp: 0.2,
         flight: true,
-        ..light(0.3, 0.005, 0.5)
+        ..light(0.3, 0.005, 0.25)
     };
     let r = drag(&rod, &surface, &o).unwrap();
-    let down = *r.events.last().unwrap();
-    assert_eq!(down.kind, DragEventKind::Touchdown, "{r}");
+    // (the drag goes on after the touchdown since 2026-11-30)
+    assert_eq!(r.stop, DynDragStop::DMax, "{r}");
+    let down = *r
+        .events
+        .iter()
+        .find(|e| e.kind == DragEventKind::Touchdown)
+        .unwrap();
     let (a, p) = (
         &r.samples[0],
         r.samples.iter().find(|p| p.t == down.t).unwrap(),
