@@ -1090,6 +1090,9 @@ struct Drive<'r, 'o> {
     roll: f64,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
+    /// The tip touched down at the present instant (no step taken since): its contact force
+    /// there is the flight's zero, not the impact's, which pushes.
+    landed: bool,
     /// The forces at the support and the tip (`G(0)`, `G(1)`) at the last step's start, that
     /// step's length and the tip's x at its start, while the tip's condition has not changed
     /// since ([`Drive::held_ends`]).
@@ -1504,6 +1507,12 @@ impl<'r> Drive<'r, '_> {
         if let (true, Some((n, _))) = (self.sliding_lift(), self.contact_now) {
             lift = -n;
         }
+        if self.landed {
+            // (the impact's force at `t⁺` is compressive, like `t^(-1/2)`: a lift-off in the
+            // first step after a touchdown is where its N falls to zero, not at its start,
+            // where the flight's N = 0 would place it: measured, a lift-off at N = 6.1)
+            lift = -1.0;
+        }
         [
             lift,
             phase,
@@ -1514,6 +1523,7 @@ impl<'r> Drive<'r, '_> {
 
     /// Takes the step: the energies by the trapezoidal rule, a sample.
     fn take(&mut self, tr: Trial) {
+        self.landed = false;
         let euler = tr.euler;
         let energy_before = self
             .samples
@@ -1688,6 +1698,8 @@ impl<'r> Drive<'r, '_> {
             if self.o.flight {
                 self.state = ContactState::Flying;
             }
+            // (a lift-off within an impact's steps ends them: the force they damp is gone)
+            self.rothe.euler_steps = 0;
             DragEventKind::LiftOff
         } else if self.state == ContactState::Flying {
             self.touchdown();
@@ -1848,6 +1860,7 @@ impl<'r> Drive<'r, '_> {
         let after = self.rothe.sample(self.t);
         self.impact += before - after.kinetic;
         self.rothe.euler_steps = IMPACT_STEPS;
+        self.landed = true;
         if let Some(last) = self.samples.last_mut() {
             // (on a sloped surface the impact changes both components)
             last.tip_vx = after.tip_vx;
@@ -2101,6 +2114,7 @@ pub fn drag(
         surface: surface_track,
         roll: 0.0,
         fresh_slip: false,
+        landed: false,
         ends_before: None,
         held_now: None,
         ends_now: None,
