@@ -250,6 +250,24 @@ def test_dynamics_drag_with_every_option_equals_the_program(program):
     assert py["stats"]["rejected_steps"] > 0
 
 
+def test_a_flying_tip_touches_down_and_the_drag_goes_on():
+    # the library's scene of tests/dynamic_drag.rs (a_flying_tip_touches_down_and_goes_on):
+    # since the impact's steps, a touchdown is an event, not the drag's end
+    rod = vibrissa.Rod(precurvature=1.0)
+    r = vibrissa.dynamics_drag(rod, vibrissa.Surface(eta=0.83), speed=0.3, ramp=0.2, d_max=0.3,
+                               dt=0.005, grid=100, tol=1e-8, flight=True)
+    kinds = [e["kind"] for e in r["events"]]
+    assert r["stop"]["reason"] == "d_max", r["stop"]
+    assert kinds[:3] == ["slip", "lift_off", "touchdown"], kinds
+    down = kinds.index("touchdown")
+    assert "lift_off" in kinds[down + 1:], kinds
+    for e in r["events"]:
+        if e["kind"] == "lift_off":
+            assert abs(e["normal"]) < 1e-8, e
+    assert r["samples"]["impact"][-1] > 0.0
+    assert "touchdown" not in str(r["stop"])
+
+
 def test_dynamics_drag_grid_and_tol_reach_the_library():
     kw = dict(speed=0.1, d_max=0.003, dt=0.05)
     base = vibrissa.dynamics_drag(vibrissa.Rod(), **kw)
