@@ -1521,14 +1521,15 @@ impl<'r> Drive<'r, '_> {
         ]
     }
 
-    /// Takes the step: the energies by the trapezoidal rule, a sample.
+    /// Takes the step: the energies by the step's rule (the trapezoidal rule's, backward
+    /// Euler's in an impact's steps), a sample.
     fn take(&mut self, tr: Trial) {
         self.landed = false;
         let euler = tr.euler;
-        let energy_before = self
-            .samples
-            .last()
-            .map(|p| p.kinetic + p.elastic + p.damper + p.internal_damping + p.external_damping);
+        let energy_before =
+            self.samples.last().filter(|_| euler).map(|p| {
+                p.kinetic + p.elastic + p.damper + p.internal_damping + p.external_damping
+            });
         self.tried.clear();
         self.instant_events = 0;
         let (g0, g1, x1, y1, d_old, turn_old, m0) = (
@@ -1588,7 +1589,7 @@ impl<'r> Drive<'r, '_> {
             let z = self.rothe.sol.right();
             self.friction -= (w0 * m1 + w1 * z[3]) * (z[2] - phi1);
         }
-        if let (true, Some(before)) = (euler, energy_before) {
+        if let Some(before) = energy_before {
             // an impact's backward-Euler step takes energy of its own (`½∫μ|Δv|²` and more):
             // booked with the impact, as what the step's work leaves over
             let p = self.rothe.sample(self.t);

@@ -1217,8 +1217,8 @@ impl<'r> Rothe<'r> {
     /// history holds `aⁿ⁻¹`, else `(aⁿ⁺¹ − aⁿ)/Δt` (infinite where it is not a number).
     pub fn local_error(&self, tr: &Trial) -> f64 {
         if tr.euler {
-            // (an impact's steps are taken at the length the drag gives them: the estimate is
-            // the trapezoidal rule's)
+            // (an impact's steps are taken at the length the drag gives them, not controlled:
+            // the estimate below is the trapezoidal rule's)
             return 0.0;
         }
         let k = 4.0 / (tr.tau * tr.tau);
