@@ -1040,9 +1040,10 @@ fn mismatch_weight(tau: f64, h: f64) -> f64 {
 /// defaults grid 200, tol 1e-10, dt 0.005) N = 8.5, −19.5, −15.4, −77.6 at the steps after the
 /// impact and a slip's restart, with lift-offs and touchdowns 1e-5 apart (without the restart
 /// −0.68, then −2.9: docs/model.md, "Flight and touchdown"). With two backward-Euler steps (L-stable:
-/// what a step cannot resolve is damped, not rung) N = 2.14, 1.74, then by the trapezoidal
-/// rule 0.21, 0.18, 0.12 … down to a lift-off where N falls to zero; with one, N = 2.14, 1.18,
-/// 0.12, 0.28, 0.05, 0.07, −0.01 (still ringing; three steps give 2.14, 1.74, 0.31, 0.23, 0.12).
+/// what a step cannot resolve is damped, not rung) N = 2.14, 0.90, then by the trapezoidal
+/// rule 0.39, 0.18, 0.12 … down to a lift-off where N falls to zero; with one, N = 2.14, 0.15,
+/// 0.12, 0.28, 0.05, 0.07, −0.01 (still ringing; three steps give 2.14, 0.90, 0.52, 0.26, 0.12
+/// and take 2.33e-3 for two's 2.03e-3).
 /// Their energy loss (first order: `½∫μ|Δv|²` and more a step) is booked with the impact:
 /// 2.0e-3, 1.3e-3, 8.6e-4 of a kinetic energy of 0.105–0.107 at dt 0.005, 0.0025, 0.00125 (like
 /// `√dt`; in the continuum a plastic impact of a massless point takes nothing).
