@@ -1321,10 +1321,8 @@ impl<'r> Drive<'r, '_> {
         let spin = self.rothe.tip_rate(tr, 4);
         let g = self.events_of(n, t, self.rothe.tip_velocity(tr), spin, r);
         let held = (self.state == ContactState::Stuck).then(|| self.held_force(tr));
-        let [mut lift, phase] = self.held_test(g, held, r);
-        if let (true, Some((n, _))) = (self.sliding_lift(), self.held_contact(tr)) {
-            lift = -n;
-        }
+        let contact = self.sliding_lift().then(|| self.held_contact(tr)).flatten();
+        let [lift, phase] = self.held_test(g, held, contact, r);
         [lift, phase, self.side_gap(&tr.sol).0, self.edge_gap(r[0])]
     }
 
@@ -1354,16 +1352,24 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// The event functions `g` with the stuck tip's tests (slip and lift-off) taken on the held
-    /// force `held` ([`Drive::held_force`]) where there is one, the tip at `r`. (The
-    /// lift-off's too: the rule's mode reaches ±1.4 in the stuck paper's rod's N = 4 at dt 0.02
-    /// after a few slips, and a whisk drawn back, where N falls, read a lift-off at N = −0.18
-    /// where the held force had N = 2.3.)
-    fn held_test(&self, g: [f64; 2], held: Option<[f64; 2]>, r: [f64; 2]) -> [f64; 2] {
-        match (self.state, held) {
-            (ContactState::Stuck, Some(held)) => {
+    /// force `held` ([`Drive::held_force`]) where there is one, and a sliding tip's lift-off on
+    /// the held contact force `contact` ([`Drive::held_contact`], see [`Drive::sliding_lift`])
+    /// where there is one, the tip at `r`. (The stuck tip's lift-off too: the rule's mode
+    /// reaches ±1.4 in the stuck paper's rod's N = 4 at dt 0.02 after a few slips, and a whisk
+    /// drawn back, where N falls, read a lift-off at N = −0.18 where the held force had N = 2.3.)
+    fn held_test(
+        &self,
+        g: [f64; 2],
+        held: Option<[f64; 2]>,
+        contact: Option<(f64, f64)>,
+        r: [f64; 2],
+    ) -> [f64; 2] {
+        match (self.state, held, contact) {
+            (ContactState::Stuck, Some(held), _) => {
                 let (n, t) = self.forces(held, r[0]);
                 self.events_of(n, t, [0.0, 0.0], 0.0, r)
             }
+            (s, _, Some((n, _))) if s.dir() != 0.0 => [-n, g[1]],
             _ => g,
         }
     }
@@ -1504,10 +1510,8 @@ impl<'r> Drive<'r, '_> {
         let r = [p.tip_x, p.tip_y];
         let (n, t) = self.forces(self.rothe.force(1), r[0]);
         let g = self.events_of(n, t, [p.tip_vx, p.tip_vy], self.rothe.tip_spin(), r);
-        let [mut lift, phase] = self.held_test(g, self.held_now, r);
-        if let (true, Some((n, _))) = (self.sliding_lift(), self.contact_now) {
-            lift = -n;
-        }
+        let contact = self.contact_now.filter(|_| self.sliding_lift());
+        let [mut lift, phase] = self.held_test(g, self.held_now, contact, r);
         if self.landed {
             // (the impact's force at `t⁺` is compressive, like `t^(-1/2)`: a lift-off in the
             // first step after a touchdown is where its N falls to zero, not at its start,

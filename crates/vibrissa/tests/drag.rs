@@ -8,6 +8,10 @@ use vibrissa::{
     SolverConfig, Stiffness, StopReason,
 };
 
+#[path = "support/slip_balance.rs"]
+mod slip_balance;
+use slip_balance::assert_balanced;
+
 fn scene(f: impl Fn(&mut Scene)) -> Scene {
     let mut s = Scene::default();
     f(&mut s);
@@ -193,15 +197,7 @@ fn energy_balance_of_every_phase() {
         );
         assert!(r.slips.len() >= 2, "{name}: {r}");
         for (k, e) in r.slips.iter().enumerate() {
-            let (stick, slip) = e.imbalance().unwrap();
-            assert!(
-                stick.abs() < 1e-8,
-                "{name}, stick {k}: imbalance {stick} ({e:?})"
-            );
-            assert!(
-                slip.abs() < 1e-8,
-                "{name}, slip {k}: imbalance {slip} ({e:?})"
-            );
+            assert_balanced(name, k, e, 1e-8);
             let (work, diss) = (e.work.unwrap(), e.dissipated.unwrap());
             // one cycle: the foot's work is the energy's change plus what the slip dissipated
             let cycle = e.after.energy - e.energy_stick;
@@ -243,9 +239,7 @@ fn a_side_contact_slides() {
             "slip {k}: {:?}",
             e.after
         );
-        let (stick, slip) = e.imbalance().unwrap();
-        assert!(slip.abs() < 1e-8, "slip {k}: imbalance {slip} ({e:?})");
-        assert!(stick.abs() < 1e-8, "stick {k}: imbalance {stick} ({e:?})");
+        assert_balanced("side contact", k, e, 1e-8);
     }
 }
 

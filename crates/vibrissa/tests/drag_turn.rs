@@ -18,6 +18,10 @@ use noisy_trace::{exact, noisy, within_three_standard_errors, Rng};
 use vibrissa::fit::{fit, FitOptions, Trace};
 use vibrissa::Scene;
 
+#[path = "support/slip_balance.rs"]
+mod slip_balance;
+use slip_balance::assert_balanced;
+
 fn turned(d_max: f64) -> DragOptions {
     DragOptions {
         d_max,
@@ -186,16 +190,7 @@ fn a_turned_drag_balances_its_energy() {
         assert!(r.slips.len() >= 2, "{name}: {r}");
         slips += r.slips.len();
         for (k, e) in r.slips.iter().enumerate() {
-            let (stick, slip) = e.imbalance().unwrap();
-            assert!(
-                stick.abs() < 1e-8,
-                "{name}, stick {k}: imbalance {stick} ({e:?})"
-            );
-            assert!(
-                slip.abs() < 1e-8,
-                "{name}, slip {k}: imbalance {slip} ({e:?})"
-            );
-            worst = worst.max(stick.abs()).max(slip.abs());
+            worst = worst.max(assert_balanced(name, k, e, 1e-8));
         }
     }
     eprintln!("largest imbalance {worst:e} over {slips} slips");

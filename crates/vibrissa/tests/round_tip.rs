@@ -5,6 +5,10 @@ use vibrissa::drag::Hold;
 use vibrissa::surface::SurfaceProfile;
 use vibrissa::{DragOptions, DragResult, Rod, ScanOptions, Scene, StopReason, Surface};
 
+#[path = "support/slip_balance.rs"]
+mod slip_balance;
+use slip_balance::assert_balanced;
+
 fn scan_points(rod: &Rod, surface: &Surface, d: &[f64]) -> Vec<vibrissa::ScanPoint> {
     vibrissa::scan_at(rod, surface, &ScanOptions::default(), d)
         .expect("scan")
@@ -125,15 +129,7 @@ fn energy_balance_with_a_round_tip() {
         };
         assert!(r.slips.len() >= 2, "{name}: {r}");
         for (k, e) in r.slips.iter().enumerate() {
-            let (stick, slip) = e.imbalance().unwrap();
-            assert!(
-                stick.abs() < 1e-8,
-                "{name}, stick {k}: imbalance {stick} ({e:?})"
-            );
-            assert!(
-                slip.abs() < 1e-8,
-                "{name}, slip {k}: imbalance {slip} ({e:?})"
-            );
+            assert_balanced(name, k, e, 1e-8);
             assert!(
                 e.released > 1e-6,
                 "{name}, slip {k}: released {}",
