@@ -1287,13 +1287,14 @@ impl<'r> Rothe<'r> {
         moment: f64,
     ) -> Result<(), Box<BvpError>> {
         let mut probe = self.clone();
-        // (an impact's backward-Euler steps, if any are left, restart by their own rule)
-        let k = if probe.euler_steps > 0 { 1.0 } else { 4.0 } / (delta * delta);
         // each probe step's end accelerations (the five quantities on the grid) and end forces
         let mut acc: Vec<Vec<Vec<f64>>> = vec![];
         let mut ends: Vec<[[f64; 2]; 2]> = vec![];
         for (j, &foot) in feet.iter().enumerate() {
             let tr = probe.trial(delta, foot, tip, moment)?;
+            // (an impact's backward-Euler steps, if any are left, restart by their own rule:
+            // each probe by the rule it was solved with, as the probes' commits use up the steps)
+            let k = if tr.euler { 1.0 } else { 4.0 } / (delta * delta);
             acc.push(
                 (0..5)
                     .map(|q| {
