@@ -17,8 +17,8 @@ paper's rod on a surface inclined by 0.1, over a corrugation 0.003 sin(2 pi x/0.
 corrugation; the paper's rod on friction patches and on a friction table along x
 (data/dynamics/friction_*.toml); the paper's rod with a round tip of radius 0.02 and internal
 damping 1e-4, on the flat surface and over a corrugation 0.005 sin(2 pi x/0.2); a rod of rest
-curvature 1 pressed lightly onto eta 0.83 with --flight, which lifts off and touches down} =
-180 drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
+curvature 1 pressed lightly onto eta 0.83 with --flight, which lifts off and touches down;
+the paper's rod on a viscoelastic support, compliance 1 and damper 0.5} = 192 drags to d_max 0.12 (program defaults otherwise: the scene file's eta, else 0.75; mu_s 0.5,
 mu_k 0.3 or the scene's [friction], ramp 2, grid 200, tol 1e-10), each with `--json`. A drag is killed after --timeout
 seconds of wall time (class "slow"). cpu_s is the drag's user + system CPU time (os.wait4), the
 only column that differs between runs. Checked on every row that ends: no event with a normal
@@ -56,6 +56,7 @@ SCENES = [
                                             "--corrugation-amplitude", "0.005",
                                             "--corrugation-wavelength", "0.2"]),
     ("precurved1_eta0.83_flight", ["--precurvature", "1", "--eta", "0.83", "--flight"]),
+    ("viscoelastic1_0.5", ["--support-compliance", "1", "--foot-damping", "0.5"]),
 ]
 
 

@@ -1031,8 +1031,25 @@ fn mismatch_weight(tau: f64, h: f64) -> f64 {
     (0.5 * tau * h + 0.5 * h * h - tau * tau) / (tau * h * (tau + h))
 }
 
+/// The weight `1/τ − 1/h` of a velocity mismatch's term `A` in the end force itself of a step
+/// of length `tau` from a state whose last step was `h` long: the step's positions meet the
+/// constraint, so its accelerations take up the mismatch as `A/τ` ([`mismatch_weight`]); less
+/// its value at a full step, so that a full step's force is left as the rule gives it.
+///
+/// Why: before the drag's first event the held forces are not formed (the start is at rest and
+/// the rule's alternating mode is not excited, so the end forces are the rod's), but the
+/// velocities miss the stuck tip's condition by what each step's solve leaves (measured: `A`
+/// = −2.1e-7 for the paper's rod at v 0.1, dt 0.005 before its first slip, +7.2e-7 on a compliant
+/// support, `c_s` = 1, against N = 5.37 and 1.73), and the first slip's search reads the force
+/// at steps down to 1e-5: on the compliant support at dt 0.005 it placed the slip at
+/// T/N = 0.5231, and with the support's damper (0.2 to 2) at dt 0.01 it stopped as
+/// `unresolved_step` before any slip.
+fn end_mismatch_weight(tau: f64, h: f64) -> f64 {
+    1.0 / tau - 1.0 / h
+}
+
 /// The steps after a touchdown taken by backward Euler instead of the trapezoidal rule
-/// ([`Rothe::euler_steps`]).
+/// (`Rothe::euler_steps` in the crate's Rothe step).
 ///
 /// Why: the Euler–Bernoulli rod's contact force after a point impact is singular, like
 /// `t^(-1/2)`, and the trapezoidal rule answers it with end forces of alternating sign:
@@ -1108,6 +1125,12 @@ struct Drive<'r, 'o> {
     /// The velocity mismatch's term `A` in the held forces (support, tip) of the steps tried
     /// from the present state, where [`Drive::deflate`] found one ([`mismatch_weight`]).
     mismatch: Option<[[f64; 2]; 2]>,
+    /// Where that term is in the end forces themselves (before the first event, where the
+    /// held forces are not formed): the last step's length `h` of its weight
+    /// ([`end_mismatch_weight`]).
+    mismatch_end: Option<f64>,
+    /// The length of the last step taken (0 before the first).
+    last_tau: f64,
     foot_work: f64,
     friction: f64,
     impact: f64,
@@ -1395,11 +1418,22 @@ impl<'r> Drive<'r, '_> {
 
     /// The forces at both ends, the support's and the tip's, at the end of the trial `tr`
     /// without the rule's alternating mode, as [`Drive::held_force`] forms the tip's (`None`
-    /// without the last step under the same condition). The support's force is a multiplier
+    /// without the last step under the same condition; before the first event the end forces
+    /// less the velocity mismatch's term where [`Drive::deflate`] found one, else `None`). The
+    /// support's force is a multiplier
     /// too (of the foot's place) and carries the same mode: ±0.5 in the paper's rod's
     /// `fy ≈ −4` at dt 0.02 after a few slips, sliding or stuck. The rows report these.
     fn held_ends(&self, tr: &Trial) -> Option<[[f64; 2]; 2]> {
-        let (g_prev, h, _) = self.ends_before?;
+        let Some((g_prev, h, _)) = self.ends_before else {
+            // (before the first event: the end forces, less the velocity mismatch's term where
+            // [`Drive::deflate`] found one)
+            let (m, h) = (self.mismatch?, self.mismatch_end?);
+            let w = end_mismatch_weight(tr.tau, h);
+            return Some([0, 1].map(|e| {
+                let g = tr.force(e);
+                [0, 1].map(|k| g[k] - m[e][k] * w)
+            }));
+        };
         let [a, b, c] = held_weights(tr.tau, h);
         let (m, w) = (
             self.mismatch.unwrap_or_default(),
@@ -1422,11 +1456,33 @@ impl<'r> Drive<'r, '_> {
     /// 1.18 of 5.2 at τ = 1e-5. The search put a slip there, and the drag stopped as
     /// `unresolved_step` after three slips where dt 0.01 went through ten: the finer the step,
     /// the sooner. Without the term the same drags reach d_max through ten slips at dt 0.01,
-    /// 0.005 and 0.0025 (docs/model.md).
+    /// 0.005 and 0.0025 (docs/model.md). Before the first event, where the held forces are not
+    /// formed, the same fit on the end forces themselves ([`end_mismatch_weight`]).
     fn deflate(&mut self, tr: &Trial, short: f64) {
         self.mismatch = None;
-        let (Some(now), Some((_, h, _))) = (self.ends_now, self.ends_before) else {
-            return;
+        self.mismatch_end = None;
+        // (before the first event the end forces themselves: see [`end_mismatch_weight`])
+        let plain = self.ends_before.is_none() && self.events.is_empty() && self.last_tau > 0.0;
+        let (now, h) = match (self.ends_now, self.ends_before) {
+            (Some(now), Some((_, h, _))) => (now, h),
+            _ if plain => (
+                self.ends_now
+                    .unwrap_or([self.rothe.force(0), self.rothe.force(1)]),
+                self.last_tau,
+            ),
+            _ => return,
+        };
+        let weight = if plain {
+            end_mismatch_weight
+        } else {
+            mismatch_weight
+        };
+        let ends = |me: &Self, t: &Trial| {
+            if plain {
+                Some([t.force(0), t.force(1)])
+            } else {
+                me.held_ends(t)
+            }
         };
         let mid = (short * tr.tau).sqrt();
         if mid <= short || mid >= tr.tau {
@@ -1437,10 +1493,10 @@ impl<'r> Drive<'r, '_> {
         let Ok(ts) = self.try_step(short) else {
             return;
         };
-        let (Some(es), Some(ef)) = (self.held_ends(&ts), self.held_ends(tr)) else {
+        let (Some(es), Some(ef)) = (ends(self, &ts), ends(self, tr)) else {
             return;
         };
-        let (ws, wf) = (mismatch_weight(short, h), mismatch_weight(tr.tau, h));
+        let (ws, wf) = (weight(short, h), weight(tr.tau, h));
         let det = short * wf - tr.tau * ws;
         let mut rate = [[0.0; 2]; 2];
         let mut term = [[0.0; 2]; 2];
@@ -1451,14 +1507,15 @@ impl<'r> Drive<'r, '_> {
                 rate[e][k] = (ds * wf - df * ws) / det;
             }
         }
-        let Some(em) = self.try_step(mid).ok().and_then(|tm| self.held_ends(&tm)) else {
+        let Some(em) = self.try_step(mid).ok().and_then(|tm| ends(self, &tm)) else {
             return;
         };
-        let wm = mismatch_weight(mid, h);
+        let wm = weight(mid, h);
         let miss = |k: usize| em[1][k] - term[1][k] * wm - now[1][k] - rate[1][k] * mid;
         let fits = miss(0).hypot(miss(1)) <= 0.1 * now[1][0].hypot(now[1][1]);
         if fits {
             self.mismatch = Some(term);
+            self.mismatch_end = plain.then_some(h);
         }
     }
 
@@ -1559,11 +1616,14 @@ impl<'r> Drive<'r, '_> {
         let ends = self.held_ends(&tr);
         let contact = self.held_contact(&tr);
         self.mismatch = None;
+        self.mismatch_end = None;
+        self.last_tau = tau;
         let held = ends
             .filter(|_| self.state == ContactState::Stuck)
             .map(|g| g[1]);
         self.rothe.commit(tr);
-        // (the drag's start is consistent and smooth: no mode to remove before the first event)
+        // (the drag's start is consistent and smooth: no mode to remove before the first event;
+        // the velocity mismatch's term then comes out of the end forces, `end_mismatch_weight`)
         // (nor after an impact's backward-Euler step: the held force's weights cancel the
         // trapezoidal rule's mode and need its three forces; measured, a round tip's held force
         // across the switch back read a lift-off at N = −0.41, 1e-5 after the impact's steps)
@@ -1673,6 +1733,7 @@ impl<'r> Drive<'r, '_> {
     /// The contact changes after event `which`; `Some(stop)` where the drag ends.
     fn apply(&mut self, which: usize) -> Option<DynDragStop> {
         self.mismatch = None;
+        self.mismatch_end = None;
         // a stick, a slip at once and a stick at once can share an instant; a fourth event
         // there would repeat the second from the same state, and so on without end
         if self.instant_events == MAX_INSTANT_EVENTS {
@@ -1789,6 +1850,16 @@ impl<'r> Drive<'r, '_> {
             normal,
             tangential,
         }
+    }
+
+    /// The slip at once after a stick at the present instant (no step taken since), if the
+    /// tip stuck and then slipped at once: the stuck tip then needed more than μs N at once.
+    fn slid_at_once(&self) -> Option<DynDragEvent> {
+        let n = self.events.len();
+        (self.instant_events >= 2 && n >= 2)
+            .then(|| (self.events[n - 2], self.events[n - 1]))
+            .filter(|(a, b)| a.kind == DragEventKind::Stick && b.kind == DragEventKind::Slip)
+            .map(|(_, b)| b)
     }
 
     /// The stop where a stuck tip's event lands within the shortest step and its held force
@@ -1909,8 +1980,36 @@ impl<'r> Drive<'r, '_> {
         Ok(None)
     }
 
-    /// The drag to its end.
+    /// The drag to its end: [`Drive::march`], where a slip at once after a stick
+    /// ([`Drive::slid_at_once`]) is followed by a step that is not solved, the stick the step
+    /// does not resolve ([`DynDragStop::UnresolvedStick`], with the slip's force).
+    ///
+    /// Why: the force of such a slip, outside the friction cone at once, is the scheme's, not
+    /// the rod's ([`Drive::unresolved`]), and so is the failure of the step after it, not a
+    /// failure of the drag: measured on a whisk drawn back after a touchdown (`vibrissa
+    /// dynamics drag --whisk -0.3,2 --speed 0.05 --d-max 0.1 --flight`, dt 0.01) the tip stuck
+    /// at N = 16.6, slipped at once at N = 49.5, T/N = 3.04, and the first step of the slip
+    /// stalled Newton; at dt 0.005 the same instant ends as `unresolved_stick` by a stick at
+    /// once after the slip. (A step that fails from a stick alone stays a solver error: at grid
+    /// 200, tol 1e-8 the same drag's stuck step after the touchdown reaches the Newton limit on
+    /// 5401 nodes while its force, N = 16.6, T/N = −0.3, is within the cone.)
     fn run(&mut self) -> Result<DynDragStop, VibrissaError> {
+        match self.march() {
+            Err(err @ VibrissaError::Solver { .. }) => match self.slid_at_once() {
+                Some(e) => Ok(DynDragStop::UnresolvedStick {
+                    t: self.t,
+                    d: self.d,
+                    normal: e.normal,
+                    tangential: e.tangential,
+                }),
+                None => Err(err),
+            },
+            r => r,
+        }
+    }
+
+    /// The drag's steps and events to its end.
+    fn march(&mut self) -> Result<DynDragStop, VibrissaError> {
         let t_end = self.o.t_end();
         let dt = self.o.dt;
         let tau_min = shortest_step(dt, self.o.tol);
@@ -2128,6 +2227,8 @@ pub fn drag(
         held_now: None,
         ends_now: None,
         mismatch: None,
+        mismatch_end: None,
+        last_tau: 0.0,
         contact_now: None,
         foot_work: 0.0,
         friction: 0.0,

@@ -180,8 +180,10 @@ fn time_tol_out_of_range_is_refused() {
 
 /// The dynamic drag's first slip with adaptive steps (the paper's rod, v = 0.05, grid 100,
 /// collocation tol 1e-8, first step 0.01) tends to the limit of fixed steps dt → 0,
-/// d = 0.021003157884 (docs/performance.md), as time_tol falls. Measured errors 3.56e-5,
-/// 1.61e-6, 1.18e-6 at time_tol 1e-6, 1e-7, 1e-8 (48, 108, 268 steps; 10, 13, 24 rejected).
+/// d = 0.021003157884 (docs/performance.md), as time_tol falls. Measured errors −3.58e-5,
+/// 7.40e-7, 6.94e-7 at time_tol 1e-6, 1e-7, 1e-8 (48, 108, 268 steps; 10, 13, 24 rejected;
+/// −3.56e-5, 1.61e-6, 1.18e-6 before the first slip's search took the velocity mismatch's term
+/// out of the end forces).
 /// Asserted: the error at 1e-8 within 2e-6 and less than a tenth of the error at 1e-6, and
 /// steps rejected at each tolerance.
 #[test]
