@@ -204,11 +204,17 @@ struct Linear<'a> {
     /// tip condition on that motion is void and the axial force is left undetermined. Its
     /// transverse problem alone is posed (2×2, the columns `δm(0)`, `δGx(0)`).
     straight: bool,
+    /// `∫ (μ/b)^(1/4) ds`: the columns grow like `exp(|λ|^(1/4) ∫ (μ/b)^(1/4) ds)` along the
+    /// rod (the local wave number of `δm'' ≈ ±λ μ b δm`), see [`Linear::det`].
+    growth: f64,
     stats: ModeStats,
 }
 
 /// The rod (4) and three perturbation columns (6 each).
 const NY: usize = 22;
+
+/// The most the columns may grow between two orthonormalizations of [`Linear::det`], `e^8`.
+const PIECE_GROWTH: f64 = 8.0;
 
 impl Linear<'_> {
     fn start(&self) -> [f64; NY] {
@@ -302,11 +308,16 @@ impl Linear<'_> {
             what: format!("the linearized rod at omega^2 = {lam:e}"),
             reason: e.to_string(),
         })?;
+        Ok(self.tip_matrix(&yb))
+    }
+
+    /// `D` of the columns at the tip `yb` and the norms of its columns.
+    fn tip_matrix(&self, yb: &[f64; NY]) -> (Matrix3<f64>, [f64; 3]) {
         let mut m = Matrix3::zeros();
         let mut norms = [0.0; 3];
         let dim = if self.straight { 2 } else { 3 };
         for q in 0..dim {
-            let r = self.tip_rows(&yb, 4 + 6 * q);
+            let r = self.tip_rows(yb, 4 + 6 * q);
             norms[q] = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt().max(1e-300);
             for i in 0..3 {
                 m[(i, q)] = r[i];
@@ -317,14 +328,94 @@ impl Linear<'_> {
             m[(2, 2)] = 1.0;
             norms[2] = 1.0;
         }
-        Ok((m, norms))
+        (m, norms)
     }
 
-    /// `det D(λ)` with unit columns (the sign is what the sweep and Brent need).
+    /// `det D(λ)` with unit columns (the sign is what the sweep and Brent need), of columns
+    /// orthonormalized along the rod where they grow by more than `e^8`: the rod is integrated
+    /// in `k = ⌈|λ|^(1/4) ∫(μ/b)^(1/4) ds / 8⌉` equal pieces and after each the perturbation
+    /// columns `Y` are replaced by `Q` of `Y = Q R` (modified Gram–Schmidt, `R` upper
+    /// triangular with a positive diagonal). `D = T Y = T Q R` for the tip's conditions `T`, so
+    /// `det D = det(T Q) det R` with `det R > 0`: the same sign and the same roots, continuous in
+    /// `λ`. With `k = 1` nothing is orthonormalized (the shot of [`Linear::matrix`] itself).
+    ///
+    /// Why: a single shot's columns all turn towards the fastest-growing solution, and their
+    /// determinant is rounding once the growth passes about `e^16`: for the rod tapered to
+    /// ρ = 0.1 under its scan's contact force (`∫(μ/b)^(1/4) ≈ 0.45`, the sweep starting at
+    /// λ = −8e6, growth `e^24`) the sweep found sign changes at λ = −7.95e6, −7.92e6,
+    /// −7.86e6, and `scan --modes --taper 0.1 --eta 0.97` called every row unstable.
     fn det(&mut self, lam: f64) -> Result<f64, VibrissaError> {
-        let (m, n) = self.matrix(lam)?;
+        let pieces = (lam.abs().powf(0.25) * self.growth / PIECE_GROWTH).ceil();
+        if pieces.is_nan() || pieces <= 1.0 {
+            let (m, n) = self.matrix(lam)?;
+            return Ok(m.determinant() / (n[0] * n[1] * n[2]));
+        }
+        let pieces = pieces.min(1e4) as usize;
+        let dim = if self.straight { 2 } else { 3 };
+        let mut y = self.start();
+        let mut s0 = 0.0;
+        for k in 1..=pieces {
+            let s1 = k as f64 / pieces as f64;
+            let mut st = SodeStats::default();
+            let yb = integrate::<NY>(
+                &mut |s, y| self.rhs(lam, s, y),
+                s0,
+                s1,
+                y,
+                self.tol,
+                &mut st,
+                &mut |_, _| {},
+            );
+            self.stats.steps += st.steps;
+            self.stats.rhs_evals += st.rhs;
+            y = yb.map_err(|e| VibrissaError::NoConvergence {
+                what: format!("the linearized rod at omega^2 = {lam:e}"),
+                reason: e.to_string(),
+            })?;
+            orthonormalize(&mut y, dim).map_err(|reason| VibrissaError::NoConvergence {
+                what: format!("the linearized rod at omega^2 = {lam:e}"),
+                reason: format!("{reason} at s = {s1}"),
+            })?;
+            s0 = s1;
+        }
+        self.stats.evaluations += 1;
+        let (m, n) = self.tip_matrix(&y);
         Ok(m.determinant() / (n[0] * n[1] * n[2]))
     }
+}
+
+/// `∫ (μ/b)^(1/4) ds` of `rod` (the trapezoidal rule on 100 intervals; [`Linear::det`]).
+fn growth_rate(rod: &Rod) -> f64 {
+    let (profile, stiffness) = (rod.profile(1.0), rod.stiffness());
+    let f = |i: usize| {
+        let s = i as f64 / 100.0;
+        (mass_density(stiffness, s) / profile.b(s)).powf(0.25)
+    };
+    (0..100).map(|i| 0.5 * (f(i) + f(i + 1))).sum::<f64>() / 100.0
+}
+
+/// The first `dim` perturbation columns of `y` made orthonormal (modified Gram–Schmidt, in
+/// order: each column less its parts along the ones before, then scaled to unit length).
+/// Errors: a column that vanishes or is not a number (the columns no longer independent).
+fn orthonormalize(y: &mut [f64; NY], dim: usize) -> Result<(), &'static str> {
+    for q in 0..dim {
+        let oq = 4 + 6 * q;
+        for p in 0..q {
+            let op = 4 + 6 * p;
+            let dot: f64 = (0..6).map(|i| y[op + i] * y[oq + i]).sum();
+            for i in 0..6 {
+                y[oq + i] -= dot * y[op + i];
+            }
+        }
+        let norm = (0..6).map(|i| y[oq + i] * y[oq + i]).sum::<f64>().sqrt();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return Err("the perturbation columns are no longer independent");
+        }
+        for i in 0..6 {
+            y[oq + i] /= norm;
+        }
+    }
+    Ok(())
 }
 
 /// The lowest `opts.count` modes of the static state with foot values `load` and tip `tip` of
@@ -362,6 +453,7 @@ pub fn modes(
         straight: matches!(rod.precurvature(), crate::parts::Precurvature::None)
             && load.m_base == 0.0
             && load.fx == 0.0,
+        growth: growth_rate(rod),
         stats: ModeStats::default(),
     };
     let roots = lowest_roots(&mut lin, opts.count)?;

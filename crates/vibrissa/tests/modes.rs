@@ -115,3 +115,44 @@ fn first_frequency_vanishes_at_the_fold_of_a_tapered_rod() {
         last.d
     );
 }
+
+/// The rod tapered to ρ = 0.1 at η = 0.97: its pressed start is the S-shaped state (two flex
+/// points, f = 0.796; at ρ = 0.15 the start has none and f = 0.176), which is unstable, and the
+/// march follows it to its fold. ω₁² < 0 on every row, rising to `|ω₁²| ≤ 1e-6` at the located
+/// fold (measured −3620.5 at d = 0, −594.5 at d = 0.125, 1.3e-9 at the fold d = 0.18439). The
+/// sweep of `det D(λ)` starts at λ = −8e6 for this rod (its thin tip's `b/μ` = 1e6 under a
+/// compressive force), where a single shot's columns grow by `e^24`: before the columns were
+/// orthonormalized along the rod (modes.rs `Linear::det`) the sweep found rounding's sign
+/// changes there: ω₁² = −7.95e6, −5.65e6 and −3.79e6 at the same three rows.
+#[test]
+fn first_frequency_of_a_thin_tipped_rod_rises_to_zero_at_its_fold() {
+    let (rod, surface) = Scene {
+        eta: 0.97,
+        stiffness: Stiffness::Taper { ratio: 0.1 },
+        ..Scene::default()
+    }
+    .parts()
+    .unwrap();
+    let o = ScanOptions {
+        d_max: 0.5,
+        points: 5,
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    assert!(matches!(r.stop, StopReason::FoldInD { .. }), "{}", r.stop);
+    let mo = ModeOptions {
+        count: 1,
+        ..ModeOptions::default()
+    };
+    let w2: Vec<f64> = r
+        .points
+        .iter()
+        .map(|p| modes_of_point(&rod, &surface, p, &mo).unwrap().modes[0].omega2)
+        .collect();
+    eprintln!("omega1^2 along the scan: {w2:?}");
+    let (last, rows) = w2.split_last().unwrap();
+    assert!(rows.iter().all(|&w| w < 0.0), "{w2:?}");
+    assert!(rows.windows(2).all(|w| w[1] > w[0]), "{w2:?}");
+    assert!(rows[0] > -1e4, "{w2:?}");
+    assert!(last.abs() <= 1e-6, "{w2:?}");
+}
