@@ -423,6 +423,44 @@ fn loaded_start<P: Profile>(
     })
 }
 
+/// The first sign change of `∂m(1)/∂m(0)` below `f_cr` (by steps of ×1.2 up to `f_cr`, from a
+/// lower bound of the first buckling load), refined by Brent's method; `None` where there is
+/// none (`f_cr` is then the first buckling load; the uniform clamped rod's bound is its load
+/// itself, so it takes no shot more).
+///
+/// Why: [`buckled_start`] brackets the load by checks at f = 0.5, 0.75, 1.125, …, which step over
+/// two buckling loads that fall between two checks. A tip far more flexible than the foot has
+/// them low and close: the rod tapered to 0.1 started on its third mode (two flex points,
+/// f = 0.796 at η 0.97, unstable: ω₁² = −3620), the one tapered to 0.05 on its fifth (four), where
+/// 0.15 starts on its first (none, f = 0.176, ω₁² = 278). The lower bound: the rod is at least
+/// as stiff as the uniform one of its least stiffness, whose clamped–free load is
+/// `π²/4 · min EI`, and the support's spring lowers it at most as Dunkerley's sum says,
+/// `1/f₁ ≤ 4/(π² min EI) + c`.
+fn first_buckling_below<P: Profile>(
+    sh: &mut Shooter<P>,
+    k0: f64,
+    f_cr: f64,
+) -> Result<Option<f64>, VibrissaError> {
+    let ei_min = (0..=100)
+        .map(|i| 1.0 / sh.profile.b(i as f64 / 100.0))
+        .fold(f64::INFINITY, f64::min);
+    let top = f_cr * (1.0 - 1e-6);
+    let mut a = 1.0 / (4.0 / (std::f64::consts::PI.powi(2) * ei_min) + sh.compliance);
+    while a < top {
+        let b = (1.2 * a).min(top);
+        if straight_stiffness(sh, b).signum() != k0.signum() {
+            let mut g =
+                |f: f64| -> Result<f64, std::convert::Infallible> { Ok(straight_stiffness(sh, f)) };
+            let f1 = search::root(&mut g, a, b, 1e-14 * b).map_err(|e| VibrissaError::NoStart {
+                reason: format!("the first buckling load: {e}"),
+            })?;
+            return Ok(Some(f1));
+        }
+        a = b;
+    }
+    Ok(None)
+}
+
 /// A point on the buckled branch of the straight rod under an axial tip load, bent to the right,
 /// its tip lowered by about `drop`: `(λ, u)` of the press.
 fn buckled_start<P: Profile>(
@@ -459,9 +497,15 @@ fn buckled_start<P: Profile>(
         });
     }
     let mut g = |f: f64| -> Result<f64, std::convert::Infallible> { Ok(straight_stiffness(sh, f)) };
-    let f_cr = search::root(&mut g, lo, hi, 1e-14 * hi).map_err(|e| VibrissaError::NoStart {
-        reason: format!("the buckling load: {e}"),
-    })?;
+    // (a bracket whose ends, shot again on a refined mesh, no longer differ in sign is searched
+    // from below as well: the rod tapered to 0.02 had its signs at f = 0.5 and 0.75 change
+    // between the check and the search)
+    let f_cr = match search::root(&mut g, lo, hi, 1e-14 * hi) {
+        Ok(f) => first_buckling_below(sh, k0, f)?.unwrap_or(f),
+        Err(e) => first_buckling_below(sh, k0, hi)?.ok_or_else(|| VibrissaError::NoStart {
+            reason: format!("the buckling load: {e}"),
+        })?,
+    };
     // a small deflection on the right-bent branch: m(0) = −ε, f from m(1) = 0 (Newton in f)
     let solve_f = |chain: &mut Chain<P>, eps: f64| -> Option<(f64, f64)> {
         let mut f = f_cr;
