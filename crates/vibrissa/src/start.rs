@@ -448,7 +448,12 @@ fn first_buckling_below<P: Profile>(
     let mut a = 1.0 / (4.0 / (std::f64::consts::PI.powi(2) * ei_min) + sh.compliance);
     while a < top {
         let b = (1.2 * a).min(top);
-        if straight_stiffness(sh, b).signum() != k0.signum() {
+        let kb = straight_stiffness(sh, b);
+        if kb.is_nan() {
+            // (a shot the shooter cannot resolve: the load found stays)
+            return Ok(None);
+        }
+        if kb.signum() != k0.signum() {
             let mut g =
                 |f: f64| -> Result<f64, std::convert::Infallible> { Ok(straight_stiffness(sh, f)) };
             let f1 = search::root(&mut g, a, b, 1e-14 * b).map_err(|e| VibrissaError::NoStart {
