@@ -288,25 +288,38 @@ impl Linear<'_> {
         }
     }
 
-    /// `D(λ)` with its columns scaled to unit length, and the unscaled matrix.
-    fn matrix(&mut self, lam: f64) -> Result<(Matrix3<f64>, [f64; 3]), VibrissaError> {
+    /// The rod and its columns `y` at `s0` carried to `s1` at `λ` (steps and right-hand sides
+    /// counted; `what` names the solve in an error).
+    fn carry(
+        &mut self,
+        lam: f64,
+        (s0, s1): (f64, f64),
+        y: [f64; NY],
+        what: impl FnOnce() -> String,
+    ) -> Result<[f64; NY], VibrissaError> {
         let mut st = SodeStats::default();
-        let y0 = self.start();
         let yb = integrate::<NY>(
             &mut |s, y| self.rhs(lam, s, y),
-            0.0,
-            1.0,
-            y0,
+            s0,
+            s1,
+            y,
             self.tol,
             &mut st,
             &mut |_, _| {},
         );
-        self.stats.evaluations += 1;
         self.stats.steps += st.steps;
         self.stats.rhs_evals += st.rhs;
-        let yb = yb.map_err(|e| VibrissaError::NoConvergence {
-            what: format!("the linearized rod at omega^2 = {lam:e}"),
+        yb.map_err(|e| VibrissaError::NoConvergence {
+            what: what(),
             reason: e.to_string(),
+        })
+    }
+
+    /// `D(λ)` with its columns scaled to unit length, and the unscaled matrix.
+    fn matrix(&mut self, lam: f64) -> Result<(Matrix3<f64>, [f64; 3]), VibrissaError> {
+        self.stats.evaluations += 1;
+        let yb = self.carry(lam, (0.0, 1.0), self.start(), || {
+            format!("the linearized rod at omega^2 = {lam:e}")
         })?;
         Ok(self.tip_matrix(&yb))
     }
@@ -356,21 +369,8 @@ impl Linear<'_> {
         let mut s0 = 0.0;
         for k in 1..=pieces {
             let s1 = k as f64 / pieces as f64;
-            let mut st = SodeStats::default();
-            let yb = integrate::<NY>(
-                &mut |s, y| self.rhs(lam, s, y),
-                s0,
-                s1,
-                y,
-                self.tol,
-                &mut st,
-                &mut |_, _| {},
-            );
-            self.stats.steps += st.steps;
-            self.stats.rhs_evals += st.rhs;
-            y = yb.map_err(|e| VibrissaError::NoConvergence {
-                what: format!("the linearized rod at omega^2 = {lam:e}"),
-                reason: e.to_string(),
+            y = self.carry(lam, (s0, s1), y, || {
+                format!("the linearized rod at omega^2 = {lam:e}")
             })?;
             orthonormalize(&mut y, dim).map_err(|reason| VibrissaError::NoConvergence {
                 what: format!("the linearized rod at omega^2 = {lam:e}"),
@@ -595,22 +595,7 @@ fn shape(lin: &mut Linear<'_>, lam: f64, n: usize) -> Result<Vec<ModePoint>, Vib
         } else {
             i as f64 / (n - 1) as f64
         };
-        let mut st = SodeStats::default();
-        y = integrate::<NY>(
-            &mut |s, y| lin.rhs(lam, s, y),
-            s0,
-            s1,
-            y,
-            lin.tol,
-            &mut st,
-            &mut |_, _| {},
-        )
-        .map_err(|e| VibrissaError::NoConvergence {
-            what: "the mode shape".into(),
-            reason: e.to_string(),
-        })?;
-        lin.stats.steps += st.steps;
-        lin.stats.rhs_evals += st.rhs;
+        y = lin.carry(lam, (s0, s1), y, || "the mode shape".into())?;
         let d = combine(&y);
         pts.push(ModePoint {
             s: s1,
