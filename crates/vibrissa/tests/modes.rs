@@ -47,15 +47,20 @@ fn tapered_rod_against_reference() {
 /// (measured −4.8e-8 at d = 0.53604).
 #[test]
 fn first_frequency_vanishes_at_the_fold() {
-    let (rod, surface) = Scene {
+    let scene = Scene {
         eta: 0.95,
         ..Scene::default()
-    }
-    .parts()
-    .unwrap();
+    };
+    assert_first_frequency_vanishes_at_the_fold(scene, 0.6, 13);
+}
+
+/// `scene` scanned to its fold in d (`points` grid points on [0, `d_max`]): with the tip stuck,
+/// every row stable with `ω₁² > 0` and `|ω₁²| ≤ 1e-6` at the located fold.
+fn assert_first_frequency_vanishes_at_the_fold(scene: Scene, d_max: f64, points: usize) {
+    let (rod, surface) = scene.parts().unwrap();
     let o = ScanOptions {
-        d_max: 0.6,
-        points: 13,
+        d_max,
+        points,
         ..ScanOptions::default()
     };
     let r = scan(&rod, &surface, &o).unwrap();
@@ -67,8 +72,8 @@ fn first_frequency_vanishes_at_the_fold() {
     let (last, rows) = r.points.split_last().unwrap();
     for p in rows {
         let m = modes_of_point(&rod, &surface, p, &mo).unwrap();
-        let w2 = m.modes[0].omega2;
-        assert!(m.stable && w2 > 0.0, "d = {}: {m}", p.d);
+        eprintln!("d = {}: {m}", p.d);
+        assert!(m.stable && m.modes[0].omega2 > 0.0, "d = {}: {m}", p.d);
     }
     let m = modes_of_point(&rod, &surface, last, &mo).unwrap();
     eprintln!("fold at d = {}: {m}", last.d);
@@ -84,36 +89,12 @@ fn first_frequency_vanishes_at_the_fold() {
 /// d = 0.47242).
 #[test]
 fn first_frequency_vanishes_at_the_fold_of_a_tapered_rod() {
-    let (rod, surface) = Scene {
+    let scene = Scene {
         eta: 0.95,
         stiffness: Stiffness::Taper { ratio: 0.5 },
         ..Scene::default()
-    }
-    .parts()
-    .unwrap();
-    let o = ScanOptions {
-        d_max: 1.0,
-        points: 11,
-        ..ScanOptions::default()
     };
-    let r = scan(&rod, &surface, &o).unwrap();
-    assert!(matches!(r.stop, StopReason::FoldInD { .. }), "{}", r.stop);
-    let mo = ModeOptions {
-        count: 1,
-        ..ModeOptions::default()
-    };
-    let (last, rows) = r.points.split_last().unwrap();
-    for p in rows {
-        let m = modes_of_point(&rod, &surface, p, &mo).unwrap();
-        assert!(m.stable && m.modes[0].omega2 > 0.0, "d = {}: {m}", p.d);
-    }
-    let m = modes_of_point(&rod, &surface, last, &mo).unwrap();
-    eprintln!("fold at d = {}: {m}", last.d);
-    assert!(
-        m.modes[0].omega2.abs() <= 1e-6,
-        "at the fold d = {}: {m}",
-        last.d
-    );
+    assert_first_frequency_vanishes_at_the_fold(scene, 1.0, 11);
 }
 
 /// The rod tapered to ρ = 0.1 at η = 0.97 (its thin tip's `b/μ` = 1e6): `ω₁² > 0` on every row
@@ -124,38 +105,12 @@ fn first_frequency_vanishes_at_the_fold_of_a_tapered_rod() {
 /// root of rounding.
 #[test]
 fn first_frequency_of_a_thin_tipped_rod_vanishes_at_its_fold() {
-    let (rod, surface) = Scene {
+    let scene = Scene {
         eta: 0.97,
         stiffness: Stiffness::Taper { ratio: 0.1 },
         ..Scene::default()
-    }
-    .parts()
-    .unwrap();
-    let o = ScanOptions {
-        d_max: 1.0,
-        points: 9,
-        ..ScanOptions::default()
     };
-    let r = scan(&rod, &surface, &o).unwrap();
-    assert!(matches!(r.stop, StopReason::FoldInD { .. }), "{}", r.stop);
-    let mo = ModeOptions {
-        count: 1,
-        ..ModeOptions::default()
-    };
-    let w2: Vec<(f64, f64)> = r
-        .points
-        .iter()
-        .map(|p| {
-            (
-                p.d,
-                modes_of_point(&rod, &surface, p, &mo).unwrap().modes[0].omega2,
-            )
-        })
-        .collect();
-    eprintln!("(d, omega1^2) along the scan: {w2:?}");
-    let (last, rows) = w2.split_last().unwrap();
-    assert!(rows.iter().all(|&(_, w)| w > 0.0), "{w2:?}");
-    assert!(last.1.abs() <= 1e-6, "{w2:?}");
+    assert_first_frequency_vanishes_at_the_fold(scene, 1.0, 9);
 }
 
 /// A straight rod whose tip is far more flexible than its foot, pressed onto a surface, starts
