@@ -148,7 +148,12 @@
 //! interval ([`crate::newton::NewtonSystem::residual_scale`]), boundary rows are as given; Newton
 //! stops when the scaled max-norm is at most `min(newton.tol, tol / 20, bc_tol)` (or at the
 //! rounding floor `newton.step_residual_tol`, see [`NewtonOptions`]), so that the algebraic
-//! error is negligible against the residual control. A Newton failure (stall or iteration limit,
+//! error is negligible against the residual control. That floor's test (a full step that no
+//! longer lowers the scaled residual) cannot tell rounding from a step too long for the
+//! nonlinearity of a nearly singular problem; when Newton stops there with the residual met but
+//! the boundary conditions not (`max |g| > bc_tol`, which refinement cannot help), it goes on
+//! once from its iterate on the same mesh with the floor capped at `bc_tol`, and only then
+//! reports [`BvpError::Stalled`]. A Newton failure (stall or iteration limit,
 //! not NaN/∞) is answered, up to 8 times, by refining where the unconverged iterate's residual
 //! exceeds `tol` (bisecting if nowhere) and restarting from that iterate, as `solve_bvp` does: a
 //! coarse mesh that cannot resolve a layer often has no nearby discrete solution at all.

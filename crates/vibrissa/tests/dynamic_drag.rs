@@ -1058,3 +1058,36 @@ fn a_slip_at_once_whose_step_fails_is_an_unresolved_stick() {
     };
     assert!(tangential.abs() > 0.5 * normal, "{normal} {tangential}");
 }
+
+/// A support of compliance 10 turns the pressed rod by 0.7 rad at rest (φ(0) = 0.836 against
+/// π/2): the rod is nearly a straight strut from its foot to its tip, and its quasi-static force
+/// rises from 0.106 to 8.35 by d = 0.0025. Moving the foot by 3.1e-10 in the drag's first step
+/// moved the rod's interior up to 2 000 times as much, and Newton's full step did not lower the
+/// residual (the product of force and angle in `m'`); the collocation's precision-floor test took
+/// that for rounding and stopped with the foot's condition unmet at 3.1e-10 (tol 1e-10), and the
+/// drag failed at its first step with a Newton stall. Now the collocation goes on from that
+/// iterate with its floor at the boundary tolerance (bvp `Run::floor_missed`) and the steps
+/// converge; at the program's defaults (dt 0.01) the drag ends by name three steps on, where the
+/// step cannot follow the strut's force (`unresolved_step`: N from 0.21 to 25 within the
+/// shortest step; docs/model.md, "A very soft support").
+#[test]
+fn a_strut_on_a_compliant_support_is_stepped() {
+    let rod = Rod::builder().support_compliance(10.0).build().unwrap();
+    let o = DynDragOptions {
+        speed: 0.1,
+        d_max: 0.001,
+        ..DynDragOptions::default()
+    };
+    let r = drag(&rod, &Surface::flat(0.75).unwrap(), &o).unwrap();
+    eprintln!("{r}");
+    assert!(r.samples.len() > 2, "{r}");
+    assert!(
+        matches!(
+            r.stop,
+            DynDragStop::DMax
+                | DynDragStop::UnresolvedStick { .. }
+                | DynDragStop::UnresolvedStep { .. }
+        ),
+        "{r}"
+    );
+}

@@ -73,6 +73,9 @@ pub(super) struct Run {
     /// After such a refinement: the largest residual of the last pass that refined for the
     /// lowered residual tolerance ([`Run::residual_floor`]).
     refined_residual: Option<f64>,
+    /// A cap on Newton's precision floor (`newton.step_residual_tol`): set to `bc_tol` when
+    /// Newton stopped at its floor with the boundary conditions unmet ([`Run::floor_missed`]).
+    floor_cap: f64,
     pub stats: Stats,
 }
 
@@ -132,6 +135,7 @@ impl Run {
             newton_cap: f64::INFINITY,
             refined_from: None,
             refined_residual: None,
+            floor_cap: f64::INFINITY,
             stats,
         })
     }
@@ -183,6 +187,7 @@ impl Run {
         let start = (!self.homotopy_tried).then(|| self.u.clone());
         let mut nopts = cx.nopts.clone();
         nopts.tol = nopts.tol.min(self.res_tol / 20.0).min(self.newton_cap);
+        nopts.step_residual_tol = nopts.step_residual_tol.min(self.floor_cap);
         let mut res = newton.solve(disc, &mut self.u, &nopts, &mut self.stats);
         if let (Err(BvpError::Stalled { .. } | BvpError::MaxIterations { .. }), Some(u0)) =
             (&res, start)
@@ -368,12 +373,7 @@ impl Run {
         }
         let new_mesh = adapt_mesh(mesh, &self.rms, self.res_tol, true, opts.coarsen);
         if new_mesh == mesh {
-            // Residual met but the boundary conditions are not: Newton is at its floor.
-            return Next::Done(Err(BvpError::Stalled {
-                iteration: self.stats.newton_iters,
-                residual: bcres,
-                stats: self.stats.clone(),
-            }));
+            return self.floor_missed(cx, bcres);
         }
         if new_mesh.len() > opts.max_nodes {
             return Next::Done(Err(BvpError::MeshLimit {
@@ -385,6 +385,27 @@ impl Run {
         }
         self.move_to(cx, disc, mesh, new_mesh);
         Next::Again
+    }
+
+    /// The residual is met on this mesh but the boundary conditions are not (`bcres` above
+    /// `bc_tol`): Newton stopped at its precision floor, where a full step no longer decreased
+    /// the merit function. That test cannot tell rounding from a Newton step that is too long
+    /// for the nonlinearity (a nearly singular problem: the dynamic rod pressed into a nearly
+    /// straight strut moved its interior by 2 000 times the foot's 3e-10 in one step, and the
+    /// product of force and angle in `m'` undid the step): once, Newton goes on from its iterate
+    /// on the same mesh with its floor capped at `bc_tol`, so that only the damped steps decide.
+    /// A second time, or a cap already at `bc_tol`, is [`BvpError::Stalled`].
+    fn floor_missed(&mut self, cx: &Ctx<'_>, bcres: f64) -> Next {
+        let cap = cx.opts.bc_tol();
+        if self.floor_cap > cap && cx.nopts.step_residual_tol > cap {
+            self.floor_cap = cap;
+            return Next::Again;
+        }
+        Next::Done(Err(BvpError::Stalled {
+            iteration: self.stats.newton_iters,
+            residual: bcres,
+            stats: self.stats.clone(),
+        }))
     }
 
     /// Error control lowered the residual tolerance and refined (`refined_from`), and the
