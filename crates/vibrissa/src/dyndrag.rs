@@ -23,10 +23,13 @@
 //! **slip** where `|T|` reaches `μs N` (the tip then slides in the direction `dir = sign T` it
 //! is pushed), **stick** where the sliding tip's velocity `dir·ẋ(1)` falls to zero (the tip
 //! then sticks where it is; if it needs more than `μs N` there, it slips at once, and if that
-//! slip moves it the other way, it sticks at once; a fourth event at the same instant would
-//! repeat the second, and a pull at once, or a slip or lift-off within the shortest step
-//! after a stick, is not the rod's either: the drag stops `UnresolvedStick`, a stick the time
-//! step does not resolve),
+//! slip moves it the other way, it sticks at once; if it needs a pull at once, it slips at
+//! once the way it is pushed where that slide is consistent (it pushes, and the tip
+//! accelerates that way), else lifts off at once where the free tip accelerates away from the
+//! surface; a fourth event at the same instant would repeat the second, and a pull at once
+//! that no other state resolves, or a slip or lift-off within the shortest step after a
+//! stick, is not the rod's either: the drag stops `UnresolvedStick`, a stick the time step
+//! does not resolve),
 //! **lift-off** where `N` falls to zero (the drag ends there, or with
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, after which the tip slides or sticks on; its first steps are taken by
@@ -1852,6 +1855,104 @@ impl<'r> Drive<'r, '_> {
         }
     }
 
+    /// A point tip that has just stuck (at this instant) but whose held force is a pull at once:
+    /// the contact cannot hold it, and Coulomb's law asks which other state is consistent at
+    /// this instant, each tried by the restart under its condition: a slide the way the held
+    /// force pushes the tip (consistent where its contact force pushes, `N ≥ 0`, and the tip
+    /// accelerates that way), else a lift-off (where the free tip accelerates away from the
+    /// surface). `Some(None)`: the tip slips or flies on from here (the event recorded with the
+    /// new state's force); `Some(Some(stop))`: it lifts off and the drag ends there (without
+    /// `flight`); `None`: neither is consistent (or the instant has had its share of events),
+    /// and the stick is one the time step does not resolve (every state restored).
+    ///
+    /// Why: a stick changes the tip's condition, and the inextensible rod's force at the tip
+    /// jumps at once (docs/model.md, "The restart after a slip or a stick"). A whisk turned back
+    /// while the tip slides (`--whisk 0.2,3 --speed 0.1`) sticks at N = 0.29, and the held tip
+    /// needs N = −2.7, T = −3.7 at once; sliding back it is pushed (N = 0.16, T = −μk N) and
+    /// accelerates backwards (−3.8): the tip reverses at once instead of sticking.
+    fn unstick_at_once(&mut self) -> Option<Option<DynDragStop>> {
+        let just_stuck = self
+            .events
+            .last()
+            .is_some_and(|e| e.kind == DragEventKind::Stick && e.t == self.t);
+        if !just_stuck
+            || self.radius > 0.0
+            || self.instant_events == 0
+            || self.instant_events >= MAX_INSTANT_EVENTS
+        {
+            return None;
+        }
+        let (_, t_held) = self.forces(self.rothe.force(1), self.rothe.sol.right()[0]);
+        let saved = (self.rothe.clone(), self.state, self.mu_k_now, self.edge);
+        let restarts = self.stats.restarts;
+        let x = self.rothe.sol.right()[0];
+        let (_, hp, _) = self.track.jet(x);
+        // a slide the way the held force pushes the tip
+        self.state = if t_held >= 0.0 {
+            ContactState::SlidingForward
+        } else {
+            ContactState::SlidingBack
+        };
+        self.enter_slide(self.contact_x(self.anchor));
+        self.restart(false);
+        let (n, t) = self.forces(self.rothe.force(1), x);
+        let a = self.rothe.tip_acceleration();
+        if self.stats.restarts > restarts && n >= 0.0 && self.state.dir() * along(hp, a) > 0.0 {
+            self.fresh_slip = true;
+            self.stats.slips += 1;
+            self.record_at_once(DragEventKind::Slip, n, t);
+            return Some(None);
+        }
+        (self.rothe, self.state, self.mu_k_now, self.edge) = saved.clone();
+        self.stats.restarts = restarts;
+        // a lift-off: the free tip must accelerate away from the surface (whose normal
+        // `unit_normal` points away from the rod: a flying tip's gap `y − h` is negative)
+        let delta = restart_step(self.o);
+        let feet: Vec<Foot> = (1..=2)
+            .map(|k| self.path.at(self.t + k as f64 * delta))
+            .collect();
+        self.stats.solves += feet.len();
+        let free = self
+            .rothe
+            .restart(delta, &feet, TipBc::Force([0.0, 0.0]), 0.0)
+            .is_ok();
+        let a = self.rothe.tip_acceleration();
+        let nrm = unit_normal(hp);
+        if free && a[0] * nrm[0] + a[1] * nrm[1] < 0.0 {
+            self.stats.restarts += 1;
+            self.state = if self.o.flight {
+                ContactState::Flying
+            } else {
+                ContactState::Stuck
+            };
+            self.rothe.euler_steps = 0;
+            self.record_at_once(DragEventKind::LiftOff, 0.0, 0.0);
+            if !self.o.flight {
+                return Some(Some(DynDragStop::LiftOff { d: self.d }));
+            }
+            return Some(None);
+        }
+        (self.rothe, self.state, self.mu_k_now, self.edge) = saved;
+        None
+    }
+
+    /// Records an event of [`Drive::unstick_at_once`] at the present instant with the new
+    /// state's force `(normal, tangential)`.
+    fn record_at_once(&mut self, kind: DragEventKind, normal: f64, tangential: f64) {
+        let p = self.rothe.sample(self.t);
+        self.events.push(DynDragEvent {
+            kind,
+            t: self.t,
+            d: self.d,
+            tip_x: p.tip_x,
+            tip_vx: p.tip_vx,
+            normal,
+            tangential,
+            state: self.state,
+        });
+        self.instant_events += 1;
+    }
+
     /// The slip at once after a stick at the present instant (no step taken since), if the
     /// tip stuck and then slipped at once: the stuck tip then needed more than μs N at once.
     fn slid_at_once(&self) -> Option<DynDragEvent> {
@@ -2035,7 +2136,11 @@ impl<'r> Drive<'r, '_> {
                 // starts from the sliding one, which pushes)
                 let now = self.events_now();
                 if now[LIFT] >= 0.0 {
-                    return Ok(self.unresolved(self.rothe.force(1)));
+                    match self.unstick_at_once() {
+                        Some(Some(stop)) => return Ok(stop),
+                        Some(None) => continue,
+                        None => return Ok(self.unresolved(self.rothe.force(1))),
+                    }
                 }
                 if now[PHASE] >= 0.0 {
                     if let Some(stop) = self.apply(PHASE) {

@@ -1256,6 +1256,11 @@ impl<'r> Rothe<'r> {
         self.vel[q][i] + 0.5 * tr.tau * (self.acc[q][i] + a1)
     }
 
+    /// The tip's acceleration `(ẍ(1), ÿ(1))` now.
+    pub fn tip_acceleration(&self) -> [f64; 2] {
+        [self.acc[0][self.ng], self.acc[1][self.ng]]
+    }
+
     /// The tip's turning rate `φ̇(1)` now.
     pub fn tip_spin(&self) -> f64 {
         self.vel[4][self.ng]

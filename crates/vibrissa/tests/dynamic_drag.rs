@@ -1091,3 +1091,46 @@ fn a_strut_on_a_compliant_support_is_stepped() {
         "{r}"
     );
 }
+
+/// A whisk turned back while the tip slides (`--whisk 0.2,3 --speed 0.1`): the tip slips at
+/// t = 0.042, slows down while the turning foot draws it back, and its velocity reaches zero at
+/// t = 0.2946 with N = 0.29. Held there, it would need a pull at once (N = −2.7, T = −3.7, the
+/// restart's held force); sliding back it is pushed (N = 0.16, T = −μk N) and accelerates
+/// backwards, so it slips back at once (Coulomb's law at that instant, dyndrag.rs
+/// `unstick_at_once`) and lifts off at t = 0.301 (measured at the program's defaults: 0.3011,
+/// 0.3021, 0.2995 at dt 0.01, 0.005, 0.0025). Before, the drag stopped at the stick as
+/// `unresolved_stick` at every dt. Checked here (grid 100, tol 1e-8, dt 0.01): the events, the
+/// reversed slip's force (pushing, T = −μk N to 1e-9), the lift-off within 0.01 of 0.301.
+#[test]
+fn a_tip_the_whisk_draws_back_slips_back_at_once_and_lifts_off() {
+    let o = DynDragOptions {
+        whisk: Some(Whisk {
+            amplitude: 0.2,
+            frequency: 3.0,
+        }),
+        ..light(0.1, 0.01, 0.1)
+    };
+    let r = paper(&o);
+    eprintln!("{r}");
+    let kinds: Vec<DragEventKind> = r.events.iter().map(|e| e.kind).collect();
+    assert_eq!(
+        kinds,
+        [
+            DragEventKind::Slip,
+            DragEventKind::Stick,
+            DragEventKind::Slip,
+            DragEventKind::LiftOff
+        ],
+        "{r}"
+    );
+    let (stick, back, lift) = (r.events[1], r.events[2], r.events[3]);
+    assert_eq!(stick.t, back.t);
+    assert_eq!(back.state, ContactState::SlidingBack);
+    assert!(back.normal > 0.0, "{back:?}");
+    assert!(
+        (back.tangential + 0.3 * back.normal).abs() < 1e-9,
+        "{back:?}"
+    );
+    assert!((lift.t - 0.301).abs() < 0.01, "{lift:?}");
+    assert!(matches!(r.stop, DynDragStop::LiftOff { .. }), "{r}");
+}
