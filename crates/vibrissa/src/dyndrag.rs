@@ -2132,8 +2132,8 @@ impl<'r> Drive<'r, '_> {
             if self.state == ContactState::Stuck && self.rothe.restarted() {
                 // a tip that sticks but needs more than μs N at once slips at once (only a
                 // restart changes the forces a step's end left inside the limits); one that
-                // needs a pull at once is a stick the step does not resolve (the held force
-                // starts from the sliding one, which pushes)
+                // needs a pull at once slips or lifts off at once where Coulomb's law allows it
+                // (`unstick_at_once`), else is a stick the step does not resolve
                 let now = self.events_now();
                 if now[LIFT] >= 0.0 {
                     match self.unstick_at_once() {
