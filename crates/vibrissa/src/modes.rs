@@ -522,8 +522,17 @@ const SWEEP_TOL: f64 = 1e-6;
 /// sweep at `tol`, so the roots are those of that sweep whenever the two sweeps bracket alike,
 /// bit for bit (the refinement starts from the same ends with the same values).
 fn lowest_roots(lin: &mut Linear<'_>, count: usize) -> Result<Vec<f64>, VibrissaError> {
+    lowest_roots_swept_at(lin, count, SWEEP_TOL)
+}
+
+/// [`lowest_roots`] with the sweep at `sweep_tol` (where it is looser than `lin.tol`).
+fn lowest_roots_swept_at(
+    lin: &mut Linear<'_>,
+    count: usize,
+    sweep_tol: f64,
+) -> Result<Vec<f64>, VibrissaError> {
     let tight = lin.tol;
-    let loose = tight.max(SWEEP_TOL);
+    let loose = tight.max(sweep_tol);
     if loose > tight {
         lin.tol = loose;
         let found = sweep(lin, count, tight);
@@ -713,6 +722,28 @@ mod tests {
             let loose = sweep(&mut lin, 3, opts.tol).unwrap();
             assert_eq!(loose.as_deref(), Some(tight.as_slice()), "{load:?} {tip:?}");
         }
+    }
+
+    /// A sweep far too loose to bracket alike (1e-1: the rod tapered to 0.1 under its start's
+    /// contact force brackets a root whose ends have one sign at `tol`) falls back to the sweep
+    /// at `tol`: the same roots, bit for bit.
+    #[test]
+    fn a_sweep_that_brackets_wrongly_falls_back() {
+        let rod = Rod::builder().taper(0.1).build().unwrap();
+        let load = BaseLoad {
+            m_base: 0.0,
+            fx: 0.0,
+            fy: -0.0898,
+        };
+        let opts = ModeOptions::default();
+        let mut lin = Linear::new(&rod, &load, TipCondition::Pinned, &opts);
+        let tight = sweep(&mut lin, 3, opts.tol).unwrap().unwrap();
+        lin.tol = 1e-1;
+        assert_eq!(sweep(&mut lin, 3, opts.tol).unwrap(), None);
+        lin.tol = opts.tol;
+        let roots = lowest_roots_swept_at(&mut lin, 3, 1e-1).unwrap();
+        assert_eq!(roots, tight);
+        assert_eq!(lin.tol, opts.tol);
     }
 
     /// A root of `g` in `[a, b]` by bisection to the last bit (the closed forms' characteristic
