@@ -28,6 +28,11 @@
 //! "The velocity mismatch of a stuck phase"); the accuracy against PyElastica (`benches/pyelastica_drag.py`) is
 //! compared on the first slip, docs/performance.md.
 //!
+//! The group `modes`: the lowest natural frequency of a state, `vibrissa::modes::modes` with the
+//! tip pinned (what `scan --modes` computes per row): the paper's pressed rod (f 2.8266, the
+//! force along −y) and the rod tapered to 0.1 pressed at η 0.97 (f 0.0898), whose search for
+//! the sign changes of `det D(λ)` starts near λ = −1e6 (docs/model.md, "The rod in time").
+//!
 //! ```sh
 //! cargo bench -p vibrissa --bench dynamics
 //! ```
@@ -40,6 +45,7 @@ use vibrissa::dynamics::{
     drag, first_mode_velocity, free, DynDragOptions, DynamicsOptions, DynamicsResult,
     CLAMPED_FREE_BETA1,
 };
+use vibrissa::modes::{modes, BaseLoad, ModeOptions, TipCondition};
 use vibrissa::{Rod, Surface};
 
 #[path = "support/clock.rs"]
@@ -161,6 +167,30 @@ fn bench(c: &mut Criterion) {
     g.bench_function("period_to_1e-6_richardson_50_100", |b| {
         b.iter(|| oscillate(50) + oscillate(100))
     });
+    g.finish();
+    let mut g = c.benchmark_group("modes");
+    g.sample_size(10);
+    for (name, ratio, fy) in [
+        ("paper_rod_pressed", 1.0, -2.826622),
+        ("taper_0.1_pressed", 0.1, -0.0898),
+    ] {
+        let rod = Rod::builder().taper(ratio).build().expect("rod");
+        let load = BaseLoad {
+            m_base: 0.0,
+            fx: 0.0,
+            fy,
+        };
+        let o = ModeOptions {
+            count: 1,
+            ..ModeOptions::default()
+        };
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let r = modes(&rod, &load, TipCondition::Pinned, &o).expect("modes");
+                black_box(r.modes[0].omega2)
+            })
+        });
+    }
     g.finish();
     let mut g = c.benchmark_group("dynamic_drag");
     g.sample_size(10).measurement_time(Duration::from_secs(30));
