@@ -721,7 +721,8 @@ impl fmt::Display for DynDragStop {
                 f,
                 "the time step does not resolve the stick at t = {t}, d = {d}: right after it \
                  the stuck tip needs N = {normal}, T = {tangential} (a pull, or beyond mu_s N), \
-                 which the rod cannot need so soon after a stick (try a shorter dt)"
+                 which the rod cannot need so soon after a stick, and no slide or lift-off \
+                 takes its place (a shorter dt may resolve it)"
             ),
             DynDragStop::UnresolvedStep {
                 t,
@@ -734,7 +735,8 @@ impl fmt::Display for DynDragStop {
                 "the time step does not resolve the stuck rod at t = {t}, d = {d}: within the \
                  shortest step the stuck tip's force would jump from N = {}, T = {} to \
                  N = {normal}, T = {tangential}, where the rod's changes continuously (the time \
-                 rule's alternating mode, grown while the tip was stuck; try a shorter dt)",
+                 rule's alternating mode, grown while the tip was stuck, or a force faster than \
+                 the step; a shorter dt may resolve it)",
                 before[0], before[1]
             ),
             DynDragStop::SideContact { t, d, x, .. } if self.at_end() => write!(
