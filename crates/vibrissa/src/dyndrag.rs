@@ -658,11 +658,12 @@ pub enum DynDragStop {
     /// `max_events` events happened.
     MaxEvents,
     /// The time step does not resolve a stick (time `t`, displacement `d`): right after it the
-    /// stuck tip needs the force (`normal`, `tangential`), a pull, or beyond μs N where a slip
-    /// at once then moves the tip the other way and it sticks again at once (events would cycle
-    /// at one instant), or it slips or lifts off within the shortest step. The rod cannot need
-    /// either so soon: the held force starts from the sliding one and changes continuously
-    /// (like `√t`). A shorter `dt` resolves it.
+    /// stuck tip needs the force (`normal`, `tangential`), a pull that no slide or lift-off at
+    /// once can take the place of, or beyond μs N where a slip at once then moves the tip the
+    /// other way and it sticks again at once (events would cycle at one instant), or it slips
+    /// or lifts off within the shortest step. The scheme's, not the rod's: its steps before the
+    /// stick were too coarse for the motion. A shorter `dt` often resolves it (not always:
+    /// docs/model.md, "A stick the time step does not resolve").
     UnresolvedStick {
         /// When.
         t: f64,
@@ -676,7 +677,9 @@ pub enum DynDragStop {
     /// The time step does not resolve the stuck rod at time `t`, displacement `d`: within the
     /// shortest step the stuck tip's force would jump from `(N, T) = before` to (`normal`,
     /// `tangential`), where the rod's changes continuously (the time rule's alternating mode,
-    /// grown during the stuck phase, in the state's velocities). A shorter `dt` resolves it.
+    /// grown during the stuck phase, in the state's velocities, or a force that changes faster
+    /// than the step follows: a rod on a very soft support, docs/model.md). A shorter `dt`
+    /// often resolves it.
     UnresolvedStep {
         /// When.
         t: f64,
