@@ -1815,17 +1815,7 @@ impl<'r> Drive<'r, '_> {
             // at every event, rolling or sliding on: the restart then extrapolates back)
             self.restart(kind == DragEventKind::Patch || self.radius > 0.0);
         }
-        let p = self.rothe.sample(self.t);
-        self.events.push(DynDragEvent {
-            kind,
-            t: self.t,
-            d: self.d,
-            tip_x: p.tip_x,
-            tip_vx: p.tip_vx,
-            normal,
-            tangential,
-            state: self.state,
-        });
+        self.push_event(kind, normal, tangential);
         if kind == DragEventKind::LiftOff && !self.o.flight {
             return Some(DynDragStop::LiftOff { d: self.d });
         }
@@ -1942,8 +1932,15 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// Records an event of [`Drive::unstick_at_once`] at the present instant with the new
-    /// state's force `(normal, tangential)`.
+    /// state's force `(normal, tangential)`, one more event at this instant.
     fn record_at_once(&mut self, kind: DragEventKind, normal: f64, tangential: f64) {
+        self.push_event(kind, normal, tangential);
+        self.instant_events += 1;
+    }
+
+    /// Records event `kind` at the present time with the tip's force `(normal, tangential)`
+    /// and the contact's state after it.
+    fn push_event(&mut self, kind: DragEventKind, normal: f64, tangential: f64) {
         let p = self.rothe.sample(self.t);
         self.events.push(DynDragEvent {
             kind,
@@ -1955,7 +1952,6 @@ impl<'r> Drive<'r, '_> {
             tangential,
             state: self.state,
         });
-        self.instant_events += 1;
     }
 
     /// The slip at once after a stick at the present instant (no step taken since), if the
