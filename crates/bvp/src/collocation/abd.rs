@@ -33,6 +33,15 @@
 //! Buffers are sized in [`AbdSystem::prepare`] (the packed ones reserved for the dense bound,
 //! untouched until used); factorizations and solves on the same layout never allocate.
 //!
+//! A narrow layout (windows at most [`DENSE_COLS`] columns: a few states, the rod in time's six
+//! with Lobatto6 among them) stores its rows whole, and where at least a fifth of their entries
+//! are nonzero skips the patterns: its windows are eliminated and kept dense
+//! ([`eliminate_dense`]), the same pivots and the same subtractions on the nonzeros in the same
+//! order, so the same factors and solutions to the bit (tested against the sparse path). There
+//! the bookkeeping of the patterns cost more than the zeros it skipped: one Newton solve on a
+//! fixed mesh (Bratu, the cantilever, Eigen, the non-separated sample; `cargo bench -p bvp
+//! --bench collocation`) is 1.4–1.6× faster, the rod in time's ten-slip drag 1.7×.
+//!
 //! # Singularity
 //!
 //! A pivot is suspect when `|u_jj| ≤ PIVOT_TOL · max |a_·j|`, the largest entry of that column in
@@ -50,6 +59,17 @@
 
 /// Relative pivot threshold (about 45 ε): matrices singular to working precision.
 const PIVOT_TOL: f64 = 1e-14;
+
+/// Widest window (columns) factored dense, [`AbdSystem::factor_dense`], if at least
+/// `1/DENSE_SHARE` of the assembled interval rows' entries are nonzero. There the patterns'
+/// bookkeeping costs more than the zeros it skips: the rod in time (`n = 6`, Lobatto6: 30
+/// columns, 31 % of the assembled entries and 56 % of the factored window nonzero) is 1.7× faster
+/// dense. Where the states are uncoupled the factors stay sparse and dense lost: scipy's pairs,
+/// 10 states with Lobatto4 (30 columns, 15 % assembled, 9 % factored) 12 %, 20 states (60
+/// columns, 5 % factored) 38 %, 10 states with Lobatto6 (50 columns, 10 %) 30 %; with two
+/// parameters (32 columns, 23 % assembled) it gained 10 % (`cargo bench -p bvp --bench large`).
+const DENSE_COLS: usize = 32;
+const DENSE_SHARE: usize = 5;
 
 /// Sizes of the global system on one mesh.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -123,7 +143,8 @@ pub(crate) struct AbdSystem {
     /// every entry.
     pub bc: Vec<f64>,
     /// The interval rows (`width` each, see [`Layout`]), packed as [`AbdSystem::push_row`]
-    /// stores them: row `e`'s nonzeros are `bcol`/`bval` from `boff[e]` to `boff[e + 1]`.
+    /// stores them: row `e`'s nonzeros are `bcol`/`bval` from `boff[e]` to `boff[e + 1]`; for
+    /// a narrow layout (`narrow`) the whole row is in `bval` there and `bcol` is empty.
     /// Why packed: dense, they were mostly zeros for a large system (0.9 MB for 60 states and
     /// 16 intervals), paid by a fresh solver in page faults.
     bcol: Vec<u32>,
@@ -164,6 +185,14 @@ pub(crate) struct AbdSystem {
     t: Vec<f64>,
     v: Vec<f64>,
     factored: bool,
+    /// The factored windows of a narrow layout, dense (`wrows × wcols` each, in order), and
+    /// whether the last factorization left its factors there instead of in `vals`.
+    dense: Vec<f64>,
+    dense_factors: bool,
+    /// The layout's windows are at most [`DENSE_COLS`] wide: rows stored whole, windows
+    /// factored dense if the rows are not too sparse (`dense_enough`, set by the column maxima).
+    narrow: bool,
+    dense_enough: bool,
     /// Times the work buffers had to grow (a layout larger than any seen before).
     pub buffer_growths: usize,
 }
@@ -435,6 +464,37 @@ fn forward(w: &impl Rows, rows: usize, cols: usize, piv: &[usize], rpat: &[u64],
     }
 }
 
+/// [`forward`] on a dense window (row stride `cols`): the same subtractions on the nonzeros.
+fn forward_dense(w: &[f64], rows: usize, cols: usize, piv: &[usize], t: &mut [f64]) {
+    for (j, &p) in piv.iter().enumerate() {
+        t.swap(j, p);
+    }
+    for r in 1..rows {
+        let row = &w[r * cols..r * cols + r.min(piv.len())];
+        let mut acc = t[r];
+        for (&x, &tj) in row.iter().zip(t.iter()) {
+            acc -= x * tj;
+        }
+        t[r] = acc;
+    }
+}
+
+/// [`back`] on a dense window (row stride `cols`, `ne` eliminated columns, the known values
+/// multiplying the columns from `ne` on).
+fn back_dense(w: &[f64], cols: usize, ne: usize, x: &mut [f64], known: &[f64]) {
+    for j in (0..ne).rev() {
+        let row = &w[j * cols..(j + 1) * cols];
+        let mut acc = x[j];
+        for (&u, &xc) in row[j + 1..ne].iter().zip(&x[j + 1..ne]) {
+            acc -= u * xc;
+        }
+        for (&u, &kc) in row[ne..].iter().zip(known) {
+            acc -= u * kc;
+        }
+        x[j] = acc / row[j];
+    }
+}
+
 /// Rows of a factored matrix whose entries outside the nonzero patterns are zero.
 trait Rows {
     /// `(column, value)` of row `r`'s entries in `pat` (its pattern) within `lo..hi`.
@@ -511,6 +571,87 @@ impl Rows for Packed<'_> {
     }
 }
 
+/// Calls `f(c, x)` for the nonzeros of assembled interval row `e` (see [`AbdSystem::bval`]).
+fn row_entries(
+    narrow: bool,
+    bcol: &[u32],
+    bval: &[f64],
+    boff: &[usize],
+    e: usize,
+    mut f: impl FnMut(usize, f64),
+) {
+    let at = boff[e]..boff[e + 1];
+    if narrow {
+        nonzeros(&bval[at], f);
+    } else {
+        for (&c, &x) in bcol[at.clone()].iter().zip(&bval[at]) {
+            f(c as usize, x);
+        }
+    }
+}
+
+/// The final system in `(z_N, p)` from the last window `last` (`wrows × wcols`): its carried
+/// rows, the two `z_N` column blocks added.
+fn final_system(fin: &mut [f64], last: &[f64], l: Layout) {
+    let (n, s, m, wc) = (l.n, l.stride, l.carry(), l.wcols());
+    for r in 0..m {
+        let src = &last[(s + r) * wc..(s + r + 1) * wc];
+        let dst = &mut fin[r * m..(r + 1) * m];
+        for c in 0..n {
+            dst[c] = src[s + c] + src[s + n + c];
+        }
+        dst[n..].copy_from_slice(&src[s + 2 * n..]);
+    }
+}
+
+/// [`eliminate`] without patterns and magnitudes: GEPP of the first `ne` columns of the dense
+/// row-major `rows × cols` matrix `w`, pivot test `|u_jj| ≤ PIVOT_TOL · scale[j]`. The same
+/// pivots and the same subtractions on the nonzeros in the same order, so the same factors to
+/// the bit (an entry that is zero may differ in its sign: `x − l·0`); the zeros' subtractions
+/// are the price of rows without bookkeeping, cheap where the window is narrow.
+fn eliminate_dense(
+    w: &mut [f64],
+    rows: usize,
+    cols: usize,
+    ne: usize,
+    piv: &mut [usize],
+    scale: &[f64],
+) -> Result<(), LinError> {
+    for j in 0..ne {
+        let mut p = j;
+        let mut best = w[j * cols + j].abs();
+        for r in j + 1..rows {
+            let v = w[r * cols + j].abs();
+            if v > best {
+                best = v;
+                p = r;
+            }
+        }
+        if best.is_nan() || best <= PIVOT_TOL * scale[j] {
+            return Err(LinError::Singular);
+        }
+        piv[j] = p;
+        if p != j {
+            let (a, b) = w.split_at_mut(p * cols);
+            a[j * cols..(j + 1) * cols].swap_with_slice(&mut b[..cols]);
+        }
+        let inv = 1.0 / w[j * cols + j];
+        let (top, bottom) = w.split_at_mut((j + 1) * cols);
+        let prow = &top[j * cols + j + 1..(j + 1) * cols];
+        for row in bottom[..(rows - j - 1) * cols].chunks_exact_mut(cols) {
+            let l = row[j] * inv;
+            row[j] = l;
+            if l == 0.0 {
+                continue;
+            }
+            for (x, &u) in row[j + 1..].iter_mut().zip(prow) {
+                *x -= l * u;
+            }
+        }
+    }
+    Ok(())
+}
+
 impl AbdSystem {
     pub fn new() -> Self {
         Self::default()
@@ -540,6 +681,16 @@ impl AbdSystem {
                 || dim > self.colmax.capacity()
                 || l.wrows() > self.t.capacity();
             self.buffer_growths += usize::from(grows);
+            self.narrow = l.wcols() <= DENSE_COLS;
+            let dlen = if self.narrow {
+                l.intervals() * l.wrows() * l.wcols()
+            } else {
+                0
+            };
+            self.buffer_growths += usize::from(!grows && dlen > self.dense.len());
+            if dlen > self.dense.len() {
+                self.dense.resize(dlen, 0.0);
+            }
             let plen = l.intervals() * l.wrows() * words(l.wcols());
             if !same_shape {
                 resize(&mut self.win, 2 * l.wrows() * l.wcols());
@@ -595,6 +746,11 @@ impl AbdSystem {
     /// Stores the row written in [`AbdSystem::row_mut`] by its nonzeros (`x != 0.0`, NaN
     /// included: those [`nonzeros`] visits, so the factorization sees the same entries).
     pub fn push_row(&mut self) {
+        if self.narrow {
+            self.bval.extend_from_slice(&self.row);
+            self.boff.push(self.bval.len());
+            return;
+        }
         let (cols, vals) = (&mut self.bcol, &mut self.bval);
         nonzeros(&self.row, |c, x| {
             // Widths are far below 2³²: `width` doubles of a dense row would not fit otherwise.
@@ -610,24 +766,47 @@ impl AbdSystem {
         let cm = &mut self.colmax;
         cm.fill(0.0);
         let mut finite = true;
+        if self.narrow {
+            // Whole rows: the own and next-node columns, then the parameters'.
+            let (w, pc) = (l.width(), l.pcol());
+            let mut nonzero = 0;
+            for i in 0..l.intervals() {
+                for row in self.bval[i * s * w..(i + 1) * s * w].chunks_exact(w) {
+                    let (own, par) = row.split_at(s + n);
+                    for (m, x) in cm[i * s..(i + 1) * s + n].iter_mut().zip(own) {
+                        finite &= x.is_finite();
+                        nonzero += usize::from(*x != 0.0);
+                        *m = m.max(x.abs());
+                    }
+                    for (m, x) in cm[pc..].iter_mut().zip(par) {
+                        finite &= x.is_finite();
+                        nonzero += usize::from(*x != 0.0);
+                        *m = m.max(x.abs());
+                    }
+                }
+            }
+            self.dense_enough = nonzero * DENSE_SHARE >= self.bval.len();
+        }
         let mut upd = |c: usize, x: f64| {
             finite &= x.is_finite();
             cm[c] = cm[c].max(x.abs());
         };
-        for i in 0..l.intervals() {
-            for e in i * s..(i + 1) * s {
-                // Zeros (not stored) change no maximum.
-                let at = self.boff[e]..self.boff[e + 1];
-                for (&c, &x) in self.bcol[at.clone()].iter().zip(&self.bval[at]) {
-                    let c = c as usize;
-                    upd(
-                        if c < s + n {
-                            i * s + c
-                        } else {
-                            l.pcol() + c - s - n
-                        },
-                        x,
-                    )
+        if !self.narrow {
+            for i in 0..l.intervals() {
+                for e in i * s..(i + 1) * s {
+                    // Zeros (not stored) change no maximum.
+                    let at = self.boff[e]..self.boff[e + 1];
+                    for (&c, &x) in self.bcol[at.clone()].iter().zip(&self.bval[at]) {
+                        let c = c as usize;
+                        upd(
+                            if c < s + n {
+                                i * s + c
+                            } else {
+                                l.pcol() + c - s - n
+                            },
+                            x,
+                        )
+                    }
                 }
             }
         }
@@ -666,6 +845,13 @@ impl AbdSystem {
         let (n, s, m) = (l.n, l.stride, l.carry());
         let (wr, wc) = (l.wrows(), l.wcols());
         let (slot, rw, cw) = (wr * wc, words(wc), words(wr));
+        self.dense_factors = !track && self.narrow && self.dense_enough;
+        if self.dense_factors {
+            self.factor_dense(l)?;
+            let last = &self.dense[(l.intervals() - 1) * slot..l.intervals() * slot];
+            final_system(&mut self.fin, last, l);
+            return self.factor_final(l, false);
+        }
         self.vals.clear();
         for i in 0..l.intervals() {
             // Window i in scratch i % 2, the previous window in the other.
@@ -726,11 +912,14 @@ impl AbdSystem {
                 }
             }
             for r in 0..s {
-                let at = self.boff[i * s + r]..self.boff[i * s + r + 1];
-                for (&c, &x) in self.bcol[at.clone()].iter().zip(&self.bval[at]) {
-                    let c = c as usize;
-                    set(m + r, if c < s + n { c } else { c + n }, x);
-                }
+                row_entries(
+                    self.narrow,
+                    &self.bcol,
+                    &self.bval,
+                    &self.boff,
+                    i * s + r,
+                    |c, x| set(m + r, if c < s + n { c } else { c + n }, x),
+                );
             }
             if let Some(mc) = mcur.as_deref_mut() {
                 // New rows start at |a|; the patterns cover the magnitudes' support too.
@@ -764,29 +953,69 @@ impl AbdSystem {
         }
         // Final system in (z_N, p): the last carry, its two z_N column blocks added.
         let last = &self.win[(l.intervals() - 1) % 2 * slot..];
-        for r in 0..m {
-            let src = &last[(s + r) * wc..(s + r + 1) * wc];
-            let dst = &mut self.fin[r * m..(r + 1) * m];
-            for c in 0..n {
-                dst[c] = src[s + c] + src[s + n + c];
-            }
-            dst[n..].copy_from_slice(&src[s + 2 * n..]);
-        }
-        self.fscale[..n].copy_from_slice(&self.colmax[l.bcrow()..l.pcol()]);
-        self.fscale[n..].copy_from_slice(&self.colmax[l.pcol()..]);
-        let mut mfin = None;
+        final_system(&mut self.fin, last, l);
         if track {
             let mlast = &self.mwin[(l.intervals() - 1) * slot..];
-            for r in 0..m {
-                let src = &mlast[(s + r) * wc..(s + r + 1) * wc];
-                let dst = &mut self.mfin[r * m..(r + 1) * m];
-                for c in 0..n {
-                    dst[c] = src[s + c] + src[s + n + c];
-                }
-                dst[n..].copy_from_slice(&src[s + 2 * n..]);
-            }
-            mfin = Some(&mut self.mfin[..]);
+            final_system(&mut self.mfin, mlast, l);
         }
+        self.factor_final(l, track)
+    }
+
+    /// The window eliminations of a narrow layout, dense ([`eliminate_dense`]), their factors
+    /// left in `dense`: each window is written from the assembled rows (and the carried rows of
+    /// the one before) and eliminated in place.
+    fn factor_dense(&mut self, l: Layout) -> Result<(), LinError> {
+        let (n, k, s, m) = (l.n, l.k, l.stride, l.carry());
+        let (wr, wc) = (l.wrows(), l.wcols());
+        let (slot, width) = (wr * wc, l.width());
+        // Every entry of a window is written (the zeros too): no clearing pass.
+        for i in 0..l.intervals() {
+            let (done, rest) = self.dense.split_at_mut(i * slot);
+            let cur = &mut rest[..slot];
+            for r in 0..m {
+                let dst = &mut cur[r * wc..(r + 1) * wc];
+                if i == 0 {
+                    let src = &self.bc[r * (2 * n + k)..(r + 1) * (2 * n + k)];
+                    dst[..n].copy_from_slice(&src[..n]);
+                    dst[s + n..].copy_from_slice(&src[n..]);
+                } else {
+                    let src =
+                        &done[(i - 1) * slot + (s + r) * wc..(i - 1) * slot + (s + r + 1) * wc];
+                    dst[..n].copy_from_slice(&src[s..s + n]);
+                    dst[s + n..].copy_from_slice(&src[s + n..]);
+                }
+                dst[n..s + n].fill(0.0);
+            }
+            for r in 0..s {
+                let e = i * s + r;
+                let src = &self.bval[e * width..(e + 1) * width];
+                let dst = &mut cur[(m + r) * wc..(m + r + 1) * wc];
+                dst[..s + n].copy_from_slice(&src[..s + n]);
+                dst[s + n..s + 2 * n].fill(0.0);
+                dst[s + 2 * n..].copy_from_slice(&src[s + n..]);
+            }
+            eliminate_dense(
+                cur,
+                wr,
+                wc,
+                s,
+                &mut self.piv[i * s..(i + 1) * s],
+                &self.colmax[i * s..(i + 1) * s],
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Factors the final system in `fin` (with `track`, its magnitudes in `mfin` too).
+    fn factor_final(&mut self, l: Layout, track: bool) -> Result<(), LinError> {
+        let (n, m) = (l.n, l.carry());
+        self.fscale[..n].copy_from_slice(&self.colmax[l.bcrow()..l.pcol()]);
+        self.fscale[n..].copy_from_slice(&self.colmax[l.pcol()..]);
+        let mfin = if track {
+            Some(&mut self.mfin[..])
+        } else {
+            None
+        };
         scan(
             &self.fin,
             mfin.as_deref(),
@@ -826,11 +1055,23 @@ impl AbdSystem {
         // Forward: the carried rows' right-hand side goes from window to window (at first the
         // boundary rows'); the pivot rows' land on their eliminated unknowns' slots.
         t[..m].copy_from_slice(&rhs[l.bcrow()..]);
+        let slot = wr * wc;
         for i in 0..l.intervals() {
             if i > 0 {
                 t.copy_within(s..s + m, 0);
             }
             t[m..m + s].copy_from_slice(&rhs[i * s..(i + 1) * s]);
+            if self.dense_factors {
+                forward_dense(
+                    &self.dense[i * slot..(i + 1) * slot],
+                    wr,
+                    wc,
+                    &self.piv[i * s..(i + 1) * s],
+                    &mut t[..wr],
+                );
+                rhs[i * s..(i + 1) * s].copy_from_slice(&t[..s]);
+                continue;
+            }
             let rows = Packed {
                 vals: &self.vals,
                 roff: &self.roff[i * wr..(i + 1) * wr],
@@ -861,6 +1102,16 @@ impl AbdSystem {
         v[2 * n..].copy_from_slice(p);
         for i in (0..l.intervals()).rev() {
             v[..n].copy_from_slice(&rhs[(i + 1) * s..(i + 1) * s + n]);
+            if self.dense_factors {
+                back_dense(
+                    &self.dense[i * slot..(i + 1) * slot],
+                    wc,
+                    s,
+                    &mut rhs[i * s..(i + 1) * s],
+                    v,
+                );
+                continue;
+            }
             let rows = Packed {
                 vals: &self.vals,
                 roff: &self.roff[i * wr..(i + 1) * wr],
@@ -1396,6 +1647,44 @@ mod tests {
                 assert!(d.entries(r, pat, lo, hi).eq(p.entries(r, pat, lo, hi)));
             }
         }
+    }
+
+    #[test]
+    fn narrow_windows_factor_and_solve_as_the_sparse_path_to_the_bit() {
+        let mut narrow = 0;
+        for (t, l) in layouts().into_iter().enumerate() {
+            for kind in [Kind::Collocation, Kind::Random, Kind::Sparse] {
+                for separated in [false, true] {
+                    let mut rng = Rng(3000 + t as u64);
+                    let mut blocks = vec![0.0; l.block_len()];
+                    fill(l, kind, separated, &mut rng, &mut blocks);
+                    let b: Vec<f64> = (0..l.dim()).map(|_| rng.next()).collect();
+                    let run = |force_sparse: bool| {
+                        let mut s = AbdSystem::new();
+                        s.prepare(l).unwrap();
+                        if force_sparse {
+                            s.narrow = false;
+                        }
+                        load(&mut s, l, &blocks);
+                        let mut x = b.clone();
+                        let ok = s.factor().and_then(|()| s.solve(&mut x)).is_ok();
+                        (ok, s.dense_factors, s.piv.clone(), x)
+                    };
+                    let (ok_d, dense, piv_d, xd) = run(false);
+                    let (ok_s, sparse_dense, piv_s, xs) = run(true);
+                    assert!(!sparse_dense);
+                    narrow += usize::from(dense);
+                    assert_eq!(ok_d, ok_s, "{l:?}");
+                    if ok_d {
+                        assert_eq!(piv_d, piv_s, "{l:?}");
+                        for (p, q) in xd.iter().zip(&xs) {
+                            assert!(p == q, "{l:?} {separated}: {p:e} vs {q:e}");
+                        }
+                    }
+                }
+            }
+        }
+        assert!(narrow > 100, "{narrow} dense factorizations");
     }
 
     #[test]
