@@ -28,8 +28,7 @@
 //! accelerates that way), else lifts off at once where the free tip accelerates away from the
 //! surface; a fourth event at the same instant would repeat the second, and a pull at once
 //! that no other state resolves, or a slip or lift-off within the shortest step after a
-//! stick, is not the rod's either: the drag stops `UnresolvedStick`, a stick the time step
-//! does not resolve),
+//! stick, is not the rod's either: a stick the time step does not resolve, see below),
 //! **lift-off** where `N` falls to zero (the drag ends there, or with
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, after which the tip slides or sticks on; its first steps are taken by
@@ -57,6 +56,19 @@
 //! the motion, so after the first event the stuck tip's tests (slip and lift-off) take the held
 //! force without it
 //! ([`Drive::held_force`]: the step's end, its start and the last step's start combined).
+//!
+//! A stick or a stuck step the time step does not resolve (the tip's force leaving the friction
+//! cone at once, or jumping within the shortest step: the scheme's, where the steps before were
+//! too coarse for the rod's motion) is, with fixed steps, first taken again: the drag goes back
+//! to its state after the last event before that instant (the states after its last
+//! [`CHECKPOINTS`] events are kept), steps from there at half the step until `dt` past the
+//! instant that failed, and goes on at `dt`; up to [`DynDragOptions::refinements`] halvings (3:
+//! `dt/8`), counted in [`DragStats::refinements`]. A slip placed beyond the friction cone (by
+//! more than 1e-6 of `μs N`: the held force jumped within the shortest step, or at a step's
+//! end) is taken again so too while a halving is left; if those refinements end in a stop, the
+//! drag goes on from that slip as it would without them. Only where the shortest of them does not resolve it either does
+//! the drag stop, `UnresolvedStick` or `UnresolvedStep`. With `time_tol` the controller's steps
+//! are kept as they are (no refinement).
 //!
 //! The start: the rod pressed onto the surface (the static state with the force normal to it,
 //! the start of `vibrissa::drag`), at rest, the tip stuck. The foot's speed rises smoothly
@@ -138,6 +150,11 @@ pub struct DynDragOptions {
     /// Most events before the drag stops (every kind, patches crossed too), in `[1, 1e6]`.
     /// Default 10000.
     pub max_events: usize,
+    /// Halvings of `dt` the drag tries, from the state after its last event, where its steps do
+    /// not resolve a stick or a stuck step or place a slip beyond the friction cone (module
+    /// docs), in `[0, 10]`; 0: such a stick or step ends the drag by name at once. Fixed steps
+    /// only (not with `time_tol`). Default 3 (down to `dt/8`).
+    pub refinements: u32,
     /// After a lift-off the tip flies (free tip) until it touches the surface again: the event
     /// `touchdown`, located like the others on the tip's gap `η − y(1)`, a plastic impact (the
     /// tip's velocity normal to the surface set to zero, the kinetic energy this takes booked
@@ -214,6 +231,7 @@ impl Default for DynDragOptions {
             tol: 1e-10,
             scheme: bvp::Scheme::Lobatto6,
             max_events: 10_000,
+            refinements: 3,
             flight: false,
             time_tol: None,
             step_control: TimeStepControl::default(),
@@ -270,6 +288,9 @@ impl DynDragOptions {
             return bad("tol", self.tol, "[1e-13, 1e-4]");
         }
         limits::MAX_SLIPS.check_count("max_events", self.max_events)?;
+        if self.refinements > 10 {
+            return bad("refinements", f64::from(self.refinements), "[0, 10]");
+        }
         check_time_tol(self.time_tol, &self.step_control)?;
         check_foot_table(&self.foot_table)?;
         if let Some(w) = self.whisk {
@@ -443,6 +464,7 @@ pub fn read_foot_table(path: &std::path::Path) -> Result<Vec<[f64; 3]>, Vibrissa
 
 /// The foot's place and turn in time ([`DynDragOptions::foot_table`], `speed` and `ramp`,
 /// [`DynDragOptions::whisk`]).
+#[derive(Clone)]
 struct FootPath<'o> {
     o: &'o DynDragOptions,
     /// The table's times, and per column (d, θ_w) the values and the spline's second
@@ -662,7 +684,8 @@ pub enum DynDragStop {
     /// once can take the place of, or beyond μs N where a slip at once then moves the tip the
     /// other way and it sticks again at once (events would cycle at one instant), or it slips
     /// or lifts off within the shortest step. The scheme's, not the rod's: its steps before the
-    /// stick were too coarse for the motion. A shorter `dt` often resolves it (not always:
+    /// stick were too coarse for the motion. The drag has taken the steps to it again at
+    /// `dt/2`, `dt/4` and `dt/8` (module docs); a shorter `dt` still may resolve it (not always:
     /// docs/model.md, "A stick the time step does not resolve").
     UnresolvedStick {
         /// When.
@@ -678,8 +701,8 @@ pub enum DynDragStop {
     /// shortest step the stuck tip's force would jump from `(N, T) = before` to (`normal`,
     /// `tangential`), where the rod's changes continuously (the time rule's alternating mode,
     /// grown during the stuck phase, in the state's velocities, or a force that changes faster
-    /// than the step follows: a rod on a very soft support, docs/model.md). A shorter `dt`
-    /// often resolves it.
+    /// than the step follows: a rod on a very soft support, docs/model.md). As for
+    /// `UnresolvedStick`, the drag has taken the steps to it again at `dt/2` … `dt/8` first.
     UnresolvedStep {
         /// When.
         t: f64,
@@ -790,6 +813,12 @@ pub struct DragStats {
     /// steps serialize and print as before).
     #[serde(skip_serializing_if = "crate::rothe::is_zero")]
     pub rejected_steps: usize,
+    /// Times the drag went back to its last event and took the steps to a stick or a stuck
+    /// step its steps did not resolve again at half the step (module docs; not written while
+    /// 0). The steps, slips, sticks and restarts are those of the drag returned; the solves,
+    /// Newton iterations and the largest mesh count the steps gone back over too.
+    #[serde(skip_serializing_if = "crate::rothe::is_zero")]
+    pub refinements: usize,
 }
 
 impl fmt::Display for DragStats {
@@ -807,6 +836,9 @@ impl fmt::Display for DragStats {
         )?;
         if self.rejected_steps > 0 {
             write!(f, "; {} steps rejected", self.rejected_steps)?;
+        }
+        if self.refinements > 0 {
+            write!(f, "; {} refinements", self.refinements)?;
         }
         Ok(())
     }
@@ -1085,9 +1117,35 @@ const PHASE: usize = 1;
 const SIDE: usize = 2;
 const EDGE: usize = 3;
 
+/// States of a drag saved at its last events (time, samples and events then, the state without
+/// them), to go back to where a stick or a stuck step the time step does not resolve is taken
+/// again with shorter steps. A clone of the drag does not copy them.
+struct Checkpoints<'r, 'o>(Vec<(f64, usize, usize, Box<Drive<'r, 'o>>)>);
+
+impl Clone for Checkpoints<'_, '_> {
+    fn clone(&self) -> Self {
+        Checkpoints(Vec::new())
+    }
+}
+
+/// Checkpoints kept (the events before the one a refinement goes back from).
+const CHECKPOINTS: usize = 4;
+
 /// The driver of a dynamic drag.
+#[derive(Clone)]
 struct Drive<'r, 'o> {
     o: &'o DynDragOptions,
+    /// The fixed step (`o.dt`, halved from the last checkpoint where a stick or a stuck step was
+    /// not resolved, until `refined_until`).
+    dt: f64,
+    refined_until: Option<f64>,
+    checkpoints: Checkpoints<'r, 'o>,
+    /// Where a slip beyond the friction cone began the refinements under way: the state then
+    /// (its checkpoints alongside), to go on from as without them if they end in a stop; and
+    /// the flag that then accepts that slip.
+    cone_origin: Checkpoints<'r, 'o>,
+    cone_checkpoints: Checkpoints<'r, 'o>,
+    accept_cone: bool,
     path: FootPath<'o>,
     rothe: Rothe<'r>,
     /// The surface the tip touches (as the rod's steps see it: `rothe.track` is the same).
@@ -1964,6 +2022,26 @@ impl<'r> Drive<'r, '_> {
             .map(|(_, b)| b)
     }
 
+    /// `UnresolvedStep` where the stuck tip's held force at the end of `tr` is beyond the
+    /// friction cone (`|T| > μs N` by more than `1e-6` of it).
+    fn beyond_cone(&self, tr: &Trial) -> Option<DynDragStop> {
+        let x = tr.sol.right()[0];
+        let (normal, tangential) = self.forces(self.held_force(tr), x);
+        let mu_s = self.coefficients(self.contact_x(x), tangential.signum()).0;
+        if tangential.abs() <= mu_s * normal * (1.0 + 1e-6) {
+            return None;
+        }
+        let before = self.held_now.unwrap_or_else(|| self.rothe.force(1));
+        let (n0, t0) = self.forces(before, self.rothe.sol.right()[0]);
+        Some(DynDragStop::UnresolvedStep {
+            t: self.t,
+            d: self.d,
+            before: [n0, t0],
+            normal,
+            tangential,
+        })
+    }
+
     /// The stop where a stuck tip's event lands within the shortest step and its held force
     /// there is far from the one the step starts with (by more than a tenth of it): a force
     /// that changes continuously moves by `Ġ·τ` in such a step. Seen over a corrugation at
@@ -2096,6 +2174,132 @@ impl<'r> Drive<'r, '_> {
     /// 200, tol 1e-8 the same drag's stuck step after the touchdown reaches the Newton limit on
     /// 5401 nodes while its force, N = 16.6, T/N = −0.3, is within the cone.)
     fn run(&mut self) -> Result<DynDragStop, VibrissaError> {
+        loop {
+            let stop = self.run_once()?;
+            let t_stop = match stop {
+                DynDragStop::UnresolvedStick { t, .. } | DynDragStop::UnresolvedStep { t, .. } => t,
+                s => return Ok(s),
+            };
+            let refined = match self.refined_dt() {
+                Some(dt) if self.back_to_checkpoint(t_stop) => Some(dt),
+                _ => None,
+            };
+            let Some(dt) = refined else {
+                // refinements begun by a slip beyond the cone that end in a stop: the drag goes
+                // on from that slip as it would without them
+                if self.back_to_cone_origin() {
+                    continue;
+                }
+                return Ok(stop);
+            };
+            self.dt = dt;
+            self.refined_until = Some(t_stop + self.o.dt);
+        }
+    }
+
+    /// The step of a refinement from here (half the present one), if one is left (fixed steps,
+    /// down to `dt / 2^refinements`).
+    fn refined_dt(&self) -> Option<f64> {
+        let dt = if self.refined_until.is_some() {
+            self.dt
+        } else {
+            self.o.dt
+        } / 2.0;
+        (self.o.time_tol.is_none()
+            && dt >= self.o.dt / 2f64.powi(self.o.refinements as i32) * (1.0 - 1e-9))
+            .then_some(dt)
+    }
+
+    /// Saves the present state as a checkpoint (after an event).
+    fn save_checkpoint(&mut self) {
+        let samples = std::mem::take(&mut self.samples);
+        let events = std::mem::take(&mut self.events);
+        let cp = Box::new(self.clone());
+        let (ns, ne) = (samples.len(), events.len());
+        self.samples = samples;
+        self.events = events;
+        if self.checkpoints.0.len() == CHECKPOINTS {
+            self.checkpoints.0.remove(0);
+        }
+        self.checkpoints.0.push((self.t, ns, ne, cp));
+    }
+
+    /// Goes back to [`Drive::cone_origin`] with its checkpoints, at `dt`, to accept the slip
+    /// beyond the cone there; `false` if there is none.
+    fn back_to_cone_origin(&mut self) -> bool {
+        let Some((t, ns, ne, origin)) = self.cone_origin.0.pop() else {
+            return false;
+        };
+        let cps = std::mem::take(&mut self.cone_checkpoints.0);
+        let mut samples = std::mem::take(&mut self.samples);
+        let mut events = std::mem::take(&mut self.events);
+        let (stats, rstats) = (self.stats, self.rothe.stats);
+        *self = *origin;
+        samples.truncate(ns);
+        events.truncate(ne);
+        self.samples = samples;
+        self.events = events;
+        self.stats.solves = stats.solves;
+        self.stats.refinements = stats.refinements;
+        self.rothe.stats = rstats;
+        self.checkpoints.0 = cps;
+        self.accept_cone = true;
+        debug_assert!(self.t == t);
+        true
+    }
+
+    /// Saves the present state as [`Drive::cone_origin`] (a slip beyond the cone in the step
+    /// from here), with a copy of its checkpoints, unless refinements are under way.
+    fn save_cone_origin(&mut self) {
+        if !self.cone_origin.0.is_empty() {
+            return;
+        }
+        let samples = std::mem::take(&mut self.samples);
+        let events = std::mem::take(&mut self.events);
+        let origin = Box::new(self.clone());
+        let (ns, ne) = (samples.len(), events.len());
+        self.samples = samples;
+        self.events = events;
+        self.cone_checkpoints.0 = self
+            .checkpoints
+            .0
+            .iter()
+            .map(|(t, a, b, d)| (*t, *a, *b, d.clone()))
+            .collect();
+        self.cone_origin.0.push((self.t, ns, ne, origin));
+    }
+
+    /// Goes back to the last checkpoint before `t` (its samples and events kept, the work since
+    /// counted); `false` if there is none.
+    fn back_to_checkpoint(&mut self, t: f64) -> bool {
+        let mut cps = std::mem::take(&mut self.checkpoints.0);
+        while cps.last().is_some_and(|c| c.0 >= t) {
+            cps.pop();
+        }
+        let Some((_, ns, ne, cp)) = cps.last() else {
+            return false;
+        };
+        let (ns, ne) = (*ns, *ne);
+        let mut samples = std::mem::take(&mut self.samples);
+        let mut events = std::mem::take(&mut self.events);
+        let (stats, rstats) = (self.stats, self.rothe.stats);
+        let origin = std::mem::take(&mut self.cone_origin.0);
+        let origin_cps = std::mem::take(&mut self.cone_checkpoints.0);
+        *self = (**cp).clone();
+        samples.truncate(ns);
+        events.truncate(ne);
+        self.samples = samples;
+        self.events = events;
+        self.stats.solves = stats.solves;
+        self.stats.refinements = stats.refinements + 1;
+        self.rothe.stats = rstats;
+        self.checkpoints.0 = cps;
+        self.cone_origin.0 = origin;
+        self.cone_checkpoints.0 = origin_cps;
+        true
+    }
+
+    fn run_once(&mut self) -> Result<DynDragStop, VibrissaError> {
         match self.march() {
             Err(err @ VibrissaError::Solver { .. }) => match self.slid_at_once() {
                 Some(e) => Ok(DynDragStop::UnresolvedStick {
@@ -2123,6 +2327,21 @@ impl<'r> Drive<'r, '_> {
             dt
         };
         loop {
+            if self.refined_until.is_some_and(|t| self.t >= t) {
+                self.dt = self.o.dt;
+                self.refined_until = None;
+                self.cone_origin.0.clear();
+                self.cone_checkpoints.0.clear();
+            }
+            if self.o.time_tol.is_none()
+                && self
+                    .checkpoints
+                    .0
+                    .last()
+                    .is_none_or(|c| self.events.len() > c.2)
+            {
+                self.save_checkpoint();
+            }
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(if self.o.foot_table.is_empty() {
                     DynDragStop::DMax
@@ -2149,6 +2368,9 @@ impl<'r> Drive<'r, '_> {
                     }
                     continue;
                 }
+            }
+            if self.o.time_tol.is_none() {
+                h = self.dt;
             }
             let tau = h.min(t_end - self.t);
             let tr = self.try_step(tau)?;
@@ -2215,6 +2437,21 @@ impl<'r> Drive<'r, '_> {
             }
             if self.state == ContactState::Stuck && at <= shortest {
                 if let Some(stop) = self.jumped(&tr) {
+                    return Ok(stop);
+                }
+            }
+            if self.state == ContactState::Stuck
+                && which == PHASE
+                && !std::mem::take(&mut self.accept_cone)
+                && self.refined_dt().is_some()
+                && self.checkpoints.0.iter().any(|c| c.0 < self.t)
+            {
+                // a slip placed beyond the friction cone (the held force jumped within the
+                // shortest step by less than `jumped` names, or at the step's end, where the
+                // velocity mismatch's term is not taken out): taken again with shorter steps
+                // where a refinement and a state to go back to are left
+                if let Some(stop) = self.beyond_cone(&tr) {
+                    self.save_cone_origin();
                     return Ok(stop);
                 }
             }
@@ -2313,6 +2550,12 @@ pub fn drag(
     rothe.texture = texture.clone();
     let mut drive = Drive {
         o: opts,
+        dt: opts.dt,
+        refined_until: None,
+        checkpoints: Checkpoints(Vec::new()),
+        cone_origin: Checkpoints(Vec::new()),
+        cone_checkpoints: Checkpoints(Vec::new()),
+        accept_cone: false,
         path: FootPath::new(opts),
         rothe,
         track,

@@ -717,6 +717,7 @@ fn a_stick_the_step_cannot_resolve_is_a_named_stop() {
         tol: 1e-8,
         grid: 20,
         max_events: 200,
+        refinements: 0,
         ..DynDragOptions::default()
     };
     for (dt, tol, at, pull) in [(0.05, 1e-8, 0.1298, false), (0.1, 1e-10, 0.0418, true)] {
@@ -747,6 +748,50 @@ fn a_stick_the_step_cannot_resolve_is_a_named_stop() {
     assert!(most_at_one_instant(&finer) <= 3, "{finer}");
 }
 
+/// The same coarse drags with the program's refinements (`refinements` 3, the default): the
+/// steps from the last event before each unresolved stick are taken again at dt/2, dt/4 and
+/// dt/8 where needed. At dt 0.05 the drag goes on to `d_max` (one refinement), as the finer
+/// dt 0.02 does without them; at dt 0.1 (tol 1e-10) from its stop at d = 0.0418 on through two
+/// more slips to one at d = 0.1263 that dt/8 does not resolve either (seven refinements). Every
+/// event compressive and every located slip inside the friction cone (to 1e-6 of μs N).
+#[test]
+fn a_stick_the_step_does_not_resolve_is_taken_again_with_shorter_steps() {
+    for (dt, tol, end) in [(0.05, 1e-8, 0.15), (0.1, 1e-10, 0.1263)] {
+        let r = paper(&DynDragOptions {
+            speed: 0.05,
+            dt,
+            d_max: 0.15,
+            tol,
+            grid: 20,
+            max_events: 200,
+            ..DynDragOptions::default()
+        });
+        eprintln!("{r}");
+        match r.stop {
+            DynDragStop::DMax => assert_eq!(end, 0.15, "{r}"),
+            DynDragStop::UnresolvedStick { d, .. } => assert!((d - end).abs() < 1e-3, "{r}"),
+            _ => panic!("{r}"),
+        }
+        assert!(r.stats.refinements >= 1, "{r}");
+        assert!(most_at_one_instant(&r) <= 3, "{r}");
+        for (i, e) in r.events.iter().enumerate() {
+            assert!(e.normal > 0.0, "{e:?}");
+            let at_once = i > 0 && r.events[i - 1].t == e.t;
+            if e.kind == DragEventKind::Slip && !at_once {
+                assert!(e.tangential.abs() <= 0.5 * e.normal * (1.0 + 1e-6), "{e:?}");
+            }
+        }
+        // the returned drag's own counts: its samples' steps, its events' slips
+        let slips = r
+            .events
+            .iter()
+            .filter(|e| e.kind == DragEventKind::Slip)
+            .count();
+        assert_eq!(r.stats.slips, slips, "{r}");
+        assert!(r.samples.windows(2).all(|w| w[1].t > w[0].t), "{r}");
+    }
+}
+
 /// A stick that needs a pull within the shortest step after it is the time step's too. At
 /// dt 0.05 with internal damping 0.01 (v = 0.01, grid 20, tol 1e-10) the third stick, at
 /// d = 0.07705, is within the limits at once, but the slip search of the next step found its
@@ -764,6 +809,7 @@ fn a_pull_within_the_shortest_step_after_a_stick_is_unresolved() {
         grid: 20,
         internal_damping: 0.01,
         max_events: 200,
+        refinements: 0,
         ..DynDragOptions::default()
     };
     let r = paper(&o);
