@@ -66,9 +66,9 @@
 //! `dt/8`), counted in [`DragStats::refinements`]. A slip placed beyond the friction cone (by
 //! more than 1e-6 of `μs N`: the held force jumped within the shortest step, or at a step's
 //! end) is taken again so too while a halving is left; if those refinements end in a stop, the
-//! drag goes on from that slip as it would without them. Only where the shortest of them does not resolve it either does
-//! the drag stop, `UnresolvedStick` or `UnresolvedStep`. With `time_tol` the controller's steps
-//! are kept as they are (no refinement).
+//! drag goes on from that slip as it would without them. Only where the shortest of them does
+//! not resolve it either does the drag stop, `UnresolvedStick` or `UnresolvedStep`. With
+//! `time_tol` the controller's steps are kept as they are (no refinement).
 //!
 //! The start: the rod pressed onto the surface (the static state with the force normal to it,
 //! the start of `vibrissa::drag`), at rest, the tip stuck. The foot's speed rises smoothly
@@ -1653,6 +1653,8 @@ impl<'r> Drive<'r, '_> {
     /// Euler's in an impact's steps), a sample.
     fn take(&mut self, tr: Trial) {
         self.landed = false;
+        // (a slip beyond the cone accepted after its refinements is the step taken next)
+        self.accept_cone = false;
         let euler = tr.euler;
         let energy_before =
             self.samples.last().filter(|_| euler).map(|p| {
