@@ -2033,15 +2033,21 @@ impl<'r> Drive<'r, '_> {
         if tangential.abs() <= mu_s * normal * (1.0 + 1e-6) {
             return None;
         }
+        Some(self.unresolved_step(normal, tangential))
+    }
+
+    /// `UnresolvedStep` here: the stuck tip's force `(normal, tangential)` within the step
+    /// against its held force at the step's start.
+    fn unresolved_step(&self, normal: f64, tangential: f64) -> DynDragStop {
         let before = self.held_now.unwrap_or_else(|| self.rothe.force(1));
         let (n0, t0) = self.forces(before, self.rothe.sol.right()[0]);
-        Some(DynDragStop::UnresolvedStep {
+        DynDragStop::UnresolvedStep {
             t: self.t,
             d: self.d,
             before: [n0, t0],
             normal,
             tangential,
-        })
+        }
     }
 
     /// The stop where a stuck tip's event lands within the shortest step and its held force
@@ -2062,16 +2068,8 @@ impl<'r> Drive<'r, '_> {
         if jump <= 0.1 * before[0].hypot(before[1]) {
             return None;
         }
-        let x = self.rothe.sol.right()[0];
-        let (n0, t0) = self.forces(before, x);
-        let (normal, tangential) = self.forces(after, x);
-        Some(DynDragStop::UnresolvedStep {
-            t: self.t,
-            d: self.d,
-            before: [n0, t0],
-            normal,
-            tangential,
-        })
+        let (normal, tangential) = self.forces(after, self.rothe.sol.right()[0]);
+        Some(self.unresolved_step(normal, tangential))
     }
 
     /// The rod's accelerations and end forces made consistent with the tip's new condition
@@ -2212,18 +2210,40 @@ impl<'r> Drive<'r, '_> {
             .then_some(dt)
     }
 
-    /// Saves the present state as a checkpoint (after an event).
-    fn save_checkpoint(&mut self) {
+    /// The present state without its samples and events (a checkpoint's), with their lengths.
+    fn snapshot(&mut self) -> (usize, usize, Box<Self>) {
         let samples = std::mem::take(&mut self.samples);
         let events = std::mem::take(&mut self.events);
-        let cp = Box::new(self.clone());
-        let (ns, ne) = (samples.len(), events.len());
+        let state = Box::new(self.clone());
+        let lengths = (samples.len(), events.len());
         self.samples = samples;
         self.events = events;
+        (lengths.0, lengths.1, state)
+    }
+
+    /// Puts a [`Drive::snapshot`] back: its state, the samples and events cut to its lengths,
+    /// the work counters (solves, refinements, the rod's) kept as they are now.
+    fn restore(&mut self, state: Self, ns: usize, ne: usize) {
+        let mut samples = std::mem::take(&mut self.samples);
+        let mut events = std::mem::take(&mut self.events);
+        let (stats, rstats) = (self.stats, self.rothe.stats);
+        *self = state;
+        samples.truncate(ns);
+        events.truncate(ne);
+        self.samples = samples;
+        self.events = events;
+        self.stats.solves = stats.solves;
+        self.stats.refinements = stats.refinements;
+        self.rothe.stats = rstats;
+    }
+
+    /// Saves the present state as a checkpoint (after an event).
+    fn save_checkpoint(&mut self) {
+        let (ns, ne, state) = self.snapshot();
         if self.checkpoints.0.len() == CHECKPOINTS {
             self.checkpoints.0.remove(0);
         }
-        self.checkpoints.0.push((self.t, ns, ne, cp));
+        self.checkpoints.0.push((self.t, ns, ne, state));
     }
 
     /// Goes back to [`Drive::cone_origin`] with its checkpoints, at `dt`, to accept the slip
@@ -2233,17 +2253,7 @@ impl<'r> Drive<'r, '_> {
             return false;
         };
         let cps = std::mem::take(&mut self.cone_checkpoints.0);
-        let mut samples = std::mem::take(&mut self.samples);
-        let mut events = std::mem::take(&mut self.events);
-        let (stats, rstats) = (self.stats, self.rothe.stats);
-        *self = *origin;
-        samples.truncate(ns);
-        events.truncate(ne);
-        self.samples = samples;
-        self.events = events;
-        self.stats.solves = stats.solves;
-        self.stats.refinements = stats.refinements;
-        self.rothe.stats = rstats;
+        self.restore(*origin, ns, ne);
         self.checkpoints.0 = cps;
         self.accept_cone = true;
         debug_assert!(self.t == t);
@@ -2256,12 +2266,7 @@ impl<'r> Drive<'r, '_> {
         if !self.cone_origin.0.is_empty() {
             return;
         }
-        let samples = std::mem::take(&mut self.samples);
-        let events = std::mem::take(&mut self.events);
-        let origin = Box::new(self.clone());
-        let (ns, ne) = (samples.len(), events.len());
-        self.samples = samples;
-        self.events = events;
+        let (ns, ne, origin) = self.snapshot();
         self.cone_checkpoints.0 = self
             .checkpoints
             .0
@@ -2281,20 +2286,11 @@ impl<'r> Drive<'r, '_> {
         let Some((_, ns, ne, cp)) = cps.last() else {
             return false;
         };
-        let (ns, ne) = (*ns, *ne);
-        let mut samples = std::mem::take(&mut self.samples);
-        let mut events = std::mem::take(&mut self.events);
-        let (stats, rstats) = (self.stats, self.rothe.stats);
+        let (ns, ne, state) = (*ns, *ne, (**cp).clone());
         let origin = std::mem::take(&mut self.cone_origin.0);
         let origin_cps = std::mem::take(&mut self.cone_checkpoints.0);
-        *self = (**cp).clone();
-        samples.truncate(ns);
-        events.truncate(ne);
-        self.samples = samples;
-        self.events = events;
-        self.stats.solves = stats.solves;
-        self.stats.refinements = stats.refinements + 1;
-        self.rothe.stats = rstats;
+        self.restore(state, ns, ne);
+        self.stats.refinements += 1;
         self.checkpoints.0 = cps;
         self.cone_origin.0 = origin;
         self.cone_checkpoints.0 = origin_cps;
