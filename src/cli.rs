@@ -28,6 +28,15 @@ struct Defaults {
     shape_points: String,
     solve_shape_points: String,
     max_slips: String,
+    dyn_dt: String,
+    dyn_grid: String,
+    dyn_tol: String,
+    dyn_event_tol: String,
+    dyn_max_events: String,
+    dyn_refinements: String,
+    free_dt: String,
+    free_grid: String,
+    free_tol: String,
 }
 
 static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
@@ -41,6 +50,8 @@ static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
         }
     };
     let (scan, whisk) = (ScanOptions::default(), WhiskOptions::default());
+    let drag_in_time = vibrissa::dynamics::DynDragOptions::default();
+    let free = vibrissa::dynamics::DynamicsOptions::default();
     Defaults {
         tol: shown(scan.solver.tol),
         d_max: shown(scan.d_max),
@@ -50,6 +61,15 @@ static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
         shape_points: limits::DEFAULT_SHAPE_POINTS.to_string(),
         solve_shape_points: limits::DEFAULT_SOLVE_SHAPE_POINTS.to_string(),
         max_slips: vibrissa::DragOptions::default().max_slips.to_string(),
+        dyn_dt: shown(drag_in_time.dt),
+        dyn_grid: drag_in_time.grid.to_string(),
+        dyn_tol: shown(drag_in_time.tol),
+        dyn_event_tol: shown(drag_in_time.event_tol),
+        dyn_max_events: drag_in_time.max_events.to_string(),
+        dyn_refinements: drag_in_time.refinements.to_string(),
+        free_dt: shown(free.dt),
+        free_grid: free.grid.to_string(),
+        free_tol: shown(free.tol),
     }
 });
 
@@ -130,6 +150,14 @@ fn shape_points(s: &str) -> Result<u32, String> {
 }
 fn solve_shape_points(s: &str) -> Result<u32, String> {
     number_text::count(s, 2, 1_000_000)
+}
+/// A whole number as spelled; its range is the library's (the options' `validate`).
+fn whole(s: &str) -> Result<u32, String> {
+    let t = s.trim();
+    if t.starts_with('-') {
+        return Err(format!("{t} is negative: a count is 0 or more"));
+    }
+    number_text::count(t, 0, u64::from(u32::MAX))
 }
 /// Values named by the library (`name`, with its one-line `help` that `--help` lists), parsed
 /// by the library's `FromStr`.
@@ -290,7 +318,7 @@ pub struct DynamicsFreeArgs {
     #[arg(long, value_name = "M", value_parser = finite_f64, default_value = "0")]
     pub foot_moment: f64,
     /// Time step, in (0, 1].
-    #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = "0.01")]
+    #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = DEFAULTS.free_dt.as_str())]
     pub dt: f64,
     /// End time (normalized time units), in (0, 1e6].
     #[arg(long, value_name = "T", value_parser = finite_f64, default_value = "1")]
@@ -301,6 +329,15 @@ pub struct DynamicsFreeArgs {
     /// steps"). [default: fixed steps of --dt]
     #[arg(long, value_name = "TOL", value_parser = finite_f64)]
     pub time_tol: Option<f64>,
+    /// Intervals of the history grid in s (the positions, velocities and accelerations kept
+    /// between steps), even, in [20, 100000]: with --tol, the accuracy in s bought per step
+    /// (docs/performance.md, "The drag in time: accuracy against cost").
+    #[arg(long, value_name = "N", value_parser = whole, default_value = DEFAULTS.free_grid.as_str())]
+    pub grid: u32,
+    /// Tolerance of each step's collocation in s (its residual and error estimate), in
+    /// [1e-13, 1e-4].
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = DEFAULTS.free_tol.as_str())]
+    pub tol: f64,
     /// Damper of the foot's support (moment per angular velocity), in [0, inf); its spring is
     /// 1/--support-compliance.
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
@@ -355,7 +392,7 @@ pub struct DynamicsDragArgs {
     #[arg(long, value_name = "MU", value_parser = finite_f64)]
     pub mu_k: Option<f64>,
     /// Time step, in (0, 1].
-    #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = "0.01")]
+    #[arg(long, value_name = "DT", value_parser = finite_f64, default_value = DEFAULTS.dyn_dt.as_str())]
     pub dt: f64,
     /// Adaptive time steps: the tolerance (rod lengths) of each step's local error estimate in
     /// the positions, in [1e-14, 0.1]; --dt is then the first step, a step over it is tried
@@ -363,6 +400,29 @@ pub struct DynamicsDragArgs {
     /// their place (docs/model.md, "Adaptive time steps"). [default: fixed steps of --dt]
     #[arg(long, value_name = "TOL", value_parser = finite_f64)]
     pub time_tol: Option<f64>,
+    /// Intervals of the history grid in s (the positions, velocities and accelerations kept
+    /// between steps), even, in [20, 100000]: with --tol, the accuracy in s bought per step
+    /// (docs/performance.md, "The drag in time: accuracy against cost").
+    #[arg(long, value_name = "N", value_parser = whole, default_value = DEFAULTS.dyn_grid.as_str())]
+    pub grid: u32,
+    /// Tolerance of each step's collocation in s (its residual and error estimate), in
+    /// [1e-13, 1e-4].
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = DEFAULTS.dyn_tol.as_str())]
+    pub tol: f64,
+    /// Tolerance in time of the events' places (slip, stick, lift-off, touchdown, patch), in
+    /// [1e-14, 1e-3].
+    #[arg(long, value_name = "T", value_parser = finite_f64, default_value = DEFAULTS.dyn_event_tol.as_str())]
+    pub event_tol: f64,
+    /// Most events before the drag stops (stop max_events), in [1, 1e6].
+    #[arg(long, value_name = "N", value_parser = whole, default_value = DEFAULTS.dyn_max_events.as_str())]
+    pub max_events: u32,
+    /// Halvings of --dt tried where the steps do not resolve a stick or a stuck step, or place
+    /// a slip beyond the friction cone: the drag goes back to its state after the last event
+    /// and takes the steps from there at dt/2, dt/4, ... (docs/model.md, "A stick the time
+    /// step does not resolve"), in [0, 10]; 0 ends the drag there by name at once. Fixed steps
+    /// only (not with --time-tol).
+    #[arg(long, value_name = "K", value_parser = whole, default_value = DEFAULTS.dyn_refinements.as_str())]
+    pub refinements: u32,
     /// Damper of the foot's support (moment per angular velocity), in [0, inf).
     #[arg(long, value_name = "C", value_parser = finite_f64, default_value = "0")]
     pub foot_damping: f64,

@@ -93,6 +93,11 @@ pub fn options(a: &DynamicsDragArgs) -> Res<DynDragOptions> {
         flight: a.flight,
         foot_table,
         whisk: a.whisk,
+        grid: a.grid as usize,
+        tol: a.tol,
+        event_tol: a.event_tol,
+        max_events: a.max_events as usize,
+        refinements: a.refinements,
         ..DynDragOptions::default()
     })
 }
@@ -109,6 +114,8 @@ pub fn free_options(a: &DynamicsFreeArgs) -> DynamicsOptions {
         rotary_inertia: a.rotary_inertia,
         foot_moment: a.foot_moment,
         release_force: [a.release_fx, a.release_fy],
+        grid: a.grid as usize,
+        tol: a.tol,
         ..DynamicsOptions::default()
     }
 }

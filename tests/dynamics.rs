@@ -177,6 +177,72 @@ fn free_refuses_bad_flags() {
     assert_eq!(o.stderr.lines().count(), 1, "{}", o.stderr);
 }
 
+/// The accuracy flags of `dynamics drag` and `free` reach the library's options (issue 32:
+/// a user trades speed for accuracy): `--grid`, `--tol` change the steps' meshes, and
+/// `--refinements 0` ends the coarse drag of tests/dynamic_drag.rs
+/// (`a_stick_the_step_does_not_resolve_is_taken_again_with_shorter_steps`: dt 0.05, v 0.05,
+/// grid 20, tol 1e-8) at the stick its step does not resolve (d 0.1297), where the default's one
+/// refinement reaches d_max. Out of range, each is refused by the library's check in one line.
+#[test]
+fn drag_accuracy_flags_reach_the_library() {
+    let coarse = [
+        "dynamics",
+        "drag",
+        "--speed",
+        "0.05",
+        "--dt",
+        "0.05",
+        "--d-max",
+        "0.15",
+        "--tol",
+        "1e-8",
+        "--grid",
+        "20",
+        "--max-events",
+        "200",
+        "--json",
+    ];
+    let mut none = coarse.to_vec();
+    none.extend(["--refinements", "0"]);
+    let (stopped, refined) = (json(&ok(&none).stdout), json(&ok(&coarse).stdout));
+    assert_eq!(
+        stopped["stop"]["reason"], "unresolved_stick",
+        "{}",
+        stopped["stop"]
+    );
+    let d = stopped["stop"]["d"].as_f64().unwrap();
+    assert!((d - 0.1297).abs() < 1e-3, "{d}");
+    assert!(stopped["stats"].get("refinements").is_none());
+    assert_eq!(refined["stop"]["reason"], "d_max", "{}", refined["stop"]);
+    assert_eq!(refined["stats"]["refinements"], 1);
+    // the history grid and the steps' tolerance: the first steps' meshes follow them
+    let nodes = |extra: &[&str]| {
+        let mut a = vec![
+            "dynamics", "drag", "--speed", "0.1", "--d-max", "0.003", "--dt", "0.05", "--json",
+        ];
+        a.extend(extra);
+        json(&ok(&a).stdout)["stats"]["max_nodes"].as_u64().unwrap()
+    };
+    let (default, coarser) = (nodes(&[]), nodes(&["--grid", "100", "--tol", "1e-8"]));
+    assert!(coarser < default, "{coarser} vs {default}");
+    for (args, word) in [
+        (vec!["drag", "--grid", "21"], "grid"),
+        (vec!["drag", "--grid", "-2"], "negative"),
+        (vec!["drag", "--tol", "1e-3"], "tol"),
+        (vec!["drag", "--event-tol", "1"], "event_tol"),
+        (vec!["drag", "--max-events", "0"], "max_events"),
+        (vec!["drag", "--refinements", "11"], "refinements"),
+        (vec!["free", "--grid", "10"], "grid"),
+        (vec!["free", "--tol", "0"], "tol"),
+    ] {
+        let mut a = vec!["dynamics"];
+        a.extend(args.iter().copied());
+        let e = bad(&a, 2);
+        assert!(e.contains(word), "{a:?}: {e}");
+        assert_eq!(e.trim().lines().count(), 1, "{a:?}: {e}");
+    }
+}
+
 /// `dynamics drag --spectrum`: the spectrum of the drag's m_base (14 samples: 16 even points,
 /// 9 bins); with physical dimensions the drag's physical columns come before `event` and the
 /// spectrum has `frequency_Hz`, `amplitude_Nm` (the time unit and the moment unit EI/L by hand).

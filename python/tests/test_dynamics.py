@@ -298,9 +298,30 @@ def test_options_out_of_range_raise_the_library_s_error():
         (dict(mu_k_table=[(0.1, 0.2), (0.0, 0.2)]), "mu_k_table"),
         (dict(event_tol=1.0), "event_tol"),
         (dict(max_events=0), "max_events"),
+        (dict(refinements=11), "refinements"),
     ]:
         with pytest.raises(vibrissa.InputError, match=name):
             vibrissa.dynamics_drag(rod, **kw)
+
+
+def test_refinements_equal_the_program(program):
+    # the coarse drag of tests/dynamic_drag.rs (a_stick_the_step_does_not_resolve_is_taken_
+    # again_with_shorter_steps): at dt 0.05 its stick at d 0.1297 is not resolved; taken again
+    # at dt/2 it is, and the drag reaches d_max; without refinements it stops there by name
+    flags = ["--speed", "0.05", "--dt", "0.05", "--d-max", "0.15", "--tol", "1e-8", "--grid",
+             "20", "--max-events", "200"]
+    kw = dict(speed=0.05, dt=0.05, d_max=0.15, tol=1e-8, grid=20, max_events=200)
+    for k, reason in ((0, "unresolved_stick"), (3, "d_max")):
+        args = ["dynamics", "drag", *flags, "--refinements", str(k)]
+        want = json.loads(program(*args, "--json"))
+        py = vibrissa.dynamics_drag(vibrissa.Rod(), vibrissa.Surface(eta=0.75), refinements=k,
+                                    **kw)
+        check_samples(py, want["samples"], " ".join(args))
+        assert py["events"] == want["events"]
+        assert py["stop"] == want["stop"]
+        assert py["stats"] == want["stats"]
+        assert py["stop"]["reason"] == reason, py["stop"]
+        assert py["stats"].get("refinements", 0) == (0 if k == 0 else 1), py["stats"]
 
 
 def test_a_whisk_over_a_foot_table_equals_the_program(program, tmp_path):

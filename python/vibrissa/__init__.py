@@ -832,6 +832,7 @@ def dynamics_drag(
     tol: float = _DRAG["tol"],
     event_tol: float = _DRAG["event_tol"],
     max_events: int = _DRAG["max_events"],
+    refinements: int = _DRAG["refinements"],
     foot_table: Sequence[Sequence[float]] = tuple(tuple(r) for r in _DRAG["foot_table"]),
     whisk: Optional[Tuple[float, float]] = None,
 ) -> Dict[str, Any]:
@@ -866,7 +867,11 @@ def dynamics_drag(
     the surface again (event ``touchdown``, a plastic impact), then slides or sticks on;
     without it a lift-off ends the drag. ``grid``, ``tol`` as in :func:`dynamics_free`; ``event_tol``
     the tolerance in time of the events' places, ``max_events`` the most events before the
-    drag stops. The defaults and valid ranges are the library's.
+    drag stops, ``refinements`` the halvings of ``dt`` tried where the steps do not resolve a
+    stick or a stuck step or place a slip beyond the friction cone (the drag goes back to its
+    state after the last event and takes the steps again at dt/2, dt/4, ...; 0 stops there at
+    once; fixed steps only; the program's ``--refinements``). The defaults and valid ranges
+    are the library's.
 
     A dict: ``samples`` (columns as the program's CSV: ``t``, ``d``, ``theta`` (the support's
     turn), ``tip_x``, ..., ``state``, ``normal``, ``tangential``, ``fx``, ``fy`` (after the
@@ -919,6 +924,7 @@ def dynamics_drag(
         tol=tol,
         event_tol=event_tol,
         max_events=max_events,
+        refinements=refinements,
         foot_table=[[float(v) for v in row] for row in foot_table],
         whisk=None if whisk is None else (float(whisk[0]), float(whisk[1])),
     )

@@ -212,6 +212,7 @@ def dynamics_drag(
     tol: float = 1e-10,
     event_tol: float = 1e-10,
     max_events: int = 10000,
+    refinements: int = 3,
     foot_table: Sequence[Sequence[float]] = (),
     whisk: Optional[Tuple[float, float]] = None,
 ) -> Dict[str, Any]: ...

@@ -2370,7 +2370,10 @@ impl<'r> Drive<'r, '_> {
             if self.o.time_tol.is_none() {
                 h = self.dt;
             }
-            let tau = h.min(t_end - self.t);
+            // (a remainder shorter than the shortest step joins the last step: alone, its
+            // `4/τ²` would magnify the ringing rod's rounding past what the collocation meets)
+            let left = t_end - self.t;
+            let tau = if left <= h + tau_min { left } else { h };
             let tr = self.try_step(tau)?;
             if let Some(tol) = self.o.time_tol {
                 let rejected;

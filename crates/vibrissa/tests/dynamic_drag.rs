@@ -1178,3 +1178,50 @@ fn a_tip_the_whisk_draws_back_slips_back_at_once_and_lifts_off() {
     assert!((lift.t - 0.301).abs() < 0.01, "{lift:?}");
     assert!(matches!(r.stop, DynDragStop::LiftOff { .. }), "{r}");
 }
+
+/// The drag's end is reached without a sliver step: where `d_max` lies less than the shortest
+/// step past a step's end, the last step takes the remainder with it. Alone, a step of 4.5e-7
+/// (`4/τ²` ≈ 2e13 on the ringing rod's rounding) ran into the collocation's mesh limit: the
+/// paper's rod at v 0.05 to d_max 0.045 ended with a solver error at dt 0.00125 (grid 400,
+/// tol 1e-11, and grid 200, tol 1e-12) after its slip and stick; now both end at d_max. Here the
+/// stuck rod before its first slip, where the step is not yet costly: at dt 0.05 the foot's
+/// ramp reaches d = 0.0078125 at t = 1 exactly (20 steps); a d_max 1e-7 in time further is
+/// reached in the same 20 steps, the last 0.05 + 1e-7 long (21 before, the last 1e-7).
+#[test]
+fn the_last_step_takes_a_remainder_shorter_than_the_shortest_step() {
+    let o = DynDragOptions {
+        speed: 0.05,
+        dt: 0.05,
+        grid: 20,
+        tol: 1e-8,
+        ..DynDragOptions::default()
+    };
+    let d_at = |t: f64| {
+        DynDragOptions {
+            d_max: 1.0,
+            ..o.clone()
+        }
+        .foot_at(t)
+    };
+    let on_grid = paper(&DynDragOptions {
+        d_max: d_at(1.0),
+        ..o.clone()
+    });
+    let past = paper(&DynDragOptions {
+        d_max: d_at(1.0 + 1e-7),
+        ..o.clone()
+    });
+    for r in [&on_grid, &past] {
+        assert!(matches!(r.stop, DynDragStop::DMax), "{r}");
+        assert!(r.events.is_empty(), "{r}");
+        assert_eq!(r.stats.steps, 20, "{r}");
+        let shortest = r
+            .samples
+            .windows(2)
+            .map(|w| w[1].t - w[0].t)
+            .fold(f64::INFINITY, f64::min);
+        assert!(shortest >= 0.05 - 1e-12, "{shortest}");
+    }
+    let end = past.samples.last().unwrap();
+    assert!((end.t - (1.0 + 1e-7)).abs() < 1e-12, "{}", end.t);
+}
