@@ -1184,6 +1184,9 @@ struct Drive<'r, 'o> {
     /// [`Drive::held_force`] of the last step taken while the tip is stuck (its tests; `None`
     /// where it was not formed).
     held_now: Option<[f64; 2]>,
+    /// The force a stuck tip needed at the present instant where it slipped at once (beyond
+    /// μs N right after its stick): what a cycle of events at this instant reports.
+    needs: Option<[f64; 2]>,
     /// [`Drive::held_ends`] of the last step taken (its sample; `None` where it was not formed).
     ends_now: Option<[[f64; 2]; 2]>,
     /// [`Drive::held_contact`] of the last step taken (its sample's `N`, `T`).
@@ -1653,6 +1656,7 @@ impl<'r> Drive<'r, '_> {
     /// Euler's in an impact's steps), a sample.
     fn take(&mut self, tr: Trial) {
         self.landed = false;
+        self.needs = None;
         // (a slip beyond the cone accepted after its refinements is the step taken next)
         self.accept_cone = false;
         let euler = tr.euler;
@@ -1805,7 +1809,10 @@ impl<'r> Drive<'r, '_> {
         // a stick, a slip at once and a stick at once can share an instant; a fourth event
         // there would repeat the second from the same state, and so on without end
         if self.instant_events == MAX_INSTANT_EVENTS {
-            return Some(self.unresolved(self.rothe.force(1)));
+            // (the stuck tip's force that slipped it at once, not the state's now: after a
+            // slip at once that finds no motion it is the slide's, inside the cone)
+            let needs = self.needs.unwrap_or_else(|| self.rothe.force(1));
+            return Some(self.unresolved(needs));
         }
         self.tried.clear();
         self.ends_before = None;
@@ -2361,6 +2368,7 @@ impl<'r> Drive<'r, '_> {
                     }
                 }
                 if now[PHASE] >= 0.0 {
+                    self.needs = Some(self.held_now.unwrap_or_else(|| self.rothe.force(1)));
                     if let Some(stop) = self.apply(PHASE) {
                         return Ok(stop);
                     }
@@ -2371,7 +2379,7 @@ impl<'r> Drive<'r, '_> {
                 h = self.dt;
             }
             // (a remainder shorter than the shortest step joins the last step: alone, its
-            // `4/τ²` would magnify the ringing rod's rounding past what the collocation meets)
+            // `4/τ²` would magnify the positions' rounding past what the collocation meets)
             let left = t_end - self.t;
             let tau = if left <= h + tau_min { left } else { h };
             let tr = self.try_step(tau)?;
@@ -2575,6 +2583,7 @@ pub fn drag(
         landed: false,
         ends_before: None,
         held_now: None,
+        needs: None,
         ends_now: None,
         mismatch: None,
         mismatch_end: None,

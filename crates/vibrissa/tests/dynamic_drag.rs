@@ -1225,3 +1225,40 @@ fn the_last_step_takes_a_remainder_shorter_than_the_shortest_step() {
     let end = past.samples.last().unwrap();
     assert!((end.t - (1.0 + 1e-7)).abs() < 1e-12, "{}", end.t);
 }
+
+/// A cycle of events at one instant (a stick, a slip at once, a stick at once, and a fourth
+/// that would repeat them) stops as `UnresolvedStick` with the force the stuck tip needed where
+/// it slipped at once, beyond μs N, not the state's at the fourth event (the slide's, inside
+/// the cone, until 2026-11-30: N = 0.00976, T/N = −0.30 here). The long rat preset at the
+/// program's defaults, v 0.01 (the dynamic grid's row at dt 0.01): its stick at d = 0.037607
+/// needs N = 0.00783, T/N = −0.69.
+#[test]
+fn a_cycle_at_one_instant_reports_the_force_beyond_the_cone() {
+    let path = format!(
+        "{}/../../data/scenes/rat_mystacial_long.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let s: vibrissa::Scene = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let (rod, surface) = s.parts().unwrap();
+    let o = DynDragOptions {
+        speed: 0.01,
+        d_max: 0.04,
+        ..DynDragOptions::default()
+    };
+    let r = drag(&rod, &surface, &o).unwrap();
+    eprintln!("{r}");
+    let DynDragStop::UnresolvedStick {
+        t,
+        d,
+        normal,
+        tangential,
+    } = r.stop
+    else {
+        panic!("{r}")
+    };
+    assert!((d - 0.037607).abs() < 1e-5, "{r}");
+    assert!(normal > 0.0, "{r}");
+    assert!(tangential.abs() > o.mu_s * normal, "{normal} {tangential}");
+    let at_stop = r.events.iter().filter(|e| e.t == t).count();
+    assert_eq!(at_stop, 3, "{r}");
+}
