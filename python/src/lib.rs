@@ -1119,9 +1119,9 @@ fn dynamics_free<'py>(
 /// `mu_k_table` as `(speed, mu_k)` pairs, empty: `mu_k`; `flight`; `foot_table` as rows
 /// `(t, d)` or `(t, d, theta)`, empty: `speed` and `ramp`; `whisk` as `(amplitude,
 /// frequency)`), and its `grid`, `tol`, `event_tol`, `max_events` and `refinements`, the
-/// defaults and checks the library's. A dict with the library's `DynDragResult` (`samples`, `events`, `stop`,
-/// `stats`; what the program's `--json` prints) plus `units` and `time_unit_s`. Ctrl-C stops
-/// waiting for it.
+/// defaults and checks the library's. A dict with the library's `DynDragResult` (`samples`,
+/// `events`, `stop`, `stats`; what the program's `--json` prints) plus `units` and
+/// `time_unit_s`. Ctrl-C stops waiting for it.
 #[pyfunction]
 #[pyo3(signature = (rod, surface, *, speed=DynDragOptions::default().speed, ramp=DynDragOptions::default().ramp, d_max=DynDragOptions::default().d_max, mu_s=DynDragOptions::default().mu_s, mu_k=DynDragOptions::default().mu_k, mu_k_table=table_pairs(&DynDragOptions::default().mu_k_table), dt=DynDragOptions::default().dt, time_tol=DynDragOptions::default().time_tol, foot_damping=DynDragOptions::default().foot_damping, internal_damping=DynDragOptions::default().internal_damping, external_damping=DynDragOptions::default().external_damping, rotary_inertia=DynDragOptions::default().rotary_inertia, flight=DynDragOptions::default().flight, grid=DynDragOptions::default().grid, tol=DynDragOptions::default().tol, event_tol=DynDragOptions::default().event_tol, max_events=DynDragOptions::default().max_events, refinements=DynDragOptions::default().refinements, foot_table=vec![], whisk=None))]
 #[allow(clippy::too_many_arguments)]
