@@ -701,8 +701,10 @@ pub enum DynDragStop {
     /// shortest step the stuck tip's force would jump from `(N, T) = before` to (`normal`,
     /// `tangential`), where the rod's changes continuously (the time rule's alternating mode,
     /// grown during the stuck phase, in the state's velocities, or a force that changes faster
-    /// than the step follows: a rod on a very soft support, docs/model.md). As for
-    /// `UnresolvedStick`, the drag has taken the steps to it again at `dt/2` … `dt/8` first.
+    /// than the step follows: a rod on a very soft support, docs/model.md); or the event's
+    /// search within the step is not solved by the collocation (`normal`, `tangential` then at
+    /// the step's end). As for `UnresolvedStick`, the drag has taken the steps to it again at
+    /// `dt/2` … `dt/8` first (where one of those steps is not solved, this stop stands).
     UnresolvedStep {
         /// When.
         t: f64,
@@ -759,10 +761,10 @@ impl fmt::Display for DynDragStop {
             } => write!(
                 f,
                 "the time step does not resolve the stuck rod at t = {t}, d = {d}: within the \
-                 shortest step the stuck tip's force would jump from N = {}, T = {} to \
-                 N = {normal}, T = {tangential}, where the rod's changes continuously (the time \
-                 rule's alternating mode, grown while the tip was stuck, or a force faster than \
-                 the step; a shorter dt may resolve it)",
+                 shortest step the event's search can solve, the stuck tip's force would jump \
+                 from N = {}, T = {} to N = {normal}, T = {tangential}, where the rod's changes \
+                 continuously (the time rule's alternating mode, grown while the tip was stuck, \
+                 or a force faster than the step; a shorter dt may resolve it)",
                 before[0], before[1]
             ),
             DynDragStop::SideContact { t, d, x, .. } if self.at_end() => write!(
@@ -1146,6 +1148,11 @@ struct Drive<'r, 'o> {
     cone_origin: Checkpoints<'r, 'o>,
     cone_checkpoints: Checkpoints<'r, 'o>,
     accept_cone: bool,
+    /// The drag at the stop that began the refinements under way (the latest such stop, at
+    /// most one), and that stop: what the drag returns if a step of the refinements is one the
+    /// collocation does not solve.
+    stop_origin: Checkpoints<'r, 'o>,
+    stop_kept: Option<DynDragStop>,
     path: FootPath<'o>,
     rothe: Rothe<'r>,
     /// The surface the tip touches (as the rod's steps see it: `rothe.track` is the same).
@@ -2182,11 +2189,27 @@ impl<'r> Drive<'r, '_> {
     /// 5401 nodes while its force, N = 16.6, T/N = −0.3, is within the cone.)
     fn run(&mut self) -> Result<DynDragStop, VibrissaError> {
         loop {
-            let stop = self.run_once()?;
+            let stop = match self.run_once() {
+                Ok(stop) => stop,
+                // a step of the refinements that the collocation does not solve: they were an
+                // attempt at what the step did not resolve, and end as if in a stop (begun by a
+                // slip beyond the cone, the drag goes on from that slip; else the stop that
+                // began them stands)
+                Err(e @ VibrissaError::Solver { .. }) => {
+                    if self.back_to_cone_origin() {
+                        continue;
+                    }
+                    return self.back_to_stop_origin().ok_or(e);
+                }
+                Err(e) => return Err(e),
+            };
             let t_stop = match stop {
                 DynDragStop::UnresolvedStick { t, .. } | DynDragStop::UnresolvedStep { t, .. } => t,
                 s => return Ok(s),
             };
+            if self.refined_dt().is_some() {
+                self.save_stop_origin(stop);
+            }
             let refined = match self.refined_dt() {
                 Some(dt) if self.back_to_checkpoint(t_stop) => Some(dt),
                 _ => None,
@@ -2267,6 +2290,23 @@ impl<'r> Drive<'r, '_> {
         true
     }
 
+    /// Saves the present state, ended by `stop`, as [`Drive::stop_origin`] (in place of an
+    /// earlier one: the shorter steps' stop is the one kept).
+    fn save_stop_origin(&mut self, stop: DynDragStop) {
+        let (ns, ne, origin) = self.snapshot();
+        self.stop_origin.0.clear();
+        self.stop_origin.0.push((self.t, ns, ne, origin));
+        self.stop_kept = Some(stop);
+    }
+
+    /// Goes back to [`Drive::stop_origin`], if there is one: its stop.
+    fn back_to_stop_origin(&mut self) -> Option<DynDragStop> {
+        let stop = self.stop_kept?;
+        let (_, ns, ne, origin) = self.stop_origin.0.pop()?;
+        self.restore(*origin, ns, ne);
+        Some(stop)
+    }
+
     /// Saves the present state as [`Drive::cone_origin`] (a slip beyond the cone in the step
     /// from here), with a copy of its checkpoints, unless refinements are under way.
     fn save_cone_origin(&mut self) {
@@ -2296,11 +2336,13 @@ impl<'r> Drive<'r, '_> {
         let (ns, ne, state) = (*ns, *ne, (**cp).clone());
         let origin = std::mem::take(&mut self.cone_origin.0);
         let origin_cps = std::mem::take(&mut self.cone_checkpoints.0);
+        let (stop_origin, stop_kept) = (std::mem::take(&mut self.stop_origin.0), self.stop_kept);
         self.restore(state, ns, ne);
         self.stats.refinements += 1;
         self.checkpoints.0 = cps;
         self.cone_origin.0 = origin;
         self.cone_checkpoints.0 = origin_cps;
+        (self.stop_origin.0, self.stop_kept) = (stop_origin, stop_kept);
         true
     }
 
@@ -2337,6 +2379,8 @@ impl<'r> Drive<'r, '_> {
                 self.refined_until = None;
                 self.cone_origin.0.clear();
                 self.cone_checkpoints.0.clear();
+                self.stop_origin.0.clear();
+                self.stop_kept = None;
             }
             if self.o.time_tol.is_none()
                 && self
@@ -2424,7 +2468,16 @@ impl<'r> Drive<'r, '_> {
             let mut first: Option<(f64, usize)> = None;
             for which in [LIFT, PHASE, SIDE, EDGE] {
                 if g1[which] >= 0.0 {
-                    let at = self.locate(which, lo, tau)?;
+                    let at = match self.locate(which, lo, tau) {
+                        Ok(at) => at,
+                        // (a search the collocation cannot finish within a stuck step: the step
+                        // does not resolve the rod, and is taken again with shorter steps)
+                        Err(VibrissaError::Solver { .. }) if self.state == ContactState::Stuck => {
+                            let (n, t) = self.forces(self.held_force(&tr), tr.sol.right()[0]);
+                            return Ok(self.unresolved_step(n, t));
+                        }
+                        Err(e) => return Err(e),
+                    };
                     if first.is_none_or(|(t, _)| at < t) {
                         first = Some((at, which));
                     }
@@ -2565,6 +2618,8 @@ pub fn drag(
         cone_origin: Checkpoints(Vec::new()),
         cone_checkpoints: Checkpoints(Vec::new()),
         accept_cone: false,
+        stop_origin: Checkpoints(Vec::new()),
+        stop_kept: None,
         path: FootPath::new(opts),
         rothe,
         track,
