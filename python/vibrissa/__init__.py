@@ -883,8 +883,9 @@ def dynamics_drag(
     ``unresolved_stick``, a stick the time step does not resolve, with ``t``, ``d`` and the
     force the stuck tip would need, ``unresolved_step``, a stuck rod the time step does not
     resolve (its force would jump within the shortest step, or the event's search within
-    the step is not solved: ``t``, ``d``, ``before`` and the forces after), or ``side_contact`` with ``t``, ``d`` and the rod's point
-    ``s``, ``x`` that reached the surface, ``s`` 1 where the rod's end lies down), ``stats``,
+    the step is not solved: ``t``, ``d``, ``before`` and the forces after), or
+    ``side_contact`` with ``t``, ``d`` and the rod's point ``s``, ``x`` that reached the
+    surface, ``s`` 1 where the rod's end lies down), ``stats``,
     ``units``, ``time_unit_s``."""
     if surface is None:
         surface = Surface()
