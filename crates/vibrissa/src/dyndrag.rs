@@ -1191,9 +1191,6 @@ struct Drive<'r, 'o> {
     /// [`Drive::held_force`] of the last step taken while the tip is stuck (its tests; `None`
     /// where it was not formed).
     held_now: Option<[f64; 2]>,
-    /// The force a stuck tip needed at the present instant where it slipped at once (beyond
-    /// μs N right after its stick): what a cycle of events at this instant reports.
-    needs: Option<[f64; 2]>,
     /// [`Drive::held_ends`] of the last step taken (its sample; `None` where it was not formed).
     ends_now: Option<[[f64; 2]; 2]>,
     /// [`Drive::held_contact`] of the last step taken (its sample's `N`, `T`).
@@ -1663,7 +1660,6 @@ impl<'r> Drive<'r, '_> {
     /// Euler's in an impact's steps), a sample.
     fn take(&mut self, tr: Trial) {
         self.landed = false;
-        self.needs = None;
         // (a slip beyond the cone accepted after its refinements is the step taken next)
         self.accept_cone = false;
         let euler = tr.euler;
@@ -1818,8 +1814,10 @@ impl<'r> Drive<'r, '_> {
         if self.instant_events == MAX_INSTANT_EVENTS {
             // (the stuck tip's force that slipped it at once, not the state's now: after a
             // slip at once that finds no motion it is the slide's, inside the cone)
-            let needs = self.needs.unwrap_or_else(|| self.rothe.force(1));
-            return Some(self.unresolved(needs));
+            return Some(
+                self.unresolved_at_once()
+                    .unwrap_or_else(|| self.unresolved(self.rothe.force(1))),
+            );
         }
         self.tried.clear();
         self.ends_before = None;
@@ -2036,6 +2034,17 @@ impl<'r> Drive<'r, '_> {
             .then(|| (self.events[n - 2], self.events[n - 1]))
             .filter(|(a, b)| a.kind == DragEventKind::Stick && b.kind == DragEventKind::Slip)
             .map(|(_, b)| b)
+    }
+
+    /// `UnresolvedStick` at a slip at once after a stick ([`Drive::slid_at_once`]), with the
+    /// force the stuck tip needed then.
+    fn unresolved_at_once(&self) -> Option<DynDragStop> {
+        self.slid_at_once().map(|e| DynDragStop::UnresolvedStick {
+            t: self.t,
+            d: self.d,
+            normal: e.normal,
+            tangential: e.tangential,
+        })
     }
 
     /// `UnresolvedStep` where the stuck tip's held force at the end of `tr` is beyond the
@@ -2348,16 +2357,31 @@ impl<'r> Drive<'r, '_> {
 
     fn run_once(&mut self) -> Result<DynDragStop, VibrissaError> {
         match self.march() {
-            Err(err @ VibrissaError::Solver { .. }) => match self.slid_at_once() {
-                Some(e) => Ok(DynDragStop::UnresolvedStick {
-                    t: self.t,
-                    d: self.d,
-                    normal: e.normal,
-                    tangential: e.tangential,
-                }),
-                None => Err(err),
-            },
+            Err(err @ VibrissaError::Solver { .. }) => self.unresolved_at_once().ok_or(err),
             r => r,
+        }
+    }
+
+    /// At a step's start: refinements past their window end (the step back to `dt`, the
+    /// states they kept to go back to forgotten), and with fixed steps the state after a new
+    /// event is kept as a checkpoint.
+    fn before_step(&mut self) {
+        if self.refined_until.is_some_and(|t| self.t >= t) {
+            self.dt = self.o.dt;
+            self.refined_until = None;
+            self.cone_origin.0.clear();
+            self.cone_checkpoints.0.clear();
+            self.stop_origin.0.clear();
+            self.stop_kept = None;
+        }
+        if self.o.time_tol.is_none()
+            && self
+                .checkpoints
+                .0
+                .last()
+                .is_none_or(|c| self.events.len() > c.2)
+        {
+            self.save_checkpoint();
         }
     }
 
@@ -2374,23 +2398,7 @@ impl<'r> Drive<'r, '_> {
             dt
         };
         loop {
-            if self.refined_until.is_some_and(|t| self.t >= t) {
-                self.dt = self.o.dt;
-                self.refined_until = None;
-                self.cone_origin.0.clear();
-                self.cone_checkpoints.0.clear();
-                self.stop_origin.0.clear();
-                self.stop_kept = None;
-            }
-            if self.o.time_tol.is_none()
-                && self
-                    .checkpoints
-                    .0
-                    .last()
-                    .is_none_or(|c| self.events.len() > c.2)
-            {
-                self.save_checkpoint();
-            }
+            self.before_step();
             if t_end - self.t <= 1e-12 * t_end.max(1.0) {
                 return Ok(if self.o.foot_table.is_empty() {
                     DynDragStop::DMax
@@ -2412,7 +2420,6 @@ impl<'r> Drive<'r, '_> {
                     }
                 }
                 if now[PHASE] >= 0.0 {
-                    self.needs = Some(self.held_now.unwrap_or_else(|| self.rothe.force(1)));
                     if let Some(stop) = self.apply(PHASE) {
                         return Ok(stop);
                     }
@@ -2638,7 +2645,6 @@ pub fn drag(
         landed: false,
         ends_before: None,
         held_now: None,
-        needs: None,
         ends_now: None,
         mismatch: None,
         mismatch_end: None,
