@@ -208,15 +208,15 @@ pub fn run(a: &DragArgs) -> Res<()> {
         } else {
             let s = &r.summary;
             format!(
-                "{what} eta = {} ({}): {} slip{}, first at {p} = {:.6}; slip length {:.6} ± {:.2e}, fx drop {:.6} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
+                "{what} eta = {} ({}): {} slip{}, first at {p} = {}; slip length {} ± {:.2e}, fx drop {} ± {:.2e}, released energy {:.6e} ± {:.2e}; {} rows; stopped: {}; {:.1} ms",
                 sc.eta,
                 out.method,
                 s.cycles,
                 if s.cycles == 1 { "" } else { "s" },
-                r.slips[0].d,
-                s.jump_mean,
+                six_places(r.slips[0].d),
+                six_places(s.jump_mean),
                 s.jump_std,
-                s.drop_fx_mean,
+                six_places(s.drop_fx_mean),
                 s.drop_fx_std,
                 s.released_mean,
                 s.released_std,
@@ -409,4 +409,15 @@ pub fn run_fit(a: &FitArgs) -> Res<()> {
         }
     }
     Ok(())
+}
+
+/// A summary's value with six decimals (`0.021013`), or in scientific form with six significant
+/// digits where six decimals would not show it (`2.34122e-7`, not `0.000000`: a soft support's
+/// slips are that short).
+fn six_places(v: f64) -> String {
+    if v == 0.0 || v.abs() >= 1e-3 || !v.is_finite() {
+        format!("{v:.6}")
+    } else {
+        vibrissa::limits::digits(v, 6)
+    }
 }

@@ -85,6 +85,44 @@ fn drag_slips_where_the_scans_predict() {
     assert!(o.stderr.contains("slips"), "{}", o.stderr);
 }
 
+/// The summary line shows short slips in digits: on a soft support (compliance 5) the paper's
+/// rod slips every 1.4e-5 in d, and six decimals printed "first at d = 0.000022; slip length
+/// 0.000014". Each value of the line against `--json`'s, to its 6 significant digits.
+#[test]
+fn drag_summary_line_shows_short_slips() {
+    let args = [
+        "drag",
+        "--mu-s",
+        "0.5",
+        "--mu-k",
+        "0.3",
+        "--support-compliance",
+        "5",
+        "--d-max",
+        "0.001",
+    ];
+    let line = ok(&args).stderr;
+    let v = json(&ok(&[&args[..], &["--json"]].concat()).stdout);
+    let after = |key: &str| -> f64 {
+        let at = line.find(key).unwrap_or_else(|| panic!("{key} in {line}")) + key.len();
+        let word = line[at..].split([';', ' ']).next().unwrap();
+        word.parse()
+            .unwrap_or_else(|e| panic!("{word} ({e}) in {line}"))
+    };
+    let first = v["slips"][0]["d"].as_f64().unwrap();
+    let jump = v["jump_mean"].as_f64().unwrap();
+    assert!(first < 1e-4 && jump < 1e-4, "{v}");
+    for (shown, exact) in [
+        (after("first at d = "), first),
+        (after("slip length "), jump),
+    ] {
+        assert!(
+            (shown - exact).abs() <= 1e-5 * exact,
+            "{shown} against {exact}: {line}"
+        );
+    }
+}
+
 /// `--json`: the summary counts the slip rows and averages their columns; every slip with its
 /// signals before and after; the energy balance with `--energy-balance` (the foot's work over a
 /// stick equals the energy's change, the slip's dissipation the released energy, 1e-8: the
