@@ -173,6 +173,17 @@ fn long_runs_are_bounded_and_inputs_meaningful() {
     let v = json(&o.stdout);
     assert_eq!(v["cycles"], 3, "{}", o.stdout);
     assert!(o.stderr.contains("max_slips = 3 reached"), "{}", o.stderr);
+    // the stop says how far the drag was from d_max: the slips' spacing and the count at it
+    let d: Vec<f64> = (0..3)
+        .map(|i| v["slips"][i]["d"].as_f64().unwrap())
+        .collect();
+    let spacing = (d[2] - d[0]) / 2.0;
+    let ahead = ((1.0 - v["stop"]["d"].as_f64().unwrap()) / spacing).ceil();
+    let said = format!(
+        "the last slips came {} apart in d, so d_max = 1 needs about {ahead} more",
+        vibrissa::limits::digits(spacing, 3)
+    );
+    assert!(o.stderr.contains(&said), "{said}: {}", o.stderr);
     for v in ["0", "1000001"] {
         let e = bad(
             &["drag", "--mu-s", "0.5", "--mu-k", "0.3", "--max-slips", v],

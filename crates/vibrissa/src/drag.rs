@@ -852,6 +852,30 @@ impl<P: Profile> DragRun<'_, P> {
         })
     }
 
+    /// The stop's message where `max_slips` are spent at `d`: with the last slips' spacing and
+    /// how many more `d_max` would need at that spacing (a soft support's slips come 2e-7 apart
+    /// at compliance 20, and the bare "reached" did not say that the drag was far from done).
+    fn slips_spent(&self, d: f64) -> String {
+        let n = self.slips.len();
+        let reached = format!("max_slips = {} reached", self.opts.max_slips);
+        if n < 2 {
+            return reached;
+        }
+        let k = (n - 1).min(SPACING_WINDOW);
+        let spacing = (self.slips[n - 1].d - self.slips[n - 1 - k].d) / k as f64;
+        let ahead = (self.opts.d_max - d) / spacing;
+        if !(spacing > 0.0 && ahead.is_finite()) {
+            return reached;
+        }
+        format!(
+            "{reached}: the last slips came {} apart in d, so d_max = {} needs about {} more \
+             (raise max_slips or shorten the drag)",
+            crate::limits::digits(spacing, 3),
+            self.opts.d_max,
+            crate::limits::digits(ahead.ceil(), 3),
+        )
+    }
+
     /// The stick phase from `p` (the start if `first`; `carry`: the tip's μs after a slip): the
     /// march in `d` until a contact reaches its slip limit (`Err`: the drag ends there or
     /// before). Contacts that formed sliding (or creep after a slip shorter than the tolerance,
@@ -901,7 +925,7 @@ impl<P: Profile> DragRun<'_, P> {
         if self.slips.len() >= self.opts.max_slips {
             return Err(StopReason::ContactChange {
                 d: pe.lam,
-                message: format!("max_slips = {} reached", self.opts.max_slips),
+                message: self.slips_spent(pe.lam),
             });
         }
         let Some(e_before) = self.st.energy(&pe.u, pe.lam) else {
