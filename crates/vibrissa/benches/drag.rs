@@ -5,7 +5,10 @@
 //! (d ∈ [0, 0.5], 201 points). Issue 31 asks the same of a drag over a corrugation whose slips
 //! are those of a SIDE contact sliding on the surface: the paper's rod at η = 0.46 over amplitude
 //! 0.001, wavelength 1 (a side touches down near s = 0.94 and drives every slip; stopped after its
-//! tenth slip).
+//! tenth slip). The last case is a texture drag of the kind the texture grid's longest drags
+//! are made of (docs/robustness.md): the short rat preset at η 0.75 over amplitude 0.001,
+//! wavelength 0.05, phase 0 to d 0.0162 (61 slips, most of them the tip's 3e-10 slips beside a
+//! side that holds).
 //!
 //! The table printed first is measured in one interleaved run (round-robin, minimum of 40
 //! repetitions) so that the ratios see the same machine load; criterion then times each.
@@ -87,6 +90,19 @@ fn cases() -> Vec<Case> {
         ..Scene::default()
     };
     let (low_rod, low_sine) = low.parts().expect("low corrugation");
+    let path = format!(
+        "{}/../../data/scenes/rat_mystacial_short.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let mut rat: Scene =
+        toml::from_str(&std::fs::read_to_string(path).expect("preset")).expect("preset parses");
+    rat.eta = 0.75;
+    rat.surface = SurfaceProfile::Sine {
+        amplitude: 0.001,
+        wavelength: 0.05,
+        phase: 0.0,
+    };
+    let (rat_rod, rat_sine) = rat.parts().expect("rat preset over a texture");
     vec![
         Case {
             name: "scan, 201 points",
@@ -120,6 +136,15 @@ fn cases() -> Vec<Case> {
             job: Job::Drag(DragOptions {
                 d_max: 0.3,
                 max_slips: 10,
+                ..cycles.clone()
+            }),
+        },
+        Case {
+            name: "drag, rat preset, texture",
+            rod: rat_rod,
+            surface: rat_sine,
+            job: Job::Drag(DragOptions {
+                d_max: 0.0162,
                 ..cycles
             }),
         },

@@ -69,6 +69,7 @@ impl<P: Profile + 'static> Begin<'_, P> {
             chain: self.chain,
             env: self.env,
             cancel: self.solver.cancel.clone(),
+            light: false,
         };
         let p = match self.first {
             FirstPoint::Correct => st.first(self.lam, &self.u),

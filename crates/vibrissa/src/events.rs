@@ -854,6 +854,23 @@ pub(crate) fn locate(
     st: &mut dyn Stepper,
     env: &Env,
     hist: &[Pt],
+    span: (f64, f64),
+    c: Crossing,
+) -> Result<Pt, LocateError> {
+    // the points tried on the way need only the contacts where the function is of the
+    // contacts: their clearance (most of a point's watch) is made for the point found alone
+    let light = !matches!(c, Crossing::Touchdown | Crossing::TipTangent);
+    st.set_light(light);
+    let found = search_event(st, env, hist, span, c);
+    st.set_light(false);
+    st.complete(found?).map_err(RootError::Caller)
+}
+
+/// [`locate`]'s search, on points as the stepper makes them.
+fn search_event(
+    st: &mut dyn Stepper,
+    env: &Env,
+    hist: &[Pt],
     (a, b): (f64, f64),
     c: Crossing,
 ) -> Result<Pt, LocateError> {

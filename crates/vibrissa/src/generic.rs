@@ -420,6 +420,7 @@ impl<P: Profile> GenericStepper<P> {
                 kappa: &|s, m| profile.kappa(s, m),
                 straight: profile.straight(),
             },
+            false,
         );
         if let (true, Some(d)) = (has_slider(&self.bvp.set), du.as_deref()) {
             let foot = self.bvp.family.pose(lam).1.xf;

@@ -22,6 +22,8 @@ pub(crate) struct OwnStepper<P: Profile> {
     pub chain: Chain<P>,
     pub env: Env,
     pub cancel: crate::config::Cancel,
+    /// The points leave out the free parts' clearance ([`Stepper::set_light`]).
+    pub light: bool,
 }
 
 impl<P: Profile> OwnStepper<P> {
@@ -29,14 +31,75 @@ impl<P: Profile> OwnStepper<P> {
     pub(crate) fn point(&mut self, lam: f64, cv: Converged) -> Result<Pt, StepError> {
         let du = cv.tangent();
         let det = cv.det();
-        if !self.chain.shot_of(&cv.u, lam) {
+        self.shot_at(&cv.u, lam)?;
+        let sol = self.chain.path(&cv.u);
+        let w = self.watch_of(lam, &cv.u, du.as_deref(), &sol, self.light);
+        Ok(Pt {
+            lam,
+            u: cv.u,
+            du,
+            det: Some(det),
+            iters: cv.iterations,
+            sol,
+            w,
+            raw: None,
+        })
+    }
+
+    /// Makes the shooter's paths those of `(u, λ)`.
+    fn shot_at(&mut self, u: &[f64], lam: f64) -> Result<(), StepError> {
+        if !self.chain.shot_of(u, lam) {
             // (a solve converted after the shooter went on to other states: its paths are of
             // those, and the watch would read the rod of another point; the fold passage once
             // turned its whole path into points at its end, 982 such points in one texture drag)
-            self.chain.eval(&cv.u, lam, false).map_err(StepError::Rod)?;
+            self.chain.eval(u, lam, false).map_err(StepError::Rod)?;
         }
-        let sol = self.chain.path(&cv.u);
+        Ok(())
+    }
+
+    /// The watch of the point `(u, λ)` (tangent `du`, whole rod `sol`) on the shooter's paths
+    /// of that point (`light`: see [`watch`]).
+    fn watch_of(
+        &mut self,
+        lam: f64,
+        u: &[f64],
+        du: Option<&[f64]>,
+        sol: &bvp::Solution,
+        light: bool,
+    ) -> crate::watch::Watch {
         let xf = self.chain.family.pose(lam).0.xf;
+        let mut w = self.contacts_watch(lam, u, du, sol, light, xf);
+        // a round tip on a curve: its contact point's rate (x_c + r sin θ(x_c) = P_x)
+        if let (Some(j), Some(d)) = (self.chain.disk_tip(), du) {
+            let set = &self.chain.set;
+            if let crate::chain::Geom::Curve { h } = &set.contacts[j].geom {
+                let foot = self.chain.family.pose(lam).1.xf;
+                let px = sol.right()[0] + xf;
+                let dk = crate::chain::disk_on_curve(h, set.tip_radius, px, 1.0);
+                if let (Some(r), Some(dk)) = (self.chain.contact_rates(u, lam, d), dk) {
+                    w.contacts[j].dxc = (r[j][0] + foot) / dk.jac;
+                }
+            }
+        }
+        if let (true, Some(d)) = (has_slider(&self.chain.set), du) {
+            let foot = self.chain.family.pose(lam).1.xf;
+            if let Some(r) = self.chain.contact_rates(u, lam, d) {
+                fill_slip(&mut w, &self.chain.set, (u, d), &r, foot);
+            }
+        }
+        w
+    }
+
+    /// [`watch`] on the shooter's paths (the foot at `xf`).
+    fn contacts_watch(
+        &self,
+        lam: f64,
+        u: &[f64],
+        du: Option<&[f64]>,
+        sol: &bvp::Solution,
+        light: bool,
+        xf: f64,
+    ) -> crate::watch::Watch {
         let chain = &self.chain;
         // the watch asks for some states more than once (a located maximum, then its state; a
         // contact's place, then its height): the last few are kept (the same function of `s`)
@@ -51,48 +114,21 @@ impl<P: Profile> OwnStepper<P> {
             slot = (slot + 1) % MEMO;
             z
         };
-        let mut w = watch(
+        watch(
             &self.env,
             &chain.set,
             lam,
-            &cv.u,
-            du.as_deref(),
+            u,
+            du,
             RodView {
-                sol: &sol,
+                sol,
                 xf,
                 exact: &mut exact,
                 kappa: &|s, m| chain.sh.profile.kappa(s, m),
                 straight: chain.sh.profile.straight(),
             },
-        );
-        // a round tip on a curve: its contact point's rate (x_c + r sin θ(x_c) = P_x)
-        if let (Some(j), Some(d)) = (self.chain.disk_tip(), du.as_deref()) {
-            let set = &self.chain.set;
-            if let crate::chain::Geom::Curve { h } = &set.contacts[j].geom {
-                let foot = self.chain.family.pose(lam).1.xf;
-                let px = sol.right()[0] + xf;
-                let dk = crate::chain::disk_on_curve(h, set.tip_radius, px, 1.0);
-                if let (Some(r), Some(dk)) = (self.chain.contact_rates(&cv.u, lam, d), dk) {
-                    w.contacts[j].dxc = (r[j][0] + foot) / dk.jac;
-                }
-            }
-        }
-        if let (true, Some(d)) = (has_slider(&self.chain.set), du.as_deref()) {
-            let foot = self.chain.family.pose(lam).1.xf;
-            if let Some(r) = self.chain.contact_rates(&cv.u, lam, d) {
-                fill_slip(&mut w, &self.chain.set, (&cv.u, d), &r, foot);
-            }
-        }
-        Ok(Pt {
-            lam,
-            u: cv.u,
-            du,
-            det: Some(det),
-            iters: cv.iterations,
-            sol,
-            w,
-            raw: None,
-        })
+            light,
+        )
     }
 
     /// The point at `λ` from the prediction `u`.
@@ -124,6 +160,19 @@ impl<P: Profile> Stepper for OwnStepper<P> {
     fn correct(&mut self, lam: f64, hist: &[Pt], fresh: bool) -> Result<Pt, StepError> {
         let u = interpolate(hist, lam).0;
         self.correct_from(lam, &u, hist.last(), fresh)
+    }
+
+    fn set_light(&mut self, light: bool) {
+        self.light = light;
+    }
+
+    fn complete(&mut self, p: Pt) -> Result<Pt, StepError> {
+        if !p.w.light {
+            return Ok(p);
+        }
+        self.shot_at(&p.u, p.lam)?;
+        let w = self.watch_of(p.lam, &p.u, p.du.as_deref(), &p.sol, false);
+        Ok(Pt { w, ..p })
     }
 
     fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, StepError> {

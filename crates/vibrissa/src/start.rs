@@ -324,6 +324,7 @@ pub(crate) fn press<P: Profile>(
         chain,
         env,
         cancel: Default::default(),
+        light: false,
     };
     let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
         reason: format!("the first point of the press: {e}"),
@@ -732,6 +733,7 @@ pub(crate) fn scan_start<P: Profile>(
                     ground: Default::default(),
                 },
                 cancel: Default::default(),
+                light: false,
             };
             // the shooter's paths hold the point at t = 1 (the last correction)
             let pt = st.point(0.0, end).map_err(|e| VibrissaError::NoStart {

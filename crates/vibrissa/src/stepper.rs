@@ -172,6 +172,15 @@ pub(crate) trait Stepper {
     }
     /// The elastic energy of the rod at `(u, λ)` (on the rod's own shooter).
     fn energy(&mut self, u: &[f64], lam: f64) -> Option<f64>;
+    /// Whether the points made from now on may leave out the free parts' clearance
+    /// ([`crate::watch::watch`]'s `light`; an event search of the contacts). Default: ignored,
+    /// every point whole.
+    fn set_light(&mut self, _light: bool) {}
+    /// The point `p` with its whole watch where it was made light, the same values as a point
+    /// made whole (the same state, read on the same shot). Default: `p`.
+    fn complete(&mut self, p: Pt) -> Result<Pt, StepError> {
+        Ok(p)
+    }
     /// Work done so far.
     fn stats(&self) -> Stats;
     /// Largest natural step in `λ`.
