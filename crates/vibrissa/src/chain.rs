@@ -711,9 +711,12 @@ impl<P: Profile> Chain<P> {
             let (ps, _, _) = self.sh.path(k);
             let ps = ps.to_vec();
             for w in ps.windows(2) {
-                total += crate::gauss::gauss10(w[0], w[1], |s| {
-                    let m = self.sh.state_at(k, s)[3];
-                    0.5 * self.sh.profile.b(s) * m * m
+                total += crate::gauss::gauss10_batch(w[0], w[1], |s| {
+                    let z = self.sh.states_at(k, s);
+                    std::array::from_fn(|l| {
+                        let m = z[l][3];
+                        0.5 * self.sh.profile.b(s[l]) * m * m
+                    })
                 });
             }
         }

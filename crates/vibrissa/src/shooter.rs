@@ -418,6 +418,47 @@ impl<P: Profile> Shooter<P> {
         self.step(z0, s0, s - s0, m.force)
     }
 
+    /// [`Shooter::state_at`] at each of the `L` places `s` of segment `k`, in lockstep lanes
+    /// (each lane `state_at`'s one step, bit for bit: [`Shooter::steps_impl`]); the energy's
+    /// quadrature asks for ten at a time.
+    pub fn states_at<const L: usize>(&self, k: usize, s: [f64; L]) -> [[f64; 4]; L] {
+        let m = &self.segs[k];
+        let i = s.map(|s| {
+            let i = m.path_s.partition_point(|&t| t <= s).saturating_sub(1);
+            i.min(m.path_s.len().saturating_sub(1))
+        });
+        let s0 = i.map(|i| m.path_s[i]);
+        let z0 = i.map(|i| {
+            [
+                m.path_z[4 * i],
+                m.path_z[4 * i + 1],
+                m.path_z[4 * i + 2],
+                m.path_z[4 * i + 3],
+            ]
+        });
+        let h: [f64; L] = std::array::from_fn(|l| s[l] - s0[l]);
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
+                return unsafe { self.steps_avx2(z0, s0, h, m.force) };
+            }
+        }
+        self.steps_impl(z0, s0, h, m.force)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn steps_avx2<const L: usize>(
+        &self,
+        z0: [[f64; 4]; L],
+        s0: [f64; L],
+        h: [f64; L],
+        g: [f64; 2],
+    ) -> [[f64; 4]; L] {
+        self.steps_impl(z0, s0, h, g)
+    }
+
     /// The end states of segment `k`'s mesh laid on each of the spans `ab`, from `z0` under the
     /// force `g`, without sensitivities or a record (the profile read directly): the differences
     /// in the segment's ends that move with the contacts. The integrations run in lockstep, each
@@ -916,6 +957,28 @@ mod tests {
         }
         assert_eq!(two[0].map(f64::to_bits), single(spans[2]).map(f64::to_bits));
         assert_eq!(two[1].map(f64::to_bits), single(spans[3]).map(f64::to_bits));
+    }
+
+    /// The lanes of `states_at` are `state_at`, bit for bit (ten places on a graded mesh of a
+    /// tapered pre-curved rod, one of them a node, the quadrature's batch).
+    #[test]
+    fn states_at_lanes_are_state_at() {
+        let (z0, g) = ([0.0, 0.0, std::f64::consts::FRAC_PI_2, -0.05], [0.02, -0.3]);
+        let sh = graded((-0.7, 0.2), (0.0, 0.9), z0, g);
+        let nodes = sh.path(0).0.to_vec();
+        let mut s = [0.0; 10];
+        for (l, x) in s.iter_mut().enumerate() {
+            *x = 0.9 * (l as f64 + 0.37) / 10.0;
+        }
+        s[3] = nodes[nodes.len() / 2];
+        let lanes = sh.states_at(0, s);
+        for (l, &x) in s.iter().enumerate() {
+            assert_eq!(
+                lanes[l].map(f64::to_bits),
+                sh.state_at(0, x).map(f64::to_bits),
+                "lane {l} at s = {x}"
+            );
+        }
     }
 
     /// The state on the rod between nodes (one step from the node before) agrees with a shot on
