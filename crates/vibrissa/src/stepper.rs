@@ -176,8 +176,9 @@ pub(crate) trait Stepper {
     /// ([`crate::watch::watch`]'s `light`; an event search of the contacts). Default: ignored,
     /// every point whole.
     fn set_light(&mut self, _light: bool) {}
-    /// The point `p` with its whole watch where it was made light, the same values as a point
-    /// made whole (the same state, read on the same shot). Default: `p`.
+    /// The point `p` with its whole watch where it was made light: the same values as a point
+    /// made whole, read on the shot of the same state (the one the shooter still holds, else
+    /// the state shot again on the meshes as they are). Default: `p`.
     fn complete(&mut self, p: Pt) -> Result<Pt, StepError> {
         Ok(p)
     }
