@@ -344,16 +344,16 @@ fn earlier((c, pe): (Crossing, &Pt), f: &Found, h_min: f64) -> bool {
 ///   side at s = 1 − 1.5e-12 and a tip touching down beside it, 1.8e-12 in the slide before
 ///   the peel-back, left a set whose contacts crossed at the first step).
 fn shadows((a, pa): (Crossing, &Pt), (b, pb): (Crossing, &Pt)) -> bool {
-    match (a, b) {
-        (Crossing::Lift(j), Crossing::Halt(k)) => j == k,
-        (Crossing::PeelBack(j), Crossing::Touchdown) => {
-            pa.w.contacts.get(j).is_some_and(|c| pb.w.clear_s >= c.s)
+    may_shadow(a, b)
+        && match (a, b) {
+            (Crossing::PeelBack(j), Crossing::Touchdown) => {
+                pa.w.contacts.get(j).is_some_and(|c| pb.w.clear_s >= c.s)
+            }
+            _ => true,
         }
-        _ => false,
-    }
 }
 
-/// Whether the event `b` can be the shadow of `a` ([`shadows`] at some pair of points).
+/// Whether the event `b` can be the shadow of `a` (the pairs of [`shadows`], at any points).
 fn may_shadow(a: Crossing, b: Crossing) -> bool {
     match (a, b) {
         (Crossing::Lift(j), Crossing::Halt(k)) => j == k,

@@ -171,7 +171,11 @@ impl<P: Profile> Stepper for OwnStepper<P> {
             return Ok(p);
         }
         self.shot_at(&p.u, p.lam)?;
-        let w = self.watch_of(p.lam, &p.u, p.du.as_deref(), &p.sol, false);
+        let xf = self.chain.family.pose(p.lam).0.xf;
+        let mut w = self.contacts_watch(p.lam, &p.u, p.du.as_deref(), &p.sol, false, xf);
+        // the contacts' slip rates and a round tip's contact rate are the light watch's (the
+        // same computation; not shot again with sensitivities)
+        w.contacts = p.w.contacts;
         Ok(Pt { w, ..p })
     }
 

@@ -405,46 +405,36 @@ impl<P: Profile> Shooter<P> {
     /// DOP853 step from the recorded node before `s` (its local error is within the mesh's,
     /// unlike an interpolant's between nodes).
     pub fn state_at(&self, k: usize, s: f64) -> [f64; 4] {
+        let (s0, z0) = self.node_before(k, s);
+        self.step(z0, s0, s - s0, self.segs[k].force)
+    }
+
+    /// The recorded node of segment `k`'s last shot at or before `s` (the first node before
+    /// the segment): its place and state, where [`Shooter::state_at`] steps from.
+    fn node_before(&self, k: usize, s: f64) -> (f64, [f64; 4]) {
         let m = &self.segs[k];
         let i = m.path_s.partition_point(|&t| t <= s).saturating_sub(1);
         let i = i.min(m.path_s.len().saturating_sub(1));
-        let s0 = m.path_s[i];
-        let z0 = [
-            m.path_z[4 * i],
-            m.path_z[4 * i + 1],
-            m.path_z[4 * i + 2],
-            m.path_z[4 * i + 3],
-        ];
-        self.step(z0, s0, s - s0, m.force)
+        let z = &m.path_z[4 * i..4 * i + 4];
+        (m.path_s[i], [z[0], z[1], z[2], z[3]])
     }
 
     /// [`Shooter::state_at`] at each of the `L` places `s` of segment `k`, in lockstep lanes
     /// (each lane `state_at`'s one step, bit for bit: [`Shooter::steps_impl`]); the energy's
     /// quadrature asks for ten at a time.
     pub fn states_at<const L: usize>(&self, k: usize, s: [f64; L]) -> [[f64; 4]; L] {
-        let m = &self.segs[k];
-        let i = s.map(|s| {
-            let i = m.path_s.partition_point(|&t| t <= s).saturating_sub(1);
-            i.min(m.path_s.len().saturating_sub(1))
-        });
-        let s0 = i.map(|i| m.path_s[i]);
-        let z0 = i.map(|i| {
-            [
-                m.path_z[4 * i],
-                m.path_z[4 * i + 1],
-                m.path_z[4 * i + 2],
-                m.path_z[4 * i + 3],
-            ]
-        });
+        let nodes = s.map(|s| self.node_before(k, s));
+        let (s0, z0) = (nodes.map(|n| n.0), nodes.map(|n| n.1));
         let h: [f64; L] = std::array::from_fn(|l| s[l] - s0[l]);
+        let g = self.segs[k].force;
         #[cfg(target_arch = "x86_64")]
         {
             if std::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
-                return unsafe { self.steps_avx2(z0, s0, h, m.force) };
+                return unsafe { self.steps_avx2(z0, s0, h, g) };
             }
         }
-        self.steps_impl(z0, s0, h, m.force)
+        self.steps_impl(z0, s0, h, g)
     }
 
     #[cfg(target_arch = "x86_64")]
