@@ -156,8 +156,39 @@ fn long_runs_are_bounded_and_inputs_meaningful() {
         "{}",
         o.stderr
     );
-    // the guard is the program's to set: a cap of 3 ends the paper's drag after 3 slips, by
-    // name, and the library's range is the flag's
+    // a circle whose end lies before the pressed tip is refused (was replaced by its end
+    // tangent without a word), and a drag stops where the tip leaves one
+    let f = file(
+        "circle.toml",
+        "eta = 0.75\n[surface]\nkind = \"circle\"\nradius = 0.1\n",
+    );
+    let e = bad(
+        &[
+            "drag", "--scene", &f, "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.5",
+        ],
+        2,
+    );
+    assert!(e.contains("where the surface exists"), "{e}");
+    let f = file(
+        "circle2.toml",
+        "eta = 0.75\n[surface]\nkind = \"circle\"\nradius = 0.5\nx0 = 0.25\n",
+    );
+    let o = ok(&[
+        "drag", "--scene", &f, "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.5", "--points",
+        "11", "--json",
+    ]);
+    assert!(
+        o.stderr
+            .contains("the tip left the surface at its end (x = 0.6035533905932737"),
+        "{}",
+        o.stderr
+    );
+}
+
+/// The drag's slip cap is the program's to set: a cap of 3 ends the paper's drag after 3 slips,
+/// by name and with how far it was from d_max, and the library's range is the flag's.
+#[test]
+fn the_slip_cap_ends_a_drag_by_name() {
     let o = ok(&[
         "drag",
         "--mu-s",
@@ -194,33 +225,6 @@ fn long_runs_are_bounded_and_inputs_meaningful() {
             "{e}"
         );
     }
-    // a circle whose end lies before the pressed tip is refused (was replaced by its end
-    // tangent without a word), and a drag stops where the tip leaves one
-    let f = file(
-        "circle.toml",
-        "eta = 0.75\n[surface]\nkind = \"circle\"\nradius = 0.1\n",
-    );
-    let e = bad(
-        &[
-            "drag", "--scene", &f, "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.5",
-        ],
-        2,
-    );
-    assert!(e.contains("where the surface exists"), "{e}");
-    let f = file(
-        "circle2.toml",
-        "eta = 0.75\n[surface]\nkind = \"circle\"\nradius = 0.5\nx0 = 0.25\n",
-    );
-    let o = ok(&[
-        "drag", "--scene", &f, "--mu-s", "0.5", "--mu-k", "0.3", "--d-max", "0.5", "--points",
-        "11", "--json",
-    ]);
-    assert!(
-        o.stderr
-            .contains("the tip left the surface at its end (x = 0.6035533905932737"),
-        "{}",
-        o.stderr
-    );
 }
 
 /// The regressions of the pressed start: solve at alpha 0 on the flex branch (the closed form's
