@@ -158,6 +158,99 @@ pub(crate) struct ContactSet {
     /// on a surface then touches it at `C = P + r·n(x_c)`, `P` the rod's end; see
     /// [`disk_on_curve`], [`tip_place`].
     pub tip_radius: f64,
+    /// The last contact is the inner end of a stretch lying along a curved surface ([`Lying`]).
+    pub lying: Option<Lying>,
+}
+
+/// A stretch of the rod lying along a curved surface (issue 31), from the last contact's arc
+/// length `s1` out to `s2`, with the rod unloaded beyond it. On the stretch the rod follows the
+/// surface without slip: its material point `s` sits where `σ(x) = c + dir·s` (the last contact's
+/// rolling invariant `c`, `dir` the way it runs along the surface), tangent to it, with the
+/// surface's curvature, `κ0(s) + b(s)·m = dir·κ_s(x)`. The unloaded rest beyond `s2` has `m = 0`,
+/// so the outer end sits where `dir·κ_s(x2) = κ0(s2)` (for a straight rod, an inflection of the
+/// surface); while the stretch holds without slip its outer end stays there. The inner end `s1`
+/// is the contact's unknown arc length, where the loaded rod from the foot arrives on the surface,
+/// tangent to it and with its curvature: the set's last condition is that curvature match
+/// instead of `m(s1) = 0`. The contact's `(N, T)` are the stretch's resultant (its distributed
+/// pressure and the point forces at its ends).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Lying {
+    /// Arc length of the outer end.
+    pub s2: f64,
+    /// Lab x of the outer end.
+    pub x2: f64,
+}
+
+/// The lying stretch of a set at a pose: the surface and the rolling invariant that place it.
+#[derive(Clone, Copy)]
+pub(crate) struct Stretch<'a> {
+    h: &'a crate::surface::Height,
+    /// The rolling invariant, with the pose's slide: `σ(x) = c + dir·s` on the stretch.
+    c: f64,
+    /// `+1` where the rod runs along the surface towards `+x`, `−1` towards `−x`.
+    dir: f64,
+    /// The multiple of π between the rod's slope and the surface's.
+    kpi: f64,
+    /// The surface's shape amplitude and its shift along y at the pose.
+    amp: f64,
+    off: f64,
+    /// The foot's lab x.
+    xf: f64,
+    pub s2: f64,
+    pub x2: f64,
+}
+
+impl Stretch<'_> {
+    /// Lab x of the material point `s` on the stretch (Newton on `σ(x) = c + dir·s`).
+    pub fn x_at(&self, s: f64) -> f64 {
+        let target = self.c + self.dir * s;
+        let mut x = self.x2 + self.dir * (s - self.s2);
+        for _ in 0..50 {
+            let (sg, dsg) = self.h.sigma(x);
+            let dx = (sg - target) / dsg;
+            x -= dx;
+            if dx.abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0) {
+                break;
+            }
+        }
+        x
+    }
+
+    /// The rod's curvature where it lies at lab `x`: `dir·κ_s(x)`, `κ_s = h''/(1 + h'²)^{3/2}`.
+    pub fn kappa(&self, x: f64) -> f64 {
+        let (_, d, dd) = self.h.jet_scaled(x, self.amp);
+        self.dir * dd / (1.0 + d * d).powf(1.5)
+    }
+
+    /// `d/dx` of [`Stretch::kappa`] (central differences: the surfaces give `h''` at most; with
+    /// the step 1e-6 the error is below 1e-7 of it for wavelengths down to 0.02).
+    pub fn dkappa(&self, x: f64) -> f64 {
+        let e = 1e-6;
+        (self.kappa(x + e) - self.kappa(x - e)) / (2.0 * e)
+    }
+
+    /// `d/d(amp)` of [`Stretch::kappa`] at lab `x`: the surface's shape grows with `amp` at the
+    /// start (central differences, step 1e-6).
+    pub fn dkappa_damp(&self, x: f64) -> f64 {
+        let e = 1e-6;
+        let at = |amp: f64| Stretch { amp, ..*self }.kappa(x);
+        (at(self.amp + e) - at(self.amp - e)) / (2.0 * e)
+    }
+
+    /// The rod's state at `s` on the stretch (foot frame) and its derivative in `s`, for the
+    /// profile `p`: `m = (dir·κ_s(x) − κ0(s))/b(s)`.
+    pub fn state<P: Profile>(&self, p: &P, s: f64) -> ([f64; 4], [f64; 4]) {
+        let x = self.x_at(s);
+        let (hv, d, _) = self.h.jet_scaled(x, self.amp);
+        let phi = d.atan() + self.kpi;
+        let (sp, cp) = phi.sin_cos();
+        let k = self.kappa(x);
+        let (b, k0) = (p.b(s), p.k0(s));
+        let (db, dk0) = p.slopes(s);
+        let m = (k - k0) / b;
+        let dm = (self.dkappa(x) * cp - dk0) / b - (k - k0) * db / (b * b);
+        ([x - self.xf, hv + self.off, phi, m], [cp, sp, k, dm])
+    }
 }
 
 impl ContactSet {
@@ -166,6 +259,7 @@ impl ContactSet {
         ContactSet {
             contacts,
             tip_radius: 0.0,
+            lying: None,
         }
     }
     /// Number of unknowns.
@@ -202,14 +296,18 @@ impl ContactSet {
             }]
         )
     }
-    /// The label of the state: `tip`, `side`, `tip+side`, `point`, … in order along the rod.
+    /// The label of the state: `tip`, `side`, `tip+side`, `point`, `stretch` (a lying stretch's
+    /// inner end), … in order along the rod.
     pub fn label(&self) -> String {
         if self.contacts.is_empty() {
             return "none".into();
         }
+        let lain = self.lying.map(|_| self.contacts.len() - 1);
         self.contacts
             .iter()
-            .map(|c| match (&c.geom, c.tip) {
+            .enumerate()
+            .map(|(j, c)| match (&c.geom, c.tip) {
+                _ if Some(j) == lain => "stretch",
                 (Geom::Line { .. } | Geom::Slope { .. } | Geom::Curve { .. }, true) => "tip",
                 (Geom::Line { .. } | Geom::Slope { .. } | Geom::Curve { .. }, false) => "side",
                 (Geom::Point { .. }, _) => "point",
@@ -482,6 +580,25 @@ impl<P: Profile> Chain<P> {
             }
             l[0] = cur.d[(3, n)];
         }
+        // a lying stretch beyond the last contact: the rod arrives with the surface's curvature,
+        // m(s1) = (dir·κ_s(x1) − κ0(s1))/b(s1)
+        if let (Some(st), Some(&s1)) = (self.stretch_at(&pose), bps.last()) {
+            let p = &self.sh.profile;
+            let x1 = cur.z[0] + pose.xf;
+            let (b, k0) = (p.b(s1), p.k0(s1));
+            let (db, dk0) = p.slopes(s1);
+            let k = st.kappa(x1);
+            r[0] -= (k - k0) / b;
+            if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
+                let dx = st.dkappa(x1) / b;
+                for col in 0..n {
+                    j[(0, col)] -= dx * cur.d[(0, col)];
+                }
+                j[(0, set.offset(set.contacts.len() - 1) + 2)] += dk0 / b + (k - k0) * db / (b * b);
+                // (the shape's amplitude moves with `flat` as the start grows the texture)
+                l[0] -= dx * (cur.d[(0, n)] + dpose.xf) - st.dkappa_damp(x1) / b * dpose.flat;
+            }
+        }
         // a round tip carries the moment of its contact force about its centre: m(1) = r·T_loc
         if let Some(jt) = self.disk_tip() {
             let ct = &set.contacts[jt];
@@ -707,6 +824,19 @@ impl<P: Profile> Chain<P> {
         }
         let nseg = self.set.contacts.len().max(1);
         let mut total = 0.5 * self.sh.compliance * u[0] * u[0];
+        if let Some(st) = self.stretch_at(&self.family.pose(lam).0) {
+            // the lying stretch: b·m²/2 with the surface's curvature
+            let s1 = self.set.s_of(nseg - 1, u);
+            let p = &self.sh.profile;
+            let w = (st.s2 - s1) / 8.0;
+            for i in 0..8 {
+                let a = s1 + w * i as f64;
+                total += crate::gauss::gauss10(a, a + w, |s| {
+                    let m = st.state(p, s).0[3];
+                    0.5 * p.b(s) * m * m
+                });
+            }
+        }
         for k in 0..nseg {
             let (ps, _, _) = self.sh.path(k);
             let ps = ps.to_vec();
@@ -819,6 +949,59 @@ impl<P: Profile> Chain<P> {
                 .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
+    /// The lying stretch of the set at the pose `pose`, if the set lies.
+    pub fn stretch_at(&self, pose: &Pose) -> Option<Stretch<'_>> {
+        let ly = self.set.lying?;
+        let j = self.set.contacts.len().checked_sub(1)?;
+        let ct = &self.set.contacts[j];
+        let (Geom::Curve { h }, Mode::Rolling(k)) = (&ct.geom, ct.mode) else {
+            return None;
+        };
+        let amp = 1.0 - pose.flat;
+        let th = h.angle_scaled(ly.x2, amp).0;
+        let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
+        let slide = if self.family.moves(j) {
+            pose.slide
+        } else {
+            0.0
+        };
+        Some(Stretch {
+            h,
+            c: k + slide,
+            dir: kpi.cos().round(),
+            kpi,
+            amp,
+            off: pose.h,
+            xf: pose.xf,
+            s2: ly.s2,
+            x2: ly.x2,
+        })
+    }
+
+    /// The normal point forces at the lying stretch's inner and outer ends at `u` (the last
+    /// evaluation's point: [`crate::watch::ContactForce::end_push`]); `None` where the set does
+    /// not lie.
+    pub fn end_push(&self, u: &[f64]) -> Option<[f64; 2]> {
+        let st = self.stretch_now()?;
+        let j = self.set.contacts.len() - 1;
+        let ct = &self.set.contacts[j];
+        let o = self.set.offset(j);
+        let s1 = self.set.s_of(j, u);
+        let g = ct.force(u[o], u[o + 1]);
+        let z = self.state_at(s1);
+        let (sp, cp) = z[2].sin_cos();
+        let p = &self.sh.profile;
+        let inner = st.state(p, s1).1[3];
+        // (the rest beyond the outer end is unloaded: m' = 0 there)
+        let outer = st.state(p, st.s2).1[3];
+        Some([st.dir * (g[0] * sp - g[1] * cp - inner), st.dir * outer])
+    }
+
+    /// The lying stretch at the last evaluation's pose.
+    fn stretch_now(&self) -> Option<Stretch<'_>> {
+        self.stretch_at(&self.family.pose(self.shot.1).0)
+    }
+
     /// The whole rod of the last evaluation as a [`Solution`] (the loaded segments' paths, then
     /// the unloaded rest beyond the last contact, integrated here to the tolerance), with
     /// `params = [f, α]` of the total contact force. A breakpoint appears twice in the mesh, with
@@ -826,21 +1009,48 @@ impl<P: Profile> Chain<P> {
     pub fn path(&mut self, u: &[f64]) -> Solution {
         let nseg = self.bps.len().max(1);
         let s_end = self.bps.last().copied().unwrap_or(1.0);
-        if s_end < 1.0 {
-            let (_, pz, _) = self.sh.path(nseg - 1);
-            let last = pz.len() - 4;
-            let z0 = [pz[last], pz[last + 1], pz[last + 2], pz[last + 3]];
+        // the lying stretch's samples and the rest's start beyond it
+        let (lain, rest) = match self.stretch_now() {
+            Some(st) => {
+                let (z2, _) = st.state(&self.sh.profile, st.s2);
+                (
+                    stretch_samples(&st, &self.sh.profile, s_end),
+                    Some((st.s2, z2)),
+                )
+            }
+            None if s_end < 1.0 => {
+                let (_, pz, _) = self.sh.path(nseg - 1);
+                let last = pz.len() - 4;
+                (
+                    Vec::new(),
+                    Some((s_end, [pz[last], pz[last + 1], pz[last + 2], pz[last + 3]])),
+                )
+            }
+            None => (Vec::new(), None),
+        };
+        let rest = rest.filter(|r| r.0 < 1.0);
+        if let Some((a, z0)) = rest {
             for _ in 0..32 {
-                let shot = self.sh.shoot(nseg, s_end, 1.0, z0, &[], [0.0, 0.0], false);
+                let shot = self.sh.shoot(nseg, a, 1.0, z0, &[], [0.0, 0.0], false);
                 if shot.err <= 1.0 || !self.sh.refine(nseg) {
                     break;
                 }
             }
         }
-        let segs = nseg + usize::from(s_end < 1.0);
         let (mut mesh, mut z, mut dz) = (Vec::new(), Vec::new(), Vec::new());
-        for k in 0..segs {
+        for k in 0..nseg {
             let (ps, pz, pdz) = self.sh.path(k);
+            mesh.extend_from_slice(ps);
+            z.extend_from_slice(pz);
+            dz.extend_from_slice(pdz);
+        }
+        for (s, zs, dzs) in lain {
+            mesh.push(s);
+            z.extend_from_slice(&zs);
+            dz.extend_from_slice(&dzs);
+        }
+        if rest.is_some() {
+            let (ps, pz, pdz) = self.sh.path(nseg);
             mesh.extend_from_slice(ps);
             z.extend_from_slice(pz);
             dz.extend_from_slice(pdz);
@@ -877,8 +1087,27 @@ impl<P: Profile> Chain<P> {
     /// integration step from the node before `s` in its segment.
     pub fn state_at(&self, s: f64) -> [f64; 4] {
         let k = self.bps.partition_point(|&b| b < s);
-        self.sh.state_at(k, s)
+        match self.stretch_now() {
+            Some(st) if k == self.bps.len() && s <= st.s2 => st.state(&self.sh.profile, s).0,
+            _ => self.sh.state_at(k, s),
+        }
     }
+}
+
+/// Samples of the lying stretch `st` from its inner end `s1` to its outer end (none where it has
+/// no length): arc length, state and its derivative, for a [`Solution`]'s cubic Hermite pieces.
+fn stretch_samples<P: Profile>(st: &Stretch<'_>, p: &P, s1: f64) -> Vec<(f64, [f64; 4], [f64; 4])> {
+    if st.s2 - s1 <= 1e-12 {
+        return Vec::new();
+    }
+    const PIECES: usize = 32;
+    (0..=PIECES)
+        .map(|i| {
+            let s = s1 + (st.s2 - s1) * i as f64 / PIECES as f64;
+            let (z, dz) = st.state(p, s);
+            (s, z, dz)
+        })
+        .collect()
 }
 
 /// `[f, α]` with `F = (f sin α, −f cos α)` for the force `F`: α within a quarter turn of the
@@ -1328,6 +1557,81 @@ fn disk_conditions(
                 [dt[0] - ratio * dn[0], dt[1] - ratio * dn[1], 0.0],
                 (nl + ratio * tl) * dth_lam,
             )
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parts::{Precurvature, Stiffness};
+    use crate::profile::General;
+    use crate::surface::{Height, SurfaceProfile};
+
+    /// The lying stretch's condition `m(s1) = (dir·κ_s(x1) − κ0(s1))/b(s1)` and its derivatives:
+    /// the Jacobian's row (by the chain rule over the shot's sensitivities and the moving end's
+    /// differences, with the surface's curvature slope by central differences) against central
+    /// differences of the residual, to 1e-6 of the row's size, at a state near the drag of
+    /// tests/stretch.rs (a pre-curved rod: `κ0` and `b` both vary along it), in the drag's family
+    /// and in the start's, which grows the texture's amplitude with `λ`.
+    #[test]
+    fn lying_residual_jacobian_matches_differences() {
+        let h = Arc::new(
+            Height::new(
+                &SurfaceProfile::Sine {
+                    amplitude: 0.001,
+                    wavelength: 0.5,
+                    phase: 4.0 * std::f64::consts::PI / 3.0,
+                },
+                0.75,
+                0.0,
+            )
+            .unwrap()
+            .unwrap(),
+        );
+        let profile = General::new(
+            &Stiffness::Taper { ratio: 0.3 },
+            &Precurvature::Linear { k0: 0.1, k1: 0.2 },
+            1.0,
+        );
+        let (x2, s2) = (5.0 / 12.0, 0.9658524852769022);
+        let th = h.angle(x2).0;
+        let ct = Contact::on_curve(false, &h, x2, Mode::Rolling(h.sigma(x2).0 - s2), th);
+        let mut set = ContactSet::of(vec![ct]);
+        set.lying = Some(Lying { s2, x2 });
+        for (family, lam) in [(Family::Drag, 0.05), (Family::Grow { off0: 0.001 }, 0.7)] {
+            let sh = Shooter::new(profile.clone(), 0.0, 1e-10, 16);
+            let chain = Chain::new(sh, set.clone(), family);
+            check_lying_row(chain, lam);
+        }
+    }
+
+    fn check_lying_row(mut chain: Chain<General>, lam: f64) {
+        let u = [-0.026, 1.43, 0.59, 0.93];
+        let e = chain.eval(&u, lam, true).unwrap();
+        let (jac, rl) = (e.jac.unwrap(), e.r_lam.unwrap());
+        let r0 = |chain: &mut Chain<General>, u: &[f64], lam: f64| {
+            chain.eval(u, lam, false).unwrap().r[0]
+        };
+        let scale = jac.row(0).amax().max(rl[0].abs());
+        for col in 0..=u.len() {
+            let dl = 1e-6;
+            let (mut up, mut dn) = (u, u);
+            let (mut lp, mut ld) = (lam, lam);
+            if col < u.len() {
+                up[col] += dl;
+                dn[col] -= dl;
+            } else {
+                lp += dl;
+                ld -= dl;
+            }
+            let fd = (r0(&mut chain, &up, lp) - r0(&mut chain, &dn, ld)) / (2.0 * dl);
+            let an = if col < u.len() { jac[(0, col)] } else { rl[0] };
+            assert!(
+                (fd - an).abs() < 1e-6 * scale,
+                "{:?}, column {col}: {an} against differences {fd}",
+                chain.family
+            );
         }
     }
 }

@@ -68,6 +68,11 @@ pub struct ContactState {
     /// The friction coefficient of its state at its place: μs for a stuck contact (its slip
     /// threshold), μk for a sliding or slipping one, 0 for a frictionless one.
     pub mu: f64,
+    /// The inner end of a stretch lying on the surface (contact label `stretch`): the arc length
+    /// of its outer end, where the unloaded rest begins (`s`..`lies_to` on the surface; its `N`,
+    /// `T` the stretch's resultant). `None` for a point contact (and left out of JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lies_to: Option<f64>,
 }
 
 impl fmt::Display for ContactState {
@@ -89,17 +94,23 @@ impl fmt::Display for ContactState {
             }
             Hold::Stuck | Hold::Free => {}
         }
-        write!(f, ", mu = {}", self.mu)
+        write!(f, ", mu = {}", self.mu)?;
+        match self.lies_to {
+            Some(s2) => write!(f, ", lying on the surface to s = {s2}"),
+            None => Ok(()),
+        }
     }
 }
 
 /// The contacts of `set` at a point whose watch found the forces `forces`, their holds from
 /// their modes.
 pub(crate) fn states(set: &ContactSet, forces: &[ContactForce]) -> Vec<ContactState> {
+    let last = set.contacts.len().wrapping_sub(1);
     set.contacts
         .iter()
         .zip(forces)
-        .map(|(ct, c)| {
+        .enumerate()
+        .map(|(j, (ct, c))| {
             let (hold, mu) = match ct.mode {
                 Mode::Stuck(_) | Mode::Rolling(_) => (Hold::Stuck, c.mu_s),
                 Mode::Sliding(r) => (Hold::Sliding { dir: r.signum() }, r.abs()),
@@ -114,6 +125,7 @@ pub(crate) fn states(set: &ContactSet, forces: &[ContactForce]) -> Vec<ContactSt
                 tangential: c.tangential,
                 hold,
                 mu,
+                lies_to: set.lying.filter(|_| j == last).map(|l| l.s2),
             }
         })
         .collect()

@@ -40,6 +40,12 @@ pub(crate) enum Crossing {
     /// The contact `j`, sliding with kinetic friction, comes to rest: its slip rate falls to zero
     /// (it would reverse against its friction).
     Halt(usize),
+    /// The lying stretch of the last contact `j` (its outer end at arc length `s2`) shrinks to
+    /// its outer end: the rod rises off the surface to a point contact there.
+    Unlie(usize, f64),
+    /// An end of the lying stretch of the last contact `j` would pull on the surface (the smaller
+    /// of its ends' point forces falls to zero).
+    EndLift(usize),
     /// `|μ|` stops rising (its first maximum).
     MuMax,
     /// The last contact point reaches the target height (the end of a press).
@@ -76,6 +82,14 @@ impl Crossing {
                 "-dir v of contact {} (its slip would reverse against its friction)",
                 j + 1
             ),
+            Crossing::Unlie(j, s2) => format!(
+                "s - {s2} of contact {} (the lying stretch would shrink past its outer end)",
+                j + 1
+            ),
+            Crossing::EndLift(j) => format!(
+                "-min(P1, P2) of contact {} (an end of the lying stretch would pull)",
+                j + 1
+            ),
             Crossing::MuMax => "-d|mu|/dd".into(),
             Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
             Crossing::Target(Goal::TipSlope(p, _)) => format!("phi(1) - {p}"),
@@ -95,6 +109,12 @@ impl Crossing {
                 && c.mode.no_slip()
             {
                 v.push(Crossing::Slip(j));
+            }
+            if let (Some(ly), true) = (set.lying, j + 1 == set.contacts.len()) {
+                // the inner end of a lying stretch (module `chain`, `Lying`)
+                v.push(Crossing::Unlie(j, ly.s2));
+                v.push(Crossing::EndLift(j));
+                continue;
             }
             if lies_inside(set, j) || (!c.tip && matches!(c.geom, Geom::Curve { .. })) {
                 v.push(Crossing::Lie(j));
@@ -140,6 +160,11 @@ impl Crossing {
             Crossing::Touchdown => w.clear,
             Crossing::TipTangent => -w.tip_approach,
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
+            Crossing::Unlie(j, s2) => w.contacts[j].s - s2,
+            Crossing::EndLift(j) => {
+                let [p1, p2] = w.contacts[j].end_push;
+                -p1.min(p2)
+            }
             Crossing::MuMax => -w.dmu_abs.unwrap_or(f64::NAN),
             Crossing::Target(Goal::Height(h, sign)) => sign * (h - w.last_y),
             Crossing::Target(Goal::TipSlope(p, sign)) => sign * (p - w.phi1),
@@ -169,6 +194,7 @@ impl Crossing {
                 Some(mu_k * u[o] - dir * u[o + 1])
             }
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => Some(set.s_of(j, u) - 1.0),
+            Crossing::Unlie(j, s2) => Some(set.s_of(j, u) - s2),
             _ => None,
         }
     }
@@ -261,12 +287,15 @@ pub(crate) fn stop_reason(ev: Event, w: &Watch, set: &ContactSet) -> StopReason 
         }
         Event::FoldInD => StopReason::FoldInD { d },
         Event::SlipOff => StopReason::SlipOff { d },
-        Event::Touchdown | Event::PeelBack | Event::Release | Event::Halt => {
-            StopReason::ContactChange {
-                d,
-                message: format!("{} in state {}", ev.name(), set.label()),
-            }
-        }
+        Event::Touchdown
+        | Event::PeelBack
+        | Event::Release
+        | Event::Halt
+        | Event::LieDown
+        | Event::PeelUp => StopReason::ContactChange {
+            d,
+            message: format!("{} in state {}", ev.name(), set.label()),
+        },
     }
 }
 
@@ -492,6 +521,15 @@ fn curve_transition(
         (mode, phi_ref)
     };
     match cross {
+        Crossing::Touchdown
+            if set.lying.is_some() && pe.w.clear_s > set.s_of(set.contacts.len() - 1, &pe.u) =>
+        {
+            Next::Limit(format!(
+                "the rod's unloaded rest beyond the stretch lying on the surface touches down at \
+                 s = {:.6}: a lying stretch with a loaded rod beyond it is not in the model",
+                pe.w.clear_s
+            ))
+        }
         Crossing::Touchdown => {
             let s = pe.w.clear_s;
             let z = pe.w.clear_z;
@@ -634,6 +672,18 @@ fn transition_at(
         cb * (z[0] + xf - p0[0]) + sb * (z[1] - p0[1])
     };
     match cross {
+            Crossing::Slip(j) if set.lying.is_some() && j + 1 == set.contacts.len() => {
+                let c = pe.w.contacts[j];
+                Next::Limit(format!(
+                    "the stretch lying on the surface from s = {:.6} (x = {:.6}) would slip: its \
+                     resultant needs |T|/N = {:.6}, more than mu_s = {}; a stretch sliding along \
+                     the surface is not in the model",
+                    c.s,
+                    c.x,
+                    (c.tangential / c.normal).abs(),
+                    c.mu_s
+                ))
+            }
             Crossing::Slip(j) if rules.slide => {
                 let c = pe.w.contacts[j];
                 let mut ns = set.clone();
@@ -655,7 +705,30 @@ fn transition_at(
             }
             Crossing::Slip(_) => Next::Stop(Event::Slip),
             Crossing::Lie(j) if matches!(set.contacts[j].geom, Geom::Curve { .. }) => {
-                Next::Limit(curve_lie(set, j, pe))
+                lie_down(env, set, j, pe).unwrap_or_else(|| {
+                    Next::Limit(curve_lie(set, j, pe, &lie_kept_out(env, set, j, pe)))
+                })
+            }
+            Crossing::Unlie(..) => {
+                let mut ns = set.clone();
+                ns.lying = None;
+                Next::Switch(Event::PeelUp, ns, u.clone())
+            }
+            Crossing::EndLift(j) => {
+                let c = &pe.w.contacts[j];
+                let [p1, p2] = c.end_push;
+                let (end, s) = if p1 <= p2 {
+                    ("inner", c.s)
+                } else {
+                    ("outer", set.lying.map_or(f64::NAN, |l| l.s2))
+                };
+                Next::Limit(format!(
+                    "the stretch lying on the surface from s = {:.6} to {:.6} would pull on it \
+                     at its {end} end, s = {s:.6} (the point forces there: inner {p1:.3e}, outer \
+                     {p2:.3e}): a stretch whose end lets go while it holds is not in the model",
+                    c.s,
+                    set.lying.map_or(f64::NAN, |l| l.s2),
+                ))
             }
             Crossing::Lie(j) => Next::Limit(format!(
                 "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
@@ -785,20 +858,68 @@ fn kept_sliding(ct: &Contact, held: Mode) -> Mode {
 /// vanish along the whole stretch): the rod would lie along the surface. Where the contact is the
 /// last one and the rod's rest beyond it straight, the place is an inflection of the surface, its
 /// steepest point.
-pub(crate) fn curve_lie(set: &ContactSet, j: usize, pe: &Pt) -> String {
+///
+/// The model has the stretch that forms at the last contact where the rod beyond is unloaded and
+/// the side holds without slip ([`lie_down`]); `why` says what keeps this one out.
+pub(crate) fn curve_lie(set: &ContactSet, j: usize, pe: &Pt, why: &str) -> String {
     let c = &pe.w.contacts[j];
-    let last = if j + 1 == set.contacts.len() {
+    let last = j + 1 == set.contacts.len();
+    let unloaded = if last {
         ", the last contact: the rod beyond it is unloaded"
     } else {
         ""
     };
     format!(
-        "the side contact at s = {:.6} (x = {:.6}{last}) begins to lie along the surface: the \
-         rod's curvature there fell to the surface's, so beyond it the rod, tangent there, would \
-         cut the surface beside the contact, and no point contact next to it holds it; a lying \
-         stretch pressed by a distributed force is not in the model",
+        "the side contact at s = {:.6} (x = {:.6}{unloaded}) begins to lie along the surface: \
+         the rod's curvature there fell to the surface's, so beyond it the rod, tangent there, \
+         would cut the surface beside the contact, and no point contact next to it holds it; \
+         {why}",
         c.s, c.x
     )
+}
+
+/// What keeps the side contact `j` of `set` that begins to lie along the surface at `pe` out of
+/// the lying stretch the model has ([`lie_down`]).
+pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> String {
+    if j + 1 < set.contacts.len() {
+        format!(
+            "a lying stretch with a loaded rod beyond it (the contact at s = {:.6}) is not in the \
+             model",
+            pe.w.contacts[j + 1].s
+        )
+    } else if env.ground.grow {
+        "a stretch that lies down as the start grows the texture is not followed".into()
+    } else if !set.contacts[j].mode.no_slip() {
+        "a stretch that slides along the surface is not in the model".into()
+    } else if env.ground.slide.is_some_and(|sl| sl.driver == j) {
+        "a stretch that drives a slip (it would slide along the surface) is not in the model"
+            .into()
+    } else {
+        "a stretch lying on the surface from a contact state's first point is not followed".into()
+    }
+}
+
+/// The set after the last contact, a side on a curved surface that holds without slip, begins to
+/// lie along it (module `chain`, `Lying`): a stretch from there, of no length yet, whose outer
+/// end stays where the contact is now. The unknowns carry over: where the side's curvature
+/// reached the surface's, `m = 0` there (the unloaded rest beyond) is the stretch's curvature
+/// match. `None` (the stop stands) for a contact with another beyond it, one that slides or
+/// drives a slip in progress (its outer end would move with the slide), or one that lies down as
+/// the start grows the texture.
+fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Option<Next> {
+    let ct = &set.contacts[j];
+    let last = j + 1 == set.contacts.len();
+    let driver = env.ground.slide.is_some_and(|sl| sl.driver == j);
+    if !last || ct.tip || set.lying.is_some() || driver || env.ground.grow {
+        return None;
+    }
+    let (Geom::Curve { .. }, Mode::Rolling(_)) = (&ct.geom, ct.mode) else {
+        return None;
+    };
+    let c = &pe.w.contacts[j];
+    let mut ns = set.clone();
+    ns.lying = Some(crate::chain::Lying { s2: c.s, x2: c.x });
+    Some(Next::Switch(Event::LieDown, ns, pe.u.clone()))
 }
 
 /// Why a side lying on the surface cannot peel back to a round tip: its contact point reached

@@ -107,6 +107,7 @@ fn curve_start<P: Profile>(
             })
             .collect(),
         tip_radius: pressed.set.tip_radius,
+        lying: None,
     };
     let mut st = OwnStepper {
         chain: Chain::new(pressed.sh, set, Family::Grow { off0 }),
@@ -224,6 +225,7 @@ pub(crate) fn stuck<P: Profile>(
         ContactSet {
             contacts,
             tip_radius: p.set.tip_radius,
+            lying: None,
         },
         u,
     )

@@ -687,7 +687,8 @@ impl<P: Profile> Run<'_, '_, P> {
                 // a side that lies along the surface from the state's first point (the tip
                 // lay down where the surface curves more than the rod's end, issue 31): the
                 // stop is the lie's, with its reason
-                let message = crate::events::curve_lie(set, j, q);
+                let why = crate::events::lie_kept_out(env, set, j, q);
+                let message = crate::events::curve_lie(set, j, q, &why);
                 return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));
             }
         }
@@ -974,7 +975,15 @@ impl<P: Profile> Run<'_, '_, P> {
             slide: self.spec.slide,
         };
         let xf = self.stepper.foot(pe.lam).0;
-        match transition(&self.env, rules, &set, cross, &pe, xf) {
+        let mut next = transition(&self.env, rules, &set, cross, &pe, xf);
+        if let (Next::Switch(Event::LieDown, ..), Crossing::Lie(j)) = (&next, cross) {
+            if !self.stepper.lies() {
+                let why = "a stretch lying on the surface is solved by the rod's own shooter \
+                           (method shooting)";
+                next = Next::Limit(crate::events::curve_lie(&set, j, &pe, why));
+            }
+        }
+        match next {
             Next::Done => {
                 self.range.close(RangeEnd::DMax);
                 Flow::End(StopReason::DMax, Some(Box::new((set, pe))))

@@ -81,6 +81,10 @@ impl<P: Profile> OwnStepper<P> {
                 }
             }
         }
+        if let Some(p1) = self.chain.end_push(u) {
+            let j = w.contacts.len() - 1;
+            w.contacts[j].end_push = p1;
+        }
         if let (true, Some(d)) = (has_slider(&self.chain.set), du) {
             let foot = self.chain.family.pose(lam).1.xf;
             if let Some(r) = self.chain.contact_rates(u, lam, d) {
@@ -211,6 +215,10 @@ impl<P: Profile> Stepper for OwnStepper<P> {
 
     fn h_max(&self) -> f64 {
         OWN_H_MAX
+    }
+
+    fn lies(&self) -> bool {
+        true
     }
 
     fn foot(&self, lam: f64) -> (f64, f64) {

@@ -199,7 +199,7 @@ pub struct ContactLabel(&'static str);
 
 impl ContactLabel {
     /// The states the model has names for; longer sets are `multiple`.
-    const NAMES: [&'static str; 12] = [
+    const NAMES: [&'static str; 16] = [
         "none",
         "tip",
         "side",
@@ -211,6 +211,10 @@ impl ContactLabel {
         "side+point",
         "point+side",
         "point+point",
+        "stretch",
+        "side+stretch",
+        "point+stretch",
+        "side+side+stretch",
         "multiple",
     ];
     pub(crate) fn of(set: &crate::chain::ContactSet) -> ContactLabel {
@@ -264,11 +268,17 @@ pub enum Event {
     /// A contact sliding with kinetic friction comes to rest (its slip rate reached zero) and
     /// holds again. The march goes on.
     Halt,
+    /// A side contact on a curved surface, the last one, begins to lie along it: a stretch of
+    /// the rod lies on the surface from there (docs/model.md, "A stretch lying on the surface").
+    /// The march goes on.
+    LieDown,
+    /// The lying stretch shrinks back to a point contact at its outer end. The march goes on.
+    PeelUp,
 }
 
 impl Event {
     /// The name used in CSV and JSON (`slip`, `lift_off`, `penetration`, `fold_in_d`,
-    /// `touchdown`, `peel_back`, `release`, `slip_off`, `halt`).
+    /// `touchdown`, `peel_back`, `release`, `slip_off`, `halt`, `lie_down`, `peel_up`).
     pub fn name(self) -> &'static str {
         match self {
             Event::Slip => "slip",
@@ -280,13 +290,20 @@ impl Event {
             Event::Release => "release",
             Event::SlipOff => "slip_off",
             Event::Halt => "halt",
+            Event::LieDown => "lie_down",
+            Event::PeelUp => "peel_up",
         }
     }
     /// Whether the event ends the march.
     pub fn ends(self) -> bool {
         !matches!(
             self,
-            Event::Touchdown | Event::PeelBack | Event::Release | Event::Halt
+            Event::Touchdown
+                | Event::PeelBack
+                | Event::Release
+                | Event::Halt
+                | Event::LieDown
+                | Event::PeelUp
         )
     }
 }

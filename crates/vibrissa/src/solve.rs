@@ -118,6 +118,7 @@ fn tip_set(alpha: f64, target: &Target, r: f64) -> (ContactSet, Pose) {
             } else {
                 0.0
             },
+            lying: None,
         },
         Pose {
             h,

@@ -301,6 +301,7 @@ pub(crate) fn press<P: Profile>(
     let set = ContactSet {
         contacts: vec![t.contact.clone()],
         tip_radius: spec.tip_radius,
+        lying: None,
     };
     let mut chain = Chain::new(sh, set, Family::Press { h0: top });
     let ntol = corrector_tol(tol);
@@ -614,6 +615,7 @@ pub(crate) fn stuck<P: Profile>(p: &Pressed<P>, beta: f64) -> (ContactSet, [f64;
         ContactSet {
             contacts,
             tip_radius: p.set.tip_radius,
+            lying: None,
         },
         p0,
     )

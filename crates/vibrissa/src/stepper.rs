@@ -186,6 +186,11 @@ pub(crate) trait Stepper {
     fn stats(&self) -> Stats;
     /// Largest natural step in `λ`.
     fn h_max(&self) -> f64;
+    /// Whether it solves a set with a stretch lying on the surface (module `chain`, `Lying`): the
+    /// rod's own shooter. Default: no.
+    fn lies(&self) -> bool {
+        false
+    }
     /// The foot at `λ`: its x in the lab frame (for along-surface anchors) and its support's
     /// clockwise turn.
     fn foot(&self, lam: f64) -> (f64, f64);

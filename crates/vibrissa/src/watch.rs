@@ -60,6 +60,11 @@ pub(crate) struct ContactForce {
     /// A round tip's contact point on a curved surface: the rate `dx_c/dλ` of its lab x along
     /// the branch (its friction's frame turns with it; NaN elsewhere or where not known).
     pub dxc: f64,
+    /// The last contact as the inner end of a lying stretch (module `chain`, `Lying`): the
+    /// normal point forces at the stretch's inner and outer ends, `P = dir·(m'(s−) − m'(s+))`
+    /// (the jump of the internal force's normal part: `m'` on the loaded rod, on the stretch,
+    /// and 0 on the unloaded rest beyond); each pushes while positive. NaN elsewhere.
+    pub end_push: [f64; 2],
 }
 
 /// A surface contact's slip along the branch (module `events`' halt, `record`'s friction work).
@@ -177,6 +182,11 @@ pub(crate) fn lies_inside(set: &ContactSet, j: usize) -> bool {
     !c.tip && matches!(c.geom, Geom::Line { .. }) && j + 1 < set.contacts.len()
 }
 
+/// Whether contact `j` is the inner end of the set's lying stretch (module `chain`, `Lying`).
+fn lain_end(set: &ContactSet, j: usize) -> bool {
+    set.lying.is_some() && j + 1 == set.contacts.len()
+}
+
 /// [`ContactForce::curv`] of contact `j` of `set` at `s` (the rod's state there `zs`, if known;
 /// foot at `xf`, the surface at amplitude `amp`).
 fn side_curv(
@@ -193,7 +203,8 @@ fn side_curv(
             let z = zs.unwrap_or_else(|| exact(s));
             (z[2] - beta).cos() * kappa(s, z[3])
         }
-        Geom::Curve { h } if !ct.tip => {
+        // (a lying stretch's inner end: its own events, module `events`)
+        Geom::Curve { h } if !ct.tip && !lain_end(set, j) => {
             let z = zs.unwrap_or_else(|| exact(s));
             let inside = j + 1 < set.contacts.len();
             curve_curv(h, amp, z, xf, kappa(s, z[3]), inside)
@@ -331,6 +342,7 @@ pub(crate) fn watch(
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
             slide: SlideRate::UNKNOWN,
             dxc: f64::NAN,
+            end_push: [f64::NAN; 2],
             curv: side_curv(set, j, (s, zs), (xf, amp), &mut *exact, kappa),
         });
     }
@@ -546,7 +558,15 @@ fn curve_clearance(
     kappa: &dyn Fn(f64, f64) -> f64,
 ) -> (f64, f64, f64) {
     let hh = |x: f64| h.jet_scaled(x, amp).0;
-    let ss: Vec<f64> = (0..set.contacts.len()).map(|j| set.s_of(j, u)).collect();
+    let mut ss: Vec<f64> = (0..set.contacts.len()).map(|j| set.s_of(j, u)).collect();
+    // a lying stretch: on the surface from the last contact out to its outer end
+    let lain = set
+        .lying
+        .zip(ss.last().copied())
+        .map_or((f64::NAN, f64::NAN), |(ly, s1)| (s1, ly.s2));
+    if lain.1.is_finite() {
+        ss.push(lain.1);
+    }
     // (a round tip's centre on the surface offset by its radius: its gap to that offset curve)
     let r = set.tip_radius;
     let disk_gap = |z: &[f64]| -> Option<f64> {
@@ -567,7 +587,9 @@ fn curve_clearance(
             }
         })
         .unwrap_or(0.0);
-    let near = |s: f64| ss.iter().any(|&c| (s - c).abs() < NEAR);
+    let near = |s: f64| {
+        ss.iter().any(|&c| (s - c).abs() < NEAR) || (s > lain.0 - NEAR && s < lain.1 + NEAR)
+    };
     let lab = |s: f64, z: [f64; 4]| [z[0] + xf, z[1], z[2], kappa(s, z[3])];
     let mut sample = |s: f64| {
         let mut z = [0.0; 4];

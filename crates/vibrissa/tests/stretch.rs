@@ -1,0 +1,161 @@
+//! A stretch of the rod lying on a curved surface (issue 31).
+
+use vibrissa::drag::{DragEvent, DragOptions, DragResult};
+use vibrissa::surface::SurfaceProfile;
+use vibrissa::{drag, Event, Scene, Stiffness, StopReason};
+
+/// The rod tapered to 0.3 at η 0.75 over the corrugation 0.001 sin(2πx/0.5 + 4π/3): its last
+/// contact, a side whose rest beyond is unloaded, reaches the corrugation's inflection at
+/// x = 5/12 and lies down.
+fn stretch_scene() -> Scene {
+    Scene {
+        eta: 0.75,
+        stiffness: Stiffness::Taper { ratio: 0.3 },
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.001,
+            wavelength: 0.5,
+            phase: 4.0 * std::f64::consts::PI / 3.0,
+        },
+        ..Scene::default()
+    }
+}
+
+fn stretch_drag(points: usize, d_max: f64) -> DragResult {
+    let (rod, surface) = stretch_scene().parts().unwrap();
+    drag(
+        &rod,
+        &surface,
+        &DragOptions {
+            d_max,
+            points,
+            mu_s: Some(0.5),
+            mu_k: Some(0.3),
+            ..DragOptions::default()
+        },
+    )
+    .unwrap()
+}
+
+/// The reference's rows (`kind`, then the numbers by column name).
+fn reference() -> Vec<(String, std::collections::HashMap<String, f64>)> {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/drag/stretch_reference.csv"
+    ))
+    .unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            let vals = head[1..]
+                .iter()
+                .zip(&f[1..])
+                .map(|(h, v)| (h.to_string(), v.parse().unwrap()))
+                .collect();
+            (f[0].to_string(), vals)
+        })
+        .collect()
+}
+
+/// The arc length at which the reference's stretch ends (its input, the side's place when it
+/// reached the inflection): `S2` of data/drag/make_stretch_reference.py.
+const S2: f64 = 0.9658524852769022;
+
+/// The drag of the rod tapered to 0.3 whose side lies down at the corrugation's inflection,
+/// against the independent computation of `data/drag/make_stretch_reference.py` (scipy: the loaded
+/// rod shot from the foot to the stretch's inner end, with the moment at the foot, the
+/// stretch's resultant and the inner end's arc length as unknowns; its spread from rtol 1e-13 to
+/// 1e-12 is 3.3e-11): the lie-down at the inflection x = 5/12 (where the reference's stretch
+/// begins), then at d = 0.05, 0.1, …, 0.7 the inner end's place, the resultant in the surface's
+/// frame there, the base force and moment, and the peel-up where the stretch has shrunk back to
+/// its outer end — to 1e-8.
+#[test]
+fn a_lying_stretch_matches_the_independent_reference() {
+    let r = stretch_drag(16, 0.75);
+    let stretch = |q: &vibrissa::drag::DragRow| q.contact.name() == "stretch";
+    // the side lies down at the inflection, where the reference's stretch ends
+    let lie = r
+        .rows
+        .iter()
+        .find(|q| q.event == Some(DragEvent::Contact(Event::LieDown)))
+        .expect("a lie-down");
+    let c = lie.contacts[0];
+    assert!((c.x - 5.0 / 12.0).abs() < 1e-9, "lies down at x = {}", c.x);
+    assert!((c.s - S2).abs() < 1e-9, "lies down at s = {}", c.s);
+    let mut worst = 0.0f64;
+    let mut seen = 0;
+    for (kind, want) in reference() {
+        let d = want["d"];
+        let q = if kind == "peel_up" {
+            r.rows
+                .iter()
+                .find(|q| q.event == Some(DragEvent::Contact(Event::PeelUp)))
+                .expect("a peel-up")
+        } else {
+            r.rows
+                .iter()
+                .find(|q| q.event.is_none() && (q.d - d).abs() < 1e-12)
+                .unwrap_or_else(|| panic!("no row at d = {d}"))
+        };
+        assert!(
+            stretch(q),
+            "{kind} at d = {d}: contact {}",
+            q.contact.name()
+        );
+        let c = q.contacts[0];
+        let got = [
+            ("d", q.d),
+            ("s1", c.s),
+            ("x1", c.x),
+            ("normal", c.normal),
+            ("tangential", c.tangential),
+            ("fx", q.fx),
+            ("fy", q.fy),
+            ("m_base", q.m_base),
+        ];
+        for (name, v) in got {
+            let e = (v - want[name]).abs();
+            worst = worst.max(e);
+            assert!(
+                e < 1e-8,
+                "{kind} at d = {d}: {name} {v} against {} (reference)",
+                want[name]
+            );
+        }
+        seen += 1;
+    }
+    assert_eq!(seen, 15);
+    eprintln!("lying stretch: 15 reference rows, largest difference {worst:.2e}");
+}
+
+/// After the peel-up the side rolls on to the tip (the line's peel-back on a curve) and the
+/// equilibria fold back (a snap) at d = 0.8247: every state on the way is named, and the rows
+/// between the lie-down and the peel-up are the stretch's.
+#[test]
+fn a_lying_stretch_peels_up_and_the_drag_goes_on() {
+    let r = stretch_drag(41, 1.0);
+    let events: Vec<_> = r.rows.iter().filter_map(|q| q.event).collect();
+    assert_eq!(
+        events,
+        vec![
+            DragEvent::Contact(Event::LieDown),
+            DragEvent::Contact(Event::PeelUp),
+            DragEvent::Contact(Event::PeelBack),
+            DragEvent::Contact(Event::FoldInD),
+        ],
+        "{r}"
+    );
+    assert!(matches!(r.stop, StopReason::FoldInD { .. }), "{r}");
+    let at = |e: Event| {
+        r.rows
+            .iter()
+            .position(|q| q.event == Some(DragEvent::Contact(e)))
+            .unwrap()
+    };
+    let (a, b) = (at(Event::LieDown), at(Event::PeelUp));
+    for q in &r.rows[a + 1..=b] {
+        assert_eq!(q.contact.name(), "stretch", "at d = {}", q.d);
+    }
+    assert_eq!(r.rows[b + 1].contact.name(), "side");
+}
