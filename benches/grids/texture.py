@@ -43,6 +43,8 @@ CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture 
            "start lies along the texture (not modelled)",
            "slider halts into a trapped state (named)", "trapped slide (not followed)",
            "nested slips 8 deep (named)", "side begins to lie along the surface",
+           "lying stretch would slip (not modelled)",
+           "change at a lying stretch (not followed)", "lying stretch's end would pull",
            "slide of 4 rod lengths", "side behind the sliding "
            "contact (not followed)", "not modelled / no contact state", "too many slips",
            "named stop: other", "stale slip driver", "Newton failure / NaN",
@@ -97,6 +99,12 @@ def classify(reason, detail, code):
         return "nested slips 8 deep (named)"
     if "begins to lie along the surface" in detail:
         return "side begins to lie along the surface"
+    if "stretch lying on the surface" in detail and "would slip" in detail:
+        return "lying stretch would slip (not modelled)"
+    if "at or beyond a lying stretch is not followed" in detail:
+        return "change at a lying stretch (not followed)"
+    if "stretch lying on the surface" in detail and "would pull" in detail:
+        return "lying stretch's end would pull"
     if "rod lengths along the surface without reaching" in detail:
         return "slide of 4 rod lengths"
     if "joins behind the sliding one" in detail:

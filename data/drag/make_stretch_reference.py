@@ -171,7 +171,126 @@ def run(rtol):
     return rows
 
 
+# -- the stretch with the tip stuck beyond it ---------------------------------------------------
+#
+# Scene 2: the same rod over h(x) = 0.75 + 0.003 sin(2 pi x / 0.5 + 2.4) (crate: `--corrugation-
+# amplitude 0.003 --corrugation-wavelength 0.5 --corrugation-phase 2.4`), where the side that
+# lies down at d = 0.1391131 has the tip stuck on the surface beyond it. Inputs from the crate:
+# the side's arc length and lab x when it lay down (S2B, X2B: its rolling invariant
+# c = sigma(X2B) - S2B) and the tip's lab x, where it sticks (XA). Unknowns (m(0), Fx, Fy, s1, s2,
+# Gx, Gy): F the total contact force (on [0, s1]), G the tip's (on [s2, 1]). Conditions: the four
+# at s1 as above (the stretch's rolling invariant c); the segment beyond starts at s2 on the
+# surface (x from sigma(x) = c + s2, tangent, m = kappa_s / b) and ends at the tip's place with
+# m(1) = 0.
+A_B, PHASE_B = 0.003, 2.4
+S2B, X2B = 0.9328532248245588, 0.4785523319061838
+XA = 0.545667226423673
+D_OUT_B = [0.15, 0.2, 0.25, 0.3]
+
+
+class Sine:
+    def __init__(self, a, phase):
+        self.a, self.phase = a, phase
+
+    def h(self, x):
+        return ETA + self.a * math.sin(K * x + self.phase)
+
+    def dh(self, x):
+        return self.a * K * math.cos(K * x + self.phase)
+
+    def kappa(self, x):
+        d1 = self.dh(x)
+        d2 = -self.a * K * K * math.sin(K * x + self.phase)
+        return d2 / (1 + d1 * d1) ** 1.5
+
+    def sigma(self, x):
+        return quad(lambda t: math.sqrt(1 + self.dh(t) ** 2), 0.0, x, epsabs=1e-13,
+                    epsrel=1e-13, limit=200)[0]
+
+    def x_at(self, target, guess):
+        return brentq(lambda x: self.sigma(x) - target, guess - 0.3, guess + 0.3, xtol=1e-15,
+                      rtol=1e-15)
+
+
+class TipBeyond:
+    def __init__(self, rtol):
+        self.rtol = rtol
+        self.surf = Sine(A_B, PHASE_B)
+        self.c = self.surf.sigma(X2B) - S2B
+
+    def seg(self, z0, a, b_, fx, fy):
+        def f(s, z):
+            c, sn = math.cos(z[2]), math.sin(z[2])
+            return [c, sn, b(s) * z[3], fx * sn - fy * c]
+        return solve_ivp(f, (a, b_), z0, method="DOP853", rtol=self.rtol,
+                         atol=self.rtol).y[:, -1]
+
+    def residual(self, u, d):
+        m0, fx, fy, s1, s2, gx, gy = u
+        sf = self.surf
+        z1 = self.seg([d, 0.0, math.pi / 2, m0], 0.0, s1, fx, fy)
+        x1 = sf.x_at(self.c + s1, X2B)
+        x2 = sf.x_at(self.c + s2, X2B)
+        z2 = self.seg([x2, sf.h(x2), math.atan(sf.dh(x2)), sf.kappa(x2) / b(s2)], s2, 1.0, gx, gy)
+        return [z1[0] - x1, z1[1] - sf.h(x1), z1[2] - math.atan(sf.dh(x1)),
+                b(s1) * z1[3] - sf.kappa(x1), z2[0] - XA, z2[1] - sf.h(XA), z2[3]]
+
+    def solve(self, d, guess):
+        r = root(lambda u: self.residual(u, d), guess, method="hybr", options={"xtol": 1e-15})
+        res = max(abs(v) for v in self.residual(r.x, d))
+        if res > 1e-11:
+            raise RuntimeError(f"no convergence at d = {d}: residual {res:.3e}")
+        return r.x
+
+    def row(self, d, u):
+        m0, fx, fy, s1, s2, gx, gy = u
+        sf = self.surf
+        x1 = sf.x_at(self.c + s1, X2B)
+
+        def local(gx_, gy_, x):
+            t = math.atan(sf.dh(x))
+            n, tt = (-math.sin(t), math.cos(t)), (-math.cos(t), -math.sin(t))
+            return -(gx_ * n[0] + gy_ * n[1]), gx_ * tt[0] + gy_ * tt[1]
+        ns, ts = local(fx - gx, fy - gy, x1)
+        nt, tn = local(gx, gy, XA)
+        return dict(kind="row", d=d, s1=s1, s2=s2, n_stretch=ns, t_stretch=ts, n_tip=nt,
+                    t_tip=tn, fx=fx, fy=fy, m_base=m0)
+
+
+def run_b(rtol):
+    sc = TipBeyond(rtol)
+    t = math.atan(sc.surf.dh(XA))
+    n, tt = (-math.sin(t), math.cos(t)), (-math.cos(t), -math.sin(t))
+    gx, gy = -0.0868 * n[0] + 0.0284 * tt[0], -0.0868 * n[1] + 0.0284 * tt[1]
+    guess = [-0.0117, -0.606, -1.442, 0.9242, 0.93285, gx, gy]
+    rows = []
+    for d in D_OUT_B:
+        u = sc.solve(d, guess)
+        rows.append(sc.row(d, u))
+        guess = u
+    return rows
+
+
+def main_b():
+    rows = run_b(1e-13)
+    check = run_b(1e-12)
+    cols = ["kind", "d", "s1", "s2", "n_stretch", "t_stretch", "n_tip", "t_tip", "fx", "fy",
+            "m_base"]
+    worst = max(abs(a[c] - b_[c]) for a, b_ in zip(rows, check) for c in cols[1:])
+    print(f"tip beyond: largest change of any value from rtol 1e-13 to 1e-12: {worst:.2e}")
+    for r in rows:
+        print(f"d {r['d']}: s1 {r['s1']:.9f} s2 {r['s2']:.12f} tip N {r['n_tip']:.10f} "
+              f"T {r['t_tip']:.10f}")
+    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stretch_tip_reference.csv")
+    with open(out, "w", newline="") as f:
+        w = csv.writer(f, lineterminator="\n")
+        w.writerow(cols)
+        for r in rows:
+            w.writerow([r["kind"]] + [repr(float(r[c])) for c in cols[1:]])
+
+
 def main():
+    main_b()
     rows = run(1e-13)
     check = run(1e-12)
     cols = ["kind", "d", "s1", "x1", "normal", "tangential", "fx", "fy", "m_base", "p1", "p2", "min_gap"]

@@ -158,27 +158,34 @@ pub(crate) struct ContactSet {
     /// on a surface then touches it at `C = P + r·n(x_c)`, `P` the rod's end; see
     /// [`disk_on_curve`], [`tip_place`].
     pub tip_radius: f64,
-    /// The last contact is the inner end of a stretch lying along a curved surface ([`Lying`]).
+    /// A contact is the inner end of a stretch lying along a curved surface ([`Lying`]).
     pub lying: Option<Lying>,
 }
 
-/// A stretch of the rod lying along a curved surface (issue 31), from the last contact's arc
-/// length `s1` out to `s2`, with the rod unloaded beyond it. On the stretch the rod follows the
-/// surface without slip: its material point `s` sits where `σ(x) = c + dir·s` (the last contact's
-/// rolling invariant `c`, `dir` the way it runs along the surface), tangent to it, with the
-/// surface's curvature, `κ0(s) + b(s)·m = dir·κ_s(x)`. The unloaded rest beyond `s2` has `m = 0`,
-/// so the outer end sits where `dir·κ_s(x2) = κ0(s2)` (for a straight rod, an inflection of the
+/// A stretch of the rod lying along a curved surface (issue 31), from its contact's arc length
+/// `s1` out to `s2`. On the stretch the rod follows the surface without slip: its material point
+/// `s` sits where `σ(x) = c + dir·s` (the contact's rolling invariant `c`, `dir` the way it runs
+/// along the surface), tangent to it, with the surface's curvature, `κ0(s) + b(s)·m =
+/// dir·κ_s(x)`. Where the contact is the last one, the unloaded rest beyond `s2` has `m = 0`, so
+/// the outer end sits where `dir·κ_s(x2) = κ0(s2)` (for a straight rod, an inflection of the
 /// surface); while the stretch holds without slip its outer end stays there. The inner end `s1`
 /// is the contact's unknown arc length, where the loaded rod from the foot arrives on the surface,
 /// tangent to it and with its curvature: the set's last condition is that curvature match
 /// instead of `m(s1) = 0`. The contact's `(N, T)` are the stretch's resultant (its distributed
 /// pressure and the point forces at its ends).
+///
+/// With contacts beyond the stretch (`beyond > 0`: the tip stuck on the surface, say) the rest
+/// beyond is loaded: the outer end `s2` is then the set's last unknown, the segment beyond starts
+/// there from the surface's state (the moment continuous), and the curvature match at `s1` is a
+/// condition of its own, the fourth of the stretch's contact.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Lying {
-    /// Arc length of the outer end.
+    /// Arc length of the outer end (with contacts beyond: where it was when the stretch formed).
     pub s2: f64,
-    /// Lab x of the outer end.
+    /// Lab x of the outer end (as `s2`).
     pub x2: f64,
+    /// How many contacts lie beyond the stretch (the last of the set's contacts).
+    pub beyond: usize,
 }
 
 /// The lying stretch of a set at a pose: the surface and the rolling invariant that place it.
@@ -264,7 +271,21 @@ impl ContactSet {
     }
     /// Number of unknowns.
     pub fn n(&self) -> usize {
-        1 + self.contacts.iter().map(Contact::unknowns).sum::<usize>()
+        let outer = self.lying.is_some_and(|l| l.beyond > 0);
+        1 + self.contacts.iter().map(Contact::unknowns).sum::<usize>() + usize::from(outer)
+    }
+    /// The contact that is the inner end of the lying stretch, if the set lies.
+    pub fn lain(&self) -> Option<usize> {
+        let l = self.lying?;
+        self.contacts.len().checked_sub(1 + l.beyond)
+    }
+    /// The lying stretch's outer end at `u` (NaN where the set does not lie).
+    pub fn s2_of(&self, u: &[f64]) -> f64 {
+        match self.lying {
+            Some(l) if l.beyond > 0 => u[self.n() - 1],
+            Some(l) => l.s2,
+            None => f64::NAN,
+        }
     }
     /// Offset of contact `j`'s unknowns `(N, T[, s])` in `u`.
     pub fn offset(&self, j: usize) -> usize {
@@ -302,7 +323,7 @@ impl ContactSet {
         if self.contacts.is_empty() {
             return "none".into();
         }
-        let lain = self.lying.map(|_| self.contacts.len() - 1);
+        let lain = self.lain();
         self.contacts
             .iter()
             .enumerate()
@@ -492,6 +513,16 @@ impl<P: Profile> Chain<P> {
         // (a shot that fails part way leaves paths of no state)
         self.shot.1 = f64::NAN;
         let bps = self.breakpoints(u)?;
+        // a lying stretch with contacts beyond: its outer end before them (and past its inner
+        // end, but for the solves beyond its peel-up that bracket it)
+        let lain = set.lain();
+        let s2 = set.s2_of(u);
+        if let (Some(j), true) = (lain, s2.is_finite()) {
+            let next = bps.get(j + 1).copied().unwrap_or(1.0 + OVERSHOOT);
+            if !(s2 > bps[j].min(1.0) - OVERSHOOT && s2 < next) {
+                return Err(EvalError::Order);
+            }
+        }
         self.bps.clone_from(&bps);
         if var {
             self.zs.clear();
@@ -544,7 +575,7 @@ impl<P: Profile> Chain<P> {
                 return Err(EvalError::NonFinite);
             }
             let next = if var {
-                self.carry(k, (a, b), &cur, &shot, g, first)
+                self.carry(k, (a, b), &cur, &shot, g, first, u)
             } else {
                 DMatrix::zeros(4, 0)
             };
@@ -556,6 +587,24 @@ impl<P: Profile> Chain<P> {
             let rows = (jac.as_mut(), rl.as_mut());
             row = self.conditions_of(k, u, (&pose, &dpose), &cur, (&mut r, rows), row);
             a = b;
+            if Some(k) == lain && k + 1 < bps.len() {
+                // the stretch with contacts beyond: the curvature match at its inner end, then
+                // the segment beyond starts at its outer end on the surface
+                let st = self.stretch_at(&pose, u).ok_or(EvalError::NonFinite)?;
+                let rows = (jac.as_mut(), rl.as_mut());
+                self.match_row(&st, (b, k), (&pose, &dpose), &cur, (&mut r, rows), row);
+                row += 1;
+                let (z2, dz2) = st.state(&self.sh.profile, s2);
+                let mut d = DMatrix::zeros(4, if var { nc } else { 0 });
+                if var {
+                    for i in 0..4 {
+                        d[(i, n - 1)] = dz2[i];
+                    }
+                    d[(0, n)] = -dpose.xf;
+                }
+                cur = Sens { z: z2, d };
+                a = s2;
+            }
         }
         // the free end of the loaded part: m(s_L) = 0 (with no contact: m(1) = 0 on the rest shape)
         if bps.is_empty() {
@@ -580,23 +629,20 @@ impl<P: Profile> Chain<P> {
             }
             l[0] = cur.d[(3, n)];
         }
-        // a lying stretch beyond the last contact: the rod arrives with the surface's curvature,
-        // m(s1) = (dir·κ_s(x1) − κ0(s1))/b(s1)
-        if let (Some(st), Some(&s1)) = (self.stretch_at(&pose), bps.last()) {
-            let p = &self.sh.profile;
-            let x1 = cur.z[0] + pose.xf;
-            let (b, k0) = (p.b(s1), p.k0(s1));
-            let (db, dk0) = p.slopes(s1);
-            let k = st.kappa(x1);
-            r[0] -= (k - k0) / b;
-            if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
-                let dx = st.dkappa(x1) / b;
-                for col in 0..n {
-                    j[(0, col)] -= dx * cur.d[(0, col)];
+        // a lying stretch beyond the last contact, the rest beyond it unloaded: the rod arrives
+        // with the surface's curvature instead of m(s1) = 0
+        if let (Some(k), Some(&s1)) = (lain, bps.last()) {
+            if k + 1 == bps.len() {
+                let st = self.stretch_at(&pose, u).ok_or(EvalError::NonFinite)?;
+                r[0] = 0.0;
+                if let Some(j) = jac.as_mut() {
+                    j.row_mut(0).fill(0.0);
                 }
-                j[(0, set.offset(set.contacts.len() - 1) + 2)] += dk0 / b + (k - k0) * db / (b * b);
-                // (the shape's amplitude moves with `flat` as the start grows the texture)
-                l[0] -= dx * (cur.d[(0, n)] + dpose.xf) - st.dkappa_damp(x1) / b * dpose.flat;
+                if let Some(l) = rl.as_mut() {
+                    l[0] = 0.0;
+                }
+                let rows = (jac.as_mut(), rl.as_mut());
+                self.match_row(&st, (s1, k), (&pose, &dpose), &cur, (&mut r, rows), 0);
             }
         }
         // a round tip carries the moment of its contact force about its centre: m(1) = r·T_loc
@@ -635,6 +681,7 @@ impl<P: Profile> Chain<P> {
     /// The sensitivities of the end state of segment `k` on `[a, b]` (the shot `shot` from the
     /// start `cur` under the force `g`; `first`: the foot's segment with its compliance folded
     /// into the first column) with respect to the unknowns and `λ`.
+    #[allow(clippy::too_many_arguments)]
     fn carry(
         &self,
         k: usize,
@@ -643,6 +690,7 @@ impl<P: Profile> Chain<P> {
         shot: &crate::shooter::SegShot,
         g: [f64; 2],
         first: bool,
+        u: &[f64],
     ) -> DMatrix<f64> {
         let set = &self.set;
         let nc = set.n() + 1;
@@ -708,7 +756,12 @@ impl<P: Profile> Chain<P> {
                 }
             }
             if let Some([lo, hi]) = end_a {
-                let col = set.offset(k - 1) + 2;
+                // (beyond a lying stretch the segment starts at its outer end, the last unknown)
+                let col = if set.lain() == Some(k - 1) {
+                    u.len() - 1
+                } else {
+                    set.offset(k - 1) + 2
+                };
                 let dz = diff(lo, hi);
                 for i in 0..4 {
                     d[(i, col)] += dz[i];
@@ -716,6 +769,36 @@ impl<P: Profile> Chain<P> {
             }
         }
         d
+    }
+
+    /// The lying stretch's curvature match at its inner end `s1` (contact `k`), with the rod's
+    /// state `cur` there: `m(s1) − (dir·κ_s(x1) − κ0(s1))/b(s1)`, written into row `row`.
+    fn match_row(
+        &self,
+        st: &Stretch<'_>,
+        (s1, k): (f64, usize),
+        (pose, dpose): (&Pose, &Pose),
+        cur: &Sens,
+        (r, (jac, rl)): (&mut DVector<f64>, Rows<'_>),
+        row: usize,
+    ) {
+        let n = self.set.n();
+        let p = &self.sh.profile;
+        let x1 = cur.z[0] + pose.xf;
+        let (b, k0) = (p.b(s1), p.k0(s1));
+        let (db, dk0) = p.slopes(s1);
+        let kap = st.kappa(x1);
+        r[row] = cur.z[3] - (kap - k0) / b;
+        if let (Some(j), Some(l)) = (jac, rl) {
+            let dx = st.dkappa(x1) / b;
+            for col in 0..n {
+                j[(row, col)] = cur.d[(3, col)] - dx * cur.d[(0, col)];
+            }
+            j[(row, self.set.offset(k) + 2)] += dk0 / b + (kap - k0) * db / (b * b);
+            // (the shape's amplitude moves with `flat` as the start grows the texture)
+            l[row] = cur.d[(3, n)] - dx * (cur.d[(0, n)] + dpose.xf)
+                + st.dkappa_damp(x1) / b * dpose.flat;
+        }
     }
 
     /// Contact `k`'s conditions at the end state `cur` of its segment, written into the
@@ -824,9 +907,12 @@ impl<P: Profile> Chain<P> {
         }
         let nseg = self.set.contacts.len().max(1);
         let mut total = 0.5 * self.sh.compliance * u[0] * u[0];
-        if let Some(st) = self.stretch_at(&self.family.pose(lam).0) {
+        if let (Some(st), Some(jl)) = (
+            self.stretch_at(&self.family.pose(lam).0, u),
+            self.set.lain(),
+        ) {
             // the lying stretch: b·m²/2 with the surface's curvature
-            let s1 = self.set.s_of(nseg - 1, u);
+            let s1 = self.set.s_of(jl, u);
             let p = &self.sh.profile;
             let w = (st.s2 - s1) / 8.0;
             for i in 0..8 {
@@ -949,10 +1035,10 @@ impl<P: Profile> Chain<P> {
                 .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
-    /// The lying stretch of the set at the pose `pose`, if the set lies.
-    pub fn stretch_at(&self, pose: &Pose) -> Option<Stretch<'_>> {
+    /// The lying stretch of the set at the pose `pose` and the unknowns `u`, if the set lies.
+    pub fn stretch_at(&self, pose: &Pose, u: &[f64]) -> Option<Stretch<'_>> {
         let ly = self.set.lying?;
-        let j = self.set.contacts.len().checked_sub(1)?;
+        let j = self.set.lain()?;
         let ct = &self.set.contacts[j];
         let (Geom::Curve { h }, Mode::Rolling(k)) = (&ct.geom, ct.mode) else {
             return None;
@@ -965,7 +1051,7 @@ impl<P: Profile> Chain<P> {
         } else {
             0.0
         };
-        Some(Stretch {
+        let st = Stretch {
             h,
             c: k + slide,
             dir: kpi.cos().round(),
@@ -975,6 +1061,16 @@ impl<P: Profile> Chain<P> {
             xf: pose.xf,
             s2: ly.s2,
             x2: ly.x2,
+        };
+        if ly.beyond == 0 {
+            return Some(st);
+        }
+        // (the outer end moves with the loaded rest beyond: its place from the unknowns)
+        let s2 = self.set.s2_of(u);
+        Some(Stretch {
+            s2,
+            x2: st.x_at(s2),
+            ..st
         })
     }
 
@@ -983,23 +1079,34 @@ impl<P: Profile> Chain<P> {
     /// not lie.
     pub fn end_push(&self, u: &[f64]) -> Option<[f64; 2]> {
         let st = self.stretch_now()?;
-        let j = self.set.contacts.len() - 1;
-        let ct = &self.set.contacts[j];
-        let o = self.set.offset(j);
+        let j = self.set.lain()?;
         let s1 = self.set.s_of(j, u);
-        let g = ct.force(u[o], u[o + 1]);
-        let z = self.state_at(s1);
-        let (sp, cp) = z[2].sin_cos();
+        // the forces on the loaded rod before the stretch and beyond it
+        let sum = |from: usize| {
+            (from..self.set.contacts.len()).fold([0.0; 2], |g, k| {
+                let o = self.set.offset(k);
+                let f = self.set.contacts[k].force(u[o], u[o + 1]);
+                [g[0] + f[0], g[1] + f[1]]
+            })
+        };
+        let (g1, g2) = (sum(j), sum(j + 1));
+        let mprime = |g: [f64; 2], phi: f64| {
+            let (sp, cp) = phi.sin_cos();
+            g[0] * sp - g[1] * cp
+        };
         let p = &self.sh.profile;
-        let inner = st.state(p, s1).1[3];
-        // (the rest beyond the outer end is unloaded: m' = 0 there)
-        let outer = st.state(p, st.s2).1[3];
-        Some([st.dir * (g[0] * sp - g[1] * cp - inner), st.dir * outer])
+        let (_, d1) = st.state(p, s1);
+        let (z2, d2) = st.state(p, st.s2);
+        let before = mprime(g1, self.state_at(s1)[2]);
+        Some([
+            st.dir * (before - d1[3]),
+            st.dir * (d2[3] - mprime(g2, z2[2])),
+        ])
     }
 
-    /// The lying stretch at the last evaluation's pose.
+    /// The lying stretch at the last evaluation's point.
     fn stretch_now(&self) -> Option<Stretch<'_>> {
-        self.stretch_at(&self.family.pose(self.shot.1).0)
+        self.stretch_at(&self.family.pose(self.shot.1).0, &self.shot.0)
     }
 
     /// The whole rod of the last evaluation as a [`Solution`] (the loaded segments' paths, then
@@ -1009,8 +1116,15 @@ impl<P: Profile> Chain<P> {
     pub fn path(&mut self, u: &[f64]) -> Solution {
         let nseg = self.bps.len().max(1);
         let s_end = self.bps.last().copied().unwrap_or(1.0);
+        // a lying stretch with contacts beyond: its samples between their segments
+        let (inner, jl) = match (self.stretch_now(), self.set.lain()) {
+            (Some(st), Some(jl)) if jl + 1 < self.bps.len() => {
+                (stretch_samples(&st, &self.sh.profile, self.bps[jl]), jl)
+            }
+            _ => (Vec::new(), usize::MAX),
+        };
         // the lying stretch's samples and the rest's start beyond it
-        let (lain, rest) = match self.stretch_now() {
+        let (lain, rest) = match self.stretch_now().filter(|_| jl == usize::MAX) {
             Some(st) => {
                 let (z2, _) = st.state(&self.sh.profile, st.s2);
                 (
@@ -1043,6 +1157,13 @@ impl<P: Profile> Chain<P> {
             mesh.extend_from_slice(ps);
             z.extend_from_slice(pz);
             dz.extend_from_slice(pdz);
+            if k == jl {
+                for (s, zs, dzs) in &inner {
+                    mesh.push(*s);
+                    z.extend_from_slice(zs);
+                    dz.extend_from_slice(dzs);
+                }
+            }
         }
         for (s, zs, dzs) in lain {
             mesh.push(s);
@@ -1087,8 +1208,8 @@ impl<P: Profile> Chain<P> {
     /// integration step from the node before `s` in its segment.
     pub fn state_at(&self, s: f64) -> [f64; 4] {
         let k = self.bps.partition_point(|&b| b < s);
-        match self.stretch_now() {
-            Some(st) if k == self.bps.len() && s <= st.s2 => st.state(&self.sh.profile, s).0,
+        match (self.stretch_now(), self.set.lain()) {
+            (Some(st), Some(jl)) if k == jl + 1 && s <= st.s2 => st.state(&self.sh.profile, s).0,
             _ => self.sh.state_at(k, s),
         }
     }
@@ -1568,14 +1689,16 @@ mod tests {
     use crate::profile::General;
     use crate::surface::{Height, SurfaceProfile};
 
-    /// The lying stretch's condition `m(s1) = (dir·κ_s(x1) − κ0(s1))/b(s1)` and its derivatives:
-    /// the Jacobian's row (by the chain rule over the shot's sensitivities and the moving end's
-    /// differences, with the surface's curvature slope by central differences) against central
-    /// differences of the residual, to 1e-6 of the row's size, at a state near the drag of
-    /// tests/stretch.rs (a pre-curved rod: `κ0` and `b` both vary along it), in the drag's family
-    /// and in the start's, which grows the texture's amplitude with `λ`.
+    /// The lying stretch's conditions and their derivatives: the Jacobian (by the chain rule
+    /// over the shots' sensitivities and the moving ends' differences, with the surface's
+    /// curvature slope by central differences) against central differences of the residual, to
+    /// 1e-6 of each row's size (and 1e-9, the differences' rounding), at states near the drag of tests/stretch.rs (a pre-curved rod:
+    /// `κ0` and `b` both vary along it), in the drag's family (and the first in the start's,
+    /// which grows the texture's amplitude with `λ`): the stretch with the rod beyond it unloaded (its
+    /// curvature match is the set's last condition) and with the tip stuck beyond it (the match
+    /// is a condition of its own, the outer end an unknown, the segment beyond starting there).
     #[test]
-    fn lying_residual_jacobian_matches_differences() {
+    fn lying_jacobian_matches_differences() {
         let h = Arc::new(
             Height::new(
                 &SurfaceProfile::Sine {
@@ -1596,42 +1719,71 @@ mod tests {
         );
         let (x2, s2) = (5.0 / 12.0, 0.9658524852769022);
         let th = h.angle(x2).0;
-        let ct = Contact::on_curve(false, &h, x2, Mode::Rolling(h.sigma(x2).0 - s2), th);
-        let mut set = ContactSet::of(vec![ct]);
-        set.lying = Some(Lying { s2, x2 });
-        for (family, lam) in [(Family::Drag, 0.05), (Family::Grow { off0: 0.001 }, 0.7)] {
-            let sh = Shooter::new(profile.clone(), 0.0, 1e-10, 16);
-            let chain = Chain::new(sh, set.clone(), family);
-            check_lying_row(chain, lam);
+        let side = Contact::on_curve(false, &h, x2, Mode::Rolling(h.sigma(x2).0 - s2), th);
+        let tip = Contact::on_curve(true, &h, 0.45, Mode::Stuck(h.sigma(0.45).0), 0.0);
+        let unloaded = ContactSet {
+            lying: Some(Lying { s2, x2, beyond: 0 }),
+            ..ContactSet::of(vec![side.clone()])
+        };
+        let loaded = ContactSet {
+            lying: Some(Lying { s2, x2, beyond: 1 }),
+            ..ContactSet::of(vec![side, tip])
+        };
+        // (no stretch lies down as the start grows the texture, where the surface's arc length
+        // is the full profile's and its shape scaled: the loaded stretch's outer end is checked
+        // in the drag's family only)
+        let grow = (Family::Grow { off0: 0.001 }, 0.7);
+        type Case<'a> = (&'a ContactSet, &'a [f64], &'a [(Family, f64)]);
+        let cases: [Case; 2] = [
+            (
+                &unloaded,
+                &[-0.026, 1.43, 0.59, 0.93],
+                &[(Family::Drag, 0.05), grow],
+            ),
+            (
+                &loaded,
+                &[-0.026, 1.43, 0.59, 0.93, 0.05, 0.01, 0.955],
+                &[(Family::Drag, 0.05)],
+            ),
+        ];
+        for (set, u, families) in cases {
+            for &(family, lam) in families {
+                let sh = Shooter::new(profile.clone(), 0.0, 1e-10, 16);
+                check_jacobian(Chain::new(sh, set.clone(), family), u, lam);
+            }
         }
     }
 
-    fn check_lying_row(mut chain: Chain<General>, lam: f64) {
-        let u = [-0.026, 1.43, 0.59, 0.93];
-        let e = chain.eval(&u, lam, true).unwrap();
+    fn check_jacobian(mut chain: Chain<General>, u: &[f64], lam: f64) {
+        let e = chain.eval(u, lam, true).unwrap();
         let (jac, rl) = (e.jac.unwrap(), e.r_lam.unwrap());
-        let r0 = |chain: &mut Chain<General>, u: &[f64], lam: f64| {
-            chain.eval(u, lam, false).unwrap().r[0]
-        };
-        let scale = jac.row(0).amax().max(rl[0].abs());
-        for col in 0..=u.len() {
+        let n = u.len();
+        for col in 0..=n {
             let dl = 1e-6;
-            let (mut up, mut dn) = (u, u);
+            let (mut up, mut dn) = (u.to_vec(), u.to_vec());
             let (mut lp, mut ld) = (lam, lam);
-            if col < u.len() {
+            if col < n {
                 up[col] += dl;
                 dn[col] -= dl;
             } else {
                 lp += dl;
                 ld -= dl;
             }
-            let fd = (r0(&mut chain, &up, lp) - r0(&mut chain, &dn, ld)) / (2.0 * dl);
-            let an = if col < u.len() { jac[(0, col)] } else { rl[0] };
-            assert!(
-                (fd - an).abs() < 1e-6 * scale,
-                "{:?}, column {col}: {an} against differences {fd}",
-                chain.family
-            );
+            let rp = chain.eval(&up, lp, false).unwrap().r;
+            let rd = chain.eval(&dn, ld, false).unwrap().r;
+            for row in 0..n {
+                let scale = jac.row(row).amax().max(rl[row].abs());
+                let fd = (rp[row] - rd[row]) / (2.0 * dl);
+                let an = if col < n { jac[(row, col)] } else { rl[row] };
+                // (plus the differences' rounding, ~1e-16/1e-6 of the row's values ~1)
+                assert!(
+                    (fd - an).abs() < 1e-6 * scale + 1e-9,
+                    "{:?}, {}: row {row}, column {col}: {an} against differences {fd} (row {})",
+                    chain.family,
+                    chain.set.label(),
+                    jac.row(row)
+                );
+            }
         }
     }
 }

@@ -105,7 +105,6 @@ impl fmt::Display for ContactState {
 /// The contacts of `set` at a point whose watch found the forces `forces`, their holds from
 /// their modes.
 pub(crate) fn states(set: &ContactSet, forces: &[ContactForce]) -> Vec<ContactState> {
-    let last = set.contacts.len().wrapping_sub(1);
     set.contacts
         .iter()
         .zip(forces)
@@ -125,7 +124,7 @@ pub(crate) fn states(set: &ContactSet, forces: &[ContactForce]) -> Vec<ContactSt
                 tangential: c.tangential,
                 hold,
                 mu,
-                lies_to: set.lying.filter(|_| j == last).map(|l| l.s2),
+                lies_to: (set.lain() == Some(j)).then_some(c.lies_to),
             }
         })
         .collect()

@@ -40,10 +40,10 @@ pub(crate) enum Crossing {
     /// The contact `j`, sliding with kinetic friction, comes to rest: its slip rate falls to zero
     /// (it would reverse against its friction).
     Halt(usize),
-    /// The lying stretch of the last contact `j` (its outer end at arc length `s2`) shrinks to
-    /// its outer end: the rod rises off the surface to a point contact there.
-    Unlie(usize, f64),
-    /// An end of the lying stretch of the last contact `j` would pull on the surface (the smaller
+    /// The lying stretch whose inner end is contact `j` shrinks to its outer end: the rod rises
+    /// off the surface to a point contact there.
+    Unlie(usize),
+    /// An end of the lying stretch whose inner end is contact `j` would pull on the surface (the smaller
     /// of its ends' point forces falls to zero).
     EndLift(usize),
     /// `|μ|` stops rising (its first maximum).
@@ -82,8 +82,8 @@ impl Crossing {
                 "-dir v of contact {} (its slip would reverse against its friction)",
                 j + 1
             ),
-            Crossing::Unlie(j, s2) => format!(
-                "s - {s2} of contact {} (the lying stretch would shrink past its outer end)",
+            Crossing::Unlie(j) => format!(
+                "s - s2 of contact {} (the lying stretch would shrink past its outer end)",
                 j + 1
             ),
             Crossing::EndLift(j) => format!(
@@ -110,9 +110,9 @@ impl Crossing {
             {
                 v.push(Crossing::Slip(j));
             }
-            if let (Some(ly), true) = (set.lying, j + 1 == set.contacts.len()) {
+            if set.lain() == Some(j) {
                 // the inner end of a lying stretch (module `chain`, `Lying`)
-                v.push(Crossing::Unlie(j, ly.s2));
+                v.push(Crossing::Unlie(j));
                 v.push(Crossing::EndLift(j));
                 continue;
             }
@@ -160,7 +160,7 @@ impl Crossing {
             Crossing::Touchdown => w.clear,
             Crossing::TipTangent => -w.tip_approach,
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
-            Crossing::Unlie(j, s2) => w.contacts[j].s - s2,
+            Crossing::Unlie(j) => w.contacts[j].s - w.contacts[j].lies_to,
             Crossing::EndLift(j) => {
                 let [p1, p2] = w.contacts[j].end_push;
                 -p1.min(p2)
@@ -194,7 +194,7 @@ impl Crossing {
                 Some(mu_k * u[o] - dir * u[o + 1])
             }
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => Some(set.s_of(j, u) - 1.0),
-            Crossing::Unlie(j, s2) => Some(set.s_of(j, u) - s2),
+            Crossing::Unlie(j) => Some(set.s_of(j, u) - set.s2_of(u)),
             _ => None,
         }
     }
@@ -522,11 +522,13 @@ fn curve_transition(
     };
     match cross {
         Crossing::Touchdown
-            if set.lying.is_some() && pe.w.clear_s > set.s_of(set.contacts.len() - 1, &pe.u) =>
+            if set
+                .lain()
+                .is_some_and(|j| pe.w.clear_s > set.s_of(j, &pe.u)) =>
         {
             Next::Limit(format!(
-                "the rod's unloaded rest beyond the stretch lying on the surface touches down at \
-                 s = {:.6}: a lying stretch with a loaded rod beyond it is not in the model",
+                "the rod beyond the stretch lying on the surface touches down at s = {:.6}: a \
+                 new contact beyond a lying stretch is not followed",
                 pe.w.clear_s
             ))
         }
@@ -671,8 +673,11 @@ fn transition_at(
         let (sb, cb) = beta.sin_cos();
         cb * (z[0] + xf - p0[0]) + sb * (z[1] - p0[1])
     };
+    if let Some(stop) = lain_kept(set, cross, pe) {
+        return stop;
+    }
     match cross {
-            Crossing::Slip(j) if set.lying.is_some() && j + 1 == set.contacts.len() => {
+            Crossing::Slip(j) if set.lain() == Some(j) => {
                 let c = pe.w.contacts[j];
                 Next::Limit(format!(
                     "the stretch lying on the surface from s = {:.6} (x = {:.6}) would slip: its \
@@ -706,13 +711,18 @@ fn transition_at(
             Crossing::Slip(_) => Next::Stop(Event::Slip),
             Crossing::Lie(j) if matches!(set.contacts[j].geom, Geom::Curve { .. }) => {
                 lie_down(env, set, j, pe).unwrap_or_else(|| {
-                    Next::Limit(curve_lie(set, j, pe, &lie_kept_out(env, set, j, pe)))
+                    Next::Limit(curve_lie(set, j, pe, &lie_kept_out(env, set, j)))
                 })
             }
-            Crossing::Unlie(..) => {
+            Crossing::Unlie(_) => {
                 let mut ns = set.clone();
                 ns.lying = None;
-                Next::Switch(Event::PeelUp, ns, u.clone())
+                let mut nu = u.clone();
+                if set.n() > ns.n() {
+                    // (the outer end's place, the last unknown with contacts beyond)
+                    nu.pop();
+                }
+                Next::Switch(Event::PeelUp, ns, nu)
             }
             Crossing::EndLift(j) => {
                 let c = &pe.w.contacts[j];
@@ -720,14 +730,14 @@ fn transition_at(
                 let (end, s) = if p1 <= p2 {
                     ("inner", c.s)
                 } else {
-                    ("outer", set.lying.map_or(f64::NAN, |l| l.s2))
+                    ("outer", c.lies_to)
                 };
                 Next::Limit(format!(
                     "the stretch lying on the surface from s = {:.6} to {:.6} would pull on it \
                      at its {end} end, s = {s:.6} (the point forces there: inner {p1:.3e}, outer \
                      {p2:.3e}): a stretch whose end lets go while it holds is not in the model",
                     c.s,
-                    set.lying.map_or(f64::NAN, |l| l.s2),
+                    c.lies_to,
                 ))
             }
             Crossing::Lie(j) => Next::Limit(format!(
@@ -878,39 +888,53 @@ pub(crate) fn curve_lie(set: &ContactSet, j: usize, pe: &Pt, why: &str) -> Strin
     )
 }
 
-/// What keeps the side contact `j` of `set` that begins to lie along the surface at `pe` out of
+/// The stop where an event would change the contacts at or beyond a lying stretch (the stretch
+/// itself letting go beside other contacts, a contact beyond it lifting, lying down or peeling
+/// back): not followed. `None` for every other event.
+fn lain_kept(set: &ContactSet, cross: Crossing, pe: &Pt) -> Option<Next> {
+    let jl = set.lain()?;
+    let beyond = set.contacts.len() - 1 - jl;
+    let what = match cross {
+        Crossing::Lift(k) if k == jl && set.contacts.len() > 1 => "the stretch lets go",
+        Crossing::Lift(k) if k > jl => "a contact beyond it lifts off",
+        Crossing::TipTangent if beyond > 0 => "the tip beyond it lies down",
+        Crossing::PeelBack(k) if k > jl => "a side beyond it peels back to the tip",
+        _ => return None,
+    };
+    Some(Next::Limit(format!(
+        "with a stretch lying on the surface from s = {:.6} to {:.6}, {what}: a change of the \
+         contacts at or beyond a lying stretch is not followed",
+        pe.w.contacts[jl].s, pe.w.contacts[jl].lies_to
+    )))
+}
+
+/// What keeps the side contact `j` of `set` that begins to lie along the surface out of
 /// the lying stretch the model has ([`lie_down`]).
-pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> String {
-    if j + 1 < set.contacts.len() {
-        format!(
-            "a lying stretch with a loaded rod beyond it (the contact at s = {:.6}) is not in the \
-             model",
-            pe.w.contacts[j + 1].s
-        )
+pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> String {
+    if set.lying.is_some() {
+        "a second lying stretch is not in the model".into()
     } else if env.ground.grow {
         "a stretch that lies down as the start grows the texture is not followed".into()
     } else if !set.contacts[j].mode.no_slip() {
         "a stretch that slides along the surface is not in the model".into()
     } else if env.ground.slide.is_some_and(|sl| sl.driver == j) {
-        "a stretch that drives a slip (it would slide along the surface) is not in the model"
-            .into()
+        "a stretch that drives a slip (it would slide along the surface) is not in the model".into()
     } else {
         "a stretch lying on the surface from a contact state's first point is not followed".into()
     }
 }
 
-/// The set after the last contact, a side on a curved surface that holds without slip, begins to
-/// lie along it (module `chain`, `Lying`): a stretch from there, of no length yet, whose outer
-/// end stays where the contact is now. The unknowns carry over: where the side's curvature
-/// reached the surface's, `m = 0` there (the unloaded rest beyond) is the stretch's curvature
-/// match. `None` (the stop stands) for a contact with another beyond it, one that slides or
-/// drives a slip in progress (its outer end would move with the slide), or one that lies down as
-/// the start grows the texture.
+/// The set after the side contact `j`, on a curved surface and holding without slip, begins to
+/// lie along it (module `chain`, `Lying`): a stretch from there, of no length yet. The unknowns
+/// carry over: where the side's curvature reached the surface's, its moment there is the
+/// stretch's curvature match (with the rest beyond unloaded, `m = 0` there; with contacts beyond,
+/// the outer end is a new unknown, at the side's place). `None` (the stop stands) for a second
+/// stretch, a contact that slides or drives a slip in progress (its outer end would move with
+/// the slide), or one that lies down as the start grows the texture.
 fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Option<Next> {
     let ct = &set.contacts[j];
-    let last = j + 1 == set.contacts.len();
     let driver = env.ground.slide.is_some_and(|sl| sl.driver == j);
-    if !last || ct.tip || set.lying.is_some() || driver || env.ground.grow {
+    if ct.tip || set.lying.is_some() || driver || env.ground.grow {
         return None;
     }
     let (Geom::Curve { .. }, Mode::Rolling(_)) = (&ct.geom, ct.mode) else {
@@ -918,8 +942,18 @@ fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Option<Next> {
     };
     let c = &pe.w.contacts[j];
     let mut ns = set.clone();
-    ns.lying = Some(crate::chain::Lying { s2: c.s, x2: c.x });
-    Some(Next::Switch(Event::LieDown, ns, pe.u.clone()))
+    let beyond = set.contacts.len() - 1 - j;
+    ns.lying = Some(crate::chain::Lying {
+        s2: c.s,
+        x2: c.x,
+        beyond,
+    });
+    let mut nu = pe.u.clone();
+    if beyond > 0 {
+        // (its outer end, where the loaded rod beyond it leaves the surface, is an unknown)
+        nu.push(c.s);
+    }
+    Some(Next::Switch(Event::LieDown, ns, nu))
 }
 
 /// Why a side lying on the surface cannot peel back to a round tip: its contact point reached

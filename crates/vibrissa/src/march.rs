@@ -687,7 +687,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 // a side that lies along the surface from the state's first point (the tip
                 // lay down where the surface curves more than the rod's end, issue 31): the
                 // stop is the lie's, with its reason
-                let why = crate::events::lie_kept_out(env, set, j, q);
+                let why = crate::events::lie_kept_out(env, set, j);
                 let message = crate::events::curve_lie(set, j, q, &why);
                 return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));
             }

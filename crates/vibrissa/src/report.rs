@@ -199,7 +199,7 @@ pub struct ContactLabel(&'static str);
 
 impl ContactLabel {
     /// The states the model has names for; longer sets are `multiple`.
-    const NAMES: [&'static str; 16] = [
+    const NAMES: [&'static str; 18] = [
         "none",
         "tip",
         "side",
@@ -215,6 +215,8 @@ impl ContactLabel {
         "side+stretch",
         "point+stretch",
         "side+side+stretch",
+        "stretch+tip",
+        "side+stretch+tip",
         "multiple",
     ];
     pub(crate) fn of(set: &crate::chain::ContactSet) -> ContactLabel {
@@ -268,8 +270,8 @@ pub enum Event {
     /// A contact sliding with kinetic friction comes to rest (its slip rate reached zero) and
     /// holds again. The march goes on.
     Halt,
-    /// A side contact on a curved surface, the last one, begins to lie along it: a stretch of
-    /// the rod lies on the surface from there (docs/model.md, "A stretch lying on the surface").
+    /// A side contact on a curved surface that holds without slip begins to lie along it: a
+    /// stretch of the rod lies on the surface from there (docs/model.md, "A stretch lying on the surface").
     /// The march goes on.
     LieDown,
     /// The lying stretch shrinks back to a point contact at its outer end. The march goes on.

@@ -65,6 +65,8 @@ pub(crate) struct ContactForce {
     /// (the jump of the internal force's normal part: `m'` on the loaded rod, on the stretch,
     /// and 0 on the unloaded rest beyond); each pushes while positive. NaN elsewhere.
     pub end_push: [f64; 2],
+    /// The inner end of a lying stretch: the arc length of its outer end (NaN elsewhere).
+    pub lies_to: f64,
 }
 
 /// A surface contact's slip along the branch (module `events`' halt, `record`'s friction work).
@@ -184,7 +186,7 @@ pub(crate) fn lies_inside(set: &ContactSet, j: usize) -> bool {
 
 /// Whether contact `j` is the inner end of the set's lying stretch (module `chain`, `Lying`).
 fn lain_end(set: &ContactSet, j: usize) -> bool {
-    set.lying.is_some() && j + 1 == set.contacts.len()
+    set.lain() == Some(j)
 }
 
 /// [`ContactForce::curv`] of contact `j` of `set` at `s` (the rod's state there `zs`, if known;
@@ -343,6 +345,11 @@ pub(crate) fn watch(
             slide: SlideRate::UNKNOWN,
             dxc: f64::NAN,
             end_push: [f64::NAN; 2],
+            lies_to: if lain_end(set, j) {
+                set.s2_of(u)
+            } else {
+                f64::NAN
+            },
             curv: side_curv(set, j, (s, zs), (xf, amp), &mut *exact, kappa),
         });
     }
@@ -559,13 +566,12 @@ fn curve_clearance(
 ) -> (f64, f64, f64) {
     let hh = |x: f64| h.jet_scaled(x, amp).0;
     let mut ss: Vec<f64> = (0..set.contacts.len()).map(|j| set.s_of(j, u)).collect();
-    // a lying stretch: on the surface from the last contact out to its outer end
+    // a lying stretch: on the surface from its contact out to its outer end
     let lain = set
-        .lying
-        .zip(ss.last().copied())
-        .map_or((f64::NAN, f64::NAN), |(ly, s1)| (s1, ly.s2));
-    if lain.1.is_finite() {
-        ss.push(lain.1);
+        .lain()
+        .map_or((f64::NAN, f64::NAN), |j| (ss[j], set.s2_of(u)));
+    if let Some(j) = set.lain() {
+        ss.insert(j + 1, lain.1);
     }
     // (a round tip's centre on the surface offset by its radius: its gap to that offset curve)
     let r = set.tip_radius;
