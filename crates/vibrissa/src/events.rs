@@ -920,7 +920,7 @@ pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> String {
     } else if env.ground.slide.is_some_and(|sl| sl.driver == j) {
         "a stretch that drives a slip (it would slide along the surface) is not in the model".into()
     } else {
-        "a stretch lying on the surface from a contact state's first point is not followed".into()
+        "a stretch from a side that does not roll is not in the model".into()
     }
 }
 
@@ -932,14 +932,9 @@ pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> String {
 /// stretch, a contact that slides or drives a slip in progress (its outer end would move with
 /// the slide), or one that lies down as the start grows the texture.
 fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Option<Next> {
-    let ct = &set.contacts[j];
-    let driver = env.ground.slide.is_some_and(|sl| sl.driver == j);
-    if ct.tip || set.lying.is_some() || driver || env.ground.grow {
+    if !may_lie(env, set, j) {
         return None;
     }
-    let (Geom::Curve { .. }, Mode::Rolling(_)) = (&ct.geom, ct.mode) else {
-        return None;
-    };
     let c = &pe.w.contacts[j];
     let mut ns = set.clone();
     let beyond = set.contacts.len() - 1 - j;
@@ -954,6 +949,16 @@ fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Option<Next> {
         nu.push(c.s);
     }
     Some(Next::Switch(Event::LieDown, ns, nu))
+}
+
+/// Whether the side contact `j` of `set` may lie down along the surface ([`lie_down`]): on a
+/// curved surface, holding without slip, not a slip's driver, no stretch lying yet, not at the
+/// start.
+pub(crate) fn may_lie(env: &Env, set: &ContactSet, j: usize) -> bool {
+    let ct = &set.contacts[j];
+    let driver = env.ground.slide.is_some_and(|sl| sl.driver == j);
+    !(ct.tip || set.lying.is_some() || driver || env.ground.grow)
+        && matches!((&ct.geom, ct.mode), (Geom::Curve { .. }, Mode::Rolling(_)))
 }
 
 /// Why a side lying on the surface cannot peel back to a round tip: its contact point reached

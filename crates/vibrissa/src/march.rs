@@ -665,6 +665,15 @@ impl<P: Profile> Run<'_, '_, P> {
             w.pending.clear();
             return Some(Pending::AtStart(c));
         }
+        // a side that lies along the surface from the state's first point (the tip lay down
+        // where the surface curves more than the rod's end): it lies down there, where the model
+        // has the stretch
+        if let Crossing::Lie(j) = c {
+            if w.hist.len() == 1 && crate::events::may_lie(env, self.stepper.set(), j) {
+                w.pending.clear();
+                return Some(Pending::AtStart(c));
+            }
+        }
         self.range.close(RangeEnd::Event);
         if env.ground.slide.is_some() {
             // in a slip (the foot held) the impasse is friction's: the slip cannot go on
