@@ -1692,11 +1692,12 @@ mod tests {
     /// The lying stretch's conditions and their derivatives: the Jacobian (by the chain rule
     /// over the shots' sensitivities and the moving ends' differences, with the surface's
     /// curvature slope by central differences) against central differences of the residual, to
-    /// 1e-6 of each row's size (and 1e-9, the differences' rounding), at states near the drag of tests/stretch.rs (a pre-curved rod:
-    /// `κ0` and `b` both vary along it), in the drag's family (and the first in the start's,
-    /// which grows the texture's amplitude with `λ`): the stretch with the rod beyond it unloaded (its
-    /// curvature match is the set's last condition) and with the tip stuck beyond it (the match
-    /// is a condition of its own, the outer end an unknown, the segment beyond starting there).
+    /// 1e-6 of each row's size (and 1e-9, the differences' rounding), at states near the drags
+    /// of tests/stretch.rs (a pre-curved rod: `κ0` and `b` both vary along it), in the drag's
+    /// family (the first case also in the start's, which grows the texture's amplitude with
+    /// `λ`): the stretch with the rod beyond it unloaded (its curvature match is the set's last
+    /// condition) and with the tip stuck beyond it (the match is a condition of its own, the
+    /// outer end an unknown, the segment beyond starting there).
     #[test]
     fn lying_jacobian_matches_differences() {
         let h = Arc::new(

@@ -43,8 +43,8 @@ pub(crate) enum Crossing {
     /// The lying stretch whose inner end is contact `j` shrinks to its outer end: the rod rises
     /// off the surface to a point contact there.
     Unlie(usize),
-    /// An end of the lying stretch whose inner end is contact `j` would pull on the surface (the smaller
-    /// of its ends' point forces falls to zero).
+    /// An end of the lying stretch whose inner end is contact `j` would pull on the surface (the
+    /// smaller of its ends' point forces falls to zero).
     EndLift(usize),
     /// `|μ|` stops rising (its first maximum).
     MuMax,
@@ -681,8 +681,8 @@ fn transition_at(
                 let c = pe.w.contacts[j];
                 Next::Limit(format!(
                     "the stretch lying on the surface from s = {:.6} (x = {:.6}) would slip: its \
-                     resultant needs |T|/N = {:.6}, more than mu_s = {}; a stretch sliding along \
-                     the surface is not in the model",
+                     resultant reaches |T|/N = {:.6}, mu_s = {} at its inner end; a stretch \
+                     sliding along the surface is not in the model",
                     c.s,
                     c.x,
                     (c.tangential / c.normal).abs(),
@@ -869,8 +869,8 @@ fn kept_sliding(ct: &Contact, held: Mode) -> Mode {
 /// last one and the rod's rest beyond it straight, the place is an inflection of the surface, its
 /// steepest point.
 ///
-/// The model has the stretch that forms at the last contact where the rod beyond is unloaded and
-/// the side holds without slip ([`lie_down`]); `why` says what keeps this one out.
+/// The model has the stretch that forms where such a side holds without slip ([`lie_down`]);
+/// `why` says what keeps this one out.
 pub(crate) fn curve_lie(set: &ContactSet, j: usize, pe: &Pt, why: &str) -> String {
     let c = &pe.w.contacts[j];
     let last = j + 1 == set.contacts.len();
