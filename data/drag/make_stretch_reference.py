@@ -271,40 +271,33 @@ def run_b(rtol):
     return rows
 
 
-def main_b():
-    rows = run_b(1e-13)
-    check = run_b(1e-12)
-    cols = ["kind", "d", "s1", "s2", "n_stretch", "t_stretch", "n_tip", "t_tip", "fx", "fy",
-            "m_base"]
-    worst = max(abs(a[c] - b_[c]) for a, b_ in zip(rows, check) for c in cols[1:])
-    print(f"tip beyond: largest change of any value from rtol 1e-13 to 1e-12: {worst:.2e}")
-    for r in rows:
-        print(f"d {r['d']}: s1 {r['s1']:.9f} s2 {r['s2']:.12f} tip N {r['n_tip']:.10f} "
-              f"T {r['t_tip']:.10f}")
-    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stretch_tip_reference.csv")
+def write(name, cols, rows, check, compared):
+    """Writes `rows` (`kind`, then `cols`) to `name` beside this script; prints the largest
+    change of the `compared` columns against `check` (the same at rtol 1e-12)."""
+    worst = max(abs(a[c] - b_[c]) for a, b_ in zip(rows, check) for c in compared)
+    print(f"{name}: largest change of any value from rtol 1e-13 to 1e-12: {worst:.2e}")
+    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
     with open(out, "w", newline="") as f:
         w = csv.writer(f, lineterminator="\n")
-        w.writerow(cols)
+        w.writerow(["kind"] + cols)
         for r in rows:
-            w.writerow([r["kind"]] + [repr(float(r[c])) for c in cols[1:]])
+            w.writerow([r["kind"]] + [repr(float(r[c])) for c in cols])
 
 
 def main():
-    main_b()
-    rows = run(1e-13)
-    check = run(1e-12)
-    cols = ["kind", "d", "s1", "x1", "normal", "tangential", "fx", "fy", "m_base", "p1", "p2", "min_gap"]
-    worst = max(abs(a[c] - b_[c]) for a, b_ in zip(rows, check) for c in cols[1:9])
-    print(f"largest change of any value from rtol 1e-13 to 1e-12: {worst:.2e}")
+    cols = ["d", "s1", "s2", "n_stretch", "t_stretch", "n_tip", "t_tip", "fx", "fy", "m_base"]
+    rows = run_b(1e-13)
+    write("stretch_tip_reference.csv", cols, rows, run_b(1e-12), cols)
     for r in rows:
-        print(f"{r['kind']} d {r['d']}: s1 {r['s1']:.9f}, |T|/N {abs(r['tangential'] / r['normal']):.6f}, "
+        print(f"d {r['d']}: s1 {r['s1']:.9f} s2 {r['s2']:.12f} tip N {r['n_tip']:.10f} "
+              f"T {r['t_tip']:.10f}")
+    cols = ["d", "s1", "x1", "normal", "tangential", "fx", "fy", "m_base", "p1", "p2", "min_gap"]
+    rows = run(1e-13)
+    write("stretch_reference.csv", cols, rows, run(1e-12), cols[:8])
+    for r in rows:
+        print(f"{r['kind']} d {r['d']}: s1 {r['s1']:.9f}, "
+              f"|T|/N {abs(r['tangential'] / r['normal']):.6f}, "
               f"P1 {r['p1']:.4e}, P2 {r['p2']:.4e}, min gap {r['min_gap']:.2e}")
-    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stretch_reference.csv")
-    with open(out, "w", newline="") as f:
-        w = csv.writer(f, lineterminator="\n")
-        w.writerow(cols)
-        for r in rows:
-            w.writerow([r["kind"]] + [repr(float(r[c])) for c in cols[1:]])
 
 
 if __name__ == "__main__":

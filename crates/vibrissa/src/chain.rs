@@ -501,6 +501,14 @@ impl<P: Profile> Chain<P> {
             out.push(s);
             prev = s;
         }
+        // a lying stretch with contacts beyond: its outer end before them (and past its inner
+        // end, but for the solves beyond its peel-up that bracket it)
+        if let Some(j) = self.set.lain().filter(|&j| j + 1 < out.len()) {
+            let s2 = self.set.s2_of(u);
+            if !(s2 > out[j].min(1.0) - OVERSHOOT && s2 < out[j + 1]) {
+                return Err(EvalError::Order);
+            }
+        }
         Ok(out)
     }
 
@@ -513,16 +521,7 @@ impl<P: Profile> Chain<P> {
         // (a shot that fails part way leaves paths of no state)
         self.shot.1 = f64::NAN;
         let bps = self.breakpoints(u)?;
-        // a lying stretch with contacts beyond: its outer end before them (and past its inner
-        // end, but for the solves beyond its peel-up that bracket it)
         let lain = set.lain();
-        let s2 = set.s2_of(u);
-        if let (Some(j), true) = (lain, s2.is_finite()) {
-            let next = bps.get(j + 1).copied().unwrap_or(1.0 + OVERSHOOT);
-            if !(s2 > bps[j].min(1.0) - OVERSHOOT && s2 < next) {
-                return Err(EvalError::Order);
-            }
-        }
         self.bps.clone_from(&bps);
         if var {
             self.zs.clear();
@@ -588,22 +587,10 @@ impl<P: Profile> Chain<P> {
             row = self.conditions_of(k, u, (&pose, &dpose), &cur, (&mut r, rows), row);
             a = b;
             if Some(k) == lain && k + 1 < bps.len() {
-                // the stretch with contacts beyond: the curvature match at its inner end, then
-                // the segment beyond starts at its outer end on the surface
-                let st = self.stretch_at(&pose, u).ok_or(EvalError::NonFinite)?;
                 let rows = (jac.as_mut(), rl.as_mut());
-                self.match_row(&st, (b, k), (&pose, &dpose), &cur, (&mut r, rows), row);
+                cur = self.across(k, u, (&pose, &dpose), &cur, (&mut r, rows), row)?;
                 row += 1;
-                let (z2, dz2) = st.state(&self.sh.profile, s2);
-                let mut d = DMatrix::zeros(4, if var { nc } else { 0 });
-                if var {
-                    for i in 0..4 {
-                        d[(i, n - 1)] = dz2[i];
-                    }
-                    d[(0, n)] = -dpose.xf;
-                }
-                cur = Sens { z: z2, d };
-                a = s2;
+                a = set.s2_of(u);
             }
         }
         // the free end of the loaded part: m(s_L) = 0 (with no contact: m(1) = 0 on the rest shape)
@@ -622,27 +609,22 @@ impl<P: Profile> Chain<P> {
                 cur.z = shot.z;
             }
         }
-        r[0] = cur.z[3];
-        if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
-            for col in 0..n {
-                j[(0, col)] = cur.d[(3, col)];
-            }
-            l[0] = cur.d[(3, n)];
-        }
-        // a lying stretch beyond the last contact, the rest beyond it unloaded: the rod arrives
-        // with the surface's curvature instead of m(s1) = 0
-        if let (Some(k), Some(&s1)) = (lain, bps.last()) {
-            if k + 1 == bps.len() {
+        match (lain, bps.last()) {
+            // a lying stretch beyond the last contact, the rest beyond it unloaded: the rod
+            // arrives with the surface's curvature instead
+            (Some(k), Some(&s1)) if k + 1 == bps.len() => {
                 let st = self.stretch_at(&pose, u).ok_or(EvalError::NonFinite)?;
-                r[0] = 0.0;
-                if let Some(j) = jac.as_mut() {
-                    j.row_mut(0).fill(0.0);
-                }
-                if let Some(l) = rl.as_mut() {
-                    l[0] = 0.0;
-                }
                 let rows = (jac.as_mut(), rl.as_mut());
                 self.match_row(&st, (s1, k), (&pose, &dpose), &cur, (&mut r, rows), 0);
+            }
+            _ => {
+                r[0] = cur.z[3];
+                if let (Some(j), Some(l)) = (jac.as_mut(), rl.as_mut()) {
+                    for col in 0..n {
+                        j[(0, col)] = cur.d[(3, col)];
+                    }
+                    l[0] = cur.d[(3, n)];
+                }
             }
         }
         // a round tip carries the moment of its contact force about its centre: m(1) = r·T_loc
@@ -769,6 +751,33 @@ impl<P: Profile> Chain<P> {
             }
         }
         d
+    }
+
+    /// Across the lying stretch of contact `k` with contacts beyond it: its curvature match at its
+    /// inner end (the rod's state there `cur`) in row `row`, and the state where the segment
+    /// beyond starts, at its outer end on the surface (`s2`, the last unknown), with its
+    /// sensitivities.
+    fn across(
+        &self,
+        k: usize,
+        u: &[f64],
+        (pose, dpose): (&Pose, &Pose),
+        cur: &Sens,
+        rows: (&mut DVector<f64>, Rows<'_>),
+        row: usize,
+    ) -> Result<Sens, EvalError> {
+        let st = self.stretch_at(pose, u).ok_or(EvalError::NonFinite)?;
+        self.match_row(&st, (self.bps[k], k), (pose, dpose), cur, rows, row);
+        let (z2, dz2) = st.state(&self.sh.profile, st.s2);
+        let n = self.set.n();
+        let mut d = DMatrix::zeros(4, if cur.d.ncols() > 0 { n + 1 } else { 0 });
+        if d.ncols() > 0 {
+            for i in 0..4 {
+                d[(i, n - 1)] = dz2[i];
+            }
+            d[(0, n)] = -dpose.xf;
+        }
+        Ok(Sens { z: z2, d })
     }
 
     /// The lying stretch's curvature match at its inner end `s1` (contact `k`), with the rod's
@@ -1082,14 +1091,7 @@ impl<P: Profile> Chain<P> {
         let j = self.set.lain()?;
         let s1 = self.set.s_of(j, u);
         // the forces on the loaded rod before the stretch and beyond it
-        let sum = |from: usize| {
-            (from..self.set.contacts.len()).fold([0.0; 2], |g, k| {
-                let o = self.set.offset(k);
-                let f = self.set.contacts[k].force(u[o], u[o + 1]);
-                [g[0] + f[0], g[1] + f[1]]
-            })
-        };
-        let (g1, g2) = (sum(j), sum(j + 1));
+        let (g1, g2) = (self.force_from(u, j), self.force_from(u, j + 1));
         let mprime = |g: [f64; 2], phi: f64| {
             let (sp, cp) = phi.sin_cos();
             g[0] * sp - g[1] * cp
@@ -1116,32 +1118,24 @@ impl<P: Profile> Chain<P> {
     pub fn path(&mut self, u: &[f64]) -> Solution {
         let nseg = self.bps.len().max(1);
         let s_end = self.bps.last().copied().unwrap_or(1.0);
-        // a lying stretch with contacts beyond: its samples between their segments
-        let (inner, jl) = match (self.stretch_now(), self.set.lain()) {
-            (Some(st), Some(jl)) if jl + 1 < self.bps.len() => {
-                (stretch_samples(&st, &self.sh.profile, self.bps[jl]), jl)
+        // a lying stretch's samples, after its contact's segment; the unloaded rest's start
+        // beyond the last contact, or beyond a stretch there
+        let (jl, lain, rest) = match (self.stretch_now(), self.set.lain()) {
+            (Some(st), Some(jl)) => {
+                let lain = stretch_samples(&st, &self.sh.profile, self.bps[jl]);
+                let rest = (jl + 1 == self.bps.len())
+                    .then(|| (st.s2, st.state(&self.sh.profile, st.s2).0));
+                (jl, lain, rest)
             }
-            _ => (Vec::new(), usize::MAX),
+            _ => (usize::MAX, Vec::new(), None),
         };
-        // the lying stretch's samples and the rest's start beyond it
-        let (lain, rest) = match self.stretch_now().filter(|_| jl == usize::MAX) {
-            Some(st) => {
-                let (z2, _) = st.state(&self.sh.profile, st.s2);
-                (
-                    stretch_samples(&st, &self.sh.profile, s_end),
-                    Some((st.s2, z2)),
-                )
-            }
-            None if s_end < 1.0 => {
+        let rest = rest.or_else(|| {
+            (s_end < 1.0).then(|| {
                 let (_, pz, _) = self.sh.path(nseg - 1);
                 let last = pz.len() - 4;
-                (
-                    Vec::new(),
-                    Some((s_end, [pz[last], pz[last + 1], pz[last + 2], pz[last + 3]])),
-                )
-            }
-            None => (Vec::new(), None),
-        };
+                (s_end, [pz[last], pz[last + 1], pz[last + 2], pz[last + 3]])
+            })
+        });
         let rest = rest.filter(|r| r.0 < 1.0);
         if let Some((a, z0)) = rest {
             for _ in 0..32 {
@@ -1158,17 +1152,12 @@ impl<P: Profile> Chain<P> {
             z.extend_from_slice(pz);
             dz.extend_from_slice(pdz);
             if k == jl {
-                for (s, zs, dzs) in &inner {
+                for (s, zs, dzs) in &lain {
                     mesh.push(*s);
                     z.extend_from_slice(zs);
                     dz.extend_from_slice(dzs);
                 }
             }
-        }
-        for (s, zs, dzs) in lain {
-            mesh.push(s);
-            z.extend_from_slice(&zs);
-            dz.extend_from_slice(&dzs);
         }
         if rest.is_some() {
             let (ps, pz, pdz) = self.sh.path(nseg);
@@ -1194,8 +1183,14 @@ impl<P: Profile> Chain<P> {
 
     /// The total contact force at `u` (the force the rod's foot carries).
     pub fn total_force(&self, u: &[f64]) -> [f64; 2] {
+        self.force_from(u, 0)
+    }
+
+    /// The resultant of the contact forces at `u` from contact `j` on (the force the rod carries
+    /// before contact `j`).
+    pub fn force_from(&self, u: &[f64], j: usize) -> [f64; 2] {
         let mut g = [0.0; 2];
-        for (j, ct) in self.set.contacts.iter().enumerate() {
+        for (j, ct) in self.set.contacts.iter().enumerate().skip(j) {
             let o = self.set.offset(j);
             let f = ct.force(u[o], u[o + 1]);
             g[0] += f[0];

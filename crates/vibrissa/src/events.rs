@@ -625,12 +625,10 @@ pub(crate) fn transition(
     pe: &Pt,
     xf: f64,
 ) -> Next {
-    driver_anchor(
-        env,
-        set,
-        pe.lam,
-        transition_at(env, rules, set, cross, pe, xf),
-    )
+    // (a lying stretch ends some events first: module `chain`, `Lying`)
+    let next = stretch_transition(set, cross, pe)
+        .unwrap_or_else(|| transition_at(env, rules, set, cross, pe, xf));
+    driver_anchor(env, set, pe.lam, next)
 }
 
 /// `next` with the place of a slip's driver that changed its kind (a tip that lies down, a side
@@ -673,22 +671,7 @@ fn transition_at(
         let (sb, cb) = beta.sin_cos();
         cb * (z[0] + xf - p0[0]) + sb * (z[1] - p0[1])
     };
-    if let Some(stop) = lain_kept(set, cross, pe) {
-        return stop;
-    }
     match cross {
-            Crossing::Slip(j) if set.lain() == Some(j) => {
-                let c = pe.w.contacts[j];
-                Next::Limit(format!(
-                    "the stretch lying on the surface from s = {:.6} (x = {:.6}) would slip: its \
-                     resultant reaches |T|/N = {:.6}, mu_s = {} at its inner end; a stretch \
-                     sliding along the surface is not in the model",
-                    c.s,
-                    c.x,
-                    (c.tangential / c.normal).abs(),
-                    c.mu_s
-                ))
-            }
             Crossing::Slip(j) if rules.slide => {
                 let c = pe.w.contacts[j];
                 let mut ns = set.clone();
@@ -710,36 +693,10 @@ fn transition_at(
             }
             Crossing::Slip(_) => Next::Stop(Event::Slip),
             Crossing::Lie(j) if matches!(set.contacts[j].geom, Geom::Curve { .. }) => {
-                lie_down(env, set, j, pe).unwrap_or_else(|| {
-                    Next::Limit(curve_lie(set, j, pe, &lie_kept_out(env, set, j)))
-                })
+                lie_down(env, set, j, pe)
             }
-            Crossing::Unlie(_) => {
-                let mut ns = set.clone();
-                ns.lying = None;
-                let mut nu = u.clone();
-                if set.n() > ns.n() {
-                    // (the outer end's place, the last unknown with contacts beyond)
-                    nu.pop();
-                }
-                Next::Switch(Event::PeelUp, ns, nu)
-            }
-            Crossing::EndLift(j) => {
-                let c = &pe.w.contacts[j];
-                let [p1, p2] = c.end_push;
-                let (end, s) = if p1 <= p2 {
-                    ("inner", c.s)
-                } else {
-                    ("outer", c.lies_to)
-                };
-                Next::Limit(format!(
-                    "the stretch lying on the surface from s = {:.6} to {:.6} would pull on it \
-                     at its {end} end, s = {s:.6} (the point forces there: inner {p1:.3e}, outer \
-                     {p2:.3e}): a stretch whose end lets go while it holds is not in the model",
-                    c.s,
-                    c.lies_to,
-                ))
-            }
+            Crossing::Unlie(_) => peel_up(set, u),
+            Crossing::EndLift(j) => end_lift(&pe.w.contacts[j]),
             Crossing::Lie(j) => Next::Limit(format!(
                 "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
                 pe.w.contacts[j].s
@@ -888,13 +845,26 @@ pub(crate) fn curve_lie(set: &ContactSet, j: usize, pe: &Pt, why: &str) -> Strin
     )
 }
 
-/// The stop where an event would change the contacts at or beyond a lying stretch (the stretch
-/// itself letting go beside other contacts, a contact beyond it lifting, lying down or peeling
-/// back): not followed. `None` for every other event.
-fn lain_kept(set: &ContactSet, cross: Crossing, pe: &Pt) -> Option<Next> {
+/// What follows an event of a set with a lying stretch (module `chain`, `Lying`) that ends it: a
+/// stop where it would slip; a stop where the contacts at or beyond it would change (the stretch letting go beside other contacts, a
+/// contact beyond it lifting, lying down or peeling back): not followed. `None` for every other
+/// event, and without a stretch.
+fn stretch_transition(set: &ContactSet, cross: Crossing, pe: &Pt) -> Option<Next> {
     let jl = set.lain()?;
+    let c = &pe.w.contacts[jl];
     let beyond = set.contacts.len() - 1 - jl;
     let what = match cross {
+        Crossing::Slip(k) if k == jl => {
+            return Some(Next::Limit(format!(
+                "the stretch lying on the surface from s = {:.6} (x = {:.6}) would slip: its \
+                 resultant reaches |T|/N = {:.6}, mu_s = {} at its inner end; a stretch sliding \
+                 along the surface is not in the model",
+                c.s,
+                c.x,
+                (c.tangential / c.normal).abs(),
+                c.mu_s
+            )));
+        }
         Crossing::Lift(k) if k == jl && set.contacts.len() > 1 => "the stretch lets go",
         Crossing::Lift(k) if k > jl => "a contact beyond it lifts off",
         Crossing::TipTangent if beyond > 0 => "the tip beyond it lies down",
@@ -904,36 +874,67 @@ fn lain_kept(set: &ContactSet, cross: Crossing, pe: &Pt) -> Option<Next> {
     Some(Next::Limit(format!(
         "with a stretch lying on the surface from s = {:.6} to {:.6}, {what}: a change of the \
          contacts at or beyond a lying stretch is not followed",
-        pe.w.contacts[jl].s, pe.w.contacts[jl].lies_to
+        c.s, c.lies_to
     )))
 }
 
-/// What keeps the side contact `j` of `set` that begins to lie along the surface out of
-/// the lying stretch the model has ([`lie_down`]).
-pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> String {
-    if set.lying.is_some() {
-        "a second lying stretch is not in the model".into()
-    } else if env.ground.grow {
-        "a stretch that lies down as the start grows the texture is not followed".into()
-    } else if !set.contacts[j].mode.no_slip() {
-        "a stretch that slides along the surface is not in the model".into()
-    } else if env.ground.slide.is_some_and(|sl| sl.driver == j) {
-        "a stretch that drives a slip (it would slide along the surface) is not in the model".into()
-    } else {
-        "a stretch from a side that does not roll is not in the model".into()
+/// The set after the lying stretch of `set` shrinks back to its outer end (`u` its unknowns):
+/// the side contact there again.
+fn peel_up(set: &ContactSet, u: &[f64]) -> Next {
+    let mut ns = set.clone();
+    ns.lying = None;
+    let mut nu = u.to_vec();
+    if set.n() > ns.n() {
+        // (the outer end's place, the last unknown with contacts beyond)
+        nu.pop();
     }
+    Next::Switch(Event::PeelUp, ns, nu)
+}
+
+/// The stop where an end of the lying stretch whose inner end is the contact `c` would pull.
+fn end_lift(c: &crate::watch::ContactForce) -> Next {
+    let [p1, p2] = c.end_push;
+    let (end, s) = if p1 <= p2 {
+        ("inner", c.s)
+    } else {
+        ("outer", c.lies_to)
+    };
+    Next::Limit(format!(
+        "the stretch lying on the surface from s = {:.6} to {:.6} would pull on it at its {end} \
+         end, s = {s:.6} (the point forces there: inner {p1:.3e}, outer {p2:.3e}): a stretch \
+         whose end lets go while it holds is not in the model",
+        c.s, c.lies_to,
+    ))
+}
+
+/// What keeps the side contact `j` of `set`, on a curved surface, that begins to lie along it out
+/// of the lying stretch the model has ([`lie_down`]); `None` where it may lie down.
+pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> Option<&'static str> {
+    let ct = &set.contacts[j];
+    Some(if set.lying.is_some() {
+        "a second lying stretch is not in the model"
+    } else if env.ground.grow {
+        "a stretch that lies down as the start grows the texture is not followed"
+    } else if !ct.mode.no_slip() {
+        "a stretch that slides along the surface is not in the model"
+    } else if env.ground.slide.is_some_and(|sl| sl.driver == j) {
+        "a stretch that drives a slip (it would slide along the surface) is not in the model"
+    } else if ct.tip || !matches!((&ct.geom, ct.mode), (Geom::Curve { .. }, Mode::Rolling(_))) {
+        "a stretch from a side that does not roll is not in the model"
+    } else {
+        return None;
+    })
 }
 
 /// The set after the side contact `j`, on a curved surface and holding without slip, begins to
 /// lie along it (module `chain`, `Lying`): a stretch from there, of no length yet. The unknowns
 /// carry over: where the side's curvature reached the surface's, its moment there is the
-/// stretch's curvature match (with the rest beyond unloaded, `m = 0` there; with contacts beyond,
-/// the outer end is a new unknown, at the side's place). `None` (the stop stands) for a second
-/// stretch, a contact that slides or drives a slip in progress (its outer end would move with
-/// the slide), or one that lies down as the start grows the texture.
-fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Option<Next> {
-    if !may_lie(env, set, j) {
-        return None;
+/// stretch's curvature match (with the rest beyond unloaded, `m = 0` there; with contacts
+/// beyond, the outer end is a new unknown, at the side's place). Where [`lie_kept_out`] keeps it
+/// out, the stop, with the reason.
+fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Next {
+    if let Some(why) = lie_kept_out(env, set, j) {
+        return Next::Limit(curve_lie(set, j, pe, why));
     }
     let c = &pe.w.contacts[j];
     let mut ns = set.clone();
@@ -948,17 +949,7 @@ fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Option<Next> {
         // (its outer end, where the loaded rod beyond it leaves the surface, is an unknown)
         nu.push(c.s);
     }
-    Some(Next::Switch(Event::LieDown, ns, nu))
-}
-
-/// Whether the side contact `j` of `set` may lie down along the surface ([`lie_down`]): on a
-/// curved surface, holding without slip, not a slip's driver, no stretch lying yet, not at the
-/// start.
-pub(crate) fn may_lie(env: &Env, set: &ContactSet, j: usize) -> bool {
-    let ct = &set.contacts[j];
-    let driver = env.ground.slide.is_some_and(|sl| sl.driver == j);
-    !(ct.tip || set.lying.is_some() || driver || env.ground.grow)
-        && matches!((&ct.geom, ct.mode), (Geom::Curve { .. }, Mode::Rolling(_)))
+    Next::Switch(Event::LieDown, ns, nu)
 }
 
 /// Why a side lying on the surface cannot peel back to a round tip: its contact point reached

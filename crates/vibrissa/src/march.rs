@@ -669,7 +669,8 @@ impl<P: Profile> Run<'_, '_, P> {
         // where the surface curves more than the rod's end): it lies down there, where the model
         // has the stretch
         if let Crossing::Lie(j) = c {
-            if w.hist.len() == 1 && crate::events::may_lie(env, self.stepper.set(), j) {
+            let set = self.stepper.set();
+            if w.hist.len() == 1 && crate::events::lie_kept_out(env, set, j).is_none() {
                 w.pending.clear();
                 return Some(Pending::AtStart(c));
             }
@@ -697,7 +698,8 @@ impl<P: Profile> Run<'_, '_, P> {
                 // lay down where the surface curves more than the rod's end, issue 31): the
                 // stop is the lie's, with its reason
                 let why = crate::events::lie_kept_out(env, set, j);
-                let message = crate::events::curve_lie(set, j, q, &why);
+                let why = why.unwrap_or("a stretch lying from a contact state's first point");
+                let message = crate::events::curve_lie(set, j, q, why);
                 return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));
             }
         }

@@ -81,9 +81,10 @@ impl<P: Profile> OwnStepper<P> {
                 }
             }
         }
-        if let Some(p1) = self.chain.end_push(u) {
-            let j = w.contacts.len() - 1;
-            w.contacts[j].end_push = p1;
+        // a lying stretch: its ends' point forces and its outer end
+        if let (Some(j), Some(push)) = (self.chain.set.lain(), self.chain.end_push(u)) {
+            w.contacts[j].end_push = push;
+            w.contacts[j].lies_to = self.chain.set.s2_of(u);
         }
         if let (true, Some(d)) = (has_slider(&self.chain.set), du) {
             let foot = self.chain.family.pose(lam).1.xf;

@@ -60,10 +60,10 @@ pub(crate) struct ContactForce {
     /// A round tip's contact point on a curved surface: the rate `dx_c/dλ` of its lab x along
     /// the branch (its friction's frame turns with it; NaN elsewhere or where not known).
     pub dxc: f64,
-    /// The last contact as the inner end of a lying stretch (module `chain`, `Lying`): the
-    /// normal point forces at the stretch's inner and outer ends, `P = dir·(m'(s−) − m'(s+))`
-    /// (the jump of the internal force's normal part: `m'` on the loaded rod, on the stretch,
-    /// and 0 on the unloaded rest beyond); each pushes while positive. NaN elsewhere.
+    /// The inner end of a lying stretch (module `chain`, `Lying`): the normal point forces at
+    /// the stretch's inner and outer ends, `P = dir·(m'(s−) − m'(s+))` (the jump of the internal
+    /// force's normal part: `m'` on the loaded rod before it, on the stretch, and on the rod
+    /// beyond it); each pushes while positive. NaN elsewhere.
     pub end_push: [f64; 2],
     /// The inner end of a lying stretch: the arc length of its outer end (NaN elsewhere).
     pub lies_to: f64,
@@ -249,6 +249,51 @@ pub(crate) fn slip_limit(env: &Env, set: &ContactSet, j: usize) -> f64 {
     }
 }
 
+/// A contact's normal and tangential force in its own frame, and their rates along the branch
+/// with tangent `du` (NaN where not known): a surface line's unknowns themselves; on a curve, the
+/// local normal and tangent at lab `x` (rates only for a stuck contact off a slip: the frame
+/// turns with a moving contact point); at a point object, the rod's own frame there (its state
+/// from `at_rod`). `f` is the contact's Cartesian force, `o` its offset in `u`.
+fn own_frame(
+    env: &Env,
+    ct: &crate::chain::Contact,
+    f: [f64; 2],
+    (u, du, o): (&[f64], Option<&[f64]>, usize),
+    x: f64,
+    at_rod: impl FnOnce() -> [f64; 4],
+) -> [f64; 4] {
+    match ct.geom {
+        Geom::Curve { .. } => {
+            let (nl, tl) = crate::chain::local_forces(ct, u[o], u[o + 1], x);
+            let (dn, dt) = match du {
+                Some(d) if matches!(ct.mode, Mode::Stuck(_)) && env.ground.slide.is_none() => {
+                    crate::chain::local_forces(ct, d[o], d[o + 1], x)
+                }
+                _ => (f64::NAN, f64::NAN),
+            };
+            [nl, tl, dn, dt]
+        }
+        Geom::Line { .. } | Geom::Slope { .. } => [
+            u[o],
+            u[o + 1],
+            du.map_or(0.0, |d| d[o]),
+            du.map_or(0.0, |d| d[o + 1]),
+        ],
+        Geom::Point { .. } => {
+            let z = at_rod();
+            let (tl, nl) = ct.rod_frame(z[2]);
+            let dfx = du.map_or(0.0, |d| -d[o] * ct.n[0] + d[o + 1] * ct.t()[0]);
+            let dfy = du.map_or(0.0, |d| -d[o] * ct.n[1] + d[o + 1] * ct.t()[1]);
+            [
+                -(f[0] * nl[0] + f[1] * nl[1]),
+                f[0] * tl[0] + f[1] * tl[1],
+                -(dfx * nl[0] + dfy * nl[1]),
+                dfx * tl[0] + dfy * tl[1],
+            ]
+        }
+    }
+}
+
 /// The watch of the point `(λ, u)` with tangent `du` on the rod `rod`.
 ///
 /// `light`: the contacts alone. The clearance of the free parts is most of a point's watch
@@ -291,39 +336,7 @@ pub(crate) fn watch(
             }
             Some(z) => (z[0] + xf, z[1]),
         };
-        let (nrm, tng, dn, dt) = match ct.geom {
-            Geom::Curve { .. } => {
-                let (nl, tl) = crate::chain::local_forces(ct, u[o], u[o + 1], x);
-                // the frame turns with a moving contact point: no slope from the unknowns alone
-                // unless the contact is stuck
-                let (dn, dt) = match du {
-                    Some(d) if matches!(ct.mode, Mode::Stuck(_)) && env.ground.slide.is_none() => {
-                        let q = crate::chain::local_forces(ct, d[o], d[o + 1], x);
-                        (q.0, q.1)
-                    }
-                    _ => (f64::NAN, f64::NAN),
-                };
-                (nl, tl, dn, dt)
-            }
-            Geom::Line { .. } | Geom::Slope { .. } => (
-                u[o],
-                u[o + 1],
-                du.map_or(0.0, |d| d[o]),
-                du.map_or(0.0, |d| d[o + 1]),
-            ),
-            Geom::Point { .. } => {
-                let z = exact(s);
-                let (tl, nl) = ct.rod_frame(z[2]);
-                let dfx = du.map_or(0.0, |d| -d[o] * ct.n[0] + d[o + 1] * ct.t()[0]);
-                let dfy = du.map_or(0.0, |d| -d[o] * ct.n[1] + d[o + 1] * ct.t()[1]);
-                (
-                    -(f[0] * nl[0] + f[1] * nl[1]),
-                    f[0] * tl[0] + f[1] * tl[1],
-                    -(dfx * nl[0] + dfy * nl[1]),
-                    dfx * tl[0] + dfy * tl[1],
-                )
-            }
-        };
+        let [nrm, tng, dn, dt] = own_frame(env, ct, f, (u, du, o), x, || exact(s));
         nsum += nrm;
         tsum += tng;
         dnsum += dn;
@@ -344,12 +357,9 @@ pub(crate) fn watch(
             mu_k: env.ground.mu_k_at(x).unwrap_or(f64::INFINITY),
             slide: SlideRate::UNKNOWN,
             dxc: f64::NAN,
+            // (a lying stretch's: module `own`)
             end_push: [f64::NAN; 2],
-            lies_to: if lain_end(set, j) {
-                set.s2_of(u)
-            } else {
-                f64::NAN
-            },
+            lies_to: f64::NAN,
             curv: side_curv(set, j, (s, zs), (xf, amp), &mut *exact, kappa),
         });
     }

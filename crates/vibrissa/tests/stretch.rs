@@ -20,8 +20,10 @@ fn stretch_scene() -> Scene {
     }
 }
 
-fn stretch_drag(points: usize, d_max: f64) -> DragResult {
-    let (rod, surface) = stretch_scene().parts().unwrap();
+/// The drag of `scene` with the paper's friction (μs 0.5, μk 0.3) to `d_max` on `points` grid
+/// points.
+fn drag_over(scene: Scene, d_max: f64, points: usize) -> DragResult {
+    let (rod, surface) = scene.parts().unwrap();
     drag(
         &rod,
         &surface,
@@ -36,13 +38,14 @@ fn stretch_drag(points: usize, d_max: f64) -> DragResult {
     .unwrap()
 }
 
-/// The reference's rows (`kind`, then the numbers by column name).
-fn reference() -> Vec<(String, std::collections::HashMap<String, f64>)> {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../data/drag/stretch_reference.csv"
-    ))
-    .unwrap();
+fn stretch_drag(points: usize, d_max: f64) -> DragResult {
+    drag_over(stretch_scene(), d_max, points)
+}
+
+/// The rows of `data/drag/<file>` (`kind`, then the numbers by column name).
+fn reference(file: &str) -> Vec<(String, std::collections::HashMap<String, f64>)> {
+    let path = format!("{}/../../data/drag/{file}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
     let head: Vec<&str> = lines.next().unwrap().split(',').collect();
     lines
@@ -85,7 +88,7 @@ fn a_lying_stretch_matches_the_independent_reference() {
     assert!((c.s - S2).abs() < 1e-9, "lies down at s = {}", c.s);
     let mut worst = 0.0f64;
     let mut seen = 0;
-    for (kind, want) in reference() {
+    for (kind, want) in reference("stretch_reference.csv") {
         let d = want["d"];
         let q = if kind == "peel_up" {
             r.rows
@@ -160,26 +163,6 @@ fn a_lying_stretch_peels_up_and_the_drag_goes_on() {
     assert_eq!(r.rows[b + 1].contact.name(), "side");
 }
 
-/// The rows of `data/drag/stretch_tip_reference.csv` by column name.
-fn tip_reference() -> Vec<std::collections::HashMap<String, f64>> {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../data/drag/stretch_tip_reference.csv"
-    ))
-    .unwrap();
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    lines
-        .map(|l| {
-            head[1..]
-                .iter()
-                .zip(&l.split(',').collect::<Vec<_>>()[1..])
-                .map(|(h, v)| (h.to_string(), v.parse().unwrap()))
-                .collect()
-        })
-        .collect()
-}
-
 /// A stretch with the tip stuck on the surface beyond it: the rod tapered to 0.3 over
 /// 0.003 sin(2πx/0.5 + 2.4), whose side lies down at d = 0.1391 with the tip stuck 0.067 beyond,
 /// against the second scene of `data/drag/make_stretch_reference.py` (the segment beyond the
@@ -192,30 +175,15 @@ fn tip_reference() -> Vec<std::collections::HashMap<String, f64>> {
 /// from row to row where it is constant. Measured: 2.8e-8 in the split, 1.1e-9 elsewhere.
 #[test]
 fn a_stretch_with_the_tip_beyond_matches_the_independent_reference() {
-    let (rod, surface) = Scene {
-        eta: 0.75,
-        stiffness: Stiffness::Taper { ratio: 0.3 },
+    let scene = Scene {
         surface: SurfaceProfile::Sine {
             amplitude: 0.003,
             wavelength: 0.5,
             phase: 2.4,
         },
-        ..Scene::default()
-    }
-    .parts()
-    .unwrap();
-    let r = drag(
-        &rod,
-        &surface,
-        &DragOptions {
-            d_max: 0.3,
-            points: 7,
-            mu_s: Some(0.5),
-            mu_k: Some(0.3),
-            ..DragOptions::default()
-        },
-    )
-    .unwrap();
+        ..stretch_scene()
+    };
+    let r = drag_over(scene, 0.3, 7);
     assert_eq!(r.stop, StopReason::DMax, "{r}");
     let lie = r
         .rows
@@ -228,9 +196,9 @@ fn a_stretch_with_the_tip_beyond_matches_the_independent_reference() {
     assert!((side.x - 0.4785523319061838).abs() < 1e-9, "{side}");
     assert!(tip.tip && (tip.x - 0.545667226423673).abs() < 1e-9, "{tip}");
     let (mut worst, mut split) = (0.0f64, 0.0f64);
-    let rows = tip_reference();
+    let rows = reference("stretch_tip_reference.csv");
     assert_eq!(rows.len(), 4);
-    for want in rows {
+    for (_, want) in rows {
         let d = want["d"];
         let q = r
             .rows
@@ -281,7 +249,7 @@ fn a_side_that_lies_from_its_first_point_lies_down_there() {
         "/../../data/scenes/rat_mystacial_short.toml"
     );
     let rat: Scene = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let (rod, surface) = Scene {
+    let scene = Scene {
         eta: 0.75,
         surface: SurfaceProfile::Sine {
             amplitude: 0.02,
@@ -289,20 +257,8 @@ fn a_side_that_lies_from_its_first_point_lies_down_there() {
             phase: 0.0,
         },
         ..rat
-    }
-    .parts()
-    .unwrap();
-    let r = drag(
-        &rod,
-        &surface,
-        &DragOptions {
-            d_max: 0.3,
-            mu_s: Some(0.5),
-            mu_k: Some(0.3),
-            ..DragOptions::default()
-        },
-    )
-    .unwrap();
+    };
+    let r = drag_over(scene, 0.3, DragOptions::default().points);
     let events: Vec<_> = r.rows.iter().filter_map(|q| q.event).collect();
     let lie = events
         .iter()
