@@ -184,6 +184,10 @@ pub(crate) struct Lying {
     pub s2: f64,
     /// Lab x of the outer end (as `s2`).
     pub x2: f64,
+    /// The rolling invariant at which `s2`, `x2` hold: with the rest beyond unloaded the outer
+    /// end is where `m = 0`, so a stretch that slides (its invariant moved) has its outer end
+    /// found again ([`Stretch::outer_end`]).
+    pub c: f64,
     /// How many contacts lie beyond the stretch (the last of the set's contacts).
     pub beyond: usize,
 }
@@ -247,7 +251,11 @@ impl Stretch<'_> {
     /// The rod's state at `s` on the stretch (foot frame) and its derivative in `s`, for the
     /// profile `p`: `m = (dir·κ_s(x) − κ0(s))/b(s)`.
     pub fn state<P: Profile>(&self, p: &P, s: f64) -> ([f64; 4], [f64; 4]) {
-        let x = self.x_at(s);
+        self.state_x(p, s, self.x_at(s))
+    }
+
+    /// [`Stretch::state`] with the lab `x` of `s` given.
+    fn state_x<P: Profile>(&self, p: &P, s: f64, x: f64) -> ([f64; 4], [f64; 4]) {
         let (hv, d, _) = self.h.jet_scaled(x, self.amp);
         let phi = d.atan() + self.kpi;
         let (sp, cp) = phi.sin_cos();
@@ -257,6 +265,162 @@ impl Stretch<'_> {
         let m = (k - k0) / b;
         let dm = (self.dkappa(x) * cp - dk0) / b - (k - k0) * db / (b * b);
         ([x - self.xf, hv + self.off, phi, m], [cp, sp, k, dm])
+    }
+
+    /// The outer end where the rest beyond is unloaded: the material point `s2` where the
+    /// surface's curvature is the rod's rest curvature, `dir·κ_s(x(s2)) = κ0(s2)` (so `m = 0`
+    /// there), found by Newton from the stored place moved with the invariant (for a straight
+    /// rest the same lab `x`, an inflection). `None` where Newton does not converge.
+    pub fn outer_end<P: Profile>(&self, p: &P) -> Option<(f64, f64)> {
+        let mut s = self.dir * (self.h.sigma(self.x2).0 - self.c);
+        for _ in 0..30 {
+            let x = self.x_at(s);
+            let g = self.kappa(x) - p.k0(s);
+            let dxds = self.dir / self.h.sigma(x).1;
+            let dg = self.dkappa(x) * dxds - p.slopes(s).1;
+            let ds = g / dg;
+            s -= ds;
+            if !s.is_finite() {
+                return None;
+            }
+            if ds.abs() <= 1e-15 {
+                return Some((s, self.x_at(s)));
+            }
+        }
+        None
+    }
+
+    /// The capstan term of a stretch that slides with friction ratio `gmu` (signed: `g·μ`, `g`
+    /// the way its material slides along the surface, `+` towards `+σ`) from its inner end `s1`,
+    /// the rest beyond unloaded: `q1 = dir·(1 + μ²)·∫ φ'·m'·exp(−gμ(φ(s) − φ(s1))) ds` over the
+    /// stretch. With the kinetic friction `gμ·p` against a distributed pressure `p` and the same
+    /// ratio at its ends' point forces, the stretch is in equilibrium where its resultant
+    /// `(N, T)` (module docs of `chain`, the frame at `s1`) has `T = gμ·N − q1` (docs/model.md,
+    /// "A stretch that slides"); on a straight stretch `q1 = 0`. Eight 10-point Gauss panels:
+    /// the integrand's parts at the nodes once ([`Capstan`]), for any `gμ` and load beyond.
+    pub fn capstan<P: Profile>(&self, p: &P, s1: f64) -> Capstan {
+        let st1 = self.state(p, s1);
+        let phi1 = st1.0[2];
+        let mut nodes = Vec::new();
+        if self.s2 - s1 > 0.0 {
+            let w = (self.s2 - s1) / 8.0;
+            // (each node's x by Newton from the last one's: the correction below 1e-9 is the
+            // last, the error after it of its square)
+            let (mut sp, mut x) = (s1, st1.0[0] + self.xf);
+            for i in 0..8 {
+                let a = s1 + w * i as f64;
+                for (s, wt) in crate::gauss::nodes10(a, a + w) {
+                    let target = self.c + self.dir * s;
+                    x += self.dir * (s - sp) / self.h.sigma(x).1;
+                    for _ in 0..50 {
+                        let (sg, dsg) = self.h.sigma(x);
+                        let dx = (sg - target) / dsg;
+                        x -= dx;
+                        if dx.abs() <= 1e-9 {
+                            break;
+                        }
+                    }
+                    sp = s;
+                    let (z, dz) = self.state_x(p, s, x);
+                    nodes.push((wt * dz[2] * dz[3], z[2] - phi1));
+                }
+            }
+        }
+        let frame = |x: f64| {
+            let (st, ct) = self.h.angle_scaled(x, self.amp).0.sin_cos();
+            [ct, st, -st, ct]
+        };
+        let (f1, f2) = (frame(st1.0[0] + self.xf), frame(self.x2));
+        let st2 = self.state(p, self.s2);
+        let turn = st2.0[2] - phi1;
+        Capstan {
+            dir: self.dir,
+            nodes,
+            ends: (f1, f2, turn),
+            bend: [st2.1[2], st2.1[3]],
+        }
+    }
+
+    /// The friction ratio the stretch from `s1` needs to hold with its resultant `(n, t)`: the
+    /// `gμ` (signed, `μ ≥ 0`) at which a stretch sliding with that ratio balances it, `t = gμ·n
+    /// − q1(gμ)` ([`Stretch::capstan`]; the way `g` is that of `t + q1(0)`, the force friction
+    /// must take up), by the fixed point `μ = g·(t + q1(gμ))/n` (`q1` changes with `μ` by the
+    /// stretch's turn, below 0.03 rad on the texture grid's corrugations, so each iteration
+    /// gains about two digits). Where the stretch has no length this is `t/n`. With a load `fb`
+    /// beyond it, `q1` has its [`Stretch::beyond_term`]. With `q1(0)`, the part of the
+    /// resultant that the surface's curvature (and the load beyond) takes up without friction.
+    /// NaN where it does not converge in 60 iterations.
+    pub fn friction_ratio<P: Profile>(
+        &self,
+        p: &P,
+        s1: f64,
+        (n, t): (f64, f64),
+        fb: [f64; 2],
+    ) -> (f64, f64) {
+        let cap = self.capstan(p, s1);
+        let q = |gmu: f64| cap.q(gmu, fb);
+        let q0 = q(0.0);
+        let g = (t + q0).signum();
+        let mut mu = g * (t + q0) / n;
+        for _ in 0..60 {
+            let next = g * (t + q(g * mu)) / n;
+            let done = (next - mu).abs() <= 4.0 * f64::EPSILON * next.abs().max(1e-3);
+            mu = next;
+            if done {
+                return (g * mu, q0);
+            }
+        }
+        (f64::NAN, q0)
+    }
+}
+
+/// The capstan term of a stretch from its inner end ([`Stretch::capstan`]): the integrand's
+/// parts at the quadrature's nodes and the surface's frames at the ends.
+pub(crate) struct Capstan {
+    dir: f64,
+    /// `(weight·φ'·m', φ(s) − φ(s1))` at each node.
+    nodes: Vec<(f64, f64)>,
+    /// `[e, n]` (the surface's tangent towards `+x` and its normal) at the inner and the outer
+    /// end, and the stretch's turn `φ(s2) − φ(s1)`.
+    ends: ([f64; 4], [f64; 4], f64),
+    /// `φ'` and `m'` at the outer end.
+    bend: [f64; 2],
+}
+
+impl Capstan {
+    /// `Q(gμ)`: `q1(gμ) = dir·(1 + μ²)·∫ φ'·m'·exp(−gμ(φ(s) − φ(s1))) ds` and, with the force
+    /// `fb` (lab) of contacts beyond the stretch on the rod there, its load's part
+    /// `(fb·e2 − gμ fb·n2)·exp(−gμ(φ(s2) − φ(s1))) − fb·e1 + gμ fb·n1` (linear in `fb`, 0
+    /// without a load; docs/model.md, "A stretch that slides"). The balance of a stretch
+    /// sliding with that ratio is `T − gμ·N + Q(gμ) = 0`.
+    pub fn q(&self, gmu: f64, fb: [f64; 2]) -> f64 {
+        let sum: f64 = self
+            .nodes
+            .iter()
+            .map(|&(wa, dphi)| wa * (-gmu * dphi).exp())
+            .sum();
+        let q1 = self.dir * (1.0 + gmu * gmu) * sum;
+        if fb == [0.0, 0.0] {
+            return q1;
+        }
+        let (f1, f2, turn) = self.ends;
+        let dot = |f: &[f64; 4], k: usize| fb[0] * f[k] + fb[1] * f[k + 1];
+        q1 + (dot(&f2, 0) - gmu * dot(&f2, 2)) * (-gmu * turn).exp() - dot(&f1, 0)
+            + gmu * dot(&f1, 2)
+    }
+
+    /// `∂Q/∂s2` ([`Capstan::q`]) with the stretch's invariant held, where contacts beyond
+    /// make the outer end an unknown: the integral's end, the turn in the exponential
+    /// (`φ' = dir·κ_s` there) and the outer end's frame, which turns with the surface
+    /// (`de/ds = φ'·n`, `dn/ds = −φ'·e`).
+    pub fn q_s2(&self, gmu: f64, fb: [f64; 2]) -> f64 {
+        let [k2, m2] = self.bend;
+        let (_, f2, turn) = self.ends;
+        let e2 = (-gmu * turn).exp();
+        let dot = |k: usize| fb[0] * f2[k] + fb[1] * f2[k + 1];
+        let b2 = (dot(0) - gmu * dot(2)) * e2;
+        let c = self.dir * (1.0 + gmu * gmu);
+        c * k2 * m2 * e2 + k2 * e2 * (dot(2) + gmu * dot(0)) - gmu * k2 * b2
     }
 }
 
@@ -514,11 +678,11 @@ impl<P: Profile> Chain<P> {
 
     /// Residual and, with `var`, `∂R/∂u` and `∂R/∂λ` at `(u, λ)`.
     pub fn eval(&mut self, u: &[f64], lam: f64, var: bool) -> Result<Eval, EvalError> {
+        let (pose, dpose) = self.family.pose(lam);
         let set = &self.set;
         let n = set.n();
         let nc = n + 1; // columns: u, then λ
-        let (pose, dpose) = self.family.pose(lam);
-        // (a shot that fails part way leaves paths of no state)
+                        // (a shot that fails part way leaves paths of no state)
         self.shot.1 = f64::NAN;
         let bps = self.breakpoints(u)?;
         let lain = set.lain();
@@ -652,6 +816,7 @@ impl<P: Profile> Chain<P> {
         self.shot.0.clear();
         self.shot.0.extend_from_slice(u);
         self.shot.1 = lam;
+        self.relay(&pose, u);
         Ok(Eval {
             r,
             jac,
@@ -768,7 +933,8 @@ impl<P: Profile> Chain<P> {
     ) -> Result<Sens, EvalError> {
         let st = self.stretch_at(pose, u).ok_or(EvalError::NonFinite)?;
         self.match_row(&st, (self.bps[k], k), (pose, dpose), cur, rows, row);
-        let (z2, dz2) = st.state(&self.sh.profile, st.s2);
+        let p = &self.sh.profile;
+        let (z2, dz2) = st.state(p, st.s2);
         let n = self.set.n();
         let mut d = DMatrix::zeros(4, if cur.d.ncols() > 0 { n + 1 } else { 0 });
         if d.ncols() > 0 {
@@ -776,8 +942,112 @@ impl<P: Profile> Chain<P> {
                 d[(i, n - 1)] = dz2[i];
             }
             d[(0, n)] = -dpose.xf;
+            // a stretch that slides moves the outer end's place with its invariant `c`: a
+            // slip's driver by the slide, a passive slider with its inner end
+            // (`c = σ(x1) − dir·s1`); `∂z2/∂c` by central differences
+            let slides = is_slider(&self.set.contacts[k]);
+            let moved = self.family.moves(k) && dpose.slide != 0.0;
+            if slides || moved {
+                let e = 1e-6;
+                let at = |c: f64| {
+                    let m = Stretch { c, ..st };
+                    m.state(p, st.s2).0
+                };
+                let (a, b) = (at(st.c + e), at(st.c - e));
+                let dz: [f64; 4] = std::array::from_fn(|i| (a[i] - b[i]) / (2.0 * e));
+                if slides {
+                    let Geom::Curve { h } = &self.set.contacts[k].geom else {
+                        return Err(EvalError::NonFinite);
+                    };
+                    let dsg = h.sigma(cur.z[0] + pose.xf).1;
+                    let o = self.set.offset(k) + 2;
+                    for i in 0..4 {
+                        for col in 0..=n {
+                            let dx = cur.d[(0, col)] + if col == n { dpose.xf } else { 0.0 };
+                            d[(i, col)] += dz[i] * dsg * dx;
+                        }
+                        d[(i, o)] -= dz[i] * st.dir;
+                    }
+                } else {
+                    for i in 0..4 {
+                        d[(i, n)] += dz[i] * dpose.slide;
+                    }
+                }
+            }
         }
         Ok(Sens { z: z2, d })
+    }
+
+    /// A stretch that slides with the friction ratio `ratio` from its inner end `s1` at lab `x1`
+    /// (contact `k`): its friction row `T − ratio·N = 0` becomes the balance
+    /// `T − ratio·N + Q(ratio) = 0` ([`Stretch::capstan`], with a load beyond it its
+    /// [`Stretch::beyond_term`]), with the invariant `c = σ(x1) − dir·s1` where its inner end is
+    /// (it slides). `Q` moves with `s1`, `c` and a loaded outer end `s2` (central differences,
+    /// step 1e-6), `c` with `x1` and `s1`, and `Q` linearly with the forces of the contacts
+    /// beyond.
+    fn capstan_row(
+        &self,
+        k: usize,
+        (u, s1, x1, ratio): (&[f64], f64, f64, f64),
+        (pose, dpose): (&Pose, &Pose),
+        cur: &Sens,
+        (r, (jac, rl)): (&mut DVector<f64>, Rows<'_>),
+        row: usize,
+    ) -> Result<(), EvalError> {
+        let (Some(ly), Geom::Curve { h }) = (self.set.lying, &self.set.contacts[k].geom) else {
+            return Err(EvalError::NonFinite);
+        };
+        let p = &self.sh.profile;
+        let set = &self.set;
+        let loaded = ly.beyond > 0;
+        let dir = self.stretch_dir(h, ly.x2, 1.0 - pose.flat);
+        let fb = self.force_from(u, k + 1);
+        let cap = |s1: f64, s2: f64, c: f64| -> Result<Capstan, EvalError> {
+            let st = self.stretch_from(pose, u, c).ok_or(EvalError::NonFinite)?;
+            let st = if loaded {
+                Stretch {
+                    s2,
+                    x2: st.x_at(s2),
+                    ..st
+                }
+            } else {
+                st
+            };
+            Ok(st.capstan(p, s1))
+        };
+        let q = |s1: f64, s2: f64, c: f64, fb: [f64; 2]| -> Result<f64, EvalError> {
+            Ok(cap(s1, s2, c)?.q(ratio, fb))
+        };
+        let (sg, dsg) = h.sigma(x1);
+        let c = sg - dir * s1;
+        let s2 = set.s2_of(u);
+        let here = cap(s1, s2, c)?;
+        r[row] += here.q(ratio, fb);
+        if let (Some(j), Some(l)) = (jac, rl) {
+            let e = 1e-6;
+            // (in `s1` by differences too: where the stretch shrinks to nothing, `Q` has a
+            // kink there, and the one-sided derivative stalled Newton in a slide)
+            let qs = (q(s1 + e, s2, c, fb)? - q(s1 - e, s2, c, fb)?) / (2.0 * e);
+            let q2 = here.q_s2(ratio, fb);
+            let qc = (q(s1, s2, c + e, fb)? - q(s1, s2, c - e, fb)?) / (2.0 * e);
+            let n = set.n();
+            for col in 0..n {
+                j[(row, col)] += qc * dsg * cur.d[(0, col)];
+            }
+            j[(row, set.offset(k) + 2)] += qs - dir * qc;
+            l[row] += qc * dsg * (cur.d[(0, n)] + dpose.xf);
+            if loaded {
+                j[(row, n - 1)] += q2;
+                // (linear in the forces beyond)
+                let q0 = here.q(ratio, [0.0; 2]);
+                for (m, ct) in set.contacts.iter().enumerate().skip(k + 1) {
+                    let o = set.offset(m);
+                    j[(row, o)] += here.q(ratio, ct.force(1.0, 0.0)) - q0;
+                    j[(row, o + 1)] += here.q(ratio, ct.force(0.0, 1.0)) - q0;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The lying stretch's curvature match at its inner end `s1` (contact `k`), with the rod's
@@ -854,6 +1124,18 @@ impl<P: Profile> Chain<P> {
                 }
             }
             row += 1;
+        }
+        // a lying stretch that slides: its friction row, the last, is the balance of its
+        // distributed friction
+        if let (true, Mode::Sliding(ratio)) = (set.lain() == Some(k), ct.mode) {
+            let rows = rows.map_or((None, None), |(j, l)| (Some(j), Some(l)));
+            let at = (u, set.s_of(k, u), z[0] + pose.xf, ratio);
+            if self
+                .capstan_row(k, at, (&pose, &dpose), cur, (r, rows), row - 1)
+                .is_err()
+            {
+                r[row - 1] = f64::NAN;
+            }
         }
         row
     }
@@ -1044,25 +1326,74 @@ impl<P: Profile> Chain<P> {
                 .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
+    /// Keeps the set's unloaded lying stretch at the invariant of `(pose, u)`: where it slid
+    /// (a slip moves it), its outer end found again, so that the set's `s2` (the watch's
+    /// clearance and `peel_up`) is that of the point evaluated.
+    fn relay(&mut self, pose: &Pose, u: &[f64]) {
+        let Some(ly) = self.set.lying.filter(|l| l.beyond == 0) else {
+            return;
+        };
+        let moved = self
+            .stretch_at(pose, u)
+            .filter(|st| st.c.to_bits() != ly.c.to_bits())
+            .map(|st| (st.s2, st.x2, st.c));
+        if let Some((s2, x2, c)) = moved {
+            self.set.lying = Some(Lying { s2, x2, c, ..ly });
+        }
+    }
+
     /// The lying stretch of the set at the pose `pose` and the unknowns `u`, if the set lies.
     pub fn stretch_at(&self, pose: &Pose, u: &[f64]) -> Option<Stretch<'_>> {
-        let ly = self.set.lying?;
         let j = self.set.lain()?;
-        let ct = &self.set.contacts[j];
-        let (Geom::Curve { h }, Mode::Rolling(k)) = (&ct.geom, ct.mode) else {
-            return None;
-        };
-        let amp = 1.0 - pose.flat;
-        let th = h.angle_scaled(ly.x2, amp).0;
-        let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
         let slide = if self.family.moves(j) {
             pose.slide
         } else {
             0.0
         };
+        let c = match self.set.contacts[j].mode {
+            Mode::Rolling(k) => k + slide,
+            // (a stretch that slides passively: its invariant where its inner end is, on the
+            // shooter's path there)
+            Mode::Sliding(_) => {
+                let s1 = self.set.s_of(j, u);
+                let x1 = self.sh.state_at(j, s1)[0] + pose.xf;
+                let (Geom::Curve { h }, Some(ly)) = (&self.set.contacts[j].geom, self.set.lying)
+                else {
+                    return None;
+                };
+                let dir = self.stretch_dir(h, ly.x2, 1.0 - pose.flat);
+                h.sigma(x1).0 - dir * s1
+            }
+            _ => return None,
+        };
+        self.stretch_from(pose, u, c)
+    }
+
+    /// The way the lain contact's rod runs along the surface, `±1` (its slope against the
+    /// surface's at `x`, amplitude `amp`), and that multiple of π.
+    fn stretch_dir(&self, h: &crate::surface::Height, x: f64, amp: f64) -> f64 {
+        self.stretch_kpi(h, x, amp).cos().round()
+    }
+
+    fn stretch_kpi(&self, h: &crate::surface::Height, x: f64, amp: f64) -> f64 {
+        let ct = self.set.lain().map(|j| &self.set.contacts[j]);
+        let th = h.angle_scaled(x, amp).0;
+        let phi_ref = ct.map_or(f64::NAN, |c| c.phi_ref);
+        std::f64::consts::PI * ((phi_ref - th) / std::f64::consts::PI).round()
+    }
+
+    /// [`Chain::stretch_at`] with the rolling invariant `c`.
+    fn stretch_from(&self, pose: &Pose, u: &[f64], c: f64) -> Option<Stretch<'_>> {
+        let ly = self.set.lying?;
+        let j = self.set.lain()?;
+        let Geom::Curve { h } = &self.set.contacts[j].geom else {
+            return None;
+        };
+        let amp = 1.0 - pose.flat;
+        let kpi = self.stretch_kpi(h, ly.x2, amp);
         let st = Stretch {
             h,
-            c: k + slide,
+            c,
             dir: kpi.cos().round(),
             kpi,
             amp,
@@ -1072,7 +1403,12 @@ impl<P: Profile> Chain<P> {
             x2: ly.x2,
         };
         if ly.beyond == 0 {
-            return Some(st);
+            if st.c.to_bits() == ly.c.to_bits() {
+                return Some(st);
+            }
+            // (a stretch that slides: its outer end where the moment is zero again)
+            let (s2, x2) = st.outer_end(&self.sh.profile)?;
+            return Some(Stretch { s2, x2, ..st });
         }
         // (the outer end moves with the loaded rest beyond: its place from the unknowns)
         let s2 = self.set.s2_of(u);
@@ -1104,6 +1440,76 @@ impl<P: Profile> Chain<P> {
             st.dir * (before - d1[3]),
             st.dir * (d2[3] - mprime(g2, z2[2])),
         ])
+    }
+
+    /// The friction of the lying stretch at `u` (the last evaluation's point, tangent `du`) with
+    /// its resultant `(n, t)`: the ratio it needs ([`crate::watch::ContactForce::stretch_mu`]; a
+    /// stretch that slides with a set ratio has that ratio) and, where it moves by `dc` per unit
+    /// `λ` (`moves`; else NaN), the part `W = Q(0) − Q(r)` of its friction's work that its ratio
+    /// `r` (0 unless it slides) does not count, with its rate along the branch: a slide of the
+    /// stretch by `dc` absorbs `(T + Q(0))·dc = (r·N + W)·dc` (`Q = q1` with the load beyond,
+    /// [`Stretch::beyond_term`]). `W` moves with `s1`, `c` and a loaded outer end `s2` (central
+    /// differences, step 1e-6) and, linearly, with the load beyond.
+    pub fn stretch_friction(
+        &self,
+        u: &[f64],
+        du: Option<&[f64]>,
+        nt: (f64, f64),
+        dc: Option<f64>,
+    ) -> Option<(f64, [f64; 2])> {
+        let st = self.stretch_now()?;
+        let j = self.set.lain()?;
+        let p = &self.sh.profile;
+        let s1 = self.set.s_of(j, u);
+        let fb = self.force_from(u, j + 1);
+        let loaded = j + 1 < self.set.contacts.len();
+        let (mu, r) = match self.set.contacts[j].mode {
+            Mode::Sliding(r) => (r, r),
+            _ => (st.friction_ratio(p, s1, nt, fb).0, 0.0),
+        };
+        let (Some(dc), Some(du)) = (dc, du) else {
+            return Some((mu, [f64::NAN; 2]));
+        };
+        let cap = |s1: f64, s2: f64, c: f64| -> Option<Capstan> {
+            let at = Stretch { c, ..st };
+            let (s2, x2) = match (c == st.c && s2 == st.s2, loaded) {
+                (true, _) => (st.s2, st.x2),
+                (false, true) => (s2, at.x_at(s2)),
+                (false, false) => at.outer_end(p)?,
+            };
+            Some(Stretch { s2, x2, ..at }.capstan(p, s1))
+        };
+        let wq = |q: &Capstan, fb: [f64; 2]| q.q(0.0, fb) - if r == 0.0 { 0.0 } else { q.q(r, fb) };
+        let w = |s1: f64, s2: f64, c: f64, fb: [f64; 2]| Some(wq(&cap(s1, s2, c)?, fb));
+        let e = 1e-6;
+        let diff = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => (a - b) / (2.0 * e),
+            _ => f64::NAN,
+        };
+        let (s2, c) = (st.s2, st.c);
+        let ds1 = du[self.set.offset(j) + 2];
+        let mut rate = diff(w(s1 + e, s2, c, fb), w(s1 - e, s2, c, fb)) * ds1;
+        if dc != 0.0 {
+            rate += diff(w(s1, s2, c + e, fb), w(s1, s2, c - e, fb)) * dc;
+        }
+        if loaded {
+            let ds2 = du[self.set.n() - 1];
+            rate += diff(w(s1, s2 + e, c, fb), w(s1, s2 - e, c, fb)) * ds2;
+            // (linear in the load beyond: its rate from the rates of those contacts' forces)
+            let dfb = self.force_from(du, j + 1);
+            let here = cap(s1, s2, c)?;
+            rate += wq(&here, dfb) - wq(&here, [0.0; 2]);
+        }
+        Some((mu, [w(s1, s2, c, fb)?, rate]))
+    }
+
+    /// The rate of the lain contact's rolling invariant along the branch as the family moves
+    /// it (a slip's driver; 0 otherwise).
+    pub fn stretch_moved(&self) -> f64 {
+        match self.set.lain() {
+            Some(j) if self.family.moves(j) => self.family.pose(self.shot.1).1.slide,
+            _ => 0.0,
+        }
     }
 
     /// The lying stretch at the last evaluation's point.
@@ -1692,7 +2098,11 @@ mod tests {
     /// family (the first case also in the start's, which grows the texture's amplitude with
     /// `λ`): the stretch with the rod beyond it unloaded (its curvature match is the set's last
     /// condition) and with the tip stuck beyond it (the match is a condition of its own, the
-    /// outer end an unknown, the segment beyond starting there).
+    /// outer end an unknown, the segment beyond starting there); each also driving a slip (the
+    /// slide's family moves its invariant, and with it the outer end's place) and sliding along
+    /// with a set ratio (its capstan row; its invariant moves with its inner end). It fails
+    /// without the capstan row's `s1` column, the segment beyond's moves with the invariant
+    /// (either way), or the slide's `λ` term.
     #[test]
     fn lying_jacobian_matches_differences() {
         let h = Arc::new(
@@ -1718,31 +2128,67 @@ mod tests {
         let side = Contact::on_curve(false, &h, x2, Mode::Rolling(h.sigma(x2).0 - s2), th);
         let tip = Contact::on_curve(true, &h, 0.45, Mode::Stuck(h.sigma(0.45).0), 0.0);
         let unloaded = ContactSet {
-            lying: Some(Lying { s2, x2, beyond: 0 }),
+            lying: Some(Lying {
+                s2,
+                x2,
+                c: h.sigma(x2).0 - s2,
+                beyond: 0,
+            }),
             ..ContactSet::of(vec![side.clone()])
         };
         let loaded = ContactSet {
-            lying: Some(Lying { s2, x2, beyond: 1 }),
+            lying: Some(Lying {
+                s2,
+                x2,
+                c: h.sigma(x2).0 - s2,
+                beyond: 1,
+            }),
             ..ContactSet::of(vec![side, tip])
         };
         // (no stretch lies down as the start grows the texture, where the surface's arc length
         // is the full profile's and its shape scaled: the loaded stretch's outer end is checked
         // in the drag's family only)
         let grow = (Family::Grow { off0: 0.001 }, 0.7);
-        type Case<'a> = (&'a ContactSet, &'a [f64], &'a [(Family, f64)]);
-        let cases: [Case; 2] = [
+        // a stretch that slides (module docs, "A stretch that slides"): along, with its
+        // capstan row and an invariant that moves with its inner end, or driving a slip
+        let sliding = |set: &ContactSet| {
+            let mut set = set.clone();
+            set.contacts[0].mode = Mode::Sliding(0.3);
+            set
+        };
+        let (unloaded_sliding, loaded_sliding) = (sliding(&unloaded), sliding(&loaded));
+        let slide = Family::Slide {
+            xf: 0.05,
+            theta: 0.0,
+            dir: 1.0,
+            driver: 0,
+        };
+        // (an unloaded stretch that slides needs its outer end where `m = 0` again: a rest
+        // curvature the surface's reaches)
+        let gentle = General::new(
+            &Stiffness::Taper { ratio: 0.3 },
+            &Precurvature::Linear { k0: 0.01, k1: 0.02 },
+            1.0,
+        );
+        type Case<'a> = (&'a General, &'a ContactSet, &'a [f64], &'a [(Family, f64)]);
+        let (u1, u2): (&[f64], &[f64]) = (
+            &[-0.026, 1.43, 0.59, 0.93],
+            &[-0.026, 1.43, 0.59, 0.93, 0.05, 0.01, 0.955],
+        );
+        let cases: [Case; 6] = [
+            (&profile, &unloaded, u1, &[(Family::Drag, 0.05), grow]),
             (
-                &unloaded,
-                &[-0.026, 1.43, 0.59, 0.93],
-                &[(Family::Drag, 0.05), grow],
-            ),
-            (
+                &profile,
                 &loaded,
-                &[-0.026, 1.43, 0.59, 0.93, 0.05, 0.01, 0.955],
-                &[(Family::Drag, 0.05)],
+                u2,
+                &[(Family::Drag, 0.05), (slide, 0.002)],
             ),
+            (&gentle, &unloaded, u1, &[(slide, 0.002)]),
+            (&gentle, &unloaded_sliding, u1, &[(Family::Drag, 0.05)]),
+            (&profile, &loaded_sliding, u2, &[(Family::Drag, 0.05)]),
+            (&gentle, &loaded_sliding, u2, &[(Family::Drag, 0.05)]),
         ];
-        for (set, u, families) in cases {
+        for (profile, set, u, families) in cases {
             for &(family, lam) in families {
                 let sh = Shooter::new(profile.clone(), 0.0, 1e-10, 16);
                 check_jacobian(Chain::new(sh, set.clone(), family), u, lam);

@@ -934,7 +934,7 @@ impl<P: Profile> DragRun<'_, P> {
                 "the elastic energy before a slip".into(),
             ));
         };
-        let dir = pe.w.contacts[driver].tangential.signum();
+        let dir = pe.w.contacts[driver].friction().signum();
         Ok(Stuck {
             d,
             driver,
@@ -1104,7 +1104,7 @@ impl<P: Profile> DragRun<'_, P> {
                         ));
                     };
                     let (ms, mk) = self.fr.at(c.x, dir);
-                    if dir * c.tangential <= mk * c.normal {
+                    if dir * c.friction() <= mk * c.normal {
                         let end = moved(eset, j, dir * qe.lam);
                         let slid = slid + own_slide + ridden(rode, &end, &qe, self.xf(d_s));
                         return Ok((end, qe, slid, Some(ms)));
@@ -1117,9 +1117,7 @@ impl<P: Profile> DragRun<'_, P> {
                     // another contact reached its slip limit: it breaks free and slides along
                     // at that limit while this one goes on
                     let k = slipping(&senv, &eset, &qe, Some(j));
-                    let Some(next) = riding_at_limit(eset, &qe, k) else {
-                        return Err(Self::failure(d_s, "a contact breaks free at N = 0".into()));
-                    };
+                    let next = riding_at_limit(eset, &qe, k, d_s)?;
                     slid += own_slide;
                     x_now = qe.w.contacts[j].x;
                     (cset, cu, clam) = (next, qe.u, qe.lam);
@@ -1511,12 +1509,18 @@ fn place(m: Mode) -> f64 {
     }
 }
 
-/// `set` with contact `k`, at its slip limit at `pe`, sliding along at that limit (`T/N` kept);
-/// `None` where its ratio is not finite (no normal force).
-fn riding_at_limit(set: ContactSet, pe: &Pt, k: usize) -> Option<ContactSet> {
+/// `set` with contact `k`, at its slip limit at `pe`, sliding along at that limit (`T/N` kept;
+/// at the foot's place `d`); the failure where its ratio is not finite (no normal force).
+fn riding_at_limit(set: ContactSet, pe: &Pt, k: usize, d: f64) -> Result<ContactSet, StopReason> {
     let c = pe.w.contacts[k];
-    let ratio = c.tangential / c.normal;
-    ratio.is_finite().then(|| riding(set, k, ratio))
+    let ratio = c.friction() / c.normal;
+    if !ratio.is_finite() {
+        return Err(StopReason::SolverFailure {
+            d,
+            message: "a contact breaks free at N = 0".into(),
+        });
+    }
+    Ok(riding(set, k, ratio))
 }
 
 /// How far the slip's own contact slid while it rode on (its number, way and place where it

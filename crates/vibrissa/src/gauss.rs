@@ -42,3 +42,10 @@ pub(crate) fn gauss10_batch(a: f64, b: f64, f: impl FnOnce([f64; 10]) -> [f64; 1
     let v = f(GL_X.map(|x| c + r * x));
     r * GL_W.iter().zip(v).map(|(w, f)| w * f).sum::<f64>()
 }
+
+/// The nodes and weights of [`gauss10`] on `[a, b]` (for sums over the same nodes with several
+/// integrands).
+pub(crate) fn nodes10(a: f64, b: f64) -> [(f64, f64); 10] {
+    let (c, r) = (0.5 * (a + b), 0.5 * (b - a));
+    std::array::from_fn(|i| (c + r * GL_X[i], r * GL_W[i]))
+}

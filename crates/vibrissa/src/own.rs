@@ -81,15 +81,32 @@ impl<P: Profile> OwnStepper<P> {
                 }
             }
         }
-        // a lying stretch: its ends' point forces and its outer end
-        if let (Some(j), Some(push)) = (self.chain.set.lain(), self.chain.end_push(u)) {
-            w.contacts[j].end_push = push;
-            w.contacts[j].lies_to = self.chain.set.s2_of(u);
-        }
         if let (true, Some(d)) = (has_slider(&self.chain.set), du) {
             let foot = self.chain.family.pose(lam).1.xf;
             if let Some(r) = self.chain.contact_rates(u, lam, d) {
                 fill_slip(&mut w, &self.chain.set, (u, d), &r, foot);
+            }
+        }
+        // a lying stretch: its ends' point forces and its outer end, its friction
+        if let (Some(j), Some(push)) = (self.chain.set.lain(), self.chain.end_push(u)) {
+            let set = &self.chain.set;
+            let c = &mut w.contacts[j];
+            c.end_push = push;
+            c.lies_to = set.s2_of(u);
+            // (its invariant moves as a slip's driver, or as it slides)
+            let slides = crate::chain::is_slider(&set.contacts[j]);
+            let dc = if slides {
+                c.slide.slip
+            } else {
+                self.chain.stretch_moved()
+            };
+            let nt = (c.normal, c.tangential);
+            // (its work is asked for where the march meters the friction's work)
+            let metered = self.env.ground.meter.is_some();
+            let moves = (metered && (slides || dc != 0.0)).then_some(dc);
+            if let Some((mu, turn)) = self.chain.stretch_friction(u, du, nt, moves) {
+                c.stretch_mu = mu;
+                c.turn = turn;
             }
         }
         w

@@ -119,7 +119,12 @@ fn driver_rate(env: &Env, set: &ContactSet, j: usize, p: &Pt, xf: f64) -> (f64, 
     };
     let r = -dir * (f[0] * e[0] + f[1] * e[1]);
     let dr = -dir * (df[0] * e[0] + df[1] * e[1]) - dir * rate * (f[0] * de[0] + f[1] * de[1]);
-    (r, dr)
+    // a lying stretch slides as a whole: its friction's work is `T + Q(0)` along it (module
+    // `chain`, `Chain::stretch_friction`)
+    match p.w.contacts[j].turn {
+        [q, dq] if q.is_finite() => (r + dir * q, dr + dir * dq),
+        _ => (r, dr),
+    }
 }
 
 /// The trapezoid with the end-slope correction of `∫ g` over a step of `h` from the values and
@@ -161,6 +166,18 @@ fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) 
         }
         let (ca, cb) = (&a.0.w.contacts[k], &b.0.w.contacts[k]);
         let hq = cb.slide.q - ca.slide.q;
+        // a lying stretch that slides: the part of its friction's work its ratio does not
+        // count (module `chain`, `Stretch::capstan`), `∫ W dq`
+        let ([wa, ra], [wb, rb]) = (ca.turn, cb.turn);
+        if wa.is_finite() && wb.is_finite() {
+            let (da, db) = (ra / ca.slide.slip, rb / cb.slide.slip);
+            out[1] += if da.is_finite() && db.is_finite() {
+                corrected((wa, da), (wb, db), hq)
+            } else {
+                // (a slip rate of zero at an end: the trapezoid alone)
+                0.5 * hq * (wa + wb)
+            };
+        }
         let end = |c: &crate::watch::ContactForce| (c.normal, c.slide.dnormal / c.slide.slip);
         let (ea, eb) = (end(ca), end(cb));
         out[1] += ratio

@@ -234,6 +234,8 @@ pub struct Height {
     cum: Vec<f64>,
     /// Arc length of one period (corrugation), else 0.
     period_arc: f64,
+    /// The tabulated arc length at `x = 0`, where `σ` starts (kept: every `σ` needs it).
+    arc0: f64,
 }
 
 /// A sine corrugation's shape, its parameters and steepest slope (with the surface's own slope
@@ -395,6 +397,7 @@ impl Height {
             panels: Vec::new(),
             cum: Vec::new(),
             period_arc: 0.0,
+            arc0: 0.0,
         };
         if let Shape::Spline { x, .. } = &h.shape {
             // the steepest slope of each interval: its ends and the vertex of its quadratic
@@ -435,6 +438,7 @@ impl Height {
             }
         }
         h.tabulate_arc();
+        h.arc0 = h.arc_from_start(0.0);
         Ok(Some(h))
     }
 
@@ -617,7 +621,12 @@ impl Height {
 
     /// Arc length `σ(x)` along the surface from `x = 0` (signed), and `dσ/dx = √(1 + h'²)`.
     pub fn sigma(&self, x: f64) -> (f64, f64) {
-        let abs = |x: f64| -> f64 {
+        (self.arc_from_start(x) - self.arc0, self.speed(x))
+    }
+
+    /// The tabulated arc length at lab `x` (from the panels' start, or the shape's own).
+    fn arc_from_start(&self, x: f64) -> f64 {
+        {
             match &self.shape {
                 Shape::Sines(s) => s.arc(x),
                 Shape::Grating(g) => g.arc(x),
@@ -636,8 +645,7 @@ impl Height {
                     }
                 }
             }
-        };
-        (abs(x) - abs(0.0), self.speed(x))
+        }
     }
 }
 

@@ -67,6 +67,28 @@ pub(crate) struct ContactForce {
     pub end_push: [f64; 2],
     /// The inner end of a lying stretch: the arc length of its outer end (NaN elsewhere).
     pub lies_to: f64,
+    /// The inner end of a lying stretch: the friction ratio it needs, signed (`gμ`: a stretch
+    /// sliding the way `g` with kinetic friction `μ` along it would balance its resultant,
+    /// [`crate::chain::Stretch::friction_ratio`]; one that slides, its ratio). NaN elsewhere.
+    pub stretch_mu: f64,
+    /// The same stretch, where it slides (a slip's driver, or sliding along): the part `W` of
+    /// its friction's work that its ratio does not count, and its rate along the branch
+    /// ([`crate::chain::Chain::stretch_friction`]: the work per slide `dc` is `r·N + W`, `T +
+    /// Q(0)` for a slip's driver). NaN elsewhere.
+    pub turn: [f64; 2],
+}
+
+impl ContactForce {
+    /// The friction force the contact needs, in its frame: `T` of a point contact; for a lying
+    /// stretch `gμ·N`, its friction ratio ([`ContactForce::stretch_mu`]) times its resultant's
+    /// normal part (its slip threshold and its kinetic friction compare this with `μ N`).
+    pub fn friction(&self) -> f64 {
+        if self.stretch_mu.is_nan() {
+            self.tangential
+        } else {
+            self.stretch_mu * self.normal
+        }
+    }
 }
 
 /// A surface contact's slip along the branch (module `events`' halt, `record`'s friction work).
@@ -360,6 +382,8 @@ pub(crate) fn watch(
             // (a lying stretch's: module `own`)
             end_push: [f64::NAN; 2],
             lies_to: f64::NAN,
+            stretch_mu: f64::NAN,
+            turn: [f64::NAN; 2],
             curv: side_curv(set, j, (s, zs), (xf, amp), &mut *exact, kappa),
         });
     }
