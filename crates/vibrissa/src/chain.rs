@@ -347,7 +347,7 @@ impl Stretch<'_> {
     /// must take up), by the fixed point `μ = g·(t + q1(gμ))/n` (`q1` changes with `μ` by the
     /// stretch's turn, below 0.03 rad on the texture grid's corrugations, so each iteration
     /// gains about two digits). Where the stretch has no length this is `t/n`. With a load `fb`
-    /// beyond it, `q1` has its [`Stretch::beyond_term`]. With `q1(0)`, the part of the
+    /// beyond it, `q1` has its [`Capstan::q`]. With `q1(0)`, the part of the
     /// resultant that the surface's curvature (and the load beyond) takes up without friction.
     /// NaN where it does not converge in 60 iterations.
     pub fn friction_ratio<P: Profile>(
@@ -981,10 +981,10 @@ impl<P: Profile> Chain<P> {
     /// A stretch that slides with the friction ratio `ratio` from its inner end `s1` at lab `x1`
     /// (contact `k`): its friction row `T − ratio·N = 0` becomes the balance
     /// `T − ratio·N + Q(ratio) = 0` ([`Stretch::capstan`], with a load beyond it its
-    /// [`Stretch::beyond_term`]), with the invariant `c = σ(x1) − dir·s1` where its inner end is
-    /// (it slides). `Q` moves with `s1`, `c` and a loaded outer end `s2` (central differences,
-    /// step 1e-6), `c` with `x1` and `s1`, and `Q` linearly with the forces of the contacts
-    /// beyond.
+    /// [`Capstan::q`]), with the invariant `c = σ(x1) − dir·s1` where its inner end is
+    /// (it slides). `Q` moves with `s1` and `c` (central differences, step 1e-6) and a loaded
+    /// outer end `s2` ([`Capstan::q_s2`]), `c` with `x1` and `s1`, and `Q` linearly with the
+    /// forces of the contacts beyond.
     fn capstan_row(
         &self,
         k: usize,
@@ -1448,7 +1448,7 @@ impl<P: Profile> Chain<P> {
     /// `λ` (`moves`; else NaN), the part `W = Q(0) − Q(r)` of its friction's work that its ratio
     /// `r` (0 unless it slides) does not count, with its rate along the branch: a slide of the
     /// stretch by `dc` absorbs `(T + Q(0))·dc = (r·N + W)·dc` (`Q = q1` with the load beyond,
-    /// [`Stretch::beyond_term`]). `W` moves with `s1`, `c` and a loaded outer end `s2` (central
+    /// [`Capstan::q`]). `W` moves with `s1`, `c` and a loaded outer end `s2` (central
     /// differences, step 1e-6) and, linearly, with the load beyond.
     pub fn stretch_friction(
         &self,

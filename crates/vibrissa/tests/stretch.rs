@@ -469,7 +469,7 @@ fn a_side_sliding_in_a_slip_lies_down_and_slides_on() {
 /// (r = 0.005) over 0.003 sin(2πx/0.2 + 2π/3) (issue 31's texture grid; until 2026-12-01 its
 /// drag stopped at d = 0.0766, "a stretch sliding along the surface is not in the model"). The
 /// stretch, loaded by the tip stuck beyond it, needs μs all along it at d = 0.07656 and drives a
-/// slip (its balance with the load's term, `Stretch::beyond_term`), shrinking to its outer end
+/// slip (its balance with the load's term, `Capstan::q`), shrinking to its outer end
 /// as it slides; again at d = 0.12269. Each slip's released energy equals the work of the
 /// sliding contacts to 1e-8 (measured 1.9e-10: the load's term in the stretch's work is part of
 /// it).
