@@ -119,6 +119,16 @@ K = 2 * math.pi / W
 D_OUT = [round(0.05 * k, 2) for k in range(1, 15)]  # 0.05 ... 0.7
 
 
+def solved(f, guess, what):
+    """The root of f near guess (scipy's hybr, xtol 1e-15), its residual at most 1e-11, else
+    an error naming what did not converge."""
+    r = root(f, guess, method="hybr", options={"xtol": 1e-15})
+    res = max(abs(v) for v in f(r.x))
+    if res > 1e-11:
+        raise RuntimeError(f"{what} did not converge: residual {res:.3e}")
+    return r.x
+
+
 def h(x):
     return ETA + A * math.sin(K * x + PHASE)
 
@@ -187,11 +197,7 @@ class Rod:
         return [z[0] - x1, z[1] - h(x1), z[2] - math.atan(dh(x1)), b(s1) * z[3] - kappa_s(x1)]
 
     def solve(self, d, guess):
-        r = root(lambda u: self.residual(u, d), guess, method="hybr", options={"xtol": 1e-15})
-        res = max(abs(v) for v in self.residual(r.x, d))
-        if res > 1e-11:
-            raise RuntimeError(f"no convergence at d = {d}: residual {res:.3e}")
-        return r.x
+        return solved(lambda u: self.residual(u, d), guess, f"the state at d = {d}")
 
     def row(self, d, u):
         m0, fx, fy, s1 = u
@@ -225,11 +231,7 @@ def run(rtol):
     def peel(v):
         m0, fx, fy, d = v
         return rod.residual([m0, fx, fy, S2], d)
-    r = root(peel, [guess[0], guess[1], guess[2], D_OUT[-1]], method="hybr",
-             options={"xtol": 1e-15})
-    if max(abs(v) for v in peel(r.x)) > 1e-11:
-        raise RuntimeError("the peel-up did not converge")
-    m0, fx, fy, d = r.x
+    m0, fx, fy, d = solved(peel, [guess[0], guess[1], guess[2], D_OUT[-1]], "the peel-up")
     rows.append(dict(rod.row(d, [m0, fx, fy, S2]), kind="peel_up"))
     return rows
 
@@ -299,11 +301,7 @@ class TipBeyond:
                 b(s1) * z1[3] - sf.kappa(x1), z2[0] - XA, z2[1] - sf.h(XA), z2[3]]
 
     def solve(self, d, guess):
-        r = root(lambda u: self.residual(u, d), guess, method="hybr", options={"xtol": 1e-15})
-        res = max(abs(v) for v in self.residual(r.x, d))
-        if res > 1e-11:
-            raise RuntimeError(f"no convergence at d = {d}: residual {res:.3e}")
-        return r.x
+        return solved(lambda u: self.residual(u, d), guess, f"the state at d = {d}")
 
     def row(self, d, u):
         m0, fx, fy, s1, s2, gx, gy = u
@@ -387,11 +385,7 @@ class Slip:
         return [z[0] - x1, z[1] - h(x1), z[2] - math.atan(dh(x1)), b(s1) * z[3] - kappa_s(x1)]
 
     def solve(self, d, c, guess):
-        r = root(lambda u: self.residual(u, d, c), guess, method="hybr", options={"xtol": 1e-15})
-        res = max(abs(v) for v in self.residual(r.x, d, c))
-        if res > 1e-11:
-            raise RuntimeError(f"no convergence at d = {d}, c = {c}: residual {res:.3e}")
-        return r.x
+        return solved(lambda u: self.residual(u, d, c), guess, f"the state at d = {d}, c = {c}")
 
     def stretch(self, c, x1, mu, g, dense=False):
         """The stretch from its outer end (lab X2, s2 = sigma(X2) - c) in to x1 under the
@@ -433,11 +427,7 @@ class Slip:
         def eqs(v):
             w, d, c = split(v)
             return self.residual(w, d, c) + [self.margin(w, c, mu, g)]
-        r = root(eqs, u, method="hybr", options={"xtol": 1e-15})
-        res = max(abs(v) for v in eqs(r.x))
-        if res > 1e-11:
-            raise RuntimeError(f"the polish in {unknown} did not converge: residual {res:.3e}")
-        return r.x
+        return solved(eqs, u, f"the polish in {unknown}")
 
     def threshold(self, d, c, u):
         """Drags the stuck stretch (c fixed) from d on to the mu_s threshold: (d, u, g), or None
@@ -477,11 +467,9 @@ class Slip:
                 def peel(v):
                     return self.residual([v[0], v[1], v[2], SIG2 - c - g * v[3]], d,
                                          c + g * v[3])
-                r = root(peel, list(u[:3]) + [a], method="hybr", options={"xtol": 1e-15})
-                if max(abs(v) for v in peel(r.x)) > 1e-11:
-                    raise RuntimeError("the slide's peel-up did not converge")
-                a_p = r.x[3]
-                u_p = [r.x[0], r.x[1], r.x[2], SIG2 - c - g * a_p]
+                v = solved(peel, list(u[:3]) + [a], "the slide's peel-up")
+                a_p = v[3]
+                u_p = [v[0], v[1], v[2], SIG2 - c - g * a_p]
                 if self.margin(u_p, c + g * a_p, mu, g) < 0:
                     return a_p, u_p, True
                 a_new, u_new = a_p, u_p  # balanced before the stretch is gone

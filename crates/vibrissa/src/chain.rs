@@ -90,6 +90,13 @@ pub(crate) struct Contact {
 }
 
 impl Contact {
+    /// The multiple of π the rod's slope keeps against a curved surface's slope angle `th`
+    /// there (`|φ − θ − kπ| < π/4`): `φ = θ + kπ` while it lies on the surface, and
+    /// `cos(kπ) = ±1` the way it runs along it.
+    pub fn kpi(&self, th: f64) -> f64 {
+        std::f64::consts::PI * ((self.phi_ref - th) / std::f64::consts::PI).round()
+    }
+
     /// Unit tangent of the force frame, `(−n_y, n_x)`.
     pub fn t(&self) -> [f64; 2] {
         [-self.n[1], self.n[0]]
@@ -1376,10 +1383,10 @@ impl<P: Profile> Chain<P> {
     }
 
     fn stretch_kpi(&self, h: &crate::surface::Height, x: f64, amp: f64) -> f64 {
-        let ct = self.set.lain().map(|j| &self.set.contacts[j]);
         let th = h.angle_scaled(x, amp).0;
-        let phi_ref = ct.map_or(f64::NAN, |c| c.phi_ref);
-        std::f64::consts::PI * ((phi_ref - th) / std::f64::consts::PI).round()
+        self.set
+            .lain()
+            .map_or(f64::NAN, |j| self.set.contacts[j].kpi(th))
     }
 
     /// [`Chain::stretch_at`] with the rolling invariant `c`.
@@ -1823,7 +1830,7 @@ fn curve_conditions(
     // dθ/dλ at a fixed point: through x (the foot) and the amplitude
     let dth_lam = dth * dpose.xf - sd / (1.0 + d * d) * dpose.flat;
     // the multiple of π the rod's slope keeps against the surface's (|θ| < π/4)
-    let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
+    let kpi = ct.kpi(th);
     if !ct.tip {
         cs.push(z[2] - th - kpi, [-dth, 0.0, 1.0, 0.0], [0.0; 3], -dth_lam);
     }
@@ -2125,24 +2132,17 @@ mod tests {
         );
         let (x2, s2) = (5.0 / 12.0, 0.9658524852769022);
         let th = h.angle(x2).0;
-        let side = Contact::on_curve(false, &h, x2, Mode::Rolling(h.sigma(x2).0 - s2), th);
+        // (the side's rolling invariant, where the stretch lay down)
+        let c = h.sigma(x2).0 - s2;
+        let side = Contact::on_curve(false, &h, x2, Mode::Rolling(c), th);
         let tip = Contact::on_curve(true, &h, 0.45, Mode::Stuck(h.sigma(0.45).0), 0.0);
+        let lying = |beyond| Some(Lying { s2, x2, c, beyond });
         let unloaded = ContactSet {
-            lying: Some(Lying {
-                s2,
-                x2,
-                c: h.sigma(x2).0 - s2,
-                beyond: 0,
-            }),
+            lying: lying(0),
             ..ContactSet::of(vec![side.clone()])
         };
         let loaded = ContactSet {
-            lying: Some(Lying {
-                s2,
-                x2,
-                c: h.sigma(x2).0 - s2,
-                beyond: 1,
-            }),
+            lying: lying(1),
             ..ContactSet::of(vec![side, tip])
         };
         // (no stretch lies down as the start grows the texture, where the surface's arc length

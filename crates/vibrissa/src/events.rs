@@ -229,8 +229,7 @@ pub(crate) fn held(set: &ContactSet, j: usize, pe: &Pt, xf: f64) -> ContactSet {
         }
         Geom::Curve { h } => {
             let th = h.angle(x).0;
-            let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
-            (h.sigma(x).0, kpi.cos().round())
+            (h.sigma(x).0, ct.kpi(th).cos().round())
         }
         _ => return set.clone(),
     };

@@ -828,7 +828,7 @@ pub(crate) fn fill_slip(
             }
             Geom::Curve { h } => {
                 let (th, dth) = h.angle(x);
-                let kpi = std::f64::consts::PI * ((ct.phi_ref - th) / std::f64::consts::PI).round();
+                let kpi = ct.kpi(th);
                 let (sg, dsg) = h.sigma(x);
                 // (a disk's contact point's x rate, else the rod end's)
                 let vc = if disk.is_some() {

@@ -20,22 +20,48 @@ fn stretch_scene() -> Scene {
     }
 }
 
+/// The drag of `scene` with `opts`.
+fn drag_with(scene: Scene, opts: &DragOptions) -> DragResult {
+    let (rod, surface) = scene.parts().unwrap();
+    drag(&rod, &surface, opts).unwrap()
+}
+
 /// The drag of `scene` with the paper's friction (μs 0.5, μk 0.3) to `d_max` on `points` grid
 /// points.
 fn drag_over(scene: Scene, d_max: f64, points: usize) -> DragResult {
-    let (rod, surface) = scene.parts().unwrap();
-    drag(
-        &rod,
-        &surface,
+    let opts = DragOptions {
+        d_max,
+        points,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        ..DragOptions::default()
+    };
+    drag_with(scene, &opts)
+}
+
+/// The drag of `scene` with `opts` and the energy balance of each slip.
+fn balanced_drag(scene: Scene, opts: DragOptions) -> DragResult {
+    drag_with(
+        scene,
         &DragOptions {
-            d_max,
-            points,
-            mu_s: Some(0.5),
-            mu_k: Some(0.3),
-            ..DragOptions::default()
+            energy_balance: true,
+            ..opts
         },
     )
-    .unwrap()
+}
+
+/// Each slip's stick and slip of `r` (a [`balanced_drag`]) balance their energy to 1e-8: the
+/// foot's work less the elastic energy's change and the friction of contacts sliding along,
+/// and the released energy less the work of every sliding contact.
+fn assert_balanced(r: &DragResult) {
+    for s in &r.slips {
+        let (stick, slip) = s.imbalance().unwrap();
+        assert!(
+            stick.abs() < 1e-8 && slip.abs() < 1e-8,
+            "at d = {}: {stick:e}, {slip:e}",
+            s.d
+        );
+    }
 }
 
 fn stretch_drag(points: usize, d_max: f64) -> DragResult {
@@ -296,16 +322,14 @@ fn a_slipping_stretch_matches_the_independent_reference() {
     let rows = reference("stretch_slip_reference.csv");
     let mut worst = 0.0f64;
     for (mu_k, d_max, points) in [(0.3, 0.06, 13), (0.38, 0.085, 18)] {
-        let (rod, surface) = stretch_scene().parts().unwrap();
         let opts = DragOptions {
             d_max,
             points,
             mu_s: Some(0.42),
             mu_k: Some(mu_k),
-            energy_balance: true,
             ..DragOptions::default()
         };
-        let r = drag(&rod, &surface, &opts).unwrap();
+        let r = balanced_drag(stretch_scene(), opts);
         assert_eq!(r.stop, StopReason::DMax, "{r}");
         let want: Vec<_> = rows.iter().filter(|(_, w)| w["mu_k"] == mu_k).collect();
         let (mut slips, mut ends) = (0, 0);
@@ -378,14 +402,7 @@ fn a_slipping_stretch_matches_the_independent_reference() {
             }
         }
         assert_eq!(r.slips.len(), slips, "{r}");
-        for s in &r.slips {
-            let (stick, slip) = s.imbalance().unwrap();
-            assert!(
-                stick.abs() < 1e-8 && slip.abs() < 1e-8,
-                "at d = {}: {stick:e}, {slip:e}",
-                s.d
-            );
-        }
+        assert_balanced(&r);
     }
     eprintln!("slipping stretch: largest difference {worst:.2e}");
 }
@@ -409,7 +426,6 @@ fn a_side_sliding_in_a_slip_lies_down_and_slides_on() {
         },
         ..stretch_scene()
     };
-    let (rod, surface) = scene.parts().unwrap();
     // (on the default grid of 201 rows: with 11 the march's step from the stick's lie-down at
     // d = 0.0906 to 0.1 passes over a touchdown at 0.09085 whose side lifts again before 0.1,
     // a crossing and its return within one step that no event function sees)
@@ -417,10 +433,9 @@ fn a_side_sliding_in_a_slip_lies_down_and_slides_on() {
         d_max: 0.1,
         mu_s: Some(0.5),
         mu_k: Some(0.3),
-        energy_balance: true,
         ..DragOptions::default()
     };
-    let r = drag(&rod, &surface, &opts).unwrap();
+    let r = balanced_drag(scene, opts);
     assert_eq!(r.stop, StopReason::DMax, "{r}");
     let lies: Vec<_> = r
         .rows
@@ -455,14 +470,7 @@ fn a_side_sliding_in_a_slip_lies_down_and_slides_on() {
         ),
         "{holds:?}"
     );
-    for s in &r.slips {
-        let (stick, slip) = s.imbalance().unwrap();
-        assert!(
-            stick.abs() < 1e-8 && slip.abs() < 1e-8,
-            "at d = {}: {stick:e}, {slip:e}",
-            s.d
-        );
-    }
+    assert_balanced(&r);
 }
 
 /// A stretch with the tip beyond it that slips: the rod tapered to 0.3 with a round tip
@@ -484,15 +492,13 @@ fn a_stretch_with_the_tip_beyond_slips() {
         tip_radius: 0.005,
         ..stretch_scene()
     };
-    let (rod, surface) = scene.parts().unwrap();
     let opts = DragOptions {
         d_max: 0.13,
         mu_s: Some(0.5),
         mu_k: Some(0.3),
-        energy_balance: true,
         ..DragOptions::default()
     };
-    let r = drag(&rod, &surface, &opts).unwrap();
+    let r = balanced_drag(scene, opts);
     assert_eq!(r.stop, StopReason::DMax, "{r}");
     let slips: Vec<f64> = r
         .rows
@@ -504,12 +510,5 @@ fn a_stretch_with_the_tip_beyond_slips() {
     for (d, want) in slips.iter().zip([0.07656, 0.12269]) {
         assert!((d - want).abs() < 1e-5, "a slip at d = {d}");
     }
-    for s in &r.slips {
-        let (stick, slip) = s.imbalance().unwrap();
-        assert!(
-            stick.abs() < 1e-8 && slip.abs() < 1e-8,
-            "at d = {}: {stick:e}, {slip:e}",
-            s.d
-        );
-    }
+    assert_balanced(&r);
 }
