@@ -45,6 +45,7 @@ CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture 
            "nested slips 8 deep (named)", "side begins to lie along the surface",
            "lying stretch would slip (not modelled)",
            "change at a lying stretch (not followed)", "lying stretch's end would pull",
+           "lying stretch reaches the rod's end (not followed)",
            "slide of 4 rod lengths", "side behind the sliding "
            "contact (not followed)", "not modelled / no contact state", "too many slips",
            "named stop: other", "stale slip driver", "Newton failure / NaN",
@@ -105,6 +106,8 @@ def classify(reason, detail, code):
         return "change at a lying stretch (not followed)"
     if "stretch lying on the surface" in detail and "would pull" in detail:
         return "lying stretch's end would pull"
+    if "stretch lying on the surface" in detail and "reaches the rod's end" in detail:
+        return "lying stretch reaches the rod's end (not followed)"
     if "rod lengths along the surface without reaching" in detail:
         return "slide of 4 rod lengths"
     if "joins behind the sliding one" in detail:

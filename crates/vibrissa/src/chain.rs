@@ -197,6 +197,9 @@ pub(crate) struct Lying {
     pub c: f64,
     /// How many contacts lie beyond the stretch (the last of the set's contacts).
     pub beyond: usize,
+    /// Lab x where the stretch formed: below the full amplitude (the start's growth) the
+    /// surface's arc length is taken from there ([`Chain::stretch_sigma`]).
+    pub anchor: f64,
 }
 
 /// The lying stretch of a set at a pose: the surface and the rolling invariant that place it.
@@ -216,15 +219,44 @@ pub(crate) struct Stretch<'a> {
     xf: f64,
     pub s2: f64,
     pub x2: f64,
+    /// Below the full amplitude (the start's growth): a lab `x` and the scaled surface's `σ`
+    /// there, from which [`Stretch::sigma`] integrates ([`Height::arc_scaled`]).
+    anchor: Option<(f64, f64)>,
 }
 
 impl Stretch<'_> {
+    /// The surface's arc length `σ(x)` and `dσ/dx` at the stretch's amplitude
+    /// ([`Height::sigma_scaled`]; from the anchor where the shape is scaled).
+    fn sigma(&self, x: f64) -> (f64, f64) {
+        match self.anchor {
+            None => self.h.sigma(x),
+            Some((xa, sa)) => self.h.sigma_scaled_from(xa, sa, x, self.amp),
+        }
+    }
+
+    /// `dσ/dx` at `x` ([`Stretch::sigma`]).
+    fn speed(&self, x: f64) -> f64 {
+        match self.anchor {
+            None => self.h.speed(x),
+            Some(_) => self.h.speed_scaled(x, self.amp),
+        }
+    }
+
+    /// [`Stretch::sigma`], below the full amplitude integrated from a point `known` of it
+    /// nearby, `(x0, σ(x0))` (the same function to rounding, with a shorter integral).
+    fn sigma_near(&self, x: f64, known: Option<(f64, f64)>) -> (f64, f64) {
+        match (self.anchor, known) {
+            (Some(_), Some((x0, s0))) => self.h.sigma_scaled_from(x0, s0, x, self.amp),
+            _ => self.sigma(x),
+        }
+    }
+
     /// Lab x of the material point `s` on the stretch (Newton on `σ(x) = c + dir·s`).
     pub fn x_at(&self, s: f64) -> f64 {
         let target = self.c + self.dir * s;
         let mut x = self.x2 + self.dir * (s - self.s2);
         for _ in 0..50 {
-            let (sg, dsg) = self.h.sigma(x);
+            let (sg, dsg) = self.sigma(x);
             let dx = (sg - target) / dsg;
             x -= dx;
             if dx.abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0) {
@@ -279,11 +311,11 @@ impl Stretch<'_> {
     /// there), found by Newton from the stored place moved with the invariant (for a straight
     /// rest the same lab `x`, an inflection). `None` where Newton does not converge.
     pub fn outer_end<P: Profile>(&self, p: &P) -> Option<(f64, f64)> {
-        let mut s = self.dir * (self.h.sigma(self.x2).0 - self.c);
+        let mut s = self.dir * (self.sigma(self.x2).0 - self.c);
         for _ in 0..30 {
             let x = self.x_at(s);
             let g = self.kappa(x) - p.k0(s);
-            let dxds = self.dir / self.h.sigma(x).1;
+            let dxds = self.dir / self.speed(x);
             let dg = self.dkappa(x) * dxds - p.slopes(s).1;
             let ds = g / dg;
             s -= ds;
@@ -314,13 +346,17 @@ impl Stretch<'_> {
             // (each node's x by Newton from the last one's: the correction below 1e-9 is the
             // last, the error after it of its square)
             let (mut sp, mut x) = (s1, st1.0[0] + self.xf);
+            // (the last `(x, σ(x))` evaluated: below the full amplitude the next `σ` is
+            // integrated from there)
+            let mut known = None;
             for i in 0..8 {
                 let a = s1 + w * i as f64;
                 for (s, wt) in crate::gauss::nodes10(a, a + w) {
                     let target = self.c + self.dir * s;
-                    x += self.dir * (s - sp) / self.h.sigma(x).1;
+                    x += self.dir * (s - sp) / self.speed(x);
                     for _ in 0..50 {
-                        let (sg, dsg) = self.h.sigma(x);
+                        let (sg, dsg) = self.sigma_near(x, known);
+                        known = Some((x, sg));
                         let dx = (sg - target) / dsg;
                         x -= dx;
                         if dx.abs() <= 1e-9 {
@@ -948,11 +984,14 @@ impl<P: Profile> Chain<P> {
             for i in 0..4 {
                 d[(i, n - 1)] = dz2[i];
             }
+            // (the foot's place, and the surface's lift as the start grows the texture)
             d[(0, n)] = -dpose.xf;
+            d[(1, n)] = dpose.h;
             // a stretch that slides moves the outer end's place with its invariant `c`: a
             // slip's driver by the slide, a passive slider with its inner end
             // (`c = σ(x1) − dir·s1`); `∂z2/∂c` by central differences
-            let slides = is_slider(&self.set.contacts[k]);
+            let slides =
+                is_slider(&self.set.contacts[k]) || matches!(self.set.contacts[k].mode, Mode::Free);
             let moved = self.family.moves(k) && dpose.slide != 0.0;
             if slides || moved {
                 let e = 1e-6;
@@ -966,7 +1005,7 @@ impl<P: Profile> Chain<P> {
                     let Geom::Curve { h } = &self.set.contacts[k].geom else {
                         return Err(EvalError::NonFinite);
                     };
-                    let dsg = h.sigma(cur.z[0] + pose.xf).1;
+                    let dsg = self.stretch_sigma(h, cur.z[0] + pose.xf, st.amp).1;
                     let o = self.set.offset(k) + 2;
                     for i in 0..4 {
                         for col in 0..=n {
@@ -979,6 +1018,29 @@ impl<P: Profile> Chain<P> {
                     for i in 0..4 {
                         d[(i, n)] += dz[i] * dpose.slide;
                     }
+                }
+            }
+            if dpose.flat != 0.0 {
+                // (the start grows the shape: the outer end's state moves with the amplitude,
+                // `1 − flat`, at the inner end's place, the invariant with the scaled arc
+                // length there; central differences)
+                let Geom::Curve { h } = &self.set.contacts[k].geom else {
+                    return Err(EvalError::NonFinite);
+                };
+                let (s1, x1) = (self.bps[k], cur.z[0] + pose.xf);
+                let za = |a: f64| -> Result<[f64; 4], EvalError> {
+                    let at = Pose {
+                        flat: 1.0 - a,
+                        ..*pose
+                    };
+                    let c = self.stretch_sigma(h, x1, a).0 - st.dir * s1;
+                    let m = self.stretch_from(&at, u, c).ok_or(EvalError::NonFinite)?;
+                    Ok(m.state(p, st.s2).0)
+                };
+                let e = 1e-6;
+                let (a, b) = (za(st.amp + e)?, za(st.amp - e)?);
+                for i in 0..4 {
+                    d[(i, n)] -= (a[i] - b[i]) / (2.0 * e) * dpose.flat;
                 }
             }
         }
@@ -1025,7 +1087,8 @@ impl<P: Profile> Chain<P> {
         let q = |s1: f64, s2: f64, c: f64, fb: [f64; 2]| -> Result<f64, EvalError> {
             Ok(cap(s1, s2, c)?.q(ratio, fb))
         };
-        let (sg, dsg) = h.sigma(x1);
+        let amp = 1.0 - pose.flat;
+        let (sg, dsg) = self.stretch_sigma(h, x1, amp);
         let c = sg - dir * s1;
         let s2 = set.s2_of(u);
         let here = cap(s1, s2, c)?;
@@ -1043,6 +1106,21 @@ impl<P: Profile> Chain<P> {
             }
             j[(row, set.offset(k) + 2)] += qs - dir * qc;
             l[row] += qc * dsg * (cur.d[(0, n)] + dpose.xf);
+            if dpose.flat != 0.0 {
+                // (the start grows the shape: `Q` moves with the amplitude at the inner end's
+                // place, the invariant with the scaled arc length there; the amplitude is
+                // `1 − flat`)
+                let qa = |a: f64| -> Result<f64, EvalError> {
+                    let at = Pose {
+                        flat: 1.0 - a,
+                        ..*pose
+                    };
+                    let c = self.stretch_sigma(h, x1, a).0 - dir * s1;
+                    let st = self.stretch_from(&at, u, c).ok_or(EvalError::NonFinite)?;
+                    Ok(st.capstan(p, s1).q(ratio, fb))
+                };
+                l[row] -= (qa(amp + e)? - qa(amp - e)?) / (2.0 * e) * dpose.flat;
+            }
             if loaded {
                 j[(row, n - 1)] += q2;
                 // (linear in the forces beyond)
@@ -1134,7 +1212,12 @@ impl<P: Profile> Chain<P> {
         }
         // a lying stretch that slides: its friction row, the last, is the balance of its
         // distributed friction
-        if let (true, Mode::Sliding(ratio)) = (set.lain() == Some(k), ct.mode) {
+        let ratio = match ct.mode {
+            Mode::Sliding(ratio) => Some(ratio),
+            Mode::Free => Some(0.0),
+            _ => None,
+        };
+        if let (true, Some(ratio)) = (set.lain() == Some(k), ratio) {
             let rows = rows.map_or((None, None), |(j, l)| (Some(j), Some(l)));
             let at = (u, set.s_of(k, u), z[0] + pose.xf, ratio);
             if self
@@ -1361,19 +1444,33 @@ impl<P: Profile> Chain<P> {
             Mode::Rolling(k) => k + slide,
             // (a stretch that slides passively: its invariant where its inner end is, on the
             // shooter's path there)
-            Mode::Sliding(_) => {
+            Mode::Sliding(_) | Mode::Free => {
                 let s1 = self.set.s_of(j, u);
                 let x1 = self.sh.state_at(j, s1)[0] + pose.xf;
                 let (Geom::Curve { h }, Some(ly)) = (&self.set.contacts[j].geom, self.set.lying)
                 else {
                     return None;
                 };
-                let dir = self.stretch_dir(h, ly.x2, 1.0 - pose.flat);
-                h.sigma(x1).0 - dir * s1
+                let amp = 1.0 - pose.flat;
+                let dir = self.stretch_dir(h, ly.x2, amp);
+                self.stretch_sigma(h, x1, amp).0 - dir * s1
             }
             _ => return None,
         };
         self.stretch_from(pose, u, c)
+    }
+
+    /// The surface's arc length `σ(x)` and `dσ/dx` as the lying stretch sees it at the
+    /// amplitude `amp`: [`crate::surface::Height::sigma`] at the full amplitude; below it (the
+    /// start's growth) the scaled surface's arc length from the stretch's anchor, where it is
+    /// taken to be the full one's (any fixed origin serves: the stretch there is frictionless,
+    /// its invariant found from its inner end at every evaluation; a near one keeps the
+    /// integral short).
+    fn stretch_sigma(&self, h: &crate::surface::Height, x: f64, amp: f64) -> (f64, f64) {
+        match self.set.lying {
+            Some(ly) if amp != 1.0 => h.sigma_scaled_from(ly.anchor, h.sigma(ly.anchor).0, x, amp),
+            _ => h.sigma(x),
+        }
     }
 
     /// The way the lain contact's rod runs along the surface, `±1` (its slope against the
@@ -1408,6 +1505,7 @@ impl<P: Profile> Chain<P> {
             xf: pose.xf,
             s2: ly.s2,
             x2: ly.x2,
+            anchor: (amp != 1.0).then(|| (ly.anchor, h.sigma(ly.anchor).0)),
         };
         if ly.beyond == 0 {
             if st.c.to_bits() == ly.c.to_bits() {
@@ -1472,6 +1570,7 @@ impl<P: Profile> Chain<P> {
         let loaded = j + 1 < self.set.contacts.len();
         let (mu, r) = match self.set.contacts[j].mode {
             Mode::Sliding(r) => (r, r),
+            Mode::Free => (0.0, 0.0),
             _ => (st.friction_ratio(p, s1, nt, fb).0, 0.0),
         };
         let (Some(dc), Some(du)) = (dc, du) else {
@@ -2136,7 +2235,15 @@ mod tests {
         let c = h.sigma(x2).0 - s2;
         let side = Contact::on_curve(false, &h, x2, Mode::Rolling(c), th);
         let tip = Contact::on_curve(true, &h, 0.45, Mode::Stuck(h.sigma(0.45).0), 0.0);
-        let lying = |beyond| Some(Lying { s2, x2, c, beyond });
+        let lying = |beyond| {
+            Some(Lying {
+                s2,
+                x2,
+                c,
+                beyond,
+                anchor: x2,
+            })
+        };
         let unloaded = ContactSet {
             lying: lying(0),
             ..ContactSet::of(vec![side.clone()])
@@ -2145,10 +2252,17 @@ mod tests {
             lying: lying(1),
             ..ContactSet::of(vec![side, tip])
         };
-        // (no stretch lies down as the start grows the texture, where the surface's arc length
-        // is the full profile's and its shape scaled: the loaded stretch's outer end is checked
-        // in the drag's family only)
+        // (the start grows the texture with frictionless contacts: a stretch there is free,
+        // its invariant where its inner end is on the scaled surface's arc length)
         let grow = (Family::Grow { off0: 0.001 }, 0.7);
+        let free = |set: &ContactSet| {
+            let mut set = set.clone();
+            for c in &mut set.contacts {
+                c.mode = Mode::Free;
+            }
+            set
+        };
+        let (unloaded_free, loaded_free) = (free(&unloaded), free(&loaded));
         // a stretch that slides (module docs, "A stretch that slides"): along, with its
         // capstan row and an invariant that moves with its inner end, or driving a slip
         let sliding = |set: &ContactSet| {
@@ -2175,8 +2289,10 @@ mod tests {
             &[-0.026, 1.43, 0.59, 0.93],
             &[-0.026, 1.43, 0.59, 0.93, 0.05, 0.01, 0.955],
         );
-        let cases: [Case; 6] = [
+        let cases: [Case; 8] = [
             (&profile, &unloaded, u1, &[(Family::Drag, 0.05), grow]),
+            (&gentle, &unloaded_free, u1, &[grow, (Family::Drag, 0.05)]),
+            (&profile, &loaded_free, u2, &[grow]),
             (
                 &profile,
                 &loaded,

@@ -43,6 +43,9 @@ pub(crate) enum Crossing {
     /// The lying stretch whose inner end is contact `j` shrinks to its outer end: the rod rises
     /// off the surface to a point contact there.
     Unlie(usize),
+    /// The outer end of the lying stretch whose inner end is contact `j`, the rest beyond it
+    /// unloaded, reaches the rod's end.
+    Reach(usize),
     /// An end of the lying stretch whose inner end is contact `j` would pull on the surface (the
     /// smaller of its ends' point forces falls to zero).
     EndLift(usize),
@@ -86,6 +89,10 @@ impl Crossing {
                 "s - s2 of contact {} (the lying stretch would shrink past its outer end)",
                 j + 1
             ),
+            Crossing::Reach(j) => format!(
+                "s2 - 1 of contact {} (the lying stretch would reach past the rod's end)",
+                j + 1
+            ),
             Crossing::EndLift(j) => format!(
                 "-min(P1, P2) of contact {} (an end of the lying stretch would pull)",
                 j + 1
@@ -114,6 +121,9 @@ impl Crossing {
                 // the inner end of a lying stretch (module `chain`, `Lying`)
                 v.push(Crossing::Unlie(j));
                 v.push(Crossing::EndLift(j));
+                if j + 1 == set.contacts.len() {
+                    v.push(Crossing::Reach(j));
+                }
                 continue;
             }
             if lies_inside(set, j) || (!c.tip && matches!(c.geom, Geom::Curve { .. })) {
@@ -161,6 +171,7 @@ impl Crossing {
             Crossing::TipTangent => -w.tip_approach,
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
             Crossing::Unlie(j) => w.contacts[j].s - w.contacts[j].lies_to,
+            Crossing::Reach(j) => w.contacts[j].lies_to - 1.0,
             Crossing::EndLift(j) => {
                 let [p1, p2] = w.contacts[j].end_push;
                 -p1.min(p2)
@@ -702,6 +713,7 @@ fn transition_at(
             }
             Crossing::Unlie(_) => peel_up(set, u),
             Crossing::EndLift(j) => end_lift(&pe.w.contacts[j]),
+            Crossing::Reach(j) => reach(&pe.w.contacts[j]),
             Crossing::Lie(j) => Next::Limit(format!(
                 "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
                 pe.w.contacts[j].s
@@ -901,14 +913,27 @@ fn end_lift(c: &crate::watch::ContactForce) -> Next {
     ))
 }
 
+/// The stop where the unloaded lying stretch whose inner end is the contact `c` reaches the
+/// rod's end: beyond, its outer end (where the rod's moment is zero) would lie past the tip, so
+/// the rod would lie to its end with a moment there that a free end does not carry. What
+/// follows is the tip pressing on the surface beyond the stretch, but that state is singular
+/// where it forms (docs/model.md, "A stretch that reaches the rod's end"), and it is not
+/// followed.
+fn reach(c: &crate::watch::ContactForce) -> Next {
+    Next::Limit(format!(
+        "the stretch lying on the surface from s = {:.6} reaches the rod's end: beyond, the \
+         rod would lie to its end with a moment there that a free end does not carry; the tip \
+         pressing on the surface beyond a lying stretch is not followed",
+        c.s,
+    ))
+}
+
 /// What keeps the side contact `j` of `set`, on a curved surface, that begins to lie along it out
 /// of the lying stretch the model has ([`lie_down`]); `None` where it may lie down.
-pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> Option<&'static str> {
+pub(crate) fn lie_kept_out(set: &ContactSet, j: usize) -> Option<&'static str> {
     let ct = &set.contacts[j];
     Some(if set.lying.is_some() {
         "a second lying stretch is not in the model"
-    } else if env.ground.grow {
-        "a stretch that lies down as the start grows the texture is not followed"
     } else if !ct.mode.no_slip() && j + 1 < set.contacts.len() {
         // (followed, a side sliding along with the tip beyond it that lies down creeps on in
         // slides of 1e-12, minutes of CPU, on three of the texture grid's drags)
@@ -916,7 +941,10 @@ pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> Option<&'st
     } else if ct.tip
         || !matches!(
             (&ct.geom, ct.mode),
-            (Geom::Curve { .. }, Mode::Rolling(_) | Mode::Sliding(_))
+            (
+                Geom::Curve { .. },
+                Mode::Rolling(_) | Mode::Sliding(_) | Mode::Free
+            )
         )
     {
         "a stretch from a contact other than a side on a curved surface is not in the model"
@@ -932,7 +960,7 @@ pub(crate) fn lie_kept_out(env: &Env, set: &ContactSet, j: usize) -> Option<&'st
 /// beyond, the outer end is a new unknown, at the side's place). Where [`lie_kept_out`] keeps it
 /// out, the stop, with the reason.
 fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Next {
-    if let Some(why) = lie_kept_out(env, set, j) {
+    if let Some(why) = lie_kept_out(set, j) {
         return Next::Limit(curve_lie(set, j, pe, why));
     }
     let c = &pe.w.contacts[j];
@@ -955,6 +983,7 @@ fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Next {
         x2: c.x,
         c: inv,
         beyond,
+        anchor: c.x,
     });
     let mut nu = pe.u.clone();
     if beyond > 0 {

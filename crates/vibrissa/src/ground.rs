@@ -188,7 +188,7 @@ pub(crate) fn stuck<P: Profile>(
     xf: f64,
 ) -> (ContactSet, Vec<f64>) {
     let mut u = p.pt.u.clone();
-    let contacts = p
+    let contacts: Vec<Contact> = p
         .set
         .contacts
         .iter()
@@ -221,11 +221,19 @@ pub(crate) fn stuck<P: Profile>(
             }
         })
         .collect();
+    // (a stretch lying from the start rolls with its inner end's invariant)
+    let lying = p.set.lying.map(|ly| {
+        let c = match p.set.lain().map(|j| &contacts[j].mode) {
+            Some(&Mode::Rolling(c)) => c,
+            _ => f64::NAN,
+        };
+        crate::chain::Lying { c, ..ly }
+    });
     (
         ContactSet {
             contacts,
             tip_radius: p.set.tip_radius,
-            lying: None,
+            lying,
         },
         u,
     )

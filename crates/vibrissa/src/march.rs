@@ -670,7 +670,7 @@ impl<P: Profile> Run<'_, '_, P> {
         // has the stretch
         if let Crossing::Lie(j) = c {
             let set = self.stepper.set();
-            if w.hist.len() == 1 && crate::events::lie_kept_out(env, set, j).is_none() {
+            if w.hist.len() == 1 && crate::events::lie_kept_out(set, j).is_none() {
                 w.pending.clear();
                 return Some(Pending::AtStart(c));
             }
@@ -697,7 +697,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 // a side that lies along the surface from the state's first point (the tip
                 // lay down where the surface curves more than the rod's end, issue 31): the
                 // stop is the lie's, with its reason
-                let why = crate::events::lie_kept_out(env, set, j);
+                let why = crate::events::lie_kept_out(set, j);
                 let why = why.unwrap_or("a stretch lying from a contact state's first point");
                 let message = crate::events::curve_lie(set, j, q, why);
                 return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));

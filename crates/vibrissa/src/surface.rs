@@ -180,6 +180,10 @@ impl Default for FrictionProfile {
 /// inclination; a round tip takes [`crate::limits::ROUND_TIP_SLOPE`]).
 pub const MAX_PROFILE_SLOPE: f64 = crate::limits::POINT_TIP_SLOPE;
 
+/// The width of the fixed panels of [`Height::arc_scaled`]: about a thousandth of the rod's
+/// length, a tenth of the shortest corrugation wavelength the limits allow (0.01).
+const SCALED_PANEL: f64 = 1.0 / 1024.0;
+
 /// The slope limit `max` in words: `1, 45 degrees`.
 fn slope_limit_text(max: f64) -> String {
     if max == MAX_PROFILE_SLOPE {
@@ -573,7 +577,8 @@ impl Height {
         self.slope
     }
 
-    fn speed(&self, x: f64) -> f64 {
+    /// `dσ/dx = √(1 + h'²)` at `x` (as [`Height::sigma`] gives it).
+    pub(crate) fn speed(&self, x: f64) -> f64 {
         let d = self.jet(x).1;
         (1.0 + d * d).sqrt()
     }
@@ -622,6 +627,41 @@ impl Height {
     /// Arc length `σ(x)` along the surface from `x = 0` (signed), and `dσ/dx = √(1 + h'²)`.
     pub fn sigma(&self, x: f64) -> (f64, f64) {
         (self.arc_from_start(x) - self.arc0, self.speed(x))
+    }
+
+    /// Arc length `σ(x)` and `dσ/dx` on the surface with its shape scaled by `amp` (as
+    /// [`Height::jet_scaled`]; the start grows the shape), from its value `sa` at `xa`
+    /// ([`Height::arc_scaled`]).
+    pub fn sigma_scaled_from(&self, xa: f64, sa: f64, x: f64, amp: f64) -> (f64, f64) {
+        (sa + self.arc_scaled(xa, x, amp), self.speed_scaled(x, amp))
+    }
+
+    /// `∫ √(1 + h'²) dx` from `a` to `b` on the surface scaled by `amp`: 10-point Gauss on the
+    /// panels of a fixed grid of width [`SCALED_PANEL`] (`[k·w, (k+1)·w]`, cut at `a` and `b`). On a
+    /// sine of the shortest wavelength, 0.01, a panel is a tenth of the period, where the rule is
+    /// exact to rounding; across the kinks of `h''` (a grating's rounded corners, a spline's knots) its
+    /// error is of the panel's cube times the jump. It serves the start's growth only: the
+    /// grown state is solved again on [`Height::sigma`] at the full amplitude.
+    pub fn arc_scaled(&self, a: f64, b: f64, amp: f64) -> f64 {
+        let (lo, hi, sign) = if a <= b { (a, b, 1.0) } else { (b, a, -1.0) };
+        let w = SCALED_PANEL;
+        let speed = |t: f64| self.speed_scaled(t, amp);
+        let (mut k, mut sum, mut x) = ((lo / w).floor(), 0.0, lo);
+        while x < hi {
+            let next = ((k + 1.0) * w).min(hi);
+            if next > x {
+                sum += crate::gauss::gauss10(x, next, speed);
+            }
+            x = next;
+            k += 1.0;
+        }
+        sign * sum
+    }
+
+    /// `dσ/dx` on the surface scaled by `amp`.
+    pub(crate) fn speed_scaled(&self, x: f64, amp: f64) -> f64 {
+        let d = self.jet_scaled(x, amp).1;
+        (1.0 + d * d).sqrt()
     }
 
     /// The tabulated arc length at lab `x` (from the panels' start, or the shape's own).
