@@ -41,6 +41,7 @@ COLUMNS = ["amplitude", "wavelength", "phase", "rod", "tip_radius", "class", "st
 CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture grows",
            "refused: steep for a point tip", "refused: other", "no start", "trapped start",
            "start lies along the texture (not modelled)",
+           "start's stretch reaches the rod's end (not followed)",
            "slider halts into a trapped state (named)", "trapped slide (not followed)",
            "nested slips 8 deep (named)", "side begins to lie along the surface",
            "lying stretch would slip (not modelled)",
@@ -70,6 +71,8 @@ def classify(reason, detail, code):
             return "start snaps as the texture grows"
         if "lies down along the surface" in detail:
             return "start lies along the texture (not modelled)"
+        if "reaches the rod's end" in detail:
+            return "start's stretch reaches the rod's end (not followed)"
         if "no start" in detail:
             return "no start"
         if "Newton" in detail or "NaN" in detail or "not finite" in detail:
