@@ -220,13 +220,13 @@ pub(crate) struct Stretch<'a> {
     pub s2: f64,
     pub x2: f64,
     /// Below the full amplitude (the start's growth): a lab `x` and the scaled surface's `σ`
-    /// there, from which [`Stretch::sigma`] integrates ([`Height::arc_scaled`]).
+    /// there, from which [`Stretch::sigma`] integrates ([`crate::surface::Height::arc_scaled`]).
     anchor: Option<(f64, f64)>,
 }
 
 impl Stretch<'_> {
     /// The surface's arc length `σ(x)` and `dσ/dx` at the stretch's amplitude
-    /// ([`Height::sigma_scaled`]; from the anchor where the shape is scaled).
+    /// ([`crate::surface::Height::sigma_scaled_from`] from the anchor, where the shape is scaled).
     fn sigma(&self, x: f64) -> (f64, f64) {
         match self.anchor {
             None => self.h.sigma(x),

@@ -632,17 +632,18 @@ impl Height {
     /// Arc length `σ(x)` and `dσ/dx` on the surface with its shape scaled by `amp` (as
     /// [`Height::jet_scaled`]; the start grows the shape), from its value `sa` at `xa`
     /// ([`Height::arc_scaled`]).
-    pub fn sigma_scaled_from(&self, xa: f64, sa: f64, x: f64, amp: f64) -> (f64, f64) {
+    pub(crate) fn sigma_scaled_from(&self, xa: f64, sa: f64, x: f64, amp: f64) -> (f64, f64) {
         (sa + self.arc_scaled(xa, x, amp), self.speed_scaled(x, amp))
     }
 
     /// `∫ √(1 + h'²) dx` from `a` to `b` on the surface scaled by `amp`: 10-point Gauss on the
-    /// panels of a fixed grid of width [`SCALED_PANEL`] (`[k·w, (k+1)·w]`, cut at `a` and `b`). On a
-    /// sine of the shortest wavelength, 0.01, a panel is a tenth of the period, where the rule is
-    /// exact to rounding; across the kinks of `h''` (a grating's rounded corners, a spline's knots) its
-    /// error is of the panel's cube times the jump. It serves the start's growth only: the
-    /// grown state is solved again on [`Height::sigma`] at the full amplitude.
-    pub fn arc_scaled(&self, a: f64, b: f64, amp: f64) -> f64 {
+    /// panels of a fixed grid of width [`SCALED_PANEL`] = 1/1024 (`[k·w, (k+1)·w]`, cut at `a`
+    /// and `b`), so that the integral to `x` is smooth in `x`. On a sine of the shortest
+    /// wavelength, 0.01, a panel is a tenth of the period, where the rule is exact to rounding;
+    /// across the kinks of `h''` (a grating's rounded corners, a spline's knots) its error is of
+    /// the panel's cube times the jump. It serves the start's growth only: the grown state is
+    /// solved again on [`Height::sigma`] at the full amplitude.
+    pub(crate) fn arc_scaled(&self, a: f64, b: f64, amp: f64) -> f64 {
         let (lo, hi, sign) = if a <= b { (a, b, 1.0) } else { (b, a, -1.0) };
         let w = SCALED_PANEL;
         let speed = |t: f64| self.speed_scaled(t, amp);
