@@ -1180,6 +1180,50 @@ mod tests {
         assert_eq!(hermite_max(1.0, [0.0, -1.0], [-1.0, -1.0]), None);
     }
 
+    /// The start's arc length on the sine scaled by `a` (`Height::arc_scaled`): over a period
+    /// `P` of `h' = a·A·k·cos(kx + p)` it is `(P/2π)·4·√(1 + B²)·E(B²/(1 + B²))`, `B = a·A·k`,
+    /// the complete elliptic integral of the second kind (crate `elastica`), to 1e-14 relative;
+    /// it splits at any point to rounding, and at `a = 1` it is the profile's own `σ`.
+    #[test]
+    fn scaled_arc_length_matches_the_elliptic_closed_form() {
+        let (amplitude, wavelength) = (0.005, 0.05);
+        let h = Height::new(
+            &SurfaceProfile::Sine {
+                amplitude,
+                wavelength,
+                phase: 0.7,
+            },
+            0.75,
+            0.0,
+        )
+        .unwrap()
+        .unwrap();
+        let k = std::f64::consts::TAU / wavelength;
+        for amp in [0.0, 0.3, 0.7, 1.0] {
+            let b2 = (amp * amplitude * k).powi(2);
+            let exact = wavelength / std::f64::consts::TAU
+                * 4.0
+                * (1.0 + b2).sqrt()
+                * elastica::ellint::legendre_e(b2 / (1.0 + b2)).unwrap();
+            for x0 in [-0.3, 0.0123, 0.41] {
+                let got = h.arc_scaled(x0, x0 + wavelength, amp);
+                assert!(
+                    (got - exact).abs() <= 1e-14 * exact,
+                    "amplitude {amp}, from {x0}: {got} against {exact}"
+                );
+                let (m, e) = (x0 + 0.3 * wavelength, x0 + 0.8 * wavelength);
+                let split = h.arc_scaled(x0, m, amp) + h.arc_scaled(m, e, amp);
+                let whole = h.arc_scaled(x0, e, amp);
+                assert!((split - whole).abs() <= 1e-15, "{split} against {whole}");
+                assert_eq!(h.arc_scaled(e, x0, amp), -whole);
+            }
+        }
+        let (a, b) = (0.0123, 0.6);
+        let full = h.sigma(b).0 - h.sigma(a).0;
+        let scaled = h.sigma_scaled_from(a, h.sigma(a).0, b, 1.0).0 - h.sigma(a).0;
+        assert!((scaled - full).abs() <= 1e-14, "{scaled} against {full}");
+    }
+
     #[test]
     fn sine_arc_length_matches_a_fine_sum() {
         let h = Height::new(
