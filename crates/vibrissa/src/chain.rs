@@ -202,6 +202,15 @@ pub(crate) struct Lying {
     pub anchor: f64,
 }
 
+impl Lying {
+    /// Below the full amplitude `amp` (the start's growth): the anchor and the surface's `σ`
+    /// there, from which the scaled surface's arc length is integrated (`Chain::stretch_sigma`);
+    /// `None` at the full amplitude, where `σ` is the profile's own.
+    fn anchor_at(&self, h: &crate::surface::Height, amp: f64) -> Option<(f64, f64)> {
+        (amp != 1.0).then(|| (self.anchor, h.sigma(self.anchor).0))
+    }
+}
+
 /// The lying stretch of a set at a pose: the surface and the rolling invariant that place it.
 #[derive(Clone, Copy)]
 pub(crate) struct Stretch<'a> {
@@ -1029,13 +1038,8 @@ impl<P: Profile> Chain<P> {
                 };
                 let (s1, x1) = (self.bps[k], cur.z[0] + pose.xf);
                 let za = |a: f64| -> Result<[f64; 4], EvalError> {
-                    let at = Pose {
-                        flat: 1.0 - a,
-                        ..*pose
-                    };
-                    let c = self.stretch_sigma(h, x1, a).0 - st.dir * s1;
-                    let m = self.stretch_from(&at, u, c).ok_or(EvalError::NonFinite)?;
-                    Ok(m.state(p, st.s2).0)
+                    let m = self.stretch_scaled(h, pose, u, (x1, s1, st.dir), a);
+                    Ok(m.ok_or(EvalError::NonFinite)?.state(p, st.s2).0)
                 };
                 let e = 1e-6;
                 let (a, b) = (za(st.amp + e)?, za(st.amp - e)?);
@@ -1111,13 +1115,8 @@ impl<P: Profile> Chain<P> {
                 // place, the invariant with the scaled arc length there; the amplitude is
                 // `1 − flat`)
                 let qa = |a: f64| -> Result<f64, EvalError> {
-                    let at = Pose {
-                        flat: 1.0 - a,
-                        ..*pose
-                    };
-                    let c = self.stretch_sigma(h, x1, a).0 - dir * s1;
-                    let st = self.stretch_from(&at, u, c).ok_or(EvalError::NonFinite)?;
-                    Ok(st.capstan(p, s1).q(ratio, fb))
+                    let st = self.stretch_scaled(h, pose, u, (x1, s1, dir), a);
+                    Ok(st.ok_or(EvalError::NonFinite)?.capstan(p, s1).q(ratio, fb))
                 };
                 l[row] -= (qa(amp + e)? - qa(amp - e)?) / (2.0 * e) * dpose.flat;
             }
@@ -1467,10 +1466,29 @@ impl<P: Profile> Chain<P> {
     /// its invariant found from its inner end at every evaluation; a near one keeps the
     /// integral short).
     fn stretch_sigma(&self, h: &crate::surface::Height, x: f64, amp: f64) -> (f64, f64) {
-        match self.set.lying {
-            Some(ly) if amp != 1.0 => h.sigma_scaled_from(ly.anchor, h.sigma(ly.anchor).0, x, amp),
-            _ => h.sigma(x),
+        match self.set.lying.and_then(|ly| ly.anchor_at(h, amp)) {
+            Some((xa, sa)) => h.sigma_scaled_from(xa, sa, x, amp),
+            None => h.sigma(x),
         }
+    }
+
+    /// The set's lying stretch at the pose `pose` with the surface's amplitude `a` instead of
+    /// the pose's, its invariant where its inner end `(x1, s1)` is (running the way `dir`): the
+    /// start's derivatives in the amplitude, by differences.
+    fn stretch_scaled(
+        &self,
+        h: &crate::surface::Height,
+        pose: &Pose,
+        u: &[f64],
+        (x1, s1, dir): (f64, f64, f64),
+        a: f64,
+    ) -> Option<Stretch<'_>> {
+        let at = Pose {
+            flat: 1.0 - a,
+            ..*pose
+        };
+        let c = self.stretch_sigma(h, x1, a).0 - dir * s1;
+        self.stretch_from(&at, u, c)
     }
 
     /// The way the lain contact's rod runs along the surface, `±1` (its slope against the
@@ -1505,7 +1523,7 @@ impl<P: Profile> Chain<P> {
             xf: pose.xf,
             s2: ly.s2,
             x2: ly.x2,
-            anchor: (amp != 1.0).then(|| (ly.anchor, h.sigma(ly.anchor).0)),
+            anchor: ly.anchor_at(h, amp),
         };
         if ly.beyond == 0 {
             if st.c.to_bits() == ly.c.to_bits() {

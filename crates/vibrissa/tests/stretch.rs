@@ -26,15 +26,34 @@ fn drag_with(scene: Scene, opts: &DragOptions) -> DragResult {
     drag(&rod, &surface, opts).unwrap()
 }
 
+/// `scene` over the texture grid's corrugation 0.003 sin(2πx/0.2 + 2π/3).
+fn on_grid_sine(scene: Scene) -> Scene {
+    Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.003,
+            wavelength: 0.2,
+            phase: 2.0 * std::f64::consts::PI / 3.0,
+        },
+        ..scene
+    }
+}
+
+/// The drag with the paper's friction (μs 0.5, μk 0.3) to `d_max` on the default grid.
+fn paper_friction(d_max: f64) -> DragOptions {
+    DragOptions {
+        d_max,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        ..DragOptions::default()
+    }
+}
+
 /// The drag of `scene` with the paper's friction (μs 0.5, μk 0.3) to `d_max` on `points` grid
 /// points.
 fn drag_over(scene: Scene, d_max: f64, points: usize) -> DragResult {
     let opts = DragOptions {
-        d_max,
         points,
-        mu_s: Some(0.5),
-        mu_k: Some(0.3),
-        ..DragOptions::default()
+        ..paper_friction(d_max)
     };
     drag_with(scene, &opts)
 }
@@ -418,24 +437,10 @@ fn a_slipping_stretch_matches_the_independent_reference() {
 /// 1.1e-10).
 #[test]
 fn a_side_sliding_in_a_slip_lies_down_and_slides_on() {
-    let scene = Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.003,
-            wavelength: 0.2,
-            phase: 2.0 * std::f64::consts::PI / 3.0,
-        },
-        ..stretch_scene()
-    };
     // (on the default grid of 201 rows: with 11 the march's step from the stick's lie-down at
     // d = 0.0906 to 0.1 passes over a touchdown at 0.09085 whose side lifts again before 0.1,
     // a crossing and its return within one step that no event function sees)
-    let opts = DragOptions {
-        d_max: 0.1,
-        mu_s: Some(0.5),
-        mu_k: Some(0.3),
-        ..DragOptions::default()
-    };
-    let r = balanced_drag(scene, opts);
+    let r = balanced_drag(on_grid_sine(stretch_scene()), paper_friction(0.1));
     assert_eq!(r.stop, StopReason::DMax, "{r}");
     let lies: Vec<_> = r
         .rows
@@ -484,21 +489,10 @@ fn a_side_sliding_in_a_slip_lies_down_and_slides_on() {
 #[test]
 fn a_stretch_with_the_tip_beyond_slips() {
     let scene = Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.003,
-            wavelength: 0.2,
-            phase: 2.0 * std::f64::consts::PI / 3.0,
-        },
         tip_radius: 0.005,
-        ..stretch_scene()
+        ..on_grid_sine(stretch_scene())
     };
-    let opts = DragOptions {
-        d_max: 0.13,
-        mu_s: Some(0.5),
-        mu_k: Some(0.3),
-        ..DragOptions::default()
-    };
-    let r = balanced_drag(scene, opts);
+    let r = balanced_drag(scene, paper_friction(0.13));
     assert_eq!(r.stop, StopReason::DMax, "{r}");
     let slips: Vec<f64> = r
         .rows
