@@ -325,10 +325,7 @@ impl Arc {
                         return Err(match other {
                             Err(e) => e,
                             // the tangent kept turning: no resolvable branch here
-                            Ok(_) => ShotFailure::NoConvergence {
-                                iteration: 0,
-                                residual: 0.0,
-                            },
+                            Ok(_) => ShotFailure::Unresolved { ds },
                         });
                     }
                 }

@@ -12,9 +12,11 @@
 
 use crate::arclength::{self, Arc, ArcPoint, OnPlane, Steps};
 use crate::control::{FoldSteps, FOLD_STEPS};
+use crate::events::{Crossing, LocateError};
 use crate::rodsolve::ShotFailure;
 use crate::search;
-use crate::stepper::{FoldFailure, Passed, Pt, Stepper};
+use crate::stepper::{Chord, FoldFailure, Passed, Pt, StepError, Stepper};
+use crate::watch::Env;
 use nalgebra::DVector;
 
 /// A stepper seen as the corrector of a pseudo-arclength path.
@@ -82,7 +84,13 @@ fn follow(
                 let stop = past || done(&q);
                 pts.push(q);
                 if stop {
-                    return Ok(Passed::Beyond(pts));
+                    let b = arc.last.clone();
+                    let chord = Chord {
+                        a: prev,
+                        ta: tprev,
+                        b,
+                    };
+                    return Ok(Passed::Beyond(pts, Some(Box::new(chord))));
                 }
             }
             _ if past => return Err(ShotFailure::Singular { iteration: 0 }),
@@ -108,7 +116,7 @@ fn locate_fold(
     let n = a.n();
     let span = ta.dot(&(&b.v - &a.v));
     let mut slope = |sigma: f64| -> Result<f64, ShotFailure> {
-        let p = arclength::between(&mut Plane(&mut *st), a, ta, b, sigma, tol)?;
+        let p = on_chord(&mut *st, (a, ta, b), sigma, tol)?;
         p.tangent(Some(ta))
             .map(|t| t[n])
             .ok_or(ShotFailure::Singular { iteration: 0 })
@@ -117,7 +125,7 @@ fn locate_fold(
         Ok(x) => x,
         Err(e) => return Ok(Passed::Failed(FoldFailure::Locating(e))),
     };
-    let p = arclength::between(&mut Plane(&mut *st), a, ta, b, sigma, tol)?;
+    let p = on_chord(&mut *st, (a, ta, b), sigma, tol)?;
     let lam = p.lam();
     let pt = st.arc_point(&p).ok().map(|mut q| {
         // at the fold du/dλ is unbounded: no tangent
@@ -125,4 +133,53 @@ fn locate_fold(
         q
     });
     Ok(Passed::Fold(lam, pt.map(Box::new)))
+}
+
+/// How far above the corrector's tolerance a correction on the fold's chord may stall and still
+/// be taken (as [`crate::rodsolve::at_floor`]'s thousand tolerances).
+const CHORD_FLOOR: f64 = 1e3;
+
+/// The point of the branch on the chord's hyperplane at `sigma` ([`arclength::between`]); where
+/// Newton stalls within [`CHORD_FLOOR`] tolerances it is solved again to that. Why: on a thin
+/// tip the residual has a floor that no iteration lowers (~1e-10 on the short rat preset,
+/// against the tolerance 1e-12), and there the located fold ended the drag with "Newton did not
+/// converge (iteration 2, residual 1.414e-10)" where every point of the path had converged. Only
+/// a stalled correction is solved again, so every fold located before is located the same.
+fn on_chord(
+    st: &mut dyn Stepper,
+    (a, ta, b): (&ArcPoint, &DVector<f64>, &ArcPoint),
+    sigma: f64,
+    tol: f64,
+) -> Result<ArcPoint, ShotFailure> {
+    match arclength::between(&mut Plane(&mut *st), a, ta, b, sigma, tol) {
+        Err(ShotFailure::NoConvergence { residual, .. }) if residual <= CHORD_FLOOR * tol => {
+            arclength::between(&mut Plane(st), a, ta, b, sigma, CHORD_FLOOR * tol)
+        }
+        r => r,
+    }
+}
+
+/// Where the event `c` ends on the path's step `chord` (holding at its start, ended at its end):
+/// Brent's method on the event's value at the branch points on the hyperplanes
+/// `ta·(v − a) = σ` between them, as the fold is located. The march's event search interpolates
+/// the branch in `λ` through its last points; where the path turned back and forth in `λ` within
+/// a step of the fold passage (a short rat preset's drag over 0.001/0.2/2π/3: a slip limit
+/// reached 2e-7 past the branch's last natural point, the branch turning by 173° in between)
+/// that search failed, and the drag ended as a solver failure.
+pub(crate) fn locate_on_chord(
+    st: &mut dyn Stepper,
+    env: &Env,
+    chord: &Chord,
+    c: Crossing,
+) -> Result<Pt, LocateError> {
+    let tol = st.corrector_tol();
+    let Chord { a, ta, b } = chord;
+    let span = ta.dot(&(&b.v - &a.v));
+    let mut at = |sigma: f64| -> Result<Pt, StepError> {
+        let q = on_chord(&mut *st, (a, ta, b), sigma, tol)?;
+        st.arc_point(&q)
+    };
+    let mut value = |sigma: f64| at(sigma).map(|p| c.of_watch(env, &p.w));
+    let sigma = search::root(&mut value, 0.0, span, 1e-14 * (1.0 + span))?;
+    at(sigma).map_err(LocateError::Caller)
 }

@@ -25,7 +25,7 @@ use crate::profile::{General, Profile};
 use crate::record::{meter_between, Output, RangeTracker};
 use crate::report::{Event, RangeEnd, ScanPoint, StopReason};
 use crate::shape::ShapePoint;
-use crate::stepper::{Passed, Pt, StepError, Stepper};
+use crate::stepper::{Chord, Passed, Pt, StepError, Stepper};
 use crate::watch::{Env, Watch};
 use bvp::Stats;
 use std::collections::VecDeque;
@@ -187,6 +187,13 @@ struct Walk {
     pprev: Option<Watch>,
     /// Points of a pseudo-arclength path still to be taken as steps.
     queue: VecDeque<Pt>,
+    /// The free parts' clearance rate at a state's first point, `(λ, dg/dλ)`: the touchdown's
+    /// forecast on a curve where the history has one point (see [`Run::touchdown_forecast`]).
+    rate0: Option<(f64, f64)>,
+    /// The last step `(from, to)` taken again shorter after its events failed to be located.
+    failed: Option<(f64, f64)>,
+    /// The fold passage's step to its point where an armed event ended ([`Passed::Beyond`]).
+    chord: Option<Box<Chord>>,
 }
 
 /// How a step ended.
@@ -395,6 +402,9 @@ impl<P: Profile> Run<'_, '_, P> {
             pending,
             pprev: None,
             queue: VecDeque::new(),
+            rate0: None,
+            failed: None,
+            chord: None,
         };
         loop {
             if let Flow::End(stop, last) = self.step(&mut w) {
@@ -511,6 +521,12 @@ impl<P: Profile> Run<'_, '_, P> {
                 w.h = (self.ctl.first_change * size / rate).max(w.h_min);
             }
         }
+        if self.forecasts_touchdown(armed) && w.hist.len() == 1 {
+            let p = &w.hist[0];
+            if w.rate0.is_none_or(|(l, _)| l != p.lam) {
+                w.rate0 = self.stepper.clear_rate(p).map(|r| (p.lam, r));
+            }
+        }
         let target = self.target(w, lam, armed);
         let corrected = self.stepper.correct(target, &w.hist, false);
         // a failed step where the only contact lets go ends the branch (see vanishing_normal)
@@ -563,7 +579,57 @@ impl<P: Profile> Run<'_, '_, P> {
                 }
             }
         }
+        if let Some(ds) = self.touchdown_forecast(w, target, armed) {
+            if ds - lam > w.h_min {
+                target = ds + self.ctl.past_event * (target - ds);
+            }
+        }
         target
+    }
+
+    /// Whether a touchdown is forecast from the clearance's history: armed, on a curved
+    /// surface, on the rod's own shooter (the only stepper with [`Stepper::clear_rate`]).
+    fn forecasts_touchdown(&self, armed: &[Crossing]) -> bool {
+        self.env.ground.curve.is_some() && armed.contains(&Crossing::Touchdown)
+    }
+
+    /// Where the free parts' clearance `g`, extrapolated linearly from the newest point, reaches
+    /// the surface before `target` (`None` where it does not, or no rate is known). The rate is
+    /// the secant through the two newest points, or at a state's first point the stepper's
+    /// [`Stepper::clear_rate`].
+    ///
+    /// Why: the clearance is not a function of the unknowns, so the branch polynomial cannot
+    /// forecast it, and over a curve a free part can reach the surface and the branch without it
+    /// fold back within one step. A drag over 0.003/0.2/2π/3 (taper 0.3) lay down at
+    /// d = 0.0905768 with a free part 6.3e-6 above the surface; with `--points 11` the next step,
+    /// to 0.1, ended on another branch of the same contact set (its free parts 2.2e-3 clear),
+    /// past a touchdown at 0.0908549 and the fold at 0.0911078 of the set without it, where the
+    /// default 201 points found the touchdown. Stepping to just past the forecast meets the
+    /// touchdown; a forecast that comes early costs a step.
+    fn touchdown_forecast(&self, w: &Walk, target: f64, armed: &[Crossing]) -> Option<f64> {
+        if !self.forecasts_touchdown(armed) {
+            return None;
+        }
+        let q = w.hist.last()?;
+        let g = q.w.clear;
+        if g.is_nan() || g >= 0.0 || q.w.light {
+            return None;
+        }
+        let rate = match w.hist.len() {
+            1 => w.rate0.filter(|&(l, _)| l == q.lam)?.1,
+            n => {
+                let p = &w.hist[n - 2];
+                if p.w.light {
+                    return None;
+                }
+                (g - p.w.clear) / (q.lam - p.lam)
+            }
+        };
+        if rate.is_nan() || rate <= 0.0 {
+            return None;
+        }
+        let at = q.lam - g / rate;
+        (at.is_finite() && at < target).then_some(at)
     }
 
     /// The fold passage after the natural step to `target` failed with `e`: its first point (the
@@ -580,7 +646,8 @@ impl<P: Profile> Run<'_, '_, P> {
         let env = &self.env;
         let done = |q: &Pt| armed.iter().any(|c| ended(c.of_watch(env, &q.w)));
         match fold::pass(&mut *self.stepper, &w.hist, (target, lam_end), &done) {
-            Passed::Beyond(ps) => {
+            Passed::Beyond(ps, chord) => {
+                w.chord = chord;
                 // every point of the path, each taken as a step: a branch too steep for natural
                 // steps (near a bifurcation) is not a polynomial in λ between far points, and
                 // events inside it are found on it
@@ -806,8 +873,14 @@ impl<P: Profile> Run<'_, '_, P> {
         }
         if let (None, Some(f)) = (&found, failure) {
             // a step too long for the event's scale (a light touch changes fast): the step
-            // again, shorter, before giving up
-            if p.lam - lam > w.h_min {
+            // again, shorter, before giving up — unless this very step failed before: a
+            // shorter natural step that fails hands over to the fold passage, whose first
+            // point does not depend on the step (a short rat preset's drag over 0.001/0.2/2π/3
+            // took the same step from the fold passage 100 000 times, locating a slip beside
+            // a fold each time, until the step budget ended it after 67 s)
+            let again = w.failed == Some((lam, p.lam));
+            if p.lam - lam > w.h_min && !again {
+                w.failed = Some((lam, p.lam));
                 w.hist.pop();
                 w.queue.clear();
                 w.h = self.ctl.reject * (p.lam - lam);
@@ -894,7 +967,16 @@ impl<P: Profile> Run<'_, '_, P> {
             {
                 continue;
             }
-            match locate(&mut *self.stepper, env, &w.hist, (lam, p.lam), c) {
+            // (a step from the fold passage: where the search in λ fails, on its path's step)
+            let on_path = w.chord.as_deref().filter(|ch| spans(ch, prev, p));
+            let located = match (
+                locate(&mut *self.stepper, env, &w.hist, (lam, p.lam), c),
+                on_path,
+            ) {
+                (Err(_), Some(chord)) => fold::locate_on_chord(&mut *self.stepper, env, chord, c),
+                (r, _) => r,
+            };
+            match located {
                 Ok(pe) => {
                     let v = c.of_watch(env, &pe.w);
                     if c == Crossing::Touchdown && env.ground.curve.is_some() && v < -JUMP {
@@ -1435,3 +1517,8 @@ enum Pending {
 
 /// The largest rate `|du/dλ|` of a held state's tangent that still lets the march go on from it.
 const HOLD_MAX: f64 = 1e6;
+
+/// Whether the path's step `chord` is the march's step from `prev` to `p`.
+fn spans(chord: &Chord, prev: &Pt, p: &Pt) -> bool {
+    chord.a.lam() == prev.lam && chord.b.lam() == p.lam
+}

@@ -17,6 +17,10 @@ use nalgebra::DVector;
 /// States on the rod the watch of one point keeps (see [`OwnStepper::point`]).
 const MEMO: usize = 4;
 
+/// How far along the branch (relative to `1 + |λ|`) [`Stepper::clear_rate`] takes its
+/// prediction.
+const CLEAR_PROBE: f64 = 1e-5;
+
 /// The stepper on the rod's own shooter.
 pub(crate) struct OwnStepper<P: Profile> {
     pub chain: Chain<P>,
@@ -199,6 +203,21 @@ impl<P: Profile> Stepper for OwnStepper<P> {
         // same computation; not shot again with sensitivities)
         w.contacts = p.w.contacts;
         Ok(Pt { w, ..p })
+    }
+
+    fn clear_rate(&mut self, p: &Pt) -> Option<f64> {
+        let du = p.du.as_deref()?;
+        // (the prediction's own error, O(ε²), is far below the clearance's change over ε for
+        // any rate that matters; the shot keeps the meshes as they are)
+        let eps = CLEAR_PROBE * (1.0 + p.lam.abs());
+        let u: Vec<f64> = p.u.iter().zip(du).map(|(u, d)| u + eps * d).collect();
+        let lam = p.lam + eps;
+        self.chain.eval(&u, lam, false).ok()?;
+        let sol = self.chain.path(&u);
+        let xf = self.chain.family.pose(lam).0.xf;
+        let g = self.contacts_watch(lam, &u, None, &sol, false, xf).clear;
+        let rate = (g - p.w.clear) / eps;
+        rate.is_finite().then_some(rate)
     }
 
     fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, StepError> {

@@ -17,6 +17,9 @@ pub(crate) enum ShotFailure {
     NoConvergence { iteration: usize, residual: f64 },
     /// The mesh needed more than [`MAX_STEPS`] steps.
     MeshLimit { steps: usize },
+    /// Pseudo-arclength steps down to `ds` converged, but each off the branch it continues: the
+    /// tangent turned by more than ~25°, or the corrector moved more than a third of the step.
+    Unresolved { ds: f64 },
     /// A generic method's solve of the same problem failed (the fold passage on crate `bvp`).
     Method(Box<bvp::BvpError>),
     /// The own shooter has no rod, or no Jacobian, at a generic method's unknowns.
@@ -39,6 +42,12 @@ impl std::fmt::Display for ShotFailure {
             ShotFailure::MeshLimit { steps } => {
                 write!(f, "the integration needs more than {steps} steps")
             }
+            ShotFailure::Unresolved { ds } => write!(
+                f,
+                "the branch is not resolved by arclength steps down to {ds:.1e} (each turned \
+                 the tangent by more than 25 degrees or moved the corrector by more than a \
+                 third of the step)"
+            ),
             ShotFailure::Method(e) => write!(f, "{e}"),
             ShotFailure::NoRod => {
                 f.write_str("the own shooter has no rod at the method's unknowns")

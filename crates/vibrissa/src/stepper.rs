@@ -102,12 +102,22 @@ impl From<ShotFailure> for StepError {
 /// Result of the fold passage.
 pub(crate) enum Passed {
     /// The branch continues beyond the failed step: its points from there on, in increasing
-    /// `λ`, the last one beyond the target (never empty).
-    Beyond(Vec<Pt>),
+    /// `λ`, the last one beyond the target or the first where an armed event has ended (never
+    /// empty); and the path's last step, to that point (events are located on it where the
+    /// branch polynomial in `λ` does not hold them).
+    Beyond(Vec<Pt>, Option<Box<Chord>>),
     /// `λ` has a maximum along the branch here (with the rod there, if it was found).
     Fold(f64, Option<Box<Pt>>),
     /// Neither.
     Failed(FoldFailure),
+}
+
+/// One step of a pseudo-arclength path: from `a` (tangent `ta`) to `b`.
+#[derive(Clone, Debug)]
+pub(crate) struct Chord {
+    pub a: ArcPoint,
+    pub ta: DVector<f64>,
+    pub b: ArcPoint,
 }
 
 /// Why the fold passage neither passed nor located a fold.
@@ -181,6 +191,13 @@ pub(crate) trait Stepper {
     /// the state shot again on the meshes as they are). Default: `p`.
     fn complete(&mut self, p: Pt) -> Result<Pt, StepError> {
         Ok(p)
+    }
+    /// The rate `dg/dλ` of the free parts' clearance `g` ([`crate::watch::Watch::clear`]) along
+    /// the branch at the converged point `p`: `g` on the rod of the tangent's prediction a short
+    /// way on, against `p`'s. `None` where the stepper has no tangent, or the prediction's rod or
+    /// clearance is not a number. Default: `None` (no forecast).
+    fn clear_rate(&mut self, _p: &Pt) -> Option<f64> {
+        None
     }
     /// Work done so far.
     fn stats(&self) -> Stats;
