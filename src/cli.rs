@@ -23,6 +23,8 @@ struct Defaults {
     tol: String,
     d_max: String,
     points: String,
+    drag_d_max: String,
+    drag_points: String,
     theta_max: String,
     whisk_points: String,
     shape_points: String,
@@ -56,6 +58,8 @@ static DEFAULTS: LazyLock<Defaults> = LazyLock::new(|| {
         tol: shown(scan.solver.tol),
         d_max: shown(scan.d_max),
         points: scan.points.to_string(),
+        drag_d_max: shown(limits::DEFAULT_DRAG_D_MAX),
+        drag_points: limits::DEFAULT_DRAG_POINTS.to_string(),
         theta_max: shown(whisk.theta_max),
         whisk_points: whisk.points.to_string(),
         shape_points: limits::DEFAULT_SHAPE_POINTS.to_string(),
@@ -848,12 +852,12 @@ pub struct DragArgs {
     pub eta: Option<f64>,
     /// Largest foot displacement d (rod lengths), in (0, 1000]; with --turn the largest turn
     /// (rad), in (0, pi/2).
-    // (the program's default, shorter than the library's DragOptions::default(): 2)
-    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = "1")]
+    // (the library's `limits::DEFAULT_DRAG_D_MAX`, shorter than `DragOptions::default()`'s 2)
+    #[arg(long, value_name = "D", value_parser = finite_f64, default_value = DEFAULTS.drag_d_max.as_str())]
     pub d_max: f64,
     /// Number of output points, uniform in d from 0 to --d-max, in [2, 1000000] (the slip rows
     /// come on top).
-    #[arg(long, value_name = "N", default_value = "201", value_parser = points)]
+    #[arg(long, value_name = "N", default_value = DEFAULTS.drag_points.as_str(), value_parser = points)]
     pub points: u32,
     /// Whisk against the surface instead: the foot held where it stands, its support turned
     /// clockwise (towards +x) from upright by theta = 0 ... --d-max (rad); the rows' first
