@@ -587,8 +587,9 @@ impl<P: Profile> Run<'_, '_, P> {
         target
     }
 
-    /// Whether a touchdown is forecast from the clearance's history: armed, on a curved
-    /// surface, on the rod's own shooter (the only stepper with [`Stepper::clear_rate`]).
+    /// Whether a touchdown is forecast from the clearance's history: armed, on a curved surface
+    /// (at a state's first point only on the rod's own shooter, the only stepper with a
+    /// [`Stepper::clear_rate`]).
     fn forecasts_touchdown(&self, armed: &[Crossing]) -> bool {
         self.env.ground.curve.is_some() && armed.contains(&Crossing::Touchdown)
     }
