@@ -90,7 +90,7 @@ fn follow(
                         ta: tprev,
                         b,
                     };
-                    return Ok(Passed::Beyond(pts, Some(Box::new(chord))));
+                    return Ok(Passed::Beyond(pts, Box::new(chord)));
                 }
             }
             _ if past => return Err(ShotFailure::Singular { iteration: 0 }),

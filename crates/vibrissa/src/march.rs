@@ -648,7 +648,7 @@ impl<P: Profile> Run<'_, '_, P> {
         let done = |q: &Pt| armed.iter().any(|c| ended(c.of_watch(env, &q.w)));
         match fold::pass(&mut *self.stepper, &w.hist, (target, lam_end), &done) {
             Passed::Beyond(ps, chord) => {
-                w.chord = chord;
+                w.chord = Some(chord);
                 // every point of the path, each taken as a step: a branch too steep for natural
                 // steps (near a bifurcation) is not a polynomial in λ between far points, and
                 // events inside it are found on it

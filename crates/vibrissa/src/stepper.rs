@@ -105,7 +105,7 @@ pub(crate) enum Passed {
     /// `λ`, the last one beyond the target or the first where an armed event has ended (never
     /// empty); and the path's last step, to that point (events are located on it where the
     /// branch polynomial in `λ` does not hold them).
-    Beyond(Vec<Pt>, Option<Box<Chord>>),
+    Beyond(Vec<Pt>, Box<Chord>),
     /// `λ` has a maximum along the branch here (with the rod there, if it was found).
     Fold(f64, Option<Box<Pt>>),
     /// Neither.
