@@ -934,10 +934,6 @@ pub(crate) fn lie_kept_out(set: &ContactSet, j: usize) -> Option<&'static str> {
     let ct = &set.contacts[j];
     Some(if set.lying.is_some() {
         "a second lying stretch is not in the model"
-    } else if !ct.mode.no_slip() && j + 1 < set.contacts.len() {
-        // (followed, a side sliding along with the tip beyond it that lies down creeps on in
-        // slides of 1e-12, minutes of CPU, on three of the texture grid's drags)
-        "a stretch with contacts beyond it that forms sliding along the surface is not followed"
     } else if ct.tip
         || !matches!(
             (&ct.geom, ct.mode),
@@ -951,6 +947,13 @@ pub(crate) fn lie_kept_out(set: &ContactSet, j: usize) -> Option<&'static str> {
     } else {
         return None;
     })
+}
+
+/// Whether the side contact `j` of `set` that lies down slides along the surface with contacts
+/// beyond it: the stretch then forms sliding, loaded by them ([`crate::march`] keeps the lie's
+/// place as the stop for a failure of the state that follows).
+pub(crate) fn lies_sliding_with_beyond(set: &ContactSet, j: usize) -> bool {
+    !set.contacts[j].mode.no_slip() && j + 1 < set.contacts.len()
 }
 
 /// The set after the side contact `j`, on a curved surface and holding without slip, begins to

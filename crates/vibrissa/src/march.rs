@@ -123,12 +123,33 @@ pub(crate) fn march<P: Profile>(
             ctl: StepControl::default(),
             out: &mut out,
             range: &mut range,
+            lain: None,
         };
         if indeterminate {
             let stop = run.indeterminate(&set, &p0);
             (stop, Some((set, p0)))
         } else {
-            run.run(p0)
+            let (stop, last) = run.run(p0);
+            match (stop, run.lain.take()) {
+                (StopReason::SolverFailure { message, .. }, Some(lain)) => {
+                    let Lain {
+                        set,
+                        pe,
+                        lie,
+                        mark,
+                        range,
+                    } = *lain;
+                    run.out.rewind(mark);
+                    *run.range = range;
+                    run.range.close(RangeEnd::Event);
+                    let stop = StopReason::ContactChange {
+                        d: pe.lam,
+                        message: format!("{lie} ({message})"),
+                    };
+                    (stop, Some((set, pe)))
+                }
+                (stop, _) => (stop, last),
+            }
         }
     };
     stats.accumulate(&stepper.stats());
@@ -163,6 +184,25 @@ struct Run<'a, 'b, P: Profile> {
     ctl: StepControl,
     out: &'a mut Output<'b, P>,
     range: &'a mut RangeTracker,
+    /// A side that lay down sliding along the surface with contacts beyond it, while the set it
+    /// formed is the march's: the set and point where it did, and the stop there, said as the
+    /// lie. A solver failure in that set ends the march at the lie-down with that stop (the
+    /// failure's message added): a side that lies down in a slip between another side and the
+    /// tip leaves a state the solver may not resolve (issue 31's texture grid, taper 0.3 over
+    /// 0.003/0.5 and 0.02/0.5 at 2π/3: Newton and the fold passage failed 0.009 and 0.005 of
+    /// the slide further on), and the lie-down is the last change the model followed.
+    lain: Option<Box<Lain>>,
+}
+
+/// A lie-down the march followed that a later failure falls back on ([`Run::lain`]).
+struct Lain {
+    set: ContactSet,
+    pe: Pt,
+    /// The stop at the lie, said as it.
+    lie: String,
+    /// The record and the range at the lie, before its row.
+    mark: crate::record::Mark,
+    range: RangeTracker,
 }
 
 /// The march's state between steps.
@@ -1070,11 +1110,24 @@ impl<P: Profile> Run<'_, '_, P> {
         };
         let xf = self.stepper.foot(pe.lam).0;
         let mut next = transition(&self.env, rules, &set, cross, &pe, xf);
+        // (a failure falls back on a lie-down only while the set it formed is the march's)
+        self.lain = None;
         if let (Next::Switch(Event::LieDown, ..), Crossing::Lie(j)) = (&next, cross) {
             if !self.stepper.lies() {
                 let why = "a stretch lying on the surface is solved by the rod's own shooter \
                            (method shooting)";
                 next = Next::Limit(crate::events::curve_lie(&set, j, &pe, why));
+            } else if crate::events::lies_sliding_with_beyond(&set, j) {
+                let why = "the stretch that forms sliding along the surface, with contacts \
+                           beyond it, is not resolved";
+                let lie = crate::events::curve_lie(&set, j, &pe, why);
+                self.lain = Some(Box::new(Lain {
+                    set: set.clone(),
+                    pe: pe.clone(),
+                    lie,
+                    mark: self.out.mark(),
+                    range: *self.range,
+                }));
             }
         }
         match next {

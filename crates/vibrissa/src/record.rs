@@ -12,6 +12,7 @@ use crate::surface::Meter;
 use crate::watch::{Env, Watch};
 
 /// The first maximum of `|μ|` and what ended the range, once known.
+#[derive(Clone, Copy)]
 pub(crate) struct RangeTracker {
     pub best: (f64, f64, f64),
     pub end: Option<RangeEnd>,
@@ -254,6 +255,16 @@ pub(crate) fn scan_point<P: Profile>(
     }
 }
 
+/// A place in an [`Output`] ([`Output::mark`]).
+pub(crate) struct Mark {
+    rows: usize,
+    shapes: usize,
+    gi: usize,
+    driver: Option<usize>,
+    metered: [f64; 2],
+    riders: Vec<(usize, f64)>,
+}
+
 /// What a march records: the output points on the grid, filled as the march passes them, and
 /// the event points, with their shapes and tip states, and the metered work.
 pub(crate) struct Output<'a, P: Profile> {
@@ -301,6 +312,31 @@ impl<'a, P: Profile> Output<'a, P> {
             profile,
             general,
         }
+    }
+
+    /// What the record holds now, to go back to with [`Output::rewind`].
+    pub fn mark(&self) -> Mark {
+        Mark {
+            rows: self.points.len(),
+            shapes: self.shapes.len(),
+            gi: self.gi,
+            driver: self.driver,
+            metered: self.metered,
+            riders: self.riders.clone(),
+        }
+    }
+
+    /// Drops what was recorded after `mark`.
+    pub fn rewind(&mut self, mark: Mark) {
+        self.points.truncate(mark.rows);
+        self.tips.truncate(mark.rows);
+        self.contacts.truncate(mark.rows);
+        self.drivers.truncate(mark.rows);
+        self.shapes.truncate(mark.shapes);
+        self.gi = mark.gi;
+        self.driver = mark.driver;
+        self.metered = mark.metered;
+        self.riders = mark.riders;
     }
 
     /// Records the point `p` of the contact set `set` (with its event, if it is one).

@@ -542,3 +542,103 @@ fn a_stretch_with_the_tip_beyond_slips() {
     }
     assert_balanced(&r);
 }
+
+/// A side sliding along in a slip with the tip beyond it lies down, and the stretch slides on
+/// loaded by the tip: the short rat preset over 0.003 sin(2πx/0.2 + 4π/3) (issue 31's texture
+/// grid; until 2026-12-01 this drag stopped at d = 0.0529120 after 2317 slips, "a stretch with
+/// contacts beyond it that forms sliding along the surface is not followed"; 0 and 2π/3 alike).
+/// In the slip at d = 0.0529120 the side at s = 0.98630, sliding between the side at
+/// s = 0.96618 and the tip, lies down; the stretch slides on with the slip to its end, where
+/// every contact holds, and the drag goes on through 64 more slips (in some of them the stretch
+/// slides along) to d = 0.0543, where a slip's equilibria fold back (a snap). Each slip's stick
+/// and slip balance their energy to 1e-8, the sliding stretch's work included. About 3 s of CPU
+/// in release.
+#[test]
+#[ignore = "slow: 2381 slips, about 3 s of CPU in release"]
+fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
+    let path = format!(
+        "{}/../../data/scenes/rat_mystacial_short.toml",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let rat: Scene = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let scene = Scene {
+        eta: 0.75,
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.003,
+            wavelength: 0.2,
+            phase: 4.0 * std::f64::consts::PI / 3.0,
+        },
+        ..rat
+    };
+    // (on the program's grid of 201 rows: the train of slips is chaotic, its slip count set by
+    // the steps the output grid allows)
+    let opts = DragOptions {
+        points: 201,
+        ..paper_friction(0.3)
+    };
+    let r = balanced_drag(scene, opts);
+    let StopReason::ContactChange { d, message } = &r.stop else {
+        panic!("{r}");
+    };
+    assert!(*d > 0.0529120 && message.contains("(a snap)"), "{r}");
+    // the lie-down in the slip at d = 0.0529120: from side+side+tip, the stretch sliding along
+    // with the tip beyond it
+    let at = r
+        .rows
+        .iter()
+        .position(|q| {
+            q.event == Some(DragEvent::Contact(Event::LieDown))
+                && q.phase == vibrissa::drag::Phase::Slip
+                && (q.d - 0.0529120).abs() < 1e-6
+        })
+        .unwrap_or_else(|| panic!("no lie-down in the slip at d = 0.0529120: {r}"));
+    // the slip ends with the stretch, its inner end at s = 0.98134, holding
+    let after = &r.rows[at + 1];
+    assert_eq!(after.event, Some(DragEvent::SlipEnd), "{r}");
+    assert_eq!(after.contact.name(), "side+stretch+tip", "{r}");
+    assert!(after.contacts.iter().any(|c| c.lies_to.is_some()), "{r}");
+    assert!(r.slips.len() > 2317, "{} slips", r.slips.len());
+    assert_balanced(&r);
+}
+
+/// A side that lies down in a slip between another side and the tip, where the stretch that
+/// forms then is not resolved: the rod tapered to 0.3 over 0.02 sin(2πx/0.5 + 2π/3) (issue 31's
+/// texture grid; 0.003/0.5/2π/3 alike). In the slip at d = 0.2196442 the side at s = 0.93591
+/// lies down, and 0.005 of the slide further on the fold passage does not resolve the branch.
+/// The drag ends at the lie-down, said as that, the solver's message added (march.rs `Lain`),
+/// and its rows end where they ended before the lie-down was followed: the touchdown in that
+/// slip is the last, the lie-down's row and what the march recorded after it dropped.
+#[test]
+fn a_stretch_that_forms_sliding_and_is_not_resolved_ends_at_its_lie_down() {
+    let scene = Scene {
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.02,
+            wavelength: 0.5,
+            phase: 2.0 * std::f64::consts::PI / 3.0,
+        },
+        ..stretch_scene()
+    };
+    let opts = DragOptions {
+        points: 201,
+        ..paper_friction(0.3)
+    };
+    let r = drag_with(scene, &opts);
+    let StopReason::ContactChange { d, message } = &r.stop else {
+        panic!("{r}");
+    };
+    assert!((d - 0.2196442).abs() < 1e-6, "{r}");
+    assert!(
+        message.contains("the side contact at s = 0.935906")
+            && message.contains("begins to lie along the surface")
+            && message.contains("with contacts beyond it, is not resolved ("),
+        "{message}"
+    );
+    assert_eq!(r.slips.len(), 306, "{r}");
+    let last = r.rows.last().unwrap();
+    assert_eq!(
+        last.event,
+        Some(DragEvent::Contact(Event::Touchdown)),
+        "{r}"
+    );
+    assert_eq!(last.contact.name(), "side+tip", "{r}");
+}
