@@ -1289,3 +1289,29 @@ fn survey() {
     }
     println!("{failed} of {n} failed, {rejected} rejected");
 }
+
+/// Was "slip 3 at d = 0.06383052881053361, after: sliding tip ... off dir mu_k N by 1.260e-4"
+/// (the property's seed 6): in a slip the tip, touching at N = 1.5e-3 beside a side that holds at
+/// N = 1.7, relaxes from μs to μk over a slide shorter than the slide's rounding, and the slip's
+/// end was recorded where the search ended, at `T = μs N`, though labelled sliding with μk. A
+/// slide end that misses μk by more than 1e-6 of N is solved again as the exact kinetic state
+/// (drag.rs `located_kinetic`): the tip slides on at `T = μk N` (0.5620 N, the side's
+/// tangential force 1.5e-4 higher), every contact by Coulomb and every slip and stick balanced,
+/// to d_max after 446 slips.
+#[test]
+fn a_tip_barely_touching_beside_a_side_ends_its_slip_on_kinetic_friction() {
+    let c = Case {
+        amp: 0.01936533817462032,
+        wave: 0.29895571757596795,
+        phase: 1.3908537771965517,
+        eta: 0.7186171049982287,
+        mu_s: 0.6475517052227714,
+        ratio: 0.8678299279025635,
+        taper: Some(0.4791677121529978),
+        radius: 0.0,
+        d_max: 0.07460472634790609,
+    };
+    let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+    assert!(out.starts_with("906 rows, 446 slips"), "{out}");
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
+}
