@@ -422,6 +422,24 @@ impl Stretch<'_> {
                 return (g * mu, q0);
             }
         }
+        // the fixed point contracts by |dq1/d(gμ)|/n, which a load beyond the stretch larger
+        // than its own resultant makes exceed 1 (a tip at N = 0.055 beyond a stretch at
+        // N = 0.012): the balance `t − r·n + q1(r) = 0` by secant steps in `r = gμ` instead
+        let balance = |r: f64| t - r * n + q(r);
+        let mut r0 = g * (t + q0) / n;
+        let mut r1 = r0 + 1e-6 * (1.0 + r0.abs());
+        let (mut f0, mut f1) = (balance(r0), balance(r1));
+        for _ in 0..60 {
+            let r2 = r1 - f1 * (r1 - r0) / (f1 - f0);
+            if !r2.is_finite() {
+                break;
+            }
+            if (r2 - r1).abs() <= 4.0 * f64::EPSILON * r2.abs().max(1e-3) {
+                return (r2, q0);
+            }
+            (r0, f0) = (r1, f1);
+            (r1, f1) = (r2, balance(r2));
+        }
         (f64::NAN, q0)
     }
 }

@@ -549,10 +549,13 @@ fn a_stretch_with_the_tip_beyond_slips() {
 /// contacts beyond it that forms sliding along the surface is not followed"; 0 and 2π/3 alike).
 /// In the slip at d = 0.0529120 the side at s = 0.98630, sliding between the side at
 /// s = 0.96618 and the tip, lies down; the stretch slides on with the slip to its end, where
-/// every contact holds, and the drag goes on through 64 more slips (in some of them the stretch
-/// slides along) to d = 0.0543, where a slip's equilibria fold back (a snap). Each slip's stick
-/// and slip balance their energy to 1e-8, the sliding stretch's work included. About 3 s of CPU
-/// in release.
+/// every contact holds, and the drag goes on through 64 more slips to d = 0.054255, where the
+/// tip slips beside the side and the stretch, which hold, and that slide is not resolved: a
+/// trapped slide, named. (The stretch holds by the friction ratio it needs, solved with the
+/// tip's load beyond it, 4.6 times its own normal force, by secant steps, chain.rs
+/// `friction_ratio`; where that ratio was NaN the stretch was judged by its T/N and the drag
+/// ended in a snap.) Each slip's stick and slip balance their energy to 1e-8, the sliding
+/// stretch's work included. About 3 s of CPU in release.
 #[test]
 #[ignore = "slow: 2381 slips, about 3 s of CPU in release"]
 fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
@@ -580,7 +583,10 @@ fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
     let StopReason::ContactChange { d, message } = &r.stop else {
         panic!("{r}");
     };
-    assert!(*d > 0.0529120 && message.contains("(a snap)"), "{r}");
+    assert!(
+        *d > 0.0529120 && message.contains("the rod between them is trapped"),
+        "{r}"
+    );
     // the lie-down in the slip at d = 0.0529120: from side+side+tip, the stretch sliding along
     // with the tip beyond it
     let at = r
