@@ -691,8 +691,10 @@ fn a_stretch_under_a_heavy_load_beyond_holds_by_the_ratio_it_needs() {
 }
 
 /// Every slip of [`heavy_load_drag`] balances its energy to 1e-8. Open: the slip at
-/// d = 0.0868199 releases 3.0e-4 more than the sliding contacts' work (its stick balances to
-/// 5e-14), found once the stretch's ratio under the tip's load was solved (2026-12-01).
+/// d = 0.0868199 (the 20th), driven by the stretch alone (no contact beyond it, N = 0.21), releases
+/// 3.0e-4 and records no friction work at all (its stick balances to 5e-14): reached once the
+/// stretch's ratio under the tip's load was solved (2026-12-01), where the drag had jammed
+/// before it.
 #[test]
 #[ignore = "open: the slip at d = 0.0868 of a heavily loaded stretch is 3.0e-4 out of balance"]
 fn the_heavily_loaded_stretch_balances_every_slip() {
