@@ -559,27 +559,7 @@ fn a_stretch_with_the_tip_beyond_slips() {
 #[test]
 #[ignore = "slow: 2381 slips, about 3 s of CPU in release"]
 fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
-    let path = format!(
-        "{}/../../data/scenes/rat_mystacial_short.toml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let rat: Scene = toml::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let scene = Scene {
-        eta: 0.75,
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.003,
-            wavelength: 0.2,
-            phase: 4.0 * std::f64::consts::PI / 3.0,
-        },
-        ..rat
-    };
-    // (on the program's grid of 201 rows: the train of slips is chaotic, its slip count set by
-    // the steps the output grid allows)
-    let opts = DragOptions {
-        points: 201,
-        ..paper_friction(0.3)
-    };
-    let r = balanced_drag(scene, opts);
+    let r = rat_drag(0.003, 0.2, 4.0 * std::f64::consts::PI / 3.0);
     let StopReason::ContactChange { d, message } = &r.stop else {
         panic!("{r}");
     };
@@ -649,9 +629,11 @@ fn a_stretch_that_forms_sliding_and_is_not_resolved_ends_at_its_lie_down() {
     assert_eq!(last.contact.name(), "side+tip", "{r}");
 }
 
-/// The short rat preset over 0.001 sin(2πx/0.05 + 2π/3) (issue 31's texture grid) with the
-/// paper's friction on the program's 201 rows, each slip's energy balance on.
-fn heavy_load_drag() -> DragResult {
+/// The drag of the short rat preset at η 0.75 over `amplitude sin(2πx/wavelength + phase)`
+/// (issue 31's texture grid) with the paper's friction to d = 0.3 on the program's 201 rows
+/// (its trains of slips are chaotic, their counts set by the steps the output grid allows),
+/// each slip's energy balance on.
+fn rat_drag(amplitude: f64, wavelength: f64, phase: f64) -> DragResult {
     let path = format!(
         "{}/../../data/scenes/rat_mystacial_short.toml",
         env!("CARGO_MANIFEST_DIR")
@@ -660,9 +642,9 @@ fn heavy_load_drag() -> DragResult {
     let scene = Scene {
         eta: 0.75,
         surface: SurfaceProfile::Sine {
-            amplitude: 0.001,
-            wavelength: 0.05,
-            phase: 2.0 * std::f64::consts::PI / 3.0,
+            amplitude,
+            wavelength,
+            phase,
         },
         ..rat
     };
@@ -671,6 +653,11 @@ fn heavy_load_drag() -> DragResult {
         ..paper_friction(0.3)
     };
     balanced_drag(scene, opts)
+}
+
+/// The short rat preset over 0.001 sin(2πx/0.05 + 2π/3) ([`rat_drag`]).
+fn heavy_load_drag() -> DragResult {
+    rat_drag(0.001, 0.05, 2.0 * std::f64::consts::PI / 3.0)
 }
 
 /// A stretch loaded by the tip beyond it with more than its own normal force holds by the
