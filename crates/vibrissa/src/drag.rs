@@ -1580,7 +1580,8 @@ fn still_sliding(
 }
 
 /// Whether the located end `qe` of a slide that contact `j` drove has it held by kinetic
-/// friction, `T = ratio·N` (`ratio = dir·μk`), to [`KINETIC_LOCATED`] of `N`. A contact that
+/// friction, `T = ratio·N` (`ratio = dir·μk`; a stretch's `T` the friction it needs, as for its
+/// stick, `ContactForce::friction`), to [`KINETIC_LOCATED`] of `N`. A contact that
 /// barely touches beside one that holds (the tip at N = 1.5e-3 beside a side at N = 1.7: the
 /// property test's seed 6, taper 0.48 over 0.019 sin(2πx/0.299 + 1.39)) can relax from μs to
 /// μk over a slide shorter than the slide's rounding: the search for the end then stops where
@@ -1589,7 +1590,7 @@ fn still_sliding(
 fn located_kinetic(qe: &Pt, j: usize, ratio: f64) -> bool {
     qe.w.contacts
         .get(j)
-        .is_none_or(|c| (c.tangential - ratio * c.normal).abs() <= KINETIC_LOCATED * c.normal)
+        .is_none_or(|c| (c.friction() - ratio * c.normal).abs() <= KINETIC_LOCATED * c.normal)
 }
 
 /// How far from `T = dir·μk N`, relative to `N`, the end of a slide of no length may lie and be
