@@ -442,6 +442,22 @@ impl Stretch<'_> {
         }
         (f64::NAN, q0)
     }
+
+    /// The balance `t − r·n + Q(r)` of the stretch from `s1` with its resultant `(n, t)`
+    /// sliding with the friction ratio `r` (`Q` = `q1` with the load `fb` beyond,
+    /// [`Capstan::q`]): zero at the ratio it needs ([`Stretch::friction_ratio`]), and defined
+    /// where that ratio is not (no ratio balances a stretch whose normal force falls towards
+    /// zero while the surface's curvature takes up a part of its resultant).
+    pub fn balance<P: Profile>(
+        &self,
+        p: &P,
+        s1: f64,
+        (n, t): (f64, f64),
+        fb: [f64; 2],
+        r: f64,
+    ) -> f64 {
+        t - r * n + self.capstan(p, s1).q(r, fb)
+    }
 }
 
 /// The capstan term of a stretch from its inner end ([`Stretch::capstan`]): the integrand's
@@ -1643,6 +1659,16 @@ impl<P: Profile> Chain<P> {
             rate += wq(&here, dfb) - wq(&here, [0.0; 2]);
         }
         Some((mu, [w(s1, s2, c, fb)?, rate]))
+    }
+
+    /// The balance of the lying stretch at `u` with its resultant `nt` sliding with the
+    /// friction ratio `r` ([`Stretch::balance`]).
+    pub fn stretch_balance(&self, u: &[f64], nt: (f64, f64), r: f64) -> Option<f64> {
+        let st = self.stretch_now()?;
+        let j = self.set.lain()?;
+        let s1 = self.set.s_of(j, u);
+        let fb = self.force_from(u, j + 1);
+        Some(st.balance(&self.sh.profile, s1, nt, fb, r))
     }
 
     /// The rate of the lain contact's rolling invariant along the branch as the family moves

@@ -112,6 +112,18 @@ impl<P: Profile> OwnStepper<P> {
                 c.stretch_mu = mu;
                 c.turn = turn;
             }
+            // (a slip's driver: the balance it would have sliding with kinetic friction, whose
+            // sign says whether μk holds it, where the ratio it needs may not exist)
+            if let Some(sl) = self.env.ground.slide.filter(|sl| sl.driver == j && !slides) {
+                let r = sl.dir * c.mu_k;
+                if let Some(b) = self
+                    .chain
+                    .stretch_balance(u, nt, r)
+                    .filter(|_| r.is_finite())
+                {
+                    c.kinetic_balance = b;
+                }
+            }
         }
         w
     }

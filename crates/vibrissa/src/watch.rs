@@ -76,6 +76,11 @@ pub(crate) struct ContactForce {
     /// ([`crate::chain::Chain::stretch_friction`]: the work per slide `dc` is `r·N + W`, `T +
     /// Q(0)` for a slip's driver). NaN elsewhere.
     pub turn: [f64; 2],
+    /// The inner end of a lying stretch that drives a slip: its balance `T − r·N + Q(r)` were
+    /// it sliding with kinetic friction, `r = dir·μk` ([`crate::chain::Stretch::balance`]),
+    /// which times `dir` is positive along the slip while `μk` does not hold it (the balance
+    /// falls with `r` where it holds). NaN elsewhere.
+    pub kinetic_balance: f64,
 }
 
 impl ContactForce {
@@ -384,6 +389,7 @@ pub(crate) fn watch(
             lies_to: f64::NAN,
             stretch_mu: f64::NAN,
             turn: [f64::NAN; 2],
+            kinetic_balance: f64::NAN,
             curv: side_curv(set, j, (s, zs), (xf, amp), &mut *exact, kappa),
         });
     }

@@ -665,25 +665,21 @@ fn heavy_load_drag() -> DragResult {
 /// diverges there (its factor `|dq1/dμ|/N` passes 1), and the balance is solved by secant
 /// steps (chain.rs `Stretch::friction_ratio`). Until 2026-12-01 the ratio was NaN, the
 /// stretch's slip limit was its `|T| = μs N`, and the drag jammed at d = 0.05083 after 10
-/// slips; it now drags on to a lift-off at d = 0.23115 after 46 slips. (Its slip at d = 0.0868
-/// does not balance its energy: `the_heavily_loaded_stretch_balances_every_slip`, open.)
+/// slips. Later in the drag the stretch, the tip lifted, drives slips alone; where μk holds it
+/// is located by its balance at μk (`ContactForce::kinetic_balance`), not by the ratio it
+/// needs, which has no value as its normal force falls on towards a lift-off: searched by that
+/// ratio, the slip at d = 0.0868199 ended where it began (3.0e-4 of released energy with no
+/// friction work), and the one at d = 0.23115 in a lift-off that ended the drag. It now
+/// reaches d_max after 52 slips, each balanced to 1e-8.
 #[test]
 fn a_stretch_under_a_heavy_load_beyond_holds_by_the_ratio_it_needs() {
     let r = heavy_load_drag();
-    let StopReason::LiftOff { d, .. } = r.stop else {
-        panic!("{r}");
-    };
-    assert!((d - 0.23115).abs() < 1e-5, "{r}");
-    assert_eq!(r.slips.len(), 46, "{r}");
-}
-
-/// Every slip of [`heavy_load_drag`] balances its energy to 1e-8. Open: the slip at
-/// d = 0.0868199 (the 20th), driven by the stretch alone (no contact beyond it, N = 0.21), releases
-/// 3.0e-4 and records no friction work at all (its stick balances to 5e-14): reached once the
-/// stretch's ratio under the tip's load was solved (2026-12-01), where the drag had jammed
-/// before it.
-#[test]
-#[ignore = "open: the slip at d = 0.0868 of a heavily loaded stretch is 3.0e-4 out of balance"]
-fn the_heavily_loaded_stretch_balances_every_slip() {
-    assert_balanced(&heavy_load_drag());
+    assert!(matches!(r.stop, StopReason::DMax), "{r}");
+    assert_eq!(r.slips.len(), 52, "{r}");
+    assert_balanced(&r);
+    // (the slip that ended where it began, and the one that lifted off: each slides)
+    for d in [0.0868199, 0.2311472] {
+        let s = r.slips.iter().find(|s| (s.d - d).abs() < 1e-6).unwrap();
+        assert!(s.jump > 1e-3, "at d = {d}: {}", s.jump);
+    }
 }
