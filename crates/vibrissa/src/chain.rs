@@ -445,9 +445,10 @@ impl Stretch<'_> {
 
     /// The balance `t − r·n + Q(r)` of the stretch from `s1` with its resultant `(n, t)`
     /// sliding with the friction ratio `r` (`Q` = `q1` with the load `fb` beyond,
-    /// [`Capstan::q`]): zero at the ratio it needs ([`Stretch::friction_ratio`]), and defined
-    /// where that ratio is not (no ratio balances a stretch whose normal force falls towards
-    /// zero while the surface's curvature takes up a part of its resultant).
+    /// [`Capstan::q`]), and its slope in `r` (central differences, step 1e-6): zero at the
+    /// ratio it needs ([`Stretch::friction_ratio`]), and defined where that ratio is not (no
+    /// ratio balances a stretch whose normal force falls towards zero while the surface's
+    /// curvature takes up a part of its resultant).
     pub fn balance<P: Profile>(
         &self,
         p: &P,
@@ -455,8 +456,11 @@ impl Stretch<'_> {
         (n, t): (f64, f64),
         fb: [f64; 2],
         r: f64,
-    ) -> f64 {
-        t - r * n + self.capstan(p, s1).q(r, fb)
+    ) -> (f64, f64) {
+        let cap = self.capstan(p, s1);
+        let e = 1e-6;
+        let dq = (cap.q(r + e, fb) - cap.q(r - e, fb)) / (2.0 * e);
+        (t - r * n + cap.q(r, fb), dq - n)
     }
 }
 
@@ -1662,8 +1666,8 @@ impl<P: Profile> Chain<P> {
     }
 
     /// The balance of the lying stretch at `u` with its resultant `nt` sliding with the
-    /// friction ratio `r` ([`Stretch::balance`]).
-    pub fn stretch_balance(&self, u: &[f64], nt: (f64, f64), r: f64) -> Option<f64> {
+    /// friction ratio `r`, and its slope in `r` ([`Stretch::balance`]).
+    pub fn stretch_balance(&self, u: &[f64], nt: (f64, f64), r: f64) -> Option<(f64, f64)> {
         let st = self.stretch_now()?;
         let j = self.set.lain()?;
         let s1 = self.set.s_of(j, u);

@@ -73,6 +73,12 @@ pub struct ContactState {
     /// `T` the stretch's resultant). `None` for a point contact (and left out of JSON).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lies_to: Option<f64>,
+    /// The inner end of a lying stretch: the friction ratio `gμ` it needs to hold (stuck) or
+    /// slides with (sliding), signed as `T`. Its friction law is this ratio's, not `|T| ≤ μ N`:
+    /// the surface's curvature takes up a part of its resultant without friction (docs/model.md,
+    /// "A stretch that slides"). `None` for a point contact (and left out of JSON).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction_ratio: Option<f64>,
 }
 
 impl fmt::Display for ContactState {
@@ -95,8 +101,11 @@ impl fmt::Display for ContactState {
             Hold::Stuck | Hold::Free => {}
         }
         write!(f, ", mu = {}", self.mu)?;
-        match self.lies_to {
-            Some(s2) => write!(f, ", lying on the surface to s = {s2}"),
+        if let Some(s2) = self.lies_to {
+            write!(f, ", lying on the surface to s = {s2}")?;
+        }
+        match self.friction_ratio {
+            Some(r) => write!(f, ", friction ratio {r}"),
             None => Ok(()),
         }
     }
@@ -125,6 +134,7 @@ pub(crate) fn states(set: &ContactSet, forces: &[ContactForce]) -> Vec<ContactSt
                 hold,
                 mu,
                 lies_to: (set.lain() == Some(j)).then_some(c.lies_to),
+                friction_ratio: (set.lain() == Some(j)).then_some(c.stretch_mu),
             }
         })
         .collect()

@@ -113,14 +113,13 @@ impl<P: Profile> OwnStepper<P> {
                 c.turn = turn;
             }
             // (a slip's driver: the balance it would have sliding with kinetic friction, whose
-            // sign says whether μk holds it, where the ratio it needs may not exist)
+            // sign says whether μk holds it where the ratio it needs may not exist; where a load
+            // beyond outweighs the stretch the balance rises with the ratio, and the ratio,
+            // which the secant steps find there, decides)
             if let Some(sl) = self.env.ground.slide.filter(|sl| sl.driver == j && !slides) {
                 let r = sl.dir * c.mu_k;
-                if let Some(b) = self
-                    .chain
-                    .stretch_balance(u, nt, r)
-                    .filter(|_| r.is_finite())
-                {
+                let at = self.chain.stretch_balance(u, nt, r);
+                if let Some((b, _)) = at.filter(|&(_, db)| r.is_finite() && db < 0.0) {
                     c.kinetic_balance = b;
                 }
             }
