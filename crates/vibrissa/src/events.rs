@@ -166,13 +166,12 @@ impl Crossing {
                 let c = w.contacts[j];
                 let dir = env.ground.slide.map_or(1.0, |s| s.dir);
                 if c.kinetic_balance.is_finite() {
-                    // a lying stretch: its balance at μk, zero with the friction it needs
-                    // (`μk N − dir·gμ N` past the point where no ratio balances it: the
-                    // needed ratio falls smoothly to μk, but has no value where the normal
-                    // force falls on towards a lift-off, and a search for μk over a step that
-                    // reached there stopped at a jump of that value: a slip of the short rat
-                    // preset over 0.001/0.05/2π/3 ended where it began, off μk, 3.0e-4 of
-                    // released energy unmetered)
+                    // a lying stretch: its balance at μk, zero where the ratio it needs is
+                    // μk (not `μk N − dir·gμ N`: that ratio falls smoothly to μk, but has no
+                    // value where the normal force falls on towards a lift-off, and a search
+                    // for μk over a step that reached there stopped at a jump of that value: a
+                    // slip of the short rat preset over 0.001/0.05/2π/3 ended where it began,
+                    // off μk, 3.0e-4 of released energy unmetered)
                     -dir * c.kinetic_balance
                 } else {
                     c.mu_k * c.normal - dir * c.friction()
