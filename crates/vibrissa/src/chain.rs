@@ -392,25 +392,44 @@ impl Stretch<'_> {
             bend: [st2.1[2], st2.1[3]],
         }
     }
+}
 
-    /// The friction ratio the stretch from `s1` needs to hold with its resultant `(n, t)`: the
-    /// `gμ` (signed, `μ ≥ 0`) at which a stretch sliding with that ratio balances it, `t = gμ·n
-    /// − q1(gμ)` ([`Stretch::capstan`]; the way `g` is that of `t + q1(0)`, the force friction
+/// The capstan term of a stretch from its inner end ([`Stretch::capstan`]): the integrand's
+/// parts at the quadrature's nodes and the surface's frames at the ends.
+pub(crate) struct Capstan {
+    dir: f64,
+    /// `(weight·φ'·m', φ(s) − φ(s1))` at each node.
+    nodes: Vec<(f64, f64)>,
+    /// `[e, n]` (the surface's tangent towards `+x` and its normal) at the inner and the outer
+    /// end, and the stretch's turn `φ(s2) − φ(s1)`.
+    ends: ([f64; 4], [f64; 4], f64),
+    /// `φ'` and `m'` at the outer end.
+    bend: [f64; 2],
+}
+
+/// The friction of a lying stretch at a point ([`Chain::stretch_friction`]).
+pub(crate) struct StretchFriction {
+    /// The friction ratio it needs, or slides with.
+    pub mu: f64,
+    /// Where it moves: the part `W` of its friction's work its ratio does not count, and its
+    /// rate along the branch (NaN elsewhere).
+    pub turn: [f64; 2],
+    /// Where asked for: its balance sliding with the given ratio, and its slope in the ratio.
+    pub kinetic_balance: Option<(f64, f64)>,
+}
+
+impl Capstan {
+    /// The friction ratio the stretch needs to hold with its resultant `(n, t)`: the `gμ`
+    /// (signed, `μ ≥ 0`) at which the stretch sliding with that ratio balances it, `t = gμ·n −
+    /// q1(gμ)` ([`Stretch::capstan`]; the way `g` is that of `t + q1(0)`, the force friction
     /// must take up), by the fixed point `μ = g·(t + q1(gμ))/n` (`q1` changes with `μ` by the
     /// stretch's turn, below 0.03 rad on the texture grid's corrugations, so each iteration
     /// gains about two digits). Where the stretch has no length this is `t/n`. With a load `fb`
     /// beyond it, `q1` has its [`Capstan::q`]. With `q1(0)`, the part of the
     /// resultant that the surface's curvature (and the load beyond) takes up without friction.
     /// NaN where it does not converge in 60 iterations.
-    pub fn friction_ratio<P: Profile>(
-        &self,
-        p: &P,
-        s1: f64,
-        (n, t): (f64, f64),
-        fb: [f64; 2],
-    ) -> (f64, f64) {
-        let cap = self.capstan(p, s1);
-        let q = |gmu: f64| cap.q(gmu, fb);
+    pub fn friction_ratio(&self, (n, t): (f64, f64), fb: [f64; 2]) -> (f64, f64) {
+        let q = |gmu: f64| self.q(gmu, fb);
         let q0 = q(0.0);
         let g = (t + q0).signum();
         let mut mu = g * (t + q0) / n;
@@ -425,7 +444,7 @@ impl Stretch<'_> {
         // the fixed point contracts by |dq1/d(gμ)|/n, which a load beyond the stretch larger
         // than its own resultant makes exceed 1 (a tip at N = 0.055 beyond a stretch at
         // N = 0.012): the balance `t − r·n + q1(r) = 0` by secant steps in `r = gμ` instead
-        let balance = |r: f64| t - r * n + q(r);
+        let balance = |r: f64| self.balance((n, t), fb, r);
         let mut r0 = g * (t + q0) / n;
         let mut r1 = r0 + 1e-6 * (1.0 + r0.abs());
         let (mut f0, mut f1) = (balance(r0), balance(r1));
@@ -443,41 +462,22 @@ impl Stretch<'_> {
         (f64::NAN, q0)
     }
 
-    /// The balance `t − r·n + Q(r)` of the stretch from `s1` with its resultant `(n, t)`
-    /// sliding with the friction ratio `r` (`Q` = `q1` with the load `fb` beyond,
-    /// [`Capstan::q`]), and its slope in `r` (central differences, step 1e-6): zero at the
-    /// ratio it needs ([`Stretch::friction_ratio`]), and defined where that ratio is not (no
+    /// The balance `t − r·n + Q(r)` of the stretch with its resultant `(n, t)` sliding with the
+    /// friction ratio `r` (`Q` = `q1` with the load `fb` beyond, [`Capstan::q`]): zero at the
+    /// ratio it needs ([`Capstan::friction_ratio`]), and defined where that ratio is not (no
     /// ratio balances a stretch whose normal force falls towards zero while the surface's
     /// curvature takes up a part of its resultant).
-    pub fn balance<P: Profile>(
-        &self,
-        p: &P,
-        s1: f64,
-        (n, t): (f64, f64),
-        fb: [f64; 2],
-        r: f64,
-    ) -> (f64, f64) {
-        let cap = self.capstan(p, s1);
-        let e = 1e-6;
-        let dq = (cap.q(r + e, fb) - cap.q(r - e, fb)) / (2.0 * e);
-        (t - r * n + cap.q(r, fb), dq - n)
+    pub fn balance(&self, (n, t): (f64, f64), fb: [f64; 2], r: f64) -> f64 {
+        t - r * n + self.q(r, fb)
     }
-}
 
-/// The capstan term of a stretch from its inner end ([`Stretch::capstan`]): the integrand's
-/// parts at the quadrature's nodes and the surface's frames at the ends.
-pub(crate) struct Capstan {
-    dir: f64,
-    /// `(weight·φ'·m', φ(s) − φ(s1))` at each node.
-    nodes: Vec<(f64, f64)>,
-    /// `[e, n]` (the surface's tangent towards `+x` and its normal) at the inner and the outer
-    /// end, and the stretch's turn `φ(s2) − φ(s1)`.
-    ends: ([f64; 4], [f64; 4], f64),
-    /// `φ'` and `m'` at the outer end.
-    bend: [f64; 2],
-}
+    /// [`Capstan::balance`] and its slope in `r` (central differences, step 1e-6).
+    pub fn balance_slope(&self, nt: (f64, f64), fb: [f64; 2], r: f64) -> (f64, f64) {
+        let e = 1e-6;
+        let dq = (self.q(r + e, fb) - self.q(r - e, fb)) / (2.0 * e);
+        (self.balance(nt, fb, r), dq - nt.0)
+    }
 
-impl Capstan {
     /// `Q(gμ)`: `q1(gμ) = dir·(1 + μ²)·∫ φ'·m'·exp(−gμ(φ(s) − φ(s1))) ds` and, with the force
     /// `fb` (lab) of contacts beyond the stretch on the rod there, its load's part
     /// `(fb·e2 − gμ fb·n2)·exp(−gμ(φ(s2) − φ(s1))) − fb·e1 + gμ fb·n1` (linear in `fb`, 0
@@ -1610,27 +1610,39 @@ impl<P: Profile> Chain<P> {
     /// `r` (0 unless it slides) does not count, with its rate along the branch: a slide of the
     /// stretch by `dc` absorbs `(T + Q(0))·dc = (r·N + W)·dc` (`Q = q1` with the load beyond,
     /// [`Capstan::q`]). `W` moves with `s1`, `c` and a loaded outer end `s2` (central
-    /// differences, step 1e-6) and, linearly, with the load beyond.
+    /// differences, step 1e-6) and, linearly, with the load beyond. With a ratio `kinetic`, a
+    /// stretch that does not slide with a set ratio (a slip's driver) also gives its balance
+    /// sliding with that ratio and the balance's slope in it ([`Capstan::balance_slope`]), from
+    /// the capstan its needed ratio is solved on.
     pub fn stretch_friction(
         &self,
         u: &[f64],
         du: Option<&[f64]>,
         nt: (f64, f64),
-        dc: Option<f64>,
-    ) -> Option<(f64, [f64; 2])> {
+        (dc, kinetic): (Option<f64>, Option<f64>),
+    ) -> Option<StretchFriction> {
         let st = self.stretch_now()?;
         let j = self.set.lain()?;
         let p = &self.sh.profile;
         let s1 = self.set.s_of(j, u);
         let fb = self.force_from(u, j + 1);
         let loaded = j + 1 < self.set.contacts.len();
+        let mut kinetic_balance = None;
         let (mu, r) = match self.set.contacts[j].mode {
             Mode::Sliding(r) => (r, r),
             Mode::Free => (0.0, 0.0),
-            _ => (st.friction_ratio(p, s1, nt, fb).0, 0.0),
+            _ => {
+                let here = st.capstan(p, s1);
+                kinetic_balance = kinetic.map(|k| here.balance_slope(nt, fb, k));
+                (here.friction_ratio(nt, fb).0, 0.0)
+            }
         };
         let (Some(dc), Some(du)) = (dc, du) else {
-            return Some((mu, [f64::NAN; 2]));
+            return Some(StretchFriction {
+                mu,
+                turn: [f64::NAN; 2],
+                kinetic_balance,
+            });
         };
         let cap = |s1: f64, s2: f64, c: f64| -> Option<Capstan> {
             let at = Stretch { c, ..st };
@@ -1662,17 +1674,11 @@ impl<P: Profile> Chain<P> {
             let here = cap(s1, s2, c)?;
             rate += wq(&here, dfb) - wq(&here, [0.0; 2]);
         }
-        Some((mu, [w(s1, s2, c, fb)?, rate]))
-    }
-
-    /// The balance of the lying stretch at `u` with its resultant `nt` sliding with the
-    /// friction ratio `r`, and its slope in `r` ([`Stretch::balance`]).
-    pub fn stretch_balance(&self, u: &[f64], nt: (f64, f64), r: f64) -> Option<(f64, f64)> {
-        let st = self.stretch_now()?;
-        let j = self.set.lain()?;
-        let s1 = self.set.s_of(j, u);
-        let fb = self.force_from(u, j + 1);
-        Some(st.balance(&self.sh.profile, s1, nt, fb, r))
+        Some(StretchFriction {
+            mu,
+            turn: [w(s1, s2, c, fb)?, rate],
+            kinetic_balance,
+        })
     }
 
     /// The rate of the lain contact's rolling invariant along the branch as the family moves

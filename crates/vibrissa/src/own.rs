@@ -108,18 +108,18 @@ impl<P: Profile> OwnStepper<P> {
             // (its work is asked for where the march meters the friction's work)
             let metered = self.env.ground.meter.is_some();
             let moves = (metered && (slides || dc != 0.0)).then_some(dc);
-            if let Some((mu, turn)) = self.chain.stretch_friction(u, du, nt, moves) {
-                c.stretch_mu = mu;
-                c.turn = turn;
-            }
             // (a slip's driver: the balance it would have sliding with kinetic friction, whose
             // sign says whether μk holds it where the ratio it needs may not exist; where a load
             // beyond outweighs the stretch the balance rises with the ratio, and the ratio,
             // which the secant steps find there, decides)
-            if let Some(sl) = self.env.ground.slide.filter(|sl| sl.driver == j && !slides) {
-                let r = sl.dir * c.mu_k;
-                let at = self.chain.stretch_balance(u, nt, r);
-                if let Some((b, _)) = at.filter(|&(_, db)| r.is_finite() && db < 0.0) {
+            let kinetic = (self.env.ground.slide)
+                .filter(|sl| sl.driver == j && !slides)
+                .map(|sl| sl.dir * c.mu_k)
+                .filter(|r| r.is_finite());
+            if let Some(f) = self.chain.stretch_friction(u, du, nt, (moves, kinetic)) {
+                c.stretch_mu = f.mu;
+                c.turn = f.turn;
+                if let Some((b, _)) = f.kinetic_balance.filter(|&(_, db)| db < 0.0) {
                     c.kinetic_balance = b;
                 }
             }

@@ -69,7 +69,7 @@ pub(crate) struct ContactForce {
     pub lies_to: f64,
     /// The inner end of a lying stretch: the friction ratio it needs, signed (`gμ`: a stretch
     /// sliding the way `g` with kinetic friction `μ` along it would balance its resultant,
-    /// [`crate::chain::Stretch::friction_ratio`]; one that slides, its ratio). NaN elsewhere.
+    /// [`crate::chain::Capstan::friction_ratio`]; one that slides, its ratio). NaN elsewhere.
     pub stretch_mu: f64,
     /// The same stretch, where it slides (a slip's driver, or sliding along): the part `W` of
     /// its friction's work that its ratio does not count, and its rate along the branch
@@ -77,7 +77,7 @@ pub(crate) struct ContactForce {
     /// Q(0)` for a slip's driver). NaN elsewhere.
     pub turn: [f64; 2],
     /// The inner end of a lying stretch that drives a slip: its balance `T − r·N + Q(r)` were
-    /// it sliding with kinetic friction, `r = dir·μk` ([`crate::chain::Stretch::balance`]),
+    /// it sliding with kinetic friction, `r = dir·μk` ([`crate::chain::Capstan::balance`]),
     /// which times `dir` is positive along the slip while `μk` does not hold it (the balance
     /// falls with `r` where it holds). NaN elsewhere.
     pub kinetic_balance: f64,

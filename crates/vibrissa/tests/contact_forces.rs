@@ -746,15 +746,7 @@ fn a_held_stretch_is_judged_by_the_friction_ratio_it_needs() {
         d_max: 0.03,
     };
     open(&c);
-    let (rod, surface) = scene(&c).parts().unwrap();
-    let o = DragOptions {
-        d_max: c.d_max,
-        points: 11,
-        mu_s: Some(c.mu_s),
-        mu_k: Some(c.ratio * c.mu_s),
-        ..DragOptions::default()
-    };
-    let r = drag(&rod, &surface, &o).unwrap();
+    let r = drag_case(&c);
     let beyond =
         r.rows.iter().flat_map(|w| &w.contacts).find(|k| {
             k.hold == Hold::Stuck && k.lies_to.is_some() && k.tangential > c.mu_s * k.normal
@@ -762,6 +754,20 @@ fn a_held_stretch_is_judged_by_the_friction_ratio_it_needs() {
     let k = beyond.expect("a stuck stretch beyond T = mu_s N");
     let ratio = k.friction_ratio.unwrap();
     assert!(ratio.abs() <= c.mu_s, "{k}");
+}
+
+/// The drag of the case `c` on the harness's 11 output points, its rows to read (unchecked: a
+/// test checks it with [`run`] first).
+fn drag_case(c: &Case) -> DragResult {
+    let (rod, surface) = scene(c).parts().unwrap();
+    let o = DragOptions {
+        d_max: c.d_max,
+        points: 11,
+        mu_s: Some(c.mu_s),
+        mu_k: Some(c.ratio * c.mu_s),
+        ..DragOptions::default()
+    };
+    drag(&rod, &surface, &o).unwrap()
 }
 
 /// The paper's drag settings (η 0.75, μs 0.5, μk 0.3, d_max 0.3) over `A sin(2πx/W + P)` on
@@ -798,15 +804,7 @@ fn a_side_reaching_the_corrugations_inflection_lies_down() {
         let c = grid_case(amp, wave, 4.0 * std::f64::consts::FRAC_PI_3, 0.0);
         let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
         assert!(out.contains("stopped: d_max reached"), "{c:?}: {out}");
-        let (rod, surface) = scene(&c).parts().unwrap();
-        let o = DragOptions {
-            d_max: c.d_max,
-            points: 11,
-            mu_s: Some(c.mu_s),
-            mu_k: Some(c.ratio * c.mu_s),
-            ..DragOptions::default()
-        };
-        let r = drag(&rod, &surface, &o).unwrap();
+        let r = drag_case(&c);
         let lie = r
             .rows
             .iter()

@@ -663,7 +663,7 @@ fn heavy_load_drag() -> DragResult {
 /// A stretch loaded by the tip beyond it with more than its own normal force holds by the
 /// friction ratio it needs, not by its `T/N` ([`heavy_load_drag`]). The ratio's fixed point
 /// diverges there (its factor `|dq1/dμ|/N` passes 1), and the balance is solved by secant
-/// steps (chain.rs `Stretch::friction_ratio`). Until 2026-12-01 the ratio was NaN, the
+/// steps (chain.rs `Capstan::friction_ratio`). Until 2026-12-01 the ratio was NaN, the
 /// stretch's slip limit was its `|T| = μs N`, and the drag jammed at d = 0.05083 after 10
 /// slips. Later in the drag the stretch, the tip lifted, drives slips alone; where μk holds it
 /// is located by its balance at μk (`ContactForce::kinetic_balance`), not by the ratio it
