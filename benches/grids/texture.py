@@ -96,6 +96,8 @@ def classify(reason, detail, code):
         return "Newton failure / NaN"
     if "equilibria fold back" in detail and "(a snap)" in detail:
         return "fold/snap"
+    if "closed up to the stretch" in detail or "closes up to the stretch" in detail:
+        return "side closes up to a lying stretch (named)"
     if "halts and holds where it is" in detail:
         return "slider halts into a trapped state (named)"
     if "the start" in detail and "trap" in detail:

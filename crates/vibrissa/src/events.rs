@@ -49,6 +49,10 @@ pub(crate) enum Crossing {
     /// An end of the lying stretch whose inner end is contact `j` would pull on the surface (the
     /// smaller of its ends' point forces falls to zero).
     EndLift(usize),
+    /// The side contact `j`, driving a slip towards the lying stretch whose inner end is contact
+    /// `j + 1`, closes up to it: the surface's arc between them and the rod's length between them
+    /// come within [`CLOSED`] (the free rod between lies down along the surface).
+    Close(usize),
     /// `|μ|` stops rising (its first maximum).
     MuMax,
     /// The last contact point reaches the target height (the end of a press).
@@ -97,6 +101,12 @@ impl Crossing {
                 "-min(P1, P2) of contact {} (an end of the lying stretch would pull)",
                 j + 1
             ),
+            Crossing::Close(j) => format!(
+                "1e-12 less |surface's arc - rod's length| between contacts {} and {} (the side \
+                 would close up to the lying stretch)",
+                j + 1,
+                j + 2
+            ),
             Crossing::MuMax => "-d|mu|/dd".into(),
             Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
             Crossing::Target(Goal::TipSlope(p, _)) => format!("phi(1) - {p}"),
@@ -110,6 +120,9 @@ impl Crossing {
             v.push(Crossing::Lift(j));
             if env.ground.slide.is_some_and(|s| s.driver == j) {
                 v.push(Crossing::Stick(j));
+                if closes(env, set, j) {
+                    v.push(Crossing::Close(j));
+                }
             } else if is_slider(c) {
                 v.push(Crossing::Halt(j));
             } else if (slip_limit(env, set, j).is_finite() || env.ground.texture.is_some())
@@ -182,6 +195,16 @@ impl Crossing {
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
             Crossing::Unlie(j) => w.contacts[j].s - w.contacts[j].lies_to,
             Crossing::Reach(j) => w.contacts[j].lies_to - 1.0,
+            Crossing::Close(j) => match &env.ground.curve {
+                Some(h) => {
+                    let (a, b) = (&w.contacts[j], &w.contacts[j + 1]);
+                    // (the gap nears zero, from a bridge's side or a blister's, without crossing
+                    // it: the event is its coming within `CLOSED`)
+                    let gap = (h.sigma(b.x).0 - h.sigma(a.x).0).abs() - (b.s - a.s);
+                    CLOSED - gap.abs()
+                }
+                None => f64::NAN,
+            },
             Crossing::EndLift(j) => {
                 let [p1, p2] = w.contacts[j].end_push;
                 -p1.min(p2)
@@ -385,6 +408,13 @@ pub(crate) fn lifted(w: &mut Watch) {
 pub(crate) const JUMP: f64 = 1e-6;
 /// An event function this close to zero right after a change of contact set is at zero.
 pub(crate) const AT_ZERO: f64 = 1e-12;
+/// A side has closed up to the lying stretch beside it where the surface's arc between them and
+/// the rod's length between them differ by no more than this: the contacts' places are solved to
+/// the corrector's tolerance, 1e-12 at the default tol. The gap nears zero without crossing it,
+/// ever faster (issue 31's property seed 11: 2.6e-11, 2.3e-12, 3.0e-13, 3.8e-14 at slides of
+/// 7.1e-4, 9.0e-4, 1.01e-3, 1.09e-3), and the state is singular with it: that slide's march
+/// failed further on ("not resolved by arclength steps down to 1.2e-10").
+pub(crate) const CLOSED: f64 = 1e-12;
 
 /// The set with the interior contact `ct` touched down at `s` (in its place along the rod; its
 /// unknowns N, T start at zero), and its unknowns. A touchdown at the free tip (`s = 1`: the
@@ -724,6 +754,7 @@ fn transition_at(
             Crossing::Unlie(_) => peel_up(set, u),
             Crossing::EndLift(j) => end_lift(&pe.w.contacts[j]),
             Crossing::Reach(j) => reach(&pe.w.contacts[j]),
+            Crossing::Close(j) => close_up(&pe.w.contacts[j], &pe.w.contacts[j + 1]),
             Crossing::Lie(j) => Next::Limit(format!(
                 "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
                 pe.w.contacts[j].s
@@ -920,6 +951,35 @@ fn end_lift(c: &crate::watch::ContactForce) -> Next {
          end, s = {s:.6} (the point forces there: inner {p1:.3e}, outer {p2:.3e}): a stretch \
          whose end lets go while it holds is not in the model",
         c.s, c.lies_to,
+    ))
+}
+
+/// Whether the side `j` of `set`, driving a slip on a curved surface, is next to the inner end of
+/// the lying stretch (so that its slide may lay the free rod between them down on the surface).
+fn closes(env: &Env, set: &ContactSet, j: usize) -> bool {
+    let c = &set.contacts[j];
+    env.ground.curve.is_some()
+        && !c.tip
+        && matches!(c.geom, Geom::Curve { .. })
+        && set.lain() == Some(j + 1)
+}
+
+/// The stop where the side `a`, sliding towards the lying stretch whose inner end is `b`, closes
+/// up to it: the rod between them lies along the surface, and the two would be one stretch from
+/// the side on, which the model does not have (its stretch lays down and peels back at its ends;
+/// it does not take in a side). Before the side gets there the state is singular with the gap
+/// (the Newton matrix's smallest singular value over its largest 0.11–0.35 times the gap, from
+/// 5.8e-8 down to 1.4e-11, in the stuck states between the slips of issue 31's property seed
+/// 11), so a slide that nears it is not resolved either ("the branch is not resolved by
+/// arclength steps down to 1.2e-10"; rounded, the slide ended at μk with the gap at 1.4e-14, and
+/// the stick after it placed a fold by the output grid, its Newton matrix's smallest singular
+/// value 8.5e-14 to 4.2e-12 of the largest).
+fn close_up(a: &crate::watch::ContactForce, b: &crate::watch::ContactForce) -> Next {
+    Next::Limit(format!(
+        "the side contact at s = {:.6}, sliding, closes up to the stretch lying on the surface \
+         from s = {:.6}: the rod between them lies along the surface, so they would be one \
+         stretch from the side on; a lying stretch that takes in a side is not in the model",
+        a.s, b.s
     ))
 }
 
