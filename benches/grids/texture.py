@@ -44,6 +44,7 @@ CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture 
            "start's stretch reaches the rod's end (not followed)",
            "slider halts into a trapped state (named)", "trapped slide (not followed)",
            "nested slips 8 deep (named)", "side begins to lie along the surface",
+           "sliding side closes up to its neighbour (named)",
            "lying stretch would slip (not modelled)",
            "change at a lying stretch (not followed)", "lying stretch's end would pull",
            "lying stretch reaches the rod's end (not followed)",
@@ -96,8 +97,8 @@ def classify(reason, detail, code):
         return "Newton failure / NaN"
     if "equilibria fold back" in detail and "(a snap)" in detail:
         return "fold/snap"
-    if "closed up to the stretch" in detail or "closes up to the stretch" in detail:
-        return "side closes up to a lying stretch (named)"
+    if "closes up to the" in detail:
+        return "sliding side closes up to its neighbour (named)"
     if "halts and holds where it is" in detail:
         return "slider halts into a trapped state (named)"
     if "the start" in detail and "trap" in detail:

@@ -49,10 +49,11 @@ pub(crate) enum Crossing {
     /// An end of the lying stretch whose inner end is contact `j` would pull on the surface (the
     /// smaller of its ends' point forces falls to zero).
     EndLift(usize),
-    /// The side contact `j`, driving a slip towards the lying stretch whose inner end is contact
-    /// `j + 1`, closes up to it: the surface's arc between them and the rod's length between them
-    /// come within [`CLOSED`] (the free rod between lies down along the surface).
-    Close(usize),
+    /// The side contact `j`, driving a slip, closes up to its neighbour `k` on the surface (a
+    /// side, or the inner end of the lying stretch): the surface's arc between them and the rod's
+    /// length between them come within [`CLOSED`] (the free rod between lies down along the
+    /// surface).
+    Close(usize, usize),
     /// `|μ|` stops rising (its first maximum).
     MuMax,
     /// The last contact point reaches the target height (the end of a press).
@@ -101,11 +102,11 @@ impl Crossing {
                 "-min(P1, P2) of contact {} (an end of the lying stretch would pull)",
                 j + 1
             ),
-            Crossing::Close(j) => format!(
+            Crossing::Close(j, k) => format!(
                 "1e-12 less |surface's arc - rod's length| between contacts {} and {} (the side \
-                 would close up to the lying stretch)",
+                 would close up to its neighbour)",
                 j + 1,
-                j + 2
+                k + 1
             ),
             Crossing::MuMax => "-d|mu|/dd".into(),
             Crossing::Target(Goal::Height(h, _)) => format!("y of the last contact - {h}"),
@@ -120,8 +121,8 @@ impl Crossing {
             v.push(Crossing::Lift(j));
             if env.ground.slide.is_some_and(|s| s.driver == j) {
                 v.push(Crossing::Stick(j));
-                if closes(env, set, j) {
-                    v.push(Crossing::Close(j));
+                for k in closing(env, set, j) {
+                    v.push(Crossing::Close(j, k));
                 }
             } else if is_slider(c) {
                 v.push(Crossing::Halt(j));
@@ -195,9 +196,9 @@ impl Crossing {
             Crossing::PeelBack(j) | Crossing::SlipOff(j) => w.contacts[j].s - 1.0,
             Crossing::Unlie(j) => w.contacts[j].s - w.contacts[j].lies_to,
             Crossing::Reach(j) => w.contacts[j].lies_to - 1.0,
-            Crossing::Close(j) => match &env.ground.curve {
+            Crossing::Close(j, k) => match &env.ground.curve {
                 Some(h) => {
-                    let (a, b) = (&w.contacts[j], &w.contacts[j + 1]);
+                    let (a, b) = (&w.contacts[j.min(k)], &w.contacts[j.max(k)]);
                     // (the gap nears zero, from a bridge's side or a blister's, without crossing
                     // it: the event is its coming within `CLOSED`)
                     let gap = (h.sigma(b.x).0 - h.sigma(a.x).0).abs() - (b.s - a.s);
@@ -754,7 +755,7 @@ fn transition_at(
             Crossing::Unlie(_) => peel_up(set, u),
             Crossing::EndLift(j) => end_lift(&pe.w.contacts[j]),
             Crossing::Reach(j) => reach(&pe.w.contacts[j]),
-            Crossing::Close(j) => close_up(&pe.w.contacts[j], &pe.w.contacts[j + 1]),
+            Crossing::Close(j, k) => close_up(set, (j, k), pe),
             Crossing::Lie(j) => Next::Limit(format!(
                 "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
                 pe.w.contacts[j].s
@@ -954,32 +955,49 @@ fn end_lift(c: &crate::watch::ContactForce) -> Next {
     ))
 }
 
-/// Whether the side `j` of `set`, driving a slip on a curved surface, is next to the inner end of
-/// the lying stretch (so that its slide may lay the free rod between them down on the surface).
-fn closes(env: &Env, set: &ContactSet, j: usize) -> bool {
-    let c = &set.contacts[j];
-    env.ground.curve.is_some()
-        && !c.tip
-        && matches!(c.geom, Geom::Curve { .. })
-        && set.lain() == Some(j + 1)
+/// The neighbours of the side `j` of `set`, driving a slip on a curved surface, that its slide
+/// may close up to, laying the free rod between them down on the surface: the sides on the
+/// surface next to it and the inner end of the lying stretch (not the tip: a side that reaches
+/// the tip peels back, `Crossing::PeelBack`).
+fn closing(env: &Env, set: &ContactSet, j: usize) -> Vec<usize> {
+    let side = |k: usize| {
+        let c = &set.contacts[k];
+        !c.tip && matches!(c.geom, Geom::Curve { .. })
+    };
+    if env.ground.curve.is_none() || !side(j) {
+        return Vec::new();
+    }
+    [j.checked_sub(1), Some(j + 1)]
+        .into_iter()
+        .flatten()
+        .filter(|&k| k < set.contacts.len() && side(k))
+        .collect()
 }
 
-/// The stop where the side `a`, sliding towards the lying stretch whose inner end is `b`, closes
-/// up to it: the rod between them lies along the surface, and the two would be one stretch from
-/// the side on, which the model does not have (its stretch lays down and peels back at its ends;
-/// it does not take in a side). Before the side gets there the state is singular with the gap
-/// (the Newton matrix's smallest singular value over its largest 0.11–0.35 times the gap, from
-/// 5.8e-8 down to 1.4e-11, in the stuck states between the slips of issue 31's property seed
-/// 11), so a slide that nears it is not resolved either ("the branch is not resolved by
-/// arclength steps down to 1.2e-10"; rounded, the slide ended at μk with the gap at 1.4e-14, and
-/// the stick after it placed a fold by the output grid, its Newton matrix's smallest singular
-/// value 8.5e-14 to 4.2e-12 of the largest).
-fn close_up(a: &crate::watch::ContactForce, b: &crate::watch::ContactForce) -> Next {
+/// The stop where the side `j` of `set`, sliding, closes up to its neighbour `k` (at `pe`): the
+/// rod between them lies along the surface, and the two would be one stretch, which the model
+/// does not have (its stretch lays down from one side and peels back at its ends; it does not
+/// take in a side, nor lie between two). Before the side gets there the state is singular with
+/// the gap (the Newton matrix's smallest singular value over its largest 0.11–0.35 times the
+/// gap, from 5.8e-8 down to 1.4e-11, in the stuck states between the slips of issue 31's
+/// property seed 11, a side closing up to the stretch), so a slide that nears it is not resolved
+/// either ("the branch is not resolved by arclength steps down to 1.2e-10"; rounded, the slide
+/// ended at μk with the gap at 1.4e-14, and the stick after it placed a fold by the output grid,
+/// its Newton matrix's smallest singular value 8.5e-14 to 4.2e-12 of the largest; two sides of
+/// the short rat preset over 0.001 sin(2πx/0.2 + 2π/3), slip by slip, 5.7e-11 down to 3.5e-14,
+/// then a solver failure on 11 output points).
+fn close_up(set: &ContactSet, (j, k): (usize, usize), pe: &Pt) -> Next {
+    let (a, b) = (&pe.w.contacts[j], &pe.w.contacts[k]);
+    let to = if set.lain() == Some(k) {
+        format!("the stretch lying on the surface from s = {:.6}", b.s)
+    } else {
+        format!("the side contact at s = {:.6}", b.s)
+    };
     Next::Limit(format!(
-        "the side contact at s = {:.6}, sliding, closes up to the stretch lying on the surface \
-         from s = {:.6}: the rod between them lies along the surface, so they would be one \
-         stretch from the side on; a lying stretch that takes in a side is not in the model",
-        a.s, b.s
+        "the side contact at s = {:.6}, sliding, closes up to {to}: the rod between them lies \
+         along the surface, so they would be one stretch; a lying stretch that takes in a side, \
+         or lies between two, is not in the model",
+        a.s
     ))
 }
 

@@ -1142,17 +1142,28 @@ fn a_fold_on_a_thin_tip_is_located_at_the_residual_floor() {
 /// and forth, and the same step then came from the passage each time (100 000 times, until the
 /// step budget). The slip is now located on the passage's own step (fold.rs
 /// `locate_on_chord`), and the drag goes on, every contact by Coulomb and every slip and stick
-/// balanced, to the named stop it had before that change: the sliding contact at s = 0.98116
-/// halts trapped at d = 0.1095.
+/// balanced, to a named stop: the sliding contact at s = 0.98116 halted trapped at d =
+/// 0.1095061, until a side sliding up to its neighbour ended the drag (`Crossing::Close`). Its
+/// two sides close up slip by slip, the Newton matrix's smallest singular value over its largest
+/// 5.7e-11, 1.7e-11, 4.0e-12, 6.1e-13, 3.7e-14 in the stuck states after the slips at d 0.093
+/// to 0.106, and in the slip at d 0.1094913 the rod between them lies along the surface: the
+/// drag ends there by name, on 21 output points too.
 #[test]
 fn a_slip_inside_a_step_of_the_fold_passage_is_located_on_it() {
     let (c, s) = rat_case(0.001, 0.2, 2.0 * std::f64::consts::PI / 3.0, 0.3);
-    let out = run_points(&c, s, 201).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-    assert!(
-        out.contains("stopped: contact change at d = 0.1095"),
-        "{out}"
-    );
-    assert!(out.contains("halts and holds where it is"), "{out}");
+    let ds: Vec<f64> = [201, 21]
+        .into_iter()
+        .map(|points| {
+            let out = run_points(&c, s.clone(), points).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+            assert!(
+                out.contains("closes up to the side contact"),
+                "{points}: {out}"
+            );
+            stop_d(&out).unwrap()
+        })
+        .collect();
+    assert!((ds[0] - 0.1094913).abs() < 1e-6, "{ds:?}");
+    assert!((ds[0] - ds[1]).abs() <= 1e-8, "{ds:?}");
 }
 
 /// Was "the contact state side+tip does not hold beyond d = 0.027221: -sin(phi(1) - beta) (the
@@ -1194,11 +1205,13 @@ fn a_touchdown_inside_the_first_step_after_a_release_is_located() {
 /// contact 1 (it would lie along the surface) = 4.172e-2 after the change ... the model has no
 /// contact state that continues" (issue 31's texture grid, 0.02/0.5/0 on the short rat preset,
 /// point tip): the tip turned tangent in a trough of the corrugation that curves more than the
-/// rod's end, so the side it became lies along the surface from its first point. The stop is
-/// now the lie's, by name, at the same d. (The drag alone, as the program runs it: longer than
-/// `run_in`'s HANG allows.)
+/// rod's end, so the side it became lies along the surface from its first point. The stop was
+/// then the lie's, by name, at the same d; since a side that begins to lie along the surface lies
+/// down (a lying stretch, docs/model.md), the drag goes on to d_max (11 955 slips on the
+/// library's 401 output points, as on the program's 201). (The drag alone: longer than `run_in`'s
+/// HANG allows.)
 #[test]
-#[ignore = "slow: about 75 s in release, 11949 slips"]
+#[ignore = "slow: about 15 s in release, 11955 slips"]
 fn a_tip_lying_down_in_a_trough_that_curves_more_than_its_end_lies_along() {
     let (c, s) = rat_case(0.02, 0.5, 0.0, 0.3);
     let (rod, surface) = s.parts().unwrap();
@@ -1209,11 +1222,8 @@ fn a_tip_lying_down_in_a_trough_that_curves_more_than_its_end_lies_along() {
         ..DragOptions::default()
     };
     let r = drag(&rod, &surface, &o).unwrap();
-    let StopReason::ContactChange { d, message } = &r.stop else {
-        panic!("stopped: {}", r.stop);
-    };
-    assert!(message.contains("begins to lie along"), "{message}");
-    assert!((d - 0.236426).abs() < 1e-6, "d = {d}: {message}");
+    assert_eq!(r.stop, StopReason::DMax, "stopped: {}", r.stop);
+    assert!(r.slips.len() > 11000, "{} slips", r.slips.len());
 }
 
 /// Issue 31's own example, `vibrissa drag --eta 0.75 --mu-s 0.5 --mu-k 0.3 --d-max 0.3
