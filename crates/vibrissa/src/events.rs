@@ -103,8 +103,8 @@ impl Crossing {
                 j + 1
             ),
             Crossing::Close(j, k) => format!(
-                "1e-12 less |surface's arc - rod's length| between contacts {} and {} (the side \
-                 would close up to its neighbour)",
+                "{CLOSED:e} less |surface's arc - rod's length| between contacts {} and {} (the \
+                 side would close up to its neighbour)",
                 j + 1,
                 k + 1
             ),
