@@ -409,12 +409,14 @@ pub(crate) fn lifted(w: &mut Watch) {
 pub(crate) const JUMP: f64 = 1e-6;
 /// An event function this close to zero right after a change of contact set is at zero.
 pub(crate) const AT_ZERO: f64 = 1e-12;
-/// A side has closed up to the lying stretch beside it where the surface's arc between them and
-/// the rod's length between them differ by no more than this: the contacts' places are solved to
-/// the corrector's tolerance, 1e-12 at the default tol. The gap nears zero without crossing it,
-/// ever faster (issue 31's property seed 11: 2.6e-11, 2.3e-12, 3.0e-13, 3.8e-14 at slides of
-/// 7.1e-4, 9.0e-4, 1.01e-3, 1.09e-3), and the state is singular with it: that slide's march
-/// failed further on ("not resolved by arclength steps down to 1.2e-10").
+/// A sliding side has closed up to its neighbour (a side, or the lying stretch's inner end) where
+/// the surface's arc between them and the rod's length between them differ by no more than this:
+/// the contacts' places are solved to the corrector's tolerance, 1e-12 at the default tol. The
+/// gap nears zero without crossing it, ever faster (issue 31's property seed 11: 2.6e-11,
+/// 2.3e-12, 3.0e-13, 3.8e-14 at slides of 7.1e-4, 9.0e-4, 1.01e-3, 1.09e-3), and the state is
+/// singular with it: that slide's march failed further on ("not resolved by arclength steps down
+/// to 1.2e-10"). (1e-11 was tried: it also turned a set change made with the gap already within
+/// it into a jam, the new state "not holding", which the march does not yet tell apart.)
 pub(crate) const CLOSED: f64 = 1e-12;
 
 /// The set with the interior contact `ct` touched down at `s` (in its place along the rod; its
@@ -984,8 +986,8 @@ fn closing(env: &Env, set: &ContactSet, j: usize) -> Vec<usize> {
 /// either ("the branch is not resolved by arclength steps down to 1.2e-10"; rounded, the slide
 /// ended at μk with the gap at 1.4e-14, and the stick after it placed a fold by the output grid,
 /// its Newton matrix's smallest singular value 8.5e-14 to 4.2e-12 of the largest; two sides of
-/// the short rat preset over 0.001 sin(2πx/0.2 + 2π/3), slip by slip, 5.7e-11 down to 3.5e-14,
-/// then a solver failure on 11 output points).
+/// the short rat preset over 0.001 sin(2πx/0.2 + 2π/3) close up over slips that take that ratio
+/// from 5.7e-11 down to 3.7e-14).
 fn close_up(set: &ContactSet, (j, k): (usize, usize), pe: &Pt) -> Next {
     let (a, b) = (&pe.w.contacts[j], &pe.w.contacts[k]);
     let to = if set.lain() == Some(k) {
