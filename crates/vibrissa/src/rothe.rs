@@ -693,7 +693,7 @@ pub(crate) struct Rothe<'r> {
     /// `γ_i`, `γ_e`.
     gi: f64,
     ge: f64,
-    solver: Collocation,
+    solver: StepSolver,
     /// The solution at the present time.
     pub sol: Solution,
     /// Per component (x, y): position and its s-derivative (`e = (cos φ, sin φ)`); velocity and
@@ -777,6 +777,55 @@ pub(crate) fn rest_guess(profile: &General, grid: &[f64]) -> Guess {
     rest
 }
 
+/// A step's collocation, Newton damped by Armijo's rule on the residual, and Deuflhard's
+/// affine-invariant damping where that fails.
+///
+/// Why the second: a stuck tip on a very compliant support (`c_s` ≳ 20) makes the rod a nearly
+/// straight strut between the foot and the tip, whose axial force the rod's inertia lets jump
+/// within a step (from N = 0.02 to 0.12 for a foot moved by 3e-10 at `c_s` = 50). The Newton
+/// step is then right in direction but the product of the force's and the angle's changes in
+/// `m' = G × e` is 200 times the residual it removes, so the residual norm's line search accepts
+/// only 1 % of a step at a time, stalls, and refinement cannot help (the mesh grows to its
+/// limit). The affine-invariant test judges a step by the Newton correction it leaves, which
+/// does not see the rows' scales, and converges in a few steps. It is tried only after the
+/// first has failed, so every step the first solves is solved as before, bit for bit.
+#[derive(Clone)]
+struct StepSolver {
+    armijo: Collocation,
+    affine: Collocation,
+}
+
+impl StepSolver {
+    fn new(opts: CollocationOptions) -> Result<Self, VibrissaError> {
+        let options = |e| VibrissaError::solver("dynamics options", e);
+        let affine = CollocationOptions {
+            newton: bvp::NewtonOptions {
+                damping: bvp::Damping::AffineInvariant,
+                ..opts.newton.clone()
+            },
+            ..opts.clone()
+        };
+        Ok(StepSolver {
+            armijo: Collocation::new(opts).map_err(options)?,
+            affine: Collocation::new(affine).map_err(options)?,
+        })
+    }
+
+    /// Solves by the first; where it fails, by the second from the same guess; where both fail,
+    /// the first one's error.
+    fn solve<P: Bvp + ?Sized>(
+        &mut self,
+        problem: &P,
+        guess: &Guess,
+    ) -> Result<Solution, Box<BvpError>> {
+        self.armijo.solve(problem, guess).or_else(|first| {
+            self.affine
+                .solve(problem, guess)
+                .map_err(|_| Box::new(first))
+        })
+    }
+}
+
 impl<'r> Rothe<'r> {
     /// The uniform grid of `settings.grid` intervals.
     pub fn grid_of(settings: &Settings) -> Vec<f64> {
@@ -800,7 +849,7 @@ impl<'r> Rothe<'r> {
         let mu: Vec<f64> = grid.iter().map(|&s| mass_density(stiffness, s)).collect();
         let bvec: Vec<f64> = grid.iter().map(|&s| profile.b(s)).collect();
         let k0vec: Vec<f64> = grid.iter().map(|&s| profile.k0(s)).collect();
-        let mut solver = Collocation::new(CollocationOptions {
+        let mut solver = StepSolver::new(CollocationOptions {
             tol: settings.tol,
             scheme: settings.scheme,
             coarsen: false,
@@ -814,8 +863,7 @@ impl<'r> Rothe<'r> {
             // forms in the tests of `dynamics` and `dyndrag`.
             control: ErrorControl::Residual,
             ..CollocationOptions::default()
-        })
-        .map_err(|e| VibrissaError::solver("dynamics options", e))?;
+        })?;
         let zeros = vec![0.0; ng + 1];
         let flat = FLAT;
         let statics = Step {
@@ -847,7 +895,7 @@ impl<'r> Rothe<'r> {
         };
         let sol = solver
             .solve(&statics, guess)
-            .map_err(|e| VibrissaError::solver("the starting equilibrium", e))?;
+            .map_err(|e| VibrissaError::solver("the starting equilibrium", *e))?;
         let zero = || vec![0.0; ng + 1];
         let mut me = Rothe {
             cs: rod.support_compliance(),
@@ -1096,11 +1144,11 @@ impl<'r> Rothe<'r> {
         scale_forces(&mut guess, self.gs / gs);
         let sol = match self.predicted(tau, &guess) {
             // a predicted start that Newton cannot take falls back to the last solution
-            Some(start) => match self.solver.solve(&step, &start) {
+            Some(start) => match self.solver.armijo.solve(&step, &start) {
                 Ok(sol) => sol,
-                Err(_) => self.solver.solve(&step, &guess).map_err(Box::new)?,
+                Err(_) => self.solver.solve(&step, &guess)?,
             },
-            None => self.solver.solve(&step, &guess).map_err(Box::new)?,
+            None => self.solver.solve(&step, &guess)?,
         };
         self.stats.newton_iterations += sol.stats.newton_iters;
         self.stats.max_nodes = self.stats.max_nodes.max(sol.len());

@@ -1296,3 +1296,63 @@ fn a_strut_on_a_very_soft_support_slips_and_slides() {
         "{end:?}"
     );
 }
+
+/// The softest supports (compliance 100 here, 50 in the ignored test below: the paper's rod
+/// pressed into a strut straighter still than at 20), v 0.1, dt 0.01. The first step's Newton direction moves the strut's force
+/// from N = 0.022 by about 0.1 for a foot moved by 3.1e-10; the residual's line search (Armijo)
+/// then took 1 % of a step at a time to its iteration limit or a stall, and the drag ended with
+/// a solver error at its first step until 2026-12-01. A step the first damping cannot solve is
+/// now solved again with the affine-invariant damping (rothe.rs `StepSolver`), and the slip's
+/// search then met trials 2e-9 apart in time solved to T/N = 0.492 and 0.684: its test jumps
+/// instead of crossing μs, and where a search ends on a force inside the cone the step does not
+/// resolve the rod (dyndrag.rs `inside_cone`). So the drag ends by name in its first step, the
+/// force before it the pressed start's (the quasi-static `scan`'s at d = 0, to 1e-8), the force
+/// within it inside the cone.
+#[test]
+fn a_strut_on_the_softest_support_ends_by_name_not_in_a_solver_error() {
+    softest_strut_ends_by_name(100.0);
+}
+
+/// As [`a_strut_on_the_softest_support_ends_by_name_not_in_a_solver_error`] at compliance 50
+/// (65 s in the test profile: the first damping fails on every trial of the slip's search, each
+/// after 400–500 Newton iterations on meshes refined up to 6 401 nodes).
+#[test]
+#[ignore = "65 s in the test profile"]
+fn a_strut_on_a_support_of_compliance_50_ends_by_name_not_in_a_solver_error() {
+    softest_strut_ends_by_name(50.0);
+}
+
+fn softest_strut_ends_by_name(c: f64) {
+    let mu_s = DynDragOptions::default().mu_s;
+    let r = strut_drag(c);
+    let DynDragStop::UnresolvedStep {
+        t,
+        before,
+        normal,
+        tangential,
+        ..
+    } = r.stop
+    else {
+        panic!("{c}: {r}")
+    };
+    assert_eq!(t, 0.0, "{c}: {r}");
+    assert!(r.events.is_empty(), "{c}: {r}");
+    let rod = Rod::builder().support_compliance(c).build().unwrap();
+    let q = scan(
+        &rod,
+        &Surface::flat(0.75).unwrap(),
+        &ScanOptions {
+            d_max: 1e-9,
+            points: 2,
+            ..ScanOptions::default()
+        },
+    )
+    .unwrap();
+    let p0 = &q.points[0];
+    assert!(
+        (before[0] - p0.normal).abs() < 1e-8,
+        "{c}: {before:?} {p0:?}"
+    );
+    assert!(before[1].abs() < 1e-8, "{c}: {before:?}");
+    assert!(normal > 0.0 && tangential.abs() < mu_s * normal, "{c}: {r}");
+}
