@@ -2053,10 +2053,8 @@ impl<'r> Drive<'r, '_> {
     /// `UnresolvedStep` where the stuck tip's held force at the end of `tr` is beyond the
     /// friction cone (`|T| > μs N` by more than `1e-6` of it).
     fn beyond_cone(&self, tr: &Trial) -> Option<DynDragStop> {
-        let x = tr.sol.right()[0];
-        let (normal, tangential) = self.forces(self.held_force(tr), x);
-        let mu_s = self.coefficients(self.contact_x(x), tangential.signum()).0;
-        if tangential.abs() <= mu_s * normal * (1.0 + 1e-6) {
+        let (normal, tangential, limit) = self.held_and_limit(tr);
+        if tangential.abs() <= limit * (1.0 + 1e-6) {
             return None;
         }
         Some(self.unresolved_step(normal, tangential))
@@ -2071,13 +2069,20 @@ impl<'r> Drive<'r, '_> {
     /// affine-invariant damping, rothe.rs `StepSolver`). As any unresolved step, it is taken
     /// again with shorter steps where a refinement is left.
     fn inside_cone(&self, tr: &Trial) -> Option<DynDragStop> {
-        let x = tr.sol.right()[0];
-        let (normal, tangential) = self.forces(self.held_force(tr), x);
-        let mu_s = self.coefficients(self.contact_x(x), tangential.signum()).0;
-        if tangential.abs() >= mu_s * normal * (1.0 - 1e-6) {
+        let (normal, tangential, limit) = self.held_and_limit(tr);
+        if tangential.abs() >= limit * (1.0 - 1e-6) {
             return None;
         }
         Some(self.unresolved_step(normal, tangential))
+    }
+
+    /// The stuck tip's held force at the end of `tr`, `(N, T)`, and its static limit `μs N`
+    /// (μs the texture's where the tip is, for the way it is pushed).
+    fn held_and_limit(&self, tr: &Trial) -> (f64, f64, f64) {
+        let x = tr.sol.right()[0];
+        let (normal, tangential) = self.forces(self.held_force(tr), x);
+        let mu_s = self.coefficients(self.contact_x(x), tangential.signum()).0;
+        (normal, tangential, mu_s * normal)
     }
 
     /// `UnresolvedStep` here: the stuck tip's force `(normal, tangential)` within the step

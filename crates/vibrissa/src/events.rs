@@ -993,19 +993,25 @@ fn closing(env: &Env, set: &ContactSet, j: usize) -> Vec<usize> {
 /// its Newton matrix's smallest singular value 8.5e-14 to 4.2e-12 of the largest; two sides of
 /// the short rat preset over 0.001 sin(2πx/0.2 + 2π/3) close up over slips that take that ratio
 /// from 5.7e-11 down to 3.7e-14).
-pub(crate) fn close_up(set: &ContactSet, (j, k): (usize, usize), pe: &Pt) -> Next {
+fn close_up(set: &ContactSet, jk: (usize, usize), pe: &Pt) -> Next {
+    Next::Limit(closed_up(set, jk, pe))
+}
+
+/// The words of [`close_up`]'s stop (also the stop where a change of set is made with the side
+/// already closed up, march.rs `check_pending`).
+pub(crate) fn closed_up(set: &ContactSet, (j, k): (usize, usize), pe: &Pt) -> String {
     let (a, b) = (&pe.w.contacts[j], &pe.w.contacts[k]);
     let to = if set.lain() == Some(k) {
         format!("the stretch lying on the surface from s = {:.6}", b.s)
     } else {
         format!("the side contact at s = {:.6}", b.s)
     };
-    Next::Limit(format!(
+    format!(
         "the side contact at s = {:.6}, sliding, closes up to {to}: the rod between them lies \
          along the surface, so they would be one stretch; a lying stretch that takes in a side, \
          or lies between two, is not in the model",
         a.s
-    ))
+    )
 }
 
 /// The stop where the unloaded lying stretch whose inner end is the contact `c` reaches the

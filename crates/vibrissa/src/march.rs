@@ -787,11 +787,8 @@ impl<P: Profile> Run<'_, '_, P> {
         if let (Crossing::Close(j, k), Some(q)) = (c, w.hist.last()) {
             // a change of set made with a sliding side already closed up to its neighbour: the
             // closing's stop, not a state that does not hold (a jam in a slip)
-            if let crate::events::Next::Limit(message) =
-                crate::events::close_up(self.stepper.set(), (j, k), q)
-            {
-                return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));
-            }
+            let message = crate::events::closed_up(self.stepper.set(), (j, k), q);
+            return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));
         }
         if env.ground.slide.is_some() {
             // in a slip (the foot held) the impasse is friction's: the slip cannot go on

@@ -779,22 +779,7 @@ fn a_side_closing_up_to_a_lying_stretch_ends_the_drag_by_name() {
         radius: 0.0,
         d_max: 0.0964825884322871,
     };
-    // (each grid's drag checked row by row and slip by slip, its stop read from the check's words)
-    let ends: Vec<(f64, String)> = [11, 21]
-        .into_iter()
-        .map(|points| {
-            let out = run_points(&c, scene(&c), points).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-            assert!(
-                out.contains("closes up to the stretch lying"),
-                "{points}: {out}"
-            );
-            let slips = out
-                .split(" rows, ")
-                .nth(1)
-                .and_then(|t| t.split(' ').next());
-            (stop_d(&out).unwrap(), slips.unwrap().to_string())
-        })
-        .collect();
+    let ends = stops_on_grids(&c, &scene(&c), &[11, 21], "closes up to the stretch lying");
     assert_eq!(ends[0].1, "332", "{ends:?}");
     assert_eq!(ends[0].1, ends[1].1, "{ends:?}");
     assert!((ends[0].0 - ends[1].0).abs() <= 1e-8, "{ends:?}");
@@ -906,6 +891,24 @@ fn stop_d(out: &str) -> Option<f64> {
     let stop = out.split("stopped: ").nth(1)?;
     let d = stop.split("at d = ").nth(1)?;
     d.split([':', ' ', ',']).next()?.parse().ok()
+}
+
+/// The stop's `d` and slip count of the case `c` over the scene `s` on each of `grids` output
+/// points, each drag checked row by row and slip by slip by the harness ([`run_points`]) and
+/// read from the check's words, which must say `stop`.
+fn stops_on_grids(c: &Case, s: &Scene, grids: &[usize], stop: &str) -> Vec<(f64, String)> {
+    grids
+        .iter()
+        .map(|&points| {
+            let out = run_points(c, s.clone(), points).unwrap_or_else(|e| panic!("{c:?}: {e}"));
+            assert!(out.contains(stop), "{points}: {out}");
+            let slips = out
+                .split(" rows, ")
+                .nth(1)
+                .and_then(|t| t.split(' ').next());
+            (stop_d(&out).unwrap(), slips.unwrap().to_string())
+        })
+        .collect()
 }
 
 /// Was "the contact state side does not hold beyond d = 0.01977: the height of the free rod
@@ -1121,21 +1124,7 @@ fn a_trapped_slides_fold_passage_ends_where_the_driver_sticks() {
 fn a_fold_placed_by_two_sides_closing_up_is_their_closing_on_every_grid() {
     // (the grid's phase, 4π/3 rounded as texture.py has it: the train of slips is chaotic)
     let (c, s) = rat_case(0.001, 0.2, 4.0 * std::f64::consts::PI / 3.0, 0.3);
-    let ends: Vec<(f64, String)> = [201, 11, 51]
-        .into_iter()
-        .map(|points| {
-            let out = run_points(&c, s.clone(), points).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-            assert!(
-                out.contains("closes up to the side contact"),
-                "{points}: {out}"
-            );
-            let slips = out
-                .split(" rows, ")
-                .nth(1)
-                .and_then(|t| t.split(' ').next());
-            (stop_d(&out).unwrap(), slips.unwrap().to_string())
-        })
-        .collect();
+    let ends = stops_on_grids(&c, &s, &[201, 11, 51], "closes up to the side contact");
     assert!((ends[0].0 - 0.0393861).abs() < 1e-6, "{ends:?}");
     for e in &ends[1..] {
         assert_eq!(e.1, ends[0].1, "{ends:?}");
@@ -1162,16 +1151,9 @@ fn a_fold_placed_by_two_sides_closing_up_is_their_closing_on_every_grid() {
 #[test]
 fn a_slip_inside_a_step_of_the_fold_passage_is_located_on_it() {
     let (c, s) = rat_case(0.001, 0.2, 2.0 * std::f64::consts::PI / 3.0, 0.3);
-    let ds: Vec<f64> = [201, 21, 11]
+    let ds: Vec<f64> = stops_on_grids(&c, &s, &[201, 21, 11], "closes up to the side contact")
         .into_iter()
-        .map(|points| {
-            let out = run_points(&c, s.clone(), points).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-            assert!(
-                out.contains("closes up to the side contact"),
-                "{points}: {out}"
-            );
-            stop_d(&out).unwrap()
-        })
+        .map(|(d, _)| d)
         .collect();
     assert!((ds[0] - 0.1062127).abs() < 1e-6, "{ds:?}");
     for d in &ds[1..] {

@@ -599,29 +599,11 @@ fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
 /// ends at the closing by name, its rows up to the lie-down's.
 #[test]
 fn a_stretch_that_forms_sliding_ends_where_a_side_closes_up_to_it() {
-    let scene = Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.02,
-            wavelength: 0.5,
-            phase: 2.0 * std::f64::consts::PI / 3.0,
-        },
-        ..stretch_scene()
-    };
-    let opts = DragOptions {
-        points: 201,
-        ..paper_friction(0.3)
-    };
-    let r = drag_with(scene, &opts);
-    let StopReason::ContactChange { d, message } = &r.stop else {
-        panic!("{r}");
-    };
-    assert!((d - 0.2196442).abs() < 1e-6, "{r}");
-    assert!(
-        message.contains(
-            "the side contact at s = 0.913309, sliding, closes up to the stretch lying on the \
-             surface from s = 0.924322"
-        ),
-        "{message}"
+    let r = closing_over(
+        0.02,
+        0.2196442,
+        "the side contact at s = 0.913309, sliding, closes up to the stretch lying on the \
+         surface from s = 0.924322",
     );
     assert_eq!(r.slips.len(), 306, "{r}");
     let last = r.rows.last().unwrap();
@@ -695,9 +677,22 @@ fn a_stretch_under_a_heavy_load_beyond_holds_by_the_ratio_it_needs() {
 /// side at s = 0.913438 closed up to the stretch from s = 0.928399.)
 #[test]
 fn a_closing_pending_at_a_change_of_set_ends_the_drag_as_the_closing_does() {
+    let r = closing_over(
+        0.003,
+        0.1966754,
+        "the side contact at s = 0.908027, sliding, closes up to the side contact at s = \
+         0.916757",
+    );
+    assert_eq!(r.slips.len(), 4990, "{r}");
+}
+
+/// The rod tapered to 0.3 over `amplitude sin(2πx/0.5 + 2π/3)` with the paper's friction to
+/// d = 0.3 on 201 rows, which must end where a side closes up, at `d` (to 1e-6) with the stop's
+/// message containing `words`.
+fn closing_over(amplitude: f64, d: f64, words: &str) -> DragResult {
     let scene = Scene {
         surface: SurfaceProfile::Sine {
-            amplitude: 0.003,
+            amplitude,
             wavelength: 0.5,
             phase: 2.0 * std::f64::consts::PI / 3.0,
         },
@@ -708,16 +703,10 @@ fn a_closing_pending_at_a_change_of_set_ends_the_drag_as_the_closing_does() {
         ..paper_friction(0.3)
     };
     let r = drag_with(scene, &opts);
-    let StopReason::ContactChange { d, message } = &r.stop else {
+    let StopReason::ContactChange { d: at, message } = &r.stop else {
         panic!("{r}");
     };
-    assert!((d - 0.1966754).abs() < 1e-6, "{r}");
-    assert!(
-        message.contains(
-            "the side contact at s = 0.908027, sliding, closes up to the side contact at s = \
-             0.916757"
-        ),
-        "{message}"
-    );
-    assert_eq!(r.slips.len(), 4990, "{r}");
+    assert!((at - d).abs() < 1e-6, "{r}");
+    assert!(message.contains(words), "{message}");
+    r
 }
