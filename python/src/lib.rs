@@ -608,6 +608,7 @@ fn summary(mut r: ScanResult) -> (ScanResult, usize, vibrissa::ScanPoint) {
     let n = r.points.len();
     r.points = Vec::new();
     r.shapes = Vec::new();
+    r.contacts = Vec::new();
     (r, n, end)
 }
 

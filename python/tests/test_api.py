@@ -91,6 +91,26 @@ def test_a_handover_to_the_own_shooter_is_said():
     assert "the scan ran on the rod's own shooter" in r.handover
 
 
+def test_scan_points_carry_each_contacts_forces():
+    # a side and the tip from the start (the scene of test_a_handover_to_the_own_shooter_is_said)
+    rod, surface = vibrissa.scene(
+        eta=0.55, precurvature=0.3, precurvature_slope=-0.2, surface_angle=0.2
+    )
+    r = vibrissa.scan(rod, surface, points=11)
+    assert len(r.contacts) == len(r)
+    first = r.contacts[0]
+    assert [c["tip"] for c in first] == [False, True] and first[0]["s"] < 1.0
+    for cs, n, peak in zip(r.contacts, r.points["normal"], r.points["mu_peak"]):
+        # the row's total and its peak ratio are its contacts'
+        assert sum(c["normal"] for c in cs) == pytest.approx(n, rel=1e-12)
+        assert max(abs(c["tangential"]) / c["normal"] for c in cs) == pytest.approx(peak, rel=1e-12)
+        assert all(c["hold"]["state"] == "stuck" for c in cs)
+    # the closed forms give the tip alone, T = mu N
+    a = vibrissa.scan(vibrissa.Rod(), points=3, method="analytic")
+    (tip,) = a.contacts[1]
+    assert tip["tip"] and tip["tangential"] == pytest.approx(a.points["mu"][1] * tip["normal"])
+
+
 def test_scan_at_given_displacements():
     d = [0.0, 0.05, 0.13, 0.2]
     r = vibrissa.scan(vibrissa.Rod(), d=d, d_max=0.2)

@@ -144,6 +144,10 @@ class ScanResult:
             slip, the method could not start or its march failed).
         shapes: with ``shape_points``: dict of arrays of shape (points, shape_points) for
             ``s``, ``x``, ``y``, ``phi``, ``kappa``, ``m`` (foot frame), else ``None``.
+        contacts: one list per point of its contacts, in order along the rod (dicts: ``s``,
+            ``tip``, ``x``, ``y``, ``normal``, ``tangential``, ``hold`` (``{"state":
+            "stuck"}``), ``mu`` (the slip threshold)), as a drag's rows give them: with several
+            contacts, each one's own forces.
         raw: everything as the library returned it (nested dicts and lists).
     """
 
@@ -159,6 +163,7 @@ class ScanResult:
         self.stop: Dict[str, Any] = raw["stop"]
         self.stop_reason: str = raw["stop"]["reason"]
         self.stats: Dict[str, Any] = raw["stats"]
+        self.contacts: List[List[Dict[str, Any]]] = raw["contacts"]
         self.handover: Optional[str] = raw.get("handover")
         self.units: Optional[Dict[str, float]] = raw.get("units")
         if self.units:

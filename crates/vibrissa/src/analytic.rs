@@ -116,6 +116,23 @@ impl Curve {
     }
 }
 
+/// The stuck tip of a closed-form point `p`, where the start put it (`at`), as the numerical
+/// scan gives its contacts: the force in the surface's frame, `T = μ N`.
+fn stuck_tip(p: &ScanPoint, at: [f64; 2], mu0: Option<f64>) -> crate::contacts::ContactState {
+    crate::contacts::ContactState {
+        s: 1.0,
+        tip: true,
+        x: at[0],
+        y: at[1],
+        normal: p.normal,
+        tangential: p.mu * p.normal,
+        hold: crate::contacts::Hold::Stuck,
+        mu: mu0.unwrap_or(f64::INFINITY),
+        lies_to: None,
+        friction_ratio: None,
+    }
+}
+
 fn point(e: &Elastica, d: f64, event: Option<Event>) -> ScanPoint {
     ScanPoint {
         d,
@@ -241,6 +258,9 @@ pub(crate) fn scan_analytic(
         let (e, _) = c.at(t).map_err(ctx)?;
         ((-e.alpha).tan(), reach, RangeEnd::DMax)
     };
+    let contacts = (points.iter())
+        .map(|p| vec![stuck_tip(p, [e0.x1, e0.y1], opts.mu0)])
+        .collect();
     Ok(ScanResult {
         eta,
         surface_point: [e0.x1, e0.y1],
@@ -253,6 +273,7 @@ pub(crate) fn scan_analytic(
         stop,
         stats: bvp::Stats::default(),
         shapes,
+        contacts,
         handover: None,
     })
 }

@@ -478,6 +478,14 @@ pub struct ScanResult {
     pub stats: bvp::Stats,
     /// Shapes of the output points (if `keep_shapes`).
     pub shapes: Vec<Vec<ShapePoint>>,
+    /// Each output point's contacts, one list per point of `points` (in order along the rod):
+    /// where each touches and its own normal and tangential force, as a drag's rows give them
+    /// ([`crate::drag::ContactState`]; all stuck, `mu` their slip threshold: μ0, without one
+    /// infinite, or 10 for a contact that traps the rod with another, the most friction a dry
+    /// surface provides). With several contacts a row's `mu_peak` is the largest of their ratios;
+    /// their forces say how well it is determined: a contact that carries a small share of
+    /// the load has its ratio known to that share of the forces' accuracy.
+    pub contacts: Vec<Vec<crate::contacts::ContactState>>,
     /// Set when the scan ran on the rod's own shooter instead of the requested generic method:
     /// why. In a state that traps the rod between two contacts that do not slip, the method's
     /// Newton matrix was singular at its accuracy at the start, or its march ended in a solver

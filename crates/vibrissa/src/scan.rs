@@ -191,6 +191,7 @@ fn scan_with<P: Profile>(
         stop: out.stop,
         stats: out.stats,
         shapes: out.shapes,
+        contacts: out.contacts,
         handover,
     })
 }

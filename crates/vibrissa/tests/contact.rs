@@ -4,6 +4,7 @@
 //! condition holds.
 
 use proptest::prelude::*;
+use vibrissa::drag::ContactState;
 use vibrissa::{scan, Event, Precurvature, ScanOptions, Scene, SolverConfig, Stiffness};
 
 proptest! {
@@ -36,26 +37,39 @@ proptest! {
         let b = surface.angle();
         let (nx, ny) = (-b.sin(), b.cos());
         let line = nx * r.surface_point[0] + ny * r.surface_point[1];
-        for (p, shape) in r.points.iter().zip(&r.shapes) {
+        prop_assert_eq!(r.contacts.len(), r.points.len());
+        for ((p, shape), cs) in r.points.iter().zip(&r.shapes).zip(&r.contacts) {
             let above = shape
                 .iter()
                 .map(|q| nx * (q.x + p.d) + ny * q.y - line)
                 .fold(f64::MIN, f64::max);
             prop_assert!(above <= 1e-12, "d = {} ({:?}): the rod is {above:e} beyond the surface", p.d, p.event);
+            // the row's totals and its peak ratio are its contacts'
+            let n: f64 = cs.iter().map(|k| k.normal).sum();
+            prop_assert!((n - p.normal).abs() <= 1e-12 * (1.0 + n.abs()), "d = {}: N {n} of {}", p.d, p.normal);
             if p.event.is_some() {
                 continue;
             }
+            prop_assert!((peak(cs).0 - p.mu_peak).abs() <= 1e-12 * p.mu_peak, "d = {}: mu_peak {}", p.d, p.mu_peak);
             prop_assert!(p.normal > 0.0, "pulled at d = {}: N = {}", p.d, p.normal);
             prop_assert!(p.mu.abs() <= p.mu_peak + 1e-12, "d = {}: |mu| {} > mu_peak {}", p.d, p.mu, p.mu_peak);
             if let Some(m) = mu0 {
-                prop_assert!(p.mu_peak <= m + ratio_tol(p), "d = {}: a contact needs {} > mu0 = {m}", p.d, p.mu_peak);
+                for k in cs {
+                    prop_assert!(
+                        k.tangential.abs() - m * k.normal <= force_tol(p),
+                        "d = {}: a contact needs {} > mu0 = {m} ({k})", p.d, k.tangential.abs() / k.normal
+                    );
+                }
             }
         }
         if let Some(ev) = r.points.last().filter(|p| p.event.is_some()) {
             match ev.event {
                 Some(Event::Slip) => {
-                    let m = mu0.unwrap();
-                    prop_assert!((ev.mu_peak - m).abs() < ratio_tol(ev), "slip row mu_peak {}", ev.mu_peak);
+                    let (ratio, k) = peak(r.contacts.last().unwrap());
+                    prop_assert!((ratio - ev.mu_peak).abs() <= 1e-12 * ratio, "slip row mu_peak {}", ev.mu_peak);
+                    let gap = k.tangential.abs() - mu0.unwrap() * k.normal;
+                    let allowed = force_tol(ev) + located(&r, mu0.unwrap()) + force_error(&rod, &surface, &o, &r);
+                    prop_assert!(gap.abs() < allowed, "slip row mu_peak {}: |T| - mu0 N = {gap:e} ({k})", ev.mu_peak);
                 }
                 Some(Event::LiftOff) => prop_assert!(ev.normal == 0.0),
                 _ => {}
@@ -64,18 +78,123 @@ proptest! {
     }
 }
 
-/// How well a row's friction ratio is determined: 1e-9 with one contact; with two (in a scan
-/// both hold without slip, and the segment between them carries a nearly indeterminate pair of
-/// tangential forces) 5e-8: on the scene of
+/// How well a row's contact forces are determined, as a share of its total normal force `N`:
+/// 1e-9 with one contact; with two (in a scan both hold without slip, and the segment between
+/// them carries a nearly indeterminate pair of tangential forces) 5e-8: on the scene of
 /// `a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio` the slip row's ratio is
 /// 4.6e-9, 1.8e-8 and 6.5e-9 off μ0 at tol 1e-10, 1e-11 and 1e-12 (the event function scatters
-/// by 1e-9 over λ steps of 1e-13 there).
-fn ratio_tol(p: &vibrissa::ScanPoint) -> f64 {
-    if p.contact.name().contains('+') {
+/// by 1e-9 over λ steps of 1e-13 there). A contact's ratio `|T_j|/N_j` is then determined to
+/// this over `N_j`: a tip that carries 0.9 % of the load has its ratio known to 100 times less
+/// (`a_slip_of_a_contact_with_a_small_share_of_the_load_is_located_on_its_forces`).
+fn force_tol(p: &vibrissa::ScanPoint) -> f64 {
+    let share = if p.contact.name().contains('+') {
         5e-8
     } else {
         1e-9
+    };
+    share * p.normal
+}
+
+/// A slip is located to `1e-13·(1 + d)` in `d` (`events::locate`, Brent's method or Newton's
+/// on the branch's polynomial, as in tests/contact_forces.rs), and `inside` may back the point
+/// off by a few such steps: allowed `4e-13·(1 + d)` times the mean rate at which the slipping
+/// contact's `|T| − μ0 N` changes from the row before. Where the ratio rises steeply that is
+/// more than [`force_tol`]: a tip that slips at d = 1.3e-5, its `|T| − μ0 N` rising at 4.6e4
+/// (from −0.59 at d = 0), was located 7.4e-14 beyond its slip in `d`, 3.4e-9 in `|T| − μ0 N`
+/// (`a_steep_slip_is_located_to_its_place_in_d`).
+fn located(r: &vibrissa::ScanResult, mu0: f64) -> f64 {
+    let n = r.points.len();
+    if n < 2 {
+        return 0.0;
     }
+    let (ev, prev) = (&r.points[n - 1], &r.points[n - 2]);
+    let (now, before) = (&r.contacts[n - 1], &r.contacts[n - 2]);
+    let gap = |k: &ContactState| k.tangential.abs() - mu0 * k.normal;
+    let most = |v: &[ContactState]| v.iter().map(|k| gap(k).abs()).fold(0.0, f64::max);
+    let change = if now.len() == before.len() && now.iter().zip(before).all(|(a, b)| a.tip == b.tip)
+    {
+        (now.iter().zip(before))
+            .map(|(a, b)| (gap(a) - gap(b)).abs())
+            .fold(0.0, f64::max)
+    } else {
+        most(now) + most(before)
+    };
+    4e-13 * (1.0 + ev.d) * change / (ev.d - prev.d)
+}
+
+/// How well the friction condition `|T_j| − μ0 N_j` of the last row of the scan `r` (of `rod`
+/// on `surface` with the options `o`) is determined: the largest difference, contact by
+/// contact, between the row's value and its value solved to the tolerance 1e-12 at the same
+/// `d`, and between the values solved at the scan's tolerance and at 1e-12 at five
+/// displacements 1e-9·d apart around it (all without μ0); 0 where the row is within
+/// [`force_tol`] (not solved then). A slip row is located to the accuracy of its forces: `|T|
+/// − μ0 N` within `force_tol` plus this. With two contacts that hold near a state where their
+/// tangential pair is indeterminate (a tip nearly tangent to the surface next to a side, with a
+/// small share of the load), the pair's forces are determined only to the residual's rounding
+/// over the Jacobian's smallest singular value, at every tolerance:
+/// - `a_slip_where_the_pair_scatters_is_located_to_the_accuracy_of_its_forces` (1 case in
+///   ~4000): the tip, with 0.37 % of the load, read `|T| − μ0 N` with a scatter of 1.5e-7
+///   between solves 1e-11 apart in `d` at tol 1e-10; its slip at d 4.321962e-3, 4.321997e-3
+///   and 4.322089e-3 at tol 1e-10, 1e-11 and 1e-12;
+/// - `a_slip_of_a_tip_with_under_a_hundredth_of_the_load_is_located_to_the_accuracy_of_its_forces`
+///   (1 case in ~40000): the tip, with 0.76 % of the load, slips with its ratio 5.6e-6, 1.96e-5
+///   and 3.5e-5 below μ0 at tol 1e-10, 1e-11 and 1e-12.
+///
+/// Not covered (open): a slip located on a jump of the corrector's points, not on the root
+/// (`a_slip_where_the_pair_jumped_is_located_where_its_forces_are`, ignored).
+fn force_error(
+    rod: &vibrissa::Rod,
+    surface: &vibrissa::Surface,
+    o: &ScanOptions,
+    r: &vibrissa::ScanResult,
+) -> f64 {
+    let (ev, cs) = (r.points.last().unwrap(), r.contacts.last().unwrap());
+    let gap = |k: &ContactState, m: f64| k.tangential.abs() - m * k.normal;
+    let m = o.mu0.unwrap();
+    if cs.iter().all(|k| gap(k, m).abs() < force_tol(ev)) {
+        return 0.0;
+    }
+    // the row's `d` and four more 1e-9·d apart (the scatter between solves)
+    let at: Vec<f64> = std::iter::once(0.0)
+        .chain((-2..=2).map(|i| ev.d * (1.0 + 1e-9 * f64::from(i))))
+        .collect();
+    let solved = |tol: f64| {
+        let oo = ScanOptions {
+            mu0: None,
+            keep_shapes: None,
+            solver: SolverConfig {
+                tol,
+                ..o.solver.clone()
+            },
+            ..o.clone()
+        };
+        let t = vibrissa::scan_at(rod, surface, &oo, &at).ok()?;
+        let same =
+            t.points.len() == at.len() && t.contacts.iter().skip(1).all(|k| k.len() == cs.len());
+        same.then_some(t.contacts)
+    };
+    let (Some(a), Some(b)) = (solved(o.solver.tol), solved(1e-12)) else {
+        return 0.0;
+    };
+    let differ = |x: &[ContactState], y: &[ContactState]| {
+        (x.iter().zip(y))
+            .map(|(p, q)| (gap(p, m) - gap(q, m)).abs())
+            .fold(0.0, f64::max)
+    };
+    let row = differ(cs, &b[3]);
+    (a.iter().zip(&b).skip(1))
+        .map(|(x, y)| differ(x, y))
+        .fold(row, f64::max)
+}
+
+/// The largest friction ratio of a row's contacts, and its contact.
+fn peak(cs: &[ContactState]) -> (f64, &ContactState) {
+    cs.iter()
+        .map(|k| ((k.tangential / k.normal).abs(), k))
+        .fold(
+            (f64::NEG_INFINITY, &cs[0]),
+            |a, b| if b.0 > a.0 { b } else { a },
+        )
 }
 
 #[test]
@@ -112,12 +231,52 @@ fn a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio() {
         assert_eq!(ev.event, Some(Event::Slip), "tol {tol}: {}", r.stop);
         assert_eq!(ev.contact.name(), "side+tip");
         assert!((ev.d - 3.797347e-4).abs() < 1e-9, "tol {tol}: d {}", ev.d);
-        assert!(
-            (ev.mu_peak - mu0).abs() < ratio_tol(ev),
-            "tol {tol}: {}",
-            ev.mu_peak
-        );
+        let (ratio, k) = peak(r.contacts.last().unwrap());
+        assert_eq!(ratio, ev.mu_peak);
+        let gap = k.tangential.abs() - mu0 * k.normal;
+        assert!(gap.abs() < force_tol(ev), "tol {tol}: {gap:e} ({k})");
     }
+}
+
+#[test]
+fn a_slip_of_a_contact_with_a_small_share_of_the_load_is_located_on_its_forces() {
+    // Found by the property test (1 case in ~700): side+tip from the start, the tip carries
+    // 0.0115 of the normal force 1.26 and slips at d = 3.627e-5. The pair's tangential forces
+    // scatter by ~5e-8 between solves 1e-12 apart in d (|T| − μ0 N read −3.5e-10 and 5.1e-8
+    // there), which is 4e-6 in the tip's ratio: the slip was located with its ratio 9.8e-7
+    // below μ0, its |T| − μ0 N 1.2e-8 (the property test asked for 5e-8 in the ratio).
+    let mu0 = 1.0528586762355867;
+    let scene = Scene {
+        eta: 0.5857746675094058,
+        stiffness: Stiffness::Taper {
+            ratio: 0.31625863509412033,
+        },
+        precurvature: Precurvature::Linear {
+            k0: 0.2372887305479562,
+            k1: -0.3158748784555789,
+        },
+        support_compliance: 0.07061986699401053,
+        surface_angle: 0.0,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = ScanOptions {
+        points: 21,
+        mu0: Some(mu0),
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    let ev = r.points.last().unwrap();
+    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
+    assert_eq!(ev.contact.name(), "side+tip");
+    let cs = r.contacts.last().unwrap();
+    let (ratio, k) = peak(cs);
+    assert!(k.tip && k.normal < 0.01 * ev.normal, "{k}");
+    assert_eq!(ratio, ev.mu_peak);
+    let gap = k.tangential.abs() - mu0 * k.normal;
+    assert!(gap.abs() < force_tol(ev), "{gap:e} ({k})");
+    // the side holds inside its cone
+    assert!(cs[0].tangential.abs() < mu0 * cs[0].normal, "{}", cs[0]);
 }
 
 #[test]
@@ -304,4 +463,162 @@ proptest! {
             prop_assert!(p.y_max <= eta + 1e-10, "{:?} at d = {}: y_max - eta = {:e}", p.event, p.d, p.y_max - eta);
         }
     }
+}
+
+#[test]
+fn a_slip_where_the_pair_scatters_is_located_to_the_accuracy_of_its_forces() {
+    // Found by the property test (1 case in ~4000): see `force_error`.
+    let mu0 = 1.1531346476782884;
+    let scene = Scene {
+        eta: 0.653608533038177,
+        stiffness: Stiffness::Taper {
+            ratio: 0.17609540907737736,
+        },
+        precurvature: Precurvature::Linear {
+            k0: 0.08515494552305769,
+            k1: -0.16748713150749825,
+        },
+        support_compliance: 0.01521319613434393,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = ScanOptions {
+        points: 21,
+        mu0: Some(mu0),
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    let ev = r.points.last().unwrap();
+    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
+    assert_eq!(ev.contact.name(), "side+tip");
+    let (_, k) = peak(r.contacts.last().unwrap());
+    let gap = k.tangential.abs() - mu0 * k.normal;
+    let err = force_error(&rod, &surface, &o, &r);
+    assert!(gap.abs() < force_tol(ev) + err, "{gap:e}, {err:e} ({k})");
+}
+
+#[test]
+#[ignore = "open: the slip is located on a jump of the corrector's points (1 case in ~20000)"]
+fn a_slip_where_the_pair_jumped_is_located_where_its_forces_are() {
+    // Found by the property test (1 case in ~20000): the tip (0.33 % of the load) slips at d
+    // 3.32982e-5 at tol 1e-10, 1.07e-7 before its place at tol 1e-11 and 1e-12 (3.34030e-5,
+    // 3.34051e-5), its ratio 3.2e-3 below μ0. Predictions accepted by the chord corrector at a
+    // residual of 9.9e-13 (its tol 1e-12) are 5.2e-6 off in the pair's forces, where one Newton
+    // step from the same prediction is not: the slip's search ends on that jump of its event
+    // function. One more Newton step at every such acceptance (tried) put the three within
+    // 3.5e-9 of each other, but changed 85 of the 450 drags of the texture grid, most of them
+    // to a trapped slide: the drags' trapped pairs follow the split the predictions carry.
+    let mu0 = 1.03955030814294;
+    let scene = Scene {
+        eta: 0.6781129469334398,
+        stiffness: Stiffness::Taper {
+            ratio: 0.16631999848652218,
+        },
+        precurvature: Precurvature::Linear {
+            k0: 0.40835671737503,
+            k1: -0.4855372665710997,
+        },
+        support_compliance: 0.37360913957559866,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let slip = |tol: f64| {
+        let o = ScanOptions {
+            points: 21,
+            mu0: Some(mu0),
+            solver: SolverConfig {
+                tol,
+                ..SolverConfig::default()
+            },
+            ..ScanOptions::default()
+        };
+        let r = scan(&rod, &surface, &o).unwrap();
+        let ev = *r.points.last().unwrap();
+        assert_eq!(ev.event, Some(Event::Slip), "tol {tol}: {}", r.stop);
+        assert_eq!(ev.contact.name(), "side+tip");
+        let (_, k) = peak(r.contacts.last().unwrap());
+        assert!(k.tip && k.normal < 0.004 * ev.normal, "{k}");
+        let gap = k.tangential.abs() - mu0 * k.normal;
+        assert!(gap.abs() < force_tol(&ev), "tol {tol}: {gap:e} ({k})");
+        ev.d
+    };
+    let d12 = slip(1e-12);
+    for tol in [1e-10, 1e-11] {
+        let d = slip(tol);
+        assert!((d - d12).abs() < 1e-8, "tol {tol}: d {d} against {d12}");
+    }
+}
+
+#[test]
+fn a_steep_slip_is_located_to_its_place_in_d() {
+    // Found by the property test (1 case in ~60000): see `located`.
+    let mu0 = 0.7663985270243021;
+    let scene = Scene {
+        eta: 0.8525133476129556,
+        stiffness: Stiffness::Taper {
+            ratio: 0.885712249242131,
+        },
+        precurvature: Precurvature::Linear {
+            k0: -0.3124435083735785,
+            k1: -0.03935817366903851,
+        },
+        support_compliance: 0.8837056243394072,
+        surface_angle: -0.27125233635231083,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = ScanOptions {
+        points: 21,
+        mu0: Some(mu0),
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    let ev = r.points.last().unwrap();
+    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
+    assert_eq!(ev.contact.name(), "tip");
+    let k = &r.contacts.last().unwrap()[0];
+    let gap = k.tangential.abs() - mu0 * k.normal;
+    let allowed = located(&r, mu0);
+    // the rise is steep: the location's allowance is more than the ratio's own
+    assert!(allowed > force_tol(ev), "{allowed:e}");
+    assert!(
+        gap.abs() < force_tol(ev) + allowed,
+        "{gap:e} against {allowed:e}"
+    );
+}
+
+#[test]
+fn a_slip_of_a_tip_with_under_a_hundredth_of_the_load_is_located_to_the_accuracy_of_its_forces() {
+    // Found by the property test (1 case in ~40000): see `force_error`.
+    let mu0 = 0.24337272974074414;
+    let scene = Scene {
+        eta: 0.7704582845302023,
+        stiffness: Stiffness::Taper {
+            ratio: 0.11444989898604135,
+        },
+        precurvature: Precurvature::Linear {
+            k0: 0.30438120045882777,
+            k1: -0.49983131585505614,
+        },
+        support_compliance: 0.4860313608769264,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = ScanOptions {
+        points: 21,
+        mu0: Some(mu0),
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    let ev = r.points.last().unwrap();
+    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
+    assert_eq!(ev.contact.name(), "side+tip");
+    let (_, k) = peak(r.contacts.last().unwrap());
+    assert!(k.tip && k.normal < 0.01 * ev.normal, "{k}");
+    let gap = k.tangential.abs() - mu0 * k.normal;
+    let err = force_error(&rod, &surface, &o, &r);
+    assert!(
+        gap.abs() < force_tol(ev) + located(&r, mu0) + err,
+        "{gap:e}, {err:e} ({k})"
+    );
 }
