@@ -622,3 +622,43 @@ fn a_slip_of_a_tip_with_under_a_hundredth_of_the_load_is_located_to_the_accuracy
         "{gap:e}, {err:e} ({k})"
     );
 }
+
+#[test]
+#[ignore = "open: a free part 4e-12 beyond the surface beside a side that begins to lie (1 case in ~100000)"]
+fn a_rod_beside_a_side_that_begins_to_lie_stays_on_its_side_of_the_surface() {
+    // Found by the property test (1 case in ~100000, the same on the code before this test):
+    // at d = 0.05 the rod is 4.0e-12 beyond the surface at s = 0.655, 7.7e-4 past the side
+    // contact at s = 0.654230 (outside the clearance's 1e-4 around it), 2.5e-3 in d before
+    // that side begins to lie along the surface (the scan's stop, d = 0.0525002). The row
+    // property asks 1e-12. Near a lie-down the rod's relative curvature at the side falls to
+    // zero, and the gap beyond it is the tangency's slope error times the distance.
+    let scene = Scene {
+        eta: 0.5367524486468567,
+        stiffness: Stiffness::Taper {
+            ratio: 0.2631584035303767,
+        },
+        precurvature: Precurvature::Linear {
+            k0: -0.14186964187652307,
+            k1: 0.4888339154031344,
+        },
+        support_compliance: 0.41974577261597823,
+        surface_angle: 0.1679660548909434,
+        ..Scene::default()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = ScanOptions {
+        points: 21,
+        keep_shapes: Some(201),
+        ..ScanOptions::default()
+    };
+    let r = scan(&rod, &surface, &o).unwrap();
+    let b = surface.angle();
+    let (nx, ny) = (-b.sin(), b.cos());
+    let line = nx * r.surface_point[0] + ny * r.surface_point[1];
+    for (p, shape) in r.points.iter().zip(&r.shapes) {
+        let above = (shape.iter())
+            .map(|q| nx * (q.x + p.d) + ny * q.y - line)
+            .fold(f64::MIN, f64::max);
+        assert!(above <= 1e-12, "d = {}: {above:e} beyond", p.d);
+    }
+}
