@@ -70,6 +70,7 @@ impl<P: Profile + 'static> Begin<'_, P> {
             env: self.env,
             cancel: self.solver.cancel.clone(),
             light: false,
+            polish: false,
         };
         let p = match self.first {
             FirstPoint::Correct => st.first(self.lam, &self.u),

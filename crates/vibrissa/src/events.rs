@@ -1205,13 +1205,79 @@ fn search_event(
             }
         }
     }
+    let p = search_on_solves(st, env, hist, (a, b), c, fresh)?;
+    // a root where the function jumps between the corrector's points: search again with
+    // polished points (see `jumped`)
+    if jumped(&p) {
+        st.set_polish(true);
+        let again = search_on_solves(st, env, hist, (a, b), c, fresh);
+        st.set_polish(false);
+        if let Ok(q) = again {
+            if !jumped(&q) {
+                return Ok(q.p);
+            }
+        }
+    }
+    Ok(p.p)
+}
+
+/// A point found by Brent's method on solves, with the nearest point it tried on the other
+/// side of the root (`λ` and the function's value there).
+struct OnSolves {
+    p: Pt,
+    /// The root found and the function there (before [`inside`] backed off from it).
+    root: f64,
+    g: f64,
+    other: Option<(f64, f64)>,
+    /// The step's mean rate `|g(b) − g(a)|/(b − a)`.
+    rate: f64,
+}
+
+/// Whether the function jumps at the root `q` found: its change from the nearest point tried
+/// on the other side is more than a thousand times what its mean rate over the step gives
+/// there and more than 1e-6 of the contacts' total normal force (not the scatter of a trapped
+/// pair's forces, ~1e-7 of it). A pair nearly indeterminate (a tip with 0.33 % of the load,
+/// nearly tangent to the surface beside a side, tests/contact.rs) had its chord corrector
+/// accept predictions at a residual of 9.9e-13 (tol 1e-12) that were 5.2e-6 off in the pair's
+/// forces, where points one Newton step away were not: its slip was located on that jump,
+/// 1.07e-7 in d before its place; searched again on polished points (`rodsolve`'s
+/// `large_correction`) it lies 9.4e-10 from its place at tol 1e-12. The scan grids of
+/// docs/robustness.md (3867 scenes) and the texture grid's 450 drags come out as before.
+fn jumped(q: &OnSolves) -> bool {
+    let Some((lam, g)) = q.other else {
+        return false;
+    };
+    let total: f64 = q.p.w.contacts.iter().map(|c| c.normal.abs()).sum();
+    let change = (q.g - g).abs();
+    change > 1e-6 * total && change > 1e3 * q.rate_bound(lam)
+}
+
+impl OnSolves {
+    /// What the step's mean rate gives for the change from the root to `lam`.
+    fn rate_bound(&self, lam: f64) -> f64 {
+        self.rate * (self.root - lam).abs()
+    }
+}
+
+/// Brent's method on solves within the step `[a, b]` (the event function evaluated on the
+/// rod), the point on the side where the old state holds ([`inside`]).
+fn search_on_solves(
+    st: &mut dyn Stepper,
+    env: &Env,
+    hist: &[Pt],
+    (a, b): (f64, f64),
+    c: Crossing,
+    fresh: bool,
+) -> Result<OnSolves, LocateError> {
     // the last solve of the search: where it is the root, it is the point (a correction at
     // the same λ from the same history and meshes gives the same point, so it is not redone)
     let mut last: Option<Pt> = None;
+    let mut tried: Vec<(f64, f64)> = Vec::new();
     let mut eval = |lam: f64| -> Result<f64, StepError> {
         let p = st.correct(lam, hist, fresh)?;
         let v = c.of_watch(env, &p.w);
         last = Some(p);
+        tried.push((lam, v));
         Ok(v)
     };
     let lam = match search::root(&mut eval, a, b, 1e-13 * (1.0 + b.abs())) {
@@ -1220,7 +1286,15 @@ fn search_event(
         // side (a threshold below the solver's noise: a drag with mu_s = 1e-300 on a flat
         // surface, whose start has |mu| of order 1e-22): the event is at the start
         Err(RootError::NoBracket { fa, .. }) if ended(fa) && fa <= AT_ZERO => {
-            return st.correct(a, hist, fresh).map_err(RootError::Caller);
+            let p = st.correct(a, hist, fresh).map_err(RootError::Caller)?;
+            let g = c.of_watch(env, &p.w);
+            return Ok(OnSolves {
+                root: a,
+                p,
+                g,
+                other: None,
+                rate: 0.0,
+            });
         }
         Err(e) => return Err(e),
     };
@@ -1228,7 +1302,25 @@ fn search_event(
         Some(p) if p.lam.to_bits() == lam.to_bits() => p,
         _ => st.correct(lam, hist, fresh).map_err(RootError::Caller)?,
     };
-    inside(st, env, hist, a, p, c, fresh).map_err(RootError::Caller)
+    let g = c.of_watch(env, &p.w);
+    // the step's mean rate, from its ends (the first two points tried)
+    let rate = match tried[..] {
+        [(la, ga), (lb, gb), ..] if lb != la => ((gb - ga) / (lb - la)).abs(),
+        _ => f64::INFINITY,
+    };
+    // the nearest point tried on the other side of the root
+    let other = (tried.iter())
+        .filter(|&&(_, v)| ended(v) != ended(g))
+        .min_by(|x, y| (x.0 - lam).abs().total_cmp(&(y.0 - lam).abs()))
+        .copied();
+    let p = inside(st, env, hist, a, p, c, fresh).map_err(RootError::Caller)?;
+    Ok(OnSolves {
+        p,
+        root: lam,
+        g,
+        other,
+        rate,
+    })
 }
 
 /// The located event point on the side where the old state still holds (`c ≤ 0`): a root to

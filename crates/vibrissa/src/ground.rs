@@ -124,6 +124,7 @@ fn curve_start<P: Profile>(
         },
         cancel: Default::default(),
         light: false,
+        polish: false,
     };
     let fail = |what: &str, e: &dyn std::fmt::Display| VibrissaError::NoStart {
         reason: format!("growing the surface profile from its straight trend: {what}: {e}"),

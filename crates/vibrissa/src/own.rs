@@ -28,6 +28,8 @@ pub(crate) struct OwnStepper<P: Profile> {
     pub cancel: crate::config::Cancel,
     /// The points leave out the free parts' clearance ([`Stepper::set_light`]).
     pub light: bool,
+    /// The corrector polishes its converged iterates ([`Stepper::set_polish`]).
+    pub polish: bool,
 }
 
 impl<P: Profile> OwnStepper<P> {
@@ -177,12 +179,14 @@ impl<P: Profile> OwnStepper<P> {
         fresh: bool,
     ) -> Result<Pt, StepError> {
         let tol = corrector_tol(self.chain.sh.tol);
-        let cv = correct_chord(&mut self.chain, lam, u, tol, MAX_ITER, fresh)?;
+        let cv = correct_chord(&mut self.chain, lam, u, tol, MAX_ITER, (fresh, self.polish))?;
         let p = self.point(lam, cv)?;
         if p.du.is_none() {
             return Err(StepError::NoTangent);
         }
-        if let Some(last) = newest {
+        // (a polished point may move along the direction the Jacobian nearly loses by more than
+        // the step changes the branch: it is searched for within a step already taken)
+        if let Some(last) = newest.filter(|_| !self.polish) {
             same_branch(last, u, &p, self.chain.sh.tol)?;
         }
         Ok(p)
@@ -201,6 +205,10 @@ impl<P: Profile> Stepper for OwnStepper<P> {
 
     fn set_light(&mut self, light: bool) {
         self.light = light;
+    }
+
+    fn set_polish(&mut self, polish: bool) {
+        self.polish = polish;
     }
 
     fn complete(&mut self, p: Pt) -> Result<Pt, StepError> {

@@ -326,6 +326,7 @@ pub(crate) fn press<P: Profile>(
         env,
         cancel: Default::default(),
         light: false,
+        polish: false,
     };
     let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
         reason: format!("the first point of the press: {e}"),
@@ -736,6 +737,7 @@ pub(crate) fn scan_start<P: Profile>(
                 },
                 cancel: Default::default(),
                 light: false,
+                polish: false,
             };
             // the shooter's paths hold the point at t = 1 (the last correction)
             let pt = st.point(0.0, end).map_err(|e| VibrissaError::NoStart {

@@ -186,6 +186,11 @@ pub(crate) trait Stepper {
     /// ([`crate::watch::watch`]'s `light`; an event search of the contacts). Default: ignored,
     /// every point whole.
     fn set_light(&mut self, _light: bool) {}
+    /// Whether the corrector takes one more Newton step from an iterate within its residual's
+    /// tolerance whose correction is still large (`rodsolve::large_correction`): an event's
+    /// search that ended on a jump of its function between such iterates and corrected ones
+    /// is searched again so. Default: ignored (the generic methods' solvers).
+    fn set_polish(&mut self, _polish: bool) {}
     /// The point `p` with its whole watch where it was made light: the same values as a point
     /// made whole, read on the shot of the same state (the one the shooter still holds, else
     /// the state shot again on the meshes as they are). Default: `p`.
