@@ -127,7 +127,8 @@ fn located(r: &vibrissa::ScanResult, mu0: f64) -> f64 {
 /// contact, between the row's value and its value solved to the tolerance 1e-12 at the same
 /// `d`, and between the values solved at the scan's tolerance and at 1e-12 at five
 /// displacements 1e-9·d apart around it (all without μ0); 0 where the row is within
-/// [`force_tol`] (not solved then). A slip row is located to the accuracy of its forces: `|T|
+/// [`force_tol`] (not solved then), or where a solve does not reach those displacements with
+/// the row's contacts (the check is then `force_tol`'s alone). A slip row is located to the accuracy of its forces: `|T|
 /// − μ0 N` within `force_tol` plus this. With two contacts that hold near a state where their
 /// tangential pair is indeterminate (a tip nearly tangent to the surface next to a side, with a
 /// small share of the load), the pair's forces are determined only to the residual's rounding
