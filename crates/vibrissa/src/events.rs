@@ -1205,62 +1205,39 @@ fn search_event(
             }
         }
     }
-    let p = search_on_solves(st, env, hist, (a, b), c, fresh)?;
+    let (p, jump) = search_on_solves(st, env, hist, (a, b), c, fresh)?;
     // a root where the function jumps between the corrector's points: search again with
     // polished points (see `jumped`)
-    if jumped(&p) {
+    if jump {
         st.set_polish(true);
         let again = search_on_solves(st, env, hist, (a, b), c, fresh);
         st.set_polish(false);
-        if let Ok(q) = again {
-            if !jumped(&q) {
-                return Ok(q.p);
-            }
+        if let Ok((q, false)) = again {
+            return Ok(q);
         }
     }
-    Ok(p.p)
+    Ok(p)
 }
 
-/// A point found by Brent's method on solves, with the nearest point it tried on the other
-/// side of the root (`λ` and the function's value there).
-struct OnSolves {
-    p: Pt,
-    /// The root found and the function there (before [`inside`] backed off from it).
-    root: f64,
-    g: f64,
-    other: Option<(f64, f64)>,
-    /// The step's mean rate `|g(b) − g(a)|/(b − a)`.
-    rate: f64,
-}
-
-/// Whether the function jumps at the root `q` found: its change from the nearest point tried
-/// on the other side is more than a thousand times what its mean rate over the step gives
-/// there and more than 1e-6 of the contacts' total normal force (not the scatter of a trapped
-/// pair's forces, ~1e-7 of it). A pair nearly indeterminate (a tip with 0.33 % of the load,
-/// nearly tangent to the surface beside a side, tests/contact.rs) had its chord corrector
-/// accept predictions at a residual of 9.9e-13 (tol 1e-12) that were 5.2e-6 off in the pair's
-/// forces, where points one Newton step away were not: its slip was located on that jump,
-/// 1.07e-7 in d before its place; searched again on polished points (`rodsolve`'s
-/// `large_correction`) it lies 9.4e-10 from its place at tol 1e-12. The scan grids of
-/// docs/robustness.md (3867 scenes) and the texture grid's 450 drags come out as before.
-fn jumped(q: &OnSolves) -> bool {
-    let Some((lam, g)) = q.other else {
-        return false;
-    };
-    let total: f64 = q.p.w.contacts.iter().map(|c| c.normal.abs()).sum();
-    let change = (q.g - g).abs();
-    change > 1e-6 * total && change > 1e3 * q.rate_bound(lam)
-}
-
-impl OnSolves {
-    /// What the step's mean rate gives for the change from the root to `lam`.
-    fn rate_bound(&self, lam: f64) -> f64 {
-        self.rate * (self.root - lam).abs()
-    }
+/// Whether a function jumps at the root `root` found, where it is `g`, from `(lam, g_other)`,
+/// the nearest point tried on the other side: its change is more than a thousand times what
+/// its mean rate over the step, `rate`, gives there and more than 1e-6 of the contacts' total
+/// normal force `total` (not the scatter of a trapped pair's forces, ~1e-7 of it). A pair
+/// nearly indeterminate (a tip with 0.33 % of the load, nearly tangent to the surface beside a
+/// side, tests/contact.rs) had its chord corrector accept predictions at a residual of 9.9e-13
+/// (tol 1e-12) that were 5.2e-6 off in the pair's forces, where points one Newton step away
+/// were not: its slip was located on that jump, 1.07e-7 in d before its place; searched again
+/// on polished points (`rodsolve`'s `large_correction`) it lies 9.4e-10 from its place at tol
+/// 1e-12. The scan grids of docs/robustness.md (3867 scenes) and the texture grid's 450 drags
+/// come out as before.
+fn jumped((root, g): (f64, f64), (lam, g_other): (f64, f64), rate: f64, total: f64) -> bool {
+    let change = (g - g_other).abs();
+    change > 1e-6 * total && change > 1e3 * rate * (root - lam).abs()
 }
 
 /// Brent's method on solves within the step `[a, b]` (the event function evaluated on the
-/// rod), the point on the side where the old state holds ([`inside`]).
+/// rod): the point on the side where the old state holds ([`inside`]), and whether the
+/// function [`jumped`] at the root.
 fn search_on_solves(
     st: &mut dyn Stepper,
     env: &Env,
@@ -1268,7 +1245,7 @@ fn search_on_solves(
     (a, b): (f64, f64),
     c: Crossing,
     fresh: bool,
-) -> Result<OnSolves, LocateError> {
+) -> Result<(Pt, bool), LocateError> {
     // the last solve of the search: where it is the root, it is the point (a correction at
     // the same λ from the same history and meshes gives the same point, so it is not redone)
     let mut last: Option<Pt> = None;
@@ -1287,14 +1264,7 @@ fn search_on_solves(
         // surface, whose start has |mu| of order 1e-22): the event is at the start
         Err(RootError::NoBracket { fa, .. }) if ended(fa) && fa <= AT_ZERO => {
             let p = st.correct(a, hist, fresh).map_err(RootError::Caller)?;
-            let g = c.of_watch(env, &p.w);
-            return Ok(OnSolves {
-                root: a,
-                p,
-                g,
-                other: None,
-                rate: 0.0,
-            });
+            return Ok((p, false));
         }
         Err(e) => return Err(e),
     };
@@ -1314,13 +1284,9 @@ fn search_on_solves(
         .min_by(|x, y| (x.0 - lam).abs().total_cmp(&(y.0 - lam).abs()))
         .copied();
     let p = inside(st, env, hist, a, p, c, fresh).map_err(RootError::Caller)?;
-    Ok(OnSolves {
-        p,
-        root: lam,
-        g,
-        other,
-        rate,
-    })
+    let total: f64 = p.w.contacts.iter().map(|c| c.normal.abs()).sum();
+    let jump = other.is_some_and(|o| jumped((lam, g), o, rate, total));
+    Ok((p, jump))
 }
 
 /// The located event point on the side where the old state still holds (`c ≤ 0`): a root to

@@ -88,8 +88,20 @@ impl Converged {
 /// last step changed the unknowns by rounding only (strongly tapered rods, `b` up to 10⁸ at the
 /// tip, leave residuals of ~1e-10 that no iteration reduces).
 pub(crate) fn at_floor(rn: f64, tol: f64, last_step: f64, u: &[f64]) -> bool {
-    let scale = 1.0 + u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    rn <= 1e3 * tol && last_step <= 1e-13 * scale
+    rn <= 1e3 * tol && last_step <= 1e-13 * scale(u)
+}
+
+/// The size the unknowns' changes are measured against: `1 + max |u_i|`.
+fn scale(u: &[f64]) -> f64 {
+    1.0 + u.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// `u += du`, and the step's size `max |du_i|`.
+fn newton_step(u: &mut [f64], du: &DVector<f64>) -> f64 {
+    for (a, d) in u.iter_mut().zip(du.iter()) {
+        *a += d;
+    }
+    max_abs(du)
 }
 
 pub(crate) fn max_abs(r: &DVector<f64>) -> f64 {
@@ -234,9 +246,8 @@ fn large_correction(
     u: &[f64],
 ) -> Option<DVector<f64>> {
     let du = lu?.solve(&(-r))?;
-    let scale = 1.0 + u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let size = du.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    (size.is_finite() && size > POLISH * tol * scale).then_some(du)
+    let size = max_abs(&du);
+    (size.is_finite() && size > POLISH * tol * scale(u)).then_some(du)
 }
 
 /// How much smaller than a polishing step ([`large_correction`]) the Newton correction after it
@@ -340,11 +351,9 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
                     if let Some(du) = large_correction(lu.as_ref(), &e.r, tol, &u) {
                         polished = true;
                         ch.count_iteration();
-                        last_step = du.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                        before_polish = Some((u.clone(), last_step));
-                        for (a, d) in u.iter_mut().zip(du.iter()) {
-                            *a += d;
-                        }
+                        let before = u.clone();
+                        last_step = newton_step(&mut u, &du);
+                        before_polish = Some((before, last_step));
                         continue;
                     }
                 }
@@ -397,10 +406,7 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
                 .filter(|x| x.iter().all(|v| v.is_finite()))
                 .ok_or(ShotFailure::Singular { iteration: it })?;
             ch.count_iteration();
-            last_step = du.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            for (a, d) in u.iter_mut().zip(du.iter()) {
-                *a += d;
-            }
+            last_step = newton_step(&mut u, &du);
         }
         if !refined {
             break;

@@ -5,6 +5,10 @@
 
 use proptest::prelude::*;
 use vibrissa::drag::ContactState;
+
+#[path = "support/contact_rate.rs"]
+mod contact_rate;
+use contact_rate::rate;
 use vibrissa::{scan, Event, Precurvature, ScanOptions, Scene, SolverConfig, Stiffness};
 
 proptest! {
@@ -15,14 +19,7 @@ proptest! {
         beta in -0.3..0.3f64, flat in proptest::bool::ANY, eta in 0.5..0.95f64,
         mu0 in proptest::option::of(0.1..1.5f64),
     ) {
-        let scene = Scene {
-            eta,
-            stiffness: Stiffness::Taper { ratio },
-            precurvature: Precurvature::Linear { k0, k1 },
-            support_compliance: c,
-            surface_angle: if flat { 0.0 } else { beta },
-            ..Scene::default()
-        };
+        let scene = scene_of(eta, ratio, (k0, k1), c, if flat { 0.0 } else { beta });
         let (rod, surface) = scene.parts().unwrap();
         let o = ScanOptions {
             points: 21,
@@ -56,7 +53,7 @@ proptest! {
             if let Some(m) = mu0 {
                 for k in cs {
                     prop_assert!(
-                        k.tangential.abs() - m * k.normal <= force_tol(p),
+                        gap(k, m) <= force_tol(p),
                         "d = {}: a contact needs {} > mu0 = {m} ({k})", p.d, k.tangential.abs() / k.normal
                     );
                 }
@@ -67,7 +64,7 @@ proptest! {
                 Some(Event::Slip) => {
                     let (ratio, k) = peak(r.contacts.last().unwrap());
                     prop_assert!((ratio - ev.mu_peak).abs() <= 1e-12 * ratio, "slip row mu_peak {}", ev.mu_peak);
-                    let gap = k.tangential.abs() - mu0.unwrap() * k.normal;
+                    let gap = gap(k, mu0.unwrap());
                     let allowed = force_tol(ev) + located(&r, mu0.unwrap()) + force_error(&rod, &surface, &o, &r);
                     prop_assert!(gap.abs() < allowed, "slip row mu_peak {}: |T| - mu0 N = {gap:e} ({k})", ev.mu_peak);
                 }
@@ -109,17 +106,7 @@ fn located(r: &vibrissa::ScanResult, mu0: f64) -> f64 {
     }
     let (ev, prev) = (&r.points[n - 1], &r.points[n - 2]);
     let (now, before) = (&r.contacts[n - 1], &r.contacts[n - 2]);
-    let gap = |k: &ContactState| k.tangential.abs() - mu0 * k.normal;
-    let most = |v: &[ContactState]| v.iter().map(|k| gap(k).abs()).fold(0.0, f64::max);
-    let change = if now.len() == before.len() && now.iter().zip(before).all(|(a, b)| a.tip == b.tip)
-    {
-        (now.iter().zip(before))
-            .map(|(a, b)| (gap(a) - gap(b)).abs())
-            .fold(0.0, f64::max)
-    } else {
-        most(now) + most(before)
-    };
-    4e-13 * (1.0 + ev.d) * change / (ev.d - prev.d)
+    4e-13 * (1.0 + ev.d) * rate(before, now, &|k| gap(k, mu0), ev.d - prev.d)
 }
 
 /// How well the friction condition `|T_j| − μ0 N_j` of the last row of the scan `r` (of `rod`
@@ -147,7 +134,6 @@ fn force_error(
     r: &vibrissa::ScanResult,
 ) -> f64 {
     let (ev, cs) = (r.points.last().unwrap(), r.contacts.last().unwrap());
-    let gap = |k: &ContactState, m: f64| k.tangential.abs() - m * k.normal;
     let m = o.mu0.unwrap();
     if cs.iter().all(|k| gap(k, m).abs() < force_tol(ev)) {
         return 0.0;
@@ -195,26 +181,36 @@ fn peak(cs: &[ContactState]) -> (f64, &ContactState) {
         )
 }
 
-#[test]
-fn a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio() {
-    // Found by the property test (1 case in ~300): side+tip from the start, the side slips at
-    // d = 3.797e-4 with its ratio 4.6e-9 below μ0 (the test asked for 1e-9).
-    let mu0 = 0.3047897780415233;
-    let scene = Scene {
-        eta: 0.5,
-        stiffness: Stiffness::Taper {
-            ratio: 0.2546355076966698,
-        },
-        precurvature: Precurvature::Linear {
-            k0: 0.15640310972623728,
-            k1: -0.48454719233092025,
-        },
-        support_compliance: 0.861187433436653,
-        surface_angle: -0.24846025346123243,
+/// A scene of the property's kind: the rod tapered to `ratio`, its rest curvature `k0 + k1·s`,
+/// on a support of compliance `c`, the surface at `eta` inclined by `beta`.
+fn scene_of(eta: f64, ratio: f64, (k0, k1): (f64, f64), c: f64, beta: f64) -> Scene {
+    Scene {
+        eta,
+        stiffness: Stiffness::Taper { ratio },
+        precurvature: Precurvature::Linear { k0, k1 },
+        support_compliance: c,
+        surface_angle: beta,
         ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
-    for tol in [1e-10, 1e-12] {
+    }
+}
+
+/// A contact's friction condition `|T| − μ0 N` (> 0: beyond its slip limit).
+fn gap(k: &ContactState, mu0: f64) -> f64 {
+    k.tangential.abs() - mu0 * k.normal
+}
+
+/// A scan of the property's kind (21 points, μ0, the tolerance `tol`) of a found scene that ends
+/// in a slip of the contacts `label`.
+struct Slip {
+    rod: vibrissa::Rod,
+    surface: vibrissa::Surface,
+    o: ScanOptions,
+    r: vibrissa::ScanResult,
+}
+
+impl Slip {
+    fn of(scene: &Scene, mu0: f64, tol: f64, label: &str) -> Slip {
+        let (rod, surface) = scene.parts().unwrap();
         let o = ScanOptions {
             points: 21,
             mu0: Some(mu0),
@@ -227,11 +223,49 @@ fn a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio() {
         let r = scan(&rod, &surface, &o).unwrap();
         let ev = r.points.last().unwrap();
         assert_eq!(ev.event, Some(Event::Slip), "tol {tol}: {}", r.stop);
-        assert_eq!(ev.contact.name(), "side+tip");
+        assert_eq!(ev.contact.name(), label, "tol {tol}");
+        Slip { rod, surface, o, r }
+    }
+
+    /// The slip row.
+    fn row(&self) -> &vibrissa::ScanPoint {
+        self.r.points.last().unwrap()
+    }
+
+    /// The row's contacts.
+    fn contacts(&self) -> &[ContactState] {
+        self.r.contacts.last().unwrap()
+    }
+
+    /// The slipping contact (the largest ratio), its ratio and its `|T| − μ0 N`.
+    fn slipping(&self) -> (&ContactState, f64, f64) {
+        let (ratio, k) = peak(self.contacts());
+        (k, ratio, gap(k, self.o.mu0.unwrap()))
+    }
+
+    /// [`force_error`] of the slip row.
+    fn force_error(&self) -> f64 {
+        force_error(&self.rod, &self.surface, &self.o, &self.r)
+    }
+}
+
+#[test]
+fn a_slip_in_a_trapped_state_is_located_to_the_accuracy_of_the_ratio() {
+    // Found by the property test (1 case in ~300): side+tip from the start, the side slips at
+    // d = 3.797e-4 with its ratio 4.6e-9 below μ0 (the test asked for 1e-9).
+    let scene = scene_of(
+        0.5,
+        0.2546355076966698,
+        (0.15640310972623728, -0.48454719233092025),
+        0.861187433436653,
+        -0.24846025346123243,
+    );
+    for tol in [1e-10, 1e-12] {
+        let s = Slip::of(&scene, 0.3047897780415233, tol, "side+tip");
+        let ev = s.row();
         assert!((ev.d - 3.797347e-4).abs() < 1e-9, "tol {tol}: d {}", ev.d);
-        let (ratio, k) = peak(r.contacts.last().unwrap());
+        let (k, ratio, gap) = s.slipping();
         assert_eq!(ratio, ev.mu_peak);
-        let gap = k.tangential.abs() - mu0 * k.normal;
         assert!(gap.abs() < force_tol(ev), "tol {tol}: {gap:e} ({k})");
     }
 }
@@ -244,37 +278,22 @@ fn a_slip_of_a_contact_with_a_small_share_of_the_load_is_located_on_its_forces()
     // there), which is 4e-6 in the tip's ratio: the slip was located with its ratio 9.8e-7
     // below μ0, its |T| − μ0 N 1.2e-8 (the property test asked for 5e-8 in the ratio).
     let mu0 = 1.0528586762355867;
-    let scene = Scene {
-        eta: 0.5857746675094058,
-        stiffness: Stiffness::Taper {
-            ratio: 0.31625863509412033,
-        },
-        precurvature: Precurvature::Linear {
-            k0: 0.2372887305479562,
-            k1: -0.3158748784555789,
-        },
-        support_compliance: 0.07061986699401053,
-        surface_angle: 0.0,
-        ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
-    let o = ScanOptions {
-        points: 21,
-        mu0: Some(mu0),
-        ..ScanOptions::default()
-    };
-    let r = scan(&rod, &surface, &o).unwrap();
-    let ev = r.points.last().unwrap();
-    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
-    assert_eq!(ev.contact.name(), "side+tip");
-    let cs = r.contacts.last().unwrap();
-    let (ratio, k) = peak(cs);
+    let scene = scene_of(
+        0.5857746675094058,
+        0.31625863509412033,
+        (0.2372887305479562, -0.3158748784555789),
+        0.07061986699401053,
+        0.0,
+    );
+    let s = Slip::of(&scene, mu0, SolverConfig::default().tol, "side+tip");
+    let ev = s.row();
+    let (k, ratio, gap) = s.slipping();
     assert!(k.tip && k.normal < 0.01 * ev.normal, "{k}");
     assert_eq!(ratio, ev.mu_peak);
-    let gap = k.tangential.abs() - mu0 * k.normal;
     assert!(gap.abs() < force_tol(ev), "{gap:e} ({k})");
     // the side holds inside its cone
-    assert!(cs[0].tangential.abs() < mu0 * cs[0].normal, "{}", cs[0]);
+    let side = &s.contacts()[0];
+    assert!(side.tangential.abs() < mu0 * side.normal, "{side}");
 }
 
 #[test]
@@ -466,33 +485,25 @@ proptest! {
 #[test]
 fn a_slip_where_the_pair_scatters_is_located_to_the_accuracy_of_its_forces() {
     // Found by the property test (1 case in ~4000): see `force_error`.
-    let mu0 = 1.1531346476782884;
-    let scene = Scene {
-        eta: 0.653608533038177,
-        stiffness: Stiffness::Taper {
-            ratio: 0.17609540907737736,
-        },
-        precurvature: Precurvature::Linear {
-            k0: 0.08515494552305769,
-            k1: -0.16748713150749825,
-        },
-        support_compliance: 0.01521319613434393,
-        ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
-    let o = ScanOptions {
-        points: 21,
-        mu0: Some(mu0),
-        ..ScanOptions::default()
-    };
-    let r = scan(&rod, &surface, &o).unwrap();
-    let ev = r.points.last().unwrap();
-    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
-    assert_eq!(ev.contact.name(), "side+tip");
-    let (_, k) = peak(r.contacts.last().unwrap());
-    let gap = k.tangential.abs() - mu0 * k.normal;
-    let err = force_error(&rod, &surface, &o, &r);
-    assert!(gap.abs() < force_tol(ev) + err, "{gap:e}, {err:e} ({k})");
+    let scene = scene_of(
+        0.653608533038177,
+        0.17609540907737736,
+        (0.08515494552305769, -0.16748713150749825),
+        0.01521319613434393,
+        0.0,
+    );
+    let s = Slip::of(
+        &scene,
+        1.1531346476782884,
+        SolverConfig::default().tol,
+        "side+tip",
+    );
+    let (k, _, gap) = s.slipping();
+    let err = s.force_error();
+    assert!(
+        gap.abs() < force_tol(s.row()) + err,
+        "{gap:e}, {err:e} ({k})"
+    );
 }
 
 #[test]
@@ -504,38 +515,19 @@ fn a_slip_where_the_pair_jumped_is_located_where_its_forces_are() {
     // step from the same prediction is not: the slip's search ended on that jump of its event
     // function. A search that ends on a jump is searched again on polished points
     // (`events::jumped`): at tol 1e-10 the slip lies 9.4e-10 from its place at 1e-12.
-    let mu0 = 1.03955030814294;
-    let scene = Scene {
-        eta: 0.6781129469334398,
-        stiffness: Stiffness::Taper {
-            ratio: 0.16631999848652218,
-        },
-        precurvature: Precurvature::Linear {
-            k0: 0.40835671737503,
-            k1: -0.4855372665710997,
-        },
-        support_compliance: 0.37360913957559866,
-        ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
+    let scene = scene_of(
+        0.6781129469334398,
+        0.16631999848652218,
+        (0.40835671737503, -0.4855372665710997),
+        0.37360913957559866,
+        0.0,
+    );
     let slip = |tol: f64| {
-        let o = ScanOptions {
-            points: 21,
-            mu0: Some(mu0),
-            solver: SolverConfig {
-                tol,
-                ..SolverConfig::default()
-            },
-            ..ScanOptions::default()
-        };
-        let r = scan(&rod, &surface, &o).unwrap();
-        let ev = *r.points.last().unwrap();
-        assert_eq!(ev.event, Some(Event::Slip), "tol {tol}: {}", r.stop);
-        assert_eq!(ev.contact.name(), "side+tip");
-        let (_, k) = peak(r.contacts.last().unwrap());
+        let s = Slip::of(&scene, 1.03955030814294, tol, "side+tip");
+        let ev = s.row();
+        let (k, _, gap) = s.slipping();
         assert!(k.tip && k.normal < 0.004 * ev.normal, "{k}");
-        let gap = k.tangential.abs() - mu0 * k.normal;
-        assert!(gap.abs() < force_tol(&ev), "tol {tol}: {gap:e} ({k})");
+        assert!(gap.abs() < force_tol(ev), "tol {tol}: {gap:e} ({k})");
         ev.d
     };
     let d12 = slip(1e-12);
@@ -549,32 +541,17 @@ fn a_slip_where_the_pair_jumped_is_located_where_its_forces_are() {
 fn a_steep_slip_is_located_to_its_place_in_d() {
     // Found by the property test (1 case in ~60000): see `located`.
     let mu0 = 0.7663985270243021;
-    let scene = Scene {
-        eta: 0.8525133476129556,
-        stiffness: Stiffness::Taper {
-            ratio: 0.885712249242131,
-        },
-        precurvature: Precurvature::Linear {
-            k0: -0.3124435083735785,
-            k1: -0.03935817366903851,
-        },
-        support_compliance: 0.8837056243394072,
-        surface_angle: -0.27125233635231083,
-        ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
-    let o = ScanOptions {
-        points: 21,
-        mu0: Some(mu0),
-        ..ScanOptions::default()
-    };
-    let r = scan(&rod, &surface, &o).unwrap();
-    let ev = r.points.last().unwrap();
-    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
-    assert_eq!(ev.contact.name(), "tip");
-    let k = &r.contacts.last().unwrap()[0];
-    let gap = k.tangential.abs() - mu0 * k.normal;
-    let allowed = located(&r, mu0);
+    let scene = scene_of(
+        0.8525133476129556,
+        0.885712249242131,
+        (-0.3124435083735785, -0.03935817366903851),
+        0.8837056243394072,
+        -0.27125233635231083,
+    );
+    let s = Slip::of(&scene, mu0, SolverConfig::default().tol, "tip");
+    let ev = s.row();
+    let (_, _, gap) = s.slipping();
+    let allowed = located(&s.r, mu0);
     // the rise is steep: the location's allowance is more than the ratio's own
     assert!(allowed > force_tol(ev), "{allowed:e}");
     assert!(
@@ -587,34 +564,20 @@ fn a_steep_slip_is_located_to_its_place_in_d() {
 fn a_slip_of_a_tip_with_under_a_hundredth_of_the_load_is_located_to_the_accuracy_of_its_forces() {
     // Found by the property test (1 case in ~40000): see `force_error`.
     let mu0 = 0.24337272974074414;
-    let scene = Scene {
-        eta: 0.7704582845302023,
-        stiffness: Stiffness::Taper {
-            ratio: 0.11444989898604135,
-        },
-        precurvature: Precurvature::Linear {
-            k0: 0.30438120045882777,
-            k1: -0.49983131585505614,
-        },
-        support_compliance: 0.4860313608769264,
-        ..Scene::default()
-    };
-    let (rod, surface) = scene.parts().unwrap();
-    let o = ScanOptions {
-        points: 21,
-        mu0: Some(mu0),
-        ..ScanOptions::default()
-    };
-    let r = scan(&rod, &surface, &o).unwrap();
-    let ev = r.points.last().unwrap();
-    assert_eq!(ev.event, Some(Event::Slip), "{}", r.stop);
-    assert_eq!(ev.contact.name(), "side+tip");
-    let (_, k) = peak(r.contacts.last().unwrap());
+    let scene = scene_of(
+        0.7704582845302023,
+        0.11444989898604135,
+        (0.30438120045882777, -0.49983131585505614),
+        0.4860313608769264,
+        0.0,
+    );
+    let s = Slip::of(&scene, mu0, SolverConfig::default().tol, "side+tip");
+    let ev = s.row();
+    let (k, _, gap) = s.slipping();
     assert!(k.tip && k.normal < 0.01 * ev.normal, "{k}");
-    let gap = k.tangential.abs() - mu0 * k.normal;
-    let err = force_error(&rod, &surface, &o, &r);
+    let err = s.force_error();
     assert!(
-        gap.abs() < force_tol(ev) + located(&r, mu0) + err,
+        gap.abs() < force_tol(ev) + located(&s.r, mu0) + err,
         "{gap:e}, {err:e} ({k})"
     );
 }
@@ -628,19 +591,13 @@ fn a_rod_beside_a_side_that_begins_to_lie_stays_on_its_side_of_the_surface() {
     // that side begins to lie along the surface (the scan's stop, d = 0.0525002). The row
     // property asks 1e-12. Near a lie-down the rod's relative curvature at the side falls to
     // zero, and the gap beyond it is the tangency's slope error times the distance.
-    let scene = Scene {
-        eta: 0.5367524486468567,
-        stiffness: Stiffness::Taper {
-            ratio: 0.2631584035303767,
-        },
-        precurvature: Precurvature::Linear {
-            k0: -0.14186964187652307,
-            k1: 0.4888339154031344,
-        },
-        support_compliance: 0.41974577261597823,
-        surface_angle: 0.1679660548909434,
-        ..Scene::default()
-    };
+    let scene = scene_of(
+        0.5367524486468567,
+        0.2631584035303767,
+        (-0.14186964187652307, 0.4888339154031344),
+        0.41974577261597823,
+        0.1679660548909434,
+    );
     let (rod, surface) = scene.parts().unwrap();
     let o = ScanOptions {
         points: 21,

@@ -11,6 +11,10 @@ use std::sync::mpsc::{self, RecvTimeoutError};
 use std::sync::Arc;
 use std::time::Duration;
 use vibrissa::drag::{ContactState, DragEvent, Hold};
+
+#[path = "support/contact_rate.rs"]
+mod contact_rate;
+use contact_rate::rate;
 use vibrissa::surface::{Height, SurfaceProfile};
 use vibrissa::{
     drag, Cancel, DragOptions, DragResult, Event, Scene, SolverConfig, Stiffness, StopReason,
@@ -203,26 +207,6 @@ fn check_contact(
     Ok(())
 }
 
-/// The mean rate at which the contacts' `|T| − μ N` changes from the state `a` to the state
-/// `b` a parameter `length` apart (contact by contact where the set kept its contacts, else
-/// bounded by the largest values).
-fn rate(a: &[ContactState], b: &[ContactState], mu: f64, length: f64) -> f64 {
-    if length == 0.0 {
-        return 0.0;
-    }
-    let g = |k: &ContactState| friction(k).abs() - mu * k.normal;
-    let change = if a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.tip == y.tip) {
-        a.iter()
-            .zip(b)
-            .map(|(x, y)| (g(x) - g(y)).abs())
-            .fold(0.0, f64::max)
-    } else {
-        let most = |v: &[ContactState]| v.iter().map(|k| g(k).abs()).fold(0.0, f64::max);
-        most(a) + most(b)
-    };
-    change / length.abs()
-}
-
 /// The allowances of the located points of each slip (`LOCATE`): its slip limit, in `d` over
 /// the stick before it, and its end, in the slide's arc length over the slip.
 fn allowances(r: &DragResult, mu: (f64, f64)) -> Vec<(f64, f64)> {
@@ -233,8 +217,9 @@ fn allowances(r: &DragResult, mu: (f64, f64)) -> Vec<(f64, f64)> {
                 0 => &r.rows[0].contacts,
                 _ => &r.slip_contacts[i - 1].after,
             };
-            let stick = rate(start, &k.before, mu.0, e.d - e.d_stick);
-            let slide = rate(&k.before, &k.after, mu.1, e.jump);
+            let g = |m: f64| move |k: &ContactState| friction(k).abs() - m * k.normal;
+            let stick = rate(start, &k.before, &g(mu.0), e.d - e.d_stick);
+            let slide = rate(&k.before, &k.after, &g(mu.1), e.jump);
             (
                 LOCATE * (1.0 + e.d.abs()) * stick,
                 LOCATE * (1.0 + e.jump.abs()) * slide,
