@@ -633,8 +633,10 @@ pub(crate) enum Family {
         driver: usize,
     },
     /// A curved surface's shape grown from its straight trend (`λ = 0`, lifted by `off0`) to
-    /// itself (`λ = 1`): `flat = 1 − λ`, `h = (1 − λ)·off0`.
-    Grow { off0: f64 },
+    /// itself lifted by `off1` (`λ = 1`): `flat = 1 − λ`, `h = off1 + (1 − λ)·(off0 − off1)`
+    /// (the start grows it at the scene's height, `off1 = 0`, or at a lighter press, `off1 =
+    /// off0`, and then presses the rod down onto it: module `ground`).
+    Grow { off0: f64, off1: f64 },
 }
 
 impl Family {
@@ -663,14 +665,14 @@ impl Family {
                 },
                 Pose { slide: dir, ..z },
             ),
-            Family::Grow { off0 } => (
+            Family::Grow { off0, off1 } => (
                 Pose {
-                    h: (1.0 - lam) * off0,
+                    h: off1 + (1.0 - lam) * (off0 - off1),
                     flat: 1.0 - lam,
                     ..z
                 },
                 Pose {
-                    h: -off0,
+                    h: -(off0 - off1),
                     flat: -1.0,
                     ..z
                 },
@@ -2326,7 +2328,13 @@ mod tests {
         };
         // (the start grows the texture with frictionless contacts: a stretch there is free,
         // its invariant where its inner end is on the scaled surface's arc length)
-        let grow = (Family::Grow { off0: 0.001 }, 0.7);
+        let grow = (
+            Family::Grow {
+                off0: 0.001,
+                off1: 0.0,
+            },
+            0.7,
+        );
         let free = |set: &ContactSet| {
             let mut set = set.clone();
             for c in &mut set.contacts {

@@ -69,8 +69,9 @@ pub enum VibrissaError {
     /// A curved surface gives the rod no quasi-static pressed start: pressed onto the surface's
     /// straight trend, the rod snaps as the surface's shape grows from that trend to its full
     /// amplitude (its equilibria fold back at the fraction `amplitude` of it), so no pressed
-    /// state follows the shape there without a jump.
-    #[error("the rod pressed onto the surface's straight trend snaps as the surface's shape grows to its full amplitude (its equilibria fold back at {:.2}% of it): on this surface it has no quasi-static pressed start", 100.0 * amplitude)]
+    /// state follows the shape there without a jump; nor does the other path tried, the shape
+    /// grown at lighter presses and the rod pressed down onto it.
+    #[error("the rod pressed onto the surface's straight trend snaps as the surface's shape grows to its full amplitude (its equilibria fold back at {:.2}% of it), and grown at lighter presses and pressed down onto it, it ends short too: on this surface it has no quasi-static pressed start", 100.0 * amplitude)]
     StartSnaps {
         /// Where the equilibria fold back: the fraction of the full amplitude (0 to 1).
         amplitude: f64,
@@ -79,8 +80,10 @@ pub enum VibrissaError {
     /// the surface's straight trend, the rod begins to lie along a stretch of the surface near
     /// `s` as the surface's shape grows (at the fraction `amplitude` of its full amplitude): two
     /// of its contacts come within `spacing` of each other (of the rod's length 1), the rod
-    /// between them following the surface, which point contacts do not resolve.
-    #[error("the rod pressed onto the surface's straight trend lies down along the surface near s = {s:.6} as the surface's shape grows (at {:.2}% of its full amplitude two of its contacts come within {spacing:.2e} of each other, the rod between them following the surface): a rod lying along a stretch of the surface is not in the point-contact model, so on this surface it has no pressed start", 100.0 * amplitude)]
+    /// between them following the surface, which point contacts do not resolve; the other path
+    /// tried, the shape grown at lighter presses and the rod pressed down onto it, ends short
+    /// too.
+    #[error("the rod pressed onto the surface's straight trend lies down along the surface near s = {s:.6} as the surface's shape grows (at {:.2}% of its full amplitude two of its contacts come within {spacing:.2e} of each other, the rod between them following the surface): a rod lying along a stretch of the surface is not in the point-contact model, and grown at lighter presses and pressed down onto it, the rod ends short too: on this surface it has no pressed start", 100.0 * amplitude)]
     StartLies {
         /// Where it begins to lie: the fraction of the full amplitude (0 to 1).
         amplitude: f64,

@@ -84,6 +84,15 @@ pub(crate) fn start<P: Profile>(
 /// press on the line keeps its handling of first touch and buckling. A free part of the pressed
 /// rod lying on the trend (a straight tail beyond a side contact) is settled on the profile at a
 /// small amplitude first ([`grow`], [`settle`]).
+///
+/// Where that fails (the grown profile's equilibria end short of its full amplitude: a snap, a
+/// stretch that reaches the rod's end, a state the model does not follow), the profile is
+/// grown at a lighter press instead, the line at `η' = η + f·(η_top − η)` for the fractions
+/// [`LIGHTER`] of the way to first touch `η_top` (where the lightly bent rod rides the growing
+/// profile on fewer contacts), and the rod then pressed down onto the full profile to η (the
+/// march in the depth, family `Press`). The pressed state is the same kind of state — the rod
+/// at rest on the full profile at η, every contact frictionless — reached along another path;
+/// a start found the first way is never looked for the second.
 fn curve_start<P: Profile>(
     rod: &Rod,
     profile: &P,
@@ -91,11 +100,55 @@ fn curve_start<P: Profile>(
     h: &Arc<Height>,
     tol: f64,
 ) -> Result<Pressed<P>, VibrissaError> {
-    let line = Surface::new(surface.eta(), surface.angle())?;
+    let first = grown_start(rod, profile, surface, h, tol, None);
+    let e = match first {
+        Err(e) if !e.is_input() => e,
+        done => return done,
+    };
+    let eta = surface.eta();
+    let top = crate::start::rest_reach(rod, profile, surface.angle(), tol);
+    let mut last = None;
+    for f in LIGHTER {
+        let light = eta + f * (top - eta);
+        if !(light > eta && light < top) {
+            continue;
+        }
+        match grown_start(rod, profile, surface, h, tol, Some(light)) {
+            Ok(p) => return Ok(p),
+            Err(e) => last = Some((light, e)),
+        }
+    }
+    Err(match (e, last) {
+        (VibrissaError::NoStart { reason }, Some((light, e))) => VibrissaError::NoStart {
+            reason: format!(
+                "{reason}; grown at lighter presses and pressed down (the last from eta' = \
+                 {light:.6}): {e}"
+            ),
+        },
+        (e, _) => e,
+    })
+}
+
+/// The fractions of the way from η to the rod's first touch at which [`curve_start`] grows the
+/// profile where growing it at η fails, in the order tried.
+const LIGHTER: [f64; 3] = [0.5, 0.25, 0.75];
+
+/// The start of [`curve_start`]: the rod pressed onto the straight trend at η (`light` None)
+/// or at the lighter `light` (then the profile grown there and the rod pressed down onto it).
+fn grown_start<P: Profile>(
+    rod: &Rod,
+    profile: &P,
+    surface: &Surface,
+    h: &Arc<Height>,
+    tol: f64,
+    light: Option<f64>,
+) -> Result<Pressed<P>, VibrissaError> {
+    let line = Surface::new(light.unwrap_or(surface.eta()), surface.angle())?;
     let pressed = crate::start::scan_start(rod, profile, &line, crate::StartKind::Pressed, tol)?;
     // the pressed line n·r = h in the lab frame: y = h / cos β + x tan β; the profile's trend
-    // y = η + x tan β lies off0 below it
+    // y = η + x tan β lies off0 below it (at a lighter press the profile grows there: off1)
     let off0 = pressed.h / surface.angle().cos() - surface.eta();
+    let off1 = if light.is_some() { off0 } else { 0.0 };
     let set = ContactSet {
         contacts: pressed
             .set
@@ -110,7 +163,7 @@ fn curve_start<P: Profile>(
         lying: None,
     };
     let mut st = OwnStepper {
-        chain: Chain::new(pressed.sh, set, Family::Grow { off0 }),
+        chain: Chain::new(pressed.sh, set, Family::Grow { off0, off1 }),
         env: Env {
             line: None,
             mu0: None,
@@ -126,12 +179,12 @@ fn curve_start<P: Profile>(
         light: false,
         polish: false,
     };
-    let fail = |what: &str, e: &dyn std::fmt::Display| VibrissaError::NoStart {
+    let fail = |what: &dyn std::fmt::Display, e: &dyn std::fmt::Display| VibrissaError::NoStart {
         reason: format!("growing the surface profile from its straight trend: {what}: {e}"),
     };
     let p0 = st
         .correct_from(0.0, &pressed.pt.u, None, true)
-        .map_err(|e| fail("the pressed rod", &e))?;
+        .map_err(|e| fail(&"the pressed rod", &e))?;
     let (set, end) = grow(&mut st, p0, rod, profile).map_err(|e| match e {
         GrowError::Snap { amplitude } => VibrissaError::StartSnaps { amplitude },
         GrowError::Lies {
@@ -143,14 +196,19 @@ fn curve_start<P: Profile>(
             s,
             spacing,
         },
-        GrowError::Failed(what, e) => fail(what, &e),
+        GrowError::Failed(what, e) => fail(&what, &e),
     })?;
+    let (set, end) = match light {
+        None => (set, end),
+        Some(light) => press_down(&mut st, (set, end), rod, profile, off1)
+            .map_err(|e| fail(&format!("pressed down from eta' = {light:.6}"), &e))?,
+    };
     // the grown profile is the drag's at d = 0
     st.chain.family = Family::Drag;
     st.env.ground.grow = false;
     let pt = st
         .switch(set, 0.0, end.u)
-        .map_err(|e| fail("the rod on the profile", &e))?;
+        .map_err(|e| fail(&"the rod on the profile", &e))?;
     if let Some(c) =
         pt.w.contacts
             .iter()
@@ -177,6 +235,48 @@ fn curve_start<P: Profile>(
         goal: pressed.goal,
         stats,
     })
+}
+
+/// The rod on the full profile lifted by `off` (the march in the amplitude's end, `(set, end)`)
+/// pressed down onto the profile itself: the march in the depth `λ ∈ [0, off]` (family
+/// `Press`, the surface's height `off − λ`), its contacts frictionless as in the growth. Its
+/// contact set and last point, or how it ended short.
+fn press_down<P: Profile>(
+    st: &mut OwnStepper<P>,
+    (set, end): (ContactSet, Pt),
+    rod: &Rod,
+    profile: &P,
+    off: f64,
+) -> Result<(ContactSet, Pt), PressDownError> {
+    st.chain.family = Family::Press { h0: off };
+    st.env.ground.grow = false;
+    let q = st.switch(set, 0.0, end.u).map_err(PressDownError::Lifted)?;
+    let spec = Spec {
+        env: &st.env.clone(),
+        grid: &[],
+        lam_end: off,
+        keep_shapes: None,
+        general: &rod.profile(1.0),
+        friction: false,
+        check_start: false,
+        slide: false,
+    };
+    let out = march(st, &spec, profile, q, Stats::default());
+    match (&out.stop, out.last) {
+        (StopReason::DMax, Some((set, pt))) if pt.lam == off => Ok((set, pt)),
+        (stop, _) => Err(PressDownError::Short(stop.clone())),
+    }
+}
+
+/// Why [`press_down`] did not reach the profile itself.
+#[derive(Debug, thiserror::Error)]
+enum PressDownError {
+    /// The grown state is not solved again in the family of the press.
+    #[error("the rod on the lifted profile: {0}")]
+    Lifted(StepError),
+    /// The march in the depth ended short of the profile (its stop).
+    #[error("the march in the depth: {}", .0.describe("depth"))]
+    Short(StopReason),
 }
 
 /// The pressed state on a curve as the start of a drag (foot at `xf`): the tip stuck at its arc

@@ -116,6 +116,20 @@ fn rest_top<P: Profile>(
     best
 }
 
+/// The height the unloaded rod reaches on a line inclined by `beta` (its rest shape's highest
+/// point along the line's normal; a round tip's top): where a press onto it first touches, as
+/// [`first_touch`] measures it.
+pub(crate) fn rest_reach<P: Profile>(rod: &crate::Rod, profile: &P, beta: f64, tol: f64) -> f64 {
+    let mut sh = Shooter::new(profile.clone(), rod.support_compliance(), tol, 8);
+    let r = rod.tip_radius();
+    let (_, s_top, z_top) = rest_top(&mut sh, beta, false, r);
+    if r > 0.0 && s_top >= 1.0 {
+        z_top[1] + r
+    } else {
+        z_top[1]
+    }
+}
+
 /// `∂m(1)/∂m(0)` of the straight rod under the axial load `f` (its zero is the buckling load).
 fn straight_stiffness<P: Profile>(sh: &mut Shooter<P>, f: f64) -> f64 {
     let c = sh.compliance;
