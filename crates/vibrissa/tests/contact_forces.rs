@@ -596,6 +596,51 @@ fn energy_balances_at_a_slip_where_a_round_tip_touches_down() {
     });
 }
 
+/// Open (found by the property at 64 cases from seed 21, the same on the program of 2026-12-01
+/// before the start from a lighter press): a round tip that barely fits the corrugation's
+/// valleys (r = 0.00947 against their radius of curvature 0.00978, so the rate `J` of its
+/// contact point is about 0.03 there) slips 12 times; slip 12 (d = 0.0258535) releases
+/// 5.870e-5 and its sliding tip dissipates 5.802e-5, 6.8e-7 less (the balance asks 1e-8). Not
+/// yet traced: the contact point runs 30 times faster than the disk's centre near a valley's
+/// bottom, where the meter's quadrature over the march's steps may not follow it.
+#[test]
+#[ignore = "open: a slip of a round tip that barely fits the valleys balances to 6.8e-7"]
+fn energy_balances_at_a_slip_of_a_round_tip_that_barely_fits_the_valleys() {
+    open(&Case {
+        amp: 0.007919774959433305,
+        wave: 0.055290459623644594,
+        phase: 0.0,
+        eta: 0.7355787385222186,
+        mu_s: 0.3,
+        ratio: 0.2,
+        taper: None,
+        radius: 0.009468119971611235,
+        d_max: 0.03,
+    });
+}
+
+/// Open (found by the property at 64 cases from seed 22, the same on the program of 2026-12-01
+/// before the start from a lighter press): the rod tapered to 0.552 at η 0.487 over a long
+/// corrugation (0.00547 sin(2πx/0.4046 + 0.234)) sticks from d = 0.064566 to 0.074054 before
+/// its slip 1224 (of 1227); over that stick the foot's work less the passive sliders' is
+/// 3.4e-8 more than the change of the rod's energy (of 8.6e-3 of work; the balance asks 1e-8).
+/// Not yet traced.
+#[test]
+#[ignore = "open: a long stick before slip 1224 balances to 3.4e-8"]
+fn energy_balances_over_a_long_stick_of_a_tapered_rod() {
+    open(&Case {
+        amp: 0.005469627329621924,
+        wave: 0.4046153483430688,
+        phase: 0.23378081907949305,
+        eta: 0.48733010809847677,
+        mu_s: 0.3064713322595947,
+        ratio: 0.294800235344426,
+        taper: Some(0.5519428662989473),
+        radius: 0.0,
+        d_max: 0.09782418638952915,
+    });
+}
+
 /// Was "nested slips 8 deep" (issue 31's texture grid, 0.01/0.05/4π/3, the uniform rod,
 /// r = 0.005, the paper's drag settings): a side 0.025 behind the round tip and the tip took
 /// turns at μs in slides of 2e-8 and 1e-8 that did not shrink, and the drag stopped at
