@@ -2090,9 +2090,10 @@ pub(crate) struct Disk {
 /// `|r sin θ| ≤ r`, so the root lies in `[px − r, px + r]`, and `g` rises at the rate `J` where
 /// the disk fits. A Newton step that leaves the bracket is replaced by its midpoint: where the
 /// disk barely fits (`J` about 0.03 under the crests of a corrugation about as round as the
-/// disk, `J` near 2 beside them) plain Newton could wander between the two for all its
-/// iterations, and the point had no contact (issue 31's drag property, seed 21). Where Newton
-/// stays inside, its iterates are the plain ones.
+/// disk, `J` near 2 beside them) plain Newton's steps could leave the bracket, and states of
+/// a drag over such a corrugation had no contact point (issue 31's drag property, seed 21: a
+/// residual NaN, slips off their energy balance by 1e-6). Where Newton stays inside, its
+/// iterates are the plain ones.
 pub(crate) fn disk_on_curve(h: &crate::surface::Height, r: f64, px: f64, amp: f64) -> Option<Disk> {
     let at = |xc: f64| {
         let (th, dth) = h.angle_scaled(xc, amp);
