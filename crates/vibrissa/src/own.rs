@@ -81,7 +81,7 @@ impl<P: Profile> OwnStepper<P> {
             if let crate::chain::Geom::Curve { h } = &set.contacts[j].geom {
                 let foot = self.chain.family.pose(lam).1.xf;
                 let px = sol.right()[0] + xf;
-                let dk = crate::chain::disk_on_curve(h, set.tip_radius, px, 1.0);
+                let dk = crate::surface::disk_on_curve(h, set.tip_radius, px, 1.0);
                 if let (Some(r), Some(dk)) = (self.chain.contact_rates(u, lam, d), dk) {
                     w.contacts[j].dxc = (r[j][0] + foot) / dk.jac;
                 }

@@ -14,7 +14,7 @@
 use crate::inertia::mass_density;
 use crate::parts::Stiffness;
 use crate::profile::{General, Profile};
-use crate::surface::Texture;
+use crate::surface::{disk_on_curve, Texture};
 use crate::{Rod, VibrissaError};
 use bvp::{
     Bvp, BvpError, BvpSolver, Collocation, CollocationOptions, Dims, ErrorControl, Guess, Solution,
@@ -118,21 +118,12 @@ impl Track {
 }
 
 /// Where a disk of radius `r` centred at lab `x` touches the profile `h` from below: the `x_c`
-/// with `x_c + r h'(x_c)/w(x_c) = x` (Newton's method from the line's `x − r h'/w`; the disk fits
-/// the profile, `1 + r h''/w³ > 0`, which the surface checks for a round tip).
+/// with `x_c + r h'(x_c)/w(x_c) = x`, by the static drag's [`disk_on_curve`] (Newton kept in
+/// the bracket `[x − r, x + r]`). NaN where the disk has no single contact point (it is wider
+/// than a concave part of the profile is round, which the surface refuses for a round tip):
+/// a step then fails as non-finite instead of going on from an unconverged contact point.
 fn touch_of(h: &crate::surface::Height, r: f64, x: f64) -> f64 {
-    let (_, hp, _) = h.jet(x);
-    let mut xc = x - r * hp / (1.0 + hp * hp).sqrt();
-    for _ in 0..30 {
-        let (_, hp, hpp) = h.jet(xc);
-        let w = (1.0 + hp * hp).sqrt();
-        let step = (xc + r * hp / w - x) / (1.0 + r * hpp / (w * w * w));
-        xc -= step;
-        if step.abs() <= 1e-15 * (1.0 + xc.abs()) {
-            break;
-        }
-    }
-    xc
+    disk_on_curve(h, r, x, 1.0).map_or(f64::NAN, |dk| dk.xc)
 }
 
 /// The line `y = 0`, the track a state starts with.

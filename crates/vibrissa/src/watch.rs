@@ -616,7 +616,7 @@ fn curve_clearance(
     // (a round tip's centre on the surface offset by its radius: its gap to that offset curve)
     let r = set.tip_radius;
     let disk_gap = |z: &[f64]| -> Option<f64> {
-        let dk = crate::chain::disk_on_curve(h, r, z[0] + xf, amp)?;
+        let dk = crate::surface::disk_on_curve(h, r, z[0] + xf, amp)?;
         Some(z[1] - (hh(dk.xc) - r * dk.th.cos()))
     };
     let off = ss
