@@ -9,7 +9,7 @@ use crate::chain::{Chain, ContactSet, Family};
 use crate::control::{corrector_tol, MAX_ITER, OWN_H_MAX};
 use crate::profile::Profile;
 use crate::rodsolve::{correct_chord, Converged, ShotFailure};
-use crate::stepper::{interpolate, same_branch, Pt, StepError, Stepper};
+use crate::stepper::{interpolate, same_branch, within_span, Pt, StepError, Stepper};
 use crate::watch::{fill_slip, has_slider, watch, Env, RodView};
 use bvp::Stats;
 use nalgebra::DVector;
@@ -201,6 +201,13 @@ impl<P: Profile> Stepper for OwnStepper<P> {
     fn correct(&mut self, lam: f64, hist: &[Pt], fresh: bool) -> Result<Pt, StepError> {
         let u = interpolate(hist, lam).0;
         self.correct_from(lam, &u, hist.last(), fresh)
+    }
+
+    fn correct_within(&mut self, lam: f64, a: &Pt, b: &Pt) -> Result<Pt, StepError> {
+        let u = interpolate(&[a.clone(), b.clone()], lam).0;
+        let p = self.correct_from(lam, &u, None, true)?;
+        within_span(a, b, &u, &p, self.chain.sh.tol)?;
+        Ok(p)
     }
 
     fn set_light(&mut self, light: bool) {

@@ -160,6 +160,12 @@ pub(crate) trait Stepper {
     /// span); rejects corrections that land on another branch. With `fresh` the tangent is exact
     /// at the point (events that use it).
     fn correct(&mut self, lam: f64, hist: &[Pt], fresh: bool) -> Result<Pt, StepError>;
+    /// The point at `λ` inside the span of two points `a`, `b` of one branch (the metered
+    /// work's midpoints), predicted from their cubic and refused only where it crossed a fold
+    /// or jumped ([`within_span`]). Default: [`Stepper::correct`] from the two.
+    fn correct_within(&mut self, lam: f64, a: &Pt, b: &Pt) -> Result<Pt, StepError> {
+        self.correct(lam, &[a.clone(), b.clone()], true)
+    }
     /// The first point of a march at `λ` from the own shooter's converged unknowns `u`.
     fn first(&mut self, lam: f64, u: &[f64]) -> Result<Pt, StepError>;
     /// Changes the contact set at `λ` and corrects `u` (the old state in the new unknowns) there.
@@ -279,6 +285,30 @@ pub(crate) fn same_branch(last: &Pt, pred: &[f64], p: &Pt, tol: f64) -> Result<(
     if !(corr <= 0.5 * change.max(1e-3 * scale * (p.lam - last.lam).abs().min(1.0))
         || corr < tol.max(1e-9) * scale)
     {
+        return Err(StepError::Jumped(corr));
+    }
+    Ok(())
+}
+
+/// Whether the point `p` (predicted at `pred`) inside the span of the branch points `a`, `b`
+/// is on their branch: `det J` has their sign, and the correction is small against the
+/// change over the span. The tangent's turn is not asked: an accepted step may span a place
+/// where the branch turns fast and smoothly (where a lying stretch's end runs along the
+/// surface, `μ` rose by 0.01 within 1e-4 of d and the tangent turned 32° from a midpoint to
+/// the span's end 1e-4 away).
+pub(crate) fn within_span(a: &Pt, b: &Pt, pred: &[f64], p: &Pt, tol: f64) -> Result<(), StepError> {
+    if let Some(d) = p.det {
+        if [a.det, b.det]
+            .iter()
+            .flatten()
+            .any(|e| e.signum() != d.signum())
+        {
+            return Err(StepError::CrossedFold);
+        }
+    }
+    let corr = max_diff(&p.u, pred);
+    let scale = 1.0 + p.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !(corr <= 0.5 * max_diff(&a.u, &b.u) || corr < tol.max(1e-9) * scale) {
         return Err(StepError::Jumped(corr));
     }
     Ok(())
