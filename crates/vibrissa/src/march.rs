@@ -242,6 +242,10 @@ enum Flow {
     Go,
     /// The march ends: why, and its last point (`None`: the newest of the history).
     End(StopReason, Option<Box<(ContactSet, Pt)>>),
+    /// The contact set an event changed to does not hold at the event's point (the switch's
+    /// Newton failed): the end as [`Flow::End`], unless the step is taken again shorter
+    /// ([`Run::after_step`]).
+    Unheld(StopReason, Box<(ContactSet, Pt)>),
 }
 
 /// The stop where a fold is reached in a state that pulls at one of its contacts (`N < 0` beyond
@@ -414,6 +418,13 @@ fn end(stop: StopReason) -> Flow {
     Flow::End(stop, None)
 }
 
+/// What the record and the march were before an event's outcome (a step taken again).
+struct Before {
+    mark: crate::record::Mark,
+    range: RangeTracker,
+    slide: Option<crate::surface::Slide>,
+}
+
 /// A located event inside a step.
 struct Found {
     cross: Crossing,
@@ -521,7 +532,10 @@ impl<P: Profile> Run<'_, '_, P> {
                 let next = self.reversed(&set, j, &prev);
                 return self.switch(w, (Event::Halt, set, prev), next, u);
             }
-            Some(Pending::AtStart(c)) => return self.on_event(w, c, prev),
+            Some(Pending::AtStart(c)) => {
+                let flow = self.on_event(w, c, prev);
+                return self.ended(flow);
+            }
             None => {}
         }
         if let Some(stop) = self.check_stall(w, &p, lam, from_queue) {
@@ -937,6 +951,11 @@ impl<P: Profile> Run<'_, '_, P> {
             return end(f);
         }
         let l_stop = found.as_ref().map_or(p.lam, |f| f.pt.lam);
+        let before = found.as_ref().map(|_| Before {
+            mark: self.out.mark(),
+            range: *self.range,
+            slide: self.env.ground.slide,
+        });
         let env = &self.env;
         if let Some(m) = env.ground.meter {
             let upto = found.as_ref().map_or(&p, |f| &f.pt).clone();
@@ -963,7 +982,46 @@ impl<P: Profile> Run<'_, '_, P> {
             w.pprev = Some(prev.w.clone());
             return Flow::Go;
         };
-        self.on_event(w, cross, pt)
+        let lain = self.lain.take();
+        let p_lam = p.lam;
+        match self.on_event(w, cross, pt) {
+            Flow::Unheld(stop, last) => {
+                // a new contact state that does not hold at an event located at the start of
+                // a long step may be a root of the noise: the step again, shorter, once
+                let again = w.failed == Some((lam, p_lam));
+                let b = before.expect("an event was found");
+                if p_lam - lam > w.h_min
+                    && !again
+                    && self.env.ground.slide == b.slide
+                    && self
+                        .stepper
+                        .switch(last.0.clone(), lam, prev.u.clone())
+                        .is_ok()
+                {
+                    self.out.rewind(b.mark);
+                    *self.range = b.range;
+                    self.lain = lain;
+                    w.failed = Some((lam, p_lam));
+                    w.hist.pop();
+                    w.queue.clear();
+                    w.h = self.ctl.reject * (p_lam - lam);
+                    return Flow::Go;
+                }
+                self.ended(Flow::Unheld(stop, last))
+            }
+            flow => flow,
+        }
+    }
+
+    /// `flow` with [`Flow::Unheld`] made the end it is where it is not taken again.
+    fn ended(&mut self, flow: Flow) -> Flow {
+        match flow {
+            Flow::Unheld(stop, last) => {
+                self.range.close(RangeEnd::SolverFailure);
+                Flow::End(stop, Some(last))
+            }
+            flow => flow,
+        }
     }
 
     /// The armed events that ended between `prev` and the new point `p`, located: the earliest,
@@ -1283,16 +1341,15 @@ impl<P: Profile> Run<'_, '_, P> {
                     self.range.close(RangeEnd::Event);
                     return Flow::End(stop, Some(Box::new((set, pe))));
                 }
-                self.range.close(RangeEnd::SolverFailure);
                 let message = format!(
                     "{} ({} to {}): the new contact state does not hold: {e}",
                     ev.name(),
                     set.label(),
                     new_set.label()
                 );
-                Flow::End(
+                Flow::Unheld(
                     StopReason::ContactChange { d: pe.lam, message },
-                    Some(Box::new((set, pe))),
+                    Box::new((set, pe)),
                 )
             }
         }

@@ -1439,3 +1439,48 @@ fn a_tip_barely_touching_beside_a_side_ends_its_slip_on_kinetic_friction() {
     assert!(out.starts_with("906 rows, 446 slips"), "{out}");
     assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
+
+/// Was a solver failure on 11 output points (the texture grid's scene on the grid of the drag
+/// property; the grid's 201 points reach d_max): the short rat preset at η 0.75 over
+/// 0.02 sin(2πx/0.5) (μs 0.5, μk 0.3) stopped at d 0.24485 after 11 950 slips with "touchdown
+/// (side to side+tip): the new contact state does not hold: Newton did not converge (iteration
+/// 7, residual NaN)". Its tip had turned tangent and become a side 1.8e-5 before the tip; a step
+/// of 0.01 ended with the free tail in the surface further in, and the touchdown's search
+/// returned a point where the tail's end is 5.6e-11 above the surface (the clearance's noise),
+/// in a singular state. The step is now taken again shorter (march.rs `after_step`), which
+/// meets no touchdown there: the drag reaches d_max with as many slips as the texture grid's
+/// row of the scene on 201 points (`data/drag/texture_grid.csv`; their places agree to 1.7e-9).
+/// 18 s in the test profile.
+#[test]
+fn a_touchdown_in_the_noise_of_a_long_step_is_taken_again_shorter() {
+    let root = format!("{}/../..", env!("CARGO_MANIFEST_DIR"));
+    let rat = std::fs::read_to_string(format!("{root}/data/scenes/rat_mystacial_short.toml"));
+    let rat: Scene = toml::from_str(&rat.unwrap()).unwrap();
+    let scene = Scene {
+        eta: 0.75,
+        surface: SurfaceProfile::Sine {
+            amplitude: 0.02,
+            wavelength: 0.5,
+            phase: 0.0,
+        },
+        ..rat
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let o = DragOptions {
+        d_max: 0.3,
+        points: 11,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        ..DragOptions::default()
+    };
+    let r = drag(&rod, &surface, &o).unwrap();
+    assert_eq!(r.stop, StopReason::DMax, "{}", r.stop);
+    let grid = std::fs::read_to_string(format!("{root}/data/drag/texture_grid.csv")).unwrap();
+    let row: Vec<&str> = (grid.lines())
+        .find(|l| l.starts_with("0.02,0.5,0,rat_short,0,"))
+        .unwrap()
+        .split(',')
+        .collect();
+    assert_eq!(row[6], "d_max");
+    assert_eq!(r.slips.len(), row[7].parse::<usize>().unwrap());
+}
