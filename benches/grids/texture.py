@@ -92,7 +92,8 @@ def classify(reason, detail, code):
         return "stale slip driver"
     # (a side that lay down in a slip with contacts beyond it, whose state the solver then did
     # not resolve, ends at its lie-down: named as that, the solver's message added)
-    if ("Newton did not converge" in detail and "trapped" not in detail
+    if (("Newton did not converge" in detail or "has no rod" in detail)
+            and "trapped" not in detail
             and "begins to lie along the surface" not in detail):
         return "Newton failure / NaN"
     if "equilibria fold back" in detail and "(a snap)" in detail:

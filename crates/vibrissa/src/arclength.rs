@@ -130,10 +130,7 @@ pub(crate) fn correct<C: Curve + ?Sized>(
             let lam = v[n];
             let e = cv
                 .eval(&u, lam, true)
-                .map_err(|_| ShotFailure::NoConvergence {
-                    iteration: it,
-                    residual: f64::NAN,
-                })?;
+                .map_err(|why| ShotFailure::NoRodAt { iteration: it, why })?;
             let (jac, r_lam) = match (e.jac, e.r_lam) {
                 (Some(j), Some(l)) => (j, l),
                 _ => return Err(ShotFailure::Singular { iteration: it }),

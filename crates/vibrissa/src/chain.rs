@@ -691,6 +691,15 @@ pub(crate) enum EvalError {
     NonFinite,
 }
 
+impl std::fmt::Display for EvalError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            EvalError::Order => "the contacts' arc lengths leave their order in (0, 1]",
+            EvalError::NonFinite => "its values are not finite",
+        })
+    }
+}
+
 /// Residual, and on request its Jacobians, of one contact set at `(u, λ)`.
 #[derive(Clone, Debug)]
 pub(crate) struct Eval {

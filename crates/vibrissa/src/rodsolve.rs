@@ -24,6 +24,12 @@ pub(crate) enum ShotFailure {
     Method(Box<bvp::BvpError>),
     /// The own shooter has no rod, or no Jacobian, at a generic method's unknowns.
     NoRod,
+    /// Newton's iterate has no rod (a step that ran off: the contacts' arc lengths out of their
+    /// order, or values not finite). Was reported as `NoConvergence` with the residual NaN.
+    NoRodAt {
+        iteration: usize,
+        why: crate::chain::EvalError,
+    },
 }
 
 impl std::fmt::Display for ShotFailure {
@@ -51,6 +57,9 @@ impl std::fmt::Display for ShotFailure {
             ShotFailure::Method(e) => write!(f, "{e}"),
             ShotFailure::NoRod => {
                 f.write_str("the own shooter has no rod at the method's unknowns")
+            }
+            ShotFailure::NoRodAt { iteration, why } => {
+                write!(f, "Newton's iterate {iteration} has no rod ({why})")
             }
         }
     }
@@ -309,10 +318,7 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
             let spec = !need && exact_wanted && ahead;
             let e = ch
                 .eval(&u, lam, need || spec)
-                .map_err(|_| ShotFailure::NoConvergence {
-                    iteration: it,
-                    residual: f64::NAN,
-                })?;
+                .map_err(|why| ShotFailure::NoRodAt { iteration: it, why })?;
             if need {
                 let j = e.jac.clone().unwrap_or_else(|| DMatrix::zeros(0, 0));
                 lu = Some(j.clone().lu());
@@ -417,7 +423,52 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
 
 #[cfg(test)]
 mod tests {
-    use super::stalled;
+    use super::{correct_chord, stalled, ShotFailure};
+    use crate::chain::{Curve, Eval, EvalError};
+    use nalgebra::{DMatrix, DVector};
+
+    /// `R(u) = u − 10`, which has no value (contacts out of order) beyond `u = 5`.
+    struct RunsOff;
+
+    impl Curve for RunsOff {
+        fn n(&self) -> usize {
+            1
+        }
+        fn eval(&mut self, u: &[f64], _lam: f64, var: bool) -> Result<Eval, EvalError> {
+            if u[0] > 5.0 {
+                return Err(EvalError::Order);
+            }
+            Ok(Eval {
+                r: DVector::from_element(1, u[0] - 10.0),
+                jac: var.then(|| DMatrix::from_element(1, 1, 1.0)),
+                r_lam: var.then(|| DVector::zeros(1)),
+                err: 0.0,
+            })
+        }
+        fn refine(&mut self) -> bool {
+            false
+        }
+        fn count_iteration(&mut self) {}
+    }
+
+    /// An iterate without a rod is said as such, with the iteration and why (it read "Newton
+    /// did not converge (residual NaN)": the short rat preset's touchdown beside a side 1.8e-5
+    /// before its tip, whose seventh iterate put the side beyond the tip).
+    #[test]
+    fn an_iterate_without_a_rod_says_why() {
+        let e = correct_chord(&mut RunsOff, 0.0, &[0.0], 1e-12, 10, (false, false)).unwrap_err();
+        assert_eq!(
+            e,
+            ShotFailure::NoRodAt {
+                iteration: 1,
+                why: EvalError::Order
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "Newton's iterate 1 has no rod (the contacts' arc lengths leave their order in (0, 1])"
+        );
+    }
 
     /// Residual sequences of the corrector (tol 1e-12) on the cluster grid's slowest scene
     /// (η 0.5, taper 0.05, κ0 = 0, a fold in d at 0.46983) and on the side contact letting go of
