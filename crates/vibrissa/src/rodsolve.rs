@@ -179,10 +179,16 @@ pub(crate) fn solve_damped<C: Curve + ?Sized>(
         }
         let e = match ev {
             Ok(e) if rn.is_finite() => e,
-            _ => {
+            Ok(_) => {
                 return Err(ShotFailure::NoConvergence {
                     iteration: iter,
                     residual: rn,
+                })
+            }
+            Err(why) => {
+                return Err(ShotFailure::NoRodAt {
+                    iteration: iter,
+                    why,
                 })
             }
         };
@@ -423,7 +429,7 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
 
 #[cfg(test)]
 mod tests {
-    use super::{correct_chord, stalled, ShotFailure};
+    use super::{correct_chord, solve_damped, stalled, ShotFailure};
     use crate::chain::{Curve, Eval, EvalError};
     use nalgebra::{DMatrix, DVector};
 
@@ -467,6 +473,15 @@ mod tests {
         assert_eq!(
             e.to_string(),
             "Newton's iterate 1 has no rod (the contacts' arc lengths leave their order in (0, 1])"
+        );
+        // a guess without a rod, for the damped Newton of single solves
+        let e = solve_damped(&mut RunsOff, 0.0, &[6.0], 1e-12, 10).unwrap_err();
+        assert_eq!(
+            e,
+            ShotFailure::NoRodAt {
+                iteration: 0,
+                why: EvalError::Order
+            }
         );
     }
 
