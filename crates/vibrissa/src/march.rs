@@ -484,7 +484,8 @@ impl<P: Profile> Run<'_, '_, P> {
             chord: None,
         };
         loop {
-            if let Flow::End(stop, last) = self.step(&mut w) {
+            let flow = self.step(&mut w);
+            if let Flow::End(stop, last) = self.ended(flow) {
                 let newest = || (self.stepper.set().clone(), w.hist[w.hist.len() - 1].clone());
                 return (stop, Some(last.map_or_else(newest, |b| *b)));
             }
@@ -556,7 +557,8 @@ impl<P: Profile> Run<'_, '_, P> {
             Some(Pending::AtStart(Crossing::Halt(j))) => {
                 let (set, u) = (self.stepper.set().clone(), prev.u.clone());
                 let next = self.reversed(&set, j, &prev);
-                return self.switch(w, (Event::Halt, set, prev), next, u);
+                let flow = self.switch(w, (Event::Halt, set, prev), next, u);
+                return self.ended(flow);
             }
             Some(Pending::AtStart(c)) => {
                 let flow = self.on_event(w, c, prev);
@@ -1015,15 +1017,14 @@ impl<P: Profile> Run<'_, '_, P> {
                 // a new contact state that does not hold at an event located at the start of
                 // a long step may be a root of the noise: the step again, shorter, once
                 let again = w.failed == Some((lam, p_lam));
-                let b = before.expect("an event was found");
-                if p_lam - lam > w.h_min
-                    && !again
-                    && self.env.ground.slide == b.slide
-                    && self
-                        .stepper
+                let retry = before.filter(|b| {
+                    p_lam - lam > w.h_min && !again && self.env.ground.slide == b.slide
+                });
+                if let Some(b) = retry.filter(|_| {
+                    (self.stepper)
                         .switch(last.0.clone(), lam, prev.u.clone())
                         .is_ok()
-                {
+                }) {
                     self.out.rewind(b.mark);
                     *self.range = b.range;
                     self.lain = lain;
@@ -1155,12 +1156,12 @@ impl<P: Profile> Run<'_, '_, P> {
     /// of a sliding contact that lifts off within the step and whose slip rate is within
     /// [`SLIP_NOISE`] at the step's start and at the point found (or the step's end)
     /// ([`noise_halt`]): its sign is the solver's noise, and held the contact would trap the
-    /// rod. The texture grid's uniform rod over 0.05/0.5/4π/3: a tip
-    /// formed sliding beside a side at a slip's end, its rate 1.3e-9 to 1.5e-10 over the step
-    /// and −3.9e-9 at its lift-off, halted at that noise 5.8e-5 before the lift-off and the
-    /// drag stopped in the trapped state; the same rod over 0.01/0.1/0 did so on 11 output
-    /// points but not on 201, where the noise had the other sign. Sliding at a rate of zero
-    /// with `T = dir·μk N` the contact is within its static cone: a state of the model.
+    /// rod. The texture grid's uniform rod over 0.05/0.5/4π/3: a tip formed sliding beside a
+    /// side at a slip's end, its rate 1.3e-9 to 1.5e-10 over the step and −3.9e-9 at its
+    /// lift-off, halted at that noise 5.8e-5 before the lift-off and the drag stopped in the
+    /// trapped state; the same rod over 0.01/0.1/0 did so on 11 output points but not on 201,
+    /// where the noise had the other sign. Sliding at a rate of zero with `T = dir·μk N` the
+    /// contact is within its static cone: a state of the model.
     fn dipped(
         &mut self,
         w: &Walk,
