@@ -1453,18 +1453,7 @@ fn a_tip_barely_touching_beside_a_side_ends_its_slip_on_kinetic_friction() {
 /// 18 s in the test profile.
 #[test]
 fn a_touchdown_in_the_noise_of_a_long_step_is_taken_again_shorter() {
-    let root = format!("{}/../..", env!("CARGO_MANIFEST_DIR"));
-    let rat = std::fs::read_to_string(format!("{root}/data/scenes/rat_mystacial_short.toml"));
-    let rat: Scene = toml::from_str(&rat.unwrap()).unwrap();
-    let scene = Scene {
-        eta: 0.75,
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.02,
-            wavelength: 0.5,
-            phase: 0.0,
-        },
-        ..rat
-    };
+    let (_, scene) = rat_case(0.02, 0.5, 0.0, 0.3);
     let (rod, surface) = scene.parts().unwrap();
     let o = DragOptions {
         d_max: 0.3,
@@ -1475,7 +1464,11 @@ fn a_touchdown_in_the_noise_of_a_long_step_is_taken_again_shorter() {
     };
     let r = drag(&rod, &surface, &o).unwrap();
     assert_eq!(r.stop, StopReason::DMax, "{}", r.stop);
-    let grid = std::fs::read_to_string(format!("{root}/data/drag/texture_grid.csv")).unwrap();
+    let grid = format!(
+        "{}/../../data/drag/texture_grid.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let grid = std::fs::read_to_string(grid).unwrap();
     let row: Vec<&str> = (grid.lines())
         .find(|l| l.starts_with("0.02,0.5,0,rat_short,0,"))
         .unwrap()
