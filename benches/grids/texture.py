@@ -45,6 +45,7 @@ CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture 
            "slider halts into a trapped state (named)", "trapped slide (not followed)",
            "nested slips 8 deep (named)", "side begins to lie along the surface",
            "sliding side closes up to its neighbour (named)",
+           "closed-up stretch not resolved (named)",
            "lying stretch would slip (not modelled)",
            "change at a lying stretch (not followed)", "lying stretch's end would pull",
            "lying stretch reaches the rod's end (not followed)",
@@ -90,6 +91,10 @@ def classify(reason, detail, code):
         return "Newton failure / NaN"
     if "s = NaN" in detail or "is gone" in detail:
         return "stale slip driver"
+    # (two contacts that closed up and lay down as one stretch, whose slide the solver then did
+    # not resolve, end at the closing: named as that, the solver's message added)
+    if "lie down as one stretch there, whose slide the solver does not resolve" in detail:
+        return "closed-up stretch not resolved (named)"
     # (a side that lay down in a slip with contacts beyond it, whose state the solver then did
     # not resolve, ends at its lie-down: named as that, the solver's message added)
     if (("Newton did not converge" in detail or "has no rod" in detail)

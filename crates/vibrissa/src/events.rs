@@ -762,7 +762,7 @@ fn transition_at(
             Crossing::Unlie(_) => peel_up(set, u),
             Crossing::EndLift(j) => end_lift(&pe.w.contacts[j]),
             Crossing::Reach(j) => reach(&pe.w.contacts[j]),
-            Crossing::Close(j, k) => close_up(set, (j, k), pe),
+            Crossing::Close(j, k) => close_up(env, set, (j, k), pe),
             Crossing::Lie(j) => Next::Limit(format!(
                 "the side contact at s = {:.6} begins to lie along the surface: the rod's curvature relative to the surface there fell to zero, so beyond it the rod would run along the line; a lying stretch pressed by a distributed force is not in the model",
                 pe.w.contacts[j].s
@@ -981,25 +981,94 @@ fn closing(env: &Env, set: &ContactSet, j: usize) -> Vec<usize> {
         .collect()
 }
 
-/// The stop where the side `j` of `set`, sliding, closes up to its neighbour `k` (at `pe`): the
-/// rod between them lies along the surface, and the two would be one stretch, which the model
-/// does not have (its stretch lays down from one side and peels back at its ends; it does not
-/// take in a side, nor lie between two). Before the side gets there the state is singular with
-/// the gap (the Newton matrix's smallest singular value over its largest 0.11–0.35 times the
-/// gap, from 5.8e-8 down to 1.4e-11, in the stuck states between the slips of issue 31's
-/// property seed 11, a side closing up to the stretch), so a slide that nears it is not resolved
-/// either ("the branch is not resolved by arclength steps down to 1.2e-10"; rounded, the slide
-/// ended at μk with the gap at 1.4e-14, and the stick after it placed a fold by the output grid,
-/// its Newton matrix's smallest singular value 8.5e-14 to 4.2e-12 of the largest; two sides of
-/// the short rat preset over 0.001 sin(2πx/0.2 + 2π/3) close up over slips that take that ratio
-/// from 5.7e-11 down to 3.7e-14).
-fn close_up(set: &ContactSet, jk: (usize, usize), pe: &Pt) -> Next {
-    Next::Limit(closed_up(set, jk, pe))
+/// What follows where the side `j` of `set`, sliding, closes up to its neighbour `k` (at `pe`):
+/// the rod between them lies along the surface, and the two lie down as one stretch ([`merged`])
+/// where the model has it; else the stop, by name ([`closed_up`]). Before the side gets there the
+/// point-contact state is singular with the gap (the Newton matrix's smallest singular value over
+/// its largest 0.11–0.35 times the gap, from 5.8e-8 down to 1.4e-11, in the stuck states between
+/// the slips of issue 31's property seed 11, a side closing up to the stretch), so a slide that
+/// nears it is not resolved either ("the branch is not resolved by arclength steps down to
+/// 1.2e-10"; rounded, the slide ended at μk with the gap at 1.4e-14, and the stick after it
+/// placed a fold by the output grid, its Newton matrix's smallest singular value 8.5e-14 to
+/// 4.2e-12 of the largest; two sides of the short rat preset over 0.001 sin(2πx/0.2 + 2π/3)
+/// close up over slips that take that ratio from 5.7e-11 down to 3.7e-14): the event is the gap
+/// coming within [`CLOSED`].
+fn close_up(env: &Env, set: &ContactSet, jk: (usize, usize), pe: &Pt) -> Next {
+    merged(env, set, jk, pe)
+        .unwrap_or_else(|| Next::Limit(closed_up(set, jk, pe, not_merged(set, jk))))
 }
 
-/// The words of [`close_up`]'s stop (also the stop where a change of set is made with the side
-/// already closed up, march.rs `check_pending`).
-pub(crate) fn closed_up(set: &ContactSet, (j, k): (usize, usize), pe: &Pt) -> String {
+/// The set after the side `j`, driving a slip, closes up to its neighbour `k = j + 1` further
+/// on (at `pe`): the rod between them lies along the surface (the gap within [`CLOSED`]), so the
+/// two are one lying stretch from `j`'s place on, whose material moves with the slide (the rod is
+/// inextensible along it): `j` becomes its inner end, keeping the driver's rolling invariant;
+/// `k`, a side, becomes its outer end (with contacts beyond it an unknown, at `k`'s place), or,
+/// the inner end of the stretch already lying there, passes its place to `j`. The stretch's
+/// resultant starts from the two contacts' forces summed. `None` where the model has no such
+/// stretch: a side closing up to the one before it, a second stretch, a driver that does not
+/// roll.
+fn merged(env: &Env, set: &ContactSet, (j, k): (usize, usize), pe: &Pt) -> Option<Next> {
+    if !merges(env, set, (j, k)) {
+        return None;
+    }
+    let (slide, Mode::Rolling(a)) = (env.ground.slide?, set.contacts[j].mode) else {
+        return None;
+    };
+    let inv = a + slide.dir * pe.lam;
+    let ck = &pe.w.contacts[k];
+    let mut ns = set.clone();
+    let outer = match set.lain() {
+        Some(_) => None,
+        None => {
+            let beyond = set.contacts.len() - 1 - k;
+            ns.lying = Some(crate::chain::Lying {
+                s2: ck.s,
+                x2: ck.x,
+                c: inv,
+                beyond,
+                anchor: pe.w.contacts[j].x,
+            });
+            (beyond > 0).then_some(ck.s)
+        }
+    };
+    let (oj, ok) = (set.offset(j), set.offset(k));
+    let mut nu = pe.u.clone();
+    nu[oj] += nu[ok];
+    nu[oj + 1] += nu[ok + 1];
+    nu.drain(ok..ok + set.contacts[k].unknowns());
+    nu.extend(outer);
+    ns.contacts.remove(k);
+    Some(Next::Switch(Event::LieDown, ns, nu))
+}
+
+/// Whether the side `j` of `set`, driving a slip, and its neighbour `k` that it closes up to
+/// lie down as one stretch ([`merged`]).
+pub(crate) fn merges(env: &Env, set: &ContactSet, (j, k): (usize, usize)) -> bool {
+    env.ground.slide.is_some_and(|sl| sl.driver == j)
+        && matches!(set.contacts[j].mode, Mode::Rolling(_))
+        && k == j + 1
+        && !set.contacts[k].tip
+        && set.lain().is_none_or(|l| l == k)
+}
+
+/// Why the side `j` of `set` and its neighbour `k` that it closes up to do not lie down as one
+/// stretch ([`merges`] false).
+pub(crate) fn not_merged(set: &ContactSet, (j, k): (usize, usize)) -> &'static str {
+    if set.lain().is_some_and(|l| l != k) {
+        "a second lying stretch is not in the model"
+    } else if k < j {
+        "a side that closes up to the contact before it, towards the foot, is not in the model"
+    } else {
+        // (the event is armed only for a side that drives the slip, towards sides: one that
+        // does not roll, or a tip, is not met)
+        "a stretch from a contact that does not roll is not in the model"
+    }
+}
+
+/// The words of [`close_up`]'s stop, `why` the model does not follow it (also the stop where a
+/// change of set is made with the side already closed up, march.rs `check_pending`, and where
+/// the march after the two lay down as one stretch fails in the solver).
+pub(crate) fn closed_up(set: &ContactSet, (j, k): (usize, usize), pe: &Pt, why: &str) -> String {
     let (a, b) = (&pe.w.contacts[j], &pe.w.contacts[k]);
     let to = if set.lain() == Some(k) {
         format!("the stretch lying on the surface from s = {:.6}", b.s)
@@ -1008,11 +1077,15 @@ pub(crate) fn closed_up(set: &ContactSet, (j, k): (usize, usize), pe: &Pt) -> St
     };
     format!(
         "the side contact at s = {:.6}, sliding, closes up to {to}: the rod between them lies \
-         along the surface, so they would be one stretch; a lying stretch that takes in a side, \
-         or lies between two, is not in the model",
+         along the surface, so they are one stretch; {why}",
         a.s
     )
 }
+
+/// Why the drag ends where two contacts that closed up lay down as one stretch: the march after
+/// it failed in the solver (its words follow).
+pub(crate) const MERGED_UNRESOLVED: &str =
+    "they lie down as one stretch there, whose slide the solver does not resolve";
 
 /// The stop where the unloaded lying stretch whose inner end is the contact `c` reaches the
 /// rod's end: beyond, its outer end (where the rod's moment is zero) would lie past the tip, so

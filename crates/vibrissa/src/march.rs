@@ -825,11 +825,20 @@ impl<P: Profile> Run<'_, '_, P> {
                 return Some(Pending::AtStart(c));
             }
         }
+        if let Crossing::Close(j, k) = c {
+            if crate::events::merges(env, self.stepper.set(), (j, k)) {
+                // (closed up at the change of set: the two lie down as one stretch there)
+                w.pending.clear();
+                return Some(Pending::AtStart(c));
+            }
+        }
         self.range.close(RangeEnd::Event);
         if let (Crossing::Close(j, k), Some(q)) = (c, w.hist.last()) {
             // a change of set made with a sliding side already closed up to its neighbour: the
             // closing's stop, not a state that does not hold (a jam in a slip)
-            let message = crate::events::closed_up(self.stepper.set(), (j, k), q);
+            let set = self.stepper.set();
+            let why = crate::events::not_merged(set, (j, k));
+            let message = crate::events::closed_up(set, (j, k), q, why);
             return Some(Pending::Stop(StopReason::ContactChange { d: lam, message }));
         }
         if env.ground.slide.is_some() {
@@ -1235,6 +1244,25 @@ impl<P: Profile> Run<'_, '_, P> {
                     mark: self.out.mark(),
                     range: *self.range,
                 }));
+            }
+        }
+        if let (Next::Switch(Event::LieDown, ..), Crossing::Close(j, k)) = (&next, cross) {
+            // (two contacts that close up lie down as one stretch; where the march after it
+            // fails in the solver, the drag ends at the closing, said as that)
+            let why = crate::events::MERGED_UNRESOLVED;
+            let closed = crate::events::closed_up(&set, (j, k), &pe, why);
+            if self.stepper.lies() {
+                self.lain = Some(Box::new(Lain {
+                    set: set.clone(),
+                    pe: pe.clone(),
+                    lie: closed,
+                    mark: self.out.mark(),
+                    range: *self.range,
+                }));
+            } else {
+                let why = "a stretch lying on the surface is solved by the rod's own shooter \
+                           (method shooting)";
+                next = Next::Limit(crate::events::closed_up(&set, (j, k), &pe, why));
             }
         }
         match next {

@@ -301,6 +301,16 @@ fn run_points(c: &Case, s: Scene, points: usize) -> Result<String, TestCaseError
 
 /// As [`run_points`], a hang being a drag that takes longer than `hang` seconds.
 fn run_bounded(c: &Case, s: Scene, points: usize, hang: u64) -> Result<String, TestCaseError> {
+    run_checked(c, s, points, hang).map(|(out, _)| out)
+}
+
+/// As [`run_bounded`], with the drag's result (`None` where it had no start).
+fn run_checked(
+    c: &Case,
+    s: Scene,
+    points: usize,
+    hang: u64,
+) -> Result<(String, Option<DragResult>), TestCaseError> {
     WORST.with(|w| w.set([f64::NEG_INFINITY; 5]));
     // (a refused scene is no drag: a round tip wider than a groove is round)
     prop_assume!(s.validate().is_ok());
@@ -334,11 +344,11 @@ fn run_bounded(c: &Case, s: Scene, points: usize, hang: u64) -> Result<String, T
         Ok(r) => r,
         // (a start the model cannot continue in is named as a drag's stop is: accepted)
         Err(VibrissaError::NoStart { reason }) if physical_start(&reason) => {
-            return Ok(format!("no start: {reason}"));
+            return Ok((format!("no start: {reason}"), None));
         }
         // (a pressed rod that snaps or lies down as the texture grows: named, with its place)
         Err(e @ (VibrissaError::StartSnaps { .. } | VibrissaError::StartLies { .. })) => {
-            return Ok(format!("no start: {e}"));
+            return Ok((format!("no start: {e}"), None));
         }
         Err(e) => return Err(TestCaseError::fail(format!("{e}"))),
     };
@@ -346,7 +356,7 @@ fn run_bounded(c: &Case, s: Scene, points: usize, hang: u64) -> Result<String, T
     check(c, &r, h)?;
     let most = r.rows.iter().map(|w| w.contacts.len()).max().unwrap_or(0);
     let w = WORST.with(|w| w.get());
-    Ok(format!(
+    let out = format!(
         "{} rows, {} slips, up to {most} contacts; worst |gap| {:.1e}, -N {:.1e}, stuck \
          (|T| - mu_s N)/max(N, 1) {:.1e}, sliding |T - mu_k N|/max(N, 1) {:.1e}, slip energy \
          {:.1e}; stopped: {}",
@@ -358,7 +368,8 @@ fn run_bounded(c: &Case, s: Scene, points: usize, hang: u64) -> Result<String, T
         w[3],
         w[4],
         r.stop
-    ))
+    );
+    Ok((out, Some(r)))
 }
 
 /// The property's seed in the default test run: seed 1's 16 scenes take about 2 s in the test
@@ -794,13 +805,14 @@ fn a_held_stretch_is_judged_by_the_friction_ratio_it_needs() {
 /// the rod's length between them 2.6e-11 apart at 7.1e-4 into the slip at d 0.0615607, 3.8e-14
 /// at 1.09e-3), where the state is singular with that gap: "the branch is not resolved by
 /// arclength steps down to 1.2e-10" on 11 output points. On 201 the slip ended at μk with the
-/// gap at 1.4e-14, and the stick after it placed a fold by the output grid (rounded, the same
-/// scene: 2.7e-9 on at 201 points, 1.7e-7 at 11, a solver failure at 21). Now the drag ends
-/// where the gap comes within `CLOSED` (`Crossing::Close`), by name, on every output grid at the
-/// same slip and the same d to the slip's location: in the slip at d 0.0602823, after 332 (at
-/// 1e-11 since 2026-12-01; at 1e-12 it was the slip at 0.0615607, after 334).
+/// gap at 1.4e-14, and the stick after it placed a fold by the output grid. From 2026-12-01 the
+/// drag ended where the gap comes within `CLOSED` (`Crossing::Close`), by name ("a lying stretch
+/// that takes in a side ... is not in the model"), in the slip at d 0.0602823, after 332. Since
+/// 2026-12-02 the side and the stretch lie down there as one stretch from the side's place on
+/// (events.rs `merged`), and the drag reaches d_max, checked, through the same slip on 11 and 21
+/// output points.
 #[test]
-fn a_side_closing_up_to_a_lying_stretch_ends_the_drag_by_name() {
+fn a_side_closing_up_to_a_lying_stretch_lies_down_with_it() {
     let c = Case {
         amp: 0.012007738743407414,
         wave: 0.4918497915532884,
@@ -812,10 +824,8 @@ fn a_side_closing_up_to_a_lying_stretch_ends_the_drag_by_name() {
         radius: 0.0,
         d_max: 0.0964825884322871,
     };
-    let ends = stops_on_grids(&c, &scene(&c), &[11, 21], "closes up to the stretch lying");
-    assert_eq!(ends[0].1, "332", "{ends:?}");
-    assert_eq!(ends[0].1, ends[1].1, "{ends:?}");
-    assert!((ends[0].0 - ends[1].0).abs() <= 1e-8, "{ends:?}");
+    let at = merges_on_grids(&c, &scene(&c), &[11, 21], 0.0602823);
+    assert!((at[0].0 - at[1].0).abs() <= 1e-8, "{at:?}");
 }
 
 /// The drag of the case `c` on the harness's 11 output points, its rows to read (unchecked: a
@@ -926,20 +936,36 @@ fn stop_d(out: &str) -> Option<f64> {
     d.split([':', ' ', ',']).next()?.parse().ok()
 }
 
-/// The stop's `d` and slip count of the case `c` over the scene `s` on each of `grids` output
-/// points, each drag checked row by row and slip by slip by the harness ([`run_points`]) and
-/// read from the check's words, which must say `stop`.
-fn stops_on_grids(c: &Case, s: &Scene, grids: &[usize], stop: &str) -> Vec<(f64, String)> {
+/// The drag of the case `c` over `s` on each of `grids` output points, checked ([`run_checked`]:
+/// every contact on the surface, pushing and by Coulomb, every slip balanced), must reach d_max
+/// through the slip at `at` (to 1e-6) where a side, sliding, closes up to its neighbour: the two
+/// lie down there as one stretch (a `lie_down` row in that slip, the row after it with the
+/// stretch and one contact fewer). Each grid's place of that lie-down and its slips.
+fn merges_on_grids(c: &Case, s: &Scene, grids: &[usize], at: f64) -> Vec<(f64, usize)> {
     grids
         .iter()
         .map(|&points| {
-            let out = run_points(c, s.clone(), points).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-            assert!(out.contains(stop), "{points}: {out}");
-            let slips = out
-                .split(" rows, ")
-                .nth(1)
-                .and_then(|t| t.split(' ').next());
-            (stop_d(&out).unwrap(), slips.unwrap().to_string())
+            let (out, r) = run_checked(c, s.clone(), points, HANG)
+                .unwrap_or_else(|e| panic!("{points}: {c:?}: {e}"));
+            assert!(out.ends_with("stopped: d_max reached"), "{points}: {out}");
+            let r = r.unwrap();
+            let i = (r.rows.iter())
+                .position(|q| {
+                    q.event == Some(DragEvent::Contact(Event::LieDown)) && (q.d - at).abs() < 1e-6
+                })
+                .unwrap_or_else(|| panic!("{points}: no lie-down at d = {at}: {out}"));
+            let (before, after) = (&r.rows[i], &r.rows[i + 1]);
+            // (two contacts, one of them a side, become one stretch)
+            assert!(
+                after.contacts.iter().any(|k| k.lies_to.is_some()),
+                "{points}: {after:?}"
+            );
+            assert_eq!(
+                after.contacts.len() + 1,
+                before.contacts.len(),
+                "{points}: {before:?} / {after:?}"
+            );
+            (before.d, r.slips.len())
         })
         .collect()
 }
@@ -1150,18 +1176,18 @@ fn a_trapped_slides_fold_passage_ends_where_the_driver_sticks() {
 /// fold, at d 0.0393860 in the stick after the slip at 0.03938605, was placed by rounding: two
 /// sides had closed up slip by slip, and in that slip the rod between them came within 1e-11 of
 /// lying along the surface; on 11 and 51 output points the drag went past it (a slip more, then
-/// those sides closing up at d 0.0426643), on 21 and 201 it stopped at the fold. Since the
-/// closing's threshold is 1e-11 (2026-12-01) the drag ends in that slip by name, the same on
-/// every output grid (d to 1e-8: the slip's place).
+/// those sides closing up at d 0.0426643), on 21 and 201 it stopped at the fold. With the
+/// closing's threshold at 1e-11 (2026-12-01) the drag ended in that slip by name, the same on
+/// every output grid; since 2026-12-02 the two sides lie down there as one stretch (events.rs
+/// `merged`) and the drag goes on to d_max, checked, through that slip on every grid (d to 1e-8:
+/// the slip's place).
 #[test]
-fn a_fold_placed_by_two_sides_closing_up_is_their_closing_on_every_grid() {
+fn two_sides_closing_up_lie_down_as_one_stretch_on_every_grid() {
     // (the grid's phase, 4π/3 rounded as texture.py has it: the train of slips is chaotic)
     let (c, s) = rat_case(0.001, 0.2, 4.0 * std::f64::consts::PI / 3.0, 0.3);
-    let ends = stops_on_grids(&c, &s, &[201, 11, 51], "closes up to the side contact");
-    assert!((ends[0].0 - 0.0393861).abs() < 1e-6, "{ends:?}");
-    for e in &ends[1..] {
-        assert_eq!(e.1, ends[0].1, "{ends:?}");
-        assert!((e.0 - ends[0].0).abs() <= 1e-8, "{ends:?}");
+    let at = merges_on_grids(&c, &s, &[201, 11, 51], 0.0393861);
+    for e in &at[1..] {
+        assert!((e.0 - at[0].0).abs() <= 1e-8, "{at:?}");
     }
 }
 
@@ -1173,24 +1199,18 @@ fn a_fold_placed_by_two_sides_closing_up_is_their_closing_on_every_grid() {
 /// and forth, and the same step then came from the passage each time (100 000 times, until the
 /// step budget). The slip is now located on the passage's own step (fold.rs
 /// `locate_on_chord`), and the drag goes on, every contact by Coulomb and every slip and stick
-/// balanced, to a named stop: the sliding contact at s = 0.98116 halted trapped at d =
-/// 0.1095061, until a side sliding up to its neighbour ended the drag (`Crossing::Close`). Its
-/// two sides close up slip by slip, the Newton matrix's smallest singular value over its largest
-/// 5.7e-11, 1.7e-11, 4.0e-12, 6.1e-13, 3.7e-14 in the stuck states after the slips at d 0.093
-/// to 0.106; in the slip at d 0.1062127 the rod between them comes within 1e-11 of lying along
-/// the surface (the closing's threshold since 2026-12-01; at 1e-12 the stick after that slip
-/// failed on 11 output points, and the drag ended two slips later, at 0.1094913, on 21 and
-/// 201): it ends there by name, on 201, 21 and 11 output points alike.
+/// balanced. Its two sides close up slip by slip, the Newton matrix's smallest singular value
+/// over its largest 5.7e-11, 1.7e-11, 4.0e-12, 6.1e-13, 3.7e-14 in the stuck states after the
+/// slips at d 0.093 to 0.106; in the slip at d 0.1062127 the rod between them comes within 1e-11
+/// of lying along the surface, where the drag ended by name from 2026-12-01 (on 201, 21 and 11
+/// output points alike) and where the two lie down as one stretch since 2026-12-02: the drag
+/// reaches d_max through that slip on every grid.
 #[test]
 fn a_slip_inside_a_step_of_the_fold_passage_is_located_on_it() {
     let (c, s) = rat_case(0.001, 0.2, 2.0 * std::f64::consts::PI / 3.0, 0.3);
-    let ds: Vec<f64> = stops_on_grids(&c, &s, &[201, 21, 11], "closes up to the side contact")
-        .into_iter()
-        .map(|(d, _)| d)
-        .collect();
-    assert!((ds[0] - 0.1062127).abs() < 1e-6, "{ds:?}");
-    for d in &ds[1..] {
-        assert!((ds[0] - d).abs() <= 1e-8, "{ds:?}");
+    let at = merges_on_grids(&c, &s, &[201, 21, 11], 0.1062127);
+    for e in &at[1..] {
+        assert!((e.0 - at[0].0).abs() <= 1e-8, "{at:?}");
     }
 }
 
