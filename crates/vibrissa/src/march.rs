@@ -232,6 +232,10 @@ struct Walk {
     rate0: Option<(f64, f64)>,
     /// The last step `(from, to)` taken again shorter after its events failed to be located.
     failed: Option<(f64, f64)>,
+    /// The sliding contact whose halts at its slip rate's noise are not located, since held
+    /// there it traps the rod in an equilibrium singular to working precision (until the
+    /// contact set changes; [`noise_halt`]).
+    quiet: Option<usize>,
     /// The fold passage's step to its point where an armed event ended ([`Passed::Beyond`]).
     chord: Option<Box<Chord>>,
 }
@@ -246,6 +250,10 @@ enum Flow {
     /// Newton failed): the end as [`Flow::End`], unless the step is taken again shorter
     /// ([`Run::after_step`]).
     Unheld(StopReason, Box<(ContactSet, Pt)>),
+    /// The sliding contact `j` halted at its slip rate's noise into a held state that traps
+    /// the rod, singular to working precision: the end as [`Flow::End`], unless the step is
+    /// taken again with that contact's noise halts not located ([`Run::after_step`]).
+    Quiet(usize, StopReason, Box<(ContactSet, Pt)>),
 }
 
 /// The stop where a fold is reached in a state that pulls at one of its contacts (`N < 0` beyond
@@ -315,11 +323,10 @@ fn crossing_after_release(env: &Env, q: &Pt) -> Option<String> {
 /// point `q`) in a state that traps the rod in an equilibrium singular to working precision, as
 /// a start in such a state does (issue 31: a side 0.0054 from the tip; the sign of the Newton
 /// matrix's determinant, 1e-27, is noise there, and the next step's fold passage reported a
-/// fold 1.3e-16 on).
+/// fold 1.3e-16 on). A halt at the slip rate's noise into such a state is not taken where the
+/// step can be taken again ([`Flow::Quiet`]).
 fn halted_trapped(set: &ContactSet, held: &ContactSet, pe: &Pt, q: &Pt) -> String {
-    let j = (0..set.contacts.len())
-        .find(|&k| set.contacts[k].mode != held.contacts[k].mode)
-        .unwrap_or(0);
+    let j = halted(set, held);
     let at: Vec<String> = (0..held.contacts.len())
         .filter(|&k| held.contacts[k].mode.no_slip())
         .map(|k| format!("{:.6}", held.s_of(k, &q.u)))
@@ -333,6 +340,13 @@ fn halted_trapped(set: &ContactSet, held: &ContactSet, pe: &Pt, q: &Pt) -> Strin
         held.label(),
         at.join(" and ")
     )
+}
+
+/// The contact of `set` that halted, held in `held` (the first whose mode differs).
+fn halted(set: &ContactSet, held: &ContactSet) -> usize {
+    (0..set.contacts.len())
+        .find(|&k| set.contacts[k].mode != held.contacts[k].mode)
+        .unwrap_or(0)
 }
 
 /// The set `new_set` left where the slip's driver let go (from `set` at `pe`, the foot at `xf`),
@@ -439,16 +453,29 @@ const SLIP_NOISE: f64 = 1e-7;
 /// at both ends of a short step next to its halt, and a halt left unlocated there ends before
 /// the next step starts: the rod tapered to 0.3 over 0.001/0.5/2π/3, whose tip halts at d
 /// 0.2633, then failed to locate it, "no sign change".)
-fn noise_halt(env: &Env, c: Crossing, (prev, at, end): (&Pt, &Pt, &Pt)) -> bool {
+///
+/// Nor for the contact `quiet` ([`Walk::quiet`]), whose halt at its rate's noise was found to
+/// hold it in a state that traps the rod, singular to working precision (a tip sliding beside
+/// a side 0.0066 from it, the pair of tangential forces between them indeterminate): it slides
+/// on at a rate of zero, `T = dir·μk N` determining the forces, where held they are not.
+fn noise_halt(
+    env: &Env,
+    c: Crossing,
+    (prev, at, end): (&Pt, &Pt, &Pt),
+    quiet: Option<usize>,
+) -> bool {
     let Crossing::Halt(j) = c else {
         return false;
     };
-    let small = |p: &Pt| {
-        p.w.contacts
-            .get(j)
-            .is_some_and(|c| c.slide.slip.abs() <= SLIP_NOISE)
-    };
-    ended(Crossing::Lift(j).of_watch(env, &end.w)) && small(prev) && small(at)
+    let lifts = ended(Crossing::Lift(j).of_watch(env, &end.w));
+    (lifts || quiet == Some(j)) && slip_noise(at, j) && slip_noise(prev, j)
+}
+
+/// Whether the slip rate of the contact `j` at `p` is within [`SLIP_NOISE`].
+fn slip_noise(p: &Pt, j: usize) -> bool {
+    p.w.contacts
+        .get(j)
+        .is_some_and(|c| c.slide.slip.abs() <= SLIP_NOISE)
 }
 
 /// A located event inside a step.
@@ -481,6 +508,7 @@ impl<P: Profile> Run<'_, '_, P> {
             queue: VecDeque::new(),
             rate0: None,
             failed: None,
+            quiet: None,
             chord: None,
         };
         loop {
@@ -561,8 +589,37 @@ impl<P: Profile> Run<'_, '_, P> {
                 return self.ended(flow);
             }
             Some(Pending::AtStart(c)) => {
-                let flow = self.on_event(w, c, prev);
-                return self.ended(flow);
+                let mark = self.out.mark();
+                let flow = self.on_event(w, c, prev.clone());
+                return match (c, flow) {
+                    // a side lying along the surface from the state's first point whose stretch
+                    // does not hold there: the stop is the lie's, the solver's words added (as
+                    // for a stretch whose march fails after it, `Lain`)
+                    (
+                        Crossing::Lie(j),
+                        Flow::Unheld(StopReason::ContactChange { message, .. }, last),
+                    ) => {
+                        let why = format!("the stretch it forms is not resolved ({message})");
+                        let message = crate::events::curve_lie(&last.0, j, &prev, &why);
+                        // (without the lie's row: its state is the one that did not go on)
+                        self.out.rewind(mark);
+                        self.range.close(RangeEnd::Event);
+                        Flow::End(StopReason::ContactChange { d: lam, message }, Some(last))
+                    }
+                    // (two contacts closed up at the change that lie down as one stretch there,
+                    // which does not hold: the closing's stop, the solver's words added)
+                    (
+                        Crossing::Close(j, k),
+                        Flow::Unheld(StopReason::ContactChange { message, .. }, last),
+                    ) => {
+                        let why = format!("{} ({message})", crate::events::MERGED_UNRESOLVED);
+                        let message = crate::events::closed_up(&last.0, (j, k), &prev, &why);
+                        self.out.rewind(mark);
+                        self.range.close(RangeEnd::Event);
+                        Flow::End(StopReason::ContactChange { d: lam, message }, Some(last))
+                    }
+                    (_, flow) => self.ended(flow),
+                };
             }
             None => {}
         }
@@ -1045,17 +1102,40 @@ impl<P: Profile> Run<'_, '_, P> {
                 }
                 self.ended(Flow::Unheld(stop, last))
             }
+            Flow::Quiet(j, stop, last) => {
+                // a halt at the rate's noise into a trapped, singular state: the step again,
+                // as long, with that contact's noise halts not located (it slides on at zero)
+                let retry = before.filter(|b| {
+                    slip_noise(prev, j) && self.env.ground.slide == b.slide && {
+                        let to_old = (self.stepper).switch(last.0.clone(), lam, prev.u.clone());
+                        to_old.is_ok()
+                    }
+                });
+                let Some(b) = retry else {
+                    return Flow::End(stop, Some(last));
+                };
+                self.out.rewind(b.mark);
+                *self.range = b.range;
+                self.lain = lain;
+                w.quiet = Some(j);
+                w.hist.pop();
+                w.queue.clear();
+                w.h = p_lam - lam;
+                Flow::Go
+            }
             flow => flow,
         }
     }
 
-    /// `flow` with [`Flow::Unheld`] made the end it is where it is not taken again.
+    /// `flow` with [`Flow::Unheld`] and [`Flow::Quiet`] made the end they are where they are not
+    /// taken again.
     fn ended(&mut self, flow: Flow) -> Flow {
         match flow {
             Flow::Unheld(stop, last) => {
                 self.range.close(RangeEnd::SolverFailure);
                 Flow::End(stop, Some(last))
             }
+            Flow::Quiet(_, stop, last) => Flow::End(stop, Some(last)),
             flow => flow,
         }
     }
@@ -1079,7 +1159,9 @@ impl<P: Profile> Run<'_, '_, P> {
         let mut failure: Option<StopReason> = None;
         let mut ended_now: Vec<(f64, Crossing)> = armed
             .iter()
-            .filter(|&&c| ended(c.of_watch(env, &p.w)) && !noise_halt(env, c, (prev, p, p)))
+            .filter(|&&c| {
+                ended(c.of_watch(env, &p.w)) && !noise_halt(env, c, (prev, p, p), w.quiet)
+            })
             .map(|&c| {
                 let (g0, g1) = (c.of_watch(env, &prev.w), c.of_watch(env, &p.w));
                 let at = g0 / (g0 - g1);
@@ -1183,7 +1265,7 @@ impl<P: Profile> Run<'_, '_, P> {
         let back = |c: Crossing, f: &Found| {
             c != f.cross
                 && beyond(c.of_watch(env, &f.pt.w))
-                && !noise_halt(env, c, (prev, &f.pt, end))
+                && !noise_halt(env, c, (prev, &f.pt, end), w.quiet)
         };
         // (each replacement is strictly earlier: at most one per armed event)
         for _ in 0..armed.len() {
@@ -1377,6 +1459,10 @@ impl<P: Profile> Run<'_, '_, P> {
                     self.range.close(RangeEnd::Event);
                     let message = halted_trapped(&set, &new_set, &pe, &q);
                     let stop = StopReason::ContactChange { d: pe.lam, message };
+                    let j = halted(&set, &new_set);
+                    if slip_noise(&pe, j) && w.quiet != Some(j) {
+                        return Flow::Quiet(j, stop, Box::new((set, pe)));
+                    }
                     return Flow::End(stop, Some(Box::new((set, pe))));
                 }
                 // a maximum of |μ| at the kink of the change
@@ -1390,6 +1476,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 // (one within rounding of zero too: its side is noise, and an armed one would
                 // cross back at once, an event the grid decides)
                 let env = &self.env;
+                w.quiet = None;
                 w.pending = Crossing::all(env, &new_set)
                     .into_iter()
                     .filter(|c| {
