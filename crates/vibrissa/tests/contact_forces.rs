@@ -1536,7 +1536,10 @@ fn a_side_whose_stretch_does_not_hold_at_its_first_point_stops_as_the_lie() {
     let (c, s) = rat_case(0.02, 0.5, 2.0 * std::f64::consts::PI / 3.0, 0.3);
     let out = run_in(&c, s).unwrap_or_else(|e| panic!("{c:?}: {e}"));
     assert!(out.contains("begins to lie along the surface"), "{out}");
-    assert!(out.contains("the stretch it forms is not resolved"), "{out}");
+    assert!(
+        out.contains("the stretch it forms is not resolved"),
+        "{out}"
+    );
     assert!((stop_d(&out).unwrap() - 0.0746456).abs() < 1e-6, "{out}");
 }
 
