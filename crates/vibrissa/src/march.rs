@@ -591,35 +591,37 @@ impl<P: Profile> Run<'_, '_, P> {
             Some(Pending::AtStart(c)) => {
                 let mark = self.out.mark();
                 let flow = self.on_event(w, c, prev.clone());
-                return match (c, flow) {
-                    // a side lying along the surface from the state's first point whose stretch
-                    // does not hold there: the stop is the lie's, the solver's words added (as
-                    // for a stretch whose march fails after it, `Lain`)
-                    (
-                        Crossing::Lie(j),
-                        Flow::Unheld(StopReason::ContactChange { message, .. }, last),
-                    ) => {
-                        let why = format!("the stretch it forms is not resolved ({message})");
-                        let message = crate::events::curve_lie(&last.0, j, &prev, &why);
-                        // (without the lie's row: its state is the one that did not go on)
-                        self.out.rewind(mark);
-                        self.range.close(RangeEnd::Event);
-                        Flow::End(StopReason::ContactChange { d: lam, message }, Some(last))
-                    }
-                    // (two contacts closed up at the change that lie down as one stretch there,
-                    // which does not hold: the closing's stop, the solver's words added)
-                    (
-                        Crossing::Close(j, k),
-                        Flow::Unheld(StopReason::ContactChange { message, .. }, last),
-                    ) => {
-                        let why = format!("{} ({message})", crate::events::MERGED_UNRESOLVED);
-                        let message = crate::events::closed_up(&last.0, (j, k), &prev, &why);
-                        self.out.rewind(mark);
-                        self.range.close(RangeEnd::Event);
-                        Flow::End(StopReason::ContactChange { d: lam, message }, Some(last))
-                    }
-                    (_, flow) => self.ended(flow),
+                // a side lying along the surface from the state's first point, or two contacts
+                // closed up at the change lying down as one stretch there, whose stretch does not
+                // hold: the stop is the lie's, or the closing's, the solver's words added (as for
+                // a stretch whose march fails after it, `Lain`), without the lie's row (its state
+                // is the one that did not go on)
+                let Flow::Unheld(StopReason::ContactChange { d, message }, last) = flow else {
+                    return self.ended(flow);
                 };
+                let said = match c {
+                    Crossing::Lie(j) => {
+                        let why = format!("the stretch it forms is not resolved ({message})");
+                        crate::events::curve_lie(&last.0, j, &prev, &why)
+                    }
+                    Crossing::Close(j, k) => {
+                        let why = format!("{} ({message})", crate::events::MERGED_UNRESOLVED);
+                        crate::events::closed_up(&last.0, (j, k), &prev, &why)
+                    }
+                    _ => {
+                        return self
+                            .ended(Flow::Unheld(StopReason::ContactChange { d, message }, last))
+                    }
+                };
+                self.out.rewind(mark);
+                self.range.close(RangeEnd::Event);
+                return Flow::End(
+                    StopReason::ContactChange {
+                        d: lam,
+                        message: said,
+                    },
+                    Some(last),
+                );
             }
             None => {}
         }
@@ -1083,48 +1085,54 @@ impl<P: Profile> Run<'_, '_, P> {
                 // a new contact state that does not hold at an event located at the start of
                 // a long step may be a root of the noise: the step again, shorter, once
                 let again = w.failed == Some((lam, p_lam));
-                let retry = before.filter(|b| {
-                    p_lam - lam > w.h_min && !again && self.env.ground.slide == b.slide
-                });
-                if let Some(b) = retry.filter(|_| {
-                    (self.stepper)
-                        .switch(last.0.clone(), lam, prev.u.clone())
-                        .is_ok()
-                }) {
-                    self.out.rewind(b.mark);
-                    *self.range = b.range;
-                    self.lain = lain;
-                    w.failed = Some((lam, p_lam));
-                    w.hist.pop();
-                    w.queue.clear();
-                    w.h = self.ctl.reject * (p_lam - lam);
-                    return Flow::Go;
+                let long = p_lam - lam > w.h_min && !again;
+                if let Some(b) = before.filter(|b| long && self.env.ground.slide == b.slide) {
+                    let h = self.ctl.reject * (p_lam - lam);
+                    if self.take_again(w, b, (last.0.clone(), prev), lain, h) {
+                        w.failed = Some((lam, p_lam));
+                        return Flow::Go;
+                    }
                 }
                 self.ended(Flow::Unheld(stop, last))
             }
             Flow::Quiet(j, stop, last) => {
                 // a halt at the rate's noise into a trapped, singular state: the step again,
                 // as long, with that contact's noise halts not located (it slides on at zero)
-                let retry = before.filter(|b| {
-                    slip_noise(prev, j) && self.env.ground.slide == b.slide && {
-                        let to_old = (self.stepper).switch(last.0.clone(), lam, prev.u.clone());
-                        to_old.is_ok()
+                let noise = slip_noise(prev, j);
+                if let Some(b) = before.filter(|b| noise && self.env.ground.slide == b.slide) {
+                    if self.take_again(w, b, (last.0.clone(), prev), lain, p_lam - lam) {
+                        w.quiet = Some(j);
+                        return Flow::Go;
                     }
-                });
-                let Some(b) = retry else {
-                    return Flow::End(stop, Some(last));
-                };
-                self.out.rewind(b.mark);
-                *self.range = b.range;
-                self.lain = lain;
-                w.quiet = Some(j);
-                w.hist.pop();
-                w.queue.clear();
-                w.h = p_lam - lam;
-                Flow::Go
+                }
+                Flow::End(stop, Some(last))
             }
             flow => flow,
         }
+    }
+
+    /// The step from `prev` taken again, `h` long, where an event inside it led to a state that
+    /// is not taken: the stepper back on the old set `old` at the step's start, the record, the
+    /// range and the fallback lie (`lain`) as they were before the event, the step's end
+    /// dropped. `false` (nothing restored) where the stepper cannot go back.
+    fn take_again(
+        &mut self,
+        w: &mut Walk,
+        b: Before,
+        (old, prev): (ContactSet, &Pt),
+        lain: Option<Box<Lain>>,
+        h: f64,
+    ) -> bool {
+        if self.stepper.switch(old, prev.lam, prev.u.clone()).is_err() {
+            return false;
+        }
+        self.out.rewind(b.mark);
+        *self.range = b.range;
+        self.lain = lain;
+        w.hist.pop();
+        w.queue.clear();
+        w.h = h;
+        true
     }
 
     /// `flow` with [`Flow::Unheld`] and [`Flow::Quiet`] made the end they are where they are not
@@ -1310,41 +1318,39 @@ impl<P: Profile> Run<'_, '_, P> {
         let mut next = transition(&self.env, rules, &set, cross, &pe, xf);
         // (a failure falls back on a lie-down only while the set it formed is the march's)
         self.lain = None;
-        if let (Next::Switch(Event::LieDown, ..), Crossing::Lie(j)) = (&next, cross) {
+        if matches!(next, Next::Switch(Event::LieDown, ..)) {
+            // (a side that lies down, or two contacts that close up lying down as one stretch:
+            // the stop said as that, with why)
+            let words = |why: &str| match cross {
+                Crossing::Lie(j) => Some(crate::events::curve_lie(&set, j, &pe, why)),
+                Crossing::Close(j, k) => Some(crate::events::closed_up(&set, (j, k), &pe, why)),
+                _ => None,
+            };
             if !self.stepper.lies() {
                 let why = "a stretch lying on the surface is solved by the rod's own shooter \
                            (method shooting)";
-                next = Next::Limit(crate::events::curve_lie(&set, j, &pe, why));
-            } else if crate::events::lies_sliding_with_beyond(&set, j) {
-                let why = "the stretch that forms sliding along the surface, with contacts \
-                           beyond it, is not resolved";
-                let lie = crate::events::curve_lie(&set, j, &pe, why);
-                self.lain = Some(Box::new(Lain {
-                    set: set.clone(),
-                    pe: pe.clone(),
-                    lie,
-                    mark: self.out.mark(),
-                    range: *self.range,
-                }));
-            }
-        }
-        if let (Next::Switch(Event::LieDown, ..), Crossing::Close(j, k)) = (&next, cross) {
-            // (two contacts that close up lie down as one stretch; where the march after it
-            // fails in the solver, the drag ends at the closing, said as that)
-            let why = crate::events::MERGED_UNRESOLVED;
-            let closed = crate::events::closed_up(&set, (j, k), &pe, why);
-            if self.stepper.lies() {
-                self.lain = Some(Box::new(Lain {
-                    set: set.clone(),
-                    pe: pe.clone(),
-                    lie: closed,
-                    mark: self.out.mark(),
-                    range: *self.range,
-                }));
+                if let Some(stop) = words(why) {
+                    next = Next::Limit(stop);
+                }
             } else {
-                let why = "a stretch lying on the surface is solved by the rod's own shooter \
-                           (method shooting)";
-                next = Next::Limit(crate::events::closed_up(&set, (j, k), &pe, why));
+                // where the march after it fails in the solver, the drag ends there, said so
+                let fallback = match cross {
+                    Crossing::Lie(j) if crate::events::lies_sliding_with_beyond(&set, j) => words(
+                        "the stretch that forms sliding along the surface, with contacts beyond \
+                         it, is not resolved",
+                    ),
+                    Crossing::Close(..) => words(crate::events::MERGED_UNRESOLVED),
+                    _ => None,
+                };
+                if let Some(lie) = fallback {
+                    self.lain = Some(Box::new(Lain {
+                        set: set.clone(),
+                        pe: pe.clone(),
+                        lie,
+                        mark: self.out.mark(),
+                        range: *self.range,
+                    }));
+                }
             }
         }
         match next {
