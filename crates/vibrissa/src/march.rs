@@ -125,30 +125,38 @@ pub(crate) fn march<P: Profile>(
             range: &mut range,
             lain: None,
         };
-        if indeterminate {
-            let stop = run.indeterminate(&set, &p0);
-            (stop, Some((set, p0)))
-        } else {
-            let (stop, last) = run.run(p0);
-            match (stop, run.lain.take()) {
-                (StopReason::SolverFailure { message, .. }, Some(lain)) => {
-                    let Lain {
-                        set,
-                        pe,
-                        lie,
-                        mark,
-                        range,
-                    } = *lain;
-                    run.out.rewind(mark);
-                    *run.range = range;
-                    run.range.close(RangeEnd::Event);
-                    let stop = StopReason::ContactChange {
-                        d: pe.lam,
-                        message: format!("{lie} ({message})"),
-                    };
-                    (stop, Some((set, pe)))
+        // (in a drag, the pair's member that friction lets go first slides from the start)
+        let start = match indeterminate {
+            false => Ok((p0, None)),
+            true => run.slides_at_start(&set, &p0).ok_or(p0),
+        };
+        match start {
+            Err(p0) => {
+                let stop = run.indeterminate(&set, &p0);
+                (stop, Some((set, p0)))
+            }
+            Ok((p0, quiet)) => {
+                let (stop, last) = run.run(p0, quiet);
+                match (stop, run.lain.take()) {
+                    (StopReason::SolverFailure { message, .. }, Some(lain)) => {
+                        let Lain {
+                            set,
+                            pe,
+                            lie,
+                            mark,
+                            range,
+                        } = *lain;
+                        run.out.rewind(mark);
+                        *run.range = range;
+                        run.range.close(RangeEnd::Event);
+                        let stop = StopReason::ContactChange {
+                            d: pe.lam,
+                            message: format!("{lie} ({message})"),
+                        };
+                        (stop, Some((set, pe)))
+                    }
+                    (stop, _) => (stop, last),
                 }
-                (stop, _) => (stop, last),
             }
         }
     };
@@ -427,6 +435,23 @@ fn may_shadow(a: Crossing, b: Crossing) -> bool {
     }
 }
 
+/// A state's first point `p` as the row of an event there: a contact's normal force below zero
+/// by no more than [`AT_ZERO`] is zero, as any event function that close to zero right after a
+/// change of set (the march's own test of a pull is `1e-10 (1 + ΣN)`). Issue 31's property seed
+/// 25: a side touching down at N = 0 beside a slider at N = 4.9e-12 (both at the rounding of
+/// the stuck side's 5.6) had N = −3.5e-13 at the first point after the slider's halt, which
+/// was the row of the next halt there; released there instead, it left the free rod crossing
+/// the surface at once, so it stays, at zero.
+fn at_zero(mut p: Pt) -> Pt {
+    for c in &mut p.w.contacts {
+        if c.normal < 0.0 && -c.normal <= AT_ZERO {
+            p.w.normal -= c.normal;
+            c.normal = 0.0;
+        }
+    }
+    p
+}
+
 /// Ends the march with `stop` at the newest point of the history.
 fn end(stop: StopReason) -> Flow {
     Flow::End(stop, None)
@@ -486,7 +511,7 @@ struct Found {
 
 impl<P: Profile> Run<'_, '_, P> {
     /// The march proper; returns why it stopped and the last point.
-    fn run(&mut self, p0: Pt) -> (StopReason, Option<(ContactSet, Pt)>) {
+    fn run(&mut self, p0: Pt, quiet: Option<usize>) -> (StopReason, Option<(ContactSet, Pt)>) {
         let spec = self.spec;
         let lam_end = spec.lam_end;
         let h_max = self.stepper.h_max().min(lam_end - p0.lam).max(1e-12);
@@ -508,7 +533,7 @@ impl<P: Profile> Run<'_, '_, P> {
             queue: VecDeque::new(),
             rate0: None,
             failed: None,
-            quiet: None,
+            quiet,
             chord: None,
         };
         loop {
@@ -518,6 +543,46 @@ impl<P: Profile> Run<'_, '_, P> {
                 return (stop, Some(last.map_or_else(newest, |b| *b)));
             }
         }
+    }
+
+    /// A drag's start that traps the rod between contacts whose pair of tangential forces is
+    /// indeterminate (`set` at `p0`, pressed without friction, `T = 0`): the point-contact model
+    /// leaves the pair's split open, and every split is the same rod (the foot's force the
+    /// same). Dragged, the pair's forces change by thousands per unit `d` (a stiff pair: the
+    /// uniform rod over 0.003/0.02 with a side 0.0097 before the tip, `dN/dd` −4575 at the tip),
+    /// so a contact of the pair reaches its cone at once: the one with the least normal force
+    /// first. It slides from the start with kinetic friction, `T = ±μk N`, the first way its
+    /// slip rate's sign agrees with, and no longer traps the rod: the start, its split the one
+    /// friction fixes, and the contact `Some(j)` that so slides. Its rate is zero within the
+    /// noise (the pair holds it in place), so the way is the noise's: it slides on at a rate of
+    /// zero, its halts at the noise not located until the contact set changes
+    /// ([`Walk::quiet`]), as a slider's whose halt would trap the rod ([`noise_halt`]). (The
+    /// other way at the same start halts at once and reverses, the rows after it the same.)
+    /// `None` where no contact so slides, or not in a drag: the start stops by name.
+    fn slides_at_start(&mut self, set: &ContactSet, p0: &Pt) -> Option<(Pt, Option<usize>)> {
+        let mu_k = self.env.ground.mu_k.filter(|_| self.spec.friction)?;
+        let mut held: Vec<usize> = (0..set.contacts.len())
+            .filter(|&j| set.contacts[j].mode.no_slip())
+            .collect();
+        held.sort_by(|&a, &b| (p0.w.contacts[a].normal).total_cmp(&p0.w.contacts[b].normal));
+        for j in held {
+            for ratio in [mu_k, -mu_k] {
+                let mut slid = set.clone();
+                slid.contacts[j].mode = Mode::Sliding(ratio);
+                let Ok(p) = self.stepper.switch(slid.clone(), p0.lam, p0.u.clone()) else {
+                    continue;
+                };
+                let slips = ratio * p.w.contacts[j].slide.slip > 0.0;
+                if slips && !self.stepper.trapped_singular(&slid, p.lam, &p.u) {
+                    return Some((p, Some(j)));
+                }
+            }
+        }
+        // (the stepper back on the start's set, for its row)
+        self.stepper
+            .switch(set.clone(), p0.lam, p0.u.clone())
+            .ok()?;
+        None
     }
 
     /// A start whose trapped pair is indeterminate: its own grid row (frictionless, T = 0), and
@@ -583,12 +648,14 @@ impl<P: Profile> Run<'_, '_, P> {
             // a sliding contact that reverses from the state's first point halts there: the
             // event at the start, as a step's (its held state then decides on)
             Some(Pending::AtStart(Crossing::Halt(j))) => {
+                let prev = at_zero(prev);
                 let (set, u) = (self.stepper.set().clone(), prev.u.clone());
                 let next = self.reversed(&set, j, &prev);
                 let flow = self.switch(w, (Event::Halt, set, prev), next, u);
                 return self.ended(flow);
             }
             Some(Pending::AtStart(c)) => {
+                let prev = at_zero(prev);
                 let mark = self.out.mark();
                 let flow = self.on_event(w, c, prev.clone());
                 // a side lying along the surface from the state's first point, or two contacts
@@ -1029,6 +1096,27 @@ impl<P: Profile> Run<'_, '_, P> {
             failure = Some(f);
         }
         if let (None, Some(f)) = (&found, failure) {
+            // a sliding contact's halt whose rate is within the noise at both ends of the step,
+            // where no sign change is found: the step again, as long, the contact sliding on at
+            // a rate of zero (its halts at the noise not located until the set changes)
+            let noise = armed.iter().find_map(|&c| match c {
+                Crossing::Halt(j)
+                    if w.quiet != Some(j)
+                        && ended(c.of_watch(&self.env, &p.w))
+                        && slip_noise(prev, j)
+                        && slip_noise(&p, j) =>
+                {
+                    Some(j)
+                }
+                _ => None,
+            });
+            if let Some(j) = noise {
+                w.quiet = Some(j);
+                w.hist.pop();
+                w.queue.clear();
+                w.h = p.lam - lam;
+                return Flow::Go;
+            }
             // a step too long for the event's scale (a light touch changes fast): the step
             // again, shorter, before giving up — unless this very step failed before: a
             // shorter natural step that fails hands over to the fold passage, whose first
