@@ -1439,6 +1439,11 @@ impl<P: Profile> Run<'_, '_, P> {
     /// The outcome of the event `cross` at its located point `pe`: a change of contact set and
     /// the march goes on, or the end.
     fn on_event(&mut self, w: &mut Walk, cross: Crossing, mut pe: Pt) -> Flow {
+        if let Crossing::Lift(_) = cross {
+            // (the contact letting go has N = 0 at its root: one a rounding below it, −4.3e-18
+            // on the property's seed 39 at 64 cases, is that zero on the release's row)
+            pe = at_zero(pe);
+        }
         let set = self.stepper.set().clone();
         let rules = Rules {
             friction: self.spec.friction,

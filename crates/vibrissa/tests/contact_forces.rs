@@ -1690,3 +1690,21 @@ fn a_reversal_at_once_that_would_gain_energy_is_a_jam() {
     assert!((d - 0.0114527).abs() < 1e-6, "{out}");
     assert!(message.contains("more elastic energy"), "{out}");
 }
+
+/// The property's seed 39 at 64 cases (found 2026-12-02): the row of a side's release at
+/// d 0.0133039 had that side at N = −4.3e-18, its located root a rounding below zero. The contact
+/// letting go has N = 0 there (march.rs `on_event`, as `at_zero`), and every row is checked.
+#[test]
+fn a_release_row_has_its_contact_at_zero_not_below() {
+    open(&Case {
+        amp: 0.007528453805103777,
+        wave: 0.05255852259334255,
+        phase: 3.1414078660059817,
+        eta: 0.5565562168487712,
+        mu_s: 0.6404117478425113,
+        ratio: 0.6787866289862888,
+        taper: Some(0.5634813275408215),
+        radius: 0.0,
+        d_max: 0.05100675073132795,
+    });
+}
