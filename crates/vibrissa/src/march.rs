@@ -565,23 +565,16 @@ impl<P: Profile> Run<'_, '_, P> {
             .filter(|&j| set.contacts[j].mode.no_slip())
             .collect();
         held.sort_by(|&a, &b| (p0.w.contacts[a].normal).total_cmp(&p0.w.contacts[b].normal));
+        let untrapped = |st: &mut dyn Stepper, slid: &ContactSet, p: &Pt, _: usize| {
+            !st.trapped_singular(slid, p.lam, &p.u)
+        };
         for j in held {
-            for ratio in [mu_k, -mu_k] {
-                let mut slid = set.clone();
-                slid.contacts[j].mode = Mode::Sliding(ratio);
-                let Ok(p) = self.stepper.switch(slid.clone(), p0.lam, p0.u.clone()) else {
-                    continue;
-                };
-                let slips = ratio * p.w.contacts[j].slide.slip > 0.0;
-                if slips && !self.stepper.trapped_singular(&slid, p.lam, &p.u) {
-                    return Some((p, Some(j)));
-                }
+            if let Some((_, p)) = self.slides_from_start(set, j, (p0.lam, &p0.u), mu_k, untrapped) {
+                return Some((*p, Some(j)));
             }
         }
-        // (the stepper back on the start's set, for its row)
-        self.stepper
-            .switch(set.clone(), p0.lam, p0.u.clone())
-            .ok()?;
+        // (the stepper back on the start's set, for its row: `None` either way)
+        let _ = self.stepper.switch(set.clone(), p0.lam, p0.u.clone());
         None
     }
 
@@ -1060,6 +1053,18 @@ impl<P: Profile> Run<'_, '_, P> {
         back
     }
 
+    /// The end at the event point `pe` of `set` where no contact state continues (`message`
+    /// why): in a slip a jam, the slip turning dynamic; else a contact change.
+    fn impasse(&mut self, message: String, set: ContactSet, pe: Pt) -> Flow {
+        self.range.close(RangeEnd::Event);
+        let d = pe.lam;
+        let stop = match self.env.ground.slide {
+            Some(_) => StopReason::Jam { d, message },
+            None => StopReason::ContactChange { d, message },
+        };
+        Flow::End(stop, Some(Box::new((set, pe))))
+    }
+
     /// Where a halt reverses a sliding contact at once (`set` at `pe` to `new_set` at `q`, its
     /// held state no way on: [`Run::reversed`]), the words of the stop if the state it reverses
     /// into has more elastic energy than the one it leaves, beyond [`GAIN`] `(1 + E)`. Its
@@ -1079,12 +1084,14 @@ impl<P: Profile> Run<'_, '_, P> {
         if ev != Event::Halt {
             return None;
         }
-        let j = (0..set.contacts.len()).find(|&k| {
-            matches!(
-                (set.contacts[k].mode, new_set.contacts.get(k).map(|c| c.mode)),
-                (Mode::Sliding(a), Some(Mode::Sliding(b))) if a * b < 0.0
-            )
-        })?;
+        let j = halted(set, new_set);
+        let (Mode::Sliding(a), Mode::Sliding(b)) = (set.contacts[j].mode, new_set.contacts[j].mode)
+        else {
+            return None;
+        };
+        if a * b >= 0.0 {
+            return None;
+        }
         let before = self.stepper.energy(&pe.u, pe.lam)?;
         let after = self.stepper.energy(&q.u, q.lam)?;
         let gain = after - before;
@@ -1560,15 +1567,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     new_set = slid;
                     Ok(*q)
                 }
-                Trapped::Stop(message) => {
-                    self.range.close(RangeEnd::Event);
-                    let d = pe.lam;
-                    let stop = match self.env.ground.slide {
-                        Some(_) => StopReason::Jam { d, message },
-                        None => StopReason::ContactChange { d, message },
-                    };
-                    return Flow::End(stop, Some(Box::new((set, pe))));
-                }
+                Trapped::Stop(message) => return self.impasse(message, set, pe),
                 Trapped::Jam(message) => {
                     self.range.close(RangeEnd::Event);
                     let stop = StopReason::Jam { d: pe.lam, message };
@@ -1580,13 +1579,7 @@ impl<P: Profile> Run<'_, '_, P> {
         match switched {
             Ok(q) => {
                 if let Some(message) = self.reversal_gains(ev, (&set, &pe), (&new_set, &q)) {
-                    self.range.close(RangeEnd::Event);
-                    let d = pe.lam;
-                    let stop = match self.env.ground.slide {
-                        Some(_) => StopReason::Jam { d, message },
-                        None => StopReason::ContactChange { d, message },
-                    };
-                    return Flow::End(stop, Some(Box::new((set, pe))));
+                    return self.impasse(message, set, pe);
                 }
                 let crossing = driver_gone
                     .then(|| crossing_after_release(&self.env, &q))
@@ -1717,7 +1710,7 @@ impl<P: Profile> Run<'_, '_, P> {
             "side contact"
         };
         if self.stepper.trapped_singular(new_set, q.lam, &q.u) {
-            if let Some((slid, p)) = self.slides_from_start(new_set, j, q.lam, u, mu_k) {
+            if let Some((slid, p)) = self.slides_from_start(new_set, j, (q.lam, u), mu_k, loads) {
                 return Trapped::Slides(slid, p);
             }
             return Trapped::Stop(format!(
@@ -1739,7 +1732,7 @@ impl<P: Profile> Run<'_, '_, P> {
         if dn >= 0.0 {
             return Trapped::No;
         }
-        if let Some((slid, p)) = self.slides_from_start(new_set, j, q.lam, u, mu_k) {
+        if let Some((slid, p)) = self.slides_from_start(new_set, j, (q.lam, u), mu_k, loads) {
             return Trapped::Slides(slid, p);
         }
         Trapped::Jam(format!(
@@ -1752,17 +1745,17 @@ impl<P: Profile> Run<'_, '_, P> {
         ))
     }
 
-    /// `new_set` with its contact `j`, just formed, sliding with kinetic friction `mu_k` the way
-    /// the rod moves over it, and its first point at `λ` from the old state in the new unknowns
-    /// `u`: the first of the two ways (`+x`, then `−x`) whose state loads the contact (its normal
-    /// force rises) and slips it the way its friction opposes; `None` where neither does.
+    /// `new_set` with its contact `j` sliding with kinetic friction `mu_k` the way the rod moves
+    /// over it, and its first point at `λ` from the state's unknowns `u`: the first of the two
+    /// ways (`+x`, then `−x`) whose state slips it the way its friction opposes and that `takes`
+    /// (for a contact just formed, [`loads`]: its normal force rises); `None` where neither does.
     fn slides_from_start(
         &mut self,
         new_set: &ContactSet,
         j: usize,
-        lam: f64,
-        u: &[f64],
+        (lam, u): (f64, &[f64]),
         mu_k: f64,
+        takes: impl Fn(&mut dyn Stepper, &ContactSet, &Pt, usize) -> bool,
     ) -> Option<(ContactSet, Box<Pt>)> {
         for ratio in [mu_k, -mu_k] {
             let mut slid = new_set.clone();
@@ -1770,8 +1763,7 @@ impl<P: Profile> Run<'_, '_, P> {
             let Ok(p) = self.stepper.switch(slid.clone(), lam, u.to_vec()) else {
                 continue;
             };
-            let rate = p.w.contacts[j].slide;
-            if ratio * rate.slip > 0.0 && rate.dnormal > 0.0 {
+            if ratio * p.w.contacts[j].slide.slip > 0.0 && takes(&mut *self.stepper, &slid, &p, j) {
                 return Some((slid, Box::new(p)));
             }
         }
@@ -1944,6 +1936,12 @@ enum Pending {
 /// state within the energy's accuracy (its quadrature agrees with the metered work to 1e-11 per
 /// step; a slip's balance is asked to 1e-8).
 const GAIN: f64 = 1e-9;
+
+/// Whether the sliding state `p` loads its contact `j` (its normal force rises): the test of a
+/// contact that forms sliding ([`Run::slides_from_start`]).
+fn loads(_: &mut dyn Stepper, _: &ContactSet, p: &Pt, j: usize) -> bool {
+    p.w.contacts[j].slide.dnormal > 0.0
+}
 
 /// The largest rate `|du/dλ|` of a held state's tangent that still lets the march go on from it.
 const HOLD_MAX: f64 = 1e6;

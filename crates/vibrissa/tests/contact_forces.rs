@@ -1584,6 +1584,16 @@ fn a_halt_among_contacts_at_rounding_level_forces_is_not_tensile() {
     assert!((stop_d(&out).unwrap() - 0.0613862).abs() < 1e-6, "{out}");
 }
 
+/// The texture grid's uniform rod, point tip, over 0.003/0.02 at `phase` to `d_max` (the paper's
+/// drag settings, as [`grid_case`]).
+fn fine_uniform(phase: f64, d_max: f64) -> Case {
+    Case {
+        taper: None,
+        d_max,
+        ..grid_case(0.003, 0.02, phase, 0.0)
+    }
+}
+
 /// Was a named stop at d = 0 (issue 31's texture grid, the uniform rod over 0.003/0.02 at phases
 /// 0 and 2π/3, point tip): pressed without friction, the rod touches at a side 0.0097 (0.0101)
 /// before the tip, and with both held the pair of tangential forces between them is
@@ -1601,17 +1611,7 @@ fn a_drag_whose_start_traps_an_indeterminate_pair_slides_from_it() {
         (0.0, 918, true),
         (2.0 * std::f64::consts::PI / 3.0, 429, false),
     ] {
-        let c = Case {
-            amp: 0.003,
-            wave: 0.02,
-            phase,
-            eta: 0.75,
-            mu_s: 0.5,
-            ratio: 0.6,
-            taper: None,
-            radius: 0.0,
-            d_max: 0.3,
-        };
+        let c = fine_uniform(phase, 0.3);
         for points in [201, 11] {
             let (out, r) = run_checked(&c, scene(&c), points, HANG)
                 .unwrap_or_else(|e| panic!("{c:?} on {points}: {e}"));
@@ -1639,17 +1639,7 @@ fn a_drag_whose_start_traps_an_indeterminate_pair_slides_from_it() {
 /// same scene to d 0.3, have up to d 0.05: the pair's slips follow the noise.)
 #[test]
 fn a_halt_at_the_noise_that_no_search_locates_is_not_a_failure() {
-    let c = Case {
-        amp: 0.003,
-        wave: 0.02,
-        phase: 2.0 * std::f64::consts::PI / 3.0,
-        eta: 0.75,
-        mu_s: 0.5,
-        ratio: 0.6,
-        taper: None,
-        radius: 0.0,
-        d_max: 0.05,
-    };
+    let c = fine_uniform(2.0 * std::f64::consts::PI / 3.0, 0.05);
     let (out, r) = run_checked(&c, scene(&c), 201, HANG).unwrap_or_else(|e| panic!("{c:?}: {e}"));
     let r = r.expect("a start");
     assert_eq!(r.stop, StopReason::DMax, "{out}");
