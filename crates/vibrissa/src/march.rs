@@ -1106,21 +1106,21 @@ impl<P: Profile> Run<'_, '_, P> {
     }
 
     /// Where a halt reverses a sliding contact at once (`set` at `pe` to `new_set` at `q`, its
-    /// held state no way on: [`Run::reversed`]), the words of the stop if the state it reverses
-    /// into has more elastic energy than the one it leaves, beyond [`GAIN`] `(1 + E)`. Its
-    /// friction flips by `2 μk N` at once, so the rod jumps between the two equilibria at the
-    /// same foot and slide; a jump at once is passive, its energy can only fall (by the work of
-    /// the contacts that slide in it). One that would gain energy is no state the rod reaches:
-    /// the property's seed 31 at 64 cases, a side reversing 2.5e-7 into a slip at the first
-    /// point of the state in which its neighbour slips with the tip, gained 9.66e-8, and that
-    /// slip's dissipation exceeded its released energy by as much. `None` for any other change,
-    /// and where the stepper has no energy.
-    fn reversal_gains(
+    /// held state no way on: [`Run::reversed`]), how the jump between the two states changes the
+    /// elastic energy, beyond [`GAIN`] `(1 + E)`. Its friction flips by `2 μk N` at once, so the
+    /// rod jumps between two equilibria at the same foot and slide, and no contact's friction is
+    /// metered over the jump. One that would gain energy is no state the rod reaches
+    /// ([`Jump::Gains`]: the property's seed 31 at 64 cases, a side reversing 2.5e-7 into a slip
+    /// gained 9.66e-8, and that slip's dissipation exceeded its released energy by as much). One
+    /// that loses energy ([`Jump::Loses`]) has the held route tried instead
+    /// ([`Run::held_instead`]). `None` for any other change, a jump within `GAIN`, and where the
+    /// stepper has no energy.
+    fn reversal_jumps(
         &mut self,
         ev: Event,
         (set, pe): (&ContactSet, &Pt),
         (new_set, q): (&ContactSet, &Pt),
-    ) -> Option<String> {
+    ) -> Option<Jump> {
         if ev != Event::Halt {
             return None;
         }
@@ -1135,9 +1135,10 @@ impl<P: Profile> Run<'_, '_, P> {
         let before = self.stepper.energy(&pe.u, pe.lam)?;
         let after = self.stepper.energy(&q.u, q.lam)?;
         let gain = after - before;
-        (gain > GAIN * (1.0 + before.abs())).then(|| {
+        let by = GAIN * (1.0 + before.abs());
+        if gain > by {
             let c = &pe.w.contacts[j];
-            format!(
+            Some(Jump::Gains(format!(
                 "the sliding contact at s = {:.6} halts and, held, is no way on, so it would \
                  slide back at once, its friction flipping by 2 mu_k N = {:.3e}; the state it \
                  would jump to has {gain:.3e} more elastic energy than the one it leaves, which \
@@ -1145,8 +1146,52 @@ impl<P: Profile> Run<'_, '_, P> {
                  friction continues (the rod moves dynamically)",
                 c.s,
                 2.0 * c.tangential.abs()
-            )
-        })
+            )))
+        } else if -gain > by {
+            Some(Jump::Loses(j))
+        } else {
+            None
+        }
+    }
+
+    /// The held state of the contact `j` of `set` that halted at `pe` and its first point, where
+    /// its tangent is within [`HOLD_FAR`]: taken instead of a reversal at once whose jump loses
+    /// energy that no friction works off. Held, the contact's friction turns through its cone
+    /// over the short slide that state allows, and it slips where it reaches its limit, each
+    /// step metered (the property's seed 62 at 256 cases: a side 0.22 behind a tip that slips,
+    /// reversed at once, jumped 5.2e-5 the way it slid before, against its new friction, and
+    /// released 1.8e-8 unmetered). `back`: the reversed set and the old state in its unknowns,
+    /// switched to again where the held state's switch fails. `Ok(None)`: the reversal stays (no
+    /// `back`, or the held state's tangent beyond `HOLD_FAR`, or its switch failed and the
+    /// reversal is switched to again); `Err`: that second switch failed too.
+    fn held_instead(
+        &mut self,
+        set: &ContactSet,
+        j: usize,
+        pe: &Pt,
+        back: Option<(ContactSet, Vec<f64>)>,
+    ) -> Result<Option<(ContactSet, Pt)>, String> {
+        let Some((reversed, u)) = back else {
+            return Ok(None);
+        };
+        let xf = self.stepper.foot(pe.lam).0;
+        let hold = crate::events::held(set, j, pe, xf);
+        let far = (self.stepper.tangent_in(&hold, pe.lam, &pe.u))
+            .is_none_or(|t| !t.iter().all(|v| v.abs() < HOLD_FAR));
+        if far {
+            return Ok(None);
+        }
+        if let Ok(q) = self.stepper.switch(hold.clone(), pe.lam, u.clone()) {
+            return Ok(Some((hold, q)));
+        }
+        match self.stepper.switch(reversed.clone(), pe.lam, u) {
+            Ok(q) => Ok(Some((reversed, q))),
+            Err(e) => Err(format!(
+                "the sliding contact at s = {:.6} halts; held, its state does not solve, and \
+                 reversed at once it no longer does either: {e}",
+                set.s_of(j, &pe.u)
+            )),
+        }
     }
 
     /// The end after too many steps in a row without progress in `λ`.
@@ -1603,6 +1648,7 @@ impl<P: Profile> Run<'_, '_, P> {
             .then(|| self.stepper.energy(&pe.u, pe.lam))
             .flatten();
         let formed = (new_set.contacts.len() > set.contacts.len()).then(|| u.clone());
+        let again = (ev == Event::Halt).then(|| u.clone());
         let switched = self.stepper.switch(new_set.clone(), pe.lam, u);
         let switched = match (switched, formed) {
             (Ok(q), Some(u)) => match self.formed_holds(&set, &new_set, &q, &u) {
@@ -1621,9 +1667,18 @@ impl<P: Profile> Run<'_, '_, P> {
             (r, _) => r,
         };
         match switched {
-            Ok(q) => {
-                if let Some(message) = self.reversal_gains(ev, (&set, &pe), (&new_set, &q)) {
-                    return self.impasse(message, set, pe);
+            Ok(mut q) => {
+                match self.reversal_jumps(ev, (&set, &pe), (&new_set, &q)) {
+                    Some(Jump::Gains(message)) => return self.impasse(message, set, pe),
+                    Some(Jump::Loses(j)) => {
+                        let back = again.map(|u| (new_set.clone(), u));
+                        match self.held_instead(&set, j, &pe, back) {
+                            Ok(Some((held, qh))) => (new_set, q) = (held, qh),
+                            Ok(None) => {}
+                            Err(message) => return self.impasse(message, set, pe),
+                        }
+                    }
+                    None => {}
                 }
                 let crossing = driver_gone
                     .then(|| crossing_after_release(&self.env, &new_set, &q))
@@ -1993,6 +2048,19 @@ fn loads(_: &mut dyn Stepper, _: &ContactSet, p: &Pt, j: usize) -> bool {
 
 /// The largest rate `|du/dλ|` of a held state's tangent that still lets the march go on from it.
 const HOLD_MAX: f64 = 1e6;
+
+/// The largest rate `|du/dλ|` of a held state's tangent taken instead of a reversal at once that
+/// loses energy ([`Run::held_instead`]): the held state's friction then turns through its cone
+/// over a slide of `2 μ N / rate`, 1e-9 at most, still steps the march takes.
+const HOLD_FAR: f64 = 1e9;
+
+/// How a reversal at once changes the elastic energy beyond [`GAIN`] (`Run::reversal_jumps`).
+enum Jump {
+    /// It would gain energy: the words of the stop.
+    Gains(String),
+    /// It would lose energy unmetered: the contact that reversed.
+    Loses(usize),
+}
 
 /// Whether the path's step `chord` is the march's step from `prev` to `p`.
 fn spans(chord: &Chord, prev: &Pt, p: &Pt) -> bool {
