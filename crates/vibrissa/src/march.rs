@@ -302,8 +302,8 @@ fn released_pushing(pe: &Pt, j: usize, why: &dyn std::fmt::Display) -> Option<St
         message: format!(
             "the sliding contact at s = {:.6} lets go (N = {:.1e}) while the slip still needs \
              the tangential force T = {:.3e} there: releasing it removes that force from the rod \
-             at once, and no quasi-static state without it follows (from the state at the release: {why}); \
-             the slip turns dynamic",
+             at once, and no quasi-static state without it follows (from the state at the \
+             release: {why}); the slip turns dynamic",
             c.s, c.normal, c.tangential
         ),
     })
@@ -1161,9 +1161,10 @@ impl<P: Profile> Run<'_, '_, P> {
     /// step metered (the property's seed 62 at 256 cases: a side 0.22 behind a tip that slips,
     /// reversed at once, jumped 5.2e-5 the way it slid before, against its new friction, and
     /// released 1.8e-8 unmetered). `back`: the reversed set and the old state in its unknowns,
-    /// switched to again where the held state's switch fails. `Ok(None)`: the reversal stays (no
-    /// `back`, or the held state's tangent beyond `HOLD_FAR`, or its switch failed and the
-    /// reversal is switched to again); `Err`: that second switch failed too.
+    /// switched to again where the held state's switch fails. `Ok(Some)`: the held set and its
+    /// first point, or, where the held state's switch failed, the reversed set switched to
+    /// again; `Ok(None)`: the reversal stays as it was (no `back`, or the held state's tangent
+    /// beyond `HOLD_FAR`); `Err`: the held state's switch and the second one both failed.
     fn held_instead(
         &mut self,
         set: &ContactSet,
@@ -2051,7 +2052,8 @@ const HOLD_MAX: f64 = 1e6;
 
 /// The largest rate `|du/dλ|` of a held state's tangent taken instead of a reversal at once that
 /// loses energy ([`Run::held_instead`]): the held state's friction then turns through its cone
-/// over a slide of `2 μ N / rate`, 1e-9 at most, still steps the march takes.
+/// over a slide of `2 μ N / rate`, no shorter than about 1e-9 for forces of order 1, steps the
+/// march still takes.
 const HOLD_FAR: f64 = 1e9;
 
 /// How a reversal at once changes the elastic energy beyond [`GAIN`] (`Run::reversal_jumps`).
