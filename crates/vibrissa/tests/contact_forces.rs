@@ -267,9 +267,9 @@ fn last_pieces(r: &DragResult) -> Vec<Option<&DragRow>> {
     out
 }
 
-/// How far the contact that slips at `row` (the one not stuck, beside the tip where it is the
-/// only one) moved to the slip's end `after`: the distance to the nearest point of `after` on
-/// the same side of the rod's end (the chord of the surface's arc over so short a piece).
+/// How far the contact that slips at `row` (its first contact [`Hold::Slipping`]; 0 where none)
+/// moved to the slip's end `after`: the distance to the nearest contact of `after` of its kind
+/// (tip or side), the chord of the surface's arc over so short a piece.
 fn slid(row: &[ContactState], after: &[ContactState]) -> f64 {
     let Some(k) = row.iter().find(|k| matches!(k.hold, Hold::Slipping { .. })) else {
         return 0.0;
@@ -1762,7 +1762,7 @@ fn a_release_row_has_its_contact_at_zero_not_below() {
 /// Was open (the property's seed 44 at 64 cases): a round tip (r 0.002) on the uniform rod over
 /// 0.00716/0.05. Slip 94 (d 0.0227379) slides a side 1.8e-3 along the surface; 2.4e-7 before
 /// its end the tip touches down, and in that state the side's `|T| − μk N` falls by 2.8 over
-/// the last 2.4e-7. Its end, located in `λ` to 1.6e-15 there, leaves the side's `T` 1.8e-8 off
+/// the last 2.4e-7. Its end, located in `λ` to about 1.5e-15 there, leaves the side's `T` 1.8e-8 off
 /// `μk N`: the precision of the located point at that rate, which the allowance now takes from
 /// the slip's last contact state (`LOCATE`), not from the slip's mean rate (2.4e3).
 #[test]
