@@ -1668,19 +1668,11 @@ impl<P: Profile> Run<'_, '_, P> {
             (r, _) => r,
         };
         match switched {
-            Ok(mut q) => {
-                match self.reversal_jumps(ev, (&set, &pe), (&new_set, &q)) {
-                    Some(Jump::Gains(message)) => return self.impasse(message, set, pe),
-                    Some(Jump::Loses(j)) => {
-                        let back = again.map(|u| (new_set.clone(), u));
-                        match self.held_instead(&set, j, &pe, back) {
-                            Ok(Some((held, qh))) => (new_set, q) = (held, qh),
-                            Ok(None) => {}
-                            Err(message) => return self.impasse(message, set, pe),
-                        }
-                    }
-                    None => {}
-                }
+            Ok(q) => {
+                let q = match self.after_reversal(ev, (&set, &pe), (&mut new_set, q), again) {
+                    Ok(q) => q,
+                    Err(message) => return self.impasse(message, set, pe),
+                };
                 let crossing = driver_gone
                     .then(|| crossing_after_release(&self.env, &new_set, &q))
                     .flatten()
@@ -1692,10 +1684,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     .zip(crossing)
                     .and_then(|(j, why)| released_pushing(&pe, j, &why));
                 if let Some(stop) = pushing {
-                    // the march ends at the event point, where the driver still touches
-                    self.out.driver = driver_before;
-                    self.range.close(RangeEnd::Event);
-                    return Flow::End(stop, Some(Box::new((set, pe))));
+                    return self.still_touching(stop, driver_before, set, pe);
                 }
                 if driver_gone {
                     // the sliding contact lifted off: the slip ends at the first point without
@@ -1741,10 +1730,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     .filter(|_| driver_gone)
                     .and_then(|j| released_pushing(&pe, j, &e))
                 {
-                    // the march ends at the event point, where the driver still touches
-                    self.out.driver = driver_before;
-                    self.range.close(RangeEnd::Event);
-                    return Flow::End(stop, Some(Box::new((set, pe))));
+                    return self.still_touching(stop, driver_before, set, pe);
                 }
                 let message = format!(
                     "{} ({} to {}): the new contact state does not hold: {e}",
@@ -1757,6 +1743,48 @@ impl<P: Profile> Run<'_, '_, P> {
                     Box::new((set, pe)),
                 )
             }
+        }
+    }
+
+    /// The end `stop` at the event point `pe` of `set`, where the slip's driver (`driver`, its
+    /// number before the change) still touches: a release that no quasi-static state follows.
+    fn still_touching(
+        &mut self,
+        stop: StopReason,
+        driver: Option<usize>,
+        set: ContactSet,
+        pe: Pt,
+    ) -> Flow {
+        self.out.driver = driver;
+        self.range.close(RangeEnd::Event);
+        Flow::End(stop, Some(Box::new((set, pe))))
+    }
+
+    /// The first point `q` of `new_set` after the change `ev` at `pe` of `set`, or of the held
+    /// state that replaces it (`new_set` then that set) where `ev` reverses a sliding contact at
+    /// once with a jump that loses energy ([`Run::reversal_jumps`], [`Run::held_instead`];
+    /// `again`: the old state in the new unknowns, for a halt). `Err`: the words of the jam
+    /// where the jump would gain energy, or where neither state solves.
+    fn after_reversal(
+        &mut self,
+        ev: Event,
+        (set, pe): (&ContactSet, &Pt),
+        (new_set, q): (&mut ContactSet, Pt),
+        again: Option<Vec<f64>>,
+    ) -> Result<Pt, String> {
+        match self.reversal_jumps(ev, (set, pe), (new_set, &q)) {
+            Some(Jump::Gains(message)) => Err(message),
+            Some(Jump::Loses(j)) => {
+                let back = again.map(|u| (new_set.clone(), u));
+                match self.held_instead(set, j, pe, back)? {
+                    Some((held, qh)) => {
+                        *new_set = held;
+                        Ok(qh)
+                    }
+                    None => Ok(q),
+                }
+            }
+            None => Ok(q),
         }
     }
 
