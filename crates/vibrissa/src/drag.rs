@@ -1518,11 +1518,11 @@ fn place(m: Mode) -> f64 {
     }
 }
 
-/// `set` with contact `k`, at its slip limit at `pe`, sliding along at that limit (`T/N` kept;
-/// at the foot's place `d`); the failure where its ratio is not finite (no normal force).
+/// `set` with contact `k`, at its slip limit at `pe`, sliding along at that limit (its
+/// `breaking_ratio`: `T/N` kept at a root, `μs` where the limit lies on a jump; at the foot's
+/// place `d`); the failure where its ratio is not finite (no normal force).
 fn riding_at_limit(set: ContactSet, pe: &Pt, k: usize, d: f64) -> Result<ContactSet, StopReason> {
-    let c = pe.w.contacts[k];
-    let ratio = c.friction() / c.normal;
+    let ratio = pe.w.contacts[k].breaking_ratio();
     if !ratio.is_finite() {
         return Err(StopReason::SolverFailure {
             d,

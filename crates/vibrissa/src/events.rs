@@ -737,9 +737,8 @@ fn transition_at(
     };
     match cross {
             Crossing::Slip(j) if rules.slide => {
-                let c = pe.w.contacts[j];
                 let mut ns = set.clone();
-                ns.contacts[j].mode = Mode::Sliding(c.friction() / c.normal);
+                ns.contacts[j].mode = Mode::Sliding(pe.w.contacts[j].breaking_ratio());
                 Next::Switch(Event::Slip, ns, u.clone())
             }
             // a contact that traps the rod reaches the bound of dry friction (no μ0)

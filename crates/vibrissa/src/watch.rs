@@ -94,7 +94,29 @@ impl ContactForce {
             self.stretch_mu * self.normal
         }
     }
+
+    /// The friction ratio `T/N` with which the contact, at its slip limit here, breaks free and
+    /// slides along: its own ratio, `±μs` where the limit is a root. A limit located on a jump
+    /// of the branch leaves the point on the side where the contact holds, short of `μs`: it
+    /// slides at `μs` the way its force points. (The property's seed 69 at 256 cases: a side
+    /// beside a slipping tip, its pair with the tip nearly indeterminate, had `T/N` 0.1848 at
+    /// its located limit under μs 0.551, its force beyond the limit 8.3e-10 later; it slid at
+    /// 0.1848, below μk 0.335, and ended the slip so.)
+    pub fn breaking_ratio(&self) -> f64 {
+        let ratio = self.friction() / self.normal;
+        if ratio.abs() < self.mu_s * (1.0 - BREAK_SHORT) {
+            self.mu_s.copysign(ratio)
+        } else {
+            ratio
+        }
+    }
 }
+
+/// How far short of `μs`, relative, the ratio of a contact at its located slip limit may be and
+/// still be its own: a root is located to ~1e-12, one on the scatter of a nearly indeterminate
+/// pair to ~1e-5 (a side creeping beside a stuck tip, seed 69's drag before its jump); a jump
+/// leaves it short by a finite part of `μs`.
+const BREAK_SHORT: f64 = 1e-3;
 
 /// A surface contact's slip along the branch (module `events`' halt, `record`'s friction work).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,14 +6,14 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc::{self, RecvTimeoutError};
+use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
-use std::time::Duration;
 use vibrissa::drag::{ContactState, DragEvent, DragRow, Hold};
 
 #[path = "support/contact_rate.rs"]
 mod contact_rate;
+#[path = "support/cpu_guard.rs"]
+mod cpu_guard;
 use contact_rate::rate;
 use vibrissa::surface::{Height, SurfaceProfile};
 use vibrissa::{
@@ -59,8 +59,8 @@ const FRICTION: f64 = 1e-10;
 /// `|T| − μk N` falls by 2.8 over it, a rate of 1.2e7 against the slip's mean 2.4e3).
 const LOCATE: f64 = 4e-13;
 
-/// Seconds after which a drag counts as hung (a case takes well under a second in the test
-/// profile; this only keeps a drag that does not end from blocking the test).
+/// Seconds of its thread's CPU after which a drag counts as hung (a case takes well under a
+/// second in the test profile; this only keeps a drag that does not end from blocking the test).
 const HANG: u64 = 30;
 
 /// [`HANG`] for the drags of thousands of slips (most `#[ignore = "slow: …"]`: about 30 s of
@@ -389,17 +389,9 @@ fn run_checked(
         },
         ..DragOptions::default()
     };
-    // (a drag that does not end, a hang, is cancelled after `hang` seconds and fails: its stop
-    // is `cancelled`, no physical one)
-    let (done, wait) = mpsc::channel::<()>();
-    let guard = std::thread::spawn(move || {
-        if let Err(RecvTimeoutError::Timeout) = wait.recv_timeout(Duration::from_secs(hang)) {
-            flag.store(true, Ordering::Relaxed);
-        }
-    });
-    let r = drag(&rod, &surface, &o);
-    drop(done);
-    guard.join().unwrap();
+    // (a drag that does not end, a hang, is cancelled after `hang` seconds of its thread's CPU
+    // and fails: its stop is `cancelled`, no physical one)
+    let r = cpu_guard::guarded(flag, hang, || drag(&rod, &surface, &o));
     let r = match r {
         Ok(r) => r,
         // (a start the model cannot continue in is named as a drag's stop is: accepted)
@@ -1862,13 +1854,13 @@ fn a_reversal_at_once_releases_no_unmetered_energy() {
     assert_eq!(r.slips.len(), 897, "{out}");
 }
 
-/// Open (the property's seed 67 at 256 cases, found 2026-12-02; the program's rows are the same
-/// before that day's held route): a round tip (r 0.0080) on the uniform rod over
-/// 0.00395 sin(2πx/0.0657 + 1.65) at η 0.469, μs 0.3, μk 0.06. The row of a side's halt in a
-/// stick (d 0.0363244) has that side at N = −2.2e-9, sliding towards −x, where the property
-/// asks N ≥ 0: its normal force is at zero where its slip rate is. Not traced.
+/// Was open (the property's seed 67 at 256 cases): a round tip (r 0.0080) on the uniform rod
+/// over 0.00395 sin(2πx/0.0657 + 1.65) at η 0.469, μs 0.3, μk 0.06. A side touches down at
+/// s 0.899 (d 0.0363244) sliding towards −x beside a sliding side and the stuck tip, and halts
+/// at the new state's first point; the halt's row had it at N = −2.2e-9, the noise of its
+/// touchdown (5e-10 of the total 3.86), where the property asks N ≥ 0. That row now has it at
+/// zero (march.rs, `at_noise`), as a lift-off's row has its contact.
 #[test]
-#[ignore = "open: a halt row with a side at N = -2.2e-9 (seed 67 at 256 cases)"]
 fn a_side_halting_as_it_lets_go_is_not_tensile() {
     open(&Case {
         amp: 0.003946795013025088,
@@ -1883,12 +1875,13 @@ fn a_side_halting_as_it_lets_go_is_not_tensile() {
     });
 }
 
-/// Open (the property's seed 68 at 256 cases, found at the end of 2026-12-02): the uniform rod,
-/// point tip, over 0.00771 sin(2πx/0.123 + 2.81) at η 0.468, μs 0.329, μk/μs 0.498. At the end of
-/// slip 2979 (d 0.0125545) a side at s 0.8818 is recorded sliding towards +x with the friction
-/// coefficient 0.0097 where μk is 0.1638. Not traced; not run on the build before that day.
+/// Was open (the property's seed 68 at 256 cases): the uniform rod, point tip, over
+/// 0.00771 sin(2πx/0.123 + 2.81) at η 0.468, μs 0.329, μk/μs 0.498. At the end of slip 2979
+/// (d 0.0125545) a side at s 0.8818 was recorded sliding towards +x with the friction
+/// coefficient 0.0097 where μk is 0.1638: it broke free at a slip limit located on a jump of
+/// the slide's branch, and slid with the ratio of the point before the jump. It now slides at
+/// μs (`ContactForce::breaking_ratio`), relaxing to μk as the slip's driver.
 #[test]
-#[ignore = "open: a slider at a slip's end recorded with mu 0.0097, not mu_k (seed 68 at 256 cases)"]
 fn a_slider_at_a_slips_end_has_the_kinetic_coefficient() {
     open(&Case {
         amp: 0.00770859382429147,
@@ -1903,13 +1896,16 @@ fn a_slider_at_a_slips_end_has_the_kinetic_coefficient() {
     });
 }
 
-/// Open (the property's seed 69 at 256 cases, found at the end of 2026-12-02; the same at
-/// 354eb71, before that day's changes): the rod tapered to 0.601, point tip, over
-/// 0.00493 sin(2πx/0.235 + 2.30) at η 0.666, μs 0.551, μk/μs 0.608. At the end of slip 1859
-/// (d 0.0793589) a side at s 0.9430 is recorded sliding towards +x with the friction
-/// coefficient 0.1848 where μk is 0.3350. Not traced.
+/// Was open (the property's seed 69 at 256 cases, the same at 354eb71): the rod tapered to
+/// 0.601, point tip, over 0.00493 sin(2πx/0.235 + 2.30) at η 0.666, μs 0.551, μk/μs 0.608.
+/// Slip 1859 (d 0.0793589): the tip slips beside a side 0.056 from it, the pair nearly
+/// indeterminate; the side's `T` goes from −0.203 to +0.067 at the slide's first point and
+/// beyond `μs N` 8.3e-10 later (`|T| − μs N` from −0.134 to +270 over the step), where its slip
+/// limit was located, on the jump. It slid along with the ratio there, 0.1848, below μk 0.3350,
+/// and ended the slip so. It now breaks free at μs; the tip, which kinetic friction then holds
+/// from the new state's first point, ends its slide there (march.rs, `check_pending`), and the
+/// side drives the slip on to where both slide at μk.
 #[test]
-#[ignore = "open: a slider at a slip's end recorded with mu 0.1848, not mu_k (seed 69 at 256 cases)"]
 fn a_tapered_slider_at_a_slips_end_has_the_kinetic_coefficient() {
     open(&Case {
         amp: 0.004929476943663062,
