@@ -993,8 +993,9 @@ impl<P: Profile> Run<'_, '_, P> {
         // a slip's driver that kinetic friction holds from the first point of a state inside
         // the slip (another contact broke free there, taking up the load): its slide ends there,
         // and the other drives on. (At the slip's own first point, `λ = 0`, it stays a jam: the
-        // driver, at μs there, held at once by μk has no quasi-static slide; the texture grid's
-        // 15 such jams turned into failures to follow a slide of no length where it was not.)
+        // driver, at μs there, held at once by μk has no quasi-static slide; ended there as
+        // well, 15 of the texture grid's jams became 11 failures to follow a slide of no
+        // length, 3 trapped halts and a state that does not hold.)
         let driver = env.ground.slide.map(|s| s.driver);
         let inside = lam > 0.0 && w.hist.len() == 1;
         if matches!(c, Crossing::Stick(j) if Some(j) == driver) && inside {

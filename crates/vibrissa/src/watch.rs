@@ -98,7 +98,7 @@ impl ContactForce {
     /// The friction ratio `T/N` with which the contact, at its slip limit here, breaks free and
     /// slides along: its own ratio, `±μs` where the limit is a root. A limit located on a jump
     /// of the branch leaves the point on the side where the contact holds, short of `μs`: it
-    /// slides at `μs` the way its force points. (The property's seed 69 at 256 cases: a side
+    /// slides at `μs` the way its force points there. (The property's seed 69 at 256 cases: a side
     /// beside a slipping tip, its pair with the tip nearly indeterminate, had `T/N` 0.1848 at
     /// its located limit under μs 0.551, its force beyond the limit 8.3e-10 later; it slid at
     /// 0.1848, below μk 0.335, and ended the slip so.)
