@@ -482,14 +482,8 @@ fn may_shadow(a: Crossing, b: Crossing) -> bool {
 /// the stuck side's 5.6) had N = −3.5e-13 at the first point after the slider's halt, which
 /// was the row of the next halt there; released there instead, it left the free rod crossing
 /// the surface at once, so it stays, at zero.
-fn at_zero(mut p: Pt) -> Pt {
-    for c in &mut p.w.contacts {
-        if c.normal < 0.0 && -c.normal <= AT_ZERO {
-            p.w.normal -= c.normal;
-            c.normal = 0.0;
-        }
-    }
-    p
+fn at_zero(p: Pt) -> Pt {
+    zero_within(p, AT_ZERO)
 }
 
 /// As [`at_zero`], for the row of a halt at a state's first point: a normal force below zero
@@ -497,10 +491,16 @@ fn at_zero(mut p: Pt) -> Pt {
 /// property's seed 67 at 256 cases: a side touching down sliding beside a sliding side and the
 /// stuck round tip (total N 3.86) halted at once, its N −2.2e-9 on the halt's row, the noise
 /// of its touchdown (the drag goes on from there to d_max).
-fn at_noise(mut p: Pt) -> Pt {
+fn at_noise(p: Pt) -> Pt {
     let total: f64 = p.w.contacts.iter().map(|c| c.normal.abs()).sum();
+    zero_within(p, NOISE * (1.0 + total))
+}
+
+/// `p` with each contact's normal force below zero by no more than `bound` set to zero (and
+/// the total with it).
+fn zero_within(mut p: Pt, bound: f64) -> Pt {
     for c in &mut p.w.contacts {
-        if c.normal < 0.0 && -c.normal <= NOISE * (1.0 + total) {
+        if c.normal < 0.0 && -c.normal <= bound {
             p.w.normal -= c.normal;
             c.normal = 0.0;
         }

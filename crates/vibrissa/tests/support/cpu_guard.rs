@@ -26,19 +26,19 @@ fn cpu_seconds(stat: &str) -> Option<f64> {
 /// thread's CPU (of wall time where the thread's CPU time cannot be read, or after ten times
 /// `hang` of wall time in any case).
 pub fn guarded<T>(flag: Arc<AtomicBool>, hang: u64, work: impl FnOnce() -> T) -> T {
-    let stat = std::fs::read_link("/proc/thread-self")
+    // (the thread's stat file and its CPU time so far: a property test runs its cases one
+    // after another on the thread)
+    let probe = std::fs::read_link("/proc/thread-self")
         .ok()
         .map(|p| format!("/proc/{}/stat", p.display()))
-        .filter(|p| cpu_seconds(p).is_some());
-    // (the thread's CPU time so far: a property test runs its cases one after another on it)
-    let spent = stat.as_deref().and_then(cpu_seconds).unwrap_or(0.0);
+        .and_then(|p| cpu_seconds(&p).map(|spent| (p, spent)));
     let (done, wait) = mpsc::channel::<()>();
     let guard = std::thread::spawn(move || {
         let start = Instant::now();
         let limit = Duration::from_secs(hang);
         loop {
-            let (over, poll) = match &stat {
-                Some(p) => (
+            let (over, poll) = match &probe {
+                Some((p, spent)) => (
                     cpu_seconds(p).is_some_and(|s| s - spent > hang as f64)
                         || start.elapsed() > 10 * limit,
                     Duration::from_millis(250),
