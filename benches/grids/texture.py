@@ -49,6 +49,7 @@ CLASSES = ["d_max", "lift-off", "jam", "fold/snap", "start snaps as the texture 
            "lying stretch would slip (not modelled)",
            "change at a lying stretch (not followed)", "lying stretch's end would pull",
            "lying stretch reaches the rod's end (not followed)",
+           "lying stretch reaches the tip (not followed)",
            "slide of 4 rod lengths", "side behind the sliding "
            "contact (not followed)", "not modelled / no contact state", "too many slips",
            "named stop: other", "stale slip driver", "Newton failure / NaN",
@@ -95,6 +96,10 @@ def classify(reason, detail, code):
     # not resolve, end at the closing: named as that, the solver's message added)
     if "lie down as one stretch there, whose slide the solver does not resolve" in detail:
         return "closed-up stretch not resolved (named)"
+    # (a solver failure with the tip just beyond a lying stretch: the stretch reaches the tip,
+    # a singular state, named, the solver's message added)
+    if "stretch lying on the surface" in detail and "reaches the tip" in detail:
+        return "lying stretch reaches the tip (not followed)"
     # (a side that lay down in a slip with contacts beyond it, whose state the solver then did
     # not resolve, ends at its lie-down: named as that, the solver's message added)
     if (("Newton did not converge" in detail or "has no rod" in detail)

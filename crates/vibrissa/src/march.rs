@@ -155,6 +155,24 @@ pub(crate) fn march<P: Profile>(
                         };
                         (stop, Some((set, pe)))
                     }
+                    // (a failure with the tip just beyond a lying stretch: the stretch reaches
+                    // the tip, a singular state, named)
+                    (StopReason::SolverFailure { d, message }, None) => {
+                        let near = last
+                            .as_ref()
+                            .and_then(|(set, p)| crate::events::stretch_at_tip(set, p));
+                        match near {
+                            Some(why) => {
+                                run.range.close(RangeEnd::Event);
+                                let stop = StopReason::ContactChange {
+                                    d: last.as_ref().map_or(d, |(_, p)| p.lam),
+                                    message: format!("{why} ({message})"),
+                                };
+                                (stop, last)
+                            }
+                            None => (StopReason::SolverFailure { d, message }, last),
+                        }
+                    }
                     (stop, _) => (stop, last),
                 }
             }

@@ -549,9 +549,14 @@ fn a_stretch_with_the_tip_beyond_slips() {
 /// contacts beyond it that forms sliding along the surface is not followed"; 0 and 2π/3 alike).
 /// In the slip at d = 0.0529120 the side at s = 0.98630, sliding between the side at
 /// s = 0.96618 and the tip, lies down; the stretch slides on with the slip to its end, where
-/// every contact holds, and the drag goes on through 64 more slips to d = 0.054255, where the
-/// tip slips beside the side and the stretch, which hold, and that slide is not resolved: a
-/// trapped slide, named. (The stretch holds by the friction ratio it needs, solved with the
+/// every contact holds, and the drag goes on through 64 more slips to d = 0.054255. There the
+/// tip slips beside the side and the stretch; the side breaks free and drives the slide, the tip
+/// and the stretch sliding along, and the stretch's outer end moves out towards the tip until
+/// 8.6e-4 of free rod is left between them, where the solver no longer resolves the slide: the
+/// stretch reaches the tip, a singular state (the two forces come to act at one point), named
+/// (events.rs `stretch_at_tip`; until 2026-12-03 this stop read "the tip slips beside the
+/// contact at s = 0.963319, 0.986970, which does not slip: the rod between them is trapped",
+/// words of the slide's first piece, not of the one that failed). (The stretch holds by the friction ratio it needs, solved with the
 /// tip's load beyond it, 4.6 times its own normal force, by secant steps, chain.rs
 /// `friction_ratio`; where that ratio was NaN the stretch was judged by its T/N and the drag
 /// ended in a snap.) Each slip's stick and slip balance their energy to 1e-8, the sliding
@@ -564,9 +569,19 @@ fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
         panic!("{r}");
     };
     assert!(
-        *d > 0.0529120 && message.contains("the rod between them is trapped"),
+        *d > 0.0529120
+            && message.contains("during a slip: the stretch lying on the surface from s = ")
+            && message.contains("reaches the tip"),
         "{r}"
     );
+    // (the free rod left, as the stop states it, is within `NEAR_TIP` = 2e-3)
+    let free: f64 = message
+        .split(" reaches the tip: ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .unwrap_or_else(|| panic!("{message}"));
+    assert!(free > 0.0 && free < 2e-3, "{message}");
     // the lie-down in the slip at d = 0.0529120: from side+side+tip, the stretch sliding along
     // with the tip beyond it
     let at = r
