@@ -1101,19 +1101,21 @@ fn reach(c: &crate::watch::ContactForce) -> Next {
     ))
 }
 
-/// How short the free rod between a lying stretch's outer end and the tip beyond it may be before a
-/// solver failure there is the stretch reaching the tip ([`stretch_at_tip`]). Measured: on the
-/// short rat preset's drags over 0.003 sin(2πx/0.2 + φ) (φ 0, 2π/3, 4π/3) a side that broke free
-/// in a slip drove the stretch beside it towards the tip, and the slide's last converged points
-/// left 8.4e-5, 4.4e-4 and 8.6e-4 of free rod; beyond them every correction stalled at residuals
-/// of 1e-11 to 2e-8 (tol 1e-12) or its tangent turned by more than 25° at arclength steps of 1e-10.
+/// How short the free rod between a lying stretch's outer end and the tip beyond it must be for
+/// a solver failure there to be the stretch reaching the tip ([`stretch_at_tip`]). Measured: on
+/// the short rat preset's drags over 0.003 sin(2πx/0.2 + φ) (φ 0, 2π/3, 4π/3) a side that broke
+/// free in a slip drove the stretch beside it towards the tip, and the slide's last converged
+/// points left 8.4e-5, 4.4e-4 and 8.6e-4 of free rod; beyond them every correction stalled at
+/// residuals of 1e-11 to 2e-8 (tol 1e-12) or turned the tangent by more than 25° at arclength
+/// steps of 1e-10.
 pub(crate) const NEAR_TIP: f64 = 2e-3;
 
 /// The stop where a march fails in the solver at `p` with the tip pressing just beyond a lying
 /// stretch (the free rod between them shorter than [`NEAR_TIP`]): the stretch reaches the tip.
 /// Where the free rod vanishes, the tip's force and the stretch's outer end's act at one point
-/// and only their sum is determined (docs/model.md, "A stretch that reaches the rod's end"): a
-/// singular state, which the solver resolves ever more poorly as it nears. `None` elsewhere.
+/// and only their sum is determined (docs/model.md, "A stretch that reaches the rod's end" and
+/// "A stretch that reaches the tip"): a singular state, which the solver resolves ever more
+/// poorly as it nears. `None` elsewhere.
 pub(crate) fn stretch_at_tip(set: &ContactSet, p: &Pt) -> Option<String> {
     let jl = set.lain()?;
     if !set.tip() || jl + 2 != set.contacts.len() {

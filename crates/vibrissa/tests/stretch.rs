@@ -556,11 +556,12 @@ fn a_stretch_with_the_tip_beyond_slips() {
 /// stretch reaches the tip, a singular state (the two forces come to act at one point), named
 /// (events.rs `stretch_at_tip`; until 2026-12-03 this stop read "the tip slips beside the
 /// contact at s = 0.963319, 0.986970, which does not slip: the rod between them is trapped",
-/// words of the slide's first piece, not of the one that failed). (The stretch holds by the friction ratio it needs, solved with the
-/// tip's load beyond it, 4.6 times its own normal force, by secant steps, chain.rs
-/// `friction_ratio`; where that ratio was NaN the stretch was judged by its T/N and the drag
-/// ended in a snap.) Each slip's stick and slip balance their energy to 1e-8, the sliding
-/// stretch's work included. About 3 s of CPU in release.
+/// words of the slide's first piece, not of the one that failed). (The stretch holds by the
+/// friction ratio it needs, solved with the tip's load beyond it, 4.6 times its own normal
+/// force, by secant steps, chain.rs `friction_ratio`; where that ratio was NaN the stretch was
+/// judged by its T/N and the drag ended in a snap.) Each slip's stick and slip balance their
+/// energy to 1e-8, the sliding stretch's work included. About 3 s of CPU in release (8 s beside
+/// a build).
 #[test]
 #[ignore = "slow: 2381 slips, about 3 s of CPU in release"]
 fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
