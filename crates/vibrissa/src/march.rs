@@ -137,8 +137,14 @@ pub(crate) fn march<P: Profile>(
             }
             Ok((p0, quiet)) => {
                 let (stop, last) = run.run(p0, quiet);
-                match (stop, run.lain.take()) {
-                    (StopReason::SolverFailure { message, .. }, Some(lain)) => {
+                // (a failure with the tip just beyond a lying stretch: the stretch reaches the
+                // tip, a singular state, named at the last point)
+                let near = matches!(stop, StopReason::SolverFailure { .. })
+                    .then_some(last.as_ref())
+                    .flatten()
+                    .and_then(|(set, p)| Some((crate::events::stretch_at_tip(set, p)?, p.lam)));
+                match (stop, run.lain.take(), near) {
+                    (StopReason::SolverFailure { message, .. }, Some(lain), _) => {
                         let Lain {
                             set,
                             pe,
@@ -155,25 +161,15 @@ pub(crate) fn march<P: Profile>(
                         };
                         (stop, Some((set, pe)))
                     }
-                    // (a failure with the tip just beyond a lying stretch: the stretch reaches
-                    // the tip, a singular state, named)
-                    (StopReason::SolverFailure { d, message }, None) => {
-                        let near = last
-                            .as_ref()
-                            .and_then(|(set, p)| crate::events::stretch_at_tip(set, p));
-                        match near {
-                            Some(why) => {
-                                run.range.close(RangeEnd::Event);
-                                let stop = StopReason::ContactChange {
-                                    d: last.as_ref().map_or(d, |(_, p)| p.lam),
-                                    message: format!("{why} ({message})"),
-                                };
-                                (stop, last)
-                            }
-                            None => (StopReason::SolverFailure { d, message }, last),
-                        }
+                    (StopReason::SolverFailure { message, .. }, None, Some((why, at))) => {
+                        run.range.close(RangeEnd::Event);
+                        let stop = StopReason::ContactChange {
+                            d: at,
+                            message: format!("{why} ({message})"),
+                        };
+                        (stop, last)
                     }
-                    (stop, _) => (stop, last),
+                    (stop, _, _) => (stop, last),
                 }
             }
         }
