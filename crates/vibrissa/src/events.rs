@@ -1168,7 +1168,7 @@ pub(crate) fn lies_sliding_with_beyond(set: &ContactSet, j: usize) -> bool {
 /// stretch's curvature match (with the rest beyond unloaded, `m = 0` there; with contacts
 /// beyond, the outer end is a new unknown, at the side's place). Where [`lie_kept_out`] keeps it
 /// out, the stop, with the reason.
-fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Next {
+pub(crate) fn lie_down(env: &Env, set: &ContactSet, j: usize, pe: &Pt) -> Next {
     if let Some(why) = lie_kept_out(set, j) {
         return Next::Limit(curve_lie(set, j, pe, why));
     }

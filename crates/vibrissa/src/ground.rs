@@ -92,7 +92,9 @@ pub(crate) fn start<P: Profile>(
 /// profile on fewer contacts), and the rod then pressed down onto the full profile to η (the
 /// march in the depth, family `Press`). The pressed state is the same kind of state — the rod
 /// at rest on the full profile at η, every contact frictionless — reached along another path;
-/// a start found the first way is never looked for the second.
+/// a start found the first way is never looked for the second. Where that fails too, the
+/// profile is grown at η once more with the tail's crossing beyond the last side laid down as
+/// a stretch ([`Settle::Lie`]); where that fails, the error is the first path's.
 fn curve_start<P: Profile>(
     rod: &Rod,
     profile: &P,
@@ -100,7 +102,7 @@ fn curve_start<P: Profile>(
     h: &Arc<Height>,
     tol: f64,
 ) -> Result<Pressed<P>, VibrissaError> {
-    let first = grown_start(rod, profile, surface, h, tol, None);
+    let first = grown_start(rod, profile, surface, h, tol, None, false);
     let e = match first {
         Err(e) if !e.is_input() => e,
         done => return done,
@@ -113,10 +115,14 @@ fn curve_start<P: Profile>(
         if !(light > eta && light < top) {
             continue;
         }
-        match grown_start(rod, profile, surface, h, tol, Some(light)) {
+        match grown_start(rod, profile, surface, h, tol, Some(light), false) {
             Ok(p) => return Ok(p),
             Err(e) => last = Some((light, e)),
         }
+    }
+    // (the last resort: at η, a tail crossing beyond the last side laid down as a stretch)
+    if let Ok(p) = grown_start(rod, profile, surface, h, tol, None, true) {
+        return Ok(p);
     }
     Err(match (e, last) {
         (VibrissaError::NoStart { reason }, Some((light, e))) => VibrissaError::NoStart {
@@ -134,7 +140,8 @@ fn curve_start<P: Profile>(
 const LIGHTER: [f64; 3] = [0.5, 0.25, 0.75];
 
 /// The start of [`curve_start`]: the rod pressed onto the straight trend at η (`light` None)
-/// or at the lighter `light` (then the profile grown there and the rod pressed down onto it).
+/// or at the lighter `light` (then the profile grown there and the rod pressed down onto it);
+/// `lie`: the last resort of [`curve_start`] ([`grow`]).
 fn grown_start<P: Profile>(
     rod: &Rod,
     profile: &P,
@@ -142,6 +149,7 @@ fn grown_start<P: Profile>(
     h: &Arc<Height>,
     tol: f64,
     light: Option<f64>,
+    lie: bool,
 ) -> Result<Pressed<P>, VibrissaError> {
     let line = Surface::new(light.unwrap_or(surface.eta()), surface.angle())?;
     let pressed = crate::start::scan_start(rod, profile, &line, crate::StartKind::Pressed, tol)?;
@@ -185,7 +193,7 @@ fn grown_start<P: Profile>(
     let p0 = st
         .correct_from(0.0, &pressed.pt.u, None, true)
         .map_err(|e| fail(&"the pressed rod", &e))?;
-    let (set, end) = grow(&mut st, p0, rod, profile).map_err(|e| match e {
+    let (set, end) = grow(&mut st, p0, rod, profile, lie).map_err(|e| match e {
         GrowError::Snap { amplitude } => VibrissaError::StartSnaps { amplitude },
         GrowError::Lies {
             amplitude,
@@ -429,12 +437,14 @@ enum GrowError {
 /// march is resumed from where it ended ([`resume`]); where a free part lies on the trend, the
 /// rod is settled at the larger amplitudes [`SETTLE_LATER`] as well. A march that ends in a
 /// fold is a snap; one whose last state has the rod lying along the profile between two
-/// contacts ([`lies`]), a rod lying down ([`short`]).
+/// contacts ([`lies`]), a rod lying down ([`short`]). With `lie`, only the settled marches
+/// are tried, each settled with [`Settle::Lie`] at the small amplitudes [`SETTLE_AT`].
 fn grow<P: Profile>(
     st: &mut OwnStepper<P>,
     p0: Pt,
     rod: &Rod,
     profile: &P,
+    lie: bool,
 ) -> Result<(ContactSet, Pt), GrowError> {
     let spec = Spec {
         env: &st.env.clone(),
@@ -453,10 +463,16 @@ fn grow<P: Profile>(
     let set0 = st.chain.set.clone();
     let mut first_failure: Option<(&'static str, String)> = None;
     let mut ended: Vec<(StopReason, Option<(ContactSet, Pt)>)> = Vec::new();
-    for &t in [0.0].iter().chain(&SETTLE_AT).take(n) {
+    let how = if lie { Settle::Lie } else { Settle::First };
+    for &t in [0.0]
+        .iter()
+        .chain(&SETTLE_AT)
+        .take(n)
+        .skip(usize::from(lie))
+    {
         st.chain.set = set0.clone();
         let from = if t > 0.0 {
-            match settle(st, &p0, t, Settle::First) {
+            match settle(st, &p0, t, how) {
                 Ok(q) => q,
                 Err(e) => {
                     note(&mut first_failure, t, e.to_string());
@@ -485,7 +501,11 @@ fn grow<P: Profile>(
     }
     // (what follows runs only where every march above ended short: a start that grew before
     // is what it was)
-    let later = if lying_tail { &SETTLE_LATER[..] } else { &[] };
+    let later = if lying_tail && !lie {
+        &SETTLE_LATER[..]
+    } else {
+        &[]
+    };
     for &t in later {
         st.chain.set = set0.clone();
         if let Ok(q) = settle(st, &p0, t, Settle::Careful) {
@@ -597,6 +617,12 @@ const LYING: f64 = 1e-10;
 enum Settle {
     /// The first that is solved.
     First,
+    /// As `First`, but never a state it reached before (a contact added where Newton does not
+    /// solve it, and its neighbour released instead, can give back the state it left), and
+    /// where the crossing is beyond the last side, that side laid down as a stretch
+    /// ([`lie_tail`]) is tried too. The last resort of [`grow`]: a start found before these
+    /// existed is found as it was.
+    Lie,
     /// The first solved that holds, else the first solved; never one it reached before (the
     /// same contacts at the same places), which would cycle (a tip that touches down and
     /// pulls, released, touching down again).
@@ -611,8 +637,10 @@ enum Settle {
 /// the state solved with the contacts so far, then a contact that pulls released, a touching
 /// tip that turns into the profile laid down, or a contact added where the rod crosses the
 /// profile most (beside the others, else in place of its neighbour before or after it, which
-/// passes it its load), until the state holds (no pull, no crossing beyond [`AT_ZERO`]). The
-/// contacts are frictionless, as in the march in the amplitude.
+/// passes it its load; with [`Settle::Lie`], where the crossing is beyond the last side, that
+/// side laid down as a stretch), until the state holds (no pull, no crossing beyond
+/// [`AT_ZERO`]).
+/// The contacts are frictionless, as in the march in the amplitude.
 fn settle<P: Profile>(
     st: &mut OwnStepper<P>,
     p: &Pt,
@@ -659,12 +687,19 @@ fn settle<P: Profile>(
                 }
             }
         }
+        if how == Settle::Lie {
+            tries.extend(lie_tail(&env, &set, cross, &q));
+        }
         let mut failed = None;
         let mut next = None;
         let mut solved: Option<(ContactSet, Pt)> = None;
         for (ts, tu) in tries {
             match st.switch(ts.clone(), t, tu) {
-                Ok(r) if how == Settle::First || settled(&r) && !seen.contains(&place(&ts, &r)) => {
+                Ok(r)
+                    if how == Settle::First
+                        || !seen.contains(&place(&ts, &r))
+                            && (how == Settle::Lie || settled(&r)) =>
+                {
                     next = Some((ts, r));
                     break;
                 }
@@ -701,6 +736,28 @@ fn settle<P: Profile>(
         seen.push(place(&set, &q));
     }
     Err(SettleError::Unsettled { set: set.label() })
+}
+
+/// Where a touchdown `cross` of `set` at `q` crosses the profile beyond its last contact, a
+/// side with the rod beyond it unloaded: that side laid down as a stretch
+/// ([`crate::events::lie_down`]), its outer end where the moment vanishes. (A straight tail
+/// that lay on the trend at amplitude 0 over a hollow of the grown profile follows the hollow
+/// out to where its curvature falls to the rod's, not from one point contact to the next.)
+fn lie_tail(
+    env: &Env,
+    set: &ContactSet,
+    cross: Crossing,
+    q: &Pt,
+) -> Option<(ContactSet, Vec<f64>)> {
+    let j = set.contacts.len().checked_sub(1)?;
+    let beyond = q.w.clear_s > set.s_of(j, &q.u);
+    if cross != Crossing::Touchdown || !beyond || crate::events::lie_kept_out(set, j).is_some() {
+        return None;
+    }
+    match crate::events::lie_down(env, set, j, q) {
+        Next::Switch(_, ns, nu) => Some((ns, nu)),
+        _ => None,
+    }
 }
 
 /// Whether the state `q` holds as [`settle`] asks: no contact pulls, a touching tip does not

@@ -261,3 +261,63 @@ fn a_rod_that_lies_down_as_the_texture_grows_starts_lying_on_it() {
     );
     start_holds(&r, &sine(0.001, 0.05, p));
 }
+
+/// Issue 31's grid, taper 0.3 on the sine 0.001 / 0.2 / phase 2π/3: the straight tail lying
+/// on the trend beyond the side at s = 0.9722 runs over the sine's inflection, and as the sine
+/// grew the tail crossed it beyond (by 1.4e-8 at 0.1 % of the amplitude, at s = 0.9898). A
+/// second side there was not solved (Newton stalled at residuals 1.4e-8), the side alone came
+/// back as the same state 32 times, and the start ended as "lies down along the surface ... no
+/// pressed start". Now the side lies down as a stretch where the tail crosses beyond it: the
+/// rod follows the sine out to where the moment vanishes, which on this rod without
+/// pre-curvature is where the sine's curvature does (its inflection), and the tail beyond,
+/// unloaded and straight, clears the sine. The start holds ([`start_holds`]) with the stretch's
+/// outer end at the inflection to 1e-6 of the sine's largest curvature (the shape sampled at
+/// 1001 points, interpolated linearly), and the drag reaches d_max.
+#[test]
+fn a_tail_over_an_inflection_lies_down_to_it_as_the_texture_grows() {
+    let (a, w, p) = (0.001, 0.2, 2.0 * std::f64::consts::PI / 3.0);
+    let scene = Scene {
+        surface: sine(a, w, p),
+        ..taper()
+    };
+    let (rod, surface) = scene.parts().unwrap();
+    let opts = DragOptions {
+        d_max: 0.3,
+        points: 11,
+        mu_s: Some(0.5),
+        mu_k: Some(0.3),
+        keep_shapes: Some(1001),
+        ..DragOptions::default()
+    };
+    let r = drag(&rod, &surface, &opts).expect("a start lying on the sine");
+    assert_eq!(r.stop, vibrissa::StopReason::DMax, "{}", r.stop);
+    start_holds(&r, &sine(a, w, p));
+    let start = &r.rows[0];
+    let lying = start
+        .contacts
+        .iter()
+        .find_map(|c| c.lies_to.map(|s2| (c.s, s2)));
+    let (s1, s2) =
+        lying.unwrap_or_else(|| panic!("no stretch at the start: {}", start.contact.name()));
+    assert!(
+        s1 < 0.98 && s2 > s1 + 1e-3 && s2 < 1.0,
+        "the stretch {s1}..{s2}"
+    );
+    let shape = &r.shapes[0];
+    let k = shape.partition_point(|q| q.s < s2);
+    let (q0, q1) = (&shape[k - 1], &shape[k]);
+    let x2 = q0.x + (q1.x - q0.x) * (s2 - q0.s) / (q1.s - q0.s);
+    let h = Height::new(&sine(a, w, p), 0.75, 0.0).unwrap().unwrap();
+    let most = a * (2.0 * std::f64::consts::PI / w).powi(2);
+    let curv = h.jet(x2).2;
+    eprintln!(
+        "stretch from s = {s1:.6} to {s2:.6} (x = {x2:.6}); the sine's curvature there {:.2e} of \
+         its largest; {} slips",
+        curv / most,
+        r.slips.len()
+    );
+    assert!(
+        curv.abs() <= 1e-6 * most,
+        "the sine's curvature at the stretch's outer end (s = {s2}, x = {x2}): {curv:e}"
+    );
+}
