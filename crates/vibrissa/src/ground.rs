@@ -639,8 +639,9 @@ enum Settle {
 /// profile most (beside the others, else in place of its neighbour before or after it, which
 /// passes it its load; with [`Settle::Lie`], where the crossing is beyond the last side, that
 /// side laid down as a stretch), until the state holds (no pull, no crossing beyond
-/// [`AT_ZERO`]).
-/// The contacts are frictionless, as in the march in the amplitude.
+/// [`AT_ZERO`]). The contacts are frictionless, as in the march in the amplitude. (On taper 0.3
+/// over 0.001 sin(2πx/0.2 + 2π/3), tests/start_texture.rs, the stretch laid down so pushes at
+/// both ends at the start, 0.43 and 0.29.)
 fn settle<P: Profile>(
     st: &mut OwnStepper<P>,
     p: &Pt,
