@@ -35,16 +35,7 @@ fn a_tapered_rod_lying_on_the_trend_starts_on_the_corrugation() {
         ..Scene::default()
     };
     assert_eq!(scene.eta, 0.75);
-    let (rod, surface) = scene.parts().unwrap();
-    let opts = DragOptions {
-        d_max: 0.3,
-        points: 11,
-        mu_s: Some(0.5),
-        mu_k: Some(0.3),
-        keep_shapes: Some(1001),
-        ..DragOptions::default()
-    };
-    let r = drag(&rod, &surface, &opts).expect("a start on the corrugation");
+    let r = grid_drag(scene, 0.3, 11).expect("a start on the corrugation");
     let h = Height::new(&SINE, 0.75, 0.0).unwrap().unwrap();
     let start = &r.rows[0];
     assert_eq!(start.d, 0.0);
@@ -109,10 +100,20 @@ fn on_sine(scene: Scene, a: f64, w: f64, p: f64) -> Result<vibrissa::DragResult,
         surface: sine(a, w, p),
         ..scene
     };
+    grid_drag(scene, 1e-3, 2)
+}
+
+/// The drag of `scene` with the grid's friction (μs 0.5, μk 0.3) to `d_max` on `points` output
+/// points, the shapes kept at 1001 points each.
+fn grid_drag(
+    scene: Scene,
+    d_max: f64,
+    points: usize,
+) -> Result<vibrissa::DragResult, VibrissaError> {
     let (rod, surface) = scene.parts().unwrap();
     let opts = DragOptions {
-        d_max: 1e-3,
-        points: 2,
+        d_max,
+        points,
         mu_s: Some(0.5),
         mu_k: Some(0.3),
         keep_shapes: Some(1001),
@@ -280,16 +281,7 @@ fn a_tail_over_an_inflection_lies_down_to_it_as_the_texture_grows() {
         surface: sine(a, w, p),
         ..taper()
     };
-    let (rod, surface) = scene.parts().unwrap();
-    let opts = DragOptions {
-        d_max: 0.3,
-        points: 11,
-        mu_s: Some(0.5),
-        mu_k: Some(0.3),
-        keep_shapes: Some(1001),
-        ..DragOptions::default()
-    };
-    let r = drag(&rod, &surface, &opts).expect("a start lying on the sine");
+    let r = grid_drag(scene, 0.3, 11).expect("a start lying on the sine");
     assert_eq!(r.stop, vibrissa::StopReason::DMax, "{}", r.stop);
     start_holds(&r, &sine(a, w, p));
     let start = &r.rows[0];
