@@ -342,7 +342,8 @@ pub(crate) fn stop_reason(ev: Event, w: &Watch, set: &ContactSet) -> StopReason 
         | Event::Release
         | Event::Halt
         | Event::LieDown
-        | Event::PeelUp => StopReason::ContactChange {
+        | Event::PeelUp
+        | Event::ReachTip => StopReason::ContactChange {
             d,
             message: format!("{} in state {}", ev.name(), set.label()),
         },
@@ -449,6 +450,18 @@ fn touchdown(set: &ContactSet, u: &[f64], ct: Contact, s: f64, tip: Contact) -> 
     let mut nu = u.to_vec();
     nu.splice(o..o, [0.0, 0.0, s]);
     Next::Switch(Event::Touchdown, ns, nu)
+}
+
+/// Whether a touchdown at `pe` of `set` is the point tip's, beyond a lying stretch with the rest
+/// unloaded (the last contact's): the free rod between them comes down onto the surface at its
+/// end.
+fn tip_beyond_stretch(set: &ContactSet, pe: &Pt) -> bool {
+    let jl = set.contacts.len().wrapping_sub(1);
+    set.lain() == Some(jl)
+        && !set.tip()
+        && set.tip_radius == 0.0
+        && pe.w.clear_s >= 1.0
+        && pe.w.contacts.get(jl).is_some_and(|c| c.lies_to < 1.0)
 }
 
 /// Why a contact that has just formed beside others cannot hold: the friction ratio it needs
@@ -585,6 +598,28 @@ fn curve_transition(
         (mode, phi_ref)
     };
     match cross {
+        // (the tip itself, beyond a stretch with the rest unloaded: the stretch with the tip
+        // beyond it, the join of `tip_into_stretch` undone with free rod between them)
+        Crossing::Touchdown if tip_beyond_stretch(set, pe) => {
+            let jl = set.contacts.len() - 1;
+            let xb = pe.sol.right()[0] + xf;
+            let mode = if friction {
+                Mode::Stuck(h.sigma(xb).0)
+            } else {
+                Mode::Free
+            };
+            let mut ns = set.clone();
+            ns.contacts.push(Contact::on_curve(true, h, xb, mode, 0.0));
+            let c = &pe.w.contacts[jl];
+            // (its outer end, where the unloaded rest began, is an unknown again; `x2` is the
+            // set's, kept at the point evaluated)
+            if let Some(ly) = ns.lying.as_mut() {
+                (ly.s2, ly.beyond) = (c.lies_to, 1);
+            }
+            let mut nu = u.clone();
+            nu.extend([0.0, 0.0, c.lies_to]);
+            Next::Switch(Event::Touchdown, ns, nu)
+        }
         Crossing::Touchdown
             if set
                 .lain()
@@ -1132,6 +1167,43 @@ pub(crate) fn stretch_at_tip(set: &ContactSet, p: &Pt) -> Option<String> {
             c.s
         )
     })
+}
+
+/// The set where the stretch lying on the surface has reached the tip of `set` (at `p`):
+/// the tip's contact joins the stretch, whose outer end is again where the rod's moment is zero
+/// with the rest beyond unloaded (module `chain`, `Lying`), and the unknowns without the tip's `(N, T)`
+/// and the outer end's unknown (`p`'s). Beyond that place, where the surface's curvature meets the rod's
+/// rest curvature, the tip draws back from the surface. `None` where `set` is not a stretch with
+/// the tip alone beyond it, or where the tip drives a slide (its place is the slide's parameter).
+pub(crate) fn tip_into_stretch(
+    env: &Env,
+    set: &ContactSet,
+    p: &Pt,
+) -> Option<(ContactSet, Vec<f64>)> {
+    let u = &p.u;
+    let jl = set.lain()?;
+    let tip = jl + 1;
+    let driven = env.ground.slide.is_some_and(|s| s.driver == tip);
+    if !set.tip() || tip + 1 != set.contacts.len() || driven || u.len() != set.n() {
+        return None;
+    }
+    let ly = set.lying?;
+    let mut ns = set.clone();
+    let mut nu = u.to_vec();
+    // (the outer end's unknown is the last; the tip's pair the last contact's)
+    let s2 = nu.pop()?;
+    let o = set.offset(tip);
+    nu.drain(o..o + set.contacts[tip].unknowns());
+    ns.contacts.pop();
+    // (the outer end found again from the inner end's invariant, from the tip's place on)
+    ns.lying = Some(crate::chain::Lying {
+        s2,
+        x2: p.w.contacts.get(tip)?.x,
+        c: f64::NAN,
+        beyond: 0,
+        ..ly
+    });
+    Some((ns, nu))
 }
 
 /// What keeps the side contact `j` of `set`, on a curved surface, that begins to lie along it out

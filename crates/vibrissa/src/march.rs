@@ -24,8 +24,10 @@ use crate::fold;
 use crate::profile::{General, Profile};
 use crate::record::{meter_between, Output, RangeTracker};
 use crate::report::{Event, RangeEnd, ScanPoint, StopReason};
+use crate::search;
 use crate::shape::ShapePoint;
 use crate::stepper::{Chord, Passed, Pt, StepError, Stepper};
+use crate::surface::Meter;
 use crate::watch::{Env, Watch};
 use bvp::Stats;
 use std::collections::VecDeque;
@@ -124,6 +126,8 @@ pub(crate) fn march<P: Profile>(
             out: &mut out,
             range: &mut range,
             lain: None,
+            metered_to: None,
+            reaches: 0,
         };
         // (in a drag, the pair's member that friction lets go first slides from the start)
         let start = match indeterminate {
@@ -136,7 +140,23 @@ pub(crate) fn march<P: Profile>(
                 (stop, Some((set, p0)))
             }
             Ok((p0, quiet)) => {
-                let (stop, last) = run.run(p0, quiet);
+                let (mut stop, mut last) = run.run(p0, quiet);
+                // (a failure where the stretch lying on the surface reaches the tip: the tip
+                // joins it and the march goes on, as often as it reaches it)
+                loop {
+                    let reached = matches!(stop, StopReason::SolverFailure { .. })
+                        && run.lain.is_none()
+                        && last.as_ref().is_some_and(|(set, p)| {
+                            crate::events::stretch_at_tip(set, p).is_some()
+                        });
+                    let Some(q) = reached
+                        .then(|| last.as_ref().and_then(|(set, p)| run.reach_tip(set, p)))
+                        .flatten()
+                    else {
+                        break;
+                    };
+                    (stop, last) = run.run(q, None);
+                }
                 // (a failure with the tip just beyond a lying stretch: the stretch reaches the
                 // tip, a singular state, named at the last point)
                 let near = matches!(stop, StopReason::SolverFailure { .. })
@@ -214,6 +234,12 @@ struct Run<'a, 'b, P: Profile> {
     /// 0.003/0.5 and 0.02/0.5 at 2π/3: Newton and the fold passage failed 0.009 and 0.005 of
     /// the slide further on), and the lie-down is the last change the model followed.
     lain: Option<Box<Lain>>,
+    /// The point of the march's set up to which its works are metered (with a meter): a
+    /// failure's last point may lie past it ([`Run::reach_tip`] meters the rest).
+    metered_to: Option<Pt>,
+    /// How often the march has taken the stretch reaching the tip ([`Run::reach_tip`]; at most
+    /// [`REACHES`]).
+    reaches: usize,
 }
 
 /// A lie-down the march followed that a later failure falls back on ([`Run::lain`]).
@@ -534,6 +560,36 @@ struct Before {
     slide: Option<crate::surface::Slide>,
 }
 
+/// How many times one march may take the stretch reaching the tip ([`Run::reach_tip`]): a
+/// bound on a tip that joins the stretch and touches down beyond it again in turn.
+const REACHES: usize = 64;
+
+/// How far past a failure's point the stretch reaching the tip is looked for: the failures
+/// measured lay 1e-6 to 1e-5 before it ([`Run::reach_tip`]).
+const REACH_SPAN: f64 = 1e-2;
+
+/// The weight of the rate at the failure's point in the works across the gap to the first
+/// joined state (the rest that state's), [`Run::reach_tip`]: the trapezoid. Measured on the
+/// four gaps of 6.7e-6 to 1.24e-5 whose works are 2.7e-7 to 5e-7, where the rates at the ends
+/// differ by up to 0.4 %: each slip balanced to 1.5e-11 to 1.9e-11 with it, to 1.1e-10 to
+/// 3.4e-10 with the weights ⅔ and ⅓ that a rate `g* + c·√(λ* − λ)` (the free rod's own law
+/// near `λ*`) would give; the gap's work itself is what a balance without it misses.
+const REACH_WEIGHT: f64 = 0.5;
+
+/// How far an event function of the joined state may be past zero where the stretch reaches
+/// the tip: its place is solved to the corrector's tolerance.
+const REACH_AT_ZERO: f64 = 1e-9;
+
+/// How far the elastic energy released between a failure's point and the joined state may be
+/// from the work of the contacts over that gap for the two to be one path
+/// ([`Run::reach_tip`]): measured 2e-14 to 1.2e-12 on the seven joins of the texture grid, a
+/// thousandth to a millionth of the gaps' works (2.5e-16 to 5.2e-6).
+const REACH_JUMP: f64 = 1e-9;
+
+/// A joined state that is not solved (before the stretch reaches the tip, [`Run::reach_tip`]).
+#[derive(Clone, Copy, Debug)]
+struct NoJoin;
+
 /// A sliding contact's slip rate (per unit of the march's parameter) below which its sign is
 /// taken for the solver's noise: the rates of such contacts measured 6e-12 to 3.9e-9 (at the
 /// default tol 1e-10; see [`Run::dipped`]), a sliding contact that moves at 1e-7 of the foot's
@@ -585,6 +641,7 @@ impl<P: Profile> Run<'_, '_, P> {
         let spec = self.spec;
         let lam_end = spec.lam_end;
         let h_max = self.stepper.h_max().min(lam_end - p0.lam).max(1e-12);
+        self.metered_to = self.env.ground.meter.map(|_| p0.clone());
         let pending = Crossing::all(&self.env, self.stepper.set())
             .into_iter()
             .filter(|c| !holds(c.of_watch(&self.env, &p0.w)))
@@ -936,6 +993,17 @@ impl<P: Profile> Run<'_, '_, P> {
                 Ok((first, false))
             }
             Passed::Fold(lf, pt) => {
+                // (where the free rod between a lying stretch and the tip beyond it vanishes:
+                // the stretch reaches the tip, and the march goes on from the joined state)
+                let set = self.stepper.set().clone();
+                let reach = pt
+                    .as_deref()
+                    .filter(|p| crate::events::stretch_at_tip(&set, p).is_some());
+                if let Some(q) = reach.and_then(|p| self.reach_tip(&set, p)) {
+                    let joined = self.stepper.set().clone();
+                    self.go_on(w, &joined, q);
+                    return Err(Flow::Go);
+                }
                 // the fold's own point belongs to the measurable range it ends
                 if let Some(p) = &pt {
                     self.range.see(&p.w);
@@ -1324,6 +1392,7 @@ impl<P: Profile> Run<'_, '_, P> {
             let done = meter_between(st, env, m, &w.hist, (prev, &upto), 0);
             self.out.metered[0] += done[0];
             self.out.metered[1] += done[1];
+            self.metered_to = Some(upto);
         }
         if self.range.end.is_none() {
             let ws = (&prev.w, w.pprev.as_ref());
@@ -1376,6 +1445,145 @@ impl<P: Profile> Run<'_, '_, P> {
         }
     }
 
+    /// The march's failure at `p` of `set` (the tip pressing on the surface just beyond the
+    /// stretch lying on it, [`crate::events::stretch_at_tip`]) taken as the stretch reaching the
+    /// tip: the first point of the set where the tip has joined the stretch
+    /// ([`crate::events::tip_into_stretch`]), its row recorded as [`Event::ReachTip`]; `None`
+    /// where no such state follows within [`REACH_SPAN`] of `p`, or it does not hold.
+    ///
+    /// Where the free rod between the stretch's outer end and the tip vanishes (`ℓ → 0`), the
+    /// state is singular (the two forces come to act at one point, only their sum determined),
+    /// and the solver fails a little before (or its fold passage takes the noise there for a
+    /// fold). The joined state's outer end (where the rod's moment is zero, the rest beyond
+    /// unloaded) lies past the tip before the place `λ*` where the stretch reaches the tip and
+    /// inside the rod after it; near the tip it is not solved either (Newton stalls at residuals
+    /// of 2e-12 to 2e-11 against 1e-12). The joined state taken is the first one solved past
+    /// `p`, bracketed outwards from `p` and bisected down to it; where the joined states solve
+    /// on both sides of `λ*`, `λ*` itself, by Brent's method. With a meter, the works from its
+    /// last metered point to `p` are metered on the old set, and across the gap taken from the
+    /// rates at its ends ([`REACH_WEIGHT`]).
+    ///
+    /// Measured on the short rat preset's drags over 0.003/0.2 (phases 0, 2π/3, 4π/3 twice, and
+    /// 4π/3 to d 0.06): the old branch's last points left `ℓ` 8.4e-5 to 8.6e-4; the first joined
+    /// states solved lay 7e-15 to 1.24e-5 further on, with 0 (Brent) to 1.1e-5 of free rod.
+    /// Their outer ends move at a rate of 1.0 in the slide: taken back linearly to the tip they
+    /// give `λ*`, and at the four gaps the old branch's `ℓ/√(λ* − λ)` is 0.333 at each: the two
+    /// branches meet there, with no jump between them. (Phase 0's failure came within 8.4e-5
+    /// of the tip, and the joined state solved at its `λ` with 1.8e-7 of free rod.)
+    fn reach_tip(&mut self, set: &ContactSet, p: &Pt) -> Option<Pt> {
+        if self.reaches >= REACHES {
+            return None;
+        }
+        self.reaches += 1;
+        // (the points' watches with the works' integrands, for the jump's balance)
+        let unmetered = self.env.ground.meter.is_none();
+        if unmetered {
+            self.stepper.set_meter(Some(Meter::Slide));
+        }
+        let q = self.join_tip(set, p);
+        if unmetered {
+            self.stepper.set_meter(None);
+        }
+        if q.is_none() {
+            // (the stepper back on the old set, for the stop there)
+            let _ = self.stepper.switch(set.clone(), p.lam, p.u.clone());
+        }
+        q
+    }
+
+    /// [`Run::reach_tip`], the stepper left where the search left it where it is `None`.
+    fn join_tip(&mut self, set: &ContactSet, p: &Pt) -> Option<Pt> {
+        let (ns, nu) = crate::events::tip_into_stretch(&self.env, set, p)?;
+        let jl = set.lain()?;
+        let s2 = |q: &Pt| q.w.contacts.get(jl).map_or(f64::NAN, |c| c.lies_to);
+        let free = 1.0 - s2(p);
+        // (`p` again, its watch with the works' integrands)
+        let p = &self.stepper.switch(set.clone(), p.lam, p.u.clone()).ok()?;
+        let e_old = self.stepper.energy(&p.u, p.lam)?;
+        // the works up to the failure's point, on its set
+        let tail = match (self.env.ground.meter, self.metered_to.clone()) {
+            (Some(m), Some(a)) if a.lam < p.lam => {
+                let hist = [a.clone(), p.clone()];
+                meter_between(&mut *self.stepper, &self.env, m, &hist, (&a, p), 0)
+            }
+            _ => [0.0, 0.0],
+        };
+        // `Ok(s2 − 1)` of the joined state at `λ`, `Err` where it is not solved (before `λ*`)
+        let joined = |st: &mut dyn Stepper, lam: f64, u: &[f64]| {
+            st.switch(ns.clone(), lam, u.to_vec())
+                .ok()
+                .filter(|q| s2(q).is_finite())
+        };
+        let st = &mut *self.stepper;
+        let (mut lo, mut lo_solved, mut hi) = (p.lam, false, None);
+        let mut dl = (free * free).max(1e-12);
+        while dl <= REACH_SPAN {
+            match joined(st, p.lam + dl, &nu) {
+                Some(q) if s2(&q) < 1.0 => {
+                    hi = Some(q);
+                    break;
+                }
+                q => (lo, lo_solved) = (p.lam + dl, q.is_some()),
+            }
+            dl *= 2.0;
+        }
+        let mut hi = hi?;
+        let tol = 1e-14 * (1.0 + p.lam.abs());
+        while !lo_solved && hi.lam - lo > tol {
+            let mid = 0.5 * (lo + hi.lam);
+            let u = hi.u.clone();
+            match joined(st, mid, &u) {
+                Some(q) if s2(&q) < 1.0 => hi = q,
+                q => (lo, lo_solved) = (mid, q.is_some()),
+            }
+        }
+        if lo_solved {
+            let u = hi.u.clone();
+            let mut f = |lam: f64| joined(st, lam, &u).map(|q| s2(&q) - 1.0).ok_or(NoJoin);
+            if let Ok(lam) = search::root(&mut f, lo, hi.lam, tol) {
+                hi = joined(st, lam, &u)?;
+            }
+        }
+        let q = joined(st, hi.lam, &hi.u.clone())?;
+        // (every condition of the joined state holds there, its outer end at the tip within
+        // rounding, and it leaves no more free rod than the failure's point: the state the
+        // old one went over to, not another)
+        let env = &self.env;
+        let held = Crossing::all(env, &ns).into_iter().all(|c| {
+            let v = c.of_watch(env, &q.w);
+            holds(v) || v.abs() <= REACH_AT_ZERO
+        });
+        if !held || 1.0 - s2(&q) > free {
+            return None;
+        }
+        // (and reached from `p` without a jump: the elastic energy the gap releases is the work
+        // its sliding contacts absorb, less the foot's, to `REACH_JUMP`; else the old branch's
+        // end is a snap)
+        let (fa, fb) = (st.foot(p.lam), st.foot(q.lam));
+        let rate = |m, set, p: &Pt, xf| crate::record::rates(m, env, set, p, xf);
+        let mean = |m| 0.5 * (rate(m, set, p, fa.0)[0] + rate(m, &ns, &q, fb.0)[0]);
+        let friction =
+            0.5 * (rate(Meter::Slide, set, p, fa.0)[1] + rate(Meter::Slide, &ns, &q, fb.0)[1]);
+        let foot = mean(Meter::Foot) * (fb.0 - fa.0) + mean(Meter::Turn) * (fb.1 - fa.1);
+        let jump = e_old - st.energy(&q.u, q.lam)? + foot - friction * (q.lam - p.lam);
+        if !jump.is_finite() || jump.abs() > REACH_JUMP {
+            return None;
+        }
+        if let Some(m) = env.ground.meter {
+            let (xa, xb) = (st.foot(p.lam).0, st.foot(q.lam).0);
+            let ra = crate::record::rates(m, env, set, p, xa);
+            let rb = crate::record::rates(m, env, &ns, &q, xb);
+            let h = q.lam - p.lam;
+            for i in 0..2 {
+                let gap = h * (REACH_WEIGHT * ra[i] + (1.0 - REACH_WEIGHT) * rb[i]);
+                self.out.metered[i] += tail[i] + gap;
+            }
+            self.metered_to = Some(q.clone());
+        }
+        self.out.push(&ns, &q, Some(Event::ReachTip));
+        Some(q)
+    }
+
     /// The step from `prev` taken again, `h` long, where an event inside it led to a state that
     /// is not taken: the stepper back on the old set `old` at the step's start, the record, the
     /// range and the fallback lie (`lain`) as they were before the event, the step's end
@@ -1394,6 +1602,9 @@ impl<P: Profile> Run<'_, '_, P> {
         self.out.rewind(b.mark);
         *self.range = b.range;
         self.lain = lain;
+        if self.env.ground.meter.is_some() {
+            self.metered_to = Some(prev.clone());
+        }
         w.hist.pop();
         w.queue.clear();
         w.h = h;
@@ -1628,15 +1839,20 @@ impl<P: Profile> Run<'_, '_, P> {
                 self.range.close(RangeEnd::DMax);
                 Flow::End(StopReason::DMax, Some(Box::new((set, pe))))
             }
-            Next::Stop(ev) => {
-                if ev == Event::LiftOff {
-                    lifted(&mut pe.w);
+            // (the slide's equilibria fold back where the free rod between a lying stretch
+            // and the tip beyond it vanishes: the stretch reaches the tip, and the march goes
+            // on from the joined state)
+            Next::Stop(Event::FoldInD) if crate::events::stretch_at_tip(&set, &pe).is_some() => {
+                match self.reach_tip(&set, &pe) {
+                    Some(q) => {
+                        let joined = self.stepper.set().clone();
+                        self.go_on(w, &joined, q);
+                        Flow::Go
+                    }
+                    None => self.stopped(Event::FoldInD, set, pe),
                 }
-                self.range.see(&pe.w);
-                self.range.close(RangeEnd::Event);
-                self.out.push(&set, &pe, Some(ev));
-                Flow::End(stop_reason(ev, &pe.w, &set), Some(Box::new((set, pe))))
             }
+            Next::Stop(ev) => self.stopped(ev, set, pe),
             Next::Limit(message) => {
                 // (the event point is already in the range: seen where it was found)
                 self.range.close(RangeEnd::Event);
@@ -1645,6 +1861,39 @@ impl<P: Profile> Run<'_, '_, P> {
             }
             Next::Switch(ev, new_set, u) => self.switch(w, (ev, set, pe), new_set, u),
         }
+    }
+
+    /// The end at the event `ev` that stops the march, at `pe` of `set`.
+    fn stopped(&mut self, ev: Event, set: ContactSet, mut pe: Pt) -> Flow {
+        if ev == Event::LiftOff {
+            lifted(&mut pe.w);
+        }
+        self.range.see(&pe.w);
+        self.range.close(RangeEnd::Event);
+        self.out.push(&set, &pe, Some(ev));
+        Flow::End(stop_reason(ev, &pe.w, &set), Some(Box::new((set, pe))))
+    }
+
+    /// The march goes on from `q`, the first point of the new contact set `set`: its history
+    /// and the event functions still at (or past) zero there.
+    fn go_on(&mut self, w: &mut Walk, set: &ContactSet, q: Pt) {
+        let env = &self.env;
+        w.quiet = None;
+        // (one within rounding of zero too: its side is noise, and an armed one would cross
+        // back at once, an event the grid decides)
+        w.pending = Crossing::all(env, set)
+            .into_iter()
+            .filter(|c| {
+                let v = c.of_watch(env, &q.w);
+                !holds(v) || v.abs() <= AT_ZERO
+            })
+            .collect();
+        if env.ground.meter.is_some() {
+            self.metered_to = Some(q.clone());
+        }
+        w.hist = vec![q];
+        w.queue.clear();
+        w.pprev = None;
     }
 
     /// The contact set changes at the event point `pe` of `set` to `new_set` (the old state in
@@ -1751,20 +2000,7 @@ impl<P: Profile> Run<'_, '_, P> {
                     self.range.see(&q.w);
                     self.range.close(RangeEnd::FirstMaximum);
                 }
-                // (one within rounding of zero too: its side is noise, and an armed one would
-                // cross back at once, an event the grid decides)
-                let env = &self.env;
-                w.quiet = None;
-                w.pending = Crossing::all(env, &new_set)
-                    .into_iter()
-                    .filter(|c| {
-                        let v = c.of_watch(env, &q.w);
-                        !holds(v) || v.abs() <= AT_ZERO
-                    })
-                    .collect();
-                w.hist = vec![q];
-                w.queue.clear();
-                w.pprev = None;
+                self.go_on(w, &new_set, q);
                 Flow::Go
             }
             Err(e) => {

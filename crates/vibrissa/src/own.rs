@@ -260,6 +260,10 @@ impl<P: Profile> Stepper for OwnStepper<P> {
         self.env = env.clone();
     }
 
+    fn set_meter(&mut self, meter: Option<crate::surface::Meter>) {
+        self.env.ground.meter = meter;
+    }
+
     fn tangent_in(&mut self, set: &ContactSet, lam: f64, u: &[f64]) -> Option<Vec<f64>> {
         self.chain.tangent_in(set.clone(), u, lam)
     }

@@ -209,6 +209,38 @@ fn metered(m: Meter, env: &Env, set: &ContactSet, a: (&Pt, f64), b: (&Pt, f64)) 
     out
 }
 
+/// The rates in `λ` of the works `m` meters ([`metered`]) at the point `p` of `set` (foot at
+/// `xf`), `[foot, friction]`: the integrands `metered` takes over a step, for a stretch of the
+/// branch no solve reaches (a stretch reaching the tip, module `march`).
+pub(crate) fn rates(m: Meter, env: &Env, set: &ContactSet, p: &Pt, xf: f64) -> [f64; 2] {
+    let mut out = [0.0, 0.0];
+    let driver = env.ground.slide.map(|s| s.driver);
+    match m {
+        Meter::Foot => out[0] = foot_rate(set, p).0,
+        Meter::Turn => out[0] = turn_rate(p).0,
+        Meter::Slide => {
+            if let Some(j) = driver.filter(|&j| j < set.contacts.len()) {
+                out[1] = driver_rate(env, set, j, p, xf).0;
+            }
+        }
+    }
+    for (k, ct) in set.contacts.iter().enumerate() {
+        let Mode::Sliding(ratio) = ct.mode else {
+            continue;
+        };
+        if driver == Some(k) || !is_surface(ct) {
+            continue;
+        }
+        let c = &p.w.contacts[k];
+        let v = c.slide.slip;
+        if c.turn[0].is_finite() {
+            out[1] += c.turn[0] * v;
+        }
+        out[1] += ratio * c.normal * v;
+    }
+    out
+}
+
 /// Whether a contact touches the surface (a line or a curve).
 fn is_surface(ct: &crate::chain::Contact) -> bool {
     matches!(ct.geom, Geom::Line { .. } | Geom::Curve { .. })

@@ -276,11 +276,16 @@ pub enum Event {
     LieDown,
     /// The lying stretch shrinks back to a point contact at its outer end. The march goes on.
     PeelUp,
+    /// The lying stretch reaches the tip pressing beyond it: the tip's force goes over to the
+    /// stretch's outer end, which then draws back from the tip, the rest beyond unloaded
+    /// (docs/model.md, "A stretch that reaches the tip"). The march goes on.
+    ReachTip,
 }
 
 impl Event {
     /// The name used in CSV and JSON (`slip`, `lift_off`, `penetration`, `fold_in_d`,
-    /// `touchdown`, `peel_back`, `release`, `slip_off`, `halt`, `lie_down`, `peel_up`).
+    /// `touchdown`, `peel_back`, `release`, `slip_off`, `halt`, `lie_down`, `peel_up`,
+    /// `reach_tip`).
     pub fn name(self) -> &'static str {
         match self {
             Event::Slip => "slip",
@@ -294,6 +299,7 @@ impl Event {
             Event::Halt => "halt",
             Event::LieDown => "lie_down",
             Event::PeelUp => "peel_up",
+            Event::ReachTip => "reach_tip",
         }
     }
     /// Whether the event ends the march.
@@ -306,6 +312,7 @@ impl Event {
                 | Event::Halt
                 | Event::LieDown
                 | Event::PeelUp
+                | Event::ReachTip
         )
     }
 }

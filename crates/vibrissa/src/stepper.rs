@@ -197,6 +197,10 @@ pub(crate) trait Stepper {
     /// search that ended on a jump of its function between such iterates and corrected ones
     /// is searched again so. Default: ignored (the generic methods' solvers).
     fn set_polish(&mut self, _polish: bool) {}
+    /// Sets the meter its points' watches are made for (the works' integrands, a lying
+    /// stretch's friction work among them), `None` without one; the march's is the one
+    /// [`Stepper::phase`] set. Default: ignored.
+    fn set_meter(&mut self, _meter: Option<crate::surface::Meter>) {}
     /// The point `p` with its whole watch where it was made light: the same values as a point
     /// made whole, read on the shot of the same state (the one the shooter still holds, else
     /// the state shot again on the meshes as they are). Default: `p`.
