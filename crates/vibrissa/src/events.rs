@@ -1169,12 +1169,13 @@ pub(crate) fn stretch_at_tip(set: &ContactSet, p: &Pt) -> Option<String> {
     })
 }
 
-/// The set where the stretch lying on the surface has reached the tip of `set` (at `p`):
-/// the tip's contact joins the stretch, whose outer end is again where the rod's moment is zero
-/// with the rest beyond unloaded (module `chain`, `Lying`), and the unknowns without the tip's `(N, T)`
-/// and the outer end's unknown (`p`'s). Beyond that place, where the surface's curvature meets the rod's
-/// rest curvature, the tip draws back from the surface. `None` where `set` is not a stretch with
-/// the tip alone beyond it, or where the tip drives a slide (its place is the slide's parameter).
+/// The set where the stretch lying on the surface has reached the tip of `set` (at `p`): the
+/// tip's contact joins the stretch, whose outer end is again where the rod's moment is zero with
+/// the rest beyond unloaded (module `chain`, `Lying`), and `p`'s unknowns without the tip's
+/// `(N, T)` and the outer end's. Beyond that place, where the surface's curvature meets the
+/// rod's rest curvature, the tip draws back from the surface. `None` where `set` is not a
+/// stretch with the tip alone beyond it, or where the tip drives a slide (its place is the
+/// slide's parameter).
 pub(crate) fn tip_into_stretch(
     env: &Env,
     set: &ContactSet,
