@@ -144,12 +144,8 @@ pub(crate) fn march<P: Profile>(
                 // (a failure where the stretch lying on the surface reaches the tip: the tip
                 // joins it and the march goes on, as often as it reaches it)
                 loop {
-                    let reached = matches!(stop, StopReason::SolverFailure { .. })
-                        && run.lain.is_none()
-                        && last.as_ref().is_some_and(|(set, p)| {
-                            crate::events::stretch_at_tip(set, p).is_some()
-                        });
-                    let Some(q) = reached
+                    let failed = matches!(stop, StopReason::SolverFailure { .. });
+                    let Some(q) = (failed && run.lain.is_none())
                         .then(|| last.as_ref().and_then(|(set, p)| run.reach_tip(set, p)))
                         .flatten()
                     else {
@@ -569,7 +565,8 @@ const REACHES: usize = 64;
 const REACH_SPAN: f64 = 1e-2;
 
 /// The weight of the rate at the failure's point in the works across the gap to the first
-/// joined state (the rest that state's), [`Run::reach_tip`]: the trapezoid. Measured on the
+/// joined state (the rest that state's; metered, and in the gap's balance that tells one path),
+/// [`Run::reach_tip`]: the trapezoid. Measured on the
 /// four gaps of 6.7e-6 to 1.24e-5 whose works are 2.7e-7 to 5e-7, where the rates at the ends
 /// differ by up to 0.4 %: each slip balanced to 1.5e-11 to 1.9e-11 with it, to 1.1e-10 to
 /// 3.4e-10 with the weights ⅔ and ⅓ that a rate `g* + c·√(λ* − λ)` (the free rod's own law
@@ -996,10 +993,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 // (where the free rod between a lying stretch and the tip beyond it vanishes:
                 // the stretch reaches the tip, and the march goes on from the joined state)
                 let set = self.stepper.set().clone();
-                let reach = pt
-                    .as_deref()
-                    .filter(|p| crate::events::stretch_at_tip(&set, p).is_some());
-                if let Some(q) = reach.and_then(|p| self.reach_tip(&set, p)) {
+                if let Some(q) = pt.as_deref().and_then(|p| self.reach_tip(&set, p)) {
                     let joined = self.stepper.set().clone();
                     self.go_on(w, &joined, q);
                     return Err(Flow::Go);
@@ -1445,12 +1439,13 @@ impl<P: Profile> Run<'_, '_, P> {
         }
     }
 
-    /// The march's failure at `p` of `set` (the tip pressing on the surface just beyond the
-    /// stretch lying on it, [`crate::events::stretch_at_tip`]) taken as the stretch reaching the
-    /// tip: the first point of the set where the tip has joined the stretch
+    /// The march's failure or fold at `p` of `set` taken as the stretch reaching the tip: the
+    /// first point of the set where the tip has joined the stretch
     /// ([`crate::events::tip_into_stretch`]), its row recorded as [`Event::ReachTip`]; `None`
-    /// where no such state follows within [`REACH_SPAN`] of `p`, it does not hold, it is not one
-    /// path with `p` ([`REACH_JUMP`]), or the march has taken [`REACHES`] joins already.
+    /// where the tip does not press just beyond a lying stretch at `p`
+    /// ([`crate::events::stretch_at_tip`]), no joined state follows within [`REACH_SPAN`] of
+    /// `p`, it does not hold, it is not one path with `p` ([`REACH_JUMP`]), or the march has
+    /// taken [`REACHES`] joins already.
     ///
     /// Where the free rod between the stretch's outer end and the tip vanishes (`ℓ → 0`), the
     /// state is singular (the two forces come to act at one point, only their sum determined),
@@ -1472,7 +1467,7 @@ impl<P: Profile> Run<'_, '_, P> {
     /// branches meet there, with no jump between them. (Phase 0's failure came within 8.4e-5
     /// of the tip, and the joined state solved at its `λ` with 1.8e-7 of free rod.)
     fn reach_tip(&mut self, set: &ContactSet, p: &Pt) -> Option<Pt> {
-        if self.reaches >= REACHES {
+        if self.reaches >= REACHES || crate::events::stretch_at_tip(set, p).is_none() {
             return None;
         }
         self.reaches += 1;
@@ -1560,24 +1555,22 @@ impl<P: Profile> Run<'_, '_, P> {
         // (and reached from `p` without a jump: the elastic energy the gap releases is the work
         // its sliding contacts absorb, less the foot's, to `REACH_JUMP`; else the old branch's
         // end is a snap)
+        let h = q.lam - p.lam;
         let (fa, fb) = (st.foot(p.lam), st.foot(q.lam));
-        let rate = |m, set, p: &Pt, xf| crate::record::rates(m, env, set, p, xf);
-        let mean = |m| 0.5 * (rate(m, set, p, fa.0)[0] + rate(m, &ns, &q, fb.0)[0]);
-        let friction =
-            0.5 * (rate(Meter::Slide, set, p, fa.0)[1] + rate(Meter::Slide, &ns, &q, fb.0)[1]);
-        let foot = mean(Meter::Foot) * (fb.0 - fa.0) + mean(Meter::Turn) * (fb.1 - fa.1);
-        let jump = e_old - st.energy(&q.u, q.lam)? + foot - friction * (q.lam - p.lam);
+        // (the mean over the gap of the rate `i` that the meter `m` integrates)
+        let mean = |m, i: usize| {
+            let ra = crate::record::rates(m, env, set, p, fa.0)[i];
+            let rb = crate::record::rates(m, env, &ns, &q, fb.0)[i];
+            REACH_WEIGHT * ra + (1.0 - REACH_WEIGHT) * rb
+        };
+        let foot = mean(Meter::Foot, 0) * (fb.0 - fa.0) + mean(Meter::Turn, 0) * (fb.1 - fa.1);
+        let jump = e_old - st.energy(&q.u, q.lam)? + foot - mean(Meter::Slide, 1) * h;
         if !jump.is_finite() || jump.abs() > REACH_JUMP {
             return None;
         }
         if let Some(m) = env.ground.meter {
-            let (xa, xb) = (st.foot(p.lam).0, st.foot(q.lam).0);
-            let ra = crate::record::rates(m, env, set, p, xa);
-            let rb = crate::record::rates(m, env, &ns, &q, xb);
-            let h = q.lam - p.lam;
-            for i in 0..2 {
-                let gap = h * (REACH_WEIGHT * ra[i] + (1.0 - REACH_WEIGHT) * rb[i]);
-                self.out.metered[i] += tail[i] + gap;
+            for (i, (done, t)) in self.out.metered.iter_mut().zip(tail).enumerate() {
+                *done += t + h * mean(m, i);
             }
             self.metered_to = Some(q.clone());
         }
@@ -1843,16 +1836,14 @@ impl<P: Profile> Run<'_, '_, P> {
             // (the slide's equilibria fold back where the free rod between a lying stretch
             // and the tip beyond it vanishes: the stretch reaches the tip, and the march goes
             // on from the joined state)
-            Next::Stop(Event::FoldInD) if crate::events::stretch_at_tip(&set, &pe).is_some() => {
-                match self.reach_tip(&set, &pe) {
-                    Some(q) => {
-                        let joined = self.stepper.set().clone();
-                        self.go_on(w, &joined, q);
-                        Flow::Go
-                    }
-                    None => self.stopped(Event::FoldInD, set, pe),
+            Next::Stop(Event::FoldInD) => match self.reach_tip(&set, &pe) {
+                Some(q) => {
+                    let joined = self.stepper.set().clone();
+                    self.go_on(w, &joined, q);
+                    Flow::Go
                 }
-            }
+                None => self.stopped(Event::FoldInD, set, pe),
+            },
             Next::Stop(ev) => self.stopped(ev, set, pe),
             Next::Limit(message) => {
                 // (the event point is already in the range: seen where it was found)

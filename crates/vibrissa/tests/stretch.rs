@@ -619,21 +619,7 @@ fn a_side_sliding_with_the_tip_beyond_lies_down_in_a_slip() {
 /// side's place (events.rs `merged`), and the drag reaches d_max, every slip balanced.
 #[test]
 fn a_side_closing_up_to_a_stretch_that_formed_sliding_lies_down_with_it() {
-    let scene = Scene {
-        surface: SurfaceProfile::Sine {
-            amplitude: 0.02,
-            wavelength: 0.5,
-            phase: 2.0 * std::f64::consts::PI / 3.0,
-        },
-        ..stretch_scene()
-    };
-    let r = balanced_drag(
-        scene,
-        DragOptions {
-            points: 201,
-            ..paper_friction(0.3)
-        },
-    );
+    let r = balanced_drag(closing_scene(0.02), paper_grid());
     assert!(matches!(r.stop, StopReason::DMax), "{r}");
     assert_balanced(&r);
     let lies = |q: &&vibrissa::drag::DragRow| {
@@ -729,7 +715,7 @@ fn a_stretch_under_a_heavy_load_beyond_holds_by_the_ratio_it_needs() {
 /// closing by name.)
 #[test]
 fn a_closing_pending_at_a_change_of_set_lies_down_there() {
-    let r = drag_with(closing_scene(0.003), &paper_grid());
+    let r = drag_over(closing_scene(0.003), 0.3, 201);
     assert_reaches_the_tip_and_jams(&r);
     let n = r.rows.len();
     assert_eq!(r.rows[n - 3].contact.name(), "side+side+tip", "{r}");
