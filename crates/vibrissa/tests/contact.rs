@@ -518,9 +518,8 @@ fn a_slip_where_the_pair_jumped_is_located_where_its_forces_are() {
     // Open (measured 2026-12-04): that holds on the shooter's present meshes, not robustly. With
     // the first mesh of the segment between the side and the tip changed by −4 … +8 steps (11
     // meshes), the slip at tol 1e-10 lies 1.0e-7 before its place again on 7 of them. On the
-    // present mesh as on those no search of this test ends on a jump that `jumped` sees: the
-    // place is right here by the mesh (docs/performance.md, "A new segment laid out on its
-    // span").
+    // present mesh, too, no search of this test ends on a jump that `jumped` sees: the place is
+    // right here by the mesh (docs/performance.md, "A new segment laid out on its span").
     let scene = scene_of(
         0.6781129469334398,
         0.16631999848652218,
