@@ -905,6 +905,7 @@ impl<P: Profile> DragRun<'_, P> {
             friction: true,
             check_start: first,
             slide: false,
+            pass_fold_ahead: false,
         };
         let out = march(&mut *self.st, &spec, self.profile, p, Default::default());
         self.collect(&out, Phase::Stick, None, mu_s);
@@ -1029,6 +1030,7 @@ impl<P: Profile> DragRun<'_, P> {
                 friction: true,
                 check_start: false,
                 slide: false,
+                pass_fold_ahead: false,
             };
             let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
             // (a contact before the driver that let go renumbered it)

@@ -268,6 +268,7 @@ fn press_down<P: Profile>(
         friction: false,
         check_start: false,
         slide: false,
+        pass_fold_ahead: false,
     };
     let out = march(st, &spec, profile, q, Stats::default());
     match (&out.stop, out.last) {
@@ -455,6 +456,7 @@ fn grow<P: Profile>(
         friction: false,
         check_start: false,
         slide: false,
+        pass_fold_ahead: false,
     };
     // (the march from amplitude 0 first, as for any start: where it grows the profile, the
     // start is what it was before settling existed)

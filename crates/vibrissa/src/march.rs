@@ -51,6 +51,12 @@ pub(crate) struct Spec<'a> {
     /// A stuck contact that reaches `|T| = μ0 N` slides on (`T = ±μ0 N`) instead of ending the
     /// march (a whisk against an object).
     pub slide: bool,
+    /// A natural step that fails with a fold predicted within it hands over to the fold passage
+    /// at once ([`fold::ahead`]) instead of shrinking towards the fold: the scan. The drag's
+    /// marches crawl as before: a stretch that reaches the tip is joined where the crawl fails
+    /// (`Run::reach_tip`), and passed at once three rows of the texture grid met a trapped
+    /// slide instead (docs/performance.md, "A fold ahead is passed at once").
+    pub pass_fold_ahead: bool,
 }
 
 /// What a march produced.
@@ -864,7 +870,12 @@ impl<P: Profile> Run<'_, '_, P> {
                 w.h = self.ctl.after(w.h, p.iters, w.h_max);
                 Ok((p, false))
             }
-            (Err(e), _) if e.shorter_may_help() && w.h > w.h_min => {
+            (Err(e), v) if e.shorter_may_help() && w.h > w.h_min => {
+                if self.spec.pass_fold_ahead && v.is_none() && fold::ahead(&w.hist, target) {
+                    // passed at once, not crawled to by shorter steps (see `fold::ahead`; where
+                    // the only contact lets go the crawl ends in the lift-off as before)
+                    return self.through_fold(w, (lam, target), e, armed);
+                }
                 w.h *= self.ctl.reject;
                 Err(Flow::Go)
             }

@@ -153,6 +153,7 @@ fn scan_with<P: Profile>(
         friction: true,
         check_start: true,
         slide: false,
+        pass_fold_ahead: true,
     };
     let mut sh = start.sh.clone();
     sh.stats = Default::default();

@@ -354,6 +354,7 @@ pub(crate) fn press<P: Profile>(
         friction: false,
         check_start: false,
         slide: false,
+        pass_fold_ahead: false,
     };
     let out: MarchOut = march(&mut st, &mspec, profile, p, Stats::default());
     match (&out.stop, out.range_end, out.last) {
