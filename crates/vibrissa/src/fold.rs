@@ -38,11 +38,12 @@ impl OnPlane for Plane<'_> {
 /// Whether the last two points of `hist` put a fold in `λ` within the natural step to
 /// `target`. Near a fold `u − u*` goes as `√(λ* − λ)`, so `|du/dλ|⁻²` falls linearly to zero at
 /// `λ*`: its extrapolation through the two points' exact tangents is the fold to first order.
-/// Where it lies within a failed natural step, the march takes the passage at once instead of
-/// shrinking the step towards the fold (the `√` branch lets only steps of about a quarter of
-/// the distance left succeed: the ρ = 0.1 rod's scan crawled 7.4e-4 to its fold in 21 natural
-/// steps and 85 Newton iterations, a third of the scan's right-hand sides, where the passage
-/// from the first failure takes 26 in all; docs/performance.md).
+/// Where it lies within a failed natural step of a scan (`march::Spec::pass_fold_ahead`), the
+/// march takes the passage at once instead of shrinking the step towards the fold (the `√`
+/// branch lets only steps of about a quarter of the distance left succeed: the ρ = 0.1 rod's
+/// scan crawled 7.4e-4 to its fold in 21 natural steps and 85 Newton iterations, a third of the
+/// scan's right-hand sides, where the passage from the first failure takes 26 in all;
+/// docs/performance.md).
 pub(crate) fn ahead(hist: &[Pt], target: f64) -> bool {
     let [.., a, b] = hist else {
         return false;
