@@ -54,8 +54,8 @@ pub(crate) struct Spec<'a> {
     /// A natural step that fails with a fold predicted within it hands over to the fold passage
     /// at once ([`fold::ahead`]) instead of shrinking towards the fold: the scan. The drag's
     /// marches crawl as before: a stretch that reaches the tip is joined where the crawl fails
-    /// (`Run::reach_tip`), and passed at once three rows of the texture grid met a trapped
-    /// slide instead (docs/performance.md, "A fold ahead is passed at once").
+    /// (`Run::reach_tip`), and with the fold passed at once three rows of the texture grid met a
+    /// trapped slide before it (docs/performance.md, "A fold ahead is passed at once").
     pub pass_fold_ahead: bool,
 }
 
