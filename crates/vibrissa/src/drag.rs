@@ -636,6 +636,29 @@ fn off_surface(
     })
 }
 
+/// The march of one of a drag's phases, a stick or a piece of a slide, in `env` on `grid` to
+/// `lam_end` (`check_start`: the drag's first stick, whose start must be a valid state): new
+/// contacts hold by friction, a stuck contact's limit ends the march, and a fold ahead is
+/// crawled to, not passed at once (`Spec::pass_fold_ahead`).
+fn phase_spec<'s>(
+    (opts, general): (&'s DragOptions, &'s crate::profile::General),
+    env: &'s Env,
+    grid: &'s [f64],
+    (lam_end, check_start): (f64, bool),
+) -> Spec<'s> {
+    Spec {
+        env,
+        grid,
+        lam_end,
+        keep_shapes: opts.keep_shapes,
+        general,
+        friction: true,
+        check_start,
+        slide: false,
+        pass_fold_ahead: false,
+    }
+}
+
 struct DragRun<'a, P: Profile> {
     st: &'a mut dyn Stepper,
     profile: &'a P,
@@ -896,17 +919,8 @@ impl<P: Profile> DragRun<'_, P> {
         } else {
             self.grid.partition_point(|&g| g <= d)
         };
-        let spec = Spec {
-            env: &env,
-            grid: &self.grid[gi..],
-            lam_end: self.opts.d_max,
-            keep_shapes: self.opts.keep_shapes,
-            general: self.general,
-            friction: true,
-            check_start: first,
-            slide: false,
-            pass_fold_ahead: false,
-        };
+        let (opts, general, grid) = (self.opts, self.general, self.grid);
+        let spec = phase_spec((opts, general), &env, &grid[gi..], (opts.d_max, first));
         let out = march(&mut *self.st, &spec, self.profile, p, Default::default());
         self.collect(&out, Phase::Stick, None, mu_s);
         let Some((sset, pe)) = out.last else {
@@ -1021,17 +1035,7 @@ impl<P: Profile> DragRun<'_, P> {
                 Ok(q) => q,
                 Err(e) => return Err(Self::failure(d_s, format!("the slip at {clam}: {e}"))),
             };
-            let sspec = Spec {
-                env: &senv,
-                grid: &[],
-                lam_end,
-                keep_shapes: self.opts.keep_shapes,
-                general: self.general,
-                friction: true,
-                check_start: false,
-                slide: false,
-                pass_fold_ahead: false,
-            };
+            let sspec = phase_spec((self.opts, self.general), &senv, &[], (lam_end, false));
             let sout = march(&mut *self.st, &sspec, self.profile, q, Default::default());
             // (a contact before the driver that let go renumbered it)
             if let Some(k) = sout.driver {
