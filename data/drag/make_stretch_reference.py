@@ -248,8 +248,8 @@ def run(rtol):
 # surface (x from sigma(x) = c + s2, tangent, m = kappa_s / b) and ends at the tip's place with
 # m(1) = 0.
 A_B, PHASE_B = 0.003, 2.4
-S2B, X2B = 0.9328532248245588, 0.4785523319061838
-XA = 0.545667226423673
+S2B, X2B = 0.9328531919102035, 0.47855232184548324
+XA = 0.5456672492594945
 D_OUT_B = [0.15, 0.2, 0.25, 0.3]
 
 

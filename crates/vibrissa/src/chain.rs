@@ -27,7 +27,7 @@
 //! to the integration tolerance).
 
 use crate::profile::Profile;
-use crate::shooter::Shooter;
+use crate::shooter::{End, Shooter};
 use crate::surface::disk_on_curve;
 use bvp::Solution;
 use nalgebra::{DMatrix, DVector};
@@ -834,13 +834,14 @@ impl<P: Profile> Chain<P> {
             } else {
                 &[[1.0, 0.0], [0.0, 1.0]]
             };
-            let shot = self.sh.shoot(k, a, b, cur.z, dirs, g, var);
+            let ends = self.moving_ends(k);
+            let shot = self.sh.shoot_ends(k, (a, b), cur.z, dirs, g, var, ends);
             err = err.max(shot.err);
             if !shot.z.iter().all(|v| v.is_finite()) {
                 return Err(EvalError::NonFinite);
             }
             let next = if var {
-                self.carry(k, (a, b), &cur, &shot, g, first, u)
+                self.carry(k, &cur, &shot, first, u)
             } else {
                 DMatrix::zeros(4, 0)
             };
@@ -927,17 +928,28 @@ impl<P: Profile> Chain<P> {
         })
     }
 
-    /// The sensitivities of the end state of segment `k` on `[a, b]` (the shot `shot` from the
-    /// start `cur` under the force `g`; `first`: the foot's segment with its compliance folded
+    /// The ends of segment `k` that move with the unknowns: its end unless the tip's, its start
+    /// unless the foot's or the tip's (a contact's arc length, or a lying stretch's outer end).
+    fn moving_ends(&self, k: usize) -> &'static [End] {
+        let set = &self.set;
+        let stop = !set.contacts[k].tip;
+        let start = k > 0 && !set.contacts[k - 1].tip;
+        match (stop, start) {
+            (true, true) => &[End::Stop, End::Start],
+            (true, false) => &[End::Stop],
+            (false, true) => &[End::Start],
+            (false, false) => &[],
+        }
+    }
+
+    /// The sensitivities of the end state of segment `k` (the shot `shot` from the start `cur`,
+    /// with its moving ends' columns; `first`: the foot's segment with its compliance folded
     /// into the first column) with respect to the unknowns and `λ`.
-    #[allow(clippy::too_many_arguments)]
     fn carry(
         &self,
         k: usize,
-        (a, b): (f64, f64),
         cur: &Sens,
         shot: &crate::shooter::SegShot,
-        g: [f64; 2],
         first: bool,
         u: &[f64],
     ) -> DMatrix<f64> {
@@ -961,7 +973,7 @@ impl<P: Profile> Chain<P> {
             }
         }
         // the force columns: contacts j ≥ k
-        let (qx, qy) = (shot.ncol - 2, shot.ncol - 1);
+        let (qx, qy) = (shot.ncol - shot.nend - 2, shot.ncol - shot.nend - 1);
         for j in k..set.contacts.len() {
             let ct = &set.contacts[j];
             let o = set.offset(j);
@@ -972,49 +984,18 @@ impl<P: Profile> Chain<P> {
                 }
             }
         }
-        // moving ends, by central differences of the discrete end state (the mesh laid on the
-        // moved segment): exact to ~1e-10, so Newton converges as with exact derivatives
-        // whatever the integration tolerance
-        let moving_b = !set.contacts[k].tip;
-        let moving_a = k > 0 && !set.contacts[k - 1].tip;
-        if moving_b || moving_a {
-            let dlt = 1e-5 * (b - a);
-            let diff =
-                |lo: [f64; 4], hi: [f64; 4]| [0, 1, 2, 3].map(|i| (hi[i] - lo[i]) / (2.0 * dlt));
-            // the moved segments' end states, integrated together (the start state stays where
-            // it is for a moving start: only the segment's span moves)
-            let (span_b, span_a) = ([(a, b - dlt), (a, b + dlt)], [(a - dlt, b), (a + dlt, b)]);
-            let (end_b, end_a) = match (moving_b, moving_a) {
-                (true, true) => {
-                    let [b0, b1, a0, a1] = self.sh.end_states(
-                        k,
-                        [span_b[0], span_b[1], span_a[0], span_a[1]],
-                        cur.z,
-                        g,
-                    );
-                    (Some([b0, b1]), Some([a0, a1]))
-                }
-                (true, false) => (Some(self.sh.end_states(k, span_b, cur.z, g)), None),
-                _ => (None, Some(self.sh.end_states(k, span_a, cur.z, g))),
-            };
-            if let Some([lo, hi]) = end_b {
-                let col = set.offset(k) + 2;
-                let dz = diff(lo, hi);
-                for i in 0..4 {
-                    d[(i, col)] += dz[i];
-                }
-            }
-            if let Some([lo, hi]) = end_a {
+        // moving ends: the shot's own columns for them (`Shooter::shoot_ends`), the exact
+        // derivatives of the discrete end state with the mesh laid on the moved segment
+        for (e, end) in self.moving_ends(k).iter().enumerate() {
+            let col = match end {
+                End::Stop => set.offset(k) + 2,
                 // (beyond a lying stretch the segment starts at its outer end, the last unknown)
-                let col = if set.lain() == Some(k - 1) {
-                    u.len() - 1
-                } else {
-                    set.offset(k - 1) + 2
-                };
-                let dz = diff(lo, hi);
-                for i in 0..4 {
-                    d[(i, col)] += dz[i];
-                }
+                End::Start if set.lain() == Some(k - 1) => u.len() - 1,
+                End::Start => set.offset(k - 1) + 2,
+            };
+            let q = shot.ncol - shot.nend + e;
+            for i in 0..4 {
+                d[(i, col)] += shot.col[q][i];
             }
         }
         d
@@ -2241,7 +2222,7 @@ mod tests {
     use crate::surface::{Height, SurfaceProfile};
 
     /// The lying stretch's conditions and their derivatives: the Jacobian (by the chain rule
-    /// over the shots' sensitivities and the moving ends' differences, with the surface's
+    /// over the shots' sensitivities and the moving ends' columns, with the surface's
     /// curvature slope by central differences) against central differences of the residual, to
     /// 1e-6 of each row's size (and 1e-9, the differences' rounding), at states near the drags
     /// of tests/stretch.rs (a pre-curved rod: `κ0` and `b` both vary along it), in the drag's

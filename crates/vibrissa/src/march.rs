@@ -151,12 +151,13 @@ pub(crate) fn march<P: Profile>(
                 // joins it and the march goes on, as often as it reaches it)
                 loop {
                     let failed = matches!(stop, StopReason::SolverFailure { .. });
-                    let Some(q) = (failed && run.lain.is_none())
+                    let Some(q) = failed
                         .then(|| last.as_ref().and_then(|(set, p)| run.reach_tip(set, p)))
                         .flatten()
                     else {
                         break;
                     };
+                    run.lain = None;
                     (stop, last) = run.run(q, None);
                 }
                 // (a failure with the tip just beyond a lying stretch: the stretch reaches the

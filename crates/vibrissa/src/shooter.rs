@@ -35,12 +35,35 @@ pub(crate) const MAX_STEPS: usize = 100_000;
 pub(crate) struct SegShot {
     /// `z(b)`.
     pub z: [f64; 4],
-    /// `∂z(b)/∂(column q)`: the start directions first, then `Gx`, `Gy`.
-    pub col: [[f64; 4]; 4],
+    /// `∂z(b)/∂(column q)`: the start directions first, then `Gx`, `Gy`, then the moving ends
+    /// asked for (in the order of [`End`]s given).
+    pub col: [[f64; 4]; 6],
     /// Number of columns filled.
     pub ncol: usize,
+    /// Of them, the moving ends' (last).
+    pub nend: usize,
     /// Max over the steps of the scaled error estimate.
     pub err: f64,
+}
+
+/// An end of a segment that moves with the unknowns (a side contact's arc length): a shot asked
+/// for it carries the derivative of its end state with respect to that end's place, the mesh
+/// moving with the segment (`s = a + (b − a)σ` at fixed `σ`). Integrated as one more column of
+/// the variational equations,
+///
+/// ```text
+///     w' = J w + (±f + ς(σ)·∂f/∂s) / (b − a),   w(a) = 0,
+/// ```
+///
+/// (`+`, `ς = σ(b − a)` for the end `b`; `−`, `ς = (1 − σ)(b − a)` for the start `a`;
+/// `∂f/∂s = (0, 0, κ0'(s) + b'(s)·m, 0)`), on the same stages, it is the exact derivative of
+/// the discrete end state (a Runge–Kutta step commutes with differentiation), to rounding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum End {
+    /// The segment's start `a` (the start state held where it is).
+    Start,
+    /// The segment's end `b`.
+    Stop,
 }
 
 /// The mesh of one segment and what depends on it.
@@ -52,6 +75,8 @@ struct SegMesh {
     ab: (f64, f64),
     /// `(b, κ0)` at the 12 stage abscissae of each step, then at the end (non-uniform profiles).
     coef: Vec<[f64; 2]>,
+    /// `(b', κ0')` at the same places, for shots with moving ends (empty until one asks).
+    slope: Vec<[f64; 2]>,
     /// Scaled error estimate of each step of the last shot.
     step_err: Vec<f64>,
     /// The last shot's nodes in `s`, `z` and `F(z)` (node-major, 4 each), and its force.
@@ -67,6 +92,7 @@ impl SegMesh {
             nodes: (0..=steps).map(|i| i as f64 / steps as f64).collect(),
             ab: (f64::NAN, f64::NAN),
             coef: Vec::new(),
+            slope: Vec::new(),
             step_err: Vec::new(),
             path_s: Vec::new(),
             path_z: Vec::new(),
@@ -151,17 +177,22 @@ impl<P: Profile> Shooter<P> {
         }
     }
 
-    /// Recomputes segment `k`'s profile table when its interval changed.
-    fn tabulate(&mut self, k: usize, a: f64, b: f64) {
+    /// Recomputes segment `k`'s profile table when its interval changed (with the slopes where
+    /// `slopes`, for moving ends).
+    fn tabulate(&mut self, k: usize, a: f64, b: f64, slopes: bool) {
         if P::UNIFORM {
             return;
         }
         let m = &mut self.segs[k];
         if m.ab == (a, b) && !m.coef.is_empty() {
+            if slopes && m.slope.len() != m.coef.len() {
+                self.tabulate_slopes(k);
+            }
             return;
         }
         m.ab = (a, b);
         m.coef.clear();
+        m.slope.clear();
         let len = b - a;
         for w in m.nodes.windows(2) {
             let h = w[1] - w[0];
@@ -171,6 +202,26 @@ impl<P: Profile> Shooter<P> {
             }
         }
         m.coef.push([self.profile.b(b), self.profile.k0(b)]);
+        if slopes {
+            self.tabulate_slopes(k);
+        }
+    }
+
+    /// Segment `k`'s profile slopes at the places of its table.
+    fn tabulate_slopes(&mut self, k: usize) {
+        let m = &mut self.segs[k];
+        let (a, b) = m.ab;
+        let len = b - a;
+        m.slope.clear();
+        for w in m.nodes.windows(2) {
+            let h = w[1] - w[0];
+            for c in tab::C {
+                let (db, dk) = self.profile.slopes(a + len * (w[0] + c * h));
+                m.slope.push([db, dk]);
+            }
+        }
+        let (db, dk) = self.profile.slopes(b);
+        m.slope.push([db, dk]);
     }
 
     /// A new mesh for segment `k` after a shot with steps over tolerance: each such step should
@@ -240,16 +291,33 @@ impl<P: Profile> Shooter<P> {
         g: [f64; 2],
         var: bool,
     ) -> SegShot {
+        self.shoot_ends(k, (a, b), z0, dirs, g, var, &[])
+    }
+
+    /// [`Shooter::shoot`] with, where `var`, the sensitivities to the moving `ends` too (at most
+    /// two, each [`End`] once): the state's bits are those of the shot without them.
+    #[allow(clippy::too_many_arguments)]
+    pub fn shoot_ends(
+        &mut self,
+        k: usize,
+        (a, b): (f64, f64),
+        z0: [f64; 4],
+        dirs: &[[f64; 2]],
+        g: [f64; 2],
+        var: bool,
+        ends: &[End],
+    ) -> SegShot {
+        let ends = if var { ends } else { &[] };
         self.ensure_segments(k + 1);
-        self.tabulate(k, a, b);
+        self.tabulate(k, a, b, !ends.is_empty());
         #[cfg(target_arch = "x86_64")]
         {
             if std::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
-                return unsafe { self.shoot_avx2(k, a, b, z0, dirs, g, var) };
+                return unsafe { self.shoot_avx2(k, a, b, z0, dirs, g, var, ends) };
             }
         }
-        self.shoot_width(k, a, b, z0, dirs, g, var)
+        self.shoot_width(k, a, b, z0, dirs, g, var, ends)
     }
 
     #[cfg(target_arch = "x86_64")]
@@ -264,8 +332,9 @@ impl<P: Profile> Shooter<P> {
         dirs: &[[f64; 2]],
         g: [f64; 2],
         var: bool,
+        ends: &[End],
     ) -> SegShot {
-        self.shoot_width(k, a, b, z0, dirs, g, var)
+        self.shoot_width(k, a, b, z0, dirs, g, var, ends)
     }
 
     #[inline(always)]
@@ -279,16 +348,23 @@ impl<P: Profile> Shooter<P> {
         dirs: &[[f64; 2]],
         g: [f64; 2],
         var: bool,
+        ends: &[End],
     ) -> SegShot {
-        match (var, dirs.len()) {
-            (false, _) => self.shoot_impl::<4>(k, a, b, z0, dirs, g),
-            (true, 1) => self.shoot_impl::<16>(k, a, b, z0, dirs, g),
-            _ => self.shoot_impl::<20>(k, a, b, z0, dirs, g),
+        let e = ends;
+        match (var, dirs.len(), ends.len()) {
+            (false, _, _) => self.shoot_impl::<4, 0>(k, a, b, z0, dirs, g, e),
+            (true, 1, 0) => self.shoot_impl::<16, 0>(k, a, b, z0, dirs, g, e),
+            (true, 1, 1) => self.shoot_impl::<20, 1>(k, a, b, z0, dirs, g, e),
+            (true, 1, _) => self.shoot_impl::<24, 2>(k, a, b, z0, dirs, g, e),
+            (true, _, 0) => self.shoot_impl::<20, 0>(k, a, b, z0, dirs, g, e),
+            (true, _, 1) => self.shoot_impl::<24, 1>(k, a, b, z0, dirs, g, e),
+            (true, _, _) => self.shoot_impl::<28, 2>(k, a, b, z0, dirs, g, e),
         }
     }
 
     #[inline(always)]
-    fn shoot_impl<const N: usize>(
+    #[allow(clippy::too_many_arguments)]
+    fn shoot_impl<const N: usize, const E: usize>(
         &mut self,
         k: usize,
         a: f64,
@@ -296,11 +372,12 @@ impl<P: Profile> Shooter<P> {
         z0: [f64; 4],
         dirs: &[[f64; 2]],
         g: [f64; 2],
+        ends: &[End],
     ) -> SegShot {
         let ncol = (N - 4) / 4;
         let mut y = [0.0; N];
         y[..4].copy_from_slice(&z0);
-        for (q, d) in dirs.iter().enumerate().take(ncol.saturating_sub(2)) {
+        for (q, d) in dirs.iter().enumerate().take(ncol.saturating_sub(2 + E)) {
             y[4 + 4 * q + 2] = d[0];
             y[4 + 4 * q + 3] = d[1];
         }
@@ -314,6 +391,28 @@ impl<P: Profile> Shooter<P> {
         m.force = g;
         let n = m.nodes.len() - 1;
         let coef = &m.coef;
+        let slope = &m.slope;
+        // the moving ends' terms: `±f/(b − a)` and `ς(σ) = c0 + c1·σ` times `∂f/∂s`
+        let ends: [EndTerm; E] = std::array::from_fn(|e| match ends[e] {
+            End::Stop => EndTerm {
+                f: 1.0 / len,
+                c0: 0.0,
+                c1: 1.0,
+            },
+            End::Start => EndTerm {
+                f: -1.0 / len,
+                c0: 1.0,
+                c1: -1.0,
+            },
+        });
+        // the profile's slopes at stage `i` of a step whose table starts at `i0`, and its `σ`
+        let sl = |i: usize| -> [f64; 2] {
+            if P::UNIFORM || E == 0 {
+                [0.0; 2]
+            } else {
+                slope[i]
+            }
+        };
         // the profile at the stages of one step and at its end (one bounds check per step)
         let at = |cs: &[[f64; 2]], i: usize| -> (f64, f64) {
             if P::UNIFORM {
@@ -333,10 +432,11 @@ impl<P: Profile> Shooter<P> {
         let (gx, gy) = (g[0], g[1]);
         let mut kk = [[0.0; N]; 12];
         let (b0, q0) = at(step_coef(0), 0);
-        kk[0] = rhs::<N>(&y, gx, gy, b0, q0);
+        kk[0] = rhs_ends::<N, E>(&y, gx, gy, (b0, q0), (sl(0), 0.0), &ends);
         let mut err_max: f64 = 0.0;
         for step in 0..n {
             let h = len * (m.nodes[step + 1] - m.nodes[step]);
+            let (sg0, dsg) = (m.nodes[step], m.nodes[step + 1] - m.nodes[step]);
             let cs = step_coef(step);
             m.path_s.push(a + len * m.nodes[step]);
             m.path_z.extend_from_slice(&y[..4]);
@@ -352,7 +452,8 @@ impl<P: Profile> Shooter<P> {
                         }
                     )*
                     let (bb, qq) = at(cs, $i);
-                    kk[$i] = rhs::<N>(&t, gx, gy, bb, qq);
+                    let ps = (sl(12 * step + $i), sg0 + tab::C[$i] * dsg);
+                    kk[$i] = rhs_ends::<N, E>(&t, gx, gy, (bb, qq), ps, &ends);
                 }};
             }
             stage!(1, [0]);
@@ -379,7 +480,8 @@ impl<P: Profile> Shooter<P> {
             err_max = err_max.max(err);
             y = ynew;
             let (bb, qq) = at(cs, 12);
-            kk[0] = rhs::<N>(&y, gx, gy, bb, qq);
+            let ps = (sl(12 * step + 12), m.nodes[step + 1]);
+            kk[0] = rhs_ends::<N, E>(&y, gx, gy, (bb, qq), ps, &ends);
         }
         m.path_s.push(b);
         m.path_z.extend_from_slice(&y[..4]);
@@ -389,7 +491,7 @@ impl<P: Profile> Shooter<P> {
         if N > 4 {
             self.stats.jac_evals += 12 * n + 1;
         }
-        let mut col = [[0.0; 4]; 4];
+        let mut col = [[0.0; 4]; 6];
         for (q, c) in col.iter_mut().enumerate().take(ncol) {
             c.copy_from_slice(&y[4 + 4 * q..8 + 4 * q]);
         }
@@ -397,6 +499,7 @@ impl<P: Profile> Shooter<P> {
             z: [y[0], y[1], y[2], y[3]],
             col,
             ncol,
+            nend: E,
             err: err_max,
         }
     }
@@ -447,59 +550,6 @@ impl<P: Profile> Shooter<P> {
         g: [f64; 2],
     ) -> [[f64; 4]; L] {
         self.steps_impl(z0, s0, h, g)
-    }
-
-    /// The end states of segment `k`'s mesh laid on each of the spans `ab`, from `z0` under the
-    /// force `g`, without sensitivities or a record (the profile read directly): the differences
-    /// in the segment's ends that move with the contacts. The integrations run in lockstep, each
-    /// lane [`Shooter::step`]'s operations in its order (so each lane's bits are those of its
-    /// integration alone); interleaved, the lanes' independent chains of latencies overlap (in
-    /// one integration each stage waits for the last).
-    pub fn end_states<const L: usize>(
-        &self,
-        k: usize,
-        ab: [(f64, f64); L],
-        z0: [f64; 4],
-        g: [f64; 2],
-    ) -> [[f64; 4]; L] {
-        #[cfg(target_arch = "x86_64")]
-        {
-            if std::is_x86_feature_detected!("avx2") {
-                // SAFETY: the CPU has AVX2 (checked just above), the only requirement.
-                return unsafe { self.end_states_avx2(k, ab, z0, g) };
-            }
-        }
-        self.end_states_impl(k, ab, z0, g)
-    }
-
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn end_states_avx2<const L: usize>(
-        &self,
-        k: usize,
-        ab: [(f64, f64); L],
-        z0: [f64; 4],
-        g: [f64; 2],
-    ) -> [[f64; 4]; L] {
-        self.end_states_impl(k, ab, z0, g)
-    }
-
-    #[inline(always)]
-    fn end_states_impl<const L: usize>(
-        &self,
-        k: usize,
-        ab: [(f64, f64); L],
-        z0: [f64; 4],
-        g: [f64; 2],
-    ) -> [[f64; 4]; L] {
-        let nodes = &self.segs[k].nodes;
-        let mut z = [z0; L];
-        for w in nodes.windows(2) {
-            let s0 = ab.map(|(a, b)| a + (b - a) * w[0]);
-            let h = ab.map(|(a, b)| (b - a) * (w[1] - w[0]));
-            z = self.steps_impl(z, s0, h, g);
-        }
-        z
     }
 
     /// [`Shooter::step_impl`] on `L` lanes at once, stage by stage (the same operations per lane,
@@ -720,6 +770,28 @@ fn step_error<const N: usize>(
 /// are the force components (components `4 + 4q + i` hold `∂z_i/∂(column q)`).
 #[inline(always)]
 pub(crate) fn rhs<const N: usize>(y: &[f64; N], gx: f64, gy: f64, b: f64, k0: f64) -> [f64; N] {
+    rhs_ends::<N, 0>(y, gx, gy, (b, k0), ([0.0; 2], 0.0), &[])
+}
+
+/// A moving end's inhomogeneous term in its column ([`End`]): `f·f_rod + (c0 + c1·σ)·∂f/∂s`.
+#[derive(Clone, Copy, Debug)]
+struct EndTerm {
+    f: f64,
+    c0: f64,
+    c1: f64,
+}
+
+/// [`rhs`] with `E` moving-end columns last ([`End`]): the profile `(b, κ0)` and, at the
+/// stage, its slopes `(b', κ0')` and the mesh coordinate `σ`.
+#[inline(always)]
+fn rhs_ends<const N: usize, const E: usize>(
+    y: &[f64; N],
+    gx: f64,
+    gy: f64,
+    (b, k0): (f64, f64),
+    (slope, sigma): ([f64; 2], f64),
+    ends: &[EndTerm; E],
+) -> [f64; N] {
     let (sp, cp) = sin_cos(y[2]);
     let mut d = [0.0; N];
     d[0] = cp;
@@ -738,9 +810,19 @@ pub(crate) fn rhs<const N: usize>(y: &[f64; N], gx: f64, gy: f64, b: f64, k0: f6
         d[4 + 4 * q + 2] = b * dm;
         d[4 + 4 * q + 3] = dm_dphi * dphi;
     }
-    let qx = ncol - 2;
+    let qx = ncol - 2 - E;
     d[4 + 4 * qx + 3] += sp;
     d[4 + 4 * (qx + 1) + 3] -= cp;
+    if E > 0 {
+        let ds = slope[1] + slope[0] * y[3];
+        for (e, t) in ends.iter().enumerate() {
+            let o = 4 + 4 * (ncol - E + e);
+            for c in 0..4 {
+                d[o + c] += t.f * d[c];
+            }
+            d[o + 2] += (t.c0 + t.c1 * sigma) * ds;
+        }
+    }
     d
 }
 
@@ -914,39 +996,61 @@ mod tests {
         }
     }
 
-    /// The lanes of `end_states` are, bit for bit, the single-step integrations of `step` over
-    /// the segment's mesh laid on each span (a graded mesh, a tapered pre-curved rod), so the
-    /// central differences of the moving ends do not depend on how they are computed.
+    /// The moving ends' columns are the derivatives of the discrete end state with the mesh laid
+    /// on the moved segment: against central differences of shots over `(a, b ± e)` and
+    /// `(a ± e, b)` (Richardson-extrapolated), for one and two start directions and either end alone,
+    /// on a mesh graded towards the thin tip of a tapered, pre-curved rod, so that the profile's
+    /// slopes enter (the `ς·∂f/∂s` term). The state's bits are those of the shot without the
+    /// columns, and the other columns are those of a shot without the ends.
     #[test]
-    fn end_states_lanes_are_single_step_integrations() {
-        let (z0, g) = ([0.0, 0.0, std::f64::consts::FRAC_PI_2, -0.05], [0.02, -0.3]);
-        let sh = graded((-0.7, 0.2), (0.0, 0.9), z0, g);
-        let single = |(a, b): (f64, f64)| -> [f64; 4] {
-            let mut z = z0;
-            for w in sh.segs[0].nodes.windows(2) {
-                z = sh.step(z, a + (b - a) * w[0], (b - a) * (w[1] - w[0]), g);
-            }
-            z
+    fn moving_end_columns_are_derivatives_of_the_discrete_end_state() {
+        let (z0, g) = ([0.1, 0.2, 1.3, -0.4], [0.3, -1.1]);
+        let (a, b) = (0.15, 0.93);
+        let mut sh = graded((-0.7, 0.9), (a, b), z0, g);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let plain = sh.shoot(0, a, b, z0, &[], g, false);
+        // central differences at steps e and 2e, extrapolated (Richardson: error ~e⁴·z⁽⁵⁾; near
+        // the thin tip `b(s)` ~ 1e3 and its slopes ~ 3e4, so one difference alone is off by
+        // ~1e-7)
+        let diff = |sh: &mut Shooter<General>, end: End| -> [f64; 4] {
+            let at = |sh: &mut Shooter<General>, e: f64| -> [f64; 4] {
+                let (lo, hi) = match end {
+                    End::Stop => ((a, b - e), (a, b + e)),
+                    End::Start => ((a - e, b), (a + e, b)),
+                };
+                let p = sh.shoot(0, hi.0, hi.1, z0, &[], g, false).z;
+                let m = sh.shoot(0, lo.0, lo.1, z0, &[], g, false).z;
+                std::array::from_fn(|i| (p[i] - m[i]) / (2.0 * e))
+            };
+            let (d1, d2) = (at(sh, 1e-4), at(sh, 2e-4));
+            std::array::from_fn(|i| (4.0 * d1[i] - d2[i]) / 3.0)
         };
-        let d = 1e-5 * 0.9;
-        let spans = [
-            (0.0, 0.9 - d),
-            (0.0, 0.9 + d),
-            (0.1 - d, 0.9),
-            (0.1 + d, 0.9),
-        ];
-        let four = sh.end_states(0, spans, z0, g);
-        let two = sh.end_states(0, [spans[2], spans[3]], z0, g);
-        for (l, span) in spans.iter().enumerate() {
-            let z = single(*span);
-            assert_eq!(
-                four[l].map(f64::to_bits),
-                z.map(f64::to_bits),
-                "lane {l} of four"
-            );
+        let d_stop = diff(&mut sh, End::Stop);
+        let d_start = diff(&mut sh, End::Start);
+        let dirs2: &[[f64; 2]] = &[[1.0, 0.0], [0.0, 1.0]];
+        let dirs1: &[[f64; 2]] = &[[0.3, 1.0]];
+        for dirs in [dirs1, dirs2] {
+            for ends in [&[End::Stop][..], &[End::Start], &[End::Stop, End::Start]] {
+                let y = sh.shoot_ends(0, (a, b), z0, dirs, g, true, ends);
+                assert_eq!(bits(&y.z), bits(&plain.z), "{ends:?}");
+                assert_eq!((y.ncol, y.nend), (dirs.len() + 2 + ends.len(), ends.len()));
+                for (q, end) in ends.iter().enumerate() {
+                    let fd = if *end == End::Stop { d_stop } else { d_start };
+                    let col = y.col[y.ncol - y.nend + q];
+                    for i in 0..4 {
+                        assert!(
+                            (fd[i] - col[i]).abs() <= 1e-8 * (1.0 + fd[i].abs()),
+                            "{end:?} of {ends:?}, {} directions, z{i}: fd {} column {}",
+                            dirs.len(),
+                            fd[i],
+                            col[i]
+                        );
+                    }
+                }
+                let y0 = sh.shoot(0, a, b, z0, dirs, g, true);
+                assert_eq!(y.col[..y0.ncol], y0.col[..y0.ncol]);
+            }
         }
-        assert_eq!(two[0].map(f64::to_bits), single(spans[2]).map(f64::to_bits));
-        assert_eq!(two[1].map(f64::to_bits), single(spans[3]).map(f64::to_bits));
     }
 
     /// The lanes of `states_at` are `state_at`, bit for bit (ten places on a graded mesh of a

@@ -760,8 +760,17 @@ fn the_stick_work_where_a_passive_slider_halts_is_finite() {
 /// noise (within 1e-7 at both ends of its step), and such a halt into a trapped, singular state
 /// is not taken now (march.rs `Flow::Quiet`): the side slides on at a rate of zero, and the drag
 /// reaches d_max through 33 slips, every contact by Coulomb and every slip's energy to 1e-8.
+/// Which of its outcomes the drag takes is decided by rounding, not by the model: the side
+/// touches down at d 0.0012773 beside the stuck tip in a trapped state, and the new state's
+/// tangent there is the pair's nearly indeterminate tangential forces (dT/dd ~ 1e8) with a
+/// normal part of either sign (+2.2e3 with the moving ends' derivatives by differences, −1.5e3
+/// with them exact), which decides whether the side forms sliding or held. Before 2026-12-04
+/// (differences) the drag reached d_max through 33 slips at tol 1e-10, 31 at 3e-11, 32 at
+/// 1e-12 (the slips after the first at other places), and jammed at d 0.0016907 at 1e-11; since
+/// (exact) it jams there at 1e-10. What is determined, and asserted: no solver failure, a
+/// physical stop (d_max or that jam), every row checked (the harness's `check`).
 #[test]
-fn a_side_trapped_beside_the_tip_slides_on_past_its_halt_at_the_noise() {
+fn a_side_trapped_beside_the_tip_ends_by_a_physical_stop() {
     let c = Case {
         amp: 0.009263757406870549,
         wave: 0.25968873883664656,
@@ -774,8 +783,8 @@ fn a_side_trapped_beside_the_tip_slides_on_past_its_halt_at_the_noise() {
         d_max: 0.08820531773788857,
     };
     let out = run(&c).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-    assert!(out.ends_with("stopped: d_max reached"), "{out}");
-    assert!(out.contains(" 33 slips,"), "{out}");
+    let jam = out.contains("stopped: jam") && (stop_d(&out).unwrap() - 0.0016907).abs() < 1e-6;
+    assert!(out.ends_with("stopped: d_max reached") || jam, "{out}");
 }
 
 /// Was open: a solver failure at d = 0.0603: the free rod's clearance jumped from -7.4e-5 to
@@ -1591,23 +1600,20 @@ fn a_noise_halt_does_not_depend_on_the_output_grid() {
 /// The short rat preset over 0.02 sin(2πx/0.5 + 2π/3) (issue 31's texture grid) on this
 /// harness's 11 output points: it stopped where its tip halts at the rate's noise into a trapped
 /// state (d 0.0685), and since that halt is not taken
-/// (`a_slider_whose_rate_is_noise_does_not_halt_into_a_trap`) it slides on, and at d 0.0746456
-/// its tip touches down 0.0016 beyond a side whose curvature has come to the surface's. The
-/// side lies along the surface from that state's first point, and the stretch it forms does not
-/// hold there (Newton stalls at a residual of 1.6e-7): the drag ends there by the lie's name,
+/// (`a_slider_whose_rate_is_noise_does_not_halt_into_a_trap`) it slid on, and at d 0.0746456
+/// its tip touched down 0.0016 beyond a side whose curvature had come to the surface's. The
+/// side lay along the surface from that state's first point, and the stretch it formed did not
+/// hold there (Newton stalled at a residual of 1.6e-7): the drag ended there by the lie's name,
 /// not as a solver failure, and without the row of the state that did not go on (its tip
-/// pulled, N = −0.067). On the program's 201 points the tip does not touch down there, the side
-/// lies down at d 0.0758818, and the drag reaches d_max (45 slips).
+/// pulled, N = −0.067). On the program's 201 points the tip did not touch down there, the side
+/// lay down at d 0.0758818, and the drag reached d_max (45 slips). Since the moving ends'
+/// derivatives are exact (2026-12-04) the drag reaches d_max on the 11 points too, through 45
+/// slips, every row checked and every slip balanced (the harness's `check`).
 #[test]
-fn a_side_whose_stretch_does_not_hold_at_its_first_point_stops_as_the_lie() {
+fn the_short_rat_preset_over_a_steep_sine_reaches_d_max_past_its_lie_down() {
     let (c, s) = rat_case(0.02, 0.5, 2.0 * std::f64::consts::PI / 3.0, 0.3);
     let out = run_in(&c, s).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-    assert!(out.contains("begins to lie along the surface"), "{out}");
-    assert!(
-        out.contains("the stretch it forms is not resolved"),
-        "{out}"
-    );
-    assert!((stop_d(&out).unwrap() - 0.0746456).abs() < 1e-6, "{out}");
+    assert!(out.ends_with("stopped: d_max reached"), "{out}");
 }
 
 /// Was open (the property's seed 25 at 64 cases, found 2026-12-02): at d = 0.0537674 in a stick
@@ -1617,7 +1623,12 @@ fn a_side_whose_stretch_does_not_hold_at_its_first_point_stops_as_the_lie() {
 /// of the next halt there, had the new side at N = −3.5e-13; the two then let go, one after
 /// the other, 2e-14 further in d. A normal force that close below zero at a state's first point
 /// is zero (march.rs `at_zero`, the rule for an event function right after a change of set),
-/// and the row says so; the drag goes on as before, to its jam at d 0.0613862.
+/// and the row says so; the drag goes on as before, to its jam at d 0.0613862. Whether it goes
+/// on past that halt is decided by rounding: with the moving ends' derivatives by differences
+/// (before 2026-12-04) the drag jammed at d 0.0613862 at tol 1e-10 and 3e-11 (56 and 21 slips
+/// on the program's 11 points) and ended at the halt at 1e-11 (the state after it pulls at a
+/// side, N = −0.18: a contact change), with them exact the other way round. Asserted: a
+/// physical stop at the halt or beyond, every row checked, none tensile.
 #[test]
 fn a_halt_among_contacts_at_rounding_level_forces_is_not_tensile() {
     let c = Case {
@@ -1632,8 +1643,10 @@ fn a_halt_among_contacts_at_rounding_level_forces_is_not_tensile() {
         d_max: 0.09164927359441077,
     };
     let out = run_in(&c, scene(&c)).unwrap_or_else(|e| panic!("{c:?}: {e}"));
-    assert!(out.contains("stopped: jam"), "{out}");
-    assert!((stop_d(&out).unwrap() - 0.0613862).abs() < 1e-6, "{out}");
+    let d = stop_d(&out).unwrap_or(f64::NAN);
+    let jam = out.contains("stopped: jam") && (d - 0.0613862).abs() < 1e-6;
+    let halt = out.contains("stopped: contact change") && (d - 0.0537674).abs() < 1e-6;
+    assert!(jam || halt, "{out}");
 }
 
 /// The texture grid's uniform rod, point tip, over 0.003/0.02 at `phase` to `d_max` (the paper's

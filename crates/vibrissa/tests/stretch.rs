@@ -273,9 +273,12 @@ fn a_stretch_with_the_tip_beyond_matches_the_independent_reference() {
         .expect("a lie-down");
     // (the reference's inputs: the side's place and the tip's where it lay down)
     let (side, tip) = (lie.contacts[0], lie.contacts[1]);
-    assert!((side.s - 0.9328532248245588).abs() < 1e-9, "{side}");
-    assert!((side.x - 0.4785523319061838).abs() < 1e-9, "{side}");
-    assert!(tip.tip && (tip.x - 0.545667226423673).abs() < 1e-9, "{tip}");
+    assert!((side.s - 0.9328531919102035).abs() < 1e-9, "{side}");
+    assert!((side.x - 0.47855232184548324).abs() < 1e-9, "{side}");
+    assert!(
+        tip.tip && (tip.x - 0.5456672492594945).abs() < 1e-9,
+        "{tip}"
+    );
     let (mut worst, mut split) = (0.0f64, 0.0f64);
     let rows = reference("stretch_tip_reference.csv");
     assert_eq!(rows.len(), 4);
@@ -708,17 +711,18 @@ fn a_stretch_under_a_heavy_load_beyond_holds_by_the_ratio_it_needs() {
 /// The slide's equilibria fold there at once; until 2026-12-03 that ended the drag as a snap
 /// ("the equilibria fold back"). The fold is the stretch reaching the tip 8.0e-6 further on
 /// (one path in energy to 1.2e-12: march.rs `Run::reach_tip`), its outer end at the sine's
-/// inflection x = 7/12 (the rod's rest is straight), at the tip. Beyond, the free rod comes down
-/// onto the surface at the tip at once, and the stretch with the tip beyond it does not go on: a
+/// inflection x = 7/12 (the rod's rest is straight), at the tip. Beyond, the free rod came down
+/// onto the surface at the tip at once, and the stretch with the tip beyond it did not go on: a
 /// jam, after the same 4990 slips and at the same d. (Before the join, on 11, 51, 101 and 401
 /// rows and at tol 1e-11, the fold passage there was not resolved and the drag ended at the
-/// closing by name.)
+/// closing by name.) Since the moving ends' derivatives are exact (2026-12-04) the fold's
+/// location there is not solved; the join is tried on that failure too (where a lie-down is
+/// pending, march.rs `march`), and beyond it the stretch slides on with the tip: d_max after
+/// 4991 slips ([`assert_reaches_the_tip`]).
 #[test]
 fn a_closing_pending_at_a_change_of_set_lies_down_there() {
     let r = drag_over(closing_scene(0.003), 0.3, 201);
-    assert_reaches_the_tip_and_jams(&r);
-    let n = r.rows.len();
-    assert_eq!(r.rows[n - 3].contact.name(), "side+side+tip", "{r}");
+    assert_reaches_the_tip(&r);
 }
 
 /// [`a_closing_pending_at_a_change_of_set_lies_down_there`] with each slip's energy balance: to
@@ -727,40 +731,50 @@ fn a_closing_pending_at_a_change_of_set_lies_down_there() {
 #[ignore = "slow: 4990 slips metered, about 8 s of CPU in release"]
 fn a_stretch_that_reaches_the_tip_at_an_inflection_balances_every_slip() {
     let r = balanced_drag(closing_scene(0.003), paper_grid());
-    assert_reaches_the_tip_and_jams(&r);
+    assert_reaches_the_tip(&r);
     assert_balanced(&r);
 }
 
-/// The taper's drag over 0.003/0.5/2π/3 ([`a_closing_pending_at_a_change_of_set_lies_down_there`])
-/// ends in the slip at d = 0.1966754 after 4990 slips: the two sides lie down as one stretch, the
-/// stretch reaches the tip at the inflection x = 7/12, the tip touches down beyond it, a jam.
-fn assert_reaches_the_tip_and_jams(r: &DragResult) {
-    let StopReason::Jam { d, message } = &r.stop else {
-        panic!("{r}");
-    };
-    assert!(
-        (d - 0.1966754).abs() < 1e-6 && message.contains("a tip contact forms at s = 1.000000"),
-        "{r}"
-    );
-    assert_eq!(r.slips.len(), 4990, "{r}");
-    let n = r.rows.len();
-    let (lie, reach, touch) = (&r.rows[n - 3], &r.rows[n - 2], &r.rows[n - 1]);
-    assert_eq!(
-        lie.event,
-        Some(DragEvent::Contact(Event::LieDown)),
-        "{lie:?}"
-    );
+/// The taper's drag over 0.003/0.5/2π/3 ([`a_closing_pending_at_a_change_of_set_lies_down_there`]):
+/// in the slip at d = 0.1966754 after 4990 slips the two sides lie down as one stretch and the
+/// stretch reaches the tip at the inflection x = 7/12. Then either the tip touches down beyond
+/// it, a jam (the moving ends' derivatives by differences, before 2026-12-04), or the stretch
+/// slides on with the tip and the drag reaches d_max after 4991 slips (with them exact, and as
+/// a fold passed at once did, docs/performance.md): which one is decided by rounding in that
+/// singular state, both by the model.
+fn assert_reaches_the_tip(r: &DragResult) {
+    let i = r
+        .rows
+        .iter()
+        .position(|q| q.event == Some(DragEvent::Contact(Event::LieDown)))
+        .unwrap_or_else(|| panic!("no lie-down: {r}"));
+    let (lie, reach) = (&r.rows[i], &r.rows[i + 1]);
+    assert!((lie.d - 0.1966754).abs() < 1e-6, "{lie:?}");
+    assert_eq!(lie.contact.name(), "side+side+tip", "{r}");
     assert_eq!(
         reach.event,
         Some(DragEvent::Contact(Event::ReachTip)),
         "{reach:?}"
     );
     assert!((reach.x_tip - 7.0 / 12.0).abs() < 1e-6, "{reach:?}");
-    assert_eq!(
-        touch.event,
-        Some(DragEvent::Contact(Event::Touchdown)),
-        "{touch:?}"
-    );
+    match &r.stop {
+        StopReason::Jam { d, message } => {
+            assert!(
+                (d - 0.1966754).abs() < 1e-6
+                    && message.contains("a tip contact forms at s = 1.000000"),
+                "{r}"
+            );
+            assert_eq!(r.slips.len(), 4990, "{r}");
+            let touch = r.rows.last().unwrap();
+            assert_eq!(
+                touch.event,
+                Some(DragEvent::Contact(Event::Touchdown)),
+                "{touch:?}"
+            );
+        }
+        StopReason::DMax => assert_eq!(r.slips.len(), 4991, "{r}"),
+        _ => panic!("{r}"),
+    }
 }
 
 /// The rod tapered to 0.3 over `amplitude sin(2πx/0.5 + 2π/3)`.
