@@ -148,7 +148,8 @@ pub(crate) fn march<P: Profile>(
             Ok((p0, quiet)) => {
                 let (mut stop, mut last) = run.run(p0, quiet);
                 // (a failure where the stretch lying on the surface reaches the tip: the tip
-                // joins it and the march goes on, as often as it reaches it)
+                // joins it and the march goes on, as often as it reaches it; also where a side
+                // has just lain down, whose stop by the lie's name then no longer applies)
                 loop {
                     let failed = matches!(stop, StopReason::SolverFailure { .. });
                     let Some(q) = failed

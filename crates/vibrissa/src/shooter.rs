@@ -405,7 +405,7 @@ impl<P: Profile> Shooter<P> {
                 c1: -1.0,
             },
         });
-        // the profile's slopes at stage `i` of a step whose table starts at `i0`, and its `σ`
+        // the profile's slopes at the table's place `i` (12 per step, then the end)
         let sl = |i: usize| -> [f64; 2] {
             if P::UNIFORM || E == 0 {
                 [0.0; 2]
