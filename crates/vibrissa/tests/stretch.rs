@@ -726,9 +726,9 @@ fn a_closing_pending_at_a_change_of_set_lies_down_there() {
 }
 
 /// [`a_closing_pending_at_a_change_of_set_lies_down_there`] with each slip's energy balance: to
-/// 1e-8, the join's gap included. About 8 s of CPU in release.
+/// 1e-8, the join's gap included. About 7 s of CPU in release.
 #[test]
-#[ignore = "slow: 4990 slips metered, about 8 s of CPU in release"]
+#[ignore = "slow: 4991 slips metered, about 7 s of CPU in release"]
 fn a_stretch_that_reaches_the_tip_at_an_inflection_balances_every_slip() {
     let r = balanced_drag(closing_scene(0.003), paper_grid());
     assert_reaches_the_tip(&r);
