@@ -120,6 +120,18 @@ pub(crate) fn initial_steps(steps: usize, tol: f64) -> usize {
     scaled.clamp(2.min(n), n)
 }
 
+/// The places of a segment's profile table for the mesh `nodes` laid on `[a, b]`: the 12 stage
+/// abscissae of each step, then `b` (the shot reads the table in this order).
+fn table_places(nodes: &[f64], (a, b): (f64, f64)) -> impl Iterator<Item = f64> + '_ {
+    let len = b - a;
+    (nodes.windows(2))
+        .flat_map(move |w| {
+            let h = w[1] - w[0];
+            tab::C.iter().map(move |c| a + len * (w[0] + c * h))
+        })
+        .chain(std::iter::once(b))
+}
+
 /// The fixed-mesh integrator of one rod, segment by segment, with its recorded path.
 #[derive(Clone, Debug)]
 pub(crate) struct Shooter<P: Profile> {
@@ -193,15 +205,9 @@ impl<P: Profile> Shooter<P> {
         m.ab = (a, b);
         m.coef.clear();
         m.slope.clear();
-        let len = b - a;
-        for w in m.nodes.windows(2) {
-            let h = w[1] - w[0];
-            for c in tab::C {
-                let s = a + len * (w[0] + c * h);
-                m.coef.push([self.profile.b(s), self.profile.k0(s)]);
-            }
-        }
-        m.coef.push([self.profile.b(b), self.profile.k0(b)]);
+        let p = &self.profile;
+        m.coef
+            .extend(table_places(&m.nodes, (a, b)).map(|s| [p.b(s), p.k0(s)]));
         if slopes {
             self.tabulate_slopes(k);
         }
@@ -210,18 +216,12 @@ impl<P: Profile> Shooter<P> {
     /// Segment `k`'s profile slopes at the places of its table.
     fn tabulate_slopes(&mut self, k: usize) {
         let m = &mut self.segs[k];
-        let (a, b) = m.ab;
-        let len = b - a;
+        let p = &self.profile;
         m.slope.clear();
-        for w in m.nodes.windows(2) {
-            let h = w[1] - w[0];
-            for c in tab::C {
-                let (db, dk) = self.profile.slopes(a + len * (w[0] + c * h));
-                m.slope.push([db, dk]);
-            }
-        }
-        let (db, dk) = self.profile.slopes(b);
-        m.slope.push([db, dk]);
+        m.slope.extend(table_places(&m.nodes, m.ab).map(|s| {
+            let (db, dk) = p.slopes(s);
+            [db, dk]
+        }));
     }
 
     /// A new mesh for segment `k` after a shot with steps over tolerance: each such step should
