@@ -724,6 +724,13 @@ pub(crate) struct Chain<P: Profile> {
     zs: Vec<DMatrix<f64>>,
     /// The unknowns and `λ` of the last evaluation (the shooter's paths are of that state).
     shot: (Vec<f64>, f64),
+    /// The unloaded rest beyond the last contact, where its segment is new, is laid out on its
+    /// span ([`Shooter::ensure_segment_on`]) rather than with the first segment's count of
+    /// steps: the scan. Beyond the long rat preset's side at s ≈ 0.95 that is 2 steps where
+    /// the count was 22 (its rest's shots were 8 % of the scan). The drag's marches keep the
+    /// count: the rest's shape decides their touchdowns, and their paths through trapped pairs
+    /// turn on rounding (docs/performance.md, "The unloaded rest on its span").
+    pub lean_rest: bool,
 }
 
 /// How far past the tip a contact's arc length may go inside a solve (see
@@ -750,7 +757,14 @@ impl<P: Profile> Chain<P> {
             bps: Vec::new(),
             zs: Vec::new(),
             shot: (Vec::new(), f64::NAN),
+            lean_rest: false,
         }
+    }
+
+    /// The same chain with [`Chain::lean_rest`].
+    pub fn with_lean_rest(mut self) -> Self {
+        self.lean_rest = true;
+        self
     }
 
     /// The sorted breakpoints `s_1 < … < s_L` at `u`, or `Order`. A contact may pass the tip by
@@ -1715,6 +1729,10 @@ impl<P: Profile> Chain<P> {
         });
         let rest = rest.filter(|r| r.0 < 1.0);
         if let Some((a, z0)) = rest {
+            if self.lean_rest {
+                let span0 = self.bps.first().copied().unwrap_or(1.0);
+                self.sh.ensure_segment_on(nseg, (a, 1.0), span0);
+            }
             for _ in 0..32 {
                 let shot = self.sh.shoot(nseg, a, 1.0, z0, &[], [0.0, 0.0], false);
                 if shot.err <= 1.0 || !self.sh.refine(nseg) {

@@ -656,6 +656,7 @@ fn phase_spec<'s>(
         check_start,
         slide: false,
         pass_fold_ahead: false,
+        retangent: false,
     }
 }
 

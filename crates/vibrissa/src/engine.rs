@@ -71,6 +71,7 @@ impl<P: Profile + 'static> Begin<'_, P> {
             cancel: self.solver.cancel.clone(),
             light: false,
             polish: false,
+            retangent: false,
         };
         let p = match self.first {
             FirstPoint::Correct => st.first(self.lam, &self.u),

@@ -186,6 +186,7 @@ fn grown_start<P: Profile>(
         cancel: Default::default(),
         light: false,
         polish: false,
+        retangent: false,
     };
     let fail = |what: &dyn std::fmt::Display, e: &dyn std::fmt::Display| VibrissaError::NoStart {
         reason: format!("growing the surface profile from its straight trend: {what}: {e}"),
@@ -269,6 +270,7 @@ fn press_down<P: Profile>(
         check_start: false,
         slide: false,
         pass_fold_ahead: false,
+        retangent: false,
     };
     let out = march(st, &spec, profile, q, Stats::default());
     match (&out.stop, out.last) {
@@ -457,6 +459,7 @@ fn grow<P: Profile>(
         check_start: false,
         slide: false,
         pass_fold_ahead: false,
+        retangent: false,
     };
     // (the march from amplitude 0 first, as for any start: where it grows the profile, the
     // start is what it was before settling existed)

@@ -57,6 +57,11 @@ pub(crate) struct Spec<'a> {
     /// (`Run::reach_tip`), and with the fold passed at once three rows of the texture grid met a
     /// trapped slide before it (docs/performance.md, "A fold ahead is passed at once").
     pub pass_fold_ahead: bool,
+    /// A point whose prediction needed a second chord step gets its exact tangent
+    /// (`rodsolve::Flags::retangent`): the scan. In the drag's marches the same rule changed the
+    /// paths through trapped pairs, whose outcomes rounding decides (docs/performance.md, "An
+    /// exact tangent after a second chord step"), so they run as before.
+    pub retangent: bool,
 }
 
 /// What a march produced.
@@ -96,6 +101,7 @@ pub(crate) fn march<P: Profile>(
     p0: Pt,
     mut stats: Stats,
 ) -> MarchOut {
+    stepper.set_retangent(spec.retangent);
     let gi = spec.grid.partition_point(|&g| g < p0.lam);
     let rows = spec.grid.len() + 1;
     let mut out = Output::new(rows, gi, spec.keep_shapes, profile, spec.general);
@@ -1255,15 +1261,11 @@ impl<P: Profile> Run<'_, '_, P> {
         let by = GAIN * (1.0 + before.abs());
         if gain > by {
             let c = &pe.w.contacts[j];
-            Some(Jump::Gains(format!(
-                "the sliding contact at s = {:.6} halts and, held, is no way on, so it would \
-                 slide back at once, its friction flipping by 2 mu_k N = {:.3e}; the state it \
-                 would jump to has {gain:.3e} more elastic energy than the one it leaves, which \
-                 no passive change at once reaches: no contact state consistent with Coulomb \
-                 friction continues (the rod moves dynamically)",
-                c.s,
-                2.0 * c.tangential.abs()
-            )))
+            Some(Jump::Gains(Impasse::JumpGains {
+                s: c.s,
+                flip: 2.0 * c.tangential.abs(),
+                gain,
+            }))
         } else if -gain > by {
             Some(Jump::Loses(j))
         } else {
@@ -1288,7 +1290,7 @@ impl<P: Profile> Run<'_, '_, P> {
         j: usize,
         pe: &Pt,
         back: Option<(ContactSet, Vec<f64>)>,
-    ) -> Result<Option<(ContactSet, Pt)>, String> {
+    ) -> Result<Option<(ContactSet, Pt)>, Impasse> {
         let Some((reversed, u)) = back else {
             return Ok(None);
         };
@@ -1304,11 +1306,10 @@ impl<P: Profile> Run<'_, '_, P> {
         }
         match self.stepper.switch(reversed.clone(), pe.lam, u) {
             Ok(q) => Ok(Some((reversed, q))),
-            Err(e) => Err(format!(
-                "the sliding contact at s = {:.6} halts; held, its state does not solve, and \
-                 reversed at once it no longer does either: {e}",
-                set.s_of(j, &pe.u)
-            )),
+            Err(why) => Err(Impasse::NeitherSolves {
+                s: set.s_of(j, &pe.u),
+                why,
+            }),
         }
     }
 
@@ -1967,7 +1968,7 @@ impl<P: Profile> Run<'_, '_, P> {
             Ok(q) => {
                 let q = match self.after_reversal(ev, (&set, &pe), (&mut new_set, q), again) {
                     Ok(q) => q,
-                    Err(message) => return self.impasse(message, set, pe),
+                    Err(why) => return self.impasse(why.to_string(), set, pe),
                 };
                 let crossing = driver_gone
                     .then(|| crossing_after_release(&self.env, &new_set, &q))
@@ -2054,9 +2055,9 @@ impl<P: Profile> Run<'_, '_, P> {
         (set, pe): (&ContactSet, &Pt),
         (new_set, q): (&mut ContactSet, Pt),
         again: Option<Vec<f64>>,
-    ) -> Result<Pt, String> {
+    ) -> Result<Pt, Impasse> {
         match self.reversal_jumps(ev, (set, pe), (new_set, &q)) {
-            Some(Jump::Gains(message)) => Err(message),
+            Some(Jump::Gains(why)) => Err(why),
             Some(Jump::Loses(j)) => {
                 let back = again.map(|u| (new_set.clone(), u));
                 match self.held_instead(set, j, pe, back)? {
@@ -2369,10 +2370,42 @@ const HOLD_FAR: f64 = 1e9;
 
 /// How a reversal at once changes the elastic energy beyond [`GAIN`] (`Run::reversal_jumps`).
 enum Jump {
-    /// It would gain energy: the words of the stop.
-    Gains(String),
+    /// It would gain energy: the stop.
+    Gains(Impasse),
     /// It would lose energy unmetered: the contact that reversed.
     Loses(usize),
+}
+
+/// Why a halt that reverses a sliding contact ends the march (its stop's words).
+#[derive(Clone, Debug, thiserror::Error)]
+pub(crate) enum Impasse {
+    /// The jump to the reversed state would gain elastic energy ([`Run::reversal_jumps`]).
+    #[error(
+        "the sliding contact at s = {s:.6} halts and, held, is no way on, so it would slide \
+         back at once, its friction flipping by 2 mu_k N = {flip:.3e}; the state it would jump \
+         to has {gain:.3e} more elastic energy than the one it leaves, which no passive change \
+         at once reaches: no contact state consistent with Coulomb friction continues (the rod \
+         moves dynamically)"
+    )]
+    JumpGains {
+        /// The contact's arc length.
+        s: f64,
+        /// `2 μk N`, the flip of its friction.
+        flip: f64,
+        /// The elastic energy the jump would gain.
+        gain: f64,
+    },
+    /// Neither the held state nor the reversed one solves ([`Run::held_instead`]).
+    #[error(
+        "the sliding contact at s = {s:.6} halts; held, its state does not solve, and reversed \
+         at once it no longer does either: {why}"
+    )]
+    NeitherSolves {
+        /// The contact's arc length.
+        s: f64,
+        /// Why the reversed state's switch failed.
+        why: StepError,
+    },
 }
 
 /// Whether the path's step `chord` is the march's step from `prev` to `p`.

@@ -8,7 +8,7 @@ use crate::arclength::{self, ArcPoint};
 use crate::chain::{Chain, ContactSet, Family};
 use crate::control::{corrector_tol, MAX_ITER, OWN_H_MAX};
 use crate::profile::Profile;
-use crate::rodsolve::{correct_chord, Converged, ShotFailure};
+use crate::rodsolve::{correct_chord, Converged, Flags, ShotFailure};
 use crate::stepper::{interpolate, same_branch, within_span, Pt, StepError, Stepper};
 use crate::watch::{fill_slip, has_slider, watch, Env, RodView};
 use bvp::Stats;
@@ -30,6 +30,9 @@ pub(crate) struct OwnStepper<P: Profile> {
     pub light: bool,
     /// The corrector polishes its converged iterates ([`Stepper::set_polish`]).
     pub polish: bool,
+    /// The corrector's Jacobian made exact after a second chord step
+    /// ([`Stepper::set_retangent`]).
+    pub retangent: bool,
 }
 
 impl<P: Profile> OwnStepper<P> {
@@ -179,7 +182,12 @@ impl<P: Profile> OwnStepper<P> {
         fresh: bool,
     ) -> Result<Pt, StepError> {
         let tol = corrector_tol(self.chain.sh.tol);
-        let cv = correct_chord(&mut self.chain, lam, u, tol, MAX_ITER, (fresh, self.polish))?;
+        let flags = Flags {
+            fresh,
+            polish: self.polish,
+            retangent: self.retangent,
+        };
+        let cv = correct_chord(&mut self.chain, lam, u, tol, MAX_ITER, flags)?;
         let p = self.point(lam, cv)?;
         if p.du.is_none() {
             return Err(StepError::NoTangent);
@@ -212,6 +220,10 @@ impl<P: Profile> Stepper for OwnStepper<P> {
 
     fn set_light(&mut self, light: bool) {
         self.light = light;
+    }
+
+    fn set_retangent(&mut self, retangent: bool) {
+        self.retangent = retangent;
     }
 
     fn set_polish(&mut self, polish: bool) {

@@ -339,6 +339,7 @@ fn whisk_with<P: Profile>(
         check_start: false,
         slide: true,
         pass_fold_ahead: false,
+        retangent: false,
     };
     let u0 = vec![0.0, 0.0, 0.0, s_t];
     let ntol = corrector_tol(tol);

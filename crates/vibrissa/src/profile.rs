@@ -20,6 +20,20 @@ pub trait Profile: Clone + Send + Sync + 'static {
     fn straight(&self) -> bool;
     /// `(db/ds, dκ0/ds)` at `s` (the slope of a table's interval there).
     fn slopes(&self, s: f64) -> (f64, f64);
+    /// `(b, κ0)` at each of `places`, into `out` (replaced): the bits of [`Profile::b`] and
+    /// [`Profile::k0`] there.
+    fn table(&self, places: &[f64], out: &mut Vec<[f64; 2]>) {
+        out.clear();
+        out.extend(places.iter().map(|&s| [self.b(s), self.k0(s)]));
+    }
+    /// [`Profile::slopes`] at each of `places`, into `out` (replaced).
+    fn slope_table(&self, places: &[f64], out: &mut Vec<[f64; 2]>) {
+        out.clear();
+        out.extend(places.iter().map(|&s| {
+            let (db, dk) = self.slopes(s);
+            [db, dk]
+        }));
+    }
     /// Curvature `κ = κ0(s) + b(s)·m`.
     #[inline(always)]
     fn kappa(&self, s: f64, m: f64) -> f64 {
@@ -137,6 +151,74 @@ fn table_slope(s_tab: &[f64], v: &[f64], s: f64) -> f64 {
 
 impl Profile for General {
     const UNIFORM: bool = false;
+    // The shots re-tabulate a segment whose end moves at every iterate, so the common kinds
+    // (taper, linear rest curvature) get loops of one expression each; the same expressions as
+    // `b_at`, `k0_at` and `slopes`, so the same bits.
+    fn table(&self, places: &[f64], out: &mut Vec<[f64; 2]>) {
+        let t = self.t;
+        out.clear();
+        out.resize(places.len(), [0.0; 2]);
+        match &self.stiffness {
+            Stiffness::Taper { ratio } => {
+                for (o, &s) in out.iter_mut().zip(places) {
+                    let r = 1.0 - t * (1.0 - ratio) * s;
+                    let r2 = r * r;
+                    o[0] = 1.0 / (r2 * r2);
+                }
+            }
+            _ => {
+                for (o, &s) in out.iter_mut().zip(places) {
+                    o[0] = self.b_at(s, t);
+                }
+            }
+        }
+        match &self.precurvature {
+            Precurvature::None => {}
+            Precurvature::Linear { k0, k1 } => {
+                for (o, &s) in out.iter_mut().zip(places) {
+                    o[1] = t * (k0 + k1 * s);
+                }
+            }
+            Precurvature::Table { .. } => {
+                for (o, &s) in out.iter_mut().zip(places) {
+                    o[1] = self.k0_at(s, t);
+                }
+            }
+        }
+    }
+    fn slope_table(&self, places: &[f64], out: &mut Vec<[f64; 2]>) {
+        let t = self.t;
+        out.clear();
+        out.resize(places.len(), [0.0; 2]);
+        match &self.stiffness {
+            Stiffness::Uniform => {}
+            Stiffness::Taper { ratio } => {
+                for (o, &s) in out.iter_mut().zip(places) {
+                    let r = 1.0 - t * (1.0 - ratio) * s;
+                    o[0] = 4.0 * t * (1.0 - ratio) / (r * r * r * r * r);
+                }
+            }
+            Stiffness::Table { .. } => {
+                for (o, &s) in out.iter_mut().zip(places) {
+                    o[0] = self.slopes(s).0;
+                }
+            }
+        }
+        match &self.precurvature {
+            Precurvature::None => {}
+            Precurvature::Linear { k1, .. } => {
+                let dk = t * k1;
+                for o in out.iter_mut() {
+                    o[1] = dk;
+                }
+            }
+            Precurvature::Table { .. } => {
+                for (o, &s) in out.iter_mut().zip(places) {
+                    o[1] = self.slopes(s).1;
+                }
+            }
+        }
+    }
     fn slopes(&self, s: f64) -> (f64, f64) {
         let t = self.t;
         let db = match &self.stiffness {
@@ -198,4 +280,56 @@ pub(crate) fn is_uniform(stiffness: &Stiffness, precurvature: &Precurvature) -> 
         Precurvature::Table { .. } => false,
     };
     b1 && k0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{General, Profile};
+    use crate::parts::{Precurvature, Stiffness};
+
+    /// The shots read `b`, `κ0` and their slopes from the tables, the rows and shapes from the
+    /// profile itself: the tables must hold the very bits of `b`, `k0` and `slopes` at their
+    /// places, for every kind of profile and homotopy amplitude (a kind whose loop wrote another
+    /// expression, `b·(1/r)` for the taper's slope say, would fail here).
+    #[test]
+    fn tables_hold_the_bits_of_the_profile() {
+        let stiff = [
+            Stiffness::Uniform,
+            Stiffness::Taper { ratio: 0.1 },
+            Stiffness::Table {
+                s: vec![0.0, 0.3, 1.0],
+                b: vec![1.0, 3.0, 40.0],
+            },
+        ];
+        let curv = [
+            Precurvature::None,
+            Precurvature::Linear { k0: -0.72, k1: 0.3 },
+            Precurvature::Table {
+                s: vec![0.0, 0.6, 1.0],
+                k: vec![0.5, -0.2, 0.1],
+            },
+        ];
+        // places as a shot lays them: inside, on the tables' nodes, at and just past the ends
+        let places: Vec<f64> = (0..=400)
+            .map(|i| i as f64 / 400.0 * 1.05 - 0.01)
+            .chain([0.3, 0.6, 1.0, 0.0])
+            .collect();
+        for st in &stiff {
+            for cv in &curv {
+                for t in [1.0, 0.37, 0.0] {
+                    let p = General::new(st, cv, t);
+                    let (mut tab, mut slo) = (vec![[9.0; 2]; 3], vec![[9.0; 2]; 7]);
+                    p.table(&places, &mut tab);
+                    p.slope_table(&places, &mut slo);
+                    assert_eq!((tab.len(), slo.len()), (places.len(), places.len()));
+                    for (i, &s) in places.iter().enumerate() {
+                        let (db, dk) = p.slopes(s);
+                        let want = [p.b(s), p.k0(s), db, dk].map(f64::to_bits);
+                        let got = [tab[i][0], tab[i][1], slo[i][0], slo[i][1]].map(f64::to_bits);
+                        assert_eq!(got, want, "{st:?} {cv:?} t = {t} at s = {s}");
+                    }
+                }
+            }
+        }
+    }
 }

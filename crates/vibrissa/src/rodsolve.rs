@@ -282,11 +282,29 @@ const POLISH: f64 = 100.0;
 /// The iterations [`stalled`] looks back over.
 const STALL: usize = 4;
 
+/// What [`correct_chord`] is asked for besides the solution.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Flags {
+    /// The returned Jacobian exact at the solution (tangents, events).
+    pub fresh: bool,
+    /// One more Newton step from an iterate within the residual's tolerance whose correction
+    /// is still large ([`large_correction`]).
+    pub polish: bool,
+    /// The returned Jacobian exact at the solution where the prediction needed a second chord
+    /// step. The chord's Jacobian, made at a prediction that far off, gives a tangent whose
+    /// error feeds the next prediction: the long rat preset's predictions, made from such
+    /// tangents of predictions 8e-6 off, stayed that far off (two chord steps a point instead
+    /// of one; its scan 293 → 226 Newton iterations, 164 301 → 145 946 right-hand sides with
+    /// it). The scan's march only (`march::Spec::retangent`).
+    pub retangent: bool,
+}
+
 /// Chord Newton from a good prediction `u0` (the marches' corrector): the Jacobian of the first
 /// iterate is kept while the residual falls by 10× per iteration, so from a good predictor a
 /// point costs one shot with and one without sensitivities. With `fresh` (or when the iterate
-/// moved more than `1e-5`) the returned Jacobian is recomputed at the solution: tangents and
-/// the events that use them need it exact; an iterate the chord's rate expects to converge is
+/// moved more than `1e-5`, or, with `retangent`, needed a second chord step) the returned
+/// Jacobian is recomputed at the solution: tangents and the events that use them need it exact,
+/// and the next prediction is made from this tangent ([`Flags::retangent`]); an iterate the chord's rate expects to converge is
 /// shot with its sensitivities at once (the same bits as without, so the same iterations). An
 /// iteration that [`stalled`] gives up early.
 pub(crate) fn correct_chord<C: Curve + ?Sized>(
@@ -295,7 +313,11 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
     u0: &[f64],
     tol: f64,
     max_iter: usize,
-    (fresh, polish): (bool, bool),
+    Flags {
+        fresh,
+        polish,
+        retangent,
+    }: Flags,
 ) -> Result<Converged, ShotFailure> {
     for _pass in 0..16 {
         let mut u = u0.to_vec();
@@ -315,8 +337,11 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
                 .iter()
                 .zip(u0)
                 .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
-            // (a Jacobian made at this very iterate is exact already)
-            let exact_wanted = (fresh || moved > 1e-5) && !((is_fresh || need) && it == 0);
+            // (a Jacobian made at this very iterate is exact already; a prediction that needed
+            // a second chord step was far enough off that the chord's Jacobian, made there,
+            // would give a tangent whose error feeds the next prediction)
+            let exact_wanted = (fresh || moved > 1e-5 || (retangent && it >= 2))
+                && !((is_fresh || need) && it == 0);
             // where the chord's rate says this iterate converges and its Jacobian would then be
             // recomputed here, the sensitivities come with this shot (the state's bits are those
             // of a shot without them); a wrong guess costs them, unused
@@ -429,7 +454,7 @@ pub(crate) fn correct_chord<C: Curve + ?Sized>(
 
 #[cfg(test)]
 mod tests {
-    use super::{correct_chord, solve_damped, stalled, ShotFailure};
+    use super::{correct_chord, solve_damped, stalled, Flags, ShotFailure};
     use crate::chain::{Curve, Eval, EvalError};
     use nalgebra::{DMatrix, DVector};
 
@@ -462,7 +487,7 @@ mod tests {
     /// before its tip, whose seventh iterate put the side beyond the tip).
     #[test]
     fn an_iterate_without_a_rod_says_why() {
-        let e = correct_chord(&mut RunsOff, 0.0, &[0.0], 1e-12, 10, (false, false)).unwrap_err();
+        let e = correct_chord(&mut RunsOff, 0.0, &[0.0], 1e-12, 10, Flags::default()).unwrap_err();
         assert_eq!(
             e,
             ShotFailure::NoRodAt {

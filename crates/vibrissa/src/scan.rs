@@ -154,11 +154,12 @@ fn scan_with<P: Profile>(
         check_start: true,
         slide: false,
         pass_fold_ahead: true,
+        retangent: true,
     };
     let mut sh = start.sh.clone();
     sh.stats = Default::default();
     let begin = Begin {
-        chain: Chain::new(sh, set, Family::Drag),
+        chain: Chain::new(sh, set, Family::Drag).with_lean_rest(),
         env: env.clone(),
         solver: &opts.solver,
         lam: 0.0,

@@ -73,6 +73,8 @@ struct SegMesh {
     nodes: Vec<f64>,
     /// The interval `(a, b)` the profile table was made for.
     ab: (f64, f64),
+    /// The places of `coef` and `slope` ([`table_places`]).
+    places: Vec<f64>,
     /// `(b, κ0)` at the 12 stage abscissae of each step, then at the end (non-uniform profiles).
     coef: Vec<[f64; 2]>,
     /// `(b', κ0')` at the same places, for shots with moving ends (empty until one asks).
@@ -91,6 +93,7 @@ impl SegMesh {
         SegMesh {
             nodes: (0..=steps).map(|i| i as f64 / steps as f64).collect(),
             ab: (f64::NAN, f64::NAN),
+            places: Vec::new(),
             coef: Vec::new(),
             slope: Vec::new(),
             step_err: Vec::new(),
@@ -121,15 +124,16 @@ pub(crate) fn initial_steps(steps: usize, tol: f64) -> usize {
 }
 
 /// The places of a segment's profile table for the mesh `nodes` laid on `[a, b]`: the 12 stage
-/// abscissae of each step, then `b` (the shot reads the table in this order).
-fn table_places(nodes: &[f64], (a, b): (f64, f64)) -> impl Iterator<Item = f64> + '_ {
+/// abscissae of each step, then `b` (the shot reads the table in this order), into `out`.
+fn table_places(nodes: &[f64], (a, b): (f64, f64), out: &mut Vec<f64>) {
     let len = b - a;
-    (nodes.windows(2))
-        .flat_map(move |w| {
-            let h = w[1] - w[0];
-            tab::C.iter().map(move |c| a + len * (w[0] + c * h))
-        })
-        .chain(std::iter::once(b))
+    out.clear();
+    out.reserve(12 * nodes.len().saturating_sub(1) + 1);
+    for w in nodes.windows(2) {
+        let h = w[1] - w[0];
+        out.extend(tab::C.iter().map(|c| a + len * (w[0] + c * h)));
+    }
+    out.push(b);
 }
 
 /// The fixed-mesh integrator of one rod, segment by segment, with its recorded path.
@@ -189,6 +193,19 @@ impl<P: Profile> Shooter<P> {
         }
     }
 
+    /// Makes room for segment `k` over `[a, b]`, a new one laid with the first segment's steps
+    /// per unit length there (at least 2), the first spanning `span0` (the segments before it
+    /// as [`Shooter::ensure_segments`]). Refinement grades it as any other.
+    pub fn ensure_segment_on(&mut self, k: usize, (a, b): (f64, f64), span0: f64) {
+        self.ensure_segments(k);
+        if self.segs.len() == k {
+            let n0 = (self.segs[0].nodes.len() - 1) as f64;
+            let steps = (n0 * (b - a) / span0).ceil();
+            let steps = if steps.is_finite() { steps as usize } else { 4 };
+            self.segs.push(SegMesh::uniform(steps.clamp(2, 64)));
+        }
+    }
+
     /// Recomputes segment `k`'s profile table when its interval changed (with the slopes where
     /// `slopes`, for moving ends).
     fn tabulate(&mut self, k: usize, a: f64, b: f64, slopes: bool) {
@@ -198,30 +215,18 @@ impl<P: Profile> Shooter<P> {
         let m = &mut self.segs[k];
         if m.ab == (a, b) && !m.coef.is_empty() {
             if slopes && m.slope.len() != m.coef.len() {
-                self.tabulate_slopes(k);
+                self.profile.slope_table(&m.places, &mut m.slope);
             }
             return;
         }
         m.ab = (a, b);
-        m.coef.clear();
-        m.slope.clear();
-        let p = &self.profile;
-        m.coef
-            .extend(table_places(&m.nodes, (a, b)).map(|s| [p.b(s), p.k0(s)]));
+        table_places(&m.nodes, (a, b), &mut m.places);
+        self.profile.table(&m.places, &mut m.coef);
         if slopes {
-            self.tabulate_slopes(k);
+            self.profile.slope_table(&m.places, &mut m.slope);
+        } else {
+            m.slope.clear();
         }
-    }
-
-    /// Segment `k`'s profile slopes at the places of its table.
-    fn tabulate_slopes(&mut self, k: usize) {
-        let m = &mut self.segs[k];
-        let p = &self.profile;
-        m.slope.clear();
-        m.slope.extend(table_places(&m.nodes, m.ab).map(|s| {
-            let (db, dk) = p.slopes(s);
-            [db, dk]
-        }));
     }
 
     /// A new mesh for segment `k` after a shot with steps over tolerance: each such step should

@@ -341,6 +341,7 @@ pub(crate) fn press<P: Profile>(
         cancel: Default::default(),
         light: false,
         polish: false,
+        retangent: false,
     };
     let p = st.point(lam0, cv).map_err(|e| VibrissaError::NoStart {
         reason: format!("the first point of the press: {e}"),
@@ -355,6 +356,7 @@ pub(crate) fn press<P: Profile>(
         check_start: false,
         slide: false,
         pass_fold_ahead: false,
+        retangent: false,
     };
     let out: MarchOut = march(&mut st, &mspec, profile, p, Stats::default());
     match (&out.stop, out.range_end, out.last) {
@@ -753,6 +755,7 @@ pub(crate) fn scan_start<P: Profile>(
                 cancel: Default::default(),
                 light: false,
                 polish: false,
+                retangent: false,
             };
             // the shooter's paths hold the point at t = 1 (the last correction)
             let pt = st.point(0.0, end).map_err(|e| VibrissaError::NoStart {

@@ -197,6 +197,9 @@ pub(crate) trait Stepper {
     /// search that ended on a jump of its function between such iterates and corrected ones
     /// is searched again so. Default: ignored (the generic methods' solvers).
     fn set_polish(&mut self, _polish: bool) {}
+    /// Whether a point whose prediction needed a second chord step gets the exact Jacobian at
+    /// its solution, for its tangent (`rodsolve::Flags::retangent`). Default: ignored.
+    fn set_retangent(&mut self, _retangent: bool) {}
     /// Sets the meter its points' watches are made for (the works' integrands, a lying
     /// stretch's friction work among them), `None` without one; the march's is the one
     /// [`Stepper::phase`] set. Default: ignored.
