@@ -112,3 +112,150 @@ fn modules_import_downward_only() {
     let low = &g["number_text"];
     assert!(low.is_empty(), "number_text imports {low:?}");
 }
+
+/// Every `.rs` file under `dir` (recursively), with its path.
+fn sources(dir: &std::path::Path, out: &mut Vec<(String, String)>) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let p = e.path();
+        if p.is_dir() {
+            sources(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push((
+                p.display().to_string(),
+                std::fs::read_to_string(&p).unwrap(),
+            ));
+        }
+    }
+}
+
+/// The functions of `text` longer than `max` lines (from the `fn` line to the closing brace at
+/// its indentation; rustfmt's layout), as `(line, length, signature)`.
+fn long_functions(text: &str, max: usize) -> Vec<(usize, usize, String)> {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < lines.len() {
+        let l = lines[i];
+        let t = l.trim_start();
+        let head = [
+            "pub(crate) ",
+            "pub(super) ",
+            "pub ",
+            "const ",
+            "unsafe ",
+            "async ",
+        ]
+        .iter()
+        .fold(t, |t, p| t.strip_prefix(p).unwrap_or(t));
+        if !head.starts_with("fn ") {
+            i += 1;
+            continue;
+        }
+        let indent = &l[..l.len() - t.len()];
+        // the signature ends at `{` (a body) or `;` (a trait's declaration)
+        // (or at `}` on the line that opened it: a body of one line)
+        let ends =
+            |l: &str| l.ends_with('{') || l.ends_with(';') || (l.ends_with('}') && l.contains('{'));
+        let mut j = i;
+        while j < lines.len() && !ends(lines[j]) {
+            j += 1;
+        }
+        if j == lines.len() || !lines[j].ends_with('{') {
+            i = j + 1;
+            continue;
+        }
+        let close = format!("{indent}}}");
+        let mut k = j + 1;
+        while k < lines.len() && lines[k] != close {
+            k += 1;
+        }
+        if k - i + 1 > max {
+            out.push((i + 1, k - i + 1, t.chars().take(60).collect()));
+        }
+        i = k + 1;
+    }
+    out
+}
+
+/// The types `Result<…>` in `text` whose error is a `String`.
+fn string_errors(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for (at, _) in text.match_indices("Result<") {
+        let rest = &text[at + "Result<".len()..];
+        let (mut depth, mut last_comma, mut end) = (0i32, None, None);
+        for (i, c) in rest.char_indices() {
+            match c {
+                '<' | '(' | '[' => depth += 1,
+                ')' | ']' => depth -= 1,
+                '>' if depth == 0 => {
+                    end = Some(i);
+                    break;
+                }
+                '>' => depth -= 1,
+                ',' if depth == 0 => last_comma = Some(i),
+                _ => {}
+            }
+        }
+        if let (Some(c), Some(e)) = (last_comma, end) {
+            if rest[c + 1..e].trim() == "String" {
+                out.push(format!("Result<{}>", &rest[..e]));
+            }
+        }
+    }
+    out
+}
+
+/// Issue 35's shape of the code: no function longer than 150 lines in the rod library and the
+/// program, no `Box::leak` and no `Result<_, String>` in the library crates (states and errors
+/// are typed). Comments and strings are read as code: a counted line is a line.
+#[test]
+fn functions_are_short_and_errors_typed() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut long = Vec::new();
+    for dir in ["crates/vibrissa/src", "src"] {
+        let mut files = Vec::new();
+        sources(&root.join(dir), &mut files);
+        assert!(files.len() > 10, "{dir}: {} files", files.len());
+        for (path, text) in &files {
+            for (line, n, sig) in long_functions(text, 150) {
+                long.push(format!("{path}:{line}: {n} lines: {sig}"));
+            }
+        }
+    }
+    assert!(
+        long.is_empty(),
+        "functions over 150 lines:\n{}",
+        long.join("\n")
+    );
+    let mut libs = Vec::new();
+    for e in std::fs::read_dir(root.join("crates")).unwrap().flatten() {
+        sources(&e.path().join("src"), &mut libs);
+    }
+    assert!(libs.len() > 30, "{} library files", libs.len());
+    let mut bad = Vec::new();
+    for (path, text) in &libs {
+        if text.contains(concat!("Box::", "leak")) {
+            bad.push(format!("{path}: Box::leak"));
+        }
+        for r in string_errors(text) {
+            bad.push(format!("{path}: {r}"));
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+#[test]
+fn the_shape_checks_find_what_they_look_for() {
+    let body = (0..151).map(|_| "    x += 1;\n").collect::<String>();
+    let text = format!("fn g() {{}}\npub(crate) fn f(\n    a: u8,\n) -> u8 {{\n{body}}}\n");
+    assert_eq!(long_functions(&text, 150).len(), 1);
+    assert!(long_functions(&text, 160).is_empty());
+    assert_eq!(
+        string_errors("fn a() -> Result<(Vec<u8>, Option<String>), String> {}"),
+        vec!["Result<(Vec<u8>, Option<String>), String>".to_string()]
+    );
+    assert!(string_errors("fn a() -> Result<Option<String>, E> {}").is_empty());
+}
