@@ -160,7 +160,7 @@ pub fn run(a: &DragArgs) -> Res<()> {
         crate::table::write_table(a.out.as_deref(), &h, &r.rows, |p| row(p, u, round, a.turn))?;
     }
     let stop = Stop::from(&r.stop);
-    if stop.reason != "d_max" {
+    if !matches!(r.stop, StopReason::DMax) {
         crate::progress::warn(&format!("the drag stopped early: {}", stop.detail));
     }
     speed_warning(a, &rod, &r)?;

@@ -459,7 +459,9 @@ fn fig_mu(
     } else {
         format!(
             "scan end ({}): mu = {:.4} at d = {:.4}, still rising",
-            dense.stop.reason, dense.result.mu_max, dense.result.d_at_mu_max
+            dense.stop.name(),
+            dense.result.mu_max,
+            dense.result.d_at_mu_max
         )
     };
     m.series.push(series(
@@ -472,7 +474,7 @@ fn fig_mu(
         name: format!("fig{n:02}"),
         caption: format!(
             "Fig. {n}: mu vs d, {tag} (scan stops: {})",
-            dense.stop.reason
+            dense.stop.name()
         ),
         panels: vec![m],
         w: 760,

@@ -9,7 +9,7 @@ use crate::table::{csv_line, num, opt, Sink};
 use serde::Serialize;
 use std::io::{self, Write};
 use std::time::Instant;
-use vibrissa::{Method, ScanOptions, ScanPoint, ScanResult, Scene};
+use vibrissa::{Method, ScanOptions, ScanPoint, ScanResult, Scene, StopReason};
 
 /// True when every value of the point is finite (a result row may be printed).
 /// (At lift-off the normal force is 0 and the friction ratio unbounded: `mu = ±inf` there.)
@@ -36,7 +36,7 @@ pub struct Scanned {
     /// the method that computed the points (the rod's own shooter after a handover)
     pub method: Method,
     /// why the scan stopped (a non-finite point is a solver failure there)
-    pub stop: Stop,
+    pub stop: StopReason,
     /// wall time in ms
     pub time_ms: f64,
 }
@@ -49,24 +49,20 @@ pub fn run_scan(scene: &Scene, mut opts: ScanOptions) -> Res<Scanned> {
     opts.solver.start = scene.start;
     opts.contact = scene.contact;
     let mut r = vibrissa::scan(&rod, &surface, &opts)?;
-    let mut stop = Stop::from(&r.stop);
+    let mut stop = r.stop.clone();
     // never present non-finite rows
     if let Some(bad) = r.points.iter().position(|p| !finite(p)) {
         let d = r.points[bad].d;
         r.points.truncate(bad);
         r.shapes.truncate(bad);
-        stop = Stop {
-            reason: "solver_failure".into(),
-            d: Some(d),
-            detail: format!("non-finite values at d = {d}"),
+        stop = StopReason::SolverFailure {
+            d,
+            message: format!("non-finite values at d = {d}"),
         };
     }
-    let unbounded = stop.reason == "lift_off" && r.mu_max.is_infinite();
-    if !finite(&r.start) && stop.reason == "solver_failure" {
-        return Err(solve_fail(format!(
-            "the scan failed at its start: {}",
-            stop.detail
-        )));
+    let unbounded = matches!(stop, StopReason::LiftOff { .. }) && r.mu_max.is_infinite();
+    if !finite(&r.start) && matches!(stop, StopReason::SolverFailure { .. }) {
+        return Err(solve_fail(format!("the scan failed at its start: {stop}")));
     }
     if !finite(&r.start) || !(r.mu_max.is_finite() || unbounded) || !r.d_at_mu_max.is_finite() {
         return Err(solve_fail(
@@ -225,7 +221,7 @@ pub fn summary(out: &Scanned, csv: Option<&std::path::Path>) -> String {
         r.start.f,
         r.start.phi1,
         r.points.len(),
-        out.stop.detail,
+        out.stop,
         out.time_ms
     );
     if let Some(p) = csv {
@@ -245,7 +241,7 @@ struct ScanJson<'a> {
     mu_at_max: f64,
     d_at_mu_max: f64,
     range_end: vibrissa::RangeEnd,
-    stop: &'a Stop,
+    stop: Stop,
     stop_reason: &'a str,
     points: usize,
     stats: Work<'a>,
@@ -267,8 +263,8 @@ pub fn json_summary(out: &Scanned, csv: Option<&std::path::Path>) -> serde_json:
         mu_at_max: r.mu_at_max,
         d_at_mu_max: r.d_at_mu_max,
         range_end: r.range_end,
-        stop: &out.stop,
-        stop_reason: &out.stop.reason,
+        stop: Stop::from(&out.stop),
+        stop_reason: out.stop.name(),
         points: r.points.len(),
         stats: Work(&r.stats),
         time_ms: out.time_ms,
@@ -315,8 +311,8 @@ pub fn run(a: &ScanArgs) -> Res<()> {
         write_points(&mut sink, &out.result.points, (u, round), modes.as_deref())?;
         sink.finish()?;
     }
-    if out.stop.reason != "d_max" {
-        crate::progress::warn(&format!("the scan stopped early: {}", out.stop.detail));
+    if !matches!(out.stop, StopReason::DMax) {
+        crate::progress::warn(&format!("the scan stopped early: {}", out.stop));
     }
     if let Some(h) = &out.result.handover {
         crate::progress::warn(h);

@@ -20,6 +20,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
 use vibrissa::limits;
+use vibrissa::StopReason;
 use vibrissa::{Method, Precurvature, RangeEnd, ScanOptions, Scene, SolverConfig, Stiffness};
 
 /// Set while a sweep runs: a panic inside one scene becomes that scene's error row, and the
@@ -217,7 +218,7 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
         Ok(Ok(o)) => {
             let r = &o.result;
             let last = r.points.last().copied().unwrap_or(r.start);
-            let failed = o.stop.reason == SOLVER_FAILURE;
+            let failed = matches!(o.stop, StopReason::SolverFailure { .. });
             let known = max_is_known(failed, r.range_end, r.d_at_mu_max, last.d);
             let d_at_mu_max = known.then_some(r.d_at_mu_max);
             row.extend([
@@ -231,7 +232,7 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
                 opt(d_at_mu_max),
                 mu_text(last.mu),
                 num(last.d),
-                o.stop.reason.clone(),
+                o.stop.name().to_string(),
                 r.points.len().to_string(),
                 r.stats.newton_iters.to_string(),
                 r.stats.rhs_evals.to_string(),
@@ -250,7 +251,7 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
             }
             if failed {
                 // the scan's rows up to the failure are results; the scene is not
-                crate::number_text::shorten_numbers(&one_line(&o.stop.detail))
+                crate::number_text::shorten_numbers(&one_line(&o.stop.to_string()))
             } else {
                 String::new()
             }
@@ -276,9 +277,6 @@ fn one_row(base: &Scene, cell: &Cell, idx: u64, a: &SweepArgs) -> (Vec<String>, 
     row.push(err);
     (row, failed)
 }
-
-/// The stop reason of a scan that ended in a solver failure.
-const SOLVER_FAILURE: &str = "solver_failure";
 
 /// Whether a scan's `mu_max` is a result: always when the scan ended at an event or at d_max;
 /// after a solver failure only when the first maximum of |mu| was found before it, at or before
