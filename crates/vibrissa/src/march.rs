@@ -1649,6 +1649,8 @@ impl<P: Profile> Run<'_, '_, P> {
         let lam = prev.lam;
         let mut found: Option<Found> = None;
         let mut failure: Option<StopReason> = None;
+        // (where the highest free point jumped, the step's only outcome a failure: see `born`)
+        let mut jumped: Option<f64> = None;
         let mut ended_now: Vec<(f64, Crossing)> = armed
             .iter()
             .filter(|&&c| {
@@ -1695,6 +1697,7 @@ impl<P: Profile> Run<'_, '_, P> {
                 Ok(pe) => {
                     let v = c.of_watch(env, &pe.w);
                     if c == Crossing::Touchdown && env.ground.curve.is_some() && v < -JUMP {
+                        jumped.get_or_insert(pe.lam);
                         // not a root but a jump of the highest free point (one the clearance
                         // did not see before): no contact to insert there
                         failure.get_or_insert(StopReason::SolverFailure {
@@ -1718,6 +1721,23 @@ impl<P: Profile> Run<'_, '_, P> {
                         message: format!("locating the {c:?} event: {msg}"),
                     });
                 }
+            }
+        }
+        if let (None, Some(from)) = (&found, jumped) {
+            // a highest free point born inside the step, the step's only outcome: see `born`
+            let born = born(&mut *self.stepper, env, &w.hist, (from, p));
+            found = born.map(|b| match b {
+                Born::Below(pt) => Found {
+                    cross: Crossing::Touchdown,
+                    pt,
+                },
+                Born::BesideTip(pt) => Found {
+                    cross: Crossing::TipTangent,
+                    pt,
+                },
+            });
+            if found.is_some() {
+                failure = None;
             }
         }
         (found, failure)
@@ -1768,7 +1788,14 @@ impl<P: Profile> Run<'_, '_, P> {
                 Ok(pe) if earlier((c, &pe), f, w.h_min) => {
                     let v = c.of_watch(env, &pe.w);
                     if c == Crossing::Touchdown && env.ground.curve.is_some() && v < -JUMP {
-                        // (a jump of the highest free point, not a root: as in events_in)
+                        // (a jump of the highest free point, not a root: as in events_in; where
+                        // the event found is the tip turning tangent with the highest point
+                        // beside it, the jump is that point's birth there, `Born::BesideTip`)
+                        if f.cross == Crossing::TipTangent
+                            && 1.0 - f.pt.w.clear_s < crate::events::NEAR_TIP
+                        {
+                            return None;
+                        }
                         *found = None;
                         let at = pe.lam;
                         return Some(fail(format!(
@@ -2367,6 +2394,49 @@ const HOLD_MAX: f64 = 1e6;
 /// over a slide of `2 μ N / rate`, no shorter than about 1e-9 for forces of order 1, steps the
 /// march still takes.
 const HOLD_FAR: f64 = 1e9;
+
+/// What a highest free point born inside a step (between `from`, where the free rod has none
+/// and its clearance is the foot's, and the step's end `p`, where it is above the surface) is,
+/// its birth bracketed by bisection on the points between.
+enum Born {
+    /// Born below the surface: the touchdown located between the birth and `p`.
+    Below(Pt),
+    /// Born above the surface within [`crate::events::NEAR_TIP`] of a touching tip, at this
+    /// point: the rod beside the tip, nearly straight (its moment falls to zero there) and
+    /// nearly tangent to a crest that curves away under it, cuts the crest at `2δ/|h''|` from
+    /// the tip, `δ` the tip's angle to the surface; as `δ → 0` that is the tip turning tangent
+    /// (`Crossing::TipTangent`), which it is taken for. (A rod tapered to 0.45 over a
+    /// corrugation of amplitude 1e-4: its clearance jumped from the foot's −0.75 to 2.2e-10 at
+    /// s = 0.99951, the tip 4e-6 off tangent, and the drag ended in a solver failure.)
+    BesideTip(Pt),
+}
+
+/// See [`Born`]; `None` where it was born above the surface elsewhere (a jump the march
+/// reports) or a point between does not solve.
+fn born(st: &mut dyn Stepper, env: &Env, hist: &[Pt], (from, p): (f64, &Pt)) -> Option<Born> {
+    let c = Crossing::Touchdown;
+    let (mut lo, mut hi) = (from, p.lam);
+    let mut first = p.clone();
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if !(mid > lo && mid < hi) {
+            break;
+        }
+        let q = st.correct(mid, hist, false).ok()?;
+        if c.of_watch(env, &q.w) < -JUMP {
+            lo = mid;
+        } else {
+            hi = mid;
+            first = q;
+        }
+    }
+    if c.of_watch(env, &first.w) < 0.0 && first.lam < p.lam {
+        let q = crate::events::locate(st, env, hist, (first.lam, p.lam), c).ok()?;
+        return Some(Born::Below(q));
+    }
+    let beside_tip = st.set().tip() && 1.0 - first.w.clear_s < crate::events::NEAR_TIP;
+    beside_tip.then_some(Born::BesideTip(first))
+}
 
 /// How a reversal at once changes the elastic energy beyond [`GAIN`] (`Run::reversal_jumps`).
 enum Jump {

@@ -617,6 +617,56 @@ fn a_trapped_start_multiple_shooting_cannot_take_is_handed_to_the_own_shooter() 
     assert_eq!(ms.rows.len(), own.rows.len());
 }
 
+/// Found by running the property below over 300 random cases through the program: a rod
+/// tapered to 0.45 over a corrugation of amplitude 1e-4, its tip on a crest turning towards
+/// tangent (4e-6 off it), the rod beside the tip nearly straight: it cuts the crest within
+/// 5e-4 of the tip before the tip turns tangent, the highest free point born there above the
+/// surface, and the drag ended in "solver failure: the height of the free rod above the surface
+/// jumps from -7.501e-1 to 2.232e-10" (and so did a second case, 7.5e-5 / 0.332). That is the
+/// tip turning tangent (`march.rs`, `Born::BesideTip`): the drag follows it to the lying
+/// stretch it becomes and ends where that stretch's end would pull, by name.
+#[test]
+fn a_tip_nearly_tangent_on_a_crest_is_the_tip_lying_down_not_a_solver_failure() {
+    let (mu_s, mu_k) = (0.6576679380636514, 0.5284424725707423);
+    let s = scene(|s| {
+        s.surface = SurfaceProfile::Sine {
+            amplitude: 9.861797238295234e-5,
+            wavelength: 0.4526084135378513,
+            phase: 6.278060390593519,
+        };
+        s.stiffness = Stiffness::Taper {
+            ratio: 0.44603700946450053,
+        };
+    });
+    let (rod, surface) = s.parts().unwrap();
+    let h = surface.profile().unwrap();
+    let o = DragOptions {
+        keep_shapes: Some(201),
+        points: 21,
+        contact: ContactModel::Anywhere,
+        ..uniform(mu_s, mu_k, 0.15)
+    };
+    let r = drag(&rod, &surface, &o).unwrap();
+    match &r.stop {
+        StopReason::ContactChange { d, message } => {
+            assert!((d - 0.0514885).abs() < 1e-6, "{}", r.stop);
+            assert!(message.contains("lying stretch would pull"), "{}", r.stop);
+        }
+        other => panic!("{other}"),
+    }
+    for (row, shape) in r.rows.iter().zip(&r.shapes) {
+        for p in shape {
+            let gap = p.y - h.h(p.x + row.d);
+            assert!(
+                gap < 1e-8,
+                "row at d = {}: s = {} is {gap:.3e} above",
+                row.d,
+                p.s
+            );
+        }
+    }
+}
+
 /// No row has the rod above the profile, and no stuck row needs more than μs (random
 /// corrugations, textures and rods).
 mod property {
