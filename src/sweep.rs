@@ -20,8 +20,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
 use vibrissa::limits;
-use vibrissa::StopReason;
-use vibrissa::{Method, Precurvature, RangeEnd, ScanOptions, Scene, SolverConfig, Stiffness};
+use vibrissa::{
+    Method, Precurvature, RangeEnd, ScanOptions, Scene, SolverConfig, Stiffness, StopReason,
+};
 
 /// Set while a sweep runs: a panic inside one scene becomes that scene's error row, and the
 /// panic hook stays quiet.

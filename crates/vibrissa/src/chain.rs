@@ -729,7 +729,7 @@ pub(crate) struct Chain<P: Profile> {
     /// steps: the scan. Beyond the long rat preset's side at s ≈ 0.95 that is 2 steps where
     /// the count was 22 (its rest's shots were 8 % of the scan). The drag's marches keep the
     /// count: the rest's shape decides their touchdowns, and their paths through trapped pairs
-    /// turn on rounding (docs/performance.md, "The unloaded rest on its span").
+    /// turn on rounding (docs/performance.md, "The rat presets under 3×").
     pub lean_rest: bool,
 }
 

@@ -59,8 +59,8 @@ pub(crate) struct Spec<'a> {
     pub pass_fold_ahead: bool,
     /// A point whose prediction needed a second chord step gets its exact tangent
     /// (`rodsolve::Flags::retangent`): the scan. In the drag's marches the same rule changed the
-    /// paths through trapped pairs, whose outcomes rounding decides (docs/performance.md, "An
-    /// exact tangent after a second chord step"), so they run as before.
+    /// paths through trapped pairs, whose outcomes rounding decides (docs/performance.md, "The
+    /// rat presets under 3×"), so they run as before.
     pub retangent: bool,
 }
 

@@ -294,7 +294,7 @@ pub(crate) struct Flags {
     /// step. The chord's Jacobian, made at a prediction that far off, gives a tangent whose
     /// error feeds the next prediction: the long rat preset's predictions, made from such
     /// tangents of predictions 8e-6 off, stayed that far off (two chord steps a point instead
-    /// of one; its scan 293 → 226 Newton iterations, 164 301 → 145 946 right-hand sides with
+    /// of one; its scan 293 → 223 Newton iterations, 164 301 → 144 262 right-hand sides with
     /// it). The scan's march only (`march::Spec::retangent`).
     pub retangent: bool,
 }
@@ -304,9 +304,9 @@ pub(crate) struct Flags {
 /// point costs one shot with and one without sensitivities. With `fresh` (or when the iterate
 /// moved more than `1e-5`, or, with `retangent`, needed a second chord step) the returned
 /// Jacobian is recomputed at the solution: tangents and the events that use them need it exact,
-/// and the next prediction is made from this tangent ([`Flags::retangent`]); an iterate the chord's rate expects to converge is
-/// shot with its sensitivities at once (the same bits as without, so the same iterations). An
-/// iteration that [`stalled`] gives up early.
+/// and the next prediction is made from this tangent ([`Flags::retangent`]); an iterate the
+/// chord's rate expects to converge is shot with its sensitivities at once (the same bits as
+/// without, so the same iterations). An iteration that [`stalled`] gives up early.
 pub(crate) fn correct_chord<C: Curve + ?Sized>(
     ch: &mut C,
     lam: f64,

@@ -151,11 +151,12 @@ fn rat_presets_agree_with_generic_multiple_shooting() {
 
 /// The rat presets' scans do the work their rods ask for, counted (docs/performance.md, "The rat
 /// presets under 3×"): a point whose prediction needed a second chord step gets its exact
-/// tangent, so the next prediction needs one (without it the long preset's predictions stayed
-/// 8e-6 off: 293 Newton iterations for its 120 rows, 2.4 a row); and the unloaded rest beyond
-/// the side is laid out on its span (its first count, 22 steps over 0.05 of arc length, made a
-/// third of the right-hand sides: 1 369 a row). Measured now: long 223 iterations and 118 342
-/// right-hand sides for 120 rows (1.9 and 986 a row), short 291 and 142 027 for 183 (1.6, 776).
+/// tangent, so the next prediction needs one step (without it the long preset's predictions
+/// stayed 8e-6 off: 293 Newton iterations for its 120 rows, 2.4 a row); and the unloaded rest
+/// beyond the side is laid out on its span (it had the first segment's count, 22 steps over
+/// 0.05 of arc length). Before both: long 164 301 right-hand sides (1 369 a row), short 183 028
+/// for 183 rows (1 000). Measured now: long 223 iterations and 118 342 right-hand sides for 120
+/// rows (1.9 and 986 a row), short 291 and 142 027 for 183 (1.6, 776).
 #[test]
 fn the_rat_presets_scan_in_about_one_chord_step_a_point() {
     for f in ["rat_mystacial_long.toml", "rat_mystacial_short.toml"] {
