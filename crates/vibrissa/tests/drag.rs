@@ -674,7 +674,11 @@ mod property {
     use proptest::prelude::*;
 
     proptest! {
-        #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+        // 6 cases a run (about 10 s each here); PROPTEST_CASES=N runs N
+        #![proptest_config(ProptestConfig {
+            cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(6),
+            ..ProptestConfig::default()
+        })]
         #[test]
         fn rows_stay_below_the_profile_and_in_the_cone(
             amp in 0.0..0.012f64,
@@ -703,7 +707,19 @@ mod property {
                     prop_assert!(gap < 1e-8, "row at d = {}: s = {} is {gap:.3e} above", row.d, p.s);
                 }
                 if row.phase == Phase::Stick && row.event.is_none() {
-                    prop_assert!(row.mu.abs() <= row.mu_s + 1e-9, "{row:?}");
+                    // a lying stretch holds by its own friction ratio, not by |T| ≤ μ N on its
+                    // resultant (the surface's curvature takes up a part of that without
+                    // friction, `ContactState::friction_ratio`): the row's ratio ΣT/ΣN, which
+                    // sums that resultant, is bounded only without one
+                    let lying = row.contacts.iter().filter_map(|c| c.friction_ratio.map(|g| (g, c)));
+                    let mut stretch = false;
+                    for (g, c) in lying {
+                        stretch = true;
+                        prop_assert!(g.abs() <= c.mu + 1e-9, "{row:?}");
+                    }
+                    if !stretch {
+                        prop_assert!(row.mu.abs() <= row.mu_s + 1e-9, "{row:?}");
+                    }
                 }
             }
         }
