@@ -627,16 +627,36 @@ fn a_trapped_start_multiple_shooting_cannot_take_is_handed_to_the_own_shooter() 
 /// stretch it becomes and ends where that stretch's end would pull, by name.
 #[test]
 fn a_tip_nearly_tangent_on_a_crest_is_the_tip_lying_down_not_a_solver_failure() {
-    let (mu_s, mu_k) = (0.6576679380636514, 0.5284424725707423);
+    let (r, above) = sine_drag(
+        (9.861797238295234e-5, 0.4526084135378513, 6.278060390593519),
+        0.44603700946450053,
+        (0.6576679380636514, 0.5284424725707423),
+    );
+    match &r.stop {
+        StopReason::ContactChange { d, message } => {
+            assert!((d - 0.0514885).abs() < 1e-6, "{}", r.stop);
+            assert!(message.contains("lying stretch would pull"), "{}", r.stop);
+        }
+        other => panic!("{other}"),
+    }
+    assert_eq!(above, None);
+}
+
+/// A drag of the rod tapered to `taper` over the sine `(amplitude, wavelength, phase)` with
+/// `(μs, μk)`, every contact allowed, to d 0.15 on 21 output points with its shapes (201 points
+/// each): the result, and the first shape point 1e-8 or more above the profile, in words.
+fn sine_drag(
+    (amplitude, wavelength, phase): (f64, f64, f64),
+    taper: f64,
+    (mu_s, mu_k): (f64, f64),
+) -> (DragResult, Option<String>) {
     let s = scene(|s| {
         s.surface = SurfaceProfile::Sine {
-            amplitude: 9.861797238295234e-5,
-            wavelength: 0.4526084135378513,
-            phase: 6.278060390593519,
+            amplitude,
+            wavelength,
+            phase,
         };
-        s.stiffness = Stiffness::Taper {
-            ratio: 0.44603700946450053,
-        };
+        s.stiffness = Stiffness::Taper { ratio: taper };
     });
     let (rod, surface) = s.parts().unwrap();
     let h = surface.profile().unwrap();
@@ -647,24 +667,14 @@ fn a_tip_nearly_tangent_on_a_crest_is_the_tip_lying_down_not_a_solver_failure() 
         ..uniform(mu_s, mu_k, 0.15)
     };
     let r = drag(&rod, &surface, &o).unwrap();
-    match &r.stop {
-        StopReason::ContactChange { d, message } => {
-            assert!((d - 0.0514885).abs() < 1e-6, "{}", r.stop);
-            assert!(message.contains("lying stretch would pull"), "{}", r.stop);
-        }
-        other => panic!("{other}"),
-    }
-    for (row, shape) in r.rows.iter().zip(&r.shapes) {
-        for p in shape {
+    let above = r.rows.iter().zip(&r.shapes).find_map(|(row, shape)| {
+        shape.iter().find_map(|p| {
             let gap = p.y - h.h(p.x + row.d);
-            assert!(
-                gap < 1e-8,
-                "row at d = {}: s = {} is {gap:.3e} above",
-                row.d,
-                p.s
-            );
-        }
-    }
+            (gap >= 1e-8 || gap.is_nan())
+                .then(|| format!("row at d = {}: s = {} is {gap:.3e} above", row.d, p.s))
+        })
+    });
+    (r, above)
 }
 
 /// No row has the rod above the profile, and no stuck row needs more than μs (random
@@ -688,34 +698,20 @@ mod property {
             ratio in 0.2..0.9f64,
             taper in 0.4..1.0f64,
         ) {
-            let s = scene(|s| {
-                s.surface = SurfaceProfile::Sine { amplitude: amp, wavelength: wave, phase };
-                s.stiffness = Stiffness::Taper { ratio: taper };
-            });
-            let (rod, surface) = s.parts().unwrap();
-            let h = surface.profile().unwrap();
-            let o = DragOptions {
-                keep_shapes: Some(201),
-                points: 21,
-                contact: ContactModel::Anywhere,
-                ..uniform(mu_s, ratio * mu_s, 0.15)
-            };
-            let r = drag(&rod, &surface, &o).unwrap();
-            for (row, shape) in r.rows.iter().zip(&r.shapes) {
-                for p in shape {
-                    let gap = p.y - h.h(p.x + row.d);
-                    prop_assert!(gap < 1e-8, "row at d = {}: s = {} is {gap:.3e} above", row.d, p.s);
-                }
+            let (r, above) = sine_drag((amp, wave, phase), taper, (mu_s, ratio * mu_s));
+            prop_assert!(above.is_none(), "{}", above.unwrap_or_default());
+            for row in &r.rows {
                 if row.phase == Phase::Stick && row.event.is_none() {
                     // a lying stretch holds by its own friction ratio, not by |T| ≤ μ N on its
                     // resultant (the surface's curvature takes up a part of that without
                     // friction, `ContactState::friction_ratio`): the row's ratio ΣT/ΣN, which
                     // sums that resultant, is bounded only without one
-                    let lying = row.contacts.iter().filter_map(|c| c.friction_ratio.map(|g| (g, c)));
                     let mut stretch = false;
-                    for (g, c) in lying {
-                        stretch = true;
-                        prop_assert!(g.abs() <= c.mu + 1e-9, "{row:?}");
+                    for c in &row.contacts {
+                        if let Some(g) = c.friction_ratio {
+                            stretch = true;
+                            prop_assert!(g.abs() <= c.mu + 1e-9, "{row:?}");
+                        }
                     }
                     if !stretch {
                         prop_assert!(row.mu.abs() <= row.mu_s + 1e-9, "{row:?}");
