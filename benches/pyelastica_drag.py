@@ -55,6 +55,9 @@ Run (PyElastica 1.0 from PyPI, scipy; not dependencies of the project):
     /tmp/pye/bin/python benches/pyelastica_drag.py --events 1 --r 0.01 --elements 25,50,100,200,400
     /tmp/pye/bin/python benches/pyelastica_drag.py --elements 25,50,100   # the 10 slips
     /tmp/pye/bin/python benches/pyelastica_drag.py --quick        # one row, 25 elements
+    /tmp/pye/bin/python benches/pyelastica_drag.py --d-max 0.4 --elements 25,50,100,200,400,800
+        # the drag over the foot's travel 0..0.4 (the span of vibrissa's ten slips) at each
+        # resolution, whatever its events (7 min; data/dynamics/pyelastica_drag_span.csv)
 
 The same drag of ours: `cargo run --release -p vibrissa --example drag_slips` and the criterion
 bench `cargo bench -p vibrissa --bench dynamics` (group `dynamic_drag`).
@@ -204,7 +207,12 @@ class Friction(ea.NoForces):
         pass
 
 
-def run(r, n, dt, events=2 * SLIPS, settle=1.5, damping=40.0):
+def t_of(d):
+    """The time at which the foot has moved by `d` (past the ramp: d = v ramp/2 + v (t - ramp))."""
+    return RAMP + (d - SPEED * RAMP / 2.0) / SPEED
+
+
+def run(r, n, dt, events=2 * SLIPS, settle=1.5, damping=40.0, d_max=0.45):
     x, y, phi, normal, tip_x = pressed(n)
     sim = Sim()
     rod = unit_rod(n, r, [0.0, 1.0, 0.0], [1.0, 0.0, 0.0])
@@ -239,7 +247,7 @@ def run(r, n, dt, events=2 * SLIPS, settle=1.5, damping=40.0):
     contact.anchor = rod.position_collection[0, -1]
     t = 0.0
     steps = 0
-    t_end = RAMP + 0.4 / SPEED
+    t_end = t_of(d_max)
     t0, c0 = time.perf_counter(), time.process_time()
     while t < t_end and len(contact.slips) + len(contact.sticks) < events:
         t = stepper.step(sim, t, dt)
@@ -255,6 +263,11 @@ def main():
     elements = [int(n) for n in option("--elements", [25] if quick else [25, 50, 100, 200, 400])]
     scale = option("--dt-scale", [1.0])[0]
     events = int(option("--events", [2 * SLIPS])[0])
+    # `--d-max D`: the drag over the foot's travel 0..D whatever its events (the span the ten
+    # slips of vibrissa's drag take), not to its 20th event
+    d_max = option("--d-max", [0.0])[0]
+    if d_max > 0.0:
+        events = 10**9
     cases = []
     for r in radii:
         for n in elements:
@@ -263,9 +276,12 @@ def main():
     run(0.02, 10, 1e-4, events=1, settle=0.01)
     print("r,elements,dt,steps,slips,seconds,cpu,slip_d,stick_d")
     for r, n, dt in cases:
-        steps, c, seconds, cpu = run(r, n, dt, events=events)
-        ds = " ".join(f"{d:.10f}" for d in c.slips)
-        ks = " ".join(f"{d:.10f}" for d in c.sticks)
+        steps, c, seconds, cpu = run(r, n, dt, events=events, d_max=d_max or 0.45)
+        # over a span (`--d-max`) the switch chatters (hundreds to thousands of slips): the
+        # first ten places of each are written, `slips` counts them all
+        keep = 10 if d_max > 0.0 else None
+        ds = " ".join(f"{d:.10f}" for d in c.slips[:keep])
+        ks = " ".join(f"{d:.10f}" for d in c.sticks[:keep])
         print(f"{r},{n},{dt:.3e},{steps},{len(c.slips)},{seconds:.3f},{cpu:.3f},{ds},{ks}", flush=True)
         if seconds > 600:
             break

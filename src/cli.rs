@@ -420,8 +420,9 @@ pub struct DynamicsDragArgs {
     /// Most events before the drag stops (stop max_events), in [1, 1e6].
     #[arg(long, value_name = "N", value_parser = whole, default_value = DEFAULTS.dyn_max_events.as_str())]
     pub max_events: u32,
-    /// Halvings of --dt tried where the steps do not resolve a stick or a stuck step, or place
-    /// a slip beyond the friction cone: the drag goes back to its state after the last event
+    /// Halvings of --dt tried where the steps do not resolve a stick or a stuck step, place a
+    /// slip beyond the friction cone, or give a step Newton does not solve: the drag goes back
+    /// to its state after the last event
     /// and takes the steps from there at dt/2, dt/4, ... (docs/model.md, "A stick the time
     /// step does not resolve"), in [0, 10]; 0 ends the drag there by name at once. Fixed steps
     /// only (not with --time-tol).

@@ -873,7 +873,8 @@ def dynamics_drag(
     without it a lift-off ends the drag. ``grid``, ``tol`` as in :func:`dynamics_free`; ``event_tol``
     the tolerance in time of the events' places, ``max_events`` the most events before the
     drag stops, ``refinements`` the halvings of ``dt`` tried where the steps do not resolve a
-    stick or a stuck step or place a slip beyond the friction cone (the drag goes back to its
+    stick or a stuck step, place a slip beyond the friction cone or give a step Newton does not
+    solve (the drag goes back to its
     state after the last event and takes the steps again at dt/2, dt/4, ...; 0 stops there at
     once; fixed steps only; the program's ``--refinements``). The defaults and valid ranges
     are the library's.

@@ -28,6 +28,14 @@
 //! "The velocity mismatch of a stuck phase"); the accuracy against PyElastica (`benches/pyelastica_drag.py`) is
 //! compared on the first slip, docs/performance.md.
 //!
+//! Printed second, the drag at equal accuracy in the first frequency: the same rod and surface
+//! dragged over the foot's travel d 0 … 0.4 (whatever its events) at the time step whose
+//! Newmark period error equals PyElastica's free-oscillation period error at r 0.02 and 25 …
+//! 800 elements (grid 20, tol 1e-6), minimum of 3; the peer's side is `benches/pyelastica_drag.py
+//! --d-max 0.4`, the ratios are in docs/performance.md ("The ten-slip drag at equal accuracy in
+//! the first frequency"). The group `dynamic_drag` also times that drag at the accuracies of 200
+//! and 400 elements (`span_0.4_at_*_elements_accuracy`).
+//!
 //! The group `modes`: the lowest natural frequency of a state, `vibrissa::modes::modes` with the
 //! tip pinned (what `scan --modes` computes per row): the paper's pressed rod (f 2.8266, the
 //! force along −y) and the rod tapered to 0.1 pressed at η 0.97 (f 0.0898), whose search for
@@ -141,6 +149,96 @@ fn table() {
     }
 }
 
+/// PyElastica's period errors of the free oscillation at r 0.02 and 25 … 800 elements
+/// (`data/dynamics/pyelastica_free.csv`, `benches/pyelastica_free.py`): the accuracies against
+/// the closed-form frequency at which its drags of `benches/pyelastica_drag.py --d-max 0.4`
+/// are compared.
+const PEER_PERIOD_ERRORS: [(usize, f64); 6] = [
+    (25, 3.809e-2),
+    (50, 1.873e-2),
+    (100, 8.934e-3),
+    (200, 4.004e-3),
+    (400, 1.532e-3),
+    (800, 2.933e-4),
+];
+
+/// The time step whose Newmark period error `(ωΔt/2)/atan(ωΔt/2) − 1` is `e` (ω = β₁²), by
+/// bisection (the error rises with Δt).
+fn dt_of_period_error(e: f64) -> f64 {
+    let w = CLAMPED_FREE_BETA1 * CLAMPED_FREE_BETA1;
+    let err = |dt: f64| (0.5 * w * dt) / (0.5 * w * dt).atan() - 1.0;
+    let (mut lo, mut hi) = (1e-6, 1.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if err(mid) < e {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The drag over the foot's travel 0 … 0.4 (the span of the ten slips, whatever the events) at
+/// `dt`, grid 20, tol 1e-6: the grid and tolerance that add nothing to the period error of the
+/// step at these accuracies (`cargo run --release -p vibrissa --example free_oscillation -- --at
+/// dt,20,1e-6`: 3.81e-2 … 1.52e-3 for Newmark's 3.81e-2 … 1.53e-3; at dt 0.0169, 2.3e-4 for its
+/// 2.9e-4).
+fn span_drag(dt: f64) -> vibrissa::dynamics::DynDragResult {
+    let o = DynDragOptions {
+        speed: 0.05,
+        dt,
+        tol: 1e-6,
+        grid: 20,
+        d_max: 0.4,
+        ..DynDragOptions::default()
+    };
+    let surface = Surface::flat(0.75).expect("flat surface");
+    drag(&Rod::uniform(), &surface, &o).expect("dynamic drag")
+}
+
+/// The drag at equal accuracy in the first frequency: for each of PyElastica's resolutions the
+/// drag over d 0 … 0.4 at the time step of the same period error ([`span_drag`]), minimum of 3
+/// in the thread's CPU time, with its steps, slips, refinements and Newton iterations.
+fn drag_table() {
+    let runs: Vec<(usize, f64, f64)> = PEER_PERIOD_ERRORS
+        .iter()
+        .map(|&(n, e)| (n, e, dt_of_period_error(e)))
+        .collect();
+    let mut best = vec![Duration::MAX; runs.len()];
+    for _ in 0..3 {
+        for (i, &(_, _, dt)) in runs.iter().enumerate() {
+            let (_, spent) = clock::timed(|| black_box(span_drag(dt)));
+            best[i] = best[i].min(spent);
+        }
+    }
+    println!(
+        "\nthe drag over d 0..0.4 at PyElastica's period errors (grid 20, tol 1e-6; {}, minimum of 3)\n{:>9} {:>11} {:>9} {:>6} {:>6} {:>12} {:>7} {:>10}  stop",
+        clock::name(),
+        "elements",
+        "period err",
+        "dt",
+        "steps",
+        "slips",
+        "refinements",
+        "newton",
+        "time ms"
+    );
+    for (i, &(n, e, dt)) in runs.iter().enumerate() {
+        let r = span_drag(dt);
+        println!(
+            "{n:>9} {e:>11.3e} {dt:>9.5} {:>6} {:>6} {:>12} {:>7} {:>10.1}  {} at d {:.4}",
+            r.stats.steps,
+            r.stats.slips,
+            r.stats.refinements,
+            r.stats.newton_iterations,
+            best[i].as_secs_f64() * 1e3,
+            format!("{:?}", r.stop).split(' ').next().unwrap_or(""),
+            r.samples.last().map_or(0.0, |p| p.d)
+        );
+    }
+}
+
 /// The paper's rod dragged through 10 slips (20 events); returns the slips.
 fn ten_slips() -> usize {
     let o = DynDragOptions {
@@ -159,6 +257,7 @@ fn ten_slips() -> usize {
 
 fn bench(c: &mut Criterion) {
     table();
+    drag_table();
     let mut g = c.benchmark_group("free_oscillation");
     g.sample_size(10).measurement_time(Duration::from_secs(10));
     for n in [25, 50, 100, 200] {
@@ -195,6 +294,13 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("dynamic_drag");
     g.sample_size(10).measurement_time(Duration::from_secs(30));
     g.bench_function("paper_rod_10_slips", |b| b.iter(ten_slips));
+    // at the accuracy of PyElastica's 200 and 400 elements in the first frequency
+    for (n, e) in [(200, 4.004e-3), (400, 1.532e-3)] {
+        let dt = dt_of_period_error(e);
+        g.bench_function(format!("span_0.4_at_{n}_elements_accuracy"), |b| {
+            b.iter(|| black_box(span_drag(dt).stats.slips))
+        });
+    }
     g.finish();
 }
 

@@ -9,6 +9,9 @@
 //! with the places of every slip and stick (slips 2 to 5 converge as dt → 0 since the slip test
 //! on the held force, docs/model.md; docs/performance.md compares the first slip, the one the
 //! peer's drag also converges in). `-- --settings dt,grid,tol,dt,grid,tol,...` picks the settings of either;
+//! `-- --d-max D` runs each drag over the foot's travel `0..D` instead (with `--ten`: the span of
+//! `benches/pyelastica_drag.py --d-max D`, the comparison at equal accuracy in the first
+//! frequency, docs/performance.md).
 //! `-- --internal-damping G` gives the rod Kelvin–Voigt damping `γ_i = G`, `-- --external-damping G`
 //! external viscous damping `γ_e = G` (default 0 both).
 //!
@@ -32,6 +35,12 @@ fn flag(name: &str) -> f64 {
         .unwrap_or(0.0)
 }
 
+/// `--d-max D`: the drag over the foot's travel `0..D` whatever its events (the span of the
+/// peer's run with the same flag), instead of to its `events`-th event; 0 when not given.
+fn span() -> f64 {
+    flag("--d-max")
+}
+
 /// The slip and stick places `d` of the drag at `(dt, grid, tol)` through `events` events,
 /// its CPU time in s and its work.
 type Run = (Vec<f64>, Vec<f64>, f64, String);
@@ -41,8 +50,8 @@ fn slips(dt: f64, grid: usize, tol: f64, events: usize) -> Result<Run, VibrissaE
         dt,
         tol,
         grid,
-        d_max: 10.0,
-        max_events: events,
+        d_max: if span() > 0.0 { span() } else { 10.0 },
+        max_events: if span() > 0.0 { 10_000 } else { events },
         internal_damping: flag("--internal-damping"),
         external_damping: flag("--external-damping"),
         ..DynDragOptions::default()
@@ -128,7 +137,11 @@ fn reference() -> Result<(), VibrissaError> {
 
 /// The ten slips at each setting (the bench's drag): the places of the slips.
 fn ten_slips(settings: &[(f64, usize, f64)]) -> Result<(), VibrissaError> {
-    println!("the first 10 slips (20 events)");
+    if span() > 0.0 {
+        println!("the drag to d = {}", span());
+    } else {
+        println!("the first 10 slips (20 events)");
+    }
     for &(dt, grid, tol) in settings {
         let (s, k, cpu, stats) = slips(dt, grid, tol, 20)?;
         let list = |v: &[f64]| {

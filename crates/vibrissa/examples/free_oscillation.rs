@@ -9,6 +9,10 @@
 //! Richardson's extrapolation of the period and long runs (many periods; a large amplitude).
 //!
 //! Run: `cargo run -p vibrissa --example free_oscillation` (about two minutes on one core).
+//! `-- --at dt,grid,tol,dt,grid,tol,...`: only the period error (and Newmark's prediction) of
+//! Lobatto6 at each of those settings, one period and a fifth — the check that a coarse grid and
+//! tolerance add nothing to the time step's period error (the accuracy the comparison with
+//! PyElastica's ten-slip drag matches, docs/performance.md).
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -33,6 +37,58 @@ fn main() -> Result<(), vibrissa::VibrissaError> {
     let w1 = CLAMPED_FREE_BETA1 * CLAMPED_FREE_BETA1;
     let period = 2.0 * PI / w1;
     println!("uniform clamped-free rod, first mode, tip velocity amplitude 1e-4; T = 2 pi / beta1^2 = {period}");
+    if let Some(e) = std::env::args().skip_while(|a| a != "--energy").nth(1) {
+        // amplitude, periods, steps per period, grid, tol: the energy at each period's end
+        let v: Vec<f64> = e.split(',').filter_map(|x| x.parse().ok()).collect();
+        let (amp, periods, n, grid, tol) = (v[0], v[1], v[2] as usize, v[3] as usize, v[4]);
+        let o = DynamicsOptions {
+            dt: period / n as f64,
+            t_end: periods * period,
+            grid,
+            tol,
+            ..DynamicsOptions::default()
+        };
+        let t0 = Instant::now();
+        let r = free(&rod, &first_mode_velocity(amp), &o)?;
+        let e0 = r.samples[0].kinetic + r.samples[0].elastic;
+        for (k, p) in r.samples.iter().enumerate().step_by(n) {
+            println!(
+                "period {:4}: energy error {:+.3e}",
+                k / n,
+                (p.kinetic + p.elastic) / e0 - 1.0
+            );
+        }
+        println!(
+            "tip velocity amplitude {amp}: worst {:.3e} over {periods} periods ({} steps, {:.1} s)",
+            drift(&r),
+            r.stats.steps,
+            t0.elapsed().as_secs_f64()
+        );
+        return Ok(());
+    }
+    if let Some(at) = std::env::args().skip_while(|a| a != "--at").nth(1) {
+        let v: Vec<f64> = at.split(',').filter_map(|x| x.parse().ok()).collect();
+        println!("dt  grid  tol  period_err  newmark_pred");
+        for c in v.chunks_exact(3) {
+            let (dt, grid, tol) = (c[0], c[1] as usize, c[2]);
+            let o = DynamicsOptions {
+                dt,
+                grid,
+                tol,
+                t_end: 1.2 * period,
+                ..DynamicsOptions::default()
+            };
+            let r = free(&rod, &first_mode_velocity(1e-4), &o)?;
+            let tp = upward_crossing(&r, 0.6 * period);
+            let pred = PI * dt / (w1 * dt / 2.0).atan();
+            println!(
+                "{dt} {grid} {tol:e} {:.4e} {:.4e}",
+                tp / period - 1.0,
+                pred / period - 1.0
+            );
+        }
+        return Ok(());
+    }
     println!("scheme   steps/T  time_s  max_nodes  newton  period_err  newmark_pred  omega_err(dispersion)  energy_drift");
     for scheme in [bvp::Scheme::Lobatto4, bvp::Scheme::Lobatto6] {
         let mut prev: Option<f64> = None;
