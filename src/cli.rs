@@ -360,6 +360,12 @@ pub struct DynamicsFreeArgs {
     /// the kinetic energy its share (0: none, the Euler-Bernoulli rod).
     #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
     pub rotary_inertia: f64,
+    /// The time scheme: newmark (the trapezoidal rule, the default) or energy-momentum (each
+    /// step keeps the energy whatever the amplitude, where Newmark's grows at large ones;
+    /// clamped foot, no damping or rotary inertia, fixed steps; the rows' base force and
+    /// moment are the steps' means: docs/model.md, "The energy of a large oscillation").
+    #[arg(long, value_enum, default_value = "newmark")]
+    pub time_scheme: TimeSchemeArg,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub spectrum: Option<PathBuf>,
@@ -780,6 +786,15 @@ pub struct TextureArgs {
     /// sample (rod lengths), in [0, 0.1]; 0 interpolates.
     #[arg(long, value_name = "T", value_parser = finite_f64)]
     pub profile_tolerance: Option<f64>,
+}
+
+/// `dynamics free --time-scheme`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TimeSchemeArg {
+    /// Newmark's average-acceleration rule.
+    Newmark,
+    /// The energy-momentum step.
+    EnergyMomentum,
 }
 
 /// How the tip is held in `vibrissa modes`.

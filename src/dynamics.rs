@@ -3,13 +3,15 @@
 //! or a foot moment: `vibrissa::dynamics::free`), issue 32; with `--spectrum`, the amplitude
 //! spectrum of the moment at the foot (`vibrissa::spectrum`).
 
-use crate::cli::{DynamicsArgs, DynamicsCommand, DynamicsDragArgs, DynamicsFreeArgs};
+use crate::cli::{
+    DynamicsArgs, DynamicsCommand, DynamicsDragArgs, DynamicsFreeArgs, TimeSchemeArg,
+};
 use crate::error::Res;
 use crate::scene_args::build_scene;
 use crate::table::{csv_line, num, Sink};
 use std::io::Write;
 use std::path::Path;
-use vibrissa::dynamics::{drag, free, DynDragOptions, DynamicsOptions};
+use vibrissa::dynamics::{drag, free, DynDragOptions, DynamicsOptions, TimeScheme};
 use vibrissa::inertia::{time_unit_s, KERATIN_DENSITY};
 use vibrissa::spectrum::amplitude_spectrum;
 use vibrissa::{Rod, Units};
@@ -116,6 +118,10 @@ pub fn free_options(a: &DynamicsFreeArgs) -> DynamicsOptions {
         release_force: [a.release_fx, a.release_fy],
         grid: a.grid as usize,
         tol: a.tol,
+        time_scheme: match a.time_scheme {
+            TimeSchemeArg::Newmark => TimeScheme::Newmark,
+            TimeSchemeArg::EnergyMomentum => TimeScheme::EnergyMomentum,
+        },
         ..DynamicsOptions::default()
     }
 }

@@ -17,7 +17,7 @@
 use std::f64::consts::PI;
 use std::time::Instant;
 use vibrissa::dynamics::{
-    first_mode_velocity, free, DynamicsOptions, DynamicsResult, CLAMPED_FREE_BETA1,
+    first_mode_velocity, free, DynamicsOptions, DynamicsResult, TimeScheme, CLAMPED_FREE_BETA1,
 };
 use vibrissa::Rod;
 
@@ -30,6 +30,15 @@ fn drift(r: &DynamicsResult) -> f64 {
     r.samples.iter().fold(0.0f64, |m, p| {
         m.max(((p.kinetic + p.elastic + p.dissipated) / e0 - 1.0).abs())
     })
+}
+
+/// `--energy-momentum`: the energy–momentum time scheme, else Newmark's.
+fn time_scheme() -> TimeScheme {
+    if std::env::args().any(|a| a == "--energy-momentum") {
+        TimeScheme::EnergyMomentum
+    } else {
+        TimeScheme::Newmark
+    }
 }
 
 fn main() -> Result<(), vibrissa::VibrissaError> {
@@ -46,16 +55,24 @@ fn main() -> Result<(), vibrissa::VibrissaError> {
             t_end: periods * period,
             grid,
             tol,
+            time_scheme: time_scheme(),
             ..DynamicsOptions::default()
         };
         let t0 = Instant::now();
         let r = free(&rod, &first_mode_velocity(amp), &o)?;
         let e0 = r.samples[0].kinetic + r.samples[0].elastic;
+        println!("energy at t = 0: {e0:.6e}");
         for (k, p) in r.samples.iter().enumerate().step_by(n) {
             println!(
-                "period {:4}: energy error {:+.3e}",
+                "period {:4}: energy error {:+.3e} (kinetic {:.4e}, elastic {:.4e}, tip x {:+.4e} y {:.6} vx {:+.4e} vy {:+.4e})",
                 k / n,
-                (p.kinetic + p.elastic) / e0 - 1.0
+                (p.kinetic + p.elastic) / e0 - 1.0,
+                p.kinetic,
+                p.elastic,
+                p.tip_x,
+                p.tip_y,
+                p.tip_vx,
+                p.tip_vy
             );
         }
         println!(
@@ -76,6 +93,7 @@ fn main() -> Result<(), vibrissa::VibrissaError> {
                 grid,
                 tol,
                 t_end: 1.2 * period,
+                time_scheme: time_scheme(),
                 ..DynamicsOptions::default()
             };
             let r = free(&rod, &first_mode_velocity(1e-4), &o)?;

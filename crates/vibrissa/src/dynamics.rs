@@ -106,6 +106,26 @@ pub struct DynamicsOptions {
     /// The bounds of the adaptive steps' controller (used with `time_tol` only; checked then).
     /// Default [`TimeStepControl::default`].
     pub step_control: TimeStepControl,
+    /// The time discretization. Default [`TimeScheme::Newmark`].
+    pub time_scheme: TimeScheme,
+}
+
+/// How [`free`] steps in time.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TimeScheme {
+    /// Newmark's average-acceleration rule (the trapezoidal rule on `(r, r_t)`): second order,
+    /// no numerical damping, the linearized rod's energy kept exactly at every step; the
+    /// nonlinear rod's energy grows at large amplitudes (docs/model.md, "The energy of a large
+    /// oscillation").
+    #[default]
+    Newmark,
+    /// The energy–momentum step: the step's mean force and moment, the moment's balance on the
+    /// chord of the slopes (`rothe::Settings::energy_momentum`): second order, no numerical
+    /// damping, the energy kept at every step whatever the amplitude. A clamped foot, no
+    /// damping, no rotary inertia and fixed steps only; the samples' base force and moment are
+    /// the step's means.
+    EnergyMomentum,
 }
 
 impl Default for DynamicsOptions {
@@ -124,6 +144,7 @@ impl Default for DynamicsOptions {
             scheme: bvp::Scheme::Lobatto6,
             time_tol: None,
             step_control: TimeStepControl::default(),
+            time_scheme: TimeScheme::Newmark,
         }
     }
 }
@@ -156,6 +177,21 @@ impl DynamicsOptions {
         }
         if !(self.tol >= 1e-13 && self.tol <= 1e-4) {
             return bad("tol", self.tol, "[1e-13, 1e-4]");
+        }
+        if self.time_scheme == TimeScheme::EnergyMomentum {
+            let unsupported = [
+                ("foot_damping", self.foot_damping),
+                ("internal_damping", self.internal_damping),
+                ("external_damping", self.external_damping),
+                ("rotary_inertia", self.rotary_inertia),
+                ("foot_moment", self.foot_moment),
+                ("time_tol", self.time_tol.unwrap_or(0.0)),
+            ];
+            for (name, v) in unsupported {
+                if v != 0.0 {
+                    return bad(name, v, "0 with the energy-momentum time scheme");
+                }
+            }
         }
         check_time_tol(self.time_tol, &self.step_control)
     }
@@ -195,6 +231,13 @@ pub fn free(
     opts: &DynamicsOptions,
 ) -> Result<DynamicsResult, VibrissaError> {
     opts.validate()?;
+    if opts.time_scheme == TimeScheme::EnergyMomentum && rod.support_compliance() != 0.0 {
+        return Err(VibrissaError::range(
+            "support_compliance",
+            rod.support_compliance(),
+            "0 with the energy-momentum time scheme",
+        ));
+    }
     let settings = Settings {
         grid: opts.grid,
         tol: opts.tol,
@@ -203,10 +246,12 @@ pub fn free(
         internal_damping: opts.internal_damping,
         external_damping: opts.external_damping,
         rotary_inertia: opts.rotary_inertia,
-        // adaptive steps may be short: the history and the forces' scale of `drag`
-        short_steps: opts.time_tol.is_some(),
+        // adaptive steps may be short: the history and the forces' scale of `drag`; the
+        // energy–momentum step takes `rⁿ`, `φⁿ`, `φⁿ'` from the last solution itself
+        short_steps: opts.time_tol.is_some() || opts.time_scheme == TimeScheme::EnergyMomentum,
         predict: true,
         remesh: false,
+        energy_momentum: opts.time_scheme == TimeScheme::EnergyMomentum,
     };
     let grid = Rothe::grid_of(&settings);
     let rest = rest_guess(&rod.profile(1.0), &grid);
@@ -329,6 +374,7 @@ mod tests {
             short_steps: false,
             predict: false,
             remesh: false,
+            energy_momentum: false,
         };
         let rod = Rod::uniform();
         let grid = Rothe::grid_of(&settings);
@@ -409,6 +455,185 @@ mod tests {
             "{} {want}",
             last.tip_x
         );
+    }
+
+    /// The largest relative change of the energy `kinetic + elastic` over the samples of a free,
+    /// undamped run.
+    fn energy_drift(r: &DynamicsResult) -> f64 {
+        let e0 = r.samples[0].kinetic + r.samples[0].elastic;
+        r.samples.iter().fold(0.0f64, |w, p| {
+            w.max(((p.kinetic + p.elastic) / e0 - 1.0).abs())
+        })
+    }
+
+    /// Over 100 periods of a small first-mode oscillation (tip velocity 1e-3, 25 steps per
+    /// period, grid 50, tol 1e-8: 2500 steps) the undamped scheme keeps the energy: measured
+    /// 3.0e-6 of it at worst (a walk of the steps' collocation error, signs changing: −5e-8,
+    /// +2.6e-7, −1.0e-7, +3.0e-6 at periods 1, 10, 50, 100); asserted 2e-5. The energy is
+    /// 1.25e-7, so that is 4e-13 absolute, while the tolerance allows each step an error of
+    /// 1e-8 in positions of size 1 (`cargo run --release -p vibrissa --example
+    /// free_oscillation -- --energy 1e-3,100,25,50,1e-8`).
+    #[test]
+    fn a_small_oscillation_keeps_its_energy_over_a_hundred_periods() {
+        let period = 2.0 * std::f64::consts::PI / CLAMPED_FREE_BETA1.powi(2);
+        let o = DynamicsOptions {
+            dt: period / 25.0,
+            t_end: 100.0 * period,
+            grid: 50,
+            tol: 1e-8,
+            ..DynamicsOptions::default()
+        };
+        let r = free(&Rod::uniform(), &first_mode_velocity(1e-3), &o).unwrap();
+        assert_eq!(r.samples.len(), 2501);
+        let drift = energy_drift(&r);
+        eprintln!("energy drift over 100 periods {drift:e}");
+        assert!(drift < 2e-5, "{drift:e}");
+    }
+
+    /// Open with Newmark's rule, the default (docs/model.md, "The energy of a large
+    /// oscillation"): from a large first-mode velocity (tip 0.3, tip amplitude about 0.085) the
+    /// energy does not stay: it grows by about 1.95 times a period (1.3e-5, 5.8e-5, 1.5e-4, …
+    /// 7.6e-2 at periods 1, 2, 3, … 12 at 50 steps per period; the same rate at 100 steps and
+    /// at grid 200, tol 1e-10), and the step of period 13 does not converge. Asserted what the
+    /// energy–momentum step keeps (the tests below): 1e-6 of the energy over 100 periods.
+    #[test]
+    #[ignore = "open failure of the default scheme: the energy of a large oscillation grows (docs/model.md)"]
+    fn a_large_oscillation_keeps_its_energy_over_a_hundred_periods() {
+        let period = 2.0 * std::f64::consts::PI / CLAMPED_FREE_BETA1.powi(2);
+        let o = DynamicsOptions {
+            dt: period / 50.0,
+            t_end: 100.0 * period,
+            grid: 50,
+            tol: 1e-8,
+            ..DynamicsOptions::default()
+        };
+        let r = free(&Rod::uniform(), &first_mode_velocity(0.3), &o).unwrap();
+        let drift = energy_drift(&r);
+        assert!(drift < 1e-6, "{drift:e}");
+    }
+
+    /// A first-mode oscillation from tip velocity `amp` over `periods` periods of `n` steps by
+    /// the energy–momentum step on `grid` intervals at collocation `tol`.
+    fn energy_momentum(amp: f64, periods: f64, n: f64, grid: usize, tol: f64) -> DynamicsResult {
+        let period = 2.0 * std::f64::consts::PI / CLAMPED_FREE_BETA1.powi(2);
+        let o = DynamicsOptions {
+            dt: period / n,
+            t_end: periods * period,
+            grid,
+            tol,
+            time_scheme: TimeScheme::EnergyMomentum,
+            ..DynamicsOptions::default()
+        };
+        free(&Rod::uniform(), &first_mode_velocity(amp), &o).unwrap()
+    }
+
+    /// The energy–momentum step keeps the energy of the large oscillation that Newmark's rule
+    /// does not (tip velocity 0.3, 25 steps per period, grid 50, tol 1e-8): over 20 periods
+    /// measured 2.7e-6 of it at worst, a steady loss of 1.4e-7 a period that falls as the
+    /// fourth power of the history grid's interval (the slow test below); Newmark's rule at
+    /// the same settings is 8.7e-2 off after 10 periods. Asserted 1e-5.
+    #[test]
+    fn the_energy_momentum_step_keeps_the_energy_of_a_large_oscillation() {
+        let r = energy_momentum(0.3, 20.0, 25.0, 50, 1e-8);
+        let drift = energy_drift(&r);
+        eprintln!("energy drift over 20 periods {drift:e}");
+        assert!(drift < 1e-5, "{drift:e}");
+    }
+
+    /// The issue's check over 100 periods from the large first-mode velocity (tip 0.3), 25 steps
+    /// per period, tol 1e-10: the energy's worst error 1.35e-5, 8.5e-7, 5.3e-8 on grids of 50,
+    /// 100, 200 intervals (16 times less at each halving: the history's cubic interpolation in
+    /// s, fourth order). Asserted on grid 100: 2e-6, and the fall to grid 200 at least 10 times.
+    #[test]
+    #[ignore = "slow: 5000 steps, about 30 s in debug; the default guard is the 20-period test"]
+    fn the_energy_momentum_step_keeps_the_energy_over_a_hundred_periods() {
+        let d100 = energy_drift(&energy_momentum(0.3, 100.0, 25.0, 100, 1e-10));
+        let d200 = energy_drift(&energy_momentum(0.3, 100.0, 25.0, 200, 1e-10));
+        eprintln!("energy drift over 100 periods: grid 100 {d100:e}, grid 200 {d200:e}");
+        assert!(d100 < 2e-6, "{d100:e}");
+        assert!(d200 < 0.1 * d100, "{d200:e} {d100:e}");
+    }
+
+    /// A tapered (0.5), pre-curved (κ0 = 1) rod released from a large tip force (0.5, 0), dt
+    /// 0.02, grid 50, tol 1e-8: Newmark's rule fails at step 104 (t = 2.08: Newton's limit on
+    /// 5970 nodes, 15 s of CPU in a release build; `vibrissa dynamics free --taper 0.5
+    /// --precurvature 1 --release-fx 0.5 --dt 0.02 --t-end 3 --grid 50 --tol 1e-8`), the
+    /// energy–momentum step follows it to t = 3 (0.9 s) with the energy within 3.7e-4 of the
+    /// stored one (alternating from step to step: the release rings modes the grid of 50
+    /// intervals resolves poorly; the first step 5.3e-7). Asserted: to t = 3, within 1e-3.
+    #[test]
+    fn the_energy_momentum_step_follows_a_large_release_of_a_tapered_curved_rod() {
+        let rod = Rod::builder()
+            .taper(0.5)
+            .precurvature(1.0, 0.0)
+            .build()
+            .unwrap();
+        let o = DynamicsOptions {
+            dt: 0.02,
+            t_end: 3.0,
+            grid: 50,
+            tol: 1e-8,
+            release_force: [0.5, 0.0],
+            time_scheme: TimeScheme::EnergyMomentum,
+            ..DynamicsOptions::default()
+        };
+        let r = free(&rod, &|_| [0.0, 0.0], &o).unwrap();
+        assert_eq!(r.samples.len(), 151);
+        let e0 = r.samples[0].elastic;
+        for p in &r.samples {
+            let e = p.kinetic + p.elastic;
+            assert!((e / e0 - 1.0).abs() < 1e-3, "t = {}: {e} against {e0}", p.t);
+        }
+    }
+
+    /// For the linearized rod the energy–momentum step is Newmark's (the mean force of the
+    /// step is the mean of the end forces when the moment's balance is linear), so its
+    /// frequency through Newmark's dispersion is β₁² (measured: the period errors of both
+    /// schemes 5.2242e-3, 1.3132e-3, 3.2880e-4 at 25, 50, 100 steps per period): at 50 steps
+    /// per period from tip velocity 1e-4, within 1e-8.
+    #[test]
+    fn the_energy_momentum_step_has_newmark_s_dispersion() {
+        let w1 = CLAMPED_FREE_BETA1.powi(2);
+        let period = 2.0 * std::f64::consts::PI / w1;
+        let r = energy_momentum(1e-4, 1.0, 50.0, 200, 1e-10);
+        let w = frequency_of(&r, period / 50.0, 12);
+        assert!((w / w1 - 1.0).abs() < 1e-8, "omega {w}");
+        assert!(energy_drift(&r) < 1e-7, "{}", energy_drift(&r));
+    }
+
+    /// The energy–momentum step needs a clamped foot without damping, no rotary inertia and
+    /// fixed steps: anything else is refused by name.
+    #[test]
+    fn the_energy_momentum_step_refuses_what_it_does_not_model() {
+        let base = DynamicsOptions {
+            time_scheme: TimeScheme::EnergyMomentum,
+            ..DynamicsOptions::default()
+        };
+        let cases = [
+            DynamicsOptions {
+                foot_damping: 0.1,
+                ..base.clone()
+            },
+            DynamicsOptions {
+                internal_damping: 0.01,
+                ..base.clone()
+            },
+            DynamicsOptions {
+                rotary_inertia: 0.05,
+                ..base.clone()
+            },
+            DynamicsOptions {
+                time_tol: Some(1e-8),
+                ..base.clone()
+            },
+        ];
+        for o in cases {
+            let e = free(&Rod::uniform(), &|_| [0.0, 0.0], &o).unwrap_err();
+            assert!(e.to_string().contains("energy-momentum"), "{e}");
+        }
+        let soft = Rod::builder().support_compliance(1.0).build().unwrap();
+        let e = free(&soft, &|_| [0.0, 0.0], &base).unwrap_err();
+        assert!(e.to_string().contains("support_compliance"), "{e}");
     }
 
     /// The first mode of the uniform clamped–free Rayleigh beam (Euler–Bernoulli with rotary

@@ -2662,6 +2662,7 @@ pub fn drag(
         // saved that could be measured; docs/performance.md)
         predict: false,
         remesh: true,
+        energy_momentum: false,
     };
     let grid = Rothe::grid_of(&settings);
     let (guess, tip, track) =

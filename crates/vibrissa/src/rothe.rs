@@ -251,6 +251,17 @@ fn lagrange(v: &[f64], s: f64) -> f64 {
         + (t + 1.0) * t * (t - 1.0) / 6.0 * d
 }
 
+/// `sin(Δ/2)/(Δ/2)` and its derivative in `Δ/2` (series below 1e-4).
+fn sinc_half(delta: f64) -> (f64, f64) {
+    let u = 0.5 * delta;
+    if u.abs() < 1e-4 {
+        (1.0 - u * u / 6.0, -u / 3.0)
+    } else {
+        let (su, cu) = u.sin_cos();
+        (su / u, (u * cu - su) / (u * u))
+    }
+}
+
 /// `v0''(s)` by finite differences of step 1e-3 of fourth order: central inside, one-sided
 /// (six points) within two steps of an end.
 fn second_derivative(v0: &dyn Fn(f64) -> [f64; 2], s: f64) -> [f64; 2] {
@@ -317,6 +328,8 @@ struct Step<'a> {
     radius: f64,
     /// `(a, K)` of [`Rothe::disk_held`].
     held: (f64, f64),
+    /// [`Settings::energy_momentum`] (with `base`: the last solution, `φⁿ` and `φⁿ'`).
+    emm: bool,
 }
 
 impl Step<'_> {
@@ -383,6 +396,16 @@ impl Bvp for Step<'_> {
         if let Some(b) = self.base {
             b.eval(s, &mut r0);
         }
+        if self.emm {
+            let mut d0 = [0.0; 6];
+            if let Some(b) = self.base {
+                b.eval_derivative(s, &mut d0);
+            }
+            dz[2] = 2.0 * (self.profile.k0(s) + self.profile.b(s) * z[3]) - d0[2];
+            let (f, _) = sinc_half(z[2] - r0[2]);
+            let (sm, cm) = (0.5 * (z[2] + r0[2])).sin_cos();
+            dz[3] = self.gs * f * (z[4] * sm - z[5] * cm);
+        }
         if let Some((jk, phi_hat)) = self.rot {
             dz[3] += jk / self.profile.b(s) * (z[2] - r0[2] - lagrange(phi_hat, s));
         }
@@ -413,6 +436,19 @@ impl Bvp for Step<'_> {
         }
         dfdz[18 + 4] = self.gs * sp;
         dfdz[18 + 5] = -self.gs * cp;
+        if self.emm {
+            let mut r0 = [0.0; 6];
+            if let Some(b) = self.base {
+                b.eval(s, &mut r0);
+            }
+            dfdz[12 + 3] = 2.0 * self.profile.b(s);
+            let (f, df) = sinc_half(z[2] - r0[2]);
+            let (sm, cm) = (0.5 * (z[2] + r0[2])).sin_cos();
+            let (a, da) = (z[4] * sm - z[5] * cm, z[4] * cm + z[5] * sm);
+            dfdz[18 + 2] = self.gs * 0.5 * (df * a + f * da);
+            dfdz[18 + 4] = self.gs * f * sm;
+            dfdz[18 + 5] = -self.gs * f * cm;
+        }
         dfdz[24] = mk;
         dfdz[30 + 1] = mk;
         true
@@ -618,6 +654,18 @@ pub(crate) struct Settings {
     /// Newton iteration costs in proportion (docs/performance.md, "The dynamic drag against
     /// PyElastica").
     pub remesh: bool,
+    /// The energy–momentum step instead of Newmark's rule (`dynamics::free` only; a clamped
+    /// foot, no damping, no rotary inertia): over a step of length `τ` the internal force and
+    /// moment are the step's means `Ḡ`, `m̄`, the balance of momentum `μ (vⁿ⁺¹ − vⁿ)/τ = Ḡ'`
+    /// with `(rⁿ⁺¹ − rⁿ)/τ = (vⁿ + vⁿ⁺¹)/2`, the curvature's mean `(φⁿ' + φⁿ⁺¹')/2 = κ0 + b m̄`
+    /// and the moment's balance on the chord of the slopes, `m̄' = −sinc(Δφ/2) e⊥(φ̄)·Ḡ`
+    /// (`Δφ = φⁿ⁺¹ − φⁿ`, `φ̄` their mean): `e(φⁿ⁺¹) − e(φⁿ) = 2 sin(Δφ/2) e⊥(φ̄)`, so the work of
+    /// `Ḡ` on the change of the tangents is the work of `m̄` on the change of the curvature, and
+    /// the step keeps `½∫μ|v|² + ½∫ b m²` exactly (up to the collocation's error) whatever the
+    /// amplitude, where the trapezoidal rule's energy grows at large ones (docs/model.md, "The
+    /// energy of a large oscillation"). Needs [`Settings::short_steps`] (`rⁿ`, `φⁿ` and `φⁿ'`
+    /// from the last step's solution itself).
+    pub energy_momentum: bool,
 }
 
 /// A step solved but not taken.
@@ -743,6 +791,8 @@ pub(crate) struct Rothe<'r> {
     /// the last two steps' that cancels the rule's alternating mode (default `(1, 0)`: the end
     /// force itself).
     pub disk_held: (f64, f64),
+    /// [`Settings::energy_momentum`].
+    emm: bool,
 }
 
 /// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
@@ -883,6 +933,7 @@ impl<'r> Rothe<'r> {
             texture: None,
             radius: 0.0,
             held: (1.0, 0.0),
+            emm: false,
         };
         let sol = solver
             .solve(&statics, guess)
@@ -926,6 +977,7 @@ impl<'r> Rothe<'r> {
             texture: None,
             tip_radius: 0.0,
             disk_held: (1.0, 0.0),
+            emm: settings.energy_momentum,
             track: FLAT,
             grid,
             profile,
@@ -1049,8 +1101,11 @@ impl<'r> Rothe<'r> {
         // rate `q_t = (rv/Δt)(q − qⁿ) − sv q_tⁿ` (trapezoidal: ¼, 4, 2, 1; backward Euler: 0, 1,
         // 1, 0)
         let euler = self.euler_steps > 0;
+        // (the energy–momentum step: `Ḡ' = μ (2/Δt²)(r − rⁿ − Δt vⁿ)`, the mean force)
         let (ch, ca, rv, sv) = if euler {
             (0.0, 1.0, 1.0, 0.0)
+        } else if self.emm {
+            (0.0, 2.0, 2.0, 1.0)
         } else {
             (0.25, 4.0, 2.0, 1.0)
         };
@@ -1130,6 +1185,7 @@ impl<'r> Rothe<'r> {
             texture: self.texture.as_deref(),
             radius: self.tip_radius,
             held: self.disk_held,
+            emm: self.emm,
         };
         let mut guess = self.start();
         scale_forces(&mut guess, self.gs / gs);
@@ -1392,7 +1448,16 @@ impl<'r> Rothe<'r> {
         self.after = None;
         let euler = tr.euler;
         self.euler_steps = self.euler_steps.saturating_sub(usize::from(euler));
-        let (tau, k_acc) = (tr.tau, if euler { 1.0 } else { 4.0 } / (tr.tau * tr.tau));
+        // (the energy–momentum step: `vⁿ⁺¹ = vⁿ + τ ā` with the mean `ā = 2/τ² (rⁿ⁺¹ − rⁿ − τ vⁿ)`)
+        let emm = self.emm && !euler;
+        let rate = if euler {
+            1.0
+        } else if emm {
+            2.0
+        } else {
+            4.0
+        };
+        let (tau, k_acc) = (tr.tau, rate / (tr.tau * tr.tau));
         let old_vel = (self.ge > 0.0).then(|| [self.vel[0].clone(), self.vel[1].clone()]);
         self.acc_before = Some(([self.acc[0].clone(), self.acc[1].clone()], tau));
         let mut next = tr.next;
@@ -1400,7 +1465,7 @@ impl<'r> Rothe<'r> {
             let (v, a) = (&mut self.vel[q], &mut self.acc[q]);
             for (i, (vi, ai)) in v.iter_mut().zip(a.iter_mut()).enumerate() {
                 let a1 = k_acc * (nq[i] - tr.hat[q][i]);
-                *vi += if euler {
+                *vi += if euler || emm {
                     tau * a1
                 } else {
                     0.5 * tau * (*ai + a1)
@@ -1444,7 +1509,14 @@ impl<'r> Rothe<'r> {
         }
         self.kappa = tr.kappa;
         std::mem::swap(&mut self.pos, &mut next);
-        self.m = tr.m;
+        if emm {
+            // the step's unknown is the mean moment: `mⁿ⁺¹ = 2m̄ − mⁿ`
+            for (mi, bar) in self.m.iter_mut().zip(&tr.m) {
+                *mi = 2.0 * bar - *mi;
+            }
+        } else {
+            self.m = tr.m;
+        }
         self.start_nodes = coarser(&tr.rho, &tr.sol.mesh, self.ng, self.tol);
         let last = std::mem::replace(&mut self.sol, tr.sol);
         if self.predict {
