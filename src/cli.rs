@@ -362,8 +362,8 @@ pub struct DynamicsFreeArgs {
     pub rotary_inertia: f64,
     /// The time scheme: newmark (the trapezoidal rule, the default) or energy-momentum (each
     /// step keeps the energy whatever the amplitude, where Newmark's grows at large ones;
-    /// clamped foot, no damping or rotary inertia, fixed steps; the rows' base force and
-    /// moment are the steps' means: docs/model.md, "The energy of a large oscillation").
+    /// fixed steps only; the rows' base force and moment are the steps' means: docs/model.md,
+    /// "The energy of a large oscillation").
     #[arg(long, value_enum, default_value = "newmark")]
     pub time_scheme: TimeSchemeArg,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.

@@ -791,8 +791,8 @@ def dynamics_free(
     slopes carry the inertia g0^2/b per length, the kinetic energy its share; default 0).
     ``grid`` (even, intervals of the history grid in s) and ``tol`` (each step's collocation
     tolerance). ``time_scheme``: ``"newmark"`` (the default) or ``"energy_momentum"`` (each
-    step keeps the energy whatever the amplitude; a clamped foot, no dampers or rotary inertia,
-    fixed steps; the program's ``--time-scheme``). The defaults and valid
+    step keeps the energy whatever the amplitude; fixed steps only; the program's
+    ``--time-scheme``). The defaults and valid
     ranges are the library's (a value out of range raises ``InputError`` naming it).
 
     A dict: ``samples`` (columns ``t``, ``tip_x``, ``tip_y``, ``tip_vx``, ``tip_vy``,

@@ -330,6 +330,12 @@ struct Step<'a> {
     held: (f64, f64),
     /// [`Settings::energy_momentum`] (with `base`: the last solution, `φⁿ` and `φⁿ'`).
     emm: bool,
+    /// With `emm`, the support's turn `θⁿ`: its spring carries the step's mean turn, `m̄(0) + M
+    /// = k (θⁿ + θⁿ⁺¹)/2 + c (θⁿ⁺¹ − θⁿ)/Δt` (`damp_k`, `damp_0` then `c/Δt`, `−c θⁿ/Δt`).
+    theta_then: f64,
+    /// With `emm`, `γ_i/Δt`: the Kelvin–Voigt moment at the step's mean curvature and mean
+    /// rate, `b m̄ = (κⁿ + κⁿ⁺¹)/2 − κ0 + γ_i (κⁿ⁺¹ − κⁿ)/Δt`.
+    emm_kv: f64,
 }
 
 impl Step<'_> {
@@ -401,7 +407,8 @@ impl Bvp for Step<'_> {
             if let Some(b) = self.base {
                 b.eval_derivative(s, &mut d0);
             }
-            dz[2] = 2.0 * (self.profile.k0(s) + self.profile.b(s) * z[3]) - d0[2];
+            let g = self.emm_kv;
+            dz[2] = (self.profile.k0(s) + self.profile.b(s) * z[3] - (0.5 - g) * d0[2]) / (0.5 + g);
             let (f, _) = sinc_half(z[2] - r0[2]);
             let (sm, cm) = (0.5 * (z[2] + r0[2])).sin_cos();
             dz[3] = self.gs * f * (z[4] * sm - z[5] * cm);
@@ -441,11 +448,14 @@ impl Bvp for Step<'_> {
             if let Some(b) = self.base {
                 b.eval(s, &mut r0);
             }
-            dfdz[12 + 3] = 2.0 * self.profile.b(s);
+            dfdz[12 + 3] = self.profile.b(s) / (0.5 + self.emm_kv);
             let (f, df) = sinc_half(z[2] - r0[2]);
             let (sm, cm) = (0.5 * (z[2] + r0[2])).sin_cos();
             let (a, da) = (z[4] * sm - z[5] * cm, z[4] * cm + z[5] * sm);
             dfdz[18 + 2] = self.gs * 0.5 * (df * a + f * da);
+            if let Some((jk, _)) = self.rot {
+                dfdz[18 + 2] += jk / self.profile.b(s);
+            }
             dfdz[18 + 4] = self.gs * f * sm;
             dfdz[18 + 5] = -self.gs * f * cm;
         }
@@ -466,7 +476,7 @@ impl Bvp for Step<'_> {
         dgb[..36].fill(0.0);
         dga[0] = 1.0;
         dga[6 + 1] = 1.0;
-        dga[12 + 2] = 1.0 + self.compliance * self.damp_k;
+        dga[12 + 2] = if self.emm { 0.5 } else { 1.0 } + self.compliance * self.damp_k;
         dga[12 + 3] = -self.compliance;
         dgb[18 + 3] = 1.0;
         if self.disk_touches() {
@@ -516,8 +526,13 @@ impl Bvp for Step<'_> {
         let theta = za[2] - FRAC_PI_2 + self.foot.turn;
         res[0] = za[0] - self.foot.place[0];
         res[1] = za[1] - self.foot.place[1];
+        let spring = if self.emm {
+            0.5 * (theta + self.theta_then)
+        } else {
+            theta
+        };
         res[2] =
-            theta - self.compliance * (za[3] + self.moment - self.damp_k * theta - self.damp_0);
+            spring - self.compliance * (za[3] + self.moment - self.damp_k * theta - self.damp_0);
         res[3] = zb[3];
         if self.disk_touches() {
             let (_, hp, _) = self.track.jet(zb[0]);
@@ -654,8 +669,8 @@ pub(crate) struct Settings {
     /// Newton iteration costs in proportion (docs/performance.md, "The dynamic drag against
     /// PyElastica").
     pub remesh: bool,
-    /// The energy–momentum step instead of Newmark's rule (`dynamics::free` only; a clamped
-    /// foot, no damping, no rotary inertia): over a step of length `τ` the internal force and
+    /// The energy–momentum step instead of Newmark's rule (`dynamics::free` only; fixed steps):
+    /// over a step of length `τ` the internal force and
     /// moment are the step's means `Ḡ`, `m̄`, the balance of momentum `μ (vⁿ⁺¹ − vⁿ)/τ = Ḡ'`
     /// with `(rⁿ⁺¹ − rⁿ)/τ = (vⁿ + vⁿ⁺¹)/2`, the curvature's mean `(φⁿ' + φⁿ⁺¹')/2 = κ0 + b m̄`
     /// and the moment's balance on the chord of the slopes, `m̄' = −sinc(Δφ/2) e⊥(φ̄)·Ḡ`
@@ -934,6 +949,8 @@ impl<'r> Rothe<'r> {
             radius: 0.0,
             held: (1.0, 0.0),
             emm: false,
+            theta_then: 0.0,
+            emm_kv: 0.0,
         };
         let sol = solver
             .solve(&statics, guess)
@@ -1125,23 +1142,14 @@ impl<'r> Rothe<'r> {
         // external damping: `r_tt + γ_e r_t = k (r − r̂')` with `k = 4/Δt² + 2γ_e/Δt` and
         // `r̂' = (4/Δt² r̂ + γ_e (2/Δt rⁿ + vⁿ))/k` (`r_t` by the trapezoidal rule; by backward
         // Euler `k = 1/Δt² + γ_e/Δt`, `r̂' = (r̂/Δt² + γ_e rⁿ/Δt)/k`)
-        let k_step = if self.ge > 0.0 {
-            let k = k_acc + rv * self.ge / tau;
-            // (the positions only: the damping force has no moment on the rotation)
-            for (q, h) in interp_of.iter_mut().enumerate().take(4) {
-                for (i, hi) in h.iter_mut().enumerate() {
-                    let from = if self.short_steps {
-                        self.ge * sv * self.vel[q][i]
-                    } else {
-                        self.ge * (rv / tau * self.pos[q][i] + sv * self.vel[q][i])
-                    };
-                    *hi = (k_acc * *hi + from) / k;
-                }
-            }
-            k
+        // (the energy–momentum step: the damping force at the step's mean velocity
+        // `(r − rⁿ)/Δt`)
+        let rates = if self.emm && !euler {
+            (1.0, 0.0)
         } else {
-            k_acc
+            (rv, sv)
         };
+        let k_step = self.damped_history(tau, k_acc, rates, &mut interp_of);
         // Kelvin–Voigt: `κ_t = 2/Δt (κ − κⁿ) − κ_tⁿ` in `κ − κ0 + γ_i κ_t = b m`
         let kv_c = 1.0 + rv * self.gi / tau;
         let kv_q: Vec<f64> = if self.gi > 0.0 {
@@ -1157,7 +1165,7 @@ impl<'r> Rothe<'r> {
             stiffness: self.stiffness,
             k_acc: k_step,
             gs,
-            kv: (self.gi > 0.0).then_some((kv_c, kv_q.as_slice())),
+            kv: (self.gi > 0.0 && !self.emm).then_some((kv_c, kv_q.as_slice())),
             rot: (self.g0sq > 0.0).then_some((self.g0sq * k_acc, interp_of[4].as_slice())),
             base,
             hat_x: &interp_of[0],
@@ -1165,8 +1173,13 @@ impl<'r> Rothe<'r> {
             hat_xs: &interp_of[2],
             hat_ys: &interp_of[3],
             compliance: self.cs,
-            damp_k: c * rv / tau,
-            damp_0: c * (-rv / tau * self.theta - sv * self.theta_t),
+            // (the energy–momentum step: the damper's mean rate `(θⁿ⁺¹ − θⁿ)/Δt`)
+            damp_k: if self.emm { c / tau } else { c * rv / tau },
+            damp_0: if self.emm {
+                -c / tau * self.theta
+            } else {
+                c * (-rv / tau * self.theta - sv * self.theta_t)
+            },
             moment,
             foot,
             tip,
@@ -1186,6 +1199,8 @@ impl<'r> Rothe<'r> {
             radius: self.tip_radius,
             held: self.disk_held,
             emm: self.emm,
+            theta_then: self.theta,
+            emm_kv: if self.emm { self.gi / tau } else { 0.0 },
         };
         let mut guess = self.start();
         scale_forces(&mut guess, self.gs / gs);
@@ -1207,16 +1222,7 @@ impl<'r> Rothe<'r> {
         let mut next = [zero(), zero(), zero(), zero(), zero()];
         let mut m = zero();
         self.sample_grid(&sol, &mut next, &mut m);
-        let kappa = (0..=ng)
-            .map(|i| {
-                let elastic = self.k0vec[i] + self.bvec[i] * m[i];
-                if self.gi > 0.0 {
-                    (elastic + kv_q[i]) / kv_c
-                } else {
-                    elastic
-                }
-            })
-            .collect();
+        let kappa = self.end_curvature(&sol, &mut m, (kv_c, &kv_q), euler);
         Ok(Trial {
             tau,
             euler,
@@ -1229,6 +1235,69 @@ impl<'r> Rothe<'r> {
             kappa,
             rho,
         })
+    }
+
+    /// External damping in the step's history (`interp_of`, the positions' four rows): the
+    /// force `−γ_e μ r_t` with `r_t = (rv/Δt)(r − rⁿ) − sv vⁿ` (`rates = (rv, sv)`) folded into
+    /// `k (r − r̂')`; returns `k` (`k_acc` without damping).
+    fn damped_history(
+        &self,
+        tau: f64,
+        k_acc: f64,
+        (rv, sv): (f64, f64),
+        interp_of: &mut [Vec<f64>; 5],
+    ) -> f64 {
+        if self.ge <= 0.0 {
+            return k_acc;
+        }
+        let k = k_acc + rv * self.ge / tau;
+        // (the positions only: the damping force has no moment on the rotation)
+        for (q, h) in interp_of.iter_mut().enumerate().take(4) {
+            for (i, hi) in h.iter_mut().enumerate() {
+                let from = if self.short_steps {
+                    self.ge * sv * self.vel[q][i]
+                } else {
+                    self.ge * (rv / tau * self.pos[q][i] + sv * self.vel[q][i])
+                };
+                *hi = (k_acc * *hi + from) / k;
+            }
+        }
+        k
+    }
+
+    /// The curvature `κ` on the grid at the end of the step solved as `sol` (`m` its moment
+    /// there: with the energy–momentum step the elastic moment `(κ − κ0)/b` replaces the mean
+    /// the solution holds). Newmark: `κ = κ0 + b m`, with Kelvin–Voigt damping
+    /// `(κ0 + b m + q)/c` (`kv = (c, q)`).
+    fn end_curvature(
+        &self,
+        sol: &Solution,
+        m: &mut [f64],
+        (kv_c, kv_q): (f64, &[f64]),
+        euler: bool,
+    ) -> Vec<f64> {
+        if self.emm && !euler {
+            // the step's unknown is the mean moment: the new curvature is the solution's own
+            // `φ'` (exact at the mesh's nodes, the grid's among them)
+            let mut d = [0.0; 6];
+            return (0..=self.ng)
+                .map(|i| {
+                    sol.eval_derivative(self.grid[i], &mut d);
+                    m[i] = (d[2] - self.k0vec[i]) / self.bvec[i];
+                    d[2]
+                })
+                .collect();
+        }
+        (0..=self.ng)
+            .map(|i| {
+                let elastic = self.k0vec[i] + self.bvec[i] * m[i];
+                if self.gi > 0.0 {
+                    (elastic + kv_q[i]) / kv_c
+                } else {
+                    elastic
+                }
+            })
+            .collect()
     }
 
     /// The start of the next step's collocation: the last solution on its mesh, or (with
@@ -1509,14 +1578,7 @@ impl<'r> Rothe<'r> {
         }
         self.kappa = tr.kappa;
         std::mem::swap(&mut self.pos, &mut next);
-        if emm {
-            // the step's unknown is the mean moment: `mⁿ⁺¹ = 2m̄ − mⁿ`
-            for (mi, bar) in self.m.iter_mut().zip(&tr.m) {
-                *mi = 2.0 * bar - *mi;
-            }
-        } else {
-            self.m = tr.m;
-        }
+        self.m = tr.m;
         self.start_nodes = coarser(&tr.rho, &tr.sol.mesh, self.ng, self.tol);
         let last = std::mem::replace(&mut self.sol, tr.sol);
         if self.predict {
