@@ -2287,7 +2287,7 @@ impl<'r> Drive<'r, '_> {
     /// the scheme's where `dt` is too coarse for the rod's motion, and shorter steps are the
     /// remedy the error advised. Measured on the paper's rod at dt 0.0625, grid 20, tol 1e-6,
     /// v 0.05 (`vibrissa dynamics drag --speed 0.05 --d-max 0.4 --dt 0.0625 --grid 20 --tol
-    /// 1e-6`): the first full step after the restart of the slip at t = 7.1187 stalled Newton
+    /// 1e-6`): the first step after the slip at t = 7.1387 stalled Newton
     /// (residual 2.3e3 on 1967 nodes) and the drag failed; from the last event at dt/2 it goes
     /// on through the tenth slip.
     fn after_failure(

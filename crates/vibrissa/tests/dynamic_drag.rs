@@ -794,12 +794,13 @@ fn a_stick_the_step_does_not_resolve_is_taken_again_with_shorter_steps() {
 
 /// A step the collocation does not solve is taken again with shorter steps, as a stick the step
 /// does not resolve. The paper's rod at dt 0.0625, grid 20, tol 1e-6 (v 0.05): the first full
-/// step after the restart of the slip at t = 7.1187 stalled Newton (residual 2.3e3 on 1967
+/// step after the slip at t = 7.1387 stalled Newton (residual 2.3e3 on 1967
 /// nodes), and the drag ended in that solver error; from the state after the event before, at
 /// dt/2, it goes past that instant. Without refinements the error stands (the failure is real).
-/// One slip before it, at d 0.30224, lies beyond the cone (T/N 0.557): placed at dt, its own
-/// refinements failed and the drag went on from it by the rule for such slips (as before this
-/// change, which is on the failure's path only); every other slip is inside.
+/// One slip, at d 0.30224 (t 7.0449), lies beyond the cone (T/N 0.557): it is placed on the
+/// shorter steps taken again from the stick at t 6.7636 (at dt the tip stayed stuck there), its
+/// own refinements do not resolve it, and the drag goes on from it by the rule for such slips;
+/// every other slip is inside.
 #[test]
 fn a_step_newton_does_not_solve_is_taken_again_with_shorter_steps() {
     let o = DynDragOptions {
