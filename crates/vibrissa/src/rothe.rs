@@ -688,6 +688,9 @@ pub(crate) struct Settings {
 pub(crate) struct Trial {
     /// The step's length.
     pub tau: f64,
+    /// The rule's `ca/Δt²` of the step (`a = k_acc (r − r̂)`: 4/Δt² by the trapezoidal rule,
+    /// 2/Δt² the energy–momentum step's mean, 1/Δt² backward Euler).
+    k_acc: f64,
     /// Solved by backward Euler ([`Rothe::euler_steps`]), not the trapezoidal rule.
     pub euler: bool,
     /// The support's turn at the step's end.
@@ -1142,8 +1145,7 @@ impl<'r> Rothe<'r> {
         // external damping: `r_tt + γ_e r_t = k (r − r̂')` with `k = 4/Δt² + 2γ_e/Δt` and
         // `r̂' = (4/Δt² r̂ + γ_e (2/Δt rⁿ + vⁿ))/k` (`r_t` by the trapezoidal rule; by backward
         // Euler `k = 1/Δt² + γ_e/Δt`, `r̂' = (r̂/Δt² + γ_e rⁿ/Δt)/k`)
-        // (the energy–momentum step: the damping force at the step's mean velocity
-        // `(r − rⁿ)/Δt`)
+        // (the energy–momentum step: the dampers at the step's mean rates, `(r − rⁿ)/Δt`)
         let rates = if self.emm && !euler {
             (1.0, 0.0)
         } else {
@@ -1173,13 +1175,10 @@ impl<'r> Rothe<'r> {
             hat_xs: &interp_of[2],
             hat_ys: &interp_of[3],
             compliance: self.cs,
-            // (the energy–momentum step: the damper's mean rate `(θⁿ⁺¹ − θⁿ)/Δt`)
-            damp_k: if self.emm { c / tau } else { c * rv / tau },
-            damp_0: if self.emm {
-                -c / tau * self.theta
-            } else {
-                c * (-rv / tau * self.theta - sv * self.theta_t)
-            },
+            // (the foot's rate as the external damping's: the energy–momentum step's mean
+            // `(θⁿ⁺¹ − θⁿ)/Δt`)
+            damp_k: c * rates.0 / tau,
+            damp_0: c * (-rates.0 / tau * self.theta - rates.1 * self.theta_t),
             moment,
             foot,
             tip,
@@ -1225,6 +1224,7 @@ impl<'r> Rothe<'r> {
         let kappa = self.end_curvature(&sol, &mut m, (kv_c, &kv_q), euler);
         Ok(Trial {
             tau,
+            k_acc,
             euler,
             turn: foot.turn,
             gs,
@@ -1519,14 +1519,7 @@ impl<'r> Rothe<'r> {
         self.euler_steps = self.euler_steps.saturating_sub(usize::from(euler));
         // (the energy–momentum step: `vⁿ⁺¹ = vⁿ + τ ā` with the mean `ā = 2/τ² (rⁿ⁺¹ − rⁿ − τ vⁿ)`)
         let emm = self.emm && !euler;
-        let rate = if euler {
-            1.0
-        } else if emm {
-            2.0
-        } else {
-            4.0
-        };
-        let (tau, k_acc) = (tr.tau, rate / (tr.tau * tr.tau));
+        let (tau, k_acc) = (tr.tau, tr.k_acc);
         let old_vel = (self.ge > 0.0).then(|| [self.vel[0].clone(), self.vel[1].clone()]);
         self.acc_before = Some(([self.acc[0].clone(), self.acc[1].clone()], tau));
         let mut next = tr.next;
