@@ -51,6 +51,10 @@ pub const DRAG_PHYSICAL: [&str; 9] = [
     "m_base_Nm",
 ];
 
+/// The drag's columns of a side's contact (`side_stuck` rows; empty in the others), in a drag
+/// that has one, before `event`: its arc length and place.
+pub const SIDE_COLUMNS: [&str; 3] = ["side_s", "side_x", "side_y"];
+
 /// Columns of `dynamics free`: one row per time step (the start included); with a physical
 /// scene [`FREE_PHYSICAL`] after them.
 pub const FREE_HEADER: [&str; 12] = [
@@ -187,6 +191,11 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
     if u.is_some() {
         header.extend(DRAG_PHYSICAL);
     }
+    // (where a side touches, its place: in the drags that have one)
+    let sides = r.samples.iter().any(|p| p.side.is_some());
+    if sides {
+        header.extend(SIDE_COLUMNS);
+    }
     header.push("event");
     writeln!(w, "{}", header.join(","))?;
     let mut events = r.events.iter().peekable();
@@ -223,6 +232,12 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
             v.extend([p.d, p.tip_x, p.tip_y].map(|x| num(x * l)));
             v.extend([p.normal, p.tangential, p.fx, p.fy].map(|f| num(f * u.force_n)));
             v.push(num(p.m_base * u.moment_nm));
+        }
+        if sides {
+            match p.side {
+                Some(c) => v.extend([c.s, c.x, c.y].map(num)),
+                None => v.extend([String::new(), String::new(), String::new()]),
+            }
         }
         v.push(names.join(" "));
         writeln!(w, "{}", v.join(","))?;

@@ -1045,8 +1045,10 @@ fn dynamics_drag_whisk_columns() {
 
 /// `dynamics drag` over a corrugation from the texture flags: the tip's rows on the surface
 /// `0.75 + A sin(2πx/W)` (1e-9), each row's contact pushed; where the rod's end lies down on
-/// the surface the drag ends with the event `side_contact` on its last row, a warning naming
-/// it, exit 0; a start with two crests under the rod is one line and exit 1.
+/// the surface (the event `side_contact`) the rows after it are a side's (`side_stuck`, its
+/// place in `side_s, side_x, side_y` on the surface, the columns empty before), and where that
+/// side has slid until its contact reaches the tip the drag stops with a warning naming it,
+/// exit 0; a start with two crests under the rod is one line and exit 1.
 #[test]
 fn dynamics_drag_over_a_corrugation() {
     let corr = |a: &'static str, w: &'static str, d_max: &'static str| {
@@ -1079,9 +1081,36 @@ fn dynamics_drag_over_a_corrugation() {
     }
     assert!(rows.iter().any(|r| r.last().unwrap() == "slip"));
     let o = ok(&corr("0.02", "0.2", "0.002"));
-    let (_, rows) = csv(&o.stdout);
-    assert_eq!(rows.last().unwrap().last().unwrap(), "side_contact");
-    assert!(o.stderr.contains("the rod's end lies down"), "{}", o.stderr);
+    let (h, rows) = csv(&o.stdout);
+    let surface = |x: f64| 0.75 + 0.02 * (std::f64::consts::TAU * x / 0.2).sin();
+    let lies = rows
+        .iter()
+        .position(|r| r.last().unwrap() == "side_contact")
+        .unwrap();
+    assert!(lies + 1 < rows.len());
+    let state = h.iter().position(|c| c == "state").unwrap();
+    for r in &rows[lies + 1..] {
+        assert_eq!(r[state], "side_stuck");
+        close(
+            col(&h, r, "side_y"),
+            surface(col(&h, r, "side_x")),
+            1e-9,
+            "side_y",
+        );
+        assert!(col(&h, r, "side_s") < 1.0 && col(&h, r, "normal") > 0.0);
+    }
+    for r in &rows[..=lies] {
+        assert_eq!(r[h.iter().position(|c| c == "side_s").unwrap()], "");
+    }
+    assert!(
+        o.stderr.is_empty() || !o.stderr.contains("stopped early"),
+        "{}",
+        o.stderr
+    );
+    // (its side slips, slides, and its contact reaches the tip: a stop by name)
+    let o = ok(&corr("0.02", "0.2", "0.012"));
+    assert!(o.stderr.contains("reaches the tip"), "{}", o.stderr);
+    assert!(o.stdout.contains("side_sliding_forward"));
     let mut taper = corr("0.001", "0.02", "0.001").to_vec();
     taper.extend(["--taper", "0.3"]);
     let e = bad(&taper, 1);

@@ -13,7 +13,8 @@ The grid: dt {0.1, 0.05, 0.02, 0.01} x speed {0.01, 0.05, 0.2} x scenes {the pap
 taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short and the long
 rat presets; the paper's rod with internal damping 0.01; the paper's rod with --flight; the
 paper's rod on a surface inclined by 0.1, over a corrugation 0.003 sin(2 pi x/0.1) and over one
-0.02 sin(2 pi x/0.2) (where the rod's end lies down); the short rat preset over the first
+0.02 sin(2 pi x/0.2) (where the rod's end lies down, a side that rolls and slides on until
+its contact reaches the tip: side_change); the short rat preset over the first
 corrugation; the paper's rod on friction patches and on a friction table along x
 (data/dynamics/friction_*.toml); the paper's rod with a round tip of radius 0.02 and internal
 damping 1e-4, on the flat surface and over a corrugation 0.005 sin(2 pi x/0.2); a rod of rest
@@ -74,7 +75,8 @@ MU_S_LEAST = {"friction_patches": 0.4}
 COMMON = ["--d-max", "0.12", "--json"]
 COLUMNS = ["dt", "speed", "scene", "class", "stop_reason", "slips", "events", "bad_events",
            "d_end", "cpu_s", "exit", "detail"]
-CLASSES = ["d_max", "lift-off", "touchdown", "side contact", "unresolved stick (named)",
+CLASSES = ["d_max", "lift-off", "touchdown", "side contact", "side change (named)",
+           "unresolved stick (named)",
            "unresolved step (named)", "max_events", "refused", "no start", "error: other",
            "panic", "slow"]
 
@@ -116,7 +118,7 @@ def run(binary, timeout, case):
             bad += 1
     cls = {"d_max": "d_max", "lift_off": "lift-off", "touchdown": "touchdown",
            "side_contact": "side contact", "unresolved_stick": "unresolved stick (named)",
-           "unresolved_step": "unresolved step (named)",
+           "unresolved_step": "unresolved step (named)", "side_change": "side change (named)",
            "max_events": "max_events"}.get(reason, "error: other")
     d_end = r["samples"][-1]["d"] if r["samples"] else 0.0
     row.update({"class": cls, "stop_reason": reason,

@@ -21,12 +21,16 @@ def check_samples(py, program_json, what):
     for i, (a, b) in enumerate(zip(rows, program_json)):
         assert a.keys() == b.keys(), f"{what} sample {i}"
         for k in b:
-            if isinstance(b[k], str):
+            if isinstance(b[k], (str, dict)):
                 assert a[k] == b[k], f"{what} sample {i}: {k}"
             else:
                 same(a[k], b[k], f"{what} sample {i}: {k}")
         for k in b:
-            if not isinstance(b[k], str):
+            if isinstance(b[k], dict):
+                # (a side's place: the columns side_s, side_x, side_y)
+                for kk, v in b[k].items():
+                    same(py["samples"][f"{k}_{kk}"][i], v, f"{what} column {k}_{kk} row {i}")
+            elif not isinstance(b[k], str):
                 same(py["samples"][k][i], b[k], f"{what} column {k} row {i}")
 
 
@@ -372,8 +376,8 @@ def test_a_whisk_over_a_foot_table_equals_the_program(program, tmp_path):
 
 
 def test_dynamics_drag_on_a_corrugation_equals_the_program(program):
-    # the tip over a sine corrugation through its first slip, and a side reaching the surface
-    # (the rod's end lying down) as the named stop
+    # the tip over a sine corrugation through its first slip, and the rod's end lying down:
+    # a side rolling on the surface from there (its place in the columns side_s, side_x, side_y)
     for amp, wl, d_max in (("0.003", "0.1", "0.013"), ("0.02", "0.2", "0.002")):
         args = ["dynamics", "drag", "--speed", "0.05", "--d-max", d_max, "--dt", "0.02",
                 "--corrugation-amplitude", amp, "--corrugation-wavelength", wl]
@@ -386,7 +390,12 @@ def test_dynamics_drag_on_a_corrugation_equals_the_program(program):
         assert py["events"] == want["events"]
         assert py["stop"] == want["stop"]
         assert py["stats"] == want["stats"]
-    assert py["stop"]["reason"] == "side_contact" and py["stop"]["s"] == 1.0, py["stop"]
+    assert py["stop"]["reason"] == "d_max", py["stop"]
+    assert py["events"][-1]["kind"] == "side_contact", py["events"]
+    rolling = [i for i, st in enumerate(py["samples"]["state"]) if st == "side_stuck"]
+    assert len(rolling) > 3
+    assert all(0.99 < py["samples"]["side_s"][i] < 1.0 for i in rolling)
+    assert np.isnan(py["samples"]["side_s"][0])
     tapered = vibrissa.Rod(taper=0.3)
     fine = vibrissa.Surface(eta=0.75, profile={"kind": "sine", "amplitude": 0.001,
                                                "wavelength": 0.02})

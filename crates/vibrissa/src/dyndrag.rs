@@ -93,7 +93,7 @@
 //! scheme's error for this one.
 
 use crate::config::SolverConfig;
-use crate::rothe::{check_damping, Foot, Rothe, Settings, TipBc, Track, Trial};
+use crate::rothe::{check_damping, Foot, Rothe, Settings, SideAt, TipBc, Track, Trial};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
 use crate::surface::Texture;
@@ -531,24 +531,45 @@ pub enum ContactState {
     SlidingBack,
     /// The tip flies, off the surface (with `DynDragOptions::flight`).
     Flying,
+    /// A side of the rod touches the surface and rolls on it without slip, the tip free: the
+    /// rod's end lay down on the surface and the contact moved inwards (docs/model.md, "A side
+    /// in time").
+    SideStuck,
+    /// A side of the rod slides on the surface towards +x, the tip free.
+    SideSlidingForward,
+    /// A side of the rod slides on the surface towards −x, the tip free.
+    SideSlidingBack,
 }
 
 impl ContactState {
-    /// `stuck`, `sliding_forward`, `sliding_back`.
+    /// `stuck`, `sliding_forward`, `sliding_back`, `flying`, `side_stuck`,
+    /// `side_sliding_forward`, `side_sliding_back`.
     pub fn name(self) -> &'static str {
         match self {
             ContactState::Stuck => "stuck",
             ContactState::SlidingForward => "sliding_forward",
             ContactState::SlidingBack => "sliding_back",
             ContactState::Flying => "flying",
+            ContactState::SideStuck => "side_stuck",
+            ContactState::SideSlidingForward => "side_sliding_forward",
+            ContactState::SideSlidingBack => "side_sliding_back",
         }
     }
     fn dir(self) -> f64 {
         match self {
-            ContactState::Stuck | ContactState::Flying => 0.0,
-            ContactState::SlidingForward => 1.0,
-            ContactState::SlidingBack => -1.0,
+            ContactState::Stuck | ContactState::Flying | ContactState::SideStuck => 0.0,
+            ContactState::SlidingForward | ContactState::SideSlidingForward => 1.0,
+            ContactState::SlidingBack | ContactState::SideSlidingBack => -1.0,
         }
+    }
+    /// Whether a side of the rod touches the surface (the tip free).
+    pub fn side(self) -> bool {
+        matches!(
+            self,
+            ContactState::SideStuck
+                | ContactState::SideSlidingForward
+                | ContactState::SideSlidingBack
+        )
     }
 }
 
@@ -566,7 +587,9 @@ pub enum DragEventKind {
     /// The flying tip reaches the surface again (a plastic impact).
     Touchdown,
     /// A point of the rod other than its tip reaches the surface: the drag ends (the dynamic
-    /// drag has the tip alone on the surface).
+    /// drag has the tip alone on the surface), but where the rod's end lies down on the surface
+    /// from a stuck tip: the contact then moves inwards, a side rolling on the surface
+    /// ([`ContactState::SideStuck`]).
     SideContact,
     /// The sliding tip crosses a boundary of the friction texture's patches: it slides on with
     /// the next patch's μk (the row: the state at the boundary, its forces the last patch's).
@@ -668,6 +691,21 @@ pub struct DragSample {
     pub external_damping: f64,
     /// Kinetic energy the touchdowns' impacts took so far.
     pub impact: f64,
+    /// Where a side touches the surface ([`ContactState::SideStuck`]; `normal` and
+    /// `tangential` are then its forces). `None` (and left out of JSON) while the tip touches.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub side: Option<SideSample>,
+}
+
+/// Where a side of the rod touches the surface at a sample.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct SideSample {
+    /// The contact's arc length.
+    pub s: f64,
+    /// Its lab x.
+    pub x: f64,
+    /// Its height.
+    pub y: f64,
 }
 
 /// Why a dynamic drag ended.
@@ -737,6 +775,52 @@ pub enum DynDragStop {
         /// Its lab x.
         x: f64,
     },
+    /// The side that rolls on the surface ([`ContactState::SideStuck`]) changes its contact at
+    /// time `t`, displacement `d` in a way the dynamic drag does not follow yet (`change`): the
+    /// contact at arc length `s`, lab `x`, its forces there (`normal`, `tangential`). The
+    /// quasi-static drag follows sides that slip, lift off or meet other contacts.
+    SideChange {
+        /// What changes.
+        change: SideChange,
+        /// When.
+        t: f64,
+        /// Where.
+        d: f64,
+        /// The contact's arc length.
+        s: f64,
+        /// Its lab x.
+        x: f64,
+        /// Its normal force.
+        normal: f64,
+        /// Its tangential force.
+        tangential: f64,
+    },
+}
+
+/// How a side contact in time changes where the dynamic drag stops ([`DynDragStop::SideChange`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SideChange {
+    /// It needs more than μs N: it would slip.
+    Slip,
+    /// Its normal force falls to zero.
+    LiftOff,
+    /// It rolls out to the tip.
+    AtTip,
+    /// Another point of the rod reaches the surface.
+    SecondContact,
+}
+
+impl SideChange {
+    /// `slip`, `lift_off`, `at_tip`, `second_contact`.
+    pub fn name(self) -> &'static str {
+        match self {
+            SideChange::Slip => "slip",
+            SideChange::LiftOff => "lift_off",
+            SideChange::AtTip => "at_tip",
+            SideChange::SecondContact => "second_contact",
+        }
+    }
 }
 
 impl fmt::Display for DynDragStop {
@@ -785,6 +869,28 @@ impl fmt::Display for DynDragStop {
                  x = {x}): the dynamic drag has the tip alone on the surface (the quasi-static \
                  drag follows side contacts)"
             ),
+            DynDragStop::SideChange {
+                change,
+                t,
+                d,
+                s,
+                x,
+                normal,
+                tangential,
+            } => {
+                let what = match change {
+                    SideChange::Slip => "needs more than mu_s N and would slip",
+                    SideChange::LiftOff => "lifts off",
+                    SideChange::AtTip => "reaches the tip (within 1e-3)",
+                    SideChange::SecondContact => "is joined by another point on the surface",
+                };
+                write!(
+                    f,
+                    "the side on the surface {what} at t = {t}, d = {d} (s = {s}, x = {x}, \
+                     N = {normal}, T = {tangential}): the dynamic drag follows one side that \
+                     rolls, slides or lifts off (the quasi-static drag follows the rest)"
+                )
+            }
         }
     }
 }
@@ -1139,6 +1245,25 @@ impl Clone for Checkpoints<'_, '_> {
 /// Checkpoints kept (the events before the one a refinement goes back from).
 const CHECKPOINTS: usize = 4;
 
+/// How far inside the tip the first side step after the rod's end lay down seeks its contact
+/// (`s_c = 1 − SIDE_START` at Newton's start).
+const SIDE_START: f64 = 1e-3;
+
+/// How near the tip a side's contact has reached it: the drag stops there by name
+/// ([`SideChange::AtTip`]). Why it stops: the side's steps cease to solve as the contact
+/// reaches the tip (on the corrugation 0.02 sin(2πx/0.2) at v 0.05, dt 0.01 every step from
+/// s_c = 0.99968 failed, Newton on up to 7367 nodes, however short; a step past the tip
+/// has no solution in the pieces' equations, nor in their continuation past it), and a tip
+/// contact taken over at `1 − SIDE_AT_TIP` leaves the rod's end turned into the surface by
+/// `κ_h SIDE_AT_TIP` (κ_h the surface's curvature): its points next to the tip then cross the
+/// surface at once (measured, 1.1e-3 of turn and a second contact at s = 0.99958).
+const SIDE_AT_TIP: f64 = 1e-3;
+
+/// The rod next to a side's contact that its other-contact test leaves out
+/// ([`Drive::side_gap`]): it touches the surface to second order there, its height the
+/// collocation's error.
+const SIDE_NEAR: f64 = 1e-3;
+
 /// The driver of a dynamic drag.
 #[derive(Clone)]
 struct Drive<'r, 'o> {
@@ -1183,8 +1308,22 @@ struct Drive<'r, 'o> {
     radius: f64,
     /// The surface (the sides' clearance): `track` itself for a point tip.
     surface: Track,
-    /// The stuck disk's rolling invariant `w·x(1) − r·φ(1)` ([`TipBc::Rolling`]).
+    /// The stuck disk's rolling invariant `w·x(1) − r·φ(1)` ([`TipBc::Rolling`]), or the
+    /// rolling side's ([`TipBc::SideRolling`]).
     roll: f64,
+    /// The rolling side's sign ([`TipBc::SideRolling`]).
+    side_sign: f64,
+    /// The contact's force and its x at the last step's start (the tip's or a side's), while
+    /// [`Drive::ends_before`] holds: the third force of a side's held force
+    /// ([`Drive::held_side`]).
+    contact_before: Option<([f64; 2], f64)>,
+    /// A side's `s_c` at the last step's start and that step's length, where both ends were a
+    /// side's ([`Drive::side_step`]).
+    side_before: Option<(f64, f64)>,
+    /// Whether the side's contact has been farther than `2·SIDE_AT_TIP` from the tip since it
+    /// formed (at the tip): its event of reaching the tip counts from then.
+    side_armed: bool,
+
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
     /// The tip touched down at the present instant (no step taken since): its contact force
@@ -1264,6 +1403,13 @@ impl<'r> Drive<'r, '_> {
             ContactState::Stuck if self.radius > 0.0 => TipBc::Rolling { a: self.roll },
             ContactState::Stuck => TipBc::Stuck([self.anchor, self.track.jet(self.anchor).0]),
             ContactState::Flying => TipBc::Force([0.0, 0.0]),
+            ContactState::SideStuck => TipBc::SideRolling {
+                a: self.roll,
+                sign: self.side_sign,
+            },
+            s if s.side() => TipBc::SideSliding {
+                ratio: s.dir() * self.o.mu_k,
+            },
             s if !self.o.mu_k_table.is_empty() => TipBc::SlidingRate { dir: s.dir() },
             s if self.varies_along() => TipBc::SlidingOn { dir: s.dir() },
             s => TipBc::Sliding {
@@ -1418,6 +1564,13 @@ impl<'r> Drive<'r, '_> {
     }
 
     fn events_after(&self, tr: &Trial) -> [f64; 4] {
+        if let Some(side) = &tr.side {
+            let (n, t) = self
+                .held_side(tr)
+                .unwrap_or_else(|| self.forces(side.force, side.z[0]));
+            let v = self.rothe.velocity_at(tr, side.s);
+            return self.side_events(n, t, side, v, &tr.sol);
+        }
         let r = [tr.sol.right()[0], tr.sol.right()[1]];
         let (n, t) = self.forces(tr.force(1), r[0]);
         let spin = self.rothe.tip_rate(tr, 4);
@@ -1426,6 +1579,270 @@ impl<'r> Drive<'r, '_> {
         let contact = self.sliding_lift().then(|| self.held_contact(tr)).flatten();
         let [lift, phase] = self.held_test(g, held, contact, r);
         [lift, phase, self.side_gap(&tr.sol).0, self.edge_gap(r[0])]
+    }
+
+    /// The event functions of a side on the surface (`< 0` while it holds as it does), its
+    /// forces `n`, `t`, its material point's velocity `v`: `−N`, `|T| − μs N` (rolling) or
+    /// `−dir·v_t` (sliding), the height of the rod's other points over the surface
+    /// ([`Drive::side_gap`]) and `s_c − (1 − SIDE_AT_TIP)` (the contact reaches the tip).
+    fn side_events(
+        &self,
+        n: f64,
+        t: f64,
+        side: &SideAt,
+        v: [f64; 2],
+        sol: &bvp::Solution,
+    ) -> [f64; 4] {
+        let phase = match self.state {
+            ContactState::SideStuck => t.abs() - self.o.mu_s * n,
+            // (sliding: its material point's velocity along the surface reverses)
+            s => -s.dir() * along(self.track.jet(side.z[0]).1, v),
+        };
+        let at_tip = if self.side_armed {
+            side.s - (1.0 - SIDE_AT_TIP)
+        } else {
+            -1.0
+        };
+        [-n, phase, self.side_gap(sol).0, at_tip]
+    }
+
+    /// The contact's force now and its x: the side's where one touches, else the tip's.
+    fn contact_force_now(&self) -> ([f64; 2], f64) {
+        match &self.rothe.side {
+            Some(c) => (c.force, c.z[0]),
+            None => (self.rothe.force(1), self.rothe.sol.right()[0]),
+        }
+    }
+
+    /// A side's `N` and `T` at the end of the trial `tr` without the rule's alternating mode:
+    /// the weights of [`Drive::held_contact`] on its contact force then, now and at the last
+    /// step's start (the tip's, before the side formed), each along the surface's normal at its
+    /// own place. `None` for a step that is not a side's, or without the last step under a
+    /// condition that has not changed.
+    fn held_side(&self, tr: &Trial) -> Option<(f64, f64)> {
+        let side = tr.side?;
+        let (_, h, _) = self.ends_before?;
+        let (fp, xp) = self.contact_before?;
+        let (f0, x0) = self.contact_force_now();
+        let [a, b, c] = held_weights(tr.tau, h);
+        let nt = [
+            self.forces(side.force, side.z[0]),
+            self.forces(f0, x0),
+            self.forces(fp, xp),
+        ];
+        Some((
+            a * nt[0].0 + b * nt[1].0 + c * nt[2].0,
+            a * nt[0].1 + b * nt[1].1 + c * nt[2].1,
+        ))
+    }
+
+    /// Whether the rod's end that lies down on the surface (a side contact at `s = 1`) goes on
+    /// as a side rolling on it ([`ContactState::SideStuck`]): from a stuck point tip on a line
+    /// or a height profile of uniform friction (else the drag stops there, as before).
+    fn may_roll(&self, s: f64) -> bool {
+        s == 1.0
+            && matches!(
+                self.state,
+                ContactState::Stuck | ContactState::SlidingForward | ContactState::SlidingBack
+            )
+            && self.radius == 0.0
+            && self.texture.is_none()
+            && self.o.mu_k_table.is_empty()
+            && matches!(self.track, Track::Line { .. } | Track::Curve(_))
+    }
+
+    /// The rod's end lies down on the surface: from here the contact is a side at `s_c < 1`
+    /// rolling without slip (its rolling invariant that of the tip now, `s_c = 1`) where the
+    /// tip was stuck, else sliding as the tip did.
+    fn enter_side(&mut self) {
+        let z = self.rothe.sol.right();
+        let hp = self.track.jet(z[0]).1;
+        let (sp, cp) = z[2].sin_cos();
+        self.side_sign = if cp + hp * sp >= 0.0 { 1.0 } else { -1.0 };
+        self.roll = crate::rothe::track_arc(&self.track, z[0]).0 - self.side_sign;
+        self.rothe.side_guess = 1.0 - SIDE_START;
+        self.side_armed = false;
+        self.state = match self.state {
+            ContactState::SlidingForward => ContactState::SideSlidingForward,
+            ContactState::SlidingBack => ContactState::SideSlidingBack,
+            _ => ContactState::SideStuck,
+        };
+    }
+
+    /// A side's event `which`: it slips (rolling, `|T| = μs N`: it slides the way `T` pushes
+    /// it, after the restart the tip's slip takes), sticks (sliding, its velocity along the
+    /// surface zero: it rolls from here), lifts off (the rod flies, with `flight`; else the
+    /// drag ends); where it reaches the tip or another point reaches the surface the drag stops
+    /// by name ([`DynDragStop::SideChange`]).
+    fn apply_side(&mut self, which: usize) -> Option<DynDragStop> {
+        if which == SIDE || which == EDGE || self.instant_events == MAX_INSTANT_EVENTS {
+            return Some(self.side_stop(which));
+        }
+        let (normal, tangential) = self.contact_now.take().unwrap_or_else(|| {
+            let (f, x) = self.contact_force_now();
+            self.forces(f, x)
+        });
+        self.mismatch = None;
+        self.mismatch_end = None;
+        self.tried.clear();
+        self.ends_before = None;
+        self.ends_now = None;
+        self.held_now = None;
+        let kind = if which == LIFT {
+            if !self.o.flight {
+                self.push_event(DragEventKind::LiftOff, normal, tangential);
+                return Some(DynDragStop::LiftOff { d: self.d });
+            }
+            self.state = ContactState::Flying;
+            self.rothe.euler_steps = 0;
+            DragEventKind::LiftOff
+        } else if self.state == ContactState::SideStuck {
+            self.state = if tangential >= 0.0 {
+                ContactState::SideSlidingForward
+            } else {
+                ContactState::SideSlidingBack
+            };
+            self.fresh_slip = true;
+            self.stats.slips += 1;
+            self.restart(false);
+            DragEventKind::Slip
+        } else {
+            self.state = ContactState::SideStuck;
+            self.fresh_slip = false;
+            if let Some(c) = self.rothe.side {
+                self.roll = crate::rothe::track_arc(&self.track, c.z[0]).0 - self.side_sign * c.s;
+            }
+            self.stats.sticks += 1;
+            self.restart(false);
+            DragEventKind::Stick
+        };
+        self.push_event(kind, normal, tangential);
+        self.instant_events += 1;
+        (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
+    }
+
+    /// The step `tau`, shortened where a side's contact, moving towards the tip at the rate of
+    /// the last step, would cover more than half its way to `1 − SIDE_AT_TIP/2` within it: to
+    /// the step that covers half (no shorter than `shortest`), so that the contact's event at
+    /// `1 − SIDE_AT_TIP` is found in a step that solves (past the tip the step's equations have
+    /// no solution: a rod tangent to the surface at its free end grazes it).
+    fn side_step(&self, tau: f64, shortest: f64) -> f64 {
+        let (Some(c), Some((s_prev, h))) = (&self.rothe.side, self.side_before) else {
+            return tau;
+        };
+        let rate = (c.s - s_prev) / h;
+        // (a contact at rest or moving inwards, or a rate that is not a number: as it is)
+        if rate.is_nan() || rate <= 0.0 {
+            return tau;
+        }
+        // (half the room at the present rate: the contact speeds up as it nears the tip, where
+        // its rate grows without bound as the rod grazes the surface)
+        let reach = 0.5 * (1.0 - 0.5 * SIDE_AT_TIP - c.s) / rate;
+        if reach < tau {
+            reach.max(shortest).min(tau)
+        } else {
+            tau
+        }
+    }
+
+    /// What a contact that has just stuck (a restart under way) does at once: a side's
+    /// ([`Drive::side_at_once`]); a tip that needs more than μs N at once slips at once (only a
+    /// restart changes the forces a step's end left inside the limits), one that needs a pull
+    /// at once slips or lifts off at once where Coulomb's law allows it
+    /// ([`Drive::unstick_at_once`]), else is a stick the step does not resolve.
+    /// `Some(Some(stop))` where the drag ends, `Some(None)` where an event was applied, `None`
+    /// where nothing happens at once.
+    fn changes_at_once(&mut self) -> Option<Option<DynDragStop>> {
+        if let Some(r) = self.side_at_once() {
+            return Some(r);
+        }
+        if self.state != ContactState::Stuck || !self.rothe.restarted() {
+            return None;
+        }
+        let now = self.events_now();
+        if now[LIFT] >= 0.0 {
+            return Some(
+                self.unstick_at_once()
+                    .unwrap_or_else(|| Some(self.unresolved(self.rothe.force(1)))),
+            );
+        }
+        (now[PHASE] >= 0.0).then(|| self.apply(PHASE))
+    }
+
+    /// A side that has just stuck (a restart under way) and needs more than μs N, or a pull, at
+    /// once: it slips or lifts at once, within the events an instant may have. `Some(Some(stop))`
+    /// where the drag ends, `Some(None)` where an event was applied, `None` where nothing
+    /// happens at once.
+    fn side_at_once(&mut self) -> Option<Option<DynDragStop>> {
+        if self.state != ContactState::SideStuck || !self.rothe.restarted() {
+            return None;
+        }
+        let now = self.events_now();
+        let which = [LIFT, PHASE].into_iter().find(|&w| now[w] >= 0.0)?;
+        Some(self.apply(which))
+    }
+
+    /// The step of length `tau` from the present state, a side's shortened by
+    /// [`Drive::side_step`] and, where it fails, by [`Drive::side_shorter`]: its length and
+    /// trial.
+    fn step_from_here(&mut self, tau: f64, tau_min: f64) -> Result<(f64, Trial), VibrissaError> {
+        let tau = self.side_step(tau, tau_min);
+        match self.try_step(tau) {
+            Ok(tr) => Ok((tau, tr)),
+            Err(e) => self.side_shorter(tau, tau_min).ok_or(e),
+        }
+    }
+
+    /// A side's step that failed (`tau`), taken at `tau/2`, `tau/4`, … (no shorter than
+    /// `shortest`, four halvings at most): the first that solves, with its length; `None` for a
+    /// tip's step or where none solves. Why: a side's contact speeds up as it nears the tip and a
+    /// step that would carry it past the tip has no solution (see [`Drive::side_step`]).
+    fn side_shorter(&mut self, tau: f64, shortest: f64) -> Option<(f64, Trial)> {
+        if !self.state.side() {
+            return None;
+        }
+        let mut t = tau;
+        for _ in 0..4 {
+            t *= 0.5;
+            if t < shortest {
+                return None;
+            }
+            if let Ok(tr) = self.try_step(t) {
+                return Some((t, tr));
+            }
+        }
+        None
+    }
+
+    /// The stop where the rolling side changes its contact by event `which`.
+    fn side_stop(&self, which: usize) -> DynDragStop {
+        let change = match which {
+            LIFT => SideChange::LiftOff,
+            PHASE => SideChange::Slip,
+            SIDE => SideChange::SecondContact,
+            _ => SideChange::AtTip,
+        };
+        let (s, x, (normal, tangential)) = match &self.rothe.side {
+            Some(side) => (
+                side.s,
+                side.z[0],
+                self.contact_now
+                    .unwrap_or_else(|| self.forces(side.force, side.z[0])),
+            ),
+            None => {
+                let x = self.rothe.sol.right()[0];
+                (1.0, x, self.forces(self.rothe.force(1), x))
+            }
+        };
+        DynDragStop::SideChange {
+            change,
+            t: self.t,
+            d: self.d,
+            s,
+            x,
+            normal,
+            tangential,
+        }
     }
 
     /// The largest height of the rod's points over the surface, `max (y − h(x))` over the
@@ -1437,13 +1854,19 @@ impl<'r> Drive<'r, '_> {
     /// touchdown of a side at the tip).
     fn side_gap(&self, sol: &bvp::Solution) -> (f64, f64, f64) {
         let mut worst = (f64::NEG_INFINITY, f64::NAN, f64::NAN);
-        if self.state != ContactState::Flying && self.radius == 0.0 {
+        if self.state != ContactState::Flying && !self.state.side() && self.radius == 0.0 {
             // (a disk meets the surface at any angle: its end does not turn into it)
             let z = sol.right();
             let (sp, cp) = z[2].sin_cos();
             worst = (self.track.jet(z[0]).1 * cp - sp, 1.0, z[0]);
         }
+        // (a side step's contact: its node twice; the rod next to it, within `SIDE_NEAR`,
+        // touches the surface to second order there, its height the collocation's error)
+        let contact = sol.mesh.windows(2).find(|w| w[0] == w[1]).map(|w| w[0]);
         for i in 1..sol.len().saturating_sub(1) {
+            if contact.is_some_and(|sc| (sol.mesh[i] - sc).abs() < SIDE_NEAR) {
+                continue;
+            }
             let z = sol.node(i);
             let gap = z[1] - self.surface.jet(z[0]).0;
             if gap > worst.0 || gap.is_nan() {
@@ -1604,6 +2027,13 @@ impl<'r> Drive<'r, '_> {
     /// surface; on a curve a sliding tip's `|T| = μk N` holds in each, and so in the
     /// combination, not in the combined force read at one place).
     fn held_contact(&self, tr: &Trial) -> Option<(f64, f64)> {
+        if let Some(side) = &tr.side {
+            // (a side's contact force, held where it can be)
+            return Some(
+                self.held_side(tr)
+                    .unwrap_or_else(|| self.forces(side.force, side.z[0])),
+            );
+        }
         if self.state == ContactState::Flying {
             // (a free tip has no contact force: the last contact step's end force, which the
             // combination would carry into the first steps of a flight, is not its)
@@ -1642,6 +2072,23 @@ impl<'r> Drive<'r, '_> {
     }
 
     fn events_now(&self) -> [f64; 4] {
+        if self.state.side() {
+            return match &self.rothe.side {
+                Some(side) => {
+                    let (n, t) = self
+                        .contact_now
+                        .unwrap_or_else(|| self.forces(side.force, side.z[0]));
+                    let v = self.rothe.velocity_now(side.s);
+                    self.side_events(n, t, side, v, &self.rothe.sol)
+                }
+                // (the side has just formed at the tip: it moves inwards)
+                None => {
+                    let x = self.rothe.sol.right()[0];
+                    let (n, t) = self.forces(self.rothe.force(1), x);
+                    [-n, t.abs() - self.o.mu_s * n, -1.0, -1.0]
+                }
+            };
+        }
         let p = self.rothe.sample(self.t);
         let r = [p.tip_x, p.tip_y];
         let (n, t) = self.forces(self.rothe.force(1), r[0]);
@@ -1702,6 +2149,28 @@ impl<'r> Drive<'r, '_> {
         let held = ends
             .filter(|_| self.state == ContactState::Stuck)
             .map(|g| g[1]);
+        let contact_before = self.contact_force_now();
+        self.side_before = match (&self.rothe.side, &tr.side) {
+            (Some(c0), Some(_)) => Some((c0.s, tr.tau)),
+            _ => None,
+        };
+        if tr.side.is_some_and(|c| c.s < 1.0 - 2.0 * SIDE_AT_TIP) {
+            self.side_armed = true;
+        }
+
+        // a sliding side's friction: the contact force's work on its material point, by the
+        // trapezoidal rule (`½τ (F⁰·v⁰ + F¹·v¹)`; the point moves along the rod)
+        let side_work = match (&tr.side, &self.rothe.side) {
+            (Some(c1), Some(c0)) if self.state.dir() != 0.0 => {
+                let (v0, v1) = (
+                    self.rothe.velocity_now(c0.s),
+                    self.rothe.velocity_at(&tr, c1.s),
+                );
+                let dot = |f: [f64; 2], v: [f64; 2]| f[0] * v[0] + f[1] * v[1];
+                0.5 * tr.tau * (dot(c0.force, v0) + dot(c1.force, v1))
+            }
+            _ => 0.0,
+        };
         self.rothe.commit(tr);
         // (the drag's start is consistent and smooth: no mode to remove before the first event;
         // the velocity mismatch's term then comes out of the end forces, `end_mismatch_weight`)
@@ -1709,6 +2178,7 @@ impl<'r> Drive<'r, '_> {
         // trapezoidal rule's mode and need its three forces; measured, a round tip's held force
         // across the switch back read a lift-off at N = −0.41, 1e-5 after the impact's steps)
         self.ends_before = (!self.events.is_empty() && !euler).then_some(([g0, g1], tau, x1));
+        self.contact_before = self.ends_before.map(|_| contact_before);
         self.held_now = held;
         self.ends_now = ends;
         self.contact_now = contact;
@@ -1727,8 +2197,14 @@ impl<'r> Drive<'r, '_> {
         // (the work of the tip's force on a moving tip: friction, the normal force's part zero
         // to the step's error on a curve, exactly zero on a flat surface, which keeps to x)
         let x1_new = self.rothe.sol.right()[0];
-        self.friction += -(w0 * g1[0] + w1 * h1[0]) * (x1_new - x1);
-        if !self.track.flat() {
+        // (a rolling side's contact force does no work: its material point is at rest, and so
+        // was the stuck tip's where the side formed)
+        let rolls = self.state.side();
+        self.friction -= side_work;
+        if !rolls {
+            self.friction += -(w0 * g1[0] + w1 * h1[0]) * (x1_new - x1);
+        }
+        if !self.track.flat() && !rolls {
             self.friction += -(w0 * g1[1] + w1 * h1[1]) * (self.rothe.sol.right()[1] - y1);
         }
         if self.radius > 0.0 {
@@ -1785,6 +2261,15 @@ impl<'r> Drive<'r, '_> {
             internal_damping: p.internal_damping,
             external_damping: p.external_damping,
             impact: self.impact,
+            side: self
+                .rothe
+                .side
+                .filter(|_| self.state.side())
+                .map(|c| SideSample {
+                    s: c.s,
+                    x: c.z[0],
+                    y: c.z[1],
+                }),
         }
     }
 
@@ -1813,6 +2298,9 @@ impl<'r> Drive<'r, '_> {
 
     /// The contact changes after event `which`; `Some(stop)` where the drag ends.
     fn apply(&mut self, which: usize) -> Option<DynDragStop> {
+        if self.state.side() {
+            return self.apply_side(which);
+        }
         self.mismatch = None;
         self.mismatch_end = None;
         // a stick, a slip at once and a stick at once can share an instant; a fourth event
@@ -1845,6 +2333,9 @@ impl<'r> Drive<'r, '_> {
             )
         });
         let kind = if which == SIDE {
+            if self.may_roll(self.side_gap(&self.rothe.sol).1) {
+                self.enter_side();
+            }
             DragEventKind::SideContact
         } else if which == EDGE {
             let xb = self.edge.unwrap_or(self.rothe.sol.right()[0]);
@@ -1897,7 +2388,7 @@ impl<'r> Drive<'r, '_> {
         if kind == DragEventKind::LiftOff && !self.o.flight {
             return Some(DynDragStop::LiftOff { d: self.d });
         }
-        if kind == DragEventKind::SideContact {
+        if kind == DragEventKind::SideContact && !self.state.side() {
             let (_, s, x) = self.side_gap(&self.rothe.sol);
             return Some(DynDragStop::SideContact {
                 t: self.t,
@@ -2142,6 +2633,17 @@ impl<'r> Drive<'r, '_> {
             return;
         }
         self.stats.restarts += 1;
+        if self.state.side() {
+            // (a side's contact force is its own, not the free tip's; a sliding one's meets
+            // the slide's friction as the sliding tip's below)
+            let dir = self.state.dir();
+            if let (Some(c), true) = (self.rothe.side.as_mut(), dir != 0.0) {
+                let hp = self.track.jet(c.z[0]).1;
+                let (n, _) = contact_forces(c.force, hp);
+                c.force = tip_force(n, dir * self.o.mu_k * n, hp);
+            }
+            return;
+        }
         if let (false, dir @ (1.0 | -1.0)) = (self.track.flat(), self.state.dir()) {
             // the restart's tip force is the mean of two probe steps' whose tip stood where
             // the surface's normal differs: on a curve it meets the slide's friction only to
@@ -2480,25 +2982,10 @@ impl<'r> Drive<'r, '_> {
                     DynDragStop::TableEnd
                 });
             }
-            if self.state == ContactState::Stuck && self.rothe.restarted() {
-                // a tip that sticks but needs more than μs N at once slips at once (only a
-                // restart changes the forces a step's end left inside the limits); one that
-                // needs a pull at once slips or lifts off at once where Coulomb's law allows it
-                // (`unstick_at_once`), else is a stick the step does not resolve
-                let now = self.events_now();
-                if now[LIFT] >= 0.0 {
-                    match self.unstick_at_once() {
-                        Some(Some(stop)) => return Ok(stop),
-                        Some(None) => continue,
-                        None => return Ok(self.unresolved(self.rothe.force(1))),
-                    }
-                }
-                if now[PHASE] >= 0.0 {
-                    if let Some(stop) = self.apply(PHASE) {
-                        return Ok(stop);
-                    }
-                    continue;
-                }
+            match self.changes_at_once() {
+                Some(Some(stop)) => return Ok(stop),
+                Some(None) => continue,
+                None => {}
             }
             if self.o.time_tol.is_none() {
                 h = self.dt;
@@ -2507,7 +2994,7 @@ impl<'r> Drive<'r, '_> {
             // `4/τ²` would magnify the positions' rounding past what the collocation meets)
             let left = t_end - self.t;
             let tau = if left <= h + tau_min { left } else { h };
-            let tr = self.try_step(tau)?;
+            let (tau, tr) = self.step_from_here(tau, tau_min)?;
             if let Some(tol) = self.o.time_tol {
                 let rejected;
                 (rejected, h) = ctl.judge(self.t, tau, self.rothe.local_error(&tr), tol)?;
@@ -2721,6 +3208,11 @@ pub fn drag(
         radius,
         surface: surface_track,
         roll: 0.0,
+        side_sign: 1.0,
+        contact_before: None,
+        side_before: None,
+        side_armed: false,
+
         fresh_slip: false,
         landed: false,
         ends_before: None,

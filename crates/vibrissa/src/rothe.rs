@@ -159,6 +159,42 @@ pub(crate) enum TipBc {
     /// the contact point's arc length along the line less the disk's turn), its centre on the
     /// track (the line lowered by `r` along its normal).
     Rolling { a: f64 },
+    /// A side of the rod on the track at an inner point `s_c` (an unknown of the step), the rod
+    /// tangent to the track there and free beyond it, rolling without slip: the contact's arc
+    /// length along the track less `sign·s_c` stays at `a` (the contact's material point at
+    /// rest; `sign = ±1` as the rod's tangent at the contact runs with or against the track's).
+    /// The step is solved on the two pieces `[0, s_c]` and `[s_c, 1]` ([`Split`]).
+    SideRolling { a: f64, sign: f64 },
+    /// A side of the rod on the track at an inner point `s_c`, tangent to it, the rod free
+    /// beyond it, sliding: its contact force `F` (the jump of the internal force) meets
+    /// `F·t = ratio·F·n` as a sliding tip's `G(1)` does ([`TipBc::Sliding`]).
+    SideSliding { ratio: f64 },
+}
+
+/// The arc length along `track` at lab `x` (a line: `w·x`, `w = √(1 + h'²)`; a profile: its
+/// `σ(x)`), with `dσ/dx`.
+pub(crate) fn track_arc(track: &Track, x: f64) -> (f64, f64) {
+    match track {
+        Track::Curve(h) => h.sigma(x),
+        _ => {
+            let hp = track.jet(x).1;
+            let w = (1.0 + hp * hp).sqrt();
+            (w * x, w)
+        }
+    }
+}
+
+/// A side contact's state at the end of a step: where it touches (`s`), the rod's state there
+/// `(x, y, φ, m)`, and the contact force on the rod `F = G(s_c⁻) − G(s_c⁺)` (the jump of the
+/// internal force across the contact).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SideAt {
+    /// The contact's arc length `s_c`.
+    pub s: f64,
+    /// `(x, y, φ, m)` at `s_c`.
+    pub z: [f64; 4],
+    /// The contact force on the rod.
+    pub force: [f64; 2],
 }
 
 /// The x of the point where a disk of radius `r` centred at `x` on a line `track` (the surface
@@ -488,7 +524,8 @@ impl Bvp for Step<'_> {
             dgb[18 + 5] = ra * self.gs * hp / w;
         }
         match self.tip {
-            TipBc::Force(_) => {
+            // (a side step's tip is free: [`Split`] solves it with `Force([0, 0])`)
+            TipBc::Force(_) | TipBc::SideRolling { .. } | TipBc::SideSliding { .. } => {
                 dgb[24 + 4] = self.gs;
                 dgb[30 + 5] = self.gs;
             }
@@ -545,6 +582,10 @@ impl Bvp for Step<'_> {
                 res[4] = self.gs * zb[4] - f[0];
                 res[5] = self.gs * zb[5] - f[1];
             }
+            TipBc::SideRolling { .. } | TipBc::SideSliding { .. } => {
+                res[4] = self.gs * zb[4];
+                res[5] = self.gs * zb[5];
+            }
             TipBc::Stuck(p) => {
                 res[4] = zb[0] - p[0];
                 res[5] = zb[1] - p[1];
@@ -597,6 +638,202 @@ impl Step<'_> {
         dgb[30 + 1] = extra[1];
         dgb[30 + 4] = 1.0 + ratio * hp;
         dgb[30 + 5] = hp - ratio;
+    }
+}
+
+/// A step with a side contact ([`TipBc::SideRolling`]) at the unknown `s_c = p[0]`: the rod's
+/// two pieces on `σ ∈ [0, 1]`, the inner one from the foot (`s = s_c σ`), the outer one from
+/// the tip inwards (`s = 1 − (1 − s_c) σ`), so that they meet at `σ = 1` and every condition
+/// is at an end: the foot's three and the free tip's three (`m = 0`, `G = 0`) at `σ = 0`; at
+/// `σ = 1` the pieces' `x, y, φ, m` equal, the rod on the track and tangent to it
+/// (`h'(x) cos φ − sin φ = 0`: a smooth rod touching from one side), and the contact's hold.
+/// The internal force jumps across the contact by the contact force, `F = G(s_c⁻) − G(s_c⁺)`.
+struct Split<'s, 'a> {
+    /// The step, its tip free.
+    step: &'s Step<'a>,
+    /// How the side holds ([`TipBc::SideRolling`] or [`TipBc::SideSliding`]).
+    hold: TipBc,
+}
+
+impl Bvp for Split<'_, '_> {
+    fn dims(&self) -> Dims {
+        Dims { n: 12, k: 1 }
+    }
+    fn interval(&self) -> (f64, f64) {
+        (0.0, 1.0)
+    }
+    fn rhs(&self, u: f64, z: &[f64], p: &[f64], dz: &mut [f64]) {
+        let sc = p[0];
+        self.step.rhs(sc * u, &z[..6], &[], &mut dz[..6]);
+        self.step
+            .rhs(1.0 - (1.0 - sc) * u, &z[6..], &[], &mut dz[6..]);
+        dz[..6].iter_mut().for_each(|d| *d *= sc);
+        dz[6..].iter_mut().for_each(|d| *d *= sc - 1.0);
+    }
+    fn rhs_jacobian(
+        &self,
+        u: f64,
+        z: &[f64],
+        p: &[f64],
+        dfdz: &mut [f64],
+        dfdp: &mut [f64],
+    ) -> bool {
+        let sc = p[0];
+        dfdz[..144].fill(0.0);
+        let mut j = [0.0; 36];
+        // each piece: its own block, scaled by `ds/dσ`; the column of `s_c`: `F + (dσ s)'
+        // ∂F/∂s` with `∂F/∂s` (the profile's, the history's) by central differences
+        for (piece, s, scale, moves) in [(0, sc * u, sc, u), (1, 1.0 - (1.0 - sc) * u, sc - 1.0, u)]
+        {
+            let zp = &z[6 * piece..6 * piece + 6];
+            self.step.rhs_jacobian(s, zp, &[], &mut j, &mut []);
+            for r in 0..6 {
+                for c in 0..6 {
+                    dfdz[(6 * piece + r) * 12 + 6 * piece + c] = scale * j[r * 6 + c];
+                }
+            }
+            let h = 1e-6;
+            let (mut f, mut fp, mut fm) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+            self.step.rhs(s, zp, &[], &mut f);
+            self.step.rhs(s + h, zp, &[], &mut fp);
+            self.step.rhs(s - h, zp, &[], &mut fm);
+            for r in 0..6 {
+                dfdp[6 * piece + r] = f[r] + scale * moves * (fp[r] - fm[r]) / (2.0 * h);
+            }
+        }
+        true
+    }
+    fn bc(&self, za: &[f64], zb: &[f64], p: &[f64], res: &mut [f64]) {
+        self.step.bc(&za[..6], &za[6..], &[], &mut res[..6]);
+        for k in 0..4 {
+            res[6 + k] = zb[k] - zb[6 + k];
+        }
+        let (x, y, phi) = (zb[0], zb[1], zb[2]);
+        let (h, hp, _) = self.step.track.jet(x);
+        let (sp, cp) = phi.sin_cos();
+        res[10] = hp * cp - sp;
+        match self.hold {
+            TipBc::SideSliding { ratio } => {
+                // (the contact as a sliding tip: its state and the jump of the force)
+                let zc = [x, y, phi, zb[3], zb[4] - zb[10], zb[5] - zb[11]];
+                let mut r = [0.0; 6];
+                self.step.sliding_res(&zc, ratio, &mut r);
+                res[11] = r[4];
+                res[12] = r[5];
+            }
+            TipBc::SideRolling { a, sign } => {
+                res[11] = y - h;
+                res[12] = track_arc(self.step.track, x).0 - sign * p[0] - a;
+            }
+            // (not built otherwise: the rolling side's invariant 0)
+            _ => {
+                res[11] = y - h;
+                res[12] = track_arc(self.step.track, x).0 - p[0];
+            }
+        }
+    }
+}
+
+/// Solves a step's problem `step` (the tip's condition `tip`; a side's as a [`Split`] on the
+/// side solver) from `guess`, or first from a predicted start where there is one (a predicted
+/// start that Newton cannot take falls back to `guess`): the solution on the rod's `s`, a side
+/// step's own, and (with `remesh`) the residual per interval.
+#[allow(clippy::type_complexity)]
+fn solve_step(
+    solver: &mut StepSolver,
+    step: Step<'_>,
+    tip: TipBc,
+    (guess, predicted): (Guess, Option<Guess>),
+    remesh: bool,
+) -> Result<(Solution, Option<Solution>, Vec<f64>), Box<BvpError>> {
+    if matches!(tip, TipBc::SideRolling { .. } | TipBc::SideSliding { .. }) {
+        // (the tip beyond a side is free: its conditions are the outer piece's)
+        let free = Step {
+            tip: TipBc::Force([0.0, 0.0]),
+            ..step
+        };
+        let raw = solver.side.solve(
+            &Split {
+                step: &free,
+                hold: tip,
+            },
+            &guess,
+        )?;
+        return Ok((merged(&raw), Some(raw), vec![]));
+    }
+    let sol = match predicted {
+        Some(start) => match solver.armijo.solve(&step, &start) {
+            Ok(sol) => sol,
+            Err(_) => solver.solve(&step, &guess)?,
+        },
+        None => solver.solve(&step, &guess)?,
+    };
+    let rho = if remesh { sol.residuals(&step) } else { vec![] };
+    Ok((sol, None, rho))
+}
+
+/// A side step's solution on the rod's `s`: the inner piece's nodes, then the outer piece's
+/// from the contact to the tip (the contact's node twice, once for each side of the jump of
+/// the internal force; the solution's search picks the piece of positive length), slopes and
+/// second derivatives scaled by `dσ/ds`.
+fn merged(raw: &Solution) -> Solution {
+    // (a contact past the tip, `s_c > 1`, which Newton may reach: its outer piece on the rod
+    // is the tip alone)
+    let sc = raw.params[0].min(1.0);
+    let nodes = raw.len();
+    let (mut mesh, mut z, mut dz) = (vec![], vec![], vec![]);
+    for i in 0..nodes {
+        mesh.push(sc * raw.mesh[i]);
+        z.extend_from_slice(&raw.node(i)[..6]);
+        dz.extend(raw.dz[12 * i..12 * i + 6].iter().map(|d| d / sc));
+    }
+    for i in (0..nodes).rev() {
+        mesh.push(1.0 - (1.0 - sc) * raw.mesh[i]);
+        z.extend_from_slice(&raw.node(i)[6..]);
+        dz.extend(
+            raw.dz[12 * i + 6..12 * i + 12]
+                .iter()
+                .map(|d| d / (sc - 1.0)),
+        );
+    }
+    let dense = match &raw.dense {
+        bvp::Dense::QuinticIntervals { d2z } => {
+            let (a, b) = (sc * sc, (1.0 - sc) * (1.0 - sc));
+            let mut out = vec![];
+            for i in 0..nodes - 1 {
+                let q = &d2z[24 * i..24 * i + 24];
+                out.extend(q[..6].iter().map(|v| v / a));
+                out.extend(q[12..18].iter().map(|v| v / a));
+            }
+            out.extend([0.0; 12]);
+            for i in (0..nodes - 1).rev() {
+                let q = &d2z[24 * i..24 * i + 24];
+                out.extend(q[18..24].iter().map(|v| v / b));
+                out.extend(q[6..12].iter().map(|v| v / b));
+            }
+            bvp::Dense::QuinticIntervals { d2z: out }
+        }
+        _ => bvp::Dense::Hermite,
+    };
+    Solution {
+        n: 6,
+        mesh,
+        z,
+        dz,
+        params: vec![],
+        status: raw.status,
+        stats: raw.stats.clone(),
+        dense,
+    }
+}
+
+/// The contact of a side step's own solution (its forces `gs·(z4, z5)`).
+fn side_of(raw: &Solution, gs: f64) -> SideAt {
+    let zb = raw.right();
+    SideAt {
+        s: raw.params[0],
+        z: [zb[0], zb[1], zb[2], zb[3]],
+        force: [gs * (zb[4] - zb[10]), gs * (zb[5] - zb[11])],
     }
 }
 
@@ -710,6 +947,10 @@ pub(crate) struct Trial {
     /// With [`Settings::remesh`]: the step's collocation residual per mesh interval of `sol`
     /// (else empty).
     rho: Vec<f64>,
+    /// A side step's own solution on its two pieces ([`Split`]; `sol` is it on the rod's `s`).
+    split: Option<Solution>,
+    /// A side step's contact.
+    pub side: Option<SideAt>,
 }
 
 impl Trial {
@@ -811,6 +1052,13 @@ pub(crate) struct Rothe<'r> {
     pub disk_held: (f64, f64),
     /// [`Settings::energy_momentum`].
     emm: bool,
+    /// The last step's own solution where it was a side step ([`Split`]).
+    split: Option<Solution>,
+    /// The side contact now (the last step's, a side step).
+    pub side: Option<SideAt>,
+    /// Where a side that has just formed is first sought (`s_c` of the first side step's
+    /// start; default 1).
+    pub side_guess: f64,
 }
 
 /// The rest shape's guess on the grid (`m ≡ 0`, `G ≡ 0`): the midpoint rule on a fine subgrid
@@ -852,7 +1100,17 @@ pub(crate) fn rest_guess(profile: &General, grid: &[f64]) -> Guess {
 struct StepSolver {
     armijo: Collocation,
     affine: Collocation,
+    /// A side step's ([`Split`]): no homotopy, at most [`SIDE_MAX_NODES`] nodes. Why: a side
+    /// step fails where its contact would pass the tip within it (no solution), and the
+    /// default's homotopy and refinement to 10⁴ nodes took 8 s over that one failure (the
+    /// corrugation 0.02 sin(2πx/0.2) at v 0.05, dt 0.02, whose drag then took the step again
+    /// shorter); the drag shortens such a step.
+    side: Collocation,
 }
+
+/// The largest mesh of a side step's collocation ([`StepSolver::side`]; side steps at the
+/// program's defaults end on up to 2583 nodes).
+const SIDE_MAX_NODES: usize = 4000;
 
 impl StepSolver {
     fn new(opts: CollocationOptions) -> Result<Self, VibrissaError> {
@@ -864,9 +1122,15 @@ impl StepSolver {
             },
             ..opts.clone()
         };
+        let side = CollocationOptions {
+            homotopy: false,
+            max_nodes: SIDE_MAX_NODES,
+            ..opts.clone()
+        };
         Ok(StepSolver {
             armijo: Collocation::new(opts).map_err(options)?,
             affine: Collocation::new(affine).map_err(options)?,
+            side: Collocation::new(side).map_err(options)?,
         })
     }
 
@@ -998,6 +1262,9 @@ impl<'r> Rothe<'r> {
             tip_radius: 0.0,
             disk_held: (1.0, 0.0),
             emm: settings.energy_momentum,
+            split: None,
+            side: None,
+            side_guess: 1.0,
             track: FLAT,
             grid,
             profile,
@@ -1201,23 +1468,23 @@ impl<'r> Rothe<'r> {
             theta_then: self.theta,
             emm_kv: if self.emm { self.gi / tau } else { 0.0 },
         };
-        let mut guess = self.start();
-        scale_forces(&mut guess, self.gs / gs);
-        let sol = match self.predicted(tau, &guess) {
-            // a predicted start that Newton cannot take falls back to the last solution
-            Some(start) => match self.solver.armijo.solve(&step, &start) {
-                Ok(sol) => sol,
-                Err(_) => self.solver.solve(&step, &guess)?,
-            },
-            None => self.solver.solve(&step, &guess)?,
+        let side = matches!(tip, TipBc::SideRolling { .. } | TipBc::SideSliding { .. });
+        let mut guess = if side {
+            self.split_start()
+        } else {
+            self.start()
         };
+        scale_forces(&mut guess, self.gs / gs);
+        let predicted = if side {
+            None
+        } else {
+            self.predicted(tau, &guess)
+        };
+        let (sol, split, rho) =
+            solve_step(&mut self.solver, step, tip, (guess, predicted), self.remesh)?;
         self.stats.newton_iterations += sol.stats.newton_iters;
         self.stats.max_nodes = self.stats.max_nodes.max(sol.len());
-        let rho = if self.remesh {
-            sol.residuals(&step)
-        } else {
-            vec![]
-        };
+        let side = split.as_ref().map(|raw| side_of(raw, gs));
         let mut next = [zero(), zero(), zero(), zero(), zero()];
         let mut m = zero();
         self.sample_grid(&sol, &mut next, &mut m);
@@ -1234,7 +1501,41 @@ impl<'r> Rothe<'r> {
             m,
             kappa,
             rho,
+            split,
+            side,
         })
+    }
+
+    /// The start of a side step's collocation ([`Split`]): the last side step's solution, or,
+    /// where the side has just formed, the whole rod's last solution cut at
+    /// [`Rothe::side_guess`] (the outer piece's internal force less the tip's, which the
+    /// contact now carries).
+    fn split_start(&self) -> Guess {
+        if let Some(raw) = &self.split {
+            return Guess::from(raw);
+        }
+        let sc = self.side_guess;
+        let tip = self.sol.right();
+        let (g4, g5) = (tip[4], tip[5]);
+        let mut mesh: Vec<f64> = self.sol.mesh.clone();
+        mesh.dedup();
+        let mut z = Vec::with_capacity(12 * mesh.len());
+        let (mut inner, mut outer) = ([0.0; 6], [0.0; 6]);
+        for &u in &mesh {
+            self.sol.eval(sc * u, &mut inner);
+            self.sol.eval(1.0 - (1.0 - sc) * u, &mut outer);
+            outer[4] -= g4;
+            outer[5] -= g5;
+            z.extend_from_slice(&inner);
+            z.extend_from_slice(&outer);
+        }
+        Guess {
+            n: 12,
+            mesh,
+            z,
+            dz: None,
+            params: vec![sc],
+        }
     }
 
     /// External damping in the step's history (`interp_of`, the positions' four rows): the
@@ -1304,8 +1605,29 @@ impl<'r> Rothe<'r> {
     /// [`Settings::remesh`]) on the nodes [`coarser`] kept of it (the solution's own values and
     /// slopes there).
     fn start(&self) -> Guess {
-        let Some(keep) = &self.start_nodes else {
-            return Guess::from(&self.sol);
+        let dup = self.sol.mesh.windows(2).any(|w| w[0] == w[1]);
+        let Some(keep) = self.start_nodes.as_ref().filter(|_| !dup) else {
+            if !dup {
+                return Guess::from(&self.sol);
+            }
+            // a side step's solution on the rod's `s` ([`merged`]): the contact's node once
+            // (the rod's force there the outer piece's: the side has let go)
+            let n = self.sol.n;
+            let keep: Vec<usize> = (0..self.sol.len())
+                .filter(|&i| i == 0 || self.sol.mesh[i] != self.sol.mesh[i - 1])
+                .collect();
+            let pick = |v: &[f64]| -> Vec<f64> {
+                keep.iter()
+                    .flat_map(|&i| v[i * n..(i + 1) * n].iter().copied())
+                    .collect()
+            };
+            return Guess {
+                n,
+                mesh: keep.iter().map(|&i| self.sol.mesh[i]).collect(),
+                z: pick(&self.sol.z),
+                dz: Some(pick(&self.sol.dz)),
+                params: vec![],
+            };
         };
         let n = self.sol.n;
         let pick = |v: &[f64]| -> Vec<f64> {
@@ -1420,6 +1742,26 @@ impl<'r> Rothe<'r> {
         self.vel[q][i] + 0.5 * tr.tau * (self.acc[q][i] + a1)
     }
 
+    /// The material velocity `(ẋ, ẏ)` at arc length `s` at the end of the trial `tr` (Newmark's
+    /// `vⁿ + τ/2 (aⁿ + a)`, `a = (4/τ²)(r − r̂)`, the history interpolated on the grid; backward
+    /// Euler's `(r − rⁿ)/τ`): a side's contact point's.
+    pub fn velocity_at(&self, tr: &Trial, s: f64) -> [f64; 2] {
+        let r = tr.sol.at(s);
+        [0, 1].map(|q| {
+            let at = |v: &[Vec<f64>; 5]| interp(&v[q], &v[q + 2], s);
+            if tr.euler {
+                return (r[q] - at(&self.pos)) / tr.tau;
+            }
+            let a1 = 4.0 / (tr.tau * tr.tau) * (r[q] - interp(&tr.hat[q], &tr.hat[q + 2], s));
+            at(&self.vel) + 0.5 * tr.tau * (at(&self.acc) + a1)
+        })
+    }
+
+    /// The material velocity at arc length `s` now.
+    pub fn velocity_now(&self, s: f64) -> [f64; 2] {
+        [0, 1].map(|q| interp(&self.vel[q], &self.vel[q + 2], s))
+    }
+
     /// The tip's acceleration `(ẍ(1), ÿ(1))` now.
     pub fn tip_acceleration(&self) -> [f64; 2] {
         [self.acc[0][self.ng], self.acc[1][self.ng]]
@@ -1459,6 +1801,7 @@ impl<'r> Rothe<'r> {
         // each probe step's end accelerations (the five quantities on the grid) and end forces
         let mut acc: Vec<Vec<Vec<f64>>> = vec![];
         let mut ends: Vec<[[f64; 2]; 2]> = vec![];
+        let mut sides: Vec<Option<SideAt>> = vec![];
         for (j, &foot) in feet.iter().enumerate() {
             let tr = probe.trial(delta, foot, tip, moment)?;
             // (an impact's backward-Euler steps, if any are left, restart by their own rule:
@@ -1474,6 +1817,7 @@ impl<'r> Rothe<'r> {
                     .collect(),
             );
             ends.push([tr.force(0), tr.force(1)]);
+            sides.push(tr.side);
             if j + 1 < feet.len() {
                 probe.commit(tr);
             }
@@ -1493,6 +1837,12 @@ impl<'r> Rothe<'r> {
             combine([f(0), f(1), f(2)])
         };
         self.after = Some([[end(0, 0), end(0, 1)], [end(1, 0), end(1, 1)]]);
+        if let (Some(now), true) = (self.side.as_mut(), sides.iter().all(Option::is_some)) {
+            // (a side's contact force likewise: its place stays the present one)
+            let f =
+                |j: usize, c: usize| sides.get(j).copied().flatten().map_or(0.0, |q| q.force[c]);
+            now.force = [0, 1].map(|c| combine([f(0, c), f(1, c), f(2, c)]));
+        }
         self.previous = None;
         self.acc_before = None;
         self.stats.newton_iterations = probe.stats.newton_iterations;
@@ -1573,6 +1923,8 @@ impl<'r> Rothe<'r> {
         std::mem::swap(&mut self.pos, &mut next);
         self.m = tr.m;
         self.start_nodes = coarser(&tr.rho, &tr.sol.mesh, self.ng, self.tol);
+        self.split = tr.split;
+        self.side = tr.side;
         let last = std::mem::replace(&mut self.sol, tr.sol);
         if self.predict {
             self.previous = Some((tau, self.gs, last));
