@@ -587,9 +587,9 @@ pub enum DragEventKind {
     /// The flying tip reaches the surface again (a plastic impact).
     Touchdown,
     /// A point of the rod other than its tip reaches the surface: the drag ends (the dynamic
-    /// drag has the tip alone on the surface), but where the rod's end lies down on the surface
-    /// from a stuck tip: the contact then moves inwards, a side rolling on the surface
-    /// ([`ContactState::SideStuck`]).
+    /// drag has one contact at a time), but where the rod's end lies down on the surface (a
+    /// point tip, stuck or sliding): the contact then moves inwards, a side that rolls or slides
+    /// on the surface ([`ContactState::side`]).
     SideContact,
     /// The sliding tip crosses a boundary of the friction texture's patches: it slides on with
     /// the next patch's μk (the row: the state at the boundary, its forces the last patch's).
@@ -691,8 +691,8 @@ pub struct DragSample {
     pub external_damping: f64,
     /// Kinetic energy the touchdowns' impacts took so far.
     pub impact: f64,
-    /// Where a side touches the surface ([`ContactState::SideStuck`]; `normal` and
-    /// `tangential` are then its forces). `None` (and left out of JSON) while the tip touches.
+    /// Where a side touches the surface (a side's state, [`ContactState::side`]; `normal` and
+    /// `tangential` are then its forces). `None` (and left out of JSON) otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub side: Option<SideSample>,
 }
@@ -775,10 +775,10 @@ pub enum DynDragStop {
         /// Its lab x.
         x: f64,
     },
-    /// The side that rolls on the surface ([`ContactState::SideStuck`]) changes its contact at
-    /// time `t`, displacement `d` in a way the dynamic drag does not follow yet (`change`): the
-    /// contact at arc length `s`, lab `x`, its forces there (`normal`, `tangential`). The
-    /// quasi-static drag follows sides that slip, lift off or meet other contacts.
+    /// A side on the surface ([`ContactState::side`]) changes its contact at time `t`,
+    /// displacement `d` in a way the dynamic drag does not follow (`change`): the contact at
+    /// arc length `s`, lab `x`, its forces there (`normal`, `tangential`). The quasi-static
+    /// drag follows a contact that returns to the tip and two contacts at once.
     SideChange {
         /// What changes.
         change: SideChange,
@@ -801,11 +801,12 @@ pub enum DynDragStop {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SideChange {
-    /// It needs more than μs N: it would slip.
+    /// It needs more than μs N again at an instant that has had its share of events (a stick
+    /// and a slip at once, repeated).
     Slip,
-    /// Its normal force falls to zero.
+    /// Its normal force falls to zero at such an instant.
     LiftOff,
-    /// It rolls out to the tip.
+    /// Its contact comes within 1e-3 of the tip.
     AtTip,
     /// Another point of the rod reaches the surface.
     SecondContact,
@@ -1323,7 +1324,6 @@ struct Drive<'r, 'o> {
     /// Whether the side's contact has been farther than `2·SIDE_AT_TIP` from the tip since it
     /// formed (at the tip): its event of reaching the tip counts from then.
     side_armed: bool,
-
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
     /// The tip touched down at the present instant (no step taken since): its contact force
@@ -1637,8 +1637,8 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// Whether the rod's end that lies down on the surface (a side contact at `s = 1`) goes on
-    /// as a side rolling on it ([`ContactState::SideStuck`]): from a stuck point tip on a line
-    /// or a height profile of uniform friction (else the drag stops there, as before).
+    /// as a side on it ([`ContactState::side`]): from a stuck or sliding point tip on a line or
+    /// a height profile of uniform friction (else the drag stops there, as before).
     fn may_roll(&self, s: f64) -> bool {
         s == 1.0
             && matches!(

@@ -641,9 +641,9 @@ impl Step<'_> {
     }
 }
 
-/// A step with a side contact ([`TipBc::SideRolling`]) at the unknown `s_c = p[0]`: the rod's
-/// two pieces on `σ ∈ [0, 1]`, the inner one from the foot (`s = s_c σ`), the outer one from
-/// the tip inwards (`s = 1 − (1 − s_c) σ`), so that they meet at `σ = 1` and every condition
+/// A step with a side contact ([`TipBc::SideRolling`], [`TipBc::SideSliding`]) at the unknown
+/// `s_c = p[0]`: the rod's two pieces on `σ ∈ [0, 1]`, the inner one from the foot
+/// (`s = s_c σ`), the outer one from the tip inwards (`s = 1 − (1 − s_c) σ`), so that they meet at `σ = 1` and every condition
 /// is at an end: the foot's three and the free tip's three (`m = 0`, `G = 0`) at `σ = 0`; at
 /// `σ = 1` the pieces' `x, y, φ, m` equal, the rod on the track and tangent to it
 /// (`h'(x) cos φ − sin φ = 0`: a smooth rod touching from one side), and the contact's hold.
@@ -778,8 +778,9 @@ fn solve_step(
 /// second derivatives scaled by `dσ/ds`.
 fn merged(raw: &Solution) -> Solution {
     // (a contact past the tip, `s_c > 1`, which Newton may reach: its outer piece on the rod
-    // is the tip alone)
+    // is the tip alone, its slopes and curvatures left at 0)
     let sc = raw.params[0].min(1.0);
+    let over = |v: f64, l: f64| if l != 0.0 { v / l } else { 0.0 };
     let nodes = raw.len();
     let (mut mesh, mut z, mut dz) = (vec![], vec![], vec![]);
     for i in 0..nodes {
@@ -793,7 +794,7 @@ fn merged(raw: &Solution) -> Solution {
         dz.extend(
             raw.dz[12 * i + 6..12 * i + 12]
                 .iter()
-                .map(|d| d / (sc - 1.0)),
+                .map(|d| over(*d, sc - 1.0)),
         );
     }
     let dense = match &raw.dense {
@@ -808,8 +809,8 @@ fn merged(raw: &Solution) -> Solution {
             out.extend([0.0; 12]);
             for i in (0..nodes - 1).rev() {
                 let q = &d2z[24 * i..24 * i + 24];
-                out.extend(q[18..24].iter().map(|v| v / b));
-                out.extend(q[6..12].iter().map(|v| v / b));
+                out.extend(q[18..24].iter().map(|v| over(*v, b)));
+                out.extend(q[6..12].iter().map(|v| over(*v, b)));
             }
             bvp::Dense::QuinticIntervals { d2z: out }
         }
@@ -1483,7 +1484,9 @@ impl<'r> Rothe<'r> {
         let (sol, split, rho) =
             solve_step(&mut self.solver, step, tip, (guess, predicted), self.remesh)?;
         self.stats.newton_iterations += sol.stats.newton_iters;
-        self.stats.max_nodes = self.stats.max_nodes.max(sol.len());
+        // (a side step's collocation mesh is its own: the merged one has each node twice)
+        let nodes = split.as_ref().map_or(sol.len(), Solution::len);
+        self.stats.max_nodes = self.stats.max_nodes.max(nodes);
         let side = split.as_ref().map(|raw| side_of(raw, gs));
         let mut next = [zero(), zero(), zero(), zero(), zero()];
         let mut m = zero();
