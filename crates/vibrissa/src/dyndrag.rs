@@ -562,6 +562,15 @@ impl ContactState {
             ContactState::SlidingBack | ContactState::SideSlidingBack => -1.0,
         }
     }
+    /// The state that slides the way `dir` (its sign) from this one: the tip's, or a side's.
+    fn sliding(self, dir: f64) -> ContactState {
+        match (self.side(), dir >= 0.0) {
+            (false, true) => ContactState::SlidingForward,
+            (false, false) => ContactState::SlidingBack,
+            (true, true) => ContactState::SideSlidingForward,
+            (true, false) => ContactState::SideSlidingBack,
+        }
+    }
     /// Whether a side of the rod touches the surface (the tip free).
     pub fn side(self) -> bool {
         matches!(
@@ -1314,10 +1323,6 @@ struct Drive<'r, 'o> {
     roll: f64,
     /// The rolling side's sign ([`TipBc::SideRolling`]).
     side_sign: f64,
-    /// The contact's force and its x at the last step's start (the tip's or a side's), while
-    /// [`Drive::ends_before`] holds: the third force of a side's held force
-    /// ([`Drive::held_side`]).
-    contact_before: Option<([f64; 2], f64)>,
     /// A side's `s_c` at the last step's start and that step's length, where both ends were a
     /// side's ([`Drive::side_step`]).
     side_before: Option<(f64, f64)>,
@@ -1329,9 +1334,10 @@ struct Drive<'r, 'o> {
     /// The tip touched down at the present instant (no step taken since): its contact force
     /// there is the flight's zero, not the impact's, which pushes.
     landed: bool,
-    /// The forces at the support and the tip (`G(0)`, `G(1)`) at the last step's start, that
-    /// step's length and the tip's x at its start, while the tip's condition has not changed
-    /// since ([`Drive::held_ends`]).
+    /// The forces at the support and the contact (`G(0)`, and the tip's `G(1)` or a side's
+    /// contact force) at the last step's start, that step's length and the contact's x at its
+    /// start, while the contact's condition has not changed since ([`Drive::held_ends`],
+    /// [`Drive::held_contact`]).
     ends_before: Option<([[f64; 2]; 2], f64, f64)>,
     /// [`Drive::held_force`] of the last step taken while the tip is stuck (its tests; `None`
     /// where it was not formed).
@@ -1566,7 +1572,7 @@ impl<'r> Drive<'r, '_> {
     fn events_after(&self, tr: &Trial) -> [f64; 4] {
         if let Some(side) = &tr.side {
             let (n, t) = self
-                .held_side(tr)
+                .held_contact(tr)
                 .unwrap_or_else(|| self.forces(side.force, side.z[0]));
             let v = self.rothe.velocity_at(tr, side.s);
             return self.side_events(n, t, side, v, &tr.sol);
@@ -1614,28 +1620,6 @@ impl<'r> Drive<'r, '_> {
         }
     }
 
-    /// A side's `N` and `T` at the end of the trial `tr` without the rule's alternating mode:
-    /// the weights of [`Drive::held_contact`] on its contact force then, now and at the last
-    /// step's start (the tip's, before the side formed), each along the surface's normal at its
-    /// own place. `None` for a step that is not a side's, or without the last step under a
-    /// condition that has not changed.
-    fn held_side(&self, tr: &Trial) -> Option<(f64, f64)> {
-        let side = tr.side?;
-        let (_, h, _) = self.ends_before?;
-        let (fp, xp) = self.contact_before?;
-        let (f0, x0) = self.contact_force_now();
-        let [a, b, c] = held_weights(tr.tau, h);
-        let nt = [
-            self.forces(side.force, side.z[0]),
-            self.forces(f0, x0),
-            self.forces(fp, xp),
-        ];
-        Some((
-            a * nt[0].0 + b * nt[1].0 + c * nt[2].0,
-            a * nt[0].1 + b * nt[1].1 + c * nt[2].1,
-        ))
-    }
-
     /// Whether the rod's end that lies down on the surface (a side contact at `s = 1`) goes on
     /// as a side on it ([`ContactState::side`]): from a stuck or sliding point tip on a line or
     /// a height profile of uniform friction (else the drag stops there, as before).
@@ -1662,10 +1646,11 @@ impl<'r> Drive<'r, '_> {
         self.roll = crate::rothe::track_arc(&self.track, z[0]).0 - self.side_sign;
         self.rothe.side_guess = 1.0 - SIDE_START;
         self.side_armed = false;
-        self.state = match self.state {
-            ContactState::SlidingForward => ContactState::SideSlidingForward,
-            ContactState::SlidingBack => ContactState::SideSlidingBack,
-            _ => ContactState::SideStuck,
+        let dir = self.state.dir();
+        self.state = if dir == 0.0 {
+            ContactState::SideStuck
+        } else {
+            ContactState::SideStuck.sliding(dir)
         };
     }
 
@@ -1697,11 +1682,7 @@ impl<'r> Drive<'r, '_> {
             self.rothe.euler_steps = 0;
             DragEventKind::LiftOff
         } else if self.state == ContactState::SideStuck {
-            self.state = if tangential >= 0.0 {
-                ContactState::SideSlidingForward
-            } else {
-                ContactState::SideSlidingBack
-            };
+            self.state = self.state.sliding(tangential);
             self.fresh_slip = true;
             self.stats.slips += 1;
             self.restart(false);
@@ -1918,13 +1899,13 @@ impl<'r> Drive<'r, '_> {
         self.held_ends(tr).map_or_else(|| tr.force(1), |g| g[1])
     }
 
-    /// The forces at both ends, the support's and the tip's, at the end of the trial `tr`
-    /// without the rule's alternating mode, as [`Drive::held_force`] forms the tip's (`None`
-    /// without the last step under the same condition; before the first event the end forces
-    /// less the velocity mismatch's term where [`Drive::deflate`] found one, else `None`). The
-    /// support's force is a multiplier
-    /// too (of the foot's place) and carries the same mode: ±0.5 in the paper's rod's
-    /// `fy ≈ −4` at dt 0.02 after a few slips, sliding or stuck. The rows report these.
+    /// The forces at both ends, the support's and the contact's (the tip's, or a side's), at
+    /// the end of the trial `tr` without the rule's alternating mode, as [`Drive::held_force`]
+    /// forms the tip's (`None` without the last step under the same condition; before the
+    /// first event the end forces less the velocity mismatch's term where [`Drive::deflate`]
+    /// found one, else `None`). The support's force is a multiplier too (of the foot's place)
+    /// and carries the same mode: ±0.5 in the paper's rod's `fy ≈ −4` at dt 0.02 after a few
+    /// slips, sliding or stuck. The rows report these.
     fn held_ends(&self, tr: &Trial) -> Option<[[f64; 2]; 2]> {
         let Some((g_prev, h, _)) = self.ends_before else {
             // (before the first event: the end forces, less the velocity mismatch's term where
@@ -1942,7 +1923,12 @@ impl<'r> Drive<'r, '_> {
             mismatch_weight(tr.tau, h),
         );
         Some([0, 1].map(|e| {
-            let (g1, g0) = (tr.force(e), self.rothe.force(e));
+            // (the contact's, as `ends_before` holds it: the tip's, or a side's)
+            let (g1, g0) = if e == 0 {
+                (tr.force(0), self.rothe.force(0))
+            } else {
+                (tr.contact().0, self.contact_force_now().0)
+            };
             [0, 1].map(|k| a * g1[k] + b * g0[k] + c * g_prev[e][k] - m[e][k] * w)
         }))
     }
@@ -2027,35 +2013,31 @@ impl<'r> Drive<'r, '_> {
     /// surface; on a curve a sliding tip's `|T| = μk N` holds in each, and so in the
     /// combination, not in the combined force read at one place).
     fn held_contact(&self, tr: &Trial) -> Option<(f64, f64)> {
-        if let Some(side) = &tr.side {
-            // (a side's contact force, held where it can be)
-            return Some(
-                self.held_side(tr)
-                    .unwrap_or_else(|| self.forces(side.force, side.z[0])),
-            );
-        }
         if self.state == ContactState::Flying {
             // (a free tip has no contact force: the last contact step's end force, which the
             // combination would carry into the first steps of a flight, is not its)
             return Some((0.0, 0.0));
         }
-        let (g_prev, h, x_prev) = self.ends_before?;
+        let Some((g_prev, h, x_prev)) = self.ends_before else {
+            // (a side's contact force as the step's end left it)
+            return tr.side.map(|c| self.forces(c.force, c.z[0]));
+        };
         let [a, b, c] = held_weights(tr.tau, h);
+        // (the contact's: the tip's, or a side's where one touches, the one before it formed
+        // the tip's)
+        let ((g1, x1), (g0, x0)) = (tr.contact(), self.contact_force_now());
         let nt = [
-            self.forces(tr.force(1), tr.sol.right()[0]),
-            self.forces(self.rothe.force(1), self.rothe.sol.right()[0]),
+            self.forces(g1, x1),
+            self.forces(g0, x0),
             self.forces(g_prev[1], x_prev),
         ];
         let w = mismatch_weight(tr.tau, h);
-        let (mn, mt) = self
-            .mismatch
-            .map_or((0.0, 0.0), |m| self.forces(m[1], tr.sol.right()[0]));
+        let (mn, mt) = self.mismatch.map_or((0.0, 0.0), |m| self.forces(m[1], x1));
         let normal = a * nt[0].0 + b * nt[1].0 + c * nt[2].0 - mn * w;
         if self.varies_along() && self.state.dir() != 0.0 {
             // (μk changes along the slide: each force meets its own place's, the combination
             // none; the slide's law at the step's end, on the combined N)
-            let x = tr.sol.right()[0];
-            return Some((normal, self.state.dir() * self.mu_k_at(x) * normal));
+            return Some((normal, self.state.dir() * self.mu_k_at(x1) * normal));
         }
         Some((normal, a * nt[0].1 + b * nt[1].1 + c * nt[2].1 - mt * w))
     }
@@ -2149,7 +2131,8 @@ impl<'r> Drive<'r, '_> {
         let held = ends
             .filter(|_| self.state == ContactState::Stuck)
             .map(|g| g[1]);
-        let contact_before = self.contact_force_now();
+        // (the contact's force at the step's start: a side's, where one touches)
+        let (gc, xc) = self.contact_force_now();
         self.side_before = match (&self.rothe.side, &tr.side) {
             (Some(c0), Some(_)) => Some((c0.s, tr.tau)),
             _ => None,
@@ -2177,8 +2160,7 @@ impl<'r> Drive<'r, '_> {
         // (nor after an impact's backward-Euler step: the held force's weights cancel the
         // trapezoidal rule's mode and need its three forces; measured, a round tip's held force
         // across the switch back read a lift-off at N = −0.41, 1e-5 after the impact's steps)
-        self.ends_before = (!self.events.is_empty() && !euler).then_some(([g0, g1], tau, x1));
-        self.contact_before = self.ends_before.map(|_| contact_before);
+        self.ends_before = (!self.events.is_empty() && !euler).then_some(([g0, gc], tau, xc));
         self.held_now = held;
         self.ends_now = ends;
         self.contact_now = contact;
@@ -2197,14 +2179,14 @@ impl<'r> Drive<'r, '_> {
         // (the work of the tip's force on a moving tip: friction, the normal force's part zero
         // to the step's error on a curve, exactly zero on a flat surface, which keeps to x)
         let x1_new = self.rothe.sol.right()[0];
-        // (a rolling side's contact force does no work: its material point is at rest, and so
-        // was the stuck tip's where the side formed)
-        let rolls = self.state.side();
+        // (a side's contact: its work is `side_work`, none while it rolls; the tip beyond it is
+        // free, and the stuck tip's force where the side formed did none)
+        let free_tip = self.state.side();
         self.friction -= side_work;
-        if !rolls {
+        if !free_tip {
             self.friction += -(w0 * g1[0] + w1 * h1[0]) * (x1_new - x1);
         }
-        if !self.track.flat() && !rolls {
+        if !self.track.flat() && !free_tip {
             self.friction += -(w0 * g1[1] + w1 * h1[1]) * (self.rothe.sol.right()[1] - y1);
         }
         if self.radius > 0.0 {
@@ -2352,11 +2334,7 @@ impl<'r> Drive<'r, '_> {
             self.touchdown();
             DragEventKind::Touchdown
         } else if self.state == ContactState::Stuck {
-            self.state = if tangential >= 0.0 {
-                ContactState::SlidingForward
-            } else {
-                ContactState::SlidingBack
-            };
+            self.state = self.state.sliding(tangential);
             self.fresh_slip = true;
             self.stats.slips += 1;
             self.enter_slide(self.contact_x(self.anchor));
@@ -2633,28 +2611,25 @@ impl<'r> Drive<'r, '_> {
             return;
         }
         self.stats.restarts += 1;
-        if self.state.side() {
-            // (a side's contact force is its own, not the free tip's; a sliding one's meets
-            // the slide's friction as the sliding tip's below)
-            let dir = self.state.dir();
-            if let (Some(c), true) = (self.rothe.side.as_mut(), dir != 0.0) {
-                let hp = self.track.jet(c.z[0]).1;
-                let (n, _) = contact_forces(c.force, hp);
-                c.force = tip_force(n, dir * self.o.mu_k * n, hp);
-            }
+        let (dir, side) = (self.state.dir(), self.state.side());
+        if dir == 0.0 || (self.track.flat() && !side) {
             return;
         }
-        if let (false, dir @ (1.0 | -1.0)) = (self.track.flat(), self.state.dir()) {
-            // the restart's tip force is the mean of two probe steps' whose tip stood where
-            // the surface's normal differs: on a curve it meets the slide's friction only to
-            // O(δ) (5e-6 N at tol 1e-8 over a corrugation). Its normal part is kept, its
-            // tangential part set to the slide's `T = dir·μk N` (μk at rest for a table)
-            let x = self.rothe.sol.right()[0];
-            let (_, hp, _) = self.track.jet(x);
-            let (n, _) = self.forces(self.rothe.force(1), x);
-            let mu_k = self.mu_k_at(x);
-            self.rothe
-                .set_restart_tip_force(tip_force(n, dir * mu_k * n, hp));
+        // the restart's contact force is the mean of two probe steps' whose contact stood where
+        // the surface's normal differs: on a curve it meets the slide's friction only to O(δ)
+        // (5e-6 N at tol 1e-8 over a corrugation). Its normal part is kept, its tangential part
+        // set to the slide's `T = dir·μk N` (μk at rest for a table; a side's, on any track,
+        // its contact moving along the rod between the probes)
+        let (g, x) = self.contact_force_now();
+        let hp = self.track.jet(x).1;
+        let (n, _) = contact_forces(g, hp);
+        let mu_k = if side { self.o.mu_k } else { self.mu_k_at(x) };
+        let held = tip_force(n, dir * mu_k * n, hp);
+        if !side {
+            self.rothe.set_restart_tip_force(held);
+        } else if let Some(c) = self.rothe.side.as_mut() {
+            // (a side's contact force is its own, not the free tip's)
+            c.force = held;
         }
     }
 
@@ -3209,7 +3184,6 @@ pub fn drag(
         surface: surface_track,
         roll: 0.0,
         side_sign: 1.0,
-        contact_before: None,
         side_before: None,
         side_armed: false,
 

@@ -955,6 +955,15 @@ pub(crate) struct Trial {
 }
 
 impl Trial {
+    /// The contact's force on the rod and its x at the step's end: a side's, else the tip's
+    /// `G(1)` at its end's x.
+    pub fn contact(&self) -> ([f64; 2], f64) {
+        match &self.side {
+            Some(c) => (c.force, c.z[0]),
+            None => (self.force(1), self.sol.right()[0]),
+        }
+    }
+
     /// The internal force `G` at the foot (`end` 0) or the tip (`end` 1) of the trial.
     pub fn force(&self, end: usize) -> [f64; 2] {
         let z = if end == 0 {
