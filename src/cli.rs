@@ -308,7 +308,7 @@ pub enum DynamicsCommand {
 /// `vibrissa dynamics free`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "The rod in time (docs/model.md, \"The rod in time\"): Newmark's average acceleration in time (no numerical damping; periods lengthen by (omega dt)^2/12), every step a BVP in s. The start is the static equilibrium under the dead tip force (--release-fx, --release-fy), at rest; the force is removed at t = 0 (the first step sees the mean of the force before and after, which loses about 1 % of the energy at 50 steps per period). --foot-moment steps a moment onto the foot's support (it turns the rod only when --support-compliance > 0). Time unit sqrt(rho A(0) L^4 / EI(0)); with physical dimensions (keratin, 1250 kg/m^3) t_s and the physical-unit columns are added."
+    after_help = "The rod in time (docs/model.md, \"The rod in time\"): every time step a BVP in s; in time the energy-momentum step (the default with fixed steps: the step's mean force and moment, so each step keeps the energy whatever the amplitude) or Newmark's average acceleration (--time-scheme newmark, and the scheme of --time-tol), both second order with no numerical damping (periods lengthen by (omega dt)^2/12). The start is the static equilibrium under the dead tip force (--release-fx, --release-fy), at rest; the force is removed at t = 0 (Newmark's first step sees the mean of the force before and after, which loses about 1 % of the energy at 50 steps per period; the energy-momentum step loses none). --foot-moment steps a moment onto the foot's support (it turns the rod only when --support-compliance > 0). Time unit sqrt(rho A(0) L^4 / EI(0)); with physical dimensions (keratin, 1250 kg/m^3) t_s and the physical-unit columns are added."
 )]
 pub struct DynamicsFreeArgs {
     /// Tip force x (EI/L^2) held before t = 0 and released then (a dead load), finite.
@@ -360,12 +360,13 @@ pub struct DynamicsFreeArgs {
     /// the kinetic energy its share (0: none, the Euler-Bernoulli rod).
     #[arg(long, value_name = "G", value_parser = finite_f64, default_value = "0")]
     pub rotary_inertia: f64,
-    /// The time scheme: newmark (the trapezoidal rule, the default) or energy-momentum (each
-    /// step keeps the energy whatever the amplitude, where Newmark's grows at large ones;
-    /// fixed steps only; the rows' base force and moment are the steps' means: docs/model.md,
-    /// "The energy of a large oscillation").
-    #[arg(long, value_enum, default_value = "newmark")]
-    pub time_scheme: TimeSchemeArg,
+    /// The time scheme: energy-momentum (each step keeps the energy whatever the amplitude,
+    /// where Newmark's grows at large ones; fixed steps only; the rows' base force and moment
+    /// are the steps' means: docs/model.md, "The energy of a large oscillation") or newmark
+    /// (the trapezoidal rule; the scheme of --time-tol's adaptive steps). [default:
+    /// energy-momentum with fixed steps, newmark with --time-tol]
+    #[arg(long, value_enum)]
+    pub time_scheme: Option<TimeSchemeArg>,
     /// Also write the amplitude spectrum of m_base (mean removed, Hann window) to this CSV file.
     #[arg(long, value_name = "FILE.csv")]
     pub spectrum: Option<PathBuf>,

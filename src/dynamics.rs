@@ -122,10 +122,10 @@ pub fn free_options(a: &DynamicsFreeArgs) -> DynamicsOptions {
         release_force: [a.release_fx, a.release_fy],
         grid: a.grid as usize,
         tol: a.tol,
-        time_scheme: match a.time_scheme {
+        time_scheme: a.time_scheme.map(|s| match s {
             TimeSchemeArg::Newmark => TimeScheme::Newmark,
             TimeSchemeArg::EnergyMomentum => TimeScheme::EnergyMomentum,
-        },
+        }),
         ..DynamicsOptions::default()
     }
 }

@@ -1067,12 +1067,13 @@ fn time_unit(rod: &Rod) -> Option<f64> {
 /// The rod released at t = 0 (`vibrissa dynamics free`): from its equilibrium under the tip
 /// force `release_force`, and/or with `foot_moment` stepped onto its support; every option of
 /// the library's `DynamicsOptions` the program's flags set (`time_tol`: adaptive steps, `None`
-/// fixed ones; the dampers; `time_scheme` "newmark" or "energy_momentum"), and its `grid` and
+/// fixed ones; the dampers; `time_scheme` "newmark" or "energy_momentum", `None` the library's
+/// default: the energy–momentum step with fixed steps, Newmark's with adaptive ones), and its `grid` and
 /// `tol`, the defaults and checks the library's. A
 /// dict with the library's `DynamicsResult` (`samples`, `stats`; what the program's `--json`
 /// prints) plus `units` and `time_unit_s`. Ctrl-C stops waiting for it.
 #[pyfunction]
-#[pyo3(signature = (rod, *, release_force=(DynamicsOptions::default().release_force[0], DynamicsOptions::default().release_force[1]), foot_moment=DynamicsOptions::default().foot_moment, dt=DynamicsOptions::default().dt, t_end=DynamicsOptions::default().t_end, time_tol=DynamicsOptions::default().time_tol, foot_damping=DynamicsOptions::default().foot_damping, internal_damping=DynamicsOptions::default().internal_damping, external_damping=DynamicsOptions::default().external_damping, rotary_inertia=DynamicsOptions::default().rotary_inertia, grid=DynamicsOptions::default().grid, tol=DynamicsOptions::default().tol, time_scheme="newmark"))]
+#[pyo3(signature = (rod, *, release_force=(DynamicsOptions::default().release_force[0], DynamicsOptions::default().release_force[1]), foot_moment=DynamicsOptions::default().foot_moment, dt=DynamicsOptions::default().dt, t_end=DynamicsOptions::default().t_end, time_tol=DynamicsOptions::default().time_tol, foot_damping=DynamicsOptions::default().foot_damping, internal_damping=DynamicsOptions::default().internal_damping, external_damping=DynamicsOptions::default().external_damping, rotary_inertia=DynamicsOptions::default().rotary_inertia, grid=DynamicsOptions::default().grid, tol=DynamicsOptions::default().tol, time_scheme=None))]
 #[allow(clippy::too_many_arguments)]
 fn dynamics_free<'py>(
     py: Python<'py>,
@@ -1088,12 +1089,13 @@ fn dynamics_free<'py>(
     rotary_inertia: f64,
     grid: usize,
     tol: f64,
-    time_scheme: &str,
+    time_scheme: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let time_scheme = match time_scheme {
-        "newmark" => vibrissa::dynamics::TimeScheme::Newmark,
-        "energy_momentum" => vibrissa::dynamics::TimeScheme::EnergyMomentum,
-        other => {
+        None => None,
+        Some("newmark") => Some(vibrissa::dynamics::TimeScheme::Newmark),
+        Some("energy_momentum") => Some(vibrissa::dynamics::TimeScheme::EnergyMomentum),
+        Some(other) => {
             return Err(input(format!(
                 "time_scheme must be 'newmark' or 'energy_momentum', not '{other}'"
             )))

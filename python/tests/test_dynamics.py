@@ -211,10 +211,11 @@ def test_dynamics_free_with_dampers_equals_the_program(program):
 
 
 def test_the_energy_momentum_step_equals_the_program(program):
-    """``time_scheme="energy_momentum"`` is the program's ``--time-scheme energy-momentum``: the
-    release from a tip force keeps the stored energy in its first step (Newmark's rule loses
-    about 1 % there: the mean of the force before and after the jump), and the scheme refuses
-    adaptive steps by name (docs/model.md, "The energy of a large oscillation")."""
+    """``time_scheme="energy_momentum"`` is the program's ``--time-scheme energy-momentum`` and
+    the default of fixed steps: the release from a tip force keeps the stored energy in its
+    first step (Newmark's rule, ``time_scheme="newmark"``, loses about 1 % there: the mean of
+    the force before and after the jump), and the scheme refuses adaptive steps by name
+    (docs/model.md, "The energy of a large oscillation")."""
     args = ["dynamics", "free", "--release-fx", "1e-3", "--dt", "0.05", "--t-end", "0.5",
             "--grid", "50", "--tol", "1e-8", "--time-scheme", "energy-momentum"]
     want = json.loads(program(*args, "--json"))
@@ -222,7 +223,10 @@ def test_the_energy_momentum_step_equals_the_program(program):
     py = vibrissa.dynamics_free(vibrissa.Rod(), time_scheme="energy_momentum", **kw)
     check_samples(py, want["samples"], " ".join(args))
     assert py["stats"] == want["stats"]
-    newmark = vibrissa.dynamics_free(vibrissa.Rod(), **kw)
+    # the default scheme of fixed steps is this one
+    default = vibrissa.dynamics_free(vibrissa.Rod(), **kw)
+    assert default["samples_rows"] == py["samples_rows"]
+    newmark = vibrissa.dynamics_free(vibrissa.Rod(), time_scheme="newmark", **kw)
     for r, lo, hi in ((py, 0.0, 1e-5), (newmark, 5e-3, 5e-2)):
         e = r["samples"]["kinetic"] + r["samples"]["elastic"]
         lost = abs(e[1] / e[0] - 1.0)
@@ -237,24 +241,26 @@ def test_damping_makes_the_energy_fall():
     """External damping gamma_e = 0.2 takes energy (every mode of the linearized rod decays at
     gamma_e/2: the energy by e^(-0.4) = 0.67 over t = 2), internal damping takes some more,
     and the energy the rod loses is what the dampers take: the library's identity, its unit
-    test `damping_takes_the_lost_energy` asserts the balance to 3e-8 from step 1 on (the first
-    step of a release loses about 1 % to the jump of the force). Undamped, the rod keeps its
-    energy from step 1 on (the library's test `release_from_a_tip_load_keeps_the_stored_energy`:
-    within 1e-7)."""
+    test `damping_takes_the_lost_energy` asserts the balance to 3e-8 from step 1 on for
+    Newmark's rule (whose first step of a release loses about 1 % to the jump of the force);
+    the default scheme of fixed steps, the energy-momentum step, balances from the start
+    (measured 3.5e-9). Undamped, the rod keeps its energy from the start (measured within
+    4.8e-7, alternating from step to step: the modes the release rings; the library's test
+    `release_from_a_tip_load_keeps_the_stored_energy`)."""
     kw = dict(release_force=(1e-3, 0.0), dt=0.02, t_end=2.0)
     free = vibrissa.dynamics_free(vibrissa.Rod(), **kw)
     damped = vibrissa.dynamics_free(vibrissa.Rod(), internal_damping=0.01,
                                     external_damping=0.2, **kw)
     s, d = free["samples"], damped["samples"]
     e_free = s["kinetic"] + s["elastic"]
-    assert np.all(np.abs(e_free[1:] / e_free[1] - 1.0) < 1e-7)
+    assert np.all(np.abs(e_free / e_free[0] - 1.0) < 1e-6)
     assert not np.any(s["internal_damping"]) and not np.any(s["external_damping"])
     e = d["kinetic"] + d["elastic"]
     assert e[-1] < 0.8 * e[1], (e[1], e[-1])
     assert np.all(np.diff(d["internal_damping"]) >= 0) and d["internal_damping"][-1] > 0
     assert np.all(np.diff(d["external_damping"]) >= 0) and d["external_damping"][-1] > 0
     total = e + d["dissipated"] + d["internal_damping"] + d["external_damping"]
-    assert np.all(np.abs(total[1:] / total[1] - 1.0) < 3e-8)
+    assert np.all(np.abs(total / total[0] - 1.0) < 3e-8)
 
 
 def test_dynamics_drag_with_every_option_equals_the_program(program):

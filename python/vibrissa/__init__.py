@@ -772,7 +772,7 @@ def dynamics_free(
     rotary_inertia: float = _FREE["rotary_inertia"],
     grid: int = _FREE["grid"],
     tol: float = _FREE["tol"],
-    time_scheme: str = _FREE["time_scheme"],
+    time_scheme: Optional[str] = _FREE.get("time_scheme"),
 ) -> Dict[str, Any]:
     """The rod released at t = 0 (as ``vibrissa dynamics free``): from its equilibrium under
     the dead tip force ``release_force = (fx, fy)`` (removed at t = 0), and/or with the moment
@@ -790,9 +790,10 @@ def dynamics_free(
     gyration g0 of the foot's section over the length, in [0, 0.1] (as :func:`modes`'s; the
     slopes carry the inertia g0^2/b per length, the kinetic energy its share; default 0).
     ``grid`` (even, intervals of the history grid in s) and ``tol`` (each step's collocation
-    tolerance). ``time_scheme``: ``"newmark"`` (the default) or ``"energy_momentum"`` (each
-    step keeps the energy whatever the amplitude; fixed steps only; the program's
-    ``--time-scheme``). The defaults and valid
+    tolerance). ``time_scheme``: ``"energy_momentum"`` (each step keeps the energy whatever
+    the amplitude; fixed steps only) or ``"newmark"`` (Newmark's rule, the scheme of adaptive
+    steps); ``None`` (the default) takes the first with fixed steps and the second with
+    ``time_tol`` (the program's ``--time-scheme``). The defaults and valid
     ranges are the library's (a value out of range raises ``InputError`` naming it).
 
     A dict: ``samples`` (columns ``t``, ``tip_x``, ``tip_y``, ``tip_vx``, ``tip_vy``,
