@@ -1047,8 +1047,9 @@ fn dynamics_drag_whisk_columns() {
 /// `0.75 + A sin(2πx/W)` (1e-9), each row's contact pushed; where the rod's end lies down on
 /// the surface (the event `side_contact`) the rows after it are a side's (`side_stuck`, its
 /// place in `side_s, side_x, side_y` on the surface, the columns empty before), and where that
-/// side has slid until its contact reaches the tip the drag stops with a warning naming it,
-/// exit 0; a start with two crests under the rod is one line and exit 1.
+/// side has slid until its contact reaches the tip the tip takes the contact over (the event
+/// `to_tip`; its rows the tip's, sliding, on the surface, the side's columns empty), exit 0;
+/// a start with two crests under the rod is one line and exit 1.
 #[test]
 fn dynamics_drag_over_a_corrugation() {
     let corr = |a: &'static str, w: &'static str, d_max: &'static str| {
@@ -1107,10 +1108,26 @@ fn dynamics_drag_over_a_corrugation() {
         "{}",
         o.stderr
     );
-    // (its side slips, slides, and its contact reaches the tip: a stop by name)
+    // (its side slips, slides, and its contact reaches the tip, which slides on)
     let o = ok(&corr("0.02", "0.2", "0.012"));
-    assert!(o.stderr.contains("reaches the tip"), "{}", o.stderr);
-    assert!(o.stdout.contains("side_sliding_forward"));
+    assert!(!o.stderr.contains("stopped early"), "{}", o.stderr);
+    let (h, rows) = csv(&o.stdout);
+    let back = rows
+        .iter()
+        .position(|r| r.last().unwrap() == "to_tip")
+        .unwrap();
+    assert_eq!(rows[back][state], "side_sliding_forward");
+    assert!(back + 1 < rows.len());
+    for r in &rows[back + 1..] {
+        assert_eq!(r[state], "sliding_forward");
+        assert_eq!(r[h.iter().position(|c| c == "side_s").unwrap()], "");
+        close(
+            col(&h, r, "tip_y"),
+            surface(col(&h, r, "tip_x")),
+            1e-9,
+            "tip_y",
+        );
+    }
     let mut taper = corr("0.001", "0.02", "0.001").to_vec();
     taper.extend(["--taper", "0.3"]);
     let e = bad(&taper, 1);

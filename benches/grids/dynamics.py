@@ -14,7 +14,9 @@ taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short 
 rat presets; the paper's rod with internal damping 0.01; the paper's rod with --flight; the
 paper's rod on a surface inclined by 0.1, over a corrugation 0.003 sin(2 pi x/0.1) and over one
 0.02 sin(2 pi x/0.2) (where the rod's end lies down, a side that rolls and slides on until
-its contact reaches the tip: side_change); the short rat preset over the first
+its contact reaches the tip, which takes it over, to where another point of the rod reaches
+the surface: side_change, or a side touches while the tip holds: side_contact); the short
+rat preset over the first
 corrugation; the paper's rod on friction patches and on a friction table along x
 (data/dynamics/friction_*.toml); the paper's rod with a round tip of radius 0.02 and internal
 damping 1e-4, on the flat surface and over a corrugation 0.005 sin(2 pi x/0.2); a rod of rest

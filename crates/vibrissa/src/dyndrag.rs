@@ -33,8 +33,9 @@
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, after which the tip slides or sticks on; its first steps are taken by
 //! backward Euler, see [`IMPACT_STEPS`]; docs/model.md), **side contact** where a point of the rod
-//! other than the tip reaches the surface or the rod's end turns into it (the drag ends: the
-//! tip alone touches in this model), **patch** where a sliding tip crosses a boundary of the
+//! other than the tip reaches the surface or the rod's end turns into it (the drag ends, but
+//! where the rod's end lies down: a side then rolls and slides on, and where its contact
+//! returns to the tip, **to_tip**, the tip takes it over; one contact at a time), **patch** where a sliding tip crosses a boundary of the
 //! surface's friction patches (it slides on with the next patch's μk, after a restart). A
 //! friction texture gives μs at the stuck tip's place and μk at the sliding tip's (a table's
 //! at `x(1)`). A round tip (a disk of radius `r` at the rod's end) has its centre on the line
@@ -600,13 +601,17 @@ pub enum DragEventKind {
     /// point tip, stuck or sliding): the contact then moves inwards, a side that rolls or slides
     /// on the surface ([`ContactState::side`]).
     SideContact,
+    /// A side's contact reaches the tip (within `1e-4` of it, its approach located in time):
+    /// the tip touches again, stuck where the side rolled, sliding the same way where it slid
+    /// (the contact's force carried over).
+    ToTip,
     /// The sliding tip crosses a boundary of the friction texture's patches: it slides on with
     /// the next patch's μk (the row: the state at the boundary, its forces the last patch's).
     Patch,
 }
 
 impl DragEventKind {
-    /// `slip`, `stick`, `lift_off`, `touchdown`, `side_contact`, `patch`.
+    /// `slip`, `stick`, `lift_off`, `touchdown`, `side_contact`, `to_tip`, `patch`.
     pub fn name(self) -> &'static str {
         match self {
             DragEventKind::Slip => "slip",
@@ -614,6 +619,7 @@ impl DragEventKind {
             DragEventKind::LiftOff => "lift_off",
             DragEventKind::Touchdown => "touchdown",
             DragEventKind::SideContact => "side_contact",
+            DragEventKind::ToTip => "to_tip",
             DragEventKind::Patch => "patch",
         }
     }
@@ -787,7 +793,8 @@ pub enum DynDragStop {
     /// A side on the surface ([`ContactState::side`]) changes its contact at time `t`,
     /// displacement `d` in a way the dynamic drag does not follow (`change`): the contact at
     /// arc length `s`, lab `x`, its forces there (`normal`, `tangential`). The quasi-static
-    /// drag follows a contact that returns to the tip and two contacts at once.
+    /// drag follows two contacts at once. (A contact that returns to the tip is followed:
+    /// [`DragEventKind::ToTip`].)
     SideChange {
         /// What changes.
         change: SideChange,
@@ -815,7 +822,8 @@ pub enum SideChange {
     Slip,
     /// Its normal force falls to zero at such an instant.
     LiftOff,
-    /// Its contact comes within 1e-3 of the tip.
+    /// Its contact comes within 1e-4 of the tip at such an instant (elsewhere the tip takes
+    /// the contact over, [`DragEventKind::ToTip`]).
     AtTip,
     /// Another point of the rod reaches the surface.
     SecondContact,
@@ -891,7 +899,7 @@ impl fmt::Display for DynDragStop {
                 let what = match change {
                     SideChange::Slip => "needs more than mu_s N and would slip",
                     SideChange::LiftOff => "lifts off",
-                    SideChange::AtTip => "reaches the tip (within 1e-3)",
+                    SideChange::AtTip => "reaches the tip (within 1e-4)",
                     SideChange::SecondContact => "is joined by another point on the surface",
                 };
                 write!(
@@ -1259,15 +1267,19 @@ const CHECKPOINTS: usize = 4;
 /// (`s_c = 1 − SIDE_START` at Newton's start).
 const SIDE_START: f64 = 1e-3;
 
-/// How near the tip a side's contact has reached it: the drag stops there by name
-/// ([`SideChange::AtTip`]). Why it stops: the side's steps cease to solve as the contact
-/// reaches the tip (on the corrugation 0.02 sin(2πx/0.2) at v 0.05, dt 0.01 every step from
-/// s_c = 0.99968 failed, Newton on up to 7367 nodes, however short; a step past the tip
-/// has no solution in the pieces' equations, nor in their continuation past it), and a tip
-/// contact taken over at `1 − SIDE_AT_TIP` leaves the rod's end turned into the surface by
-/// `κ_h SIDE_AT_TIP` (κ_h the surface's curvature): its points next to the tip then cross the
-/// surface at once (measured, 1.1e-3 of turn and a second contact at s = 0.99958).
-const SIDE_AT_TIP: f64 = 1e-3;
+/// How near the tip a side's contact has reached it when the tip takes the contact over
+/// ([`Drive::side_to_tip`]). Why not at the tip itself: a step past the tip has no solution
+/// in the side's equations (nor in their continuation past it), and near an inflection of the
+/// surface the contact reaches the tip like `√(t* − t)` (a grazing: on the corrugation 0.02
+/// sin(2πx/0.2) at v 0.05, `1 − s_c ≈ 0.019 √(t* − t)`), so the steps that approach it
+/// shorten without end. The hand-over leaves the rod's end turned into the surface by about
+/// `κ_h SIDE_AT_TIP` (κ_h the surface's curvature there) and the tip off it by `κ_h
+/// SIDE_AT_TIP²/2` (6e-9 at κ_h 1.2): with 1e-3 (until 2026-12-04 the place of a named
+/// stop) that turn, 1.1e-3, outlasted the first steps and put the end's points on the surface
+/// at once (s = 0.99958); with 1e-4 the end turns away within a step (measured: the 12 drags
+/// of the dynamic grid over that corrugation; every approach to 1e-4 solved, 1e-6 failed at
+/// v 0.01, dt 0.01 on a mesh limit).
+const SIDE_AT_TIP: f64 = 1e-4;
 
 /// The rod next to a side's contact that its other-contact test leaves out
 /// ([`Drive::side_gap`]): it touches the surface to second order there, its height the
@@ -1329,6 +1341,12 @@ struct Drive<'r, 'o> {
     /// Whether the side's contact has been farther than `2·SIDE_AT_TIP` from the tip since it
     /// formed (at the tip): its event of reaching the tip counts from then.
     side_armed: bool,
+    /// From a side's hand-over to the tip ([`Drive::side_to_tip`]) until the end has turned
+    /// away from the surface: how far the end was turned into it at the hand-over (about `κ_h
+    /// SIDE_AT_TIP`). Meanwhile the end lies down again only where it turns in further than
+    /// that, and the rod within `SIDE_NEAR` of the tip is left out of the test of other points
+    /// on the surface. `None`: the tests as they are.
+    tip_turn0: Option<f64>,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
     /// The tip touched down at the present instant (no step taken since): its contact force
@@ -1657,10 +1675,11 @@ impl<'r> Drive<'r, '_> {
     /// A side's event `which`: it slips (rolling, `|T| = μs N`: it slides the way `T` pushes
     /// it, after the restart the tip's slip takes), sticks (sliding, its velocity along the
     /// surface zero: it rolls from here), lifts off (the rod flies, with `flight`; else the
-    /// drag ends); where it reaches the tip or another point reaches the surface the drag stops
-    /// by name ([`DynDragStop::SideChange`]).
+    /// drag ends), hands the contact over to the tip where it reaches the tip
+    /// ([`Drive::side_to_tip`]); where another point reaches the surface the drag stops by name
+    /// ([`DynDragStop::SideChange`]).
     fn apply_side(&mut self, which: usize) -> Option<DynDragStop> {
-        if which == SIDE || which == EDGE || self.instant_events == MAX_INSTANT_EVENTS {
+        if which == SIDE || self.instant_events == MAX_INSTANT_EVENTS {
             return Some(self.side_stop(which));
         }
         let (normal, tangential) = self.contact_now.take().unwrap_or_else(|| {
@@ -1673,6 +1692,9 @@ impl<'r> Drive<'r, '_> {
         self.ends_before = None;
         self.ends_now = None;
         self.held_now = None;
+        if which == EDGE {
+            return self.side_to_tip(normal, tangential);
+        }
         let kind = if which == LIFT {
             if !self.o.flight {
                 self.push_event(DragEventKind::LiftOff, normal, tangential);
@@ -1698,6 +1720,39 @@ impl<'r> Drive<'r, '_> {
             DragEventKind::Stick
         };
         self.push_event(kind, normal, tangential);
+        self.instant_events += 1;
+        (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
+    }
+
+    /// The side's contact has reached the tip (within `SIDE_AT_TIP`): the tip takes it over,
+    /// stuck at its place where the side rolled, sliding the same way where it slid, and the
+    /// scheme restarts as at a stick (its contact force now the tip's). The tip's velocity is
+    /// made the contact's (zero along the surface where it sticks, along it where it slides;
+    /// the tip moved at the contact's velocity plus the rod's turn times `SIDE_AT_TIP`): the
+    /// kinetic energy this takes is booked with `impact`. The test of the end lying down again
+    /// waits until it has turned away from the surface (`tip_turn0`).
+    fn side_to_tip(&mut self, normal: f64, tangential: f64) -> Option<DynDragStop> {
+        let dir = self.state.dir();
+        let z = self.rothe.sol.right().to_vec();
+        let (x, hp) = (z[0], self.track.jet(z[0]).1);
+        let before = self.rothe.sample(self.t).kinetic;
+        self.rothe.leave_side();
+        if dir == 0.0 {
+            self.state = ContactState::Stuck;
+            self.anchor = x;
+            self.rothe.hold_tip_x();
+            self.rothe.hold_tip_y();
+        } else {
+            self.state = ContactState::Stuck.sliding(dir);
+            self.enter_slide(self.contact_x(x));
+            self.rothe.hold_tip_normal(unit_normal(hp));
+        }
+        let after = self.rothe.sample(self.t).kinetic;
+        self.impact += before - after;
+        self.tip_turn0 = Some(self.turn_in(&z));
+        self.side_before = None;
+        self.restart(false);
+        self.push_event(DragEventKind::ToTip, normal, tangential);
         self.instant_events += 1;
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
     }
@@ -1826,6 +1881,13 @@ impl<'r> Drive<'r, '_> {
         }
     }
 
+    /// How far the rod's end at the state `z` at `s = 1` (`[x, y, φ, …]`) turns into the
+    /// surface, `h'(x) cos φ − sin φ` (`< 0`: away from it).
+    fn turn_in(&self, z: &[f64]) -> f64 {
+        let (sp, cp) = z[2].sin_cos();
+        self.track.jet(z[0]).1 * cp - sp
+    }
+
     /// The largest height of the rod's points over the surface, `max (y − h(x))` over the
     /// solution's nodes but its ends (`< 0` while only the tip touches: the foot is below the
     /// surface, the tip on it), with its node's `s` and `x`; and, while the tip touches, how
@@ -1838,14 +1900,21 @@ impl<'r> Drive<'r, '_> {
         if self.state != ContactState::Flying && !self.state.side() && self.radius == 0.0 {
             // (a disk meets the surface at any angle: its end does not turn into it)
             let z = sol.right();
-            let (sp, cp) = z[2].sin_cos();
-            worst = (self.track.jet(z[0]).1 * cp - sp, 1.0, z[0]);
+            let turn = self.turn_in(z) - self.tip_turn0.map_or(0.0, |t0| t0.max(0.0));
+            worst = (turn, 1.0, z[0]);
         }
         // (a side step's contact: its node twice; the rod next to it, within `SIDE_NEAR`,
         // touches the surface to second order there, its height the collocation's error)
         let contact = sol.mesh.windows(2).find(|w| w[0] == w[1]).map(|w| w[0]);
+        // (after a side's hand-over to the tip, until its end turns away: the end next to the
+        // tip, off the surface by `κ_h SIDE_AT_TIP²/2` at most)
+        let end = if self.tip_turn0.is_none() || self.state.side() {
+            1.0
+        } else {
+            1.0 - SIDE_NEAR
+        };
         for i in 1..sol.len().saturating_sub(1) {
-            if contact.is_some_and(|sc| (sol.mesh[i] - sc).abs() < SIDE_NEAR) {
+            if contact.is_some_and(|sc| (sol.mesh[i] - sc).abs() < SIDE_NEAR) || sol.mesh[i] > end {
                 continue;
             }
             let z = sol.node(i);
@@ -2139,6 +2208,14 @@ impl<'r> Drive<'r, '_> {
         };
         if tr.side.is_some_and(|c| c.s < 1.0 - 2.0 * SIDE_AT_TIP) {
             self.side_armed = true;
+        }
+        if self.tip_turn0.is_some()
+            && (self.state.side()
+                || self.state == ContactState::Flying
+                || self.turn_in(tr.sol.right()) < 0.0)
+        {
+            // (the end turned away from the surface, or another contact now)
+            self.tip_turn0 = None;
         }
 
         // a sliding side's friction: the contact force's work on its material point, by the
@@ -3186,7 +3263,7 @@ pub fn drag(
         side_sign: 1.0,
         side_before: None,
         side_armed: false,
-
+        tip_turn0: None,
         fresh_slip: false,
         landed: false,
         ends_before: None,

@@ -651,8 +651,29 @@ impl Step<'_> {
 struct Split<'s, 'a> {
     /// The step, its tip free.
     step: &'s Step<'a>,
-    /// How the side holds ([`TipBc::SideRolling`] or [`TipBc::SideSliding`]).
-    hold: TipBc,
+    /// How the side holds.
+    hold: SideHold,
+}
+
+/// How a side holds on the surface: [`TipBc::SideRolling`]'s and [`TipBc::SideSliding`]'s
+/// values, the only tip conditions a [`Split`] is built with.
+#[derive(Clone, Copy, Debug)]
+enum SideHold {
+    /// Rolling without slip: the arc along the surface less `sign·s_c` is `a`.
+    Rolling { a: f64, sign: f64 },
+    /// Sliding: `T = ratio·N`.
+    Sliding { ratio: f64 },
+}
+
+impl SideHold {
+    /// The side's hold of the tip condition `tip`, `None` for a tip's condition.
+    fn of(tip: TipBc) -> Option<SideHold> {
+        match tip {
+            TipBc::SideRolling { a, sign } => Some(SideHold::Rolling { a, sign }),
+            TipBc::SideSliding { ratio } => Some(SideHold::Sliding { ratio }),
+            _ => None,
+        }
+    }
 }
 
 impl Bvp for Split<'_, '_> {
@@ -713,7 +734,7 @@ impl Bvp for Split<'_, '_> {
         let (sp, cp) = phi.sin_cos();
         res[10] = hp * cp - sp;
         match self.hold {
-            TipBc::SideSliding { ratio } => {
+            SideHold::Sliding { ratio } => {
                 // (the contact as a sliding tip: its state and the jump of the force)
                 let zc = [x, y, phi, zb[3], zb[4] - zb[10], zb[5] - zb[11]];
                 let mut r = [0.0; 6];
@@ -721,14 +742,9 @@ impl Bvp for Split<'_, '_> {
                 res[11] = r[4];
                 res[12] = r[5];
             }
-            TipBc::SideRolling { a, sign } => {
+            SideHold::Rolling { a, sign } => {
                 res[11] = y - h;
                 res[12] = track_arc(self.step.track, x).0 - sign * p[0] - a;
-            }
-            // (not built otherwise: the rolling side's invariant 0)
-            _ => {
-                res[11] = y - h;
-                res[12] = track_arc(self.step.track, x).0 - p[0];
             }
         }
     }
@@ -746,19 +762,13 @@ fn solve_step(
     (guess, predicted): (Guess, Option<Guess>),
     remesh: bool,
 ) -> Result<(Solution, Option<Solution>, Vec<f64>), Box<BvpError>> {
-    if matches!(tip, TipBc::SideRolling { .. } | TipBc::SideSliding { .. }) {
+    if let Some(hold) = SideHold::of(tip) {
         // (the tip beyond a side is free: its conditions are the outer piece's)
         let free = Step {
             tip: TipBc::Force([0.0, 0.0]),
             ..step
         };
-        let raw = solver.side.solve(
-            &Split {
-                step: &free,
-                hold: tip,
-            },
-            &guess,
-        )?;
+        let raw = solver.side.solve(&Split { step: &free, hold }, &guess)?;
         return Ok((merged(&raw), Some(raw), vec![]));
     }
     let sol = match predicted {
@@ -1860,6 +1870,13 @@ impl<'r> Rothe<'r> {
         self.stats.newton_iterations = probe.stats.newton_iterations;
         self.stats.max_nodes = probe.stats.max_nodes;
         Ok(())
+    }
+
+    /// The side's contact handed back to the tip: the state is the whole rod's (the last side
+    /// step's solution on `s`), the next steps the tip's.
+    pub fn leave_side(&mut self) {
+        self.side = None;
+        self.split = None;
     }
 
     /// Replaces the tip's force a [`Rothe::restart`] set (no effect without one).

@@ -154,8 +154,8 @@ fn a_slip_on_a_corrugation_balances_its_energy() {
 /// end lies down (the event `side_contact`, at a place that tends to the quasi-static one as
 /// the foot slows down) and the contact moves inwards: a side rolling on the crest without
 /// slip (`side_stuck`) to where it needs μs N and slips, then sliding (`side_sliding_forward`,
-/// `T = μk N`) until its contact reaches the tip, where the drag stops by name. Every row from
-/// the end's lying down has the side on the surface, pushed, inside the cone (rolling) or on
+/// `T = μk N`) until its contact reaches the tip (which takes it over). Every row from
+/// the end's lying down to there has the side on the surface, pushed, inside the cone (rolling) or on
 /// it (sliding), the free tip off the surface. The side's slip tends to the quasi-static one
 /// (d = 0.0046358741 at s = 0.9957634). Over the rolling phase the foot's work equals the
 /// kinetic and elastic energies' change (the rolling contact does no work: its material point
@@ -195,30 +195,23 @@ fn the_rod_s_end_lies_down_rolls_and_slides_as_a_side() {
     let (slip_qs, s_qs) = (q.slips[0].d, q.slips[0].s_slip);
     let (mut e, mut es, mut ss) = (vec![], vec![], vec![]);
     for v in [0.01, 0.002] {
-        let r = drag(&Rod::uniform(), &surface, &light(v, 0.005, 0.01)).unwrap();
-        let DynDragStop::SideChange {
-            change: SideChange::AtTip,
-            s,
-            ..
-        } = r.stop
-        else {
-            panic!("{}", r.stop);
-        };
-        assert!(s > 0.9989, "{}", r.stop);
-        assert!(r.stop.to_string().contains("reaches the tip"), "{}", r.stop);
+        let r = drag(&Rod::uniform(), &surface, &light(v, 0.005, 0.0075)).unwrap();
         let lies = r.events[0];
         assert_eq!(lies.kind, DragEventKind::SideContact);
         assert_eq!(lies.state, ContactState::SideStuck);
         let slip = r.events[1];
         assert_eq!(slip.kind, DragEventKind::Slip);
         assert_eq!(slip.state, ContactState::SideSlidingForward);
-        assert_eq!(r.events.len(), 2);
+        // (its contact reaches the tip, which takes it over: test
+        // `a_side_that_reaches_the_tip_hands_the_contact_back`)
+        let back = r.events[2];
+        assert_eq!(back.kind, DragEventKind::ToTip, "{r}");
         assert!(
             (slip.tangential - 0.5 * slip.normal).abs() < 1e-6 * slip.normal,
             "{slip:?}"
         );
         let (mut rolled, mut slid) = (0, 0);
-        for p in r.samples.iter().filter(|p| p.t > lies.t) {
+        for p in r.samples.iter().filter(|p| p.t > lies.t && p.t <= back.t) {
             let c = p.side.unwrap();
             assert!((c.y - h.h(c.x)).abs() < 1e-9, "{p:?}");
             assert!(c.s < 1.0 && p.normal > 0.0, "{p:?}");
@@ -247,7 +240,7 @@ fn the_rod_s_end_lies_down_rolls_and_slides_as_a_side() {
             .unwrap()
             .s;
         let rolling = r.balance(lies.t, slip.t).unwrap();
-        let sliding = r.balance(slip.t, r.samples.last().unwrap().t).unwrap();
+        let sliding = r.balance(slip.t, back.t).unwrap();
         eprintln!("v {v}: lies down {}, slip {} at s {s_slip}", lies.d, slip.d);
         eprintln!("  rolling {rolling:?}\n  sliding {sliding:?}");
         assert_eq!(rolling.friction, 0.0);
@@ -270,6 +263,87 @@ fn the_rod_s_end_lies_down_rolls_and_slides_as_a_side() {
     assert!(es[0].abs() < 1.5 * 3.17e-6, "{es:?}");
     assert!(es[1].abs() < es[0].abs() / 5.0, "{es:?}");
     assert!(ss[1].abs() < 1e-6, "{ss:?}");
+}
+
+/// A side's contact that reaches the tip hands the contact back to it (the event `to_tip`):
+/// over the corrugation 0.02 sin(2πx/0.2) at v 0.01 (dt 0.01, the light discretization) the
+/// side slides (μk 0.3) from its slip until its contact comes within 1e-4 of the tip, where
+/// the tip slides on with the side's force (its `T = μk N`), sticks, and the rod's end lies
+/// down again as a rolling side that slips again, and the drag stops where the tip touches
+/// down beside the sliding side (`second_contact`, d 0.012845). Checked: that order of events
+/// and stop; the side's
+/// `s` at the hand-over `1 − 1e-4` to the event's tolerance; every row after it on the
+/// surface with `T = μk N` to the stick; the contact's force continuous across it (the row of
+/// the first step after it within 2 % of the event's; measured 0.6 % in N); the energy over
+/// the slide from the slip to the stick, across the hand-over, balanced to 5e-4 of the energy
+/// released (as the side's own slide), and the hand-over's step no worse than twice the step
+/// after the slip's or the stick's restart (the scheme restarts at each: the steps between
+/// events balance to about 1e-10, a step after a restart to a few 1e-7). Measured
+/// (2026-12-04): the hand-over at t 1.674488, d 0.0067735 (N 2.1077 before, 2.0948 one step
+/// later); the slide's imbalance 1.2e-6 (2.3e-4 of the 5.1e-3 released); the steps after the
+/// slip, the hand-over and the stick 2.1e-7, 5.1e-7, 5.1e-7 (at dt 0.02 and 0.005 the
+/// hand-over's 6.6e-7 and 2.3e-7).
+#[test]
+fn a_side_that_reaches_the_tip_hands_the_contact_back() {
+    let surface = corrugated(0.02, 0.2);
+    let h = surface.profile().unwrap().clone();
+    let r = drag(&Rod::uniform(), &surface, &light(0.01, 0.01, 0.014)).unwrap();
+    eprintln!("{r}");
+    let kinds: Vec<DragEventKind> = r.events.iter().map(|e| e.kind).collect();
+    use DragEventKind::*;
+    assert_eq!(
+        kinds,
+        [SideContact, Slip, ToTip, Stick, SideContact, Slip],
+        "{r}"
+    );
+    // (the tip touches down beside the sliding side: two contacts, a named stop)
+    let DynDragStop::SideChange {
+        change: SideChange::SecondContact,
+        d,
+        ..
+    } = r.stop
+    else {
+        panic!("{}", r.stop);
+    };
+    assert!(d > r.events[5].d && d < 0.014, "{}", r.stop);
+    let (slip, back, stick) = (r.events[1], r.events[2], r.events[3]);
+    assert_eq!(back.state, ContactState::SlidingForward);
+    assert_eq!(r.events[4].state, ContactState::SideStuck);
+    let at = |t: f64| r.samples.iter().position(|p| p.t == t).unwrap();
+    let i = at(back.t);
+    let c = r.samples[i].side.unwrap();
+    assert!((1.0 - c.s - 1e-4).abs() < 1e-8, "{c:?}");
+    assert!(
+        back.normal > 0.0 && (back.tangential - 0.3 * back.normal).abs() < 1e-9 * back.normal,
+        "{back:?}"
+    );
+    let next = &r.samples[i + 1];
+    eprintln!(
+        "hand-over at t {} d {}: N {} T {}; next row N {} T {}",
+        back.t, back.d, back.normal, back.tangential, next.normal, next.tangential
+    );
+    assert!((next.normal / back.normal - 1.0).abs() < 0.02, "{next:?}");
+    for p in r.samples.iter().filter(|p| p.t > back.t && p.t < stick.t) {
+        assert_eq!(p.state, ContactState::SlidingForward, "{p:?}");
+        assert!(p.side.is_none(), "{p:?}");
+        assert!((p.tip_y - h.h(p.tip_x)).abs() < 1e-9, "{p:?}");
+        assert!(
+            (p.tangential - 0.3 * p.normal).abs() < 1e-9 * p.normal,
+            "{p:?}"
+        );
+    }
+    assert!(stick.t > next.t, "{stick:?}");
+    let slide = r.balance(slip.t, stick.t).unwrap();
+    let after = |t: f64| {
+        let i = r.samples.iter().rposition(|p| p.t == t).unwrap();
+        r.samples[i].balance_to(&r.samples[i + 1]).imbalance.abs()
+    };
+    let (at_slip, at_back, at_stick) = (after(slip.t), after(back.t), after(stick.t));
+    eprintln!(
+        "slide {slide:?}\nsteps after slip {at_slip:e}, hand-over {at_back:e}, stick {at_stick:e}"
+    );
+    assert!(slide.imbalance.abs() < 5e-4 * slide.released, "{slide:?}");
+    assert!(at_back < 2.0 * at_slip.max(at_stick), "{at_back:e}");
 }
 
 /// What the dynamic drag does not model is refused by name: a start with a side on the
