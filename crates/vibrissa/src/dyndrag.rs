@@ -1338,9 +1338,10 @@ struct Drive<'r, 'o> {
     /// A side's `s_c` at the last step's start and that step's length, where both ends were a
     /// side's ([`Drive::side_step`]).
     side_before: Option<(f64, f64)>,
-    /// Whether the side's contact has been farther than `2·SIDE_AT_TIP` from the tip since it
-    /// formed (at the tip): its event of reaching the tip counts from then.
-    side_armed: bool,
+    /// The side's contact's smallest `s_c` since it formed (at the tip; 1 before its first
+    /// step): the contact returns to the tip ([`Drive::side_to_tip`]) where it comes within
+    /// [`Drive::at_tip_room`] of it.
+    side_min: f64,
     /// From a side's hand-over to the tip ([`Drive::side_to_tip`]) until the end has turned
     /// away from the surface: how far the end was turned into it at the hand-over (about `κ_h
     /// SIDE_AT_TIP`). Meanwhile the end lies down again only where it turns in further than
@@ -1608,7 +1609,7 @@ impl<'r> Drive<'r, '_> {
     /// The event functions of a side on the surface (`< 0` while it holds as it does), its
     /// forces `n`, `t`, its material point's velocity `v`: `−N`, `|T| − μs N` (rolling) or
     /// `−dir·v_t` (sliding), the height of the rod's other points over the surface
-    /// ([`Drive::side_gap`]) and `s_c − (1 − SIDE_AT_TIP)` (the contact reaches the tip).
+    /// ([`Drive::side_gap`]) and `s_c − (1 − room)` (the contact reaches the tip: [`Drive::at_tip_room`]).
     fn side_events(
         &self,
         n: f64,
@@ -1622,12 +1623,22 @@ impl<'r> Drive<'r, '_> {
             // (sliding: its material point's velocity along the surface reverses)
             s => -s.dir() * along(self.track.jet(side.z[0]).1, v),
         };
-        let at_tip = if self.side_armed {
-            side.s - (1.0 - SIDE_AT_TIP)
-        } else {
-            -1.0
-        };
-        [-n, phase, self.side_gap(sol).0, at_tip]
+        [
+            -n,
+            phase,
+            self.side_gap(sol).0,
+            side.s - (1.0 - self.at_tip_room()),
+        ]
+    }
+
+    /// How near the tip the side's contact hands the contact over to it: `SIDE_AT_TIP`, or half
+    /// the way from the tip to the contact's deepest place where that is nearer (a side that
+    /// formed and turns back before it is `2·SIDE_AT_TIP` deep: the end lay down for a moment;
+    /// measured on a foot started at once over the corrugation 0.02 sin(2πx/0.2), its side
+    /// reached 1.1e-4 from the tip, went back to 7e-6, and its steps then failed, the contact
+    /// having no place beyond the tip). 0 before the side's first step.
+    fn at_tip_room(&self) -> f64 {
+        SIDE_AT_TIP.min(0.5 * (1.0 - self.side_min))
     }
 
     /// The contact's force now and its x: the side's where one touches, else the tip's.
@@ -1663,7 +1674,7 @@ impl<'r> Drive<'r, '_> {
         self.side_sign = if cp + hp * sp >= 0.0 { 1.0 } else { -1.0 };
         self.roll = crate::rothe::track_arc(&self.track, z[0]).0 - self.side_sign;
         self.rothe.side_guess = 1.0 - SIDE_START;
-        self.side_armed = false;
+        self.side_min = 1.0;
         let dir = self.state.dir();
         self.state = if dir == 0.0 {
             ContactState::SideStuck
@@ -1773,7 +1784,7 @@ impl<'r> Drive<'r, '_> {
         }
         // (half the room at the present rate: the contact speeds up as it nears the tip, where
         // its rate grows without bound as the rod grazes the surface)
-        let reach = 0.5 * (1.0 - 0.5 * SIDE_AT_TIP - c.s) / rate;
+        let reach = 0.5 * (1.0 - 0.5 * self.at_tip_room() - c.s) / rate;
         if reach < tau {
             reach.max(shortest).min(tau)
         } else {
@@ -2206,8 +2217,8 @@ impl<'r> Drive<'r, '_> {
             (Some(c0), Some(_)) => Some((c0.s, tr.tau)),
             _ => None,
         };
-        if tr.side.is_some_and(|c| c.s < 1.0 - 2.0 * SIDE_AT_TIP) {
-            self.side_armed = true;
+        if let Some(c) = tr.side {
+            self.side_min = self.side_min.min(c.s);
         }
         if self.tip_turn0.is_some()
             && (self.state.side()
@@ -3262,7 +3273,7 @@ pub fn drag(
         roll: 0.0,
         side_sign: 1.0,
         side_before: None,
-        side_armed: false,
+        side_min: 1.0,
         tip_turn0: None,
         fresh_slip: false,
         landed: false,
