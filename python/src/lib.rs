@@ -1067,9 +1067,9 @@ fn time_unit(rod: &Rod) -> Option<f64> {
 /// The rod released at t = 0 (`vibrissa dynamics free`): from its equilibrium under the tip
 /// force `release_force`, and/or with `foot_moment` stepped onto its support; every option of
 /// the library's `DynamicsOptions` the program's flags set (`time_tol`: adaptive steps, `None`
-/// fixed ones; the dampers; `time_scheme` "newmark" or "energy_momentum", `None` the library's
-/// default: the energy–momentum step with fixed steps, Newmark's with adaptive ones), and its `grid` and
-/// `tol`, the defaults and checks the library's. A
+/// fixed ones; the dampers; `time_scheme` "newmark" or "energy_momentum", `None` the
+/// library's default: the energy–momentum step with fixed steps, Newmark's with adaptive
+/// ones), and its `grid` and `tol`, the defaults and checks the library's. A
 /// dict with the library's `DynamicsResult` (`samples`, `stats`; what the program's `--json`
 /// prints) plus `units` and `time_unit_s`. Ctrl-C stops waiting for it.
 #[pyfunction]

@@ -35,8 +35,8 @@
 //! backward Euler, see [`IMPACT_STEPS`]; docs/model.md), **side contact** where a point of the rod
 //! other than the tip reaches the surface or the rod's end turns into it (the drag ends, but
 //! where the rod's end lies down: a side then rolls and slides on, and where its contact
-//! returns to the tip, **to_tip**, the tip takes it over; one contact at a time), **patch** where a sliding tip crosses a boundary of the
-//! surface's friction patches (it slides on with the next patch's μk, after a restart). A
+//! returns to the tip, **to_tip**, the tip takes it over; one contact at a time), **patch**
+//! where a sliding tip crosses a boundary of the surface's friction patches (it slides on with the next patch's μk, after a restart). A
 //! friction texture gives μs at the stuck tip's place and μk at the sliding tip's (a table's
 //! at `x(1)`). A round tip (a disk of radius `r` at the rod's end) has its centre on the line
 //! lowered by `r` (on a profile's parallel curve at the distance `r`), rolls while it sticks
@@ -601,8 +601,8 @@ pub enum DragEventKind {
     /// point tip, stuck or sliding): the contact then moves inwards, a side that rolls or slides
     /// on the surface ([`ContactState::side`]).
     SideContact,
-    /// A side's contact reaches the tip (within `1e-4` of it, its approach located in time):
-    /// the tip touches again, stuck where the side rolled, sliding the same way where it slid
+    /// A side's contact reaches the tip (within `1e-4` of it, or half its deepest distance from
+    /// the tip where that is nearer; its approach located in time): the tip touches again, stuck where the side rolled, sliding the same way where it slid
     /// (the contact's force carried over).
     ToTip,
     /// The sliding tip crosses a boundary of the friction texture's patches: it slides on with
@@ -1735,11 +1735,11 @@ impl<'r> Drive<'r, '_> {
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
     }
 
-    /// The side's contact has reached the tip (within `SIDE_AT_TIP`): the tip takes it over,
-    /// stuck at its place where the side rolled, sliding the same way where it slid, and the
-    /// scheme restarts as at a stick (its contact force now the tip's). The tip's velocity is
-    /// made the contact's (zero along the surface where it sticks, along it where it slides;
-    /// the tip moved at the contact's velocity plus the rod's turn times `SIDE_AT_TIP`): the
+    /// The side's contact has reached the tip (within [`Drive::at_tip_room`]): the tip takes it
+    /// over, stuck at its place where the side rolled, sliding the same way where it slid, and
+    /// the scheme restarts as at a stick (its contact force now the tip's). The tip's velocity
+    /// is made the contact's (zero along the surface where it sticks, along it where it slides;
+    /// the tip moved at the contact's velocity plus the rod's turn times that room): the
     /// kinetic energy this takes is booked with `impact`. The test of the end lying down again
     /// waits until it has turned away from the surface (`tip_turn0`).
     fn side_to_tip(&mut self, normal: f64, tangential: f64) -> Option<DynDragStop> {
@@ -1769,10 +1769,11 @@ impl<'r> Drive<'r, '_> {
     }
 
     /// The step `tau`, shortened where a side's contact, moving towards the tip at the rate of
-    /// the last step, would cover more than half its way to `1 − SIDE_AT_TIP/2` within it: to
-    /// the step that covers half (no shorter than `shortest`), so that the contact's event at
-    /// `1 − SIDE_AT_TIP` is found in a step that solves (past the tip the step's equations have
-    /// no solution: a rod tangent to the surface at its free end grazes it).
+    /// the last step, would cover more than half its way to `1 − room/2` within it (`room`
+    /// [`Drive::at_tip_room`]): to the step that covers half (no shorter than `shortest`), so
+    /// that the contact's event at `1 − room` is found in a step that solves (past the tip the
+    /// step's equations have no solution: a rod tangent to the surface at its free end grazes
+    /// it).
     fn side_step(&self, tau: f64, shortest: f64) -> f64 {
         let (Some(c), Some((s_prev, h))) = (&self.rothe.side, self.side_before) else {
             return tau;
