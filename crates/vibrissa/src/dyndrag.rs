@@ -1281,6 +1281,15 @@ const SIDE_START: f64 = 1e-3;
 /// v 0.01, dt 0.01 on a mesh limit).
 const SIDE_AT_TIP: f64 = 1e-4;
 
+/// How near the tip a side's contact that races towards it is handed over at once where its
+/// steps fail ([`Drive::grazes_tip`]). Why: where the rod's end grazes the surface the contact
+/// reaches the tip like `√(t* − t)` and its steps may cease to solve before `1 − SIDE_AT_TIP`
+/// (measured over the corrugation 0.01 sin(2πx/0.1) at v 0.05: from 1.64e-4 every step down to
+/// the shortest, 1e-5, failed, and the drag ended in a solver error after its refinements, 100
+/// s). The hand-over then leaves the end turned into the surface by about `κ_h (1 − s_c)`,
+/// which the test of its lying down again allows for (`tip_turn0`).
+const SIDE_GRAZE: f64 = 1e-3;
+
 /// The rod next to a side's contact that its other-contact test leaves out
 /// ([`Drive::side_gap`]): it touches the surface to second order there, its height the
 /// collocation's error.
@@ -1838,6 +1847,18 @@ impl<'r> Drive<'r, '_> {
         match self.try_step(tau) {
             Ok(tr) => Ok((tau, tr)),
             Err(e) => self.side_shorter(tau, tau_min).ok_or(e),
+        }
+    }
+
+    /// Whether the side's contact, within [`SIDE_GRAZE`] of the tip, moved towards it over the
+    /// last step: where its steps then fail (at every length down to the shortest), the tip
+    /// takes the contact over at once ([`Drive::side_to_tip`]) rather than at `1 − room`.
+    fn grazes_tip(&self) -> bool {
+        match (&self.rothe.side, self.side_before) {
+            (Some(c), Some((s_prev, _))) => {
+                self.state.side() && c.s > 1.0 - SIDE_GRAZE && c.s > s_prev
+            }
+            _ => false,
         }
     }
 
@@ -3058,7 +3079,15 @@ impl<'r> Drive<'r, '_> {
             // `4/τ²` would magnify the positions' rounding past what the collocation meets)
             let left = t_end - self.t;
             let tau = if left <= h + tau_min { left } else { h };
-            let (tau, tr) = self.step_from_here(tau, tau_min)?;
+            let (tau, tr) = match self.step_from_here(tau, tau_min) {
+                Ok(step) => step,
+                // (a side whose contact races to the tip: handed over at once)
+                Err(_) if self.grazes_tip() => match self.apply_side(EDGE) {
+                    Some(stop) => return Ok(stop),
+                    None => continue,
+                },
+                Err(e) => return Err(e),
+            };
             if let Some(tol) = self.o.time_tol {
                 let rejected;
                 (rejected, h) = ctl.judge(self.t, tau, self.rothe.local_error(&tr), tol)?;
@@ -3098,6 +3127,7 @@ impl<'r> Drive<'r, '_> {
                 }
             }
             let mut first: Option<(f64, usize)> = None;
+            let mut graze = false;
             for which in [LIFT, PHASE, SIDE, EDGE] {
                 if g1[which] >= 0.0 {
                     let at = match self.locate(which, lo, tau) {
@@ -3108,11 +3138,22 @@ impl<'r> Drive<'r, '_> {
                             let (n, t) = self.forces(self.held_force(&tr), tr.sol.right()[0]);
                             return Ok(self.unresolved_step(n, t));
                         }
+                        // (a side whose contact races to the tip: handed over at once)
+                        Err(_) if self.grazes_tip() => {
+                            graze = true;
+                            break;
+                        }
                         Err(e) => return Err(e),
                     };
                     if first.is_none_or(|(t, _)| at < t) {
                         first = Some((at, which));
                     }
+                }
+            }
+            if graze {
+                match self.apply_side(EDGE) {
+                    Some(stop) => return Ok(stop),
+                    None => continue,
                 }
             }
             let Some((at, which)) = first else {

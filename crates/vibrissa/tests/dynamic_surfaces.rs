@@ -408,6 +408,44 @@ fn a_side_that_lies_down_for_a_moment_hands_back_to_the_tip() {
     }
 }
 
+/// A side whose contact races to the tip (the rod's end grazing the surface) is handed over
+/// to the tip where its steps cease to solve: over the corrugation 0.01 sin(2πx/0.1) at v
+/// 0.05 (dt 0.02, the light discretization) the sliding tip's end lies down, the side slides
+/// on, and its contact nears the tip like `√(t* − t)`; every step from 2.7e-4 before the tip
+/// fails (down to the shortest), so the tip takes the contact over there (measured
+/// 2026-12-04: s = 0.99973 at t = 1.09795) and slides on (`T = μk N`) until a point at s
+/// 0.9944 reaches the surface beside it, a named stop (`side_contact`, d 0.016504). Before,
+/// the drag ended in a solver error (at dt 0.01 after 100 s of refinements). About 13 s.
+#[test]
+fn a_side_that_grazes_the_tip_hands_back_where_its_steps_fail() {
+    let surface = corrugated(0.01, 0.1);
+    let h = surface.profile().unwrap().clone();
+    let r = drag(&Rod::uniform(), &surface, &light(0.05, 0.02, 0.03)).unwrap();
+    eprintln!("{r}");
+    let kinds: Vec<DragEventKind> = r.events.iter().map(|e| e.kind).collect();
+    use DragEventKind::*;
+    assert_eq!(kinds[..3], [Slip, SideContact, ToTip], "{r}");
+    assert!(
+        matches!(r.stop, DynDragStop::SideContact { .. } | DynDragStop::DMax),
+        "{}",
+        r.stop
+    );
+    let back = r.events[2];
+    let i = r.samples.iter().position(|p| p.t == back.t).unwrap();
+    let c = r.samples[i].side.unwrap();
+    eprintln!("handed over at s {} (t {})", c.s, back.t);
+    // (before `1 − 1e-4`, the hand-over of a contact whose steps solve, and within 1e-3)
+    assert!(1.0 - c.s > 1.5e-4 && 1.0 - c.s < 1e-3, "{c:?}");
+    for p in r.samples.iter().filter(|p| p.t > back.t) {
+        assert_eq!(p.state, ContactState::SlidingForward, "{p:?}");
+        assert!((p.tip_y - h.h(p.tip_x)).abs() < 1e-9, "{p:?}");
+        assert!(
+            p.normal > 0.0 && (p.tangential - 0.3 * p.normal).abs() < 1e-9 * p.normal,
+            "{p:?}"
+        );
+    }
+}
+
 /// What the dynamic drag does not model is refused by name: a start with a side on the
 /// surface (the rod tapered to 0.3 over a fine corrugation is pressed onto two of its crests).
 /// (A friction texture is modelled: tests/dynamic_friction.rs.)
