@@ -3046,6 +3046,50 @@ impl<'r> Drive<'r, '_> {
         }
     }
 
+    /// The stop where the stuck tip's event `which`, located at `at` (the step `tr` taken to
+    /// it), is the scheme's rather than the rod's: a slip or lift-off within the shortest step
+    /// right after a stick ([`Drive::unresolved`]), a held force that jumped within it
+    /// ([`Drive::jumped`]), a slip beyond the friction cone while a refinement is left
+    /// ([`Drive::beyond_cone`]) or inside it ([`Drive::inside_cone`]). `None`: the event is
+    /// the rod's.
+    fn stuck_event_stop(
+        &mut self,
+        tr: &Trial,
+        which: usize,
+        at: f64,
+        shortest: f64,
+    ) -> Option<DynDragStop> {
+        if self.instant_events > 0 && at <= shortest {
+            // right after its stick the tip needs to slip or lift within the shortest
+            // step: its force has left the friction cone at once, which the rod's does
+            // not (see `unresolved`)
+            return Some(self.unresolved(self.held_force(tr)));
+        }
+        if at <= shortest {
+            if let Some(stop) = self.jumped(tr) {
+                return Some(stop);
+            }
+        }
+        if which == PHASE
+            && !std::mem::take(&mut self.accept_cone)
+            && self.refined_dt().is_some()
+            && self.checkpoints.0.iter().any(|c| c.0 < self.t)
+        {
+            // a slip placed beyond the friction cone (the held force jumped within the
+            // shortest step by less than `jumped` names, or at the step's end, where the
+            // velocity mismatch's term is not taken out): taken again with shorter steps
+            // where a refinement and a state to go back to are left
+            if let Some(stop) = self.beyond_cone(tr) {
+                self.save_cone_origin();
+                return Some(stop);
+            }
+        }
+        if which == PHASE {
+            return self.inside_cone(tr);
+        }
+        None
+    }
+
     /// The drag's steps and events to its end.
     fn march(&mut self) -> Result<DynDragStop, VibrissaError> {
         let t_end = self.o.t_end();
@@ -3164,34 +3208,8 @@ impl<'r> Drive<'r, '_> {
             };
             let shortest = tau_min.min(tau);
             let tr = self.try_step(at.max(shortest))?;
-            if self.state == ContactState::Stuck && self.instant_events > 0 && at <= shortest {
-                // right after its stick the tip needs to slip or lift within the shortest
-                // step: its force has left the friction cone at once, which the rod's does
-                // not (see `unresolved`)
-                return Ok(self.unresolved(self.held_force(&tr)));
-            }
-            if self.state == ContactState::Stuck && at <= shortest {
-                if let Some(stop) = self.jumped(&tr) {
-                    return Ok(stop);
-                }
-            }
-            if self.state == ContactState::Stuck
-                && which == PHASE
-                && !std::mem::take(&mut self.accept_cone)
-                && self.refined_dt().is_some()
-                && self.checkpoints.0.iter().any(|c| c.0 < self.t)
-            {
-                // a slip placed beyond the friction cone (the held force jumped within the
-                // shortest step by less than `jumped` names, or at the step's end, where the
-                // velocity mismatch's term is not taken out): taken again with shorter steps
-                // where a refinement and a state to go back to are left
-                if let Some(stop) = self.beyond_cone(&tr) {
-                    self.save_cone_origin();
-                    return Ok(stop);
-                }
-            }
-            if self.state == ContactState::Stuck && which == PHASE {
-                if let Some(stop) = self.inside_cone(&tr) {
+            if self.state == ContactState::Stuck {
+                if let Some(stop) = self.stuck_event_stop(&tr, which, at, shortest) {
                     return Ok(stop);
                 }
             }
