@@ -1712,10 +1712,10 @@ impl<'r> Drive<'r, '_> {
         self.ends_before = None;
         self.ends_now = None;
         self.held_now = None;
-        if which == EDGE {
-            return self.side_to_tip(normal, tangential);
-        }
-        let kind = if which == LIFT {
+        let kind = if which == EDGE {
+            self.side_to_tip();
+            DragEventKind::ToTip
+        } else if which == LIFT {
             if !self.o.flight {
                 self.push_event(DragEventKind::LiftOff, normal, tangential);
                 return Some(DynDragStop::LiftOff { d: self.d });
@@ -1751,7 +1751,7 @@ impl<'r> Drive<'r, '_> {
     /// the tip moved at the contact's velocity plus the rod's turn times that room): the
     /// kinetic energy this takes is booked with `impact`. The test of the end lying down again
     /// waits until it has turned away from the surface (`tip_turn0`).
-    fn side_to_tip(&mut self, normal: f64, tangential: f64) -> Option<DynDragStop> {
+    fn side_to_tip(&mut self) {
         let dir = self.state.dir();
         let z = self.rothe.sol.right().to_vec();
         let (x, hp) = (z[0], self.track.jet(z[0]).1);
@@ -1772,9 +1772,6 @@ impl<'r> Drive<'r, '_> {
         self.tip_turn0 = Some(self.turn_in(&z));
         self.side_before = None;
         self.restart(false);
-        self.push_event(DragEventKind::ToTip, normal, tangential);
-        self.instant_events += 1;
-        (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
     }
 
     /// The step `tau`, shortened where a side's contact, moving towards the tip at the rate of
@@ -1784,17 +1781,16 @@ impl<'r> Drive<'r, '_> {
     /// step's equations have no solution: a rod tangent to the surface at its free end grazes
     /// it).
     fn side_step(&self, tau: f64, shortest: f64) -> f64 {
-        let (Some(c), Some((s_prev, h))) = (&self.rothe.side, self.side_before) else {
+        let Some((s, rate)) = self.side_rate() else {
             return tau;
         };
-        let rate = (c.s - s_prev) / h;
         // (a contact at rest or moving inwards, or a rate that is not a number: as it is)
         if rate.is_nan() || rate <= 0.0 {
             return tau;
         }
         // (half the room at the present rate: the contact speeds up as it nears the tip, where
         // its rate grows without bound as the rod grazes the surface)
-        let reach = 0.5 * (1.0 - 0.5 * self.at_tip_room() - c.s) / rate;
+        let reach = 0.5 * (1.0 - 0.5 * self.at_tip_room() - s) / rate;
         if reach < tau {
             reach.max(shortest).min(tau)
         } else {
@@ -1854,12 +1850,19 @@ impl<'r> Drive<'r, '_> {
     /// last step: where its steps then fail (at every length down to the shortest), the tip
     /// takes the contact over at once ([`Drive::side_to_tip`]) rather than at `1 − room`.
     fn grazes_tip(&self) -> bool {
-        match (&self.rothe.side, self.side_before) {
-            (Some(c), Some((s_prev, _))) => {
-                self.state.side() && c.s > 1.0 - SIDE_GRAZE && c.s > s_prev
-            }
-            _ => false,
-        }
+        self.state.side()
+            && self
+                .side_rate()
+                .is_some_and(|(s, rate)| s > 1.0 - SIDE_GRAZE && rate > 0.0)
+    }
+
+    /// The side's contact `s_c` now and the rate it moved at over the last step (towards the
+    /// tip where positive), where both ends of that step were a side's.
+    fn side_rate(&self) -> Option<(f64, f64)> {
+        let (Some(c), Some((s_prev, h))) = (&self.rothe.side, self.side_before) else {
+            return None;
+        };
+        Some((c.s, (c.s - s_prev) / h))
     }
 
     /// A side's step that failed (`tau`), taken at `tau/2`, `tau/4`, … (no shorter than

@@ -1488,7 +1488,7 @@ impl<'r> Rothe<'r> {
             theta_then: self.theta,
             emm_kv: if self.emm { self.gi / tau } else { 0.0 },
         };
-        let side = matches!(tip, TipBc::SideRolling { .. } | TipBc::SideSliding { .. });
+        let side = SideHold::of(tip).is_some();
         let mut guess = if side {
             self.split_start()
         } else {
@@ -1627,29 +1627,19 @@ impl<'r> Rothe<'r> {
     /// [`Settings::remesh`]) on the nodes [`coarser`] kept of it (the solution's own values and
     /// slopes there).
     fn start(&self) -> Guess {
-        let dup = self.sol.mesh.windows(2).any(|w| w[0] == w[1]);
-        let Some(keep) = self.start_nodes.as_ref().filter(|_| !dup) else {
-            if !dup {
-                return Guess::from(&self.sol);
-            }
+        let once: Vec<usize>;
+        let keep: &[usize] = if self.sol.mesh.windows(2).any(|w| w[0] == w[1]) {
             // a side step's solution on the rod's `s` ([`merged`]): the contact's node once
             // (the rod's force there the outer piece's: the side has let go)
-            let n = self.sol.n;
-            let keep: Vec<usize> = (0..self.sol.len())
+            once = (0..self.sol.len())
                 .filter(|&i| i == 0 || self.sol.mesh[i] != self.sol.mesh[i - 1])
                 .collect();
-            let pick = |v: &[f64]| -> Vec<f64> {
-                keep.iter()
-                    .flat_map(|&i| v[i * n..(i + 1) * n].iter().copied())
-                    .collect()
-            };
-            return Guess {
-                n,
-                mesh: keep.iter().map(|&i| self.sol.mesh[i]).collect(),
-                z: pick(&self.sol.z),
-                dz: Some(pick(&self.sol.dz)),
-                params: vec![],
-            };
+            &once
+        } else {
+            match &self.start_nodes {
+                Some(keep) => keep,
+                None => return Guess::from(&self.sol),
+            }
         };
         let n = self.sol.n;
         let pick = |v: &[f64]| -> Vec<f64> {
