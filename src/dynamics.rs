@@ -55,6 +55,11 @@ pub const DRAG_PHYSICAL: [&str; 9] = [
 /// that has one, before `event`: its arc length and place.
 pub const SIDE_COLUMNS: [&str; 3] = ["side_s", "side_x", "side_y"];
 
+/// The drag's columns of the tip on the surface beside a side (two contacts at once; empty in
+/// the other rows), in a drag that has such rows, after [`SIDE_COLUMNS`]: the tip's state and
+/// its normal and tangential forces (`normal` and `tangential` are the side's in those rows).
+pub const TIP_ALSO_COLUMNS: [&str; 3] = ["tip_state", "tip_normal", "tip_tangential"];
+
 /// Columns of `dynamics free`: one row per time step (the start included); with a physical
 /// scene [`FREE_PHYSICAL`] after them.
 pub const FREE_HEADER: [&str; 12] = [
@@ -196,6 +201,10 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
     if sides {
         header.extend(SIDE_COLUMNS);
     }
+    let pairs = r.samples.iter().any(|p| p.tip_also.is_some());
+    if pairs {
+        header.extend(TIP_ALSO_COLUMNS);
+    }
     header.push("event");
     writeln!(w, "{}", header.join(","))?;
     let mut events = r.events.iter().peekable();
@@ -236,6 +245,15 @@ fn run_drag(a: &DynamicsDragArgs) -> Res<()> {
         if sides {
             match p.side {
                 Some(c) => v.extend([c.s, c.x, c.y].map(num)),
+                None => v.extend([String::new(), String::new(), String::new()]),
+            }
+        }
+        if pairs {
+            match p.tip_also {
+                Some(c) => {
+                    v.push(c.state.name().to_string());
+                    v.extend([c.normal, c.tangential].map(num));
+                }
                 None => v.extend([String::new(), String::new(), String::new()]),
             }
         }

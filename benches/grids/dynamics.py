@@ -14,8 +14,9 @@ taper 0.3 at eta 0.9 (at 0.75 its pressed start crosses the surface); the short 
 rat presets; the paper's rod with internal damping 0.01; the paper's rod with --flight; the
 paper's rod on a surface inclined by 0.1, over a corrugation 0.003 sin(2 pi x/0.1) and over one
 0.02 sin(2 pi x/0.2) (where the rod's end lies down, a side that rolls and slides on until
-its contact reaches the tip, which takes it over, to where another point of the rod reaches
-the surface: side_change, or a side touches while the tip holds: side_contact); the short
+its contact reaches the tip, which takes it over; a side and the tip on the surface at once,
+to where two stuck contacts would trap the rod, side_change trapped, or the pair's steps do not
+solve, the rod lying along the surface between them, stretch); the short
 rat preset over the first
 corrugation; the paper's rod on friction patches and on a friction table along x
 (data/dynamics/friction_*.toml); the paper's rod with a round tip of radius 0.02 and internal
@@ -78,6 +79,7 @@ COMMON = ["--d-max", "0.12", "--json"]
 COLUMNS = ["dt", "speed", "scene", "class", "stop_reason", "slips", "events", "bad_events",
            "d_end", "cpu_s", "exit", "detail"]
 CLASSES = ["d_max", "lift-off", "touchdown", "side contact", "side change (named)",
+           "stretch (named)",
            "unresolved stick (named)",
            "unresolved step (named)", "max_events", "refused", "no start", "error: other",
            "panic", "slow"]
@@ -121,12 +123,16 @@ def run(binary, timeout, case):
     cls = {"d_max": "d_max", "lift_off": "lift-off", "touchdown": "touchdown",
            "side_contact": "side contact", "unresolved_stick": "unresolved stick (named)",
            "unresolved_step": "unresolved step (named)", "side_change": "side change (named)",
-           "max_events": "max_events"}.get(reason, "error: other")
+           "stretch": "stretch (named)", "max_events": "max_events"}.get(reason, "error: other")
     d_end = r["samples"][-1]["d"] if r["samples"] else 0.0
     row.update({"class": cls, "stop_reason": reason,
                 "slips": sum(e["kind"] == "slip" for e in ev), "events": len(ev),
                 "bad_events": bad, "d_end": f"{d_end:.6f}",
-                "detail": json.dumps(r["stop"]) if reason != "d_max" else ""})
+                "detail": json.dumps(r["stop"]) if reason != "d_max" else "",
+                # (not columns of this grid: benches/grids/side_sweep.py's)
+                "to_tip": sum(e["kind"] == "to_tip" for e in ev),
+                "pairs": sum(1 for i, e in enumerate(ev) if "tip_also" in e
+                             and (i == 0 or "tip_also" not in ev[i - 1]))})
     return row
 
 
@@ -162,7 +168,7 @@ def main():
             rows.append(row)
             print(",".join(str(row.get(k, "")) for k in COLUMNS[:10]), file=sys.stderr, flush=True)
     with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
+        w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
     count([a.out])

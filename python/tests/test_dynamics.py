@@ -2,7 +2,9 @@
 give the program's numbers (its ``--json``, the library's result) field by field, and refuse
 what the program refuses."""
 
+import csv
 import inspect
+import io
 import json
 import re
 
@@ -379,6 +381,37 @@ def test_a_whisk_over_a_foot_table_equals_the_program(program, tmp_path):
         vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=[(0, 0), (1, 0.1, 0, 4)])
     with pytest.raises(vibrissa.InputError, match="d_max given with it"):
         vibrissa.dynamics_drag(vibrissa.Rod(), foot_table=rows, d_max=0.1)
+
+
+def test_two_contacts_in_time_equal_the_program(program):
+    # over the corrugation 0.02 sin(2 pi x/0.2) at v 0.01 the free tip beyond a sliding side
+    # touches down beside it: two contacts (the tip's in the tip_also columns), then the side
+    # lifts off (docs/model.md, "Two contacts in time")
+    args = ["dynamics", "drag", "--speed", "0.01", "--d-max", "0.0135", "--dt", "0.01",
+            "--grid", "100", "--tol", "1e-8", "--corrugation-amplitude", "0.02",
+            "--corrugation-wavelength", "0.2"]
+    want = json.loads(program(*args, "--json"))
+    surface = vibrissa.Surface(eta=0.75, profile={"kind": "sine", "amplitude": 0.02,
+                                                 "wavelength": 0.2})
+    py = vibrissa.dynamics_drag(vibrissa.Rod(), surface, speed=0.01, d_max=0.0135, dt=0.01,
+                                grid=100, tol=1e-8)
+    check_samples(py, want["samples"], " ".join(args))
+    assert py["events"] == want["events"]
+    assert py["stop"] == want["stop"]
+    kinds = [e["kind"] for e in py["events"]]
+    assert kinds[-2:] == ["touchdown", "lift_off"], kinds
+    assert py["events"][-2]["tip_also"] == "sliding_forward"
+    assert "tip_also" not in py["events"][-1]
+    pair = [i for i, st in enumerate(py["samples"]["tip_also_state"]) if st is not None]
+    assert pair, py["samples"]["tip_also_state"]
+    for i in pair:
+        assert py["samples"]["tip_also_state"][i] == "sliding_forward"
+        n, t = py["samples"]["tip_also_normal"][i], py["samples"]["tip_also_tangential"][i]
+        assert n > 0 and abs(t - 0.3 * n) < 1e-8 * n
+    assert np.isnan(py["samples"]["tip_also_normal"][0])
+    # the program's CSV has the same in its columns tip_state, tip_normal, tip_tangential
+    rows = list(csv.DictReader(io.StringIO(program(*args))))
+    assert [r["tip_state"] for r in rows] == [st or "" for st in py["samples"]["tip_also_state"]]
 
 
 def test_dynamics_drag_on_a_corrugation_equals_the_program(program):

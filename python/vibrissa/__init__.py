@@ -854,9 +854,16 @@ def dynamics_drag(
     the stuck tip's μs where it sticks and the sliding tip's μk where it slides, a patch's
     boundary crossed is an event ``patch``), from the pressed start at rest to ``d_max``. A
     ``rod`` with a ``tip_radius`` (on a line) rolls while it sticks and carries the moment
-    ``r T``; it needs ``internal_damping`` above 0 (e.g. 1e-4). The tip
-    alone touches: a start with a side on the surface raises :class:`Error` naming the contact
-    (no start), and a side that reaches the surface later ends the drag (stop
+    ``r T``; it needs ``internal_damping`` above 0 (e.g. 1e-4). The start has the tip alone
+    on the surface (a start with a side on it raises :class:`Error` naming the contact: no
+    start). Beside a point tip on a surface of uniform friction a side that reaches the surface
+    is followed: where the rod's end lies down, a side that rolls and slides (states
+    ``side_stuck``, ``side_sliding_forward``, ``side_sliding_back``; its place in the columns
+    ``side_s``, ``side_x``, ``side_y``) until its contact returns to the tip (event
+    ``to_tip``); elsewhere, or where the free tip touches down beside a side, two contacts at
+    once (the tip's state and forces in the columns ``tip_also_state``, ``tip_also_normal``,
+    ``tip_also_tangential``; ``normal``, ``tangential`` the side's) until one lifts off or they
+    meet; else (a round tip, a texture, a table of μk) it ends the drag (stop
     ``side_contact``).
 
     ``foot_table``: the foot's path instead of ``speed``, ``ramp`` and ``d_max`` (any of them
@@ -896,7 +903,10 @@ def dynamics_drag(
     resolve (its force would jump within the shortest step, or the event's search within
     the step is not solved: ``t``, ``d``, ``before`` and the forces after), or
     ``side_contact`` with ``t``, ``d`` and the rod's point ``s``, ``x`` that reached the
-    surface, ``s`` 1 where the rod's end lies down), ``stats``,
+    surface, ``s`` 1 where the rod's end lies down, ``side_change`` with its ``change``
+    (``second_contact``, ``third_contact``, ``trapped``: a side and the tip that would both
+    stick, ...), or ``stretch``, two contacts whose steps do not solve with the rod between
+    them within ``gap`` of the surface), ``stats``,
     ``units``, ``time_unit_s``."""
     if surface is None:
         surface = Surface()

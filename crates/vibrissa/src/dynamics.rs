@@ -62,7 +62,7 @@ use serde::Serialize;
 pub use crate::dyndrag::{
     drag, parse_foot_table, read_foot_table, ContactState, DragEventKind, DragSample, DragStats,
     DynDragEvent, DynDragOptions, DynDragResult, DynDragStop, EnergyBalance, SideChange,
-    SideSample, Whisk, IMPACT_STEPS,
+    SideSample, TipAlso, Whisk, IMPACT_STEPS,
 };
 pub use crate::rothe::{DynSample, DynStats};
 pub use crate::timestep::{TimeStepControl, TIME_TOL_RANGE};

@@ -33,9 +33,13 @@
 //! `flight` the tip flies free until **touchdown**, where its gap to the surface closes: a
 //! plastic impact, after which the tip slides or sticks on; its first steps are taken by
 //! backward Euler, see [`IMPACT_STEPS`]; docs/model.md), **side contact** where a point of the rod
-//! other than the tip reaches the surface or the rod's end turns into it (the drag ends, but
-//! where the rod's end lies down: a side then rolls and slides on, and where its contact
-//! returns to the tip, **to_tip**, the tip takes it over; one contact at a time), **patch**
+//! other than the tip reaches the surface or the rod's end turns into it (where the rod's end
+//! lies down a side then rolls and slides on, and where its contact returns to the tip,
+//! **to_tip**, the tip takes it over; where another point touches beside the tip, or the free
+//! tip beyond a side touches down beside it, the two contacts go on together, each sticking,
+//! slipping and lifting off by its own law, until one lifts off or they meet at the tip; two
+//! stuck contacts, which would trap the rod between them, and a third contact end the drag by
+//! name; a round tip, a friction texture or a table of μk end it at a side contact), **patch**
 //! where a sliding tip crosses a boundary of the surface's friction patches (it slides on with the next patch's μk, after a restart). A
 //! friction texture gives μs at the stuck tip's place and μk at the sliding tip's (a table's
 //! at `x(1)`). A round tip (a disk of radius `r` at the rod's end) has its centre on the line
@@ -94,7 +98,9 @@
 //! scheme's error for this one.
 
 use crate::config::SolverConfig;
-use crate::rothe::{check_damping, Foot, Rothe, Settings, SideAt, TipBc, Track, Trial};
+use crate::rothe::{
+    check_damping, EndHold, Foot, Rothe, Settings, SideAt, SideHold, TipBc, Track, Trial,
+};
 use crate::shape::BranchChoice;
 use crate::solve::{solve, Target};
 use crate::surface::Texture;
@@ -596,10 +602,11 @@ pub enum DragEventKind {
     LiftOff,
     /// The flying tip reaches the surface again (a plastic impact).
     Touchdown,
-    /// A point of the rod other than its tip reaches the surface: the drag ends (the dynamic
-    /// drag has one contact at a time), but where the rod's end lies down on the surface (a
-    /// point tip, stuck or sliding): the contact then moves inwards, a side that rolls or slides
-    /// on the surface ([`ContactState::side`]).
+    /// A point of the rod other than its tip reaches the surface. Beside a point tip (stuck or
+    /// sliding, uniform friction): where the rod's end lies down the contact moves inwards, a
+    /// side that rolls or slides on the surface ([`ContactState::side`]); elsewhere on the rod
+    /// the point is a side sliding the way it moves beside the tip (two contacts at once:
+    /// [`DynDragEvent::tip_also`]). Else the drag ends there.
     SideContact,
     /// A side's contact reaches the tip (within `1e-4` of it, or half its deepest distance from
     /// the tip where that is nearer; its approach located in time): the tip touches again, stuck where the side rolled, sliding the same way where it slid
@@ -646,6 +653,12 @@ pub struct DynDragEvent {
     pub tangential: f64,
     /// The contact from here on.
     pub state: ContactState,
+    /// Where a side touches (`state` a side's): the tip's contact on the surface as well from
+    /// here on (stuck or sliding: two contacts at once), `None` (and left out of JSON) where the
+    /// tip is free. At an event of the tip's own (its slip, stick or lift-off beside the side)
+    /// `normal` and `tangential` are the tip's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tip_also: Option<ContactState>,
 }
 
 /// The rod at one time of a dynamic drag.
@@ -710,6 +723,21 @@ pub struct DragSample {
     /// `tangential` are then its forces). `None` (and left out of JSON) otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub side: Option<SideSample>,
+    /// Where a side touches and the tip as well (two contacts at once): the tip's contact.
+    /// `None` (and left out of JSON) otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tip_also: Option<TipAlso>,
+}
+
+/// The tip's contact beside a side's at a sample (two contacts at once).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TipAlso {
+    /// The tip's state: stuck, or sliding.
+    pub state: ContactState,
+    /// Its normal force `N` (the step's end force).
+    pub normal: f64,
+    /// Its tangential force `T`.
+    pub tangential: f64,
 }
 
 /// Where a side of the rod touches the surface at a sample.
@@ -778,8 +806,9 @@ pub enum DynDragStop {
     },
     /// A point of the rod other than its tip reached the surface at time `t`, displacement `d`:
     /// the point at arc length `s`, lab `x` (on a corrugation's crest, say, or the rod's end
-    /// turning into the surface as `s → 1`). The dynamic drag has the tip alone on the surface;
-    /// the quasi-static drag (`vibrissa::drag`) follows such contacts.
+    /// turning into the surface as `s → 1`) where the dynamic drag does not follow a side (it
+    /// does beside a point tip on the surface, of uniform friction); the quasi-static drag
+    /// (`vibrissa::drag`) follows such contacts.
     SideContact {
         /// When.
         t: f64,
@@ -790,11 +819,27 @@ pub enum DynDragStop {
         /// Its lab x.
         x: f64,
     },
+    /// A side and the tip on the surface at once whose step the collocation does not solve, at
+    /// any step down to the shortest nor after the refinements (time `t`, displacement `d`):
+    /// the rod between the side's contact at arc length `s` and the tip lies within `gap` of
+    /// the surface everywhere (the largest distance of the solution's nodes between them below
+    /// it), a contact along a stretch rather than at two points, which the dynamic drag's point
+    /// contacts do not follow (the quasi-static drag does: its `stretch` states).
+    Stretch {
+        /// When.
+        t: f64,
+        /// Where.
+        d: f64,
+        /// The side's contact's arc length.
+        s: f64,
+        /// The largest distance of the rod below the surface between the two contacts.
+        gap: f64,
+    },
     /// A side on the surface ([`ContactState::side`]) changes its contact at time `t`,
     /// displacement `d` in a way the dynamic drag does not follow (`change`): the contact at
-    /// arc length `s`, lab `x`, its forces there (`normal`, `tangential`). The quasi-static
-    /// drag follows two contacts at once. (A contact that returns to the tip is followed:
-    /// [`DragEventKind::ToTip`].)
+    /// arc length `s`, lab `x`, its forces there (`normal`, `tangential`). (A contact that
+    /// returns to the tip is followed, [`DragEventKind::ToTip`], and so is the tip on the surface
+    /// beside a side, [`DynDragEvent::tip_also`].)
     SideChange {
         /// What changes.
         change: SideChange,
@@ -825,18 +870,30 @@ pub enum SideChange {
     /// Its contact comes within 1e-4 of the tip at such an instant (elsewhere the tip takes
     /// the contact over, [`DragEventKind::ToTip`]).
     AtTip,
-    /// Another point of the rod reaches the surface.
+    /// Another point of the rod reaches the surface (the tip free beyond the side: a point
+    /// other than the tip, which touches down beside the side instead).
     SecondContact,
+    /// A third point of the rod reaches the surface beside the side and the tip (or the end
+    /// lies down beside the side).
+    ThirdContact,
+    /// It sticks beside the stuck tip, or the tip sticks beside it: the two stuck contacts would
+    /// trap the rod between them (its chord less its length held by two no-slip conditions, a
+    /// pair of tangential forces that only friction bounds, large where the segment is short;
+    /// the steps of such a pair were singular to working precision where tried; docs/model.md,
+    /// "Two contacts that do not slip trap the rod").
+    Trapped,
 }
 
 impl SideChange {
-    /// `slip`, `lift_off`, `at_tip`, `second_contact`.
+    /// `slip`, `lift_off`, `at_tip`, `second_contact`, `third_contact`, `trapped`.
     pub fn name(self) -> &'static str {
         match self {
             SideChange::Slip => "slip",
             SideChange::LiftOff => "lift_off",
             SideChange::AtTip => "at_tip",
             SideChange::SecondContact => "second_contact",
+            SideChange::ThirdContact => "third_contact",
+            SideChange::Trapped => "trapped",
         }
     }
 }
@@ -878,14 +935,24 @@ impl fmt::Display for DynDragStop {
             DynDragStop::SideContact { t, d, x, .. } if self.at_end() => write!(
                 f,
                 "the rod's end lies down on the surface at t = {t}, d = {d} (x = {x}; a side \
-                 touches next to the tip): the dynamic drag has the tip alone on the surface \
-                 (the quasi-static drag follows side contacts)"
+                 touches next to the tip): the dynamic drag follows a side only beside a point \
+                 tip on the surface, of uniform friction (the quasi-static drag follows side \
+                 contacts)"
             ),
             DynDragStop::SideContact { t, d, s, x } => write!(
                 f,
                 "a side of the rod reaches the surface at t = {t}, d = {d} (the point s = {s} at \
-                 x = {x}): the dynamic drag has the tip alone on the surface (the quasi-static \
-                 drag follows side contacts)"
+                 x = {x}): the dynamic drag follows a side only beside a point tip on the \
+                 surface, of uniform friction (the quasi-static drag follows side contacts)"
+            ),
+            DynDragStop::Stretch { t, d, s, gap } => write!(
+                f,
+                "the side at s = {s} and the tip on the surface do not resolve at t = {t}, \
+                 d = {d} (no step of the two contacts solves, nor shorter ones): the rod between \
+                 them, {len:e} long, lies within {gap:e} of the surface (where that is small \
+                 against its length, a contact along a stretch, which the dynamic drag's point \
+                 contacts do not follow; the quasi-static drag does)",
+                len = 1.0 - s
             ),
             DynDragStop::SideChange {
                 change,
@@ -901,12 +968,20 @@ impl fmt::Display for DynDragStop {
                     SideChange::LiftOff => "lifts off",
                     SideChange::AtTip => "reaches the tip (within 1e-4)",
                     SideChange::SecondContact => "is joined by another point on the surface",
+                    SideChange::ThirdContact => {
+                        "and the tip are joined by a third point on the surface"
+                    }
+                    SideChange::Trapped => {
+                        "and the tip would both stick, trapping the rod between them (a pair of \
+                         tangential forces only friction bounds)"
+                    }
                 };
                 write!(
                     f,
                     "the side on the surface {what} at t = {t}, d = {d} (s = {s}, x = {x}, \
                      N = {normal}, T = {tangential}): the dynamic drag follows one side that \
-                     rolls, slides or lifts off (the quasi-static drag follows the rest)"
+                     rolls, slides or lifts off, with the tip beside it or not (the quasi-static \
+                     drag follows the rest)"
                 )
             }
         }
@@ -1243,11 +1318,18 @@ pub const IMPACT_STEPS: usize = 2;
 const MAX_INSTANT_EVENTS: usize = 3;
 
 /// Which of a step's event functions: `[lift-off, the contact's own, a side's contact, a
-/// friction patch's boundary]`.
+/// friction patch's boundary, and the tip's lift-off and own where a side touches as well]`
+/// (a side's: its contact's lift-off and own, another point's, its contact reaching the tip).
 const LIFT: usize = 0;
 const PHASE: usize = 1;
 const SIDE: usize = 2;
 const EDGE: usize = 3;
+const TIP_LIFT: usize = 4;
+const TIP_PHASE: usize = 5;
+/// The number of event functions.
+const EVENTS: usize = 6;
+/// Not an event function: the stop of a trapped pair ([`SideChange::Trapped`]).
+const TRAPPED: usize = EVENTS;
 
 /// States of a drag saved at its last events (time, samples and events then, the state without
 /// them), to go back to where a stick or a stuck step the time step does not resolve is taken
@@ -1357,8 +1439,15 @@ struct Drive<'r, 'o> {
     /// that, and the rod within `SIDE_NEAR` of the tip is left out of the test of other points
     /// on the surface. `None`: the tests as they are.
     tip_turn0: Option<f64>,
+    /// While a side touches (`state` a side's): the tip on the surface as well, stuck at
+    /// `anchor` or sliding (two contacts at once; docs/model.md, "Two contacts in time"), or
+    /// `None`, the tip free.
+    also_tip: Option<ContactState>,
     /// The step after a slip began (the tip's velocity zero at its start).
     fresh_slip: bool,
+    /// The event function of that slip's motion: `PHASE`, or `TIP_PHASE` for the tip's beside
+    /// a side.
+    slip_slot: usize,
     /// The tip touched down at the present instant (no step taken since): its contact force
     /// there is the flight's zero, not the impact's, which pushes.
     landed: bool,
@@ -1437,6 +1526,10 @@ impl<'r> Drive<'r, '_> {
             ContactState::Stuck if self.radius > 0.0 => TipBc::Rolling { a: self.roll },
             ContactState::Stuck => TipBc::Stuck([self.anchor, self.track.jet(self.anchor).0]),
             ContactState::Flying => TipBc::Force([0.0, 0.0]),
+            s if s.side() && self.also_tip.is_some() => TipBc::SideAndTip {
+                side: self.side_hold(),
+                end: self.end_hold(),
+            },
             ContactState::SideStuck => TipBc::SideRolling {
                 a: self.roll,
                 sign: self.side_sign,
@@ -1448,6 +1541,29 @@ impl<'r> Drive<'r, '_> {
             s if self.varies_along() => TipBc::SlidingOn { dir: s.dir() },
             s => TipBc::Sliding {
                 ratio: s.dir() * self.mu_k_now,
+            },
+        }
+    }
+
+    /// How the side holds (`state` a side's).
+    fn side_hold(&self) -> SideHold {
+        match self.state {
+            ContactState::SideStuck => SideHold::Rolling {
+                a: self.roll,
+                sign: self.side_sign,
+            },
+            s => SideHold::Sliding {
+                ratio: s.dir() * self.o.mu_k,
+            },
+        }
+    }
+
+    /// How the tip holds beside a side ([`Drive::also_tip`]; stuck where it is not sliding).
+    fn end_hold(&self) -> EndHold {
+        match self.also_tip.map_or(0.0, ContactState::dir) {
+            0.0 => EndHold::Stuck([self.anchor, self.track.jet(self.anchor).0]),
+            dir => EndHold::Sliding {
+                ratio: dir * self.o.mu_k,
             },
         }
     }
@@ -1597,13 +1713,17 @@ impl<'r> Drive<'r, '_> {
         [-n, phase]
     }
 
-    fn events_after(&self, tr: &Trial) -> [f64; 4] {
+    fn events_after(&self, tr: &Trial) -> [f64; EVENTS] {
         if let Some(side) = &tr.side {
             let (n, t) = self
                 .held_contact(tr)
                 .unwrap_or_else(|| self.forces(side.force, side.z[0]));
             let v = self.rothe.velocity_at(tr, side.s);
-            return self.side_events(n, t, side, v, &tr.sol);
+            let mut g = self.side_events(n, t, side, v, &tr.sol);
+            let r = [tr.sol.right()[0], tr.sol.right()[1]];
+            [g[TIP_LIFT], g[TIP_PHASE]] =
+                self.tip_beside(tr.force(1), r, self.rothe.tip_velocity(tr));
+            return g;
         }
         let r = [tr.sol.right()[0], tr.sol.right()[1]];
         let (n, t) = self.forces(tr.force(1), r[0]);
@@ -1612,7 +1732,29 @@ impl<'r> Drive<'r, '_> {
         let held = (self.state == ContactState::Stuck).then(|| self.held_force(tr));
         let contact = self.sliding_lift().then(|| self.held_contact(tr)).flatten();
         let [lift, phase] = self.held_test(g, held, contact, r);
-        [lift, phase, self.side_gap(&tr.sol).0, self.edge_gap(r[0])]
+        [
+            lift,
+            phase,
+            self.side_gap(&tr.sol).0,
+            self.edge_gap(r[0]),
+            -1.0,
+            -1.0,
+        ]
+    }
+
+    /// The tip's event functions beside a side ([`Drive::also_tip`]; `−1` where the tip is
+    /// free): `−N` and `|T| − μs N` (stuck) or `−dir·v_t` (sliding), of its force `g`, its end at
+    /// `r` moving at `v`.
+    fn tip_beside(&self, g: [f64; 2], r: [f64; 2], v: [f64; 2]) -> [f64; 2] {
+        let Some(tip) = self.also_tip else {
+            return [-1.0, -1.0];
+        };
+        let (n, t) = self.forces(g, r[0]);
+        let phase = match tip.dir() {
+            0.0 => t.abs() - self.o.mu_s * n,
+            dir => -dir * along(self.track.jet(r[0]).1, v),
+        };
+        [-n, phase]
     }
 
     /// The event functions of a side on the surface (`< 0` while it holds as it does), its
@@ -1626,7 +1768,7 @@ impl<'r> Drive<'r, '_> {
         side: &SideAt,
         v: [f64; 2],
         sol: &bvp::Solution,
-    ) -> [f64; 4] {
+    ) -> [f64; EVENTS] {
         let phase = match self.state {
             ContactState::SideStuck => t.abs() - self.o.mu_s * n,
             // (sliding: its material point's velocity along the surface reverses)
@@ -1637,6 +1779,8 @@ impl<'r> Drive<'r, '_> {
             phase,
             self.side_gap(sol).0,
             side.s - (1.0 - self.at_tip_room()),
+            -1.0,
+            -1.0,
         ]
     }
 
@@ -1662,11 +1806,14 @@ impl<'r> Drive<'r, '_> {
     /// as a side on it ([`ContactState::side`]): from a stuck or sliding point tip on a line or
     /// a height profile of uniform friction (else the drag stops there, as before).
     fn may_roll(&self, s: f64) -> bool {
-        s == 1.0
-            && matches!(
-                self.state,
-                ContactState::Stuck | ContactState::SlidingForward | ContactState::SlidingBack
-            )
+        s == 1.0 && self.may_side()
+    }
+
+    /// Whether a side may touch beside the point tip (stuck or sliding, or free beyond a side
+    /// that touches) on a line or a height profile of uniform friction: the scenes the sides in
+    /// time are built for.
+    fn may_side(&self) -> bool {
+        self.state != ContactState::Flying
             && self.radius == 0.0
             && self.texture.is_none()
             && self.o.mu_k_table.is_empty()
@@ -1692,6 +1839,29 @@ impl<'r> Drive<'r, '_> {
         };
     }
 
+    /// A point of the rod at `s < 1` touches the surface beside the tip (stuck or sliding): from
+    /// here two contacts, the tip's as it was and a side's at `s_c` near `s` (the rod tangent to
+    /// the surface there), sliding the way its material point moves along the surface. The
+    /// point reaches the surface with a velocity normal to it that the contact stops: a plastic
+    /// impact, taken by backward Euler as a touchdown's ([`IMPACT_STEPS`]; the energy it takes
+    /// booked with `impact`).
+    fn enter_pair(&mut self, s: f64) {
+        let z = self.rothe.sol.at(s);
+        let hp = self.track.jet(z[0]).1;
+        let (sp, cp) = z[2].sin_cos();
+        self.side_sign = if cp + hp * sp >= 0.0 { 1.0 } else { -1.0 };
+        self.roll = crate::rothe::track_arc(&self.track, z[0]).0 - self.side_sign * s;
+        self.rothe.side_guess = s;
+        self.side_min = 1.0;
+        self.side_before = None;
+        let v = along(hp, self.rothe.velocity_now(s));
+        self.also_tip = Some(self.state);
+        // (sliding: a side at rest beside a stuck tip would trap the rod, `Drive::traps`; at rest
+        // beside a sliding one, its first step's stick finds it)
+        self.state = ContactState::SideStuck.sliding(v);
+        self.rothe.euler_steps = IMPACT_STEPS;
+    }
+
     /// A side's event `which`: it slips (rolling, `|T| = μs N`: it slides the way `T` pushes
     /// it, after the restart the tip's slip takes), sticks (sliding, its velocity along the
     /// surface zero: it rolls from here), lifts off (the rod flies, with `flight`; else the
@@ -1699,22 +1869,53 @@ impl<'r> Drive<'r, '_> {
     /// ([`Drive::side_to_tip`]); where another point reaches the surface the drag stops by name
     /// ([`DynDragStop::SideChange`]).
     fn apply_side(&mut self, which: usize) -> Option<DynDragStop> {
-        if which == SIDE || self.instant_events == MAX_INSTANT_EVENTS {
+        let tip_event = which == TIP_LIFT || which == TIP_PHASE;
+        if self.instant_events == MAX_INSTANT_EVENTS && tip_event {
+            return Some(self.unresolved(self.rothe.force(1)));
+        }
+        // (another point on the surface: the free tip touches down beside the side, else the
+        // drag stops there)
+        let lands = which == SIDE
+            && self.also_tip.is_none()
+            && self.side_gap(&self.rothe.sol).1 == 1.0
+            && self.may_side();
+        if (which == SIDE && !lands) || self.instant_events == MAX_INSTANT_EVENTS {
             return Some(self.side_stop(which));
         }
-        let (normal, tangential) = self.contact_now.take().unwrap_or_else(|| {
-            let (f, x) = self.contact_force_now();
-            self.forces(f, x)
-        });
+        if self.traps(which) {
+            return Some(self.side_stop(TRAPPED));
+        }
+        let (normal, tangential) = if tip_event {
+            self.forces(self.rothe.force(1), self.rothe.sol.right()[0])
+        } else {
+            self.contact_now.take().unwrap_or_else(|| {
+                let (f, x) = self.contact_force_now();
+                self.forces(f, x)
+            })
+        };
         self.mismatch = None;
         self.mismatch_end = None;
         self.tried.clear();
         self.ends_before = None;
         self.ends_now = None;
         self.held_now = None;
-        let kind = if which == EDGE {
+        let kind = if lands {
+            let tip = self.land_tip();
+            self.also_tip = Some(tip);
+            DragEventKind::Touchdown
+        } else if tip_event {
+            self.tip_event_beside(which)
+        } else if which == EDGE && self.also_tip.is_some() {
+            // (the side's contact meets the tip's: one contact, the tip's)
+            self.side_leaves(true);
+            DragEventKind::ToTip
+        } else if which == EDGE {
             self.side_to_tip();
             DragEventKind::ToTip
+        } else if which == LIFT && self.also_tip.is_some() {
+            // (the side lets go, the tip holds on)
+            self.side_leaves(false);
+            DragEventKind::LiftOff
         } else if which == LIFT {
             if !self.o.flight {
                 self.push_event(DragEventKind::LiftOff, normal, tangential);
@@ -1726,6 +1927,7 @@ impl<'r> Drive<'r, '_> {
         } else if self.state == ContactState::SideStuck {
             self.state = self.state.sliding(tangential);
             self.fresh_slip = true;
+            self.slip_slot = PHASE;
             self.stats.slips += 1;
             self.restart(false);
             DragEventKind::Slip
@@ -1742,6 +1944,54 @@ impl<'r> Drive<'r, '_> {
         self.push_event(kind, normal, tangential);
         self.instant_events += 1;
         (self.events.len() >= self.o.max_events).then_some(DynDragStop::MaxEvents)
+    }
+
+    /// The tip's own event beside a side (`which`: `TIP_LIFT` or `TIP_PHASE`): it lifts off
+    /// (the side holds on, the tip free beyond it), or slips the way its force pushes it
+    /// (stuck), or sticks where it is (sliding); the scheme restarts as at the tip's own.
+    fn tip_event_beside(&mut self, which: usize) -> DragEventKind {
+        let tip = self.also_tip.unwrap_or(ContactState::Stuck);
+        let kind = if which == TIP_LIFT {
+            self.also_tip = None;
+            DragEventKind::LiftOff
+        } else if tip == ContactState::Stuck {
+            let (_, t) = self.forces(self.rothe.force(1), self.rothe.sol.right()[0]);
+            self.also_tip = Some(tip.sliding(t));
+            self.fresh_slip = true;
+            self.slip_slot = TIP_PHASE;
+            self.stats.slips += 1;
+            DragEventKind::Slip
+        } else {
+            self.also_tip = Some(ContactState::Stuck);
+            self.anchor = self.rothe.sol.right()[0];
+            self.rothe.hold_tip_x();
+            if !self.track.flat() {
+                self.rothe.hold_tip_y();
+            }
+            self.stats.sticks += 1;
+            DragEventKind::Stick
+        };
+        self.restart(false);
+        kind
+    }
+
+    /// The side lets go while the tip holds on (it lifts off, or its contact meets the tip's,
+    /// `merge`): the tip's contact alone from here, stuck or sliding as it was, and the scheme
+    /// restarts. After a merge the end lies on the surface: its lying down again counts only a
+    /// turn beyond the present one (`tip_turn0`, as after [`Drive::side_to_tip`]).
+    fn side_leaves(&mut self, merge: bool) {
+        let tip = self.also_tip.take().unwrap_or(ContactState::Stuck);
+        let z = self.rothe.sol.right().to_vec();
+        self.rothe.leave_side();
+        self.state = tip;
+        if tip.dir() != 0.0 {
+            self.enter_slide(self.contact_x(z[0]));
+        }
+        if merge {
+            self.tip_turn0 = Some(self.turn_in(&z));
+        }
+        self.side_before = None;
+        self.restart(false);
     }
 
     /// The side's contact has reached the tip (within [`Drive::at_tip_room`]): the tip takes it
@@ -1822,16 +2072,22 @@ impl<'r> Drive<'r, '_> {
         (now[PHASE] >= 0.0).then(|| self.apply(PHASE))
     }
 
-    /// A side that has just stuck (a restart under way) and needs more than μs N, or a pull, at
-    /// once: it slips or lifts at once, within the events an instant may have. `Some(Some(stop))`
-    /// where the drag ends, `Some(None)` where an event was applied, `None` where nothing
-    /// happens at once.
+    /// A side that has just stuck (a restart under way), or the tip stuck beside it, and needs
+    /// more than μs N, or a pull, at once: it slips or lifts at once, within the events an
+    /// instant may have. `Some(Some(stop))` where the drag ends, `Some(None)` where an event was
+    /// applied, `None` where nothing happens at once.
     fn side_at_once(&mut self) -> Option<Option<DynDragStop>> {
-        if self.state != ContactState::SideStuck || !self.rothe.restarted() {
+        if !self.state.side() || !self.rothe.restarted() {
             return None;
         }
         let now = self.events_now();
-        let which = [LIFT, PHASE].into_iter().find(|&w| now[w] >= 0.0)?;
+        let side = (self.state == ContactState::SideStuck).then_some([LIFT, PHASE]);
+        let tip = (self.also_tip == Some(ContactState::Stuck)).then_some([TIP_LIFT, TIP_PHASE]);
+        let which = [side, tip]
+            .into_iter()
+            .flatten()
+            .flatten()
+            .find(|&w| now[w] >= 0.0)?;
         Some(self.apply(which))
     }
 
@@ -1854,6 +2110,19 @@ impl<'r> Drive<'r, '_> {
             && self
                 .side_rate()
                 .is_some_and(|(s, rate)| s > 1.0 - SIDE_GRAZE && rate > 0.0)
+    }
+
+    /// Whether event `which` sticks a contact beside a stuck one: the sliding side beside the
+    /// stuck tip, or the sliding tip beside the rolling side ([`SideChange::Trapped`]).
+    fn traps(&self, which: usize) -> bool {
+        match which {
+            PHASE => self.state.dir() != 0.0 && self.also_tip == Some(ContactState::Stuck),
+            TIP_PHASE => {
+                self.state == ContactState::SideStuck
+                    && self.also_tip.is_some_and(|t| t.dir() != 0.0)
+            }
+            _ => false,
+        }
     }
 
     /// The side's contact `s_c` now and the rate it moved at over the last step (towards the
@@ -1891,6 +2160,8 @@ impl<'r> Drive<'r, '_> {
         let change = match which {
             LIFT => SideChange::LiftOff,
             PHASE => SideChange::Slip,
+            TRAPPED => SideChange::Trapped,
+            SIDE if self.also_tip.is_some() => SideChange::ThirdContact,
             SIDE => SideChange::SecondContact,
             _ => SideChange::AtTip,
         };
@@ -1930,10 +2201,13 @@ impl<'r> Drive<'r, '_> {
     /// far its end turns into the surface, `h'(x) cos φ − sin φ` at `s = 1` (the height over
     /// the surface of the points just before a touching tip falls like `(1 − s)` times it:
     /// where it reaches 0 the rod's end lies down on the surface, as the quasi-static drag's
-    /// touchdown of a side at the tip).
+    /// touchdown of a side at the tip), also beside a side; while a side touches and the tip is
+    /// free, the tip's height over the surface (its node's `s` 1: the tip touches down beside
+    /// the side) where the contact is more than `SIDE_NEAR` from it.
     fn side_gap(&self, sol: &bvp::Solution) -> (f64, f64, f64) {
         let mut worst = (f64::NEG_INFINITY, f64::NAN, f64::NAN);
-        if self.state != ContactState::Flying && !self.state.side() && self.radius == 0.0 {
+        let tip_on = !self.state.side() || self.also_tip.is_some();
+        if self.state != ContactState::Flying && tip_on && self.radius == 0.0 {
             // (a disk meets the surface at any angle: its end does not turn into it)
             let z = sol.right();
             let turn = self.turn_in(z) - self.tip_turn0.map_or(0.0, |t0| t0.max(0.0));
@@ -1949,17 +2223,78 @@ impl<'r> Drive<'r, '_> {
         } else {
             1.0 - SIDE_NEAR
         };
-        for i in 1..sol.len().saturating_sub(1) {
-            if contact.is_some_and(|sc| (sol.mesh[i] - sc).abs() < SIDE_NEAR) || sol.mesh[i] > end {
+        let away = |s: f64| !contact.is_some_and(|sc| (s - sc).abs() < SIDE_NEAR) && s <= end;
+        let last = sol.len().saturating_sub(1);
+        let mut node = None;
+        for i in 1..last {
+            if !away(sol.mesh[i]) {
                 continue;
             }
             let z = sol.node(i);
             let gap = z[1] - self.surface.jet(z[0]).0;
             if gap > worst.0 || gap.is_nan() {
                 worst = (gap, sol.mesh[i], z[0]);
+                node = Some(i);
+            }
+        }
+        if let Some(i) = node.filter(|_| worst.0.is_finite()) {
+            worst = self.highest_between(sol, i, &away).unwrap_or(worst);
+        }
+        if !tip_on && contact.is_some_and(|sc| 1.0 - sc > SIDE_NEAR) {
+            let z = sol.right();
+            let gap = z[1] - self.surface.jet(z[0]).0;
+            if gap > worst.0 || gap.is_nan() {
+                worst = (gap, 1.0, z[0]);
             }
         }
         worst
+    }
+
+    /// The rod's largest height over the surface between the nodes on either side of node `i`
+    /// of `sol` (next to the tip to `1 − SIDE_NEAR`: the tip's height is its condition, and the
+    /// end's turn tests the rod next to it; within the points `away` admits), by Brent's
+    /// maximum on the solution's dense output: `(gap, s, x)`, `None` where the search fails or
+    /// finds less than the node's.
+    ///
+    /// Why: the rod and the surface curve differently, so between nodes `h` apart the rod's
+    /// highest point is above the highest node's by up to `|κ − κ_h| h²/8`: over 0.01
+    /// sin(2πx/0.1) (κ_h up to 39) on 100 intervals 5e-4, so a point reached the surface that
+    /// deep before the nodes saw it, and the contact that formed there had to push the rod out
+    /// by that within a step (forces of hundreds where the rod's are a few).
+    fn highest_between(
+        &self,
+        sol: &bvp::Solution,
+        i: usize,
+        away: &dyn Fn(f64) -> bool,
+    ) -> Option<(f64, f64, f64)> {
+        let last = sol.len() - 1;
+        let mut lo = sol.mesh[i - 1];
+        // (next to the tip: to `SIDE_NEAR` from it, where the end's turn takes over)
+        let mut hi = if i + 1 < last {
+            sol.mesh[i + 1]
+        } else {
+            1.0 - SIDE_NEAR
+        };
+        // (keep to the points admitted: shrink towards the node)
+        let si = sol.mesh[i];
+        while !away(lo) && lo < si {
+            lo = 0.5 * (lo + si);
+        }
+        while !away(hi) && hi > si {
+            hi = 0.5 * (hi + si);
+        }
+        if hi <= lo || hi.is_nan() || lo.is_nan() {
+            return None;
+        }
+        let height = |s: f64| -> (f64, f64) {
+            let z = sol.at(s);
+            (z[1] - self.surface.jet(z[0]).0, z[0])
+        };
+        let mut f = |s: f64| -> Result<f64, std::convert::Infallible> { Ok(height(s).0) };
+        let (s, _) = crate::search::maximize(&mut f, lo, hi, 1e-9).ok()?;
+        let (gap, x) = height(s);
+        let node = height(si).0;
+        (gap >= node).then_some((gap, s, x))
     }
 
     /// The event functions `g` with the stuck tip's tests (slip and lift-off) taken on the held
@@ -2158,7 +2493,7 @@ impl<'r> Drive<'r, '_> {
         self.state.dir() != 0.0
     }
 
-    fn events_now(&self) -> [f64; 4] {
+    fn events_now(&self) -> [f64; EVENTS] {
         if self.state.side() {
             return match &self.rothe.side {
                 Some(side) => {
@@ -2166,13 +2501,19 @@ impl<'r> Drive<'r, '_> {
                         .contact_now
                         .unwrap_or_else(|| self.forces(side.force, side.z[0]));
                     let v = self.rothe.velocity_now(side.s);
-                    self.side_events(n, t, side, v, &self.rothe.sol)
+                    let mut g = self.side_events(n, t, side, v, &self.rothe.sol);
+                    [g[TIP_LIFT], g[TIP_PHASE]] = self.tip_beside_now();
+                    g
                 }
+                // (a side that has just formed beside the tip: its force rises from zero, and the
+                // tip's force, as the last step left it, carries the rule's alternating mode its
+                // held force had removed: the first step's end decides, as after a touchdown)
+                None if self.also_tip.is_some() => [-1.0; EVENTS],
                 // (the side has just formed at the tip: it moves inwards)
                 None => {
                     let x = self.rothe.sol.right()[0];
                     let (n, t) = self.forces(self.rothe.force(1), x);
-                    [-n, t.abs() - self.o.mu_s * n, -1.0, -1.0]
+                    [-n, t.abs() - self.o.mu_s * n, -1.0, -1.0, -1.0, -1.0]
                 }
             };
         }
@@ -2193,7 +2534,21 @@ impl<'r> Drive<'r, '_> {
             phase,
             self.side_gap(&self.rothe.sol).0,
             self.edge_gap(r[0]),
+            -1.0,
+            -1.0,
         ]
+    }
+
+    /// [`Drive::tip_beside`] now (a tip that has just touched down beside the side: no
+    /// lift-off at once, its impact's force pushes).
+    fn tip_beside_now(&self) -> [f64; 2] {
+        let p = self.rothe.sample(self.t);
+        let [lift, phase] = self.tip_beside(
+            self.rothe.force(1),
+            [p.tip_x, p.tip_y],
+            [p.tip_vx, p.tip_vy],
+        );
+        [if self.landed { -1.0 } else { lift }, phase]
     }
 
     /// Takes the step: the energies by the step's rule (the trapezoidal rule's, backward
@@ -2255,15 +2610,25 @@ impl<'r> Drive<'r, '_> {
         }
 
         // a sliding side's friction: the contact force's work on its material point, by the
-        // trapezoidal rule (`½τ (F⁰·v⁰ + F¹·v¹)`; the point moves along the rod)
+        // trapezoidal rule (`½τ (F⁰·v⁰ + F¹·v¹)`; the point moves along the rod). At the step's
+        // start of a side that has just formed, its force is the tip's `G(1)` where the end lay
+        // down (the contact was the tip's), zero beside the tip (a new contact); until
+        // 2026-12-04 that first step's friction was left out of the balance (1.7e-4 of a slide
+        // over 0.01 sin(2πx/0.1)).
         let side_work = match (&tr.side, &self.rothe.side) {
-            (Some(c1), Some(c0)) if self.state.dir() != 0.0 => {
-                let (v0, v1) = (
-                    self.rothe.velocity_now(c0.s),
-                    self.rothe.velocity_at(&tr, c1.s),
-                );
+            (Some(c1), c0) if self.state.dir() != 0.0 => {
+                let (f0, v0) = match c0 {
+                    Some(c0) => (c0.force, self.rothe.velocity_now(c0.s)),
+                    None if self.also_tip.is_none() => {
+                        (self.rothe.force(1), self.rothe.velocity_now(1.0))
+                    }
+                    None => ([0.0, 0.0], [0.0, 0.0]),
+                };
+                let v1 = self.rothe.velocity_at(&tr, c1.s);
                 let dot = |f: [f64; 2], v: [f64; 2]| f[0] * v[0] + f[1] * v[1];
-                0.5 * tr.tau * (dot(c0.force, v0) + dot(c1.force, v1))
+                // (an impact's backward-Euler step: the force and velocity at its end)
+                let w0 = if euler { 0.0 } else { 0.5 };
+                tr.tau * (w0 * dot(f0, v0) + (1.0 - w0) * dot(c1.force, v1))
             }
             _ => 0.0,
         };
@@ -2273,7 +2638,10 @@ impl<'r> Drive<'r, '_> {
         // (nor after an impact's backward-Euler step: the held force's weights cancel the
         // trapezoidal rule's mode and need its three forces; measured, a round tip's held force
         // across the switch back read a lift-off at N = −0.41, 1e-5 after the impact's steps)
-        self.ends_before = (!self.events.is_empty() && !euler).then_some(([g0, gc], tau, xc));
+        // (two contacts at once: the end forces as they are, the combination holds one contact's)
+        let pair = self.also_tip.is_some();
+        self.ends_before =
+            (!self.events.is_empty() && !euler && !pair).then_some(([g0, gc], tau, xc));
         self.held_now = held;
         self.ends_now = ends;
         self.contact_now = contact;
@@ -2294,7 +2662,7 @@ impl<'r> Drive<'r, '_> {
         let x1_new = self.rothe.sol.right()[0];
         // (a side's contact: its work is `side_work`, none while it rolls; the tip beyond it is
         // free, and the stuck tip's force where the side formed did none)
-        let free_tip = self.state.side();
+        let free_tip = self.state.side() && self.also_tip.is_none();
         self.friction -= side_work;
         if !free_tip {
             self.friction += -(w0 * g1[0] + w1 * h1[0]) * (x1_new - x1);
@@ -2365,18 +2733,41 @@ impl<'r> Drive<'r, '_> {
                     x: c.z[0],
                     y: c.z[1],
                 }),
+            tip_also: self.also_tip.filter(|_| self.state.side()).map(|state| {
+                let (normal, tangential) = self.forces(self.rothe.force(1), p.tip_x);
+                TipAlso {
+                    state,
+                    normal,
+                    tangential,
+                }
+            }),
         }
     }
 
-    /// Where event function `which` reaches zero in `(lo, hi]` (`< 0` at `lo`, `≥ 0` at `hi`):
+    /// Where event function `which` reaches zero in `(lo, hi]` (`< 0` at `lo`, `≥ 0` at `hi`; 0
+    /// where it is met already at the step's start, `lo` 0):
     /// Brent's method on the step's length (no step shorter than [`shortest_step`] tried: the
     /// function is constant below it).
     fn locate(&mut self, which: usize, lo: f64, hi: f64) -> Result<f64, VibrissaError> {
         let tol = self.o.event_tol;
-        let now = self.events_now()[which];
+        let mut now = self.events_now()[which];
         let shortest = shortest_step(self.o.dt, self.o.tol).min(hi);
+        // (where `now` holds: the step's start, or the shortest step below)
+        let mut known = 0.0;
+        let mut lo = lo;
+        if lo == 0.0 && now >= 0.0 {
+            // (met already at the step's start by the forces as an event's restart estimated
+            // them, a condition no step before tested: at once where the shortest step meets it
+            // too, placed there as an event within it; else the step's own crossing after it)
+            let tr = self.try_step(shortest)?;
+            now = self.events_after(&tr)[which];
+            if now >= 0.0 || shortest >= hi {
+                return Ok(0.0);
+            }
+            (lo, known) = (shortest, shortest);
+        }
         let mut f = |tau: f64| -> Result<f64, VibrissaError> {
-            if tau <= 0.0 {
+            if tau <= known {
                 return Ok(now);
             }
             let tr = self.try_step(tau.max(shortest))?;
@@ -2428,8 +2819,11 @@ impl<'r> Drive<'r, '_> {
             )
         });
         let kind = if which == SIDE {
-            if self.may_roll(self.side_gap(&self.rothe.sol).1) {
+            let s = self.side_gap(&self.rothe.sol).1;
+            if self.may_roll(s) {
                 self.enter_side();
+            } else if s < 1.0 && self.may_side() {
+                self.enter_pair(s);
             }
             DragEventKind::SideContact
         } else if which == EDGE {
@@ -2449,6 +2843,7 @@ impl<'r> Drive<'r, '_> {
         } else if self.state == ContactState::Stuck {
             self.state = self.state.sliding(tangential);
             self.fresh_slip = true;
+            self.slip_slot = PHASE;
             self.stats.slips += 1;
             self.enter_slide(self.contact_x(self.anchor));
             DragEventKind::Slip
@@ -2554,6 +2949,7 @@ impl<'r> Drive<'r, '_> {
         let a = self.rothe.tip_acceleration();
         if self.stats.restarts > restarts && n >= 0.0 && self.state.dir() * along(hp, a) > 0.0 {
             self.fresh_slip = true;
+            self.slip_slot = PHASE;
             self.stats.slips += 1;
             self.record_at_once(DragEventKind::Slip, n, t);
             return Some(None);
@@ -2611,6 +3007,7 @@ impl<'r> Drive<'r, '_> {
             normal,
             tangential,
             state: self.state,
+            tip_also: self.also_tip.filter(|_| self.state.side()),
         });
     }
 
@@ -2724,6 +3121,17 @@ impl<'r> Drive<'r, '_> {
             return;
         }
         self.stats.restarts += 1;
+        if let Some(tip) = self
+            .also_tip
+            .filter(|t| t.dir() != 0.0 && !self.track.flat())
+        {
+            // (a tip sliding beside a side on a curve: its force as a sliding tip's below)
+            let x = self.rothe.sol.right()[0];
+            let hp = self.track.jet(x).1;
+            let (n, _) = contact_forces(self.rothe.force(1), hp);
+            self.rothe
+                .set_restart_tip_force(tip_force(n, tip.dir() * self.o.mu_k * n, hp));
+        }
         let (dir, side) = (self.state.dir(), self.state.side());
         if dir == 0.0 || (self.track.flat() && !side) {
             return;
@@ -2751,6 +3159,13 @@ impl<'r> Drive<'r, '_> {
     /// `impact` (the event's sample is the state after the impact); the contact from here on
     /// slides the way the tip moves along the surface (sticks, if it does not move).
     fn touchdown(&mut self) {
+        self.state = self.land_tip();
+        self.enter_slide(self.contact_x(self.rothe.sol.right()[0]));
+    }
+
+    /// The tip's plastic impact ([`Drive::touchdown`]) and the tip's state after it: sliding
+    /// the way it moves along the surface, stuck (at `anchor`) if it does not.
+    fn land_tip(&mut self) -> ContactState {
         let before = self.rothe.sample(self.t);
         let (_, hp, _) = self.track.jet(before.tip_x);
         if self.track.flat() {
@@ -2775,7 +3190,7 @@ impl<'r> Drive<'r, '_> {
             [after.tip_vx, after.tip_vy],
             self.rothe.tip_spin(),
         );
-        self.state = if v > 0.0 {
+        if v > 0.0 {
             ContactState::SlidingForward
         } else if v < 0.0 {
             ContactState::SlidingBack
@@ -2783,8 +3198,28 @@ impl<'r> Drive<'r, '_> {
             self.anchor = after.tip_x;
             self.roll = self.rolling_of(self.rothe.sol.right());
             ContactState::Stuck
-        };
-        self.enter_slide(self.contact_x(after.tip_x));
+        }
+    }
+
+    /// The stop of two contacts whose steps do not solve ([`DynDragStop::Stretch`]): the rod's
+    /// largest distance below the surface over the last solution's nodes between the side's
+    /// contact and the tip.
+    fn stretch(&self) -> DynDragStop {
+        let sc = self.rothe.side.map_or(self.rothe.side_guess, |c| c.s);
+        let sol = &self.rothe.sol;
+        let gap = (0..sol.len())
+            .filter(|&i| sol.mesh[i] >= sc)
+            .map(|i| {
+                let z = sol.node(i);
+                self.surface.jet(z[0]).0 - z[1]
+            })
+            .fold(0.0, f64::max);
+        DynDragStop::Stretch {
+            t: self.t,
+            d: self.d,
+            s: sc,
+            gap,
+        }
     }
 
     /// A lower end of the search in a step that starts a slip (the velocity zero at the start):
@@ -2795,7 +3230,7 @@ impl<'r> Drive<'r, '_> {
         while lo > tau_min {
             lo = (0.5 * lo).max(tau_min);
             let tr = self.try_step(lo)?;
-            if self.events_after(&tr)[PHASE] < 0.0 {
+            if self.events_after(&tr)[self.slip_slot] < 0.0 {
                 return Ok(Some(lo));
             }
         }
@@ -2838,6 +3273,8 @@ impl<'r> Drive<'r, '_> {
                             failure = Some(first);
                             continue;
                         }
+                        // (two contacts whose steps do not solve: a stretch on the surface)
+                        Err(_) if self.also_tip.is_some() => return Ok(self.stretch()),
                         Err(first) => return Err(first),
                     }
                 }
@@ -3161,12 +3598,12 @@ impl<'r> Drive<'r, '_> {
             }
             // the lower end of the search: the step's start (or where a slip's tip moves)
             let mut lo = 0.0;
-            if self.fresh_slip && g1[PHASE] >= 0.0 {
+            if self.fresh_slip && g1[self.slip_slot] >= 0.0 {
                 match self.slip_start(tau, tau_min.min(tau))? {
                     Some(l) => lo = l,
                     None => {
                         // no motion the way of the slip: it sticks at once
-                        if let Some(stop) = self.apply(PHASE) {
+                        if let Some(stop) = self.apply(self.slip_slot) {
                             return Ok(stop);
                         }
                         continue;
@@ -3175,7 +3612,7 @@ impl<'r> Drive<'r, '_> {
             }
             let mut first: Option<(f64, usize)> = None;
             let mut graze = false;
-            for which in [LIFT, PHASE, SIDE, EDGE] {
+            for which in [LIFT, PHASE, SIDE, EDGE, TIP_LIFT, TIP_PHASE] {
                 if g1[which] >= 0.0 {
                     let at = match self.locate(which, lo, tau) {
                         Ok(at) => at,
@@ -3338,7 +3775,9 @@ pub fn drag(
         side_before: None,
         side_min: 1.0,
         tip_turn0: None,
+        also_tip: None,
         fresh_slip: false,
+        slip_slot: PHASE,
         landed: false,
         ends_before: None,
         held_now: None,

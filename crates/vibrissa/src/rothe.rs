@@ -169,6 +169,29 @@ pub(crate) enum TipBc {
     /// beyond it, sliding: its contact force `F` (the jump of the internal force) meets
     /// `F·t = ratio·F·n` as a sliding tip's `G(1)` does ([`TipBc::Sliding`]).
     SideSliding { ratio: f64 },
+    /// Two contacts at once: a side on the track as [`TipBc::SideRolling`] or
+    /// [`TipBc::SideSliding`] (`side`), and the tip on it as well, stuck at a point or sliding
+    /// along the track (`end`). Solved as a [`Split`] whose outer piece ends on the tip's
+    /// condition instead of a free end.
+    SideAndTip { side: SideHold, end: EndHold },
+}
+
+/// The tip's condition beside a side's ([`TipBc::SideAndTip`]): a point tip stuck at a point
+/// ([`TipBc::Stuck`]) or sliding on the track under `T = ratio·N` ([`TipBc::Sliding`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum EndHold {
+    Stuck([f64; 2]),
+    Sliding { ratio: f64 },
+}
+
+impl EndHold {
+    /// The tip's own condition.
+    fn tip_bc(self) -> TipBc {
+        match self {
+            EndHold::Stuck(p) => TipBc::Stuck(p),
+            EndHold::Sliding { ratio } => TipBc::Sliding { ratio },
+        }
+    }
 }
 
 /// The arc length along `track` at lab `x` (a line: `w·x`, `w = √(1 + h'²)`; a profile: its
@@ -524,8 +547,11 @@ impl Bvp for Step<'_> {
             dgb[18 + 5] = ra * self.gs * hp / w;
         }
         match self.tip {
-            // (a side step's tip is free: [`Split`] solves it with `Force([0, 0])`)
-            TipBc::Force(_) | TipBc::SideRolling { .. } | TipBc::SideSliding { .. } => {
+            // (a side step's tip: [`Split`] solves it with the outer piece's own condition)
+            TipBc::Force(_)
+            | TipBc::SideRolling { .. }
+            | TipBc::SideSliding { .. }
+            | TipBc::SideAndTip { .. } => {
                 dgb[24 + 4] = self.gs;
                 dgb[30 + 5] = self.gs;
             }
@@ -582,7 +608,7 @@ impl Bvp for Step<'_> {
                 res[4] = self.gs * zb[4] - f[0];
                 res[5] = self.gs * zb[5] - f[1];
             }
-            TipBc::SideRolling { .. } | TipBc::SideSliding { .. } => {
+            TipBc::SideRolling { .. } | TipBc::SideSliding { .. } | TipBc::SideAndTip { .. } => {
                 res[4] = self.gs * zb[4];
                 res[5] = self.gs * zb[5];
             }
@@ -656,9 +682,9 @@ struct Split<'s, 'a> {
 }
 
 /// How a side holds on the surface: [`TipBc::SideRolling`]'s and [`TipBc::SideSliding`]'s
-/// values, the only tip conditions a [`Split`] is built with.
-#[derive(Clone, Copy, Debug)]
-enum SideHold {
+/// values, the side conditions a [`Split`] is built with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum SideHold {
     /// Rolling without slip: the arc along the surface less `sign·s_c` is `a`.
     Rolling { a: f64, sign: f64 },
     /// Sliding: `T = ratio·N`.
@@ -666,11 +692,14 @@ enum SideHold {
 }
 
 impl SideHold {
-    /// The side's hold of the tip condition `tip`, `None` for a tip's condition.
-    fn of(tip: TipBc) -> Option<SideHold> {
+    /// The side's hold of the tip condition `tip` and the condition of the tip beyond it (free,
+    /// or [`TipBc::SideAndTip`]'s), `None` for a tip's condition alone.
+    fn of(tip: TipBc) -> Option<(SideHold, TipBc)> {
+        let free = TipBc::Force([0.0, 0.0]);
         match tip {
-            TipBc::SideRolling { a, sign } => Some(SideHold::Rolling { a, sign }),
-            TipBc::SideSliding { ratio } => Some(SideHold::Sliding { ratio }),
+            TipBc::SideRolling { a, sign } => Some((SideHold::Rolling { a, sign }, free)),
+            TipBc::SideSliding { ratio } => Some((SideHold::Sliding { ratio }, free)),
+            TipBc::SideAndTip { side, end } => Some((side, end.tip_bc())),
             _ => None,
         }
     }
@@ -762,13 +791,11 @@ fn solve_step(
     (guess, predicted): (Guess, Option<Guess>),
     remesh: bool,
 ) -> Result<(Solution, Option<Solution>, Vec<f64>), Box<BvpError>> {
-    if let Some(hold) = SideHold::of(tip) {
-        // (the tip beyond a side is free: its conditions are the outer piece's)
-        let free = Step {
-            tip: TipBc::Force([0.0, 0.0]),
-            ..step
-        };
-        let raw = solver.side.solve(&Split { step: &free, hold }, &guess)?;
+    if let Some((hold, end)) = SideHold::of(tip) {
+        // (the tip beyond a side, free or on the surface too: its conditions are the outer
+        // piece's)
+        let outer = Step { tip: end, ..step };
+        let raw = solver.side.solve(&Split { step: &outer, hold }, &guess)?;
         return Ok((merged(&raw), Some(raw), vec![]));
     }
     let sol = match predicted {
@@ -1490,7 +1517,7 @@ impl<'r> Rothe<'r> {
         };
         let side = SideHold::of(tip).is_some();
         let mut guess = if side {
-            self.split_start()
+            self.split_start(matches!(tip, TipBc::SideAndTip { .. }))
         } else {
             self.start()
         };
@@ -1531,14 +1558,19 @@ impl<'r> Rothe<'r> {
     /// The start of a side step's collocation ([`Split`]): the last side step's solution, or,
     /// where the side has just formed, the whole rod's last solution cut at
     /// [`Rothe::side_guess`] (the outer piece's internal force less the tip's, which the
-    /// contact now carries).
-    fn split_start(&self) -> Guess {
+    /// contact now carries; with the tip on the surface as well, `keep_tip`, as it is: the tip
+    /// goes on carrying it, the new contact none yet).
+    fn split_start(&self, keep_tip: bool) -> Guess {
         if let Some(raw) = &self.split {
             return Guess::from(raw);
         }
         let sc = self.side_guess;
         let tip = self.sol.right();
-        let (g4, g5) = (tip[4], tip[5]);
+        let (g4, g5) = if keep_tip {
+            (0.0, 0.0)
+        } else {
+            (tip[4], tip[5])
+        };
         let mut mesh: Vec<f64> = self.sol.mesh.clone();
         mesh.dedup();
         let mut z = Vec::with_capacity(12 * mesh.len());
