@@ -822,9 +822,11 @@ pub enum DynDragStop {
     /// A side and the tip on the surface at once whose step the collocation does not solve, at
     /// any step down to the shortest nor after the refinements (time `t`, displacement `d`):
     /// the rod between the side's contact at arc length `s` and the tip lies within `gap` of
-    /// the surface everywhere (the largest distance of the solution's nodes between them below
-    /// it), a contact along a stretch rather than at two points, which the dynamic drag's point
-    /// contacts do not follow (the quasi-static drag does: its `stretch` states).
+    /// the surface (the largest distance of the last solution's nodes between them below it):
+    /// where that is small against `1 − s`, a contact along a stretch rather than at two
+    /// points, which the dynamic drag's point contacts do not follow (the quasi-static drag
+    /// does: its `stretch` states). Seen before the side's test took the rod's highest point
+    /// between nodes (`gap` 1.3e-6 over 0.0052); no drag of the grids ends so since.
     Stretch {
         /// When.
         t: f64,
@@ -1865,9 +1867,12 @@ impl<'r> Drive<'r, '_> {
     /// A side's event `which`: it slips (rolling, `|T| = μs N`: it slides the way `T` pushes
     /// it, after the restart the tip's slip takes), sticks (sliding, its velocity along the
     /// surface zero: it rolls from here), lifts off (the rod flies, with `flight`; else the
-    /// drag ends), hands the contact over to the tip where it reaches the tip
-    /// ([`Drive::side_to_tip`]); where another point reaches the surface the drag stops by name
-    /// ([`DynDragStop::SideChange`]).
+    /// drag ends; beside the tip, the tip holds on alone), hands the contact over to the tip
+    /// where it reaches the tip ([`Drive::side_to_tip`]; beside the tip, the two meet); the free
+    /// tip touches down beside it (a pair from here); the tip's own events beside it
+    /// ([`Drive::tip_event_beside`]). The drag stops by name ([`DynDragStop::SideChange`])
+    /// where another point reaches the surface, and where a contact would stick beside a stuck
+    /// one ([`Drive::traps`]).
     fn apply_side(&mut self, which: usize) -> Option<DynDragStop> {
         let tip_event = which == TIP_LIFT || which == TIP_PHASE;
         if self.instant_events == MAX_INSTANT_EVENTS && tip_event {
