@@ -149,29 +149,40 @@ def count(paths):
               f"cone: {bad}")
 
 
-def main():
+def arguments(out):
+    """The options every grid of drags takes (--bin, --jobs, --timeout, --out)."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin", default="target/release/vibrissa")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=300)
-    ap.add_argument("--out", default="data/dynamics/drag_grid.csv")
+    ap.add_argument("--out", default=out)
+    return ap
+
+
+def run_cases(a, cases, columns=COLUMNS):
+    """Runs the drags `cases` ((dt, speed, (scene, flags))) `a.jobs` at a time, each row to
+    stderr as it ends, the rows' `columns` to `a.out`, and counts them."""
+    with ThreadPoolExecutor(a.jobs) as ex:
+        rows = []
+        for row in ex.map(lambda c: run(a.bin, a.timeout, c), cases):
+            rows.append(row)
+            print(",".join(str(row.get(k, "")) for k in columns[:10]), file=sys.stderr, flush=True)
+    with open(a.out, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    count([a.out])
+
+
+def main():
+    ap = arguments("data/dynamics/drag_grid.csv")
     ap.add_argument("--count", nargs="+")
     ap.add_argument("--scenes", help="comma-separated scene names (default: all)")
     a = ap.parse_args()
     if a.count:
         return count(a.count)
     keep = set(a.scenes.split(",")) if a.scenes else {name for name, _ in SCENES}
-    cases = [(dt, v, s) for dt in DTS for v in SPEEDS for s in SCENES if s[0] in keep]
-    with ThreadPoolExecutor(a.jobs) as ex:
-        rows = []
-        for row in ex.map(lambda c: run(a.bin, a.timeout, c), cases):
-            rows.append(row)
-            print(",".join(str(row.get(k, "")) for k in COLUMNS[:10]), file=sys.stderr, flush=True)
-    with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
-    count([a.out])
+    run_cases(a, [(dt, v, s) for dt in DTS for v in SPEEDS for s in SCENES if s[0] in keep])
 
 
 if __name__ == "__main__":

@@ -10,8 +10,7 @@ forms). docs/robustness.md, "The dynamic drag".
 Usage: python3 benches/grids/side_sweep.py [--bin target/release/vibrissa] [--jobs 2]
            [--out data/dynamics/side_sweep.csv]
 """
-import argparse, csv, json, sys
-from concurrent.futures import ThreadPoolExecutor
+import sys
 
 import dynamics
 
@@ -29,24 +28,8 @@ def scenes():
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--bin", default="target/release/vibrissa")
-    ap.add_argument("--jobs", type=int, default=2)
-    ap.add_argument("--timeout", type=float, default=300)
-    ap.add_argument("--out", default="data/dynamics/side_sweep.csv")
-    a = ap.parse_args()
-    cases = [("0.01", v, s) for s in scenes() for v in ("0.01", "0.05")]
-    with ThreadPoolExecutor(a.jobs) as ex:
-        rows = []
-        for row in ex.map(lambda c: dynamics.run(a.bin, a.timeout, c), cases):
-            rows.append(row)
-            print(",".join(str(row.get(k, "")) for k in COLUMNS[:10]), file=sys.stderr,
-                  flush=True)
-    with open(a.out, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        w.writerows(rows)
-    dynamics.count([a.out])
+    a = dynamics.arguments("data/dynamics/side_sweep.csv").parse_args()
+    dynamics.run_cases(a, [("0.01", v, s) for s in scenes() for v in ("0.01", "0.05")], COLUMNS)
 
 
 if __name__ == "__main__":

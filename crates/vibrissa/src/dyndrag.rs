@@ -1330,8 +1330,6 @@ const TIP_LIFT: usize = 4;
 const TIP_PHASE: usize = 5;
 /// The number of event functions.
 const EVENTS: usize = 6;
-/// Not an event function: the stop of a trapped pair ([`SideChange::Trapped`]).
-const TRAPPED: usize = EVENTS;
 
 /// States of a drag saved at its last events (time, samples and events then, the state without
 /// them), to go back to where a stick or a stuck step the time step does not resolve is taken
@@ -1885,10 +1883,10 @@ impl<'r> Drive<'r, '_> {
             && self.side_gap(&self.rothe.sol).1 == 1.0
             && self.may_side();
         if (which == SIDE && !lands) || self.instant_events == MAX_INSTANT_EVENTS {
-            return Some(self.side_stop(which));
+            return Some(self.side_stop(self.side_change(which)));
         }
         if self.traps(which) {
-            return Some(self.side_stop(TRAPPED));
+            return Some(self.side_stop(SideChange::Trapped));
         }
         let (normal, tangential) = if tip_event {
             self.forces(self.rothe.force(1), self.rothe.sol.right()[0])
@@ -2160,16 +2158,19 @@ impl<'r> Drive<'r, '_> {
         None
     }
 
-    /// The stop where the rolling side changes its contact by event `which`.
-    fn side_stop(&self, which: usize) -> DynDragStop {
-        let change = match which {
+    /// The side's change by event `which` where the drag does not follow it.
+    fn side_change(&self, which: usize) -> SideChange {
+        match which {
             LIFT => SideChange::LiftOff,
             PHASE => SideChange::Slip,
-            TRAPPED => SideChange::Trapped,
             SIDE if self.also_tip.is_some() => SideChange::ThirdContact,
             SIDE => SideChange::SecondContact,
             _ => SideChange::AtTip,
-        };
+        }
+    }
+
+    /// The stop where the side changes its contact by `change`.
+    fn side_stop(&self, change: SideChange) -> DynDragStop {
         let (s, x, (normal, tangential)) = match &self.rothe.side {
             Some(side) => (
                 side.s,
@@ -2547,6 +2548,10 @@ impl<'r> Drive<'r, '_> {
     /// [`Drive::tip_beside`] now (a tip that has just touched down beside the side: no
     /// lift-off at once, its impact's force pushes).
     fn tip_beside_now(&self) -> [f64; 2] {
+        if self.also_tip.is_none() {
+            // (the tip free: no event of its own; not the sample's energies for nothing)
+            return [-1.0, -1.0];
+        }
         let p = self.rothe.sample(self.t);
         let [lift, phase] = self.tip_beside(
             self.rothe.force(1),
@@ -2823,8 +2828,9 @@ impl<'r> Drive<'r, '_> {
                 self.rothe.sol.right()[0],
             )
         });
-        let kind = if which == SIDE {
-            let s = self.side_gap(&self.rothe.sol).1;
+        // (the point that reached the surface: found once, for the side or the stop)
+        let point = (which == SIDE).then(|| self.side_gap(&self.rothe.sol));
+        let kind = if let Some((_, s, _)) = point {
             if self.may_roll(s) {
                 self.enter_side();
             } else if s < 1.0 && self.may_side() {
@@ -2879,8 +2885,7 @@ impl<'r> Drive<'r, '_> {
         if kind == DragEventKind::LiftOff && !self.o.flight {
             return Some(DynDragStop::LiftOff { d: self.d });
         }
-        if kind == DragEventKind::SideContact && !self.state.side() {
-            let (_, s, x) = self.side_gap(&self.rothe.sol);
+        if let Some((_, s, x)) = point.filter(|_| !self.state.side()) {
             return Some(DynDragStop::SideContact {
                 t: self.t,
                 d: self.d,
