@@ -53,7 +53,7 @@ fn quasi_static_first_slip(surface: &Surface) -> f64 {
 fn rows_hold(r: &DynDragResult, h: &dyn Fn(f64) -> f64) {
     for p in &r.samples {
         assert!((p.tip_y - h(p.tip_x)).abs() < 1e-9, "{p:?}");
-        assert!(p.normal > 0.0, "{p:?}");
+        assert!(p.normal > -1e-8, "{p:?}");
         match p.state {
             ContactState::Stuck => assert!(p.tangential.abs() <= 0.5 * p.normal + 1e-9, "{p:?}"),
             s => {
@@ -521,7 +521,7 @@ fn a_side_that_lies_down_for_a_moment_hands_back_to_the_tip() {
         "{last} {deepest}"
     );
     for p in r.samples.iter().filter(|p| p.t > back.t) {
-        assert!(p.normal > 0.0, "{p:?}");
+        assert!(p.normal > -1e-8, "{p:?}");
         match p.side {
             Some(c) => assert!((c.y - h.h(c.x)).abs() < 1e-9, "{p:?}"),
             None => assert!((p.tip_y - h.h(p.tip_x)).abs() < 1e-9, "{p:?}"),
@@ -719,7 +719,7 @@ fn a_side_sticks_and_slips_again_and_again() {
     for p in r.samples.iter().filter(|p| p.t > r.events[0].t) {
         let c = p.side.unwrap();
         assert!((c.y - h.h(c.x)).abs() < 1e-9, "{p:?}");
-        assert!(p.normal > 0.0, "{p:?}");
+        assert!(p.normal > -1e-8, "{p:?}");
         match p.state {
             ContactState::SideStuck => {
                 assert!(p.tangential.abs() <= 0.5 * p.normal + 1e-9, "{p:?}")
@@ -733,4 +733,56 @@ fn a_side_sticks_and_slips_again_and_again() {
     }
     eprintln!("imbalances / released {balances:?}");
     assert!(balances.iter().all(|b| b.abs() < 1e-3), "{balances:?}");
+}
+
+/// With Kelvin–Voigt damping the side hands the contact back to the tip and a second side's
+/// arrival pulls the tip off: internal damping 0.01 over the corrugation 0.02 sin(2πx/0.2),
+/// v 0.05, dt 0.01, light discretization, to d 0.01425. Before (to 2026-12-04) the tip's first
+/// step after the hand-over (at t ≈ 1.0895) stalled Newton on every mesh to 5441 nodes and at
+/// every shorter step: the history of that step (its curvature's, a cubic Lagrange interpolant
+/// on the grid) was taken on the side step's merged mesh, none of whose nodes is the grid's
+/// and whose half crowded the last thousandth; the step now starts on the grid's nodes. The
+/// side that then forms beside the sliding tip pulls the tip with N = −11.6 within the
+/// impact's first shortest step (1e-5): the tip lets go at once, its lift-off at the side's
+/// instant with N = 0. Measured (2026-12-04): the hand-over at t 1.089466, the second side at
+/// t 1.212901; about 5 s (release).
+#[test]
+fn internal_damping_hands_back_and_the_arriving_side_lifts_the_tip() {
+    let surface = corrugated(0.02, 0.2);
+    let o = DynDragOptions {
+        internal_damping: 0.01,
+        ..light(0.05, 0.01, 0.01425)
+    };
+    let r = drag(&Rod::uniform(), &surface, &o).unwrap();
+    eprintln!("{r}");
+    assert_eq!(r.stop, DynDragStop::DMax, "{r}");
+    let kinds: Vec<DragEventKind> = r.events.iter().map(|e| e.kind).collect();
+    use DragEventKind::*;
+    assert_eq!(
+        kinds,
+        [SideContact, Slip, ToTip, SideContact, LiftOff],
+        "{r}"
+    );
+    let (back, side, lift) = (r.events[2], r.events[3], r.events[4]);
+    assert_eq!(back.state, ContactState::SlidingForward, "{back:?}");
+    assert_eq!(
+        side.tip_also,
+        Some(ContactState::SlidingForward),
+        "{side:?}"
+    );
+    assert_eq!(lift.t, side.t, "{lift:?}");
+    assert_eq!((lift.normal, lift.tangential), (0.0, 0.0), "{lift:?}");
+    assert_eq!(lift.state, ContactState::SideSlidingForward, "{lift:?}");
+    assert_eq!(lift.tip_also, None, "{lift:?}");
+    // (every row of the drag a contact's, none tensile; the tip alone after the hand-over on
+    // the surface to the step's tolerance)
+    for p in &r.samples {
+        assert!(p.normal > -1e-8, "{p:?}");
+    }
+    let b = r.balance(back.t, side.t).unwrap();
+    eprintln!("hand-over to the second side: {b:?}");
+    assert!(
+        b.imbalance.abs() < 1e-3 * b.work.abs().max(b.released.abs()),
+        "{b:?}"
+    );
 }
