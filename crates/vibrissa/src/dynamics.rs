@@ -372,19 +372,7 @@ mod tests {
     #[test]
     fn a_backward_euler_step_damps_the_mode_as_the_oscillator() {
         let w1 = CLAMPED_FREE_BETA1.powi(2);
-        let settings = Settings {
-            grid: 200,
-            tol: 1e-10,
-            scheme: bvp::Scheme::Lobatto6,
-            damping: 0.0,
-            internal_damping: 0.0,
-            external_damping: 0.0,
-            rotary_inertia: 0.0,
-            short_steps: false,
-            predict: false,
-            remesh: false,
-            energy_momentum: false,
-        };
+        let settings = Settings::plain(200, 1e-10);
         let rod = Rod::uniform();
         let grid = Rothe::grid_of(&settings);
         let rest = rest_guess(&rod.profile(1.0), &grid);

@@ -3673,9 +3673,11 @@ impl<'r> Drive<'r, '_> {
                 self.fresh_slip = false;
                 continue;
             }
+            // (the shortest step the searches within this step try)
+            let shortest = tau_min.min(tau);
             if self.state == ContactState::Stuck {
                 // (the held force's velocity mismatch out of the search's shorter steps)
-                self.deflate(&tr, tau_min.min(tau));
+                self.deflate(&tr, shortest);
                 g1 = self.events_after(&tr);
                 if g1.iter().all(|&g| g < 0.0) {
                     self.take(tr);
@@ -3686,7 +3688,7 @@ impl<'r> Drive<'r, '_> {
             // the lower end of the search: the step's start (or where a slip's tip moves)
             let mut lo = 0.0;
             if self.fresh_slip && g1[self.slip_slot] >= 0.0 {
-                match self.slip_start(tau, tau_min.min(tau))? {
+                match self.slip_start(tau, shortest)? {
                     Some(l) => lo = l,
                     None => {
                         // no motion the way of the slip: it sticks at once
@@ -3718,8 +3720,7 @@ impl<'r> Drive<'r, '_> {
                     };
                     // (events within the shortest step are simultaneous, the step resolves no
                     // order among them: the first in the list's, a lift-off before a slip)
-                    let within = tau_min.min(tau);
-                    if first.is_none_or(|(t, _)| at.max(within) < t.max(within)) {
+                    if first.is_none_or(|(t, _)| at.max(shortest) < t.max(shortest)) {
                         first = Some((at, which));
                     }
                 }
@@ -3736,7 +3737,6 @@ impl<'r> Drive<'r, '_> {
                     reason: format!("its event functions are not numbers: {g1:?}"),
                 });
             };
-            let shortest = tau_min.min(tau);
             let (which, at) = self.first_met((which, at), lo, shortest)?;
             if self.lets_go_at_once(which, at, shortest) {
                 self.let_go = true;
@@ -3994,17 +3994,8 @@ mod tests {
             .build()
             .unwrap();
         let settings = Settings {
-            grid: 200,
-            tol: 1e-12,
-            scheme: bvp::Scheme::Lobatto6,
             damping: 0.5,
-            internal_damping: 0.0,
-            external_damping: 0.0,
-            rotary_inertia: 0.0,
-            short_steps: false,
-            predict: false,
-            remesh: false,
-            energy_momentum: false,
+            ..Settings::plain(200, 1e-12)
         };
         let grid = Rothe::grid_of(&settings);
         let (guess, tip) = super::pressed(&rod, 0.75, &grid).unwrap();

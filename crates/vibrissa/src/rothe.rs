@@ -958,6 +958,28 @@ pub(crate) struct Settings {
     pub energy_momentum: bool,
 }
 
+#[cfg(test)]
+impl Settings {
+    /// The plain steps the crate's tests build a `Rothe` with: Lobatto6 on `grid` intervals at
+    /// `tol`, Newmark's rule, no damper, damping or rotary inertia, the forces unscaled, each
+    /// step started from the last solution on its own mesh.
+    pub fn plain(grid: usize, tol: f64) -> Settings {
+        Settings {
+            grid,
+            tol,
+            scheme: bvp::Scheme::Lobatto6,
+            damping: 0.0,
+            internal_damping: 0.0,
+            external_damping: 0.0,
+            rotary_inertia: 0.0,
+            short_steps: false,
+            predict: false,
+            remesh: false,
+            energy_momentum: false,
+        }
+    }
+}
+
 /// A step solved but not taken.
 #[derive(Clone)]
 pub(crate) struct Trial {
